@@ -1,0 +1,76 @@
+"""Validation helpers for public boundaries: messages name parameter, unit and value."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from .errors import ParameterError
+
+__all__ = ["check_finite", "check_positive", "check_nonnegative", "check_range", "as_float_array"]
+
+
+def _fmt(value: Any) -> str:
+    arr = np.asarray(value)
+    if arr.ndim == 0:
+        return repr(float(arr)) if np.issubdtype(arr.dtype, np.number) else repr(value)
+    bad = arr.ravel()
+    return np.array2string(bad[:6], precision=6) + (" ..." if bad.size > 6 else "")
+
+
+def _unit(unit: str) -> str:
+    return f" [{unit}]" if unit else ""
+
+
+def check_finite(name: str, value: Any, unit: str = "") -> None:
+    """Raise :class:`ParameterError` if ``value`` has NaN or inf."""
+    arr = np.asarray(value, dtype=float)
+    if not np.all(np.isfinite(arr)):
+        raise ParameterError(f"`{name}` must be finite{_unit(unit)}, got {_fmt(value)}")
+
+
+def check_positive(name: str, value: Any, unit: str = "") -> None:
+    """Raise :class:`ParameterError` unless every element of ``value`` is finite and > 0."""
+    check_finite(name, value, unit)
+    if not np.all(np.asarray(value, dtype=float) > 0):
+        raise ParameterError(f"`{name}` must be > 0{_unit(unit)}, got {_fmt(value)}")
+
+
+def check_nonnegative(name: str, value: Any, unit: str = "") -> None:
+    """Raise :class:`ParameterError` unless every element of ``value`` is finite and >= 0."""
+    check_finite(name, value, unit)
+    if not np.all(np.asarray(value, dtype=float) >= 0):
+        raise ParameterError(f"`{name}` must be >= 0{_unit(unit)}, got {_fmt(value)}")
+
+
+def check_range(
+    name: str,
+    value: Any,
+    low: float = -math.inf,
+    high: float = math.inf,
+    unit: str = "",
+    *,
+    inclusive: bool = True,
+) -> None:
+    """Raise :class:`ParameterError` unless ``low <= value <= high`` (or strict if not inclusive)."""
+    check_finite(name, value, unit)
+    arr = np.asarray(value, dtype=float)
+    ok = (arr >= low) & (arr <= high) if inclusive else (arr > low) & (arr < high)
+    if not np.all(ok):
+        lo, hi = ("[", "]") if inclusive else ("(", ")")
+        raise ParameterError(
+            f"`{name}` must be in {lo}{low:g}, {high:g}{hi}{_unit(unit)}, got {_fmt(value)}"
+        )
+
+
+def as_float_array(name: str, value: Any, unit: str = "", *, finite: bool = True) -> np.ndarray:
+    """Convert to a float64 array, naming the parameter when that fails or values are not finite."""
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ParameterError(f"`{name}` must be numeric{_unit(unit)}, got {value!r}") from exc
+    if finite:
+        check_finite(name, arr, unit)
+    return arr

@@ -1,0 +1,127 @@
+"""Manoeuvre metrics from recorded runs: settling time, overshoot, turning diameter, reversals.
+
+All functions work on arrays with a leading run axis (``(runs, time)``) and return one value
+per run.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..constants import wrap_angle
+
+__all__ = ["settling_time", "overshoot", "turning_diameter", "rudder_reversals", "summarize"]
+
+
+def settling_time(time: np.ndarray, signal: np.ndarray, target: np.ndarray | float,
+                  tolerance: float, *, angle: bool = False) -> np.ndarray:
+    """First time after which |signal − target| stays within ``tolerance`` (NaN if never).
+
+    ``target`` may vary in time (same shape as ``signal``); with ``angle=True`` the error is
+    wrapped to [−π, π).
+    """
+    signal = np.atleast_2d(signal)
+    err = signal - np.broadcast_to(target, signal.shape)
+    if angle:
+        err = wrap_angle(err)
+    outside = ~(np.abs(err) <= tolerance)  # NaN counts as outside
+    out = np.full(signal.shape[0], np.nan)
+    for i, row in enumerate(outside):
+        if not row[-1]:
+            idx = np.flatnonzero(row)
+            out[i] = time[0] if idx.size == 0 else time[min(idx[-1] + 1, time.size - 1)]
+    return out
+
+
+def overshoot(signal: np.ndarray, start: float | np.ndarray, target: float | np.ndarray
+              ) -> np.ndarray:
+    """Largest excursion beyond ``target`` in the direction of the step from ``start``."""
+    signal = np.atleast_2d(signal)
+    direction = np.sign(np.asarray(target) - np.asarray(start)) * np.ones(signal.shape[0])
+    beyond = (signal - np.reshape(target, (-1, 1))) * direction[:, None]
+    return np.clip(np.nanmax(beyond, axis=1), 0.0, None)
+
+
+def turning_diameter(north: np.ndarray, east: np.ndarray, heading: np.ndarray) -> np.ndarray:
+    """Diameter [m] of the last full circle of the track (NaN if the ship turned < 360°).
+
+    The track after the heading has changed by 360° is taken from the last full turn; the
+    diameter is the mean of its north and east extents (a steady circle has both equal).
+    """
+    north, east, heading = (np.atleast_2d(a) for a in (north, east, heading))
+    out = np.full(north.shape[0], np.nan)
+    for i in range(north.shape[0]):
+        psi = np.unwrap(heading[i][np.isfinite(heading[i])])
+        n = psi.size
+        if n < 3 or abs(psi[-1] - psi[0]) < 2 * np.pi:
+            continue
+        # start of the last full turn
+        j = np.flatnonzero(np.abs(psi[-1] - psi) >= 2 * np.pi)[-1]
+        x = north[i][j:n]
+        y = east[i][j:n]
+        out[i] = 0.5 * ((x.max() - x.min()) + (y.max() - y.min()))
+    return out
+
+
+def rudder_reversals(time: np.ndarray, rudder: np.ndarray, *, deadband: float = 0.0
+                     ) -> np.ndarray:
+    """Number of sign reversals of the rudder rate per minute (moves smaller than the deadband
+    [rad] are ignored)."""
+    rudder = np.atleast_2d(rudder)
+    out = np.zeros(rudder.shape[0])
+    minutes = (time[-1] - time[0]) / 60.0
+    for i, row in enumerate(rudder):
+        row = row[np.isfinite(row)]
+        count, last_extreme, direction = 0, row[0] if row.size else 0.0, 0
+        for v in row[1:]:
+            step = v - last_extreme
+            if direction >= 0 and step < -deadband:
+                count += direction > 0
+                direction, last_extreme = -1, v
+            elif direction <= 0 and step > deadband:
+                count += direction < 0
+                direction, last_extreme = 1, v
+            elif (direction > 0 and v > last_extreme) or (direction < 0 and v < last_extreme):
+                last_extreme = v
+        out[i] = count / minutes if minutes > 0 else 0.0
+    return out
+
+
+def summarize(result) -> list[dict[str, float | str]]:  # noqa: ANN001 - SimResult
+    """Per-run summary metrics of a :class:`~seahelm.results.SimResult` (SI units unless
+    the key says ``_deg``)."""
+    out: list[dict[str, float | str]] = []
+    t = result.time
+    heading = result["heading"]
+    yaw_rate = result["yaw_rate"]
+    diam = turning_diameter(result["north"], result["east"], heading)
+    ref_labels = result.reference_labels
+    settle = np.full(result.n_runs, np.nan)
+    if ref_labels and ref_labels[0] in ("heading", "yaw_rate"):
+        lab = ref_labels[0]
+        target = result[f"reference_{lab}"]
+        sig = heading if lab == "heading" else yaw_rate
+        final_target = np.broadcast_to(target, sig.shape)[:, -1:]
+        span = np.abs(final_target[:, 0] - sig[:, 0])
+        if lab == "heading":
+            tol = np.maximum(0.02 * span, np.radians(0.2))
+        else:
+            tol = np.maximum(0.05 * np.abs(final_target[:, 0]), 1e-5)
+        for i in range(result.n_runs):
+            settle[i] = settling_time(t, sig[i], final_target[i], tol[i],
+                                      angle=lab == "heading")[0]
+    messages = result.messages()
+    for i in range(result.n_runs):
+        row: dict[str, float | str] = {"run": i, "status": messages[i]}
+        for j, (lab, unit) in enumerate(zip(result.state_labels, result.state_units)):
+            value = float(result.state[i, -1, j])
+            row[f"final_{lab}"] = value
+            if unit == "rad":
+                row[f"{lab}_deg"] = float(np.degrees(value))
+                row[f"max_abs_{lab}_deg"] = float(np.degrees(np.nanmax(np.abs(result.state[i, :, j]))))
+        row["final_yaw_rate"] = float(yaw_rate[i, -1])
+        row["final_heading_rad"] = float(heading[i, -1])
+        row["turning_diameter_m"] = float(diam[i])
+        row["settling_time_s"] = float(settle[i])
+        out.append(row)
+    return out

@@ -1,0 +1,279 @@
+"""Top-level commands of ``seahelm``: demo, run, models, plot, --version."""
+
+from __future__ import annotations
+
+import importlib
+import time
+from pathlib import Path
+from typing import Annotated, Any
+
+import numpy as np
+import typer
+from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
+from rich.table import Table
+
+from .. import __version__
+from ._common import console, err_console, handle_errors, print_json
+
+app = typer.Typer(
+    name="seahelm",
+    help="Batched, validated ship motion simulation and control.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+
+# Subcommand groups of the paper modules: (name, module, help).
+_GROUPS = (
+    ("waves", "seahelm.cli.waves", "Sea-wave spectra, sea-state tables and disturbance signals."),
+    ("identify", "seahelm.cli.identify", "Identify steering-model coefficients from turns."),
+    ("averaging", "seahelm.cli.averaging", "Full averaging of the CPP ship in waves."),
+    ("compensate", "seahelm.cli.compensate", "Wave/wind forces and compensating rudder angle."),
+)
+for _name, _module, _help in _GROUPS:
+    try:
+        _sub = importlib.import_module(_module)
+    except ModuleNotFoundError as _exc:  # a group not built yet
+        if _exc.name != _module:
+            raise
+        continue
+    app.add_typer(_sub.app, name=_name, help=_help)
+
+
+def _version(value: bool) -> None:
+    if value:
+        console.print(f"seahelm {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    version: Annotated[bool, typer.Option("--version", callback=_version, is_eager=True,
+                                          help="Print the version and exit.")] = False,
+) -> None:
+    """Batched, validated ship motion simulation and control."""
+
+
+# ------------------------------------------------------------------------------------------
+class _ProgressBar:
+    """A progress callback that shows a bar only once a run has taken about a second."""
+
+    def __init__(self, label: str, *, enabled: bool = True) -> None:
+        self.label = label
+        self.enabled = enabled
+        self.start = time.perf_counter()
+        self.bar: Progress | None = None
+        self.task: Any = None
+
+    def __call__(self, done: int, total: int) -> None:
+        if not self.enabled:
+            return
+        if self.bar is None:
+            if time.perf_counter() - self.start < 1.0 or done >= total:
+                return
+            self.bar = Progress(TextColumn("{task.description}"), BarColumn(),
+                                TextColumn("{task.percentage:>3.0f}%"), TimeRemainingColumn(),
+                                console=err_console, transient=True)
+            self.bar.start()
+            self.task = self.bar.add_task(self.label, total=total)
+        self.bar.update(self.task, completed=done)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.stop()
+
+
+def _fmt(v: Any) -> str:
+    return f"{v:.5g}" if isinstance(v, float) else str(v)
+
+
+def _summary_table(summary: list[dict[str, Any]], title: str) -> Table:
+    """One run: a metric/value table; a batch: one row per run (first 20)."""
+    if len(summary) == 1:
+        table = Table(title=title)
+        table.add_column("metric")
+        table.add_column("value", justify="right")
+        for key, value in summary[0].items():
+            if key != "run":
+                table.add_row(key, _fmt(value))
+        return table
+    table = Table(title=title)
+    keys = ["run", "status", "final_heading_rad", "final_yaw_rate", "settling_time_s"]
+    for key in keys:
+        table.add_column(key.replace("_", " "), justify="left" if key == "status" else "right")
+    for row in summary[:20]:
+        table.add_row(*(_fmt(row.get(k, "")) for k in keys))
+    if len(summary) > 20:
+        table.caption = f"first 20 of {len(summary)} runs"
+    return table
+
+
+def _execute(prepared: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bool,
+             label: str) -> dict[str, Any]:
+    from ..analysis.maneuvers import summarize
+    from ..scenario import run_scenario
+
+    bar = _ProgressBar(f"simulating {prepared.n_runs} run(s)")
+    try:
+        result = run_scenario(prepared, progress=bar)
+    finally:
+        bar.close()
+    summary = summarize(result)
+    files: dict[str, str] = {}
+    if out is not None:
+        out.mkdir(parents=True, exist_ok=True)
+        files["netcdf"] = str(result.to_netcdf(out / "result.nc"))
+        if csv:
+            files["csv"] = str(result.to_csv(out / "result.csv"))
+        if plot:
+            import matplotlib
+
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+
+            fig = result.plot()
+            path = out / "overview.png"
+            from ..results import atomic_write
+
+            atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=110, format="png"))
+            plt.close(fig)
+            files["plot"] = str(path)
+    payload: dict[str, Any] = {
+        "scenario": prepared.scenario.title or prepared.source,
+        "n_runs": result.n_runs,
+        "n_ok": int(result.ok.sum()),
+        "n_diverged": int((~result.ok).sum()),
+        "wall_time_s": result.metadata["wall_time_s"],
+        "files": files,
+    }
+    if result.n_runs == 1:
+        payload.update({k: v for k, v in summary[0].items() if k != "run"})
+    payload["runs"] = summary
+    if as_json:
+        print_json(payload)
+    else:
+        console.print(_summary_table(summary, label))
+        console.print(
+            f"{result.n_runs} run(s), {payload['n_ok']} ok, {payload['n_diverged']} diverged, "
+            f"{result.metadata['wall_time_s']:.3g} s"
+        )
+        for kind, path in files.items():
+            console.print(f"  {kind}: {path}")
+    return payload
+
+
+@app.command()
+@handle_errors
+def demo(
+    out: Annotated[Path, typer.Option(help="Output directory.")] = Path("seahelm-out"),
+    json_: Annotated[bool, typer.Option("--json", help="Print a JSON summary only.")] = False,
+) -> None:
+    """Run the embedded default scenario (Mariner, 20° course change, PID) and plot it."""
+    from ..scenario import default_scenario_text, parse_scenario
+
+    prepared = parse_scenario(default_scenario_text(), source="<embedded default scenario>")
+    _execute(prepared, out, as_json=json_, plot=True, csv=False, label=prepared.scenario.title)
+
+
+@app.command()
+@handle_errors
+def run(
+    scenario: Annotated[Path, typer.Argument(help="Scenario TOML file.")],
+    out: Annotated[Path | None, typer.Option(help="Write result.nc (and overview.png) here.")] = None,
+    json_: Annotated[bool, typer.Option("--json", help="Print a JSON summary only.")] = False,
+    csv: Annotated[bool, typer.Option(help="Also write result.csv.")] = False,
+    plot: Annotated[bool, typer.Option(help="Write overview.png with --out.")] = True,
+) -> None:
+    """Validate and run a scenario file."""
+    from ..scenario import load_scenario
+
+    prepared = load_scenario(scenario)
+    _execute(prepared, out, as_json=json_, plot=plot, csv=csv,
+             label=prepared.scenario.title or str(scenario))
+
+
+@app.command()
+@handle_errors
+def models(
+    json_: Annotated[bool, typer.Option("--json", help="Print JSON.")] = False,
+) -> None:
+    """List the registered vessel models, actuators and controllers with their parameters."""
+    from ..registry import ACTUATORS, CONTROLLERS, VESSEL_MODELS, get_actuator, get_controller, get_model
+    from ..vessels.catalog import CATALOG
+
+    payload: dict[str, Any] = {}
+    for kind, table, getter in (("vessel_models", VESSEL_MODELS, get_model),
+                                ("actuators", ACTUATORS, get_actuator),
+                                ("controllers", CONTROLLERS, get_controller)):
+        payload[kind] = {}
+        for name in sorted(table):
+            comp = getter(name)
+            payload[kind][name] = {
+                "description": comp.description,
+                "parameters": [
+                    {"name": i.name, "unit": i.unit, "symbol": i.symbol, "default": i.default,
+                     "doc": i.doc}
+                    for i in comp.params_type.info()
+                ],
+            }
+            for attr in ("state_labels", "input_labels", "disturbance_labels",
+                         "reference_labels", "command_labels"):
+                if hasattr(comp, attr):
+                    payload[kind][name][attr] = list(getattr(comp, attr))
+    payload["catalog"] = {n: {"model": e.model, "provenance": e.provenance}
+                          for n, e in sorted(CATALOG.items())}
+    if json_:
+        print_json(payload)
+        return
+    for kind, entries in payload.items():
+        if kind == "catalog":
+            continue
+        for name, info in entries.items():
+            table = Table(title=f"{kind[:-1].replace('_', ' ')} '{name}': {info['description']}",
+                          title_justify="left")
+            for col in ("parameter", "symbol", "unit", "default", "description"):
+                table.add_column(col)
+            for p in info["parameters"]:
+                default = "required" if p["default"] is None else f"{p['default']:.6g}"
+                table.add_row(p["name"], p["symbol"], p["unit"], default, p["doc"])
+            console.print(table)
+    cat = Table(title="catalog (named parameter sets)", title_justify="left")
+    cat.add_column("name")
+    cat.add_column("model")
+    cat.add_column("provenance")
+    for name, e in payload["catalog"].items():
+        cat.add_row(name, e["model"], e["provenance"])
+    console.print(cat)
+
+
+@app.command()
+@handle_errors
+def plot(
+    result: Annotated[Path, typer.Argument(help="Result file written by seahelm (NetCDF).")],
+    out: Annotated[Path | None, typer.Option(help="PNG file (default: next to the result).")] = None,
+    runs: Annotated[list[int] | None, typer.Option("--run", help="Run(s) to draw.")] = None,
+) -> None:
+    """Plot a result file: heading, actuator angle, yaw rate and track."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..plotting.timeseries import plot_result
+    from ..results import atomic_write, load_result
+
+    ds = load_result(result)
+    if runs:
+        bad = [r for r in runs if r not in set(np.asarray(ds["run"].values).tolist())]
+        if bad:
+            raise ValueError(f"--run {bad} not in the file (runs 0..{ds.sizes['run'] - 1})")
+    fig = plot_result(ds, runs=runs)
+    path = out or result.with_suffix(".png")
+    atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=110, format="png"))
+    plt.close(fig)
+    console.print(f"wrote {path}")
+
+
+def main() -> None:
+    """Entry point of the ``seahelm`` console script."""
+    app()

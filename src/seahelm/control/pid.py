@@ -1,0 +1,112 @@
+"""PID heading autopilot with heading-error wrapping and anti-windup.
+
+The command (a rudder angle [rad]) is::
+
+    e   = wrap(ψ* − ψ)                      heading error wrapped to [−π, π)
+    δ_c = sat(K_p e + K_i ∫e dt + K_d (r* − r), δ_max)
+
+with the derivative taken on the measured yaw rate r (no derivative kick on set-point
+steps) and r* = 0 unless the reference supplies a wanted yaw rate. Anti-windup by conditional
+integration (clamping): the integral is frozen while the command is saturated and the error
+would drive it further into saturation (Åström & Hägglund, *Advanced PID Control*, 2006, §3.5).
+
+Sign convention as in :mod:`seahelm.vessels.base`: positive rudder → positive yaw rate.
+
+:func:`pid_gains_from_nomoto` gives pole-placement gains for a first-order Nomoto ship
+(Fossen, 2021, §15.2): K_p = T ω_n²/K, K_d = (2ζω_n T − 1)/K, K_i = K_p ω_n/10.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from numba import njit
+
+from .._validate import check_positive
+from ..parameters import Params, param
+from .base import Controller
+
+__all__ = ["PIDHeadingParams", "PID_HEADING", "pid_gains_from_nomoto"]
+
+
+@dataclass(frozen=True, kw_only=True)
+class PIDHeadingParams(Params):
+    """Gains of the PID heading autopilot."""
+
+    kp: float = param(1.0, unit="rad/rad", symbol="K_p", low=0.0, doc="proportional gain")
+    ki: float = param(0.0, unit="1/s", symbol="K_i", low=0.0, doc="integral gain")
+    kd: float = param(0.0, unit="s", symbol="K_d", low=0.0, doc="derivative gain (on yaw rate)")
+    max_command: float = param(math.radians(35.0), unit="rad", symbol="δ_max", low=0.0,
+                               low_inclusive=False, doc="command saturation (anti-windup)")
+
+
+@njit(cache=True)
+def _wrap(a):  # pragma: no cover - compiled
+    return (a + math.pi) % (2.0 * math.pi) - math.pi
+
+
+@njit(cache=True)
+def pid_heading_init(z, y, ref, p, cs):  # pragma: no cover - compiled
+    cs[0] = 0.0
+
+
+@njit(cache=True)
+def pid_heading_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
+    kp = p[0]
+    ki = p[1]
+    kd = p[2]
+    umax = p[3]
+    e = _wrap(ref[0] - y[2])
+    r_ref = ref[1] if ref.shape[0] > 1 else 0.0
+    integral = cs[0]
+    u_unsat = kp * e + ki * integral + kd * (r_ref - y[3])
+    u = min(max(u_unsat, -umax), umax)
+    # conditional integration: integrate unless saturated and pushing further out
+    if u == u_unsat or e * u_unsat < 0.0:
+        cs[0] = integral + e * dt
+    cmd[0] = u
+
+
+PID_HEADING = Controller(
+    name="pid-heading",
+    description="PID heading autopilot, wrapped heading error, conditional-integration anti-windup",
+    params_type=PIDHeadingParams,
+    state_labels=("heading_error_integral",),
+    reference_labels=("heading",),
+    reference_units=("rad",),
+    command_labels=("rudder_command",),
+    init=pid_heading_init,
+    step=pid_heading_step,
+)
+
+
+def pid_gains_from_nomoto(
+    gain: float,
+    time_constant: float,
+    natural_frequency: float,
+    damping: float = 0.8,
+    *,
+    max_command: float = math.radians(35.0),
+) -> PIDHeadingParams:
+    """Pole-placement PID gains for a first-order Nomoto ship (Fossen, 2021, §15.2).
+
+    Parameters
+    ----------
+    gain : float
+        Nomoto gain K [1/s].
+    time_constant : float
+        Nomoto time constant T [s].
+    natural_frequency : float
+        Wanted closed-loop natural frequency ω_n [rad/s].
+    damping : float
+        Wanted relative damping ζ [-].
+    """
+    check_positive("gain", gain, "1/s")
+    check_positive("time_constant", time_constant, "s")
+    check_positive("natural_frequency", natural_frequency, "rad/s")
+    check_positive("damping", damping, "-")
+    kp = time_constant * natural_frequency**2 / gain
+    kd = max((2.0 * damping * natural_frequency * time_constant - 1.0) / gain, 0.0)
+    ki = kp * natural_frequency / 10.0
+    return PIDHeadingParams(kp=kp, ki=ki, kd=kd, max_command=max_command)

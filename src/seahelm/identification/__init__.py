@@ -1,0 +1,1 @@
+"""seahelm.identification."""

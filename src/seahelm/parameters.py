@@ -1,0 +1,199 @@
+"""Frozen parameter dataclasses with units, and their packing into flat float arrays.
+
+Every dynamic component (vessel model, actuator, controller) takes its parameters as a frozen,
+keyword-only dataclass that subclasses :class:`Params`. Fields are declared with
+:func:`param`, which records the unit, the paper's symbol and a one-line description; these
+feed ``seahelm models``, scenario validation and the docs. Inside the compiled simulation loop
+a parameter set is a flat ``float64`` array in field order (:meth:`Params.to_array`).
+
+SI units and radians inside; degrees only at the edges (scenario files may write
+``max_angle_deg = 35`` for a field ``max_angle`` whose unit is ``rad``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any, ClassVar, Self
+
+import numpy as np
+
+from .errors import ParameterError
+
+__all__ = ["Params", "param", "ParamInfo", "stack_params"]
+
+
+@dataclasses.dataclass(frozen=True)
+class ParamInfo:
+    """Description of one parameter field."""
+
+    name: str
+    unit: str
+    symbol: str
+    doc: str
+    default: Any
+    low: float
+    high: float
+
+
+def param(
+    default: Any = dataclasses.MISSING,
+    *,
+    unit: str = "",
+    symbol: str = "",
+    doc: str = "",
+    low: float = -math.inf,
+    high: float = math.inf,
+    low_inclusive: bool = True,
+) -> Any:
+    """Declare a parameter field with its unit [..], paper symbol and admissible range.
+
+    The range is checked by :meth:`Params.__post_init__`; a value outside it raises
+    :class:`~seahelm.errors.ParameterError` naming the field, the unit and the value.
+    """
+    meta = {
+        "unit": unit,
+        "symbol": symbol,
+        "doc": doc,
+        "low": low,
+        "high": high,
+        "low_inclusive": low_inclusive,
+    }
+    if default is dataclasses.MISSING:
+        return dataclasses.field(metadata=meta)
+    return dataclasses.field(default=default, metadata=meta)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Params:
+    """Base class of parameter sets: validated on construction, packable to an array."""
+
+    #: Human-readable provenance of a named parameter set (paper, table, ship).
+    provenance: ClassVar[str] = ""
+
+    def __post_init__(self) -> None:
+        for f in dataclasses.fields(self):
+            value = getattr(self, f.name)
+            if not isinstance(value, (int, float, np.floating, np.integer)) or isinstance(
+                value, bool
+            ):
+                if isinstance(value, bool):
+                    continue
+                raise ParameterError(
+                    f"`{f.name}` must be a number{_unit(f)}, got {value!r}"
+                )
+            v = float(value)
+            if not math.isfinite(v):
+                raise ParameterError(f"`{f.name}` must be finite{_unit(f)}, got {v!r}")
+            low = f.metadata.get("low", -math.inf)
+            high = f.metadata.get("high", math.inf)
+            incl = f.metadata.get("low_inclusive", True)
+            if (v < low if incl else v <= low) or v > high:
+                lo = "[" if incl else "("
+                raise ParameterError(
+                    f"`{f.name}` must be in {lo}{low:g}, {high:g}]{_unit(f)}, got {v!r}"
+                )
+        self.validate()
+
+    def validate(self) -> None:
+        """Cross-field checks; override in subclasses (raise ParameterError)."""
+
+    # -- packing -----------------------------------------------------------------------
+    @classmethod
+    def field_names(cls) -> tuple[str, ...]:
+        """Field names in packing order."""
+        return tuple(f.name for f in dataclasses.fields(cls))
+
+    def to_array(self) -> np.ndarray:
+        """Pack the fields, in declaration order, into a float64 array (SI units)."""
+        return np.array([float(getattr(self, n)) for n in self.field_names()], dtype=float)
+
+    @classmethod
+    def from_array(cls, values: Sequence[float]) -> Self:
+        """Inverse of :meth:`to_array`."""
+        names = cls.field_names()
+        if len(values) != len(names):
+            raise ParameterError(
+                f"{cls.__name__} needs {len(names)} values ({', '.join(names)}), got {len(values)}"
+            )
+        return cls(**{n: float(v) for n, v in zip(names, values)})
+
+    @classmethod
+    def info(cls) -> list[ParamInfo]:
+        """Field descriptions (name, unit, symbol, doc, default, range)."""
+        out = []
+        for f in dataclasses.fields(cls):
+            default = f.default if f.default is not dataclasses.MISSING else None
+            out.append(
+                ParamInfo(
+                    f.name,
+                    f.metadata.get("unit", ""),
+                    f.metadata.get("symbol", ""),
+                    f.metadata.get("doc", ""),
+                    default,
+                    f.metadata.get("low", -math.inf),
+                    f.metadata.get("high", math.inf),
+                )
+            )
+        return out
+
+    def replace(self, **changes: Any) -> Self:
+        """A copy with some fields changed (validated again)."""
+        return dataclasses.replace(self, **changes)
+
+    def as_dict(self) -> dict[str, float]:
+        """Fields as a plain dict."""
+        return {n: getattr(self, n) for n in self.field_names()}
+
+    @classmethod
+    def from_mapping(cls, values: Mapping[str, Any], *, base: "Params | None" = None) -> Self:
+        """Build from a mapping; keys ``<name>_deg`` set a radian field ``<name>`` from degrees.
+
+        Unknown keys raise :class:`ParameterError` listing the valid ones.
+        """
+        fields = {f.name: f for f in dataclasses.fields(cls)}
+        kwargs: dict[str, Any] = base.as_dict() if base is not None else {}
+        for key, value in values.items():
+            name, factor = key, 1.0
+            if key not in fields and key.endswith("_deg") and key[:-4] in fields:
+                name = key[:-4]
+                if "rad" not in fields[name].metadata.get("unit", ""):
+                    raise ParameterError(
+                        f"`{key}`: field `{name}` is not an angle "
+                        f"(unit [{fields[name].metadata.get('unit', '')}])"
+                    )
+                factor = math.pi / 180.0
+            if name not in fields:
+                raise ParameterError(
+                    f"unknown parameter `{key}` for {cls.__name__}; "
+                    f"valid: {', '.join(fields)} (angles also as <name>_deg)"
+                )
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                raise ParameterError(
+                    f"`{key}` must be a number{_unit(fields[name])}, got {value!r}"
+                )
+            kwargs[name] = float(value) * factor
+        return cls(**kwargs)
+
+
+def _unit(f: dataclasses.Field) -> str:
+    unit = f.metadata.get("unit", "")
+    return f" [{unit}]" if unit else ""
+
+
+def stack_params(params: "Params | Sequence[Params]", cls: type[Params] | None = None) -> np.ndarray:
+    """Pack one parameter set or a sequence of them into a ``(n_runs, n_params)`` array."""
+    if isinstance(params, Params):
+        params = [params]
+    params = list(params)
+    if not params:
+        raise ParameterError("at least one parameter set is needed, got an empty sequence")
+    kinds = {type(p) for p in params}
+    if len(kinds) != 1:
+        raise ParameterError(f"all parameter sets in a batch must have one type, got {kinds}")
+    if cls is not None and not isinstance(params[0], cls):
+        raise ParameterError(
+            f"expected {cls.__name__} parameters, got {type(params[0]).__name__}"
+        )
+    return np.stack([p.to_array() for p in params])

@@ -1,0 +1,58 @@
+"""Registries of the pluggable components, by name.
+
+Entries are ``"module:attribute"`` strings resolved on first lookup, so listing names imports
+nothing heavy. :func:`get_model`, :func:`get_actuator` and :func:`get_controller` accept a name
+or the object itself; an unknown name raises ValueError listing the valid ones.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import Any
+
+from .actuators.base import Actuator
+from .control.base import Controller
+from .vessels.base import VesselModel
+
+__all__ = ["VESSEL_MODELS", "ACTUATORS", "CONTROLLERS", "get_model", "get_actuator",
+           "get_controller"]
+
+VESSEL_MODELS: dict[str, str] = {
+    "nomoto1": "seahelm.vessels.nomoto:NOMOTO1",
+    "nomoto2": "seahelm.vessels.nomoto:NOMOTO2",
+    "voitkunsky": "seahelm.vessels.voitkunsky:VOITKUNSKY",
+}
+
+ACTUATORS: dict[str, str] = {
+    "rudder-servo": "seahelm.actuators.servo:RUDDER_SERVO",
+    "direct": "seahelm.actuators.servo:DIRECT",
+}
+
+CONTROLLERS: dict[str, str] = {
+    "pid-heading": "seahelm.control.pid:PID_HEADING",
+    "open-loop": "seahelm.control.open_loop:OPEN_LOOP",
+}
+
+
+def _resolve(kind: str, table: dict[str, str], name: Any, cls: type) -> Any:
+    if isinstance(name, cls):
+        return name
+    if not isinstance(name, str) or name not in table:
+        raise ValueError(f"unknown {kind} '{name}'; valid: {', '.join(sorted(table))}")
+    module, attr = table[name].split(":")
+    return getattr(importlib.import_module(module), attr)
+
+
+def get_model(name: str | VesselModel) -> VesselModel:
+    """A vessel model by registry name (or the model itself)."""
+    return _resolve("vessel model", VESSEL_MODELS, name, VesselModel)
+
+
+def get_actuator(name: str | Actuator) -> Actuator:
+    """An actuator by registry name (or the actuator itself)."""
+    return _resolve("actuator", ACTUATORS, name, Actuator)
+
+
+def get_controller(name: str | Controller) -> Controller:
+    """A controller by registry name (or the controller itself)."""
+    return _resolve("controller", CONTROLLERS, name, Controller)

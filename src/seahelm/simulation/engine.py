@@ -1,0 +1,468 @@
+"""The closed-loop simulation engine: vessel + actuator + controller + disturbances, batched.
+
+:func:`simulate` integrates a batch of runs with a fixed-step method. For every combination of
+(vessel model, actuator, controller, integrator) :func:`compile_closed_loop` generates a small
+module from :mod:`seahelm.simulation.kernel_template` with the components' numba functions
+bound in, and numba compiles it once per machine (``cache=True``; the module's name hashes the
+sources it depends on, so editing a component recompiles it). The loop runs in parallel over
+runs (``numba.prange``), one thread per core; nothing in it is Python per step or per run.
+
+Timing: the state is integrated on the grid t_k = k·dt; the controller is stepped every
+``controller_dt`` (an integer multiple of dt) and its command held in between (zero-order hold);
+disturbances are given on the grid and interpolated linearly inside a step (RK4 uses their
+mid-step mean at t_k + dt/2).
+
+A run whose state turns NaN/inf or leaves its declared bounds stops and is recorded with its
+status, time and state; the other runs go on (``throw=True`` raises
+:class:`~seahelm.errors.SimulationDiverged` instead).
+"""
+
+from __future__ import annotations
+
+import enum
+import functools
+import hashlib
+import importlib.util
+import inspect
+import os
+import re
+import sys
+import tempfile
+import time as _time
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+from types import ModuleType
+from typing import Any
+
+import numpy as np
+
+from .. import __version__
+from .._validate import as_float_array, check_positive
+from ..actuators.base import Actuator
+from ..actuators.servo import RUDDER_SERVO
+from ..control.base import Controller
+from ..control.open_loop import OPEN_LOOP
+from ..errors import ParameterError, SimulationDiverged
+from ..parameters import Params, stack_params
+from ..vessels.base import NAV_OUTPUTS, VesselModel
+from . import kernel_template
+from .integrators import INTEGRATORS
+
+__all__ = ["RunStatus", "simulate", "compile_closed_loop", "kernel_cache_dir"]
+
+
+class RunStatus(enum.IntEnum):
+    """Outcome of one run of a batch."""
+
+    OK = 0
+    NONFINITE = 1
+    OUT_OF_BOUNDS = 2
+
+
+# ------------------------------------------------------------------------------------------
+# kernel generation
+# ------------------------------------------------------------------------------------------
+def kernel_cache_dir() -> Path:
+    """Directory for generated closed-loop kernels (``SEAHELM_CACHE_DIR`` overrides)."""
+    env = os.environ.get("SEAHELM_CACHE_DIR")
+    if env:
+        base = Path(env)
+    else:
+        xdg = os.environ.get("XDG_CACHE_HOME")
+        base = (Path(xdg) if xdg else Path.home() / ".cache") / "seahelm" / "kernels"
+    try:
+        base.mkdir(parents=True, exist_ok=True)
+        probe = base / f".probe-{os.getpid()}"
+        probe.write_text("")
+        probe.unlink()
+        return base
+    except OSError:
+        fallback = Path(tempfile.gettempdir()) / f"seahelm-kernels-{os.getuid()}"
+        fallback.mkdir(parents=True, exist_ok=True)
+        return fallback
+
+
+def _binding(func: Any, alias: str) -> tuple[str, str]:
+    py = getattr(func, "py_func", None)
+    if py is None:
+        raise TypeError(f"{alias} must be a numba @njit function, got {func!r}")
+    module, name = py.__module__, py.__name__
+    mod = sys.modules.get(module)
+    if mod is None or getattr(mod, name, None) is not func:
+        raise TypeError(
+            f"{alias} '{module}.{name}' must be importable as a module-level name"
+        )
+    try:
+        source = Path(inspect.getsourcefile(py) or "").read_text()
+    except OSError:
+        source = inspect.getsource(py)
+    return f"from {module} import {name} as {alias}\n", source
+
+
+_TEMPLATE_TEXT = Path(kernel_template.__file__).read_text()
+_BLOCK = re.compile(r"# <(header|footer)>\n.*?# </\1>\n", re.S)
+
+
+@functools.lru_cache(maxsize=None)
+def compile_closed_loop(
+    model: VesselModel, actuator: Actuator, controller: Controller, integrator: str = "rk4"
+) -> ModuleType:
+    """The compiled closed-loop module for one combination of components (cached)."""
+    if integrator not in INTEGRATORS:
+        raise ValueError(f"unknown integrator '{integrator}'; valid: {', '.join(INTEGRATORS)}")
+    parts = [
+        _binding(model.rhs, "model_rhs"),
+        _binding(model.output, "model_output"),
+        _binding(actuator.rhs, "actuator_rhs"),
+        _binding(actuator.output, "actuator_output"),
+        _binding(controller.init, "controller_init"),
+        _binding(controller.step, "controller_step"),
+    ]
+    header = "".join(p[0] for p in parts) + (
+        f"\nNX = {model.n_states}\nNA = {actuator.n_states}\n"
+        f"NU = {model.n_inputs}\nNY = {len(NAV_OUTPUTS)}\n"
+    )
+    footer = f"advance = {integrator}_advance\n"
+    blocks = iter([header, footer])
+    text = _BLOCK.sub(lambda m: next(blocks), _TEMPLATE_TEXT)
+    digest = hashlib.sha1(
+        "\0".join([text, __version__, *(p[1] for p in parts)]).encode()
+    ).hexdigest()[:16]
+    name = f"seahelm_kernel_{digest}"
+    if name in sys.modules:
+        return sys.modules[name]
+    path = kernel_cache_dir() / f"{name}.py"
+    if not path.exists() or path.read_text() != text:
+        fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
+        with os.fdopen(fd, "w") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    spec = importlib.util.spec_from_file_location(name, path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+# ------------------------------------------------------------------------------------------
+# input conversion
+# ------------------------------------------------------------------------------------------
+def _param_rows(name: str, params: Any, cls: type[Params]) -> np.ndarray:
+    if params is None:
+        try:
+            params = cls()
+        except TypeError:
+            raise ParameterError(f"`{name}` is required for {cls.__name__}") from None
+    if isinstance(params, Params) or (
+        isinstance(params, Sequence) and len(params) > 0 and isinstance(params[0], Params)
+    ):
+        return stack_params(params, cls)
+    arr = as_float_array(name, params)
+    arr = np.atleast_2d(arr)
+    if arr.ndim != 2 or arr.shape[1] != len(cls.field_names()):
+        raise ParameterError(
+            f"`{name}` as an array must have shape (runs, {len(cls.field_names())}) "
+            f"({', '.join(cls.field_names())}), got {arr.shape}"
+        )
+    for row in arr:  # validate every row through the dataclass
+        cls.from_array(row)
+    return arr
+
+
+def _signal(
+    name: str, value: Any, n_channels: int, t_grid: np.ndarray, unit: str
+) -> np.ndarray:
+    """Convert a reference/disturbance specification to shape (runs|1, steps+1|1, channels)."""
+    width = max(n_channels, 1)
+    if value is None:
+        return np.zeros((1, 1, width))
+    if callable(value):
+        value = value(t_grid)
+        arr = as_float_array(name, value, unit)
+        if arr.ndim == 1 and arr.shape[0] == t_grid.size:
+            arr = arr[:, None]
+        if arr.ndim == 2:
+            arr = arr[None]
+        if arr.ndim != 3 or arr.shape[1] != t_grid.size:
+            raise ParameterError(
+                f"`{name}` callable must return shape (steps+1,), (steps+1, channels) or "
+                f"(runs, steps+1, channels) for {t_grid.size} grid times, got {np.shape(value)}"
+            )
+    else:
+        arr = as_float_array(name, value, unit)
+        if arr.ndim == 0:
+            arr = arr.reshape(1, 1, 1)
+        elif arr.ndim == 1:
+            arr = arr.reshape(1, 1, -1)
+        elif arr.ndim == 2:
+            if arr.shape[0] != t_grid.size:
+                raise ParameterError(
+                    f"`{name}` as a 2-D array is a time series on the grid and needs "
+                    f"{t_grid.size} rows (steps+1), got {arr.shape}; per-run constants have "
+                    "shape (runs, 1, channels)"
+                )
+            arr = arr[None]
+        elif arr.ndim != 3:
+            raise ParameterError(f"`{name}` must have at most 3 dimensions, got {arr.shape}")
+        if arr.shape[1] not in (1, t_grid.size):
+            raise ParameterError(
+                f"`{name}` time axis must have 1 or {t_grid.size} samples, got {arr.shape[1]}"
+            )
+    if n_channels == 0:
+        if arr.shape[-1] not in (0, 1) or np.any(arr != 0):
+            raise ParameterError(f"`{name}` given, but the component takes none")
+        return np.zeros(arr.shape[:2] + (1,))
+    if arr.shape[-1] != n_channels:
+        raise ParameterError(
+            f"`{name}` must have {n_channels} channel(s), got {arr.shape[-1]}"
+        )
+    return np.ascontiguousarray(arr, dtype=float)
+
+
+def _runs(*sizes: tuple[str, int]) -> int:
+    n = max(s for _, s in sizes)
+    for name, s in sizes:
+        if s not in (1, n):
+            others = ", ".join(f"{k}={v}" for k, v in sizes)
+            raise ParameterError(f"batch sizes do not broadcast: `{name}` has {s} runs ({others})")
+    return n
+
+
+def _steps(t_final: float, dt: float, what: str = "t_final") -> int:
+    ratio = t_final / dt
+    n = int(round(ratio))
+    if n < 1 or abs(ratio - n) > 1e-9 * max(1.0, ratio):
+        raise ParameterError(
+            f"`{what}` must be a positive whole multiple of `dt` [s]: {what}={t_final!r}, dt={dt!r}"
+        )
+    return n
+
+
+# ------------------------------------------------------------------------------------------
+# the public entry point
+# ------------------------------------------------------------------------------------------
+def simulate(
+    model: VesselModel,
+    params: Params | Sequence[Params] | np.ndarray,
+    x0: Any,
+    *,
+    t_final: float,
+    dt: float,
+    controller: Controller = OPEN_LOOP,
+    controller_params: Params | Sequence[Params] | np.ndarray | None = None,
+    actuator: Actuator = RUDDER_SERVO,
+    actuator_params: Params | Sequence[Params] | np.ndarray | None = None,
+    actuator_x0: Any = None,
+    reference: Any = None,
+    disturbance: Any = None,
+    controller_dt: float | None = None,
+    integrator: str = "rk4",
+    record_every: int = 1,
+    bounds: Mapping[str, tuple[float, float]] | None = None,
+    throw: bool = False,
+    progress: Callable[[int, int], None] | None = None,
+    seed: int | None = None,
+    metadata: Mapping[str, Any] | None = None,
+) -> "SimResult":
+    """Simulate a batch of closed-loop runs.
+
+    Parameters
+    ----------
+    model : VesselModel
+        The vessel model (e.g. :data:`seahelm.vessels.nomoto.NOMOTO2`).
+    params : Params, sequence of Params, or array (runs, n_params)
+        Vessel parameters; one set for all runs or one per run.
+    x0 : array_like, shape (n_states,) or (runs, n_states)
+        Initial vessel state (SI units, radians).
+    t_final, dt : float
+        Duration [s] and integration step [s]; ``t_final`` must be a multiple of ``dt``.
+    controller, controller_params
+        Controller (default: open loop, reference = command) and its parameters.
+    actuator, actuator_params, actuator_x0
+        Actuator (default: rudder servo), its parameters and initial state (default zeros).
+    reference : None, scalar, array or callable
+        Controller reference. A 1-D array is a constant vector; a 2-D array
+        ``(steps+1, channels)`` a time series on the grid t_k = k dt; a 3-D array
+        ``(runs|1, steps+1|1, channels)`` per run; a callable ``f(t_grid)`` returns one of these.
+    disturbance : None, scalar, array or callable
+        External disturbance inputs of the model (same forms as ``reference``).
+    controller_dt : float, optional
+        Controller sample period [s], a multiple of ``dt`` (default ``dt``).
+    integrator : {"euler", "heun", "rk4"}
+    record_every : int
+        Record every n-th step (``t_final/dt`` need not be a multiple; the last record is at
+        the last multiple).
+    bounds : mapping label -> (low, high), optional
+        Admissible state bounds beyond the model's declared ones; leaving them marks a run
+        diverged.
+    throw : bool
+        Raise :class:`SimulationDiverged` (first failed run: time and state) instead of
+        recording the failure.
+    progress : callable(done_steps, total_steps), optional
+        Called between chunks of the loop.
+    seed : int, optional
+        Stored with the results (for runs whose inputs were drawn at random).
+    metadata : mapping, optional
+        Extra attributes stored with the results (e.g. the scenario text).
+
+    Returns
+    -------
+    SimResult
+
+    Raises
+    ------
+    ParameterError
+        On invalid parameters, shapes or timing (before anything runs).
+    SimulationDiverged
+        With ``throw=True``, when a run diverges.
+    """
+    from ..results import SimResult
+
+    check_positive("dt", dt, "s")
+    check_positive("t_final", t_final, "s")
+    n_steps = _steps(float(t_final), float(dt))
+    ctrl_dt = float(dt) if controller_dt is None else float(controller_dt)
+    check_positive("controller_dt", ctrl_dt, "s")
+    ctrl_every = _steps(ctrl_dt, float(dt), "controller_dt")
+    if isinstance(record_every, bool) or int(record_every) != record_every or record_every < 1:
+        raise ParameterError(f"`record_every` must be a whole number >= 1, got {record_every!r}")
+    record_every = int(record_every)
+    if integrator not in INTEGRATORS:
+        raise ValueError(f"unknown integrator '{integrator}'; valid: {', '.join(INTEGRATORS)}")
+    if controller.n_commands != actuator.n_commands:
+        raise ParameterError(
+            f"controller '{controller.name}' gives {controller.n_commands} command(s) but "
+            f"actuator '{actuator.name}' takes {actuator.n_commands}"
+        )
+
+    mp = _param_rows("params", params, model.params_type)
+    ap = _param_rows("actuator_params", actuator_params, actuator.params_type)
+    cp = _param_rows("controller_params", controller_params, controller.params_type)
+    x0 = np.atleast_2d(as_float_array("x0", x0))
+    if x0.shape[-1] != model.n_states or x0.ndim != 2:
+        raise ParameterError(
+            f"`x0` must have {model.n_states} states ({', '.join(model.state_labels)}), "
+            f"got shape {x0.shape}"
+        )
+    xa0 = np.zeros((1, actuator.n_states)) if actuator_x0 is None else np.atleast_2d(
+        as_float_array("actuator_x0", actuator_x0)
+    )
+    if xa0.shape[-1] != actuator.n_states:
+        raise ParameterError(
+            f"`actuator_x0` must have {actuator.n_states} states, got shape {xa0.shape}"
+        )
+    t_grid = np.arange(n_steps + 1) * float(dt)
+    ref = _signal("reference", reference, controller.n_references, t_grid, "")
+    dist = _signal("disturbance", disturbance, model.n_disturbances, t_grid, "")
+    n_runs = _runs(
+        ("params", mp.shape[0]), ("actuator_params", ap.shape[0]),
+        ("controller_params", cp.shape[0]), ("x0", x0.shape[0]),
+        ("actuator_x0", xa0.shape[0]), ("reference", ref.shape[0]),
+        ("disturbance", dist.shape[0]),
+    )
+
+    def rows(a: np.ndarray) -> np.ndarray:
+        return np.ascontiguousarray(np.broadcast_to(a, (n_runs,) + a.shape[1:]), dtype=float)
+
+    mp, ap, cp = rows(mp), rows(ap), rows(cp)
+    z = np.concatenate([rows(x0), rows(xa0)], axis=1)
+    labels = model.state_labels + actuator.state_labels
+    lower = np.array(list(model.state_lower) + [-np.inf] * actuator.n_states, dtype=float)
+    upper = np.array(list(model.state_upper) + [np.inf] * actuator.n_states, dtype=float)
+    for label, (lo, hi) in (bounds or {}).items():
+        if label not in labels:
+            raise ParameterError(f"`bounds`: unknown state '{label}'; states: {', '.join(labels)}")
+        j = labels.index(label)
+        lower[j], upper[j] = max(lower[j], float(lo)), min(upper[j], float(hi))
+    bad0 = ~np.isfinite(z).all(axis=1) | (z < lower).any(axis=1) | (z > upper).any(axis=1)
+    if bad0.any():
+        i = int(np.argmax(bad0))
+        raise ParameterError(f"initial state of run {i} is not finite or outside bounds: {z[i]}")
+
+    kernel = compile_closed_loop(model, actuator, controller, integrator)
+    nz = z.shape[1]
+    ncmd = controller.n_commands
+    n_rec = n_steps // record_every + 1
+    cs = np.zeros((n_runs, max(controller.n_states, 1)))
+    cmd = np.zeros((n_runs, ncmd))
+    status = np.zeros(n_runs, dtype=np.int64)
+    t_fail = np.full(n_runs, np.nan)
+    z_fail = np.full((n_runs, nz), np.nan)
+    rec_z = np.full((n_runs, n_rec, nz), np.nan)
+    rec_y = np.full((n_runs, n_rec, len(NAV_OUTPUTS)), np.nan)
+    rec_cmd = np.full((n_runs, n_rec, ncmd), np.nan)
+
+    kernel.init_runs(z, cs, cmd, mp, ap, cp, ref)
+    wall0 = _time.perf_counter()
+    k = 0
+    chunk = min(n_steps, max(1, 200_000 // max(n_runs, 1)))
+    while k < n_steps:
+        k_stop = min(n_steps, k + chunk)
+        t0 = _time.perf_counter()
+        kernel.run_chunk(
+            k, k_stop, n_steps, float(dt), ctrl_every, record_every,
+            z, cs, cmd, mp, ap, cp, dist, ref, lower, upper,
+            status, t_fail, z_fail, rec_z, rec_y, rec_cmd,
+        )
+        elapsed = _time.perf_counter() - t0
+        done, k = k_stop - k, k_stop
+        if progress is not None:
+            progress(k, n_steps)
+            # aim for ~0.2 s per chunk so a progress bar moves smoothly
+            chunk = int(min(max(done / max(elapsed, 1e-6) * 0.2, 1), n_steps))
+        else:
+            chunk = n_steps
+        if status.all():
+            break
+    wall = _time.perf_counter() - wall0
+
+    rec_t = np.arange(n_rec) * record_every * float(dt)
+    ref_idx = np.arange(n_rec) * record_every
+    result = SimResult(
+        time=rec_t,
+        state=rec_z,
+        state_labels=labels,
+        state_units=model.state_units + actuator.state_units,
+        output=rec_y,
+        command=rec_cmd,
+        command_labels=controller.command_labels,
+        reference=ref[:, ref_idx] if ref.shape[1] > 1 else np.repeat(ref, n_rec, axis=1),
+        reference_labels=controller.reference_labels,
+        reference_units=controller.reference_units,
+        disturbance=dist[:, ref_idx] if dist.shape[1] > 1 else np.repeat(dist, n_rec, axis=1),
+        disturbance_labels=model.disturbance_labels,
+        disturbance_units=model.disturbance_units,
+        status=status,
+        failure_time=t_fail,
+        failure_state=z_fail,
+        params={
+            "vessel": (model.params_type, mp),
+            "actuator": (actuator.params_type, ap),
+            "controller": (controller.params_type, cp),
+        },
+        metadata={
+            "model": model.name,
+            "actuator": actuator.name,
+            "controller": controller.name,
+            "integrator": integrator,
+            "dt": float(dt),
+            "controller_dt": ctrl_dt,
+            "t_final": float(t_final),
+            "record_every": record_every,
+            "seed": -1 if seed is None else int(seed),
+            "wall_time_s": wall,
+            **(dict(metadata) if metadata else {}),
+        },
+    )
+    if throw and status.any():
+        i = int(np.argmax(status != 0))
+        raise SimulationDiverged(
+            f"run {i} diverged at t = {t_fail[i]:.6g} s "
+            f"({RunStatus(int(status[i])).name.lower().replace('_', ' ')}): "
+            + ", ".join(f"{lab}={v:.6g}" for lab, v in zip(labels, z_fail[i])),
+            time=t_fail[i],
+            state=z_fail[i],
+            run=i,
+        )
+    return result

@@ -1,0 +1,183 @@
+"""The plug-in interface of a vessel model.
+
+A vessel model is a pure right-hand side plus labels, bundled in a :class:`VesselModel`:
+
+``rhs(t, x, u, d, p, dx)``
+    numba-compiled; writes ẋ into ``dx`` for one run. ``x`` state, ``u`` inputs from the
+    actuator (e.g. rudder angle [rad]), ``d`` external disturbances (forces/moments sampled on
+    the simulation grid; may have length 0), ``p`` the packed parameter array
+    (:meth:`seahelm.parameters.Params.to_array`).
+``output(t, x, u, p, y)``
+    numba-compiled; writes the navigation outputs :data:`NAV_OUTPUTS` into ``y``: north and
+    east position [m], heading ψ [rad], yaw rate r [rad/s], surge and sway speed [m/s].
+    Ship-generic controllers (e.g. the PID heading autopilot) use these; model-specific
+    controllers may read the state directly.
+
+Conventions: north-east-down axes, heading ψ measured clockwise from north, so
+ẋ_N = U cos ψ, ẏ_E = U sin ψ; a positive rudder angle gives a positive (starboard) yaw rate.
+
+:meth:`VesselModel.derivative` evaluates the right-hand side over any leading batch axes
+(numpy in, numpy out) — for tests, analysis and the adaptive reference path.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+import numpy as np
+from numba import njit
+
+from ..errors import ParameterError
+from ..parameters import Params, stack_params
+
+__all__ = ["NAV_OUTPUTS", "NAV_OUTPUT_UNITS", "VesselModel"]
+
+NAV_OUTPUTS: tuple[str, ...] = ("north", "east", "heading", "yaw_rate", "surge_speed", "sway_speed")
+NAV_OUTPUT_UNITS: tuple[str, ...] = ("m", "m", "rad", "rad/s", "m/s", "m/s")
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class VesselModel:
+    """A dynamic vessel model usable by the simulation engine.
+
+    Attributes
+    ----------
+    name : str
+        Registry name (``seahelm models`` lists them).
+    description : str
+        One line: what the model is and where it comes from.
+    params_type : type[Params]
+        Frozen parameter dataclass.
+    state_labels, state_units : tuple of str
+        Names and units of the state vector.
+    input_labels, input_units : tuple of str
+        Names and units of the actuator inputs.
+    disturbance_labels, disturbance_units : tuple of str
+        Names and units of the external disturbance inputs.
+    rhs, output : numba dispatchers
+        See the module docstring for their signatures.
+    state_lower, state_upper : tuple of float, optional
+        Declared admissible bounds per state; leaving them marks a run diverged.
+    """
+
+    name: str
+    description: str
+    params_type: type[Params]
+    state_labels: tuple[str, ...]
+    state_units: tuple[str, ...]
+    input_labels: tuple[str, ...]
+    input_units: tuple[str, ...]
+    disturbance_labels: tuple[str, ...]
+    disturbance_units: tuple[str, ...]
+    rhs: Any
+    output: Any
+    state_lower: tuple[float, ...] | None = None
+    state_upper: tuple[float, ...] | None = None
+
+    def __post_init__(self) -> None:
+        n = len(self.state_labels)
+        for attr, ref in (
+            ("state_units", n),
+            ("input_units", len(self.input_labels)),
+            ("disturbance_units", len(self.disturbance_labels)),
+        ):
+            if len(getattr(self, attr)) != ref:
+                raise ValueError(f"{self.name}: {attr} has the wrong length")
+        if self.state_lower is None:
+            object.__setattr__(self, "state_lower", (-np.inf,) * n)
+        if self.state_upper is None:
+            object.__setattr__(self, "state_upper", (np.inf,) * n)
+
+    @property
+    def n_states(self) -> int:
+        return len(self.state_labels)
+
+    @property
+    def n_inputs(self) -> int:
+        return len(self.input_labels)
+
+    @property
+    def n_disturbances(self) -> int:
+        return len(self.disturbance_labels)
+
+    def state_index(self, label: str) -> int:
+        """Index of a state by label (ValueError listing the labels if unknown)."""
+        try:
+            return self.state_labels.index(label)
+        except ValueError:
+            raise ValueError(
+                f"model '{self.name}' has no state '{label}'; states: {', '.join(self.state_labels)}"
+            ) from None
+
+    def initial_state(self, **values: float) -> np.ndarray:
+        """A state vector with zeros except the given labelled values (SI units)."""
+        x = np.zeros(self.n_states)
+        for key, value in values.items():
+            x[self.state_index(key)] = float(value)
+        return x
+
+    def derivative(
+        self,
+        t: float,
+        x: Any,
+        u: Any,
+        params: Params | Any,
+        d: Any | None = None,
+    ) -> np.ndarray:
+        """ẋ over leading batch axes: ``x`` (..., n_states), ``u`` (..., n_inputs).
+
+        ``params`` is a parameter set, a sequence of them (one per run) or a packed array
+        (..., n_params). Shapes broadcast against each other.
+        """
+        x = np.asarray(x, dtype=float)
+        u = np.asarray(u, dtype=float)
+        if isinstance(params, Params) or (
+            isinstance(params, (list, tuple)) and params and isinstance(params[0], Params)
+        ):
+            p = stack_params(params, self.params_type)
+            if isinstance(params, Params):
+                p = p[0]
+        else:
+            p = np.asarray(params, dtype=float)
+        d = np.zeros(self.n_disturbances) if d is None else np.asarray(d, dtype=float)
+        if x.shape[-1:] != (self.n_states,):
+            raise ParameterError(
+                f"`x` must end in {self.n_states} states ({', '.join(self.state_labels)}), "
+                f"got shape {x.shape}"
+            )
+        if u.shape[-1:] != (self.n_inputs,):
+            raise ParameterError(f"`u` must end in {self.n_inputs} inputs, got shape {u.shape}")
+        batch = np.broadcast_shapes(x.shape[:-1], u.shape[:-1], p.shape[:-1], d.shape[:-1])
+        X = np.ascontiguousarray(np.broadcast_to(x, batch + x.shape[-1:]).reshape(-1, x.shape[-1]))
+        U = np.ascontiguousarray(np.broadcast_to(u, batch + u.shape[-1:]).reshape(-1, u.shape[-1]))
+        P = np.ascontiguousarray(np.broadcast_to(p, batch + p.shape[-1:]).reshape(-1, p.shape[-1]))
+        D = np.ascontiguousarray(np.broadcast_to(d, batch + d.shape[-1:]).reshape(-1, d.shape[-1]))
+        out = np.empty_like(X)
+        _batched_rhs(self.rhs, float(t), X, U, D, P, out)
+        return out.reshape(batch + (self.n_states,))
+
+    def outputs(self, t: float, x: Any, u: Any, params: Params | Any) -> np.ndarray:
+        """Navigation outputs :data:`NAV_OUTPUTS` over leading batch axes."""
+        x = np.asarray(x, dtype=float)
+        u = np.asarray(u, dtype=float)
+        p = params.to_array() if isinstance(params, Params) else np.asarray(params, dtype=float)
+        batch = np.broadcast_shapes(x.shape[:-1], u.shape[:-1], p.shape[:-1])
+        X = np.ascontiguousarray(np.broadcast_to(x, batch + x.shape[-1:]).reshape(-1, x.shape[-1]))
+        U = np.ascontiguousarray(np.broadcast_to(u, batch + u.shape[-1:]).reshape(-1, u.shape[-1]))
+        P = np.ascontiguousarray(np.broadcast_to(p, batch + p.shape[-1:]).reshape(-1, p.shape[-1]))
+        out = np.empty((X.shape[0], len(NAV_OUTPUTS)))
+        _batched_output(self.output, float(t), X, U, P, out)
+        return out.reshape(batch + (len(NAV_OUTPUTS),))
+
+
+@njit
+def _batched_rhs(rhs, t, X, U, D, P, out):  # pragma: no cover - compiled
+    for i in range(X.shape[0]):
+        rhs(t, X[i], U[i], D[i], P[i], out[i])
+
+
+@njit
+def _batched_output(output, t, X, U, P, out):  # pragma: no cover - compiled
+    for i in range(X.shape[0]):
+        output(t, X[i], U[i], P[i], out[i])

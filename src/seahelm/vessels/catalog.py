@@ -1,0 +1,76 @@
+"""Named parameter sets for real ships, with their provenance.
+
+``CATALOG[name]`` gives a :class:`CatalogEntry` (model name, parameters, provenance);
+:func:`get` looks one up and lists the valid names on a typo.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+from ..parameters import Params
+from .nomoto import Nomoto1Params, Nomoto2Params
+
+__all__ = ["CatalogEntry", "CATALOG", "get", "register"]
+
+
+@dataclasses.dataclass(frozen=True)
+class CatalogEntry:
+    """A named parameter set for one vessel model."""
+
+    name: str
+    model: str
+    params: Params
+    provenance: str
+
+
+CATALOG: dict[str, CatalogEntry] = {}
+
+
+def register(entry: CatalogEntry) -> CatalogEntry:
+    """Add a named parameter set (names are unique)."""
+    if entry.name in CATALOG:
+        raise ValueError(f"catalog entry '{entry.name}' exists already")
+    CATALOG[entry.name] = entry
+    return entry
+
+
+def get(name: str) -> CatalogEntry:
+    """Look up a named parameter set; an unknown name raises ValueError listing the valid ones."""
+    try:
+        return CATALOG[name]
+    except KeyError:
+        raise ValueError(
+            f"unknown catalog entry '{name}'; valid: {', '.join(sorted(CATALOG))}"
+        ) from None
+
+
+_MARINER_PROVENANCE = (
+    "Mariner-class cargo ship (L = 160.93 m, U = 15 kn = 7.7175 m/s): Nomoto constants "
+    "K = 0.185 1/s, T1 = 118 s, T2 = 7.8 s, T3 = 18.5 s, identified from the nonlinear "
+    "Mariner model of Chislett & Strøm-Tejsen (1965); Fossen (2021), Handbook of Marine Craft "
+    "Hydrodynamics and Motion Control, 2nd ed., Table 7.1 / §7.1. First-order T = T1 + T2 - T3."
+)
+
+register(
+    CatalogEntry(
+        "mariner-nomoto2",
+        "nomoto2",
+        Nomoto2Params(gain=0.185, t1=118.0, t2=7.8, t3=18.5, speed=7.7175, length=160.93),
+        _MARINER_PROVENANCE,
+    )
+)
+register(
+    CatalogEntry(
+        "mariner-nomoto1",
+        "nomoto1",
+        Nomoto1Params(gain=0.185, time_constant=118.0 + 7.8 - 18.5, speed=7.7175, length=160.93),
+        _MARINER_PROVENANCE,
+    )
+)
+
+# Voitkunsky steering model (issue 4): Mariner coefficients derived from the PMM derivatives.
+from .voitkunsky import MARINER_VOITKUNSKY, MARINER_VOITKUNSKY_PROVENANCE  # noqa: E402
+
+register(CatalogEntry("mariner-voitkunsky", "voitkunsky", MARINER_VOITKUNSKY,
+                      MARINER_VOITKUNSKY_PROVENANCE))

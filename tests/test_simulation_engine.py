@@ -1,0 +1,148 @@
+"""The closed-loop engine: batch equals one by one, divergence, ZOH, validation."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from seahelm.actuators.servo import DIRECT, RUDDER_SERVO, ServoParams
+from seahelm.control.pid import PID_HEADING, PIDHeadingParams
+from seahelm.errors import ParameterError, SimulationDiverged
+from seahelm.simulation.engine import RunStatus, simulate
+from seahelm.vessels.nomoto import NOMOTO1, NOMOTO2, Nomoto1Params
+
+GAINS = PIDHeadingParams(kp=3.0, ki=0.001, kd=90.0)
+
+
+def test_batch_equals_runs_one_by_one(mariner2):
+    rng = np.random.default_rng(7)
+    n = 6
+    params = [mariner2.replace(gain=g) for g in rng.uniform(0.1, 0.3, n)]
+    gains = [GAINS.replace(kp=k) for k in rng.uniform(1.0, 4.0, n)]
+    x0 = np.zeros((n, 5))
+    x0[:, 2] = rng.uniform(-0.2, 0.2, n)
+    ref = rng.uniform(-0.5, 0.5, (n, 1, 1))
+    dist = np.zeros((n, 3001, 2))
+    dist[:, :, 0] = 0.01 * np.sin(np.arange(3001) * 0.1 * 0.05)[None] * np.arange(1, n + 1)[:, None]
+    kw = dict(t_final=300.0, dt=0.1, controller=PID_HEADING, controller_dt=0.5)
+    batch = simulate(NOMOTO2, params, x0, controller_params=gains, reference=ref,
+                     disturbance=dist, **kw)
+    for i in range(n):
+        one = simulate(NOMOTO2, params[i], x0[i], controller_params=gains[i],
+                       reference=ref[i, 0], disturbance=dist[i], **kw)
+        np.testing.assert_allclose(batch.state[i], one.state[0], rtol=1e-13, atol=1e-13)
+        np.testing.assert_allclose(batch.command[i], one.command[0], rtol=1e-13, atol=1e-13)
+
+
+def test_out_of_bounds_is_detected_at_the_right_time():
+    p = Nomoto1Params(gain=0.2, time_constant=20.0, speed=5.0)
+    delta = 0.1
+    bound = 0.015  # r(t) = K δ (1 − e^{−t/T}) crosses it at t* = −T ln(1 − bound/(K δ))
+    t_star = -p.time_constant * math.log(1.0 - bound / (p.gain * delta))
+    dt = 0.05
+    res = simulate(NOMOTO1, p, np.zeros(4), t_final=100.0, dt=dt, actuator=DIRECT,
+                   reference=np.array([[[delta]], [[0.5 * delta]]]),
+                   bounds={"yaw_rate": (-1.0, bound)})
+    assert res.status[0] == RunStatus.OUT_OF_BOUNDS
+    assert t_star <= res.failure_time[0] < t_star + dt + 1e-12
+    assert res.status[1] == RunStatus.OK  # the other run goes on (its r stays at 0.01)
+    assert np.isfinite(res.state[1, -1]).all()
+    # records after the failure are NaN, before it finite
+    k_fail = int(round(res.failure_time[0] / dt))
+    assert np.isnan(res.state[0, k_fail + 1:]).all()
+    assert np.isfinite(res.state[0, :k_fail]).all()
+
+
+def _euler_blowup_step() -> int:
+    """First Euler step at which r of T ṙ = −(r + n3 r³) overflows (computed independently)."""
+    r, k = 1.0, 0
+    with np.errstate(over="ignore", invalid="ignore"):
+        while np.isfinite(r):
+            r = np.float64(r) + 1.0 * (-(r + 1000.0 * r**3) / 10.0)
+            k += 1
+    return k
+
+
+def test_nonfinite_state_is_detected_and_throw_raises():
+    stiff = Nomoto1Params(gain=0.1, time_constant=10.0, speed=1.0, norrbin_n3=1000.0)
+    calm = stiff.replace(norrbin_n3=0.0)
+    x0 = np.array([0.0, 0.0, 0.0, 1.0])
+    kw = dict(t_final=50.0, dt=1.0, actuator=DIRECT, reference=[0.0], integrator="euler")
+    res = simulate(NOMOTO1, [stiff, calm], x0, **kw)
+    assert list(res.status) == [RunStatus.NONFINITE, RunStatus.OK]
+    k = _euler_blowup_step()
+    assert res.failure_time[0] == pytest.approx(k * 1.0)
+    assert f"diverged: non-finite state at t = {k:g} s" in res.messages()[0]
+    assert np.isfinite(res.state[1]).all()
+    with pytest.raises(SimulationDiverged, match=rf"run 0 diverged at t = {k:g} s") as info:
+        simulate(NOMOTO1, [stiff, calm], x0, throw=True, **kw)
+    assert info.value.time == pytest.approx(k)
+    assert info.value.run == 0
+    assert not np.isfinite(info.value.state).all()
+
+
+def test_nan_inputs_are_rejected(mariner1):
+    dist = np.zeros((11, 2))
+    dist[5, 0] = np.nan
+    with pytest.raises(ParameterError, match="`disturbance` must be finite"):
+        simulate(NOMOTO1, mariner1, np.zeros(4), t_final=1.0, dt=0.1, disturbance=dist)
+
+
+def test_controller_is_sampled_with_zero_order_hold(mariner2):
+    res = simulate(NOMOTO2, mariner2, np.zeros(5), t_final=60.0, dt=0.1, controller=PID_HEADING,
+                   controller_params=GAINS, reference=[0.3], controller_dt=2.0)
+    cmd = res["rudder_command"][0]
+    blocks = cmd[:600].reshape(30, 20)  # 20 steps of 0.1 s per 2-s sample
+    assert np.all(blocks == blocks[:, :1])
+    assert np.any(np.diff(blocks[:, 0]) != 0)
+
+
+def test_servo_limits_angle_and_rate(mariner2):
+    servo = ServoParams(max_angle=math.radians(20.0), max_rate=math.radians(3.0),
+                        time_constant=0.5)
+    res = simulate(NOMOTO2, mariner2, np.zeros(5), t_final=120.0, dt=0.05,
+                   controller=PID_HEADING, controller_params=GAINS, actuator=RUDDER_SERVO,
+                   actuator_params=servo, reference=[math.radians(60.0)])
+    delta = res["rudder_angle"][0]
+    assert np.max(np.abs(delta)) <= servo.max_angle + 1e-12
+    assert np.max(np.abs(delta)) == pytest.approx(servo.max_angle, rel=1e-6)
+    assert np.max(np.abs(np.diff(delta))) / 0.05 <= servo.max_rate * (1 + 1e-9)
+
+
+def test_progress_callback_and_record_every(mariner2):
+    calls = []
+    res = simulate(NOMOTO2, mariner2, np.zeros(5), t_final=100.0, dt=0.1, reference=[0.0],
+                   record_every=7, progress=lambda done, total: calls.append((done, total)))
+    assert calls[-1] == (1000, 1000)
+    np.testing.assert_allclose(res.time, np.arange(0, 1001, 7) * 0.1)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "exc", "match"),
+    [
+        ({"dt": 0.0}, ParameterError, r"`dt` must be > 0 \[s\], got 0.0"),
+        ({"t_final": 10.05}, ParameterError, "`t_final` must be a positive whole multiple of `dt`"),
+        ({"controller_dt": 0.25}, ParameterError, "`controller_dt` must be a positive whole"),
+        ({"integrator": "rk45"}, ValueError, "unknown integrator 'rk45'; valid: euler, heun, rk4"),
+        ({"x0": np.zeros(4)}, ParameterError, r"`x0` must have 5 states"),
+        ({"x0": np.zeros((3, 5)), "params_n": 2}, ParameterError, "batch sizes do not broadcast"),
+        ({"record_every": 0}, ParameterError, "`record_every` must be a whole number >= 1"),
+        ({"reference": np.zeros((7, 1))}, ParameterError, "needs 101 rows"),
+        ({"bounds": {"speed": (0, 1)}}, ParameterError, "`bounds`: unknown state 'speed'"),
+        ({"disturbance": [0.0]}, ParameterError, "`disturbance` must have 2 channel"),
+    ],
+)
+def test_bad_input_is_rejected_before_running(mariner2, kwargs, exc, match):
+    kw = dict(t_final=10.0, dt=0.1, x0=np.zeros(5), reference=[0.0])
+    n = kwargs.pop("params_n", 1)
+    kw.update(kwargs)
+    with pytest.raises(exc, match=match):
+        simulate(NOMOTO2, [mariner2] * n, **kw)
+
+
+def test_initial_state_outside_bounds_is_rejected(mariner2):
+    with pytest.raises(ParameterError, match="initial state of run 0"):
+        simulate(NOMOTO2, mariner2, [0, 0, 0, 0.5, 0], t_final=1.0, dt=0.1,
+                 bounds={"yaw_rate": (-0.1, 0.1)})
