@@ -17,6 +17,7 @@ from typing import Any, NoReturn, TypeVar
 import numpy as np
 import typer
 from rich.console import Console
+from rich.text import Text
 
 from ..errors import ParameterError, SeahelmError
 
@@ -33,13 +34,15 @@ EXIT_BAD_INPUT = 2
 
 def fail_bad_input(message: str) -> NoReturn:
     """Print a one-line reason on stderr and exit with code 2."""
-    err_console.print(f"[bold red]error:[/] {message}", highlight=False, soft_wrap=True)
+    err_console.print(Text.assemble(("error: ", "bold red"), message), highlight=False,
+                      soft_wrap=True)
     raise typer.Exit(EXIT_BAD_INPUT)
 
 
 def fail(message: str) -> NoReturn:
     """Print a one-line reason on stderr and exit with code 1."""
-    err_console.print(f"[bold red]failed:[/] {message}", highlight=False, soft_wrap=True)
+    err_console.print(Text.assemble(("failed: ", "bold red"), message), highlight=False,
+                      soft_wrap=True)
     raise typer.Exit(EXIT_FAILURE)
 
 

@@ -18,11 +18,21 @@ solvers: pure functions with the state passed explicitly.
 from __future__ import annotations
 
 import dataclasses
+import math
 from typing import Any
+
+from numba import njit
 
 from ..parameters import Params
 
-__all__ = ["Controller"]
+__all__ = ["Controller", "wrap_pi"]
+
+
+@njit(cache=True)
+def wrap_pi(angle):  # pragma: no cover - compiled
+    """Wrap a scalar angle [rad] to [−π, π) inside compiled controllers
+    (:func:`seahelm.constants.wrap_angle` is the numpy version)."""
+    return (angle + math.pi) % (2.0 * math.pi) - math.pi
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

@@ -25,7 +25,7 @@ from numba import njit
 
 from .._validate import check_positive
 from ..parameters import Params, param
-from .base import Controller
+from .base import Controller, wrap_pi
 
 __all__ = ["PIDHeadingParams", "PID_HEADING", "pid_gains_from_nomoto"]
 
@@ -42,11 +42,6 @@ class PIDHeadingParams(Params):
 
 
 @njit(cache=True)
-def _wrap(a):  # pragma: no cover - compiled
-    return (a + math.pi) % (2.0 * math.pi) - math.pi
-
-
-@njit(cache=True)
 def pid_heading_init(z, y, ref, p, cs):  # pragma: no cover - compiled
     cs[0] = 0.0
 
@@ -57,7 +52,7 @@ def pid_heading_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compil
     ki = p[1]
     kd = p[2]
     umax = p[3]
-    e = _wrap(ref[0] - y[2])
+    e = wrap_pi(ref[0] - y[2])
     r_ref = ref[1] if ref.shape[0] > 1 else 0.0
     integral = cs[0]
     u_unsat = kp * e + ki * integral + kd * (r_ref - y[3])

@@ -96,7 +96,12 @@ def _binding(func: Any, alias: str) -> tuple[str, str]:
         source = Path(inspect.getsourcefile(py) or "").read_text()
     except OSError:
         source = inspect.getsource(py)
-    return f"from {module} import {name} as {alias}\n", source
+    # re-jit the component with inline="always": numba then inlines it at IR level into the
+    # loop, which removes per-call reference counting of the array arguments (about 70 ns
+    # per call otherwise) and lets LLVM optimise across the component boundaries
+    line = (f"from {module} import {name} as _{alias}\n"
+            f"{alias} = njit(inline=\"always\")(_{alias}.py_func)\n")
+    return line, source
 
 
 _TEMPLATE_TEXT = Path(kernel_template.__file__).read_text()

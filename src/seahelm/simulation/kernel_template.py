@@ -17,12 +17,19 @@ import numpy as np
 from numba import njit, prange
 
 # <header>
-from seahelm.actuators.servo import servo_output as actuator_output
-from seahelm.actuators.servo import servo_rhs as actuator_rhs
-from seahelm.control.pid import pid_heading_init as controller_init
-from seahelm.control.pid import pid_heading_step as controller_step
-from seahelm.vessels.nomoto import nomoto1_output as model_output
-from seahelm.vessels.nomoto import nomoto1_rhs as model_rhs
+from seahelm.actuators.servo import servo_output as _actuator_output
+from seahelm.actuators.servo import servo_rhs as _actuator_rhs
+from seahelm.control.pid import pid_heading_init as _controller_init
+from seahelm.control.pid import pid_heading_step as _controller_step
+from seahelm.vessels.nomoto import nomoto1_output as _model_output
+from seahelm.vessels.nomoto import nomoto1_rhs as _model_rhs
+
+actuator_output = njit(inline="always")(_actuator_output.py_func)
+actuator_rhs = njit(inline="always")(_actuator_rhs.py_func)
+controller_init = njit(inline="always")(_controller_init.py_func)
+controller_step = njit(inline="always")(_controller_step.py_func)
+model_output = njit(inline="always")(_model_output.py_func)
+model_rhs = njit(inline="always")(_model_rhs.py_func)
 
 NX = 4
 NA = 1
@@ -32,46 +39,64 @@ NY = 6
 
 NZ = NX + NA
 
-
-@njit(cache=True)
-def closed_rhs(t, z, cmd, d, mp, ap, u, dz):  # pragma: no cover - compiled
-    actuator_output(z[NX:], cmd, ap, u)
-    model_rhs(t, z[:NX], u, d, mp, dz[:NX])
-    actuator_rhs(t, z[NX:], cmd, ap, dz[NX:])
+# The hot loop works on thread-local copies of each run's arrays and never slices shared
+# arrays per step: numba array views touch the parent's reference count atomically, and on
+# an array shared by all threads that serialises the cores.
 
 
-@njit(cache=True)
-def euler_advance(t, h, z, cmd, d0, dm, d1, mp, ap, u, k1, k2, k3, k4, tmp):  # pragma: no cover
-    closed_rhs(t, z, cmd, d0, mp, ap, u, k1)
-    for j in range(NZ):
-        z[j] += h * k1[j]
+@njit(cache=True, inline="always")
+def closed_rhs(t, xv, xa, cmd, d, mp, ap, u, dxv, dxa):  # pragma: no cover - compiled
+    actuator_output(xa, cmd, ap, u)
+    model_rhs(t, xv, u, d, mp, dxv)
+    actuator_rhs(t, xa, cmd, ap, dxa)
 
 
-@njit(cache=True)
-def heun_advance(t, h, z, cmd, d0, dm, d1, mp, ap, u, k1, k2, k3, k4, tmp):  # pragma: no cover
-    closed_rhs(t, z, cmd, d0, mp, ap, u, k1)
-    for j in range(NZ):
-        tmp[j] = z[j] + h * k1[j]
-    closed_rhs(t + h, tmp, cmd, d1, mp, ap, u, k2)
-    for j in range(NZ):
-        z[j] += 0.5 * h * (k1[j] + k2[j])
+@njit(cache=True, inline="always")
+def euler_advance(t, h, xv, xa, cmd, d0, dm, d1, mp, ap, u, kv0, kv1, kv2, kv3, ka0, ka1, ka2, ka3, tv, ta):  # pragma: no cover
+    closed_rhs(t, xv, xa, cmd, d0, mp, ap, u, kv0, ka0)
+    for j in range(NX):
+        xv[j] += h * kv0[j]
+    for j in range(NA):
+        xa[j] += h * ka0[j]
 
 
-@njit(cache=True)
-def rk4_advance(t, h, z, cmd, d0, dm, d1, mp, ap, u, k1, k2, k3, k4, tmp):  # pragma: no cover
+@njit(cache=True, inline="always")
+def heun_advance(t, h, xv, xa, cmd, d0, dm, d1, mp, ap, u, kv0, kv1, kv2, kv3, ka0, ka1, ka2, ka3, tv, ta):  # pragma: no cover
+    closed_rhs(t, xv, xa, cmd, d0, mp, ap, u, kv0, ka0)
+    for j in range(NX):
+        tv[j] = xv[j] + h * kv0[j]
+    for j in range(NA):
+        ta[j] = xa[j] + h * ka0[j]
+    closed_rhs(t + h, tv, ta, cmd, d1, mp, ap, u, kv1, ka1)
+    for j in range(NX):
+        xv[j] += 0.5 * h * (kv0[j] + kv1[j])
+    for j in range(NA):
+        xa[j] += 0.5 * h * (ka0[j] + ka1[j])
+
+
+@njit(cache=True, inline="always")
+def rk4_advance(t, h, xv, xa, cmd, d0, dm, d1, mp, ap, u, kv0, kv1, kv2, kv3, ka0, ka1, ka2, ka3, tv, ta):  # pragma: no cover
     hh = 0.5 * h
-    closed_rhs(t, z, cmd, d0, mp, ap, u, k1)
-    for j in range(NZ):
-        tmp[j] = z[j] + hh * k1[j]
-    closed_rhs(t + hh, tmp, cmd, dm, mp, ap, u, k2)
-    for j in range(NZ):
-        tmp[j] = z[j] + hh * k2[j]
-    closed_rhs(t + hh, tmp, cmd, dm, mp, ap, u, k3)
-    for j in range(NZ):
-        tmp[j] = z[j] + h * k3[j]
-    closed_rhs(t + h, tmp, cmd, d1, mp, ap, u, k4)
-    for j in range(NZ):
-        z[j] += h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
+    closed_rhs(t, xv, xa, cmd, d0, mp, ap, u, kv0, ka0)
+    for j in range(NX):
+        tv[j] = xv[j] + hh * kv0[j]
+    for j in range(NA):
+        ta[j] = xa[j] + hh * ka0[j]
+    closed_rhs(t + hh, tv, ta, cmd, dm, mp, ap, u, kv1, ka1)
+    for j in range(NX):
+        tv[j] = xv[j] + hh * kv1[j]
+    for j in range(NA):
+        ta[j] = xa[j] + hh * ka1[j]
+    closed_rhs(t + hh, tv, ta, cmd, dm, mp, ap, u, kv2, ka2)
+    for j in range(NX):
+        tv[j] = xv[j] + h * kv2[j]
+    for j in range(NA):
+        ta[j] = xa[j] + h * ka2[j]
+    closed_rhs(t + h, tv, ta, cmd, d1, mp, ap, u, kv3, ka3)
+    for j in range(NX):
+        xv[j] += h / 6.0 * (kv0[j] + 2.0 * kv1[j] + 2.0 * kv2[j] + kv3[j])
+    for j in range(NA):
+        xa[j] += h / 6.0 * (ka0[j] + 2.0 * ka1[j] + 2.0 * ka2[j] + ka3[j])
 
 
 # <footer>
@@ -87,9 +112,14 @@ def init_runs(z, cs, cmd, mp, ap, cp, ref):  # pragma: no cover - compiled
         u = np.empty(NU)
         y = np.empty(NY)
         ir = i if ref.shape[0] > 1 else 0
-        actuator_output(z[i, NX:], cmd[i], ap[i], u)
-        model_output(0.0, z[i, :NX], u, mp[i], y)
-        controller_init(z[i], y, ref[ir, 0], cp[i], cs[i])
+        xv = z[i, :NX].copy()
+        xa = z[i, NX:].copy()
+        cmdi = cmd[i].copy()
+        csi = cs[i].copy()
+        actuator_output(xa, cmdi, ap[i].copy(), u)
+        model_output(0.0, xv, u, mp[i].copy(), y)
+        controller_init(z[i].copy(), y, ref[ir, 0].copy(), cp[i].copy(), csi)
+        cs[i, :] = csi
 
 
 @njit(cache=True, parallel=True)
@@ -105,68 +135,114 @@ def run_chunk(
     """
     n_runs = z.shape[0]
     nd = dist.shape[2]
+    nr = ref.shape[2]
+    ncmd = cmd.shape[1]
     for ii in prange(n_runs):
         i = np.int64(ii)
         if status[i] != 0:
             continue
-        zi = z[i]
-        cmdi = cmd[i]
+        # thread-local copies of everything the run touches per step
+        xv = z[i, :NX].copy()
+        xa = z[i, NX:].copy()
+        zfull = z[i].copy()
+        cmdi = cmd[i].copy()
+        csi = cs[i].copy()
+        mpi = mp[i].copy()
+        api = ap[i].copy()
+        cpi = cp[i].copy()
+        lo = lower.copy()
+        hi = upper.copy()
         u = np.empty(NU)
         y = np.empty(NY)
-        k1 = np.empty(NZ)
-        k2 = np.empty(NZ)
-        k3 = np.empty(NZ)
-        k4 = np.empty(NZ)
-        tmp = np.empty(NZ)
+        kv0 = np.empty(NX)
+        kv1 = np.empty(NX)
+        kv2 = np.empty(NX)
+        kv3 = np.empty(NX)
+        ka0 = np.empty(NA)
+        ka1 = np.empty(NA)
+        ka2 = np.empty(NA)
+        ka3 = np.empty(NA)
+        tv = np.empty(NX)
+        ta = np.empty(NA)
+        d0 = np.empty(nd)
         dm = np.empty(nd)
+        d1 = np.empty(nd)
+        refk = np.empty(nr)
         idist = i if dist.shape[0] > 1 else 0
         iref = i if ref.shape[0] > 1 else 0
         dist_varies = dist.shape[1] > 1
         ref_varies = ref.shape[1] > 1
+        if not dist_varies:
+            for j in range(nd):
+                d0[j] = dist[idist, 0, j]
+                dm[j] = d0[j]
+                d1[j] = d0[j]
+        failed = 0
         for k in range(k_start, k_stop):
             t = k * dt
             record = k % rec_every == 0
-            if k % ctrl_every == 0 or record:
-                actuator_output(zi[NX:], cmdi, ap[i], u)
-                model_output(t, zi[:NX], u, mp[i], y)
-                if k % ctrl_every == 0:
-                    kr = k if ref_varies else 0
-                    controller_step(t, ctrl_every * dt, zi, y, ref[iref, kr], cp[i], cs[i], cmdi)
+            control = k % ctrl_every == 0
+            if control or record:
+                actuator_output(xa, cmdi, api, u)
+                model_output(t, xv, u, mpi, y)
+            if control:
+                kr = k if ref_varies else 0
+                for j in range(nr):
+                    refk[j] = ref[iref, kr, j]
+                for j in range(NX):
+                    zfull[j] = xv[j]
+                for j in range(NA):
+                    zfull[NX + j] = xa[j]
+                controller_step(t, ctrl_every * dt, zfull, y, refk, cpi, csi, cmdi)
             if record:
                 m = k // rec_every
-                for j in range(NZ):
-                    rec_z[i, m, j] = zi[j]
+                for j in range(NX):
+                    rec_z[i, m, j] = xv[j]
+                for j in range(NA):
+                    rec_z[i, m, NX + j] = xa[j]
                 for j in range(NY):
                     rec_y[i, m, j] = y[j]
-                for j in range(cmdi.shape[0]):
+                for j in range(ncmd):
                     rec_cmd[i, m, j] = cmdi[j]
-            kd0 = k if dist_varies else 0
-            kd1 = k + 1 if dist_varies else 0
-            for j in range(nd):
-                dm[j] = 0.5 * (dist[idist, kd0, j] + dist[idist, kd1, j])
-            advance(t, dt, zi, cmdi, dist[idist, kd0], dm, dist[idist, kd1],
-                    mp[i], ap[i], u, k1, k2, k3, k4, tmp)
-            failed = 0
+            if dist_varies:
+                for j in range(nd):
+                    d0[j] = dist[idist, k, j]
+                    d1[j] = dist[idist, k + 1, j]
+                    dm[j] = 0.5 * (d0[j] + d1[j])
+            advance(t, dt, xv, xa, cmdi, d0, dm, d1, mpi, api, u, kv0, kv1, kv2, kv3, ka0, ka1, ka2, ka3, tv, ta)
             for j in range(NZ):
-                v = zi[j]
+                v = xv[j] if j < NX else xa[j - NX]
                 if not np.isfinite(v):
                     failed = 1
                     break
-                if v < lower[j] or v > upper[j]:
+                if v < lo[j] or v > hi[j]:
                     failed = 2
             if failed != 0:
                 status[i] = failed
                 t_fail[i] = (k + 1) * dt
-                for j in range(NZ):
-                    z_fail[i, j] = zi[j]
+                for j in range(NX):
+                    z_fail[i, j] = xv[j]
+                for j in range(NA):
+                    z_fail[i, NX + j] = xa[j]
                 break
             if k + 1 == n_steps and n_steps % rec_every == 0:
                 m = n_steps // rec_every
-                actuator_output(zi[NX:], cmdi, ap[i], u)
-                model_output(t + dt, zi[:NX], u, mp[i], y)
-                for j in range(NZ):
-                    rec_z[i, m, j] = zi[j]
+                actuator_output(xa, cmdi, api, u)
+                model_output(t + dt, xv, u, mpi, y)
+                for j in range(NX):
+                    rec_z[i, m, j] = xv[j]
+                for j in range(NA):
+                    rec_z[i, m, NX + j] = xa[j]
                 for j in range(NY):
                     rec_y[i, m, j] = y[j]
-                for j in range(cmdi.shape[0]):
+                for j in range(ncmd):
                     rec_cmd[i, m, j] = cmdi[j]
+        # write the run's state back for the next chunk
+        for j in range(NX):
+            z[i, j] = xv[j]
+        for j in range(NA):
+            z[i, NX + j] = xa[j]
+        for j in range(ncmd):
+            cmd[i, j] = cmdi[j]
+        for j in range(csi.shape[0]):
+            cs[i, j] = csi[j]

@@ -149,10 +149,7 @@ class VesselModel:
         if u.shape[-1:] != (self.n_inputs,):
             raise ParameterError(f"`u` must end in {self.n_inputs} inputs, got shape {u.shape}")
         batch = np.broadcast_shapes(x.shape[:-1], u.shape[:-1], p.shape[:-1], d.shape[:-1])
-        X = np.ascontiguousarray(np.broadcast_to(x, batch + x.shape[-1:]).reshape(-1, x.shape[-1]))
-        U = np.ascontiguousarray(np.broadcast_to(u, batch + u.shape[-1:]).reshape(-1, u.shape[-1]))
-        P = np.ascontiguousarray(np.broadcast_to(p, batch + p.shape[-1:]).reshape(-1, p.shape[-1]))
-        D = np.ascontiguousarray(np.broadcast_to(d, batch + d.shape[-1:]).reshape(-1, d.shape[-1]))
+        X, U, P, D = (_rows(a, batch) for a in (x, u, p, d))
         out = np.empty_like(X)
         _batched_rhs(self.rhs, float(t), X, U, D, P, out)
         return out.reshape(batch + (self.n_states,))
@@ -163,12 +160,16 @@ class VesselModel:
         u = np.asarray(u, dtype=float)
         p = params.to_array() if isinstance(params, Params) else np.asarray(params, dtype=float)
         batch = np.broadcast_shapes(x.shape[:-1], u.shape[:-1], p.shape[:-1])
-        X = np.ascontiguousarray(np.broadcast_to(x, batch + x.shape[-1:]).reshape(-1, x.shape[-1]))
-        U = np.ascontiguousarray(np.broadcast_to(u, batch + u.shape[-1:]).reshape(-1, u.shape[-1]))
-        P = np.ascontiguousarray(np.broadcast_to(p, batch + p.shape[-1:]).reshape(-1, p.shape[-1]))
+        X, U, P = (_rows(a, batch) for a in (x, u, p))
         out = np.empty((X.shape[0], len(NAV_OUTPUTS)))
         _batched_output(self.output, float(t), X, U, P, out)
         return out.reshape(batch + (len(NAV_OUTPUTS),))
+
+
+def _rows(a: np.ndarray, batch: tuple[int, ...]) -> np.ndarray:
+    """Broadcast ``a`` to ``batch + a.shape[-1:]`` and flatten the batch axes (C order)."""
+    n = int(np.prod(batch, dtype=np.int64))
+    return np.ascontiguousarray(np.broadcast_to(a, batch + a.shape[-1:]).reshape(n, a.shape[-1]))
 
 
 @njit

@@ -1,0 +1,102 @@
+"""The seahelm command: demo, run, models, plot, --version; exit codes."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from seahelm import __version__
+from seahelm.cli import app
+
+runner = CliRunner()
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+
+def test_version():
+    res = runner.invoke(app, ["--version"])
+    assert res.exit_code == 0
+    assert __version__ in res.stdout
+
+
+def test_demo_writes_results_and_plot(tmp_path):
+    res = runner.invoke(app, ["demo", "--out", str(tmp_path)])
+    assert res.exit_code == 0, res.output
+    assert (tmp_path / "result.nc").is_file()
+    assert (tmp_path / "overview.png").stat().st_size > 10_000
+    assert "settling_time_s" in res.stdout
+
+
+def test_run_json_prints_one_object(tmp_path):
+    res = runner.invoke(app, ["run", str(EXAMPLES / "mariner_course_change.toml"), "--json",
+                              "--out", str(tmp_path), "--csv"])
+    assert res.exit_code == 0, res.output
+    payload = json.loads(res.stdout)
+    assert payload["n_runs"] == 1 and payload["n_ok"] == 1
+    for key in ("final_yaw_rate", "final_heading_rad", "turning_diameter_m", "settling_time_s",
+                "rudder_angle_deg"):
+        assert key in payload
+    assert Path(payload["files"]["csv"]).is_file()
+
+
+def test_bad_scenario_exits_2_with_one_line(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[vessel]\nmodel = "nomoto9"\n[simulation]\nt_final = 1.0\ndt = 0.1\n')
+    res = runner.invoke(app, ["run", str(bad)])
+    assert res.exit_code == 2
+    assert "unknown vessel model 'nomoto9'" in res.stderr
+    assert len(res.stderr.strip().splitlines()) == 1
+    assert res.stdout == ""
+
+
+def test_missing_scenario_exits_2(tmp_path):
+    res = runner.invoke(app, ["run", str(tmp_path / "none.toml")])
+    assert res.exit_code == 2
+    assert "scenario file not found" in res.stderr
+
+
+def test_models_lists_parameters_with_units():
+    res = runner.invoke(app, ["models", "--json"])
+    assert res.exit_code == 0
+    payload = json.loads(res.stdout)
+    nomoto = payload["vessel_models"]["nomoto2"]
+    gain = next(p for p in nomoto["parameters"] if p["name"] == "gain")
+    assert gain["unit"] == "1/s" and gain["symbol"] == "K"
+    assert "pid-heading" in payload["controllers"]
+    assert "mariner-nomoto2" in payload["catalog"]
+    human = runner.invoke(app, ["models"])
+    assert human.exit_code == 0 and "Nomoto" in human.stdout
+
+
+def test_plot_command(tmp_path):
+    runner.invoke(app, ["demo", "--out", str(tmp_path)])
+    res = runner.invoke(app, ["plot", str(tmp_path / "result.nc"), "--out",
+                              str(tmp_path / "p.png")])
+    assert res.exit_code == 0, res.output
+    assert (tmp_path / "p.png").is_file()
+    res = runner.invoke(app, ["plot", str(tmp_path / "result.nc"), "--run", "7"])
+    assert res.exit_code == 2 and "--run [7] not in the file" in res.stderr
+    res = runner.invoke(app, ["plot", str(tmp_path / "nothing.nc")])
+    assert res.exit_code == 2
+
+
+@pytest.mark.slow
+def test_console_script_json_stdout_is_clean(tmp_path):
+    exe = Path(sys.executable).parent / "seahelm"
+    proc = subprocess.run([str(exe), "demo", "--json", "--out", str(tmp_path)],
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    json.loads(proc.stdout)
+
+
+def test_quickstart_example_runs(tmp_path):
+    proc = subprocess.run([sys.executable, str(EXAMPLES / "quickstart.py"), str(tmp_path)],
+                          capture_output=True, text=True, timeout=300,
+                          env={**__import__("os").environ, "MPLBACKEND": "Agg"})
+    assert proc.returncode == 0, proc.stderr
+    assert "course  20.0 deg -> final heading" in proc.stdout
+    assert (tmp_path / "quickstart.png").is_file()
