@@ -1,0 +1,196 @@
+"""``seahelm waves``: sea-state tables, wave spectra and seeded disturbance samples.
+
+Implements Sushchenko & Lutsko (2010) on the command line. Exit codes: 0 success, 2 bad
+input (one-line reason on stderr), 1 other failure. ``--json`` prints one JSON object on
+stdout and nothing else.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Annotated, Any
+
+import numpy as np
+import typer
+from rich.markup import escape
+
+from ..results import atomic_write
+from ._common import console, handle_errors, print_json
+
+app = typer.Typer(
+    help="Sea-wave disturbances (Sushchenko & Lutsko 2010): tables, spectra, samples.",
+    no_args_is_help=True,
+)
+
+#: Largest runs × steps the CLI will generate in memory.
+MAX_SAMPLES = 200_000_000
+
+_Json = Annotated[bool, typer.Option("--json", help="Print one JSON object on stdout.")]
+_H3 = Annotated[float, typer.Option("--h3", help=escape("Height of 3 % exceedance waves h3% [m]."))]
+_Table = Annotated[
+    str, typer.Option("--table", help="Table 2 version: 'corrected' (default) or 'printed'.")
+]
+
+
+@app.command("table")
+@handle_errors
+def table_cmd(json_out: _Json = False, table: _Table = "corrected") -> None:
+    """Table 1 (grade → h3%) and Table 2 (μ, λ versus h3%)."""
+    from ..environment.sea_state import TABLE1, TABLE2_COLUMNS, table2
+
+    cols = table2(table)
+    grades = [
+        {"grade": g, "roman": _roman(g), "h3_min": lo, "h3_max": (hi if math.isfinite(hi) else None)}
+        for g, (lo, hi) in TABLE1.items()
+    ]
+    rows = [{k: float(cols[k][i]) for k in ("h3",) + TABLE2_COLUMNS} for i in range(cols["h3"].size)]
+    note = (
+        "corrected: lambda_mean(4 m) 0.667 -> 0.867 and mu_min(1 m) 0.138 -> 0.188 (misprints)"
+        if table == "corrected"
+        else "as printed in Sushchenko & Lutsko (2010)"
+    )
+    if json_out:
+        print_json({"table1": grades, "table2": {"version": table, "note": note, "rows": rows}})
+        return
+    from rich.table import Table
+
+    t1 = Table(title=escape("Table 1: sea state vs h3% [m]"))
+    t1.add_column("grade")
+    t1.add_column("h3% [m]")
+    for g in grades:
+        hi = "above" if g["h3_max"] is None else f"{g['h3_max']:g}"
+        t1.add_row(str(g["roman"]), f"{g['h3_min']:g} – {hi}")
+    console.print(t1)
+    t2 = Table(title=escape(f"Table 2 ({table}): μ [1/s], λ [rad/s] vs h3% [m]"), caption=note)
+    for c in ("h3",) + TABLE2_COLUMNS:
+        t2.add_column(c, justify="right")
+    for r in rows:
+        t2.add_row(*(f"{v:g}" for v in r.values()))
+    console.print(t2)
+
+
+def _roman(g: int) -> str:
+    return ("I", "II", "III", "IV", "V", "VI", "VII", "VIII", "IX")[g - 1]
+
+
+@app.command("spectrum")
+@handle_errors
+def spectrum_cmd(
+    h3: _H3,
+    model: Annotated[
+        str, typer.Option("--model", help="Spectrum name (see seahelm.environment.spectra.SPECTRA).")
+    ] = "rakhmanin-firsov-2",
+    plot: Annotated[Path | None, typer.Option("--plot", help="Write a PNG of the spectrum.")] = None,
+    json_out: _Json = False,
+    table: _Table = "corrected",
+) -> None:
+    """Spectrum for a wave height: D_r, μ, λ, m0 (numerical), peak frequency."""
+    from ..environment.sea_state import sea_state_parameters
+    from ..environment.spectra import spectral_moment, spectrum_from_wave_height
+
+    params = sea_state_parameters(h3, table=table)
+    spec = spectrum_from_wave_height(model, h3, table=table)
+    m0 = spectral_moment(spec, 0)
+    result: dict[str, Any] = {
+        "model": model,
+        "h3": params.h3,
+        "grade": params.grade,
+        "table": table,
+        "D_r": params.variance,
+        "mu": params.decay_rate,
+        "lambda": params.resonance_frequency,
+        "m0": m0,
+        "m0_closed_form": float(spec.variance),  # type: ignore[attr-defined]
+        "peak_frequency": float(spec.peak_frequency),
+        "convention": "one-sided S1(omega), K(tau) = int_0^inf S1 cos(omega tau) d omega",
+    }
+    if plot is not None:
+        _save_spectrum_plot(spec, plot, h3)
+        result["plot"] = str(plot)
+    if json_out:
+        print_json(result)
+        return
+    for k, v in result.items():
+        console.print(f"{k:>16}: {v:.6g}" if isinstance(v, float) else f"{k:>16}: {v}", highlight=False, markup=False)
+
+
+def _save_spectrum_plot(spec: Any, path: Path, h3: float) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    from ..plotting.waves import plot_spectrum
+
+    fig = plt.figure()
+    try:
+        ax = plot_spectrum(spec, ax=fig.add_subplot())
+        ax.set_title(f"{spec.name}, h3% = {h3:g} m")
+        atomic_write(path, lambda tmp: fig.savefig(tmp, format="png"))
+    finally:
+        plt.close(fig)
+
+
+@app.command("sample")
+@handle_errors
+def sample_cmd(
+    h3: _H3,
+    duration: Annotated[float, typer.Option("--duration", help=escape("Length of each run [s]."))],
+    dt: Annotated[float, typer.Option("--dt", help=escape("Sample interval Δt [s]."))],
+    seed: Annotated[int, typer.Option("--seed", help=escape("Seed; run i uses SeedSequence(seed).spawn(runs)[i]."))],
+    runs: Annotated[int, typer.Option("--runs", help="Number of realisations.")] = 1,
+    out: Annotated[Path | None, typer.Option("--out", help="Write a NetCDF file (h5netcdf).")] = None,
+    json_out: _Json = False,
+    model: Annotated[
+        str, typer.Option("--model", help="Rakhmanin–Firsov variant with a finite-variance slope.")
+    ] = "rakhmanin-firsov-2",
+    table: _Table = "corrected",
+) -> None:
+    """Seeded wave ordinate (and slope) realisations, discretised exactly."""
+    from ..environment.shaping import shaping_filter
+    from ..environment.spectra import spectrum_from_wave_height
+    from ..errors import ParameterError
+
+    if runs < 1:
+        raise ParameterError(f"`runs` must be >= 1, got {runs}")
+    spec = spectrum_from_wave_height(model, h3, table=table)
+    filt = shaping_filter(spec, ("ordinate",))
+    slope = shaping_filter(spec, ("ordinate", "slope"))
+    if np.all(slope.D == 0.0):
+        filt = slope
+    if not (math.isfinite(dt) and dt > 0):
+        raise ParameterError(f"`dt` must be > 0 [s], got {dt!r}")
+    if not (math.isfinite(duration) and duration > 0):
+        raise ParameterError(f"`duration` must be > 0 [s], got {duration!r}")
+    steps = int(math.floor(duration / dt + 1e-9)) + 1
+    if steps * runs > MAX_SAMPLES:
+        raise ParameterError(
+            f"runs × steps = {steps * runs} exceeds {MAX_SAMPLES}; shorten --duration or --runs"
+        )
+    res = filt.sample(n_steps=steps, dt=dt, seed=seed, runs=runs)
+    ordinate = res["ordinate"]
+    result: dict[str, Any] = {
+        "model": spec.name,
+        "h3": float(h3),
+        "seed": seed,
+        "runs": runs,
+        "steps": steps,
+        "dt": res.dt,
+        "samples": int(ordinate.size),
+        "variance_expected": float(res.variance_expected[0]),
+        "variance_sample": float(np.mean(ordinate**2)),
+    }
+    if "slope" in res.labels:
+        result["slope_variance_expected"] = float(res.variance_expected[1])
+        result["slope_variance_sample"] = float(np.mean(res["slope"] ** 2))
+    if out is not None:
+        ds = res.to_xarray()
+        ds.attrs.update({"model": spec.name, "h3": float(h3), "table": table, "seed": seed})
+        atomic_write(out, lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf"))
+        result["out"] = str(out)
+    if json_out:
+        print_json(result)
+        return
+    for k, v in result.items():
+        console.print(f"{k:>24}: {v:.6g}" if isinstance(v, float) else f"{k:>24}: {v}", highlight=False, markup=False)

@@ -1,0 +1,136 @@
+"""Plots of wave spectra and disturbance realisations (like Sushchenko & Lutsko (2010), figure).
+
+matplotlib is imported inside the functions; every function takes ``ax=`` (or ``fig=``) and
+returns what it drew on.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from ..environment.sea_state import TABLE2, wave_height_range
+
+__all__ = [
+    "grade_wave_height",
+    "plot_spectrum",
+    "plot_sea_state_spectra",
+    "plot_realisations",
+    "plot_paper_figure",
+]
+
+_LINESTYLES = ("-", "--", ":")
+
+
+def grade_wave_height(grade: int | str) -> float:
+    """Representative h3% [m] of a sea-state grade: the middle of its Table 1 range, clipped to
+    the 1…10 m covered by Table 2 (grade IX, open above 11 m, is drawn at 10 m)."""
+    lo, hi = wave_height_range(grade)
+    hs = TABLE2["corrected"][:, 0]
+    mid = 0.5 * (lo + hi) if np.isfinite(hi) else lo
+    return float(np.clip(mid, hs[0], hs[-1]))
+
+
+def _axes(ax: Any) -> Any:
+    if ax is not None:
+        return ax
+    import matplotlib.pyplot as plt
+
+    return plt.figure().add_subplot()
+
+
+def plot_spectrum(
+    spectrum: Any,
+    *,
+    ax: Any = None,
+    omega: np.ndarray | None = None,
+    label: str | None = None,
+    **line_kw: Any,
+) -> Any:
+    """Plot a one-sided spectrum S₁(ω) (eq. (1) convention) against ω [rad/s]."""
+    ax = _axes(ax)
+    w = np.linspace(0.0, 4.0, 801) if omega is None else np.asarray(omega, float)
+    ax.plot(w, spectrum.one_sided(w), label=label or getattr(spectrum, "name", None), **line_kw)
+    ax.set_xlabel("ω [rad/s]")
+    ax.set_ylabel("S₁(ω) (one-sided)")
+    return ax
+
+
+def plot_sea_state_spectra(
+    model: str = "rakhmanin-firsov-1",
+    grades: Sequence[int] = (3, 6, 9),
+    *,
+    quantity: str = "ordinate",
+    table: str = "corrected",
+    ax: Any = None,
+    omega: np.ndarray | None = None,
+) -> Any:
+    """Spectra of the wave ordinate or slope (eq. (5)) for several sea-state grades.
+
+    Solid, dashed and dotted lines as in the paper's figure (panels a–d).
+    """
+    from ..environment.spectra import slope_spectrum, spectrum_from_wave_height
+
+    transforms = {"ordinate": lambda s: s, "slope": slope_spectrum}
+    if quantity not in transforms:
+        raise ValueError(f"unknown quantity {quantity!r}; valid: 'ordinate', 'slope'")
+    ax = _axes(ax)
+    for i, g in enumerate(grades):
+        h3 = grade_wave_height(g)
+        spec = transforms[quantity](spectrum_from_wave_height(model, h3, table=table))
+        plot_spectrum(
+            spec, ax=ax, omega=omega, label=f"sea state {g} (h3% = {h3:g} m)",
+            linestyle=_LINESTYLES[i % len(_LINESTYLES)], color="k",
+        )
+    ax.set_title(f"{model}: {quantity}")
+    ax.legend()
+    return ax
+
+
+def plot_realisations(
+    samples: Any, output: str | None = None, *, runs: Sequence[int] = (0,), ax: Any = None
+) -> Any:
+    """Plot realisations from :meth:`seahelm.environment.shaping.StateSpaceFilter.sample`."""
+    ax = _axes(ax)
+    label = output or samples.labels[0]
+    data = samples[label]
+    unit = samples.units[samples.labels.index(label)]
+    for r in runs:
+        ax.plot(samples.time, data[r], label=f"run {r}", lw=0.8)
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel(f"{label} [{unit}]")
+    return ax
+
+
+def plot_paper_figure(*, fig: Any = None, seed: int = 0, duration: float = 200.0, dt: float = 0.1) -> Any:
+    """The six panels of Sushchenko & Lutsko (2010)'s figure, with the corrected models.
+
+    a, b: ordinate spectra of variants 1 (eq. (3)) and 2 (eq. (4)) for sea states 3, 6, 9;
+    c, d: slope spectra (eq. (5)) of both for sea states 3, 6; e: slope realisation from the
+    corrected filter (s/g)W₂(s); f: from the paper's printed eq. (7) filter, for comparison.
+    """
+    import matplotlib.pyplot as plt
+
+    from ..environment.shaping import paper_filter, shaping_filter
+    from ..environment.spectra import spectrum_from_wave_height
+
+    fig = fig if fig is not None else plt.figure(figsize=(11, 11))
+    axs = fig.subplots(3, 2)
+    for j, model in enumerate(("rakhmanin-firsov-1", "rakhmanin-firsov-2")):
+        plot_sea_state_spectra(model, (3, 6, 9), ax=axs[0, j])
+        plot_sea_state_spectra(model, (3, 6), quantity="slope", ax=axs[1, j])
+    spec = spectrum_from_wave_height("rakhmanin-firsov-2", grade_wave_height(6))
+    good = shaping_filter(spec, ("slope",)).sample(duration=duration, dt=dt, seed=seed)
+    printed = paper_filter(
+        "eq7",
+        variance=spec.variance,  # type: ignore[attr-defined]
+        decay_rate=spec.decay_rate,  # type: ignore[attr-defined]
+        resonance_frequency=spec.resonance_frequency,  # type: ignore[attr-defined]
+    ).sample(duration=duration, dt=dt, seed=seed)
+    plot_realisations(good, ax=axs[2, 0]).set_title("slope, corrected filter (s/g)·W₂")
+    plot_realisations(printed, ax=axs[2, 1]).set_title("slope, eq. (7) as printed")
+    fig.tight_layout()
+    return fig
+

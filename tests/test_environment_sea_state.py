@@ -1,0 +1,149 @@
+"""Sea-state tables (Sushchenko & Lutsko (2010), Tables 1-2) and D_r = 0.143 (h3%/2)²."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from seahelm.environment import sea_state as ss
+from seahelm.errors import ParameterError, ValidityRangeWarning
+
+# Table 2 as printed in the paper (h, μmax, μmean, μmin, λmax, λmean, λmin, μ/λ), typed in again.
+PAPER_ROWS = {
+    1: (0.56, 0.374, 0.138, 2.24, 1.745, 1.25, 0.215),
+    2: (0.394, 0.265, 0.136, 1.573, 1.239, 0.905, 0.214),
+    3: (0.316, 0.214, 0.111, 1.266, 1.003, 0.74, 0.213),
+    4: (0.274, 0.185, 0.096, 1.094, 0.667, 0.64, 0.213),
+    5: (0.246, 0.166, 0.086, 0.982, 0.777, 0.572, 0.213),
+    10: (0.177, 0.119, 0.061, 0.706, 0.555, 0.404, 0.214),
+}
+
+
+@pytest.mark.parametrize("h", [0.5, 1.0, 3.0, 10.0, 20.0])
+def test_wave_variance(h):
+    assert ss.wave_variance(h) == pytest.approx(0.143 * h**2 / 4, rel=1e-15)
+
+
+def test_rayleigh_coefficient():
+    assert ss.RAYLEIGH_VARIANCE_COEFFICIENT == pytest.approx(4 / (8 * math.log(1 / 0.03)), rel=3e-3)
+
+
+@pytest.mark.parametrize("bad,match", [(0.0, "> 0"), (-1.0, "> 0"), (float("nan"), "finite"), (math.inf, "finite")])
+def test_wave_variance_bad(bad, match):
+    with pytest.raises(ParameterError, match=f"`h3` must be {match}"):
+        ss.wave_variance(bad)
+
+
+@pytest.mark.parametrize(
+    "h,grade",
+    [(0.1, 1), (0.25, 2), (0.5, 2), (0.75, 3), (1.0, 3), (1.9, 4), (2.0, 5), (4.0, 6), (7.0, 7), (10.0, 8), (11.0, 9), (30.0, 9)],
+)
+def test_table1_grade(h, grade):
+    assert ss.sea_state_grade(h) == grade
+
+
+def test_table1_ranges():
+    assert ss.wave_height_range(3) == (0.75, 1.25)
+    assert ss.wave_height_range("vi") == (3.5, 6.0)
+    assert ss.wave_height_range("IX") == (11.0, math.inf)
+    np.testing.assert_array_equal(ss.sea_state_grade([0.1, 5.0, 12.0]), [1, 6, 9])
+    for bad in (0, 10, "X", 2.5, True):
+        with pytest.raises(ParameterError, match="`grade`"):
+            ss.wave_height_range(bad)
+
+
+@pytest.mark.parametrize("h,row", PAPER_ROWS.items())
+def test_printed_table_reproduces_paper(h, row):
+    t = ss.table2("printed")
+    i = int(np.flatnonzero(t["h3"] == h)[0])
+    got = tuple(float(t[c][i]) for c in ss.TABLE2_COLUMNS)
+    assert got == row
+
+
+def test_corrected_table_fixes_exactly_two_cells():
+    p, c = ss.table2("printed"), ss.table2("corrected")
+    diffs = [(col, float(p["h3"][i])) for col in ss.TABLE2_COLUMNS for i in range(10) if p[col][i] != c[col][i]]
+    assert sorted(diffs) == [("lambda_mean", 4.0), ("mu_min", 1.0)]
+    assert c["lambda_mean"][3] == 0.867
+    assert c["mu_min"][0] == 0.188
+
+
+def test_corrected_table_is_consistent():
+    c = ss.table2("corrected")
+    ratio = c["mu_mean"] / c["lambda_mean"]
+    assert np.all((ratio > 0.2125) & (ratio < 0.2145))
+    assert np.all(np.abs(c["mu_min"] / c["lambda_min"] - 0.150) < 0.003)
+    # the printed table fails the same check in exactly the misprinted rows
+    p = ss.table2("printed")
+    assert np.flatnonzero(np.abs(p["mu_mean"] / p["lambda_mean"] - 0.2135) > 0.002).tolist() == [3]
+    assert np.flatnonzero(np.abs(p["mu_min"] / p["lambda_min"] - 0.150) > 0.003).tolist() == [0]
+    for col in ss.TABLE2_COLUMNS[:-1]:  # every column ∝ h^(-1/2) within 2 %
+        v = c[col] * np.sqrt(c["h3"])
+        assert np.all(np.abs(v / np.median(v) - 1) < 0.025), col
+
+
+def test_table_returns_copies_and_unknown_name():
+    t = ss.table2()
+    t["mu_mean"][0] = -5.0
+    assert ss.table2()["mu_mean"][0] == 0.374
+    with pytest.raises(ParameterError, match="unknown Table 2 version 'nope'.*'corrected', 'printed'"):
+        ss.table2("nope")
+
+
+def test_exact_rows():
+    p = ss.sea_state_parameters(3.0)
+    assert (p.decay_rate, p.resonance_frequency, p.grade) == (0.214, 1.003, 5)
+    assert p.variance == pytest.approx(0.143 * 2.25)
+    assert ss.sea_state_parameters(4.0).resonance_frequency == 0.867
+    assert ss.sea_state_parameters(4.0, table="printed").resonance_frequency == 0.667
+
+
+@pytest.mark.parametrize(
+    "h,level,mu,lam",
+    [
+        (1.5, "mean", (0.374 + 0.265) / 2, (1.745 + 1.239) / 2),
+        (2.25, "max", 0.394 + 0.25 * (0.316 - 0.394), 1.573 + 0.25 * (1.266 - 1.573)),
+        (3.5, "mean", (0.214 + 0.185) / 2, (1.003 + 0.867) / 2),
+        (1.2, "min", 0.188 + 0.2 * (0.136 - 0.188), 1.25 + 0.2 * (0.905 - 1.25)),
+    ],
+)
+def test_linear_interpolation(h, level, mu, lam):
+    p = ss.sea_state_parameters(h, level=level)
+    assert p.decay_rate == pytest.approx(mu, rel=1e-12)
+    assert p.resonance_frequency == pytest.approx(lam, rel=1e-12)
+    assert p.level == level and not p.extrapolated
+
+
+def test_interpolation_uses_printed_table_when_asked():
+    p = ss.sea_state_parameters(3.5, table="printed")
+    assert p.resonance_frequency == pytest.approx((1.003 + 0.667) / 2)
+
+
+@pytest.mark.parametrize("h", [0.5, 0.999, 10.001, 12.0])
+def test_outside_table_raises(h):
+    with pytest.raises(ParameterError, match=r"`h3` must be in \[1, 10\] \[m\].*Table 2"):
+        ss.sea_state_parameters(h)
+
+
+def test_extrapolation_warns_and_follows_sqrt_law():
+    with pytest.warns(ValidityRangeWarning, match="outside Table 2"):
+        p = ss.sea_state_parameters(12.0, extrapolate=True)
+    assert p.extrapolated
+    assert p.decay_rate == pytest.approx(0.119 * math.sqrt(10 / 12))
+    assert p.resonance_frequency == pytest.approx(0.555 * math.sqrt(10 / 12))
+    with pytest.warns(ValidityRangeWarning):
+        q = ss.sea_state_parameters(0.5, extrapolate=True, level="min")
+    assert q.decay_rate == pytest.approx(0.188 * math.sqrt(2))
+
+
+@pytest.mark.parametrize("bad,match", [(0.0, "> 0"), (-2.0, "> 0"), (float("nan"), "finite")])
+def test_sea_state_parameters_bad_h3(bad, match):
+    with pytest.raises(ParameterError, match=f"`h3` must be {match}"):
+        ss.sea_state_parameters(bad)
+
+
+def test_unknown_level():
+    with pytest.raises(ParameterError, match="unknown level 'avg'.*'max', 'mean', 'min'"):
+        ss.sea_state_parameters(3.0, level="avg")
