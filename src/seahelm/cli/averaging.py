@@ -1,0 +1,80 @@
+"""``seahelm averaging``: full averaging of the CPP ship in waves (Platonov & Platonova).
+
+Mounted by the main ``seahelm`` command as ``seahelm averaging``; usable on its own as the
+typer app :data:`app`.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from ._common import console, err_console, handle_errors, print_json
+
+app = typer.Typer(
+    help="Full averaging of a controllable-pitch-propeller ship in waves and its admissible "
+    "control set (Platonov & Platonova).",
+    no_args_is_help=True,
+)
+
+
+@app.callback()
+def _main() -> None:
+    """Full averaging and admissible control sets."""
+
+
+@app.command("cpp")
+@handle_errors
+def cpp(
+    immersion: float = typer.Option(
+        1.2, "--immersion", metavar="H0_OVER_R",
+        help="Propeller immersion h0/R at zero pitch angle, in propeller radii.",
+    ),
+    amplitude: float = typer.Option(
+        0.96, "--amplitude", metavar="EPSI0_OVER_R",
+        help="Vertical oscillation amplitude eψ0/R of the propeller, in propeller radii.",
+    ),
+    grid: int = typer.Option(
+        200, "--grid", metavar="N",
+        help="Directions: N azimuths × N/2 elevations on the unit sphere (eq. (17)).",
+    ),
+    plot: Optional[Path] = typer.Option(
+        None, "--plot", metavar="FILE.png", help="Draw V and Y (Figs. 1 and 2) to this file."
+    ),
+    json_out: bool = typer.Option(False, "--json", help="Print one JSON object on stdout."),
+) -> None:
+    """β1, β2, β3, the boundary of V and the Hausdorff distances of the flat sets Y to V.
+
+    Defaults give the paper's α(τ) = 0.5 − 0.4 sin τ.
+    """
+    from ..analysis.averaging import cpp_admissible_set
+    from ..errors import ParameterError
+
+    if grid < 6:
+        raise ParameterError(f"`--grid` must be >= 6 [directions], got {grid}")
+    result = cpp_admissible_set(immersion, amplitude, n_azimuth=grid, n_elevation=grid // 2)
+    summary = result.summary()
+    if plot is not None:
+        from ..plotting.averaging import plot_control_sets
+
+        fig = plot_control_sets(result)
+        fig.savefig(plot, dpi=120)
+        summary["plot"] = str(plot)
+        (err_console if json_out else console).print(f"wrote {plot}", highlight=False)
+    if json_out:
+        print_json(summary)
+        return
+    b1, b2, b3 = result.betas
+    console.print(
+        f"α(τ) = {immersion / 2.4:.4g} − {amplitude / 2.4:.4g} sin τ, "
+        f"{result.grid_points} directions", highlight=False,
+    )
+    console.print(f"β1 = ⟨c1²/c2⟩ = {b1:.5f}   β2 = ⟨c1⟩ = {b2:.5f}   β3 = ⟨c2⟩ = {b3:.5f}",
+                  highlight=False)
+    console.print(f"Hausdorff(V, Y hull of the arc)   = {result.hausdorff_V_Y:.5f}",
+                  highlight=False)
+    console.print(f"Hausdorff(V, Y printed eq. (24))  = {result.hausdorff_V_Y_printed:.5f}",
+                  highlight=False)
+    console.print(f"width of V across (1, −1, 0)/√2   = {result.width:.5f}", highlight=False)
