@@ -1,0 +1,172 @@
+"""``seahelm identify``: identification of steering-model coefficients from turns.
+
+``seahelm identify steady-turn FILE.csv`` fits the reduced steady-turn model of Romanov &
+Chirkova, eq. (4) a ω² + b ω + α(1 + c ω) = 0, to a CSV file holding either a time series
+(columns ``time``, ``rudder_angle``, ``yaw_rate``; the steady segments are extracted
+automatically) or already-steady points (columns ``rudder_angle``, ``yaw_rate``). Mounted by the
+main command as ``seahelm identify``; usable on its own as the typer app :data:`app`.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+from typing import Any, Optional
+
+import numpy as np
+import typer
+
+from ._common import console, handle_errors, print_json
+
+app = typer.Typer(
+    help="Identify steering-model coefficients from recorded turns (Romanov & Chirkova: "
+    "reduced steady-turn model a·ω² + b·ω + α(1 + c·ω) = 0).",
+    no_args_is_help=True,
+)
+
+_UNITS = {"a": "s²/rad", "b": "s", "c": "s/rad", "d": "1/rad"}
+
+
+@app.callback()
+def _main() -> None:
+    """Identification of steering-model coefficients."""
+
+
+def read_turn_csv(path: Path) -> dict[str, np.ndarray]:
+    """Numeric columns of a CSV file with a header row (ParameterError on bad content)."""
+    from ..errors import ParameterError
+
+    if not path.is_file():
+        raise FileNotFoundError(f"no such file: {path}")
+    with path.open(newline="") as fh:
+        reader = csv.reader(fh)
+        try:
+            header = [h.strip() for h in next(reader)]
+        except StopIteration:
+            raise ParameterError(f"{path}: empty file (a header row is needed)") from None
+        rows = [r for r in reader if any(cell.strip() for cell in r)]
+    cols: dict[str, list[float]] = {h: [] for h in header}
+    for i, row in enumerate(rows, start=2):
+        if len(row) != len(header):
+            raise ParameterError(
+                f"{path}, line {i}: {len(row)} fields, the header has {len(header)}"
+            )
+        for h, cell in zip(header, row):
+            try:
+                cols[h].append(float(cell))
+            except ValueError:
+                raise ParameterError(
+                    f"{path}, line {i}: column `{h}` is not a number: {cell!r}"
+                ) from None
+    return {h: np.asarray(v, dtype=float) for h, v in cols.items()}
+
+
+@app.command("steady-turn")
+@handle_errors
+def steady_turn(
+    file: Path = typer.Argument(..., metavar="FILE.csv",
+                                help="Time series (time, rudder_angle, yaw_rate) or steady "
+                                "points (rudder_angle, yaw_rate)."),
+    angles: str = typer.Option("deg", "--angles", metavar="deg|rad",
+                               help="Units of rudder_angle [deg|rad] and yaw_rate [deg/s|rad/s]."),
+    method: str = typer.Option("lsq", "--method", metavar="lsq|robust|brute",
+                               help="Linear least squares, robust soft-L1, or the paper's "
+                               "brute-force search (eq. (5))."),
+    form: str = typer.Option("paper", "--form", metavar="paper|exact|paper-odd|exact-odd",
+                             help="Equation form: eq. (4), with the α² term of the exact "
+                             "elimination, or made odd for turns to both sides."),
+    rudder_tolerance: float = typer.Option(
+        0.2, "--rudder-tolerance", help="Constant rudder: deviation allowed, in --angles units."),
+    yaw_rate_tolerance: Optional[float] = typer.Option(
+        None, "--yaw-rate-tolerance",
+        help="Settled yaw rate: band half-width, in --angles units per second "
+        "(default 3e-5 rad/s)."),
+    min_duration: float = typer.Option(60.0, "--min-duration",
+                                       help="Minimum settled duration [s]."),
+    smoothing: float = typer.Option(20.0, "--smoothing",
+                                    help="Moving average [s] for the settling test."),
+    json_out: bool = typer.Option(False, "--json", help="Print one JSON object on stdout."),
+) -> None:
+    """Fit a, b, c of the reduced steady-turn model to turns recorded in a CSV file.
+
+    Coefficients are reported in radian units (a [s²/rad], b [s], c [s/rad]) whatever --angles.
+    """
+    from ..errors import ParameterError
+    from ..identification.steady_turning import (
+        FIT_METHODS,
+        REDUCED_FORMS,
+        extract_steady_segments,
+        fit_steady_turns,
+    )
+
+    if angles not in ("deg", "rad"):
+        raise ParameterError(f"`--angles` must be deg or rad, got {angles!r}")
+    if method not in FIT_METHODS:
+        raise ParameterError(f"`--method` must be one of {', '.join(FIT_METHODS)}, got {method!r}")
+    if form not in REDUCED_FORMS:
+        raise ParameterError(f"`--form` must be one of {', '.join(REDUCED_FORMS)}, got {form!r}")
+    scale = math.pi / 180.0 if angles == "deg" else 1.0
+    cols = read_turn_csv(file)
+    missing = [c for c in ("rudder_angle", "yaw_rate") if c not in cols]
+    if missing:
+        raise ParameterError(
+            f"{file}: missing column(s) {', '.join(missing)}; found {', '.join(cols) or 'none'} "
+            "(need time, rudder_angle, yaw_rate or rudder_angle, yaw_rate)"
+        )
+    rudder = cols["rudder_angle"] * scale
+    yaw = cols["yaw_rate"] * scale
+    for name, arr in (("rudder_angle", rudder), ("yaw_rate", yaw)) + (
+            (("time", cols["time"]),) if "time" in cols else ()):
+        if not np.all(np.isfinite(arr)):
+            bad = np.flatnonzero(~np.isfinite(arr))
+            raise ParameterError(
+                f"{file}: column `{name}` has NaN/inf on data row(s) {(bad + 1)[:6].tolist()}"
+            )
+    out: dict[str, Any] = {"file": str(file), "input": "points"}
+    segments = None
+    if "time" in cols:
+        seg_kw: dict[str, Any] = dict(rudder_tolerance=rudder_tolerance * scale,
+                                      min_duration=min_duration, smoothing=smoothing)
+        if yaw_rate_tolerance is not None:
+            seg_kw["yaw_rate_tolerance"] = yaw_rate_tolerance * scale
+        segments = extract_steady_segments(cols["time"], rudder, yaw, **seg_kw)
+        rudder, yaw = segments.rudder_angle, segments.yaw_rate
+        out["input"] = "time series"
+        if len(segments) < 3:
+            raise ParameterError(
+                f"{file}: found {len(segments)} steady segment(s), need at least 3 distinct "
+                "steady points (hold the rudder longer, or relax --yaw-rate-tolerance / "
+                "--min-duration)"
+            )
+    fit = fit_steady_turns(yaw, rudder, method=method, form=form)
+    summary = fit.to_dict()
+    out.update(summary)
+    out["units"] = {n: _UNITS[n] for n in fit.form.names}
+    out["units"]["residual_rms"] = "rad"
+    out["points"] = [
+        {"rudder_angle": float(a / scale), "yaw_rate": float(w / scale)}
+        for a, w in zip(fit.rudder_angle, fit.yaw_rate)
+    ]
+    if segments is not None:
+        out["segments"] = [
+            {"start_time": float(s0), "end_time": float(s1), "rudder_angle": float(a / scale),
+             "yaw_rate": float(w / scale), "samples": int(n)}
+            for s0, s1, a, w, n in zip(segments.start_time, segments.end_time,
+                                       segments.rudder_angle, segments.yaw_rate,
+                                       segments.n_samples)
+        ]
+    out["angles"] = angles
+    if json_out:
+        print_json(out)
+        return
+    from rich.table import Table
+
+    console.print(f"[bold]{file}[/]: {out['input']}, {fit.points_used} steady points, "
+                  f"method {method}, form {fit.form.name} ({fit.form.description})")
+    table = Table("coefficient", "value", "std. error", "unit")
+    for n, v, se in zip(fit.form.names, fit.coef, fit.stderr):
+        table.add_row(n, f"{v:.6g}", "—" if not np.isfinite(se) else f"{se:.3g}", _UNITS[n])
+    console.print(table)
+    console.print(f"residual rms {fit.residual_rms:.3g} rad, condition number "
+                  f"{fit.condition_number:.3g} (column-scaled {fit.condition_number_scaled:.3g})")
