@@ -24,7 +24,7 @@ def main(out: Path) -> None:
     result = simulate(
         NOMOTO2, mariner, np.zeros(5),
         t_final=900.0, dt=0.1,
-        controller=PID_HEADING, controller_params=PIDHeadingParams(kp=3.0, ki=0.001, kd=90.0),
+        controller=PID_HEADING, controller_params=PIDHeadingParams(kp=4.0, ki=0.0002, kd=110.0),
         controller_dt=0.5,
         reference=courses.reshape(-1, 1, 1),       # (runs, 1, channels): a constant per run
     )

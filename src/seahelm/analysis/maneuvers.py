@@ -97,6 +97,7 @@ def summarize(result) -> list[dict[str, float | str]]:  # noqa: ANN001 - SimResu
     diam = turning_diameter(result["north"], result["east"], heading)
     ref_labels = result.reference_labels
     settle = np.full(result.n_runs, np.nan)
+    tracking: dict[str, np.ndarray] = {}
     if ref_labels and ref_labels[0] in ("heading", "yaw_rate"):
         lab = ref_labels[0]
         target = result[f"reference_{lab}"]
@@ -110,6 +111,14 @@ def summarize(result) -> list[dict[str, float | str]]:  # noqa: ANN001 - SimResu
         for i in range(result.n_runs):
             settle[i] = settling_time(t, sig[i], final_target[i], tol[i],
                                       angle=lab == "heading")[0]
+        if lab == "heading":
+            err = wrap_angle(final_target[:, 0] - sig[:, -1])
+            unwrapped = sig[:, 0:1] + np.unwrap(sig - sig[:, 0:1], axis=1)
+            goal = sig[:, 0] + wrap_angle(final_target[:, 0] - sig[:, 0])
+            tracking["heading_error_deg"] = np.degrees(err)
+            tracking["overshoot_deg"] = np.degrees(overshoot(unwrapped, sig[:, 0], goal))
+        else:
+            tracking["yaw_rate_error"] = final_target[:, 0] - sig[:, -1]
     messages = result.messages()
     for i in range(result.n_runs):
         row: dict[str, float | str] = {"run": i, "status": messages[i]}
@@ -123,5 +132,7 @@ def summarize(result) -> list[dict[str, float | str]]:  # noqa: ANN001 - SimResu
         row["final_heading_rad"] = float(heading[i, -1])
         row["turning_diameter_m"] = float(diam[i])
         row["settling_time_s"] = float(settle[i])
+        for key, values in tracking.items():
+            row[key] = float(values[i])
         out.append(row)
     return out
