@@ -17,7 +17,6 @@ from seahelm.vessels.catalog import get
 from seahelm.vessels.voitkunsky import (
     MARINER_VOITKUNSKY,
     VOITKUNSKY,
-    VoitkunskyParams,
     voitkunsky_from_linear_derivatives,
 )
 

@@ -32,6 +32,8 @@ __all__ = ["Controller", "wrap_pi"]
 def wrap_pi(angle):  # pragma: no cover - compiled
     """Wrap a scalar angle [rad] to [−π, π) inside compiled controllers
     (:func:`seahelm.constants.wrap_angle` is the numpy version)."""
+    if -math.pi <= angle < math.pi:  # the common case: no division
+        return angle
     return (angle + math.pi) % (2.0 * math.pi) - math.pi
 
 

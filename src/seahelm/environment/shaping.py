@@ -172,7 +172,7 @@ def van_loan(a: ArrayLike, g_q_gt: ArrayLike, dt: float) -> tuple[np.ndarray, np
 
 def _innovations(phi: np.ndarray, qd: np.ndarray, c: np.ndarray, p_inf: np.ndarray):
     """Steady-state innovations model of the sampled outputs, or None if it is ill-posed."""
-    n, p = phi.shape[0], c.shape[0]
+    p = c.shape[0]
     try:
         pbar = linalg.solve_discrete_are(phi.T, c.T, qd, np.zeros((p, p)))
     except (ValueError, np.linalg.LinAlgError):

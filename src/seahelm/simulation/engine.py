@@ -32,7 +32,7 @@ import time as _time
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from types import ModuleType
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -47,6 +47,9 @@ from ..parameters import Params, stack_params
 from ..vessels.base import NAV_OUTPUTS, VesselModel
 from . import kernel_template
 from .integrators import INTEGRATORS
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..results import SimResult
 
 __all__ = ["RunStatus", "simulate", "compile_closed_loop", "kernel_cache_dir"]
 

@@ -137,6 +137,7 @@ def run_chunk(
     nd = dist.shape[2]
     nr = ref.shape[2]
     ncmd = cmd.shape[1]
+    dt_ctrl = ctrl_every * dt
     for ii in prange(n_runs):
         i = np.int64(ii)
         if status[i] != 0:
@@ -178,10 +179,15 @@ def run_chunk(
                 dm[j] = d0[j]
                 d1[j] = d0[j]
         failed = 0
+        # countdowns instead of k % n: integer division costs more than the model's algebra
+        to_ctrl = (ctrl_every - k_start % ctrl_every) % ctrl_every
+        to_rec = (rec_every - k_start % rec_every) % rec_every
         for k in range(k_start, k_stop):
             t = k * dt
-            record = k % rec_every == 0
-            control = k % ctrl_every == 0
+            record = to_rec == 0
+            control = to_ctrl == 0
+            to_rec = rec_every - 1 if record else to_rec - 1
+            to_ctrl = ctrl_every - 1 if control else to_ctrl - 1
             if control or record:
                 actuator_output(xa, cmdi, api, u)
                 model_output(t, xv, u, mpi, y)
@@ -193,7 +199,7 @@ def run_chunk(
                     zfull[j] = xv[j]
                 for j in range(NA):
                     zfull[NX + j] = xa[j]
-                controller_step(t, ctrl_every * dt, zfull, y, refk, cpi, csi, cmdi)
+                controller_step(t, dt_ctrl, zfull, y, refk, cpi, csi, cmdi)
             if record:
                 m = k // rec_every
                 for j in range(NX):
