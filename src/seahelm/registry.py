@@ -20,7 +20,11 @@ __all__ = ["VESSEL_MODELS", "ACTUATORS", "CONTROLLERS", "get_model", "get_actuat
 VESSEL_MODELS: dict[str, str] = {
     "nomoto1": "seahelm.vessels.nomoto:NOMOTO1",
     "nomoto2": "seahelm.vessels.nomoto:NOMOTO2",
+    "catamaran": "seahelm.vessels.catamaran:CATAMARAN",
+    "catamaran-servo": "seahelm.vessels.catamaran:CATAMARAN_SERVO",
     "voitkunsky": "seahelm.vessels.voitkunsky:VOITKUNSKY",
+    "cpp-ship-calm": "seahelm.vessels.cpp_ship:CPP_SHIP_CALM",
+    "cpp-ship-waves": "seahelm.vessels.cpp_ship:CPP_SHIP_WAVES",
 }
 
 ACTUATORS: dict[str, str] = {
@@ -31,6 +35,13 @@ ACTUATORS: dict[str, str] = {
 CONTROLLERS: dict[str, str] = {
     "pid-heading": "seahelm.control.pid:PID_HEADING",
     "open-loop": "seahelm.control.open_loop:OPEN_LOOP",
+    "compensated-pid": "seahelm.control.compensation:COMPENSATED_PID",
+    "fsm-yaw-rate": "seahelm.control.final_state:FSM_YAW_RATE",
+    "fsm-yaw-rate-simple": "seahelm.control.final_state:FSM_YAW_RATE_SIMPLE",
+    "fsm-heading": "seahelm.control.final_state:FSM_HEADING",
+    "heading-rate-baseline": "seahelm.control.baselines:HEADING_RATE_BASELINE",
+    "drift-thruster-baseline": "seahelm.control.baselines:DRIFT_THRUSTER_BASELINE",
+    "pid-yaw-rate": "seahelm.control.baselines:PID_YAW_RATE",
 }
 
 

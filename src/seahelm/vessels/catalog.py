@@ -74,3 +74,15 @@ from .voitkunsky import MARINER_VOITKUNSKY, MARINER_VOITKUNSKY_PROVENANCE  # noq
 
 register(CatalogEntry("mariner-voitkunsky", "voitkunsky", MARINER_VOITKUNSKY,
                       MARINER_VOITKUNSKY_PROVENANCE))
+
+# Shushlyapin, Karapetyan, Bezuglaya & Afonina (2017): the 22.3 m research catamaran
+from .catamaran import (  # noqa: E402
+    CONSISTENT_PROVENANCE as _CAT_CONSISTENT,
+    PAPER_PROVENANCE as _CAT_PAPER,
+    consistent_params as _cat_consistent,
+    paper_params as _cat_paper,
+)
+
+register(CatalogEntry("shushlyapin2017-listing", "catamaran", _cat_paper(), _CAT_PAPER))
+register(CatalogEntry("shushlyapin2017-consistent", "catamaran", _cat_consistent(),
+                      _CAT_CONSISTENT))

@@ -1,0 +1,620 @@
+"""Final-state method (метод конечного состояния, МКС) controllers (Shushlyapin et al., 2017).
+
+General method (eq. (12)-(15))
+    For a control-affine system dz/dt = Φ(t, z) + B(t, z) u and a smooth criterion J(z(t_f))
+    with target J*, the control is::
+
+        u = G⁺ f_J,   G = ∂J/∂z|_{z̄} · W · B(t, z),   f_J = (J* − J(z̄)) / T_u,
+        G⁺ = Gᵀ (G Gᵀ)⁻¹                                   (pseudo-inverse, eq. (13))
+
+    with the predicted final state z̄ of the *uncontrolled* motion and Alekseev's nonlinear
+    transition matrix W from eq. (14)::
+
+        dz̄/dϑ = Φ(ϑ, z̄),   dW/dϑ = ∂Φ/∂z|_{z̄} W,   ϑ ∈ [t, t_f],  z̄(t) = z(t), W(t) = I
+
+    or their one-step approximation over a short interval h, eq. (15)::
+
+        z̄ = z + Φ(t, z) h,   W = I + ∂Φ/∂z|_{z} h.
+
+    :class:`FinalStateController` implements both (``prediction="one-step"`` or
+    ``"integrate"``, registry :data:`PREDICTIONS`) for any batch of states, any number of
+    controls r and criteria m (vector criteria through the Moore-Penrose pseudo-inverse).
+    :func:`simulate_final_state` closes the loop in numpy (RK4, zero-order hold) for tests and
+    small studies.
+
+Compiled controllers for the catamaran (:mod:`seahelm.vessels.catamaran`, engine plug-ins)
+    With the criterion J = z_3 = ω (eq. (16)), G = W_37 and eq. (15) gives (eq. (19)-(21))::
+
+        W_37 = h L T_v cos δ / J_ω
+        eq. (20):  u = (ω* − (ω + Φ_3(z) h)) / (T_u W_37)      ("fsm-yaw-rate")
+        eq. (21):  u = (ω* − ω) / (T_u W_37)                    ("fsm-yaw-rate-simple")
+
+    u = dδ/dt is the thruster rate. In eq. (21) only the product T_u·h matters (eq. (21) is an
+    integral yaw-rate controller with the gain J_ω/(T_u h L T_v cos δ) scheduled on δ).
+    For the listing's parameters (``shushlyapin2017-listing``), found by simulation and by
+    :func:`closed_loop_eigenvalues`:
+
+    * T_u·h = 0.01 s² reproduces the paper's figures: ω* = 0.08 rad/s with δ = 86.2° and a
+      96.9 m turning circle; ω* = 0.00072 rad/s with δ = 0.601°, slowest closed-loop
+      eigenvalue −0.065 1/s (τ ≈ 15 s), settling to 5 % in ≈ 50 s from rest.
+    * Sensitivity (slowest real part at ω* = 0.00072 rad/s): −0.098, −0.065, −0.039,
+      −0.017 1/s at T_u·h = 0.005, 0.01, 0.02, 0.05 s², i.e. 5 % settling ≈ 3/|λ| ≈ 31, 46,
+      78, 170 s: "about 50 s" pins T_u·h to roughly 0.008-0.012 s². The turn at 0.08 rad/s
+      is least damped near the stability bound (−0.001 1/s at 0.0065 s², −0.065 at 0.01).
+    * The loop interacts with the listing's lightly damped 14.5 rad/s yaw-sway mode. With
+      continuous control (the MathCAD listing evaluates u inside the right-hand side) it is
+      unstable below T_u·h = 0.0065 s² at the 0.08 rad/s turn (δ ≈ 86°, the gain grows as
+      1/cos δ) — the paper's "about 0.006" — and has no practical bound near δ = 0. A sampled
+      controller (period T_s, zero-order hold) needs more: 0.0072 s² at the 0.08 rad/s turn
+      with T_s = 0.0005 s, 0.0093 at 0.002 s, 0.018 at 0.01 s; near δ = 0 about
+      0.99·T_s s²/s. The examples therefore run the controller every 0.001 s.
+    * For the physically consistent set (J_ω 1220 times larger) the same behaviour needs
+      T_u·h ≈ 12 s², and 0.1 s sampling is fine.
+
+    Heading, eq. (17) ("fsm-heading"): to turn from K_0 to K* at the yaw rate ω*, the
+    yaw-rate reference is ω* sign(ΔK) until t* = t_0 + |ΔK|/ω* and 0 afterwards
+    (ΔK = K* − K_0 wrapped to [−π, π)). With ``ramp_time`` T_r > 0 the reference is instead a
+    trapezoid with ramps of length T_r and the same area |ΔK| (the smooth variant the paper
+    suggests, "soft start"): no jump at either end. A change of K* restarts the program from
+    the current heading.
+
+    Thruster drive, eq. (22)-(23): with ``servo_command`` = 1 the command is not u but the
+    drive input v = δ/k_δ + (T_δ/k_δ) u, so that the first-order drive
+    dδ/dt = (−δ + k_δ v)/T_δ (model ``catamaran-servo``) turns the thrusters at exactly the
+    rate u of eq. (20)/(21).
+
+Guard (not in the paper)
+    W_37 vanishes at δ = ±90°, where eq. (19)-(21) divide by zero. The controllers use
+    cos δ clipped below at cos(``max_angle``) (default 89°) and stop turning the thrusters
+    further out once |δ| ≥ ``max_angle``: a yaw-rate reference beyond the largest reachable
+    one then holds δ at ±``max_angle`` instead of diverging.
+
+References
+----------
+Shushlyapin, E. A., Karapetyan, V. A., Bezuglaya, A. E., Afonina, A. A. (2017), SPIIRAS
+Proceedings 4(53), eq. (12)-(23). Shushlyapin, E. A. (2012). Control of nonlinear systems based
+on the prediction of the final state of the uncontrolled motion. Sevastopol: SevNTU.
+Alekseev, V. M. (1961). An estimate for the perturbations of the solutions of ordinary
+differential equations. Vestnik MGU, Ser. 1, 2, 28-36.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numba import njit
+
+from .._validate import as_float_array, check_positive
+from ..errors import ParameterError
+from ..parameters import param
+from ..vessels.catamaran import (
+    N_CATAMARAN_PARAMS,
+    CatamaranParams,
+    catamaran_yaw_acceleration,
+)
+from .base import Controller, wrap_pi
+
+__all__ = [
+    "FinalStateController",
+    "PREDICTIONS",
+    "one_step_prediction",
+    "integrated_prediction",
+    "simulate_final_state",
+    "FinalStateYawRateParams",
+    "FinalStateHeadingParams",
+    "FSM_YAW_RATE",
+    "FSM_YAW_RATE_SIMPLE",
+    "FSM_HEADING",
+    "yaw_rate_params",
+    "heading_params",
+    "heading_program",
+    "closed_loop_eigenvalues",
+]
+
+Array = np.ndarray
+
+
+# ------------------------------------------------------------------------------------------
+# the general method (numpy, batched)
+# ------------------------------------------------------------------------------------------
+def _fd_jacobian(f: Callable[[Array], Array], z: Array, eps: float = 1e-7) -> Array:
+    """Central-difference Jacobian of a batched f: (N, n) -> (N, m); returns (N, m, n)."""
+    n = z.shape[-1]
+    cols = []
+    for j in range(n):
+        step = eps * np.maximum(1.0, np.abs(z[:, j]))
+        dz = np.zeros_like(z)
+        dz[:, j] = step
+        cols.append((f(z + dz) - f(z - dz)) / (2.0 * step[:, None]))
+    return np.stack(cols, axis=-1)
+
+
+def one_step_prediction(ctrl: "FinalStateController", t: float, z: Array, t_f: float
+                        ) -> tuple[Array, Array]:
+    """Eq. (15): z̄ = z + Φ h, W = I + ∂Φ/∂z h with h = t_f − t. Shapes (N, n), (N, n, n)."""
+    h = t_f - t
+    n = z.shape[-1]
+    zbar = z + h * ctrl.drift(t, z)
+    W = np.eye(n)[None] + h * ctrl.jacobian(t, z)
+    return zbar, W
+
+
+def integrated_prediction(ctrl: "FinalStateController", t: float, z: Array, t_f: float
+                          ) -> tuple[Array, Array]:
+    """Eq. (14) integrated over [t, t_f] with ``ctrl.substeps`` RK4 steps."""
+    N, n = z.shape
+    k = ctrl.substeps
+    h = (t_f - t) / k
+    zb = z.copy()
+    W = np.broadcast_to(np.eye(n), (N, n, n)).copy()
+
+    def f(s: float, zz: Array, WW: Array) -> tuple[Array, Array]:
+        return ctrl.drift(s, zz), ctrl.jacobian(s, zz) @ WW
+
+    s = t
+    for _ in range(k):
+        a1, b1 = f(s, zb, W)
+        a2, b2 = f(s + h / 2, zb + h / 2 * a1, W + h / 2 * b1)
+        a3, b3 = f(s + h / 2, zb + h / 2 * a2, W + h / 2 * b2)
+        a4, b4 = f(s + h, zb + h * a3, W + h * b3)
+        zb = zb + h / 6 * (a1 + 2 * a2 + 2 * a3 + a4)
+        W = W + h / 6 * (b1 + 2 * b2 + 2 * b3 + b4)
+        s += h
+    return zb, W
+
+
+PREDICTIONS: dict[str, Callable[..., tuple[Array, Array]]] = {
+    "one-step": one_step_prediction,
+    "integrate": integrated_prediction,
+}
+"""How z̄ and W are obtained: eq. (15) or eq. (14) integrated."""
+
+
+@dataclasses.dataclass(frozen=True)
+class FinalStateController:
+    """The final-state method for dz/dt = Φ(t, z) + B(t, z) u, eq. (13)-(15), batched.
+
+    Parameters
+    ----------
+    drift : callable(t, z) -> (N, n)
+        Φ(t, z) over a batch of states ``z`` (N, n).
+    input_matrix : callable(t, z) -> (N, n, r), or array (n, r)
+        B(t, z).
+    criterion : callable(z) -> (N, m)
+        J(z) (a scalar criterion is m = 1).
+    time_constant : float
+        T_u [s] of dJ/dt = (J* − J)/T_u.
+    horizon : float
+        Prediction interval [s]: h of eq. (15), or t_f − t for ``prediction="integrate"``
+        (receding horizon); ignored when ``terminal_time`` is given.
+    drift_jacobian : callable(t, z) -> (N, n, n), optional
+        ∂Φ/∂z; central differences if omitted.
+    criterion_gradient : callable(z) -> (N, m, n), optional
+        ∂J/∂z; central differences if omitted.
+    prediction : {"one-step", "integrate"}
+        Eq. (15) or eq. (14) (registry :data:`PREDICTIONS`).
+    terminal_time : float, optional
+        A fixed final time t_f (terminal control, the method's original use); the prediction
+        then runs over [t, t_f].
+    substeps : int
+        RK4 steps for ``prediction="integrate"``.
+
+    Raises
+    ------
+    ParameterError
+        Non-positive ``time_constant``, ``horizon`` or ``substeps``; ValueError for an unknown
+        ``prediction`` (listing the valid ones).
+    """
+
+    drift: Callable[[float, Array], Array]
+    input_matrix: Callable[[float, Array], Array] | Array
+    criterion: Callable[[Array], Array]
+    time_constant: float
+    horizon: float
+    drift_jacobian: Callable[[float, Array], Array] | None = None
+    criterion_gradient: Callable[[Array], Array] | None = None
+    prediction: str = "one-step"
+    terminal_time: float | None = None
+    substeps: int = 20
+
+    def __post_init__(self) -> None:
+        check_positive("time_constant", self.time_constant, "s")
+        check_positive("horizon", self.horizon, "s")
+        if self.prediction not in PREDICTIONS:
+            raise ValueError(
+                f"unknown prediction '{self.prediction}'; valid: {', '.join(PREDICTIONS)}"
+            )
+        if isinstance(self.substeps, bool) or int(self.substeps) != self.substeps or \
+                self.substeps < 1:
+            raise ParameterError(f"`substeps` must be a whole number >= 1, got {self.substeps!r}")
+
+    # -- pieces --------------------------------------------------------------------------
+    def jacobian(self, t: float, z: Array) -> Array:
+        """∂Φ/∂z (N, n, n): the given function or central differences."""
+        if self.drift_jacobian is not None:
+            return np.asarray(self.drift_jacobian(t, z), dtype=float)
+        return _fd_jacobian(lambda zz: self.drift(t, zz), z)
+
+    def _B(self, t: float, z: Array) -> Array:
+        if callable(self.input_matrix):
+            return np.asarray(self.input_matrix(t, z), dtype=float)
+        B = np.asarray(self.input_matrix, dtype=float)
+        return np.broadcast_to(B, (z.shape[0],) + B.shape)
+
+    def _J(self, z: Array) -> Array:
+        J = np.asarray(self.criterion(z), dtype=float)
+        return J.reshape(z.shape[0], -1)
+
+    def _dJ(self, z: Array) -> Array:
+        if self.criterion_gradient is not None:
+            g = np.asarray(self.criterion_gradient(z), dtype=float)
+            return g.reshape(z.shape[0], -1, z.shape[1])
+        return _fd_jacobian(self._J, z)
+
+    def final_time(self, t: float) -> float:
+        if self.terminal_time is not None:
+            if self.terminal_time <= t:
+                raise ParameterError(
+                    f"`terminal_time` {self.terminal_time!r} [s] must be after t = {t!r} [s]"
+                )
+            return float(self.terminal_time)
+        return float(t) + float(self.horizon)
+
+    def predict(self, t: float, z: Any) -> tuple[Array, Array]:
+        """Predicted final state z̄ (N, n) and transition matrix W (N, n, n)."""
+        z = np.atleast_2d(as_float_array("z", z))
+        return PREDICTIONS[self.prediction](self, float(t), z, self.final_time(t))
+
+    def gain(self, t: float, z: Any) -> tuple[Array, Array]:
+        """G = ∂J/∂z(z̄) W B (N, m, r) and J(z̄) (N, m)."""
+        z = np.atleast_2d(as_float_array("z", z))
+        zbar, W = self.predict(t, z)
+        G = self._dJ(zbar) @ W @ self._B(t, z)
+        return G, self._J(zbar)
+
+    def control(self, t: float, z: Any, target: Any) -> Array:
+        """u = G⁺ (J* − J(z̄))/T_u for a batch of states ``z`` (N, n) → (N, r).
+
+        ``target`` J* broadcasts against (N, m). Where G Gᵀ is singular the Moore-Penrose
+        pseudo-inverse gives the least-norm least-squares control.
+        """
+        z = np.atleast_2d(as_float_array("z", z))
+        G, Jbar = self.gain(t, z)
+        target = np.broadcast_to(as_float_array("target", target), Jbar.shape)
+        fJ = (target - Jbar) / self.time_constant
+        return np.einsum("nrm,nm->nr", np.linalg.pinv(G), fJ)
+
+
+def simulate_final_state(
+    ctrl: FinalStateController,
+    z0: Any,
+    target: Any | Callable[[float], Any],
+    *,
+    t_final: float,
+    dt: float,
+    control_every: int = 1,
+) -> tuple[Array, Array, Array]:
+    """Closed loop dz/dt = Φ + B u with u from ``ctrl`` (zero-order hold), RK4, numpy.
+
+    Returns ``(t, z, u)`` with shapes (steps+1,), (N, steps+1, n), (N, steps+1, r)
+    (the last u repeats the previous one). A reference implementation for tests; the engine
+    runs the compiled controllers.
+    """
+    check_positive("dt", dt, "s")
+    check_positive("t_final", t_final, "s")
+    z = np.atleast_2d(as_float_array("z0", z0)).copy()
+    n_steps = int(round(t_final / dt))
+    t = np.arange(n_steps + 1) * dt
+    zs = np.empty((z.shape[0], n_steps + 1, z.shape[1]))
+    us: list[Array] = []
+
+    def rhs(s: float, zz: Array, u: Array) -> Array:
+        return ctrl.drift(s, zz) + np.einsum("nij,nj->ni", ctrl._B(s, zz), u)
+
+    u = None
+    for k in range(n_steps):
+        zs[:, k] = z
+        tk = t[k]
+        if k % control_every == 0 or u is None:
+            tgt = target(tk) if callable(target) else target
+            u = ctrl.control(tk, z, tgt)
+        us.append(u)
+        a1 = rhs(tk, z, u)
+        a2 = rhs(tk + dt / 2, z + dt / 2 * a1, u)
+        a3 = rhs(tk + dt / 2, z + dt / 2 * a2, u)
+        a4 = rhs(tk + dt, z + dt * a3, u)
+        z = z + dt / 6 * (a1 + 2 * a2 + 2 * a3 + a4)
+    zs[:, -1] = z
+    us.append(us[-1])
+    return t, zs, np.stack(us, axis=1)
+
+
+# ------------------------------------------------------------------------------------------
+# the paper's compiled controllers (engine plug-ins)
+# ------------------------------------------------------------------------------------------
+@dataclass(frozen=True, kw_only=True)
+class FinalStateYawRateParams(CatamaranParams):
+    """Final-state yaw-rate controller, eq. (20)/(21): the controller's model of the ship
+    (the :class:`~seahelm.vessels.catamaran.CatamaranParams` fields, defaults the listing)
+    plus the method's T_u and h, the cos δ guard and the thruster-drive transform eq. (23).
+
+    Build it from a vessel parameter set with :func:`yaw_rate_params`.
+    """
+
+    time_constant: float = param(1.0, unit="s", symbol="T_u", low=0.0, low_inclusive=False,
+                                 doc="time constant of dJ/dt = (J* − J)/T_u")
+    step: float = param(0.01, unit="s", symbol="h", low=0.0, low_inclusive=False,
+                        doc="prediction step h of eq. (15) (only T_u·h matters in eq. (21))")
+    max_angle: float = param(math.radians(89.0), unit="rad", symbol="δ_max", low=0.0,
+                             low_inclusive=False, high=math.pi / 2,
+                             doc="guard: cos δ ≥ cos δ_max in W_37, no turning beyond ±δ_max")
+    servo_command: float = param(0.0, unit="-", symbol="", low=0.0, high=1.0,
+                                 doc="1: output the drive input v of eq. (23); 0: u = dδ/dt")
+    servo_time_constant: float = param(1.0, unit="s", symbol="T_δ", low=0.0,
+                                       low_inclusive=False, doc="drive time constant, eq. (22)")
+    servo_gain: float = param(1.0, unit="-", symbol="k_δ", low=0.0, low_inclusive=False,
+                              doc="drive gain, eq. (22)")
+
+    def validate(self) -> None:
+        super().validate()
+        if self.servo_command not in (0.0, 1.0):
+            raise ParameterError(
+                f"`servo_command` must be 0 or 1 [-], got {self.servo_command!r}"
+            )
+        if self.max_angle >= math.pi / 2:
+            raise ParameterError(
+                f"`max_angle` must be < π/2 [rad] (W_37 ∝ cos δ vanishes at 90°), "
+                f"got {self.max_angle!r}"
+            )
+
+
+@dataclass(frozen=True, kw_only=True)
+class FinalStateHeadingParams(FinalStateYawRateParams):
+    """Heading program eq. (17) on top of the yaw-rate controller (eq. (21), or eq. (20))."""
+
+    turn_rate: float = param(0.0022, unit="rad/s", symbol="ω*", low=0.0, low_inclusive=False,
+                             doc="yaw rate of the turn")
+    ramp_time: float = param(0.0, unit="s", symbol="T_r", low=0.0,
+                             doc="0: eq. (17) (switch ω* → 0 at t*); > 0: trapezoid ramps")
+    full_prediction: float = param(0.0, unit="-", symbol="", low=0.0, high=1.0,
+                                   doc="0: yaw-rate law eq. (21); 1: eq. (20)")
+
+    def validate(self) -> None:
+        super().validate()
+        if self.full_prediction not in (0.0, 1.0):
+            raise ParameterError(
+                f"`full_prediction` must be 0 or 1 [-], got {self.full_prediction!r}"
+            )
+
+
+_NP = N_CATAMARAN_PARAMS
+
+
+def yaw_rate_params(vessel: CatamaranParams | None = None, **kw: Any) -> FinalStateYawRateParams:
+    """Controller parameters whose model of the ship is ``vessel`` (default: the listing).
+
+    ``kw`` sets the controller's own fields (``time_constant``, ``step``, ``max_angle``,
+    ``servo_command``, ``servo_time_constant``, ``servo_gain``); given a
+    :class:`~seahelm.vessels.catamaran.CatamaranServoParams`, the drive constants are taken
+    from it.
+    """
+    vessel = CatamaranParams() if vessel is None else vessel
+    base = {n: getattr(vessel, n) for n in CatamaranParams.field_names()}
+    if hasattr(vessel, "servo_time_constant"):
+        kw.setdefault("servo_time_constant", vessel.servo_time_constant)
+        kw.setdefault("servo_gain", vessel.servo_gain)
+    return FinalStateYawRateParams(**base, **kw)
+
+
+def heading_params(vessel: CatamaranParams | None = None, **kw: Any) -> FinalStateHeadingParams:
+    """Heading-controller parameters (see :func:`yaw_rate_params`; adds ``turn_rate``,
+    ``ramp_time``, ``full_prediction``)."""
+    vessel = CatamaranParams() if vessel is None else vessel
+    base = {n: getattr(vessel, n) for n in CatamaranParams.field_names()}
+    if hasattr(vessel, "servo_time_constant"):
+        kw.setdefault("servo_time_constant", vessel.servo_time_constant)
+        kw.setdefault("servo_gain", vessel.servo_gain)
+    return FinalStateHeadingParams(**base, **kw)
+
+
+def closed_loop_eigenvalues(vessel: CatamaranParams, yaw_rate: float, tu_h: float,
+                            sample_time: float | None = None) -> np.ndarray:
+    """Eigenvalues [1/s] of eq. (21)'s loop linearised about the steady turn at ``yaw_rate``.
+
+    The loop (V_x, V_y, ω, δ) with dδ/dt = (ω* − ω) J_ω/(T_u h L T_v cos δ). With
+    ``sample_time`` T_s the control is held over T_s (the engine's zero-order hold) and the
+    returned values are the discrete eigenvalues mapped back by log(λ)/T_s. The loop is stable
+    when every real part is negative; the slowest one gives the settling time.
+
+    Raises
+    ------
+    ParameterError
+        Non-positive ``tu_h`` or ``sample_time``.
+    """
+    from scipy.linalg import expm
+
+    from ..vessels.catamaran import jacobian, steady_turn
+
+    check_positive("tu_h", tu_h, "s²")
+    vx, vy, d = steady_turn(vessel, yaw_rate)
+    A7 = jacobian(np.array([vx, vy, yaw_rate, 0.0, 0.0, 0.0, d]), vessel)
+    idx = [0, 1, 2, 6]
+    A = A7[np.ix_(idx, idx)]
+    k = vessel.yaw_moment_of_inertia / (tu_h * vessel.length * vessel.thrust * math.cos(d))
+    if sample_time is None:
+        Acl = A.copy()
+        Acl[3, 2] -= k
+        return np.linalg.eigvals(Acl)
+    check_positive("sample_time", sample_time, "s")
+    M = np.zeros((5, 5))
+    M[:4, :4] = A
+    M[3, 4] = 1.0
+    E = expm(M * sample_time)
+    Ad, Bd = E[:4, :4], E[:4, 4]
+    Acl = Ad - k * np.outer(Bd, np.eye(4)[2])
+    return np.log(np.linalg.eigvals(Acl).astype(complex)) / sample_time
+
+
+@njit(cache=True)
+def fsm_thruster_rate(z, wref, p, full, dt):  # pragma: no cover - compiled
+    """u = dδ/dt of eq. (20) (``full``) or eq. (21), with the cos δ guard.
+
+    ``dt`` is the controller's sample period: the guard also keeps the held rate from carrying
+    δ past ±max_angle within one period (dt ≤ 0 disables that part).
+    """
+    L = p[1]
+    tv = p[4]
+    jw = (1.0 + p[7]) * p[8]
+    tu = p[_NP]
+    h = p[_NP + 1]
+    amax = p[_NP + 2]
+    d = z[6]
+    c = math.cos(d)
+    cmin = math.cos(amax)
+    if c < cmin:
+        c = cmin
+    w37 = h * L * tv * c / jw
+    zbar = z[2]
+    if full:
+        zbar += catamaran_yaw_acceleration(z, p) * h
+    u = (wref - zbar) / (tu * w37)
+    if u > 0.0:
+        if d >= amax:
+            u = 0.0
+        elif dt > 0.0 and d + u * dt > amax:
+            u = (amax - d) / dt
+    elif u < 0.0:
+        if d <= -amax:
+            u = 0.0
+        elif dt > 0.0 and d + u * dt < -amax:
+            u = (-amax - d) / dt
+    return u
+
+
+@njit(cache=True)
+def fsm_command(z, u, p):  # pragma: no cover - compiled
+    """The command: u itself, or the drive input v = δ/k_δ + (T_δ/k_δ) u of eq. (23)."""
+    if p[_NP + 3] != 0.0:
+        return (z[6] + p[_NP + 4] * u) / p[_NP + 5]
+    return u
+
+
+@njit(cache=True)
+def fsm_yaw_rate_init(z, y, ref, p, cs):  # pragma: no cover - compiled
+    pass
+
+
+@njit(cache=True)
+def fsm_yaw_rate_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
+    cmd[0] = fsm_command(z, fsm_thruster_rate(z, ref[0], p, True, dt), p)
+
+
+@njit(cache=True)
+def fsm_yaw_rate_simple_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
+    cmd[0] = fsm_command(z, fsm_thruster_rate(z, ref[0], p, False, dt), p)
+
+
+@njit(cache=True)
+def heading_program_rate(tau, dk, wmax, ramp):  # pragma: no cover - compiled
+    """Yaw-rate reference of the heading program τ = t − t_0 after its start, eq. (17).
+
+    ``dk`` heading change [rad] (signed), ``wmax`` ω* > 0, ``ramp`` T_r ≥ 0 (0: eq. (17)).
+    """
+    s = 1.0 if dk >= 0.0 else -1.0
+    adk = abs(dk)
+    if ramp <= 0.0:
+        if tau < adk / wmax:
+            return s * wmax
+        return 0.0
+    wp = min(wmax, adk / ramp)
+    if wp <= 0.0:
+        return 0.0
+    total = adk / wp + ramp
+    if tau < 0.0 or tau >= total:
+        return 0.0
+    if tau < ramp:
+        return s * wp * tau / ramp
+    if tau > total - ramp:
+        return s * wp * (total - tau) / ramp
+    return s * wp
+
+
+@njit(cache=True)
+def fsm_heading_init(z, y, ref, p, cs):  # pragma: no cover - compiled
+    cs[0] = ref[0]  # K* of the running program
+    cs[1] = 0.0  # t_0
+    cs[2] = wrap_pi(ref[0] - z[5])  # ΔK
+    cs[3] = heading_program_rate(0.0, cs[2], p[_NP + 6], p[_NP + 7])
+
+
+@njit(cache=True)
+def fsm_heading_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
+    if ref[0] != cs[0]:  # new wanted course: restart the program from the current heading
+        cs[0] = ref[0]
+        cs[1] = t
+        cs[2] = wrap_pi(ref[0] - z[5])
+    wref = heading_program_rate(t - cs[1], cs[2], p[_NP + 6], p[_NP + 7])
+    cs[3] = wref
+    cmd[0] = fsm_command(z, fsm_thruster_rate(z, wref, p, p[_NP + 8] != 0.0, dt), p)
+
+
+def heading_program(t: Any, heading_change: float, turn_rate: float, ramp_time: float = 0.0
+                    ) -> np.ndarray:
+    """The yaw-rate reference ω*(t) of the heading program (eq. (17), or ramped) at times ``t``
+    [s] after its start (numpy; the compiled controller uses the same function)."""
+    check_positive("turn_rate", turn_rate, "rad/s")
+    if not ramp_time >= 0.0:
+        raise ParameterError(f"`ramp_time` must be >= 0 [s], got {ramp_time!r}")
+    t = np.asarray(t, dtype=float)
+    out = np.array([heading_program_rate(float(s), float(heading_change), float(turn_rate),
+                                         float(ramp_time)) for s in t.ravel()])
+    return out.reshape(t.shape)
+
+
+_CMD = ("thruster_rate_command",)
+
+FSM_YAW_RATE = Controller(
+    name="fsm-yaw-rate",
+    description="final-state-method yaw-rate control of the catamaran, eq. (20) "
+    "(Shushlyapin et al., 2017)",
+    params_type=FinalStateYawRateParams,
+    state_labels=(),
+    reference_labels=("yaw_rate",),
+    reference_units=("rad/s",),
+    command_labels=_CMD,
+    init=fsm_yaw_rate_init,
+    step=fsm_yaw_rate_step,
+)
+
+FSM_YAW_RATE_SIMPLE = Controller(
+    name="fsm-yaw-rate-simple",
+    description="simplified final-state-method yaw-rate control, eq. (21): "
+    "u = (ω* − ω)/(T_u W37) (Shushlyapin et al., 2017)",
+    params_type=FinalStateYawRateParams,
+    state_labels=(),
+    reference_labels=("yaw_rate",),
+    reference_units=("rad/s",),
+    command_labels=_CMD,
+    init=fsm_yaw_rate_init,
+    step=fsm_yaw_rate_simple_step,
+)
+
+FSM_HEADING = Controller(
+    name="fsm-heading",
+    description="heading program eq. (17) (or ramped) with final-state yaw-rate control "
+    "eq. (21)/(20) (Shushlyapin et al., 2017)",
+    params_type=FinalStateHeadingParams,
+    state_labels=("program_target", "program_start_time", "program_heading_change",
+                  "yaw_rate_reference"),
+    reference_labels=("heading",),
+    reference_units=("rad",),
+    command_labels=_CMD,
+    init=fsm_heading_init,
+    step=fsm_heading_step,
+)
+
