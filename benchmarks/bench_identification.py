@@ -58,7 +58,8 @@ def main() -> None:
     for noise in (False, True):
         w, al = _points(6, noise)
         t_lsq, _ = _median_time(lambda: fit_lsq(w, al), 300)
-        for box, n_grid in (("truth", 51), ("truth", 101), ("data", 101)):
+        for box, n_grid in (("truth", 51), ("truth", 101), ("truth", 201), ("data", 101),
+                             ("data", 201)):
             bd = bounds if box == "truth" else None
             t_bf, _ = _median_time(
                 lambda: fit_brute_force(w, al, bounds=bd, n_grid=n_grid), 7)
@@ -77,7 +78,10 @@ def main() -> None:
           "|estimate − truth|/|truth| (noisy: median over 20 seeds); brute-lsq: distance of the "
           "grid optimum from the exact minimiser of the same squared criterion. box: truth = "
           "−27 %…+33 % around the true coefficients (informative prior); data = the default "
-          "box fit_brute_force derives from the data alone.")
+          "box fit_brute_force derives from the data alone. The brute force never reaches the "
+          "accuracy of least squares on exact data (its error is the grid spacing), so 'equal "
+          "accuracy' means a finer grid than any row here: the speed-up at equal accuracy is "
+          "at least the largest one printed.")
 
 
 if __name__ == "__main__":
