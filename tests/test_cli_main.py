@@ -100,3 +100,24 @@ def test_quickstart_example_runs(tmp_path):
     assert proc.returncode == 0, proc.stderr
     assert "course  20.0 deg -> final heading" in proc.stdout
     assert (tmp_path / "quickstart.png").is_file()
+
+
+def test_progress_bar_appears_only_for_long_runs(monkeypatch):
+    import importlib
+
+    cli_main = importlib.import_module("seahelm.cli.main")
+
+    clock = {"t": 0.0}
+    monkeypatch.setattr(cli_main.time, "perf_counter", lambda: clock["t"])
+    bar = cli_main._ProgressBar("x")
+    bar(10, 100)  # after 0 s: no bar
+    assert bar.bar is None
+    clock["t"] = 1.5
+    bar(20, 100)  # after 1.5 s: the bar starts
+    assert bar.bar is not None
+    assert bar.bar.tasks[0].completed == 20
+    bar.close()
+    quick = cli_main._ProgressBar("y")
+    clock["t"] = 10.0
+    quick(100, 100)  # finished: never a bar
+    assert quick.bar is None

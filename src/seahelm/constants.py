@@ -31,7 +31,8 @@ KNOT: float = 1852.0 / 3600.0
 def wrap_angle(angle: ArrayLike) -> np.ndarray:
     """Wrap angles [rad] to the half-open interval [-π, π)."""
     a = np.asarray(angle, dtype=float)
-    return np.mod(a + np.pi, 2.0 * np.pi) - np.pi
+    inside = (a >= -np.pi) & (a < np.pi)  # returned exactly, without round-off
+    return np.where(inside, a, np.mod(a + np.pi, 2.0 * np.pi) - np.pi)
 
 
 def deg2rad(angle_deg: ArrayLike) -> np.ndarray:

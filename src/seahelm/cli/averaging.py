@@ -57,10 +57,14 @@ def cpp(
     result = cpp_admissible_set(immersion, amplitude, n_azimuth=grid, n_elevation=grid // 2)
     summary = result.summary()
     if plot is not None:
+        import matplotlib.pyplot as plt
+
         from ..plotting.averaging import plot_control_sets
+        from ..results import atomic_write
 
         fig = plot_control_sets(result)
-        fig.savefig(plot, dpi=120)
+        atomic_write(plot, lambda tmp: fig.savefig(tmp, dpi=120, format="png"))
+        plt.close(fig)
         summary["plot"] = str(plot)
         (err_console if json_out else console).print(f"wrote {plot}", highlight=False)
     if json_out:

@@ -56,7 +56,9 @@ def plot_result(ds: Any, *, runs: Any = None, fig: Any = None) -> Any:
         if act is not None:
             ax_d.plot(t, np.degrees(sel[act].values), color=color, alpha=alpha)
         for name in ds.data_vars:
-            if ds[name].attrs.get("kind") == "command" and k == 0 and len(run_ids) == 1:
+            # overlay angle commands (not rate commands) on the actuator-angle panel
+            if (ds[name].attrs.get("kind") == "command" and "rate" not in str(name)
+                    and k == 0 and len(run_ids) == 1):
                 ax_d.plot(t, np.degrees(sel[name].values), ":", color="0.4", lw=1,
                           label=str(name))
         ax_r.plot(t, np.degrees(sel["yaw_rate"].values), color=color, alpha=alpha)

@@ -54,7 +54,7 @@ def plot_spectrum(
     w = np.linspace(0.0, 4.0, 801) if omega is None else np.asarray(omega, float)
     ax.plot(w, spectrum.one_sided(w), label=label or getattr(spectrum, "name", None), **line_kw)
     ax.set_xlabel("ω [rad/s]")
-    ax.set_ylabel("S₁(ω) (one-sided)")
+    ax.set_ylabel("S₁(ω) [unit²·s/rad] (one-sided)")
     return ax
 
 
