@@ -141,3 +141,34 @@ def test_every_example_scenario_runs(path):
     prepared = load_scenario(path)
     result = run_scenario(prepared)
     assert result.ok.all(), result.messages()
+
+
+SEA = ('[environment.disturbance]\nrudder_disturbance = {{ kind = "sea", h3 = {h3}, gain = 1.0, '
+       'quantity = "{q}", seed = {seed} }}\n')
+
+
+def test_sea_signal_has_the_spectrum_variance_and_a_realisation_per_run():
+    from seahelm.environment.spectra import spectrum_from_wave_height
+
+    text = _with(SEA.format(h3=3.0, q="ordinate", seed=5)
+                 + "[batch.monte_carlo]\nruns = 3\nseed = 1\n",
+                 replace=("t_final = 20.0\ndt = 0.1", "t_final = 20000.0\ndt = 1.0"))
+    prepared = parse_scenario(text)
+    dist = prepared.disturbance[:, :, 0]
+    assert dist.shape == (3, 20001)
+    assert not np.allclose(dist[0], dist[1])
+    # D_r = 0.143 (h3/2)^2; the sample variance of a long record is within a few percent
+    d_r = spectrum_from_wave_height("rakhmanin-firsov-2", 3.0).variance
+    assert d_r == pytest.approx(0.143 * 1.5**2)
+    np.testing.assert_allclose(dist.var(axis=1), d_r, rtol=0.1)
+    again = parse_scenario(text)
+    np.testing.assert_array_equal(again.disturbance, prepared.disturbance)
+
+
+def test_sea_signal_bad_input():
+    with pytest.raises(ScenarioError, match=r"unknown sea quantity 'height'"):
+        parse_scenario(_with(SEA.format(h3=3.0, q="height", seed=1)))
+    with pytest.raises(ScenarioError, match=r"`h3` must be > 0 \[m\], got -1.0"):
+        parse_scenario(_with(SEA.format(h3=-1.0, q="slope", seed=1)))
+    with pytest.raises(ScenarioError, match=r"`seed` must be an integer >= 0"):
+        parse_scenario(_with(SEA.format(h3=3.0, q="slope", seed=-4)))

@@ -194,3 +194,23 @@ def test_bad_input_rejected():
         calm_water_derivative([1.0, 1.0, 1.0], 0.5, p)
     with pytest.warns(ValidityRangeWarning, match="c1"):
         CPPShipParams(immersion=0.0, amplitude=1.0)
+
+
+def test_cpp_ship_runs_in_the_engine_and_matches_an_adaptive_reference():
+    """The wave model in the compiled closed loop (open loop, constant pitch) against
+    solve_ivp on the numpy right-hand side."""
+    from seahelm.actuators.servo import DIRECT
+    from seahelm.control.open_loop import OPEN_LOOP
+    from seahelm.simulation.engine import simulate
+    from seahelm.simulation.integrators import solve_reference
+    from seahelm.vessels.cpp_ship import CPPShipParams, waves_derivative
+
+    p = CPPShipParams()
+    x0 = np.array([0.9, 0.95])
+    pitch = 0.7
+    res = simulate(CPP_SHIP_WAVES, p, x0, t_final=20 * np.pi, dt=np.pi / 200, actuator=DIRECT,
+                   controller=OPEN_LOOP, reference=[pitch], record_every=100)
+    ref = solve_reference(lambda t, x: waves_derivative(t, x, pitch, p), x0, res.time)
+    np.testing.assert_allclose(res.state[0], ref, atol=1e-7)
+    assert res.ok.all()
+    np.testing.assert_allclose(res["surge_speed"][0], res["speed"][0])

@@ -294,8 +294,14 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
 
     t_grid = np.arange(int(round(ratio)) + 1) * scn.simulation.dt
     mp, ap, cp, x0s, refs, dists = [], [], [], [], [], []
-    varied_ref = any(k.startswith("controller.reference.") for r in runs for k in r)
-    varied_dist = any(k.startswith("environment.disturbance.") for r in runs for k in r)
+    def random(spec: dict[str, Any]) -> bool:
+        return any(isinstance(v, dict) and v.get("kind") == "sea" for v in spec.values())
+
+    # a random signal gives every run its own realisation
+    varied_ref = random(scn.controller.reference) or any(
+        k.startswith("controller.reference.") for r in runs for k in r)
+    varied_dist = random(scn.environment.disturbance) or any(
+        k.startswith("environment.disturbance.") for r in runs for k in r)
 
     def section(over: dict[str, float], prefix: str, base: dict[str, Any]) -> dict[str, Any]:
         out = dict(base)
@@ -303,12 +309,18 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
         return out
 
     def signals(spec: dict[str, Any], labels_: tuple[str, ...], units: tuple[str, ...],
-                path: str) -> np.ndarray:
+                path: str, run: int) -> np.ndarray:
         arr = np.zeros((t_grid.size, max(len(labels_), 1)))
         for name, value in spec.items():
             try:
                 j, scale = _channel(name, labels_, units)
-                arr[:, j] = make_signal(value, scale=scale)(t_grid)
+                sig = make_signal(value, scale=scale)
+                if getattr(sig, "random", False):
+                    # run i draws from the i-th child of SeedSequence(seed)
+                    seq = np.random.SeedSequence(sig.seed, spawn_key=(run,))
+                    arr[:, j] = sig(t_grid, seed=seq)
+                else:
+                    arr[:, j] = sig(t_grid)
             except (ValueError, TypeError) as exc:
                 raise _err(source, f"{path}.{name}", f"{exc} (got {value!r})") from None
         return arr[:, : len(labels_)] if labels_ else arr[:, :0]
@@ -343,13 +355,13 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
         if varied_ref or "ref" not in cache:
             cache["ref"] = signals(section(over, "controller.reference.", scn.controller.reference),
                                    controller.reference_labels, controller.reference_units,
-                                   "controller.reference")
+                                   "controller.reference", i)
             refs.append(cache["ref"])
         if varied_dist or "dist" not in cache:
             cache["dist"] = signals(section(over, "environment.disturbance.",
                                             scn.environment.disturbance),
                                     model.disturbance_labels, model.disturbance_units,
-                                    "environment.disturbance")
+                                    "environment.disturbance", i)
             dists.append(cache["dist"])
 
     def const_or_series(arrs: list[np.ndarray]) -> np.ndarray:

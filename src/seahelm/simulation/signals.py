@@ -8,8 +8,15 @@ from a number or a table (as written in scenario files) through the registry :da
     {kind = "steps", times = [0, 300, 600], values = [5, 10, 15]}   piecewise constant
     {kind = "sine", amplitude = 0.0072, period = 250.0, offset = 0.0, phase = 0.0}
     {kind = "ramp", start_time = 0.0, end_time = 60.0, start = 0.0, end = 0.8}
+    {kind = "sea", h3 = 3.0, gain = 0.01, quantity = "ordinate", seed = 7}   irregular sea
 
 ``scale`` multiplies every value (degrees → radians at the edges).
+
+The ``sea`` signal is random: a stationary Gaussian sea from the Rakhmanin–Firsov spectrum for
+the wave height h3% (Sushchenko & Lutsko, 2010), sampled exactly on the grid
+(:mod:`seahelm.environment.shaping`), times ``gain``. Calling it with ``seed=`` draws the
+realisation of that seed; scenario batches give every run its own seed (spawned from the
+signal's ``seed``), so Monte-Carlo runs see independent seas.
 """
 
 from __future__ import annotations
@@ -24,7 +31,7 @@ import numpy as np
 from .._validate import as_float_array, check_finite, check_positive
 from ..errors import ParameterError
 
-__all__ = ["Constant", "Step", "Steps", "Sine", "Ramp", "SIGNALS", "make_signal"]
+__all__ = ["Constant", "Step", "Steps", "Sine", "Ramp", "Sea", "SIGNALS", "make_signal"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -107,11 +114,55 @@ class Ramp:
                          [self.start, self.end])
 
 
+@dataclasses.dataclass(frozen=True)
+class Sea:
+    """``mean + gain · q(t)``, q a seeded irregular-sea quantity sampled exactly on the grid.
+
+    ``quantity`` is one of ``ordinate`` [m], ``ordinate_rate`` [m/s], ``slope`` [rad] of the
+    wave surface (see :data:`seahelm.environment.shaping.QUANTITIES`); ``spectrum`` a
+    Rakhmanin–Firsov registry name. The grid must be uniform.
+    """
+
+    h3: float
+    gain: float = 1.0
+    mean: float = 0.0
+    quantity: str = "ordinate"
+    spectrum: str = "rakhmanin-firsov-2"
+    seed: int = 0
+
+    random = True
+
+    def __post_init__(self) -> None:
+        check_positive("h3", self.h3, "m")
+        from ..environment.shaping import QUANTITIES
+
+        if self.quantity not in ("ordinate", "ordinate_rate", "slope"):
+            raise ParameterError(
+                f"unknown sea quantity {self.quantity!r}; valid: ordinate, ordinate_rate, slope"
+                f" (of {', '.join(QUANTITIES)})"
+            )
+
+    def __call__(self, t: Any, *, seed: Any = None) -> np.ndarray:
+        from ..environment.shaping import shaping_filter
+        from ..environment.spectra import spectrum_from_wave_height
+
+        t = np.asarray(t, dtype=float)
+        if t.size < 2 or not np.allclose(np.diff(t), t[1] - t[0]):
+            raise ParameterError("a `sea` signal needs a uniform time grid of 2 or more samples")
+        spec = spectrum_from_wave_height(self.spectrum, self.h3)
+        filt = shaping_filter(spec, outputs=(self.quantity,))
+        draw = filt.sample(n_steps=t.size, dt=float(t[1] - t[0]),
+                           seed=self.seed if seed is None else seed)
+        return self.mean + self.gain * draw.values[0, :, 0]
+
+
 SIGNALS: dict[str, type] = {"constant": Constant, "step": Step, "steps": Steps, "sine": Sine,
-                            "ramp": Ramp}
+                            "ramp": Ramp, "sea": Sea}
 """Registry of signal kinds by name."""
 
-_SCALED = {"value", "before", "after", "values", "amplitude", "offset", "start", "end"}
+_SCALED = {"value", "before", "after", "values", "amplitude", "offset", "start", "end",
+           "gain", "mean"}
+_TEXT = {"quantity", "spectrum"}
 
 
 def make_signal(spec: Any, *, scale: float = 1.0) -> Any:
@@ -140,6 +191,17 @@ def make_signal(spec: Any, *, scale: float = 1.0) -> Any:
         )
     kwargs: dict[str, Any] = {}
     for key, value in spec.items():
+        if key in _TEXT:
+            if not isinstance(value, str):
+                raise ParameterError(f"signal '{kind}': `{key}` must be a name, got {value!r}")
+            kwargs[key] = value
+            continue
+        if key == "seed":
+            if isinstance(value, bool) or not isinstance(value, int) or value < 0:
+                raise ParameterError(f"signal '{kind}': `seed` must be an integer >= 0, "
+                                     f"got {value!r}")
+            kwargs[key] = value
+            continue
         arr = as_float_array(key, value)
         if key in _SCALED:
             arr = arr * scale
