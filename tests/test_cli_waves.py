@@ -141,3 +141,12 @@ def test_plotting_functions():
     f = pw.plot_paper_figure(duration=20.0, dt=0.5)
     assert len(f.axes) == 6
     plt.close(f)
+
+
+def test_figure_command_writes_the_paper_figure(tmp_path):
+    out = tmp_path / "fig.png"
+    res = runner.invoke(app, ["figure", "--out", str(out), "--duration", "20"])
+    assert res.exit_code == 0, res.output
+    assert out.stat().st_size > 20_000
+    bad = runner.invoke(app, ["figure", "--out", str(out), "--duration", "-1"])
+    assert bad.exit_code == 2 and "`--duration` must be > 0 [s]" in bad.stderr

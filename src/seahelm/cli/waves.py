@@ -15,6 +15,7 @@ import numpy as np
 import typer
 from rich.markup import escape
 
+from ..errors import ParameterError
 from ..results import atomic_write
 from ._common import console, handle_errors, print_json
 
@@ -194,3 +195,28 @@ def sample_cmd(
         return
     for k, v in result.items():
         console.print(f"{k:>24}: {v:.6g}" if isinstance(v, float) else f"{k:>24}: {v}", highlight=False, markup=False)
+
+
+@app.command("figure")
+@handle_errors
+def figure_cmd(
+    out: Annotated[Path, typer.Option("--out", help="PNG file to write.")] = Path("waves.png"),
+    seed: Annotated[int, typer.Option("--seed", help="Seed of the sample realisations.")] = 0,
+    duration: Annotated[float, typer.Option("--duration", help="Realisation length [s].")] = 200.0,
+) -> None:
+    """The paper's figure: spectra for sea states 3, 6, 9, slope spectra, realisations."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..plotting.waves import plot_paper_figure
+
+    if not duration > 0:
+        raise ParameterError(f"`--duration` must be > 0 [s], got {duration}")
+    fig = plot_paper_figure(seed=seed, duration=duration)
+    try:
+        atomic_write(out, lambda tmp: fig.savefig(tmp, dpi=100, format="png"))
+    finally:
+        plt.close(fig)
+    console.print(f"wrote {escape(str(out))}")
