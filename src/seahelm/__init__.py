@@ -21,6 +21,22 @@ from .errors import (  # noqa: E402
     strict_validity,
 )
 
+# The public API, imported on first use (``import seahelm`` stays light: no numba, no xarray).
+_LAZY = {
+    "simulate": "seahelm.simulation.engine",
+    "RunStatus": "seahelm.simulation.engine",
+    "SimResult": "seahelm.results",
+    "load_result": "seahelm.results",
+    "load_scenario": "seahelm.scenario",
+    "parse_scenario": "seahelm.scenario",
+    "run_scenario": "seahelm.scenario",
+    "get_model": "seahelm.registry",
+    "get_actuator": "seahelm.registry",
+    "get_controller": "seahelm.registry",
+    "catalog": "seahelm.vessels.catalog",  # the module itself
+    "wrap_angle": "seahelm.constants",
+}
+
 __all__ = [
     "__version__",
     "SeahelmError",
@@ -29,4 +45,21 @@ __all__ = [
     "SimulationDiverged",
     "MissingDependencyError",
     "strict_validity",
+    *_LAZY,
 ]
+
+
+def __getattr__(name: str):  # PEP 562: lazy public API
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'seahelm' has no attribute {name!r}")
+    import importlib
+
+    mod = importlib.import_module(module)
+    value = mod if module.rsplit(".", 1)[-1] == name else getattr(mod, name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))

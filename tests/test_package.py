@@ -1,0 +1,33 @@
+"""The package surface: light import, lazy public API, typed marker."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import seahelm
+
+
+def test_import_is_light():
+    code = ("import sys, seahelm; heavy = [m for m in ('numba', 'xarray', 'matplotlib', 'scipy')"
+            " if m in sys.modules]; print(','.join(heavy))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == ""
+
+
+@pytest.mark.parametrize("name", sorted(seahelm._LAZY))
+def test_lazy_public_api_resolves(name):
+    assert getattr(seahelm, name) is not None
+    assert name in dir(seahelm)
+
+
+def test_unknown_attribute():
+    with pytest.raises(AttributeError, match="has no attribute 'simulte'"):
+        seahelm.simulte  # noqa: B018
+
+
+def test_typed_marker_is_shipped():
+    assert (Path(seahelm.__file__).parent / "py.typed").is_file()
