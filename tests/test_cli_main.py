@@ -121,3 +121,18 @@ def test_progress_bar_appears_only_for_long_runs(monkeypatch):
     clock["t"] = 10.0
     quick(100, 100)  # finished: never a bar
     assert quick.bar is None
+
+
+def test_cache_command_reports_and_clears(tmp_path, monkeypatch):
+    monkeypatch.setenv("SEAHELM_CACHE_DIR", str(tmp_path / "kernels"))
+    (tmp_path / "kernels").mkdir()
+    (tmp_path / "kernels" / "seahelm_kernel_0123.py").write_text("x = 1\n")
+    (tmp_path / "kernels" / "__pycache__").mkdir()
+    (tmp_path / "kernels" / "__pycache__" / "k.nbi").write_bytes(b"0" * 100)
+    res = runner.invoke(app, ["cache", "--json"])
+    assert res.exit_code == 0
+    info = json.loads(res.stdout)
+    assert info["kernels"] == 1 and info["files"] == 2 and info["bytes"] == 106
+    res = runner.invoke(app, ["cache", "--clear", "--json"])
+    assert json.loads(res.stdout)["cleared"] is True
+    assert list((tmp_path / "kernels").iterdir()) == []

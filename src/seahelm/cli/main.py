@@ -274,6 +274,37 @@ def plot(
     console.print(f"wrote {path}")
 
 
+@app.command()
+@handle_errors
+def cache(
+    clear: Annotated[bool, typer.Option("--clear", help="Delete the compiled kernels.")] = False,
+    json_: Annotated[bool, typer.Option("--json", help="Print JSON.")] = False,
+) -> None:
+    """Show (or clear) the on-disk cache of compiled closed-loop kernels."""
+    import shutil
+
+    from ..simulation.engine import kernel_cache_dir
+
+    where = kernel_cache_dir()
+    files = [p for p in where.rglob("*") if p.is_file()]
+    size = sum(p.stat().st_size for p in files)
+    kernels = len(list(where.glob("seahelm_kernel_*.py")))
+    if clear:
+        for child in where.iterdir():
+            if child.is_dir():
+                shutil.rmtree(child)
+            else:
+                child.unlink()
+    payload = {"path": str(where), "kernels": kernels, "files": len(files), "bytes": size,
+               "cleared": clear}
+    if json_:
+        print_json(payload)
+    else:
+        verb = "cleared" if clear else "holds"
+        console.print(f"{where} {verb} {kernels} kernel(s), {len(files)} file(s), "
+                      f"{size / 1e6:.1f} MB")
+
+
 def main() -> None:
     """Entry point of the ``seahelm`` console script."""
     app()
