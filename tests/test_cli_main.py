@@ -29,6 +29,14 @@ def test_demo_writes_results_and_plot(tmp_path):
     assert (tmp_path / "result.nc").is_file()
     assert (tmp_path / "overview.png").stat().st_size > 10_000
     assert "settling_time_s" in res.stdout
+    from seahelm.results import load_result
+
+    ds = load_result(tmp_path / "result.nc")
+    import numpy as np
+
+    assert abs(np.degrees(float(ds["heading"][0, -1])) - 20.0) < 0.05
+    assert np.degrees(float(abs(ds["rudder_angle"]).max())) <= 35.0 + 1e-9
+    assert ds.attrs["scenario_text"].startswith("# The embedded default scenario")
 
 
 def test_run_json_prints_one_object(tmp_path):
@@ -136,3 +144,33 @@ def test_cache_command_reports_and_clears(tmp_path, monkeypatch):
     res = runner.invoke(app, ["cache", "--clear", "--json"])
     assert json.loads(res.stdout)["cleared"] is True
     assert list((tmp_path / "kernels").iterdir()) == []
+
+
+def _run_json(name):
+    res = runner.invoke(app, ["run", str(EXAMPLES / name), "--json", "--no-plot"])
+    assert res.exit_code == 0, res.output
+    return json.loads(res.stdout)
+
+
+def test_catamaran_turn_json_reproduces_the_paper():
+    import math
+
+    from seahelm.vessels.catamaran import paper_params, steady_turn
+
+    out = _run_json("catamaran_turn_0p08.toml")
+    vx, vy, delta = steady_turn(paper_params(), 0.08)
+    assert out["final_yaw_rate"] == pytest.approx(0.08, rel=1e-6)
+    assert out["thruster_angle_deg"] == pytest.approx(math.degrees(delta), abs=0.01)
+    assert out["turning_diameter_m"] == pytest.approx(2 * math.hypot(vx, vy) / 0.08, abs=0.2)
+    assert 84.0 < out["thruster_angle_deg"] < 88.0 and 90.0 < out["turning_diameter_m"] < 100.0
+
+
+def test_catamaran_small_yaw_rate_json_reproduces_the_paper():
+    out = _run_json("catamaran_yaw_rate_0p00072.toml")
+    assert out["thruster_angle_deg"] == pytest.approx(0.6, abs=0.02)  # "0.6 rad" is 0.6°
+    assert 40.0 < out["settling_time_s"] < 60.0  # "about 50 s"
+
+
+def test_catamaran_heading_json_reaches_the_course_to_three_decimals():
+    out = _run_json("catamaran_heading_0p8.toml")
+    assert abs(out["final_heading_rad"] - 0.8) < 5e-4

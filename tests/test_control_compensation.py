@@ -214,3 +214,42 @@ def test_example_table_script_and_generated_scenarios(tmp_path):
     # the committed scenario files are exactly what the script writes
     for path in mod.write_toml(tmp_path):
         assert path.read_text() == (examples / path.name).read_text(), path.name
+
+
+def _steady_rudder_by_root_finding(p, yaw_moment, sway_force):
+    """Course keeping (ω = 0) of eq. (1) with the disturbance channels, solved independently:
+    0 = −q31 β − s31 α + m_d,  0 = −q21 β − h2 β|β| − s21 α − f_d."""
+    from scipy.optimize import brentq
+
+    def residual(alpha):
+        beta = (yaw_moment - p.s31 * alpha) / p.q31
+        return -p.q21 * beta - p.h2 * beta * abs(beta) - p.s21 * alpha - sway_force
+
+    return brentq(residual, -0.7, 0.7, xtol=1e-14)
+
+
+def test_model_delta_k_is_the_steady_rudder_of_the_disturbed_ship():
+    case = cp.WindWaveCase("wind+waves", 15.0, math.radians(60), 6.75, math.radians(60))
+    with pytest.warns(ValidityRangeWarning, match="block coefficient"):
+        sc = cp.wind_wave_scenario(case, t_final=100.0)
+    info = sc["info"]
+    labels = sc["model"].disturbance_labels
+    last = sc["disturbance"].reshape(-1, len(labels))[-1]
+    md, fd = last[labels.index("yaw_moment")], last[labels.index("sway_force")]
+    expected = _steady_rudder_by_root_finding(sc["params"], md, fd)
+    assert info["steady_rudder"] == pytest.approx(expected, rel=1e-9)
+    assert info["delta_k"] == pytest.approx(expected, rel=1e-6)
+
+
+def test_paper_delta_k_has_the_wrong_sign_for_the_mariner_and_hurts():
+    """Erratum kept visible: eq. (12)/(14) as printed add the hull-drift moment with the wind
+    moment's sign; for this ship they oppose, so the printed δ_k points the wrong way and
+    feeding it forward makes course keeping worse than the PID alone."""
+    case = cp.WindWaveCase("wind+waves", 15.0, math.radians(60), 6.75, math.radians(60))
+    sc, info, res = run_case(case, method="paper")
+    assert np.sign(info["delta_k"]) != np.sign(info["steady_rudder"])
+    e = sc["reference"][:, 0] - res["heading"]
+    m = cp.heading_metrics(e, res["rudder_angle"], dt=sc["dt"], delta_k=info["steady_rudder"],
+                           start=case.onset)
+    pid, paper = 0, 1
+    assert m["mean_abs_error"][paper] > m["mean_abs_error"][pid]

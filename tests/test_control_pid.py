@@ -13,7 +13,7 @@ from seahelm.errors import ParameterError
 from seahelm.simulation.engine import simulate
 from seahelm.vessels.nomoto import NOMOTO2
 
-GAINS = PIDHeadingParams(kp=3.0, ki=0.001, kd=90.0)
+GAINS = PIDHeadingParams(kp=4.0, ki=0.0002, kd=110.0)  # the default scenario's gains
 
 
 def test_twenty_degree_course_change_settles_and_respects_rudder_limits(mariner2):
@@ -23,9 +23,10 @@ def test_twenty_degree_course_change_settles_and_respects_rudder_limits(mariner2
                    reference=[math.radians(20.0)])
     psi = np.degrees(res["heading"][0])
     t = res.time
-    outside = np.flatnonzero(np.abs(psi - 20.0) > 0.2)
-    assert t[outside[-1]] < 150.0  # within 0.2° after 150 s, and it stays there
-    assert np.max(psi) - 20.0 < 0.5
+    outside = np.flatnonzero(np.abs(psi - 20.0) > 0.1)
+    assert t[outside[-1]] < 130.0  # within 0.1° after 130 s, and it stays there
+    assert np.max(psi) - 20.0 < 0.1
+    assert abs(psi[-1] - 20.0) < 0.03  # the integral's slow tail (rejects disturbances below)
     delta = res["rudder_angle"][0]
     assert np.max(np.abs(delta)) <= servo.max_angle + 1e-12
     assert np.max(np.abs(np.diff(delta))) / 0.1 <= servo.max_rate * (1 + 1e-9)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
@@ -18,6 +18,10 @@ from seahelm.vessels.nomoto import NOMOTO2, Nomoto2Params
 finite = st.floats(min_value=-1e6, max_value=1e6, allow_nan=False)
 
 
+@example(np.nextafter(-math.pi, -math.inf))
+@example(-math.pi)
+@example(math.pi)
+@example(3 * math.pi)
 @given(finite)
 def test_wrap_angle_lands_in_half_open_interval_and_keeps_the_direction(a):
     w = float(wrap_angle(a))
@@ -26,6 +30,13 @@ def test_wrap_angle_lands_in_half_open_interval_and_keeps_the_direction(a):
     assert abs(turns - round(turns)) < 1e-6
 
 
+wrap_pi(0.0)  # compile outside hypothesis' deadline
+
+
+@example(np.nextafter(-math.pi, -math.inf))
+@example(-math.pi)
+@example(math.pi)
+@settings(deadline=None)
 @given(finite)
 def test_compiled_wrap_equals_numpy_wrap(a):
     assert wrap_pi(a) == float(wrap_angle(a))

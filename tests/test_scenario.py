@@ -172,3 +172,9 @@ def test_sea_signal_bad_input():
         parse_scenario(_with(SEA.format(h3=-1.0, q="slope", seed=1)))
     with pytest.raises(ScenarioError, match=r"`seed` must be an integer >= 0"):
         parse_scenario(_with(SEA.format(h3=3.0, q="slope", seed=-4)))
+
+
+def test_empty_grid_is_rejected():
+    with pytest.raises(ScenarioError, match=r"\[batch.grid.controller.params.kp\] needs at least "
+                                            r"one value, got \[\]"):
+        parse_scenario(_with('[batch.grid]\n"controller.params.kp" = []\n'))

@@ -146,3 +146,61 @@ def test_initial_state_outside_bounds_is_rejected(mariner2):
     with pytest.raises(ParameterError, match="initial state of run 0"):
         simulate(NOMOTO2, mariner2, [0, 0, 0, 0.5, 0], t_final=1.0, dt=0.1,
                  bounds={"yaw_rate": (-0.1, 0.1)})
+
+
+@pytest.mark.parametrize("tau", [1.0, 2.0])
+def test_servo_is_a_first_order_lag_below_its_limits(mariner1, tau):
+    """A 1° step well inside the rate limit: δ(t) = δ_c (1 − e^{−t/T})."""
+    from seahelm.control.open_loop import OPEN_LOOP
+
+    step = math.radians(1.0)
+    servo = ServoParams(max_rate=math.radians(10.0), time_constant=tau)
+    res = simulate(NOMOTO1, mariner1, np.zeros(4), t_final=10.0, dt=0.01, controller=OPEN_LOOP,
+                   actuator=RUDDER_SERVO, actuator_params=servo, reference=[step])
+    np.testing.assert_allclose(res["rudder_angle"][0], step * (1.0 - np.exp(-res.time / tau)),
+                               atol=1e-10)
+
+
+def test_disturbance_is_aligned_with_the_grid():
+    """A ramp disturbance δ_d = a t on the first-order Nomoto model from rest, no rudder:
+    r(t) = K a (t − T (1 − e^{−t/T})). An off-by-one in the grid indexing shifts it by dt."""
+    p = Nomoto1Params(gain=0.2, time_constant=20.0, speed=5.0)
+    a = 1e-3
+    t_grid = np.arange(0, 1001) * 0.1
+    dist = np.stack([a * t_grid, np.zeros_like(t_grid)], axis=1)
+    res = simulate(NOMOTO1, p, np.zeros(4), t_final=100.0, dt=0.1, actuator=DIRECT,
+                   reference=[0.0], disturbance=dist)
+    t = res.time
+    expected = p.gain * a * (t - p.time_constant * (1.0 - np.exp(-t / p.time_constant)))
+    np.testing.assert_allclose(res["yaw_rate"][0], expected, atol=1e-12)
+
+
+def _module_from_text(tmp_path, name, text):
+    import importlib.util
+    import sys
+
+    path = tmp_path / f"{name}.py"
+    path.write_text(text)
+    spec = importlib.util.spec_from_file_location(name, path)
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules[name] = mod
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_kernel_fingerprint_follows_code_in_memory_and_its_dependencies(tmp_path):
+    """A kernel is named after the bytecode of its components *and* of the numba functions
+    they call, as loaded: an edit of a helper in another module must give another kernel
+    (a stale on-disk numba cache was once served after such an edit)."""
+    from seahelm.simulation.engine import _code_fingerprint
+
+    body = ("from numba import njit\n\n@njit\ndef helper(x):\n    return x + {k}\n\n"
+            "SCALE = {s}\n\n@njit\ndef component(x):\n    return helper(x) * SCALE\n")
+    a = _module_from_text(tmp_path, "fp_a", body.format(k=1, s=2.0))
+    b = _module_from_text(tmp_path, "fp_b", body.format(k=1, s=2.0))
+    c = _module_from_text(tmp_path, "fp_c", body.format(k=2, s=2.0))
+    d = _module_from_text(tmp_path, "fp_d", body.format(k=1, s=3.0))
+    fa, fb, fc, fd = (_code_fingerprint(m.component.py_func) for m in (a, b, c, d))
+    assert fa.replace(b"fp_a", b"") == fb.replace(b"fp_b", b"")  # same code, same print
+    assert fc.replace(b"fp_c", b"") != fa.replace(b"fp_a", b"")  # helper changed
+    assert fd.replace(b"fp_d", b"") != fa.replace(b"fp_a", b"")  # frozen global changed

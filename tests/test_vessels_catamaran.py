@@ -224,3 +224,58 @@ def test_plot_overview_draws_the_papers_three_panels():
     ax = plot_yaw_rate(res)
     assert len(ax.lines) == 2  # yaw rate and its reference
     plt.close("all")
+
+
+# ----------------------------------------------------------------------------------------
+# an independent, hand-typed copy of the MathCAD listing (Table 1 of the paper) with the
+# errata's Tm = 1.55 m, the listing's R_x and the lateral resistance in the sway equation
+# ----------------------------------------------------------------------------------------
+def _listing_rhs(z):
+    import math as m
+
+    D, L, Tv, Tm, s, rov = 155000.0, 22.3, 20400.0, 1.55, 0.697, 1.025
+    mx, my, jw = 1.05 * D, 1.7 * D, 1.6 * (0.05 / 1000 * rov * D * L**2)
+    vx, vy, w, _x, _y, k, d = z
+    v, b = m.hypot(vx, vy), m.atan2(vy, vx)
+    rk = 8.1 - 8.436 * v + 2.536 * v * v
+    rx, ry = 2000 * rk * m.cos(b), 2000 * rk * m.sin(b)
+    cd = (0.739 + 8.7 * Tm / L) * (1.611 * s * s - 2.873 * s + 1.33)
+    mk = 0.4 * L * (0.5 - b / 3.14) * ry
+    md = -cd * v * rov / 2 * (L * Tm * s) * L**2 * w
+    return np.array([(2 * Tv * m.cos(d) - rx - my * w * vy) / mx,
+                     (2 * Tv * m.sin(d) - ry - mx * w * vx) / my,
+                     (L * Tv * m.sin(d) + mk + md - vx * vy * (mx - my)) / jw,
+                     v * m.cos(k - b), v * m.sin(k - b), w, 0.0])
+
+
+def test_drift_equals_the_hand_typed_listing_at_random_states():
+    from seahelm.vessels.catamaran import drift, paper_params
+
+    rng = np.random.default_rng(2017)
+    z = np.column_stack([rng.uniform(0.5, 6.0, 200), rng.uniform(-1.5, 1.5, 200),
+                         rng.uniform(-0.2, 0.2, 200), rng.normal(0, 50, 200),
+                         rng.normal(0, 50, 200), rng.uniform(-3, 3, 200),
+                         rng.uniform(-1.4, 1.4, 200)])
+    got = drift(z, paper_params())
+    want = np.array([_listing_rhs(row) for row in z])
+    np.testing.assert_allclose(got, want, rtol=1e-11, atol=1e-12)
+
+
+def test_steady_turn_at_008_from_the_listing_matches_the_model_and_the_paper():
+    """δ and the circle for ω = 0.08 rad/s solved on the independent listing copy."""
+    from scipy.optimize import fsolve
+
+    from seahelm.vessels.catamaran import paper_params, steady_turn
+
+    def residual(q):
+        vx, vy, d = q
+        return _listing_rhs([vx, vy, 0.08, 0.0, 0.0, 0.0, d])[:3]
+
+    vx, vy, d = fsolve(residual, [2.0, 0.5, 1.4], xtol=1e-13)
+    diameter = 2 * math.hypot(vx, vy) / 0.08
+    mvx, mvy, md = steady_turn(paper_params(), 0.08)
+    assert md == pytest.approx(d, abs=1e-9)
+    assert 2 * math.hypot(mvx, mvy) / 0.08 == pytest.approx(diameter, rel=1e-9)
+    # the paper: thruster angle "near 85°", circle "about 95 m"
+    assert 84.0 < math.degrees(d) < 88.0
+    assert 90.0 < diameter < 100.0

@@ -25,21 +25,51 @@ def _unit(unit: str) -> str:
 
 
 def check_finite(name: str, value: Any, unit: str = "") -> None:
-    """Raise :class:`ParameterError` if ``value`` has NaN or inf."""
+    """Raise :class:`ParameterError` if ``value`` has NaN or inf.
+
+    Parameters
+    ----------
+    name : str
+        Argument name used in the error message.
+    value : float or array_like
+        Value(s) to check.
+    unit : str, optional
+        Unit shown in brackets in the error message (default: none).
+    """
     arr = np.asarray(value, dtype=float)
     if not np.all(np.isfinite(arr)):
         raise ParameterError(f"`{name}` must be finite{_unit(unit)}, got {_fmt(value)}")
 
 
 def check_positive(name: str, value: Any, unit: str = "") -> None:
-    """Raise :class:`ParameterError` unless every element of ``value`` is finite and > 0."""
+    """Raise :class:`ParameterError` unless every element of ``value`` is finite and > 0.
+
+    Parameters
+    ----------
+    name : str
+        Argument name used in the error message.
+    value : float or array_like
+        Value(s) to check.
+    unit : str, optional
+        Unit shown in brackets in the error message (default: none).
+    """
     check_finite(name, value, unit)
     if not np.all(np.asarray(value, dtype=float) > 0):
         raise ParameterError(f"`{name}` must be > 0{_unit(unit)}, got {_fmt(value)}")
 
 
 def check_nonnegative(name: str, value: Any, unit: str = "") -> None:
-    """Raise :class:`ParameterError` unless every element of ``value`` is finite and >= 0."""
+    """Raise :class:`ParameterError` unless every element of ``value`` is finite and >= 0.
+
+    Parameters
+    ----------
+    name : str
+        Argument name used in the error message.
+    value : float or array_like
+        Value(s) to check.
+    unit : str, optional
+        Unit shown in brackets in the error message (default: none).
+    """
     check_finite(name, value, unit)
     if not np.all(np.asarray(value, dtype=float) >= 0):
         raise ParameterError(f"`{name}` must be >= 0{_unit(unit)}, got {_fmt(value)}")
@@ -54,7 +84,21 @@ def check_range(
     *,
     inclusive: bool = True,
 ) -> None:
-    """Raise :class:`ParameterError` unless ``low <= value <= high`` (or strict if not inclusive)."""
+    """Raise :class:`ParameterError` unless ``low <= value <= high`` (or strict if not inclusive).
+
+    Parameters
+    ----------
+    name : str
+        Argument name used in the error message.
+    value : float or array_like
+        Value(s) to check.
+    low, high : float, optional
+        Bounds of the admissible interval, in the unit of ``value`` (default -inf, +inf).
+    unit : str, optional
+        Unit shown in brackets in the error message (default: none).
+    inclusive : bool, optional
+        Closed interval ``[low, high]`` if True (default), open ``(low, high)`` otherwise.
+    """
     check_finite(name, value, unit)
     arr = np.asarray(value, dtype=float)
     ok = (arr >= low) & (arr <= high) if inclusive else (arr > low) & (arr < high)
@@ -66,7 +110,24 @@ def check_range(
 
 
 def as_float_array(name: str, value: Any, unit: str = "", *, finite: bool = True) -> np.ndarray:
-    """Convert to a float64 array, naming the parameter when that fails or values are not finite."""
+    """Convert to a float64 array, naming the parameter when that fails or values are not finite.
+
+    Parameters
+    ----------
+    name : str
+        Argument name used in the error message.
+    value : array_like
+        Value(s) to convert.
+    unit : str, optional
+        Unit shown in brackets in the error message (default: none).
+    finite : bool, optional
+        Also require every element to be finite (default True).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``value`` as a float64 array.
+    """
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError) as exc:

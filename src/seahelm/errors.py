@@ -85,7 +85,17 @@ class strict_validity:
 
 
 def warn_validity(message: str, *, strict: bool | None = None, stacklevel: int = 3) -> None:
-    """Warn (or raise in strict mode) that an empirical formula is outside its validity range."""
+    """Warn (or raise in strict mode) that an empirical formula is outside its validity range.
+
+    Parameters
+    ----------
+    message : str
+        Warning (or error) message.
+    strict : bool, optional
+        Raise :class:`ParameterError` instead of warning (default: the global strict mode).
+    stacklevel : int, optional
+        Passed to :func:`warnings.warn` (default 3).
+    """
     if strict is None:
         strict = _STRICT["on"]
     if strict:

@@ -51,6 +51,26 @@ def param(
 
     The range is checked by :meth:`Params.__post_init__`; a value outside it raises
     :class:`~seahelm.errors.ParameterError` naming the field, the unit and the value.
+
+    Parameters
+    ----------
+    default : object, optional
+        Default value (SI units, radians); no default if omitted.
+    unit : str, optional
+        Unit, e.g. "m", "rad/s", "-" (default "").
+    symbol : str, optional
+        The paper's symbol (default "").
+    doc : str, optional
+        Short description (default "").
+    low, high : float, optional
+        Admissible range [unit] (default -inf, +inf; ``high`` inclusive).
+    low_inclusive : bool, optional
+        Whether ``low`` itself is admissible (default True).
+
+    Returns
+    -------
+    dataclasses.Field
+        The field, with the above in its ``metadata``.
     """
     meta = {
         "unit": unit,
@@ -111,7 +131,17 @@ class Params:
 
     @classmethod
     def from_array(cls, values: Sequence[float]) -> Self:
-        """Inverse of :meth:`to_array`."""
+        """Inverse of :meth:`to_array`.
+
+        Parameters
+        ----------
+        values : sequence of float
+            One value per field, in field order (SI units, radians).
+
+        Returns
+        -------
+        Params
+        """
         names = cls.field_names()
         if len(values) != len(names):
             raise ParameterError(
@@ -151,6 +181,17 @@ class Params:
         """Build from a mapping; keys ``<name>_deg`` set a radian field ``<name>`` from degrees.
 
         Unknown keys raise :class:`ParameterError` listing the valid ones.
+
+        Parameters
+        ----------
+        values : mapping of str to float
+            Field values by name (SI units, radians), or ``<name>_deg`` in degrees for angle fields.
+        base : Params, optional
+            Parameter set providing the fields not in ``values`` (default: the class defaults).
+
+        Returns
+        -------
+        Params
         """
         fields = {f.name: f for f in dataclasses.fields(cls)}
         kwargs: dict[str, Any] = base.as_dict() if base is not None else {}
@@ -183,7 +224,19 @@ def _unit(f: dataclasses.Field) -> str:
 
 
 def stack_params(params: "Params | Sequence[Params]", cls: type[Params] | None = None) -> np.ndarray:
-    """Pack one parameter set or a sequence of them into a ``(n_runs, n_params)`` array."""
+    """Pack one parameter set or a sequence of them into a ``(n_runs, n_params)`` array.
+
+    Parameters
+    ----------
+    params : Params or sequence of Params
+        One parameter set or several of the same type.
+    cls : type, optional
+        Required parameter class (default: any).
+
+    Returns
+    -------
+    numpy.ndarray, shape (n_runs, n_params)
+    """
     if isinstance(params, Params):
         params = [params]
     params = list(params)

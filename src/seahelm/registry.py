@@ -55,15 +55,60 @@ def _resolve(kind: str, table: dict[str, str], name: Any, cls: type) -> Any:
 
 
 def get_model(name: str | VesselModel) -> VesselModel:
-    """A vessel model by registry name (or the model itself)."""
+    """A vessel model by registry name (or the model itself).
+
+    Parameters
+    ----------
+    name : str or VesselModel
+        Registry name, or the model itself.
+
+    Returns
+    -------
+    VesselModel
+
+    Raises
+    ------
+    ValueError
+        If ``name`` is not a registered vessel model (the message lists the valid ones).
+    """
     return _resolve("vessel model", VESSEL_MODELS, name, VesselModel)
 
 
 def get_actuator(name: str | Actuator) -> Actuator:
-    """An actuator by registry name (or the actuator itself)."""
+    """An actuator by registry name (or the actuator itself).
+
+    Parameters
+    ----------
+    name : str or Actuator
+        Registry name, or the actuator itself.
+
+    Returns
+    -------
+    Actuator
+
+    Raises
+    ------
+    ValueError
+        If ``name`` is not a registered actuator (the message lists the valid ones).
+    """
     return _resolve("actuator", ACTUATORS, name, Actuator)
 
 
 def get_controller(name: str | Controller) -> Controller:
-    """A controller by registry name (or the controller itself)."""
+    """A controller by registry name (or the controller itself).
+
+    Parameters
+    ----------
+    name : str or Controller
+        Registry name, or the controller itself.
+
+    Returns
+    -------
+    Controller
+
+    Raises
+    ------
+    ValueError
+        If ``name`` is not a registered controller (the message lists the valid ones).
+    """
     return _resolve("controller", CONTROLLERS, name, Controller)

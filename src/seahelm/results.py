@@ -34,7 +34,20 @@ _STATUS_TEXT = {0: "ok", 1: "diverged: non-finite state", 2: "diverged: state ou
 
 
 def atomic_write(path: str | os.PathLike[str], writer: Callable[[str], None]) -> Path:
-    """Call ``writer(tmp_path)`` then rename the temporary file onto ``path``."""
+    """Call ``writer(tmp_path)`` then rename the temporary file onto ``path``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Destination file (parent directories are created).
+    writer : callable(str)
+        Writes the content to the temporary path it is given.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
@@ -166,27 +179,74 @@ class SimResult:
         return xr.Dataset(data, coords=coords, attrs=attrs)
 
     def to_netcdf(self, path: str | os.PathLike[str]) -> Path:
-        """Write the Dataset to NetCDF-4 (h5netcdf) atomically; returns the path."""
+        """Write the Dataset to NetCDF-4 (h5netcdf) atomically; returns the path.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            Destination file.
+
+        Returns
+        -------
+        pathlib.Path
+        """
         ds = self.to_xarray()
         ds["status_message"] = ds["status_message"].astype(str)
         return atomic_write(path, lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf"))
 
     def to_csv(self, path: str | os.PathLike[str]) -> Path:
-        """Write a long-format CSV (one row per run and time) atomically; returns the path."""
+        """Write a long-format CSV (one row per run and time) atomically; returns the path.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            Destination file.
+
+        Returns
+        -------
+        pathlib.Path
+        """
         ds = self.to_xarray()
         series = [v for v in ds.data_vars if ds[v].dims == ("run", "time")]
         frame = ds[series].to_dataframe().reset_index()
         return atomic_write(path, lambda tmp: frame.to_csv(tmp, index=False, float_format="%.10g"))
 
     def plot(self, *, runs: Any = None, fig: Any = None) -> Any:
-        """Heading, rudder, yaw rate and the xy track (see :func:`seahelm.plotting.timeseries`)."""
+        """Heading, rudder, yaw rate and the xy track (see :func:`seahelm.plotting.timeseries`).
+
+        Parameters
+        ----------
+        runs : sequence of int, optional
+            Runs to draw (default: all).
+        fig : matplotlib Figure, optional
+            Figure to draw into (default: a new one).
+
+        Returns
+        -------
+        matplotlib Figure
+        """
         from .plotting.timeseries import plot_result
 
         return plot_result(self.to_xarray(), runs=runs, fig=fig)
 
 
 def load_result(path: str | os.PathLike[str]) -> "xr.Dataset":
-    """Open a result file written by :meth:`SimResult.to_netcdf` (loaded into memory)."""
+    """Open a result file written by :meth:`SimResult.to_netcdf` (loaded into memory).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        NetCDF file written by :meth:`SimResult.to_netcdf`.
+
+    Returns
+    -------
+    xarray.Dataset
+
+    Raises
+    ------
+    FileNotFoundError
+        If ``path`` does not exist.
+    """
     import xarray as xr
 
     path = Path(path)

@@ -136,7 +136,24 @@ def default_scenario_text() -> str:
 
 
 def parse_scenario(text: str, *, source: str = "<string>") -> "PreparedRuns":
-    """Parse and fully validate scenario text; nothing runs."""
+    """Parse and fully validate scenario text; nothing runs.
+
+    Parameters
+    ----------
+    text : str
+        TOML scenario text.
+    source : str, optional
+        Name of the source used in error messages (default "<string>").
+
+    Returns
+    -------
+    PreparedRuns
+
+    Raises
+    ------
+    ScenarioError
+        If the text is not valid TOML or fails validation (one line per error).
+    """
     try:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -155,7 +172,22 @@ def parse_scenario(text: str, *, source: str = "<string>") -> "PreparedRuns":
 
 
 def load_scenario(path: str | Path) -> "PreparedRuns":
-    """Read, parse and validate a scenario file."""
+    """Read, parse and validate a scenario file.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        TOML scenario file.
+
+    Returns
+    -------
+    PreparedRuns
+
+    Raises
+    ------
+    ScenarioError
+        If the file is missing, not valid TOML or fails validation.
+    """
     path = Path(path)
     if not path.is_file():
         raise ScenarioError(f"scenario file not found: {path}")
@@ -241,7 +273,23 @@ _OVERRIDABLE = ("vessel.params.", "vessel.initial.", "actuator.params.", "contro
 
 
 def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> PreparedRuns:
-    """Resolve names, parameters, initial states and signals of every run (validating all)."""
+    """Resolve names, parameters, initial states and signals of every run (validating all).
+
+    Parameters
+    ----------
+    scn : Scenario
+        Validated scenario schema.
+    source : str, optional
+        Name of the source used in error messages (default "<string>").
+    text : str, optional
+        Scenario text, stored with the results (default "").
+
+    Returns
+    -------
+    PreparedRuns
+        Models, parameter arrays (runs, n_params), initial states (SI units, radians) and the
+        reference and disturbance signals on the time grid.
+    """
     try:
         model = get_model(scn.vessel.model)
     except ValueError as exc:
@@ -396,7 +444,22 @@ def run_scenario(
     progress: Callable[[int, int], None] | None = None,
     throw: bool = False,
 ) -> Any:
-    """Simulate a prepared scenario; returns a :class:`~seahelm.results.SimResult`."""
+    """Simulate a prepared scenario; returns a :class:`~seahelm.results.SimResult`.
+
+    Parameters
+    ----------
+    prepared : PreparedRuns
+        Result of :func:`load_scenario`, :func:`parse_scenario` or :func:`prepare_runs`.
+    progress : callable(done_steps, total_steps), optional
+        Called between chunks of the simulation loop.
+    throw : bool, optional
+        Raise :class:`~seahelm.errors.SimulationDiverged` on the first diverged run instead of
+        recording it (default False).
+
+    Returns
+    -------
+    SimResult
+    """
     from .simulation.engine import simulate
 
     scn = prepared.scenario

@@ -188,8 +188,15 @@ def averaged_drift(
         ``f(t, x)`` for a scalar time ``t`` [rad] and states ``x`` of shape (..., n), returning
         (..., n); 2π-periodic in ``t``.
     x : array_like, shape (..., n)
-    kinks, nodes, pieces
-        As :func:`period_mean`.
+        States.
+    kinks, nodes, pieces : optional
+        Kinks of ``f`` in t [rad], Gauss–Legendre nodes per piece (default 32) and equal
+        pieces per period (default 2), as :func:`period_mean`.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., n)
+        f̄(x).
     """
     x = as_float_array("x", x)
     t, w = _nodes_on_breaks(_shared_breaks(kinks, int(pieces)), int(nodes))
@@ -353,6 +360,23 @@ def support_function(
     ``z`` has shape (..., m) (need not be unit: h_V is positively homogeneous). The maximiser's
     own kinks are unknown in general, so the composite quadrature converges algebraically;
     use ``pieces`` to refine. See :func:`cpp_support_function` for the exact CPP case.
+
+    Parameters
+    ----------
+    control_set : PolynomialControlSet
+        The control set φ(t, U) (coefficients periodic in t, u in [u_min, u_max]).
+    z : array_like, shape (..., m)
+        Directions.
+    nodes : int, optional
+        Gauss–Legendre nodes per piece (default 16).
+    pieces : int, optional
+        Equal pieces per period for the composite quadrature, besides the known kinks
+        (default 16).
+
+    Returns
+    -------
+    numpy.ndarray, shape (...)
+        h_V(z).
     """
     return _generic_eval(control_set, z, nodes, pieces)[0]
 
@@ -363,6 +387,18 @@ def boundary_map(
     """ς(z) = ⟨φ(t, y(t, z))⟩ with the Hamiltonian maximiser y, Platonov & Platonova, eq. (2).
 
     Returns an array of shape (..., m); ⟨ς(z), z⟩ = h_V(z).
+
+    Parameters
+    ----------
+    control_set : PolynomialControlSet
+        The control set φ(t, U) (coefficients periodic in t, u in [u_min, u_max]).
+    z : array_like, shape (..., m)
+        Directions.
+    nodes : int, optional
+        Gauss–Legendre nodes per piece (default 16).
+    pieces : int, optional
+        Equal pieces per period for the composite quadrature, besides the known kinks
+        (default 16).
     """
     return _generic_eval(control_set, z, nodes, pieces)[1]
 
@@ -385,6 +421,18 @@ def cpp_control_set(immersion: float = 1.2, amplitude: float = 0.96) -> Polynomi
     """φ(τ, u) = (c1 u, c2 u, c2 u²), u ∈ [-1, 1], Platonov & Platonova, eq. (10), (14).
 
     ``immersion`` = h0/R and ``amplitude`` = eψ0/R in propeller radii (eq. (12)).
+
+    Parameters
+    ----------
+    immersion : float, optional
+        Propeller shaft immersion h0/R [R] (default 1.2).
+    amplitude : float, optional
+        Wave amplitude at the propeller eψ0/R [R] (default 0.96).
+
+    Returns
+    -------
+    PolynomialControlSet
+        The set with the emergence kinks of :func:`~seahelm.vessels.cpp_ship.emergence_kinks`.
     """
     _check_waves(immersion, amplitude)
 
@@ -482,6 +530,8 @@ def cpp_boundary_map(
         Maximiser of :func:`cpp_maximiser`.
     nodes : int
         Gauss–Legendre nodes per piece.
+    chunk : int, optional
+        Number of directions evaluated at once (memory bound; default 2048).
 
     Returns
     -------
@@ -509,7 +559,24 @@ def cpp_boundary_map(
 def cpp_support_function(
     z: Any, immersion: float = 1.2, amplitude: float = 0.96, *, nodes: int = 24
 ) -> np.ndarray:
-    """h_V(z) = ⟨ς(z), z⟩ for the CPP control set (clipped maximiser), shape (...)."""
+    """h_V(z) = ⟨ς(z), z⟩ for the CPP control set (clipped maximiser), shape (...).
+
+    Parameters
+    ----------
+    z : array_like, shape (..., 3)
+        Directions (need not be unit).
+    immersion : float, optional
+        Propeller shaft immersion h0/R [R] (default 1.2), eq. (12).
+    amplitude : float, optional
+        Wave amplitude at the propeller eψ0/R [R] (default 0.96), eq. (12).
+    nodes : int, optional
+        Gauss–Legendre nodes per piece (default 24).
+
+    Returns
+    -------
+    numpy.ndarray, shape (...)
+        h_V(z).
+    """
     z = as_float_array("z", z)
     return np.sum(cpp_boundary_map(z, immersion, amplitude, nodes=nodes) * z, axis=-1)
 
@@ -519,6 +586,20 @@ def cpp_betas(immersion: float = 1.2, amplitude: float = 0.96, *, nodes: int = 4
     """(β1, β2, β3) = (⟨c1²/c2⟩, ⟨c1⟩, ⟨c2⟩), Platonov & Platonova, eq. (24).
 
     For the paper's α(τ) = 0.5 − 0.4 sin τ: 0.82419, 0.8472, 0.8727.
+
+    Parameters
+    ----------
+    immersion : float, optional
+        Propeller shaft immersion h0/R [R] (default 1.2), eq. (12).
+    amplitude : float, optional
+        Wave amplitude at the propeller eψ0/R [R] (default 0.96), eq. (12).
+    nodes : int, optional
+        Gauss–Legendre nodes per piece between kinks (default 48).
+
+    Returns
+    -------
+    tuple of float
+        (β1, β2, β3) [-].
     """
     _check_waves(immersion, amplitude)
     return _cpp_betas_cached(float(immersion), float(amplitude), int(nodes))
@@ -543,6 +624,22 @@ def sphere_grid(
 
     z = (cos φ1 cos φ2, sin φ1 cos φ2, sin φ2), φ1 ∈ [0, 2π], φ2 ∈ [−π/2, π/2] (both ends
     included, so surfaces close). Returns ``z`` (n_elevation, n_azimuth, 3), φ1, φ2 [rad].
+
+    Parameters
+    ----------
+    n_azimuth : int, optional
+        Number of azimuth angles φ1 (>= 3, default 200).
+    n_elevation : int, optional
+        Number of elevation angles φ2 (>= 3, default 100).
+
+    Returns
+    -------
+    z : numpy.ndarray, shape (n_elevation, n_azimuth, 3)
+        Unit directions.
+    phi1 : numpy.ndarray, shape (n_azimuth,)
+        Azimuths φ1 [rad].
+    phi2 : numpy.ndarray, shape (n_elevation,)
+        Elevations φ2 [rad].
     """
     if int(n_azimuth) < 3 or int(n_elevation) < 3:
         raise ParameterError(
@@ -564,6 +661,20 @@ def flat_support_function(
     h_Y(z) = max_t (β1 z1 + β2 z2) t + β3 z3 t². ``variant="printed"``: the convex hull of that
     arc and the printed segment {(s, s, β3) : s ∈ [-1, 1]} (erratum: it does not meet the arc's
     ends and sticks out of V); h = max(h_arc, |z1 + z2| + β3 z3).
+
+    Parameters
+    ----------
+    z : array_like, shape (..., 3)
+        Directions (need not be unit).
+    betas : sequence of float
+        (β1, β2, β3) of :func:`cpp_betas` [-].
+    variant : {"hull", "printed"}, optional
+        Reading of eq. (24) (default "hull").
+
+    Returns
+    -------
+    numpy.ndarray, shape (...)
+        h_Y(z).
     """
     _check_choice("variant", variant, _FLAT_VARIANTS)
     z = as_float_array("z", z)
@@ -580,6 +691,16 @@ def hausdorff_from_support(h_a: Any, h_b: Any) -> float:
 
     ``h_a``, ``h_b`` are the support functions on the same set of unit directions; on a grid
     this is a lower bound that converges as the grid is refined.
+
+    Parameters
+    ----------
+    h_a, h_b : array_like
+        Support functions of sets A and B on the same unit directions.
+
+    Returns
+    -------
+    float
+        max |h_A − h_B|.
     """
     a = as_float_array("h_a", h_a)
     b = as_float_array("h_b", h_b)
@@ -712,6 +833,22 @@ def cpp_drift_and_matrix(
     S_i = a_i ω̄² + b_i k_i v̄ ω̄ + c_i k_i² v̄².
     ``assignment="printed"`` swaps the last two columns of the second row, as the printed
     eq. (13) does (erratum).
+
+    Parameters
+    ----------
+    x : array_like, shape (..., 2)
+        States (v̄, ω̄): non-dimensional speed and shaft speed [-].
+    params : CPPShipParams, optional
+        Ship parameters (default: the paper's set).
+    assignment : {"correct", "printed"}, optional
+        Column assignment of the second row of A(x) (default "correct").
+
+    Returns
+    -------
+    fbar : numpy.ndarray, shape (..., 2)
+        Averaged drift f̄(x).
+    amat : numpy.ndarray, shape (..., 2, 3)
+        Control matrix A(x).
     """
     _check_choice("assignment", assignment, _ASSIGNMENTS)
     p = _params(params)
@@ -907,8 +1044,21 @@ def cpp_averaging_study(
     horizon : float
         L, in slow time ε t.
     x0 : (v̄0, ω̄0)
+        Initial non-dimensional speed and shaft speed [-].
     assignment : {"correct", "printed"}
         Of eq. (13), see :func:`cpp_averaged_rhs`.
+    rtol, atol : float, optional
+        Relative and absolute tolerances of :func:`scipy.integrate.solve_ivp`
+        (default 1e-9, 1e-11).
+    n_eval : int, optional
+        Number of comparison points on the slow time [0, L] (default 4001).
+    method : str, optional
+        :func:`scipy.integrate.solve_ivp` method (default "DOP853").
+
+    Returns
+    -------
+    AveragingStudy
+        Errors, fitted order in ε, function evaluations and timings per ε.
     """
     from scipy.integrate import solve_ivp
 

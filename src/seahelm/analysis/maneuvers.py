@@ -19,6 +19,24 @@ def settling_time(time: np.ndarray, signal: np.ndarray, target: np.ndarray | flo
 
     ``target`` may vary in time (same shape as ``signal``); with ``angle=True`` the error is
     wrapped to [−π, π).
+
+    Parameters
+    ----------
+    time : numpy.ndarray, shape (steps,)
+        Time grid [s].
+    signal : array_like, shape (steps,) or (runs, steps)
+        Recorded signal (SI units, radians).
+    target : float or array_like
+        Target value, constant or with the shape of ``signal``.
+    tolerance : float
+        Half-width of the settling band, in the unit of ``signal``.
+    angle : bool, optional
+        Wrap the error to [−π, π) (for angles [rad]; default False).
+
+    Returns
+    -------
+    numpy.ndarray, shape (runs,)
+        Settling time [s] per run.
     """
     signal = np.atleast_2d(signal)
     err = signal - np.broadcast_to(target, signal.shape)
@@ -35,7 +53,22 @@ def settling_time(time: np.ndarray, signal: np.ndarray, target: np.ndarray | flo
 
 def overshoot(signal: np.ndarray, start: float | np.ndarray, target: float | np.ndarray
               ) -> np.ndarray:
-    """Largest excursion beyond ``target`` in the direction of the step from ``start``."""
+    """Largest excursion beyond ``target`` in the direction of the step from ``start``.
+
+    Parameters
+    ----------
+    signal : array_like, shape (steps,) or (runs, steps)
+        Recorded signal (SI units, radians).
+    start : float or array_like, shape (runs,)
+        Initial value of the step.
+    target : float or array_like, shape (runs,)
+        Final value of the step.
+
+    Returns
+    -------
+    numpy.ndarray, shape (runs,)
+        Overshoot (>= 0) in the unit of ``signal``.
+    """
     signal = np.atleast_2d(signal)
     direction = np.sign(np.asarray(target) - np.asarray(start)) * np.ones(signal.shape[0])
     beyond = (signal - np.reshape(target, (-1, 1))) * direction[:, None]
@@ -47,6 +80,18 @@ def turning_diameter(north: np.ndarray, east: np.ndarray, heading: np.ndarray) -
 
     The track after the heading has changed by 360° is taken from the last full turn; the
     diameter is the mean of its north and east extents (a steady circle has both equal).
+
+    Parameters
+    ----------
+    north, east : array_like, shape (steps,) or (runs, steps)
+        Position [m].
+    heading : array_like, shape (steps,) or (runs, steps)
+        Heading ψ [rad].
+
+    Returns
+    -------
+    numpy.ndarray, shape (runs,)
+        Turning diameter [m].
     """
     north, east, heading = (np.atleast_2d(a) for a in (north, east, heading))
     out = np.full(north.shape[0], np.nan)
@@ -66,7 +111,22 @@ def turning_diameter(north: np.ndarray, east: np.ndarray, heading: np.ndarray) -
 def rudder_reversals(time: np.ndarray, rudder: np.ndarray, *, deadband: float = 0.0
                      ) -> np.ndarray:
     """Number of sign reversals of the rudder rate per minute (moves smaller than the deadband
-    [rad] are ignored)."""
+    [rad] are ignored).
+
+    Parameters
+    ----------
+    time : numpy.ndarray, shape (steps,)
+        Time grid [s].
+    rudder : array_like, shape (steps,) or (runs, steps)
+        Rudder angle δ [rad].
+    deadband : float, optional
+        Moves smaller than this are ignored [rad] (default 0).
+
+    Returns
+    -------
+    numpy.ndarray, shape (runs,)
+        Reversals per minute [1/min].
+    """
     rudder = np.atleast_2d(rudder)
     out = np.zeros(rudder.shape[0])
     minutes = (time[-1] - time[0]) / 60.0
@@ -89,7 +149,18 @@ def rudder_reversals(time: np.ndarray, rudder: np.ndarray, *, deadband: float = 
 
 def summarize(result) -> list[dict[str, float | str]]:  # noqa: ANN001 - SimResult
     """Per-run summary metrics of a :class:`~seahelm.results.SimResult` (SI units unless
-    the key says ``_deg``)."""
+    the key says ``_deg``).
+
+    Parameters
+    ----------
+    result : SimResult
+        Simulation result with ``heading``, ``yaw_rate``, ``north`` and ``east`` signals.
+
+    Returns
+    -------
+    list of dict
+        One dict of metrics per run.
+    """
     out: list[dict[str, float | str]] = []
     t = result.time
     heading = result["heading"]

@@ -34,7 +34,8 @@ def wrap_pi(angle):  # pragma: no cover - compiled
     (:func:`seahelm.constants.wrap_angle` is the numpy version)."""
     if -math.pi <= angle < math.pi:  # the common case: no division
         return angle
-    return (angle + math.pi) % (2.0 * math.pi) - math.pi
+    wrapped = (angle + math.pi) % (2.0 * math.pi) - math.pi
+    return wrapped - 2.0 * math.pi if wrapped >= math.pi else wrapped
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

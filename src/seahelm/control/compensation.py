@@ -197,10 +197,15 @@ def drift_angle(
         Ship speed V [m/s] (> 0).
     underwater_area : array_like
         Lateral underwater area S_h [m²].
-    block_coefficient, draft, length
-        δ [-], T [m], L [m].
+    block_coefficient, draft, length : array_like
+        Block coefficient δ [-], draft T [m], length L [m].
     rho : float
-        ρ [kg/m³].
+        Water density ρ [kg/m³].
+
+    Returns
+    -------
+    numpy.ndarray
+        Drift angle α [rad].
     """
     f = as_float_array("lateral_force", lateral_force, "N")
     v = as_float_array("speed", speed, "m/s")
@@ -353,6 +358,19 @@ def compensating_rudder_angle(*, wave_moment: ArrayLike = 0.0, **wind: Any) -> n
 
     δ_k = :func:`wind_compensation` (eq. (12)) + :func:`wave_compensation` (the M_w term);
     with ``wave_moment = 0`` this is eq. (12). Keyword arguments as :func:`wind_compensation`.
+
+    Parameters
+    ----------
+    wave_moment : array_like, optional
+        Paper-signed wave yaw moment M_w [N·m] of eq. (10) (default 0: wind only).
+    **wind
+        Keyword arguments of :func:`wind_compensation` (``speed`` [m/s], ``length`` [m],
+        ``rudder_area`` [m²], ``rudder_aspect_ratio`` [-], ``rho`` [kg/m³], ...).
+
+    Returns
+    -------
+    numpy.ndarray
+        δ_k [rad].
     """
     dk = wind_compensation(**wind)
     if np.any(np.asarray(wave_moment, dtype=float) != 0.0):
@@ -771,6 +789,28 @@ def wind_wave_scenario(
     * ``delta_k_method="paper"`` — eq. (12) (channel 5) and the wave term of eq. (14)
       (channel 6) as printed (module docstring), with the paper's drift angles.
 
+    Parameters
+    ----------
+    case : WindWaveCase
+        The weather case (wind and wave speeds [m/s], heights [m], angles [rad], onset [s]).
+    ship : ShipParticulars, optional
+        Hull, rudder and loading data (default: the Mariner particulars).
+    vessel_params : VoitkunskyParams, optional
+        Parameters of the simulated Voitkunsky model (default: the Mariner set).
+    course : float, optional
+        Wanted course over ground C [rad] (default 0).
+    t_final : float, optional
+        Duration [s] (default 900).
+    dt : float, optional
+        Integration step [s] (default 0.1).
+    delta_k_method : {"model", "paper"}, optional
+        How the compensating rudder angles are computed (default "model"), see above.
+    seed : int, optional
+        Seed of the irregular-wave realisation (default 0).
+    strict : bool, optional
+        Raise instead of warning outside the validity ranges of the empirical formulas
+        (default: the global strict mode).
+
     Returns
     -------
     dict
@@ -854,6 +894,28 @@ def heading_metrics(
     ``reversals_per_min`` (sign changes of the rudder's motion, moves under ``deadband``
     ignored), ``mean_activity`` (mean |δ − δ_k|) [rad] and ``settling_time`` [s] (time after
     ``start`` from which |e| ≤ ``band``; NaN if never), all over t ≥ ``start``.
+
+    Parameters
+    ----------
+    heading_error : array_like, shape (..., steps)
+        Heading error e [rad] (only |e| is used; wrapped to [−π, π) internally).
+    rudder : array_like, shape (..., steps)
+        Rudder angle δ [rad].
+    dt : float
+        Sample period of the records [s].
+    delta_k : float or array_like, optional
+        Compensating rudder angle δ_k [rad], constant or per sample (default 0).
+    start : float, optional
+        Time from which the metrics are taken [s] (default 0).
+    band : float, optional
+        Settling band on |e| [rad] (default 1°).
+    deadband : float, optional
+        Rudder moves smaller than this are not counted as reversals [rad] (default 0.05°).
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The metrics listed above, each of the batch shape.
     """
     e = np.abs(wrap_angle(as_float_array("heading_error", heading_error, "rad", finite=False)))
     d = as_float_array("rudder", rudder, "rad", finite=False)

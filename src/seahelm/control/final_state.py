@@ -136,7 +136,26 @@ def _fd_jacobian(f: Callable[[Array], Array], z: Array, eps: float = 1e-7) -> Ar
 
 def one_step_prediction(ctrl: "FinalStateController", t: float, z: Array, t_f: float
                         ) -> tuple[Array, Array]:
-    """Eq. (15): z̄ = z + Φ h, W = I + ∂Φ/∂z h with h = t_f − t. Shapes (N, n), (N, n, n)."""
+    """Eq. (15): z̄ = z + Φ h, W = I + ∂Φ/∂z h with h = t_f − t. Shapes (N, n), (N, n, n).
+
+    Parameters
+    ----------
+    ctrl : FinalStateController
+        Controller providing the drift Φ(t, z) and its Jacobian.
+    t : float
+        Current time [s].
+    z : numpy.ndarray, shape (N, n)
+        Current states.
+    t_f : float
+        Final time of the prediction [s].
+
+    Returns
+    -------
+    zbar : numpy.ndarray, shape (N, n)
+        Predicted final states z̄.
+    W : numpy.ndarray, shape (N, n, n)
+        Sensitivity ∂z̄/∂z.
+    """
     h = t_f - t
     n = z.shape[-1]
     zbar = z + h * ctrl.drift(t, z)
@@ -146,7 +165,26 @@ def one_step_prediction(ctrl: "FinalStateController", t: float, z: Array, t_f: f
 
 def integrated_prediction(ctrl: "FinalStateController", t: float, z: Array, t_f: float
                           ) -> tuple[Array, Array]:
-    """Eq. (14) integrated over [t, t_f] with ``ctrl.substeps`` RK4 steps."""
+    """Eq. (14) integrated over [t, t_f] with ``ctrl.substeps`` RK4 steps.
+
+    Parameters
+    ----------
+    ctrl : FinalStateController
+        Controller providing the drift Φ(t, z), its Jacobian and ``substeps``.
+    t : float
+        Current time [s].
+    z : numpy.ndarray, shape (N, n)
+        Current states.
+    t_f : float
+        Final time of the prediction [s].
+
+    Returns
+    -------
+    zbar : numpy.ndarray, shape (N, n)
+        Predicted final states z̄.
+    W : numpy.ndarray, shape (N, n, n)
+        Sensitivity ∂z̄/∂z.
+    """
     N, n = z.shape
     k = ctrl.substeps
     h = (t_f - t) / k
@@ -235,7 +273,19 @@ class FinalStateController:
 
     # -- pieces --------------------------------------------------------------------------
     def jacobian(self, t: float, z: Array) -> Array:
-        """∂Φ/∂z (N, n, n): the given function or central differences."""
+        """∂Φ/∂z (N, n, n): the given function or central differences.
+
+        Parameters
+        ----------
+        t : float
+            Time [s].
+        z : numpy.ndarray, shape (N, n)
+            States.
+
+        Returns
+        -------
+        numpy.ndarray, shape (N, n, n)
+        """
         if self.drift_jacobian is not None:
             return np.asarray(self.drift_jacobian(t, z), dtype=float)
         return _fd_jacobian(lambda zz: self.drift(t, zz), z)
@@ -257,6 +307,18 @@ class FinalStateController:
         return _fd_jacobian(self._J, z)
 
     def final_time(self, t: float) -> float:
+        """Final time t_f [s] of the prediction made at ``t``: ``terminal_time`` or t + ``horizon``.
+
+        Parameters
+        ----------
+        t : float
+            Current time [s].
+
+        Returns
+        -------
+        float
+            t_f [s].
+        """
         if self.terminal_time is not None:
             if self.terminal_time <= t:
                 raise ParameterError(
@@ -266,12 +328,42 @@ class FinalStateController:
         return float(t) + float(self.horizon)
 
     def predict(self, t: float, z: Any) -> tuple[Array, Array]:
-        """Predicted final state z̄ (N, n) and transition matrix W (N, n, n)."""
+        """Predicted final state z̄ (N, n) and transition matrix W (N, n, n).
+
+        Parameters
+        ----------
+        t : float
+            Current time [s].
+        z : array_like, shape (n,) or (N, n)
+            Current states.
+
+        Returns
+        -------
+        zbar : numpy.ndarray, shape (N, n)
+            Predicted final states z̄.
+        W : numpy.ndarray, shape (N, n, n)
+            Transition matrix ∂z̄/∂z.
+        """
         z = np.atleast_2d(as_float_array("z", z))
         return PREDICTIONS[self.prediction](self, float(t), z, self.final_time(t))
 
     def gain(self, t: float, z: Any) -> tuple[Array, Array]:
-        """G = ∂J/∂z(z̄) W B (N, m, r) and J(z̄) (N, m)."""
+        """G = ∂J/∂z(z̄) W B (N, m, r) and J(z̄) (N, m).
+
+        Parameters
+        ----------
+        t : float
+            Current time [s].
+        z : array_like, shape (n,) or (N, n)
+            Current states.
+
+        Returns
+        -------
+        G : numpy.ndarray, shape (N, m, r)
+            Gain ∂J/∂z(z̄) W B.
+        J : numpy.ndarray, shape (N, m)
+            Criterion at the predicted final state, J(z̄).
+        """
         z = np.atleast_2d(as_float_array("z", z))
         zbar, W = self.predict(t, z)
         G = self._dJ(zbar) @ W @ self._B(t, z)
@@ -282,6 +374,20 @@ class FinalStateController:
 
         ``target`` J* broadcasts against (N, m). Where G Gᵀ is singular the Moore-Penrose
         pseudo-inverse gives the least-norm least-squares control.
+
+        Parameters
+        ----------
+        t : float
+            Current time [s].
+        z : array_like, shape (n,) or (N, n)
+            Current states.
+        target : array_like
+            Wanted criterion value J*, broadcast against (N, m).
+
+        Returns
+        -------
+        numpy.ndarray, shape (N, r)
+            Control u.
         """
         z = np.atleast_2d(as_float_array("z", z))
         G, Jbar = self.gain(t, z)
@@ -304,6 +410,21 @@ def simulate_final_state(
     Returns ``(t, z, u)`` with shapes (steps+1,), (N, steps+1, n), (N, steps+1, r)
     (the last u repeats the previous one). A reference implementation for tests; the engine
     runs the compiled controllers.
+
+    Parameters
+    ----------
+    ctrl : FinalStateController
+        The controller.
+    z0 : array_like, shape (n,) or (N, n)
+        Initial states.
+    target : array_like or callable(t)
+        Target J* of the criterion, constant or a function of time [s].
+    t_final : float
+        Duration [s] (> 0).
+    dt : float
+        Integration step [s] (> 0).
+    control_every : int, optional
+        Control update every this many steps (default 1).
     """
     check_positive("dt", dt, "s")
     check_positive("t_final", t_final, "s")
@@ -402,6 +523,17 @@ def yaw_rate_params(vessel: CatamaranParams | None = None, **kw: Any) -> FinalSt
     ``servo_command``, ``servo_time_constant``, ``servo_gain``); given a
     :class:`~seahelm.vessels.catamaran.CatamaranServoParams`, the drive constants are taken
     from it.
+
+    Parameters
+    ----------
+    vessel : CatamaranParams or CatamaranServoParams, optional
+        The controller's model of the ship (default: ``CatamaranParams()``).
+    **kw
+        Fields of :class:`FinalStateYawRateParams` not taken from ``vessel``.
+
+    Returns
+    -------
+    FinalStateYawRateParams
     """
     vessel = CatamaranParams() if vessel is None else vessel
     base = {n: getattr(vessel, n) for n in CatamaranParams.field_names()}
@@ -413,7 +545,19 @@ def yaw_rate_params(vessel: CatamaranParams | None = None, **kw: Any) -> FinalSt
 
 def heading_params(vessel: CatamaranParams | None = None, **kw: Any) -> FinalStateHeadingParams:
     """Heading-controller parameters (see :func:`yaw_rate_params`; adds ``turn_rate``,
-    ``ramp_time``, ``full_prediction``)."""
+    ``ramp_time``, ``full_prediction``).
+
+    Parameters
+    ----------
+    vessel : CatamaranParams or CatamaranServoParams, optional
+        The controller's model of the ship (default: ``CatamaranParams()``).
+    **kw
+        Fields of :class:`FinalStateHeadingParams` not taken from ``vessel``.
+
+    Returns
+    -------
+    FinalStateHeadingParams
+    """
     vessel = CatamaranParams() if vessel is None else vessel
     base = {n: getattr(vessel, n) for n in CatamaranParams.field_names()}
     if hasattr(vessel, "servo_time_constant"):
@@ -430,6 +574,23 @@ def closed_loop_eigenvalues(vessel: CatamaranParams, yaw_rate: float, tu_h: floa
     ``sample_time`` T_s the control is held over T_s (the engine's zero-order hold) and the
     returned values are the discrete eigenvalues mapped back by log(λ)/T_s. The loop is stable
     when every real part is negative; the slowest one gives the settling time.
+
+    Parameters
+    ----------
+    vessel : CatamaranParams
+        Ship parameters.
+    yaw_rate : float
+        Yaw rate ω of the steady turn [rad/s].
+    tu_h : float
+        Product T_u·h of the controller time constant T_u [s] and prediction step h [s]
+        of eq. (15) [s²] (> 0).
+    sample_time : float, optional
+        Control sample period T_s [s] (default None: continuous control).
+
+    Returns
+    -------
+    numpy.ndarray, shape (4,)
+        Eigenvalues [1/s] (complex).
 
     Raises
     ------
@@ -566,7 +727,24 @@ def fsm_heading_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compil
 def heading_program(t: Any, heading_change: float, turn_rate: float, ramp_time: float = 0.0
                     ) -> np.ndarray:
     """The yaw-rate reference ω*(t) of the heading program (eq. (17), or ramped) at times ``t``
-    [s] after its start (numpy; the compiled controller uses the same function)."""
+    [s] after its start (numpy; the compiled controller uses the same function).
+
+    Parameters
+    ----------
+    t : array_like
+        Times since the start of the program [s].
+    heading_change : float
+        Total heading change Δψ [rad] (sign gives the turn direction).
+    turn_rate : float
+        Magnitude of the yaw rate of the turn [rad/s] (> 0).
+    ramp_time : float, optional
+        Duration of the yaw-rate ramps [s] (>= 0, default 0: eq. (17)).
+
+    Returns
+    -------
+    numpy.ndarray
+        ω*(t) [rad/s], shape of ``t``.
+    """
     check_positive("turn_rate", turn_rate, "rad/s")
     if not ramp_time >= 0.0:
         raise ParameterError(f"`ramp_time` must be >= 0 [s], got {ramp_time!r}")

@@ -26,6 +26,19 @@ def initial_great_circle_course(
 
     tan C = sin Δλ cos φ2 / (cos φ1 sin φ2 − sin φ1 cos φ2 cos Δλ), all angles in radians
     (latitude φ north positive, longitude λ east positive).
+
+    Parameters
+    ----------
+    lat_departure, lon_departure : array_like
+        Latitude φ1 (north positive, in [−π/2, π/2]) and longitude λ1 (east positive) of the
+        departure point [rad].
+    lat_arrival, lon_arrival : array_like
+        Latitude φ2 (in [−π/2, π/2]) and longitude λ2 of the arrival point [rad].
+
+    Returns
+    -------
+    numpy.ndarray
+        Initial course C [rad] in [0, 2π).
     """
     p1 = as_float_array("lat_departure", lat_departure, "rad")
     l1 = as_float_array("lon_departure", lon_departure, "rad")
@@ -49,6 +62,20 @@ def course_to_steer(
     (the paper's and :mod:`seahelm.vessels.voitkunsky`'s convention; a wind or sea from
     starboard gives β > 0), the course over ground is ψ − β, so ψ = C + α_wind + α_waves,
     wrapped to [0, 2π).
+
+    Parameters
+    ----------
+    course : array_like
+        Wanted course over ground C [rad].
+    wind_drift : array_like, optional
+        Wind drift angle α_wind [rad] (default 0).
+    wave_drift : array_like, optional
+        Wave drift angle α_waves [rad] (default 0).
+
+    Returns
+    -------
+    numpy.ndarray
+        Heading to steer ψ [rad] in [0, 2π).
     """
     c = as_float_array("course", course, "rad")
     return np.mod(c + np.asarray(wind_drift, float) + np.asarray(wave_drift, float), 2.0 * math.pi)

@@ -82,12 +82,44 @@ def encounter_frequency(
 def apparent_frequency(
     omega: ArrayLike, speed: ArrayLike, heading: ArrayLike, *, gravity: float = GRAVITY
 ) -> np.ndarray:
-    """ω_y = |ω − ω² v cos ε / g| (Sushchenko & Lutsko (2010), after eq. (5))."""
+    """ω_y = |ω − ω² v cos ε / g| (Sushchenko & Lutsko (2010), after eq. (5)).
+
+    Parameters
+    ----------
+    omega : array_like
+        Wave frequency ω [rad/s].
+    speed : array_like
+        Ship speed v [m/s].
+    heading : array_like
+        ε [rad], angle between wave and ship velocities (0 following, π head seas).
+    gravity : float, optional
+        Gravitational acceleration g [m/s²].
+
+    Returns
+    -------
+    numpy.ndarray
+        ω_y [rad/s].
+    """
     return np.abs(encounter_frequency(omega, speed, heading, gravity=gravity))
 
 
 def singular_frequency(speed: float, heading: float, *, gravity: float = GRAVITY) -> float:
-    """Wave frequency ω* = g/(2 v cos ε) [rad/s] where dω_e/dω = 0; ``inf`` if v cos ε ≤ 0."""
+    """Wave frequency ω* = g/(2 v cos ε) [rad/s] where dω_e/dω = 0; ``inf`` if v cos ε ≤ 0.
+
+    Parameters
+    ----------
+    speed : float
+        Ship speed v [m/s].
+    heading : float
+        ε [rad], angle between wave and ship velocities (0 following, π head seas).
+    gravity : float, optional
+        Gravitational acceleration g [m/s²].
+
+    Returns
+    -------
+    float
+        ω* [rad/s].
+    """
     v, eps = _speed_heading(speed, heading)
     check_positive("gravity", gravity, "m/s^2")
     cos_e = float(np.cos(eps))
@@ -143,7 +175,18 @@ class EncounterSpectrum:
         return 1.0 / (4.0 * c) if c > 0 else math.inf
 
     def wave_frequencies(self, omega_y: float) -> np.ndarray:
-        """All wave frequencies ω ≥ 0 with |ω − cω²| = ω_y (1, 2 or 3 of them)."""
+        """All wave frequencies ω ≥ 0 with |ω − cω²| = ω_y (1, 2 or 3 of them).
+
+        Parameters
+        ----------
+        omega_y : float
+            Apparent frequency ω_y [rad/s] (>= 0).
+
+        Returns
+        -------
+        numpy.ndarray
+            Wave frequencies ω [rad/s], sorted.
+        """
         c, wy = self._c, float(omega_y)
         if c == 0.0:
             return np.array([wy])
@@ -160,7 +203,18 @@ class EncounterSpectrum:
         return np.array(sorted(roots))
 
     def one_sided(self, omega_y: ArrayLike) -> np.ndarray:
-        """S_y(ω_y) [unit²·s/rad], ``inf`` at the singular apparent frequency."""
+        """S_y(ω_y) [unit²·s/rad], ``inf`` at the singular apparent frequency.
+
+        Parameters
+        ----------
+        omega_y : array_like
+            Apparent frequencies ω_y [rad/s] (>= 0).
+
+        Returns
+        -------
+        numpy.ndarray
+            S_y(ω_y), shape of ``omega_y``.
+        """
         wy = as_float_array("omega_y", omega_y, "rad/s")
         check_nonnegative("omega_y", wy, "rad/s")
         flat = np.atleast_1d(wy).ravel()

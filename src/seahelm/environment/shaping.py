@@ -350,7 +350,17 @@ class StateSpaceFilter:
         return bool(np.all(np.linalg.eigvals(self.A).real < 0))
 
     def frequency_response(self, omega: ArrayLike) -> np.ndarray:
-        """H(jω) = C (jωI − A)⁻¹ B + D, shape (p, len(omega))."""
+        """H(jω) = C (jωI − A)⁻¹ B + D, shape (p, len(omega)).
+
+        Parameters
+        ----------
+        omega : array_like
+            Frequencies ω [rad/s].
+
+        Returns
+        -------
+        numpy.ndarray of complex, shape (p, len(omega))
+        """
         w = np.atleast_1d(as_float_array("omega", omega, "rad/s"))
         n = self.n_states
         eye = np.eye(n)
@@ -360,7 +370,18 @@ class StateSpaceFilter:
         return out
 
     def output_spectrum(self, omega: ArrayLike) -> np.ndarray:
-        """One-sided output spectra (q/π)|H(jω)|², shape (p, len(omega)) (= |H|² for q = π)."""
+        """One-sided output spectra (q/π)|H(jω)|², shape (p, len(omega)) (= |H|² for q = π).
+
+        Parameters
+        ----------
+        omega : array_like
+            Frequencies ω [rad/s].
+
+        Returns
+        -------
+        numpy.ndarray, shape (p, len(omega))
+            S₁ of each output [unit²·s/rad].
+        """
         return np.abs(self.frequency_response(omega)) ** 2 * (self.noise_intensity / math.pi)
 
     def stationary_covariance(self) -> np.ndarray:
@@ -378,7 +399,18 @@ class StateSpaceFilter:
         return np.where(self.D[:, 0] != 0.0, np.inf, var)
 
     def output_covariance(self, lag: ArrayLike) -> np.ndarray:
-        """Autocovariance K_i(τ) = C_i e^{Aτ} P C_iᵀ of each output, shape (p, len(lag))."""
+        """Autocovariance K_i(τ) = C_i e^{Aτ} P C_iᵀ of each output, shape (p, len(lag)).
+
+        Parameters
+        ----------
+        lag : array_like
+            Time lags τ [s] (the sign is ignored).
+
+        Returns
+        -------
+        numpy.ndarray, shape (p, len(lag))
+            K_i(τ) [unit²].
+        """
         tau = np.abs(np.atleast_1d(as_float_array("lag", lag, "s")))
         p = self.stationary_covariance()
         out = np.empty((self.C.shape[0], tau.size))
@@ -397,6 +429,15 @@ class StateSpaceFilter:
 
     def discretize(self, dt: float) -> DiscreteFilter:
         """Exact discretisation at step ``dt`` [s] (matrix exponential + Van Loan covariance).
+
+        Parameters
+        ----------
+        dt : float
+            Sample period [s] (> 0).
+
+        Returns
+        -------
+        DiscreteFilter
 
         Raises
         ------
@@ -563,6 +604,12 @@ def from_transfer_functions(
         One per output.
     noise_intensity : float
         q of the input noise (π: one-sided intensity 1).
+    name : str, optional
+        Name of the filter (default "").
+
+    Returns
+    -------
+    StateSpaceFilter
 
     Raises
     ------

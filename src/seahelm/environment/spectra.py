@@ -80,6 +80,16 @@ def significant_height_from_h3(h3: float) -> float:
     """Significant wave height Hs = 4√D_r [m] with D_r = 0.143 (h3%/2)².
 
     With this choice every spectrum built from the same h3% has the same variance m0 = D_r.
+
+    Parameters
+    ----------
+    h3 : float
+        Wave height of 3 % exceedance h3% [m].
+
+    Returns
+    -------
+    float
+        Hs [m].
     """
     return 4.0 * math.sqrt(float(wave_variance(h3)))
 
@@ -98,10 +108,32 @@ class WaveSpectrum(abc.ABC):
 
     @abc.abstractmethod
     def one_sided(self, omega: ArrayLike) -> np.ndarray:
-        """One-sided spectral density S₁(ω) [unit²·s/rad] for ω ≥ 0 (eq. (1) convention)."""
+        """One-sided spectral density S₁(ω) [unit²·s/rad] for ω ≥ 0 (eq. (1) convention).
+
+        Parameters
+        ----------
+        omega : array_like
+            Frequencies ω [rad/s] (>= 0).
+
+        Returns
+        -------
+        numpy.ndarray
+            S₁(ω), shape of ``omega``.
+        """
 
     def two_sided(self, omega: ArrayLike) -> np.ndarray:
-        """Two-sided spectral density S(ω) = S₁(|ω|)/2 for −∞ < ω < ∞."""
+        """Two-sided spectral density S(ω) = S₁(|ω|)/2 for −∞ < ω < ∞.
+
+        Parameters
+        ----------
+        omega : array_like
+            Frequencies ω [rad/s].
+
+        Returns
+        -------
+        numpy.ndarray
+            S(ω), shape of ``omega``.
+        """
         w = as_float_array("omega", omega, "rad/s")
         return 0.5 * self.one_sided(np.abs(w))
 
@@ -193,7 +225,18 @@ class RationalSpectrum(WaveSpectrum):
         """Numerator and denominator of W(s), highest power first."""
 
     def one_sided_from_factor(self, omega: ArrayLike) -> np.ndarray:
-        """|W(jω)|² evaluated from :meth:`factor` (used to check the factorisation)."""
+        """|W(jω)|² evaluated from :meth:`factor` (used to check the factorisation).
+
+        Parameters
+        ----------
+        omega : array_like
+            Frequencies ω [rad/s] (>= 0).
+
+        Returns
+        -------
+        numpy.ndarray
+            |W(jω)|², shape of ``omega``.
+        """
         w = self._check_omega(omega)
         num, den = self.factor()
         s = 1j * w
@@ -267,11 +310,35 @@ class RakhmaninFirsov1(_RakhmaninFirsov):
     low_frequency_order: ClassVar[float] = 0.0
 
     def one_sided(self, omega: ArrayLike) -> np.ndarray:
+        """One-sided spectral density S₁(ω) [m²·s/rad], Sushchenko & Lutsko (2010), eq. (3).
+
+        Parameters
+        ----------
+        omega : array_like
+            Frequencies ω [rad/s] (>= 0).
+
+        Returns
+        -------
+        numpy.ndarray
+            S₁(ω), shape of ``omega``.
+        """
         w = self._check_omega(omega)
         c = 2.0 * self.variance * self.decay_rate / math.pi
         return c * (w**2 + self._a2) / self._denominator(w)
 
     def correlation(self, tau: ArrayLike) -> np.ndarray:
+        """Correlation function K(τ) = D_r e^{−μ|τ|} cos λτ [m²].
+
+        Parameters
+        ----------
+        tau : array_like
+            Time lags τ [s].
+
+        Returns
+        -------
+        numpy.ndarray
+            K(τ), shape of ``tau``.
+        """
         t = np.abs(as_float_array("tau", tau, "s"))
         return self.variance * np.exp(-self.decay_rate * t) * np.cos(self.resonance_frequency * t)
 
@@ -295,11 +362,35 @@ class RakhmaninFirsov2(_RakhmaninFirsov):
     low_frequency_order: ClassVar[float] = 0.0
 
     def one_sided(self, omega: ArrayLike) -> np.ndarray:
+        """One-sided spectral density S₁(ω) [m²·s/rad] of variant 2 (see the class docstring).
+
+        Parameters
+        ----------
+        omega : array_like
+            Frequencies ω [rad/s] (>= 0).
+
+        Returns
+        -------
+        numpy.ndarray
+            S₁(ω), shape of ``omega``.
+        """
         w = self._check_omega(omega)
         c = 4.0 * self.variance * self.decay_rate / math.pi
         return c * self._a2 / self._denominator(w)
 
     def correlation(self, tau: ArrayLike) -> np.ndarray:
+        """Correlation function K(τ) = D_r e^{−μ|τ|} (cos λτ + (μ/λ) sin λ|τ|) [m²].
+
+        Parameters
+        ----------
+        tau : array_like
+            Time lags τ [s].
+
+        Returns
+        -------
+        numpy.ndarray
+            K(τ), shape of ``tau``.
+        """
         t = np.abs(as_float_array("tau", tau, "s"))
         mu, lam = self.decay_rate, self.resonance_frequency
         return self.variance * np.exp(-mu * t) * (np.cos(lam * t) + (mu / lam) * np.sin(lam * t))
@@ -331,11 +422,35 @@ class RakhmaninFirsov3(_RakhmaninFirsov):
     low_frequency_order: ClassVar[float] = 2.0
 
     def one_sided(self, omega: ArrayLike) -> np.ndarray:
+        """One-sided spectral density S₁(ω) [m²·s/rad] of variant 3 (see the class docstring).
+
+        Parameters
+        ----------
+        omega : array_like
+            Frequencies ω [rad/s] (>= 0).
+
+        Returns
+        -------
+        numpy.ndarray
+            S₁(ω), shape of ``omega``.
+        """
         w = self._check_omega(omega)
         c = 4.0 * self.variance * self.decay_rate / math.pi
         return c * w**2 / self._denominator(w)
 
     def correlation(self, tau: ArrayLike) -> np.ndarray:
+        """Correlation function K(τ) = D_r e^{−μ|τ|} (cos λτ − (μ/λ) sin λ|τ|) [m²].
+
+        Parameters
+        ----------
+        tau : array_like
+            Time lags τ [s].
+
+        Returns
+        -------
+        numpy.ndarray
+            K(τ), shape of ``tau``.
+        """
         t = np.abs(as_float_array("tau", tau, "s"))
         mu, lam = self.decay_rate, self.resonance_frequency
         return self.variance * np.exp(-mu * t) * (np.cos(lam * t) - (mu / lam) * np.sin(lam * t))
@@ -364,9 +479,33 @@ class RakhmaninFirsov3Printed(RakhmaninFirsov3):
     name: ClassVar[str] = "rakhmanin-firsov-3-printed"
 
     def one_sided(self, omega: ArrayLike) -> np.ndarray:
+        """One-sided spectral density as printed: π/2 times :meth:`RakhmaninFirsov3.one_sided`.
+
+        Parameters
+        ----------
+        omega : array_like
+            Frequencies ω [rad/s] (>= 0).
+
+        Returns
+        -------
+        numpy.ndarray
+            S₁(ω) [m²·s/rad], shape of ``omega``.
+        """
         return super().one_sided(omega) * (math.pi / 2.0)
 
     def correlation(self, tau: ArrayLike) -> np.ndarray:
+        """Correlation function as printed: π/2 times :meth:`RakhmaninFirsov3.correlation`.
+
+        Parameters
+        ----------
+        tau : array_like
+            Time lags τ [s].
+
+        Returns
+        -------
+        numpy.ndarray
+            K(τ) [m²], shape of ``tau``.
+        """
         return super().correlation(tau) * (math.pi / 2.0)
 
     def factor(self) -> tuple[np.ndarray, np.ndarray]:
@@ -421,6 +560,18 @@ class DerivativeSpectrum(RationalSpectrum):
         return self.base.low_frequency_order + 2 * self.order
 
     def one_sided(self, omega: ArrayLike) -> np.ndarray:
+        """One-sided spectral density scale² ω^(2·order) S₁,base(ω).
+
+        Parameters
+        ----------
+        omega : array_like
+            Frequencies ω [rad/s] (>= 0).
+
+        Returns
+        -------
+        numpy.ndarray
+            Spectral density [unit²·s/rad], shape of ``omega``.
+        """
         w = self._check_omega(omega)
         return self.scale**2 * w ** (2 * self.order) * self.base.one_sided(w)
 
@@ -430,7 +581,18 @@ class DerivativeSpectrum(RationalSpectrum):
         return self.moment(0)
 
     def moment(self, n: int) -> float:
-        """m_n of this spectrum = scale² m_(n+2k) of the base."""
+        """m_n of this spectrum = scale² m_(n+2k) of the base.
+
+        Parameters
+        ----------
+        n : int
+            Order of the spectral moment (>= 0).
+
+        Returns
+        -------
+        float
+            m_n = ∫ ωⁿ S₁(ω) dω.
+        """
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
             raise ParameterError(f"`n` must be an integer >= 0, got {n!r}")
         return self.scale**2 * self.base.moment(n + 2 * self.order)
@@ -449,12 +611,33 @@ class DerivativeSpectrum(RationalSpectrum):
 
 
 def ordinate_rate_spectrum(spectrum: WaveSpectrum) -> DerivativeSpectrum:
-    """Spectrum of dζ/dt: ω² S₁(ω). Its variance is what the paper calls D_α = (μ² + λ²)D_r."""
+    """Spectrum of dζ/dt: ω² S₁(ω). Its variance is what the paper calls D_α = (μ² + λ²)D_r.
+
+    Parameters
+    ----------
+    spectrum : WaveSpectrum
+        Wave-ordinate spectrum S₁(ω).
+
+    Returns
+    -------
+    DerivativeSpectrum
+    """
     return DerivativeSpectrum(spectrum, 1, 1.0, "ordinate_rate")
 
 
 def slope_spectrum(spectrum: WaveSpectrum, *, gravity: float = GRAVITY) -> DerivativeSpectrum:
     """Wave-slope spectrum S_α(ω) = ω² S_r(ω)/g² (Sushchenko & Lutsko (2010), eq. (5)).
+
+    Parameters
+    ----------
+    spectrum : WaveSpectrum
+        Wave-ordinate spectrum S_r(ω).
+    gravity : float, optional
+        Gravitational acceleration g [m/s²].
+
+    Returns
+    -------
+    DerivativeSpectrum
 
     Notes
     -----
@@ -467,7 +650,19 @@ def slope_spectrum(spectrum: WaveSpectrum, *, gravity: float = GRAVITY) -> Deriv
 
 
 def slope_rate_spectrum(spectrum: WaveSpectrum, *, gravity: float = GRAVITY) -> DerivativeSpectrum:
-    """Angular-rate spectrum S_α̇ = ω² S_α (Sushchenko & Lutsko (2010), after eq. (7))."""
+    """Angular-rate spectrum S_α̇ = ω² S_α (Sushchenko & Lutsko (2010), after eq. (7)).
+
+    Parameters
+    ----------
+    spectrum : WaveSpectrum
+        Wave-ordinate spectrum S_r(ω).
+    gravity : float, optional
+        Gravitational acceleration g [m/s²].
+
+    Returns
+    -------
+    DerivativeSpectrum
+    """
     check_positive("gravity", gravity, "m/s^2")
     return DerivativeSpectrum(spectrum, 2, 1.0 / gravity, "slope_rate")
 
@@ -475,7 +670,19 @@ def slope_rate_spectrum(spectrum: WaveSpectrum, *, gravity: float = GRAVITY) -> 
 def slope_acceleration_spectrum(
     spectrum: WaveSpectrum, *, gravity: float = GRAVITY
 ) -> DerivativeSpectrum:
-    """Angular-acceleration spectrum S_α̈ = ω⁴ S_α (infinite variance for all R–F variants)."""
+    """Angular-acceleration spectrum S_α̈ = ω⁴ S_α (infinite variance for all R–F variants).
+
+    Parameters
+    ----------
+    spectrum : WaveSpectrum
+        Wave-ordinate spectrum S_r(ω).
+    gravity : float, optional
+        Gravitational acceleration g [m/s²].
+
+    Returns
+    -------
+    DerivativeSpectrum
+    """
     check_positive("gravity", gravity, "m/s^2")
     return DerivativeSpectrum(spectrum, 3, 1.0 / gravity, "slope_acceleration")
 
@@ -525,7 +732,25 @@ class Bretschneider(WaveSpectrum):
         table: str = "corrected",
         **_: Any,
     ) -> "Bretschneider":
-        """Hs = 4√D_r from h3%; Tp given, or 2π/λ with λ from Table 2 (``level``, ``table``)."""
+        """Hs = 4√D_r from h3%; Tp given, or 2π/λ with λ from Table 2 (``level``, ``table``).
+
+        Parameters
+        ----------
+        h3 : float
+            Wave height of 3 % exceedance h3% [m].
+        peak_period : float, optional
+            Peak period Tp [s] (default 2π/λ from Table 2).
+        level : {"max", "mean", "min"}, optional
+            Which Table 2 column gives λ (default "mean").
+        table : {"corrected", "printed"}, optional
+            Version of Table 2 (default "corrected").
+        **_
+            Ignored (accepted for a uniform interface).
+
+        Returns
+        -------
+        Bretschneider
+        """
         tp = _default_peak_period(h3, level, table) if peak_period is None else peak_period
         return cls(significant_height=significant_height_from_h3(h3), peak_period=tp)
 
@@ -543,6 +768,18 @@ class Bretschneider(WaveSpectrum):
         return out
 
     def one_sided(self, omega: ArrayLike) -> np.ndarray:
+        """One-sided Bretschneider (two-parameter) density from Hs and Tp [m²·s/rad].
+
+        Parameters
+        ----------
+        omega : array_like
+            Frequencies ω [rad/s] (>= 0).
+
+        Returns
+        -------
+        numpy.ndarray
+            S₁(ω), shape of ``omega``.
+        """
         return self._pm_shape(self._check_omega(omega))
 
     @property
@@ -583,7 +820,19 @@ class PiersonMoskowitz(WaveSpectrum):
 
     @classmethod
     def from_wave_height(cls, h3: float, **_: Any) -> "PiersonMoskowitz":
-        """Hs = 4√D_r from h3% (the peak period follows from Hs)."""
+        """Hs = 4√D_r from h3% (the peak period follows from Hs).
+
+        Parameters
+        ----------
+        h3 : float
+            Wave height of 3 % exceedance h3% [m].
+        **_
+            Ignored (accepted for a uniform interface).
+
+        Returns
+        -------
+        PiersonMoskowitz
+        """
         return cls(significant_height=significant_height_from_h3(h3))
 
     @property
@@ -596,6 +845,18 @@ class PiersonMoskowitz(WaveSpectrum):
         return (0.8 * self._beta) ** 0.25
 
     def one_sided(self, omega: ArrayLike) -> np.ndarray:
+        """One-sided Pierson–Moskowitz density α g² ω⁻⁵ exp(−β ω⁻⁴) [m²·s/rad].
+
+        Parameters
+        ----------
+        omega : array_like
+            Frequencies ω [rad/s] (>= 0).
+
+        Returns
+        -------
+        numpy.ndarray
+            S₁(ω), shape of ``omega`` (0 at ω = 0).
+        """
         w = self._check_omega(omega)
         out = np.zeros_like(w)
         pos = w > 0
@@ -655,7 +916,26 @@ class Jonswap(Bretschneider):
         table: str = "corrected",
         **kwargs: Any,
     ) -> "Jonswap":
-        """Hs = 4√D_r from h3%; Tp given or 2π/λ (Table 2); other keywords passed on."""
+        """Hs = 4√D_r from h3%; Tp given or 2π/λ (Table 2); other keywords passed on.
+
+        Parameters
+        ----------
+        h3 : float
+            Wave height of 3 % exceedance h3% [m].
+        peak_period : float, optional
+            Peak period Tp [s] (default 2π/λ from Table 2).
+        level : {"max", "mean", "min"}, optional
+            Which Table 2 column gives λ (default "mean").
+        table : {"corrected", "printed"}, optional
+            Version of Table 2 (default "corrected").
+        **kwargs
+            Other fields of :class:`Jonswap` (``gamma``, ``sigma_a``, ``sigma_b``,
+            ``exact_normalization``).
+
+        Returns
+        -------
+        Jonswap
+        """
         tp = _default_peak_period(h3, level, table) if peak_period is None else peak_period
         return cls(significant_height=significant_height_from_h3(h3), peak_period=tp, **kwargs)
 
@@ -674,6 +954,18 @@ class Jonswap(Bretschneider):
         return self.variance / m0
 
     def one_sided(self, omega: ArrayLike) -> np.ndarray:
+        """One-sided JONSWAP density C(γ) S_B(ω) γ^r [m²·s/rad].
+
+        Parameters
+        ----------
+        omega : array_like
+            Frequencies ω [rad/s] (>= 0).
+
+        Returns
+        -------
+        numpy.ndarray
+            S₁(ω), shape of ``omega``.
+        """
         w = self._check_omega(omega)
         return self.normalization * self._pm_shape(w) * self._enhancement(w)
 
@@ -754,6 +1046,19 @@ def spectrum_from_wave_height(spectrum: str | WaveSpectrum, h3: float, **kwargs:
     Rakhmanin–Firsov variants take D_r = 0.143 (h3%/2)² and μ, λ from Table 2 (keywords
     ``level``, ``table``); Hs/Tp spectra take Hs = 4√D_r (same m0) and, where needed,
     Tp = 2π/λ unless ``peak_period`` is given. An object is returned unchanged.
+
+    Parameters
+    ----------
+    spectrum : str or WaveSpectrum
+        Registry name of the spectrum (e.g. "rakhmanin-firsov-2", "jonswap") or a spectrum.
+    h3 : float
+        Wave height of 3 % exceedance h3% [m].
+    **kwargs
+        Passed to the class's ``from_wave_height`` (e.g. ``level``, ``table``, ``peak_period``).
+
+    Returns
+    -------
+    WaveSpectrum
     """
     if isinstance(spectrum, WaveSpectrum):
         return spectrum

@@ -250,6 +250,14 @@ def wave_attenuation(
         A0 [-] (recommended 3.3).
     a1 : float
         A1 [-], published range [1, 8.5]; outside it a ValidityRangeWarning.
+    strict : bool, optional
+        Raise :class:`~seahelm.errors.ParameterError` instead of warning outside the range
+        (default: the global strict mode).
+
+    Returns
+    -------
+    numpy.ndarray
+        e^(−A0 λ/L) (1 + A1 V_n/V_w) [-].
     """
     lam = as_float_array("wave_length", wave_length, "m")
     check_positive("wave_length", lam, "m")
@@ -378,6 +386,18 @@ def wave_disturbance_body(forces: WaveForces) -> tuple[np.ndarray, np.ndarray]:
 
     seahelm: y to starboard, yaw moment positive turning the bow to starboard. The paper's
     Y_w, M_w are positive for waves from starboard (pushing to port), so both change sign.
+
+    Parameters
+    ----------
+    forces : WaveForces
+        Paper-signed wave loads of eq. (9)-(10) (``sway`` [N], ``yaw`` [N·m]).
+
+    Returns
+    -------
+    sway : numpy.ndarray
+        Sway force [N], seahelm body axes.
+    yaw : numpy.ndarray
+        Yaw moment [N·m], seahelm body axes.
     """
     return -np.asarray(forces.sway), -np.asarray(forces.yaw)
 
@@ -427,6 +447,22 @@ def disturbing_force_coefficient(
     Note: eq. (4) does not follow from eq. (1) and (3) as the paper says — substituting
     h3% = 0.03 W² in eq. (1) gives 0.015 ρ L K W², not 4·10⁻⁴ ρ g L K W² ≈ 0.0039 ρ L K W²
     (a factor 3.8 apart). Both are implemented as printed.
+
+    Parameters
+    ----------
+    length : array_like
+        Ship length L [m] (> 0).
+    wave_coefficient : array_like
+        Wave coefficient K_ey [-].
+    rho : float, optional
+        Water density ρ [kg/m³].
+    gravity : float, optional
+        Gravitational acceleration g [m/s²].
+
+    Returns
+    -------
+    numpy.ndarray
+        C_b.
     """
     L = as_float_array("length", length, "m")
     check_positive("length", L, "m")

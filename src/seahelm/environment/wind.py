@@ -79,7 +79,20 @@ def wave_period_from_wind(
 def wave_length_from_wind(
     wind_speed: ArrayLike, growth: ArrayLike = DEVELOPED_SEA_GROWTH
 ) -> np.ndarray:
-    """Wave length λ = 1.55 τ² [m] (= 0.655 K_E² W²), Lvov (2014) eq. (2)."""
+    """Wave length λ = 1.55 τ² [m] (= 0.655 K_E² W²), Lvov (2014) eq. (2).
+
+    Parameters
+    ----------
+    wind_speed : array_like
+        True wind speed W [m/s].
+    growth : array_like, optional
+        Growth coefficient K_E [-] (default 0.8, developed sea).
+
+    Returns
+    -------
+    numpy.ndarray
+        λ [m].
+    """
     tau = wave_period_from_wind(wind_speed, growth)
     return 1.55 * tau**2
 
@@ -98,7 +111,20 @@ def wave_height_from_wind(wind_speed: ArrayLike) -> np.ndarray:
 
 
 def deep_water_celerity(wave_length: ArrayLike, *, gravity: float = GRAVITY) -> np.ndarray:
-    """Deep-water phase speed V_w = √(g λ / 2π) [m/s] of a wave of length λ [m]."""
+    """Deep-water phase speed V_w = √(g λ / 2π) [m/s] of a wave of length λ [m].
+
+    Parameters
+    ----------
+    wave_length : array_like
+        Wave length λ [m] (> 0).
+    gravity : float, optional
+        Gravitational acceleration g [m/s²].
+
+    Returns
+    -------
+    numpy.ndarray
+        V_w [m/s].
+    """
     lam = as_float_array("wave_length", wave_length, "m")
     check_positive("wave_length", lam, "m")
     return np.sqrt(gravity * lam / (2.0 * math.pi))
@@ -210,6 +236,26 @@ def wind_yaw_moment(
     """Wind yaw moment N_a = (0.25 + ℓ_sail/L − |q_w|°/360) L Y_a [N·m] (eq. (12)).
 
     Parameters as :func:`wind_lateral_force` and :func:`wind_moment_arm`.
+
+    Parameters
+    ----------
+    wind_speed : array_like
+        Apparent wind speed W [m/s].
+    wind_angle : array_like
+        Apparent-wind bearing q_w [rad] (0 head wind, positive from starboard).
+    lateral_area : array_like
+        Lateral windage area S_n [m²].
+    length : array_like
+        Ship length L [m].
+    sail_centre : array_like, optional
+        ℓ_sail [m], centre of windage forward of midships (default 0).
+    rho_air : float, optional
+        Air density ρ_a [kg/m³].
+
+    Returns
+    -------
+    numpy.ndarray
+        N_a [N·m] (paper-signed).
     """
     y = wind_lateral_force(wind_speed, wind_angle, lateral_area, rho_air=rho_air)
     L = as_float_array("length", length, "m")
@@ -217,5 +263,18 @@ def wind_yaw_moment(
 
 
 def wind_disturbance_body(force: ArrayLike, moment: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
-    """Paper-signed wind force/moment → seahelm body axes (y starboard, yaw bow-to-starboard)."""
+    """Paper-signed wind force/moment → seahelm body axes (y starboard, yaw bow-to-starboard).
+
+    Parameters
+    ----------
+    force : array_like
+        Paper-signed wind lateral force Y_a [N].
+    moment : array_like
+        Paper-signed wind yaw moment N_a [N·m].
+
+    Returns
+    -------
+    force, moment : numpy.ndarray
+        Sway force [N] and yaw moment [N·m] in seahelm body axes.
+    """
     return -np.asarray(force, dtype=float), -np.asarray(moment, dtype=float)

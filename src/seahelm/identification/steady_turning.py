@@ -217,7 +217,21 @@ def _quadratic_roots(a: float, b: float, c: float) -> list[float]:
 
 def stable_steady_turn(params: VoitkunskyParams, rudder_angle: float, **disturbances: float
                        ) -> SteadyTurn:
-    """The unique stable steady turn for a rudder angle (ParameterError if none or several)."""
+    """The unique stable steady turn for a rudder angle (ParameterError if none or several).
+
+    Parameters
+    ----------
+    params : VoitkunskyParams
+        Ship parameters.
+    rudder_angle : float
+        Rudder angle δ [rad].
+    **disturbances : float
+        Constant disturbances, as :func:`steady_turns`.
+
+    Returns
+    -------
+    SteadyTurn
+    """
     turns = [s for s in steady_turns(params, rudder_angle, **disturbances) if s.stable]
     if len(turns) != 1:
         raise ParameterError(
@@ -242,14 +256,39 @@ class ReducedCoefficients:
     branch: int
 
     def residual(self, yaw_rate: Any, rudder_angle: Any, *, exact: bool = True) -> np.ndarray:
-        """Left-hand side of the reduced equation (with the α² term if ``exact``)."""
+        """Left-hand side of the reduced equation (with the α² term if ``exact``).
+
+        Parameters
+        ----------
+        yaw_rate : array_like
+            Yaw rate ω [rad/s].
+        rudder_angle : array_like
+            Rudder angle α [rad].
+        exact : bool, optional
+            Include the d α² term (default True).
+
+        Returns
+        -------
+        numpy.ndarray
+            a ω² + b ω + α(1 + c ω) [+ d α²] [rad].
+        """
         w = np.asarray(yaw_rate, dtype=float)
         al = np.asarray(rudder_angle, dtype=float)
         out = self.a * w**2 + self.b * w + al * (1.0 + self.c * w)
         return out + self.d * al**2 if exact else out
 
     def as_array(self, form: "str | ReducedForm" = "paper") -> np.ndarray:
-        """Coefficients in the order of a fitting form ("paper": a, b, c; "exact": a, b, c, d)."""
+        """Coefficients in the order of a fitting form ("paper": a, b, c; "exact": a, b, c, d).
+
+        Parameters
+        ----------
+        form : str or ReducedForm, optional
+            Fitting form (default "paper").
+
+        Returns
+        -------
+        numpy.ndarray, shape (n_coef,)
+        """
         f = get_form(form)
         return np.array([self.a, self.b, self.c, self.d][: f.n_coef])
 
@@ -323,7 +362,22 @@ class ReducedForm:
 
     def design(self, yaw_rate: np.ndarray, rudder_angle: np.ndarray
                ) -> tuple[np.ndarray, np.ndarray]:
-        """Design matrix X (n, n_coef) and target y = −α, so that F = X θ − y."""
+        """Design matrix X (n, n_coef) and target y = −α, so that F = X θ − y.
+
+        Parameters
+        ----------
+        yaw_rate : array_like, shape (n,)
+            Yaw rates ω [rad/s].
+        rudder_angle : array_like, shape (n,)
+            Rudder angles α [rad].
+
+        Returns
+        -------
+        X : numpy.ndarray, shape (n, n_coef)
+            Design matrix.
+        y : numpy.ndarray, shape (n,)
+            Target −α [rad].
+        """
         w = np.asarray(yaw_rate, dtype=float)
         al = np.asarray(rudder_angle, dtype=float)
         s = self._s(w)
@@ -333,12 +387,43 @@ class ReducedForm:
         return np.stack(cols, axis=-1), -al
 
     def residual(self, coef: np.ndarray, yaw_rate: Any, rudder_angle: Any) -> np.ndarray:
+        """Residuals F = X θ − y of the reduced equation for coefficients θ.
+
+        Parameters
+        ----------
+        coef : array_like, shape (n_coef,)
+            Coefficients θ (a, b, c[, d]).
+        yaw_rate : array_like, shape (n,)
+            Yaw rates ω [rad/s].
+        rudder_angle : array_like, shape (n,)
+            Rudder angles α [rad].
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            F [rad].
+        """
         x, y = self.design(yaw_rate, rudder_angle)
         return x @ np.asarray(coef, dtype=float) - y
 
     def partials(self, coef: np.ndarray, w: np.ndarray, al: np.ndarray
                  ) -> tuple[np.ndarray, np.ndarray]:
-        """∂F/∂ω and ∂F/∂α."""
+        """∂F/∂ω and ∂F/∂α.
+
+        Parameters
+        ----------
+        coef : array_like, shape (n_coef,)
+            Coefficients θ (a, b, c[, d]).
+        w : numpy.ndarray
+            Yaw rates ω [rad/s].
+        al : numpy.ndarray
+            Rudder angles α [rad].
+
+        Returns
+        -------
+        dF_dw, dF_dal : numpy.ndarray
+            ∂F/∂ω [s] and ∂F/∂α [-].
+        """
         a, b, c = coef[0], coef[1], coef[2]
         d = coef[3] if self.alpha_squared else 0.0
         s = self._s(w)
@@ -357,7 +442,17 @@ REDUCED_FORMS: dict[str, ReducedForm] = {
 
 
 def get_form(form: "str | ReducedForm") -> ReducedForm:
-    """A reduced form by name (or the form itself); unknown names list the valid ones."""
+    """A reduced form by name (or the form itself); unknown names list the valid ones.
+
+    Parameters
+    ----------
+    form : str or ReducedForm
+        Name in :data:`REDUCED_FORMS` ("paper", "exact", "paper-odd", ...) or a form.
+
+    Returns
+    -------
+    ReducedForm
+    """
     if isinstance(form, ReducedForm):
         return form
     if form not in REDUCED_FORMS:
@@ -448,6 +543,16 @@ class SteadyTurnFit:
         Solves F(ω, α) = 0 for ω on the branch of steady turns through (0, 0) (the root that
         behaves as −α/b for small α). NaN where the fitted model has no such steady turn (or, for an
         odd form, where the root's sign contradicts the branch).
+
+        Parameters
+        ----------
+        rudder_angle : float or array_like
+            Rudder angles α [rad].
+
+        Returns
+        -------
+        yaw_rate, stderr : numpy.ndarray or float
+            Steady yaw rate ω [rad/s] and its standard error [rad/s], shape of ``rudder_angle``.
         """
         al = np.atleast_1d(np.asarray(rudder_angle, dtype=float))
         a, b, c, d = self.a, self.b, self.c, self.d
@@ -468,6 +573,16 @@ class SteadyTurnFit:
 
         The paper's "recommendation" use: α = −(a ω² + b ω)/(1 + c ω) (root of the quadratic in
         α for the exact forms, on the branch through (0, 0)).
+
+        Parameters
+        ----------
+        yaw_rate : float or array_like
+            Wanted steady yaw rates ω [rad/s].
+
+        Returns
+        -------
+        rudder_angle, stderr : numpy.ndarray or float
+            Rudder angle α [rad] and its standard error [rad], shape of ``yaw_rate``.
         """
         w = np.atleast_1d(np.asarray(yaw_rate, dtype=float))
         a, b, c, d = self.a, self.b, self.c, self.d
@@ -710,6 +825,30 @@ def fit_robust(
     covariance is the Gauss-Newton approximation s²(JᵀJ)⁻¹ with the loss-modified Jacobian,
     s² = 2·cost/(n − p) — approximate. Note that every point is a leverage point here (ω and α
     both enter the design row), so a gross error is down-weighted but still pulls the fit.
+
+    Parameters
+    ----------
+    yaw_rate : array_like, shape (n,)
+        Steady yaw rates ω_i [rad/s].
+    rudder_angle : array_like, shape (n,)
+        Rudder angles α_i [rad] of the steady turns.
+    form : str or ReducedForm, optional
+        Reduced model, a name of :data:`REDUCED_FORMS` or the form itself (default "paper",
+        eq. (4)).
+    weights : array_like, shape (n,), optional
+        Positive weights of the points (default: all 1).
+    f_scale : float, optional
+        Residual scale of the loss [rad] (default: from the least-median-of-squares start).
+    loss : str, optional
+        Loss of :func:`scipy.optimize.least_squares` (default "soft_l1").
+    max_subsets : int, optional
+        Largest number of p-point subsets tried for the start (default 2000).
+    seed : int, optional
+        Seed of the random subsets (default 0).
+
+    Returns
+    -------
+    SteadyTurnFit
     """
     from scipy.optimize import least_squares
 
@@ -793,6 +932,29 @@ def fit_brute_force(
     with b₀ = median |α/ω| and ω_m = max |ω|.
 
     The returned covariance and standard errors are NaN (a grid search gives none).
+
+    Parameters
+    ----------
+    yaw_rate : array_like, shape (n,)
+        Steady yaw rates ω_i [rad/s].
+    rudder_angle : array_like, shape (n,)
+        Rudder angles α_i [rad] of the steady turns.
+    form : str or ReducedForm, optional
+        Reduced model, a name of :data:`REDUCED_FORMS` or the form itself (default "paper",
+        eq. (4)).
+    bounds : sequence of (float, float), optional
+        (low, high) of each coefficient, in the units of the form's coefficients (default: from
+        the data, see above).
+    n_grid : int, optional
+        Grid values per coefficient (>= 2, default 41).
+    criterion : {"squared", "absolute"}, optional
+        Σ N_i² or Σ|N_i| (default "squared").
+    chunk : int, optional
+        Grid points evaluated at once (memory bound; default 200 000).
+
+    Returns
+    -------
+    SteadyTurnFit
     """
     t0 = _time.perf_counter()
     f = get_form(form)
@@ -848,7 +1010,23 @@ FIT_METHODS: dict[str, Callable[..., SteadyTurnFit]] = {
 
 def fit_steady_turns(yaw_rate: Any, rudder_angle: Any, *, method: str = "lsq",
                      **kwargs: Any) -> SteadyTurnFit:
-    """Fit with a method from :data:`FIT_METHODS` by name (unknown names list the valid ones)."""
+    """Fit with a method from :data:`FIT_METHODS` by name (unknown names list the valid ones).
+
+    Parameters
+    ----------
+    yaw_rate : array_like, shape (n,)
+        Steady yaw rates ω_i [rad/s].
+    rudder_angle : array_like, shape (n,)
+        Rudder angles α_i [rad] of the steady turns.
+    method : {"lsq", "robust", "brute"}, optional
+        Fit method (default "lsq").
+    **kwargs
+        Passed to the method (:func:`fit_lsq`, :func:`fit_robust`, :func:`fit_brute_force`).
+
+    Returns
+    -------
+    SteadyTurnFit
+    """
     if method not in FIT_METHODS:
         raise ValueError(f"unknown fit method '{method}'; valid: {', '.join(FIT_METHODS)}")
     return FIT_METHODS[method](yaw_rate, rudder_angle, **kwargs)
@@ -1018,7 +1196,30 @@ def identify_from_time_series(
     segment_options: Mapping[str, Any] | None = None,
     **fit_options: Any,
 ) -> tuple[SteadyTurnFit, SteadySegments]:
-    """Extract the steady segments of a log and fit the reduced model to them."""
+    """Extract the steady segments of a log and fit the reduced model to them.
+
+    Parameters
+    ----------
+    time : array_like, shape (steps,)
+        Time of the log [s].
+    rudder_angle : array_like, shape (steps,)
+        Rudder angle α [rad].
+    yaw_rate : array_like, shape (steps,)
+        Yaw rate ω [rad/s].
+    method : {"lsq", "robust", "brute"}, optional
+        Fit method of :func:`fit_steady_turns` (default "lsq").
+    segment_options : mapping, optional
+        Keyword arguments of :func:`extract_steady_segments`.
+    **fit_options
+        Passed to the fit method.
+
+    Returns
+    -------
+    fit : SteadyTurnFit
+        The fitted reduced model.
+    segments : SteadySegments
+        The steady segments used.
+    """
     seg = extract_steady_segments(time, rudder_angle, yaw_rate, **dict(segment_options or {}))
     fit = fit_steady_turns(seg.yaw_rate, seg.rudder_angle, method=method, **fit_options)
     return fit, seg

@@ -30,6 +30,21 @@ def plot_set_V(result: Any, *, ax: Any = None, fig: Any = None, **surface_kw: An
     """Boundary of V, ς(z) on the direction grid of eq. (17), as a 3-D surface (Fig. 1).
 
     ``result`` is a :class:`seahelm.analysis.averaging.CPPControlSetResult`. Returns the axes.
+
+    Parameters
+    ----------
+    result : CPPControlSetResult
+        Result with the boundary ς(z) on the direction grid.
+    ax : matplotlib Axes3D, optional
+        Axes to draw into (default: new 3-D axes).
+    fig : matplotlib Figure, optional
+        Figure for the new axes when ``ax`` is None.
+    **surface_kw
+        Passed to ``plot_surface``.
+
+    Returns
+    -------
+    matplotlib Axes3D
     """
     ax = _axes3d(ax, fig)
     s = result.boundary
@@ -51,6 +66,25 @@ def plot_set_Y(
     between t and −t, is the flat region between the parabola and the chord y3 = β3.
     ``variant="printed"``: additionally the printed segment
     y1 = y2 ∈ [-1, 1], y3 = β3 (which does not meet the arc, see the errata).
+
+    Parameters
+    ----------
+    betas : sequence of float
+        (β1, β2, β3) [-] of :func:`~seahelm.analysis.averaging.cpp_betas`.
+    variant : {"hull", "printed"}, optional
+        Reading of eq. (24) (default "hull").
+    n : int, optional
+        Number of chord positions t ∈ [0, 1] (default 101).
+    ax : matplotlib Axes3D, optional
+        Axes to draw into (default: new 3-D axes).
+    fig : matplotlib Figure, optional
+        Figure for the new axes when ``ax`` is None.
+    **surface_kw
+        Passed to ``plot_surface``.
+
+    Returns
+    -------
+    matplotlib Axes3D
     """
     if variant not in ("hull", "printed"):
         raise ValueError(f"`variant` must be 'hull' or 'printed', got {variant!r}")
@@ -74,7 +108,19 @@ def plot_set_Y(
 
 
 def plot_control_sets(result: Any, *, fig: Any = None) -> Any:
-    """V (left) and both variants of Y (right) side by side; returns the figure."""
+    """V (left) and both variants of Y (right) side by side; returns the figure.
+
+    Parameters
+    ----------
+    result : CPPControlSetResult
+        Result with the boundary of V, the β's and the Hausdorff distances.
+    fig : matplotlib Figure, optional
+        Figure to draw into (default: a new one).
+
+    Returns
+    -------
+    matplotlib Figure
+    """
     import matplotlib.pyplot as plt
 
     fig = fig if fig is not None else plt.figure(figsize=(12, 5))
@@ -92,7 +138,19 @@ def plot_control_sets(result: Any, *, fig: Any = None) -> Any:
 
 
 def plot_averaging_study(study: Any, *, ax: Any = None) -> Any:
-    """Error of the averaged model against ε on log-log axes, with the fitted order."""
+    """Error of the averaged model against ε on log-log axes, with the fitted order.
+
+    Parameters
+    ----------
+    study : AveragingStudy
+        Result of :func:`~seahelm.analysis.averaging.cpp_averaging_study`.
+    ax : matplotlib Axes, optional
+        Axes to draw into (default: new axes).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
     if ax is None:
         import matplotlib.pyplot as plt
 

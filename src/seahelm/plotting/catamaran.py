@@ -28,7 +28,21 @@ def _runs(result: Any, runs: Sequence[int] | None) -> list[int]:
 
 
 def plot_yaw_rate(result: Any, *, ax: Any = None, runs: Sequence[int] | None = None) -> Any:
-    """Yaw rate ω [rad/s] (solid) and, if the controller has one, its reference (dashed)."""
+    """Yaw rate ω [rad/s] (solid) and, if the controller has one, its reference (dashed).
+
+    Parameters
+    ----------
+    result : SimResult
+        Result of a catamaran run.
+    ax : matplotlib Axes, optional
+        Axes to draw into (default: new axes).
+    runs : sequence of int, optional
+        Runs to draw (default: all).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
     ax = _axes(ax)
     for i in _runs(result, runs):
         (line,) = ax.plot(result.time, result["yaw_rate"][i], label=f"ω, run {i}")
@@ -43,7 +57,21 @@ def plot_yaw_rate(result: Any, *, ax: Any = None, runs: Sequence[int] | None = N
 
 def plot_thruster_angle(result: Any, *, ax: Any = None, runs: Sequence[int] | None = None
                         ) -> Any:
-    """Thruster angle δ in degrees (degrees only at this edge)."""
+    """Thruster angle δ in degrees (degrees only at this edge).
+
+    Parameters
+    ----------
+    result : SimResult
+        Result of a catamaran run.
+    ax : matplotlib Axes, optional
+        Axes to draw into (default: new axes).
+    runs : sequence of int, optional
+        Runs to draw (default: all).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
     ax = _axes(ax)
     for i in _runs(result, runs):
         ax.plot(result.time, np.degrees(result["thruster_angle"][i]), label=f"run {i}")
@@ -53,7 +81,21 @@ def plot_thruster_angle(result: Any, *, ax: Any = None, runs: Sequence[int] | No
 
 
 def plot_trajectory(result: Any, *, ax: Any = None, runs: Sequence[int] | None = None) -> Any:
-    """Track: east [m] horizontally, north [m] vertically, equal axes."""
+    """Track: east [m] horizontally, north [m] vertically, equal axes.
+
+    Parameters
+    ----------
+    result : SimResult
+        Result of a catamaran run.
+    ax : matplotlib Axes, optional
+        Axes to draw into (default: new axes).
+    runs : sequence of int, optional
+        Runs to draw (default: all).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
     ax = _axes(ax)
     for i in _runs(result, runs):
         ax.plot(result["east"][i], result["north"][i], label=f"run {i}")
@@ -64,7 +106,21 @@ def plot_trajectory(result: Any, *, ax: Any = None, runs: Sequence[int] | None =
 
 
 def plot_overview(result: Any, *, fig: Any = None, runs: Sequence[int] | None = None) -> Any:
-    """The three panels of the paper's figures (yaw rate, thruster angle, trajectory)."""
+    """The three panels of the paper's figures (yaw rate, thruster angle, trajectory).
+
+    Parameters
+    ----------
+    result : SimResult
+        Result of a catamaran run.
+    fig : matplotlib Figure, optional
+        Figure to draw into (default: a new one).
+    runs : sequence of int, optional
+        Runs to draw (default: all).
+
+    Returns
+    -------
+    matplotlib Figure
+    """
     if fig is None:
         import matplotlib.pyplot as plt
 

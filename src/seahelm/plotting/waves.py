@@ -26,7 +26,18 @@ _LINESTYLES = ("-", "--", ":")
 
 def grade_wave_height(grade: int | str) -> float:
     """Representative h3% [m] of a sea-state grade: the middle of its Table 1 range, clipped to
-    the 1…10 m covered by Table 2 (grade IX, open above 11 m, is drawn at 10 m)."""
+    the 1…10 m covered by Table 2 (grade IX, open above 11 m, is drawn at 10 m).
+
+    Parameters
+    ----------
+    grade : int or str
+        Sea-state grade (Table 1), e.g. 6 or "VI".
+
+    Returns
+    -------
+    float
+        h3% [m].
+    """
     lo, hi = wave_height_range(grade)
     hs = TABLE2["corrected"][:, 0]
     mid = 0.5 * (lo + hi) if np.isfinite(hi) else lo
@@ -49,7 +60,25 @@ def plot_spectrum(
     label: str | None = None,
     **line_kw: Any,
 ) -> Any:
-    """Plot a one-sided spectrum S₁(ω) (eq. (1) convention) against ω [rad/s]."""
+    """Plot a one-sided spectrum S₁(ω) (eq. (1) convention) against ω [rad/s].
+
+    Parameters
+    ----------
+    spectrum : WaveSpectrum
+        Spectrum with a ``one_sided(omega)`` method.
+    ax : matplotlib Axes, optional
+        Axes to draw into (default: new axes).
+    omega : array_like, optional
+        Frequencies ω [rad/s] (default 0…4 rad/s, 801 points).
+    label : str, optional
+        Legend label (default: the spectrum's name).
+    **line_kw
+        Passed to ``ax.plot``.
+
+    Returns
+    -------
+    matplotlib Axes
+    """
     ax = _axes(ax)
     w = np.linspace(0.0, 4.0, 801) if omega is None else np.asarray(omega, float)
     ax.plot(w, spectrum.one_sided(w), label=label or getattr(spectrum, "name", None), **line_kw)
@@ -70,6 +99,25 @@ def plot_sea_state_spectra(
     """Spectra of the wave ordinate or slope (eq. (5)) for several sea-state grades.
 
     Solid, dashed and dotted lines as in the paper's figure (panels a–d).
+
+    Parameters
+    ----------
+    model : str, optional
+        Spectrum name (default "rakhmanin-firsov-1").
+    grades : sequence of int, optional
+        Sea-state grades (default 3, 6, 9).
+    quantity : {"ordinate", "slope"}, optional
+        Wave ordinate or slope spectrum (default "ordinate").
+    table : str, optional
+        Version of Table 2 (default "corrected").
+    ax : matplotlib Axes, optional
+        Axes to draw into (default: new axes).
+    omega : array_like, optional
+        Frequencies ω [rad/s] (default 0…4 rad/s).
+
+    Returns
+    -------
+    matplotlib Axes
     """
     from ..environment.spectra import slope_spectrum, spectrum_from_wave_height
 
@@ -92,7 +140,23 @@ def plot_sea_state_spectra(
 def plot_realisations(
     samples: Any, output: str | None = None, *, runs: Sequence[int] = (0,), ax: Any = None
 ) -> Any:
-    """Plot realisations from :meth:`seahelm.environment.shaping.StateSpaceFilter.sample`."""
+    """Plot realisations from :meth:`seahelm.environment.shaping.StateSpaceFilter.sample`.
+
+    Parameters
+    ----------
+    samples : FilterSamples
+        Result of :meth:`~seahelm.environment.shaping.StateSpaceFilter.sample`.
+    output : str, optional
+        Output label to draw (default: the first).
+    runs : sequence of int, optional
+        Runs to draw (default: run 0).
+    ax : matplotlib Axes, optional
+        Axes to draw into (default: new axes).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
     ax = _axes(ax)
     label = output or samples.labels[0]
     data = samples[label]
@@ -110,6 +174,21 @@ def plot_paper_figure(*, fig: Any = None, seed: int = 0, duration: float = 200.0
     a, b: ordinate spectra of variants 1 (eq. (3)) and 2 (eq. (4)) for sea states 3, 6, 9;
     c, d: slope spectra (eq. (5)) of both for sea states 3, 6; e: slope realisation from the
     corrected filter (s/g)W₂(s); f: from the paper's printed eq. (7) filter, for comparison.
+
+    Parameters
+    ----------
+    fig : matplotlib Figure, optional
+        Figure to draw into (default: a new one).
+    seed : int, optional
+        Seed of the realisations (default 0).
+    duration : float, optional
+        Length of the realisations [s] (default 200).
+    dt : float, optional
+        Sample period [s] (default 0.1).
+
+    Returns
+    -------
+    matplotlib Figure
     """
     import matplotlib.pyplot as plt
 

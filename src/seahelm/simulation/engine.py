@@ -4,7 +4,8 @@
 (vessel model, actuator, controller, integrator) :func:`compile_closed_loop` generates a small
 module from :mod:`seahelm.simulation.kernel_template` with the components' numba functions
 bound in, and numba compiles it once per machine (``cache=True``; the module's name hashes the
-sources it depends on, so editing a component recompiles it). The loop runs in parallel over
+in-memory bytecode of the components and of every numba function they call, so editing any
+of them recompiles it). The loop runs in parallel over
 runs (``numba.prange``), one thread per core; nothing in it is Python per step or per run.
 
 Timing: the state is integrated on the grid t_k = k·dt; the controller is stepped every
@@ -23,12 +24,13 @@ import enum
 import functools
 import hashlib
 import importlib.util
-import inspect
+import marshal
 import os
 import re
 import sys
 import tempfile
 import time as _time
+import types
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from types import ModuleType
@@ -85,7 +87,38 @@ def kernel_cache_dir() -> Path:
         return fallback
 
 
-def _binding(func: Any, alias: str) -> tuple[str, str]:
+def _code_fingerprint(py: Any, seen: set[int] | None = None) -> bytes:
+    """Bytes that change whenever the compiled behaviour of ``py`` could change.
+
+    The bytecode of the function as it is *in memory* (not its file on disk, which may have
+    been edited since it was imported), and recursively of every numba function it calls and
+    the numeric globals that numba freezes into the code. Naming a kernel after this keeps the
+    on-disk numba cache from serving a loop compiled from other code.
+    """
+    seen = set() if seen is None else seen
+    if id(py) in seen:
+        return b""
+    seen.add(id(py))
+    parts = [marshal.dumps(py.__code__)]
+    stack = [py.__code__]
+    names: list[str] = []
+    while stack:
+        code = stack.pop()
+        names.extend(code.co_names)
+        stack.extend(c for c in code.co_consts if isinstance(c, types.CodeType))
+    for name in sorted(set(names)):
+        obj = py.__globals__.get(name)
+        inner = getattr(obj, "py_func", None)
+        if inner is not None:
+            parts.append(name.encode() + _code_fingerprint(inner, seen))
+        elif isinstance(obj, (bool, int, float, complex, str)):
+            parts.append(f"{name}={obj!r}".encode())
+        elif isinstance(obj, np.ndarray):
+            parts.append(name.encode() + obj.tobytes())
+    return b"\0".join(parts)
+
+
+def _binding(func: Any, alias: str) -> tuple[str, bytes]:
     py = getattr(func, "py_func", None)
     if py is None:
         raise TypeError(f"{alias} must be a numba @njit function, got {func!r}")
@@ -95,16 +128,12 @@ def _binding(func: Any, alias: str) -> tuple[str, str]:
         raise TypeError(
             f"{alias} '{module}.{name}' must be importable as a module-level name"
         )
-    try:
-        source = Path(inspect.getsourcefile(py) or "").read_text()
-    except OSError:
-        source = inspect.getsource(py)
     # re-jit the component with inline="always": numba then inlines it at IR level into the
     # loop, which removes per-call reference counting of the array arguments (about 70 ns
     # per call otherwise) and lets LLVM optimise across the component boundaries
     line = (f"from {module} import {name} as _{alias}\n"
             f"{alias} = njit(inline=\"always\")(_{alias}.py_func)\n")
-    return line, source
+    return line, _code_fingerprint(py)
 
 
 _TEMPLATE_TEXT = Path(kernel_template.__file__).read_text()
@@ -134,7 +163,7 @@ def compile_closed_loop(
     blocks = iter([header, footer])
     text = _BLOCK.sub(lambda m: next(blocks), _TEMPLATE_TEXT)
     digest = hashlib.sha1(
-        "\0".join([text, __version__, *(p[1] for p in parts)]).encode()
+        b"\0".join([text.encode(), __version__.encode(), *(p[1] for p in parts)])
     ).hexdigest()[:16]
     name = f"seahelm_kernel_{digest}"
     if name in sys.modules:
@@ -285,9 +314,9 @@ def simulate(
         Initial vessel state (SI units, radians).
     t_final, dt : float
         Duration [s] and integration step [s]; ``t_final`` must be a multiple of ``dt``.
-    controller, controller_params
+    controller, controller_params : Controller, Params or array, optional
         Controller (default: open loop, reference = command) and its parameters.
-    actuator, actuator_params, actuator_x0
+    actuator, actuator_params, actuator_x0 : Actuator, Params or array, array_like, optional
         Actuator (default: rudder servo), its parameters and initial state (default zeros).
     reference : None, scalar, array or callable
         Controller reference. A 1-D array is a constant vector; a 2-D array
@@ -298,6 +327,7 @@ def simulate(
     controller_dt : float, optional
         Controller sample period [s], a multiple of ``dt`` (default ``dt``).
     integrator : {"euler", "heun", "rk4"}
+        Fixed-step integration method (default "rk4").
     record_every : int
         Record every n-th step (``t_final/dt`` need not be a multiple; the last record is at
         the last multiple).

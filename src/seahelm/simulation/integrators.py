@@ -27,19 +27,76 @@ Rhs = Callable[..., np.ndarray]
 
 
 def euler_step(f: Rhs, t: float, x: np.ndarray, h: float, *args: Any) -> np.ndarray:
-    """Explicit Euler: x + h f(t, x). Order 1."""
+    """Explicit Euler: x + h f(t, x). Order 1.
+
+    Parameters
+    ----------
+    f : callable(t, x, *args)
+        Right-hand side dx/dt.
+    t : float
+        Time at the start of the step [s].
+    x : numpy.ndarray, shape (..., n)
+        State at ``t``.
+    h : float
+        Step size [s].
+    *args
+        Extra arguments of ``f``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., n)
+        State at ``t + h``.
+    """
     return x + h * f(t, x, *args)
 
 
 def heun_step(f: Rhs, t: float, x: np.ndarray, h: float, *args: Any) -> np.ndarray:
-    """Heun (explicit trapezoid): order 2."""
+    """Heun (explicit trapezoid): order 2.
+
+    Parameters
+    ----------
+    f : callable(t, x, *args)
+        Right-hand side dx/dt.
+    t : float
+        Time at the start of the step [s].
+    x : numpy.ndarray, shape (..., n)
+        State at ``t``.
+    h : float
+        Step size [s].
+    *args
+        Extra arguments of ``f``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., n)
+        State at ``t + h``.
+    """
     k1 = f(t, x, *args)
     k2 = f(t + h, x + h * k1, *args)
     return x + 0.5 * h * (k1 + k2)
 
 
 def rk4_step(f: Rhs, t: float, x: np.ndarray, h: float, *args: Any) -> np.ndarray:
-    """Classic fourth-order Runge–Kutta."""
+    """Classic fourth-order Runge–Kutta.
+
+    Parameters
+    ----------
+    f : callable(t, x, *args)
+        Right-hand side dx/dt.
+    t : float
+        Time at the start of the step [s].
+    x : numpy.ndarray, shape (..., n)
+        State at ``t``.
+    h : float
+        Step size [s].
+    *args
+        Extra arguments of ``f``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., n)
+        State at ``t + h``.
+    """
     k1 = f(t, x, *args)
     k2 = f(t + 0.5 * h, x + 0.5 * h * k1, *args)
     k3 = f(t + 0.5 * h, x + 0.5 * h * k2, *args)
@@ -58,7 +115,23 @@ ORDERS = {"euler": 1, "heun": 2, "rk4": 4}
 
 
 def get_integrator(name: str) -> Callable[..., np.ndarray]:
-    """Look up a fixed-step method; an unknown name raises ValueError listing the valid ones."""
+    """Look up a fixed-step method; an unknown name raises ValueError listing the valid ones.
+
+    Parameters
+    ----------
+    name : {"euler", "heun", "rk4"}
+        Name in :data:`INTEGRATORS`.
+
+    Returns
+    -------
+    callable
+        Step function ``step(f, t, x, h, *args)``.
+
+    Raises
+    ------
+    ValueError
+        If ``name`` is unknown (the message lists the valid ones).
+    """
     try:
         return INTEGRATORS[name]
     except KeyError:
@@ -118,6 +191,30 @@ def solve_reference(
 
     Returns the states at ``t_eval``, shape ``(len(t_eval), n)``.
     Raises RuntimeError if the solver fails.
+
+    Parameters
+    ----------
+    f : callable(t, x, *args)
+        Right-hand side dx/dt.
+    x0 : array_like, shape (n,)
+        Initial state at ``t_eval[0]``.
+    t_eval : array_like, shape (m,)
+        Output times [s], increasing; the solve runs from the first to the last.
+    *args
+        Extra arguments of ``f``.
+    rtol, atol : float, optional
+        Relative and absolute tolerances (default 1e-10, 1e-12).
+    method : str, optional
+        :func:`scipy.integrate.solve_ivp` method (default "DOP853").
+
+    Returns
+    -------
+    numpy.ndarray, shape (m, n)
+
+    Raises
+    ------
+    RuntimeError
+        If the solver fails.
     """
     x0 = as_float_array("x0", x0)
     t_eval = as_float_array("t_eval", t_eval, "s")

@@ -169,6 +169,19 @@ def make_signal(spec: Any, *, scale: float = 1.0) -> Any:
     """A signal from a number, a mapping ``{kind = ..., ...}`` or a signal object.
 
     ``scale`` multiplies the value-like fields (not times, periods or phases).
+
+    Parameters
+    ----------
+    spec : float, mapping or signal
+        A constant, a table with ``kind`` (a name in :data:`SIGNALS`) and the signal's fields,
+        or a signal object (returned unchanged).
+    scale : float, optional
+        Factor applied to the value-like fields, e.g. π/180 for degrees (default 1).
+
+    Returns
+    -------
+    signal
+        A callable signal ``sig(t_grid)``.
     """
     if isinstance(spec, (int, float)) and not isinstance(spec, bool):
         check_finite("value", spec)

@@ -102,7 +102,17 @@ class VesselModel:
         return len(self.disturbance_labels)
 
     def state_index(self, label: str) -> int:
-        """Index of a state by label (ValueError listing the labels if unknown)."""
+        """Index of a state by label (ValueError listing the labels if unknown).
+
+        Parameters
+        ----------
+        label : str
+            State label, e.g. "yaw_rate".
+
+        Returns
+        -------
+        int
+        """
         try:
             return self.state_labels.index(label)
         except ValueError:
@@ -129,6 +139,24 @@ class VesselModel:
 
         ``params`` is a parameter set, a sequence of them (one per run) or a packed array
         (..., n_params). Shapes broadcast against each other.
+
+        Parameters
+        ----------
+        t : float
+            Time [s].
+        x : array_like, shape (..., n_states)
+            States (SI units, radians).
+        u : array_like, shape (..., n_inputs)
+            Inputs (e.g. rudder angle [rad]).
+        params : Params, sequence of Params or array_like, shape (..., n_params)
+            Model parameters.
+        d : array_like, shape (..., n_disturbances), optional
+            Disturbance inputs (default zeros).
+
+        Returns
+        -------
+        numpy.ndarray, shape (..., n_states)
+            ẋ.
         """
         x = np.asarray(x, dtype=float)
         u = np.asarray(u, dtype=float)
@@ -155,7 +183,23 @@ class VesselModel:
         return out.reshape(batch + (self.n_states,))
 
     def outputs(self, t: float, x: Any, u: Any, params: Params | Any) -> np.ndarray:
-        """Navigation outputs :data:`NAV_OUTPUTS` over leading batch axes."""
+        """Navigation outputs :data:`NAV_OUTPUTS` over leading batch axes.
+
+        Parameters
+        ----------
+        t : float
+            Time [s].
+        x : array_like, shape (..., n_states)
+            States (SI units, radians).
+        u : array_like, shape (..., n_inputs)
+            Inputs.
+        params : Params or array_like, shape (..., n_params)
+            Model parameters.
+
+        Returns
+        -------
+        numpy.ndarray, shape (..., len(NAV_OUTPUTS))
+        """
         x = np.asarray(x, dtype=float)
         u = np.asarray(u, dtype=float)
         p = params.to_array() if isinstance(params, Params) else np.asarray(params, dtype=float)

@@ -28,7 +28,23 @@ CATALOG: dict[str, CatalogEntry] = {}
 
 
 def register(entry: CatalogEntry) -> CatalogEntry:
-    """Add a named parameter set (names are unique)."""
+    """Add a named parameter set (names are unique).
+
+    Parameters
+    ----------
+    entry : CatalogEntry
+        The named parameter set.
+
+    Returns
+    -------
+    CatalogEntry
+        ``entry``.
+
+    Raises
+    ------
+    ValueError
+        If an entry of that name exists already.
+    """
     if entry.name in CATALOG:
         raise ValueError(f"catalog entry '{entry.name}' exists already")
     CATALOG[entry.name] = entry
@@ -36,7 +52,22 @@ def register(entry: CatalogEntry) -> CatalogEntry:
 
 
 def get(name: str) -> CatalogEntry:
-    """Look up a named parameter set; an unknown name raises ValueError listing the valid ones."""
+    """Look up a named parameter set; an unknown name raises ValueError listing the valid ones.
+
+    Parameters
+    ----------
+    name : str
+        Name of the parameter set.
+
+    Returns
+    -------
+    CatalogEntry
+
+    Raises
+    ------
+    ValueError
+        If ``name`` is unknown (the message lists the valid ones).
+    """
     try:
         return CATALOG[name]
     except KeyError:

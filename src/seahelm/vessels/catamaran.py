@@ -495,6 +495,18 @@ def steady_turn(params: CatamaranParams, yaw_rate: float) -> tuple[float, float,
     Solves Φ_1 = Φ_2 = Φ_3 = 0 at ω = ``yaw_rate`` (Newton's method from the straight run);
     the turning-circle diameter is 2 √(V_x² + V_y²)/ω. Raises ParameterError if no steady
     turn is found (the yaw rate is beyond the largest reachable one).
+
+    Parameters
+    ----------
+    params : CatamaranParams
+        Ship parameters.
+    yaw_rate : float
+        Yaw rate ω of the turn [rad/s].
+
+    Returns
+    -------
+    tuple of float
+        (V_x [m/s], V_y [m/s], δ [rad]).
     """
     from scipy.optimize import fsolve
 
@@ -513,7 +525,19 @@ def steady_turn(params: CatamaranParams, yaw_rate: float) -> tuple[float, float,
 
 
 def drift(x: Any, params: CatamaranParams | Any) -> np.ndarray:
-    """Φ(z) of eq. (3) over leading batch axes: ``x`` (..., 7) → (..., 7)."""
+    """Φ(z) of eq. (3) over leading batch axes: ``x`` (..., 7) → (..., 7).
+
+    Parameters
+    ----------
+    x : array_like, shape (..., 7)
+        States z (SI units, radians).
+    params : CatamaranParams or array_like
+        Parameters, one set or an array (..., n_params).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 7)
+    """
     X, P, batch = _pack(x, params)
     out = np.empty_like(X)
     _batched_drift(X, P, out)
@@ -525,6 +549,17 @@ def jacobian(x: Any, params: CatamaranParams | Any) -> np.ndarray:
 
     Used by the final-state method, eq. (14)-(15); ∂Φ_3/∂δ = L T_v cos δ / J_ω gives W_37 of
     eq. (19).
+
+    Parameters
+    ----------
+    x : array_like, shape (..., 7)
+        States z (SI units, radians).
+    params : CatamaranParams or array_like
+        Parameters, one set or an array (..., n_params).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 7, 7)
     """
     X, P, batch = _pack(x, params)
     out = np.empty((X.shape[0], 7, 7))

@@ -468,8 +468,8 @@ def waves_derivative(
     ----------
     t : array_like, shape (...)
         Wave phase τ = p t [rad].
-    x, pitch_ratio, params
-        As :func:`calm_water_derivative`.
+    x, pitch_ratio, params : array_like, array_like, CPPShipParams
+        States (v̄, ω̄), pitch ratio φ̄ and ship parameters, as :func:`calm_water_derivative`.
 
     Returns
     -------
@@ -483,6 +483,19 @@ def coefficient_case(pitch_ratio: Any, speed: Any, uncovered_case: int = 1) -> n
     """Coefficient case (1, 2, 3) used for the signs of φ̄ and v̄; 0 where the model gives NaN.
 
     See the module docstring for the table and the uncovered combination φ̄ ≥ 0, v̄ < 0.
+
+    Parameters
+    ----------
+    pitch_ratio : array_like
+        Pitch ratio φ̄ [-].
+    speed : array_like
+        Non-dimensional speed v̄ [-].
+    uncovered_case : {1, 0, 3}, optional
+        Case used for φ̄ ≥ 0, v̄ < 0 (default 1; 0 gives NaN).
+
+    Returns
+    -------
+    numpy.ndarray of int
     """
     phi = as_float_array("pitch_ratio", pitch_ratio)
     v = as_float_array("speed", speed)
@@ -493,7 +506,20 @@ def coefficient_case(pitch_ratio: Any, speed: Any, uncovered_case: int = 1) -> n
 
 
 def resistance_factor(speed: Any, resistance_coefficient: float = 1.0) -> np.ndarray:
-    """χ of Platonov & Platonova, eq. (7): χ1 for v̄ ≥ 0 and −1.35 χ1 for v̄ < 0."""
+    """χ of Platonov & Platonova, eq. (7): χ1 for v̄ ≥ 0 and −1.35 χ1 for v̄ < 0.
+
+    Parameters
+    ----------
+    speed : array_like
+        Non-dimensional speed v̄ [-].
+    resistance_coefficient : float, optional
+        χ1 [-] (default 1).
+
+    Returns
+    -------
+    numpy.ndarray
+        χ [-].
+    """
     v = as_float_array("speed", speed)
     return np.where(v >= 0, 1.0, -1.35) * float(resistance_coefficient)
 
@@ -502,6 +528,20 @@ def emergence_alpha(t: Any, immersion: float = 1.2, amplitude: float = 0.96) -> 
     """α(τ) = h0/(2.4R) − (eψ0/(2.4R)) sin τ, Platonov & Platonova, eq. (12).
 
     ``immersion`` = h0/R and ``amplitude`` = eψ0/R are in propeller radii; ``t`` in rad.
+
+    Parameters
+    ----------
+    t : array_like
+        Wave phase τ [rad].
+    immersion : float, optional
+        Shaft immersion h0/R [R] (default 1.2).
+    amplitude : float, optional
+        Wave amplitude at the propeller eψ0/R [R] (default 0.96).
+
+    Returns
+    -------
+    numpy.ndarray
+        α(τ) [-], shape of ``t``.
     """
     t = np.asarray(t, dtype=float)
     return immersion / 2.4 - amplitude / 2.4 * np.sin(t)
@@ -512,13 +552,35 @@ def emergence_factors(t: Any, immersion: float = 1.2, amplitude: float = 0.96) -
 
     Returns an array of shape ``(2,) + np.shape(t)``. Both are continuous with a kink where
     α(τ) = 0.5 (see :func:`emergence_kinks`).
+
+    Parameters
+    ----------
+    t : array_like
+        Wave phase τ [rad].
+    immersion : float, optional
+        Shaft immersion h0/R [R] (default 1.2).
+    amplitude : float, optional
+        Wave amplitude at the propeller eψ0/R [R] (default 0.96).
     """
     a = np.minimum(emergence_alpha(t, immersion, amplitude), 0.5)
     return np.stack([0.4 + 1.2 * a, 0.5 + a])
 
 
 def emergence_kinks(immersion: float = 1.2, amplitude: float = 0.96) -> np.ndarray:
-    """Wave phases in [0, 2π) [rad] where α(τ) = 0.5, i.e. where c1, c2 have kinks (0 to 2)."""
+    """Wave phases in [0, 2π) [rad] where α(τ) = 0.5, i.e. where c1, c2 have kinks (0 to 2).
+
+    Parameters
+    ----------
+    immersion : float, optional
+        Shaft immersion h0/R [R] (default 1.2).
+    amplitude : float, optional
+        Wave amplitude at the propeller eψ0/R [R] (default 0.96).
+
+    Returns
+    -------
+    numpy.ndarray, shape (0,), (1,) or (2,)
+        Sorted kink phases [rad].
+    """
     if amplitude == 0.0:
         return np.empty(0)
     s = (immersion / 2.4 - 0.5) / (amplitude / 2.4)

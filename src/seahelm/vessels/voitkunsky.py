@@ -166,6 +166,31 @@ def voitkunsky_from_linear_derivatives(
     equation only: the sway row of M⁻¹ applied to (Y_vvv', N_vvv') v'³ is replaced by its
     least-squares fit k·v'|v'| on |β| ≤ ``beta_range`` (k = 5·beta_range/6); the cubic term
     of the yaw row and all cross terms (Y_vvr, ...) are dropped.
+
+    Parameters
+    ----------
+    mass, inertia : float
+        Nondimensional mass m' and yaw moment of inertia I_z' [-].
+    xg : float
+        Nondimensional longitudinal centre of gravity x_G' [-].
+    y_vdot, y_rdot, n_vdot, n_rdot : float
+        Added-mass derivatives Y_v̇', Y_ṙ', N_v̇', N_ṙ' [-].
+    y_v, y_r, n_v, n_r : float
+        Linear damping derivatives Y_v', Y_r' (including −m'), N_v', N_r' [-].
+    y_delta, n_delta : float
+        Rudder derivatives Y_δ', N_δ' [-].
+    y_vvv, n_vvv : float
+        Cubic sway derivatives Y_vvv', N_vvv' [-].
+    speed : float
+        Ship speed U [m/s].
+    length : float
+        Ship length L [m].
+    beta_range : float, optional
+        Drift-angle range |β| ≤ ``beta_range`` of the nonlinear fit [rad] (default 0.3).
+
+    Returns
+    -------
+    VoitkunskyParams
     """
     m_mat = np.array([[mass - y_vdot, mass * xg - y_rdot], [mass * xg - n_vdot, inertia - n_rdot]])
     m_inv = np.linalg.inv(m_mat)
