@@ -282,7 +282,8 @@ def _emergence(tau, h, e):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
-def _rhs_core(x, phi, p, c1t, c2t, inv_a, dx):  # pragma: no cover - compiled
+def _rhs_core(x, phi, p, c1t, c2t, inv_a, c10, c20, dx):  # pragma: no cover - compiled
+    """Eq. (10) for one run; calm water, eq. (9), is c1 = c2 = c10 = c20 = 1 and no 1/A."""
     v = x[0]
     w = x[1]
     row = _case_row(phi, v, p[_I_UNC])
@@ -299,8 +300,8 @@ def _rhs_core(x, phi, p, c1t, c2t, inv_a, dx):  # pragma: no cover - compiled
     torque = phi * (phi * torque_poly + c[row, 7] * k2 * k2 * v * v) * c2t
     pe0 = _initial_thrust(p)
     mc0 = _initial_torque(p)
-    dx[0] = inv_a * (thrust - _chi(v, p[_I_CHI]) * pe0 * p[_I_C10] * v * v)
-    dx[1] = inv_a * p[_I_N] * (mc0 * p[_I_C20] * p[_I_M0] - torque)
+    dx[0] = inv_a * (thrust - _chi(v, p[_I_CHI]) * pe0 * c10 * v * v)
+    dx[1] = inv_a * p[_I_N] * (mc0 * c20 * p[_I_M0] - torque)
 
 
 @njit(cache=True)
@@ -311,29 +312,7 @@ def rhs_waves(t, x, u, d, p, dx):  # pragma: no cover - compiled
     allowed); ``p = CPPShipParams.to_array()``; ``dx`` is written in place.
     """
     c1t, c2t = _emergence(t, p[_I_H], p[_I_E])
-    _rhs_core(x, u[0], p, c1t, c2t, 1.0 / p[_I_A], dx)
-
-
-@njit(cache=True)
-def _rhs_calm_core(x, phi, p, dx):  # pragma: no cover - compiled
-    # eq. (9): c1 = c2 = c10 = c20 = 1 and no 1/A
-    v = x[0]
-    w = x[1]
-    row = _case_row(phi, v, p[_I_UNC])
-    if row < 0:
-        dx[0] = np.nan
-        dx[1] = np.nan
-        return
-    c = CASE_COEFFICIENTS
-    k1 = p[_I_K1]
-    k2 = p[_I_K2]
-    thrust_poly = c[row, 0] * w * w + c[row, 1] * k1 * v * w + c[row, 2] * k1 * k1 * v * v
-    torque_poly = c[row, 4] * w * w + c[row, 5] * k2 * v * w + c[row, 6] * k2 * k2 * v * v
-    resistance = _chi(v, p[_I_CHI]) * _initial_thrust(p) * v * v
-    dx[0] = phi * thrust_poly + c[row, 3] * k1 * k1 * v * v - resistance
-    dx[1] = p[_I_N] * (
-        _initial_torque(p) * p[_I_M0] - phi * (phi * torque_poly + c[row, 7] * k2 * k2 * v * v)
-    )
+    _rhs_core(x, u[0], p, c1t, c2t, 1.0 / p[_I_A], p[_I_C10], p[_I_C20], dx)
 
 
 @njit(cache=True)
@@ -343,7 +322,7 @@ def rhs_calm(t, x, u, d, p, dx):  # pragma: no cover - compiled
     ``t`` is the non-dimensional time τ of eq. (6) (unused: autonomous); other arguments as
     :func:`rhs_waves`. The wave fields of the parameter array are ignored.
     """
-    _rhs_calm_core(x, u[0], p, dx)
+    _rhs_core(x, u[0], p, 1.0, 1.0, 1.0, 1.0, 1.0, dx)
 
 
 @njit(cache=True)
