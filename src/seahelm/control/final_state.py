@@ -516,6 +516,16 @@ class FinalStateHeadingParams(FinalStateYawRateParams):
 _NP = N_CATAMARAN_PARAMS
 
 
+def _with_vessel(cls: type, vessel: CatamaranParams | None, kw: dict[str, Any]) -> Any:
+    """``cls`` built from the vessel's fields (and its servo's, if any) plus ``kw``."""
+    vessel = CatamaranParams() if vessel is None else vessel
+    base = {n: getattr(vessel, n) for n in CatamaranParams.field_names()}
+    if hasattr(vessel, "servo_time_constant"):
+        kw.setdefault("servo_time_constant", vessel.servo_time_constant)
+        kw.setdefault("servo_gain", vessel.servo_gain)
+    return cls(**base, **kw)
+
+
 def yaw_rate_params(vessel: CatamaranParams | None = None, **kw: Any) -> FinalStateYawRateParams:
     """Controller parameters whose model of the ship is ``vessel`` (default: the listing).
 
@@ -535,12 +545,7 @@ def yaw_rate_params(vessel: CatamaranParams | None = None, **kw: Any) -> FinalSt
     -------
     FinalStateYawRateParams
     """
-    vessel = CatamaranParams() if vessel is None else vessel
-    base = {n: getattr(vessel, n) for n in CatamaranParams.field_names()}
-    if hasattr(vessel, "servo_time_constant"):
-        kw.setdefault("servo_time_constant", vessel.servo_time_constant)
-        kw.setdefault("servo_gain", vessel.servo_gain)
-    return FinalStateYawRateParams(**base, **kw)
+    return _with_vessel(FinalStateYawRateParams, vessel, kw)
 
 
 def heading_params(vessel: CatamaranParams | None = None, **kw: Any) -> FinalStateHeadingParams:
@@ -558,12 +563,7 @@ def heading_params(vessel: CatamaranParams | None = None, **kw: Any) -> FinalSta
     -------
     FinalStateHeadingParams
     """
-    vessel = CatamaranParams() if vessel is None else vessel
-    base = {n: getattr(vessel, n) for n in CatamaranParams.field_names()}
-    if hasattr(vessel, "servo_time_constant"):
-        kw.setdefault("servo_time_constant", vessel.servo_time_constant)
-        kw.setdefault("servo_gain", vessel.servo_gain)
-    return FinalStateHeadingParams(**base, **kw)
+    return _with_vessel(FinalStateHeadingParams, vessel, kw)
 
 
 def closed_loop_eigenvalues(vessel: CatamaranParams, yaw_rate: float, tu_h: float,

@@ -637,19 +637,7 @@ def _branch_root(qa: Any, qb: Any, qc: Any, ref: Any) -> np.ndarray:
 def _check_points(yaw_rate: Any, rudder_angle: Any, n_coef: int) -> tuple[np.ndarray, np.ndarray]:
     arrs = []
     for name, v, unit in (("yaw_rate", yaw_rate, "rad/s"), ("rudder_angle", rudder_angle, "rad")):
-        try:
-            a = np.asarray(v, dtype=float)
-        except (TypeError, ValueError):
-            raise ParameterError(f"`{name}` must be numbers [{unit}], got {v!r}") from None
-        if a.ndim != 1:
-            raise ParameterError(f"`{name}` must be one-dimensional [{unit}], got shape {a.shape}")
-        bad = ~np.isfinite(a)
-        if bad.any():
-            raise ParameterError(
-                f"`{name}` must be finite [{unit}], got NaN/inf at point(s) "
-                f"{np.flatnonzero(bad)[:6].tolist()}"
-            )
-        arrs.append(a)
+        arrs.append(_series(name, v, unit, what="point(s)"))
     w, al = arrs
     if w.size != al.size:
         raise ParameterError(
@@ -1171,7 +1159,8 @@ def _moving_average(x: np.ndarray, half: int) -> np.ndarray:
     return (c[hi] - c[lo]) / (hi - lo)
 
 
-def _series(name: str, value: Any, unit: str) -> np.ndarray:
+def _series(name: str, value: Any, unit: str, *, what: str = "sample(s)") -> np.ndarray:
+    """A finite 1-D float array, or ParameterError naming ``name``, ``unit`` and where."""
     try:
         a = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
@@ -1181,7 +1170,7 @@ def _series(name: str, value: Any, unit: str) -> np.ndarray:
     bad = ~np.isfinite(a)
     if bad.any():
         raise ParameterError(
-            f"`{name}` must be finite [{unit}], got NaN/inf at sample(s) "
+            f"`{name}` must be finite [{unit}], got NaN/inf at {what} "
             f"{np.flatnonzero(bad)[:6].tolist()}"
         )
     return a
