@@ -23,3 +23,30 @@ def mariner1():
     from seahelm.vessels.catalog import get
 
     return get("mariner-nomoto1").params
+
+
+def pytest_report_header(config):
+    from seahelm.versions import version_report
+
+    return f"seahelm tested with: {version_report()}"
+
+
+def pytest_configure(config):
+    """With SEAHELM_REQUIRE_EMPTY_CACHE=1 (set by .ci/run), refuse to start on a warm cache.
+
+    A test that passes only because a kernel compiled by other code is still on disk is how a
+    fresh-machine failure hid before; CI must start from nothing. Checked once, in the
+    controlling process (not in xdist workers, which start after it).
+    """
+    if not os.environ.get("SEAHELM_REQUIRE_EMPTY_CACHE") or hasattr(config, "workerinput"):
+        return
+    from pathlib import Path
+
+    from seahelm.simulation.engine import kernel_cache_dir
+
+    if not os.environ.get("SEAHELM_CACHE_DIR"):
+        pytest.exit("SEAHELM_REQUIRE_EMPTY_CACHE is set but SEAHELM_CACHE_DIR is not", returncode=3)
+    warm = [p for p in (kernel_cache_dir(), Path(os.environ.get("NUMBA_CACHE_DIR", "")))
+            if str(p) not in ("", ".") and p.is_dir() and any(p.iterdir())]
+    if warm:
+        pytest.exit(f"the kernel cache is not empty at the start of the run: {warm}", returncode=3)

@@ -21,6 +21,12 @@ def test_version():
     res = runner.invoke(app, ["--version"])
     assert res.exit_code == 0
     assert __version__ in res.stdout
+    import numba
+    import numpy
+
+    # the dependency versions a bug report needs, as installed (read from metadata)
+    assert f"numpy {numpy.__version__}" in res.stdout
+    assert f"numba {numba.__version__}" in res.stdout
 
 
 def test_demo_writes_results_and_plot(tmp_path):

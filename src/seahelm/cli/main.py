@@ -42,14 +42,17 @@ for _name, _module, _help in _GROUPS:
 
 def _version(value: bool) -> None:
     if value:
-        console.print(f"seahelm {__version__}")
+        from ..versions import version_report
+
+        console.print(f"seahelm {__version__}", highlight=False)
+        console.print(version_report(), highlight=False, soft_wrap=True)
         raise typer.Exit()
 
 
 @app.callback()
 def _root(
     version: Annotated[bool, typer.Option("--version", callback=_version, is_eager=True,
-                                          help="Print the version and exit.")] = False,
+                                          help="Print the versions of seahelm, Python and its core dependencies, and exit.")] = False,
 ) -> None:
     """Batched, validated ship motion simulation and control."""
 

@@ -186,11 +186,15 @@ def solve_reference(
     rtol: float = 1e-10,
     atol: float = 1e-12,
     method: str = "DOP853",
+    breakpoints: Any = None,
 ) -> np.ndarray:
     """Adaptive high-accuracy solution with :func:`scipy.integrate.solve_ivp` (one run).
 
-    Returns the states at ``t_eval``, shape ``(len(t_eval), n)``.
-    Raises RuntimeError if the solver fails.
+    An adaptive solver's error estimate assumes a smooth right-hand side: a step that straddles
+    a kink (a jump in a derivative of ``f``, e.g. a saturation or a piecewise coefficient)
+    can be far less accurate than ``rtol`` claims, and how much depends on where the steps fall
+    (so on the scipy version). Pass the times of such kinks as ``breakpoints``: the solve is then
+    restarted at each one, so no step crosses a kink and the tolerances mean what they say.
 
     Parameters
     ----------
@@ -206,10 +210,14 @@ def solve_reference(
         Relative and absolute tolerances (default 1e-10, 1e-12).
     method : str, optional
         :func:`scipy.integrate.solve_ivp` method (default "DOP853").
+    breakpoints : array_like, optional
+        Times [s] where ``f`` is not smooth; those outside the open interval of ``t_eval`` are
+        ignored.
 
     Returns
     -------
     numpy.ndarray, shape (m, n)
+        The state at each time of ``t_eval``.
 
     Raises
     ------
@@ -218,15 +226,35 @@ def solve_reference(
     """
     x0 = as_float_array("x0", x0)
     t_eval = as_float_array("t_eval", t_eval, "s")
-    sol = solve_ivp(
-        lambda t, x: np.asarray(f(t, x, *args), dtype=float),
-        (float(t_eval[0]), float(t_eval[-1])),
-        x0,
-        t_eval=t_eval,
-        rtol=rtol,
-        atol=atol,
-        method=method,
-    )
-    if not sol.success:
-        raise RuntimeError(f"solve_ivp failed: {sol.message}")
-    return sol.y.T
+    if t_eval.ndim != 1 or t_eval.size < 1 or np.any(np.diff(t_eval) <= 0):
+        raise ValueError(f"`t_eval` must be a 1-D increasing time grid [s], got {t_eval!r}")
+    t0, t1 = float(t_eval[0]), float(t_eval[-1])
+    cuts = np.array([], dtype=float) if breakpoints is None else np.unique(
+        as_float_array("breakpoints", breakpoints, "s").ravel())
+    eps = 1e-12 * max(1.0, abs(t0), abs(t1))  # a breakpoint on an end (to round-off) is none
+    cuts = cuts[(cuts > t0 + eps) & (cuts < t1 - eps)]
+    if cuts.size > 1:
+        cuts = cuts[np.concatenate([[True], np.diff(cuts) > eps])]
+    edges = np.concatenate([[t0], cuts, [t1]])
+    out = np.empty((t_eval.size, x0.size))
+    out[0] = x0
+    x = x0
+    for a, b in zip(edges[:-1], edges[1:]):
+        inside = (t_eval > a) & (t_eval < b)
+        times = np.append(t_eval[inside], b)  # always end on the segment's end
+        sol = solve_ivp(
+            lambda t, x: np.asarray(f(t, x, *args), dtype=float),
+            (float(a), float(b)),
+            x,
+            t_eval=times,
+            rtol=rtol,
+            atol=atol,
+            method=method,
+        )
+        if not sol.success:
+            raise RuntimeError(f"solve_ivp failed on [{a:g}, {b:g}] s: {sol.message}")
+        out[inside] = sol.y[:, :-1].T
+        x = sol.y[:, -1]
+        if b in t_eval:
+            out[np.searchsorted(t_eval, b)] = x
+    return out
