@@ -6,6 +6,13 @@ keyword-only dataclass that subclasses :class:`Params`. Fields are declared with
 feed ``seahelm models``, scenario validation and the docs. Inside the compiled simulation loop
 a parameter set is a flat ``float64`` array in field order (:meth:`Params.to_array`).
 
+Compiled component code reads parameters **by name**: the engine hands each run's parameters
+to numba as a record (a row of a NumPy structured array, :meth:`Params.record_dtype`), so a
+controller writes ``p.kp``, never ``p[0]``. :func:`as_records` views a ``(runs, n_params)``
+float array as such records without copying; a parameter class that extends another (e.g. a
+compensated PID over the PID's gains) gives records that the base class's compiled code reads
+unchanged, since fields are found by name.
+
 SI units and radians inside; degrees only at the edges (scenario files may write
 ``max_angle_deg = 35`` for a field ``max_angle`` whose unit is ``rad``).
 """
@@ -21,7 +28,7 @@ import numpy as np
 
 from .errors import ParameterError
 
-__all__ = ["Params", "param", "ParamInfo", "stack_params"]
+__all__ = ["Params", "param", "ParamInfo", "stack_params", "as_records", "signal_indices"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -124,6 +131,30 @@ class Params:
     def field_names(cls) -> tuple[str, ...]:
         """Field names in packing order."""
         return tuple(f.name for f in dataclasses.fields(cls))
+
+    @classmethod
+    def record_dtype(cls) -> np.dtype:
+        """The structured dtype compiled code sees: one float64 field per parameter, in order.
+
+        A class without fields gets one padding field ``_unused`` (numba needs a non-empty
+        record).
+
+        Returns
+        -------
+        numpy.dtype
+        """
+        names = cls.field_names() or ("_unused",)
+        return np.dtype([(n, np.float64) for n in names])
+
+    def to_record(self) -> np.void:
+        """This parameter set as one record (``rec.kp``), for compiled code.
+
+        Returns
+        -------
+        numpy.void
+            A record of :meth:`record_dtype`.
+        """
+        return as_records(self.to_array()[None, :], type(self))[0]
 
     def to_array(self) -> np.ndarray:
         """Pack the fields, in declaration order, into a float64 array (SI units)."""
@@ -250,3 +281,63 @@ def stack_params(params: "Params | Sequence[Params]", cls: type[Params] | None =
             f"expected {cls.__name__} parameters, got {type(params[0]).__name__}"
         )
     return np.stack([p.to_array() for p in params])
+
+
+def as_records(rows: Any, cls: type[Params]) -> np.ndarray:
+    """View parameter rows ``(runs, n_params)`` (floats in field order) as records of ``cls``.
+
+    No copy when ``rows`` is a C-contiguous float64 array; the records share its memory.
+
+    Parameters
+    ----------
+    rows : array_like, shape (runs, n_params) or (n_params,)
+        Packed parameter values (:meth:`Params.to_array` rows; SI units, radians).
+    cls : type[Params]
+        Parameter class that names the fields.
+
+    Returns
+    -------
+    numpy.ndarray, shape (runs,)
+        Structured array of :meth:`Params.record_dtype`; ``out[i].kp`` is run i's ``kp``.
+    """
+    arr = np.asarray(rows, dtype=np.float64)
+    if arr.ndim == 1:
+        arr = arr[None, :]
+    n = len(cls.field_names())
+    if arr.ndim != 2 or arr.shape[1] != n:
+        raise ParameterError(
+            f"{cls.__name__} rows must have shape (runs, {n}), got {arr.shape}"
+        )
+    if n == 0:
+        arr = np.zeros((arr.shape[0], 1))
+    arr = np.ascontiguousarray(arr)
+    if not arr.flags.writeable:  # one compiled specialisation per kernel, not two
+        arr = arr.copy()
+    return arr.view(cls.record_dtype()).reshape(arr.shape[0])
+
+
+def signal_indices(labels: Sequence[str]) -> Any:
+    """Named integer constants for a component's signal vector, e.g. ``S.yaw_rate``.
+
+    Compiled code indexes its state, input and output vectors through these (``x[S.heading]``)
+    instead of bare numbers; numba freezes the named tuple into the code as constants.
+
+    Parameters
+    ----------
+    labels : sequence of str
+        Signal names in vector order (valid Python identifiers).
+
+    Returns
+    -------
+    collections.namedtuple
+        ``S.<label> == position`` for every label.
+    """
+    from collections import namedtuple
+
+    labels = tuple(labels)
+    bad = [lab for lab in labels if not lab.isidentifier()]
+    if bad:
+        raise ValueError(f"signal names must be identifiers, got {bad}")
+    if len(set(labels)) != len(labels):
+        raise ValueError(f"duplicate signal names in {labels}")
+    return namedtuple("Signals", labels)(*range(len(labels)))

@@ -7,9 +7,16 @@ numba-compiled functions over one run:
 ``init(z, y, ref, p, cs)``
     fills the controller's internal state ``cs`` at t = 0.
 ``step(t, dt, z, y, ref, p, cs, cmd)``
-    reads the full closed-loop state ``z`` (vessel states then actuator states), the vessel's
-    navigation outputs ``y`` (:data:`seahelm.vessels.base.NAV_OUTPUTS`), the reference vector
-    ``ref`` at time ``t``; updates ``cs`` in place and writes the command ``cmd``.
+    reads the full closed-loop state ``z`` (vessel states then actuator states), its
+    measurements ``y`` — the model outputs it declares in ``measurement_labels``, in that order
+    (e.g. ``heading``, ``yaw_rate``), routed to it by name — the reference vector ``ref`` at
+    time ``t`` (``reference_labels`` order); updates ``cs`` in place and writes the commands
+    ``cmd`` (``command_labels`` order). ``p`` is the run's parameter record (``p.kp``).
+
+Commands are connected by name to an actuator's command channels or, with a pass-through
+actuator, to the model inputs they name (``rudder_command`` → ``rudder_angle`` or the input of
+the same name). A *pass-through* controller (``OPEN_LOOP``) has no channels of its own: its
+references are the commands downstream needs, named after them.
 
 This is the ``init``/``step`` protocol of python-control's sampled systems and of diffrax's
 solvers: pure functions with the state passed explicitly.
@@ -40,7 +47,27 @@ def wrap_pi(angle):  # pragma: no cover - compiled
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class Controller:
-    """A controller usable by the simulation engine (see the module docstring)."""
+    """A controller usable by the simulation engine (see the module docstring).
+
+    Attributes
+    ----------
+    name, description : str
+        Registry name and one line on what it is.
+    params_type : type[Params]
+        Frozen parameter dataclass.
+    state_labels : tuple of str
+        Internal states (e.g. an integral).
+    reference_labels, reference_units : tuple of str
+        Reference channels.
+    command_labels : tuple of str
+        Commands it writes.
+    init, step : numba dispatchers
+        See the module docstring.
+    measurement_labels : tuple of str
+        Model outputs it reads, by name (routed into ``y`` in this order).
+    passthrough : bool
+        Reference = command, channels named after what they feed (open loop).
+    """
 
     name: str
     description: str
@@ -51,6 +78,16 @@ class Controller:
     command_labels: tuple[str, ...]
     init: Any
     step: Any
+    measurement_labels: tuple[str, ...] = ()
+    passthrough: bool = False
+
+    def __post_init__(self) -> None:
+        if len(self.reference_units) != len(self.reference_labels):
+            raise ValueError(f"{self.name}: reference_units has the wrong length")
+
+    @property
+    def n_measurements(self) -> int:
+        return len(self.measurement_labels)
 
     @property
     def n_states(self) -> int:

@@ -1,17 +1,22 @@
 """The plug-in interface of a vessel model.
 
-A vessel model is a pure right-hand side plus labels, bundled in a :class:`VesselModel`:
+A vessel model is a pure right-hand side plus the declaration of its signals by name, bundled
+in a :class:`VesselModel` (the component contract of ARCHITECTURE.md):
 
 ``rhs(t, x, u, d, p, dx)``
-    numba-compiled; writes ẋ into ``dx`` for one run. ``x`` state, ``u`` inputs from the
-    actuator (e.g. rudder angle [rad]), ``d`` external disturbances (forces/moments sampled on
-    the simulation grid; may have length 0), ``p`` the packed parameter array
-    (:meth:`seahelm.parameters.Params.to_array`).
+    numba-compiled; writes ẋ into ``dx`` for one run. ``x`` state (``state_labels`` order),
+    ``u`` inputs (``input_labels`` order, e.g. rudder angle [rad], propeller rps [1/s]), ``d``
+    external disturbances (``disturbance_labels`` order; zero when not given), ``p`` the run's
+    parameters as a record: compiled code reads ``p.gain``, never ``p[0]``
+    (:meth:`seahelm.parameters.Params.record_dtype`).
 ``output(t, x, u, p, y)``
-    numba-compiled; writes the navigation outputs :data:`NAV_OUTPUTS` into ``y``: north and
-    east position [m], heading ψ [rad], yaw rate r [rad/s], surge and sway speed [m/s].
-    Ship-generic controllers (e.g. the PID heading autopilot) use these; model-specific
-    controllers may read the state directly.
+    numba-compiled; writes the model's outputs (``output_labels`` order) into ``y``. A model
+    reports whatever it can; the engine records them all and routes those a controller
+    declares as measurements (e.g. ``heading``, ``yaw_rate``) to it by name. The usual names
+    are :data:`NAV_OUTPUTS`.
+
+Compiled code indexes its vectors through named constants (``S = signal_indices(STATES)``,
+then ``x[S.heading]``).
 
 Conventions: north-east-down axes, heading ψ measured clockwise from north, so
 ẋ_N = U cos ψ, ẏ_E = U sin ψ; a positive rudder angle gives a positive (starboard) yaw rate.
@@ -29,11 +34,13 @@ import numpy as np
 from numba import njit
 
 from ..errors import ParameterError
-from ..parameters import Params, stack_params
+from ..parameters import Params, as_records, stack_params
 
 __all__ = ["NAV_OUTPUTS", "NAV_OUTPUT_UNITS", "VesselModel"]
 
 NAV_OUTPUTS: tuple[str, ...] = ("north", "east", "heading", "yaw_rate", "surge_speed", "sway_speed")
+"""The usual output names of a ship model (north, east position; heading; yaw rate; surge and
+sway speed). Not a fixed set: each model declares its own ``output_labels``."""
 NAV_OUTPUT_UNITS: tuple[str, ...] = ("m", "m", "rad", "rad/s", "m/s", "m/s")
 
 
@@ -55,6 +62,8 @@ class VesselModel:
         Names and units of the actuator inputs.
     disturbance_labels, disturbance_units : tuple of str
         Names and units of the external disturbance inputs.
+    output_labels, output_units : tuple of str
+        Names and units of what ``output`` writes.
     rhs, output : numba dispatchers
         See the module docstring for their signatures.
     state_lower, state_upper : tuple of float, optional
@@ -72,6 +81,8 @@ class VesselModel:
     disturbance_units: tuple[str, ...]
     rhs: Any
     output: Any
+    output_labels: tuple[str, ...] = ()
+    output_units: tuple[str, ...] = ()
     state_lower: tuple[float, ...] | None = None
     state_upper: tuple[float, ...] | None = None
 
@@ -81,9 +92,16 @@ class VesselModel:
             ("state_units", n),
             ("input_units", len(self.input_labels)),
             ("disturbance_units", len(self.disturbance_labels)),
+            ("output_units", len(self.output_labels)),
         ):
             if len(getattr(self, attr)) != ref:
                 raise ValueError(f"{self.name}: {attr} has the wrong length")
+        if not self.output_labels:
+            raise ValueError(f"{self.name}: a model must declare its output_labels")
+        for attr in ("state_labels", "input_labels", "disturbance_labels", "output_labels"):
+            labels = getattr(self, attr)
+            if len(set(labels)) != len(labels):
+                raise ValueError(f"{self.name}: duplicate names in {attr}: {labels}")
         if self.state_lower is None:
             object.__setattr__(self, "state_lower", (-np.inf,) * n)
         if self.state_upper is None:
@@ -100,6 +118,10 @@ class VesselModel:
     @property
     def n_disturbances(self) -> int:
         return len(self.disturbance_labels)
+
+    @property
+    def n_outputs(self) -> int:
+        return len(self.output_labels)
 
     def state_index(self, label: str) -> int:
         """Index of a state by label (ValueError listing the labels if unknown).
@@ -160,14 +182,7 @@ class VesselModel:
         """
         x = np.asarray(x, dtype=float)
         u = np.asarray(u, dtype=float)
-        if isinstance(params, Params) or (
-            isinstance(params, (list, tuple)) and params and isinstance(params[0], Params)
-        ):
-            p = stack_params(params, self.params_type)
-            if isinstance(params, Params):
-                p = p[0]
-        else:
-            p = np.asarray(params, dtype=float)
+        p = _param_array(params, self.params_type)
         d = np.zeros(self.n_disturbances) if d is None else np.asarray(d, dtype=float)
         if x.shape[-1:] != (self.n_states,):
             raise ParameterError(
@@ -177,13 +192,13 @@ class VesselModel:
         if u.shape[-1:] != (self.n_inputs,):
             raise ParameterError(f"`u` must end in {self.n_inputs} inputs, got shape {u.shape}")
         batch = np.broadcast_shapes(x.shape[:-1], u.shape[:-1], p.shape[:-1], d.shape[:-1])
-        X, U, P, D = (_rows(a, batch) for a in (x, u, p, d))
+        X, U, D, P = (_rows(a, batch) for a in (x, u, d, p))
         out = np.empty_like(X)
-        _batched_rhs(self.rhs, float(t), X, U, D, P, out)
+        _batched_rhs(self.rhs, float(t), X, U, D, as_records(P, self.params_type), out)
         return out.reshape(batch + (self.n_states,))
 
     def outputs(self, t: float, x: Any, u: Any, params: Params | Any) -> np.ndarray:
-        """Navigation outputs :data:`NAV_OUTPUTS` over leading batch axes.
+        """The model's outputs (``output_labels`` order) over leading batch axes.
 
         Parameters
         ----------
@@ -198,16 +213,46 @@ class VesselModel:
 
         Returns
         -------
-        numpy.ndarray, shape (..., len(NAV_OUTPUTS))
+        numpy.ndarray, shape (..., n_outputs)
         """
         x = np.asarray(x, dtype=float)
         u = np.asarray(u, dtype=float)
-        p = params.to_array() if isinstance(params, Params) else np.asarray(params, dtype=float)
+        p = _param_array(params, self.params_type)
         batch = np.broadcast_shapes(x.shape[:-1], u.shape[:-1], p.shape[:-1])
         X, U, P = (_rows(a, batch) for a in (x, u, p))
-        out = np.empty((X.shape[0], len(NAV_OUTPUTS)))
-        _batched_output(self.output, float(t), X, U, P, out)
-        return out.reshape(batch + (len(NAV_OUTPUTS),))
+        out = np.empty((X.shape[0], self.n_outputs))
+        _batched_output(self.output, float(t), X, U, as_records(P, self.params_type), out)
+        return out.reshape(batch + (self.n_outputs,))
+
+    def output_index(self, label: str) -> int:
+        """Index of an output by name (ValueError listing the outputs if unknown).
+
+        Parameters
+        ----------
+        label : str
+            Output name, e.g. "heading".
+
+        Returns
+        -------
+        int
+        """
+        try:
+            return self.output_labels.index(label)
+        except ValueError:
+            raise ValueError(
+                f"model '{self.name}' has no output '{label}'; outputs: "
+                f"{', '.join(self.output_labels)}"
+            ) from None
+
+
+def _param_array(params: Any, cls: type[Params]) -> np.ndarray:
+    """Parameter set(s) or packed values as a float array (..., n_params)."""
+    if isinstance(params, Params) or (
+        isinstance(params, (list, tuple)) and params and isinstance(params[0], Params)
+    ):
+        p = stack_params(params, cls)
+        return p[0] if isinstance(params, Params) else p
+    return np.asarray(params, dtype=float)
 
 
 def _rows(a: np.ndarray, batch: tuple[int, ...]) -> np.ndarray:
