@@ -23,7 +23,6 @@ import numpy as np
 
 from . import __version__
 from .parameters import Params
-from .vessels.base import NAV_OUTPUT_UNITS, NAV_OUTPUTS
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
@@ -75,6 +74,8 @@ class SimResult:
     state_labels: tuple[str, ...]
     state_units: tuple[str, ...]
     output: np.ndarray
+    output_labels: tuple[str, ...]
+    output_units: tuple[str, ...]
     command: np.ndarray
     command_labels: tuple[str, ...]
     reference: np.ndarray
@@ -106,11 +107,11 @@ class SimResult:
         return out
 
     def __getitem__(self, label: str) -> np.ndarray:
-        """A channel by label: state, navigation output, command, reference or disturbance."""
+        """A channel by label: state, model output, command, reference or disturbance."""
         if label in self.state_labels:
             return self.state[..., self.state_labels.index(label)]
-        if label in NAV_OUTPUTS:
-            return self.output[..., NAV_OUTPUTS.index(label)]
+        if label in self.output_labels:
+            return self.output[..., self.output_labels.index(label)]
         if label in self.command_labels:
             return self.command[..., self.command_labels.index(label)]
         if label.startswith("reference_") and label[10:] in self.reference_labels:
@@ -124,7 +125,7 @@ class SimResult:
 
     def channel_names(self) -> list[str]:
         names = list(self.state_labels)
-        names += [n for n in NAV_OUTPUTS if n not in names]
+        names += [n for n in self.output_labels if n not in names]
         names += list(self.command_labels)
         names += [f"reference_{n}" for n in self.reference_labels]
         names += list(self.disturbance_labels)
@@ -146,7 +147,7 @@ class SimResult:
 
         for j, (lab, unit) in enumerate(zip(self.state_labels, self.state_units)):
             add(lab, self.state[..., j], unit, "state")
-        for j, (lab, unit) in enumerate(zip(NAV_OUTPUTS, NAV_OUTPUT_UNITS)):
+        for j, (lab, unit) in enumerate(zip(self.output_labels, self.output_units)):
             if lab not in self.state_labels:
                 add(lab, self.output[..., j], unit, "output")
         for j, lab in enumerate(self.command_labels):

@@ -39,9 +39,9 @@ class ServoParams(Params):
 @njit(cache=True)
 def servo_rhs(t, xa, cmd, p, dxa):  # pragma: no cover - compiled
     """δ̇ of the rate- and angle-limited first-order servo, one channel per state."""
-    max_angle = p[0]
-    max_rate = p[1]
-    tau = p[2]
+    max_angle = p.max_angle
+    max_rate = p.max_rate
+    tau = p.time_constant
     for j in range(xa.shape[0]):
         target = min(max(cmd[j], -max_angle), max_angle)
         rate = (target - xa[j]) / tau
@@ -64,6 +64,8 @@ RUDDER_SERVO = Actuator(
     command_units=("rad",),
     rhs=servo_rhs,
     output=servo_output,
+    output_labels=("rudder_angle",),
+    output_units=("rad",),
 )
 
 
@@ -93,4 +95,5 @@ DIRECT = Actuator(
     command_units=("",),
     rhs=direct_rhs,
     output=direct_output,
+    passthrough=True,
 )

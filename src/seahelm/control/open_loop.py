@@ -43,4 +43,5 @@ OPEN_LOOP = Controller(
     command_labels=("rudder_command",),
     init=open_loop_init,
     step=open_loop_step,
+    passthrough=True,
 )

@@ -45,9 +45,9 @@ from ..actuators.servo import RUDDER_SERVO
 from ..control.base import Controller
 from ..control.open_loop import OPEN_LOOP
 from ..errors import ParameterError, SimulationDiverged
-from ..parameters import Params, stack_params
-from ..vessels.base import NAV_OUTPUTS, VesselModel
-from . import kernel_template
+from ..parameters import Params, as_records, stack_params
+from ..vessels.base import VesselModel
+from .composition import compose
 from .integrators import INTEGRATORS
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -115,6 +115,9 @@ def _code_fingerprint(py: Any, seen: set[int] | None = None) -> bytes:
             parts.append(f"{name}={obj!r}".encode())
         elif isinstance(obj, np.ndarray):
             parts.append(name.encode() + obj.tobytes())
+        elif isinstance(obj, tuple) and all(
+                isinstance(v, (bool, int, float, str)) for v in obj):  # signal_indices
+            parts.append(f"{name}={obj!r}{getattr(type(obj), '_fields', ())!r}".encode())
     return b"\0".join(parts)
 
 
@@ -136,17 +139,70 @@ def _binding(func: Any, alias: str) -> tuple[str, bytes]:
     return line, _code_fingerprint(py)
 
 
-_TEMPLATE_TEXT = Path(kernel_template.__file__).read_text()
+_TEMPLATE_TEXT = (Path(__file__).with_name("kernel_template.py")).read_text()
 _BLOCK = re.compile(r"# <(header|footer)>\n.*?# </\1>\n", re.S)
+
+# Butcher tableaus (a, b, c) of the fixed-step methods, compiled into the kernel's stepper.
+_TABLEAUS: dict[str, tuple[tuple[tuple[float, ...], ...], tuple[float, ...], tuple[float, ...]]] = {
+    "euler": (((),), (1.0,), (0.0,)),
+    "heun": (((), (1.0,)), (0.5, 0.5), (0.0, 1.0)),
+    "rk4": (((), (0.5,), (0.0, 0.5), (0.0, 0.0, 1.0)), (1 / 6, 1 / 3, 1 / 3, 1 / 6),
+            (0.0, 0.5, 0.5, 1.0)),
+}
+
+
+def _advance_source(integrator: str) -> str:
+    """Straight-line source of the kernel's ``advance`` for one explicit Runge–Kutta method."""
+    a, b, c = _TABLEAUS[integrator]
+    lines = [
+        "@njit(cache=True, inline=\"always\", fastmath=FASTMATH)",
+        "def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ya, u, kv, ka, fv, fa, tv, ta):"
+        "  # pragma: no cover",
+        "    nd = d0.shape[0]",
+    ]
+    for s_, (row, cs) in enumerate(zip(a, c)):
+        for vec, kk, tt, n in (("xv", "kv", "tv", "NX"), ("xa", "ka", "ta", "NA")):
+            terms = "".join(f" + {aij!r} * h * {kk}[{j}, k]" for j, aij in enumerate(row)
+                            if aij != 0.0)
+            lines += [f"    for k in range({n}):", f"        {tt}[k] = {vec}[k]{terms}"]
+        lines += ["    for k in range(nd):",
+                  f"        ds[k] = d0[k] + {cs!r} * (d1[k] - d0[k])",
+                  f"    closed_rhs(t + {cs!r} * h, tv, ta, cmd, ca, ds, mp, ap, ya, u, fv, fa)",
+                  "    for k in range(NX):", f"        kv[{s_}, k] = fv[k]",
+                  "    for k in range(NA):", f"        ka[{s_}, k] = fa[k]"]
+    for vec, kk, n in (("xv", "kv", "NX"), ("xa", "ka", "NA")):
+        terms = " + ".join(f"{bi!r} * {kk}[{i}, k]" for i, bi in enumerate(b) if bi != 0.0)
+        lines += [f"    for k in range({n}):", f"        {vec}[k] += h * ({terms})"]
+    return "\n".join(lines) + "\n"
+
+
+def _route_source(name: str, args: str, assignments: list[str]) -> str:
+    body = "".join(f"    {line}\n" for line in assignments) or "    pass\n"
+    return (f"\n\n@njit(inline=\"always\")\ndef {name}({args}):  # pragma: no cover\n"
+            + body)
 
 
 @functools.lru_cache(maxsize=None)
 def compile_closed_loop(
     model: VesselModel, actuator: Actuator, controller: Controller, integrator: str = "rk4"
 ) -> ModuleType:
-    """The compiled closed-loop module for one combination of components (cached)."""
+    """The compiled closed-loop module for one combination of components (cached).
+
+    Parameters
+    ----------
+    model, actuator, controller
+        The components; they are wired by signal name (:func:`~seahelm.simulation.composition.compose`).
+    integrator : str
+        Name of the fixed-step method.
+
+    Returns
+    -------
+    module
+        With ``init_runs`` and ``run_chunk``.
+    """
     if integrator not in INTEGRATORS:
         raise ValueError(f"unknown integrator '{integrator}'; valid: {', '.join(INTEGRATORS)}")
+    wiring = compose(model, actuator, controller)
     parts = [
         _binding(model.rhs, "model_rhs"),
         _binding(model.output, "model_output"),
@@ -156,10 +212,20 @@ def compile_closed_loop(
         _binding(controller.step, "controller_step"),
     ]
     header = "".join(p[0] for p in parts) + (
-        f"\nNX = {model.n_states}\nNA = {actuator.n_states}\n"
-        f"NU = {model.n_inputs}\nNY = {len(NAV_OUTPUTS)}\n"
+        f"\nNX = {model.n_states}\nNA = {actuator.n_states}\nNU = {model.n_inputs}\n"
+        f"NYM = {model.n_outputs}\nNYA = {len(wiring.actuator_outputs)}\n"
+        f"NCA = {len(wiring.actuator_commands)}\nNM = {controller.n_measurements}\n"
+        f"NSTAGES = {len(_TABLEAUS[integrator][1])}\n"
+        "FASTMATH = {\"nsz\", \"arcp\", \"contract\", \"afn\", \"reassoc\"}\n"
     )
-    footer = f"advance = {integrator}_advance\n"
+    header += _route_source("route_actuator_commands", "cmd, ca", [
+        f"ca[{j}] = cmd[{k}]" for j, k in enumerate(wiring.actuator_command_from)])
+    header += _route_source("route_inputs", "ya, cmd, u", [
+        f"u[{i}] = {'ya' if kind == 'actuator' else 'cmd'}[{j}]"
+        for i, (kind, j) in enumerate(wiring.input_from)])
+    header += _route_source("route_measurements", "ym, y", [
+        f"y[{i}] = ym[{j}]" for i, j in enumerate(wiring.measurement_from)])
+    footer = _advance_source(integrator)
     blocks = iter([header, footer])
     text = _BLOCK.sub(lambda m: next(blocks), _TEMPLATE_TEXT)
     digest = hashlib.sha1(
@@ -207,13 +273,33 @@ def _param_rows(name: str, params: Any, cls: type[Params]) -> np.ndarray:
     return arr
 
 
+def _by_name(name: str, value: Mapping[str, Any], labels: tuple[str, ...],
+             t_grid: np.ndarray, unit: str) -> np.ndarray:
+    """A mapping channel name -> specification, assembled into (runs|1, steps+1|1, channels)."""
+    unknown = [k for k in value if k not in labels]
+    if unknown:
+        raise ParameterError(
+            f"`{name}`: unknown channel(s) {', '.join(map(repr, unknown))}; channels: "
+            f"{', '.join(labels) if labels else 'none'}")
+    cols = [_signal(f"{name}['{lab}']", value.get(lab, 0.0), 1, t_grid, unit) for lab in labels]
+    if not cols:
+        return np.zeros((1, 1, 1))
+    runs = _runs(*((f"{name}['{lab}']", c.shape[0]) for lab, c in zip(labels, cols)))
+    steps = max(c.shape[1] for c in cols)
+    return np.ascontiguousarray(np.concatenate(
+        [np.broadcast_to(c, (runs, steps, 1)) for c in cols], axis=2))
+
+
 def _signal(
-    name: str, value: Any, n_channels: int, t_grid: np.ndarray, unit: str
+    name: str, value: Any, n_channels: int, t_grid: np.ndarray, unit: str,
+    labels: tuple[str, ...] = (),
 ) -> np.ndarray:
     """Convert a reference/disturbance specification to shape (runs|1, steps+1|1, channels)."""
     width = max(n_channels, 1)
     if value is None:
         return np.zeros((1, 1, width))
+    if isinstance(value, Mapping):
+        return _by_name(name, value, labels, t_grid, unit)
     if callable(value):
         value = value(t_grid)
         arr = as_float_array(name, value, unit)
@@ -251,8 +337,9 @@ def _signal(
             raise ParameterError(f"`{name}` given, but the component takes none")
         return np.zeros(arr.shape[:2] + (1,))
     if arr.shape[-1] != n_channels:
+        named = f" ({', '.join(labels)})" if labels else ""
         raise ParameterError(
-            f"`{name}` must have {n_channels} channel(s), got {arr.shape[-1]}"
+            f"`{name}` must have {n_channels} channel(s){named}, got {arr.shape[-1]}"
         )
     return np.ascontiguousarray(arr, dtype=float)
 
@@ -318,12 +405,14 @@ def simulate(
         Controller (default: open loop, reference = command) and its parameters.
     actuator, actuator_params, actuator_x0 : Actuator, Params or array, array_like, optional
         Actuator (default: rudder servo), its parameters and initial state (default zeros).
-    reference : None, scalar, array or callable
+    reference : None, scalar, array, callable or mapping
         Controller reference. A 1-D array is a constant vector; a 2-D array
         ``(steps+1, channels)`` a time series on the grid t_k = k dt; a 3-D array
-        ``(runs|1, steps+1|1, channels)`` per run; a callable ``f(t_grid)`` returns one of these.
-    disturbance : None, scalar, array or callable
-        External disturbance inputs of the model (same forms as ``reference``).
+        ``(runs|1, steps+1|1, channels)`` per run; a callable ``f(t_grid)`` returns one of these;
+        a mapping gives channels by name (``{"heading": 0.3}``; missing channels are zero).
+    disturbance : None, scalar, array, callable or mapping
+        External disturbance inputs of the model (same forms as ``reference``; by name, e.g.
+        ``{"force_y": ..., "moment_z": ...}``).
     controller_dt : float, optional
         Controller sample period [s], a multiple of ``dt`` (default ``dt``).
     integrator : {"euler", "heun", "rk4"}
@@ -368,11 +457,7 @@ def simulate(
     record_every = int(record_every)
     if integrator not in INTEGRATORS:
         raise ValueError(f"unknown integrator '{integrator}'; valid: {', '.join(INTEGRATORS)}")
-    if controller.n_commands != actuator.n_commands:
-        raise ParameterError(
-            f"controller '{controller.name}' gives {controller.n_commands} command(s) but "
-            f"actuator '{actuator.name}' takes {actuator.n_commands}"
-        )
+    wiring = compose(model, actuator, controller)
 
     mp = _param_rows("params", params, model.params_type)
     ap = _param_rows("actuator_params", actuator_params, actuator.params_type)
@@ -391,8 +476,10 @@ def simulate(
             f"`actuator_x0` must have {actuator.n_states} states, got shape {xa0.shape}"
         )
     t_grid = np.arange(n_steps + 1) * float(dt)
-    ref = _signal("reference", reference, controller.n_references, t_grid, "")
-    dist = _signal("disturbance", disturbance, model.n_disturbances, t_grid, "")
+    ref = _signal("reference", reference, len(wiring.references), t_grid, "",
+                  wiring.references)
+    dist = _signal("disturbance", disturbance, model.n_disturbances, t_grid, "",
+                   model.disturbance_labels)
     n_runs = _runs(
         ("params", mp.shape[0]), ("actuator_params", ap.shape[0]),
         ("controller_params", cp.shape[0]), ("x0", x0.shape[0]),
@@ -419,19 +506,23 @@ def simulate(
         raise ParameterError(f"initial state of run {i} is not finite or outside bounds: {z[i]}")
 
     kernel = compile_closed_loop(model, actuator, controller, integrator)
+    mr = as_records(mp, model.params_type)
+    ar = as_records(ap, actuator.params_type)
+    cr = as_records(cp, controller.params_type)
     nz = z.shape[1]
-    ncmd = controller.n_commands
+    ncmd = len(wiring.commands)
     n_rec = n_steps // record_every + 1
     cs = np.zeros((n_runs, max(controller.n_states, 1)))
     cmd = np.zeros((n_runs, ncmd))
+    ca = np.zeros((n_runs, max(len(wiring.actuator_commands), 1)))
     status = np.zeros(n_runs, dtype=np.int64)
     t_fail = np.full(n_runs, np.nan)
     z_fail = np.full((n_runs, nz), np.nan)
     rec_z = np.full((n_runs, n_rec, nz), np.nan)
-    rec_y = np.full((n_runs, n_rec, len(NAV_OUTPUTS)), np.nan)
+    rec_y = np.full((n_runs, n_rec, model.n_outputs), np.nan)
     rec_cmd = np.full((n_runs, n_rec, ncmd), np.nan)
 
-    kernel.init_runs(z, cs, cmd, mp, ap, cp, ref)
+    kernel.init_runs(z, cs, cmd, ca, mr, ar, cr, ref)
     wall0 = _time.perf_counter()
     k = 0
     chunk = min(n_steps, max(1, 200_000 // max(n_runs, 1)))
@@ -440,7 +531,7 @@ def simulate(
         t0 = _time.perf_counter()
         kernel.run_chunk(
             k, k_stop, n_steps, float(dt), ctrl_every, record_every,
-            z, cs, cmd, mp, ap, cp, dist, ref, lower, upper,
+            z, cs, cmd, ca, mr, ar, cr, dist, ref, lower, upper,
             status, t_fail, z_fail, rec_z, rec_y, rec_cmd,
         )
         elapsed = _time.perf_counter() - t0
@@ -463,11 +554,13 @@ def simulate(
         state_labels=labels,
         state_units=model.state_units + actuator.state_units,
         output=rec_y,
+        output_labels=model.output_labels,
+        output_units=model.output_units,
         command=rec_cmd,
-        command_labels=controller.command_labels,
+        command_labels=wiring.commands,
         reference=ref[:, ref_idx] if ref.shape[1] > 1 else np.repeat(ref, n_rec, axis=1),
-        reference_labels=controller.reference_labels,
-        reference_units=controller.reference_units,
+        reference_labels=wiring.references,
+        reference_units=wiring.reference_units,
         disturbance=dist[:, ref_idx] if dist.shape[1] > 1 else np.repeat(dist, n_rec, axis=1),
         disturbance_labels=model.disturbance_labels,
         disturbance_units=model.disturbance_units,
