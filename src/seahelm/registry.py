@@ -29,6 +29,7 @@ VESSEL_MODELS: dict[str, str] = {
 
 ACTUATORS: dict[str, str] = {
     "rudder-servo": "seahelm.actuators.servo:RUDDER_SERVO",
+    "rudder-propeller": "seahelm.actuators.servo:RUDDER_PROPELLER",
     "direct": "seahelm.actuators.servo:DIRECT",
 }
 
