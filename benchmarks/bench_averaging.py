@@ -108,7 +108,7 @@ def main() -> None:
     empty = np.empty(0)
     for e in EPSILONS:
         params = CPPShipParams(wave_ratio=1.0 / e)
-        p = params.to_array()
+        p = params.to_record()
         t_end = 2.0 / e
 
         def f_orig(t, x, p=p):

@@ -58,7 +58,8 @@ def run_python_loop(n_steps: int) -> float:
     """The same closed loop as a per-step Python loop (numba functions run as Python)."""
     rhs = catamaran_rhs.py_func
     ctrl = fsm_thruster_rate.py_func
-    mp, cp = P.to_array(), CP.to_array()
+    # the compiled drift takes a record; the Python controller reads the dataclass's fields
+    mp, cp = P.to_record(), CP
     z = _x0(1)[0]
     d = np.empty(0)
     u = np.empty(1)
@@ -108,7 +109,7 @@ def _fused(Z, mp, cp, n_steps, dt, ref):  # pragma: no cover - compiled
 def run_fused(n_runs: int, n_steps: int) -> float:
     Z = _x0(n_runs)
     t0 = time.perf_counter()
-    _fused(Z, P.to_array(), CP.to_array(), n_steps, DT, REF)
+    _fused(Z, P.to_record(), CP.to_record(), n_steps, DT, REF)
     return time.perf_counter() - t0
 
 

@@ -239,7 +239,7 @@ def test_compiled_averaged_rhs_equals_numpy(waves):
     for x in ([0.9, 1.05], [1.3, 0.7]):
         for fn, assignment in ((rhs_averaged, "correct"), (rhs_averaged_printed, "printed")):
             dx = np.empty(2)
-            fn(0.0, np.array(x), sig, np.empty(0), p.to_array(), dx)
+            fn(0.0, np.array(x), sig, np.empty(0), p.to_record(), dx)
             np.testing.assert_allclose(dx, cpp_averaged_rhs(x, sig, p, assignment=assignment),
                                        rtol=1e-12, atol=1e-15)
 

@@ -36,13 +36,14 @@ def _run(controller, cparams, ref, *, x0=CRUISE, t_final=300.0, **kw):
 def test_heading_law_is_the_printed_formula():
     p = HeadingRateBaselineParams(k1=-0.1, k2=-0.5, k3=0.2)
     z = np.array([4.0, 0.1, 0.01, 0.0, 0.0, 0.3, 0.05])
-    y = np.array([0.0, 0.0, 0.3, 0.01, 4.0, -0.1])
+    assert HEADING_RATE_BASELINE.measurement_labels == ("heading", "yaw_rate")
+    y = np.array([0.3, 0.01])  # the measurements: heading, yaw rate
     cmd = np.zeros(1)
-    heading_rate_baseline_step(0.0, 0.01, z, y, np.array([0.8]), p.to_array(), np.zeros(1), cmd)
+    heading_rate_baseline_step(0.0, 0.01, z, y, np.array([0.8]), p.to_record(), np.zeros(1), cmd)
     assert cmd[0] == pytest.approx(-0.1 * (0.3 - 0.8) - 0.5 * 0.01 - 0.2 * 0.05)
     # the heading error is wrapped: K − K* = 3.0 − (−3.0) is −0.283 rad, not 6 rad
-    y[2] = 3.0
-    heading_rate_baseline_step(0.0, 0.01, z, y, np.array([-3.0]), p.to_array(), np.zeros(1), cmd)
+    y[0] = 3.0
+    heading_rate_baseline_step(0.0, 0.01, z, y, np.array([-3.0]), p.to_record(), np.zeros(1), cmd)
     assert cmd[0] == pytest.approx(-0.1 * (6.0 - 2 * math.pi) - 0.5 * 0.01 - 0.2 * 0.05)
 
 
@@ -64,13 +65,14 @@ def test_drift_law_integrates_the_printed_equation():
     beta = math.atan2(0.2, 4.0)
     cs = np.zeros(2)
     cmd = np.zeros(1)
-    drift_thruster_baseline_init(z, np.zeros(6), np.array([0.0]), p.to_array(), cs)
+    assert DRIFT_THRUSTER_BASELINE.measurement_labels == ()  # reads the state z only
+    drift_thruster_baseline_init(z, np.zeros(0), np.array([0.0]), p.to_record(), cs)
     dt = 0.1
-    drift_thruster_baseline_step(0.0, dt, z, np.zeros(6), np.array([0.0]), p.to_array(), cs, cmd)
+    drift_thruster_baseline_step(0.0, dt, z, np.zeros(0), np.array([0.0]), p.to_record(), cs, cmd)
     # explicit Euler of dP/dt = k1 β + k2 ∫β − k3 P from P = 0, ∫β = 0
     assert cmd[0] == pytest.approx(dt * 100.0 * beta)
     assert cs[1] == pytest.approx(beta * dt)
-    drift_thruster_baseline_step(dt, dt, z, np.zeros(6), np.array([0.0]), p.to_array(), cs, cmd)
+    drift_thruster_baseline_step(dt, dt, z, np.zeros(0), np.array([0.0]), p.to_record(), cs, cmd)
     P1 = dt * 100.0 * beta
     assert cmd[0] == pytest.approx(P1 + dt * (100.0 * beta + 50.0 * beta * dt - 0.5 * P1))
 

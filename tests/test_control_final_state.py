@@ -29,6 +29,7 @@ from seahelm.control.final_state import (
     FSM_HEADING,
     FSM_YAW_RATE,
     FSM_YAW_RATE_SIMPLE,
+    FSM_YAW_RATE_SIMPLE_DRIVE,
     FinalStateController,
     FinalStateHeadingParams,
     FinalStateYawRateParams,
@@ -181,7 +182,7 @@ def test_general_method_on_the_catamaran_equals_eq_20():
     )
     z = np.array([[4.3, 0.2, 0.01, 0.0, 0.0, 0.3, 0.4], [3.9, -0.5, 0.06, 5.0, 1.0, 2.0, 1.2]])
     u = ctrl.control(0.0, z, 0.05)[:, 0]
-    cp = yaw_rate_params(P, time_constant=1.0, step=h).to_array()
+    cp = yaw_rate_params(P, time_constant=1.0, step=h).to_record()
     for i in range(2):
         assert u[i] == pytest.approx(fsm_thruster_rate(z[i], 0.05, cp, True, 0.0), rel=1e-10)
         # G = W_37 = h L T_v cos δ / J_ω, eq. (19)
@@ -364,7 +365,7 @@ def test_servo_with_eq_23_follows_the_eq_21_command():
     sp = CatamaranServoParams(servo_time_constant=0.5, servo_gain=2.0)
     direct = _run(FSM_YAW_RATE_SIMPLE, yaw_rate_params(sp, time_constant=1.0, step=0.01),
                   [0.02], vessel=sp, t_final=150.0)
-    servo = _run(FSM_YAW_RATE_SIMPLE,
+    servo = _run(FSM_YAW_RATE_SIMPLE_DRIVE,
                  yaw_rate_params(sp, time_constant=1.0, step=0.01, servo_command=1.0),
                  [0.02], vessel=sp, model=CATAMARAN_SERVO, t_final=150.0)
     assert servo.status[0] == 0
@@ -377,7 +378,7 @@ def test_servo_with_eq_23_follows_the_eq_21_command():
     assert servo["thruster_angle"][0, -1] == pytest.approx(direct["thruster_angle"][0, -1],
                                                            rel=1e-5)
     # without eq. (23) (the command u fed to the drive as if it were v) the loop is different
-    raw = _run(FSM_YAW_RATE_SIMPLE, yaw_rate_params(sp, time_constant=1.0, step=0.01),
+    raw = _run(FSM_YAW_RATE_SIMPLE_DRIVE, yaw_rate_params(sp, time_constant=1.0, step=0.01),
                [0.02], vessel=sp, model=CATAMARAN_SERVO, t_final=150.0,
                bounds={"yaw_rate": (-1, 1)})
     assert raw.status[0] != 0 or not np.allclose(raw["thruster_angle"][0],
@@ -424,7 +425,7 @@ def test_bad_heading_parameters_raise():
 
 
 def test_cos_delta_guard_near_90_degrees():
-    cp = yaw_rate_params(P, time_constant=1.0, step=0.01).to_array()
+    cp = yaw_rate_params(P, time_constant=1.0, step=0.01).to_record()
     for d in (math.radians(89.0), math.pi / 2, math.radians(95.0)):
         z = np.array([3.7, -1.1, 0.0, 0, 0, 0, d])
         u = fsm_thruster_rate(z, 0.08, cp, False, 0.01)

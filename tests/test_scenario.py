@@ -76,7 +76,7 @@ def test_default_scenario_is_valid_and_converts_degrees():
         (_with(replace=('model = "pid-heading"', 'model = "lqr"')),
          r"\[controller.model\] unknown controller 'lqr'; valid: .*pid-heading"),
         (_with("[actuator]\nmodel = \"jet\"\n"),
-         r"\[actuator.model\] unknown actuator 'jet'; valid: direct, rudder-servo"),
+         r"\[actuator.model\] unknown actuator 'jet'; valid: direct, rudder-propeller, rudder-servo"),
         (_with("[environment.disturbance]\nwave = 1.0\n"),
          r"\[environment.disturbance.wave\] unknown channel 'wave'; valid: rudder_disturbance"),
         (_with("[simulation.bounds]\nspeed = [0, 1]\n"),

@@ -12,6 +12,7 @@ from seahelm.control.open_loop import OPEN_LOOP
 from seahelm.errors import ParameterError
 from seahelm.registry import get_controller, get_model
 from seahelm.simulation.engine import simulate
+from seahelm.vessels.base import NAV_OUTPUTS
 from seahelm.vessels import catalog
 from seahelm.vessels.catamaran import (
     CATAMARAN,
@@ -54,7 +55,8 @@ def test_catalog_and_registry_entries():
     assert get_model("catamaran") is CATAMARAN
     assert get_model("catamaran-servo") is CATAMARAN_SERVO
     for name in ("fsm-yaw-rate", "fsm-yaw-rate-simple", "fsm-heading", "heading-rate-baseline",
-                 "drift-thruster-baseline", "pid-yaw-rate"):
+                 "drift-thruster-baseline", "pid-yaw-rate", "fsm-yaw-rate-drive",
+                 "fsm-yaw-rate-simple-drive", "fsm-heading-drive"):
         assert get_controller(name).name == name
 
 
@@ -100,7 +102,7 @@ def _rhs(model, x, u, p):
     # VesselModel.derivative cannot broadcast a model without disturbance channels
     # (reshape(-1, 0) in seahelm.vessels.base — reported); call the compiled rhs directly
     dx = np.empty(7)
-    model.rhs(0.0, np.asarray(x, float), np.array([u], float), np.empty(0), p.to_array(), dx)
+    model.rhs(0.0, np.asarray(x, float), np.array([u], float), np.empty(0), p.to_record(), dx)
     return dx
 
 
@@ -116,10 +118,13 @@ def test_rhs_is_control_affine_and_outputs_follow_nav_convention():
     assert dx[3] == pytest.approx(V * math.cos(x[5] - beta), rel=1e-12)
     assert dx[4] == pytest.approx(V * math.sin(x[5] - beta), rel=1e-12)
     # nav outputs: ẋ_N = U cos ψ − v sin ψ, ẏ_E = U sin ψ + v cos ψ with v = −V_y
-    y = CATAMARAN.outputs(0.0, x, [0.0], p)
-    north, east, psi, r, u, v = y
+    y = dict(zip(CATAMARAN.output_labels, CATAMARAN.outputs(0.0, x, [0.0], p)))
+    north, east, psi, r, u, v = (y[k] for k in NAV_OUTPUTS)
     assert (north, east, psi, r, u) == (10.0, -5.0, 0.7, 0.02, 4.0)
     assert v == -0.3
+    # and what else the model reports: speed V, drift angle β (port positive), thruster angle δ
+    assert y["speed"] == pytest.approx(V, rel=1e-15)
+    assert (y["drift_angle"], y["thruster_angle"]) == (beta, 0.4)
     assert dx[3] == pytest.approx(u * math.cos(psi) - v * math.sin(psi), rel=1e-12)
     assert dx[4] == pytest.approx(u * math.sin(psi) + v * math.cos(psi), rel=1e-12)
 

@@ -147,7 +147,7 @@ def test_batched_equals_one_by_one_and_njit_signature():
     t = rng.uniform(0, 2 * math.pi, size=(4, 3))
     batch = waves_derivative(t, x, u, p)
     assert batch.shape == (4, 3, 2)
-    parr = p.to_array()
+    parr = p.to_record()
     for i in range(4):
         for j in range(3):
             dx = np.empty(2)

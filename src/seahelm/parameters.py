@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from collections.abc import Mapping, Sequence
 from typing import Any, ClassVar, Self
 
@@ -29,6 +30,15 @@ import numpy as np
 from .errors import ParameterError
 
 __all__ = ["Params", "param", "ParamInfo", "stack_params", "as_records", "signal_indices"]
+
+# Compiled code that already has a specialisation for a parameter class's records, given the
+# records of a subclass (a controller's parameters extending the vessel's, the servo-driven
+# catamaran's extending the catamaran's), reuses that specialisation instead of compiling a new
+# one: numba's width subtyping of records. It is exact here, because a subclass only appends
+# fields (the base fields keep their names, types and offsets), but numba flags it as an
+# experimental feature (NumbaExperimentalFeatureWarning) at every such call. Filtered by message
+# so that numba need not be imported here.
+warnings.filterwarnings("ignore", message=r"Record\(.*\) has been considered a subtype of Record\(")
 
 
 @dataclasses.dataclass(frozen=True)

@@ -29,6 +29,7 @@ VESSEL_MODELS: dict[str, str] = {
 
 ACTUATORS: dict[str, str] = {
     "rudder-servo": "seahelm.actuators.servo:RUDDER_SERVO",
+    "rudder-propeller": "seahelm.actuators.servo:RUDDER_PROPELLER",
     "direct": "seahelm.actuators.servo:DIRECT",
 }
 
@@ -39,6 +40,9 @@ CONTROLLERS: dict[str, str] = {
     "fsm-yaw-rate": "seahelm.control.final_state:FSM_YAW_RATE",
     "fsm-yaw-rate-simple": "seahelm.control.final_state:FSM_YAW_RATE_SIMPLE",
     "fsm-heading": "seahelm.control.final_state:FSM_HEADING",
+    "fsm-yaw-rate-drive": "seahelm.control.final_state:FSM_YAW_RATE_DRIVE",
+    "fsm-yaw-rate-simple-drive": "seahelm.control.final_state:FSM_YAW_RATE_SIMPLE_DRIVE",
+    "fsm-heading-drive": "seahelm.control.final_state:FSM_HEADING_DRIVE",
     "heading-rate-baseline": "seahelm.control.baselines:HEADING_RATE_BASELINE",
     "drift-thruster-baseline": "seahelm.control.baselines:DRIFT_THRUSTER_BASELINE",
     "pid-yaw-rate": "seahelm.control.baselines:PID_YAW_RATE",

@@ -8,6 +8,15 @@ time constant T_δ, and the rate is clipped to ±δ̇_max::
 This is the usual steering-machine model (Fossen, *Handbook of Marine Craft Hydrodynamics and
 Motion Control*, 2nd ed., 2021, §9.4; van Amerongen, 1982). IMO requires hard-over to
 hard-over (35° to 30° the other side) within 28 s, i.e. δ̇_max ≈ 2.3 °/s.
+
+``rudder-propeller`` adds the propeller shaft of a 3-DOF ship as the same kind of element: the
+commanded shaft speed n_c [1/s] is saturated to ±n_max and followed with time constant T_n,
+the shaft acceleration clipped to ±ṅ_max::
+
+    ṅ = clip((sat(n_c, n_max) − n) / T_n, −ṅ_max, ṅ_max)
+
+(a first-order shaft lag with an acceleration limit, Fossen, 2021, §9.4 for the analogous
+steering machine). ``direct`` is no actuator at all: the commands are the vessel inputs.
 """
 
 from __future__ import annotations
@@ -17,10 +26,11 @@ from dataclasses import dataclass
 
 from numba import njit
 
-from ..parameters import Params, param
+from ..parameters import Params, param, signal_indices
 from .base import Actuator
 
-__all__ = ["ServoParams", "RUDDER_SERVO", "DIRECT", "DirectParams"]
+__all__ = ["ServoParams", "RUDDER_SERVO", "DIRECT", "DirectParams", "RudderPropellerParams",
+           "RUDDER_PROPELLER"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -35,23 +45,26 @@ class ServoParams(Params):
                                  doc="first-order lag time constant")
 
 
+@njit(cache=True)
+def limited_lag_rate(command, value, limit, time_constant, rate_limit):  # pragma: no cover
+    """Rate of a first-order lag towards ``command`` saturated to ±``limit``, the rate clipped to
+    ±``rate_limit`` (compiled; one channel)."""
+    target = min(max(command, -limit), limit)
+    rate = (target - value) / time_constant
+    return min(max(rate, -rate_limit), rate_limit)
+
 
 @njit(cache=True)
-def servo_rhs(t, xa, cmd, p, dxa):  # pragma: no cover - compiled
+def servo_rhs(t, xa, ca, p, dxa):  # pragma: no cover - compiled
     """δ̇ of the rate- and angle-limited first-order servo, one channel per state."""
-    max_angle = p.max_angle
-    max_rate = p.max_rate
-    tau = p.time_constant
     for j in range(xa.shape[0]):
-        target = min(max(cmd[j], -max_angle), max_angle)
-        rate = (target - xa[j]) / tau
-        dxa[j] = min(max(rate, -max_rate), max_rate)
+        dxa[j] = limited_lag_rate(ca[j], xa[j], p.max_angle, p.time_constant, p.max_rate)
 
 
 @njit(cache=True)
-def servo_output(xa, cmd, p, u):  # pragma: no cover - compiled
+def servo_output(xa, ca, p, ya):  # pragma: no cover - compiled
     for j in range(xa.shape[0]):
-        u[j] = xa[j]
+        ya[j] = xa[j]
 
 
 RUDDER_SERVO = Actuator(
@@ -69,30 +82,90 @@ RUDDER_SERVO = Actuator(
 )
 
 
+# ------------------------------------------------------------------------------------------
+@dataclass(frozen=True, kw_only=True)
+class RudderPropellerParams(ServoParams):
+    """Rudder servo (the :class:`ServoParams` fields) plus a first-order propeller-shaft lag.
+
+    The propeller fields have no defaults: they depend on the engine and the ship.
+    """
+
+    propeller_time_constant: float = param(unit="s", symbol="T_n", low=0.0, low_inclusive=False,
+                                           doc="time constant of the shaft-speed lag")
+    max_rps: float = param(unit="1/s", symbol="n_max", low=0.0, low_inclusive=False,
+                           doc="shaft-speed limit (ahead and astern)")
+    max_rps_rate: float = param(unit="1/s²", symbol="ṅ_max", low=0.0, low_inclusive=False,
+                                doc="shaft acceleration limit")
+
+
+RUDDER_PROPELLER_STATES: tuple[str, ...] = ("rudder_angle", "propeller_rps")
+RUDDER_PROPELLER_COMMANDS: tuple[str, ...] = ("rudder_command", "propeller_rps_command")
+RUDDER_PROPELLER_OUTPUTS: tuple[str, ...] = ("rudder_angle", "propeller_rps")
+
+_RP_X = signal_indices(RUDDER_PROPELLER_STATES)
+_RP_C = signal_indices(RUDDER_PROPELLER_COMMANDS)
+_RP_Y = signal_indices(RUDDER_PROPELLER_OUTPUTS)
+
+
+@njit(cache=True)
+def rudder_propeller_rhs(t, xa, ca, p, dxa):  # pragma: no cover - compiled
+    """δ̇ of the rudder servo and ṅ of the shaft lag (see the module docstring)."""
+    dxa[_RP_X.rudder_angle] = limited_lag_rate(
+        ca[_RP_C.rudder_command], xa[_RP_X.rudder_angle], p.max_angle, p.time_constant,
+        p.max_rate)
+    dxa[_RP_X.propeller_rps] = limited_lag_rate(
+        ca[_RP_C.propeller_rps_command], xa[_RP_X.propeller_rps], p.max_rps,
+        p.propeller_time_constant, p.max_rps_rate)
+
+
+@njit(cache=True)
+def rudder_propeller_output(xa, ca, p, ya):  # pragma: no cover - compiled
+    ya[_RP_Y.rudder_angle] = xa[_RP_X.rudder_angle]
+    ya[_RP_Y.propeller_rps] = xa[_RP_X.propeller_rps]
+
+
+RUDDER_PROPELLER = Actuator(
+    name="rudder-propeller",
+    description="rudder servo (first-order lag, angle and rate limits) and propeller shaft "
+    "(first-order lag, rps and rps-rate limits) of a 3-DOF ship",
+    params_type=RudderPropellerParams,
+    state_labels=RUDDER_PROPELLER_STATES,
+    state_units=("rad", "1/s"),
+    command_labels=RUDDER_PROPELLER_COMMANDS,
+    command_units=("rad", "1/s"),
+    rhs=rudder_propeller_rhs,
+    output=rudder_propeller_output,
+    output_labels=RUDDER_PROPELLER_OUTPUTS,
+    output_units=("rad", "1/s"),
+)
+
+
+# ------------------------------------------------------------------------------------------
 @dataclass(frozen=True, kw_only=True)
 class DirectParams(Params):
     """The direct actuator has no parameters."""
 
 
 @njit(cache=True)
-def direct_rhs(t, xa, cmd, p, dxa):  # pragma: no cover - compiled
+def direct_rhs(t, xa, ca, p, dxa):  # pragma: no cover - compiled
     pass
 
 
 @njit(cache=True)
-def direct_output(xa, cmd, p, u):  # pragma: no cover - compiled
-    for j in range(u.shape[0]):
-        u[j] = cmd[j]
+def direct_output(xa, ca, p, ya):  # pragma: no cover - compiled
+    """Command channel j is output j (the composer gives one channel per model input fed)."""
+    for j in range(ya.shape[0]):
+        ya[j] = ca[j]
 
 
 DIRECT = Actuator(
     name="direct",
-    description="no actuator dynamics: the command is the vessel input",
+    description="no actuator dynamics: the commands are the vessel inputs (one channel per input)",
     params_type=DirectParams,
     state_labels=(),
     state_units=(),
-    command_labels=("command",),
-    command_units=("",),
+    command_labels=(),
+    command_units=(),
     rhs=direct_rhs,
     output=direct_output,
     passthrough=True,

@@ -50,8 +50,11 @@ from numba import njit
 
 from .._validate import as_float_array, check_positive, check_range
 from ..errors import ParameterError
+from ..parameters import signal_indices
 from ..vessels.cpp_ship import (
     CASE_COEFFICIENTS,
+    INPUT_LABELS,
+    STATE_LABELS,
     CPPShipParams,
     _emergence,
     emergence_factors,
@@ -926,34 +929,46 @@ def _mean_c1(immersion, amplitude):  # pragma: no cover - compiled
     return 0.4 + 1.2 * ab
 
 
+_X = signal_indices(STATE_LABELS)
+_U = signal_indices(INPUT_LABELS)
+#: The components of ς = (⟨c1 φ̄⟩, ⟨c2 φ̄⟩, ⟨c2 φ̄²⟩) ∈ V, the input of the averaged system (and of
+#: a direction z in the same space).
+SIGMA_LABELS: tuple[str, ...] = ("sigma1", "sigma2", "sigma3")
+_SG = signal_indices(SIGMA_LABELS)
+
+
 @njit(cache=True)
 def _rhs_averaged_core(x, sig, p, swap, dx):  # pragma: no cover - compiled
-    v = x[0]
-    w = x[1]
+    v = x[_X.speed]
+    w = x[_X.shaft_speed]
     c = CASE_COEFFICIENTS
-    k1 = p[6]
-    k2 = p[7]
+    k1 = p.thrust_advance_ratio
+    k2 = p.torque_advance_ratio
     s1 = c[0, 0] * w * w + c[0, 1] * k1 * v * w + c[0, 2] * k1 * k1 * v * v
     s2 = c[0, 4] * w * w + c[0, 5] * k2 * v * w + c[0, 6] * k2 * k2 * v * v
-    chi = p[0] if v >= 0.0 else -1.35 * p[0]
-    pe0 = p[8] * (c[0, 0] + c[0, 1] * k1 + c[0, 2] * k1 * k1) + c[0, 3] * k1 * k1
-    mc0 = p[8] * (p[8] * (c[0, 4] + c[0, 5] * k2 + c[0, 6] * k2 * k2) + c[0, 7] * k2 * k2)
+    chi1 = p.resistance_coefficient
+    chi = chi1 if v >= 0.0 else -1.35 * chi1
+    phi0 = p.initial_pitch
+    pe0 = phi0 * (c[0, 0] + c[0, 1] * k1 + c[0, 2] * k1 * k1) + c[0, 3] * k1 * k1
+    mc0 = phi0 * (phi0 * (c[0, 4] + c[0, 5] * k2 + c[0, 6] * k2 * k2) + c[0, 7] * k2 * k2)
     e2term = c[0, 7] * k2 * k2 * v * v
     if swap:
-        quad_part = e2term * sig[2] + s2 * sig[1]
+        quad_part = e2term * sig[_SG.sigma3] + s2 * sig[_SG.sigma2]
     else:
-        quad_part = e2term * sig[1] + s2 * sig[2]
-    inv_a = 1.0 / p[2]
-    dx[0] = inv_a * (c[0, 3] * k1 * k1 * v * v * _mean_c1(p[9], p[10])
-                     - chi * pe0 * p[4] * v * v + s1 * sig[0])
-    dx[1] = inv_a * p[1] * (mc0 * p[5] * p[3] - quad_part)
+        quad_part = e2term * sig[_SG.sigma2] + s2 * sig[_SG.sigma3]
+    inv_a = 1.0 / p.wave_ratio
+    dx[_X.speed] = inv_a * (c[0, 3] * k1 * k1 * v * v * _mean_c1(p.immersion, p.amplitude)
+                            - chi * pe0 * p.thrust_emergence_initial * v * v
+                            + s1 * sig[_SG.sigma1])
+    dx[_X.shaft_speed] = inv_a * p.inertia_ratio * (
+        mc0 * p.torque_emergence_initial * p.engine_torque - quad_part)
 
 
 @njit(cache=True)
 def rhs_averaged(t, x, u, d, p, dx):  # pragma: no cover - compiled
     """Averaged CPP system, eq. (13) with the correct assignment, engine plug-in signature.
 
-    ``u = (ς1, ς2, ς3)`` is a point of V (e.g. ς(z)); ``p = CPPShipParams.to_array()``;
+    ``u = (ς1, ς2, ς3)`` is a point of V (e.g. ς(z)); ``p`` a :class:`CPPShipParams` record;
     ``t`` (wave phase [rad]) and ``d`` are unused. Case 1 coefficients (φ̄ ≥ 0, v̄ ≥ 0).
     """
     _rhs_averaged_core(x, u, p, False, dx)
@@ -979,9 +994,10 @@ def _pitch_clipped(c1, c2, z1, z2, z3):  # pragma: no cover - compiled
 
 @njit(cache=True)
 def _original_rhs(t, x, p, z, dx):  # pragma: no cover - compiled
-    c1, c2 = _emergence(t, p[9], p[10])
+    """Eq. (10) under the clipped maximiser φ̄ = p(t, z); ``p`` a CPPShipParams record."""
+    c1, c2 = _emergence(t, p.immersion, p.amplitude)
     u = np.empty(1)
-    u[0] = _pitch_clipped(c1, c2, z[0], z[1], z[2])
+    u[_U.pitch_ratio] = _pitch_clipped(c1, c2, z[_SG.sigma1], z[_SG.sigma2], z[_SG.sigma3])
     rhs_waves(t, x, u, np.empty(0), p, dx)
 
 
@@ -1078,18 +1094,18 @@ def cpp_averaging_study(
     errors, nfo, nfa, to, ta = [], [], [], [], []
     for e in eps:
         p = base.replace(wave_ratio=1.0 / float(e))
-        parr = p.to_array()
+        prec = p.to_record()
 
-        def f_orig(t: float, x: np.ndarray, parr: np.ndarray = parr) -> np.ndarray:
+        def f_orig(t: float, x: np.ndarray, prec: Any = prec) -> np.ndarray:
             dx = np.empty(2)
-            _original_rhs(t, x, parr, z, dx)
+            _original_rhs(t, x, prec, z, dx)
             return dx
 
         avg = rhs_averaged if assignment == "correct" else rhs_averaged_printed
 
-        def f_avg(t: float, x: np.ndarray, parr: np.ndarray = parr) -> np.ndarray:
+        def f_avg(t: float, x: np.ndarray, prec: Any = prec) -> np.ndarray:
             dx = np.empty(2)
-            avg(t, x, sigma, _EMPTY, parr, dx)
+            avg(t, x, sigma, _EMPTY, prec, dx)
             return dx
 
         t_end = horizon / float(e)

@@ -3,7 +3,9 @@
 The two laws of the introduction of Shushlyapin et al. (2017), from Russian patents, with
 "undetermined coefficients" k1, k2, k3, and a PID yaw-rate loop. All three drive a vessel whose
 input is the thruster (or rudder) rate dδ/dt, such as :data:`seahelm.vessels.catamaran.CATAMARAN`
-with the ``direct`` actuator; they read the state z = (V_x, V_y, ω, x, y, K, δ, ...).
+with the ``direct`` actuator (command ``thruster_rate_command``); they read the state
+z = (V_x, V_y, ω, x, y, K, δ, ...), the heading law also the measurements ``heading`` and
+``yaw_rate``, the PID ``yaw_rate``.
 
 ``heading-rate-baseline`` — Dorri, Ostretsov & Roshchin (patent RU 2465169, 2012)::
 
@@ -52,7 +54,8 @@ from dataclasses import dataclass
 
 from numba import njit
 
-from ..parameters import Params, param
+from ..parameters import Params, param, signal_indices
+from ..vessels.catamaran import STATES as CATAMARAN_STATES
 from .base import Controller, wrap_pi
 
 __all__ = [
@@ -63,6 +66,13 @@ __all__ = [
     "DRIFT_THRUSTER_BASELINE",
     "PID_YAW_RATE",
 ]
+
+
+#: The closed-loop state z starts with the catamaran's states; the laws read the thruster angle δ
+#: and the velocity (V_x, V_y) from it.
+_Z = signal_indices(CATAMARAN_STATES)
+_COMMANDS: tuple[str, ...] = ("thruster_rate_command",)
+_C = signal_indices(_COMMANDS)
 
 
 # ------------------------------------------------------------------------------------------
@@ -83,13 +93,20 @@ def heading_rate_baseline_init(z, y, ref, p, cs):  # pragma: no cover - compiled
     pass
 
 
+_HR_MEASUREMENTS: tuple[str, ...] = ("heading", "yaw_rate")
+_HR_REFERENCES: tuple[str, ...] = ("heading",)
+_HR_M = signal_indices(_HR_MEASUREMENTS)
+_HR_R = signal_indices(_HR_REFERENCES)
+
+
 @njit(cache=True)
 def heading_rate_baseline_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
-    d = z[6]
-    u = p[0] * wrap_pi(y[2] - ref[0]) + p[1] * y[3] - p[2] * d
-    if (d >= p[3] and u > 0.0) or (d <= -p[3] and u < 0.0):
+    d = z[_Z.thruster_angle]
+    u = (p.k1 * wrap_pi(y[_HR_M.heading] - ref[_HR_R.heading]) + p.k2 * y[_HR_M.yaw_rate]
+         - p.k3 * d)
+    if (d >= p.max_angle and u > 0.0) or (d <= -p.max_angle and u < 0.0):
         u = 0.0
-    cmd[0] = u
+    cmd[_C.thruster_rate_command] = u
 
 
 HEADING_RATE_BASELINE = Controller(
@@ -97,11 +114,12 @@ HEADING_RATE_BASELINE = Controller(
     description="patent baseline dδ/dt = k1 (K − K*) + k2 ω − k3 δ (Dorri et al., 2012)",
     params_type=HeadingRateBaselineParams,
     state_labels=(),
-    reference_labels=("heading",),
+    reference_labels=_HR_REFERENCES,
     reference_units=("rad",),
-    command_labels=("thruster_rate_command",),
+    command_labels=_COMMANDS,
     init=heading_rate_baseline_init,
     step=heading_rate_baseline_step,
+    measurement_labels=_HR_MEASUREMENTS,
 )
 
 
@@ -121,29 +139,35 @@ class DriftThrusterBaselineParams(Params):
                                 doc="1: the command is P [N]; 0: the thruster rate")
 
 
+_DT_STATES: tuple[str, ...] = ("lateral_force", "drift_angle_integral")
+_DT_REFERENCES: tuple[str, ...] = ("drift_angle",)
+_DT_S = signal_indices(_DT_STATES)
+_DT_R = signal_indices(_DT_REFERENCES)
+
+
 @njit(cache=True)
 def drift_thruster_baseline_init(z, y, ref, p, cs):  # pragma: no cover - compiled
-    cs[0] = 0.0  # P
-    cs[1] = 0.0  # ∫β dt
+    cs[_DT_S.lateral_force] = 0.0  # P
+    cs[_DT_S.drift_angle_integral] = 0.0  # ∫β dt
 
 
 @njit(cache=True)
 def drift_thruster_baseline_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
-    a = z[0]
-    b = z[1]
+    a = z[_Z.surge_speed]
+    b = z[_Z.sway_speed_port]
     beta = math.atan2(b, a) if a * a + b * b > 0.0 else 0.0
-    beta -= ref[0]
-    P = cs[0]
-    dP = p[0] * beta + p[1] * cs[1] - p[2] * P
-    cs[1] += beta * dt
+    beta -= ref[_DT_R.drift_angle]
+    P = cs[_DT_S.lateral_force]
+    dP = p.k1 * beta + p.k2 * cs[_DT_S.drift_angle_integral] - p.k3 * P
+    cs[_DT_S.drift_angle_integral] += beta * dt
     P += dP * dt
-    cs[0] = P
-    if p[5] != 0.0:
-        cmd[0] = P
+    cs[_DT_S.lateral_force] = P
+    if p.force_output != 0.0:
+        cmd[_C.thruster_rate_command] = P
         return
-    s = P / (2.0 * p[3])
+    s = P / (2.0 * p.thrust)
     s = min(max(s, -1.0), 1.0)
-    cmd[0] = (math.asin(s) - z[6]) / p[4]
+    cmd[_C.thruster_rate_command] = (math.asin(s) - z[_Z.thruster_angle]) / p.tracking_time
 
 
 DRIFT_THRUSTER_BASELINE = Controller(
@@ -151,10 +175,10 @@ DRIFT_THRUSTER_BASELINE = Controller(
     description="patent baseline dP/dt = k1 β + k2 ∫β dt − k3 P (Ostretsov et al., 2013), "
     "P from the azimuth thrusters",
     params_type=DriftThrusterBaselineParams,
-    state_labels=("lateral_force", "drift_angle_integral"),
-    reference_labels=("drift_angle",),
+    state_labels=_DT_STATES,
+    reference_labels=_DT_REFERENCES,
     reference_units=("rad",),
-    command_labels=("thruster_rate_command",),
+    command_labels=_COMMANDS,
     init=drift_thruster_baseline_init,
     step=drift_thruster_baseline_step,
 )
@@ -175,34 +199,43 @@ class PIDYawRateParams(Params):
                                  doc="time constant of the thruster-angle tracking")
 
 
+_YR_STATES: tuple[str, ...] = ("yaw_rate_error_integral", "previous_yaw_rate")
+_YR_MEASUREMENTS: tuple[str, ...] = ("yaw_rate",)
+_YR_REFERENCES: tuple[str, ...] = ("yaw_rate",)
+_YR_S = signal_indices(_YR_STATES)
+_YR_M = signal_indices(_YR_MEASUREMENTS)
+_YR_R = signal_indices(_YR_REFERENCES)
+
+
 @njit(cache=True)
 def pid_yaw_rate_init(z, y, ref, p, cs):  # pragma: no cover - compiled
-    cs[0] = 0.0  # ∫e dt
-    cs[1] = y[3]  # previous yaw rate (derivative on measurement)
+    cs[_YR_S.yaw_rate_error_integral] = 0.0  # ∫e dt
+    cs[_YR_S.previous_yaw_rate] = y[_YR_M.yaw_rate]  # derivative on measurement
 
 
 @njit(cache=True)
 def pid_yaw_rate_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
-    w = y[3]
-    e = ref[0] - w
-    dw = (w - cs[1]) / dt
-    cs[1] = w
-    dc_unsat = p[0] * e + p[1] * cs[0] - p[2] * dw
-    umax = p[3]
+    w = y[_YR_M.yaw_rate]
+    e = ref[_YR_R.yaw_rate] - w
+    dw = (w - cs[_YR_S.previous_yaw_rate]) / dt
+    cs[_YR_S.previous_yaw_rate] = w
+    dc_unsat = p.kp * e + p.ki * cs[_YR_S.yaw_rate_error_integral] - p.kd * dw
+    umax = p.max_angle
     dc = min(max(dc_unsat, -umax), umax)
     if dc == dc_unsat or e * dc_unsat < 0.0:
-        cs[0] += e * dt
-    cmd[0] = (dc - z[6]) / p[4]
+        cs[_YR_S.yaw_rate_error_integral] += e * dt
+    cmd[_C.thruster_rate_command] = (dc - z[_Z.thruster_angle]) / p.tracking_time
 
 
 PID_YAW_RATE = Controller(
     name="pid-yaw-rate",
     description="PID yaw-rate loop with anti-windup; the thruster angle tracks its output",
     params_type=PIDYawRateParams,
-    state_labels=("yaw_rate_error_integral", "previous_yaw_rate"),
-    reference_labels=("yaw_rate",),
+    state_labels=_YR_STATES,
+    reference_labels=_YR_REFERENCES,
     reference_units=("rad/s",),
-    command_labels=("thruster_rate_command",),
+    command_labels=_COMMANDS,
     init=pid_yaw_rate_init,
     step=pid_yaw_rate_step,
+    measurement_labels=_YR_MEASUREMENTS,
 )

@@ -85,9 +85,10 @@ from numpy.typing import ArrayLike
 from .._validate import as_float_array, check_nonnegative, check_positive
 from ..constants import RHO_AIR, RHO_SEAWATER, wrap_angle
 from ..errors import ParameterError
-from ..parameters import Params, param
+from ..parameters import Params, param, signal_indices
 from .base import Controller, wrap_pi
 from .guidance import course_to_steer, initial_great_circle_course
+from .pid import PIDHeadingParams
 
 __all__ = [
     "DEFAULT_MAX_RUDDER",
@@ -463,14 +464,10 @@ def controllability_monitor(
 # the compiled controller of Fig. 1
 # ------------------------------------------------------------------------------------------
 @dataclasses.dataclass(frozen=True, kw_only=True)
-class CompensatedPIDParams(Params):
-    """PID heading autopilot with the wind and wave compensation channels of Fig. 1."""
+class CompensatedPIDParams(PIDHeadingParams):
+    """PID heading autopilot (the :class:`~seahelm.control.pid.PIDHeadingParams` gains) with
+    the wind and wave compensation channels of Fig. 1."""
 
-    kp: float = param(1.0, unit="rad/rad", symbol="K_p", low=0.0, doc="proportional gain")
-    ki: float = param(0.0, unit="1/s", symbol="K_i", low=0.0, doc="integral gain")
-    kd: float = param(0.0, unit="s", symbol="K_d", low=0.0, doc="derivative gain (on yaw rate)")
-    max_command: float = param(DEFAULT_MAX_RUDDER, unit="rad", symbol="δ_max", low=0.0,
-                               low_inclusive=False, doc="command saturation (anti-windup)")
     wind_gain: float = param(1.0, unit="", symbol="k_5", low=0.0,
                              doc="weight of the wind compensation channel (block 5); 0 = off")
     wave_gain: float = param(1.0, unit="", symbol="k_6", low=0.0,
@@ -480,34 +477,46 @@ class CompensatedPIDParams(Params):
         doc="first-order lag on δ_k before it is added (0 = none; lets the ship's drift build up)")
 
 
+COMPENSATED_MEASUREMENTS: tuple[str, ...] = ("heading", "yaw_rate")
+COMPENSATED_REFERENCES: tuple[str, ...] = ("heading", "delta_k_wind", "delta_k_wave")
+COMPENSATED_COMMANDS: tuple[str, ...] = ("rudder_command",)
+COMPENSATED_STATES: tuple[str, ...] = ("heading_error_integral", "delta_k_filtered")
+
+_M = signal_indices(COMPENSATED_MEASUREMENTS)
+_R = signal_indices(COMPENSATED_REFERENCES)
+_C = signal_indices(COMPENSATED_COMMANDS)
+_S = signal_indices(COMPENSATED_STATES)
+
+
 @njit(cache=True)
 def compensated_pid_init(z, y, ref, p, cs):  # pragma: no cover - compiled
-    cs[0] = 0.0
-    cs[1] = 0.0
+    cs[_S.heading_error_integral] = 0.0
+    cs[_S.delta_k_filtered] = 0.0
 
 
 @njit(cache=True)
 def compensated_pid_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
-    kp = p[0]
-    ki = p[1]
-    kd = p[2]
-    umax = p[3]
-    e = wrap_pi(ref[0] - y[2])
+    kp = p.kp
+    ki = p.ki
+    kd = p.kd
+    umax = p.max_command
+    e = wrap_pi(ref[_R.heading] - y[_M.heading])
     dk = 0.0
-    if ref.shape[0] > 1:
-        dk += p[4] * ref[1]
-    if ref.shape[0] > 2:
-        dk += p[5] * ref[2]
-    tk = p[6]
+    if ref.shape[0] > _R.delta_k_wind:
+        dk += p.wind_gain * ref[_R.delta_k_wind]
+    if ref.shape[0] > _R.delta_k_wave:
+        dk += p.wave_gain * ref[_R.delta_k_wave]
+    tk = p.feedforward_time_constant
     if tk > 0.0:
-        dk = cs[1] + (dk - cs[1]) * dt / (tk + dt)  # backward-Euler first-order lag
-    cs[1] = dk
-    integral = cs[0]
-    u_unsat = dk + kp * e + ki * integral - kd * y[3]
+        # backward-Euler first-order lag
+        dk = cs[_S.delta_k_filtered] + (dk - cs[_S.delta_k_filtered]) * dt / (tk + dt)
+    cs[_S.delta_k_filtered] = dk
+    integral = cs[_S.heading_error_integral]
+    u_unsat = dk + kp * e + ki * integral - kd * y[_M.yaw_rate]
     u = min(max(u_unsat, -umax), umax)
     if u == u_unsat or e * (u_unsat - dk) < 0.0:
-        cs[0] = integral + e * dt
-    cmd[0] = u
+        cs[_S.heading_error_integral] = integral + e * dt
+    cmd[_C.rudder_command] = u
 
 
 COMPENSATED_PID = Controller(
@@ -515,12 +524,13 @@ COMPENSATED_PID = Controller(
     description="PID heading autopilot plus the wind and wave compensating rudder angle δ_k "
     "fed forward (Lvov (2014), Fig. 1, eq. (12)-(14))",
     params_type=CompensatedPIDParams,
-    state_labels=("heading_error_integral", "delta_k_filtered"),
-    reference_labels=("heading", "delta_k_wind", "delta_k_wave"),
+    state_labels=COMPENSATED_STATES,
+    reference_labels=COMPENSATED_REFERENCES,
     reference_units=("rad", "rad", "rad"),
-    command_labels=("rudder_command",),
+    command_labels=COMPENSATED_COMMANDS,
     init=compensated_pid_init,
     step=compensated_pid_step,
+    measurement_labels=COMPENSATED_MEASUREMENTS,
 )
 
 

@@ -61,7 +61,10 @@ Compiled controllers for the catamaran (:mod:`seahelm.vessels.catamaran`, engine
     Thruster drive, eq. (22)-(23): with ``servo_command`` = 1 the command is not u but the
     drive input v = δ/k_δ + (T_δ/k_δ) u, so that the first-order drive
     dδ/dt = (−δ + k_δ v)/T_δ (model ``catamaran-servo``) turns the thrusters at exactly the
-    rate u of eq. (20)/(21).
+    rate u of eq. (20)/(21). The controllers command ``thruster_rate_command`` (the input
+    ``thruster_rate`` of model ``catamaran``, with the ``direct`` actuator); their ``-drive``
+    variants (:data:`FSM_YAW_RATE_DRIVE`, ...) are the same laws commanding
+    ``thruster_command``, the drive input of ``catamaran-servo``.
 
 Guard (not in the paper)
     W_37 vanishes at δ = ±90°, where eq. (19)-(21) divide by zero. The controllers use
@@ -91,12 +94,9 @@ from numba import njit
 
 from .._validate import as_float_array, check_positive
 from ..errors import ParameterError
-from ..parameters import param
-from ..vessels.catamaran import (
-    N_CATAMARAN_PARAMS,
-    CatamaranParams,
-    catamaran_yaw_acceleration,
-)
+from ..parameters import param, signal_indices
+from ..vessels.catamaran import STATES as CATAMARAN_STATES
+from ..vessels.catamaran import CatamaranParams, catamaran_yaw_acceleration
 from .base import Controller, wrap_pi
 
 __all__ = [
@@ -110,6 +110,9 @@ __all__ = [
     "FSM_YAW_RATE",
     "FSM_YAW_RATE_SIMPLE",
     "FSM_HEADING",
+    "FSM_YAW_RATE_DRIVE",
+    "FSM_YAW_RATE_SIMPLE_DRIVE",
+    "FSM_HEADING_DRIVE",
     "yaw_rate_params",
     "heading_params",
     "heading_program",
@@ -513,9 +516,6 @@ class FinalStateHeadingParams(FinalStateYawRateParams):
             )
 
 
-_NP = N_CATAMARAN_PARAMS
-
-
 def _with_vessel(cls: type, vessel: CatamaranParams | None, kw: dict[str, Any]) -> Any:
     """``cls`` built from the vessel's fields (and its servo's, if any) plus ``kw``."""
     vessel = CatamaranParams() if vessel is None else vessel
@@ -621,26 +621,31 @@ def closed_loop_eigenvalues(vessel: CatamaranParams, yaw_rate: float, tu_h: floa
     return np.log(np.linalg.eigvals(Acl).astype(complex)) / sample_time
 
 
+#: The closed-loop state z starts with the catamaran's states (the controllers read the whole z).
+_Z = signal_indices(CATAMARAN_STATES)
+
+
 @njit(cache=True)
 def fsm_thruster_rate(z, wref, p, full, dt):  # pragma: no cover - compiled
     """u = dδ/dt of eq. (20) (``full``) or eq. (21), with the cos δ guard.
 
     ``dt`` is the controller's sample period: the guard also keeps the held rate from carrying
-    δ past ±max_angle within one period (dt ≤ 0 disables that part).
+    δ past ±max_angle within one period (dt ≤ 0 disables that part). ``p`` is a
+    :class:`FinalStateYawRateParams` record (or a subclass's).
     """
-    L = p[1]
-    tv = p[4]
-    jw = (1.0 + p[7]) * p[8]
-    tu = p[_NP]
-    h = p[_NP + 1]
-    amax = p[_NP + 2]
-    d = z[6]
+    L = p.length
+    tv = p.thrust
+    jw = (1.0 + p.k66) * p.yaw_inertia
+    tu = p.time_constant
+    h = p.step
+    amax = p.max_angle
+    d = z[_Z.thruster_angle]
     c = math.cos(d)
     cmin = math.cos(amax)
     if c < cmin:
         c = cmin
     w37 = h * L * tv * c / jw
-    zbar = z[2]
+    zbar = z[_Z.yaw_rate]
     if full:
         zbar += catamaran_yaw_acceleration(z, p) * h
     u = (wref - zbar) / (tu * w37)
@@ -660,9 +665,14 @@ def fsm_thruster_rate(z, wref, p, full, dt):  # pragma: no cover - compiled
 @njit(cache=True)
 def fsm_command(z, u, p):  # pragma: no cover - compiled
     """The command: u itself, or the drive input v = δ/k_δ + (T_δ/k_δ) u of eq. (23)."""
-    if p[_NP + 3] != 0.0:
-        return (z[6] + p[_NP + 4] * u) / p[_NP + 5]
+    if p.servo_command != 0.0:
+        return (z[_Z.thruster_angle] + p.servo_time_constant * u) / p.servo_gain
     return u
+
+
+_YR_REFERENCES: tuple[str, ...] = ("yaw_rate",)
+_YR_R = signal_indices(_YR_REFERENCES)
+_C = signal_indices(("command",))  # the one command, whatever it is named (see below)
 
 
 @njit(cache=True)
@@ -672,12 +682,12 @@ def fsm_yaw_rate_init(z, y, ref, p, cs):  # pragma: no cover - compiled
 
 @njit(cache=True)
 def fsm_yaw_rate_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
-    cmd[0] = fsm_command(z, fsm_thruster_rate(z, ref[0], p, True, dt), p)
+    cmd[_C.command] = fsm_command(z, fsm_thruster_rate(z, ref[_YR_R.yaw_rate], p, True, dt), p)
 
 
 @njit(cache=True)
 def fsm_yaw_rate_simple_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
-    cmd[0] = fsm_command(z, fsm_thruster_rate(z, ref[0], p, False, dt), p)
+    cmd[_C.command] = fsm_command(z, fsm_thruster_rate(z, ref[_YR_R.yaw_rate], p, False, dt), p)
 
 
 @njit(cache=True)
@@ -705,23 +715,34 @@ def heading_program_rate(tau, dk, wmax, ramp):  # pragma: no cover - compiled
     return s * wp
 
 
+_H_REFERENCES: tuple[str, ...] = ("heading",)
+_H_STATES: tuple[str, ...] = ("program_target", "program_start_time", "program_heading_change",
+                              "yaw_rate_reference")
+_H_R = signal_indices(_H_REFERENCES)
+_H_S = signal_indices(_H_STATES)
+
+
 @njit(cache=True)
 def fsm_heading_init(z, y, ref, p, cs):  # pragma: no cover - compiled
-    cs[0] = ref[0]  # K* of the running program
-    cs[1] = 0.0  # t_0
-    cs[2] = wrap_pi(ref[0] - z[5])  # ΔK
-    cs[3] = heading_program_rate(0.0, cs[2], p[_NP + 6], p[_NP + 7])
+    cs[_H_S.program_target] = ref[_H_R.heading]  # K* of the running program
+    cs[_H_S.program_start_time] = 0.0  # t_0
+    cs[_H_S.program_heading_change] = wrap_pi(ref[_H_R.heading] - z[_Z.heading])  # ΔK
+    cs[_H_S.yaw_rate_reference] = heading_program_rate(0.0, cs[_H_S.program_heading_change],
+                                                       p.turn_rate, p.ramp_time)
 
 
 @njit(cache=True)
 def fsm_heading_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
-    if ref[0] != cs[0]:  # new wanted course: restart the program from the current heading
-        cs[0] = ref[0]
-        cs[1] = t
-        cs[2] = wrap_pi(ref[0] - z[5])
-    wref = heading_program_rate(t - cs[1], cs[2], p[_NP + 6], p[_NP + 7])
-    cs[3] = wref
-    cmd[0] = fsm_command(z, fsm_thruster_rate(z, wref, p, p[_NP + 8] != 0.0, dt), p)
+    if ref[_H_R.heading] != cs[_H_S.program_target]:
+        # new wanted course: restart the program from the current heading
+        cs[_H_S.program_target] = ref[_H_R.heading]
+        cs[_H_S.program_start_time] = t
+        cs[_H_S.program_heading_change] = wrap_pi(ref[_H_R.heading] - z[_Z.heading])
+    wref = heading_program_rate(t - cs[_H_S.program_start_time],
+                                cs[_H_S.program_heading_change], p.turn_rate, p.ramp_time)
+    cs[_H_S.yaw_rate_reference] = wref
+    cmd[_C.command] = fsm_command(
+        z, fsm_thruster_rate(z, wref, p, p.full_prediction != 0.0, dt), p)
 
 
 def heading_program(t: Any, heading_change: float, turn_rate: float, ramp_time: float = 0.0
@@ -754,7 +775,11 @@ def heading_program(t: Any, heading_change: float, turn_rate: float, ramp_time: 
     return out.reshape(t.shape)
 
 
+#: The command: the thruster rate u = dδ/dt of eq. (20)/(21) for the ``catamaran`` model with the
+#: ``direct`` actuator; the ``*_DRIVE`` variants name it after the drive input v of eq. (22)
+#: (``thruster_command``, the input of ``catamaran-servo``), for ``servo_command`` = 1.
 _CMD = ("thruster_rate_command",)
+_CMD_DRIVE = ("thruster_command",)
 
 FSM_YAW_RATE = Controller(
     name="fsm-yaw-rate",
@@ -762,7 +787,7 @@ FSM_YAW_RATE = Controller(
     "(Shushlyapin et al., 2017)",
     params_type=FinalStateYawRateParams,
     state_labels=(),
-    reference_labels=("yaw_rate",),
+    reference_labels=_YR_REFERENCES,
     reference_units=("rad/s",),
     command_labels=_CMD,
     init=fsm_yaw_rate_init,
@@ -775,7 +800,7 @@ FSM_YAW_RATE_SIMPLE = Controller(
     "u = (ω* − ω)/(T_u W37) (Shushlyapin et al., 2017)",
     params_type=FinalStateYawRateParams,
     state_labels=(),
-    reference_labels=("yaw_rate",),
+    reference_labels=_YR_REFERENCES,
     reference_units=("rad/s",),
     command_labels=_CMD,
     init=fsm_yaw_rate_init,
@@ -787,12 +812,20 @@ FSM_HEADING = Controller(
     description="heading program eq. (17) (or ramped) with final-state yaw-rate control "
     "eq. (21)/(20) (Shushlyapin et al., 2017)",
     params_type=FinalStateHeadingParams,
-    state_labels=("program_target", "program_start_time", "program_heading_change",
-                  "yaw_rate_reference"),
-    reference_labels=("heading",),
+    state_labels=_H_STATES,
+    reference_labels=_H_REFERENCES,
     reference_units=("rad",),
     command_labels=_CMD,
     init=fsm_heading_init,
     step=fsm_heading_step,
 )
 
+FSM_YAW_RATE_DRIVE = dataclasses.replace(
+    FSM_YAW_RATE, name="fsm-yaw-rate-drive", command_labels=_CMD_DRIVE,
+    description=FSM_YAW_RATE.description + ", commanding the thruster drive eq. (22)-(23)")
+FSM_YAW_RATE_SIMPLE_DRIVE = dataclasses.replace(
+    FSM_YAW_RATE_SIMPLE, name="fsm-yaw-rate-simple-drive", command_labels=_CMD_DRIVE,
+    description=FSM_YAW_RATE_SIMPLE.description + ", commanding the thruster drive eq. (22)-(23)")
+FSM_HEADING_DRIVE = dataclasses.replace(
+    FSM_HEADING, name="fsm-heading-drive", command_labels=_CMD_DRIVE,
+    description=FSM_HEADING.description + ", commanding the thruster drive eq. (22)-(23)")

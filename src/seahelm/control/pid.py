@@ -27,7 +27,7 @@ from dataclasses import dataclass
 from numba import njit
 
 from .._validate import check_positive
-from ..parameters import Params, param
+from ..parameters import Params, param, signal_indices
 from .base import Controller, wrap_pi
 
 __all__ = ["PIDHeadingParams", "PID_HEADING", "pid_gains_from_nomoto"]
@@ -44,38 +44,51 @@ class PIDHeadingParams(Params):
                                low_inclusive=False, doc="command saturation (anti-windup)")
 
 
+MEASUREMENTS: tuple[str, ...] = ("heading", "yaw_rate")
+REFERENCES: tuple[str, ...] = ("heading",)
+COMMANDS: tuple[str, ...] = ("rudder_command",)
+STATES: tuple[str, ...] = ("heading_error_integral",)
+
+_M = signal_indices(MEASUREMENTS)
+# the declared reference, then an optional trailing wanted yaw rate r* (read only if given)
+_R = signal_indices(REFERENCES + ("yaw_rate",))
+_C = signal_indices(COMMANDS)
+_S = signal_indices(STATES)
+
+
 @njit(cache=True)
 def pid_heading_init(z, y, ref, p, cs):  # pragma: no cover - compiled
-    cs[0] = 0.0
+    cs[_S.heading_error_integral] = 0.0
 
 
 @njit(cache=True)
 def pid_heading_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
-    kp = p[0]
-    ki = p[1]
-    kd = p[2]
-    umax = p[3]
-    e = wrap_pi(ref[0] - y[2])
-    r_ref = ref[1] if ref.shape[0] > 1 else 0.0
-    integral = cs[0]
-    u_unsat = kp * e + ki * integral + kd * (r_ref - y[3])
+    kp = p.kp
+    ki = p.ki
+    kd = p.kd
+    umax = p.max_command
+    e = wrap_pi(ref[_R.heading] - y[_M.heading])
+    r_ref = ref[_R.yaw_rate] if ref.shape[0] > _R.yaw_rate else 0.0
+    integral = cs[_S.heading_error_integral]
+    u_unsat = kp * e + ki * integral + kd * (r_ref - y[_M.yaw_rate])
     u = min(max(u_unsat, -umax), umax)
     # conditional integration: integrate unless saturated and pushing further out
     if u == u_unsat or e * u_unsat < 0.0:
-        cs[0] = integral + e * dt
-    cmd[0] = u
+        cs[_S.heading_error_integral] = integral + e * dt
+    cmd[_C.rudder_command] = u
 
 
 PID_HEADING = Controller(
     name="pid-heading",
     description="PID heading autopilot, wrapped heading error, conditional-integration anti-windup",
     params_type=PIDHeadingParams,
-    state_labels=("heading_error_integral",),
-    reference_labels=("heading",),
+    state_labels=STATES,
+    reference_labels=REFERENCES,
     reference_units=("rad",),
-    command_labels=("rudder_command",),
+    command_labels=COMMANDS,
     init=pid_heading_init,
     step=pid_heading_step,
+    measurement_labels=MEASUREMENTS,
 )
 
 

@@ -50,7 +50,9 @@ that produced the paper's figures)
     * The kinematics use cos(K − β): β is positive for a velocity to port of the bow, so the
       paper's V_y points to port. The navigation outputs therefore report the sway speed
       v = −V_y (starboard positive, ẏ_E = U sin ψ + v cos ψ, :mod:`seahelm.vessels.base`);
-      the state keeps the paper's V_y under the label ``sway_speed_port``.
+      the state keeps the paper's V_y under the label ``sway_speed_port``. The model also
+      outputs ``speed`` V, ``drift_angle`` β (the paper's, port positive) and
+      ``thruster_angle`` δ.
 
 Two parameter sets (registered in :mod:`seahelm.vessels.catalog`)
     ``shushlyapin2017-listing`` (:func:`paper_params`): every constant of the listing —
@@ -87,8 +89,8 @@ from numba import njit
 
 from .._validate import as_float_array
 from ..errors import ParameterError
-from ..parameters import Params, param, stack_params
-from .base import VesselModel
+from ..parameters import Params, as_records, param, signal_indices, stack_params
+from .base import NAV_OUTPUT_UNITS, NAV_OUTPUTS, VesselModel
 
 __all__ = [
     "CatamaranParams",
@@ -103,6 +105,8 @@ __all__ = [
     "PAPER_PROVENANCE",
     "CONSISTENT_PROVENANCE",
     "N_CATAMARAN_PARAMS",
+    "STATES",
+    "OUTPUTS",
 ]
 
 _LISTING_JZZ = 0.05 / 1000.0 * 1.025 * 155000.0 * 22.3**2
@@ -241,36 +245,60 @@ def consistent_params(**changes: Any) -> CatamaranParams:
 
 
 # ------------------------------------------------------------------------------------------
+# signals
+# ------------------------------------------------------------------------------------------
+#: The paper's z = (V_x, V_y, ω, x, y, K, δ); V_y points to port (see the module docstring).
+STATES: tuple[str, ...] = ("surge_speed", "sway_speed_port", "yaw_rate", "north", "east",
+                           "heading", "thruster_angle")
+_UNITS = ("m/s", "m/s", "rad/s", "m", "m", "rad", "rad")
+#: The navigation outputs (sway speed v = −V_y, starboard positive), then the speed V [m/s],
+#: the drift angle β = atan2(V_y, V_x) [rad] (port positive, 0 at rest) and the thruster angle
+#: δ [rad].
+OUTPUTS: tuple[str, ...] = NAV_OUTPUTS + ("speed", "drift_angle", "thruster_angle")
+_OUTPUT_UNITS = NAV_OUTPUT_UNITS + ("m/s", "rad", "rad")
+
+#: Inputs: the thruster rate u = dδ/dt of eq. (2), or with the drive of eq. (22) its input v.
+INPUTS: tuple[str, ...] = ("thruster_rate",)
+SERVO_INPUTS: tuple[str, ...] = ("thruster_command",)
+
+_X = signal_indices(STATES)
+_U = signal_indices(INPUTS)
+_US = signal_indices(SERVO_INPUTS)
+_Y = signal_indices(OUTPUTS)
+
+
+# ------------------------------------------------------------------------------------------
 # compiled right-hand side, drift Φ and Jacobian ∂Φ/∂z
 # ------------------------------------------------------------------------------------------
 @njit(cache=True)
 def catamaran_drift(x, p, f):  # pragma: no cover - compiled
-    """Φ(z) of eq. (3) (the uncontrolled part; f[6] = 0) for one run.
+    """Φ(z) of eq. (3) (the uncontrolled part; dδ/dt = 0) for one run.
 
     Arranged for speed (two divisions instead of seven; the same equations): the damping
     constant C_d (ρ/2) A_Ls L² is written without L in a denominator, β/π_l and the three
-    mass divisions share one reciprocal.
+    mass divisions share one reciprocal. ``p`` is a record with the
+    :class:`CatamaranParams` fields (also of a subclass, e.g. a controller's parameters).
     """
-    D = p[0]
-    L = p[1]
-    tm = p[2]
-    sig = p[3]
-    tv = p[4]
-    mx = (1.0 + p[5]) * D
-    my = (1.0 + p[6]) * D
-    pil = p[13]
-    jwp = (1.0 + p[7]) * p[8] * pil
-    rho = p[9]
-    c0 = p[10]
-    c1 = p[11]
-    c2 = p[12]
-    sy = p[14]
-    npow = p[15]
-    a = x[0]
-    b = x[1]
-    w = x[2]
-    K = x[5]
-    d = x[6]
+    D = p.displacement
+    L = p.length
+    tm = p.mean_draft
+    sig = p.block_coefficient
+    tv = p.thrust
+    mx = (1.0 + p.k11) * D
+    my = (1.0 + p.k22) * D
+    pil = p.lever_pi
+    jwp = (1.0 + p.k66) * p.yaw_inertia * pil
+    rho = p.water_density
+    c0 = p.resistance_c0
+    c1 = p.resistance_c1
+    c2 = p.resistance_c2
+    sy = p.sway_resistance
+    npow = p.resistance_speed_power
+    a = x[_X.surge_speed]
+    b = x[_X.sway_speed_port]
+    w = x[_X.yaw_rate]
+    K = x[_X.heading]
+    d = x[_X.thruster_angle]
     V = math.sqrt(a * a + b * b)
     if V > 0.0:
         iv = 1.0 / V
@@ -294,53 +322,60 @@ def catamaran_drift(x, p, f):  # pragma: no cover - compiled
     cK = math.cos(K)
     sK = math.sin(K)
     r = 1.0 / (mx * my * jwp)
-    f[0] = (2.0 * tv * cdl - rx - my * w * b) * (my * jwp * r)
-    f[1] = (2.0 * tv * sd - sy * ry - mx * w * a) * (mx * jwp * r)
+    f[_X.surge_speed] = (2.0 * tv * cdl - rx - my * w * b) * (my * jwp * r)
+    f[_X.sway_speed_port] = (2.0 * tv * sd - sy * ry - mx * w * a) * (mx * jwp * r)
     # (L T_v sin δ + M_K + M_D − V_x V_y (m_x − m_y)) / J_ω, M_K = 0.4 L (0.5 − β/π_l) R_y
-    f[2] = (pil * (L * tv * sd - cm * V * w - a * b * (mx - my))
-            + 0.4 * L * (0.5 * pil - beta) * ry) * (mx * my * r)
-    f[3] = a * cK + b * sK
-    f[4] = a * sK - b * cK
-    f[5] = w
-    f[6] = 0.0
+    f[_X.yaw_rate] = (pil * (L * tv * sd - cm * V * w - a * b * (mx - my))
+                      + 0.4 * L * (0.5 * pil - beta) * ry) * (mx * my * r)
+    f[_X.north] = a * cK + b * sK
+    f[_X.east] = a * sK - b * cK
+    f[_X.heading] = w
+    f[_X.thruster_angle] = 0.0
 
 
 @njit(cache=True)
 def catamaran_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
-    """dz/dt = Φ(z) + e_7 u: the input u[0] is the thruster rate dδ/dt [rad/s] (eq. (2))."""
+    """dz/dt = Φ(z) + e_7 u: the input u is the thruster rate dδ/dt [rad/s] (eq. (2))."""
     catamaran_drift(x, p, dx)
-    dx[6] = u[0]
+    dx[_X.thruster_angle] = u[_U.thruster_rate]
 
 
 @njit(cache=True)
 def catamaran_servo_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     """Eq. (3) with the thruster drive eq. (22): dδ/dt = (−δ + k_δ v)/T_δ, input v [rad]."""
     catamaran_drift(x, p, dx)
-    dx[6] = (p[17] * u[0] - x[6]) / p[16]
+    dx[_X.thruster_angle] = (p.servo_gain * u[_US.thruster_command]
+                             - x[_X.thruster_angle]) / p.servo_time_constant
 
 
 @njit(cache=True)
 def catamaran_output(t, x, u, p, y):  # pragma: no cover - compiled
-    y[0] = x[3]
-    y[1] = x[4]
-    y[2] = x[5]
-    y[3] = x[2]
-    y[4] = x[0]
-    y[5] = -x[1]
+    a = x[_X.surge_speed]
+    b = x[_X.sway_speed_port]
+    y[_Y.north] = x[_X.north]
+    y[_Y.east] = x[_X.east]
+    y[_Y.heading] = x[_X.heading]
+    y[_Y.yaw_rate] = x[_X.yaw_rate]
+    y[_Y.surge_speed] = a
+    y[_Y.sway_speed] = -b
+    V = math.sqrt(a * a + b * b)
+    y[_Y.speed] = V
+    y[_Y.drift_angle] = math.atan2(b, a) if V > 0.0 else 0.0
+    y[_Y.thruster_angle] = x[_X.thruster_angle]
 
 
 @njit(cache=True)
 def catamaran_yaw_acceleration(x, p):  # pragma: no cover - compiled
     """Φ_3(z) [rad/s²], eq. (18) — the yaw row of eq. (3) alone (for the controller eq. (20))."""
-    D = p[0]
-    L = p[1]
-    tm = p[2]
-    sig = p[3]
-    mx = (1.0 + p[5]) * D
-    my = (1.0 + p[6]) * D
-    jw = (1.0 + p[7]) * p[8]
-    a = x[0]
-    b = x[1]
+    D = p.displacement
+    L = p.length
+    tm = p.mean_draft
+    sig = p.block_coefficient
+    mx = (1.0 + p.k11) * D
+    my = (1.0 + p.k22) * D
+    jw = (1.0 + p.k66) * p.yaw_inertia
+    a = x[_X.surge_speed]
+    b = x[_X.sway_speed_port]
     V = math.sqrt(a * a + b * b)
     if V > 0.0:
         sb = b / V
@@ -348,13 +383,14 @@ def catamaran_yaw_acceleration(x, p):  # pragma: no cover - compiled
     else:
         sb = 0.0
         beta = 0.0
-    F = 2000.0 * (p[10] + (p[11] + p[12] * V) * V)
-    if p[15] != 0.0:
-        F *= V ** p[15]
+    F = 2000.0 * (p.resistance_c0 + (p.resistance_c1 + p.resistance_c2 * V) * V)
+    if p.resistance_speed_power != 0.0:
+        F *= V ** p.resistance_speed_power
     cd = (0.739 + 8.7 * tm / L) * ((1.611 * sig - 2.873) * sig + 1.33)
-    cm = cd * 0.5 * p[9] * (L * tm * sig) * L * L
-    mk = 0.4 * L * (0.5 - beta / p[13]) * F * sb
-    return (L * p[4] * math.sin(x[6]) + mk - cm * V * x[2] - a * b * (mx - my)) / jw
+    cm = cd * 0.5 * p.water_density * (L * tm * sig) * L * L
+    mk = 0.4 * L * (0.5 - beta / p.lever_pi) * F * sb
+    return (L * p.thrust * math.sin(x[_X.thruster_angle]) + mk - cm * V * x[_X.yaw_rate]
+            - a * b * (mx - my)) / jw
 
 
 @njit(cache=True)
@@ -363,28 +399,28 @@ def catamaran_jacobian(x, p, J):  # pragma: no cover - compiled
 
     At V = 0 the drift angle is not differentiable; the derivative is taken along V_x > 0.
     """
-    D = p[0]
-    L = p[1]
-    tm = p[2]
-    sig = p[3]
-    tv = p[4]
-    mx = (1.0 + p[5]) * D
-    my = (1.0 + p[6]) * D
-    jw = (1.0 + p[7]) * p[8]
-    rho = p[9]
-    c0 = p[10]
-    c1 = p[11]
-    c2 = p[12]
-    pil = p[13]
-    sy = p[14]
-    npow = p[15]
-    a = x[0]
-    b = x[1]
-    w = x[2]
-    K = x[5]
-    d = x[6]
-    for i in range(7):
-        for j in range(7):
+    D = p.displacement
+    L = p.length
+    tm = p.mean_draft
+    sig = p.block_coefficient
+    tv = p.thrust
+    mx = (1.0 + p.k11) * D
+    my = (1.0 + p.k22) * D
+    jw = (1.0 + p.k66) * p.yaw_inertia
+    rho = p.water_density
+    c0 = p.resistance_c0
+    c1 = p.resistance_c1
+    c2 = p.resistance_c2
+    pil = p.lever_pi
+    sy = p.sway_resistance
+    npow = p.resistance_speed_power
+    a = x[_X.surge_speed]
+    b = x[_X.sway_speed_port]
+    w = x[_X.yaw_rate]
+    K = x[_X.heading]
+    d = x[_X.thruster_angle]
+    for i in range(J.shape[0]):
+        for j in range(J.shape[1]):
             J[i, j] = 0.0
     V = math.sqrt(a * a + b * b)
     if V > 1e-12:
@@ -431,29 +467,31 @@ def catamaran_jacobian(x, p, J):  # pragma: no cover - compiled
     cdl = math.cos(d)
     cK = math.cos(K)
     sK = math.sin(K)
+    u_, v_, r_, n_, e_, k_, d_ = (_X.surge_speed, _X.sway_speed_port, _X.yaw_rate, _X.north,
+                                  _X.east, _X.heading, _X.thruster_angle)
     # surge
-    J[0, 0] = -drx_a / mx
-    J[0, 1] = (-drx_b - my * w) / mx
-    J[0, 2] = -my * b / mx
-    J[0, 6] = -2.0 * tv * sd / mx
+    J[u_, u_] = -drx_a / mx
+    J[u_, v_] = (-drx_b - my * w) / mx
+    J[u_, r_] = -my * b / mx
+    J[u_, d_] = -2.0 * tv * sd / mx
     # sway
-    J[1, 0] = (-sy * dry_a - mx * w) / my
-    J[1, 1] = -sy * dry_b / my
-    J[1, 2] = -mx * a / my
-    J[1, 6] = 2.0 * tv * cdl / my
+    J[v_, u_] = (-sy * dry_a - mx * w) / my
+    J[v_, v_] = -sy * dry_b / my
+    J[v_, r_] = -mx * a / my
+    J[v_, d_] = 2.0 * tv * cdl / my
     # yaw
-    J[2, 0] = (dlk_a * ry + lk * dry_a - cm * dV_a * w - b * (mx - my)) / jw
-    J[2, 1] = (dlk_b * ry + lk * dry_b - cm * dV_b * w - a * (mx - my)) / jw
-    J[2, 2] = -cm * V / jw
-    J[2, 6] = L * tv * cdl / jw
+    J[r_, u_] = (dlk_a * ry + lk * dry_a - cm * dV_a * w - b * (mx - my)) / jw
+    J[r_, v_] = (dlk_b * ry + lk * dry_b - cm * dV_b * w - a * (mx - my)) / jw
+    J[r_, r_] = -cm * V / jw
+    J[r_, d_] = L * tv * cdl / jw
     # kinematics
-    J[3, 0] = cK
-    J[3, 1] = sK
-    J[3, 5] = -a * sK + b * cK
-    J[4, 0] = sK
-    J[4, 1] = -cK
-    J[4, 5] = a * cK + b * sK
-    J[5, 2] = 1.0
+    J[n_, u_] = cK
+    J[n_, v_] = sK
+    J[n_, k_] = -a * sK + b * cK
+    J[e_, u_] = sK
+    J[e_, v_] = -cK
+    J[e_, k_] = a * cK + b * sK
+    J[k_, r_] = 1.0
 
 
 @njit(cache=True)
@@ -469,6 +507,8 @@ def _batched_jacobian(X, P, out):  # pragma: no cover - compiled
 
 
 def _pack(x: Any, params: CatamaranParams | Any) -> tuple[np.ndarray, np.ndarray, tuple]:
+    """States as rows (N, 7), parameters as CatamaranParams records (N,) (the leading
+    :class:`CatamaranParams` fields of any subclass or packed array), and the batch shape."""
     x = as_float_array("x", x)
     if x.shape[-1:] != (7,):
         raise ParameterError(f"`x` must end in the 7 catamaran states, got shape {x.shape}")
@@ -486,7 +526,7 @@ def _pack(x: Any, params: CatamaranParams | Any) -> tuple[np.ndarray, np.ndarray
     P = np.ascontiguousarray(
         np.broadcast_to(p, batch + p.shape[-1:]).reshape(-1, p.shape[-1])
     )
-    return X, P, batch
+    return X, as_records(P, CatamaranParams), batch
 
 
 def steady_turn(params: CatamaranParams, yaw_rate: float) -> tuple[float, float, float]:
@@ -567,23 +607,21 @@ def jacobian(x: Any, params: CatamaranParams | Any) -> np.ndarray:
     return out.reshape(batch + (7, 7))
 
 
-_STATES = ("surge_speed", "sway_speed_port", "yaw_rate", "north", "east", "heading",
-           "thruster_angle")
-_UNITS = ("m/s", "m/s", "rad/s", "m", "m", "rad", "rad")
-
 CATAMARAN = VesselModel(
     name="catamaran",
     description="twin azimuth-thruster catamaran, 7 states, input thruster rate dδ/dt "
     "(Shushlyapin et al., 2017)",
     params_type=CatamaranParams,
-    state_labels=_STATES,
+    state_labels=STATES,
     state_units=_UNITS,
-    input_labels=("thruster_rate",),
+    input_labels=INPUTS,
     input_units=("rad/s",),
     disturbance_labels=(),
     disturbance_units=(),
     rhs=catamaran_rhs,
     output=catamaran_output,
+    output_labels=OUTPUTS,
+    output_units=_OUTPUT_UNITS,
 )
 
 CATAMARAN_SERVO = VesselModel(
@@ -591,12 +629,14 @@ CATAMARAN_SERVO = VesselModel(
     description="twin azimuth-thruster catamaran with the first-order thruster drive of eq. (22), "
     "input thruster command v (Shushlyapin et al., 2017)",
     params_type=CatamaranServoParams,
-    state_labels=_STATES,
+    state_labels=STATES,
     state_units=_UNITS,
-    input_labels=("thruster_command",),
+    input_labels=SERVO_INPUTS,
     input_units=("rad",),
     disturbance_labels=(),
     disturbance_units=(),
     rhs=catamaran_servo_rhs,
     output=catamaran_output,
+    output_labels=OUTPUTS,
+    output_units=_OUTPUT_UNITS,
 )

@@ -48,8 +48,8 @@ from numba import njit
 
 from .._validate import as_float_array, check_range
 from ..errors import ParameterError, warn_validity
-from ..parameters import Params, param
-from .base import VesselModel
+from ..parameters import Params, as_records, param, signal_indices
+from .base import NAV_OUTPUTS, VesselModel
 
 __all__ = [
     "CPPShipParams",
@@ -69,6 +69,8 @@ __all__ = [
     "calm_water_derivative",
     "waves_derivative",
     "cpp_output",
+    "OUTPUT_LABELS",
+    "OUTPUT_UNITS",
     "CPP_SHIP_CALM",
     "CPP_SHIP_WAVES",
 ]
@@ -77,6 +79,14 @@ STATE_LABELS: tuple[str, ...] = ("speed", "shaft_speed")
 STATE_UNITS: tuple[str, ...] = ("1", "1")
 INPUT_LABELS: tuple[str, ...] = ("pitch_ratio",)
 INPUT_UNITS: tuple[str, ...] = ("1",)
+#: The navigation outputs of a straight course (position and heading not modelled: 0; surge
+#: speed v̄, non-dimensional), then the states v̄ and ω̄ under their own names.
+OUTPUT_LABELS: tuple[str, ...] = NAV_OUTPUTS + ("speed", "shaft_speed")
+OUTPUT_UNITS: tuple[str, ...] = ("m", "m", "rad", "rad/s", "1", "1", "1", "1")
+
+_X = signal_indices(STATE_LABELS)
+_U = signal_indices(INPUT_LABELS)
+_Y = signal_indices(OUTPUT_LABELS)
 
 #: Names of the columns of :data:`CASE_COEFFICIENTS`.
 COEFFICIENT_NAMES: tuple[str, ...] = ("a1", "b1", "c1", "e1", "a2", "b2", "c2", "e2")
@@ -203,12 +213,12 @@ class CPPShipParams(Params):
     @property
     def initial_thrust(self) -> float:
         """P_e0, Platonov & Platonova, eq. (8) (initial-regime coefficients = case 1)."""
-        return float(_initial_thrust(self.to_array()))
+        return float(_initial_thrust(self.to_record()))
 
     @property
     def initial_torque(self) -> float:
         """M_C0, Platonov & Platonova, eq. (8) (initial-regime coefficients = case 1)."""
-        return float(_initial_torque(self.to_array()))
+        return float(_initial_torque(self.to_record()))
 
     @classmethod
     def balanced(cls, **kwargs: Any) -> "CPPShipParams":
@@ -228,26 +238,22 @@ class CPPShipParams(Params):
                             torque_emergence_initial=float(c[1]))
 
 
-# Parameter-array indices (field order of CPPShipParams).
-_I_CHI, _I_N, _I_A, _I_M0, _I_C10, _I_C20, _I_K1, _I_K2, _I_PHI0, _I_H, _I_E, _I_UNC = range(12)
-
-
 # ---------------------------------------------------------------------------------------
 # compiled kernels
 # ---------------------------------------------------------------------------------------
 @njit(cache=True)
 def _initial_thrust(p):  # pragma: no cover - compiled
-    k1 = p[_I_K1]
+    k1 = p.thrust_advance_ratio
     c = CASE_COEFFICIENTS
-    return p[_I_PHI0] * (c[0, 0] + c[0, 1] * k1 + c[0, 2] * k1 * k1) + c[0, 3] * k1 * k1
+    return p.initial_pitch * (c[0, 0] + c[0, 1] * k1 + c[0, 2] * k1 * k1) + c[0, 3] * k1 * k1
 
 
 @njit(cache=True)
 def _initial_torque(p):  # pragma: no cover - compiled
-    k2 = p[_I_K2]
+    k2 = p.torque_advance_ratio
     c = CASE_COEFFICIENTS
-    return p[_I_PHI0] * (
-        p[_I_PHI0] * (c[0, 4] + c[0, 5] * k2 + c[0, 6] * k2 * k2) + c[0, 7] * k2 * k2
+    return p.initial_pitch * (
+        p.initial_pitch * (c[0, 4] + c[0, 5] * k2 + c[0, 6] * k2 * k2) + c[0, 7] * k2 * k2
     )
 
 
@@ -284,24 +290,24 @@ def _emergence(tau, h, e):  # pragma: no cover - compiled
 @njit(cache=True)
 def _rhs_core(x, phi, p, c1t, c2t, inv_a, c10, c20, dx):  # pragma: no cover - compiled
     """Eq. (10) for one run; calm water, eq. (9), is c1 = c2 = c10 = c20 = 1 and no 1/A."""
-    v = x[0]
-    w = x[1]
-    row = _case_row(phi, v, p[_I_UNC])
+    v = x[_X.speed]
+    w = x[_X.shaft_speed]
+    row = _case_row(phi, v, p.uncovered_case)
     if row < 0:
-        dx[0] = np.nan
-        dx[1] = np.nan
+        dx[_X.speed] = np.nan
+        dx[_X.shaft_speed] = np.nan
         return
     c = CASE_COEFFICIENTS
-    k1 = p[_I_K1]
-    k2 = p[_I_K2]
+    k1 = p.thrust_advance_ratio
+    k2 = p.torque_advance_ratio
     thrust_poly = c[row, 0] * w * w + c[row, 1] * k1 * v * w + c[row, 2] * k1 * k1 * v * v
     torque_poly = c[row, 4] * w * w + c[row, 5] * k2 * v * w + c[row, 6] * k2 * k2 * v * v
     thrust = (phi * thrust_poly + c[row, 3] * k1 * k1 * v * v) * c1t
     torque = phi * (phi * torque_poly + c[row, 7] * k2 * k2 * v * v) * c2t
     pe0 = _initial_thrust(p)
     mc0 = _initial_torque(p)
-    dx[0] = inv_a * (thrust - _chi(v, p[_I_CHI]) * pe0 * c10 * v * v)
-    dx[1] = inv_a * p[_I_N] * (mc0 * c20 * p[_I_M0] - torque)
+    dx[_X.speed] = inv_a * (thrust - _chi(v, p.resistance_coefficient) * pe0 * c10 * v * v)
+    dx[_X.shaft_speed] = inv_a * p.inertia_ratio * (mc0 * c20 * p.engine_torque - torque)
 
 
 @njit(cache=True)
@@ -309,10 +315,12 @@ def rhs_waves(t, x, u, d, p, dx):  # pragma: no cover - compiled
     """Right-hand side in regular waves, Platonov & Platonova, eq. (10)-(12).
 
     ``t`` is the wave phase τ [rad]; ``x = (v̄, ω̄)``; ``u = (φ̄,)``; ``d`` unused (length 0
-    allowed); ``p = CPPShipParams.to_array()``; ``dx`` is written in place.
+    allowed); ``p`` a :class:`CPPShipParams` record (``params.to_record()``); ``dx`` is
+    written in place.
     """
-    c1t, c2t = _emergence(t, p[_I_H], p[_I_E])
-    _rhs_core(x, u[0], p, c1t, c2t, 1.0 / p[_I_A], p[_I_C10], p[_I_C20], dx)
+    c1t, c2t = _emergence(t, p.immersion, p.amplitude)
+    _rhs_core(x, u[_U.pitch_ratio], p, c1t, c2t, 1.0 / p.wave_ratio,
+              p.thrust_emergence_initial, p.torque_emergence_initial, dx)
 
 
 @njit(cache=True)
@@ -320,9 +328,9 @@ def rhs_calm(t, x, u, d, p, dx):  # pragma: no cover - compiled
     """Right-hand side in calm water, Platonov & Platonova, eq. (9) (= eq. (6) with eq. (8)).
 
     ``t`` is the non-dimensional time τ of eq. (6) (unused: autonomous); other arguments as
-    :func:`rhs_waves`. The wave fields of the parameter array are ignored.
+    :func:`rhs_waves`. The wave fields of the parameters are ignored.
     """
-    _rhs_core(x, u[0], p, 1.0, 1.0, 1.0, 1.0, 1.0, dx)
+    _rhs_core(x, u[_U.pitch_ratio], p, 1.0, 1.0, 1.0, 1.0, 1.0, dx)
 
 
 @njit(cache=True)
@@ -339,15 +347,18 @@ def _batched(kind, t, X, U, P, out):  # pragma: no cover - compiled
 def cpp_output(t, x, u, p, y):  # pragma: no cover - compiled
     """Navigation outputs: straight course, position not modelled (0); surge speed = v̄.
 
-    The model is non-dimensional: ``surge_speed`` is v̄, the speed in units of the initial
-    speed v0 (multiply by v0 [m/s] for SI), and north/east/heading/yaw rate/sway are 0.
+    The model is non-dimensional: ``surge_speed`` (and ``speed``) is v̄, the speed in units of
+    the initial speed v0 (multiply by v0 [m/s] for SI), ``shaft_speed`` is ω̄, and
+    north/east/heading/yaw rate/sway are 0.
     """
-    y[0] = 0.0
-    y[1] = 0.0
-    y[2] = 0.0
-    y[3] = 0.0
-    y[4] = x[0]
-    y[5] = 0.0
+    y[_Y.north] = 0.0
+    y[_Y.east] = 0.0
+    y[_Y.heading] = 0.0
+    y[_Y.yaw_rate] = 0.0
+    y[_Y.surge_speed] = x[_X.speed]
+    y[_Y.sway_speed] = 0.0
+    y[_Y.speed] = x[_X.speed]
+    y[_Y.shaft_speed] = x[_X.shaft_speed]
 
 
 CPP_SHIP_CALM = VesselModel(
@@ -363,6 +374,8 @@ CPP_SHIP_CALM = VesselModel(
     disturbance_units=(),
     rhs=rhs_calm,
     output=cpp_output,
+    output_labels=OUTPUT_LABELS,
+    output_units=OUTPUT_UNITS,
 )
 
 CPP_SHIP_WAVES = VesselModel(
@@ -378,6 +391,8 @@ CPP_SHIP_WAVES = VesselModel(
     disturbance_units=(),
     rhs=rhs_waves,
     output=cpp_output,
+    output_labels=OUTPUT_LABELS,
+    output_units=OUTPUT_UNITS,
 )
 
 
@@ -411,7 +426,7 @@ def _derivative(kind: int, t: Any, x: Any, pitch_ratio: Any, params: Any) -> np.
     T = np.ascontiguousarray(np.broadcast_to(t, batch).reshape(-1))
     P = np.ascontiguousarray(np.broadcast_to(p, batch + p.shape[-1:]).reshape(-1, p.shape[-1]))
     out = np.empty_like(X)
-    _batched(kind, T, X, U, P, out)
+    _batched(kind, T, X, U, as_records(P, CPPShipParams), out)
     return out.reshape(batch + (2,))
 
 

@@ -25,6 +25,9 @@ Disturbances (sampled on the simulation grid): the equivalent rudder angle δ_d 
 steady rudder angle that would cancel the wind and wave yaw moments (Fossen, 2021, §7.1; Lvov,
 2014, eq. (12)-(14), there called δ_k) — and the sway drift velocity v_d [m/s].
 
+Outputs: the navigation outputs (:data:`~seahelm.vessels.base.NAV_OUTPUTS`; surge speed U, sway
+speed 0 — the drift v_d is an input, not reported) and ``speed`` U.
+
 References
 ----------
 Nomoto, K., Taguchi, T., Honda, K., Hirano, S. (1957). On the steering qualities of ships.
@@ -40,8 +43,8 @@ from dataclasses import dataclass
 
 from numba import njit
 
-from ..parameters import Params, param
-from .base import VesselModel
+from ..parameters import Params, param, signal_indices
+from .base import NAV_OUTPUT_UNITS, NAV_OUTPUTS, VesselModel
 
 __all__ = ["Nomoto1Params", "Nomoto2Params", "NOMOTO1", "NOMOTO2"]
 
@@ -87,88 +90,108 @@ class Nomoto2Params(Params):
         )
 
 
+NOMOTO1_STATES: tuple[str, ...] = ("north", "east", "heading", "yaw_rate")
+NOMOTO2_STATES: tuple[str, ...] = NOMOTO1_STATES + ("yaw_aux",)
+INPUTS: tuple[str, ...] = ("rudder_angle",)
+DISTURBANCES: tuple[str, ...] = ("rudder_disturbance", "sway_velocity")
+#: The navigation outputs plus the speed U [m/s] of the ship.
+OUTPUTS: tuple[str, ...] = NAV_OUTPUTS + ("speed",)
+
+_X1 = signal_indices(NOMOTO1_STATES)
+_X2 = signal_indices(NOMOTO2_STATES)
+_U = signal_indices(INPUTS)
+_D = signal_indices(DISTURBANCES)
+_Y = signal_indices(OUTPUTS)
+
+
 @njit(cache=True)
 def nomoto1_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
-    gain, tc, speed, n3 = p[0], p[1], p[2], p[4]
-    psi = x[2]
-    r = x[3]
-    delta_d = d[0] if d.shape[0] > 0 else 0.0
-    v = d[1] if d.shape[0] > 1 else 0.0
+    gain, tc, speed, n3 = p.gain, p.time_constant, p.speed, p.norrbin_n3
+    psi = x[_X1.heading]
+    r = x[_X1.yaw_rate]
+    delta_d = d[_D.rudder_disturbance] if d.shape[0] > _D.rudder_disturbance else 0.0
+    v = d[_D.sway_velocity] if d.shape[0] > _D.sway_velocity else 0.0
     c = math.cos(psi)
     s = math.sin(psi)
-    dx[0] = speed * c - v * s
-    dx[1] = speed * s + v * c
-    dx[2] = r
-    dx[3] = (gain * (u[0] + delta_d) - (r + n3 * r * r * r)) / tc
+    dx[_X1.north] = speed * c - v * s
+    dx[_X1.east] = speed * s + v * c
+    dx[_X1.heading] = r
+    dx[_X1.yaw_rate] = (gain * (u[_U.rudder_angle] + delta_d) - (r + n3 * r * r * r)) / tc
 
 
 @njit(cache=True)
 def nomoto1_output(t, x, u, p, y):  # pragma: no cover - compiled
-    y[0] = x[0]
-    y[1] = x[1]
-    y[2] = x[2]
-    y[3] = x[3]
-    y[4] = p[2]
-    y[5] = 0.0
+    y[_Y.north] = x[_X1.north]
+    y[_Y.east] = x[_X1.east]
+    y[_Y.heading] = x[_X1.heading]
+    y[_Y.yaw_rate] = x[_X1.yaw_rate]
+    y[_Y.surge_speed] = p.speed
+    y[_Y.sway_speed] = 0.0
+    y[_Y.speed] = p.speed
 
 
 @njit(cache=True)
 def nomoto2_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
-    gain, t1, t2, t3, speed, n3 = p[0], p[1], p[2], p[3], p[4], p[6]
-    psi = x[2]
-    r = x[3]
-    xi = x[4]
-    delta = u[0]
-    delta_d = d[0] if d.shape[0] > 0 else 0.0
-    v = d[1] if d.shape[0] > 1 else 0.0
+    gain, t1, t2, t3, speed, n3 = p.gain, p.t1, p.t2, p.t3, p.speed, p.norrbin_n3
+    psi = x[_X2.heading]
+    r = x[_X2.yaw_rate]
+    xi = x[_X2.yaw_aux]
+    delta = u[_U.rudder_angle]
+    delta_d = d[_D.rudder_disturbance] if d.shape[0] > _D.rudder_disturbance else 0.0
+    v = d[_D.sway_velocity] if d.shape[0] > _D.sway_velocity else 0.0
     c = math.cos(psi)
     s = math.sin(psi)
     t12 = t1 * t2
     rdot = xi + gain * t3 / t12 * delta
-    dx[0] = speed * c - v * s
-    dx[1] = speed * s + v * c
-    dx[2] = r
-    dx[3] = rdot
-    dx[4] = (gain * (delta + delta_d) - (t1 + t2) * rdot - (r + n3 * r * r * r)) / t12
+    dx[_X2.north] = speed * c - v * s
+    dx[_X2.east] = speed * s + v * c
+    dx[_X2.heading] = r
+    dx[_X2.yaw_rate] = rdot
+    dx[_X2.yaw_aux] = (gain * (delta + delta_d) - (t1 + t2) * rdot - (r + n3 * r * r * r)) / t12
 
 
 @njit(cache=True)
 def nomoto2_output(t, x, u, p, y):  # pragma: no cover - compiled
-    y[0] = x[0]
-    y[1] = x[1]
-    y[2] = x[2]
-    y[3] = x[3]
-    y[4] = p[4]
-    y[5] = 0.0
+    y[_Y.north] = x[_X2.north]
+    y[_Y.east] = x[_X2.east]
+    y[_Y.heading] = x[_X2.heading]
+    y[_Y.yaw_rate] = x[_X2.yaw_rate]
+    y[_Y.surge_speed] = p.speed
+    y[_Y.sway_speed] = 0.0
+    y[_Y.speed] = p.speed
 
 
-_DIST = ("rudder_disturbance", "sway_velocity")
 _DIST_UNITS = ("rad", "m/s")
+_OUTPUT_UNITS = NAV_OUTPUT_UNITS + ("m/s",)
 
 NOMOTO1 = VesselModel(
     name="nomoto1",
     description="first-order Nomoto steering model with Norrbin term, constant speed",
     params_type=Nomoto1Params,
-    state_labels=("north", "east", "heading", "yaw_rate"),
+    state_labels=NOMOTO1_STATES,
     state_units=("m", "m", "rad", "rad/s"),
-    input_labels=("rudder_angle",),
+    input_labels=INPUTS,
     input_units=("rad",),
-    disturbance_labels=_DIST,
+    disturbance_labels=DISTURBANCES,
     disturbance_units=_DIST_UNITS,
     rhs=nomoto1_rhs,
     output=nomoto1_output,
+    output_labels=OUTPUTS,
+    output_units=_OUTPUT_UNITS,
 )
 
 NOMOTO2 = VesselModel(
     name="nomoto2",
     description="second-order Nomoto steering model with Norrbin term, constant speed",
     params_type=Nomoto2Params,
-    state_labels=("north", "east", "heading", "yaw_rate", "yaw_aux"),
+    state_labels=NOMOTO2_STATES,
     state_units=("m", "m", "rad", "rad/s", "rad/s"),
-    input_labels=("rudder_angle",),
+    input_labels=INPUTS,
     input_units=("rad",),
-    disturbance_labels=_DIST,
+    disturbance_labels=DISTURBANCES,
     disturbance_units=_DIST_UNITS,
     rhs=nomoto2_rhs,
     output=nomoto2_output,
+    output_labels=OUTPUTS,
+    output_units=_OUTPUT_UNITS,
 )

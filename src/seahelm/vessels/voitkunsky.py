@@ -19,7 +19,7 @@ ground is ψ − β, and the kinematics at the constant speed U of the velocity 
     ẋ_N = U cos(ψ − β) − v_c sin ψ,    ẏ_E = U sin(ψ − β) + v_c cos ψ,    ψ̇ = ω
 
 (v_c: an optional sway drift velocity, e.g. a current, as in the Nomoto models). The outputs
-report surge speed U cos β and sway speed −U sin β.
+report surge speed U cos β and sway speed −U sin β, then ``speed`` U and ``drift_angle`` β.
 
 Disturbances (sampled on the simulation grid, normalised like the coefficients, in state
 units so that issue 7's wind and wave loads add directly):
@@ -55,8 +55,8 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from ..parameters import Params, param
-from .base import VesselModel
+from ..parameters import Params, param, signal_indices
+from .base import NAV_OUTPUT_UNITS, NAV_OUTPUTS, VesselModel
 
 __all__ = [
     "VoitkunskyParams",
@@ -84,34 +84,49 @@ class VoitkunskyParams(Params):
                           doc="length between perpendiculars (for plots and scaling)")
 
 
+STATES: tuple[str, ...] = ("north", "east", "heading", "yaw_rate", "drift_angle")
+INPUTS: tuple[str, ...] = ("rudder_angle",)
+DISTURBANCES: tuple[str, ...] = ("yaw_moment", "sway_force", "sway_velocity")
+#: The navigation outputs plus the speed U [m/s] and the drift angle β [rad] (port positive).
+OUTPUTS: tuple[str, ...] = NAV_OUTPUTS + ("speed", "drift_angle")
+
+_X = signal_indices(STATES)
+_U = signal_indices(INPUTS)
+_D = signal_indices(DISTURBANCES)
+_Y = signal_indices(OUTPUTS)
+
+
 @njit(cache=True)
 def voitkunsky_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
-    q21, r21, s21, h2, q31, r31, s31, speed = p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7]
-    psi = x[2]
-    omega = x[3]
-    beta = x[4]
-    alpha = u[0]
-    m_d = d[0] if d.shape[0] > 0 else 0.0
-    f_d = d[1] if d.shape[0] > 1 else 0.0
-    v_c = d[2] if d.shape[0] > 2 else 0.0
+    q21, r21, s21, h2 = p.q21, p.r21, p.s21, p.h2
+    q31, r31, s31, speed = p.q31, p.r31, p.s31, p.speed
+    psi = x[_X.heading]
+    omega = x[_X.yaw_rate]
+    beta = x[_X.drift_angle]
+    alpha = u[_U.rudder_angle]
+    m_d = d[_D.yaw_moment] if d.shape[0] > _D.yaw_moment else 0.0
+    f_d = d[_D.sway_force] if d.shape[0] > _D.sway_force else 0.0
+    v_c = d[_D.sway_velocity] if d.shape[0] > _D.sway_velocity else 0.0
     cs = math.cos(psi)
     sn = math.sin(psi)
-    dx[0] = speed * math.cos(psi - beta) - v_c * sn
-    dx[1] = speed * math.sin(psi - beta) + v_c * cs
-    dx[2] = omega
-    dx[3] = -q31 * beta - r31 * omega - s31 * alpha + m_d
-    dx[4] = -q21 * beta - r21 * omega - h2 * beta * abs(beta) - s21 * alpha - f_d
+    dx[_X.north] = speed * math.cos(psi - beta) - v_c * sn
+    dx[_X.east] = speed * math.sin(psi - beta) + v_c * cs
+    dx[_X.heading] = omega
+    dx[_X.yaw_rate] = -q31 * beta - r31 * omega - s31 * alpha + m_d
+    dx[_X.drift_angle] = -q21 * beta - r21 * omega - h2 * beta * abs(beta) - s21 * alpha - f_d
 
 
 @njit(cache=True)
 def voitkunsky_output(t, x, u, p, y):  # pragma: no cover - compiled
-    speed = p[7]
-    y[0] = x[0]
-    y[1] = x[1]
-    y[2] = x[2]
-    y[3] = x[3]
-    y[4] = speed * math.cos(x[4])
-    y[5] = -speed * math.sin(x[4])
+    speed = p.speed
+    y[_Y.north] = x[_X.north]
+    y[_Y.east] = x[_X.east]
+    y[_Y.heading] = x[_X.heading]
+    y[_Y.yaw_rate] = x[_X.yaw_rate]
+    y[_Y.surge_speed] = speed * math.cos(x[_X.drift_angle])
+    y[_Y.sway_speed] = -speed * math.sin(x[_X.drift_angle])
+    y[_Y.speed] = speed
+    y[_Y.drift_angle] = x[_X.drift_angle]
 
 
 VOITKUNSKY = VesselModel(
@@ -119,14 +134,16 @@ VOITKUNSKY = VesselModel(
     description="Voitkunsky nonlinear steering model (yaw rate, drift angle with β|β|), "
     "Romanov & Chirkova eq. (1), constant speed",
     params_type=VoitkunskyParams,
-    state_labels=("north", "east", "heading", "yaw_rate", "drift_angle"),
+    state_labels=STATES,
     state_units=("m", "m", "rad", "rad/s", "rad"),
-    input_labels=("rudder_angle",),
+    input_labels=INPUTS,
     input_units=("rad",),
-    disturbance_labels=("yaw_moment", "sway_force", "sway_velocity"),
+    disturbance_labels=DISTURBANCES,
     disturbance_units=("rad/s²", "rad/s", "m/s"),
     rhs=voitkunsky_rhs,
     output=voitkunsky_output,
+    output_labels=OUTPUTS,
+    output_units=NAV_OUTPUT_UNITS + ("m/s", "rad"),
     state_lower=(-np.inf, -np.inf, -np.inf, -np.inf, -0.5 * math.pi),
     state_upper=(np.inf, np.inf, np.inf, np.inf, 0.5 * math.pi),
 )

@@ -1,0 +1,152 @@
+"""The component contract (ARCHITECTURE.md, "Component contract") holds for every component.
+
+Compiled component code reads its parameters by name from a record (``p.gain``), never by
+position (``p[0]``, ``p[_I_H]``, ``p[_NP + 8]``), and indexes its signal vectors through named
+constants (``x[S.heading]``), not bare integers. These tests scan the source of the compiled
+functions of every registered model, actuator and controller and of the seahelm numba
+functions they call, and of every compiled function in the component packages that takes
+parameters, so the rule cannot regress.
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import pkgutil
+import re
+
+import pytest
+from numba.core.registry import CPUDispatcher
+
+from seahelm.registry import (
+    ACTUATORS,
+    CONTROLLERS,
+    VESSEL_MODELS,
+    get_actuator,
+    get_controller,
+    get_model,
+)
+
+#: positional parameter access: p[...]
+POSITIONAL_PARAM = re.compile(r"(?<![\w.])p\s*\[")
+#: a signal vector indexed by a bare integer, e.g. x[2], dx[0], y[3], cmd[0], ref[1]
+SIGNALS = ("x", "u", "d", "y", "dx", "f", "xa", "ca", "ya", "dxa", "z", "ref", "cs", "cmd", "sig")
+BARE_INDEX = re.compile(r"(?<![\w.])(" + "|".join(SIGNALS) + r")\s*\[\s*-?\d+\s*\]")
+
+COMPONENT_PACKAGES = ("vessels", "actuators", "control", "analysis")
+
+
+def _components():
+    for table, getter, attrs in ((VESSEL_MODELS, get_model, ("rhs", "output")),
+                                 (ACTUATORS, get_actuator, ("rhs", "output")),
+                                 (CONTROLLERS, get_controller, ("init", "step"))):
+        for name in sorted(table):
+            comp = getter(name)
+            for attr in attrs:
+                yield f"{name}.{attr}", getattr(comp, attr)
+
+
+def _seahelm_dispatchers_called(func: CPUDispatcher, seen: dict[str, CPUDispatcher]) -> None:
+    """``func`` and, recursively, the seahelm numba functions its code refers to by name."""
+    py = func.py_func
+    key = f"{py.__module__}.{py.__qualname__}"
+    if key in seen:
+        return
+    seen[key] = func
+    for name in py.__code__.co_names:
+        obj = py.__globals__.get(name)
+        if isinstance(obj, CPUDispatcher) and obj.py_func.__module__.startswith("seahelm."):
+            _seahelm_dispatchers_called(obj, seen)
+
+
+def _registered_functions() -> dict[str, CPUDispatcher]:
+    seen: dict[str, CPUDispatcher] = {}
+    for _, func in _components():
+        assert isinstance(func, CPUDispatcher)
+        _seahelm_dispatchers_called(func, seen)
+    return seen
+
+
+def _package_functions_taking_params() -> dict[str, CPUDispatcher]:
+    """Every numba function defined in the component packages with a parameter named ``p``."""
+    found: dict[str, CPUDispatcher] = {}
+    for pkg in COMPONENT_PACKAGES:
+        base = importlib.import_module(f"seahelm.{pkg}")
+        for info in pkgutil.walk_packages(base.__path__, prefix=f"seahelm.{pkg}."):
+            module = importlib.import_module(info.name)
+            for obj in vars(module).values():
+                if (isinstance(obj, CPUDispatcher) and obj.py_func.__module__ == info.name
+                        and "p" in inspect.signature(obj.py_func).parameters):
+                    found[f"{info.name}.{obj.py_func.__qualname__}"] = obj
+    return found
+
+
+REGISTERED = _registered_functions()
+ALL_WITH_PARAMS = {**_package_functions_taking_params(), **REGISTERED}
+
+
+def _code(func: CPUDispatcher) -> str:
+    """The function's source without its docstring and comments."""
+    src = inspect.getsource(func.py_func)
+    doc = func.py_func.__doc__
+    if doc:
+        src = src.replace(doc, "")
+    return "\n".join(line.split("#", 1)[0] for line in src.splitlines())
+
+
+def test_the_scan_sees_the_components_and_their_helpers():
+    names = set(REGISTERED)
+    # registered entry points and helpers they call, across modules
+    for key in ("seahelm.vessels.nomoto.nomoto2_rhs", "seahelm.vessels.catamaran.catamaran_drift",
+                "seahelm.vessels.cpp_ship._rhs_core", "seahelm.vessels.cpp_ship._initial_thrust",
+                "seahelm.actuators.servo.rudder_propeller_rhs",
+                "seahelm.actuators.servo.limited_lag_rate",
+                "seahelm.control.final_state.fsm_thruster_rate",
+                "seahelm.vessels.catamaran.catamaran_yaw_acceleration",
+                "seahelm.control.base.wrap_pi"):
+        assert key in names
+    # compiled code that takes parameters but is not a registered component
+    for key in ("seahelm.analysis.averaging.rhs_averaged", "seahelm.analysis.averaging._original_rhs",
+                "seahelm.vessels.catamaran.catamaran_jacobian"):
+        assert key in ALL_WITH_PARAMS
+
+
+@pytest.mark.parametrize("key", sorted(ALL_WITH_PARAMS))
+def test_parameters_are_read_by_name(key):
+    code = _code(ALL_WITH_PARAMS[key])
+    bad = [line.strip() for line in code.splitlines() if POSITIONAL_PARAM.search(line)]
+    assert not bad, f"{key} reads parameters by position (use p.<name>): {bad}"
+
+
+@pytest.mark.parametrize("key", sorted(ALL_WITH_PARAMS))
+def test_signals_are_indexed_by_name(key):
+    code = _code(ALL_WITH_PARAMS[key])
+    bad = [line.strip() for line in code.splitlines() if BARE_INDEX.search(line)]
+    assert not bad, (f"{key} indexes a signal vector by a bare integer (use the constants of "
+                     f"seahelm.parameters.signal_indices): {bad}")
+
+
+def test_the_scan_catches_positional_access():
+    assert POSITIONAL_PARAM.search("    gain, tc = p[0], p[_I_K1]")
+    assert POSITIONAL_PARAM.search("tu = p [_NP + 8]")
+    assert not POSITIONAL_PARAM.search("gain = p.gain; q = mp[0]; dx[_X.north] = 0.0")
+    assert BARE_INDEX.search("    dx[3] = r")
+    assert BARE_INDEX.search("cmd[0] = u")
+    assert not BARE_INDEX.search("dx[_X.yaw_rate] = r; c[0, 3]; X[i]; J[i, j] = 0.0")
+
+
+@pytest.mark.parametrize("name", sorted(VESSEL_MODELS))
+def test_models_declare_the_navigation_outputs(name):
+    from seahelm.vessels.base import NAV_OUTPUTS
+
+    model = get_model(name)
+    assert model.output_labels[:len(NAV_OUTPUTS)] == NAV_OUTPUTS
+    assert all(lab.isidentifier() for lab in model.output_labels)
+
+
+@pytest.mark.parametrize("name", sorted(CONTROLLERS))
+def test_controller_measurements_are_outputs_of_some_model(name):
+    ctrl = get_controller(name)
+    outputs = {lab for m in VESSEL_MODELS for lab in get_model(m).output_labels}
+    assert set(ctrl.measurement_labels) <= outputs
+
