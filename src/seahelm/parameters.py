@@ -156,13 +156,13 @@ class Params:
         names = cls.field_names() or ("_unused",)
         return np.dtype([(n, np.float64) for n in names])
 
-    def to_record(self) -> np.void:
+    def to_record(self) -> np.record:
         """This parameter set as one record (``rec.kp``), for compiled code.
 
         Returns
         -------
-        numpy.void
-            A record of :meth:`record_dtype`.
+        numpy.record
+            A record of :meth:`record_dtype` (fields readable as attributes).
         """
         return as_records(self.to_array()[None, :], type(self))[0]
 
@@ -323,7 +323,8 @@ def as_records(rows: Any, cls: type[Params]) -> np.ndarray:
     arr = np.ascontiguousarray(arr)
     if not arr.flags.writeable:  # one compiled specialisation per kernel, not two
         arr = arr.copy()
-    return arr.view(cls.record_dtype()).reshape(arr.shape[0])
+    # np.record items read as ``rec.kp`` in Python too (NUMBA_DISABLE_JIT, py_func)
+    return arr.view(np.dtype((np.record, cls.record_dtype()))).reshape(arr.shape[0])
 
 
 def signal_indices(labels: Sequence[str]) -> Any:

@@ -13,8 +13,11 @@ As it stands (the default header), this module is the Nomoto-1 + rudder servo + 
 RK4 and can be imported and run directly.
 
 Parameters reach the components as records (``mp[i]``, read as ``p.gain``); the loop and its
-inlined components are compiled with fastmath flags that allow reassociation and contraction
-but *not* ``nnan``/``ninf``, so the NaN/inf detection below stays exact.
+inlined components are compiled with fastmath flags that allow reassociation, contraction
+(FMA), reciprocal and approximate-function rewrites, but *not* ``nnan``/``ninf``, and not
+``nsz`` either: LLVM folds the finiteness test away once ``nsz`` and ``reassoc`` are both on
+(measured; tests/test_simulation_wiring.py guards it), so the NaN/inf detection below stays
+exact.
 
 Status codes: 0 ok, 1 non-finite state, 2 state outside its declared bounds.
 """
@@ -45,7 +48,7 @@ NYA = 1
 NCA = 1
 NM = 2
 NSTAGES = 4
-FASTMATH = {"nsz", "arcp", "contract", "afn", "reassoc"}
+FASTMATH = {"arcp", "contract", "afn", "reassoc"}
 
 
 @njit(inline="always")
