@@ -334,7 +334,8 @@ class RunBatch:
         object.__setattr__(self, "bounds", types.MappingProxyType(dict(self.bounds)))
         object.__setattr__(self, "metadata", types.MappingProxyType(dict(self.metadata)))
         if self.layout is not None and not isinstance(self.layout, BatchLayout):
-            raise ParameterError(f"`layout` must be a BatchLayout, got {type(self.layout).__name__}")
+            raise ParameterError(
+                f"`layout` must be a BatchLayout, got {type(self.layout).__name__}")
 
     @property
     def n_runs(self) -> int | None:
