@@ -90,7 +90,7 @@ def _fmt(v: Any) -> str:
 def _summary_table(summary: list[dict[str, Any]], title: str,
                    batch_keys: tuple[str, ...] = ()) -> Table:
     """One run: a metric/value table; a batch: one row per run (first 20), with the run's
-    batch coordinates and drawn values (``batch_keys``) as columns."""
+    grid coordinates (``batch_keys``) as columns."""
     if len(summary) == 1:
         table = Table(title=title)
         table.add_column("metric")
@@ -113,7 +113,8 @@ def _summary_table(summary: list[dict[str, Any]], title: str,
 
 
 def _batch_columns(result: Any, summary: list[dict[str, Any]]) -> tuple[str, ...]:
-    """Put each run's batch coordinates and drawn values after ``run`` in its summary row."""
+    """Put each run's batch coordinates and drawn values after ``run`` in its summary row;
+    returns the grid dimensions (those that vary a key), the table's extra columns."""
     layout = result.layout
     if layout is None or layout.is_flat:
         return ()
@@ -123,7 +124,7 @@ def _batch_columns(result: Any, summary: list[dict[str, Any]]) -> tuple[str, ...
         rest = {k: v for k, v in row.items() if k != "run"}
         row.clear()
         row.update({"run": i, **extra, **rest})
-    return (*layout.dims, *values)
+    return tuple(a.name for a in layout.axes if a.key)
 
 
 def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bool,
