@@ -180,3 +180,54 @@ def test_catamaran_small_yaw_rate_json_reproduces_the_paper():
 def test_catamaran_heading_json_reaches_the_course_to_three_decimals():
     out = _run_json("catamaran_heading_0p8.toml")
     assert abs(out["final_heading_rad"] - 0.8) < 5e-4
+
+
+GRID_SCENARIO = """
+title = "grid"
+[vessel]
+model = "nomoto2"
+catalog = "mariner-nomoto2"
+[controller]
+model = "pid-heading"
+[controller.reference]
+heading_deg = 10.0
+[simulation]
+t_final = 20.0
+dt = 0.1
+[batch.grid]
+"controller.params.kp" = [1.0, 2.0, 3.0]
+"controller.params.kd" = [10.0, 20.0, 30.0, 40.0]
+"""
+
+
+def test_run_grid_shows_coordinates_and_plot_reads_the_grid_file(tmp_path):
+    path = tmp_path / "grid.toml"
+    path.write_text(GRID_SCENARIO)
+    res = runner.invoke(app, ["run", str(path), "--json", "--out", str(tmp_path), "--no-plot"])
+    assert res.exit_code == 0, res.output
+    payload = json.loads(res.stdout)
+    assert payload["n_runs"] == 12 and payload["dims"] == {"kp": 3, "kd": 4}
+    assert [(r["run"], r["kp"], r["kd"]) for r in payload["runs"][:5]] == [
+        (0, 1.0, 10.0), (1, 1.0, 20.0), (2, 1.0, 30.0), (3, 1.0, 40.0), (4, 2.0, 10.0)]
+    human = runner.invoke(app, ["run", str(path)], terminal_width=200)
+    assert human.exit_code == 0, human.output
+    header = next(line for line in human.stdout.splitlines() if "status" in line)
+    assert [c.strip() for c in header.split("┃")[1:5]] == ["run", "kp", "kd", "status"]
+    rows = [[c.strip() for c in line.split("│")[1:4]] for line in human.stdout.splitlines()
+            if line.startswith("│")]
+    assert rows[0] == ["0", "1", "10"] and rows[11] == ["11", "3", "40"]
+    res = runner.invoke(app, ["plot", str(tmp_path / "result.nc"), "--run", "11",
+                              "--out", str(tmp_path / "g.png")])
+    assert res.exit_code == 0, res.output
+    assert (tmp_path / "g.png").stat().st_size > 10_000
+    res = runner.invoke(app, ["plot", str(tmp_path / "result.nc"), "--run", "12"])
+    assert res.exit_code == 2 and "--run [12] not in the file" in res.stderr
+
+
+def test_engine_error_in_a_scenario_exits_2_naming_file_and_key(tmp_path):
+    bad = tmp_path / "timing.toml"
+    bad.write_text(GRID_SCENARIO.replace("t_final = 20.0", "t_final = 20.05"))
+    res = runner.invoke(app, ["run", str(bad)])
+    assert res.exit_code == 2
+    assert f"{bad}: [simulation.t_final] `t_final` must be a positive whole multiple" in res.stderr
+    assert res.stdout == ""

@@ -104,3 +104,37 @@ def test_channel_lookup_lists_names(result):
 
 def test_dataset_is_xarray(result):
     assert isinstance(result.to_xarray(), xr.Dataset)
+
+
+def test_layout_shapes_the_dataset_and_survives_netcdf(result, tmp_path):
+    import dataclasses
+
+    from seahelm.results import flatten_runs
+    from seahelm.simulation.batch import BatchAxis, BatchLayout
+
+    axis = BatchAxis(name="gain", values=[0.185, 0.2], key="vessel.params.gain", units="1/s")
+    shaped = dataclasses.replace(result, layout=BatchLayout(axes=(axis,)))
+    ds = shaped.to_xarray()
+    assert ds["heading"].dims == ("gain", "time") and ds["status"].dims == ("gain",)
+    assert "run" not in ds.variables
+    assert ds["gain"].attrs == {"key": "vessel.params.gain", "units": "1/s"}
+    np.testing.assert_array_equal(ds["heading"].values, result["heading"])
+    back = load_result(shaped.to_netcdf(tmp_path / "g.nc"))
+    assert back["heading"].dims == ("gain", "time")
+    assert back["gain"].values.tolist() == [0.185, 0.2]
+    assert back["gain"].attrs["key"] == "vessel.params.gain"
+    flat = flatten_runs(back)
+    assert flat["heading"].dims == ("run", "time") and flat["gain"].dims == ("run",)
+    np.testing.assert_array_equal(flat["heading"].values, result["heading"])
+    # a plain result: the flat view is the Dataset itself
+    assert result.to_xarray(flat=True)["heading"].dims == ("run", "time")
+
+
+def test_layout_must_match_the_number_of_runs(result):
+    import dataclasses
+
+    from seahelm.errors import ParameterError
+    from seahelm.simulation.batch import BatchLayout
+
+    with pytest.raises(ParameterError, match=r"spans 3 run\(s\), but the engine ran 2"):
+        dataclasses.replace(result, layout=BatchLayout.runs(3))

@@ -1,4 +1,8 @@
-"""Scenario files: every validation branch names file, key path, value; batches; examples."""
+"""Scenario files: every validation branch names file, key path, value; batches; examples.
+
+Checks made by the engine (timing, bounds labels, command counts) reach the user as a
+:class:`ScenarioError` naming the file and key, with the engine's own message.
+"""
 
 from __future__ import annotations
 
@@ -36,10 +40,10 @@ def _with(extra: str = "", replace: tuple[str, str] | None = None) -> str:
 
 
 def test_default_scenario_is_valid_and_converts_degrees():
-    prepared = parse_scenario(default_scenario_text(), source="default")
-    assert prepared.n_runs == 1
-    assert prepared.reference[0, 0, 0] == pytest.approx(math.radians(20.0))
-    assert prepared.actuator_params[0, 0] == pytest.approx(math.radians(35.0))
+    batch = parse_scenario(default_scenario_text(), source="default")
+    assert batch.n_runs == 1
+    assert batch.reference[0, 0, 0] == pytest.approx(math.radians(20.0))
+    assert batch.actuator_params[0, 0] == pytest.approx(math.radians(35.0))
 
 
 @pytest.mark.parametrize(
@@ -66,13 +70,18 @@ def test_default_scenario_is_valid_and_converts_degrees():
         (_with(replace=("heading_deg = 10.0", 'heading = { kind = "square" }')),
          r"\[controller.reference.heading\] unknown signal kind 'square'; valid: constant"),
         (_with(replace=("t_final = 20.0", "t_final = 20.05")),
-         r"\[simulation.t_final\] must be a whole multiple of simulation.dt = 0.1 s, got 20.05"),
+         r"s.toml: \[simulation.t_final\] `t_final` must be a positive whole multiple of `dt` "
+         r"\[s\]: t_final=20.05, dt=0.1"),
         (_with(replace=("t_final = 20.0", "t_final = -5")),
          r"\[simulation.t_final\] Input should be greater than 0, got -5"),
         (_with(replace=("dt = 0.1", 'dt = "fast"')),
          r"\[simulation.dt\] Input should be a valid number.*got 'fast'"),
         (_with(replace=('model = "pid-heading"', 'model = "pid-heading"\ndt = 0.25'),),
-         r"\[controller.dt\] must be a whole multiple of simulation.dt = 0.1 s, got 0.25"),
+         r"s.toml: \[controller.dt\] `controller_dt` must be a positive whole multiple of `dt` "
+         r"\[s\]: controller_dt=0.25, dt=0.1"),
+        (_with(replace=("dt = 0.1", 'dt = 0.1\nintegrator = "rk5"')),
+         r"s.toml: \[simulation.integrator\] Value error, unknown integrator 'rk5'; "
+         r"valid: euler, heun, rk4"),
         (_with(replace=('model = "pid-heading"', 'model = "lqr"')),
          r"\[controller.model\] unknown controller 'lqr'; valid: .*pid-heading"),
         (_with("[actuator]\nmodel = \"jet\"\n"),
@@ -80,7 +89,7 @@ def test_default_scenario_is_valid_and_converts_degrees():
         (_with("[environment.disturbance]\nwave = 1.0\n"),
          r"\[environment.disturbance.wave\] unknown channel 'wave'; valid: rudder_disturbance"),
         (_with("[simulation.bounds]\nspeed = [0, 1]\n"),
-         r"\[simulation.bounds.speed\] unknown state; valid: north"),
+         r"s.toml: \[simulation.bounds.speed\] `bounds`: unknown state 'speed'; states: north"),
         (_with("[batch.grid]\n\"vessel.colour\" = [1.0]\n"),
          r"\[batch.vessel.colour\] cannot vary 'vessel.colour'"),
         (_with("[batch.grid]\n\"vessel.params.gain\" = [0.1, -0.2]\n"),
@@ -95,8 +104,11 @@ def test_default_scenario_is_valid_and_converts_degrees():
     ],
 )
 def test_bad_scenarios_name_file_key_value_and_expectation(text, match):
+    steps = []
     with pytest.raises(ScenarioError, match=match):
-        parse_scenario(text, source="s.toml")
+        # the scenario's checks raise while parsing, the engine's when the batch runs
+        run_scenario(parse_scenario(text, source="s.toml"), progress=lambda k, n: steps.append(k))
+    assert steps == []  # nothing was integrated
 
 
 def test_missing_file(tmp_path):
@@ -105,11 +117,11 @@ def test_missing_file(tmp_path):
 
 
 def test_grid_is_a_cartesian_product():
-    prepared = parse_scenario(_with('[batch.grid]\n"controller.params.kp" = [1.0, 2.0, 3.0]\n'
+    batch = parse_scenario(_with('[batch.grid]\n"controller.params.kp" = [1.0, 2.0, 3.0]\n'
                                     '"vessel.initial.heading_deg" = [0.0, 5.0]\n'))
-    assert prepared.n_runs == 6
-    assert sorted(set(prepared.controller_params[:, 0])) == [1.0, 2.0, 3.0]
-    np.testing.assert_allclose(sorted(set(prepared.x0[:, 2])), [0.0, math.radians(5.0)])
+    assert batch.n_runs == 6
+    assert sorted(set(batch.controller_params[:, 0])) == [1.0, 2.0, 3.0]
+    np.testing.assert_allclose(sorted(set(batch.x0[:, 2])), [0.0, math.radians(5.0)])
 
 
 def test_monte_carlo_is_seeded_and_reproducible():
@@ -128,18 +140,18 @@ def test_monte_carlo_is_seeded_and_reproducible():
 
 
 def test_time_varying_reference_per_run():
-    prepared = parse_scenario(_with(
+    batch = parse_scenario(_with(
         '[batch.grid]\n"controller.reference.heading_deg" = [5.0, 10.0]\n',
         replace=("heading_deg = 10.0", 'heading_deg = { kind = "step", time = 5.0, after = 1.0 }'),
     ))
-    assert prepared.reference.shape == (2, 1, 1)  # the grid value replaces the signal
-    np.testing.assert_allclose(prepared.reference[:, 0, 0], np.radians([5.0, 10.0]))
+    assert batch.reference.shape == (2, 1, 1)  # the grid value replaces the signal
+    np.testing.assert_allclose(batch.reference[:, 0, 0], np.radians([5.0, 10.0]))
 
 
 @pytest.mark.parametrize("path", sorted(EXAMPLES.glob("*.toml")), ids=lambda p: p.name)
 def test_every_example_scenario_runs(path):
-    prepared = load_scenario(path)
-    result = run_scenario(prepared)
+    batch = load_scenario(path)
+    result = run_scenario(batch)
     assert result.ok.all(), result.messages()
 
 
@@ -153,8 +165,9 @@ def test_sea_signal_has_the_spectrum_variance_and_a_realisation_per_run():
     text = _with(SEA.format(h3=3.0, q="ordinate", seed=5)
                  + "[batch.monte_carlo]\nruns = 3\nseed = 1\n",
                  replace=("t_final = 20.0\ndt = 0.1", "t_final = 20000.0\ndt = 1.0"))
-    prepared = parse_scenario(text)
-    dist = prepared.disturbance[:, :, 0]
+    batch = parse_scenario(text)
+    t_grid = np.arange(20001) * 1.0  # the engine samples the signal on its own grid
+    dist = batch.disturbance(t_grid)[:, :, 0]
     assert dist.shape == (3, 20001)
     assert not np.allclose(dist[0], dist[1])
     # D_r = 0.143 (h3/2)^2; the sample variance of a long record is within a few percent
@@ -162,7 +175,7 @@ def test_sea_signal_has_the_spectrum_variance_and_a_realisation_per_run():
     assert d_r == pytest.approx(0.143 * 1.5**2)
     np.testing.assert_allclose(dist.var(axis=1), d_r, rtol=0.1)
     again = parse_scenario(text)
-    np.testing.assert_array_equal(again.disturbance, prepared.disturbance)
+    np.testing.assert_array_equal(again.disturbance(t_grid), batch.disturbance(t_grid))
 
 
 def test_sea_signal_bad_input():
@@ -178,3 +191,194 @@ def test_empty_grid_is_rejected():
     with pytest.raises(ScenarioError, match=r"\[batch.grid.controller.params.kp\] needs at least "
                                             r"one value, got \[\]"):
         parse_scenario(_with('[batch.grid]\n"controller.params.kp" = []\n'))
+
+
+# -- results keep the shape of the question ------------------------------------------------
+GRID = ('[batch.grid]\n"controller.params.kp" = [1.0, 2.0, 3.0]\n'
+        '"controller.params.kd" = [10.0, 20.0, 30.0, 40.0]\n')
+KPS, KDS = [1.0, 2.0, 3.0], [10.0, 20.0, 30.0, 40.0]
+
+
+@pytest.fixture(scope="module")
+def grid_result():
+    return run_scenario(parse_scenario(_with(GRID), source="grid.toml"))
+
+
+def test_grid_keeps_its_dimensions_and_coordinates(grid_result):
+    ds = grid_result.to_xarray()
+    assert ds["heading"].dims == ("kp", "kd", "time")
+    assert ds["status"].dims == ("kp", "kd")
+    assert ds["controller.kp"].dims == ("kp", "kd")
+    assert dict(ds.sizes) == {"kp": 3, "kd": 4, "time": 201}
+    assert ds["kp"].values.tolist() == KPS and ds["kd"].values.tolist() == KDS
+    assert ds["kp"].attrs["key"] == "controller.params.kp"
+    assert ds["kd"].attrs["key"] == "controller.params.kd"
+    # the parameter actually used in each cell is the cell's coordinate
+    np.testing.assert_array_equal(ds["controller.kp"].values, np.repeat([KPS], 4, axis=0).T)
+    np.testing.assert_array_equal(ds["controller.kd"].values, np.repeat([KDS], 3, axis=0))
+
+
+def test_each_grid_cell_equals_the_run_simulated_alone(grid_result, mariner2):
+    from seahelm.control.pid import PID_HEADING, PIDHeadingParams
+    from seahelm.simulation.engine import simulate
+    from seahelm.vessels.nomoto import NOMOTO2
+
+    ds = grid_result.to_xarray()
+    for kp, kd in [(1.0, 10.0), (2.0, 30.0), (3.0, 40.0), (3.0, 10.0)]:
+        alone = simulate(NOMOTO2, mariner2, np.zeros(5), t_final=20.0, dt=0.1,
+                         controller=PID_HEADING, controller_params=PIDHeadingParams(kp=kp, kd=kd),
+                         reference=[math.radians(10.0)])
+        cell = ds.sel(kp=kp, kd=kd)
+        np.testing.assert_allclose(cell["heading"].values, alone["heading"][0], rtol=1e-13,
+                                   atol=1e-15)
+        np.testing.assert_allclose(cell["rudder_angle"].values, alone["rudder_angle"][0],
+                                   rtol=1e-13, atol=1e-15)
+
+
+def test_flat_view_has_twelve_runs_in_c_order_of_the_grid(grid_result):
+    ds = grid_result.to_xarray()
+    flat = grid_result.to_xarray(flat=True)
+    assert flat["heading"].dims == ("run", "time")
+    assert flat.sizes["run"] == 12 and grid_result.n_runs == 12
+    assert flat["run"].values.tolist() == list(range(12))
+    assert flat["kp"].values.tolist() == [1.0] * 4 + [2.0] * 4 + [3.0] * 4
+    assert flat["kd"].values.tolist() == KDS * 3
+    for i in range(12):
+        np.testing.assert_array_equal(flat["heading"].values[i],
+                                      ds["heading"].values[i // 4, i % 4])
+        np.testing.assert_array_equal(grid_result.state[i, :, 2], flat["heading"].values[i])
+
+
+def test_grid_netcdf_round_trip_keeps_dims_and_coordinates(grid_result, tmp_path):
+    from seahelm.results import flatten_runs, load_result
+
+    back = load_result(grid_result.to_netcdf(tmp_path / "grid.nc"))
+    ref = grid_result.to_xarray()
+    assert back["heading"].dims == ("kp", "kd", "time")
+    assert back["kp"].values.tolist() == KPS and back["kd"].values.tolist() == KDS
+    assert back["kp"].attrs["key"] == "controller.params.kp"
+    np.testing.assert_array_equal(back["heading"].values, ref["heading"].values)
+    assert back["status_message"].dims == ("kp", "kd")
+    flat = flatten_runs(back)
+    assert flat["kd"].values.tolist() == KDS * 3
+    np.testing.assert_array_equal(flat["heading"].values, grid_result["heading"])
+
+
+def test_grid_csv_is_the_flat_view_with_coordinate_columns(grid_result, tmp_path):
+    import pandas as pd
+
+    frame = pd.read_csv(grid_result.to_csv(tmp_path / "grid.csv"))
+    assert len(frame) == 12 * 201
+    assert {"run", "time", "kp", "kd", "heading"} <= set(frame.columns)
+    last = frame[frame.time == frame.time.max()].sort_values("run")
+    assert last["kp"].tolist() == [1.0] * 4 + [2.0] * 4 + [3.0] * 4
+    assert last["kd"].tolist() == KDS * 3
+
+
+def test_grid_dimension_names_fall_back_to_the_key_path():
+    batch = parse_scenario(_with('[batch.grid]\n"controller.params.kp" = [1.0, 2.0]\n'
+                                 '"vessel.params.gain" = [0.1, 0.2, 0.3]\n'
+                                 '"controller.reference.heading_deg" = [5.0]\n'
+                                 '"vessel.initial.heading" = [0.0, 0.1]\n'))
+    # "heading" is the name of a state variable: that dimension keeps its full key path
+    assert batch.layout.dims == ("kp", "gain", "heading_deg", "vessel.initial.heading")
+    assert batch.layout.shape == (2, 3, 1, 2)
+    units = {a.name: a.units for a in batch.layout.axes}
+    assert units == {"kp": "rad/rad", "gain": "1/s", "heading_deg": "deg",
+                     "vessel.initial.heading": "rad"}
+    clash = parse_scenario(_with('[batch.grid]\n"vessel.initial.heading_deg" = [5.0, 6.0]\n'
+                                 '"controller.reference.heading_deg" = [1.0]\n'))
+    assert clash.layout.dims == ("vessel.initial.heading_deg", "controller.reference.heading_deg")
+
+
+def test_a_plain_scenario_has_one_run_dimension():
+    batch = parse_scenario(_with())
+    assert batch.layout.dims == ("run",) and batch.n_runs == 1
+
+
+MC = ('[batch.monte_carlo]\nruns = 5\nseed = 11\n[batch.monte_carlo.draws]\n'
+      '"vessel.params.gain" = { distribution = "uniform", low = 0.1, high = 0.3 }\n'
+      '"vessel.initial.heading_deg" = { distribution = "normal", mean = 0.0, std = 2.0 }\n')
+
+
+def _documented_draws(seed, n):
+    """The draws as documented: run i uses default_rng(SeedSequence(seed).spawn(n)[i])."""
+    gains, headings = [], []
+    for child in np.random.SeedSequence(seed).spawn(n):
+        rng = np.random.default_rng(child)
+        gains.append(rng.uniform(0.1, 0.3))
+        headings.append(rng.normal(0.0, 2.0))
+    return np.array(gains), np.array(headings)
+
+
+def test_monte_carlo_has_a_sample_dimension_and_stores_the_draws(tmp_path):
+    from seahelm.results import load_result
+
+    result = run_scenario(parse_scenario(_with(MC), source="mc.toml"))
+    ds = result.to_xarray()
+    assert ds["heading"].dims == ("sample", "time")
+    assert ds["sample"].values.tolist() == [0, 1, 2, 3, 4]
+    gains, headings = _documented_draws(11, 5)
+    assert ds["vessel.params.gain"].dims == ("sample",)
+    np.testing.assert_array_equal(ds["vessel.params.gain"].values, gains)
+    np.testing.assert_array_equal(ds["vessel.initial.heading_deg"].values, headings)
+    assert ds["vessel.initial.heading_deg"].attrs["units"] == "deg"
+    assert ds["vessel.params.gain"].attrs["distribution"] == "uniform"
+    # the drawn values are what ran
+    np.testing.assert_array_equal(ds["vessel.gain"].values, gains)
+    np.testing.assert_allclose(ds["heading"].values[:, 0], np.radians(headings), rtol=1e-15)
+    back = load_result(result.to_netcdf(tmp_path / "mc.nc"))
+    assert back["heading"].dims == ("sample", "time")
+    np.testing.assert_array_equal(back["vessel.params.gain"].values, gains)
+    assert back["vessel.params.gain"].dims == ("sample",)
+
+
+def test_grid_times_monte_carlo_is_grid_dims_then_sample():
+    text = _with('[batch.grid]\n"controller.params.kp" = [1.0, 2.0]\n' + MC)
+    batch = parse_scenario(text)
+    assert batch.layout.dims == ("kp", "sample") and batch.layout.shape == (2, 5)
+    gains, _ = _documented_draws(11, 10)
+    draws = {v.name: v.values for v in batch.layout.values}
+    np.testing.assert_array_equal(draws["vessel.params.gain"], gains)
+    np.testing.assert_array_equal(batch.controller_params[:, 0], [1.0] * 5 + [2.0] * 5)
+
+
+# -- one validator: the engine -------------------------------------------------------------
+@pytest.mark.parametrize(
+    ("edit", "key"),
+    [
+        (("t_final = 20.0", "t_final = 20.05"), "simulation.t_final"),
+        (('model = "pid-heading"', 'model = "pid-heading"\ndt = 0.25'), "controller.dt"),
+        (("dt = 0.1", "dt = 0.1\n[simulation.bounds]\nspeed = [0, 1]"), "simulation.bounds.speed"),
+    ],
+)
+def test_engine_checks_are_made_once_by_the_engine(edit, key):
+    from seahelm.errors import ParameterError
+    from seahelm.simulation.engine import simulate
+
+    batch = parse_scenario(_with(replace=edit), source="s.toml")  # the scenario lets it through
+    with pytest.raises(ParameterError) as engine:
+        simulate(**batch.simulate_kwargs())
+    with pytest.raises(ScenarioError) as scenario:
+        run_scenario(batch)
+    assert str(scenario.value) == f"s.toml: [{key}] {engine.value}"
+    assert isinstance(scenario.value.__cause__, ParameterError)
+
+
+def test_command_count_mismatch_comes_from_the_engine_with_the_key():
+    import dataclasses
+
+    batch = parse_scenario(_with(), source="s.toml")
+    two = dataclasses.replace(batch.controller, command_labels=("a", "b"))
+    with pytest.raises(ScenarioError, match=r"s.toml: \[controller.model\] controller "
+                                            r"'pid-heading' gives 2 command\(s\) but actuator "
+                                            r"'rudder-servo' takes 1"):
+        run_scenario(batch.replace(controller=two))
+
+
+def test_engine_error_about_a_run_names_its_grid_point():
+    batch = parse_scenario(_with('[simulation.bounds]\nheading = [-1.0, 1.0]\n[batch.grid]\n'
+                                 '"vessel.initial.heading" = [0.0, 2.0]\n'), source="s.toml")
+    with pytest.raises(ScenarioError, match=r"s.toml: \[vessel.initial\] initial state of run 1 "
+                                            r".*\(run 1: \{'vessel.initial.heading': 2.0\}\)"):
+        run_scenario(batch)

@@ -25,8 +25,12 @@ from .errors import (  # noqa: E402
 _LAZY = {
     "simulate": "seahelm.simulation.engine",
     "RunStatus": "seahelm.simulation.engine",
+    "RunBatch": "seahelm.simulation.batch",
+    "BatchLayout": "seahelm.simulation.batch",
+    "simulate_batch": "seahelm.simulation.batch",
     "SimResult": "seahelm.results",
     "load_result": "seahelm.results",
+    "flatten_runs": "seahelm.results",
     "load_scenario": "seahelm.scenario",
     "parse_scenario": "seahelm.scenario",
     "run_scenario": "seahelm.scenario",

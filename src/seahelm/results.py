@@ -1,11 +1,26 @@
 """Simulation results: :class:`SimResult` and its xarray / NetCDF / CSV forms.
 
-``SimResult.to_xarray()`` gives a Dataset with dimensions ``run`` and ``time``; every state,
-navigation output, command, reference and disturbance channel is a labelled variable with its
-unit in ``attrs["units"]``; parameters are ``run``-indexed variables named
-``<component>.<field>``; run status, failure time and message are ``run`` variables; the
-attributes hold the seahelm version, model/actuator/controller names, integrator, step, seed,
-scenario text and creation time. Files are written atomically (temporary file in the same
+Results keep the shape of the question. ``SimResult.to_xarray()`` gives a Dataset whose
+dimensions are the batch's (its :class:`~seahelm.simulation.batch.BatchLayout`) and ``time``:
+``(kp, kd, time)`` for a grid over two controller gains, with the grid values as coordinates
+(``attrs["key"]`` holds the full key path, e.g. ``controller.params.kp``); ``(sample, time)``
+for Monte-Carlo, with the drawn values as variables over ``sample`` (named by their key path);
+``(run, time)`` for a batch that spans no grid (e.g. :func:`~seahelm.simulation.engine.simulate`
+called directly). Every state, navigation output, command, reference and disturbance channel
+is a labelled variable with its unit in ``attrs["units"]``; parameters are variables over the
+batch dimensions named ``<component>.<field>``; run status, failure time and message likewise;
+the attributes hold the seahelm version, model/actuator/controller names, integrator, step,
+seed, scenario text and creation time.
+
+The flat view, for code that iterates runs: ``to_xarray(flat=True)`` (or
+:func:`flatten_runs` on any result Dataset, e.g. one read back by :func:`load_result`) stacks
+the batch dimensions into one ``run`` dimension in C order (the last batch dimension varies
+fastest), with the batch coordinates as coordinates over ``run`` (``kp(run)``, ``kd(run)``;
+no MultiIndex, so it can be written to NetCDF too). The numpy arrays of :class:`SimResult`
+(``result.state[i]``, ``result["heading"]``) are in that flat run order.
+
+NetCDF files hold the shaped Dataset; CSV files the flat view (one row per run and time, the
+batch coordinates as columns). Files are written atomically (temporary file in the same
 directory, then rename), so a crash never leaves a half-written result.
 """
 
@@ -23,11 +38,14 @@ import numpy as np
 
 from . import __version__
 from .parameters import Params
+from .errors import ParameterError
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
-__all__ = ["SimResult", "atomic_write", "load_result"]
+    from .simulation.batch import BatchLayout
+
+__all__ = ["SimResult", "atomic_write", "load_result", "flatten_runs", "batch_dims"]
 
 _STATUS_TEXT = {0: "ok", 1: "diverged: non-finite state", 2: "diverged: state out of bounds"}
 
@@ -67,7 +85,13 @@ def atomic_write(path: str | os.PathLike[str], writer: Callable[[str], None]) ->
 
 @dataclasses.dataclass
 class SimResult:
-    """The recorded runs of a batch simulation (arrays have a leading ``run`` axis)."""
+    """The recorded runs of a batch simulation.
+
+    The arrays have a leading flat ``run`` axis (C order over the batch dimensions);
+    ``layout`` (a :class:`~seahelm.simulation.batch.BatchLayout`, set by
+    :func:`~seahelm.simulation.batch.simulate_batch`) gives the dimensions the runs span and
+    shapes :meth:`to_xarray`. Without it the runs span one ``run`` dimension.
+    """
 
     time: np.ndarray
     state: np.ndarray
@@ -89,10 +113,29 @@ class SimResult:
     failure_state: np.ndarray
     params: dict[str, tuple[type[Params], np.ndarray]]
     metadata: dict[str, Any]
+    layout: "BatchLayout | None" = None
+
+    def __post_init__(self) -> None:
+        if self.layout is not None and self.layout.size != self.n_runs:
+            raise ParameterError(
+                f"batch layout {dict(zip(self.layout.dims, self.layout.shape))} spans "
+                f"{self.layout.size} run(s), but the engine ran {self.n_runs}"
+            )
 
     @property
     def n_runs(self) -> int:
+        """Number of runs (the length of the flat ``run`` axis)."""
         return int(self.state.shape[0])
+
+    @property
+    def dims(self) -> tuple[str, ...]:
+        """The batch dimensions of :meth:`to_xarray` (``("run",)`` without a layout)."""
+        return ("run",) if self.layout is None else self.layout.dims
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """Sizes of the batch dimensions (``(n_runs,)`` without a layout)."""
+        return (self.n_runs,) if self.layout is None else self.layout.shape
 
     @property
     def ok(self) -> np.ndarray:
@@ -132,12 +175,26 @@ class SimResult:
         return names
 
     # -- conversions ---------------------------------------------------------------------
-    def to_xarray(self) -> "xr.Dataset":
-        """The runs as an :class:`xarray.Dataset` (dims ``run``, ``time``)."""
+    def to_xarray(self, *, flat: bool = False) -> "xr.Dataset":
+        """The runs as an :class:`xarray.Dataset`, dims ``(*batch_dims, time)``.
+
+        Parameters
+        ----------
+        flat : bool, optional
+            Stack the batch dimensions into one ``run`` dimension (C order), with the batch
+            coordinates as coordinates over ``run`` (default False: the batch's own
+            dimensions, e.g. ``(kp, kd, time)``). Same as :func:`flatten_runs` of the shaped
+            Dataset.
+
+        Returns
+        -------
+        xarray.Dataset
+        """
         import xarray as xr
 
         n_runs = self.n_runs
-        coords = {"run": np.arange(n_runs), "time": ("time", self.time, {"units": "s"})}
+        coords: dict[str, Any] = {"run": np.arange(n_runs),
+                                  "time": ("time", self.time, {"units": "s"})}
         data: dict[str, Any] = {}
 
         def add(name: str, values: np.ndarray, unit: str, kind: str) -> None:
@@ -167,6 +224,22 @@ class SimResult:
                            "flag_meanings": "ok diverged_nonfinite diverged_out_of_bounds"})
         data["failure_time"] = ("run", self.failure_time, {"units": "s"})
         data["status_message"] = ("run", np.array(self.messages(), dtype=object))
+        layout = self.layout
+        if layout is not None and not layout.is_flat:
+            for v in layout.values:
+                if v.name in data:
+                    raise ParameterError(f"batch values '{v.name}' have the name of a result "
+                                         "variable")
+                attrs = {"kind": "batch_values", **dict(v.attrs)}
+                if v.units:
+                    attrs["units"] = v.units
+                data[v.name] = ("run", np.asarray(v.values), attrs)
+            for a in layout.axes:
+                if a.name in data:
+                    raise ParameterError(f"batch dimension '{a.name}' has the name of a result "
+                                         "variable; name it by its key path")
+                point = np.unravel_index(np.arange(n_runs), layout.shape)[layout.dims.index(a.name)]
+                coords[a.name] = ("run", a.values[point], a.attrs)
         attrs = {
             "seahelm_version": __version__,
             "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
@@ -177,10 +250,13 @@ class SimResult:
             if isinstance(value, (bool, np.bool_)):
                 value = int(value)
             attrs[key] = value if isinstance(value, (int, float, str)) else str(value)
-        return xr.Dataset(data, coords=coords, attrs=attrs)
+        ds = xr.Dataset(data, coords=coords, attrs=attrs)
+        if flat or layout is None or layout.is_flat:
+            return ds
+        return _shape_runs(ds, layout)
 
     def to_netcdf(self, path: str | os.PathLike[str]) -> Path:
-        """Write the Dataset to NetCDF-4 (h5netcdf) atomically; returns the path.
+        """Write the (shaped) Dataset to NetCDF-4 (h5netcdf) atomically; returns the path.
 
         Parameters
         ----------
@@ -196,7 +272,9 @@ class SimResult:
         return atomic_write(path, lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf"))
 
     def to_csv(self, path: str | os.PathLike[str]) -> Path:
-        """Write a long-format CSV (one row per run and time) atomically; returns the path.
+        """Write a long-format CSV of the flat view atomically; returns the path.
+
+        One row per run and time; the batch coordinates (e.g. ``kp``, ``kd``) are columns.
 
         Parameters
         ----------
@@ -207,7 +285,7 @@ class SimResult:
         -------
         pathlib.Path
         """
-        ds = self.to_xarray()
+        ds = self.to_xarray(flat=True)
         series = [v for v in ds.data_vars if ds[v].dims == ("run", "time")]
         frame = ds[series].to_dataframe().reset_index()
         return atomic_write(path, lambda tmp: frame.to_csv(tmp, index=False, float_format="%.10g"))
@@ -218,7 +296,7 @@ class SimResult:
         Parameters
         ----------
         runs : sequence of int, optional
-            Runs to draw (default: all).
+            Runs to draw, as flat run indices (default: all).
         fig : matplotlib Figure, optional
             Figure to draw into (default: a new one).
 
@@ -228,11 +306,79 @@ class SimResult:
         """
         from .plotting.timeseries import plot_result
 
-        return plot_result(self.to_xarray(), runs=runs, fig=fig)
+        return plot_result(self.to_xarray(flat=True), runs=runs, fig=fig)
+
+
+def _shape_runs(ds: "xr.Dataset", layout: "BatchLayout") -> "xr.Dataset":
+    """The flat Dataset of :meth:`SimResult.to_xarray` with ``run`` reshaped to the layout."""
+    import xarray as xr
+
+    data = {}
+    for name, var in ds.data_vars.items():
+        dims = var.dims
+        if "run" in dims:
+            i = dims.index("run")
+            values = var.values.reshape(var.shape[:i] + layout.shape + var.shape[i + 1:])
+            dims = dims[:i] + layout.dims + dims[i + 1:]
+        else:
+            values = var.values
+        data[name] = xr.Variable(dims, values, var.attrs)
+    coords: dict[str, Any] = {"time": ds["time"].variable}
+    for a in layout.axes:
+        coords[a.name] = (a.name, np.asarray(a.values), a.attrs)
+    return xr.Dataset(data, coords=coords, attrs=ds.attrs)
+
+
+def batch_dims(ds: "xr.Dataset") -> tuple[str, ...]:
+    """The batch dimensions of a result Dataset (those of its ``status`` variable).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A Dataset of :meth:`SimResult.to_xarray` or :func:`load_result`.
+
+    Returns
+    -------
+    tuple of str
+        E.g. ``("kp", "kd")``, ``("sample",)`` or ``("run",)``.
+    """
+    if "status" not in ds:
+        raise KeyError("not a seahelm result: no `status` variable")
+    return tuple(str(d) for d in ds["status"].dims)
+
+
+def flatten_runs(ds: "xr.Dataset") -> "xr.Dataset":
+    """The flat run view of a result Dataset: batch dimensions stacked into ``run``.
+
+    Runs are numbered in C order over the batch dimensions (the last varies fastest), as in the
+    arrays of :class:`SimResult`; the batch coordinates become coordinates over ``run`` (no
+    MultiIndex). A Dataset that already has the dims ``(run, time)`` is returned unchanged.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A Dataset of :meth:`SimResult.to_xarray` or :func:`load_result`.
+
+    Returns
+    -------
+    xarray.Dataset
+        Variables with dims ``(run, time)`` or ``(run,)``.
+    """
+    dims = batch_dims(ds)
+    if dims == ("run",):
+        return ds
+    if "run" in ds.variables:
+        raise ValueError(f"cannot flatten batch dims {dims}: the Dataset already has `run`")
+    flat = ds.stack(run=dims, create_index=False)
+    flat = flat.assign_coords(run=np.arange(flat.sizes["run"]))
+    return flat.transpose("run", ...)
 
 
 def load_result(path: str | os.PathLike[str]) -> "xr.Dataset":
     """Open a result file written by :meth:`SimResult.to_netcdf` (loaded into memory).
+
+    The Dataset has the batch's dimensions and coordinates as written (e.g. ``(kp, kd,
+    time)``); :func:`flatten_runs` gives the flat ``run`` view.
 
     Parameters
     ----------

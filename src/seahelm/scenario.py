@@ -1,10 +1,16 @@
 """Scenario files (TOML): schema, validation and the runs they describe.
 
-A scenario is validated in one place, before anything runs. Structure and types are checked by
-pydantic; names (models, catalog entries, parameters, state and signal channels) and values
-(parameter ranges) by the components themselves. Every error names the file, the key path, the
-bad value and what was expected, and is raised as :class:`ScenarioError` (a
-:class:`~seahelm.errors.ParameterError`, so the CLI exits with code 2).
+A scenario becomes one :class:`~seahelm.simulation.batch.RunBatch`: the engine's inputs and the
+batch's layout. Each check is made once, by whoever owns it. The scenario checks what only it
+knows: the TOML structure and types (pydantic), names (models, catalog entries, integrators,
+parameters, state and signal channels), parameter ranges (through the components' parameter
+dataclasses) and signal specifications. What the engine runs -- timing (``t_final`` and
+``controller.dt`` whole multiples of ``simulation.dt``), the controller/actuator command count,
+bounds labels, shapes -- the engine validates, before anything is integrated; its error is
+re-raised naming the scenario file and the key it most likely comes from. Every error names
+the file, the key path, the bad value and what was expected, and is raised as
+:class:`ScenarioError` (a :class:`~seahelm.errors.ParameterError`, so the CLI exits with
+code 2).
 
 Layout (see ``examples/*.toml``)::
 
@@ -19,13 +25,19 @@ Layout (see ``examples/*.toml``)::
 Angles may be written in degrees with a ``_deg`` suffix on any parameter, initial state,
 reference or disturbance channel whose unit is radians; they are converted at this edge.
 The grid is a Cartesian product; Monte-Carlo draws are made per grid point with generators
-spawned from ``SeedSequence(seed)``, and the seed is stored with the results.
+spawned from ``SeedSequence(seed)``, and the seed is stored with the results. Results keep the
+shape of the question: a grid over ``controller.params.kp`` and ``controller.params.kd``
+comes back with the dimensions ``(kp, kd, time)`` (a dimension is named by the last component
+of its key path, or by the whole path where that is ambiguous); Monte-Carlo adds ``sample``,
+with the draws stored as variables; a scenario without a batch has one ``run``.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
+import re
 import tomllib
 from collections.abc import Callable
 from importlib import resources
@@ -33,17 +45,19 @@ from pathlib import Path
 from typing import Annotated, Any, Literal
 
 import numpy as np
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from .errors import ParameterError
 from .parameters import Params
 from .registry import get_actuator, get_controller, get_model
+from .simulation.batch import BatchAxis, BatchLayout, BatchValues, RunBatch, grid_axes
+from .simulation.composition import compose
 from .simulation.integrators import INTEGRATORS
-from .simulation.signals import make_signal
+from .simulation.signals import Constant, make_signal
 from .vessels import catalog
 
 __all__ = ["Scenario", "ScenarioError", "load_scenario", "parse_scenario", "run_scenario",
-           "default_scenario_text", "PreparedRuns", "prepare_runs"]
+           "default_scenario_text", "prepare_runs"]
 
 
 class ScenarioError(ParameterError):
@@ -83,9 +97,16 @@ class EnvironmentSection(_Strict):
 class SimulationSection(_Strict):
     t_final: Annotated[float, Field(gt=0)]
     dt: Annotated[float, Field(gt=0)]
-    integrator: Literal["euler", "heun", "rk4"] = "rk4"
+    integrator: str = "rk4"
     record_every: Annotated[int, Field(ge=1)] = 1
     bounds: dict[str, tuple[float, float]] = Field(default_factory=dict)
+
+    @field_validator("integrator")
+    @classmethod
+    def _known_integrator(cls, name: str) -> str:
+        if name not in INTEGRATORS:
+            raise ValueError(f"unknown integrator '{name}'; valid: {', '.join(INTEGRATORS)}")
+        return name
 
 
 class Distribution(_Strict):
@@ -135,8 +156,11 @@ def default_scenario_text() -> str:
     return resources.files("seahelm").joinpath("data/default.toml").read_text()
 
 
-def parse_scenario(text: str, *, source: str = "<string>") -> "PreparedRuns":
-    """Parse and fully validate scenario text; nothing runs.
+def parse_scenario(text: str, *, source: str = "<string>") -> RunBatch:
+    """Parse and validate scenario text into the batch it describes; nothing runs.
+
+    What the engine runs (timing, command counts, bounds labels) is validated by the engine
+    when the batch runs (:func:`run_scenario`), before any step is integrated.
 
     Parameters
     ----------
@@ -147,7 +171,7 @@ def parse_scenario(text: str, *, source: str = "<string>") -> "PreparedRuns":
 
     Returns
     -------
-    PreparedRuns
+    RunBatch
 
     Raises
     ------
@@ -171,7 +195,7 @@ def parse_scenario(text: str, *, source: str = "<string>") -> "PreparedRuns":
     return prepare_runs(scn, source=source, text=text)
 
 
-def load_scenario(path: str | Path) -> "PreparedRuns":
+def load_scenario(path: str | Path) -> RunBatch:
     """Read, parse and validate a scenario file.
 
     Parameters
@@ -181,7 +205,7 @@ def load_scenario(path: str | Path) -> "PreparedRuns":
 
     Returns
     -------
-    PreparedRuns
+    RunBatch
 
     Raises
     ------
@@ -195,22 +219,6 @@ def load_scenario(path: str | Path) -> "PreparedRuns":
 
 
 # ------------------------------------------------------------------------------------------
-class PreparedRuns:
-    """Everything :func:`seahelm.simulation.engine.simulate` needs, validated.
-
-    Attributes: ``scenario`` (the pydantic model), ``source``, ``text``, the components, the
-    per-run parameter arrays, ``x0``, ``reference`` and ``disturbance`` callables/arrays,
-    ``run_labels`` (what varies per run) and ``seed``.
-    """
-
-    def __init__(self, **kw: Any) -> None:
-        self.__dict__.update(kw)
-
-    @property
-    def n_runs(self) -> int:
-        return int(self.x0.shape[0])
-
-
 def _err(source: str, path: str, message: str) -> ScenarioError:
     return ScenarioError(f"{source}: [{path}] {message}")
 
@@ -238,17 +246,62 @@ def _params(cls: type[Params], values: dict[str, float], base: Params | None) ->
     return cls.from_mapping(values, base=base)
 
 
-def _expand_batch(scn: Scenario, source: str) -> tuple[list[dict[str, float]], int | None]:
-    """Per-run overrides {"section.kind.key": value} from the grid and Monte-Carlo draws."""
+_OVERRIDABLE = ("vessel.params.", "vessel.initial.", "actuator.params.", "controller.params.",
+                "controller.reference.", "environment.disturbance.")
+
+#: Engine argument (as its messages name it, in backticks) -> the scenario key it comes from.
+_ENGINE_KEYS = {
+    "t_final": "simulation.t_final",
+    "dt": "simulation.dt",
+    "controller_dt": "controller.dt",
+    "record_every": "simulation.record_every",
+    "integrator": "simulation.integrator",
+    "bounds": "simulation.bounds",
+    "params": "vessel.params",
+    "x0": "vessel.initial",
+    "actuator_params": "actuator.params",
+    "controller_params": "controller.params",
+    "reference": "controller.reference",
+    "disturbance": "environment.disturbance",
+}
+
+
+def _key_units(key: str, model: Any, actuator: Any, wiring: Any) -> str:
+    """Unit of the values written for a batch key (``deg`` for ``_deg`` keys; "" if unknown)."""
+    section, _, name = key.rpartition(".")
+    if name.endswith("_deg"):
+        return "deg"
+    tables = {
+        "vessel.params": {i.name: i.unit for i in model.params_type.info()},
+        "actuator.params": {i.name: i.unit for i in actuator.params_type.info()},
+        "controller.params": {i.name: i.unit for i in wiring.controller.params_type.info()},
+        "vessel.initial": dict(zip(model.state_labels, model.state_units)),
+        "controller.reference": dict(zip(wiring.references, wiring.reference_units)),
+        "environment.disturbance": dict(zip(model.disturbance_labels, model.disturbance_units)),
+    }
+    return tables.get(section, {}).get(name, "")
+
+
+def _expand_batch(
+    scn: Scenario, source: str, reserved: set[str], units: Callable[[str], str]
+) -> tuple[list[dict[str, float]], int | None, BatchLayout]:
+    """Per-run overrides {"section.kind.key": value} in C order, the seed and the layout."""
     grid_keys = list(scn.batch.grid)
+    mc = scn.batch.monte_carlo
     for key in grid_keys:
         if not scn.batch.grid[key]:
             raise _err(source, f"batch.grid.{key}", "needs at least one value, got []")
+    for key in grid_keys + (list(mc.draws) if mc is not None else []):
+        if not key.startswith(_OVERRIDABLE):
+            raise _err(source, f"batch.{key}",
+                       f"cannot vary '{key}'; keys start with one of: {', '.join(_OVERRIDABLE)}")
     grid = [dict(zip(grid_keys, combo))
             for combo in itertools.product(*(scn.batch.grid[k] for k in grid_keys))] or [{}]
-    mc = scn.batch.monte_carlo
+    axes = list(grid_axes(scn.batch.grid, units={k: units(k) for k in grid_keys},
+                          reserved=reserved))
     if mc is None:
-        return grid, None
+        layout = BatchLayout(axes=tuple(axes)) if axes else BatchLayout.runs(1)
+        return grid, None, layout
     runs: list[dict[str, float]] = []
     children = np.random.SeedSequence(mc.seed).spawn(len(grid) * mc.runs)
     n = 0
@@ -265,15 +318,88 @@ def _expand_batch(scn: Scenario, source: str) -> tuple[list[dict[str, float]], i
                 else:
                     draw[key] = float(rng.uniform(dist.low, dist.high))
             runs.append(draw)
-    return runs, mc.seed
+    axes.append(BatchAxis(name="sample", values=np.arange(mc.runs)))
+    values = tuple(
+        BatchValues(name=key, values=[r[key] for r in runs], units=units(key),
+                    attrs={"key": key, "distribution": dist.distribution})
+        for key, dist in mc.draws.items()
+    )
+    try:
+        layout = BatchLayout(axes=tuple(axes), values=values)
+    except ParameterError as exc:
+        raise _err(source, "batch", str(exc)) from None
+    return runs, mc.seed, layout
 
 
-_OVERRIDABLE = ("vessel.params.", "vessel.initial.", "actuator.params.", "controller.params.",
-                "controller.reference.", "environment.disturbance.")
+@dataclasses.dataclass(frozen=True, eq=False)
+class _ScenarioSignals:
+    """The time-varying reference or disturbance channels of a scenario's runs.
+
+    Called by the engine with its own time grid (the scenario does not build one); returns
+    shape (runs|1, steps+1, channels). Random signals draw run ``i``'s realisation from the
+    ``i``-th child of ``SeedSequence(seed)``.
+    """
+
+    source: str
+    path: str
+    n_channels: int
+    #: per run (or one for all runs): (channel index, name, spec as written, signal)
+    runs: tuple[tuple[tuple[int, str, Any, Any], ...], ...]
+
+    def __call__(self, t_grid: np.ndarray) -> np.ndarray:
+        t_grid = np.asarray(t_grid, dtype=float)
+        out = np.zeros((len(self.runs), t_grid.size, self.n_channels))
+        for i, channels in enumerate(self.runs):
+            for j, name, spec, sig in channels:
+                try:
+                    if getattr(sig, "random", False):
+                        seq = np.random.SeedSequence(sig.seed, spawn_key=(i,))
+                        out[i, :, j] = sig(t_grid, seed=seq)
+                    else:
+                        out[i, :, j] = sig(t_grid)
+                except (ValueError, TypeError) as exc:
+                    raise _err(self.source, f"{self.path}.{name}",
+                               f"{exc} (got {spec!r})") from None
+        return out
 
 
-def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> PreparedRuns:
-    """Resolve names, parameters, initial states and signals of every run (validating all).
+def _signal_input(
+    per_run: list[dict[str, Any]], labels: tuple[str, ...], units: tuple[str, ...],
+    path: str, source: str,
+) -> Any:
+    """A reference/disturbance input of :func:`simulate` from per-run channel specifications.
+
+    ``None`` when nothing is given; constants as an array (runs|1, 1, channels); anything that
+    varies in time as a :class:`_ScenarioSignals` the engine samples on its grid.
+    """
+    if not any(per_run):
+        return None
+    runs = []
+    for spec in per_run:
+        channels = []
+        for name, value in spec.items():
+            try:
+                j, scale = _channel(name, labels, units)
+                sig = make_signal(value, scale=scale)
+            except (ValueError, TypeError) as exc:
+                raise _err(source, f"{path}.{name}", f"{exc} (got {value!r})") from None
+            channels.append((j, name, value, sig))
+        runs.append(tuple(channels))
+    if all(isinstance(sig, Constant) for chans in runs for _, _, _, sig in chans):
+        arr = np.zeros((len(runs), 1, len(labels)))
+        for i, chans in enumerate(runs):
+            for j, _, _, sig in chans:
+                arr[i, 0, j] = sig.value
+        return arr
+    return _ScenarioSignals(source=source, path=path, n_channels=len(labels), runs=tuple(runs))
+
+
+def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> RunBatch:
+    """The batch a validated scenario describes: components, per-run inputs and the layout.
+
+    Resolves and validates names, parameters (through the components' parameter
+    dataclasses), initial states and signal specifications. Timing, command counts and bounds
+    labels are left to the engine, which validates them when the batch runs.
 
     Parameters
     ----------
@@ -286,9 +412,16 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
 
     Returns
     -------
-    PreparedRuns
-        Models, parameter arrays (runs, n_params), initial states (SI units, radians) and the
-        reference and disturbance signals on the time grid.
+    RunBatch
+        Components, parameter arrays (runs, n_params), initial states (SI units, radians),
+        reference and disturbance inputs, and the layout: the grid's dimensions (named by the
+        last component of each key path, or the full path where that is ambiguous), plus
+        ``sample`` for Monte-Carlo (draws stored as batch values), or one ``run``.
+
+    Raises
+    ------
+    ScenarioError
+        Naming the source, the key path, the value and what was expected.
     """
     try:
         model = get_model(scn.vessel.model)
@@ -302,6 +435,10 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
         controller = get_controller(scn.controller.model)
     except ValueError as exc:
         raise _err(source, "controller.model", str(exc)) from None
+    try:  # the engine's wiring by signal name: it names the reference channels
+        wiring = compose(model, actuator, controller)
+    except ParameterError as exc:
+        raise _err(source, "controller.model", str(exc)) from None
     base_params: Params | None = None
     if scn.vessel.catalog is not None:
         try:
@@ -313,35 +450,15 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
                        f"'{entry.name}' is a parameter set for model '{entry.model}', "
                        f"not '{model.name}'")
         base_params = entry.params
-    if controller.n_commands != actuator.n_commands:
-        raise _err(source, "controller.model",
-                   f"'{controller.name}' gives {controller.n_commands} command(s) but actuator "
-                   f"'{actuator.name}' takes {actuator.n_commands}")
-    if scn.controller.dt is not None:
-        ratio = scn.controller.dt / scn.simulation.dt
-        if abs(ratio - round(ratio)) > 1e-9 * max(ratio, 1):
-            raise _err(source, "controller.dt",
-                       f"must be a whole multiple of simulation.dt = {scn.simulation.dt} s, "
-                       f"got {scn.controller.dt}")
-    ratio = scn.simulation.t_final / scn.simulation.dt
-    if abs(ratio - round(ratio)) > 1e-9 * max(ratio, 1):
-        raise _err(source, "simulation.t_final",
-                   f"must be a whole multiple of simulation.dt = {scn.simulation.dt} s, "
-                   f"got {scn.simulation.t_final}")
-    labels = model.state_labels + actuator.state_labels
-    for label in scn.simulation.bounds:
-        if label not in labels:
-            raise _err(source, f"simulation.bounds.{label}",
-                       f"unknown state; valid: {', '.join(labels)}")
 
-    runs, seed = _expand_batch(scn, source)
-    for key in set().union(*runs):
-        if not key.startswith(_OVERRIDABLE):
-            raise _err(source, f"batch.{key}",
-                       f"cannot vary '{key}'; keys start with one of: {', '.join(_OVERRIDABLE)}")
+    # names a batch dimension must not take: the result's variables and dimensions
+    reserved = {*model.state_labels, *actuator.state_labels, *model.output_labels,
+                *wiring.commands, *model.disturbance_labels,
+                *(f"reference_{lab}" for lab in wiring.references),
+                "status", "failure_time", "status_message", "run", "sample", "time"}
+    runs, seed, layout = _expand_batch(
+        scn, source, reserved, lambda key: _key_units(key, model, actuator, wiring))
 
-    t_grid = np.arange(int(round(ratio)) + 1) * scn.simulation.dt
-    mp, ap, cp, x0s, refs, dists = [], [], [], [], [], []
     def random(spec: dict[str, Any]) -> bool:
         return any(isinstance(v, dict) and v.get("kind") == "sea" for v in spec.values())
 
@@ -356,24 +473,7 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
         out.update({k[len(prefix):]: v for k, v in over.items() if k.startswith(prefix)})
         return out
 
-    def signals(spec: dict[str, Any], labels_: tuple[str, ...], units: tuple[str, ...],
-                path: str, run: int) -> np.ndarray:
-        arr = np.zeros((t_grid.size, max(len(labels_), 1)))
-        for name, value in spec.items():
-            try:
-                j, scale = _channel(name, labels_, units)
-                sig = make_signal(value, scale=scale)
-                if getattr(sig, "random", False):
-                    # run i draws from the i-th child of SeedSequence(seed)
-                    seq = np.random.SeedSequence(sig.seed, spawn_key=(run,))
-                    arr[:, j] = sig(t_grid, seed=seq)
-                else:
-                    arr[:, j] = sig(t_grid)
-            except (ValueError, TypeError) as exc:
-                raise _err(source, f"{path}.{name}", f"{exc} (got {value!r})") from None
-        return arr[:, : len(labels_)] if labels_ else arr[:, :0]
-
-    cache: dict[str, Any] = {}
+    mp, ap, cp, x0s, refs, dists = [], [], [], [], [], []
     for i, over in enumerate(runs):
         where = f" (run {i}: {over})" if over else ""
         for key, sec, cls, base, bucket in (
@@ -400,55 +500,71 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
                 raise _err(source, f"vessel.initial.{name}", f"{exc} (got {value!r})") from None
             x0[j] = value * scale
         x0s.append(x0)
-        if varied_ref or "ref" not in cache:
-            cache["ref"] = signals(section(over, "controller.reference.", scn.controller.reference),
-                                   controller.reference_labels, controller.reference_units,
-                                   "controller.reference", i)
-            refs.append(cache["ref"])
-        if varied_dist or "dist" not in cache:
-            cache["dist"] = signals(section(over, "environment.disturbance.",
-                                            scn.environment.disturbance),
-                                    model.disturbance_labels, model.disturbance_units,
-                                    "environment.disturbance", i)
-            dists.append(cache["dist"])
+        if varied_ref or not refs:
+            refs.append(section(over, "controller.reference.", scn.controller.reference))
+        if varied_dist or not dists:
+            dists.append(section(over, "environment.disturbance.", scn.environment.disturbance))
 
-    def const_or_series(arrs: list[np.ndarray]) -> np.ndarray:
-        stack = np.stack(arrs)  # (runs|1, steps+1, channels)
-        if stack.shape[2] == 0:
-            return stack[:, :1, :]
-        if np.all(stack == stack[:, :1, :]):
-            return stack[:, :1, :]
-        return stack
-
-    return PreparedRuns(
-        scenario=scn,
-        source=source,
-        text=text,
+    sim = scn.simulation
+    return RunBatch(
         model=model,
-        actuator=actuator,
-        controller=controller,
         params=np.array(mp),
-        actuator_params=np.array(ap),
-        controller_params=np.array(cp),
         x0=np.array(x0s),
-        reference=const_or_series(refs),
-        disturbance=const_or_series(dists),
-        run_overrides=runs,
+        t_final=sim.t_final,
+        dt=sim.dt,
+        controller=controller,
+        controller_params=np.array(cp),
+        actuator=actuator,
+        actuator_params=np.array(ap),
+        reference=_signal_input(refs, wiring.references, wiring.reference_units,
+                                "controller.reference", source),
+        disturbance=_signal_input(dists, model.disturbance_labels, model.disturbance_units,
+                                  "environment.disturbance", source),
+        controller_dt=scn.controller.dt,
+        integrator=sim.integrator,
+        record_every=sim.record_every,
+        bounds=dict(sim.bounds),
         seed=seed,
+        metadata={"title": scn.title, "scenario_source": source, "scenario_text": text},
+        layout=layout,
     )
 
 
+def _engine_error(source: str, exc: ParameterError, layout: BatchLayout | None) -> ScenarioError:
+    """The engine's error with the scenario's file and the key it most likely comes from."""
+    message = str(exc)
+    key = None
+    arg = re.search(r"`(\w+)`", message)
+    if arg and arg.group(1) in _ENGINE_KEYS:
+        key = _ENGINE_KEYS[arg.group(1)]
+        state = re.search(r"unknown state '(\w+)'", message)
+        if key == "simulation.bounds" and state:
+            key += f".{state.group(1)}"
+    elif re.match(r"controller '[^']*' gives", message):
+        key = "controller.model"
+    elif message.startswith("initial state"):
+        key = "vessel.initial"
+    run = re.search(r"\brun (\d+)\b", message)
+    if run and layout is not None and not layout.is_flat and int(run.group(1)) < layout.size:
+        message += f" (run {run.group(1)}: {layout.point(int(run.group(1)))})"
+    return ScenarioError(f"{source}: [{key}] {message}" if key else f"{source}: {message}")
+
+
 def run_scenario(
-    prepared: PreparedRuns,
+    batch: RunBatch,
     *,
     progress: Callable[[int, int], None] | None = None,
     throw: bool = False,
 ) -> Any:
-    """Simulate a prepared scenario; returns a :class:`~seahelm.results.SimResult`.
+    """Simulate a scenario's batch; returns a :class:`~seahelm.results.SimResult`.
+
+    The engine validates what it runs before anything is integrated; its errors are raised
+    as :class:`ScenarioError` naming the scenario file and the key they most likely come
+    from. The result keeps the batch's layout (e.g. dims ``(kp, kd, time)``).
 
     Parameters
     ----------
-    prepared : PreparedRuns
+    batch : RunBatch
         Result of :func:`load_scenario`, :func:`parse_scenario` or :func:`prepare_runs`.
     progress : callable(done_steps, total_steps), optional
         Called between chunks of the simulation loop.
@@ -459,36 +575,18 @@ def run_scenario(
     Returns
     -------
     SimResult
+
+    Raises
+    ------
+    ScenarioError
+        If the engine rejects the batch (timing, command counts, bounds labels, ...).
     """
-    from .simulation.engine import simulate
+    from .simulation.batch import simulate_batch
 
-    scn = prepared.scenario
-    sim = scn.simulation
-    ref = prepared.reference
-    dist = prepared.disturbance
-    result = simulate(
-        prepared.model,
-        prepared.params,
-        prepared.x0,
-        t_final=sim.t_final,
-        dt=sim.dt,
-        controller=prepared.controller,
-        controller_params=prepared.controller_params,
-        actuator=prepared.actuator,
-        actuator_params=prepared.actuator_params,
-        reference=ref if ref.shape[-1] else None,
-        disturbance=dist if dist.shape[-1] else None,
-        controller_dt=scn.controller.dt,
-        integrator=sim.integrator,
-        record_every=sim.record_every,
-        bounds=dict(sim.bounds),
-        throw=throw,
-        progress=progress,
-        seed=prepared.seed,
-        metadata={"title": scn.title, "scenario_source": prepared.source,
-                  "scenario_text": prepared.text},
-    )
-    return result
-
-
-_ = INTEGRATORS  # the Literal above mirrors this registry; tests check they agree
+    source = str(batch.metadata.get("scenario_source", "<string>"))
+    try:
+        return simulate_batch(batch, throw=throw, progress=progress)
+    except ScenarioError:
+        raise
+    except ParameterError as exc:
+        raise _engine_error(source, exc, batch.layout) from exc

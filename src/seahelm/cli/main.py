@@ -90,8 +90,10 @@ def _fmt(v: Any) -> str:
     return f"{v:.5g}" if isinstance(v, float) else str(v)
 
 
-def _summary_table(summary: list[dict[str, Any]], title: str) -> Table:
-    """One run: a metric/value table; a batch: one row per run (first 20)."""
+def _summary_table(summary: list[dict[str, Any]], title: str,
+                   batch_keys: tuple[str, ...] = ()) -> Table:
+    """One run: a metric/value table; a batch: one row per run (first 20), with the run's
+    grid coordinates (``batch_keys``) as columns."""
     if len(summary) == 1:
         table = Table(title=title)
         table.add_column("metric")
@@ -101,9 +103,11 @@ def _summary_table(summary: list[dict[str, Any]], title: str) -> Table:
                 table.add_row(key, _fmt(value))
         return table
     table = Table(title=title)
-    keys = ["run", "status", "final_heading_rad", "final_yaw_rate", "settling_time_s"]
+    keys = ["run", *batch_keys, "status", "final_heading_rad", "final_yaw_rate",
+            "settling_time_s"]
     for key in keys:
-        table.add_column(key.replace("_", " "), justify="left" if key == "status" else "right")
+        name = key if key in batch_keys else key.replace("_", " ")
+        table.add_column(name, justify="left" if key == "status" else "right")
     for row in summary[:20]:
         table.add_row(*(_fmt(row.get(k, "")) for k in keys))
     if len(summary) > 20:
@@ -111,17 +115,33 @@ def _summary_table(summary: list[dict[str, Any]], title: str) -> Table:
     return table
 
 
-def _execute(prepared: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bool,
+def _batch_columns(result: Any, summary: list[dict[str, Any]]) -> tuple[str, ...]:
+    """Put each run's batch coordinates and drawn values after ``run`` in its summary row;
+    returns the grid dimensions (those that vary a key), the table's extra columns."""
+    layout = result.layout
+    if layout is None or layout.is_flat:
+        return ()
+    values = {v.name: v.values for v in layout.values}
+    for i, row in enumerate(summary):
+        extra = {**layout.point(i), **{k: float(v[i]) for k, v in values.items()}}
+        rest = {k: v for k, v in row.items() if k != "run"}
+        row.clear()
+        row.update({"run": i, **extra, **rest})
+    return tuple(a.name for a in layout.axes if a.key)
+
+
+def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bool,
              label: str) -> dict[str, Any]:
     from ..analysis.maneuvers import summarize
     from ..scenario import run_scenario
 
-    bar = _ProgressBar(f"simulating {prepared.n_runs} run(s)")
+    bar = _ProgressBar(f"simulating {batch.n_runs} run(s)")
     try:
-        result = run_scenario(prepared, progress=bar)
+        result = run_scenario(batch, progress=bar)
     finally:
         bar.close()
     summary = summarize(result)
+    batch_keys = _batch_columns(result, summary)
     files: dict[str, str] = {}
     if out is not None:
         out.mkdir(parents=True, exist_ok=True)
@@ -142,8 +162,9 @@ def _execute(prepared: Any, out: Path | None, *, as_json: bool, plot: bool, csv:
             plt.close(fig)
             files["plot"] = str(path)
     payload: dict[str, Any] = {
-        "scenario": prepared.scenario.title or prepared.source,
+        "scenario": batch.metadata.get("title") or batch.metadata.get("scenario_source", ""),
         "n_runs": result.n_runs,
+        "dims": dict(zip(result.dims, result.shape)),
         "n_ok": int(result.ok.sum()),
         "n_diverged": int((~result.ok).sum()),
         "wall_time_s": result.metadata["wall_time_s"],
@@ -155,7 +176,7 @@ def _execute(prepared: Any, out: Path | None, *, as_json: bool, plot: bool, csv:
     if as_json:
         print_json(payload)
     else:
-        console.print(_summary_table(summary, label))
+        console.print(_summary_table(summary, label, batch_keys))
         console.print(
             f"{result.n_runs} run(s), {payload['n_ok']} ok, {payload['n_diverged']} diverged, "
             f"{result.metadata['wall_time_s']:.3g} s"
@@ -174,8 +195,8 @@ def demo(
     """Run the embedded default scenario (Mariner, 20° course change, PID) and plot it."""
     from ..scenario import default_scenario_text, parse_scenario
 
-    prepared = parse_scenario(default_scenario_text(), source="<embedded default scenario>")
-    _execute(prepared, out, as_json=json_, plot=True, csv=False, label=prepared.scenario.title)
+    batch = parse_scenario(default_scenario_text(), source="<embedded default scenario>")
+    _execute(batch, out, as_json=json_, plot=True, csv=False, label=batch.metadata["title"])
 
 
 @app.command()
@@ -190,9 +211,9 @@ def run(
     """Validate and run a scenario file."""
     from ..scenario import load_scenario
 
-    prepared = load_scenario(scenario)
-    _execute(prepared, out, as_json=json_, plot=plot, csv=csv,
-             label=prepared.scenario.title or str(scenario))
+    batch = load_scenario(scenario)
+    _execute(batch, out, as_json=json_, plot=plot, csv=csv,
+             label=batch.metadata["title"] or str(scenario))
 
 
 @app.command()
@@ -254,7 +275,8 @@ def models(
 def plot(
     result: Annotated[Path, typer.Argument(help="Result file written by seahelm (NetCDF).")],
     out: Annotated[Path | None, typer.Option(help="PNG file (default: next to the result).")] = None,
-    runs: Annotated[list[int] | None, typer.Option("--run", help="Run(s) to draw.")] = None,
+    runs: Annotated[list[int] | None, typer.Option(
+        "--run", help="Run(s) to draw: flat run index, C order over the batch dims.")] = None,
 ) -> None:
     """Plot a result file: heading, actuator angle, yaw rate and track."""
     import matplotlib
@@ -263,9 +285,9 @@ def plot(
     import matplotlib.pyplot as plt
 
     from ..plotting.timeseries import plot_result
-    from ..results import atomic_write, load_result
+    from ..results import atomic_write, flatten_runs, load_result
 
-    ds = load_result(result)
+    ds = flatten_runs(load_result(result))
     if runs:
         bad = [r for r in runs if r not in set(np.asarray(ds["run"].values).tolist())]
         if bad:

@@ -1,7 +1,9 @@
 """Standard figure of a simulation result: heading, actuator angle, yaw rate, xy track.
 
 Works on the :class:`xarray.Dataset` of :meth:`seahelm.results.SimResult.to_xarray` (or a
-result file read back), so ``seahelm plot RESULT.nc`` draws the same figure.
+result file read back), so ``seahelm plot RESULT.nc`` draws the same figure. A batch with its
+own dimensions (a grid ``kp × kd``, Monte-Carlo ``sample``) is drawn run by run in its flat
+view (:func:`seahelm.results.flatten_runs`).
 """
 
 from __future__ import annotations
@@ -28,14 +30,20 @@ def plot_result(ds: Any, *, runs: Any = None, fig: Any = None) -> Any:
     Parameters
     ----------
     ds : xarray.Dataset
-        A result dataset (dims ``run``, ``time``).
+        A result dataset (dims ``(*batch_dims, time)``, e.g. ``(run, time)`` or
+        ``(kp, kd, time)``).
     runs : sequence of int, optional
-        Runs to draw (default: all, at most 50).
+        Runs to draw, as flat run indices in C order over the batch dimensions (default: all,
+        at most 50).
     fig : matplotlib.figure.Figure, optional
         Figure to draw into (a new one by default).
     """
     import matplotlib.pyplot as plt
 
+    from ..results import flatten_runs
+
+    ds = flatten_runs(ds)
+    batch_coords = [str(c) for c in ds.coords if c != "run" and ds[c].dims == ("run",)]
     if fig is None:
         fig = plt.figure(figsize=(11, 7.5), layout="constrained")
     axes = fig.subplots(2, 2)
@@ -48,8 +56,10 @@ def plot_result(ds: Any, *, runs: Any = None, fig: Any = None) -> Any:
     for k, i in enumerate(run_ids):
         sel = ds.sel(run=i)
         color = f"C{k % 10}" if len(run_ids) <= 10 else "C0"
+        where = ", ".join(f"{c}={sel[c].item():.4g}" for c in batch_coords)
         ax_h.plot(t, np.degrees(np.unwrap(sel["heading"].values)), color=color, alpha=alpha,
-                  label=f"run {i}" if len(run_ids) <= 5 else None)
+                  label=(f"run {i}" + (f" ({where})" if where else ""))
+                  if len(run_ids) <= 5 else None)
         if "reference_heading" in ds:
             ax_h.plot(t, np.degrees(sel["reference_heading"].values), "k--", lw=1,
                       label="reference" if k == 0 else None)

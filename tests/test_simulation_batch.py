@@ -1,0 +1,141 @@
+"""RunBatch, BatchLayout and simulate_batch: one typed description from inputs to shaped results."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from seahelm.control.pid import PID_HEADING, PIDHeadingParams
+from seahelm.errors import ParameterError
+from seahelm.results import flatten_runs
+from seahelm.simulation.batch import (
+    BatchAxis,
+    BatchLayout,
+    BatchValues,
+    RunBatch,
+    grid_axes,
+    simulate_batch,
+)
+from seahelm.simulation.engine import simulate
+from seahelm.vessels.nomoto import NOMOTO2
+
+KPS, KDS = (1.0, 2.5), (20.0, 60.0, 90.0)
+
+
+def _gain_grid(mariner2, **changes):
+    gains = [PIDHeadingParams(kp=kp, kd=kd) for kp in KPS for kd in KDS]  # C order: kd fastest
+    layout = BatchLayout(axes=grid_axes({"controller.params.kp": KPS,
+                                         "controller.params.kd": KDS}))
+    kw = dict(model=NOMOTO2, params=mariner2, x0=np.zeros(5), t_final=30.0, dt=0.1,
+              controller=PID_HEADING, controller_params=gains, reference=[math.radians(15.0)],
+              record_every=5, seed=3, metadata={"title": "grid"}, layout=layout)
+    kw.update(changes)
+    return RunBatch(**kw)
+
+
+def test_simulate_batch_keeps_the_layout_and_equals_single_runs(mariner2):
+    result = simulate_batch(_gain_grid(mariner2))
+    ds = result.to_xarray()
+    assert result.dims == ("kp", "kd") and result.shape == (2, 3)
+    assert ds["yaw_rate"].dims == ("kp", "kd", "time")
+    assert ds.attrs["title"] == "grid" and ds.attrs["seed"] == 3
+    for kp in KPS:
+        for kd in KDS:
+            alone = simulate(NOMOTO2, mariner2, np.zeros(5), t_final=30.0, dt=0.1,
+                             controller=PID_HEADING,
+                             controller_params=PIDHeadingParams(kp=kp, kd=kd),
+                             reference=[math.radians(15.0)], record_every=5)
+            np.testing.assert_allclose(ds["heading"].sel(kp=kp, kd=kd).values,
+                                       alone["heading"][0], rtol=1e-13, atol=1e-15)
+
+
+def test_without_a_layout_the_result_has_one_run_dimension(mariner2):
+    result = simulate_batch(_gain_grid(mariner2, layout=None))
+    ds = result.to_xarray()
+    assert ds["heading"].dims == ("run", "time") and ds.sizes["run"] == 6
+    assert flatten_runs(ds) is ds
+
+
+def test_layout_that_does_not_match_the_runs_is_rejected(mariner2):
+    batch = _gain_grid(mariner2, layout=BatchLayout.runs(4))
+    with pytest.raises(ParameterError, match=r"batch layout \{'run': 4\} spans 4 run\(s\), "
+                                             r"but the engine ran 6"):
+        simulate_batch(batch)
+
+
+def test_run_batch_is_frozen_and_passes_the_engine_its_arguments(mariner2):
+    batch = _gain_grid(mariner2)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        batch.dt = 0.2
+    with pytest.raises(TypeError):
+        batch.bounds["heading"] = (0.0, 1.0)
+    kwargs = batch.simulate_kwargs()
+    assert "layout" not in kwargs
+    assert kwargs["t_final"] == 30.0 and kwargs["controller"] is PID_HEADING
+    assert "actuator" not in kwargs  # None: the engine's default
+    assert batch.n_runs == 6 and batch.replace(dt=0.05).dt == 0.05
+
+
+def test_engine_is_the_validator_of_a_run_batch(mariner2):
+    # RunBatch itself accepts the bad timing; the engine rejects it before running
+    batch = _gain_grid(mariner2, t_final=30.05)
+    with pytest.raises(ParameterError, match=r"`t_final` must be a positive whole multiple"):
+        simulate_batch(batch)
+
+
+def test_layout_point_and_size():
+    layout = BatchLayout(axes=(BatchAxis(name="kp", values=[1.0, 2.0, 3.0], key="c.kp"),
+                               BatchAxis(name="sample", values=np.arange(4))))
+    assert layout.dims == ("kp", "sample") and layout.shape == (3, 4) and layout.size == 12
+    assert layout.point(0) == {"kp": 1.0, "sample": 0}
+    assert layout.point(6) == {"kp": 2.0, "sample": 2}
+    assert layout.point(11) == {"kp": 3.0, "sample": 3}
+    with pytest.raises(IndexError, match="run 12 is outside the batch of 12 run"):
+        layout.point(12)
+    assert BatchLayout.runs(5).dims == ("run",) and BatchLayout.runs(5).is_flat
+
+
+@pytest.mark.parametrize(
+    ("make", "match"),
+    [
+        (lambda: BatchLayout(axes=()), "at least one axis"),
+        (lambda: BatchLayout(axes=(BatchAxis(name="kp", values=[1.0]),
+                                   BatchAxis(name="kp", values=[2.0]))),
+         "batch dimension 'kp' appears twice"),
+        (lambda: BatchLayout(axes=(BatchAxis(name="time", values=[1.0]),)),
+         "batch dimension 'time' is reserved"),
+        (lambda: BatchAxis(name="kp", values=[]),
+         r"must be a non-empty 1-D sequence, got shape \(0,\)"),
+        (lambda: BatchAxis(name="", values=[1.0]), "must be a non-empty string"),
+        (lambda: BatchLayout(axes=(BatchAxis(name="kp", values=[1.0, 2.0]),),
+                             values=(BatchValues(name="g", values=[1.0, 2.0, 3.0]),)),
+         r"batch values 'g' have 3 entries, the layout \(2,\) has 2 runs"),
+        (lambda: BatchLayout.runs(0), r"`n` must be a whole number >= 1 \[runs\], got 0"),
+    ],
+)
+def test_layout_validation(make, match):
+    with pytest.raises(ParameterError, match=match):
+        make()
+
+
+def test_grid_axes_names():
+    axes = grid_axes({"controller.params.kp": [1.0], "vessel.params.kp": [2.0],
+                      "vessel.params.gain": [0.1, 0.2], "vessel.initial.heading": [0.0]},
+                     units={"vessel.params.gain": "1/s"}, reserved={"heading"})
+    assert [a.name for a in axes] == ["controller.params.kp", "vessel.params.kp", "gain",
+                                      "vessel.initial.heading"]
+    assert [a.key for a in axes][2] == "vessel.params.gain"
+    assert axes[2].attrs == {"key": "vessel.params.gain", "units": "1/s"}
+
+
+def test_plot_of_a_grid_result_draws_every_run(mariner2):
+    import matplotlib.pyplot as plt
+
+    result = simulate_batch(_gain_grid(mariner2))
+    fig = result.plot()
+    heading_lines = [ln for ln in fig.get_axes()[0].get_lines() if ln.get_linestyle() == "-"]
+    assert len(heading_lines) == 6
+    plt.close(fig)
