@@ -63,7 +63,7 @@ from dataclasses import dataclass
 from numba import njit
 
 from ..actuators.servo import ServoParams
-from ..constants import GRAVITY, KNOT
+from ..constants import GRAVITY
 from ..errors import ParameterError
 from ..parameters import Params, param, signal_indices
 from .base import VesselModel
@@ -113,9 +113,10 @@ class MarinerParams(Params):
 
     length: float = param(160.93, unit="m", symbol="L", low=0.0, low_inclusive=False,
                           doc="length between perpendiculars")
-    nominal_speed: float = param(15.0 * KNOT, unit="m/s", symbol="U_0", low=0.0,
+    nominal_speed: float = param(7.7175, unit="m/s", symbol="U_0", low=0.0,
                                  low_inclusive=False,
-                                 doc="speed about which surge is perturbed (15 kn)")
+                                 doc="speed about which surge is perturbed: 15 kn, as tabulated "
+                                     "7.7175 m/s (15 × 0.5145)")
     rho: float = param(1025.0, unit="kg/m³", symbol="ρ", low=0.0, low_inclusive=False,
                        doc="water density (scales the external loads only)")
     min_froude_number: float = param(1e-3, unit="-", symbol="Fn_min", low=0.0,
