@@ -252,8 +252,10 @@ def self_propulsion_rps(model_or_params: Any, speed: Any, *, model: VesselModel 
     check_positive("speed", speeds, "m/s")
     check_positive("max_rps", max_rps, "1/s")
     out = np.empty(speeds.shape)
-    for idx, U in np.ndenumerate(speeds):
-        def surge_acc(n: float, U: float = float(U)) -> float:
+    for idx, U_item in np.ndenumerate(speeds):
+        U = float(U_item)
+
+        def surge_acc(n: float, U: float = U) -> float:
             return float(plant.accelerations(U, 0.0, 0.0, 0.0, n)[0])
 
         if surge_acc(0.0) >= 0.0:
