@@ -26,7 +26,8 @@ as in the tabulation)::
 which is the tabulated u̇ = X' (U²/L)/m11, v̇ = −(−m33 Y' + m23 N')(U²/L)/det,
 ṙ = (−m32 Y' + m22 N')(U²/L²)/det with the external loads ``force_x``, ``force_y`` [N] and
 ``moment_z`` [N·m] made non-dimensional consistently (with ρ = ``rho``). Kinematics:
-ẋ_N = (U_0 + u) cos ψ − v sin ψ, ẏ_E = (U_0 + u) sin ψ + v cos ψ, ψ̇ = r.
+ẋ_N = (U_0 + u) cos ψ − v sin ψ, ẏ_E = (U_0 + u) sin ψ + v cos ψ, ψ̇ = r (heading continuous,
+not wrapped).
 
 Sign convention
     In the original data a positive rudder angle gives a negative yaw rate. Here, as in the MSS

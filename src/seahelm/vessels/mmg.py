@@ -4,7 +4,8 @@ The model of the Japanese Maneuvering Modeling Group in the standard form of Yas
 Yoshimura (2015): a single-screw, single-rudder ship in calm deep water, surge, sway and yaw,
 with the origin at **midship** (``v`` is the sway velocity of the midship point, v_m).
 
-Equations (Yasukawa & Yoshimura 2015, §2, "motion equations" at midship)::
+Equations of motion with the origin at midship (Yasukawa & Yoshimura 2015, "motion
+equations")::
 
     (m + m_x) u̇ − (m + m_y) v_m r − x_G m r²          = X = X_H + X_P + X_R + X_ext
     (m + m_y) v̇_m + (m + m_x) u r + x_G m ṙ            = Y = Y_H + Y_R + Y_ext
@@ -12,7 +13,9 @@ Equations (Yasukawa & Yoshimura 2015, §2, "motion equations" at midship)::
 
 solved exactly for (u̇, v̇_m, ṙ): the surge equation directly, the 2×2 sway–yaw mass coupling
 by its determinant. Kinematics of the midship point in north-east-down axes, heading ψ
-clockwise from north: ẋ_N = u cos ψ − v_m sin ψ, ẏ_E = u sin ψ + v_m cos ψ, ψ̇ = r.
+clockwise from north: ẋ_N = u cos ψ − v_m sin ψ, ẏ_E = u sin ψ + v_m cos ψ, ψ̇ = r. The
+heading state and output are the integrated yaw angle (continuous, not wrapped to ±π), so a
+turning circle's 90° and 180° heading changes can be read off directly.
 
 Hydrodynamic forces ("hull forces", "propeller force", "rudder forces" of the paper), with
 U = √(u² + v_m²), v'_m = v_m/U, r' = r L_pp/U, β = atan2(−v_m, u)::
