@@ -25,6 +25,8 @@ VESSEL_MODELS: dict[str, str] = {
     "voitkunsky": "seahelm.vessels.voitkunsky:VOITKUNSKY",
     "cpp-ship-calm": "seahelm.vessels.cpp_ship:CPP_SHIP_CALM",
     "cpp-ship-waves": "seahelm.vessels.cpp_ship:CPP_SHIP_WAVES",
+    "mmg": "seahelm.vessels.mmg:MMG",
+    "mariner": "seahelm.vessels.mariner:MARINER",
 }
 
 ACTUATORS: dict[str, str] = {

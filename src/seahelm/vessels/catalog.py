@@ -117,3 +117,22 @@ from .catamaran import (  # noqa: E402
 register(CatalogEntry("shushlyapin2017-listing", "catamaran", _cat_paper(), _CAT_PAPER))
 register(CatalogEntry("shushlyapin2017-consistent", "catamaran", _cat_consistent(),
                       _CAT_CONSISTENT))
+
+# MMG standard method (Yasukawa & Yoshimura 2015): KVLCC2 at full scale and as the L7 model,
+# and the disputed L7 values by name (issue 13)
+from . import mmg as _mmg  # noqa: E402
+
+register(CatalogEntry("kvlcc2-full", "mmg", _mmg.KVLCC2_FULL, _mmg.KVLCC2_FULL_PROVENANCE))
+register(CatalogEntry("kvlcc2-l7", "mmg", _mmg.KVLCC2_L7, _mmg.KVLCC2_L7_PROVENANCE))
+register(CatalogEntry("kvlcc2-l7-wp0-0.35", "mmg", _mmg.KVLCC2_L7_WP0_035,
+                      _mmg.KVLCC2_L7_PROVENANCE + " Variant: w_P0 = 0.35 (one open tool, "
+                      "labelled 'assumed' there) instead of 0.40."))
+register(CatalogEntry("kvlcc2-l7-xp-0.5", "mmg", _mmg.KVLCC2_L7_XP_050,
+                      _mmg.KVLCC2_L7_PROVENANCE + " Variant: x'_P = -0.5 (geometric propeller "
+                      "position) instead of -0.48 in beta_P = beta - x'_P r'."))
+
+# Mariner nonlinear model (Chislett & Strøm-Tejsen 1965); steering gear: mariner.MARINER_SERVO
+from .mariner import MARINER_NONLINEAR, MARINER_NONLINEAR_PROVENANCE  # noqa: E402
+
+register(CatalogEntry("mariner-nonlinear", "mariner", MARINER_NONLINEAR,
+                      MARINER_NONLINEAR_PROVENANCE))

@@ -1,0 +1,461 @@
+"""Equilibria of 3-DOF ship models: self-propulsion point, steady turn, straight approach.
+
+All three solve the model's own right-hand side (:meth:`VesselModel.derivative`, numpy), so
+they hold for any model that declares the usual signals by name:
+
+* states ``sway_speed``, ``yaw_rate`` and either ``surge_speed`` (MMG) or
+  ``surge_perturbation`` about a parameter ``nominal_speed`` (Mariner);
+* inputs ``rudder_angle`` and, optionally, ``propeller_rps``;
+* outputs ``surge_speed``, ``speed`` and ``drift_angle``.
+
+:func:`self_propulsion_rps`
+    the propeller rps of a straight run at a given speed: zero surge force with v = r = 0,
+    δ = 0 (``scipy.optimize.brentq`` on the surge equation, one speed after the other).
+:func:`steady_turn`
+    (u, v, r, U, β, R) of the steady turn at a rudder angle (and rps): u̇ = v̇ = ṙ = 0 by
+    ``scipy.optimize.root``, continued from the straight run in rudder steps of at most
+    ``rudder_step`` so that every solve starts from a nearby solution (the first step is the
+    linear estimate's neighbourhood). Either rudder sign; an asymmetric ship (KVLCC2's γ_R by
+    side, the Mariner's Y_0/N_0) turns differently to port and starboard.
+:func:`approach_state`
+    the initial state and inputs of a steady straight approach at speed U_0 (MMG: surge U_0
+    at the self-propulsion rps; Mariner: zero surge perturbation), optionally trimmed with
+    the rudder to zero yaw rate.
+
+Inputs are validated at the boundary (:class:`~seahelm.errors.ParameterError` naming the
+argument, its unit and the value); an equation without a solution raises
+:class:`EquilibriumError`.
+
+References
+----------
+Yasukawa, H., Yoshimura, Y. (2015). Introduction of MMG standard method for ship maneuvering
+predictions. J. Mar. Sci. Technol. 20, 37–52.
+Chislett, M. S., Strøm-Tejsen, J. (1965). Planar motion mechanism tests and full-scale steering
+and manoeuvring predictions for a Mariner class vessel. Tech. Report Hy-5, Lyngby.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, NamedTuple
+
+import numpy as np
+from scipy.optimize import brentq, root
+
+from .._validate import as_float_array, check_finite, check_positive, check_range
+from ..errors import ParameterError, SeahelmError
+from ..parameters import Params
+from ..vessels.base import VesselModel
+from ..vessels.mariner import MARINER, MarinerParams
+from ..vessels.mmg import MMG, MMGParams
+
+__all__ = [
+    "EquilibriumError",
+    "SteadyTurn",
+    "Approach",
+    "self_propulsion_rps",
+    "steady_turn",
+    "approach_state",
+]
+
+#: The model used for a parameter type when none is given.
+DEFAULT_MODELS: dict[type[Params], VesselModel] = {MMGParams: MMG, MarinerParams: MARINER}
+
+
+class EquilibriumError(SeahelmError, ValueError):
+    """The equilibrium equations have no solution for the given arguments (or it was not found)."""
+
+
+class SteadyTurn(NamedTuple):
+    """A steady turn (floats for a scalar rudder angle, arrays for an array of them)."""
+
+    surge_speed: Any
+    """Surge speed u [m/s] (total, U_0 + u for a perturbation model)."""
+    sway_speed: Any
+    """Sway speed v [m/s] (midship for the MMG model)."""
+    yaw_rate: Any
+    """Yaw rate r [rad/s] (positive to starboard)."""
+    speed: Any
+    """Speed U = √(u² + v²) [m/s]."""
+    drift_angle: Any
+    """Drift angle β = atan2(−v, u) [rad]."""
+    radius: Any
+    """Turning radius U/|r| of the reference point's path [m] (inf for r = 0)."""
+
+
+class Approach(NamedTuple):
+    """Initial state and constant inputs of a steady straight approach."""
+
+    state: np.ndarray
+    """State vector in the model's ``state_labels`` order (SI units, radians)."""
+    inputs: dict[str, float]
+    """Model inputs by name, e.g. ``{"rudder_angle": 0.0, "propeller_rps": 11.85}``."""
+
+
+# ------------------------------------------------------------------------------------------
+# plumbing: which model, which signals
+# ------------------------------------------------------------------------------------------
+def _resolve_params(value: Any) -> Params:
+    if isinstance(value, Params):
+        return value
+    from ..vessels.catalog import CatalogEntry, get
+
+    if isinstance(value, CatalogEntry):
+        return value.params
+    if isinstance(value, str):
+        return get(value).params
+    raise ParameterError(
+        f"expected a parameter set, a catalog entry or its name, got {type(value).__name__}")
+
+
+class _Plant:
+    """A model and one parameter set, with the indices of the signals the solvers need."""
+
+    def __init__(self, params: Any, model: VesselModel | None) -> None:
+        self.params = _resolve_params(params)
+        if model is None:
+            model = DEFAULT_MODELS.get(type(self.params))
+            if model is None:
+                raise ParameterError(
+                    f"no default model for {type(self.params).__name__}; pass `model=` "
+                    f"(defaults exist for {', '.join(c.__name__ for c in DEFAULT_MODELS)})")
+        if not isinstance(self.params, model.params_type):
+            raise ParameterError(
+                f"model '{model.name}' takes {model.params_type.__name__}, got "
+                f"{type(self.params).__name__}")
+        self.model = model
+        states = model.state_labels
+        if "surge_speed" in states:
+            self.i_u, self.u_offset = states.index("surge_speed"), 0.0
+        elif "surge_perturbation" in states and hasattr(self.params, "nominal_speed"):
+            self.i_u = states.index("surge_perturbation")
+            self.u_offset = float(self.params.nominal_speed)
+        else:
+            raise ParameterError(
+                f"model '{model.name}' needs a state 'surge_speed' (or 'surge_perturbation' "
+                f"with a parameter 'nominal_speed'); states: {', '.join(states)}")
+        self.i_v = model.state_index("sway_speed")
+        self.i_r = model.state_index("yaw_rate")
+        self.i_psi = states.index("heading") if "heading" in states else None
+        if "rudder_angle" not in model.input_labels:
+            raise ParameterError(f"model '{model.name}' has no input 'rudder_angle'")
+        self.j_delta = model.input_labels.index("rudder_angle")
+        self.j_rps = (model.input_labels.index("propeller_rps")
+                      if "propeller_rps" in model.input_labels else None)
+        self.length = float(self.params.length)
+        self.u_ref = float(getattr(self.params, "approach_speed",
+                                   getattr(self.params, "nominal_speed", 1.0)))
+
+    def state(self, surge: float, v: float, r: float, heading: float = 0.0) -> np.ndarray:
+        x = np.zeros(self.model.n_states)
+        x[self.i_u] = surge - self.u_offset
+        x[self.i_v] = v
+        x[self.i_r] = r
+        if self.i_psi is not None:
+            x[self.i_psi] = heading
+        return x
+
+    def inputs(self, rudder: float, rps: float | None) -> np.ndarray:
+        u = np.zeros(self.model.n_inputs)
+        u[self.j_delta] = rudder
+        if self.j_rps is not None:
+            u[self.j_rps] = 0.0 if rps is None else rps
+        return u
+
+    def accelerations(self, surge: float, v: float, r: float, rudder: float,
+                      rps: float | None) -> np.ndarray:
+        dx = self.model.derivative(0.0, self.state(surge, v, r), self.inputs(rudder, rps),
+                                   self.params)
+        return dx[[self.i_u, self.i_v, self.i_r]]
+
+    def solve(self, fixed: dict[str, float], unknowns: tuple[str, ...], guess: np.ndarray,
+              rps: float | None) -> np.ndarray:
+        """u̇ = v̇ = ṙ = 0 for three of (surge, v, r, rudder), the others ``fixed``."""
+        scale = {"surge": self.u_ref, "v": self.u_ref, "r": self.u_ref / self.length,
+                 "rudder": 1.0}
+        acc_scale = np.array([1.0, 1.0, 1.0 / self.length]) * self.u_ref ** 2 / self.length
+        s = np.array([scale[k] for k in unknowns])
+
+        def residual(z: np.ndarray) -> np.ndarray:
+            values = dict(fixed)
+            values.update(zip(unknowns, z * s))
+            acc = self.accelerations(values["surge"], values["v"], values["r"],
+                                     values["rudder"], rps)
+            return acc / acc_scale
+
+        sol = root(residual, np.asarray(guess, dtype=float) / s, method="hybr",
+                   options={"xtol": 1e-13})
+        res = residual(sol.x)
+        if not np.all(np.isfinite(res)) or np.max(np.abs(res)) > 1e-9:
+            raise EquilibriumError(
+                f"no equilibrium found for {', '.join(unknowns)} with "
+                + ", ".join(f"{k} = {v:.6g}" for k, v in fixed.items())
+                + (f", rps = {rps:.6g} [1/s]" if rps is not None else "")
+                + f" ({sol.message.strip()}; residual {np.max(np.abs(res)):.3g})")
+        return sol.x * s
+
+
+def _check_rps(plant: _Plant, rps: Any) -> float | None:
+    if plant.j_rps is None:
+        if rps is not None:
+            raise ParameterError(
+                f"`rps`: model '{plant.model.name}' has no propeller_rps input, got {rps!r}")
+        return None
+    if rps is None:
+        raise ParameterError(f"`rps` [1/s] is required for model '{plant.model.name}'")
+    check_positive("rps", rps, "1/s")
+    return float(rps)
+
+
+# ------------------------------------------------------------------------------------------
+# public API
+# ------------------------------------------------------------------------------------------
+def self_propulsion_rps(model_or_params: Any, speed: Any, *, model: VesselModel | None = None,
+                        max_rps: float = 1000.0) -> Any:
+    """Propeller rps of a steady straight run at ``speed`` (zero surge force, v = r = δ = 0).
+
+    Solves X_H + X_P + X_R = 0 (Yasukawa & Yoshimura 2015, surge equation with u̇ = 0) for the
+    propeller rps n with ``scipy.optimize.brentq`` on the model's right-hand side, bracketing
+    from n = 0 (the propeller drags: J_P → ∞) upwards by doubling.
+
+    Parameters
+    ----------
+    model_or_params : Params, CatalogEntry or str
+        Parameter set (e.g. :data:`~seahelm.vessels.mmg.KVLCC2_L7`), a catalog entry or its
+        name (``"kvlcc2-l7"``).
+    speed : float or array_like
+        Straight-run speed(s) [m/s], > 0.
+    model : VesselModel, optional
+        The model (default: the one for the parameter type, e.g. MMG for MMGParams); it must
+        have a ``propeller_rps`` input.
+    max_rps : float, optional
+        Upper end of the search [1/s] (default 1000).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Propeller rps [1/s], with the shape of ``speed``.
+
+    Raises
+    ------
+    ParameterError
+        If ``speed`` or ``max_rps`` is not > 0, or the model has no propeller input.
+    EquilibriumError
+        If no rps in (0, ``max_rps``] gives zero surge force.
+    """
+    plant = _Plant(model_or_params, model)
+    if plant.j_rps is None:
+        raise ParameterError(
+            f"model '{plant.model.name}' has no input 'propeller_rps'; inputs: "
+            f"{', '.join(plant.model.input_labels)}")
+    speeds = as_float_array("speed", speed, "m/s")
+    check_positive("speed", speeds, "m/s")
+    check_positive("max_rps", max_rps, "1/s")
+    out = np.empty(speeds.shape)
+    for idx, U_item in np.ndenumerate(speeds):
+        U = float(U_item)
+
+        def surge_acc(n: float, U: float = U) -> float:
+            return float(plant.accelerations(U, 0.0, 0.0, 0.0, n)[0])
+
+        if surge_acc(0.0) >= 0.0:
+            raise EquilibriumError(
+                f"at `speed` = {U!r} [m/s] the surge force is not negative with the propeller "
+                "stopped: no self-propulsion point")
+        hi = 1.0
+        while surge_acc(hi) <= 0.0:
+            if hi >= max_rps:
+                raise EquilibriumError(
+                    f"no propeller rps in (0, {max_rps:g}] [1/s] gives zero surge force at "
+                    f"`speed` = {U!r} [m/s]")
+            hi = min(2.0 * hi, float(max_rps))
+        out[idx] = brentq(surge_acc, 0.0, hi, xtol=1e-14, rtol=4 * np.finfo(float).eps)
+    return float(out) if out.ndim == 0 else out
+
+
+def steady_turn(params: Any, rudder: Any, rps: float | None = None, *,
+                model: VesselModel | None = None, max_rudder: float = math.radians(35.0),
+                rudder_step: float = math.radians(2.5)) -> SteadyTurn:
+    """The steady turn at a rudder angle: u̇ = v̇ = ṙ = 0 solved for (u, v, r).
+
+    The three force balances are solved with ``scipy.optimize.root``, each time from a nearby
+    solution, by continuation along the spiral curve δ(r) from the straight run:
+
+    1. the straight run with zero yaw rate (its rudder angle δ_0 is 0 for a ship symmetric at
+       rest, the trim angle for the Mariner with its Y_0/N_0 bias);
+    2. the yaw rate is stepped (Δr L/U_0 = 0.01) in the direction that moves δ(r) from δ_0
+       towards the requested angle, solving u̇ = v̇ = ṙ = 0 for (u, v, δ) at each r, until δ(r)
+       passes the requested angle; the crossing is found by ``scipy.optimize.brentq`` on r and
+       polished by solving for (u, v, r) at the requested δ;
+    3. where δ(r) becomes steep (a step changes δ by more than ``rudder_step``, near the largest
+       yaw rate the rudder can give), the continuation goes on in δ instead, solving for
+       (u, v, r) in rudder steps of at most ``rudder_step``.
+
+    Stepping in r first follows the branch that a turn from a straight approach reaches even
+    where δ(r) is not monotonic near r = 0 (a course-unstable ship, or KVLCC2's γ_R and C_2
+    switching with the sign of β_R, β_P, which put a small kink into δ(r) at the straight run):
+    the first crossing is on the stable (rising) part of the curve. A plain continuation in
+    δ from the straight run fails there.
+
+    Parameters
+    ----------
+    params : Params, CatalogEntry or str
+        Parameter set, catalog entry or its name.
+    rudder : float or array_like
+        Rudder angle(s) δ [rad]; positive turns to starboard.
+    rps : float, optional
+        Propeller rps [1/s], > 0; required for a model with a ``propeller_rps`` input (MMG),
+        not allowed for one without (Mariner).
+    model : VesselModel, optional
+        The model (default: the one for the parameter type).
+    max_rudder : float, optional
+        Largest admissible |δ| [rad] (default 35°).
+    rudder_step : float, optional
+        Largest rudder change per continuation step [rad] (default 2.5°).
+
+    Returns
+    -------
+    SteadyTurn
+        Surge speed [m/s], sway speed [m/s], yaw rate [rad/s], speed [m/s], drift angle [rad]
+        and turning radius [m]; floats for a scalar ``rudder``, arrays of its shape otherwise.
+
+    Raises
+    ------
+    ParameterError
+        If |``rudder``| > ``max_rudder``, ``rps`` ≤ 0 (or missing/not allowed), or the model
+        lacks the signals named in the module docstring.
+    EquilibriumError
+        If the continuation fails to converge.
+    """
+    plant = _Plant(params, model)
+    check_positive("max_rudder", max_rudder, "rad")
+    check_positive("rudder_step", rudder_step, "rad")
+    deltas = as_float_array("rudder", rudder, "rad")
+    check_range("rudder", deltas, -max_rudder, max_rudder, "rad")
+    n = _check_rps(plant, rps)
+    trim = plant.solve({"r": 0.0}, ("surge", "v", "rudder"), np.array([plant.u_ref, 0.0, 0.0]),
+                       n)
+    fields = np.full((6,) + deltas.shape, np.nan)
+    for idx, delta in np.ndenumerate(deltas):
+        surge, v, r = _turn(plant, trim, float(delta), n, float(rudder_step))
+        if not surge > 0.0:
+            raise EquilibriumError(
+                f"the steady turn at `rudder` = {delta!r} [rad] has surge speed {surge:.6g} "
+                "[m/s] <= 0")
+        y = plant.model.outputs(0.0, plant.state(surge, v, r), plant.inputs(float(delta), n),
+                                plant.params)
+        speed = y[plant.model.output_index("speed")]
+        fields[(slice(None),) + idx] = (
+            y[plant.model.output_index("surge_speed")], v, r, speed,
+            y[plant.model.output_index("drift_angle")], speed / abs(r) if r != 0.0 else np.inf)
+    if deltas.ndim == 0:
+        return SteadyTurn(*(float(f) for f in fields))
+    return SteadyTurn(*fields)
+
+
+def _turn(plant: _Plant, trim: np.ndarray, delta: float, n: float | None,
+          rudder_step: float) -> tuple[float, float, float]:
+    """(surge, v, r) of the steady turn at ``delta`` by continuation (see :func:`steady_turn`)."""
+    u0, v0, d0 = (float(c) for c in trim)
+    if delta == d0:
+        return u0, v0, 0.0
+    sign = 1.0 if delta > d0 else -1.0
+    r_step = 0.01 * plant.u_ref / plant.length
+    free_r = ("surge", "v", "rudder")
+    prev_r, prev = 0.0, np.array([u0, v0, d0])
+    for k in range(1, 301):
+        r = sign * k * r_step
+        try:
+            z = plant.solve({"r": r}, free_r, prev, n)
+        except EquilibriumError:
+            z = None
+        if z is None or abs(z[2] - prev[2]) > rudder_step:
+            return _turn_in_rudder(plant, prev[2], delta, (prev[0], prev[1], prev_r), n,
+                                   rudder_step)
+        if sign * (z[2] - delta) >= 0.0:
+            start = prev.copy()
+
+            def offset(rr: float) -> float:
+                return float(plant.solve({"r": rr}, free_r, start, n)[2] - delta)
+
+            r_star = brentq(offset, prev_r, r, xtol=1e-13 * r_step, rtol=1e-14)
+            zs = plant.solve({"r": r_star}, free_r, start, n)
+            try:
+                return tuple(float(c) for c in plant.solve(
+                    {"rudder": delta}, ("surge", "v", "r"), np.array([zs[0], zs[1], r_star]),
+                    n))
+            except EquilibriumError:  # pragma: no cover - brentq's point is within 1e-13
+                return float(zs[0]), float(zs[1]), float(r_star)
+        prev_r, prev = r, z
+    raise EquilibriumError(  # pragma: no cover - the loop reaches r L/U_0 = 3
+        f"no steady turn found at `rudder` = {delta!r} [rad] up to r L/U_0 = 3")
+
+
+def _turn_in_rudder(plant: _Plant, d_from: float, d_to: float, guess: tuple[float, ...],
+                    n: float | None, rudder_step: float) -> tuple[float, float, float]:
+    """Continue (surge, v, r) in the rudder angle from ``d_from`` to ``d_to``."""
+    z = np.asarray(guess, dtype=float)
+    steps = max(1, int(math.ceil(abs(d_to - d_from) / rudder_step)))
+    for d_k in np.linspace(d_from, d_to, steps + 1)[1:]:
+        z = plant.solve({"rudder": float(d_k)}, ("surge", "v", "r"), z, n)
+    return float(z[0]), float(z[1]), float(z[2])
+
+
+def approach_state(params: Any, speed: float | None = None, *, model: VesselModel | None = None,
+                   heading: float = 0.0, trim: bool = False) -> Approach:
+    """Initial state and inputs of a steady straight approach at speed U_0.
+
+    For a model with a propeller (MMG) the surge speed is U_0 and the propeller turns at the
+    self-propulsion rps (:func:`self_propulsion_rps`); for a perturbation model (Mariner) the
+    surge perturbation is 0 at U_0 = ``nominal_speed``. Sway, yaw rate, position and rudder are
+    zero. With ``trim=True`` the rudder angle, surge and sway speed are solved so that the run
+    is an exact equilibrium with zero yaw rate (a biased model such as the Mariner needs a small
+    rudder angle to keep a straight course; for the symmetric-at-zero MMG ship nothing changes).
+
+    Parameters
+    ----------
+    params : Params, CatalogEntry or str
+        Parameter set, catalog entry or its name.
+    speed : float, optional
+        Approach speed U_0 [m/s] (default: ``approach_speed`` of an MMG set, ``nominal_speed``
+        of the Mariner; the Mariner admits no other speed).
+    model : VesselModel, optional
+        The model (default: the one for the parameter type).
+    heading : float, optional
+        Initial heading ψ [rad] (default 0, north).
+    trim : bool, optional
+        Trim with the rudder to an exact straight equilibrium (default False).
+
+    Returns
+    -------
+    Approach
+        ``state`` (model state order) and ``inputs`` by name (``rudder_angle`` [rad], and
+        ``propeller_rps`` [1/s] for a model with a propeller).
+
+    Raises
+    ------
+    ParameterError
+        If ``speed`` ≤ 0, or differs from the nominal speed of a perturbation model.
+    EquilibriumError
+        If the self-propulsion point or the trim is not found.
+    """
+    plant = _Plant(params, model)
+    U0 = plant.u_ref if speed is None else speed
+    check_positive("speed", U0, "m/s")
+    check_finite("heading", heading, "rad")
+    U0 = float(U0)
+    if plant.u_offset and not math.isclose(U0, plant.u_offset, rel_tol=1e-12):
+        raise ParameterError(
+            f"`speed` must be the nominal speed U_0 = {plant.u_offset!r} [m/s] of the "
+            f"perturbation model '{plant.model.name}', got {U0!r}")
+    inputs = {"rudder_angle": 0.0}
+    n = None
+    if plant.j_rps is not None:
+        n = float(self_propulsion_rps(plant.params, U0, model=plant.model))
+        inputs["propeller_rps"] = n
+    surge, v = U0, 0.0
+    if trim:
+        surge, v, delta = plant.solve({"r": 0.0}, ("surge", "v", "rudder"),
+                                      np.array([U0, 0.0, 0.0]), n)
+        inputs["rudder_angle"] = float(delta)
+    return Approach(plant.state(surge, v, 0.0, float(heading)), inputs)
