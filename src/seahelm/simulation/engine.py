@@ -3,15 +3,17 @@
 :func:`simulate` integrates a batch of runs with a fixed-step method. For every combination of
 (vessel model, actuator, controller, integrator) :func:`compile_closed_loop` generates a small
 module from :mod:`seahelm.simulation.kernel_template` with the components' numba functions
-bound in, and numba compiles it once per machine (``cache=True``; the module's name hashes the
-in-memory bytecode of the components and of every numba function they call, so editing any
-of them recompiles it). The loop runs in parallel over
-runs (``numba.prange``), one thread per core; nothing in it is Python per step or per run.
+bound in and the integrator's step written out from its Butcher tableau
+(:func:`~seahelm.simulation.integrators.compiled_advance_source`), and numba compiles it once
+per machine (``cache=True``; the module's name hashes its text, with the generated step, and
+the in-memory bytecode of the components and of every numba function they call, so editing
+any of them or changing the tableau recompiles it). The loop runs in parallel over runs
+(``numba.prange``), one thread per core; nothing in it is Python per step or per run.
 
 Timing: the state is integrated on the grid t_k = k·dt; the controller is stepped every
 ``controller_dt`` (an integer multiple of dt) and its command held in between (zero-order hold);
-disturbances are given on the grid and interpolated linearly inside a step (RK4 uses their
-mid-step mean at t_k + dt/2).
+disturbances are given on the grid and interpolated linearly inside a step: a stage at
+t_k + c_i dt sees d_k + c_i (d_{k+1} − d_k) (for RK4's mid-step stages, the mean of the two).
 
 A run whose state turns NaN/inf or leaves its declared bounds stops and is recorded with its
 status, time and state; the other runs go on (``throw=True`` raises
@@ -48,7 +50,7 @@ from ..errors import ParameterError, SimulationDiverged
 from ..parameters import Params, stack_params
 from ..vessels.base import NAV_OUTPUTS, VesselModel
 from . import kernel_template
-from .integrators import INTEGRATORS
+from .integrators import ButcherTableau, compiled_advance_source, get_integrator
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..results import SimResult
@@ -142,11 +144,32 @@ _BLOCK = re.compile(r"# <(header|footer)>\n.*?# </\1>\n", re.S)
 
 @functools.lru_cache(maxsize=None)
 def compile_closed_loop(
-    model: VesselModel, actuator: Actuator, controller: Controller, integrator: str = "rk4"
+    model: VesselModel,
+    actuator: Actuator,
+    controller: Controller,
+    integrator: str | ButcherTableau = "rk4",
 ) -> ModuleType:
-    """The compiled closed-loop module for one combination of components (cached)."""
-    if integrator not in INTEGRATORS:
-        raise ValueError(f"unknown integrator '{integrator}'; valid: {', '.join(INTEGRATORS)}")
+    """The compiled closed-loop module for one combination of components (cached).
+
+    Parameters
+    ----------
+    model : VesselModel
+        The vessel model.
+    actuator : Actuator
+        The actuator.
+    controller : Controller
+        The controller.
+    integrator : str or ButcherTableau
+        A name in :data:`~seahelm.simulation.integrators.INTEGRATORS` (default "rk4") or a
+        tableau; its step is generated into the module, so the module's name (a hash of its
+        text) differs between tableaus.
+
+    Returns
+    -------
+    module
+        The imported kernel module (``init_runs``, ``run_chunk``).
+    """
+    tableau = get_integrator(integrator)
     parts = [
         _binding(model.rhs, "model_rhs"),
         _binding(model.output, "model_output"),
@@ -159,7 +182,7 @@ def compile_closed_loop(
         f"\nNX = {model.n_states}\nNA = {actuator.n_states}\n"
         f"NU = {model.n_inputs}\nNY = {len(NAV_OUTPUTS)}\n"
     )
-    footer = f"advance = {integrator}_advance\n"
+    footer = compiled_advance_source(tableau)
     blocks = iter([header, footer])
     text = _BLOCK.sub(lambda m: next(blocks), _TEMPLATE_TEXT)
     digest = hashlib.sha1(
@@ -294,7 +317,7 @@ def simulate(
     reference: Any = None,
     disturbance: Any = None,
     controller_dt: float | None = None,
-    integrator: str = "rk4",
+    integrator: str | ButcherTableau = "rk4",
     record_every: int = 1,
     bounds: Mapping[str, tuple[float, float]] | None = None,
     throw: bool = False,
@@ -326,8 +349,9 @@ def simulate(
         External disturbance inputs of the model (same forms as ``reference``).
     controller_dt : float, optional
         Controller sample period [s], a multiple of ``dt`` (default ``dt``).
-    integrator : {"euler", "heun", "rk4"}
-        Fixed-step integration method (default "rk4").
+    integrator : str or ButcherTableau
+        Fixed-step method: a name in :data:`~seahelm.simulation.integrators.INTEGRATORS`
+        (default "rk4") or an explicit :class:`~seahelm.simulation.integrators.ButcherTableau`.
     record_every : int
         Record every n-th step (``t_final/dt`` need not be a multiple; the last record is at
         the last multiple).
@@ -366,8 +390,7 @@ def simulate(
     if isinstance(record_every, bool) or int(record_every) != record_every or record_every < 1:
         raise ParameterError(f"`record_every` must be a whole number >= 1, got {record_every!r}")
     record_every = int(record_every)
-    if integrator not in INTEGRATORS:
-        raise ValueError(f"unknown integrator '{integrator}'; valid: {', '.join(INTEGRATORS)}")
+    tableau = get_integrator(integrator)
     if controller.n_commands != actuator.n_commands:
         raise ParameterError(
             f"controller '{controller.name}' gives {controller.n_commands} command(s) but "
@@ -418,7 +441,7 @@ def simulate(
         i = int(np.argmax(bad0))
         raise ParameterError(f"initial state of run {i} is not finite or outside bounds: {z[i]}")
 
-    kernel = compile_closed_loop(model, actuator, controller, integrator)
+    kernel = compile_closed_loop(model, actuator, controller, tableau)
     nz = z.shape[1]
     ncmd = controller.n_commands
     n_rec = n_steps // record_every + 1
@@ -483,7 +506,7 @@ def simulate(
             "model": model.name,
             "actuator": actuator.name,
             "controller": controller.name,
-            "integrator": integrator,
+            "integrator": tableau.name,
             "dt": float(dt),
             "controller_dt": ctrl_dt,
             "t_final": float(t_final),
