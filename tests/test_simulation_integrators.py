@@ -11,6 +11,7 @@ import pytest
 from scipy.linalg import expm
 
 from seahelm.actuators.servo import DIRECT
+from seahelm.control.open_loop import OPEN_LOOP
 from seahelm.errors import ParameterError
 from seahelm.simulation.engine import compile_closed_loop, simulate
 from seahelm.simulation.integrators import (
@@ -22,7 +23,6 @@ from seahelm.simulation.integrators import (
     rk_step,
     solve_reference,
 )
-from seahelm.control.open_loop import OPEN_LOOP
 from seahelm.vessels.nomoto import NOMOTO1, Nomoto1Params
 
 METHODS = list(INTEGRATORS)

@@ -27,7 +27,7 @@ Hairer, E., Nørsett, S. P., Wanner, G. (1993). Solving Ordinary Differential Eq
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -93,7 +93,7 @@ class ButcherTableau:
     c: tuple[float, ...]
     order: int
     description: str = ""
-    reference: str = field(default="", compare=False)
+    reference: str = ""
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name:
