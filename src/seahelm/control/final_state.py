@@ -19,8 +19,8 @@ General method (eq. (12)-(15))
     :class:`FinalStateController` implements both (``prediction="one-step"`` or
     ``"integrate"``, registry :data:`PREDICTIONS`) for any batch of states, any number of
     controls r and criteria m (vector criteria through the Moore-Penrose pseudo-inverse).
-    :func:`simulate_final_state` closes the loop in numpy (RK4, zero-order hold) for tests and
-    small studies.
+    :func:`simulate_final_state` closes the loop in numpy (RK4 by default, zero-order hold)
+    for tests and small studies.
 
 Compiled controllers for the catamaran (:mod:`seahelm.vessels.catamaran`, engine plug-ins)
     With the criterion J = z_3 = ω (eq. (16)), G = W_37 and eq. (15) gives (eq. (19)-(21))::
@@ -95,6 +95,7 @@ from numba import njit
 from .._validate import as_float_array, check_positive
 from ..errors import ParameterError
 from ..parameters import param, signal_indices
+from ..simulation.integrators import ButcherTableau, get_integrator, rk_step
 from ..vessels.catamaran import STATES as CATAMARAN_STATES
 from ..vessels.catamaran import CatamaranParams, catamaran_yaw_acceleration
 from .base import Controller, wrap_pi
@@ -168,12 +169,12 @@ def one_step_prediction(ctrl: "FinalStateController", t: float, z: Array, t_f: f
 
 def integrated_prediction(ctrl: "FinalStateController", t: float, z: Array, t_f: float
                           ) -> tuple[Array, Array]:
-    """Eq. (14) integrated over [t, t_f] with ``ctrl.substeps`` RK4 steps.
+    """Eq. (14) integrated over [t, t_f] with ``ctrl.substeps`` steps of ``ctrl.integrator``.
 
     Parameters
     ----------
     ctrl : FinalStateController
-        Controller providing the drift Φ(t, z), its Jacobian and ``substeps``.
+        Controller providing the drift Φ(t, z), its Jacobian, ``substeps`` and ``integrator``.
     t : float
         Current time [s].
     z : numpy.ndarray, shape (N, n)
@@ -191,22 +192,19 @@ def integrated_prediction(ctrl: "FinalStateController", t: float, z: Array, t_f:
     N, n = z.shape
     k = ctrl.substeps
     h = (t_f - t) / k
-    zb = z.copy()
-    W = np.broadcast_to(np.eye(n), (N, n, n)).copy()
+    # z̄ and W side by side in one state (N, n + n²), so one step advances both
+    zw = np.concatenate([z, np.broadcast_to(np.eye(n).ravel(), (N, n * n))], axis=1)
 
-    def f(s: float, zz: Array, WW: Array) -> tuple[Array, Array]:
-        return ctrl.drift(s, zz), ctrl.jacobian(s, zz) @ WW
+    def f(s: float, zz: Array) -> Array:
+        zb, W = zz[:, :n], zz[:, n:].reshape(N, n, n)
+        return np.concatenate([ctrl.drift(s, zb), (ctrl.jacobian(s, zb) @ W).reshape(N, n * n)],
+                              axis=1)
 
     s = t
     for _ in range(k):
-        a1, b1 = f(s, zb, W)
-        a2, b2 = f(s + h / 2, zb + h / 2 * a1, W + h / 2 * b1)
-        a3, b3 = f(s + h / 2, zb + h / 2 * a2, W + h / 2 * b2)
-        a4, b4 = f(s + h, zb + h * a3, W + h * b3)
-        zb = zb + h / 6 * (a1 + 2 * a2 + 2 * a3 + a4)
-        W = W + h / 6 * (b1 + 2 * b2 + 2 * b3 + b4)
+        zw = rk_step(ctrl.integrator, f, s, zw, h)
         s += h
-    return zb, W
+    return zw[:, :n].copy(), zw[:, n:].reshape(N, n, n).copy()
 
 
 PREDICTIONS: dict[str, Callable[..., tuple[Array, Array]]] = {
@@ -243,13 +241,17 @@ class FinalStateController:
         A fixed final time t_f (terminal control, the method's original use); the prediction
         then runs over [t, t_f].
     substeps : int
-        RK4 steps for ``prediction="integrate"``.
+        Integration steps for ``prediction="integrate"``.
+    integrator : str or ButcherTableau
+        Fixed-step method of ``prediction="integrate"`` and of :func:`simulate_final_state`:
+        a name in :data:`~seahelm.simulation.integrators.INTEGRATORS` (default "rk4") or a
+        tableau.
 
     Raises
     ------
     ParameterError
         Non-positive ``time_constant``, ``horizon`` or ``substeps``; ValueError for an unknown
-        ``prediction`` (listing the valid ones).
+        ``prediction`` or ``integrator`` (listing the valid ones).
     """
 
     drift: Callable[[float, Array], Array]
@@ -262,8 +264,10 @@ class FinalStateController:
     prediction: str = "one-step"
     terminal_time: float | None = None
     substeps: int = 20
+    integrator: str | ButcherTableau = "rk4"
 
     def __post_init__(self) -> None:
+        get_integrator(self.integrator)
         check_positive("time_constant", self.time_constant, "s")
         check_positive("horizon", self.horizon, "s")
         if self.prediction not in PREDICTIONS:
@@ -408,7 +412,9 @@ def simulate_final_state(
     dt: float,
     control_every: int = 1,
 ) -> tuple[Array, Array, Array]:
-    """Closed loop dz/dt = Φ + B u with u from ``ctrl`` (zero-order hold), RK4, numpy.
+    """Closed loop dz/dt = Φ + B u with u from ``ctrl`` (zero-order hold), numpy.
+
+    Integrated with ``ctrl.integrator`` (default RK4).
 
     Returns ``(t, z, u)`` with shapes (steps+1,), (N, steps+1, n), (N, steps+1, r)
     (the last u repeats the previous one). A reference implementation for tests; the engine
@@ -448,11 +454,7 @@ def simulate_final_state(
             tgt = target(tk) if callable(target) else target
             u = ctrl.control(tk, z, tgt)
         us.append(u)
-        a1 = rhs(tk, z, u)
-        a2 = rhs(tk + dt / 2, z + dt / 2 * a1, u)
-        a3 = rhs(tk + dt / 2, z + dt / 2 * a2, u)
-        a4 = rhs(tk + dt, z + dt * a3, u)
-        z = z + dt / 6 * (a1 + 2 * a2 + 2 * a3 + a4)
+        z = rk_step(ctrl.integrator, rhs, tk, z, dt, u)
     zs[:, -1] = z
     us.append(us[-1])
     return t, zs, np.stack(us, axis=1)

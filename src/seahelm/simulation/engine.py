@@ -3,15 +3,18 @@
 :func:`simulate` integrates a batch of runs with a fixed-step method. For every combination of
 (vessel model, actuator, controller, integrator) :func:`compile_closed_loop` generates a small
 module from :mod:`seahelm.simulation.kernel_template` with the components' numba functions
-bound in, and numba compiles it once per machine (``cache=True``; the module's name hashes the
-in-memory bytecode of the components and of every numba function they call, so editing any
-of them recompiles it). The loop runs in parallel over
-runs (``numba.prange``), one thread per core; nothing in it is Python per step or per run.
+bound in, the routing of signals by name from :func:`~seahelm.simulation.composition.compose`
+and the integrator's step written out from its Butcher tableau
+(:func:`~seahelm.simulation.integrators.compiled_advance_source`), and numba compiles it once
+per machine (``cache=True``; the module's name hashes its text, with the generated step, and
+the in-memory bytecode of the components and of every numba function they call, so editing
+any of them or changing the tableau recompiles it). The loop runs in parallel over runs
+(``numba.prange``), one thread per core; nothing in it is Python per step or per run.
 
 Timing: the state is integrated on the grid t_k = k·dt; the controller is stepped every
 ``controller_dt`` (an integer multiple of dt) and its command held in between (zero-order hold);
-disturbances are given on the grid and interpolated linearly inside a step (RK4 uses their
-mid-step mean at t_k + dt/2).
+disturbances are given on the grid and interpolated linearly inside a step: a stage at
+t_k + c_i dt sees d_k + c_i (d_{k+1} − d_k) (for RK4's mid-step stages, the mean of the two).
 
 A run whose state turns NaN/inf or leaves its declared bounds stops and is recorded with its
 status, time and state; the other runs go on (``throw=True`` raises
@@ -48,7 +51,7 @@ from ..errors import ParameterError, SimulationDiverged
 from ..parameters import Params, as_records, stack_params
 from ..vessels.base import VesselModel
 from .composition import compose
-from .integrators import INTEGRATORS
+from .integrators import ButcherTableau, compiled_advance_source, get_integrator
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..results import SimResult
@@ -142,40 +145,6 @@ def _binding(func: Any, alias: str) -> tuple[str, bytes]:
 _TEMPLATE_TEXT = (Path(__file__).with_name("kernel_template.py")).read_text()
 _BLOCK = re.compile(r"# <(header|footer)>\n.*?# </\1>\n", re.S)
 
-# Butcher tableaus (a, b, c) of the fixed-step methods, compiled into the kernel's stepper.
-_TABLEAUS: dict[str, tuple[tuple[tuple[float, ...], ...], tuple[float, ...], tuple[float, ...]]] = {
-    "euler": (((),), (1.0,), (0.0,)),
-    "heun": (((), (1.0,)), (0.5, 0.5), (0.0, 1.0)),
-    "rk4": (((), (0.5,), (0.0, 0.5), (0.0, 0.0, 1.0)), (1 / 6, 1 / 3, 1 / 3, 1 / 6),
-            (0.0, 0.5, 0.5, 1.0)),
-}
-
-
-def _advance_source(integrator: str) -> str:
-    """Straight-line source of the kernel's ``advance`` for one explicit Runge–Kutta method."""
-    a, b, c = _TABLEAUS[integrator]
-    lines = [
-        "@njit(cache=True, inline=\"always\", fastmath=FASTMATH)",
-        "def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ya, u, kv, ka, fv, fa, tv, ta):"
-        "  # pragma: no cover",
-        "    nd = d0.shape[0]",
-    ]
-    for s_, (row, cs) in enumerate(zip(a, c)):
-        for vec, kk, tt, n in (("xv", "kv", "tv", "NX"), ("xa", "ka", "ta", "NA")):
-            terms = "".join(f" + {aij!r} * h * {kk}[{j}, k]" for j, aij in enumerate(row)
-                            if aij != 0.0)
-            lines += [f"    for k in range({n}):", f"        {tt}[k] = {vec}[k]{terms}"]
-        lines += ["    for k in range(nd):",
-                  f"        ds[k] = d0[k] + {cs!r} * (d1[k] - d0[k])",
-                  f"    closed_rhs(t + {cs!r} * h, tv, ta, cmd, ca, ds, mp, ap, ya, u, fv, fa)",
-                  "    for k in range(NX):", f"        kv[{s_}, k] = fv[k]",
-                  "    for k in range(NA):", f"        ka[{s_}, k] = fa[k]"]
-    for vec, kk, n in (("xv", "kv", "NX"), ("xa", "ka", "NA")):
-        terms = " + ".join(f"{bi!r} * {kk}[{i}, k]" for i, bi in enumerate(b) if bi != 0.0)
-        lines += [f"    for k in range({n}):", f"        {vec}[k] += h * ({terms})"]
-    return "\n".join(lines) + "\n"
-
-
 def _route_source(name: str, args: str, assignments: list[str]) -> str:
     body = "".join(f"    {line}\n" for line in assignments) or "    pass\n"
     return (f"\n\n@njit(inline=\"always\")\ndef {name}({args}):  # pragma: no cover\n"
@@ -184,7 +153,10 @@ def _route_source(name: str, args: str, assignments: list[str]) -> str:
 
 @functools.lru_cache(maxsize=None)
 def compile_closed_loop(
-    model: VesselModel, actuator: Actuator, controller: Controller, integrator: str = "rk4"
+    model: VesselModel,
+    actuator: Actuator,
+    controller: Controller,
+    integrator: str | ButcherTableau = "rk4",
 ) -> ModuleType:
     """The compiled closed-loop module for one combination of components (cached).
 
@@ -192,16 +164,17 @@ def compile_closed_loop(
     ----------
     model, actuator, controller
         The components; they are wired by signal name (:func:`~seahelm.simulation.composition.compose`).
-    integrator : str
-        Name of the fixed-step method.
+    integrator : str or ButcherTableau
+        A name in :data:`~seahelm.simulation.integrators.INTEGRATORS` (default "rk4") or a
+        tableau; its step is generated into the module, so the module's name (a hash of its
+        text) differs between tableaus.
 
     Returns
     -------
     module
-        With ``init_runs`` and ``run_chunk``.
+        The imported kernel module (``init_runs``, ``run_chunk``).
     """
-    if integrator not in INTEGRATORS:
-        raise ValueError(f"unknown integrator '{integrator}'; valid: {', '.join(INTEGRATORS)}")
+    tableau = get_integrator(integrator)
     wiring = compose(model, actuator, controller)
     parts = [
         _binding(model.rhs, "model_rhs"),
@@ -215,7 +188,6 @@ def compile_closed_loop(
         f"\nNX = {model.n_states}\nNA = {actuator.n_states}\nNU = {model.n_inputs}\n"
         f"NYM = {model.n_outputs}\nNYA = {len(wiring.actuator_outputs)}\n"
         f"NCA = {len(wiring.actuator_commands)}\nNM = {controller.n_measurements}\n"
-        f"NSTAGES = {len(_TABLEAUS[integrator][1])}\n"
         "FASTMATH = {\"arcp\", \"contract\", \"afn\", \"reassoc\"}\n"
     )
     header += _route_source("route_actuator_commands", "cmd, ca", [
@@ -225,7 +197,7 @@ def compile_closed_loop(
         for i, (kind, j) in enumerate(wiring.input_from)])
     header += _route_source("route_measurements", "ym, y", [
         f"y[{i}] = ym[{j}]" for i, j in enumerate(wiring.measurement_from)])
-    footer = _advance_source(integrator)
+    footer = compiled_advance_source(tableau)
     blocks = iter([header, footer])
     text = _BLOCK.sub(lambda m: next(blocks), _TEMPLATE_TEXT)
     digest = hashlib.sha1(
@@ -384,7 +356,7 @@ def simulate(
     reference: Any = None,
     disturbance: Any = None,
     controller_dt: float | None = None,
-    integrator: str = "rk4",
+    integrator: str | ButcherTableau = "rk4",
     record_every: int = 1,
     bounds: Mapping[str, tuple[float, float]] | None = None,
     throw: bool = False,
@@ -418,8 +390,9 @@ def simulate(
         ``{"force_y": ..., "moment_z": ...}``).
     controller_dt : float, optional
         Controller sample period [s], a multiple of ``dt`` (default ``dt``).
-    integrator : {"euler", "heun", "rk4"}
-        Fixed-step integration method (default "rk4").
+    integrator : str or ButcherTableau
+        Fixed-step method: a name in :data:`~seahelm.simulation.integrators.INTEGRATORS`
+        (default "rk4") or an explicit :class:`~seahelm.simulation.integrators.ButcherTableau`.
     record_every : int
         Record every n-th step (``t_final/dt`` need not be a multiple; the last record is at
         the last multiple).
@@ -458,8 +431,7 @@ def simulate(
     if isinstance(record_every, bool) or int(record_every) != record_every or record_every < 1:
         raise ParameterError(f"`record_every` must be a whole number >= 1, got {record_every!r}")
     record_every = int(record_every)
-    if integrator not in INTEGRATORS:
-        raise ValueError(f"unknown integrator '{integrator}'; valid: {', '.join(INTEGRATORS)}")
+    tableau = get_integrator(integrator)
     wiring = compose(model, actuator, controller)
 
     mp, m_cls = _param_rows("params", params, model.params_type)
@@ -508,7 +480,7 @@ def simulate(
         i = int(np.argmax(bad0))
         raise ParameterError(f"initial state of run {i} is not finite or outside bounds: {z[i]}")
 
-    kernel = compile_closed_loop(model, actuator, controller, integrator)
+    kernel = compile_closed_loop(model, actuator, controller, tableau)
     mr = as_records(mp, m_cls)
     ar = as_records(ap, a_cls)
     cr = as_records(cp, c_cls)
@@ -588,7 +560,7 @@ def simulate(
             "model": model.name,
             "actuator": actuator.name,
             "controller": controller.name,
-            "integrator": integrator,
+            "integrator": tableau.name,
             "dt": float(dt),
             "controller_dt": ctrl_dt,
             "t_final": float(t_final),
