@@ -86,6 +86,23 @@ def test_models_lists_parameters_with_units():
     assert human.exit_code == 0 and "Nomoto" in human.stdout
 
 
+def test_models_lists_the_signals_a_scenario_author_wires():
+    payload = json.loads(runner.invoke(app, ["models", "--json"]).stdout)
+    mmg = {(s["kind"], s["name"]): s["unit"] for s in payload["vessel_models"]["mmg"]["signals"]}
+    assert mmg[("input", "rudder_angle")] == "rad"
+    assert mmg[("input", "propeller_rps")] == "1/s"
+    assert mmg[("disturbance", "moment_z")] == "N·m"
+    assert ("output", "drift_angle") in mmg
+    pid = {(s["kind"], s["name"]) for s in payload["controllers"]["pid-heading"]["signals"]}
+    assert {("measurement", "heading"), ("measurement", "yaw_rate"),
+            ("command", "rudder_command"), ("reference", "heading")} <= pid
+    servo = {(s["kind"], s["name"]) for s in payload["actuators"]["rudder-servo"]["signals"]}
+    assert {("command", "rudder_command"), ("output", "rudder_angle")} <= servo
+    assert payload["controllers"]["open-loop"]["passthrough"] is True
+    human = runner.invoke(app, ["models"]).stdout
+    assert "[rad/s]" in human and "propeller_rps" in human  # units survive rich markup
+
+
 def test_plot_command(tmp_path):
     runner.invoke(app, ["demo", "--out", str(tmp_path)])
     res = runner.invoke(app, ["plot", str(tmp_path / "result.nc"), "--out",

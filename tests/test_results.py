@@ -98,8 +98,8 @@ def test_plot_draws_four_panels(result):
 
 
 def test_channel_lookup_lists_names(result):
-    with pytest.raises(KeyError, match="no channel 'speed'; channels: north, east"):
-        result["speed"]
+    with pytest.raises(KeyError, match="no channel 'flap_angle'; channels: north, east"):
+        result["flap_angle"]
 
 
 def test_dataset_is_xarray(result):

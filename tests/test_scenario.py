@@ -81,7 +81,7 @@ def test_default_scenario_is_valid_and_converts_degrees():
          r"\[s\]: controller_dt=0.25, dt=0.1"),
         (_with(replace=("dt = 0.1", 'dt = 0.1\nintegrator = "rk5"')),
          r"s.toml: \[simulation.integrator\] Value error, unknown integrator 'rk5'; "
-         r"valid: euler, heun, rk4"),
+         r"valid: euler, midpoint, heun, ralston, bosh3, ssprk3, kutta3, rk4, rk38"),
         (_with(replace=('model = "pid-heading"', 'model = "lqr"')),
          r"\[controller.model\] unknown controller 'lqr'; valid: .*pid-heading"),
         (_with("[actuator]\nmodel = \"jet\"\n"),
@@ -365,14 +365,15 @@ def test_engine_checks_are_made_once_by_the_engine(edit, key):
     assert isinstance(scenario.value.__cause__, ParameterError)
 
 
-def test_command_count_mismatch_comes_from_the_engine_with_the_key():
+def test_miswiring_comes_from_the_engine_with_the_key():
     import dataclasses
 
     batch = parse_scenario(_with(), source="s.toml")
     two = dataclasses.replace(batch.controller, command_labels=("a", "b"))
-    with pytest.raises(ScenarioError, match=r"s.toml: \[controller.model\] controller "
-                                            r"'pid-heading' gives 2 command\(s\) but actuator "
-                                            r"'rudder-servo' takes 1"):
+    with pytest.raises(ScenarioError, match=r"s.toml: \[controller.model\] model 'nomoto2', "
+                                            r"actuator 'rudder-servo', controller 'pid-heading': "
+                                            r"actuator channel 'rudder_command' gets no command; "
+                                            r"the controller gives a, b"):
         run_scenario(batch.replace(controller=two))
 
 

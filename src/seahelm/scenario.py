@@ -540,8 +540,8 @@ def _engine_error(source: str, exc: ParameterError, layout: BatchLayout | None) 
         state = re.search(r"unknown state '(\w+)'", message)
         if key == "simulation.bounds" and state:
             key += f".{state.group(1)}"
-    elif re.match(r"controller '[^']*' gives", message):
-        key = "controller.model"
+    elif re.match(r"model '[^']*', actuator '[^']*', controller '[^']*': ", message):
+        key = "controller.model"  # the wiring by signal name (simulation.composition)
     elif message.startswith("initial state"):
         key = "vessel.initial"
     run = re.search(r"\brun (\d+)\b", message)

@@ -82,3 +82,18 @@ class Actuator:
     @property
     def n_outputs(self) -> int:
         return len(self.output_labels)
+
+    def signals(self) -> list[tuple[str, str, str]]:
+        """Every declared signal as ``(kind, name, unit)``: states, commands, outputs.
+
+        A pass-through actuator lists none beyond its states (its channels are the model
+        inputs it is wired to).
+
+        Returns
+        -------
+        list of tuple of str
+        """
+        return [(kind, n, u) for kind, names, units in (
+            ("state", self.state_labels, self.state_units),
+            ("command", self.command_labels, self.command_units),
+            ("output", self.output_labels, self.output_units)) for n, u in zip(names, units)]

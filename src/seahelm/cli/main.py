@@ -9,6 +9,7 @@ from typing import Annotated, Any
 
 import numpy as np
 import typer
+from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
@@ -240,10 +241,10 @@ def models(
                     for i in comp.params_type.info()
                 ],
             }
-            for attr in ("state_labels", "input_labels", "disturbance_labels",
-                         "reference_labels", "command_labels"):
-                if hasattr(comp, attr):
-                    payload[kind][name][attr] = list(getattr(comp, attr))
+            payload[kind][name]["signals"] = [
+                {"kind": k, "name": n, "unit": u} for k, n, u in comp.signals()]
+            if getattr(comp, "passthrough", False):
+                payload[kind][name]["passthrough"] = True
     payload["catalog"] = {n: {"model": e.model, "provenance": e.provenance}
                           for n, e in sorted(CATALOG.items())}
     if json_:
@@ -261,6 +262,16 @@ def models(
                 default = "required" if p["default"] is None else f"{p['default']:.6g}"
                 table.add_row(p["name"], p["symbol"], p["unit"], default, p["doc"])
             console.print(table)
+            if info["signals"] or info.get("passthrough"):
+                sig = Table(title_justify="left", box=None, pad_edge=False)
+                for col in ("signal", "name", "unit"):
+                    sig.add_column(col)
+                for row in info["signals"]:
+                    sig.add_row(row["kind"], row["name"], escape(f"[{row['unit']}]")
+                                if row["unit"] else "")
+                if info.get("passthrough"):
+                    sig.add_row("channels", "named after what it is wired to", "")
+                console.print(sig)
     cat = Table(title="catalog (named parameter sets)", title_justify="left")
     cat.add_column("name")
     cat.add_column("model")

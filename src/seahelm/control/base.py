@@ -89,6 +89,24 @@ class Controller:
     def n_measurements(self) -> int:
         return len(self.measurement_labels)
 
+    def signals(self) -> list[tuple[str, str, str]]:
+        """Every declared signal as ``(kind, name, unit)``: states, references, measurements,
+        commands (a pass-through controller's references and commands are named after what it
+        is wired to, so it lists none).
+
+        Returns
+        -------
+        list of tuple of str
+        """
+        rows = [("state", n, "") for n in self.state_labels]
+        if not self.passthrough:
+            rows += [("reference", n, u) for n, u in zip(self.reference_labels,
+                                                          self.reference_units)]
+        rows += [("measurement", n, "") for n in self.measurement_labels]
+        if not self.passthrough:
+            rows += [("command", n, "") for n in self.command_labels]
+        return rows
+
     @property
     def n_states(self) -> int:
         return len(self.state_labels)

@@ -123,6 +123,19 @@ class VesselModel:
     def n_outputs(self) -> int:
         return len(self.output_labels)
 
+    def signals(self) -> list[tuple[str, str, str]]:
+        """Every declared signal as ``(kind, name, unit)``: states, inputs, disturbances, outputs.
+
+        Returns
+        -------
+        list of tuple of str
+        """
+        return [(kind, n, u) for kind, names, units in (
+            ("state", self.state_labels, self.state_units),
+            ("input", self.input_labels, self.input_units),
+            ("disturbance", self.disturbance_labels, self.disturbance_units),
+            ("output", self.output_labels, self.output_units)) for n, u in zip(names, units)]
+
     def state_index(self, label: str) -> int:
         """Index of a state by label (ValueError listing the labels if unknown).
 

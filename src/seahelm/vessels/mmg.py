@@ -309,10 +309,11 @@ def mmg_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     v = x[S.sway_speed]
     r = x[S.yaw_rate]
     psi = x[S.heading]
-    f = _forces(uu, v, r, u[U.rudder_angle], u[U.propeller_rps], p)
-    X = f[0] + f[3] + f[4] + d[D.force_x]
-    Yf = f[1] + f[5] + d[D.force_y]
-    N = f[2] + f[6] + d[D.moment_z]
+    X_H, Y_H, N_H, X_P, X_R, Y_R, N_R, _T, _F_N, _a_R, _w_P, _u_R, _v_R, _U, _b = _forces(
+        uu, v, r, u[U.rudder_angle], u[U.propeller_rps], p)
+    X = X_H + X_P + X_R + d[D.force_x]
+    Yf = Y_H + Y_R + d[D.force_y]
+    N = N_H + N_R + d[D.moment_z]
     L = p.length
     m = p.rho * p.displacement
     scale = 0.5 * p.rho * L * L * p.draft
@@ -342,19 +343,20 @@ def mmg_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
 @njit(cache=True)
 def mmg_output(t, x, u, p, y):  # pragma: no cover - compiled
     """Outputs of the MMG model (``OUTPUTS`` order) for one run."""
-    f = _forces(x[S.surge_speed], x[S.sway_speed], x[S.yaw_rate], u[U.rudder_angle],
-                u[U.propeller_rps], p)
+    (_X_H, _Y_H, _N_H, _X_P, _X_R, _Y_R, _N_R, thrust, F_N, alpha_R, _w_P, _u_R, _v_R, speed,
+     beta) = _forces(x[S.surge_speed], x[S.sway_speed], x[S.yaw_rate], u[U.rudder_angle],
+                     u[U.propeller_rps], p)
     y[Y.north] = x[S.north]
     y[Y.east] = x[S.east]
     y[Y.heading] = x[S.heading]
     y[Y.yaw_rate] = x[S.yaw_rate]
     y[Y.surge_speed] = x[S.surge_speed]
     y[Y.sway_speed] = x[S.sway_speed]
-    y[Y.speed] = f[13]
-    y[Y.drift_angle] = f[14]
-    y[Y.thrust] = f[7]
-    y[Y.rudder_normal_force] = f[8]
-    y[Y.rudder_inflow_angle] = f[9]
+    y[Y.speed] = speed
+    y[Y.drift_angle] = beta
+    y[Y.thrust] = thrust
+    y[Y.rudder_normal_force] = F_N
+    y[Y.rudder_inflow_angle] = alpha_R
 
 
 MMG = VesselModel(
