@@ -32,6 +32,7 @@ from numba import njit, prange
 
 from seahelm.actuators.servo import DIRECT
 from seahelm.control.final_state import FSM_YAW_RATE_SIMPLE, fsm_thruster_rate, yaw_rate_params
+from seahelm.parameters import as_records
 from seahelm.simulation.engine import simulate
 from seahelm.vessels.catamaran import CATAMARAN, catamaran_drift, catamaran_rhs, paper_params
 
@@ -82,8 +83,10 @@ _thruster_rate = njit(inline="always")(fsm_thruster_rate.py_func)
 
 
 @njit(cache=True, parallel=True, fastmath=True)
-def _fused(Z, mp, cp, n_steps, dt, ref):  # pragma: no cover - compiled
+def _fused(Z, MP, CP, n_steps, dt, ref):  # pragma: no cover - compiled
     for i in prange(Z.shape[0]):
+        mp = MP[0]  # records read in place inside the parallel loop, as the engine does
+        cp = CP[0]
         z = Z[i].copy()  # thread-local, as the engine does (no false sharing)
         k1 = np.empty(7)
         k2 = np.empty(7)
@@ -115,7 +118,8 @@ def _fused(Z, mp, cp, n_steps, dt, ref):  # pragma: no cover - compiled
 def run_fused(n_runs: int, n_steps: int) -> float:
     Z = _x0(n_runs)
     t0 = time.perf_counter()
-    _fused(Z, P.to_record(), CP.to_record(), n_steps, DT, REF)
+    _fused(Z, as_records(P.to_array(), type(P)), as_records(CP.to_array(), type(CP)), n_steps,
+           DT, REF)
     return time.perf_counter() - t0
 
 
