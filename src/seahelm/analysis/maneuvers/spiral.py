@@ -267,8 +267,8 @@ def reverse_spiral(ship: Any, yaw_rates: Any = None, *, speed: Any = None, rps: 
     ship : str, CatalogEntry, Params, ManeuverShip or a sequence of them
         The ship(s); a sequence gives a ``ship`` dimension.
     yaw_rates : sequence of float, optional
-        Yaw rates r [rad/s], increasing (default: ``points`` values evenly between 0.95 ×
-        the steady yaw rates at −``max_rudder`` and +``max_rudder``, and 0).
+        Yaw rates r [rad/s], increasing (default: ``points`` values evenly between the steady
+        yaw rates at −``max_rudder`` and +``max_rudder``, and 0).
     speed : float or sequence of float, optional
         Approach speed(s) [m/s] (default: the parameter set's).
     rps : float or sequence of float, optional
@@ -315,7 +315,7 @@ def reverse_spiral(ship: Any, yaw_rates: Any = None, *, speed: Any = None, rps: 
         if given is None:
             ends = steady_turn(s.params, np.array([-max_rudder, max_rudder]), a.rps,
                                model=s.model, max_rudder=s.max_rudder).yaw_rate
-            rates = np.union1d(np.linspace(0.95 * ends[0], 0.95 * ends[1], int(points)), [0.0])
+            rates = np.union1d(np.linspace(ends[0], ends[1], int(points)), [0.0])
         else:
             rates = given
         curve = rudder_for_yaw_rate(s.params, rates, a.rps, model=s.model)
