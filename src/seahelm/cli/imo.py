@@ -68,7 +68,8 @@ def imo(
                                f"V = {report.speed:.4g} m/s, L/V = {report.L_over_V:.4g} s) "
                                f"{verdict} the evaluated criteria"), title_justify="left")
     for col in ("ability", "criterion", "side", "value", "limit", "margin", "unit", "status"):
-        table.add_column(col, justify="right" if col in ("value", "limit", "margin") else "left")
+        table.add_column(col, justify="right" if col in ("value", "limit", "margin") else "left",
+                         no_wrap=col in ("side", "unit", "status"))
     for row in rows:
         style = {"pass": "green", "fail": "bold red"}.get(row["status"], "yellow")
         table.add_row(*(escape(str(row[k])) for k in ("ability", "criterion", "side")),
