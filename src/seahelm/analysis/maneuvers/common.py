@@ -31,9 +31,10 @@ steering gear (rate- and angle-limited servo, ``rudder-servo``), so its travel t
 from __future__ import annotations
 
 import dataclasses
+import functools
 import itertools
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple
 
@@ -273,6 +274,25 @@ class Approach(NamedTuple):
     speed: float
 
 
+@functools.lru_cache(maxsize=512)
+def _approach(model: VesselModel, params: Params, speed: float) -> Approach:
+    a = approach_state(params, speed, model=model, trim=True)
+    state = a.state.copy()
+    state.setflags(write=False)
+    return Approach(state, float(a.inputs["rudder_angle"]), a.inputs.get("propeller_rps"),
+                    float(speed))
+
+
+def steady_approach(model: VesselModel, params: Params, speed: float) -> Approach:
+    """The trimmed straight approach of :func:`~seahelm.analysis.equilibrium.approach_state`.
+
+    Memoised per (model, parameter set, speed): parameter sets are frozen, so the equilibrium
+    of a ship at a speed is computed once per process (the self-propulsion rps and the trim
+    take a few tens of milliseconds, more than a short manoeuvre's simulation).
+    """
+    return _approach(model, params, float(speed))
+
+
 def value_axis(name: str, value: Any, units: str, *, positive: bool = False,
                attrs: Mapping[str, str] | None = None) -> Axis:
     """An axis from a scalar (no dimension) or a 1-D sequence (a dimension)."""
@@ -333,10 +353,7 @@ class Plan:
         self.approaches: dict[tuple[int, int], Approach] = {}
         for i, s in enumerate(self.ships):
             for j, U in enumerate(speeds[i]):
-                a = approach_state(s.params, float(U), model=s.model, trim=True)
-                self.approaches[(i, j)] = Approach(
-                    a.state, float(a.inputs["rudder_angle"]),
-                    a.inputs.get("propeller_rps"), float(U))
+                self.approaches[(i, j)] = steady_approach(s.model, s.params, float(U))
         if not speed_axis.is_dim and n_ships == 1:
             speed_axis.values = speeds[0].copy()
         self.axes = [ship_axis, speed_axis, *axes]
@@ -379,9 +396,14 @@ class Plan:
     # -- the batch ----------------------------------------------------------------------
     def simulate(self, *, x0: np.ndarray, actuator_x0: np.ndarray, t_final: float, dt: float,
                  record_every: int, reference: Any = None, controller: Any = OPEN_LOOP,
-                 controller_params: Any = None, metadata: Mapping[str, Any] | None = None
-                 ) -> "SimResult":
-        """Run the grid as one batch (the engine validates the rest)."""
+                 controller_params: Any = None, metadata: Mapping[str, Any] | None = None,
+                 controller_every: int = 1) -> "SimResult":
+        """Run the grid as one batch (the engine validates the rest).
+
+        ``controller_every`` steps per controller sample: an open-loop schedule that changes
+        only at recorded samples can be sampled there (the engine evaluates the model's
+        outputs at every controller sample).
+        """
         from ...simulation.batch import BatchAxis, BatchLayout, RunBatch, simulate_batch
 
         dims = [a for a in self.axes if a.is_dim]
@@ -389,15 +411,27 @@ class Plan:
         if dims:
             layout = BatchLayout(axes=tuple(
                 BatchAxis(name=a.name, values=a.values, units=a.units) for a in dims))
+        # one run per thread at most: a small batch does not wake idle worker threads (on a
+        # busy machine that costs milliseconds per parallel region, more than the runs)
+        import numba
+
+        threads = numba.get_num_threads()
+        numba.set_num_threads(max(1, min(threads, self.n_runs)))
         batch = RunBatch(
             model=self.model,
-            params=[self.ship(i).params for i in range(self.n_runs)],
+            params=(self.ships[0].params if len(self.ships) == 1
+                    else [self.ship(i).params for i in range(self.n_runs)]),
             x0=x0, t_final=t_final, dt=dt, actuator=RUDDER_SERVO,
-            actuator_params=[self.ship(i).servo for i in range(self.n_runs)],
+            actuator_params=(self.ships[0].servo if len(self.ships) == 1
+                             else [self.ship(i).servo for i in range(self.n_runs)]),
             actuator_x0=actuator_x0, controller=controller,
             controller_params=controller_params, reference=reference,
+            controller_dt=controller_every * dt,
             record_every=record_every, metadata=dict(metadata or {}), layout=layout)
-        return simulate_batch(batch)
+        try:
+            return simulate_batch(batch)
+        finally:
+            numba.set_num_threads(threads)
 
     def runs_dataset(self, result: "SimResult") -> "xr.Dataset":
         """The result's Dataset with the grid's coordinates; a single run loses ``run``."""
@@ -408,31 +442,37 @@ class Plan:
 
     def dataset(self, variables: Mapping[str, tuple[Any, str, str]],
                 extra_dims: Mapping[str, tuple[str, int]] | None = None,
-                attrs: Mapping[str, Any] | None = None) -> "xr.Dataset":
+                attrs: Mapping[str, Any] | None = None,
+                coords: Mapping[str, Any] | None = None) -> "xr.Dataset":
         """A metrics Dataset over the grid's dims from per-run arrays.
 
         ``variables[name] = (values, units, long_name)`` with ``values`` of shape (runs,) or
-        (runs, k); ``extra_dims[name] = (dim, k)`` names the trailing dimension of the latter.
+        (runs, k); ``extra_dims[name] = (dim, k)`` names the trailing dimension of the latter;
+        ``coords`` adds coordinates (e.g. along such a dimension). Strings are stored as
+        fixed-width unicode, booleans as bool. Built in one Dataset construction (xarray's
+        per-object overhead is most of the cost of a short manoeuvre).
         """
         import xarray as xr
 
         data = {}
         for name, (values, units, long_name) in variables.items():
             arr = np.asarray(values)
+            if arr.dtype == object:
+                arr = arr.astype(str)
             dims: tuple[str, ...] = self.dims
             shape = self.dim_shape
             if arr.ndim == 2:
                 dim, k = (extra_dims or {})[name]
                 dims, shape = dims + (dim,), shape + (k,)
-            arr = arr.reshape(shape)
             var_attrs = {"long_name": long_name}
             if units:
                 var_attrs["units"] = units
-            data[name] = xr.Variable(dims, arr, var_attrs)
-        ds = xr.Dataset(data, attrs=dict(attrs or {}))
-        return self._decorate(ds)
+            data[name] = xr.Variable(dims, arr.reshape(shape), var_attrs)
+        all_coords = self._coords()
+        all_coords.update(coords or {})
+        return xr.Dataset(data, coords=all_coords, attrs=dict(attrs or {}))
 
-    def _decorate(self, ds: "xr.Dataset") -> "xr.Dataset":
+    def _coords(self) -> dict[str, Any]:
         coords: dict[str, Any] = {}
         for a in self.axes:
             attrs = dict(a.attrs)
@@ -447,7 +487,10 @@ class Plan:
                     coords[a.name] = ((), a.values[0], attrs)
                 for cname, (cvalues, cattrs) in a.coords.items():
                     coords[cname] = ((), cvalues[0], cattrs)
-        return ds.assign_coords(coords)
+        return coords
+
+    def _decorate(self, ds: "xr.Dataset") -> "xr.Dataset":
+        return ds.assign_coords(self._coords())
 
     def run_messages(self, result: "SimResult") -> list[str]:
         """'ok' or what diverged, per run."""
@@ -486,7 +529,7 @@ def check_rudder(ships: Sequence[ManeuverShip], name: str, values: np.ndarray, *
 # ------------------------------------------------------------------------------------------
 @dataclasses.dataclass(frozen=True, eq=False)
 class ManeuverResult:
-    """A batch of one manoeuvre: the runs, the metrics table and the ships.
+    """A batch of one manoeuvre: the metrics table, the runs and the ships.
 
     Attributes
     ----------
@@ -495,17 +538,27 @@ class ManeuverResult:
         ``"pull-out"``.
     metrics : xarray.Dataset
         The metrics over the batch dims (see the module docstring).
-    runs : xarray.Dataset or None
-        Time series ``(*batch_dims, time)``; None for a manoeuvre computed from equilibria
-        (the reverse spiral).
     ships : tuple of ManeuverShip
         The ships of the batch (``ship`` index order).
+    simulation : SimResult or None
+        The engine's result (flat run order); None for a manoeuvre computed from equilibria
+        (the reverse spiral).
+    runs : xarray.Dataset or None
+        Time series ``(*batch_dims, time)`` with the grid's coordinates, built from
+        ``simulation`` on first access (None for the reverse spiral).
     """
 
     maneuver: str
     metrics: "xr.Dataset"
-    runs: "xr.Dataset | None"
     ships: tuple[ManeuverShip, ...]
+    simulation: "SimResult | None" = None
+    runs_builder: Callable[[], "xr.Dataset"] | None = dataclasses.field(default=None,
+                                                                         repr=False)
+
+    @functools.cached_property
+    def runs(self) -> "xr.Dataset | None":
+        """The runs as an :class:`xarray.Dataset` (built once, on first access)."""
+        return None if self.runs_builder is None else self.runs_builder()
 
     def to_netcdf(self, directory: str | Path, *, prefix: str | None = None
                   ) -> dict[str, Path]:

@@ -109,7 +109,8 @@ def pull_out(ship: Any, rudder: Any = math.radians(20.0), *, sides: Any = (1, -1
             [plan.approach(i).rps for i in range(n)]).reshape(-1, 1, 1)
     result = plan.simulate(x0=x0_arr, actuator_x0=np.array(rudder0), reference=reference,
                            t_final=t_final, dt=dt, record_every=record_every,
-                           metadata={"maneuver": "pull-out"})
+                           metadata={"maneuver": "pull-out"},
+                           controller_every=record_every)
     t = result.time
     r = result["yaw_rate"]
     r0 = x0_arr[:, plan.model.state_index("yaw_rate")]
@@ -155,4 +156,5 @@ def pull_out(ship: Any, rudder: Any = math.radians(20.0), *, sides: Any = (1, -1
         metrics["residual_gap"] = gap.drop_vars("side", errors="ignore").assign_attrs(
             units="rad/s", long_name="residual yaw rate, starboard minus port (0: course "
                                      "stable; > 0: a spiral loop at zero rudder)")
-    return ManeuverResult("pull-out", metrics, plan.runs_dataset(result), tuple(plan.ships))
+    return ManeuverResult("pull-out", metrics, tuple(plan.ships), result,
+                          lambda: plan.runs_dataset(result))

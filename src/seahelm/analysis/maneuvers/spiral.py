@@ -146,7 +146,8 @@ def direct_spiral(ship: Any, rudders: Any = None, *, speed: Any = None, rps: Any
     rudder0 = np.array([[plan.approach(i).rudder] for i in range(n)])
     result = plan.simulate(x0=x0, actuator_x0=rudder0, reference=reference, t_final=t_final,
                            dt=dt, record_every=record_every,
-                           metadata={"maneuver": "direct-spiral"})
+                           metadata={"maneuver": "direct-spiral"},
+                           controller_every=record_every)
     t = result.time
     r, U = result["yaw_rate"], result["speed"]
     legs = _legs(deltas)
@@ -197,13 +198,13 @@ def direct_spiral(ship: Any, rudders: Any = None, *, speed: Any = None, rps: Any
     extra = {k: ("step", m) for k in ("yaw_rate", "yaw_rate_nd", "speed", "settled")}
     attrs = {"maneuver": "direct-spiral", "dt": float(dt), "hold": float(hold),
              "t_final": float(t_final)}
-    metrics = plan.dataset(variables, extra_dims=extra, attrs=attrs)
-    metrics = metrics.assign_coords(
-        step=("step", np.arange(m)),
-        step_rudder=("step", deltas, {"units": "rad", "long_name": "rudder angle of the step"}),
-        leg=("step", legs, {"long_name": "-1 descending (starboard to port), +1 ascending"}))
-    return ManeuverResult("direct-spiral", metrics, plan.runs_dataset(result),
-                          tuple(plan.ships))
+    metrics = plan.dataset(variables, extra_dims=extra, attrs=attrs, coords={
+        "step": ("step", np.arange(m)),
+        "step_rudder": ("step", deltas, {"units": "rad",
+                                         "long_name": "rudder angle of the step"}),
+        "leg": ("step", legs, {"long_name": "-1 descending (starboard to port), +1 ascending"})})
+    return ManeuverResult("direct-spiral", metrics, tuple(plan.ships), result,
+                          lambda: plan.runs_dataset(result))
 
 
 def spiral_loop(params: Any, yaw_rate: np.ndarray, rudder: np.ndarray, rps: float | None = None,
@@ -343,7 +344,7 @@ def reverse_spiral(ship: Any, yaw_rates: Any = None, *, speed: Any = None, rps: 
     attrs = {"maneuver": "reverse-spiral",
              "method": "equilibria of the model at prescribed yaw rates (continuation in r); "
                        "the limit of Bech's test with a perfect yaw-rate controller"}
-    metrics = plan.dataset(variables, extra_dims=extra, attrs=attrs)
-    metrics = metrics.assign_coords(point=("point", np.arange(k)))
-    return ManeuverResult("reverse-spiral", metrics, None, tuple(plan.ships))
+    metrics = plan.dataset(variables, extra_dims=extra, attrs=attrs,
+                           coords={"point": ("point", np.arange(k))})
+    return ManeuverResult("reverse-spiral", metrics, tuple(plan.ships))
 

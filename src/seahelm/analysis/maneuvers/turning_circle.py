@@ -22,8 +22,8 @@ steady turn
     ``steady`` says whether the yaw rate changed by less than 1 % over the last 90° of heading.
 
 Event times and the positions at them are interpolated linearly between the two recorded
-samples that bracket the heading change (:func:`seahelm.analysis.turning.turning_metrics`), not
-rounded to a sample. The distance along the track is the sum of the chords between samples.
+samples that bracket the heading change (as :func:`seahelm.analysis.turning.turning_metrics`
+does, vectorised over the batch here), not rounded to a sample. The distance along the track is the sum of the chords between samples.
 
 A run that does not reach a heading change reports NaN for what depends on it, ``complete``
 False and a ``message`` saying what was not reached; it is not an error.
@@ -38,7 +38,6 @@ import numpy as np
 
 from ...errors import ParameterError
 from ..equilibrium import steady_turn
-from ..turning import heading_change_crossing, turning_metrics
 from .common import (
     ManeuverResult,
     Plan,
@@ -72,15 +71,6 @@ def track_distance(north: Any, east: Any) -> np.ndarray:
     e = np.atleast_2d(np.asarray(east, dtype=float))
     chords = np.hypot(np.diff(n, axis=1), np.diff(e, axis=1))
     return np.concatenate([np.zeros((n.shape[0], 1)), np.cumsum(chords, axis=1)], axis=1)
-
-
-def _interp(values: np.ndarray, index: np.ndarray, weight: np.ndarray) -> np.ndarray:
-    out = np.full(index.shape, np.nan)
-    for i, (k, w) in enumerate(zip(index, weight)):
-        if k < 0:
-            continue
-        out[i] = values[i, k] if k == 0 else (1.0 - w) * values[i, k - 1] + w * values[i, k]
-    return out
 
 
 def _estimate_t_final(plan: Plan, signed: dict[tuple[int, int], list[float]],
@@ -175,10 +165,11 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
             [plan.approach(i).rps for i in range(n)]).reshape(-1, 1, 1)
     result = plan.simulate(x0=x0, actuator_x0=rudder0, reference=reference, t_final=t_final,
                            dt=dt, record_every=record_every,
-                           metadata={"maneuver": "turning-circle"})
+                           metadata={"maneuver": "turning-circle"},
+                           controller_every=record_every)
     metrics = _metrics(plan, result)
-    return ManeuverResult("turning-circle", metrics, plan.runs_dataset(result),
-                          tuple(plan.ships))
+    return ManeuverResult("turning-circle", metrics, tuple(plan.ships), result,
+                          lambda: plan.runs_dataset(result))
 
 
 def check_positive_change(heading_change: float) -> None:
@@ -189,14 +180,49 @@ def check_positive_change(heading_change: float) -> None:
             f"{heading_change!r}")
 
 
+def _crossings(change: np.ndarray, level: float) -> tuple[np.ndarray, np.ndarray]:
+    """First sample k with ``change >= level`` per run and the weight w of sample k in the
+    linear interpolation with sample k − 1 (k = −1, w = NaN where never reached)."""
+    hit = change >= level
+    k = np.argmax(hit, axis=1)
+    rows = np.arange(change.shape[0])
+    k = np.where(hit[rows, k], k, -1)
+    prev = change[rows, np.maximum(k - 1, 0)]
+    cur = change[rows, np.maximum(k, 0)]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        w = np.where(k > 0, (level - prev) / (cur - prev), 1.0)
+    return k, np.where(k >= 0, w, np.nan)
+
+
+def _at_crossing(values: np.ndarray, k: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """Values (runs, steps) interpolated at the crossings of :func:`_crossings`."""
+    rows = np.arange(values.shape[0])
+    cur = values[rows, np.maximum(k, 0)]
+    prev = values[rows, np.maximum(k - 1, 0)]
+    out = np.where(k > 0, prev + w * (cur - prev), cur)
+    return np.where(k >= 0, out, np.nan)
+
+
 def _metrics(plan: Plan, result: Any) -> Any:
     t = result.time
     north, east, psi = result["north"], result["east"], result["heading"]
-    m = turning_metrics(t, north, east, psi, order_time=0.0)
-    k10, w10 = heading_change_crossing(t, psi, _DEG10, order_time=0.0)
+    # distances from the position at the order, along and across the original course
+    dn, de = north - north[:, :1], east - east[:, :1]
+    c0, s0 = np.cos(psi[:, :1]), np.sin(psi[:, :1])
+    along, across = dn * c0 + de * s0, np.abs(-dn * s0 + de * c0)
+    change = np.abs(psi - psi[:, :1])
+    times = np.broadcast_to(t, psi.shape)
+    k90, w90 = _crossings(change, 0.5 * math.pi)
+    k180, w180 = _crossings(change, math.pi)
+    k10, w10 = _crossings(change, _DEG10)
     dist = track_distance(north, east)
-    time_10 = _interp(np.broadcast_to(t, dist.shape), k10, w10)
-    distance_10 = _interp(dist, k10, w10)
+    advance = _at_crossing(along, k90, w90)
+    transfer = _at_crossing(across, k90, w90)
+    time_90 = _at_crossing(times, k90, w90)
+    tactical_diameter = _at_crossing(across, k180, w180)
+    time_180 = _at_crossing(times, k180, w180)
+    time_10 = _at_crossing(times, k10, w10)
+    distance_10 = _at_crossing(dist, k10, w10)
     speed = result["speed"]
     r = result["yaw_rate"]
     beta = result["drift_angle"]
@@ -205,7 +231,6 @@ def _metrics(plan: Plan, result: Any) -> Any:
     rps = np.array([np.nan if plan.approach(i).rps is None else plan.approach(i).rps
                     for i in range(n)])
     length = np.array([plan.ship(i).length for i in range(n)])
-    change = np.abs(psi - psi[:, :1])
     steady_r = r[:, -1]
     steady_U = speed[:, -1]
     radius = np.where(steady_r != 0.0, steady_U / np.abs(steady_r), np.inf)
@@ -220,7 +245,7 @@ def _metrics(plan: Plan, result: Any) -> Any:
     status = result.messages()
     for i in range(n):
         missing = [f"{name} heading change" for name, value in
-                   (("10 deg", time_10[i]), ("90 deg", m.time_90[i]), ("180 deg", m.time_180[i]))
+                   (("10 deg", time_10[i]), ("90 deg", time_90[i]), ("180 deg", time_180[i]))
                    if np.isnan(value)]
         text = []
         if status[i] != "ok":
@@ -234,12 +259,12 @@ def _metrics(plan: Plan, result: Any) -> Any:
                         "by > 1 % over the last 90 deg): steady values are the last sample's")
         messages.append("; ".join(text) if text else "ok")
     variables = {
-        "advance": (m.advance, "m", "advance at 90 deg heading change"),
-        "transfer": (m.transfer, "m", "transfer at 90 deg heading change"),
-        "tactical_diameter": (m.tactical_diameter, "m",
+        "advance": (advance, "m", "advance at 90 deg heading change"),
+        "transfer": (transfer, "m", "transfer at 90 deg heading change"),
+        "tactical_diameter": (tactical_diameter, "m",
                               "tactical diameter (transfer at 180 deg heading change)"),
-        "time_90": (m.time_90, "s", "time to 90 deg heading change"),
-        "time_180": (m.time_180, "s", "time to 180 deg heading change"),
+        "time_90": (time_90, "s", "time to 90 deg heading change"),
+        "time_180": (time_180, "s", "time to 180 deg heading change"),
         "time_10": (time_10, "s", "time to 10 deg heading change"),
         "distance_10": (distance_10, "m",
                         "distance along the track to 10 deg heading change"),

@@ -349,6 +349,7 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
              "measured_from": "rudder order (first execute) at t = 0",
              "interpolation": "executes: linear between samples; extremes: parabola through "
                               "the largest sample and its neighbours"}
-    metrics = plan.dataset(variables, extra_dims=extra, attrs=attrs)
-    metrics = metrics.assign_coords(n=("n", np.arange(1, N_OVERSHOOTS + 1)))
-    return ManeuverResult("zigzag", metrics, plan.runs_dataset(result), tuple(plan.ships))
+    metrics = plan.dataset(variables, extra_dims=extra, attrs=attrs,
+                           coords={"n": ("n", np.arange(1, N_OVERSHOOTS + 1))})
+    return ManeuverResult("zigzag", metrics, tuple(plan.ships), result,
+                          lambda: plan.runs_dataset(result))
