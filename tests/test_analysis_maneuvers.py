@@ -297,12 +297,14 @@ def test_zigzag_controllers_compose_with_both_models():
         "controller.rudder_command -> actuator.rudder_command\n"
         "actuator.rudder_angle -> model.rudder_angle\n"
         "controller.propeller_rps -> model.propeller_rps\n"
-        "model.heading -> controller.heading")
+        "model.heading -> controller.heading\n"
+        "model.yaw_rate -> controller.yaw_rate")
     one = compose(MARINER, RUDDER_SERVO, ZIGZAG)
     assert one.describe() == (
         "controller.rudder_command -> actuator.rudder_command\n"
         "actuator.rudder_angle -> model.rudder_angle\n"
-        "model.heading -> controller.heading")
+        "model.heading -> controller.heading\n"
+        "model.yaw_rate -> controller.yaw_rate")
     assert get_controller("zigzag") is ZIGZAG and get_controller("zigzag-rps") is ZIGZAG_RPS
     with pytest.raises(ParameterError, match="model input 'propeller_rps' is not fed"):
         compose(MMG, RUDDER_SERVO, ZIGZAG)
@@ -324,15 +326,23 @@ def l7_zigzags():
     return zigzag("kvlcc2-l7", 10 * DEG)  # 10/10 to both sides
 
 
-def test_zigzag_reverses_the_rudder_at_the_trigger(l7_zigzags):
+def test_zigzag_reverses_the_rudder_at_the_sample_nearest_the_trigger(l7_zigzags):
+    dt = l7_zigzags.metrics.attrs["dt"]
+    assert dt == 0.025  # half the default step of the L7
     for side in (1, -1):
         run = l7_zigzags.runs.sel(side=side)
+        t = run["time"].values
         dev = side * run["heading"].values  # base heading 0
         cmd = side * run["rudder_command"].values
         assert cmd[0] == pytest.approx(10 * DEG)
-        # the first sample at or beyond the trigger reverses the order (held during the step)
-        k = int(np.argmax(dev >= 10 * DEG))
+        # the heading passes the trigger between samples j - 1 and j (linear interpolation)
+        j = int(np.argmax(dev >= 10 * DEG))
+        t_cross = t[j - 1] + (10 * DEG - dev[j - 1]) / (dev[j] - dev[j - 1]) * dt
+        # the order is reversed (and held over the step) at the sample nearest the crossing
+        k = int(np.argmax(cmd < 0))
         assert np.all(cmd[:k] == pytest.approx(10 * DEG)) and cmd[k] == pytest.approx(-10 * DEG)
+        assert abs(t[k] - t_cross) <= 0.5 * dt + 1e-3 * dt
+        assert k in (j - 1, j)
         # the propeller is held at the approach's self-propulsion rps
         np.testing.assert_allclose(run["propeller_rps"].values,
                                    self_propulsion_rps(KVLCC2_L7, KVLCC2_L7.approach_speed))
@@ -352,10 +362,11 @@ def test_zigzag_overshoots_agree_with_the_recorded_extremes(l7_zigzags):
         o1 = float(mm["overshoot"].sel(n=1))
         assert 0.0 <= o1 - first < 1e-4 * DEG
         assert float(mm["overshoot_time"].sel(n=1)) == pytest.approx(
-            t[k2 + int(np.argmax(dev[k2:k3]))], abs=0.05)
+            t[k2 + int(np.argmax(dev[k2:k3]))], abs=0.025)
         # the first execute by linear interpolation of the recorded heading
         w = (10 * DEG - dev[k2 - 1]) / (dev[k2] - dev[k2 - 1])
-        assert float(mm["initial_turning_time"]) == pytest.approx(t[k2 - 1] + w * 0.05, abs=1e-12)
+        assert float(mm["initial_turning_time"]) == pytest.approx(
+            t[k2 - 1] + w * (t[k2] - t[k2 - 1]), abs=1e-12)
     # IMO-sized: 10/10 first overshoots of a few degrees, second larger
     o = np.degrees(m["overshoot"].values)
     assert np.all((2.0 < o[:, 0]) & (o[:, 0] < 10.0)), o

@@ -85,9 +85,8 @@ COMBINATIONS = {
     ("mariner", "rudder-servo", "open-loop"): (("rudder_command",), _SERVO),
     # seahelm.analysis.maneuvers.zigzag (and the IMO check built on it)
     ("mmg", "rudder-servo", "zigzag-rps"): (
-        (), _SERVO + "\ncontroller.propeller_rps -> model.propeller_rps"
-        "\nmodel.heading -> controller.heading"),
-    ("mariner", "rudder-servo", "zigzag"): ((), _SERVO + "\nmodel.heading -> controller.heading"),
+        (), _SERVO + "\ncontroller.propeller_rps -> model.propeller_rps" + _HEADING),
+    ("mariner", "rudder-servo", "zigzag"): ((), _SERVO + _HEADING),
     # test_vessels_cpp_ship
     ("cpp-ship-waves", "direct", "open-loop"): (
         ("pitch_ratio",),

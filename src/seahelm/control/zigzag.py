@@ -10,14 +10,25 @@ when the heading has passed ψ_z on the other side of ψ_0, it is reversed again
     s ← +1   if s = −1 and ψ − ψ_0 ≤ −ψ_z
     δ_c = s δ_z
 
+(with ψ predicted half a controller step ahead, see "Sampling" below).
+
 The rudder sign s is the controller's state (``rudder_side``), initialised to s_1. The command
 is the rudder order δ_c [rad] for the steering gear (``rudder_command``); the rate-limited
 servo turns it into the rudder angle. The heading is the model's continuous (unwrapped)
 heading output, so the test may run through any number of turns.
 
-The reversal happens at the first controller sample at or after the heading crossing (at most
-one controller step late); the manoeuvre metrics (:mod:`seahelm.analysis.maneuvers.zigzag`)
-time the executes by interpolating the recorded heading, not by the sample.
+Sampling: the controller sees the heading every Δt (its sample period) and its order is held
+in between, so a reversal can only happen at a sample. Reversing at the first sample *after*
+the crossing would delay every execute by Δt/2 on average, and the overshoots with it (a
+first-order bias: about r Δt/2, 0.05° of a 5° overshoot of the KVLCC2 L7 at Δt = 0.05 s).
+The controller therefore reverses at the sample **nearest** to the crossing, predicting the
+deviation half a step ahead with the measured yaw rate r::
+
+    reverse at t_k  if  s (ψ_k − ψ_0 + r_k Δt/2) ≥ ψ_z
+
+which leaves an unbiased timing error within ±Δt/2. The manoeuvre metrics
+(:mod:`seahelm.analysis.maneuvers.zigzag`) time the executes by interpolating the recorded
+heading, not by the sample.
 
 Two controllers share the step code:
 
@@ -76,7 +87,7 @@ class ZigZagRpsParams(ZigZagParams):
                                  doc="propeller revolutions per second (held constant)")
 
 
-MEASUREMENTS: tuple[str, ...] = ("heading",)
+MEASUREMENTS: tuple[str, ...] = ("heading", "yaw_rate")
 STATES: tuple[str, ...] = ("rudder_side",)
 COMMANDS: tuple[str, ...] = ("rudder_command",)
 COMMANDS_RPS: tuple[str, ...] = ("rudder_command", "propeller_rps")
@@ -93,9 +104,10 @@ def zigzag_init(z, y, ref, p, cs):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
-def zigzag_rudder(y, p, cs):  # pragma: no cover - compiled
-    """Update the rudder side from the heading deviation; return the rudder order [rad]."""
-    deviation = y[_M.heading] - p.base_heading
+def zigzag_rudder(dt, y, p, cs):  # pragma: no cover - compiled
+    """Update the rudder side from the heading deviation half a sample period ahead; return
+    the rudder order [rad]."""
+    deviation = y[_M.heading] - p.base_heading + 0.5 * dt * y[_M.yaw_rate]
     side = cs[_S.rudder_side]
     if side > 0.0 and deviation >= p.heading_trigger:
         side = -1.0
@@ -108,13 +120,13 @@ def zigzag_rudder(y, p, cs):  # pragma: no cover - compiled
 @njit(cache=True)
 def zigzag_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
     """Rudder order only (one-input models)."""
-    cmd[_C.rudder_command] = zigzag_rudder(y, p, cs)
+    cmd[_C.rudder_command] = zigzag_rudder(dt, y, p, cs)
 
 
 @njit(cache=True)
 def zigzag_rps_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
     """Rudder order and the constant propeller rps (rudder-and-propeller models)."""
-    cmd[_C.rudder_command] = zigzag_rudder(y, p, cs)
+    cmd[_C.rudder_command] = zigzag_rudder(dt, y, p, cs)
     cmd[_C.propeller_rps] = p.propeller_rps
 
 

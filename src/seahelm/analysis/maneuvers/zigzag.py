@@ -25,6 +25,12 @@ period
     t_4 − t_2, from the second execute to the next reversal to the same side (one full cycle
     of the heading).
 
+The rudder reversals themselves fall on the controller's samples: the controller reverses at
+the sample nearest to the crossing (:mod:`seahelm.control.zigzag`), an unbiased timing error
+within ±Δt/2, which moves an overshoot by up to about r Δt/2 (r the yaw rate at the execute).
+At the default step (0.025 s for the KVLCC2 L7, 0.1 s for the Mariner) that is within ±0.03°;
+a smaller ``dt`` reduces it in proportion.
+
 Anything not reached within the run is NaN, with ``complete`` False and a ``message`` naming it.
 Before a run, a trigger that the steady turn at δ_z cannot reach in the given ``t_final``
 (even turning at the steady yaw rate from the order) is refused with a
@@ -225,8 +231,9 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
         Duration [s] (default: 4 rudder swings + 3 × 6 ψ_z / the slowest steady yaw rate at
         δ_z, enough for the third overshoot).
     dt : float, optional
-        Integration step [s]; the controller samples every step (default
-        :func:`~seahelm.analysis.maneuvers.default_time_step`).
+        Integration step [s]; the controller samples every step (default: half of
+        :func:`~seahelm.analysis.maneuvers.default_time_step`, since the reversals fall on
+        samples — see the module docstring).
     record_dt : float, optional
         Recording interval [s] (default: every step).
 
@@ -263,8 +270,8 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
     plan = Plan(ship, speed, rps, [pair, side])
     check_rudder(plan.ships, "rudder", np.atleast_1d(d))
     if dt is None:
-        dt = min(default_time_step(s, a.speed) for s in plan.ships
-                 for a in plan.approaches.values())
+        dt = 0.5 * min(default_time_step(s, a.speed) for s in plan.ships
+                       for a in plan.approaches.values())
     n = plan.n_runs
     amp = np.array([np.atleast_1d(d)[plan.index[i]["pair"]] for i in range(n)])
     trig = np.array([np.atleast_1d(h)[plan.index[i]["pair"]] for i in range(n)])
