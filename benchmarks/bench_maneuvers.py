@@ -143,7 +143,9 @@ def main() -> None:
     rps = float(self_propulsion_rps(KVLCC2_L7, U0))
     seahelm_circle(0.2)  # compile (or load) the kernel and the approach outside the timing
     print(f"KVLCC2 L7, 35 deg starboard turning circle, {T_FINAL:g} s, U0 = {U0} m/s, "
-          f"n = {rps:.6g} rps; {os.cpu_count()} cores; medians of {args.repeats} runs\n")
+          f"n = {rps:.6g} rps; {os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f} "
+          f"(the batch runs one thread per core; a busy core slows it); medians of "
+          f"{args.repeats} runs\n")
 
     # -- seahelm: step by accuracy -------------------------------------------------------
     print("seahelm (RK4, fixed step): advance / tactical diameter against a run at dt/4")
@@ -216,6 +218,7 @@ def main() -> None:
     print(f"seahelm 1,000 circles {t_batch:.3f} s vs shipmmg 10 circles {t_ten:.3f} s: "
           f"{'less' if t_batch < t_ten else 'MORE'} ({t_ten / t_batch:.2f}x; per circle "
           f"{100 * t_ten / t_batch:.0f}x)")
+    print(f"(load average at the end {os.getloadavg()[0]:.2f})")
     sys.stdout.flush()
 
 
