@@ -228,8 +228,8 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
     rps : float or sequence of float, optional
         Instead of ``speed``: the approach's propeller rps [1/s] (MMG).
     t_final : float, optional
-        Duration [s] (default: 4 rudder swings + 3 × 6 ψ_z / the slowest steady yaw rate at
-        δ_z, enough for the third overshoot).
+        Duration [s] (default: 4 rudder swings + 4 × 6 ψ_z / the slowest steady yaw rate at
+        δ_z, about a third more than the third overshoot of the KVLCC2 and the Mariner needs).
     dt : float, optional
         Integration step [s]; the controller samples every step (default: half of
         :func:`~seahelm.analysis.maneuvers.default_time_step`, since the reversals fall on
@@ -290,7 +290,7 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
         rates[i] = cache[key]
     swing = np.array([2.0 * amp[i] / plan.ship(i).servo.max_rate for i in range(n)])
     if t_final is None:
-        t_final = float(np.max(4.0 * swing + 3.0 * 6.0 * trig / rates))
+        t_final = float(np.max(4.0 * swing + 4.0 * 6.0 * trig / rates))
     else:
         need = 0.5 * swing + trig / rates
         bad = np.flatnonzero(need > t_final)
