@@ -110,6 +110,18 @@ def sides_of(side: str) -> Any:
     return _SIDES[side]
 
 
+def checked(catalog: str, rudder: float, side: str, speed: float | None, rps: float | None,
+            t_final: float | None, dt: float | None) -> tuple[Any, float, Any]:
+    """The options every manoeuvre takes, checked: (ship, rudder [rad], sides)."""
+    ship = ship_of(catalog)
+    delta = check_rudder_deg(ship, "--rudder", rudder)
+    sides = sides_of(side)
+    check_speed_rps(ship, speed, rps)
+    check_positive_opt("--t-final", t_final, "s")
+    check_positive_opt("--dt", dt, "s")
+    return ship, delta, sides
+
+
 # ------------------------------------------------------------------------------------------
 # output
 # ------------------------------------------------------------------------------------------
@@ -228,6 +240,14 @@ def write_outputs(out: Path, results: Sequence[Any], plot: Callable[[], Any],
     return files
 
 
+def finish(title: str, result: Any, payload: dict[str, Any], fields: Sequence[Field],
+           plot: Callable[[Any], Any], png: str, out: Path | None, as_json: bool) -> None:
+    """Write the files (``--out``), then print the JSON object or the table."""
+    if out is not None:
+        payload["files"] = write_outputs(out, [result], lambda: plot(result), png)
+    emit(title, payload, display_rows(result, fields), fields, as_json)
+
+
 def emit(title: str, payload: dict[str, Any], rows: list[dict[str, Any]],
          fields: Sequence[Field], as_json: bool) -> None:
     """JSON (one object) or the table and the header lines."""
@@ -282,23 +302,13 @@ def turning_cmd(
 ) -> None:
     """Turning circle: advance, transfer, tactical diameter, times, steady turn."""
     from ..analysis.maneuvers import turning_circle
+    from ..plotting.maneuvers import plot_turning
 
-    ship = ship_of(catalog)
-    delta = check_rudder_deg(ship, "--rudder", rudder)
-    sides = sides_of(side)
-    check_speed_rps(ship, speed, rps)
-    check_positive_opt("--t-final", t_final, "s")
-    check_positive_opt("--dt", dt, "s")
+    ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt)
     result = turning_circle(ship, delta, sides=sides, speed=speed, rps=rps, t_final=t_final,
                             dt=dt)
-    payload = header(result)
-    if out is not None:
-        from ..plotting.maneuvers import plot_turning
-
-        payload["files"] = write_outputs(out, [result], lambda: plot_turning(result),
-                                         "turning.png")
-    emit(f"Turning circle, {ship.name}, {rudder:g} deg rudder", payload,
-         display_rows(result, TURNING_FIELDS), TURNING_FIELDS, json_out)
+    finish(f"Turning circle, {ship.name}, {rudder:g} deg rudder", result, header(result),
+           TURNING_FIELDS, plot_turning, "turning.png", out, json_out)
 
 
 def _overshoot(k: int) -> Callable[[dict[str, Any]], Any]:
@@ -335,27 +345,18 @@ def zigzag_cmd(
 ) -> None:
     """Zig-zag δ/ψ: overshoots, initial turning time, time to check yaw, period."""
     from ..analysis.maneuvers import zigzag
+    from ..plotting.maneuvers import plot_zigzag
 
-    ship = ship_of(catalog)
-    delta = check_rudder_deg(ship, "--rudder", rudder)
+    ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt)
     psi = rudder if heading is None else heading
     if not (math.isfinite(psi) and 0 < psi < 180):
         raise ParameterError(f"`--heading` must be in (0, 180) [deg], got {psi!r}")
-    sides = sides_of(side)
-    check_speed_rps(ship, speed, rps)
-    check_positive_opt("--t-final", t_final, "s")
-    check_positive_opt("--dt", dt, "s")
     result = zigzag(ship, delta, math.radians(psi), sides=sides, speed=speed, rps=rps,
                     t_final=t_final, dt=dt)
     payload = header(result)
     payload.update(rudder_deg=rudder, heading_trigger_deg=psi)
-    if out is not None:
-        from ..plotting.maneuvers import plot_zigzag
-
-        payload["files"] = write_outputs(out, [result], lambda: plot_zigzag(result),
-                                         "zigzag.png")
-    emit(f"Zig-zag {rudder:g}/{psi:g}, {ship.name}", payload,
-         display_rows(result, ZIGZAG_FIELDS), ZIGZAG_FIELDS, json_out)
+    finish(f"Zig-zag {rudder:g}/{psi:g}, {ship.name}", result, payload, ZIGZAG_FIELDS,
+           plot_zigzag, "zigzag.png", out, json_out)
 
 
 PULLOUT_FIELDS: tuple[Field, ...] = (
@@ -382,24 +383,15 @@ def pullout_cmd(
 ) -> None:
     """Pull-out: rudder to zero after a steady turn; residual yaw rates to both sides."""
     from ..analysis.maneuvers import pull_out
+    from ..plotting.maneuvers import plot_pullout
 
-    ship = ship_of(catalog)
-    delta = check_rudder_deg(ship, "--rudder", rudder)
-    sides = sides_of(side)
-    check_speed_rps(ship, speed, rps)
-    check_positive_opt("--t-final", t_final, "s")
-    check_positive_opt("--dt", dt, "s")
+    ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt)
     result = pull_out(ship, delta, sides=sides, speed=speed, rps=rps, t_final=t_final, dt=dt)
     payload = header(result)
     if "residual_gap" in result.metrics:
         payload["residual_gap_degps"] = math.degrees(float(result.metrics["residual_gap"]))
-    if out is not None:
-        from ..plotting.maneuvers import plot_pullout
-
-        payload["files"] = write_outputs(out, [result], lambda: plot_pullout(result),
-                                         "pullout.png")
-    emit(f"Pull-out from {rudder:g} deg, {ship.name}", payload,
-         display_rows(result, PULLOUT_FIELDS), PULLOUT_FIELDS, json_out)
+    finish(f"Pull-out from {rudder:g} deg, {ship.name}", result, payload, PULLOUT_FIELDS,
+           plot_pullout, "pullout.png", out, json_out)
 
 
 @app.command("spiral")
