@@ -224,6 +224,16 @@ class _Plant:
         return sol.x * s
 
 
+def _propelled_plant(model_or_params: Any, model: VesselModel | None) -> _Plant:
+    """The plant of a model that has a ``propeller_rps`` input (ParameterError otherwise)."""
+    plant = _Plant(model_or_params, model)
+    if plant.j_rps is None:
+        raise ParameterError(
+            f"model '{plant.model.name}' has no input 'propeller_rps'; inputs: "
+            f"{', '.join(plant.model.input_labels)}")
+    return plant
+
+
 def _check_rps(plant: _Plant, rps: Any) -> float | None:
     if plant.j_rps is None:
         if rps is not None:
@@ -272,11 +282,7 @@ def self_propulsion_rps(model_or_params: Any, speed: Any, *, model: VesselModel 
     EquilibriumError
         If no rps in (0, ``max_rps``] gives zero surge force.
     """
-    plant = _Plant(model_or_params, model)
-    if plant.j_rps is None:
-        raise ParameterError(
-            f"model '{plant.model.name}' has no input 'propeller_rps'; inputs: "
-            f"{', '.join(plant.model.input_labels)}")
+    plant = _propelled_plant(model_or_params, model)
     speeds = as_float_array("speed", speed, "m/s")
     check_positive("speed", speeds, "m/s")
     check_positive("max_rps", max_rps, "1/s")
@@ -521,11 +527,7 @@ def straight_run_speed(model_or_params: Any, rps: Any, *, model: VesselModel | N
     EquilibriumError
         If no speed in (0, ``max_speed``] balances the surge force.
     """
-    plant = _Plant(model_or_params, model)
-    if plant.j_rps is None:
-        raise ParameterError(
-            f"model '{plant.model.name}' has no input 'propeller_rps'; inputs: "
-            f"{', '.join(plant.model.input_labels)}")
+    plant = _propelled_plant(model_or_params, model)
     rates = as_float_array("rps", rps, "1/s")
     check_positive("rps", rates, "1/s")
     top = 100.0 * plant.u_ref if max_speed is None else max_speed
