@@ -76,6 +76,17 @@ COMBINATIONS = {
         ("yaw_rate",),
         "controller.thruster_command -> actuator.thruster_command\n"
         "actuator.thruster_command -> model.thruster_command"),
+    # seahelm.analysis.maneuvers (turning circles, spirals, pull-outs), test_vessels_mmg,
+    # test_vessels_mariner, test_analysis_maneuvers, test_analysis_imo, test_cli_maneuver,
+    # benchmarks/bench_maneuvers.py
+    ("mmg", "rudder-servo", "open-loop"): (
+        ("rudder_command", "propeller_rps"),
+        _SERVO + "\ncontroller.propeller_rps -> model.propeller_rps"),
+    ("mariner", "rudder-servo", "open-loop"): (("rudder_command",), _SERVO),
+    # seahelm.analysis.maneuvers.zigzag (and the IMO check built on it)
+    ("mmg", "rudder-servo", "zigzag-rps"): (
+        (), _SERVO + "\ncontroller.propeller_rps -> model.propeller_rps" + _HEADING),
+    ("mariner", "rudder-servo", "zigzag"): ((), _SERVO + _HEADING),
     # test_vessels_cpp_ship
     ("cpp-ship-waves", "direct", "open-loop"): (
         ("pitch_ratio",),

@@ -48,6 +48,8 @@ CONTROLLERS: dict[str, str] = {
     "heading-rate-baseline": "seahelm.control.baselines:HEADING_RATE_BASELINE",
     "drift-thruster-baseline": "seahelm.control.baselines:DRIFT_THRUSTER_BASELINE",
     "pid-yaw-rate": "seahelm.control.baselines:PID_YAW_RATE",
+    "zigzag": "seahelm.control.zigzag:ZIGZAG",
+    "zigzag-rps": "seahelm.control.zigzag:ZIGZAG_RPS",
 }
 
 

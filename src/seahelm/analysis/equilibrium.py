@@ -21,6 +21,14 @@ they hold for any model that declares the usual signals by name:
     the initial state and inputs of a steady straight approach at speed U_0 (MMG: surge U_0
     at the self-propulsion rps; Mariner: zero surge perturbation), optionally trimmed with
     the rudder to zero yaw rate.
+:func:`straight_run_speed`
+    the inverse of :func:`self_propulsion_rps`: the speed of the straight run at a given rps.
+:func:`steady_turn_state`
+    the state vector and inputs of the steady turn at a rudder angle (the start of a pull-out).
+:func:`rudder_for_yaw_rate`
+    the spiral curve δ(r) point by point: the rudder angle (and u, v) of the steady turn with a
+    prescribed yaw rate, by continuation in r from the straight run — the equilibria that
+    Bech's reverse spiral measures, including the branch that is unstable at fixed rudder.
 
 Inputs are validated at the boundary (:class:`~seahelm.errors.ParameterError` naming the
 argument, its unit and the value); an equation without a solution raises
@@ -52,9 +60,13 @@ from ..vessels.mmg import MMG, MMGParams
 __all__ = [
     "EquilibriumError",
     "SteadyTurn",
+    "SpiralCurve",
     "Approach",
     "self_propulsion_rps",
+    "straight_run_speed",
     "steady_turn",
+    "steady_turn_state",
+    "rudder_for_yaw_rate",
     "approach_state",
 ]
 
@@ -81,6 +93,23 @@ class SteadyTurn(NamedTuple):
     """Drift angle β = atan2(−v, u) [rad]."""
     radius: Any
     """Turning radius U/|r| of the reference point's path [m] (inf for r = 0)."""
+
+
+class SpiralCurve(NamedTuple):
+    """Steady turns at prescribed yaw rates (arrays of the yaw rates' shape)."""
+
+    yaw_rate: Any
+    """Yaw rate r [rad/s] (as requested)."""
+    rudder: Any
+    """Rudder angle δ of the steady turn [rad]."""
+    surge_speed: Any
+    """Surge speed u [m/s] (total)."""
+    sway_speed: Any
+    """Sway speed v [m/s]."""
+    speed: Any
+    """Speed U [m/s]."""
+    drift_angle: Any
+    """Drift angle β [rad]."""
 
 
 class Approach(NamedTuple):
@@ -195,6 +224,16 @@ class _Plant:
         return sol.x * s
 
 
+def _propelled_plant(model_or_params: Any, model: VesselModel | None) -> _Plant:
+    """The plant of a model that has a ``propeller_rps`` input (ParameterError otherwise)."""
+    plant = _Plant(model_or_params, model)
+    if plant.j_rps is None:
+        raise ParameterError(
+            f"model '{plant.model.name}' has no input 'propeller_rps'; inputs: "
+            f"{', '.join(plant.model.input_labels)}")
+    return plant
+
+
 def _check_rps(plant: _Plant, rps: Any) -> float | None:
     if plant.j_rps is None:
         if rps is not None:
@@ -243,11 +282,7 @@ def self_propulsion_rps(model_or_params: Any, speed: Any, *, model: VesselModel 
     EquilibriumError
         If no rps in (0, ``max_rps``] gives zero surge force.
     """
-    plant = _Plant(model_or_params, model)
-    if plant.j_rps is None:
-        raise ParameterError(
-            f"model '{plant.model.name}' has no input 'propeller_rps'; inputs: "
-            f"{', '.join(plant.model.input_labels)}")
+    plant = _propelled_plant(model_or_params, model)
     speeds = as_float_array("speed", speed, "m/s")
     check_positive("speed", speeds, "m/s")
     check_positive("max_rps", max_rps, "1/s")
@@ -459,3 +494,180 @@ def approach_state(params: Any, speed: float | None = None, *, model: VesselMode
                                       np.array([U0, 0.0, 0.0]), n)
         inputs["rudder_angle"] = float(delta)
     return Approach(plant.state(surge, v, 0.0, float(heading)), inputs)
+
+
+def straight_run_speed(model_or_params: Any, rps: Any, *, model: VesselModel | None = None,
+                       max_speed: float | None = None) -> Any:
+    """Speed of the steady straight run at a propeller rps (inverse of :func:`self_propulsion_rps`).
+
+    Solves X_H + X_P + X_R = 0 with v = r = δ = 0 for the surge speed u with
+    ``scipy.optimize.brentq``, bracketing from u → 0 (the propeller pushes) upwards by doubling
+    from the parameter set's approach speed.
+
+    Parameters
+    ----------
+    model_or_params : Params, CatalogEntry or str
+        Parameter set, catalog entry or its name (a model with a ``propeller_rps`` input).
+    rps : float or array_like
+        Propeller rps [1/s], > 0.
+    model : VesselModel, optional
+        The model (default: the one for the parameter type).
+    max_speed : float, optional
+        Upper end of the search [m/s] (default 100 × the approach speed).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Speed [m/s], with the shape of ``rps``.
+
+    Raises
+    ------
+    ParameterError
+        If ``rps`` is not > 0 or the model has no propeller input.
+    EquilibriumError
+        If no speed in (0, ``max_speed``] balances the surge force.
+    """
+    plant = _propelled_plant(model_or_params, model)
+    rates = as_float_array("rps", rps, "1/s")
+    check_positive("rps", rates, "1/s")
+    top = 100.0 * plant.u_ref if max_speed is None else max_speed
+    check_positive("max_speed", top, "m/s")
+    out = np.empty(rates.shape)
+    for idx, n_item in np.ndenumerate(rates):
+        n = float(n_item)
+
+        def surge_acc(U: float, n: float = n) -> float:
+            return float(plant.accelerations(U, 0.0, 0.0, 0.0, n)[0])
+
+        lo = 1e-6 * plant.u_ref
+        if surge_acc(lo) <= 0.0:
+            raise EquilibriumError(
+                f"at `rps` = {n!r} [1/s] the propeller does not push the ship ahead from rest")
+        hi = plant.u_ref
+        while surge_acc(hi) >= 0.0:
+            if hi >= top:
+                raise EquilibriumError(
+                    f"no speed in (0, {top:g}] [m/s] balances the surge force at `rps` = {n!r} "
+                    "[1/s]")
+            hi = min(2.0 * hi, float(top))
+        out[idx] = brentq(surge_acc, lo, hi, xtol=1e-14, rtol=4 * np.finfo(float).eps)
+    return float(out) if out.ndim == 0 else out
+
+
+def steady_turn_state(params: Any, rudder: float, rps: float | None = None, *,
+                      model: VesselModel | None = None, heading: float = 0.0,
+                      max_rudder: float = math.radians(35.0)) -> Approach:
+    """State vector and inputs of the steady turn at a rudder angle (e.g. to start a pull-out).
+
+    The turn is :func:`steady_turn`'s; the position is the origin and the heading ``heading``.
+
+    Parameters
+    ----------
+    params : Params, CatalogEntry or str
+        Parameter set, catalog entry or its name.
+    rudder : float
+        Rudder angle δ [rad]; positive turns to starboard.
+    rps : float, optional
+        Propeller rps [1/s] (required for a model with a propeller input, not allowed
+        without one).
+    model : VesselModel, optional
+        The model (default: the one for the parameter type).
+    heading : float, optional
+        Heading ψ of the returned state [rad] (default 0).
+    max_rudder : float, optional
+        Largest admissible |δ| [rad] (default 35°).
+
+    Returns
+    -------
+    Approach
+        ``state`` (model state order) and ``inputs`` by name (``rudder_angle`` [rad], and
+        ``propeller_rps`` [1/s] for a model with a propeller).
+
+    Raises
+    ------
+    ParameterError
+        As :func:`steady_turn`; also if ``rudder`` is not a scalar.
+    EquilibriumError
+        If the steady turn is not found.
+    """
+    plant = _Plant(params, model)
+    if np.ndim(rudder) != 0:
+        raise ParameterError(f"`rudder` must be a scalar [rad], got shape {np.shape(rudder)}")
+    check_finite("heading", heading, "rad")
+    turn = steady_turn(plant.params, rudder, rps, model=plant.model, max_rudder=max_rudder)
+    n = _check_rps(plant, rps)
+    inputs = {"rudder_angle": float(rudder)}
+    if n is not None:
+        inputs["propeller_rps"] = n
+    return Approach(plant.state(turn.surge_speed, turn.sway_speed, turn.yaw_rate,
+                                float(heading)), inputs)
+
+
+def rudder_for_yaw_rate(params: Any, yaw_rate: Any, rps: float | None = None, *,
+                        model: VesselModel | None = None) -> SpiralCurve:
+    """The spiral curve δ(r): rudder angle, surge and sway of the steady turn at each yaw rate.
+
+    For each prescribed yaw rate r the three force balances u̇ = v̇ = ṙ = 0 are solved for
+    (u, v, δ) by ``scipy.optimize.root``, continued from the straight run (r = 0, the trim
+    rudder angle) outwards to each side in steps of at most Δr L/U_0 = 0.01. A prescribed yaw
+    rate always has one such equilibrium, also where the ship is course-unstable and a fixed
+    rudder angle has three: this is what Bech's reverse spiral test measures with a yaw-rate
+    controller, without the transients.
+
+    Parameters
+    ----------
+    params : Params, CatalogEntry or str
+        Parameter set, catalog entry or its name.
+    yaw_rate : float or array_like
+        Yaw rates r [rad/s] (any order, both signs).
+    rps : float, optional
+        Propeller rps [1/s] (required for a model with a propeller input, not allowed
+        without one).
+    model : VesselModel, optional
+        The model (default: the one for the parameter type).
+
+    Returns
+    -------
+    SpiralCurve
+        Yaw rate [rad/s], rudder angle [rad], surge speed [m/s], sway speed [m/s], speed [m/s]
+        and drift angle [rad]; floats for a scalar ``yaw_rate``, arrays of its shape otherwise.
+
+    Raises
+    ------
+    ParameterError
+        If ``yaw_rate`` is not finite, or ``rps`` is missing/not allowed/not > 0.
+    EquilibriumError
+        If the continuation fails to converge (e.g. a yaw rate beyond what the hull forces can
+        balance).
+    """
+    plant = _Plant(params, model)
+    rates = as_float_array("yaw_rate", yaw_rate, "rad/s")
+    n = _check_rps(plant, rps)
+    free = ("surge", "v", "rudder")
+    r_step = 0.01 * plant.u_ref / plant.length
+    trim = plant.solve({"r": 0.0}, free, np.array([plant.u_ref, 0.0, 0.0]), n)
+    flat = rates.ravel()
+    sol = np.full((flat.size, 3), np.nan)
+    for i in np.flatnonzero(flat == 0.0):
+        sol[i] = trim
+    for sign in (1.0, -1.0):
+        order = [int(i) for i in np.argsort(np.abs(flat)) if sign * flat[i] > 0.0]
+        prev_r, z = 0.0, trim.copy()
+        for i in order:
+            target = float(flat[i])
+            steps = max(1, int(math.ceil(abs(target - prev_r) / r_step)))
+            for rr in np.linspace(prev_r, target, steps + 1)[1:]:
+                z = plant.solve({"r": float(rr)}, free, z, n)
+            prev_r = target
+            sol[i] = z
+    fields = np.full((6, flat.size), np.nan)
+    for i in range(flat.size):
+        surge, v, delta = sol[i]
+        y = plant.model.outputs(0.0, plant.state(surge, v, float(flat[i])),
+                                plant.inputs(float(delta), n), plant.params)
+        fields[:, i] = (flat[i], delta, y[plant.model.output_index("surge_speed")], v,
+                        y[plant.model.output_index("speed")],
+                        y[plant.model.output_index("drift_angle")])
+    if rates.ndim == 0:
+        return SpiralCurve(*(float(f[0]) for f in fields))
+    return SpiralCurve(*(f.reshape(rates.shape) for f in fields))

@@ -30,6 +30,8 @@ _GROUPS = (
     ("identify", "seahelm.cli.identify", "Identify steering-model coefficients from turns."),
     ("averaging", "seahelm.cli.averaging", "Full averaging of the CPP ship in waves."),
     ("compensate", "seahelm.cli.compensate", "Wave/wind forces and compensating rudder angle."),
+    ("maneuver", "seahelm.cli.maneuver",
+     "Standard manoeuvres: turning circle, zig-zag, spiral, pull-out."),
 )
 for _name, _module, _help in _GROUPS:
     try:
@@ -39,6 +41,17 @@ for _name, _module, _help in _GROUPS:
             raise
         continue
     app.add_typer(_sub.app, name=_name, help=_help)
+
+# Single commands of their own modules: (name, module, function).
+_COMMANDS = (("imo", "seahelm.cli.imo", "imo"),)
+for _name, _module, _attr in _COMMANDS:
+    try:
+        _sub = importlib.import_module(_module)
+    except ModuleNotFoundError as _exc:  # a command not built yet
+        if _exc.name != _module:
+            raise
+        continue
+    app.command(_name)(getattr(_sub, _attr))
 
 
 def _version(value: bool) -> None:

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..constants import wrap_angle
+from ...constants import wrap_angle
 
 __all__ = ["settling_time", "overshoot", "turning_diameter", "rudder_reversals", "summarize"]
 

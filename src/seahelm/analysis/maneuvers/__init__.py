@@ -1,0 +1,62 @@
+"""Standard manoeuvres and their metrics, over batches of runs.
+
+Manoeuvres (each one batch through the compiled engine, returning a
+:class:`~seahelm.analysis.maneuvers.common.ManeuverResult` with the runs and a metrics table
+as :mod:`xarray` Datasets; see :mod:`seahelm.analysis.maneuvers.common`):
+
+:func:`turning_circle`
+    turning circles and the initial turning test (:mod:`.turning_circle`);
+:func:`zigzag`
+    zig-zag tests, any δ/ψ pair, either first side (:mod:`.zigzag`; metrics of a recorded
+    heading: :func:`zigzag_metrics`);
+:func:`direct_spiral`, :func:`reverse_spiral`
+    Dieudonné's simulated spiral and Bech's reverse spiral from the equilibria, the r–δ curve
+    and its hysteresis loop (:mod:`.spiral`);
+:func:`pull_out`
+    rudder to zero after steady turns to both sides (:mod:`.pullout`).
+
+The IMO MSC.137(76) check on top of these is :mod:`seahelm.analysis.imo`.
+
+Metrics of recorded runs that the scenario runner uses (:mod:`.metrics`): :func:`settling_time`,
+:func:`overshoot`, :func:`turning_diameter`, :func:`rudder_reversals`, :func:`summarize`.
+"""
+
+from __future__ import annotations
+
+from .common import (
+    STEERING_GEAR,
+    ManeuverResult,
+    ManeuverShip,
+    default_time_step,
+    maneuver_ship,
+    metrics_rows,
+)
+from .metrics import overshoot, rudder_reversals, settling_time, summarize, turning_diameter
+from .pullout import pull_out
+from .spiral import DEFAULT_SPIRAL_RUDDERS_DEG, direct_spiral, reverse_spiral, spiral_loop
+from .turning_circle import track_distance, turning_circle
+from .zigzag import ZigZagMetrics, zigzag, zigzag_metrics
+
+__all__ = [
+    "STEERING_GEAR",
+    "ManeuverResult",
+    "ManeuverShip",
+    "default_time_step",
+    "maneuver_ship",
+    "metrics_rows",
+    "turning_circle",
+    "track_distance",
+    "zigzag",
+    "zigzag_metrics",
+    "ZigZagMetrics",
+    "direct_spiral",
+    "reverse_spiral",
+    "spiral_loop",
+    "DEFAULT_SPIRAL_RUDDERS_DEG",
+    "pull_out",
+    "settling_time",
+    "overshoot",
+    "turning_diameter",
+    "rudder_reversals",
+    "summarize",
+]

@@ -1,0 +1,289 @@
+"""Turning circles (and the initial turning test) over batches of ships, speeds, rudders, sides.
+
+Definitions of IMO Resolution MSC.137(76) and its explanatory notes (MSC/Circ.1053), all
+measured at the model's reference point (midship for the MMG and the Mariner models) from the
+position and heading at the moment the rudder is **ordered** (t = 0; the rudder's travel time
+counts):
+
+advance
+    distance along the original course when the heading has changed by 90°;
+transfer
+    distance across the original course at the 90° heading change;
+tactical diameter
+    distance across the original course at the 180° heading change;
+times to 90° and 180°
+    when those heading changes are reached;
+initial turning
+    time to a 10° heading change and the distance travelled along the track until then
+    (MSC.137(76) initial turning ability, judged with 10° rudder: ≤ 2.5 L);
+steady turn
+    at the end of the run (by default after an estimated 360° heading change): turning radius
+    U/|r| of the reference point, speed U and speed loss 1 − U/U_0, drift angle β, yaw rate r;
+    ``steady`` says whether the yaw rate changed by less than 1 % over the last 90° of heading.
+
+Event times and the positions at them are interpolated linearly between the two recorded
+samples that bracket the heading change (as :func:`seahelm.analysis.turning.turning_metrics`
+does, vectorised over the batch here), not rounded to a sample. The distance along the track is the sum of the chords between samples.
+
+A run that does not reach a heading change reports NaN for what depends on it, ``complete``
+False and a ``message`` saying what was not reached; it is not an error.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from ...errors import ParameterError
+from ..equilibrium import steady_turn
+from .common import (
+    ManeuverResult,
+    Plan,
+    check_rudder,
+    default_time_step,
+    final_time,
+    record_every_for,
+    side_axis,
+    value_axis,
+)
+
+__all__ = ["turning_circle", "track_distance"]
+
+_DEG10 = math.radians(10.0)
+
+
+def track_distance(north: Any, east: Any) -> np.ndarray:
+    """Distance travelled along a recorded track: cumulative sum of the chords [m].
+
+    Parameters
+    ----------
+    north, east : array_like, shape (steps,) or (runs, steps)
+        Positions [m].
+
+    Returns
+    -------
+    numpy.ndarray, shape (runs, steps)
+        Distance from the first sample [m].
+    """
+    n = np.atleast_2d(np.asarray(north, dtype=float))
+    e = np.atleast_2d(np.asarray(east, dtype=float))
+    chords = np.hypot(np.diff(n, axis=1), np.diff(e, axis=1))
+    return np.concatenate([np.zeros((n.shape[0], 1)), np.cumsum(chords, axis=1)], axis=1)
+
+
+def _estimate_t_final(plan: Plan, signed: dict[tuple[int, int], list[float]],
+                      heading_change: float) -> float:
+    """Rudder travel + 1.3 × heading change / slowest steady yaw rate of the grid."""
+    t = 0.0
+    for (i_ship, j_speed), rudders in signed.items():
+        ship = plan.ships[i_ship]
+        a = plan.approaches[(i_ship, j_speed)]
+        rates = np.abs(steady_turn(ship.params, np.array(rudders), a.rps, model=ship.model,
+                                   max_rudder=ship.max_rudder).yaw_rate)
+        travel = max(abs(d - a.rudder) for d in rudders) / ship.servo.max_rate
+        t = max(t, travel + 1.3 * heading_change / float(np.min(rates)))
+    return t
+
+
+def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = (1, -1),
+                   speed: Any = None, rps: Any = None, t_final: float | None = None,
+                   dt: float | None = None, record_dt: float | None = None,
+                   heading_change: float = 2.0 * math.pi) -> ManeuverResult:
+    """Turning circles to both sides (or one), batched over ships, speeds and rudder angles.
+
+    From a steady straight approach the rudder is ordered to ``side × rudder`` at t = 0 and held;
+    the metrics of the module docstring are measured on the recorded track.
+
+    Parameters
+    ----------
+    ship : str, CatalogEntry, Params, ManeuverShip or a sequence of them
+        The ship(s) (:func:`~seahelm.analysis.maneuvers.maneuver_ship`); a sequence gives a
+        ``ship`` dimension (all on one model).
+    rudder : float or sequence of float, optional
+        Rudder angle magnitude(s) δ [rad], in (0, steering-gear limit] (default 35°); a sequence
+        gives a ``rudder`` dimension.
+    sides : int or sequence of int, optional
+        +1 starboard, −1 port (default both: a ``side`` dimension).
+    speed : float or sequence of float, optional
+        Approach speed(s) U_0 [m/s] (default: the parameter set's; the Mariner admits only its
+        nominal speed); a sequence gives an ``approach_speed`` dimension.
+    rps : float or sequence of float, optional
+        Instead of ``speed``: propeller rps [1/s] of the approach (MMG), the speed being that
+        of the straight run at this rps.
+    t_final : float, optional
+        Duration [s] (default: rudder travel time + 1.3 × ``heading_change`` / the slowest
+        steady yaw rate of the grid, from :func:`~seahelm.analysis.equilibrium.steady_turn`).
+    dt : float, optional
+        Integration step [s] (default :func:`~seahelm.analysis.maneuvers.default_time_step`).
+    record_dt : float, optional
+        Recording interval [s] (default: every step).
+    heading_change : float, optional
+        Heading change [rad] the default ``t_final`` aims at (default 2π, for the steady turn).
+
+    Returns
+    -------
+    ManeuverResult
+        ``metrics`` variables: ``advance``, ``transfer``, ``tactical_diameter`` [m],
+        ``time_90``, ``time_180`` [s], ``time_10`` [s], ``distance_10`` [m], ``steady_radius``
+        [m], ``steady_speed`` [m/s], ``speed_loss`` [-], ``steady_drift_angle`` [rad],
+        ``steady_yaw_rate`` [rad/s], ``steady`` (bool), ``final_heading_change`` [rad],
+        ``approach_speed_value`` [m/s], ``propeller_rps`` [1/s], ``length`` [m],
+        ``complete`` (bool), ``message`` (str).
+
+    Raises
+    ------
+    ParameterError
+        If a rudder angle is not within the steering gear's limit, a speed or rps is not
+        > 0, ``speed`` and ``rps`` are both given, or the timing is invalid.
+    """
+    rudder_axis = value_axis("rudder", rudder, "rad")
+    side = side_axis(sides)
+    plan = Plan(ship, speed, rps, [rudder_axis, side])
+    check_rudder(plan.ships, "rudder", rudder_axis.values)
+    check_positive_change(heading_change)
+    if dt is None:
+        dt = min(default_time_step(s, a.speed) for s in plan.ships
+                 for a in plan.approaches.values())
+    if t_final is None:
+        signed: dict[tuple[int, int], list[float]] = {}
+        for key in plan.approaches:
+            signed[key] = [float(s_) * float(np.min(rudder_axis.values))
+                           for s_ in side.values]
+        t_final = _estimate_t_final(plan, signed, heading_change)
+    t_final = final_time(float(t_final), float(dt))
+    record_every = record_every_for(float(dt), record_dt)
+
+    n = plan.n_runs
+    x0 = np.stack([plan.approach(i).state for i in range(n)])
+    rudder0 = np.array([[plan.approach(i).rudder] for i in range(n)])
+    orders = np.array([plan.value(i, "side") * plan.value(i, "rudder") for i in range(n)])
+    reference: dict[str, Any] = {"rudder_command": orders.reshape(-1, 1, 1)}
+    if plan.ships[0].has_propeller:
+        reference["propeller_rps"] = np.array(
+            [plan.approach(i).rps for i in range(n)]).reshape(-1, 1, 1)
+    result = plan.simulate(x0=x0, actuator_x0=rudder0, reference=reference, t_final=t_final,
+                           dt=dt, record_every=record_every,
+                           metadata={"maneuver": "turning-circle"},
+                           controller_every=record_every)
+    metrics = _metrics(plan, result)
+    return ManeuverResult("turning-circle", metrics, tuple(plan.ships), result,
+                          lambda: plan.runs_dataset(result))
+
+
+def check_positive_change(heading_change: float) -> None:
+    """``heading_change`` must be > π (the tactical diameter needs 180°)."""
+    if not (isinstance(heading_change, (int, float)) and heading_change >= math.pi):
+        raise ParameterError(
+            f"`heading_change` must be >= pi [rad] (180 deg, for the tactical diameter), got "
+            f"{heading_change!r}")
+
+
+def _crossings(change: np.ndarray, level: float) -> tuple[np.ndarray, np.ndarray]:
+    """First sample k with ``change >= level`` per run and the weight w of sample k in the
+    linear interpolation with sample k − 1 (k = −1, w = NaN where never reached)."""
+    hit = change >= level
+    k = np.argmax(hit, axis=1)
+    rows = np.arange(change.shape[0])
+    k = np.where(hit[rows, k], k, -1)
+    prev = change[rows, np.maximum(k - 1, 0)]
+    cur = change[rows, np.maximum(k, 0)]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        w = np.where(k > 0, (level - prev) / (cur - prev), 1.0)
+    return k, np.where(k >= 0, w, np.nan)
+
+
+def _at_crossing(values: np.ndarray, k: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """Values (runs, steps) interpolated at the crossings of :func:`_crossings`."""
+    rows = np.arange(values.shape[0])
+    cur = values[rows, np.maximum(k, 0)]
+    prev = values[rows, np.maximum(k - 1, 0)]
+    out = np.where(k > 0, prev + w * (cur - prev), cur)
+    return np.where(k >= 0, out, np.nan)
+
+
+def _metrics(plan: Plan, result: Any) -> Any:
+    t = result.time
+    north, east, psi = result["north"], result["east"], result["heading"]
+    # distances from the position at the order, along and across the original course
+    dn, de = north - north[:, :1], east - east[:, :1]
+    c0, s0 = np.cos(psi[:, :1]), np.sin(psi[:, :1])
+    along, across = dn * c0 + de * s0, np.abs(-dn * s0 + de * c0)
+    change = np.abs(psi - psi[:, :1])
+    times = np.broadcast_to(t, psi.shape)
+    k90, w90 = _crossings(change, 0.5 * math.pi)
+    k180, w180 = _crossings(change, math.pi)
+    k10, w10 = _crossings(change, _DEG10)
+    dist = track_distance(north, east)
+    advance = _at_crossing(along, k90, w90)
+    transfer = _at_crossing(across, k90, w90)
+    time_90 = _at_crossing(times, k90, w90)
+    tactical_diameter = _at_crossing(across, k180, w180)
+    time_180 = _at_crossing(times, k180, w180)
+    time_10 = _at_crossing(times, k10, w10)
+    distance_10 = _at_crossing(dist, k10, w10)
+    speed = result["speed"]
+    r = result["yaw_rate"]
+    beta = result["drift_angle"]
+    n = plan.n_runs
+    U0 = np.array([plan.approach(i).speed for i in range(n)])
+    rps = np.array([np.nan if plan.approach(i).rps is None else plan.approach(i).rps
+                    for i in range(n)])
+    length = np.array([plan.ship(i).length for i in range(n)])
+    steady_r = r[:, -1]
+    steady_U = speed[:, -1]
+    radius = np.where(steady_r != 0.0, steady_U / np.abs(steady_r), np.inf)
+    steady = np.zeros(n, dtype=bool)
+    for i in range(n):
+        back = np.flatnonzero(change[i] <= change[i, -1] - 0.5 * math.pi)
+        if back.size and np.isfinite(steady_r[i]):
+            r_back = r[i, back[-1]]
+            steady[i] = abs(steady_r[i] - r_back) <= 0.01 * abs(steady_r[i])
+    messages = []
+    complete = np.zeros(n, dtype=bool)
+    status = result.messages()
+    for i in range(n):
+        missing = [f"{name} heading change" for name, value in
+                   (("10 deg", time_10[i]), ("90 deg", time_90[i]), ("180 deg", time_180[i]))
+                   if np.isnan(value)]
+        text = []
+        if status[i] != "ok":
+            text.append(status[i])
+        if missing:
+            text.append(f"{', '.join(missing)} not reached within t_final = {t[-1]:.6g} s "
+                        f"(final heading change {math.degrees(change[i, -1]):.4g} deg)")
+        complete[i] = not text
+        if not steady[i] and not text:
+            text.append("ok; the turn was not yet steady at the end (yaw rate still changing "
+                        "by > 1 % over the last 90 deg): steady values are the last sample's")
+        messages.append("; ".join(text) if text else "ok")
+    variables = {
+        "advance": (advance, "m", "advance at 90 deg heading change"),
+        "transfer": (transfer, "m", "transfer at 90 deg heading change"),
+        "tactical_diameter": (tactical_diameter, "m",
+                              "tactical diameter (transfer at 180 deg heading change)"),
+        "time_90": (time_90, "s", "time to 90 deg heading change"),
+        "time_180": (time_180, "s", "time to 180 deg heading change"),
+        "time_10": (time_10, "s", "time to 10 deg heading change"),
+        "distance_10": (distance_10, "m",
+                        "distance along the track to 10 deg heading change"),
+        "steady_radius": (radius, "m", "turning radius U/|r| at the end of the run"),
+        "steady_speed": (steady_U, "m/s", "speed at the end of the run"),
+        "speed_loss": (1.0 - steady_U / U0, "1", "speed loss 1 - U/U_0 at the end of the run"),
+        "steady_drift_angle": (beta[:, -1], "rad", "drift angle at the end of the run"),
+        "steady_yaw_rate": (steady_r, "rad/s", "yaw rate at the end of the run"),
+        "steady": (steady, "", "yaw rate changed < 1 % over the last 90 deg of heading"),
+        "final_heading_change": (change[:, -1], "rad", "heading change at the end of the run"),
+        "approach_speed_value": (U0, "m/s", "approach speed U_0"),
+        "propeller_rps": (rps, "1/s", "propeller rps (constant; NaN: no propeller input)"),
+        "length": (length, "m", "ship length L"),
+        "complete": (complete, "", "every event reached and the run did not diverge"),
+        "message": (np.array(messages, dtype=object), "", "what was not reached, or ok"),
+    }
+    attrs = {"maneuver": "turning-circle", "dt": float(result.metadata["dt"]),
+             "t_final": float(result.metadata["t_final"]),
+             "reference_point": "midship (the model's origin)",
+             "measured_from": "rudder order at t = 0",
+             "interpolation": "linear between the recorded samples bracketing each event"}
+    return plan.dataset(variables, attrs=attrs)

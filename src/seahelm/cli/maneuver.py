@@ -1,0 +1,470 @@
+"""``seahelm maneuver``: standard manoeuvres of a catalog ship (turning, zigzag, spiral, pullout).
+
+Each command runs one batch of :mod:`seahelm.analysis.maneuvers` (both sides by default) and
+prints a rich table of the metrics, or with ``--json`` exactly one JSON object on stdout; with
+``--out DIR`` it writes the runs and metrics as NetCDF and a PNG figure (atomically). Angles
+are in degrees on the command line and in the output (keys ending ``_deg``), lengths in metres
+and in ship lengths (``_L``), times in seconds. Exit codes: 0 success, 2 bad input (one line on
+stderr naming the option, its unit and the value), 1 other failure.
+
+``seahelm imo MODEL`` (:mod:`seahelm.cli.imo`) checks a ship against IMO MSC.137(76).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+from rich.markup import escape
+from rich.table import Table
+
+from ..errors import ParameterError
+from ._common import console, handle_errors, print_json
+
+app = typer.Typer(
+    help="Standard manoeuvres: turning circle, zig-zag, spiral, pull-out (both sides).",
+    no_args_is_help=True,
+)
+
+_SIDES = {"both": (1, -1), "starboard": 1, "port": -1}
+_SIDE_NAMES = {1: "starboard", -1: "port"}
+
+Catalog = Annotated[str, typer.Option(
+    "--catalog", help="Ship: a catalog entry with a steering gear (kvlcc2-l7, kvlcc2-full, "
+    "kvlcc2-l7-wp0-0.35, kvlcc2-l7-xp-0.5, mariner-nonlinear).")]
+Speed = Annotated[float | None, typer.Option(
+    "--speed", help=escape("Approach speed U0 [m/s] (default: the entry's test speed)."))]
+Rps = Annotated[float | None, typer.Option(
+    "--rps", help=escape("Instead of --speed: propeller rps of the approach [1/s] (MMG)."))]
+Side = Annotated[str, typer.Option("--side", help="both, starboard or port.")]
+TFinal = Annotated[float | None, typer.Option(
+    "--t-final", help=escape("Duration [s] (default: estimated from the steady turn)."))]
+Dt = Annotated[float | None, typer.Option(
+    "--dt", help=escape("Integration step [s] (default: min(L/(100 U0), servo lag), "
+                        "rounded down to 1-2-5)."))]
+Json = Annotated[bool, typer.Option("--json", help="Print one JSON object on stdout.")]
+Out = Annotated[Path | None, typer.Option(
+    "--out", help="Write NetCDF (runs, metrics) and a PNG here.")]
+
+
+@app.callback()
+def _main() -> None:
+    """Standard manoeuvres of a catalog ship."""
+
+
+# ------------------------------------------------------------------------------------------
+# input checks in command-line units
+# ------------------------------------------------------------------------------------------
+def ship_of(catalog: str) -> Any:
+    """The :class:`ManeuverShip` of a catalog entry with a steering gear (exit 2 otherwise)."""
+    from ..analysis.maneuvers import STEERING_GEAR, maneuver_ship
+
+    if catalog not in STEERING_GEAR:
+        raise ParameterError(
+            f"`--catalog` must be a catalog entry with a manoeuvring model and a steering gear "
+            f"({', '.join(sorted(STEERING_GEAR))}), got {catalog!r}")
+    return maneuver_ship(catalog)
+
+
+def check_speed_rps(ship: Any, speed: float | None, rps: float | None) -> None:
+    """``--speed`` > 0, ``--rps`` > 0 (and only for a ship with a propeller), not both."""
+    if speed is not None and not (math.isfinite(speed) and speed > 0):
+        raise ParameterError(f"`--speed` must be > 0 [m/s], got {speed!r}")
+    if rps is not None:
+        if not (math.isfinite(rps) and rps > 0):
+            raise ParameterError(f"`--rps` must be > 0 [1/s], got {rps!r}")
+        if not ship.has_propeller:
+            raise ParameterError(
+                f"`--rps`: '{ship.name}' (model {ship.model.name}) has no propeller input, "
+                f"got {rps!r} [1/s]")
+    if speed is not None and rps is not None:
+        raise ParameterError(
+            f"give `--speed` [m/s] or `--rps` [1/s], not both (got {speed!r} and {rps!r})")
+
+
+def check_rudder_deg(ship: Any, name: str, value: float, *, allow_zero: bool = False) -> float:
+    """A rudder angle in degrees within the steering gear's limit; returns radians."""
+    limit = math.degrees(ship.max_rudder)
+    ok = math.isfinite(value) and abs(value) <= limit + 1e-9 and (allow_zero or value > 0)
+    if not ok:
+        lo = "[0" if allow_zero else "(0"
+        raise ParameterError(
+            f"`{name}` must be in {lo}, {limit:g}] [deg] (steering gear limit of "
+            f"'{ship.name}'), got {value!r}")
+    return math.radians(value)
+
+
+def check_positive_opt(name: str, value: float | None, unit: str) -> None:
+    """An optional option that must be > 0 when given."""
+    if value is not None and not (math.isfinite(value) and value > 0):
+        raise ParameterError(f"`{name}` must be > 0 [{unit}], got {value!r}")
+
+
+def sides_of(side: str) -> Any:
+    """``--side`` as +1/−1 or the pair (exit 2 on anything else)."""
+    if side not in _SIDES:
+        raise ParameterError(f"`--side` must be one of {', '.join(_SIDES)}, got {side!r}")
+    return _SIDES[side]
+
+
+def checked(catalog: str, rudder: float, side: str, speed: float | None, rps: float | None,
+            t_final: float | None, dt: float | None) -> tuple[Any, float, Any]:
+    """The options every manoeuvre takes, checked: (ship, rudder [rad], sides)."""
+    ship = ship_of(catalog)
+    delta = check_rudder_deg(ship, "--rudder", rudder)
+    sides = sides_of(side)
+    check_speed_rps(ship, speed, rps)
+    check_positive_opt("--t-final", t_final, "s")
+    check_positive_opt("--dt", dt, "s")
+    return ship, delta, sides
+
+
+# ------------------------------------------------------------------------------------------
+# output
+# ------------------------------------------------------------------------------------------
+Field = tuple[str, str, Callable[[dict[str, Any]], Any]]
+
+
+def _deg(key: str) -> Callable[[dict[str, Any]], Any]:
+    return lambda row: math.degrees(row[key])
+
+
+def _per_l(key: str) -> Callable[[dict[str, Any]], Any]:
+    return lambda row: row[key] / row["length"]
+
+
+def _label(row: dict[str, Any], batch_keys: Sequence[str]) -> str:
+    parts = []
+    for key in batch_keys:
+        if key == "side":
+            parts.append(_SIDE_NAMES[int(row["side"])])
+        elif key == "pair":
+            parts.append(f"{math.degrees(row['rudder']):g}/{math.degrees(row['trigger']):g}")
+        elif key == "rudder":
+            parts.append(f"{math.degrees(row['rudder']):g} deg")
+        else:
+            parts.append(f"{key} {row[key]}")
+    return ", ".join(parts) or "run"
+
+
+def display_rows(result: Any, fields: Sequence[Field]) -> list[dict[str, Any]]:
+    """The metrics of every run in command-line units, with the run's coordinates."""
+    from ..analysis.maneuvers import metrics_rows
+
+    batch = list(result.metrics["complete"].dims)
+    out = []
+    for row in metrics_rows(result.metrics):
+        shown: dict[str, Any] = {"run": _label(row, batch)}
+        if "side" in row:
+            shown["side"] = _SIDE_NAMES[int(row["side"])]
+        if "rudder" in row:
+            shown["rudder_deg"] = math.degrees(row["rudder"])
+        if "trigger" in row:
+            shown["heading_trigger_deg"] = math.degrees(row["trigger"])
+        for key, _, get in fields:
+            try:
+                shown[key] = get(row)
+            except KeyError:  # pragma: no cover - a field the result does not have
+                continue
+        shown["complete"] = bool(row["complete"])
+        shown["message"] = str(row["message"])
+        out.append(shown)
+    return out
+
+
+def _fmt(value: Any) -> str:
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, float):
+        return "—" if not math.isfinite(value) else f"{value:.4g}"
+    return escape(str(value))
+
+
+def print_table(title: str, rows: list[dict[str, Any]], fields: Sequence[Field]) -> None:
+    """Metrics down, runs across; messages under the table."""
+    table = Table(title=escape(title), title_justify="left")
+    table.add_column("metric")
+    for row in rows:
+        table.add_column(escape(row["run"]), justify="right")
+    for key, label, _ in fields:
+        if any(key in row for row in rows):
+            table.add_row(escape(label), *(_fmt(row.get(key, math.nan)) for row in rows))
+    console.print(table)
+    for row in rows:
+        if row["message"] != "ok":
+            console.print(f"  {escape(row['run'])}: {escape(row['message'])}", highlight=False)
+
+
+def header(result: Any) -> dict[str, Any]:
+    """Ship, L, approach speed, rps, dt of a result (command-line units)."""
+    m = result.metrics
+    first = {d: 0 for d in m["complete"].dims}
+    sel = m.isel(first)
+    out: dict[str, Any] = {"maneuver": result.maneuver,
+                           "ship": ", ".join(s.name for s in result.ships),
+                           "length_m": float(sel["length"])}
+    if "approach_speed_value" in sel:
+        out["approach_speed_mps"] = float(sel["approach_speed_value"])
+    if "propeller_rps" in sel and math.isfinite(float(sel["propeller_rps"])):
+        out["propeller_rps"] = float(sel["propeller_rps"])
+    for key in ("dt", "t_final", "hold"):
+        if key in m.attrs:
+            out[f"{key}_s"] = float(m.attrs[key])
+    return out
+
+
+def write_outputs(out: Path, results: Sequence[Any], plot: Callable[[], Any],
+                  png: str) -> dict[str, str]:
+    """NetCDF of every result and one PNG, atomically; returns {kind: path}."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..results import atomic_write
+
+    files: dict[str, str] = {}
+    for result in results:
+        for kind, path in result.to_netcdf(out).items():
+            files[f"{result.maneuver}-{kind}"] = str(path)
+    drawn = plot()
+    fig = drawn if hasattr(drawn, "savefig") else drawn.figure
+    try:
+        path = atomic_write(out / png, lambda tmp: fig.savefig(tmp, dpi=110, format="png"))
+    finally:
+        plt.close(fig)
+    files["plot"] = str(path)
+    return files
+
+
+def finish(title: str, result: Any, payload: dict[str, Any], fields: Sequence[Field],
+           plot: Callable[[Any], Any], png: str, out: Path | None, as_json: bool) -> None:
+    """Write the files (``--out``), then print the JSON object or the table."""
+    if out is not None:
+        payload["files"] = write_outputs(out, [result], lambda: plot(result), png)
+    emit(title, payload, display_rows(result, fields), fields, as_json)
+
+
+def emit(title: str, payload: dict[str, Any], rows: list[dict[str, Any]],
+         fields: Sequence[Field], as_json: bool) -> None:
+    """JSON (one object) or the table and the header lines."""
+    payload = {**payload, "runs": rows}
+    if as_json:
+        print_json(payload)
+        return
+    print_table(title, rows, fields)
+    extras = [f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}"
+              for k, v in payload.items() if k not in ("runs", "files", "maneuver")]
+    console.print(escape(", ".join(extras)), highlight=False)
+    for kind, path in payload.get("files", {}).items():
+        console.print(f"  {kind}: {escape(path)}", highlight=False)
+
+
+# ------------------------------------------------------------------------------------------
+# commands
+# ------------------------------------------------------------------------------------------
+TURNING_FIELDS: tuple[Field, ...] = (
+    ("advance_m", "advance [m]", lambda r: r["advance"]),
+    ("advance_L", "advance [L]", _per_l("advance")),
+    ("transfer_m", "transfer [m]", lambda r: r["transfer"]),
+    ("tactical_diameter_m", "tactical diameter [m]", lambda r: r["tactical_diameter"]),
+    ("tactical_diameter_L", "tactical diameter [L]", _per_l("tactical_diameter")),
+    ("time_90_s", "time to 90° [s]", lambda r: r["time_90"]),
+    ("time_180_s", "time to 180° [s]", lambda r: r["time_180"]),
+    ("time_10_s", "time to 10° [s]", lambda r: r["time_10"]),
+    ("distance_10_L", "distance to 10° [L]", _per_l("distance_10")),
+    ("steady_radius_m", "steady turning radius [m]", lambda r: r["steady_radius"]),
+    ("steady_radius_L", "steady turning radius [L]", _per_l("steady_radius")),
+    ("steady_speed_mps", "steady speed [m/s]", lambda r: r["steady_speed"]),
+    ("speed_loss_pct", "speed loss [%]", lambda r: 100.0 * r["speed_loss"]),
+    ("drift_angle_deg", "steady drift angle [deg]", _deg("steady_drift_angle")),
+    ("yaw_rate_degps", "steady yaw rate [deg/s]", _deg("steady_yaw_rate")),
+    ("steady", "steady at the end", lambda r: bool(r["steady"])),
+)
+
+
+@app.command("turning")
+@handle_errors
+def turning_cmd(
+    catalog: Catalog = "kvlcc2-l7",
+    rudder: Annotated[float, typer.Option("--rudder", help=escape(
+        "Rudder angle [deg], in (0, steering gear limit]."))] = 35.0,
+    side: Side = "both",
+    speed: Speed = None,
+    rps: Rps = None,
+    t_final: TFinal = None,
+    dt: Dt = None,
+    json_out: Json = False,
+    out: Out = None,
+) -> None:
+    """Turning circle: advance, transfer, tactical diameter, times, steady turn."""
+    from ..analysis.maneuvers import turning_circle
+    from ..plotting.maneuvers import plot_turning
+
+    ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt)
+    result = turning_circle(ship, delta, sides=sides, speed=speed, rps=rps, t_final=t_final,
+                            dt=dt)
+    finish(f"Turning circle, {ship.name}, {rudder:g} deg rudder", result, header(result),
+           TURNING_FIELDS, plot_turning, "turning.png", out, json_out)
+
+
+def _overshoot(k: int) -> Callable[[dict[str, Any]], Any]:
+    return lambda r: math.degrees(r[f"overshoot_{k}"])
+
+
+ZIGZAG_FIELDS: tuple[Field, ...] = (
+    *((f"overshoot_{k}_deg", f"{('first', 'second', 'third')[k - 1]} overshoot [deg]",
+       _overshoot(k)) for k in (1, 2, 3)),
+    *((f"overshoot_time_{k}_s", f"time of overshoot {k} [s]",
+       (lambda k: lambda r: r[f"overshoot_time_{k}"])(k)) for k in (1, 2, 3)),
+    ("initial_turning_time_s", "initial turning time [s]", lambda r: r["initial_turning_time"]),
+    ("time_to_check_yaw_s", "time to check yaw [s]", lambda r: r["time_to_check_yaw"]),
+    ("period_s", "period [s]", lambda r: r["period"]),
+)
+
+
+@app.command("zigzag")
+@handle_errors
+def zigzag_cmd(
+    catalog: Catalog = "kvlcc2-l7",
+    rudder: Annotated[float, typer.Option("--rudder", help=escape(
+        "Rudder angle δ [deg], in (0, steering gear limit]."))] = 10.0,
+    heading: Annotated[float | None, typer.Option("--heading", help=escape(
+        "Heading trigger ψ [deg], in (0, 180) (default: equal to --rudder)."))] = None,
+    side: Annotated[str, typer.Option("--side", help="First execute: both, starboard or "
+                                                     "port.")] = "both",
+    speed: Speed = None,
+    rps: Rps = None,
+    t_final: TFinal = None,
+    dt: Dt = None,
+    json_out: Json = False,
+    out: Out = None,
+) -> None:
+    """Zig-zag δ/ψ: overshoots, initial turning time, time to check yaw, period."""
+    from ..analysis.maneuvers import zigzag
+    from ..plotting.maneuvers import plot_zigzag
+
+    ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt)
+    psi = rudder if heading is None else heading
+    if not (math.isfinite(psi) and 0 < psi < 180):
+        raise ParameterError(f"`--heading` must be in (0, 180) [deg], got {psi!r}")
+    result = zigzag(ship, delta, math.radians(psi), sides=sides, speed=speed, rps=rps,
+                    t_final=t_final, dt=dt)
+    payload = header(result)
+    payload.update(rudder_deg=rudder, heading_trigger_deg=psi)
+    finish(f"Zig-zag {rudder:g}/{psi:g}, {ship.name}", result, payload, ZIGZAG_FIELDS,
+           plot_zigzag, "zigzag.png", out, json_out)
+
+
+PULLOUT_FIELDS: tuple[Field, ...] = (
+    ("initial_yaw_rate_degps", "steady yaw rate before [deg/s]", _deg("initial_yaw_rate")),
+    ("residual_yaw_rate_degps", "residual yaw rate [deg/s]", _deg("residual_yaw_rate")),
+    ("half_time_s", "time to half the yaw rate [s]", lambda r: r["half_time"]),
+    ("settled", "settled", lambda r: bool(r["settled"])),
+)
+
+
+@app.command("pullout")
+@handle_errors
+def pullout_cmd(
+    catalog: Catalog = "kvlcc2-l7",
+    rudder: Annotated[float, typer.Option("--rudder", help=escape(
+        "Rudder angle of the steady turn [deg], in (0, steering gear limit]."))] = 20.0,
+    side: Side = "both",
+    speed: Speed = None,
+    rps: Rps = None,
+    t_final: TFinal = None,
+    dt: Dt = None,
+    json_out: Json = False,
+    out: Out = None,
+) -> None:
+    """Pull-out: rudder to zero after a steady turn; residual yaw rates to both sides."""
+    from ..analysis.maneuvers import pull_out
+    from ..plotting.maneuvers import plot_pullout
+
+    ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt)
+    result = pull_out(ship, delta, sides=sides, speed=speed, rps=rps, t_final=t_final, dt=dt)
+    payload = header(result)
+    if "residual_gap" in result.metrics:
+        payload["residual_gap_degps"] = math.degrees(float(result.metrics["residual_gap"]))
+    finish(f"Pull-out from {rudder:g} deg, {ship.name}", result, payload, PULLOUT_FIELDS,
+           plot_pullout, "pullout.png", out, json_out)
+
+
+@app.command("spiral")
+@handle_errors
+def spiral_cmd(
+    catalog: Catalog = "kvlcc2-l7",
+    max_rudder: Annotated[float, typer.Option("--max-rudder", help=escape(
+        "Largest rudder angle of the spirals [deg]: the direct program is 20, 15, 10, 5, 3, "
+        "2, 1, 0.5, 0 deg scaled to it, down to port and back; the reverse spiral spans the "
+        "yaw rates of ±this angle."))] = 20.0,
+    hold: Annotated[float | None, typer.Option("--hold", help=escape(
+        "Time each rudder angle of the direct spiral is held [s] (default 50 L/U0)."))] = None,
+    speed: Speed = None,
+    rps: Rps = None,
+    dt: Dt = None,
+    json_out: Json = False,
+    out: Out = None,
+) -> None:
+    """Direct (simulated) and reverse (equilibria) spiral: r–δ curve and loop width."""
+    import numpy as np
+
+    from ..analysis.maneuvers import DEFAULT_SPIRAL_RUDDERS_DEG, direct_spiral, reverse_spiral
+
+    ship = ship_of(catalog)
+    top = check_rudder_deg(ship, "--max-rudder", max_rudder)
+    check_speed_rps(ship, speed, rps)
+    check_positive_opt("--hold", hold, "s")
+    check_positive_opt("--dt", dt, "s")
+    program = np.radians(DEFAULT_SPIRAL_RUDDERS_DEG) * (max_rudder / 20.0)
+    direct = direct_spiral(ship, program, speed=speed, rps=rps, hold=hold, dt=dt)
+    reverse = reverse_spiral(ship, speed=speed, rps=rps, max_rudder=top)
+    dm = direct.metrics
+    rm = reverse.metrics
+    rows = []
+    for j in range(dm.sizes["step"]):
+        rows.append({"run": f"{j}", "leg": "down" if int(dm["leg"][j]) < 0 else "up",
+                     "rudder_deg": math.degrees(float(dm["step_rudder"][j])),
+                     "yaw_rate_degps": math.degrees(float(dm["yaw_rate"][j])),
+                     "yaw_rate_nd": float(dm["yaw_rate_nd"][j]),
+                     "speed_mps": float(dm["speed"][j]), "settled": bool(dm["settled"][j])})
+    reverse_rows = [{"yaw_rate_degps": math.degrees(float(r_)),
+                     "rudder_deg": math.degrees(float(d_)), "yaw_rate_nd": float(n_)}
+                    for r_, d_, n_ in zip(rm["yaw_rate"].values, rm["rudder_angle"].values,
+                                          rm["yaw_rate_nd"].values) if math.isfinite(r_)]
+    payload = header(direct)
+    payload.update(
+        maneuver="spiral",
+        direct_loop_width_deg=math.degrees(float(dm["loop_width"])),
+        direct_zero_crossing_down_deg=math.degrees(float(dm["zero_crossing_down"])),
+        direct_zero_crossing_up_deg=math.degrees(float(dm["zero_crossing_up"])),
+        direct_message=str(dm["message"].item()),
+        reverse_loop_width_deg=math.degrees(float(rm["loop_width"])),
+        reverse_loop_rudder_low_deg=math.degrees(float(rm["loop_rudder_low"])),
+        reverse_loop_rudder_high_deg=math.degrees(float(rm["loop_rudder_high"])),
+        reverse_method=rm.attrs["method"])
+    if out is not None:
+        from ..plotting.maneuvers import plot_spiral
+
+        payload["files"] = write_outputs(out, [direct, reverse],
+                                         lambda: plot_spiral(direct, reverse), "spiral.png")
+    if json_out:
+        print_json({**payload, "direct": rows, "reverse": reverse_rows})
+        return
+    table = Table(title=escape(f"Direct spiral, {ship.name}"), title_justify="left")
+    for col in ("step", "leg", "rudder [deg]", "r [deg/s]", "r' = rL/U", "U [m/s]", "settled"):
+        table.add_column(escape(col), justify="right")
+    for row in rows:
+        table.add_row(row["run"], row["leg"], *(_fmt(row[k]) for k in (
+            "rudder_deg", "yaw_rate_degps", "yaw_rate_nd", "speed_mps", "settled")))
+    console.print(table)
+    for k, v in payload.items():
+        if k not in ("files",):
+            console.print(escape(f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}"),
+                          highlight=False)
+    for kind, path in payload.get("files", {}).items():
+        console.print(f"  {kind}: {escape(path)}", highlight=False)

@@ -1,0 +1,147 @@
+"""``seahelm maneuver turning|zigzag|spiral|pullout`` and ``seahelm imo MODEL`` (CliRunner).
+
+Uses the MMG kernels (open loop, zigzag-rps) and the Mariner open-loop kernel only.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+
+import pytest
+import xarray as xr
+from typer.testing import CliRunner
+
+from seahelm.analysis.maneuvers import turning_circle
+from seahelm.cli.main import app
+
+runner = CliRunner()
+
+
+def run_json(*args: str) -> dict:
+    res = runner.invoke(app, [*args, "--json"])
+    assert res.exit_code == 0, res.stderr
+    return json.loads(res.stdout)  # exactly one JSON object on stdout
+
+
+def test_turning_json_matches_the_library():
+    out = run_json("maneuver", "turning", "--catalog", "kvlcc2-l7", "--rudder", "35",
+                   "--t-final", "60")
+    assert out["maneuver"] == "turning-circle" and out["ship"] == "kvlcc2-l7"
+    assert out["length_m"] == 7.0 and out["approach_speed_mps"] == 1.179
+    assert [r["side"] for r in out["runs"]] == ["starboard", "port"]
+    lib = turning_circle("kvlcc2-l7", math.radians(35.0), t_final=60.0).metrics
+    for row, side in zip(out["runs"], (1, -1)):
+        m = lib.sel(side=side)
+        assert row["advance_m"] == pytest.approx(float(m["advance"]), rel=1e-12)
+        assert row["tactical_diameter_L"] == pytest.approx(float(m["tactical_diameter"]) / 7.0,
+                                                           rel=1e-12)
+        assert row["drift_angle_deg"] == pytest.approx(
+            math.degrees(float(m["steady_drift_angle"])), rel=1e-12)
+        assert row["rudder_deg"] == pytest.approx(35.0)
+
+
+def test_turning_not_reaching_180_is_a_result_not_an_error():
+    out = run_json("maneuver", "turning", "--side", "starboard", "--t-final", "30")
+    (row,) = out["runs"]
+    assert row["tactical_diameter_m"] is None  # NaN -> null
+    assert row["complete"] is False and "180 deg heading change not reached" in row["message"]
+
+
+def test_turning_table_and_out(tmp_path):
+    res = runner.invoke(app, ["maneuver", "turning", "--t-final", "60", "--out", str(tmp_path)])
+    assert res.exit_code == 0, res.stderr
+    assert "tactical diameter [L]" in res.stdout and "starboard" in res.stdout
+    files = sorted(os.listdir(tmp_path))
+    assert files == ["turning-circle-metrics.nc", "turning-circle-runs.nc", "turning.png"]
+    assert (tmp_path / "turning.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    with xr.open_dataset(tmp_path / "turning-circle-metrics.nc", engine="h5netcdf") as ds:
+        assert ds["advance"].dims == ("side",) and ds["advance"].attrs["units"] == "m"
+        assert ds["complete"].values.tolist() == [1, 1]  # booleans stored as int8 flags
+        assert all(str(msg).startswith("ok") for msg in ds["message"].values)
+    with xr.open_dataset(tmp_path / "turning-circle-runs.nc", engine="h5netcdf") as ds:
+        assert ds["heading"].dims == ("side", "time")
+
+
+@pytest.mark.parametrize("args, text", [
+    (["maneuver", "turning", "--rudder", "40"],
+     "`--rudder` must be in (0, 35] [deg] (steering gear limit of 'kvlcc2-l7'), got 40.0"),
+    (["maneuver", "turning", "--rudder", "0"], "`--rudder` must be in (0, 35] [deg]"),
+    (["maneuver", "turning", "--speed", "-1"], "`--speed` must be > 0 [m/s], got -1.0"),
+    (["maneuver", "turning", "--rps", "0"], "`--rps` must be > 0 [1/s], got 0.0"),
+    (["maneuver", "turning", "--catalog", "mariner-nonlinear", "--rps", "2"],
+     "`--rps`: 'mariner-nonlinear' (model mariner) has no propeller input, got 2.0 [1/s]"),
+    (["maneuver", "turning", "--catalog", "kvlcc9"], "`--catalog` must be a catalog entry "
+                                                     "with a manoeuvring model"),
+    (["maneuver", "turning", "--catalog", "mariner-nomoto2"], "got 'mariner-nomoto2'"),
+    (["maneuver", "turning", "--side", "middle"], "`--side` must be one of both, starboard, "
+                                                  "port, got 'middle'"),
+    (["maneuver", "turning", "--dt", "-0.1"], "`--dt` must be > 0 [s], got -0.1"),
+    (["maneuver", "zigzag", "--heading", "200"], "`--heading` must be in (0, 180) [deg], got "
+                                                 "200.0"),
+    (["maneuver", "zigzag", "--rudder", "10", "--heading", "60", "--t-final", "20"],
+     "`heading` trigger 60 deg is not reached within `t_final` = 20.0 [s]"),
+    (["maneuver", "pullout", "--rudder", "-5"], "`--rudder` must be in (0, 35] [deg]"),
+    (["maneuver", "spiral", "--max-rudder", "36"], "`--max-rudder` must be in (0, 35] [deg]"),
+    (["maneuver", "spiral", "--hold", "0"], "`--hold` must be > 0 [s], got 0.0"),
+    (["imo", "nope"], "`--catalog` must be a catalog entry"),
+    (["imo", "kvlcc2-l7", "--speed", "0"], "`--speed` must be > 0 [m/s], got 0.0"),
+])
+def test_bad_input_exits_2_with_one_line(args, text):
+    res = runner.invoke(app, args)
+    assert res.exit_code == 2, (res.stdout, res.stderr)
+    assert res.stdout == ""
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: ")
+    assert text in " ".join(res.stderr.split())
+
+
+def test_zigzag_json_and_out(tmp_path):
+    out = run_json("maneuver", "zigzag", "--rudder", "10", "--heading", "10", "--out",
+                   str(tmp_path))
+    assert out["rudder_deg"] == 10.0 and out["heading_trigger_deg"] == 10.0
+    for row in out["runs"]:
+        assert row["complete"] is True
+        assert 0.0 < row["overshoot_1_deg"] < 10.0
+        assert row["period_s"] > row["initial_turning_time_s"] > 0.0
+    assert sorted(os.listdir(tmp_path)) == ["zigzag-metrics.nc", "zigzag-runs.nc", "zigzag.png"]
+    assert set(out["files"]) == {"zigzag-metrics", "zigzag-runs", "plot"}
+
+
+def test_pullout_json():
+    out = run_json("maneuver", "pullout", "--catalog", "mariner-nonlinear", "--rudder", "20")
+    assert [r["side"] for r in out["runs"]] == ["starboard", "port"]
+    residuals = [r["residual_yaw_rate_degps"] for r in out["runs"]]
+    assert residuals[0] == pytest.approx(residuals[1], rel=1e-3) and residuals[0] > 0.1
+    assert abs(out["residual_gap_degps"]) < 1e-3
+
+
+def test_spiral_json(tmp_path):
+    out = run_json("maneuver", "spiral", "--catalog", "kvlcc2-l7", "--max-rudder", "10",
+                   "--out", str(tmp_path))
+    assert out["maneuver"] == "spiral"
+    assert len(out["direct"]) == 33 and out["direct"][0]["rudder_deg"] == pytest.approx(10.0)
+    assert 0.3 < out["reverse_loop_width_deg"] < 0.5
+    assert out["reverse_loop_rudder_low_deg"] == pytest.approx(0.0, abs=1e-6)
+    assert sorted(os.listdir(tmp_path)) == ["direct-spiral-metrics.nc", "direct-spiral-runs.nc",
+                                            "reverse-spiral-metrics.nc", "spiral.png"]
+
+
+def test_imo_json_and_table(tmp_path):
+    out = run_json("imo", "kvlcc2-l7", "--out", str(tmp_path))
+    assert out["ship"] == "kvlcc2-l7" and out["passed"] is True
+    assert out["L_over_V_s"] == pytest.approx(7.0 / 1.179)
+    crit = {(c["ability"], c["criterion"], c["side"]): c for c in out["criteria"]}
+    first = crit[("10/10 zig-zag", "first overshoot", "starboard")]
+    assert first["unit"] == "deg" and first["limit"] == pytest.approx(10.0)
+    assert crit[("stopping", "track reach (full astern)", "-")]["status"] == "not evaluated"
+    assert crit[("stopping", "track reach (full astern)", "-")]["value"] is None
+    report = json.loads((tmp_path / "imo-report.json").read_text())
+    assert report["criteria"] == out["criteria"]
+    assert {"imo-turning.png", "imo-zigzag.png", "turning-circle-metrics.nc",
+            "zigzag-metrics.nc"} <= set(os.listdir(tmp_path))
+    res = runner.invoke(app, ["imo", "kvlcc2-l7"])
+    assert res.exit_code == 0
+    text = " ".join(res.stdout.split())
+    assert "PASSES" in text and "not evaluat" in text and "ahead motion only" in text
