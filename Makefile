@@ -34,7 +34,7 @@ versions: $(STAMP_RUN)
 test: $(STAMP_TEST)
 	@echo "tested with: $$($(BIN)/python -m seahelm.versions)"
 	@echo "kernel cache: $${SEAHELM_CACHE_DIR:-default (~/.cache/seahelm/kernels)}"
-	MPLBACKEND=Agg $(BIN)/python -m pytest -n 2 -q
+	MPLBACKEND=Agg $(BIN)/python -m pytest -n 2 --dist worksteal -q
 
 bench: $(STAMP_RUN)
 	for f in benchmarks/bench_*.py; do $(BIN)/python $$f || exit 1; done
