@@ -8,8 +8,9 @@ and the integrator's step written out from its Butcher tableau
 (:func:`~seahelm.simulation.integrators.compiled_advance_source`), and numba compiles it once
 per machine (``cache=True``; the module's name hashes its text, with the generated step, and
 the in-memory bytecode of the components and of every numba function they call, so editing
-any of them or changing the tableau recompiles it). The loop runs in parallel over runs
-(``numba.prange``), one thread per core; nothing in it is Python per step or per run.
+any of them or changing the tableau recompiles it). The compiled loop releases the GIL and
+runs slices of the batch on a pool of threads, one per core (``numba.set_num_threads`` sets
+how many); nothing in it is Python per step or per run.
 
 Timing: the state is integrated on the grid t_k = k·dt; the controller is stepped every
 ``controller_dt`` (an integer multiple of dt) and its command held in between (zero-order hold);
@@ -35,6 +36,7 @@ import tempfile
 import time as _time
 import types
 from collections.abc import Callable, Mapping, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from types import ModuleType
 from typing import TYPE_CHECKING, Any
@@ -172,7 +174,7 @@ def compile_closed_loop(
     Returns
     -------
     module
-        The imported kernel module (``init_runs``, ``run_chunk``).
+        The imported kernel module (``init_runs``, ``run_slice``, ``scratch``).
     """
     tableau = get_integrator(integrator)
     wiring = compose(model, actuator, controller)
@@ -218,6 +220,58 @@ def compile_closed_loop(
     sys.modules[name] = module
     spec.loader.exec_module(module)
     return module
+
+
+class _Slices:
+    """The batch cut into slices of runs, run by the kernel's ``run_slice`` on a thread pool.
+
+    The compiled loop releases the GIL, so threads run slices in parallel; there are up to four
+    slices per thread (a slice of runs that stop early does not leave a thread idle) and never
+    more threads than runs (a single run stays in the calling thread). ``numba.set_num_threads``
+    and ``NUMBA_NUM_THREADS`` set the number of threads, as for any numba parallel code.
+
+    The kernel marks its array arguments ``noalias``: ``arrays`` are made not to share memory
+    here (a copy of any that does), and every slice has its own scratch buffers.
+    """
+
+    def __init__(self, kernel: ModuleType, arrays: Sequence[np.ndarray],
+                 scratch_sizes: tuple[int, ...]) -> None:
+        import numba
+
+        self.kernel = kernel
+        n_runs = arrays[0].shape[0]
+        self.arrays = _unaliased(arrays)
+        self.threads = max(1, min(numba.get_num_threads(), n_runs))
+        n_slices = 1 if self.threads == 1 else min(n_runs, 4 * self.threads)
+        self.cuts = np.linspace(0, n_runs, n_slices + 1).round().astype(np.int64)
+        self.scratch = [kernel.scratch(*scratch_sizes) for _ in range(n_slices)]
+
+    def run(self, k_start: int, k_stop: int, n_steps: int, dt: float, ctrl_every: int,
+            rec_every: int) -> None:
+        def one(s: int) -> None:
+            self.kernel.run_slice(int(self.cuts[s]), int(self.cuts[s + 1]), k_start, k_stop,
+                                  n_steps, dt, ctrl_every, rec_every, *self.arrays,
+                                  *self.scratch[s])
+
+        n_slices = len(self.cuts) - 1
+        if self.threads == 1 or k_stop == k_start:
+            for s in range(n_slices):
+                one(s)
+            return
+        with ThreadPoolExecutor(self.threads, thread_name_prefix="seahelm") as pool:
+            # list() re-raises an exception of any slice here
+            list(pool.map(one, range(n_slices)))
+
+
+def _unaliased(arrays: Sequence[np.ndarray]) -> tuple[np.ndarray, ...]:
+    """The arrays, each copied if it may share memory with one before it (the kernel's
+    arguments are ``noalias``); the arrays the kernel writes are created here and never are."""
+    out: list[np.ndarray] = []
+    for a in arrays:
+        if any(np.may_share_memory(a, b) for b in out):
+            a = a.copy()
+        out.append(a)
+    return tuple(out)
 
 
 # ------------------------------------------------------------------------------------------
@@ -497,15 +551,15 @@ def simulate(
     rec_y = np.full((n_runs, n_rec, model.n_outputs), np.nan)
     rec_cmd = np.full((n_runs, n_rec, ncmd), np.nan)
 
+    slices = _Slices(kernel, (z, cs, cmd, ca, mr, ar, cr, dist, ref, lower, upper,
+                              status, t_fail, z_fail, rec_z, rec_y, rec_cmd),
+                     (ncmd, ca.shape[1], cs.shape[1], dist.shape[2], ref.shape[2]))
     # compile or load the kernel before the clock starts: a zero-step call does it, so the
     # reported simulation time is the simulation's (first use of a combination compiles)
     c0 = _time.perf_counter()
-    kernel.run_chunk(
-        0, 0, n_steps, float(dt), ctrl_every, record_every,
-        z, cs, cmd, ca, mr, ar, cr, dist, ref, lower, upper,
-        status, t_fail, z_fail, rec_z, rec_y, rec_cmd,
-    )
-    kernel.init_runs(z, cs, cmd, ca, mr, ar, cr, ref)
+    slices.run(0, 0, n_steps, float(dt), ctrl_every, record_every)
+    kernel.init_runs(*slices.arrays[:4], *slices.arrays[4:7], slices.arrays[8],
+                     *slices.scratch[0])
     compile_time = _time.perf_counter() - c0
     wall0 = _time.perf_counter()
     k = 0
@@ -513,11 +567,7 @@ def simulate(
     while k < n_steps:
         k_stop = min(n_steps, k + chunk)
         t0 = _time.perf_counter()
-        kernel.run_chunk(
-            k, k_stop, n_steps, float(dt), ctrl_every, record_every,
-            z, cs, cmd, ca, mr, ar, cr, dist, ref, lower, upper,
-            status, t_fail, z_fail, rec_z, rec_y, rec_cmd,
-        )
+        slices.run(k, k_stop, n_steps, float(dt), ctrl_every, record_every)
         elapsed = _time.perf_counter() - t0
         done, k = k_stop - k, k_stop
         if progress is not None:

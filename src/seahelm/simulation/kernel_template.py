@@ -20,11 +20,36 @@ inlined components are compiled with fastmath flags that allow reassociation, co
 (measured; tests/test_simulation_wiring.py guards it), so the NaN/inf detection below stays
 exact.
 
+Compile time shapes the loop (a new combination of components compiles on first use, and the
+user waits): the components are inlined at numba-IR level (``inline="always"``), once per
+call site, so the loop has one site that evaluates the outputs and each stage of the step one
+site of the right-hand side; and everything is compiled without numba's reference-counted
+runtime (``_nrt=False``): the per-run vectors are scratch buffers passed in, one set per
+thread, so nothing is allocated and no reference count is touched in the loop; and with every
+array argument marked ``noalias`` (:class:`NoAliasCompiler`). The loop is serial and
+releases the GIL (``nogil=True``); the engine runs slices of the batch on a pool of threads.
+A ``parallel=True``/``prange`` loop ran at the same speed but compiled 3× slower (numba's
+parfor passes on the inlined loop: 46 s against 14 s for Nomoto-2 + servo + PID with RK4, on
+the same machine), and a serial loop *with* the runtime ran 4–5× slower (reference counts of
+the inlined array arguments, atomic, at every call site).
+
 Status codes: 0 ok, 1 non-finite state, 2 state outside its declared bounds.
 """
 
 import numpy as np
-from numba import njit, prange
+from numba import njit
+from numba.core.compiler import Compiler
+
+
+class NoAliasCompiler(Compiler):
+    """numba's compiler with every array argument marked ``noalias`` (what numba does for the
+    body of a ``prange`` loop when it finds no aliasing): without it LLVM reloads the parameter
+    records after every store to a buffer; with it the loop runs 15–25 % faster."""
+
+    def define_pipelines(self):  # noqa: D102
+        self.state.flags.noalias = True
+        return super().define_pipelines()
+
 
 # <header>
 from seahelm.actuators.servo import servo_output as _actuator_output
@@ -69,12 +94,8 @@ def route_measurements(ym, y):  # pragma: no cover - compiled
 
 NZ = NX + NA
 
-# The hot loop works on thread-local copies of each run's arrays and never slices arrays per
-# step: numba array views touch the parent's reference count atomically, and on an array shared
-# by all threads that serialises the cores.
 
-
-@njit(cache=True, inline="always", fastmath=FASTMATH)
+@njit(inline="always", fastmath=FASTMATH, _nrt=False)
 def closed_rhs(t, xv, xa, cmd, ca, d, mp, ap, ya, u, dxv, dxa):  # pragma: no cover - compiled
     actuator_output(xa, ca, ap, ya)
     route_inputs(ya, cmd, u)
@@ -89,7 +110,7 @@ def closed_rhs(t, xv, xa, cmd, ca, d, mp, ap, ya, u, dxv, dxa):  # pragma: no co
 NSTAGES = 1
 
 
-@njit(cache=True, inline="always", fastmath=FASTMATH)
+@njit(inline="always", fastmath=FASTMATH, _nrt=False)
 def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ya, u, kv, ka, fv, fa, tv, ta):  # pragma: no cover
     closed_rhs(t, xv, xa, cmd, ca, d0, mp, ap, ya, u, fv, fa)
     for j in range(NX):
@@ -99,85 +120,94 @@ def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ya, u, kv, ka, fv, fa, tv
 # </footer>
 
 
-@njit(cache=True, fastmath=FASTMATH)
-def init_runs(z, cs, cmd, ca, mp, ap, cp, ref):  # pragma: no cover - compiled
-    """Call the controller's init at t = 0 for every run (once per simulation: serial, which
-    compiles in a fraction of the time of a parallel loop)."""
-    for ii in range(z.shape[0]):
-        i = np.int64(ii)
-        u = np.empty(NU)
-        ya = np.empty(max(NYA, 1))
-        ym = np.empty(NYM)
-        y = np.empty(max(NM, 1))
+SCRATCH = ("xv", "xa", "zfull", "cmdi", "cai", "csi", "u", "ya", "ym", "y", "kv", "ka", "fv", "fa",
+           "tv", "ta", "d0", "d1", "ds", "refk")
+
+
+def scratch(ncmd, nca, ncs, nd, nr):
+    """Fresh per-run buffers, in the order of ``SCRATCH`` (one set per thread).
+
+    Separate arrays, not views of one: the loop is compiled with ``noalias`` arguments, so LLVM
+    keeps the parameter records and buffers in registers across stores to the others.
+    """
+    e = np.zeros
+    return (e(NX), e(NA), e(NZ), e(ncmd), e(nca), e(ncs), e(NU), e(max(NYA, 1)), e(NYM),
+            e(max(NM, 1)), e((NSTAGES, NX)), e((NSTAGES, NA)), e(NX), e(NA), e(NX), e(NA),
+            e(nd), e(nd), e(nd), e(nr))
+
+
+@njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False, pipeline_class=NoAliasCompiler)
+def init_runs(z, cs, cmd, ca, mp, ap, cp, ref,
+              xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds,
+              refk):  # pragma: no cover - compiled
+    """Call the controller's init at t = 0 for every run (once per simulation)."""
+    for i in range(z.shape[0]):
         ir = i if ref.shape[0] > 1 else 0
-        xv = z[i, :NX].copy()
-        xa = z[i, NX:].copy()
-        cmdi = cmd[i].copy()
-        cai = ca[i].copy()
-        csi = cs[i].copy()
+        for j in range(NX):
+            xv[j] = z[i, j]
+        for j in range(NA):
+            xa[j] = z[i, NX + j]
+        for j in range(NZ):
+            zfull[j] = z[i, j]
+        for j in range(cmd.shape[1]):
+            cmdi[j] = cmd[i, j]
+        for j in range(ca.shape[1]):
+            cai[j] = ca[i, j]
+        for j in range(cs.shape[1]):
+            csi[j] = cs[i, j]
+        for j in range(ref.shape[2]):
+            refk[j] = ref[ir, 0, j]
         actuator_output(xa, cai, ap[i], ya)
         route_inputs(ya, cmdi, u)
         model_output(0.0, xv, u, mp[i], ym)
         route_measurements(ym, y)
-        controller_init(z[i].copy(), y, ref[ir, 0].copy(), cp[i], csi)
-        cs[i, :] = csi
+        controller_init(zfull, y, refk, cp[i], csi)
+        for j in range(cs.shape[1]):
+            cs[i, j] = csi[j]
 
 
-@njit(cache=True, parallel=True, fastmath=FASTMATH)
-def run_chunk(
-    k_start, k_stop, n_steps, dt, ctrl_every, rec_every,
+@njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False, pipeline_class=NoAliasCompiler)
+def run_slice(
+    i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_every,
     z, cs, cmd, ca, mp, ap, cp, dist, ref, lower, upper,
     status, t_fail, z_fail, rec_z, rec_y, rec_cmd,
+    xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds, refk,
 ):  # pragma: no cover - compiled
-    """Advance every run from step ``k_start`` to ``k_stop`` (state arrays updated in place).
+    """Advance runs ``i_start`` to ``i_stop`` − 1 from step ``k_start`` to ``k_stop`` (the state
+    arrays are updated in place, so a simulation goes on chunk by chunk).
 
     Runs with a non-zero status are skipped; a run that becomes invalid gets status 1 or 2,
-    the time and state of the first invalid step, and stops.
+    the time and state of the first invalid step, and stops. ``xv`` … ``refk`` are this
+    thread's scratch (:func:`scratch`). No two arguments may share memory (``noalias``).
     """
-    n_runs = z.shape[0]
     nd = dist.shape[2]
     nr = ref.shape[2]
     ncmd = cmd.shape[1]
     dt_ctrl = ctrl_every * dt
-    for ii in prange(n_runs):
-        i = np.int64(ii)
+    has_bounds = False
+    for j in range(NZ):
+        if lower[j] > -np.inf or upper[j] < np.inf:
+            has_bounds = True
+    dist_varies = dist.shape[1] > 1
+    ref_varies = ref.shape[1] > 1
+    for i in range(i_start, i_stop):
         if status[i] != 0:
             continue
-        # thread-local copies of everything the run touches per step (records are read in
-        # place: a record is a pointer into the parameter array, without reference counting)
-        xv = z[i, :NX].copy()
-        xa = z[i, NX:].copy()
-        zfull = z[i].copy()
-        cmdi = cmd[i].copy()
-        cai = ca[i].copy()
-        csi = cs[i].copy()
+        for j in range(NX):
+            xv[j] = z[i, j]
+        for j in range(NA):
+            xa[j] = z[i, NX + j]
+        for j in range(ncmd):
+            cmdi[j] = cmd[i, j]
+        for j in range(cai.shape[0]):
+            cai[j] = ca[i, j]
+        for j in range(csi.shape[0]):
+            csi[j] = cs[i, j]
         mpi = mp[i]
         api = ap[i]
         cpi = cp[i]
-        lo = lower.copy()
-        hi = upper.copy()
-        has_bounds = False
-        for j in range(NZ):
-            if lo[j] > -np.inf or hi[j] < np.inf:
-                has_bounds = True
-        u = np.empty(NU)
-        ya = np.empty(max(NYA, 1))
-        ym = np.empty(NYM)
-        y = np.empty(max(NM, 1))
-        kv = np.empty((NSTAGES, NX))
-        ka = np.empty((NSTAGES, NA))
-        fv = np.empty(NX)
-        fa = np.empty(NA)
-        tv = np.empty(NX)
-        ta = np.empty(NA)
-        d0 = np.empty(nd)
-        d1 = np.empty(nd)
-        ds = np.empty(nd)
-        refk = np.empty(nr)
         idist = i if dist.shape[0] > 1 else 0
         iref = i if ref.shape[0] > 1 else 0
-        dist_varies = dist.shape[1] > 1
-        ref_varies = ref.shape[1] > 1
         if not dist_varies:
             for j in range(nd):
                 d0[j] = dist[idist, 0, j]
@@ -186,10 +216,13 @@ def run_chunk(
         # countdowns instead of k % n: integer division costs more than the model's algebra
         to_ctrl = (ctrl_every - k_start % ctrl_every) % ctrl_every
         to_rec = (rec_every - k_start % rec_every) % rec_every
-        for k in range(k_start, k_stop):
+        # the record after the last step is one more iteration, that records and stops
+        k_end = k_stop + 1 if k_stop == n_steps and n_steps % rec_every == 0 else k_stop
+        for k in range(k_start, k_end):
             t = k * dt
+            last = k == n_steps
             record = to_rec == 0
-            control = to_ctrl == 0
+            control = to_ctrl == 0 and not last
             to_rec = rec_every - 1 if record else to_rec - 1
             to_ctrl = ctrl_every - 1 if control else to_ctrl - 1
             # the model's outputs only when recorded or measured (NM is a compile-time
@@ -219,6 +252,8 @@ def run_chunk(
                     rec_y[i, m, j] = ym[j]
                 for j in range(ncmd):
                     rec_cmd[i, m, j] = cmdi[j]
+            if last:
+                break
             if dist_varies:
                 for j in range(nd):
                     d0[j] = dist[idist, k, j]
@@ -237,7 +272,7 @@ def run_chunk(
                     if not np.isfinite(v):
                         failed = 1
                         break
-                    if v < lo[j] or v > hi[j]:
+                    if v < lower[j] or v > upper[j]:
                         failed = 2
             if failed != 0:
                 status[i] = failed
@@ -247,19 +282,6 @@ def run_chunk(
                 for j in range(NA):
                     z_fail[i, NX + j] = xa[j]
                 break
-            if k + 1 == n_steps and n_steps % rec_every == 0:
-                m = n_steps // rec_every
-                actuator_output(xa, cai, api, ya)
-                route_inputs(ya, cmdi, u)
-                model_output(t + dt, xv, u, mpi, ym)
-                for j in range(NX):
-                    rec_z[i, m, j] = xv[j]
-                for j in range(NA):
-                    rec_z[i, m, NX + j] = xa[j]
-                for j in range(NYM):
-                    rec_y[i, m, j] = ym[j]
-                for j in range(ncmd):
-                    rec_cmd[i, m, j] = cmdi[j]
         # write the run's state back for the next chunk
         for j in range(NX):
             z[i, j] = xv[j]

@@ -1,0 +1,101 @@
+"""Time to first result: `seahelm demo` cold and warm, with the breakdown by phase.
+
+*Cold* runs with an empty kernel cache and numba cache (new temporary directories), as on a
+fresh machine or after an upgrade: the demo's component combination compiles. *Warm* is the
+same command again with those caches filled. Each phase is timed in a fresh Python process
+that does what ``seahelm demo`` does, step by step:
+
+* imports — ``import seahelm.cli.main`` and what the demo pulls in (scenario, engine, xarray);
+* compile/load — the engine's zero-step call that compiles the kernel or loads it from the
+  cache (``metadata["compile_time_s"]``);
+* run — the simulation itself (``metadata["wall_time_s"]``);
+* write — ``result.nc`` (NetCDF through xarray/h5netcdf);
+* plot — matplotlib import, the overview figure and its PNG.
+
+The whole command is timed too (``seahelm demo --json``, a subprocess, wall clock). Prints
+medians of several warm repetitions and the cold figures.
+
+    python benchmarks/bench_startup.py [--repeats 5]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+PHASES = r"""
+import json, sys, time
+t0 = time.perf_counter()
+from seahelm.cli import main as cli
+from seahelm.scenario import default_scenario_text, parse_scenario, run_scenario
+from seahelm.analysis.maneuvers import summarize
+t_import = time.perf_counter() - t0
+batch = parse_scenario(default_scenario_text(), source="<embedded default scenario>")
+result = run_scenario(batch)
+summarize(result)
+t1 = time.perf_counter()
+result.to_netcdf(sys.argv[1] + "/result.nc")
+t_write = time.perf_counter() - t1
+t2 = time.perf_counter()
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+fig = result.plot()
+fig.savefig(sys.argv[1] + "/overview.png", dpi=110, format="png")
+plt.close(fig)
+t_plot = time.perf_counter() - t2
+print(json.dumps({"imports": t_import, "compile/load": result.metadata["compile_time_s"],
+                  "run": result.metadata["wall_time_s"], "write": t_write, "plot": t_plot,
+                  "total in process": time.perf_counter() - t0}))
+"""
+
+
+def _env(cache: Path) -> dict[str, str]:
+    env = dict(os.environ, MPLBACKEND="Agg", SEAHELM_CACHE_DIR=str(cache / "kernels"),
+               NUMBA_CACHE_DIR=str(cache / "numba"))
+    return env
+
+
+def phases(cache: Path, out: Path) -> dict[str, float]:
+    res = subprocess.run([sys.executable, "-c", PHASES, str(out)], env=_env(cache),
+                         capture_output=True, text=True, check=True)
+    return json.loads(res.stdout.strip().splitlines()[-1])
+
+
+def demo_wall(cache: Path, out: Path) -> float:
+    exe = Path(sys.executable).with_name("seahelm")
+    cmd = [str(exe)] if exe.exists() else [sys.executable, "-m", "seahelm"]
+    t0 = time.perf_counter()
+    subprocess.run([*cmd, "demo", "--out", str(out), "--json"], env=_env(cache),
+                   capture_output=True, check=True)
+    return time.perf_counter() - t0
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=5)
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        root = Path(tmp)
+        print(f"seahelm startup benchmark, {os.cpu_count()} cores; warm figures are medians "
+              f"of {args.repeats} runs")
+        cold_wall = demo_wall(root / "cache-a", root)
+        cold = phases(root / "cache-b", root)
+        warm_wall = statistics.median(demo_wall(root / "cache-a", root)
+                                      for _ in range(args.repeats))
+        runs = [phases(root / "cache-b", root) for _ in range(args.repeats)]
+        warm = {k: statistics.median(r[k] for r in runs) for k in runs[0]}
+        print(f"{'seahelm demo (wall clock)':>26}: cold {cold_wall:7.2f} s   warm {warm_wall:6.2f} s")
+        for key in cold:
+            print(f"{key:>26}: cold {cold[key]:7.2f} s   warm {warm[key]:6.2f} s")
+
+
+if __name__ == "__main__":
+    main()
