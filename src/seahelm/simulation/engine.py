@@ -230,8 +230,7 @@ class _Slices:
     more threads than runs (a single run stays in the calling thread). ``numba.set_num_threads``
     and ``NUMBA_NUM_THREADS`` set the number of threads, as for any numba parallel code.
 
-    The kernel marks its array arguments ``noalias``: ``arrays`` are made not to share memory
-    here (a copy of any that does), and every slice has its own scratch buffers.
+    Every slice has its own scratch buffers (the kernel allocates nothing).
     """
 
     def __init__(self, kernel: ModuleType, arrays: Sequence[np.ndarray],
@@ -240,7 +239,7 @@ class _Slices:
 
         self.kernel = kernel
         n_runs = arrays[0].shape[0]
-        self.arrays = _unaliased(arrays)
+        self.arrays = tuple(arrays)
         self.threads = max(1, min(numba.get_num_threads(), n_runs))
         n_slices = 1 if self.threads == 1 else min(n_runs, 4 * self.threads)
         self.cuts = np.linspace(0, n_runs, n_slices + 1).round().astype(np.int64)
@@ -261,17 +260,6 @@ class _Slices:
         with ThreadPoolExecutor(self.threads, thread_name_prefix="seahelm") as pool:
             # list() re-raises an exception of any slice here
             list(pool.map(one, range(n_slices)))
-
-
-def _unaliased(arrays: Sequence[np.ndarray]) -> tuple[np.ndarray, ...]:
-    """The arrays, each copied if it may share memory with one before it (the kernel's
-    arguments are ``noalias``); the arrays the kernel writes are created here and never are."""
-    out: list[np.ndarray] = []
-    for a in arrays:
-        if any(np.may_share_memory(a, b) for b in out):
-            a = a.copy()
-        out.append(a)
-    return tuple(out)
 
 
 # ------------------------------------------------------------------------------------------

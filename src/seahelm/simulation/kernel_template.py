@@ -25,8 +25,9 @@ user waits): the components are inlined at numba-IR level (``inline="always"``),
 call site, so the loop has one site that evaluates the outputs and each stage of the step one
 site of the right-hand side; and everything is compiled without numba's reference-counted
 runtime (``_nrt=False``): the per-run vectors are scratch buffers passed in, one set per
-thread, so nothing is allocated and no reference count is touched in the loop; and with every
-array argument marked ``noalias`` (:class:`NoAliasCompiler`). The loop is serial and
+thread, so nothing is allocated and no reference count is touched in the loop. (Marking the
+array arguments ``noalias``, as numba does for a ``prange`` body, made the Nomoto loop 25 %
+slower and the catamaran loop no faster, measured; it is not done.) The loop is serial and
 releases the GIL (``nogil=True``); the engine runs slices of the batch on a pool of threads.
 A ``parallel=True``/``prange`` loop ran at the same speed but compiled 3× slower (numba's
 parfor passes on the inlined loop: 46 s against 14 s for Nomoto-2 + servo + PID with RK4, on
@@ -38,18 +39,6 @@ Status codes: 0 ok, 1 non-finite state, 2 state outside its declared bounds.
 
 import numpy as np
 from numba import njit
-from numba.core.compiler import Compiler
-
-
-class NoAliasCompiler(Compiler):
-    """numba's compiler with every array argument marked ``noalias`` (what numba does for the
-    body of a ``prange`` loop when it finds no aliasing): without it LLVM reloads the parameter
-    records after every store to a buffer; with it the loop runs 15–25 % faster."""
-
-    def define_pipelines(self):  # noqa: D102
-        self.state.flags.noalias = True
-        return super().define_pipelines()
-
 
 # <header>
 from seahelm.actuators.servo import servo_output as _actuator_output
@@ -127,16 +116,25 @@ SCRATCH = ("xv", "xa", "zfull", "cmdi", "cai", "csi", "u", "ya", "ym", "y", "kv"
 def scratch(ncmd, nca, ncs, nd, nr):
     """Fresh per-run buffers, in the order of ``SCRATCH`` (one set per thread).
 
-    Separate arrays, not views of one: the loop is compiled with ``noalias`` arguments, so LLVM
-    keeps the parameter records and buffers in registers across stores to the others.
+    Views of one block, each starting on its own 64-byte cache line and the block padded by a
+    line at both ends: buffers of different threads never share a cache line (tiny arrays
+    allocated one by one do, and the threads' stores then contend for it at every step).
     """
-    e = np.zeros
-    return (e(NX), e(NA), e(NZ), e(ncmd), e(nca), e(ncs), e(NU), e(max(NYA, 1)), e(NYM),
-            e(max(NM, 1)), e((NSTAGES, NX)), e((NSTAGES, NA)), e(NX), e(NA), e(NX), e(NA),
-            e(nd), e(nd), e(nd), e(nr))
+    shapes = [(NX,), (NA,), (NZ,), (ncmd,), (nca,), (ncs,), (NU,), (max(NYA, 1),), (NYM,),
+              (max(NM, 1),), (NSTAGES, NX), (NSTAGES, NA), (NX,), (NA,), (NX,), (NA,), (nd,),
+              (nd,), (nd,), (nr,)]
+    line = 8  # float64 per 64-byte cache line
+    sizes = [-(-int(np.prod(sh)) // line) * line for sh in shapes]
+    block = np.zeros(sum(sizes) + 3 * line)
+    o = line + (-block.ctypes.data // 8) % line  # first line boundary after the padding
+    views = []
+    for sh, n in zip(shapes, sizes):
+        views.append(block[o:o + int(np.prod(sh))].reshape(sh))
+        o += n
+    return tuple(views)
 
 
-@njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False, pipeline_class=NoAliasCompiler)
+@njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False)
 def init_runs(z, cs, cmd, ca, mp, ap, cp, ref,
               xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds,
               refk):  # pragma: no cover - compiled
@@ -166,7 +164,7 @@ def init_runs(z, cs, cmd, ca, mp, ap, cp, ref,
             cs[i, j] = csi[j]
 
 
-@njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False, pipeline_class=NoAliasCompiler)
+@njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False)
 def run_slice(
     i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_every,
     z, cs, cmd, ca, mp, ap, cp, dist, ref, lower, upper,
@@ -178,7 +176,7 @@ def run_slice(
 
     Runs with a non-zero status are skipped; a run that becomes invalid gets status 1 or 2,
     the time and state of the first invalid step, and stops. ``xv`` … ``refk`` are this
-    thread's scratch (:func:`scratch`). No two arguments may share memory (``noalias``).
+    thread's scratch (:func:`scratch`).
     """
     nd = dist.shape[2]
     nr = ref.shape[2]
