@@ -3,7 +3,7 @@
 :func:`seahelm.simulation.engine.compile_closed_loop` writes one module per combination of
 components: this file's text with the ``<header>`` block replaced by imports that bind
 ``model_rhs``, ``model_output``, ``actuator_rhs``, ``actuator_output``, ``controller_init``,
-``controller_step``, the sizes, and the routing functions that the composition
+``controller_step`` (each through :func:`~seahelm.simulation.inlining.inline_always`), the sizes, and the routing functions that the composition
 (:mod:`seahelm.simulation.composition`) derives from the components' signal names; the
 ``<footer>`` block holds the integrator's step, generated from its Butcher tableau by
 :func:`seahelm.simulation.integrators.compiled_advance_source`. Each generated module lives in the kernel
@@ -40,6 +40,8 @@ Status codes: 0 ok, 1 non-finite state, 2 state outside its declared bounds.
 import numpy as np
 from numba import njit
 
+from seahelm.simulation.inlining import inline_always
+
 # <header>
 from seahelm.actuators.servo import servo_output as _actuator_output
 from seahelm.actuators.servo import servo_rhs as _actuator_rhs
@@ -48,12 +50,12 @@ from seahelm.control.pid import pid_heading_step as _controller_step
 from seahelm.vessels.nomoto import nomoto1_output as _model_output
 from seahelm.vessels.nomoto import nomoto1_rhs as _model_rhs
 
-actuator_output = njit(inline="always")(_actuator_output.py_func)
-actuator_rhs = njit(inline="always")(_actuator_rhs.py_func)
-controller_init = njit(inline="always")(_controller_init.py_func)
-controller_step = njit(inline="always")(_controller_step.py_func)
-model_output = njit(inline="always")(_model_output.py_func)
-model_rhs = njit(inline="always")(_model_rhs.py_func)
+actuator_output = inline_always(_actuator_output)
+actuator_rhs = inline_always(_actuator_rhs)
+controller_init = inline_always(_controller_init)
+controller_step = inline_always(_controller_step)
+model_output = inline_always(_model_output)
+model_rhs = inline_always(_model_rhs)
 
 NX = 4
 NA = 1
