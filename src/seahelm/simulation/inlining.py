@@ -34,7 +34,7 @@ def _names(code: types.CodeType) -> set[str]:
     return names
 
 
-def inline_always(func: Dispatcher, _memo: dict[int, Any] | None = None) -> Dispatcher:
+def inline_always(func: Dispatcher) -> Dispatcher:
     """``njit(inline="always")`` of ``func`` and, in its copy, of every numba function it calls.
 
     Parameters
@@ -49,7 +49,10 @@ def inline_always(func: Dispatcher, _memo: dict[int, Any] | None = None) -> Disp
         replaced by their own ``inline_always`` copies. A function that calls itself, directly
         or not, keeps its calls (a recursion cannot be inlined).
     """
-    memo: dict[int, Any] = {} if _memo is None else _memo
+    return _inline(func, {})
+
+
+def _inline(func: Dispatcher, memo: dict[int, Any]) -> Dispatcher:
     key = id(func)
     if key in memo:
         # None marks a function whose copy is being built: a recursion, left as a call
@@ -60,7 +63,7 @@ def inline_always(func: Dispatcher, _memo: dict[int, Any] | None = None) -> Disp
     for name in _names(py.__code__):
         obj = glb.get(name)
         if isinstance(obj, Dispatcher) and obj is not func:
-            glb[name] = inline_always(obj, memo)
+            glb[name] = _inline(obj, memo)
     clone = types.FunctionType(py.__code__, glb, py.__name__, py.__defaults__, py.__closure__)
     clone.__qualname__ = py.__qualname__
     clone.__doc__ = py.__doc__
