@@ -18,6 +18,17 @@ def test_import_is_light():
     assert out.stdout.strip() == ""
 
 
+def test_the_demo_path_imports_no_solver_or_plotting_library():
+    """What `seahelm demo` imports before it simulates (the user waits for it): no
+    scipy.integrate/optimize (0.8 s together; only reference solves and equilibria need them),
+    no matplotlib before plotting."""
+    code = ("import sys; import seahelm.cli.main, seahelm.scenario, seahelm.analysis.maneuvers; "
+            "heavy = [m for m in ('scipy.integrate', 'scipy.optimize', 'matplotlib')"
+            " if m in sys.modules]; print(','.join(heavy))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == ""
+
+
 @pytest.mark.parametrize("name", sorted(seahelm._LAZY))
 def test_lazy_public_api_resolves(name):
     assert getattr(seahelm, name) is not None

@@ -48,7 +48,6 @@ import math
 from typing import Any, NamedTuple
 
 import numpy as np
-from scipy.optimize import brentq, root
 
 from .._validate import as_float_array, check_finite, check_positive, check_range
 from ..errors import ParameterError, SeahelmError
@@ -56,6 +55,8 @@ from ..parameters import Params
 from ..vessels.base import VesselModel
 from ..vessels.mariner import MARINER, MarinerParams
 from ..vessels.mmg import MMG, MMGParams
+
+# scipy.optimize (0.2 s to import) is imported inside the functions that use it
 
 __all__ = [
     "EquilibriumError",
@@ -200,6 +201,8 @@ class _Plant:
     def solve(self, fixed: dict[str, float], unknowns: tuple[str, ...], guess: np.ndarray,
               rps: float | None) -> np.ndarray:
         """u̇ = v̇ = ṙ = 0 for three of (surge, v, r, rudder), the others ``fixed``."""
+        from scipy.optimize import root
+
         scale = {"surge": self.u_ref, "v": self.u_ref, "r": self.u_ref / self.length,
                  "rudder": 1.0}
         acc_scale = np.array([1.0, 1.0, 1.0 / self.length]) * self.u_ref ** 2 / self.length
@@ -282,6 +285,8 @@ def self_propulsion_rps(model_or_params: Any, speed: Any, *, model: VesselModel 
     EquilibriumError
         If no rps in (0, ``max_rps``] gives zero surge force.
     """
+    from scipy.optimize import brentq
+
     plant = _propelled_plant(model_or_params, model)
     speeds = as_float_array("speed", speed, "m/s")
     check_positive("speed", speeds, "m/s")
@@ -391,6 +396,8 @@ def steady_turn(params: Any, rudder: Any, rps: float | None = None, *,
 def _turn(plant: _Plant, trim: np.ndarray, delta: float, n: float | None,
           rudder_step: float) -> tuple[float, float, float]:
     """(surge, v, r) of the steady turn at ``delta`` by continuation (see :func:`steady_turn`)."""
+    from scipy.optimize import brentq
+
     u0, v0, d0 = (float(c) for c in trim)
     if delta == d0:
         return u0, v0, 0.0
@@ -527,6 +534,8 @@ def straight_run_speed(model_or_params: Any, rps: Any, *, model: VesselModel | N
     EquilibriumError
         If no speed in (0, ``max_speed``] balances the surge force.
     """
+    from scipy.optimize import brentq
+
     plant = _propelled_plant(model_or_params, model)
     rates = as_float_array("rps", rps, "1/s")
     check_positive("rps", rates, "1/s")

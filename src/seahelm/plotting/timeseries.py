@@ -45,7 +45,11 @@ def plot_result(ds: Any, *, runs: Any = None, fig: Any = None) -> Any:
     ds = flatten_runs(ds)
     batch_coords = [str(c) for c in ds.coords if c != "run" and ds[c].dims == ("run",)]
     if fig is None:
-        fig = plt.figure(figsize=(11, 7.5), layout="constrained")
+        # fixed margins: constrained layout measured every tick label twice and took half of
+        # the time of `seahelm demo`'s plot (1.0 of 2.1 s)
+        fig = plt.figure(figsize=(11, 7.5))
+        fig.subplots_adjust(left=0.07, right=0.985, bottom=0.07, top=0.9, wspace=0.2,
+                            hspace=0.32)
     axes = fig.subplots(2, 2)
     run_ids = list(ds["run"].values) if runs is None else list(runs)
     run_ids = run_ids[:_MAX_LINES]
