@@ -136,6 +136,21 @@ def scratch(ncmd, nca, ncs, nd, nr):
     return tuple(views)
 
 
+@njit(inline="always", _nrt=False)
+def load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi):  # pragma: no cover - compiled
+    """Copy run ``i``'s states, commands and controller state into the thread's buffers."""
+    for j in range(NX):
+        xv[j] = z[i, j]
+    for j in range(NA):
+        xa[j] = z[i, NX + j]
+    for j in range(cmd.shape[1]):
+        cmdi[j] = cmd[i, j]
+    for j in range(ca.shape[1]):
+        cai[j] = ca[i, j]
+    for j in range(cs.shape[1]):
+        csi[j] = cs[i, j]
+
+
 @njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False)
 def init_runs(z, cs, cmd, ca, mp, ap, cp, ref,
               xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds,
@@ -143,18 +158,9 @@ def init_runs(z, cs, cmd, ca, mp, ap, cp, ref,
     """Call the controller's init at t = 0 for every run (once per simulation)."""
     for i in range(z.shape[0]):
         ir = i if ref.shape[0] > 1 else 0
-        for j in range(NX):
-            xv[j] = z[i, j]
-        for j in range(NA):
-            xa[j] = z[i, NX + j]
+        load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi)
         for j in range(NZ):
             zfull[j] = z[i, j]
-        for j in range(cmd.shape[1]):
-            cmdi[j] = cmd[i, j]
-        for j in range(ca.shape[1]):
-            cai[j] = ca[i, j]
-        for j in range(cs.shape[1]):
-            csi[j] = cs[i, j]
         for j in range(ref.shape[2]):
             refk[j] = ref[ir, 0, j]
         actuator_output(xa, cai, ap[i], ya)
@@ -193,16 +199,7 @@ def run_slice(
     for i in range(i_start, i_stop):
         if status[i] != 0:
             continue
-        for j in range(NX):
-            xv[j] = z[i, j]
-        for j in range(NA):
-            xa[j] = z[i, NX + j]
-        for j in range(ncmd):
-            cmdi[j] = cmd[i, j]
-        for j in range(cai.shape[0]):
-            cai[j] = ca[i, j]
-        for j in range(csi.shape[0]):
-            csi[j] = cs[i, j]
+        load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi)
         mpi = mp[i]
         api = ap[i]
         cpi = cp[i]
