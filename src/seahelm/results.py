@@ -39,6 +39,7 @@ import numpy as np
 from . import __version__
 from .parameters import Params
 from .errors import ParameterError
+from .result_layout import batch_dims, flatten_runs
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
@@ -327,51 +328,6 @@ def _shape_runs(ds: "xr.Dataset", layout: "BatchLayout") -> "xr.Dataset":
     for a in layout.axes:
         coords[a.name] = (a.name, np.asarray(a.values), a.attrs)
     return xr.Dataset(data, coords=coords, attrs=ds.attrs)
-
-
-def batch_dims(ds: "xr.Dataset") -> tuple[str, ...]:
-    """The batch dimensions of a result Dataset (those of its ``status`` variable).
-
-    Parameters
-    ----------
-    ds : xarray.Dataset
-        A Dataset of :meth:`SimResult.to_xarray` or :func:`load_result`.
-
-    Returns
-    -------
-    tuple of str
-        E.g. ``("kp", "kd")``, ``("sample",)`` or ``("run",)``.
-    """
-    if "status" not in ds:
-        raise KeyError("not a seahelm result: no `status` variable")
-    return tuple(str(d) for d in ds["status"].dims)
-
-
-def flatten_runs(ds: "xr.Dataset") -> "xr.Dataset":
-    """The flat run view of a result Dataset: batch dimensions stacked into ``run``.
-
-    Runs are numbered in C order over the batch dimensions (the last varies fastest), as in the
-    arrays of :class:`SimResult`; the batch coordinates become coordinates over ``run`` (no
-    MultiIndex). A Dataset that already has the dims ``(run, time)`` is returned unchanged.
-
-    Parameters
-    ----------
-    ds : xarray.Dataset
-        A Dataset of :meth:`SimResult.to_xarray` or :func:`load_result`.
-
-    Returns
-    -------
-    xarray.Dataset
-        Variables with dims ``(run, time)`` or ``(run,)``.
-    """
-    dims = batch_dims(ds)
-    if dims == ("run",):
-        return ds
-    if "run" in ds.variables:
-        raise ValueError(f"cannot flatten batch dims {dims}: the Dataset already has `run`")
-    flat = ds.stack(run=dims, create_index=False)
-    flat = flat.assign_coords(run=np.arange(flat.sizes["run"]))
-    return flat.transpose("run", ...)
 
 
 def load_result(path: str | os.PathLike[str]) -> "xr.Dataset":

@@ -50,6 +50,7 @@ from numba import njit
 
 from .._validate import as_float_array, check_positive, check_range
 from ..errors import ParameterError
+from ..numerics.periodic import TWO_PI, nodes_on_breaks, period_breaks, period_mean
 from ..parameters import signal_indices
 from ..vessels.cpp_ship import (
     CASE_COEFFICIENTS,
@@ -89,8 +90,6 @@ __all__ = [
     "cpp_averaging_study",
 ]
 
-TWO_PI = 2.0 * math.pi
-
 MaximiserVariant = Literal["clipped", "printed"]
 Assignment = Literal["correct", "printed"]
 FlatVariant = Literal["hull", "printed"]
@@ -105,74 +104,6 @@ def _check_choice(name: str, value: str, valid: Sequence[str]) -> None:
         raise ParameterError(
             f"`{name}` must be one of {', '.join(map(repr, valid))}, got {value!r}"
         )
-
-
-# ---------------------------------------------------------------------------------------
-# quadrature
-# ---------------------------------------------------------------------------------------
-def _gl(n: int) -> tuple[np.ndarray, np.ndarray]:
-    x, w = np.polynomial.legendre.leggauss(int(n))
-    return x, w
-
-
-def _nodes_on_breaks(breaks: np.ndarray, nodes: int) -> tuple[np.ndarray, np.ndarray]:
-    """Gauss–Legendre nodes and period-mean weights on pieces between sorted ``breaks``.
-
-    ``breaks`` (..., K) must start at 0 and end at 2π. Returns ``t``, ``w`` of shape
-    (..., (K-1) * nodes); ``w`` sums to 1 (the 1/(2π) of the mean is included).
-    """
-    x, w = _gl(nodes)
-    a = breaks[..., :-1, None]
-    b = breaks[..., 1:, None]
-    half = 0.5 * (b - a)
-    t = 0.5 * (a + b) + half * x
-    ww = half * w / TWO_PI
-    shape = breaks.shape[:-1] + (-1,)
-    return t.reshape(shape), ww.reshape(shape)
-
-
-def _shared_breaks(kinks: Any, pieces: int) -> np.ndarray:
-    k = np.asarray(kinks, dtype=float).ravel()
-    if k.size and (np.any(~np.isfinite(k))):
-        raise ParameterError(f"`kinks` must be finite [rad], got {k}")
-    k = np.mod(k, TWO_PI)
-    pts = np.unique(np.concatenate([[0.0, TWO_PI], k]))
-    fine = [np.linspace(a, b, pieces + 1)[:-1] for a, b in zip(pts[:-1], pts[1:])]
-    return np.concatenate(fine + [[TWO_PI]])
-
-
-def period_mean(
-    func: Callable[[np.ndarray], Any],
-    *,
-    kinks: Any = (),
-    nodes: int = 32,
-    pieces: int = 1,
-) -> np.ndarray:
-    """Mean over one period, ⟨g⟩ = (1/2π) ∫₀^{2π} g(t) dt, by piecewise Gauss–Legendre.
-
-    Parameters
-    ----------
-    func : callable
-        ``func(t)`` with ``t`` a 1-D array of times [rad]; returns an array whose **last**
-        axis runs over ``t``.
-    kinks : sequence of float
-        Known points in [0, 2π) [rad] where ``func`` is not smooth; the period is split there so
-        each piece is smooth and the quadrature converges fast (exponentially for analytic
-        pieces, e.g. the emergence factors c1, c2 of Platonov & Platonova, eq. (11)).
-    nodes : int
-        Gauss–Legendre nodes per piece.
-    pieces : int
-        Equal subdivisions of every piece between kinks.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``func``'s output with the last axis averaged out.
-    """
-    if int(nodes) < 1 or int(pieces) < 1:
-        raise ParameterError(f"`nodes` and `pieces` must be >= 1, got {nodes!r}, {pieces!r}")
-    t, w = _nodes_on_breaks(_shared_breaks(kinks, int(pieces)), int(nodes))
-    return np.asarray(func(t)) @ w
 
 
 def averaged_drift(
@@ -202,7 +133,7 @@ def averaged_drift(
         f̄(x).
     """
     x = as_float_array("x", x)
-    t, w = _nodes_on_breaks(_shared_breaks(kinks, int(pieces)), int(nodes))
+    t, w = nodes_on_breaks(period_breaks(kinks, int(pieces)), int(nodes))
     acc = None
     for tj, wj in zip(t, w):
         val = wj * np.asarray(f(float(tj), x), dtype=float)
@@ -338,7 +269,7 @@ def _generic_eval(
     cs: PolynomialControlSet, z: Any, nodes: int, pieces: int
 ) -> tuple[np.ndarray, np.ndarray]:
     z = as_float_array("z", z)
-    t, w = _nodes_on_breaks(_shared_breaks(cs.kinks, int(pieces)), int(nodes))
+    t, w = nodes_on_breaks(period_breaks(cs.kinks, int(pieces)), int(nodes))
     phi = np.asarray(cs.coefficients(t), dtype=float)  # (m, K+1, nt)
     m = phi.shape[0]
     if z.shape[-1:] != (m,):
@@ -550,7 +481,7 @@ def cpp_boundary_map(
     out = np.empty_like(zf)
     for sl in _chunks(zf.shape[0], int(chunk)):
         zc = zf[sl]
-        t, w = _nodes_on_breaks(_cpp_breaks(zc, immersion, amplitude), int(nodes))
+        t, w = nodes_on_breaks(_cpp_breaks(zc, immersion, amplitude), int(nodes))
         c1, c2 = emergence_factors(t, immersion, amplitude)
         p = cpp_maximiser(c1, c2, zc[:, None, :], variant)
         out[sl, 0] = np.sum(w * p * c1, axis=-1)

@@ -3,7 +3,7 @@
 Works on the :class:`xarray.Dataset` of :meth:`seahelm.results.SimResult.to_xarray` (or a
 result file read back), so ``seahelm plot RESULT.nc`` draws the same figure. A batch with its
 own dimensions (a grid ``kp × kd``, Monte-Carlo ``sample``) is drawn run by run in its flat
-view (:func:`seahelm.results.flatten_runs`).
+view (:func:`seahelm.result_layout.flatten_runs`).
 """
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ def plot_result(ds: Any, *, runs: Any = None, fig: Any = None) -> Any:
     """
     import matplotlib.pyplot as plt
 
-    from ..results import flatten_runs
+    from ..result_layout import flatten_runs
 
     ds = flatten_runs(ds)
     batch_coords = [str(c) for c in ds.coords if c != "run" and ds[c].dims == ("run",)]

@@ -48,6 +48,7 @@ from numba import njit
 
 from .._validate import as_float_array, check_range
 from ..errors import ParameterError, warn_validity
+from ..numerics.periodic import period_mean
 from ..parameters import Params, as_records, param, signal_indices
 from .base import NAV_OUTPUTS, VesselModel
 
@@ -229,8 +230,6 @@ class CPPShipParams(Params):
         """
         base = cls(**{k: v for k, v in kwargs.items()
                       if k not in ("thrust_emergence_initial", "torque_emergence_initial")})
-        from ..analysis.averaging import period_mean  # local: analysis depends on vessels
-
         kinks = emergence_kinks(base.immersion, base.amplitude)
         c = period_mean(lambda t: emergence_factors(t, base.immersion, base.amplitude),
                         kinks=kinks)
