@@ -108,7 +108,16 @@ def test_plot_command(tmp_path):
     res = runner.invoke(app, ["plot", str(tmp_path / "result.nc"), "--out",
                               str(tmp_path / "p.png")])
     assert res.exit_code == 0, res.output
-    assert (tmp_path / "p.png").is_file()
+    assert (tmp_path / "p.png").read_bytes().startswith(b"\x89PNG")
+    # the format follows --out's suffix (it wrote PNG bytes under any name before)
+    res = runner.invoke(app, ["plot", str(tmp_path / "result.nc"), "--out",
+                              str(tmp_path / "p.pdf")])
+    assert res.exit_code == 0, res.output
+    assert (tmp_path / "p.pdf").read_bytes().startswith(b"%PDF")
+    res = runner.invoke(app, ["plot", str(tmp_path / "result.nc"), "--out",
+                              str(tmp_path / "p.docx")])
+    assert res.exit_code == 2 and "supported:" in res.stderr
+    assert not (tmp_path / "p.docx").exists()
     res = runner.invoke(app, ["plot", str(tmp_path / "result.nc"), "--run", "7"])
     assert res.exit_code == 2 and "--run [7] not in the file" in res.stderr
     res = runner.invoke(app, ["plot", str(tmp_path / "nothing.nc")])

@@ -57,16 +57,12 @@ def cpp(
     result = cpp_admissible_set(immersion, amplitude, n_azimuth=grid, n_elevation=grid // 2)
     summary = result.summary()
     if plot is not None:
-        import matplotlib.pyplot as plt
-
         from ..plotting.averaging import plot_control_sets
-        from ..results import atomic_write
+        from ..plotting.save import save_figure
 
-        fig = plot_control_sets(result)
-        atomic_write(plot, lambda tmp: fig.savefig(tmp, dpi=120, format="png"))
-        plt.close(fig)
-        summary["plot"] = str(plot)
-        (err_console if json_out else console).print(f"wrote {plot}", highlight=False)
+        written = save_figure(plot_control_sets(result), plot, dpi=120)
+        summary["plot"] = str(written)
+        (err_console if json_out else console).print(f"wrote {written}", highlight=False)
     if json_out:
         print_json(summary)
         return

@@ -166,15 +166,9 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
             import matplotlib
 
             matplotlib.use("Agg")
-            import matplotlib.pyplot as plt
+            from ..plotting.save import save_figure
 
-            fig = result.plot()
-            path = out / "overview.png"
-            from ..results import atomic_write
-
-            atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=110, format="png"))
-            plt.close(fig)
-            files["plot"] = str(path)
+            files["plot"] = str(save_figure(result.plot(), out / "overview.png"))
     payload: dict[str, Any] = {
         "scenario": batch.metadata.get("title") or batch.metadata.get("scenario_source", ""),
         "n_runs": result.n_runs,
@@ -306,20 +300,16 @@ def plot(
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    from ..plotting.save import save_figure
     from ..plotting.timeseries import plot_result
-    from ..results import atomic_write, flatten_runs, load_result
+    from ..results import flatten_runs, load_result
 
     ds = flatten_runs(load_result(result))
     if runs:
         bad = [r for r in runs if r not in set(np.asarray(ds["run"].values).tolist())]
         if bad:
             raise ValueError(f"--run {bad} not in the file (runs 0..{ds.sizes['run'] - 1})")
-    fig = plot_result(ds, runs=runs)
-    path = out or result.with_suffix(".png")
-    atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=110, format="png"))
-    plt.close(fig)
+    path = save_figure(plot_result(ds, runs=runs), out or result.with_suffix(".png"))
     console.print(f"wrote {path}")
 
 

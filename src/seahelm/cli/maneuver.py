@@ -222,21 +222,13 @@ def write_outputs(out: Path, results: Sequence[Any], plot: Callable[[], Any],
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from ..results import atomic_write
+    from ..plotting.save import save_figure
 
     files: dict[str, str] = {}
     for result in results:
         for kind, path in result.to_netcdf(out).items():
             files[f"{result.maneuver}-{kind}"] = str(path)
-    drawn = plot()
-    fig = drawn if hasattr(drawn, "savefig") else drawn.figure
-    try:
-        path = atomic_write(out / png, lambda tmp: fig.savefig(tmp, dpi=110, format="png"))
-    finally:
-        plt.close(fig)
-    files["plot"] = str(path)
+    files["plot"] = str(save_figure(plot(), out / png))
     return files
 
 

@@ -122,15 +122,17 @@ def _save_spectrum_plot(spec: Any, path: Path, h3: float) -> None:
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
+    from ..plotting.save import save_figure
     from ..plotting.waves import plot_spectrum
 
     fig = plt.figure()
     try:
         ax = plot_spectrum(spec, ax=fig.add_subplot())
         ax.set_title(f"{spec.name}, h3% = {h3:g} m")
-        atomic_write(path, lambda tmp: fig.savefig(tmp, format="png"))
-    finally:
+    except BaseException:
         plt.close(fig)
+        raise
+    save_figure(fig, path, dpi=100)
 
 
 @app.command("sample")
@@ -208,15 +210,10 @@ def figure_cmd(
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    from ..plotting.save import save_figure
     from ..plotting.waves import plot_paper_figure
 
     if not duration > 0:
         raise ParameterError(f"`--duration` must be > 0 [s], got {duration}")
-    fig = plot_paper_figure(seed=seed, duration=duration)
-    try:
-        atomic_write(out, lambda tmp: fig.savefig(tmp, dpi=100, format="png"))
-    finally:
-        plt.close(fig)
+    save_figure(plot_paper_figure(seed=seed, duration=duration), out, dpi=100)
     console.print(f"wrote {escape(str(out))}")

@@ -1,0 +1,64 @@
+"""Saving a figure: atomically, in the format its file name asks for, and closed after.
+
+The one figure-saving path of the package (the CLI's commands all write through it). The
+format comes from the suffix (``.png``, ``.pdf``, ``.svg``, … whatever the canvas supports), so
+``--out figure.pdf`` writes a PDF, not PNG bytes under a PDF name; an unsupported suffix is an
+error naming the supported ones, raised before anything is drawn or written. The file appears
+only complete (:func:`seahelm.results.atomic_write`).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any
+
+from ..errors import ParameterError
+
+__all__ = ["save_figure"]
+
+
+def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float = 110.0,
+                close: bool = True) -> Path:
+    """Write ``fig`` to ``path`` atomically in the format of the path's suffix.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure (an ``Axes`` is accepted too: its figure is saved).
+    path : str or os.PathLike
+        Destination; its suffix chooses the format (no suffix: PNG, and ``.png`` is appended).
+    dpi : float, optional
+        Resolution of raster formats [dots per inch] (default 110).
+    close : bool, optional
+        Close the figure afterwards, also when writing fails (default True).
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+
+    Raises
+    ------
+    ParameterError
+        If the suffix names a format the figure's canvas cannot write.
+    """
+    import matplotlib.pyplot as plt
+
+    from ..results import atomic_write
+
+    fig = getattr(fig, "figure", fig)
+    path = Path(path)
+    if not path.suffix:
+        path = path.with_suffix(".png")
+    fmt = path.suffix[1:].lower()
+    try:
+        supported = fig.canvas.get_supported_filetypes()
+        if fmt not in supported:
+            raise ParameterError(
+                f"cannot write a figure as '{path.suffix}' ({path}); supported: "
+                + ", ".join(f".{k}" for k in sorted(supported)))
+        return atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=dpi, format=fmt))
+    finally:
+        if close:
+            plt.close(fig)
