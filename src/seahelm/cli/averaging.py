@@ -7,11 +7,11 @@ typer app :data:`app`.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
+from typing import Annotated, Optional
 
 import typer
 
-from ._common import console, err_console, handle_errors, print_json
+from ._common import JsonFlag, console, err_console, handle_errors, print_json
 
 app = typer.Typer(
     help="Full averaging of a controllable-pitch-propeller ship in waves and its admissible "
@@ -28,22 +28,18 @@ def _main() -> None:
 @app.command("cpp")
 @handle_errors
 def cpp(
-    immersion: float = typer.Option(
-        1.2, "--immersion", metavar="H0_OVER_R",
-        help="Propeller immersion h0/R at zero pitch angle, in propeller radii.",
-    ),
-    amplitude: float = typer.Option(
-        0.96, "--amplitude", metavar="EPSI0_OVER_R",
-        help="Vertical oscillation amplitude eψ0/R of the propeller, in propeller radii.",
-    ),
-    grid: int = typer.Option(
-        200, "--grid", metavar="N",
-        help="Directions: N azimuths × N/2 elevations on the unit sphere (eq. (17)).",
-    ),
-    plot: Optional[Path] = typer.Option(
-        None, "--plot", metavar="FILE.png", help="Draw V and Y (Figs. 1 and 2) to this file."
-    ),
-    json_out: bool = typer.Option(False, "--json", help="Print one JSON object on stdout."),
+    immersion: Annotated[float, typer.Option(
+        "--immersion", metavar="H0_OVER_R",
+        help="Propeller immersion h0/R at zero pitch angle, in propeller radii.")] = 1.2,
+    amplitude: Annotated[float, typer.Option(
+        "--amplitude", metavar="EPSI0_OVER_R",
+        help="Vertical oscillation amplitude eψ0/R of the propeller, in propeller radii.")] = 0.96,
+    grid: Annotated[int, typer.Option(
+        "--grid", metavar="N",
+        help="Directions: N azimuths × N/2 elevations on the unit sphere (eq. (17)).")] = 200,
+    plot: Annotated[Optional[Path], typer.Option(
+        "--plot", metavar="FILE.png", help="Draw V and Y (Figs. 1 and 2) to this file.")] = None,
+    json_out: JsonFlag = False,
 ) -> None:
     """β1, β2, β3, the boundary of V and the Hausdorff distances of the flat sets Y to V.
 

@@ -12,11 +12,11 @@ from __future__ import annotations
 
 import math
 import warnings
-from typing import Optional
+from typing import Annotated, Optional
 
 import typer
 
-from ._common import console, err_console, handle_errors, print_json
+from ._common import JsonFlag, console, err_console, handle_errors, print_json
 
 app = typer.Typer(
     help="Wave and wind loads on the hull and the compensating rudder angle δ_k "
@@ -28,45 +28,48 @@ app = typer.Typer(
 @app.callback(invoke_without_command=True)
 @handle_errors
 def compensate(
-    length: float = typer.Option(..., "--length", metavar="L", help="Waterline length L \\[m]."),
-    beam: float = typer.Option(..., "--beam", metavar="B", help="Beam B \\[m]."),
-    draft: float = typer.Option(..., "--draft", metavar="T", help="Mean draft T \\[m]."),
-    draft_fore: Optional[float] = typer.Option(
-        None, "--draft-fore", metavar="TF", help="Draft forward \\[m] (eq. (13); default T)."),
-    draft_aft: Optional[float] = typer.Option(
-        None, "--draft-aft", metavar="TA", help="Draft aft \\[m] (eq. (13); default T)."),
-    block_coefficient: float = typer.Option(
-        ..., "--block-coefficient", metavar="CB", help="Block coefficient δ \\[-]."),
-    speed: float = typer.Option(
-        ..., "--speed", metavar="V", help="Ship speed through the water \\[m/s]."),
-    wind_speed: float = typer.Option(
-        ..., "--wind-speed", metavar="W", help="True wind speed \\[m/s] (also sets λ by eq. (2))."),
-    wind_angle: float = typer.Option(
-        ..., "--wind-angle", metavar="DEG",
-        help="Bearing the true wind comes from, relative to the bow \\[deg]."),
-    wave_height: float = typer.Option(
-        ..., "--wave-height", metavar="H", help="Wave height h3% \\[m]."),
-    wave_angle: float = typer.Option(
-        ..., "--wave-angle", metavar="DEG",
-        help="Bearing the waves come from, relative to the bow, q_w \\[deg]."),
-    wave_length: Optional[float] = typer.Option(
-        None, "--wave-length", metavar="LAMBDA",
-        help="Wave length λ \\[m] (default 1.55 τ², τ = 0.65·0.8·W, eq. (2))."),
-    rudder_area: Optional[float] = typer.Option(
-        None, "--rudder-area", metavar="SP", help="Rudder area S_p \\[m²] (default 1.7 % of L·T)."),
-    rudder_aspect_ratio: float = typer.Option(
-        1.6, "--rudder-aspect-ratio", metavar="LP", help="Rudder aspect ratio λ_p \\[-]."),
-    windage_area: Optional[float] = typer.Option(
-        None, "--windage-area", metavar="SA",
-        help="Lateral windage area \\[m²] (default 0.8·L·T)."),
-    sail_centre: float = typer.Option(
-        0.0, "--sail-centre", metavar="M", help="Centre of windage forward of midships \\[m]."),
-    a1: float = typer.Option(
-        1.0, "--a1", metavar="A1", help="Speed coefficient A1 ∈ \\[1, 8.5] of eq. (8)-(10)."),
-    strict: bool = typer.Option(
-        False, "--strict",
-        help="Outside the published validity ranges: fail (exit 2) instead of warning."),
-    json_out: bool = typer.Option(False, "--json", help="Print one JSON object on stdout."),
+    *,
+    length: Annotated[float, typer.Option(
+        "--length", metavar="L", help="Waterline length L \\[m].")],
+    beam: Annotated[float, typer.Option("--beam", metavar="B", help="Beam B \\[m].")],
+    draft: Annotated[float, typer.Option("--draft", metavar="T", help="Mean draft T \\[m].")],
+    draft_fore: Annotated[Optional[float], typer.Option(
+        "--draft-fore", metavar="TF", help="Draft forward \\[m] (eq. (13); default T).")] = None,
+    draft_aft: Annotated[Optional[float], typer.Option(
+        "--draft-aft", metavar="TA", help="Draft aft \\[m] (eq. (13); default T).")] = None,
+    block_coefficient: Annotated[float, typer.Option(
+        "--block-coefficient", metavar="CB", help="Block coefficient δ \\[-].")],
+    speed: Annotated[float, typer.Option(
+        "--speed", metavar="V", help="Ship speed through the water \\[m/s].")],
+    wind_speed: Annotated[float, typer.Option(
+        "--wind-speed", metavar="W", help="True wind speed \\[m/s] (also sets λ by eq. (2)).")],
+    wind_angle: Annotated[float, typer.Option(
+        "--wind-angle", metavar="DEG",
+        help="Bearing the true wind comes from, relative to the bow \\[deg].")],
+    wave_height: Annotated[float, typer.Option(
+        "--wave-height", metavar="H", help="Wave height h3% \\[m].")],
+    wave_angle: Annotated[float, typer.Option(
+        "--wave-angle", metavar="DEG",
+        help="Bearing the waves come from, relative to the bow, q_w \\[deg].")],
+    wave_length: Annotated[Optional[float], typer.Option(
+        "--wave-length", metavar="LAMBDA",
+        help="Wave length λ \\[m] (default 1.55 τ², τ = 0.65·0.8·W, eq. (2)).")] = None,
+    rudder_area: Annotated[Optional[float], typer.Option(
+        "--rudder-area", metavar="SP",
+        help="Rudder area S_p \\[m²] (default 1.7 % of L·T).")] = None,
+    rudder_aspect_ratio: Annotated[float, typer.Option(
+        "--rudder-aspect-ratio", metavar="LP", help="Rudder aspect ratio λ_p \\[-].")] = 1.6,
+    windage_area: Annotated[Optional[float], typer.Option(
+        "--windage-area", metavar="SA",
+        help="Lateral windage area \\[m²] (default 0.8·L·T).")] = None,
+    sail_centre: Annotated[float, typer.Option(
+        "--sail-centre", metavar="M", help="Centre of windage forward of midships \\[m].")] = 0.0,
+    a1: Annotated[float, typer.Option(
+        "--a1", metavar="A1", help="Speed coefficient A1 ∈ \\[1, 8.5] of eq. (8)-(10).")] = 1.0,
+    strict: Annotated[bool, typer.Option(
+        "--strict",
+        help="Outside the published validity ranges: fail (exit 2) instead of warning.")] = False,
+    json_out: JsonFlag = False,
 ) -> None:
     """C_x^w, C_y^w, C_m^w, X_w, Y_w, M_w, the arm ℓ_w and δ_k (Lvov 2014).
 

@@ -12,12 +12,12 @@ from __future__ import annotations
 import csv
 import math
 from pathlib import Path
-from typing import Any, Optional
+from typing import Annotated, Any, Optional
 
 import numpy as np
 import typer
 
-from ._common import console, handle_errors, print_json
+from ._common import JsonFlag, console, handle_errors, print_json
 
 app = typer.Typer(
     help="Identify steering-model coefficients from recorded turns (Romanov & Chirkova: "
@@ -65,28 +65,32 @@ def read_turn_csv(path: Path) -> dict[str, np.ndarray]:
 @app.command("steady-turn")
 @handle_errors
 def steady_turn(
-    file: Path = typer.Argument(..., metavar="FILE.csv",
-                                help="Time series (time, rudder_angle, yaw_rate) or steady "
-                                "points (rudder_angle, yaw_rate)."),
-    angles: str = typer.Option("deg", "--angles", metavar="deg|rad",
-                               help="Units of rudder_angle [deg|rad] and yaw_rate [deg/s|rad/s]."),
-    method: str = typer.Option("lsq", "--method", metavar="lsq|robust|brute",
-                               help="Linear least squares, robust soft-L1, or the paper's "
-                               "brute-force search (eq. (5))."),
-    form: str = typer.Option("paper", "--form", metavar="paper|exact|paper-odd|exact-odd",
-                             help="Equation form: eq. (4), with the α² term of the exact "
-                             "elimination, or made odd for turns to both sides."),
-    rudder_tolerance: float = typer.Option(
-        0.2, "--rudder-tolerance", help="Constant rudder: deviation allowed, in --angles units."),
-    yaw_rate_tolerance: Optional[float] = typer.Option(
-        None, "--yaw-rate-tolerance",
+    file: Annotated[Path, typer.Argument(
+        metavar="FILE.csv", help="Time series (time, rudder_angle, yaw_rate) or steady "
+        "points (rudder_angle, yaw_rate).")],
+    angles: Annotated[str, typer.Option(
+        "--angles", metavar="deg|rad",
+        help="Units of rudder_angle [deg|rad] and yaw_rate [deg/s|rad/s].")] = "deg",
+    method: Annotated[str, typer.Option(
+        "--method", metavar="lsq|robust|brute",
+        help="Linear least squares, robust soft-L1, or the paper's "
+             "brute-force search (eq. (5)).")] = "lsq",
+    form: Annotated[str, typer.Option(
+        "--form", metavar="paper|exact|paper-odd|exact-odd",
+        help="Equation form: eq. (4), with the α² term of the exact "
+             "elimination, or made odd for turns to both sides.")] = "paper",
+    rudder_tolerance: Annotated[float, typer.Option(
+        "--rudder-tolerance",
+        help="Constant rudder: deviation allowed, in --angles units.")] = 0.2,
+    yaw_rate_tolerance: Annotated[Optional[float], typer.Option(
+        "--yaw-rate-tolerance",
         help="Settled yaw rate: band half-width, in --angles units per second "
-        "(default 3e-5 rad/s)."),
-    min_duration: float = typer.Option(60.0, "--min-duration",
-                                       help="Minimum settled duration [s]."),
-    smoothing: float = typer.Option(20.0, "--smoothing",
-                                    help="Moving average [s] for the settling test."),
-    json_out: bool = typer.Option(False, "--json", help="Print one JSON object on stdout."),
+             "(default 3e-5 rad/s).")] = None,
+    min_duration: Annotated[float, typer.Option(
+        "--min-duration", help="Minimum settled duration [s].")] = 60.0,
+    smoothing: Annotated[float, typer.Option(
+        "--smoothing", help="Moving average [s] for the settling test.")] = 20.0,
+    json_out: JsonFlag = False,
 ) -> None:
     """Fit a, b, c of the reduced steady-turn model to turns recorded in a CSV file.
 

@@ -20,8 +20,8 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ._common import _jsonable, console, handle_errors, print_json
-from .maneuver import Dt, Json, Out, Rps, Speed, check_positive_opt, check_speed_rps, ship_of
+from ._common import JsonFlag, _jsonable, console, handle_errors, print_json
+from .maneuver import Dt, Out, Rps, Speed, check_positive_opt, check_speed_rps, ship_of
 
 __all__ = ["imo"]
 
@@ -43,7 +43,7 @@ def imo(
     speed: Speed = None,
     rps: Rps = None,
     dt: Dt = None,
-    json_out: Json = False,
+    json_out: JsonFlag = False,
     out: Out = None,
 ) -> None:
     """Check a ship against IMO MSC.137(76): turning, initial turning, zig-zags, stopping."""

@@ -14,7 +14,7 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
 from .. import __version__
-from ._common import console, err_console, handle_errors, print_json
+from ._common import JsonFlag, console, err_console, handle_errors, print_json
 
 app = typer.Typer(
     name="seahelm",
@@ -198,13 +198,13 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
 @handle_errors
 def demo(
     out: Annotated[Path, typer.Option(help="Output directory.")] = Path("seahelm-out"),
-    json_: Annotated[bool, typer.Option("--json", help="Print a JSON summary only.")] = False,
+    json_out: JsonFlag = False,
 ) -> None:
     """Run the embedded default scenario (Mariner, 20° course change, PID) and plot it."""
     from ..scenario import default_scenario_text, parse_scenario
 
     batch = parse_scenario(default_scenario_text(), source="<embedded default scenario>")
-    _execute(batch, out, as_json=json_, plot=True, csv=False, label=batch.metadata["title"])
+    _execute(batch, out, as_json=json_out, plot=True, csv=False, label=batch.metadata["title"])
 
 
 @app.command()
@@ -212,7 +212,7 @@ def demo(
 def run(
     scenario: Annotated[Path, typer.Argument(help="Scenario TOML file.")],
     out: Annotated[Path | None, typer.Option(help="Write result.nc (and overview.png) here.")] = None,
-    json_: Annotated[bool, typer.Option("--json", help="Print a JSON summary only.")] = False,
+    json_out: JsonFlag = False,
     csv: Annotated[bool, typer.Option(help="Also write result.csv.")] = False,
     plot: Annotated[bool, typer.Option(help="Write overview.png with --out.")] = True,
 ) -> None:
@@ -220,14 +220,14 @@ def run(
     from ..scenario import load_scenario
 
     batch = load_scenario(scenario)
-    _execute(batch, out, as_json=json_, plot=plot, csv=csv,
+    _execute(batch, out, as_json=json_out, plot=plot, csv=csv,
              label=batch.metadata["title"] or str(scenario))
 
 
 @app.command()
 @handle_errors
 def models(
-    json_: Annotated[bool, typer.Option("--json", help="Print JSON.")] = False,
+    json_out: JsonFlag = False,
 ) -> None:
     """List the registered vessel models, actuators and controllers with their parameters."""
     from ..registry import ACTUATORS, CONTROLLERS, VESSEL_MODELS, get_actuator, get_controller, get_model
@@ -254,7 +254,7 @@ def models(
                 payload[kind][name]["passthrough"] = True
     payload["catalog"] = {n: {"model": e.model, "provenance": e.provenance}
                           for n, e in sorted(CATALOG.items())}
-    if json_:
+    if json_out:
         print_json(payload)
         return
     for kind, entries in payload.items():
@@ -317,7 +317,7 @@ def plot(
 @handle_errors
 def cache(
     clear: Annotated[bool, typer.Option("--clear", help="Delete the compiled kernels.")] = False,
-    json_: Annotated[bool, typer.Option("--json", help="Print JSON.")] = False,
+    json_out: JsonFlag = False,
 ) -> None:
     """Show (or clear) the on-disk cache of compiled closed-loop kernels."""
     import shutil
@@ -336,7 +336,7 @@ def cache(
                 child.unlink()
     payload = {"path": str(where), "kernels": kernels, "files": len(files), "bytes": size,
                "cleared": clear}
-    if json_:
+    if json_out:
         print_json(payload)
     else:
         verb = "cleared" if clear else "holds"

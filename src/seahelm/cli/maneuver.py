@@ -22,7 +22,7 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..errors import ParameterError
-from ._common import console, handle_errors, print_json
+from ._common import JsonFlag, console, handle_errors, print_json
 
 app = typer.Typer(
     help="Standard manoeuvres: turning circle, zig-zag, spiral, pull-out (both sides).",
@@ -45,7 +45,6 @@ TFinal = Annotated[float | None, typer.Option(
 Dt = Annotated[float | None, typer.Option(
     "--dt", help=escape("Integration step [s] (default: min(L/(100 U0), servo lag), "
                         "rounded down to 1-2-5)."))]
-Json = Annotated[bool, typer.Option("--json", help="Print one JSON object on stdout.")]
 Out = Annotated[Path | None, typer.Option(
     "--out", help="Write NetCDF (runs, metrics) and a PNG here.")]
 
@@ -289,7 +288,7 @@ def turning_cmd(
     rps: Rps = None,
     t_final: TFinal = None,
     dt: Dt = None,
-    json_out: Json = False,
+    json_out: JsonFlag = False,
     out: Out = None,
 ) -> None:
     """Turning circle: advance, transfer, tactical diameter, times, steady turn."""
@@ -332,7 +331,7 @@ def zigzag_cmd(
     rps: Rps = None,
     t_final: TFinal = None,
     dt: Dt = None,
-    json_out: Json = False,
+    json_out: JsonFlag = False,
     out: Out = None,
 ) -> None:
     """Zig-zag δ/ψ: overshoots, initial turning time, time to check yaw, period."""
@@ -370,7 +369,7 @@ def pullout_cmd(
     rps: Rps = None,
     t_final: TFinal = None,
     dt: Dt = None,
-    json_out: Json = False,
+    json_out: JsonFlag = False,
     out: Out = None,
 ) -> None:
     """Pull-out: rudder to zero after a steady turn; residual yaw rates to both sides."""
@@ -399,7 +398,7 @@ def spiral_cmd(
     speed: Speed = None,
     rps: Rps = None,
     dt: Dt = None,
-    json_out: Json = False,
+    json_out: JsonFlag = False,
     out: Out = None,
 ) -> None:
     """Direct (simulated) and reverse (equilibria) spiral: r–δ curve and loop width."""

@@ -17,7 +17,7 @@ from rich.markup import escape
 
 from ..errors import ParameterError
 from ..results import atomic_write
-from ._common import console, handle_errors, print_json
+from ._common import JsonFlag, console, handle_errors, print_json
 
 app = typer.Typer(
     help="Sea-wave disturbances (Sushchenko & Lutsko 2010): tables, spectra, samples.",
@@ -27,7 +27,6 @@ app = typer.Typer(
 #: Largest runs × steps the CLI will generate in memory.
 MAX_SAMPLES = 200_000_000
 
-_Json = Annotated[bool, typer.Option("--json", help="Print one JSON object on stdout.")]
 _H3 = Annotated[float, typer.Option("--h3", help=escape("Height of 3 % exceedance waves h3% [m]."))]
 _Table = Annotated[
     str, typer.Option("--table", help="Table 2 version: 'corrected' (default) or 'printed'.")
@@ -36,7 +35,7 @@ _Table = Annotated[
 
 @app.command("table")
 @handle_errors
-def table_cmd(json_out: _Json = False, table: _Table = "corrected") -> None:
+def table_cmd(json_out: JsonFlag = False, table: _Table = "corrected") -> None:
     """Table 1 (grade → h3%) and Table 2 (μ, λ versus h3%)."""
     from ..environment.sea_state import TABLE1, TABLE2_COLUMNS, table2
 
@@ -83,7 +82,7 @@ def spectrum_cmd(
         str, typer.Option("--model", help="Spectrum name (see seahelm.environment.spectra.SPECTRA).")
     ] = "rakhmanin-firsov-2",
     plot: Annotated[Path | None, typer.Option("--plot", help="Write a PNG of the spectrum.")] = None,
-    json_out: _Json = False,
+    json_out: JsonFlag = False,
     table: _Table = "corrected",
 ) -> None:
     """Spectrum for a wave height: D_r, μ, λ, m0 (numerical), peak frequency."""
@@ -144,7 +143,7 @@ def sample_cmd(
     seed: Annotated[int, typer.Option("--seed", help=escape("Seed; run i uses SeedSequence(seed).spawn(runs)[i]."))],
     runs: Annotated[int, typer.Option("--runs", help="Number of realisations.")] = 1,
     out: Annotated[Path | None, typer.Option("--out", help="Write a NetCDF file (h5netcdf).")] = None,
-    json_out: _Json = False,
+    json_out: JsonFlag = False,
     model: Annotated[
         str, typer.Option("--model", help="Rakhmanin–Firsov variant with a finite-variance slope.")
     ] = "rakhmanin-firsov-2",
