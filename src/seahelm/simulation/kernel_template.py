@@ -3,7 +3,8 @@
 :func:`seahelm.simulation.engine.compile_closed_loop` writes one module per combination of
 components: this file's text with the ``<header>`` block replaced by imports that bind
 ``model_rhs``, ``model_output``, ``actuator_rhs``, ``actuator_output``, ``controller_init``,
-``controller_step`` (each through :func:`~seahelm.simulation.inlining.inline_always`), the sizes, and the routing functions that the composition
+``controller_step`` (each through :func:`~seahelm.simulation.inlining.inline_always`), the
+sizes, and the routing functions that the composition
 (:mod:`seahelm.simulation.composition`) derives from the components' signal names; the
 ``<footer>`` block holds the integrator's step, generated from its Butcher tableau by
 :func:`seahelm.simulation.integrators.compiled_advance_source`. Each generated module lives in the kernel
@@ -25,7 +26,7 @@ user waits): the components are inlined at numba-IR level (``inline="always"``),
 call site, so the loop has one site that evaluates the outputs and each stage of the step one
 site of the right-hand side; and everything is compiled without numba's reference-counted
 runtime (``_nrt=False``): the per-run vectors are scratch buffers passed in, one set per
-thread, so nothing is allocated and no reference count is touched in the loop. (Marking the
+slice of runs, so nothing is allocated and no reference count is touched in the loop. (Marking the
 array arguments ``noalias``, as numba does for a ``prange`` body, made the Nomoto loop 25 %
 slower and the catamaran loop no faster, measured; it is not done.) The loop is serial and
 releases the GIL (``nogil=True``); the engine runs slices of the batch on a pool of threads.
