@@ -79,6 +79,9 @@ def test_default_scenario_is_valid_and_converts_degrees():
         (_with(replace=('model = "pid-heading"', 'model = "pid-heading"\ndt = 0.25'),),
          r"s.toml: \[controller.dt\] `controller_dt` must be a positive whole multiple of `dt` "
          r"\[s\]: controller_dt=0.25, dt=0.1"),
+        (_with(replace=("dt = 0.1", "dt = 0.1\nrecord_every = 500")),
+         r"s.toml: \[simulation.record_every\] `record_every` = 500 exceeds the number of steps "
+         r"\(200 = t_final/dt\): nothing after t = 0 would be recorded"),
         (_with(replace=("dt = 0.1", 'dt = 0.1\nintegrator = "rk5"')),
          r"s.toml: \[simulation.integrator\] Value error, unknown integrator 'rk5'; "
          r"valid: euler, midpoint, heun, ralston, bosh3, ssprk3, kutta3, rk4, rk38"),

@@ -130,6 +130,10 @@ def test_progress_callback_and_record_every(mariner2):
         ({"x0": np.zeros(4)}, ParameterError, r"`x0` must have 5 states"),
         ({"x0": np.zeros((3, 5)), "params_n": 2}, ParameterError, "batch sizes do not broadcast"),
         ({"record_every": 0}, ParameterError, "`record_every` must be a whole number >= 1"),
+        # more than the number of steps: only t = 0 would be recorded, and every "final"
+        # metric would silently be the initial value
+        ({"record_every": 101}, ParameterError,
+         r"`record_every` = 101 exceeds the number of steps \(100 = t_final/dt\)"),
         ({"reference": np.zeros((7, 1))}, ParameterError, "needs 101 rows"),
         ({"bounds": {"speed": (0, 1)}}, ParameterError, "`bounds`: unknown state 'speed'"),
         ({"disturbance": [0.0]}, ParameterError, "`disturbance` must have 2 channel"),

@@ -473,6 +473,10 @@ def simulate(
     if isinstance(record_every, bool) or int(record_every) != record_every or record_every < 1:
         raise ParameterError(f"`record_every` must be a whole number >= 1, got {record_every!r}")
     record_every = int(record_every)
+    if record_every > n_steps:
+        raise ParameterError(
+            f"`record_every` = {record_every} exceeds the number of steps ({n_steps} = "
+            f"t_final/dt): nothing after t = 0 would be recorded")
     tableau = get_integrator(integrator)
     wiring = compose(model, actuator, controller)
 
