@@ -112,12 +112,9 @@ def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ya, u, kv, ka, fv, fa, tv
 # </footer>
 
 
-SCRATCH = ("xv", "xa", "zfull", "cmdi", "cai", "csi", "u", "ya", "ym", "y", "kv", "ka", "fv", "fa",
-           "tv", "ta", "d0", "d1", "ds", "refk")
-
-
 def scratch(ncmd, nca, ncs, nd, nr):
-    """Fresh per-run buffers, in the order of ``SCRATCH`` (one set per thread).
+    """Fresh per-run buffers, in the order of :func:`run_slice`'s ``xv`` … ``refk`` (one set
+    per slice of runs).
 
     Views of one block, each starting on its own 64-byte cache line and the block padded by a
     line at both ends: buffers of different threads never share a cache line (tiny arrays

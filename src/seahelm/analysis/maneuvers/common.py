@@ -411,12 +411,7 @@ class Plan:
         if dims:
             layout = BatchLayout(axes=tuple(
                 BatchAxis(name=a.name, values=a.values, units=a.units) for a in dims))
-        # one run per thread at most: a small batch does not wake idle worker threads (on a
-        # busy machine that costs milliseconds per parallel region, more than the runs)
-        import numba
-
-        threads = numba.get_num_threads()
-        numba.set_num_threads(max(1, min(threads, self.n_runs)))
+        # (the engine uses no more threads than runs, so a small batch wakes no idle thread)
         batch = RunBatch(
             model=self.model,
             params=(self.ships[0].params if len(self.ships) == 1
@@ -428,10 +423,7 @@ class Plan:
             controller_params=controller_params, reference=reference,
             controller_dt=controller_every * dt,
             record_every=record_every, metadata=dict(metadata or {}), layout=layout)
-        try:
-            return simulate_batch(batch)
-        finally:
-            numba.set_num_threads(threads)
+        return simulate_batch(batch)
 
     def runs_dataset(self, result: "SimResult") -> "xr.Dataset":
         """The result's Dataset with the grid's coordinates; a single run loses ``run``."""
