@@ -20,6 +20,7 @@ SI units and radians inside; degrees only at the edges (scenario files may write
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import warnings
 from collections.abc import Mapping, Sequence
@@ -138,11 +139,13 @@ class Params:
 
     # -- packing -----------------------------------------------------------------------
     @classmethod
+    @functools.cache  # per class (the fields of a dataclass do not change)
     def field_names(cls) -> tuple[str, ...]:
         """Field names in packing order."""
         return tuple(f.name for f in dataclasses.fields(cls))
 
     @classmethod
+    @functools.cache
     def record_dtype(cls) -> np.dtype:
         """The structured dtype compiled code sees: one float64 field per parameter, in order.
 

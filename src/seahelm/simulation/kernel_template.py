@@ -38,6 +38,8 @@ the inlined array arguments, atomic, at every call site).
 Status codes: 0 ok, 1 non-finite state, 2 state outside its declared bounds.
 """
 
+import math
+
 import numpy as np
 from numba import njit
 
@@ -124,13 +126,14 @@ def scratch(ncmd, nca, ncs, nd, nr):
               (max(NM, 1),), (NSTAGES, NX), (NSTAGES, NA), (NX,), (NA,), (NX,), (NA,), (nd,),
               (nd,), (nd,), (nr,)]
     line = 8  # float64 per 64-byte cache line
-    sizes = [-(-int(np.prod(sh)) // line) * line for sh in shapes]
+    counts = [math.prod(sh) for sh in shapes]  # (math.prod: np.prod costs µs per call)
+    sizes = [-(-n // line) * line for n in counts]
     block = np.zeros(sum(sizes) + 3 * line)
     o = line + (-block.ctypes.data // 8) % line  # first line boundary after the padding
     views = []
-    for sh, n in zip(shapes, sizes):
-        views.append(block[o:o + int(np.prod(sh))].reshape(sh))
-        o += n
+    for sh, n, size in zip(shapes, counts, sizes):
+        views.append(block[o:o + n].reshape(sh))
+        o += size
     return tuple(views)
 
 
