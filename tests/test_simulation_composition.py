@@ -22,6 +22,7 @@ from seahelm.errors import ParameterError
 from seahelm.registry import get_actuator, get_controller, get_model
 from seahelm.scenario import ActuatorSection, ControllerSection
 from seahelm.simulation.composition import compose
+from seahelm.vessels import catalog
 from seahelm.vessels.base import VesselModel
 from seahelm.vessels.nomoto import NOMOTO2, Nomoto2Params, nomoto2_output, nomoto2_rhs
 
@@ -112,6 +113,12 @@ def test_every_combination_in_use_composes_as_expected(combo):
 
 def _scenario_combo(text: str) -> tuple[str, str, str]:
     scn = tomllib.loads(text)
+    if "maneuver" in scn:  # the manoeuvre's loop: the catalog ship's model and steering gear
+        model = catalog.get(scn["vessel"]["catalog"]).model
+        controller = "open-loop"
+        if scn["maneuver"]["kind"] == "zigzag":  # the zig-zag's own heading-triggered logic
+            controller = "zigzag-rps" if model == "mmg" else "zigzag"
+        return (model, "rudder-servo", controller)
     return (scn["vessel"]["model"],
             scn.get("actuator", {}).get("model", ActuatorSection().model),
             scn.get("controller", {}).get("model", ControllerSection().model))

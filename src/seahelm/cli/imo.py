@@ -23,7 +23,7 @@ from rich.table import Table
 from ._common import JsonFlag, _jsonable, console, handle_errors, print_json
 from .maneuver import Dt, Out, Rps, Speed, check_positive_opt, check_speed_rps, ship_of
 
-__all__ = ["imo"]
+__all__ = ["imo", "show_report"]
 
 
 def _display(criterion: Any) -> dict[str, Any]:
@@ -52,15 +52,20 @@ def imo(
     ship = ship_of(model)
     check_speed_rps(ship, speed, rps)
     check_positive_opt("--dt", dt, "s")
-    report = imo_check(ship, speed=speed, rps=rps, dt=dt)
+    show_report(imo_check(ship, speed=speed, rps=rps, dt=dt), out, json_out)
+
+
+def show_report(report: Any, out: Path | None, as_json: bool, *, plot: bool = True) -> None:
+    """Write (``out``) and print an :class:`~seahelm.analysis.imo.ImoReport`: the criteria
+    table with notes, or one JSON object."""
     rows = [_display(c) for c in report.criteria]
     payload: dict[str, Any] = {
         "ship": report.ship, "length_m": report.length, "speed_mps": report.speed,
         "L_over_V_s": report.L_over_V, "passed": report.passed, "criteria": rows,
         "notes": list(report.notes)}
     if out is not None:
-        payload["files"] = _write(out, report, payload)
-    if json_out:
+        payload["files"] = _write(out, report, payload, plot)
+    if as_json:
         print_json(payload)
         return
     verdict = "PASSES" if report.passed else "FAILS"
@@ -87,17 +92,20 @@ def imo(
         console.print(f"  {kind}: {escape(path)}", highlight=False)
 
 
-def _write(out: Path, report: Any, payload: dict[str, Any]) -> dict[str, str]:
+def _write(out: Path, report: Any, payload: dict[str, Any], plot: bool = True
+           ) -> dict[str, str]:
     from ..plotting.maneuvers import plot_turning, plot_zigzag
     from ..results import atomic_write
     from .maneuver import write_outputs
 
-    files = write_outputs(out, [report.turning], lambda: plot_turning(report.turning),
-                          "imo-turning.png")
-    files["plot_turning"] = files.pop("plot")
-    more = write_outputs(out, [report.zigzag], lambda: plot_zigzag(report.zigzag),
-                         "imo-zigzag.png")
-    more["plot_zigzag"] = more.pop("plot")
+    files = write_outputs(out, [report.turning], (lambda: plot_turning(report.turning))
+                          if plot else None, "imo-turning.png")
+    if plot:
+        files["plot_turning"] = files.pop("plot")
+    more = write_outputs(out, [report.zigzag], (lambda: plot_zigzag(report.zigzag))
+                         if plot else None, "imo-zigzag.png")
+    if plot:
+        more["plot_zigzag"] = more.pop("plot")
     files.update(more)
     text = json.dumps(_jsonable({k: v for k, v in payload.items() if k != "files"}), indent=2,
                       allow_nan=False)

@@ -14,6 +14,7 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
 from .. import __version__
+from ..errors import ParameterError
 from ._common import JsonFlag, console, err_console, handle_errors, print_json
 
 app = typer.Typer(
@@ -145,9 +146,18 @@ def _batch_columns(result: Any, summary: list[dict[str, Any]]) -> tuple[str, ...
 
 
 def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bool,
-             label: str) -> dict[str, Any]:
+             label: str) -> dict[str, Any] | None:
     from ..analysis.maneuvers import summarize
-    from ..scenario import run_scenario
+    from ..scenario import ManeuverJob, run_scenario
+
+    if isinstance(batch, ManeuverJob):  # a [maneuver] scenario: as `seahelm maneuver` shows it
+        from .maneuver_job import present_job
+
+        if csv:
+            raise ParameterError("`--csv` writes the time series of a [simulation] scenario; "
+                                 f"a [maneuver] scenario ({batch.kind}) writes NetCDF only")
+        present_job(batch, out, as_json, plot=plot)
+        return None
 
     bar = _ProgressBar(f"simulating {batch.n_runs} run(s)")
     try:
@@ -211,12 +221,14 @@ def demo(
 @handle_errors
 def run(
     scenario: Annotated[Path, typer.Argument(help="Scenario TOML file.")],
-    out: Annotated[Path | None, typer.Option(help="Write result.nc (and overview.png) here.")] = None,
+    out: Annotated[Path | None, typer.Option(help=(
+        "Write result.nc (and overview.png) here; a [maneuver] scenario writes "
+        "<kind>-metrics.nc, <kind>-runs.nc and <kind>.png."))] = None,
     json_out: JsonFlag = False,
     csv: Annotated[bool, typer.Option(help="Also write result.csv.")] = False,
-    plot: Annotated[bool, typer.Option(help="Write overview.png with --out.")] = True,
+    plot: Annotated[bool, typer.Option(help="Write the figure with --out.")] = True,
 ) -> None:
-    """Validate and run a scenario file."""
+    """Validate and run a scenario file: a simulation or a standard manoeuvre."""
     from ..scenario import load_scenario
 
     batch = load_scenario(scenario)

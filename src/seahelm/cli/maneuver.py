@@ -215,27 +215,32 @@ def header(result: Any) -> dict[str, Any]:
     return out
 
 
-def write_outputs(out: Path, results: Sequence[Any], plot: Callable[[], Any],
+def write_outputs(out: Path, results: Sequence[Any], plot: Callable[[], Any] | None,
                   png: str) -> dict[str, str]:
-    """NetCDF of every result and one PNG, atomically; returns {kind: path}."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    from ..plotting.save import save_figure
-
+    """NetCDF of every result and one PNG (none if ``plot`` is None), atomically; returns
+    {kind: path}."""
     files: dict[str, str] = {}
     for result in results:
         for kind, path in result.to_netcdf(out).items():
             files[f"{result.maneuver}-{kind}"] = str(path)
-    files["plot"] = str(save_figure(plot(), out / png))
+    if plot is not None:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        from ..plotting.save import save_figure
+
+        files["plot"] = str(save_figure(plot(), out / png))
     return files
 
 
 def finish(title: str, result: Any, payload: dict[str, Any], fields: Sequence[Field],
-           plot: Callable[[Any], Any], png: str, out: Path | None, as_json: bool) -> None:
-    """Write the files (``--out``), then print the JSON object or the table."""
+           plot: Callable[[Any], Any] | None, png: str, out: Path | None,
+           as_json: bool) -> None:
+    """Write the files (``--out``; no figure if ``plot`` is None), then print the JSON object
+    or the table."""
     if out is not None:
-        payload["files"] = write_outputs(out, [result], lambda: plot(result), png)
+        payload["files"] = write_outputs(out, [result], None if plot is None else (
+            lambda: plot(result)), png)
     emit(title, payload, display_rows(result, fields), fields, as_json)
 
 
@@ -402,18 +407,21 @@ def spiral_cmd(
     out: Out = None,
 ) -> None:
     """Direct (simulated) and reverse (equilibria) spiral: r–δ curve and loop width."""
-    import numpy as np
-
-    from ..analysis.maneuvers import DEFAULT_SPIRAL_RUDDERS_DEG, direct_spiral, reverse_spiral
+    from ..analysis.maneuvers import spirals
 
     ship = ship_of(catalog)
     top = check_rudder_deg(ship, "--max-rudder", max_rudder)
     check_speed_rps(ship, speed, rps)
     check_positive_opt("--hold", hold, "s")
     check_positive_opt("--dt", dt, "s")
-    program = np.radians(DEFAULT_SPIRAL_RUDDERS_DEG) * (max_rudder / 20.0)
-    direct = direct_spiral(ship, program, speed=speed, rps=rps, hold=hold, dt=dt)
-    reverse = reverse_spiral(ship, speed=speed, rps=rps, max_rudder=top)
+    direct, reverse = spirals(ship, top, speed=speed, rps=rps, hold=hold, dt=dt)
+    show_spirals(f"Direct spiral, {ship.name}", direct, reverse, out, json_out)
+
+
+def show_spirals(title: str, direct: Any, reverse: Any, out: Path | None,
+                 as_json: bool, *, plot: bool = True) -> None:
+    """Write (``out``) and print the direct and reverse spirals: a table of the direct
+    spiral's steps and the loop widths, or one JSON object."""
     dm = direct.metrics
     rm = reverse.metrics
     rows = []
@@ -441,12 +449,13 @@ def spiral_cmd(
     if out is not None:
         from ..plotting.maneuvers import plot_spiral
 
-        payload["files"] = write_outputs(out, [direct, reverse],
-                                         lambda: plot_spiral(direct, reverse), "spiral.png")
-    if json_out:
+        payload["files"] = write_outputs(
+            out, [direct, reverse], (lambda: plot_spiral(direct, reverse)) if plot else None,
+            "spiral.png")
+    if as_json:
         print_json({**payload, "direct": rows, "reverse": reverse_rows})
         return
-    table = Table(title=escape(f"Direct spiral, {ship.name}"), title_justify="left")
+    table = Table(title=escape(title), title_justify="left")
     for col in ("step", "leg", "rudder [deg]", "r [deg/s]", "r' = rL/U", "U [m/s]", "settled"):
         table.add_column(escape(col), justify="right")
     for row in rows:
@@ -459,3 +468,4 @@ def spiral_cmd(
                           highlight=False)
     for kind, path in payload.get("files", {}).items():
         console.print(f"  {kind}: {escape(path)}", highlight=False)
+

@@ -11,7 +11,8 @@ as :mod:`xarray` Datasets; see :mod:`seahelm.analysis.maneuvers.common`):
     heading: :func:`zigzag_metrics`);
 :func:`direct_spiral`, :func:`reverse_spiral`
     Dieudonné's simulated spiral and Bech's reverse spiral from the equilibria, the r–δ curve
-    and its hysteresis loop (:mod:`.spiral`);
+    and its hysteresis loop (:mod:`.spiral`); :func:`spirals` runs both up to one rudder
+    angle;
 :func:`pull_out`
     rudder to zero after steady turns to both sides (:mod:`.pullout`).
 
@@ -33,7 +34,7 @@ from .common import (
 )
 from .metrics import overshoot, rudder_reversals, settling_time, summarize, turning_diameter
 from .pullout import pull_out
-from .spiral import DEFAULT_SPIRAL_RUDDERS_DEG, direct_spiral, reverse_spiral, spiral_loop
+from .spiral import DEFAULT_SPIRAL_RUDDERS_DEG, direct_spiral, reverse_spiral, spiral_loop, spirals
 from .turning_circle import track_distance, turning_circle
 from .zigzag import ZigZagMetrics, zigzag, zigzag_metrics
 
@@ -52,6 +53,7 @@ __all__ = [
     "direct_spiral",
     "reverse_spiral",
     "spiral_loop",
+    "spirals",
     "DEFAULT_SPIRAL_RUDDERS_DEG",
     "pull_out",
     "settling_time",

@@ -43,7 +43,7 @@ from .common import (
     final_time,
 )
 
-__all__ = ["DEFAULT_SPIRAL_RUDDERS_DEG", "direct_spiral", "reverse_spiral", "spiral_loop"]
+__all__ = ["DEFAULT_SPIRAL_RUDDERS_DEG", "direct_spiral", "reverse_spiral", "spiral_loop", "spirals"]
 
 _DOWN = (20.0, 15.0, 10.0, 5.0, 3.0, 2.0, 1.0, 0.5, 0.0, -0.5, -1.0, -2.0, -3.0, -5.0, -10.0,
          -15.0, -20.0)
@@ -348,3 +348,36 @@ def reverse_spiral(ship: Any, yaw_rates: Any = None, *, speed: Any = None, rps: 
                            coords={"point": ("point", np.arange(k))})
     return ManeuverResult("reverse-spiral", metrics, tuple(plan.ships))
 
+
+
+def spirals(ship: Any, max_rudder: float = math.radians(20.0), *, speed: Any = None,
+            rps: Any = None, hold: float | None = None, dt: float | None = None
+            ) -> tuple[ManeuverResult, ManeuverResult]:
+    """Both spiral tests of a ship up to a rudder angle: the direct and the reverse spiral.
+
+    The direct spiral runs :data:`DEFAULT_SPIRAL_RUDDERS_DEG` scaled so that its largest
+    angle is ``max_rudder``; the reverse spiral spans the yaw rates of ±``max_rudder``.
+
+    Parameters
+    ----------
+    ship : str, CatalogEntry, Params or ManeuverShip
+        The ship (:func:`~seahelm.analysis.maneuvers.maneuver_ship`).
+    max_rudder : float, optional
+        Largest rudder angle [rad], within the steering gear's limit (default 20°).
+    speed, rps : float, optional
+        Approach speed [m/s] or propeller rps [1/s] (default: the parameter set's speed).
+    hold : float, optional
+        Time each rudder angle of the direct spiral is held [s] (default 50 L/U_0).
+    dt : float, optional
+        Integration step [s] of the direct spiral.
+
+    Returns
+    -------
+    (ManeuverResult, ManeuverResult)
+        :func:`direct_spiral`'s and :func:`reverse_spiral`'s results.
+    """
+    top = float(max_rudder)
+    program = np.radians(DEFAULT_SPIRAL_RUDDERS_DEG) * (top / math.radians(20.0))
+    direct = direct_spiral(ship, program, speed=speed, rps=rps, hold=hold, dt=dt)
+    reverse = reverse_spiral(ship, speed=speed, rps=rps, max_rudder=top)
+    return direct, reverse

@@ -1,35 +1,11 @@
-"""Scenario files (TOML): schema, validation and the runs they describe.
+"""A ``[simulation]`` scenario: the :class:`~seahelm.simulation.batch.RunBatch` it describes.
 
-A scenario becomes one :class:`~seahelm.simulation.batch.RunBatch`: the engine's inputs and the
-batch's layout. Each check is made once, by whoever owns it. The scenario checks what only it
-knows: the TOML structure and types (pydantic), names (models, catalog entries, integrators,
-parameters, state and signal channels), parameter ranges (through the components' parameter
-dataclasses) and signal specifications. What the engine runs -- timing (``t_final`` and
-``controller.dt`` whole multiples of ``simulation.dt``), the controller/actuator command count,
-bounds labels, shapes -- the engine validates, before anything is integrated; its error is
-re-raised naming the scenario file and the key it most likely comes from. Every error names
-the file, the key path, the bad value and what was expected, and is raised as
-:class:`ScenarioError` (a :class:`~seahelm.errors.ParameterError`, so the CLI exits with
-code 2).
-
-Layout (see ``examples/*.toml``)::
-
-    title = "..."
-    [vessel]            model, catalog (optional named parameter set), params, initial
-    [actuator]          model, params
-    [controller]        model, dt (sample period [s]), params, reference (per channel)
-    [environment]       disturbance (per channel)
-    [simulation]        t_final, dt, integrator, record_every, bounds
-    [batch]             grid = {"controller.params.kp" = [..]}, [batch.monte_carlo] runs, seed, draws
-
-Angles may be written in degrees with a ``_deg`` suffix on any parameter, initial state,
-reference or disturbance channel whose unit is radians; they are converted at this edge.
-The grid is a Cartesian product; Monte-Carlo draws are made per grid point with generators
-spawned from ``SeedSequence(seed)``, and the seed is stored with the results. Results keep the
-shape of the question: a grid over ``controller.params.kp`` and ``controller.params.kd``
-comes back with the dimensions ``(kp, kd, time)`` (a dimension is named by the last component
-of its key path, or by the whole path where that is ambiguous); Monte-Carlo adds ``sample``,
-with the draws stored as variables; a scenario without a batch has one ``run``.
+Resolves and checks what only the scenario knows: names (models, catalog entries, parameters,
+state and signal channels), parameter ranges (through the components' parameter dataclasses),
+signal specifications and the batch (grid and Monte-Carlo draws). What the engine runs --
+timing, command counts, bounds labels, shapes -- the engine validates when the batch runs;
+:func:`run_batch` re-raises its error naming the scenario file and the key it most likely
+comes from.
 """
 
 from __future__ import annotations
@@ -38,189 +14,22 @@ import dataclasses
 import itertools
 import math
 import re
-import tomllib
 from collections.abc import Callable
-from importlib import resources
-from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import Any
 
 import numpy as np
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
-from .errors import ParameterError
-from .parameters import Params
-from .registry import get_actuator, get_controller, get_model
-from .simulation.batch import BatchAxis, BatchLayout, BatchValues, RunBatch, grid_axes
-from .simulation.composition import compose
-from .simulation.integrators import INTEGRATORS
-from .simulation.signals import Constant, make_signal
-from .vessels import catalog
+from ..errors import ParameterError
+from ..parameters import Params
+from ..registry import get_actuator, get_controller, get_model
+from ..simulation.batch import BatchAxis, BatchLayout, BatchValues, RunBatch, grid_axes
+from ..simulation.composition import compose
+from ..simulation.signals import Constant, make_signal
+from ..vessels import catalog
+from .errors import ScenarioError, at_key as _err
+from .schema import Scenario
 
-__all__ = ["Scenario", "ScenarioError", "load_scenario", "parse_scenario", "run_scenario",
-           "default_scenario_text", "prepare_runs"]
-
-
-class ScenarioError(ParameterError):
-    """A scenario file is invalid (the message names the file, key path, value, expectation)."""
-
-
-SignalSpec = float | dict[str, Any]
-
-
-class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
-
-
-class VesselSection(_Strict):
-    model: str
-    catalog: str | None = None
-    params: dict[str, float] = Field(default_factory=dict)
-    initial: dict[str, float] = Field(default_factory=dict)
-
-
-class ActuatorSection(_Strict):
-    model: str = "rudder-servo"
-    params: dict[str, float] = Field(default_factory=dict)
-
-
-class ControllerSection(_Strict):
-    model: str = "open-loop"
-    dt: Annotated[float, Field(gt=0)] | None = None
-    params: dict[str, float] = Field(default_factory=dict)
-    reference: dict[str, SignalSpec] = Field(default_factory=dict)
-
-
-class EnvironmentSection(_Strict):
-    disturbance: dict[str, SignalSpec] = Field(default_factory=dict)
-
-
-class SimulationSection(_Strict):
-    t_final: Annotated[float, Field(gt=0)]
-    dt: Annotated[float, Field(gt=0)]
-    integrator: str = "rk4"
-    record_every: Annotated[int, Field(ge=1)] = 1
-    bounds: dict[str, tuple[float, float]] = Field(default_factory=dict)
-
-    @field_validator("integrator")
-    @classmethod
-    def _known_integrator(cls, name: str) -> str:
-        if name not in INTEGRATORS:
-            raise ValueError(f"unknown integrator '{name}'; valid: {', '.join(INTEGRATORS)}")
-        return name
-
-
-class Distribution(_Strict):
-    distribution: Literal["normal", "uniform", "lognormal"]
-    mean: float | None = None
-    std: Annotated[float, Field(ge=0)] | None = None
-    low: float | None = None
-    high: float | None = None
-
-    @model_validator(mode="after")
-    def _check(self) -> "Distribution":
-        if self.distribution in ("normal", "lognormal") and (self.mean is None or self.std is None):
-            raise ValueError(f"a {self.distribution} draw needs `mean` and `std`")
-        if self.distribution == "uniform":
-            if self.low is None or self.high is None or not self.high > self.low:
-                raise ValueError("a uniform draw needs `low` < `high`")
-        return self
-
-
-class MonteCarloSection(_Strict):
-    runs: Annotated[int, Field(ge=1, le=1_000_000)]
-    seed: int
-    draws: dict[str, Distribution] = Field(default_factory=dict)
-
-
-class BatchSection(_Strict):
-    grid: dict[str, list[float]] = Field(default_factory=dict)
-    monte_carlo: MonteCarloSection | None = None
-
-
-class Scenario(_Strict):
-    """The validated structure of a scenario file."""
-
-    title: str = ""
-    description: str = ""
-    vessel: VesselSection
-    actuator: ActuatorSection = Field(default_factory=ActuatorSection)
-    controller: ControllerSection = Field(default_factory=ControllerSection)
-    environment: EnvironmentSection = Field(default_factory=EnvironmentSection)
-    simulation: SimulationSection
-    batch: BatchSection = Field(default_factory=BatchSection)
-
-
-# ------------------------------------------------------------------------------------------
-def default_scenario_text() -> str:
-    """The embedded default scenario: a 20° course change of the Mariner under PID."""
-    return resources.files("seahelm").joinpath("data/default.toml").read_text()
-
-
-def parse_scenario(text: str, *, source: str = "<string>") -> RunBatch:
-    """Parse and validate scenario text into the batch it describes; nothing runs.
-
-    What the engine runs (timing, command counts, bounds labels) is validated by the engine
-    when the batch runs (:func:`run_scenario`), before any step is integrated.
-
-    Parameters
-    ----------
-    text : str
-        TOML scenario text.
-    source : str, optional
-        Name of the source used in error messages (default "<string>").
-
-    Returns
-    -------
-    RunBatch
-
-    Raises
-    ------
-    ScenarioError
-        If the text is not valid TOML or fails validation (one line per error).
-    """
-    try:
-        raw = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError(f"{source}: not valid TOML: {exc}") from None
-    try:
-        scn = Scenario.model_validate(raw)
-    except ValidationError as exc:
-        lines = []
-        for err in exc.errors():
-            path = ".".join(str(p) for p in err["loc"]) or "<root>"
-            value = err.get("input")
-            shown = "" if isinstance(value, dict) else f", got {value!r}"
-            lines.append(f"{source}: [{path}] {err['msg']}{shown}")
-        raise ScenarioError("\n".join(lines)) from None
-    return prepare_runs(scn, source=source, text=text)
-
-
-def load_scenario(path: str | Path) -> RunBatch:
-    """Read, parse and validate a scenario file.
-
-    Parameters
-    ----------
-    path : str or pathlib.Path
-        TOML scenario file.
-
-    Returns
-    -------
-    RunBatch
-
-    Raises
-    ------
-    ScenarioError
-        If the file is missing, not valid TOML or fails validation.
-    """
-    path = Path(path)
-    if not path.is_file():
-        raise ScenarioError(f"scenario file not found: {path}")
-    return parse_scenario(path.read_text(), source=str(path))
-
-
-# ------------------------------------------------------------------------------------------
-def _err(source: str, path: str, message: str) -> ScenarioError:
-    return ScenarioError(f"{source}: [{path}] {message}")
+__all__ = ["prepare_runs", "run_batch"]
 
 
 def _is_angle(unit: str) -> bool:
@@ -423,10 +232,7 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
     ScenarioError
         Naming the source, the key path, the value and what was expected.
     """
-    try:
-        model = get_model(scn.vessel.model)
-    except ValueError as exc:
-        raise _err(source, "vessel.model", str(exc)) from None
+    model = _vessel_model(scn, source)
     try:
         actuator = get_actuator(scn.actuator.model)
     except ValueError as exc:
@@ -445,7 +251,7 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
             entry = catalog.get(scn.vessel.catalog)
         except ValueError as exc:
             raise _err(source, "vessel.catalog", str(exc)) from None
-        if entry.model != model.name:
+        if scn.vessel.model is not None and entry.model != model.name:
             raise _err(source, "vessel.catalog",
                        f"'{entry.name}' is a parameter set for model '{entry.model}', "
                        f"not '{model.name}'")
@@ -506,6 +312,7 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
             dists.append(section(over, "environment.disturbance.", scn.environment.disturbance))
 
     sim = scn.simulation
+    assert sim is not None  # (a [maneuver] scenario goes to .maneuver)
     return RunBatch(
         model=model,
         params=np.array(mp),
@@ -550,13 +357,14 @@ def _engine_error(source: str, exc: ParameterError, layout: BatchLayout | None) 
     return ScenarioError(f"{source}: [{key}] {message}" if key else f"{source}: {message}")
 
 
-def run_scenario(
+def run_batch(
     batch: RunBatch,
     *,
     progress: Callable[[int, int], None] | None = None,
     throw: bool = False,
 ) -> Any:
-    """Simulate a scenario's batch; returns a :class:`~seahelm.results.SimResult`.
+    """Simulate a ``[simulation]`` scenario's batch; returns a
+    :class:`~seahelm.results.SimResult`.
 
     The engine validates what it runs before anything is integrated; its errors are raised
     as :class:`ScenarioError` naming the scenario file and the key they most likely come
@@ -581,7 +389,7 @@ def run_scenario(
     ScenarioError
         If the engine rejects the batch (timing, command counts, bounds labels, ...).
     """
-    from .simulation.batch import simulate_batch
+    from ..simulation.batch import simulate_batch
 
     source = str(batch.metadata.get("scenario_source", "<string>"))
     try:
@@ -590,3 +398,21 @@ def run_scenario(
         raise
     except ParameterError as exc:
         raise _engine_error(source, exc, batch.layout) from exc
+
+
+def _vessel_model(scn: Scenario, source: str) -> Any:
+    """The vessel model: ``vessel.model``, or the model of ``vessel.catalog``."""
+    name = scn.vessel.model
+    if name is None:
+        if scn.vessel.catalog is None:
+            raise _err(source, "vessel.model",
+                       "give a vessel model (see `seahelm models`) or a catalog entry "
+                       "(vessel.catalog)")
+        try:
+            name = catalog.get(scn.vessel.catalog).model
+        except ValueError as exc:
+            raise _err(source, "vessel.catalog", str(exc)) from None
+    try:
+        return get_model(name)
+    except ValueError as exc:
+        raise _err(source, "vessel.model", str(exc)) from None

@@ -1,0 +1,57 @@
+"""``seahelm run`` on a ``[maneuver]`` scenario: shown as ``seahelm maneuver``/``seahelm imo``
+show the same manoeuvre."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+from .imo import show_report
+from .maneuver import (
+    PULLOUT_FIELDS,
+    TURNING_FIELDS,
+    ZIGZAG_FIELDS,
+    finish,
+    header,
+    show_spirals,
+)
+
+__all__ = ["present_job"]
+
+
+def _deg_text(value: Any) -> str:
+    values = value if isinstance(value, (list, tuple)) else [value]
+    return ", ".join(f"{math.degrees(v):g}" for v in values)
+
+
+def present_job(job: Any, out: Path | None, as_json: bool, *, plot: bool = True) -> None:
+    """Run a ``[maneuver]`` scenario's :class:`~seahelm.scenario.ManeuverJob` and show it as
+    the matching ``seahelm maneuver``/``seahelm imo`` command would (files with ``out``,
+    figures unless ``plot`` is False)."""
+    from ..plotting.maneuvers import plot_pullout, plot_turning, plot_zigzag
+
+    result = job.run()
+    name = job.ship.name
+    opts = job.options
+    if job.kind == "imo":
+        show_report(result, out, as_json, plot=plot)
+        return
+    if job.kind == "spiral":
+        show_spirals(job.title or f"Direct spiral, {name}", *result, out, as_json, plot=plot)
+        return
+    rudder = _deg_text(opts.get("rudder", math.radians(
+        {"turning": 35.0, "zigzag": 10.0, "pullout": 20.0}[job.kind])))
+    kinds = {
+        "turning": (f"Turning circle, {name}, {rudder} deg rudder", TURNING_FIELDS,
+                    plot_turning, "turning.png"),
+        "zigzag": (f"Zig-zag, {name}, {rudder} deg rudder", ZIGZAG_FIELDS, plot_zigzag,
+                   "zigzag.png"),
+        "pullout": (f"Pull-out from {rudder} deg, {name}", PULLOUT_FIELDS, plot_pullout,
+                    "pullout.png"),
+    }
+    title, fields, draw, png = kinds[job.kind]
+    payload = {"scenario": job.title or job.metadata.get("scenario_source", ""),
+               **header(result)}
+    finish(job.title or title, result, payload, fields, draw if plot else None, png, out,
+           as_json)

@@ -1,0 +1,203 @@
+"""A ``[maneuver]`` scenario: a standard manoeuvre or the IMO check of a ship, from a file.
+
+::
+
+    title = "KVLCC2 L7: turning circles"
+    [vessel]
+    catalog = "kvlcc2-l7"           # a catalog ship with a steering gear (model from the entry)
+    params = { ... }                # optional: overrides of the entry's parameters
+    [actuator]
+    params = { rate_limit_deg = 2.32 }   # optional: overrides of the entry's steering gear
+    [maneuver]
+    kind = "turning"                # turning | zigzag | pullout | spiral | imo
+    rudder_deg = [20, 35]           # a list gives a batch dimension
+    sides = "both"                  # both | starboard | port
+    speed = 1.179                   # approach speed [m/s] (or rps = ... [1/s]); may be a list
+
+The keys of each kind are :data:`~seahelm.scenario.schema.MANEUVER_KEYS` (angles in radians,
+or in degrees with ``_deg``); they are the keyword arguments of
+:func:`~seahelm.analysis.maneuvers.turning_circle`, :func:`~seahelm.analysis.maneuvers.zigzag`
+(``heading``: the heading trigger, default equal to the rudder angle),
+:func:`~seahelm.analysis.maneuvers.pull_out`, :func:`~seahelm.analysis.maneuvers.spirals`
+(``max_rudder``, ``hold``) and :func:`~seahelm.analysis.imo.imo_check`. Every run of a
+manoeuvre is one compiled batch, as from the library or ``seahelm maneuver``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import re
+from collections.abc import Mapping
+from typing import Any
+
+from ..errors import ParameterError
+from .errors import ScenarioError, at_key
+from .schema import Scenario
+
+__all__ = ["ManeuverJob", "prepare_maneuver"]
+
+_SIDES = {"both": (1, -1), "starboard": 1, "port": -1}
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class ManeuverJob:
+    """A manoeuvre a scenario describes, ready to run (:meth:`run`).
+
+    Attributes
+    ----------
+    kind : str
+        ``turning``, ``zigzag``, ``pullout``, ``spiral`` or ``imo``.
+    ship : ManeuverShip
+        The ship with its steering gear (catalog entry with the scenario's overrides).
+    options : mapping
+        Keyword arguments of the manoeuvre's function (SI units, radians).
+    metadata : mapping
+        ``title``, ``scenario_source`` and ``scenario_text``, stored with the results.
+    """
+
+    kind: str
+    ship: Any
+    options: Mapping[str, Any]
+    metadata: Mapping[str, str]
+
+    @property
+    def title(self) -> str:
+        return str(self.metadata.get("title") or "")
+
+    def run(self) -> Any:
+        """Run the manoeuvre.
+
+        Returns
+        -------
+        ManeuverResult, (ManeuverResult, ManeuverResult) or ImoReport
+            A :class:`~seahelm.analysis.maneuvers.ManeuverResult` for ``turning``, ``zigzag``
+            and ``pullout``; the direct and reverse spirals for ``spiral``; an
+            :class:`~seahelm.analysis.imo.ImoReport` for ``imo``. The scenario's metadata is
+            in the attributes of every metrics Dataset.
+
+        Raises
+        ------
+        ScenarioError
+            When the manoeuvre rejects a value (naming the scenario file and the key).
+        """
+        from ..analysis import maneuvers
+        from ..analysis.imo import imo_check
+
+        functions = {"turning": maneuvers.turning_circle, "zigzag": maneuvers.zigzag,
+                     "pullout": maneuvers.pull_out, "spiral": maneuvers.spirals,
+                     "imo": imo_check}
+        try:
+            out = functions[self.kind](self.ship, **self.options)
+        except ScenarioError:
+            raise
+        except ParameterError as exc:
+            raise self._error(exc) from exc
+        for result in _results(out):
+            result.metrics.attrs.update(self.metadata)
+        return out
+
+    def _error(self, exc: ParameterError) -> ScenarioError:
+        source = str(self.metadata.get("scenario_source", "<string>"))
+        message = str(exc)
+        arg = re.search(r"`(\w+)`", message)
+        if arg and arg.group(1) in self.options:
+            return at_key(source, f"maneuver.{arg.group(1)}", message)
+        return ScenarioError(f"{source}: [maneuver] {message}")
+
+
+def _results(out: Any) -> list[Any]:
+    if isinstance(out, tuple):
+        return list(out)
+    if hasattr(out, "turning") and hasattr(out, "zigzag"):  # an ImoReport
+        return [out.turning, out.zigzag]
+    return [out]
+
+
+def _angle(section: Any, name: str) -> Any:
+    """The value of ``name`` [rad], given as ``name`` or ``name_deg`` (None if neither)."""
+    value = getattr(section, name)
+    if value is None:
+        deg = getattr(section, f"{name}_deg")
+        if deg is None:
+            return None
+        return [math.radians(v) for v in deg] if isinstance(deg, list) else math.radians(deg)
+    return value
+
+
+def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "") -> ManeuverJob:
+    """The manoeuvre of a validated ``[maneuver]`` scenario; nothing runs.
+
+    Parameters
+    ----------
+    scn : Scenario
+        Validated scenario schema with a ``maneuver`` section.
+    source : str, optional
+        Name of the source used in error messages (default "<string>").
+    text : str, optional
+        Scenario text, stored with the results (default "").
+
+    Returns
+    -------
+    ManeuverJob
+
+    Raises
+    ------
+    ScenarioError
+        Naming the source, the key path, the value and what was expected: a vessel that is
+        not a catalog ship with a steering gear, a model other than the entry's, an unknown or
+        out-of-range parameter, initial states (a manoeuvre starts from its steady approach),
+        an actuator other than the rudder servo.
+    """
+    from ..analysis.maneuvers import STEERING_GEAR, maneuver_ship
+    from ..registry import get_model
+    from ..vessels import catalog
+
+    man = scn.maneuver
+    assert man is not None
+    vessel = scn.vessel
+    if vessel.catalog is None or vessel.catalog not in STEERING_GEAR:
+        got = "none" if vessel.catalog is None else repr(vessel.catalog)
+        raise at_key(source, "vessel.catalog",
+                     "a manoeuvre needs a catalog ship with a steering gear "
+                     f"({', '.join(sorted(STEERING_GEAR))}), got {got}")
+    entry = catalog.get(vessel.catalog)
+    if vessel.model is not None and vessel.model != entry.model:
+        raise at_key(source, "vessel.model",
+                     f"'{entry.name}' is a parameter set for model '{entry.model}', not "
+                     f"'{vessel.model}'")
+    if vessel.initial:
+        raise at_key(source, "vessel.initial",
+                     "a manoeuvre starts from its steady straight approach (set `speed` or "
+                     f"`rps` in [maneuver]), got {dict(vessel.initial)}")
+    if scn.actuator.model != "rudder-servo":
+        raise at_key(source, "actuator.model",
+                     "a manoeuvre steers with the ship's steering gear, the 'rudder-servo' "
+                     f"(its params may be overridden), got {scn.actuator.model!r}")
+    try:
+        params = type(entry.params).from_mapping(dict(vessel.params), base=entry.params)
+    except (ParameterError, TypeError) as exc:
+        raise at_key(source, "vessel.params", str(exc)) from None
+    servo0 = STEERING_GEAR[entry.name]
+    try:
+        servo = type(servo0).from_mapping(dict(scn.actuator.params), base=servo0)
+    except (ParameterError, TypeError) as exc:
+        raise at_key(source, "actuator.params", str(exc)) from None
+    name = entry.name
+    if vessel.params:
+        name += f" (modified: {', '.join(vessel.params)})"
+    ship = maneuver_ship(params, servo=servo, model=get_model(entry.model), name=name)
+
+    options: dict[str, Any] = {}
+    for key in ("speed", "rps", "t_final", "dt", "record_dt", "hold"):
+        value = getattr(man, key)
+        if value is not None:
+            options[key] = value
+    for key in ("rudder", "heading", "max_rudder"):
+        value = _angle(man, key)
+        if value is not None:
+            options[key] = value
+    if man.sides is not None:
+        options["sides"] = _SIDES[man.sides]
+    metadata = {"title": scn.title, "scenario_source": source, "scenario_text": text}
+    return ManeuverJob(kind=man.kind, ship=ship, options=options, metadata=metadata)

@@ -1,0 +1,187 @@
+"""The structure of a scenario file (pydantic): sections, keys, types and simple ranges.
+
+Numbers are strict: a TOML boolean or string where a number belongs is an error (``kp = true``
+is not 1.0, ``t_final = "60"`` is not 60 s), as are ``inf`` and ``nan``. Names (models,
+catalog entries, channels, parameters) are resolved by :mod:`.runs` and :mod:`.maneuver`,
+which know the components.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Any, Literal
+
+from pydantic import AllowInfNan, BaseModel, ConfigDict, Field, Strict, field_validator, model_validator
+
+from ..simulation.integrators import INTEGRATORS
+
+__all__ = ["Number", "VesselSection", "ActuatorSection", "ControllerSection",
+           "EnvironmentSection", "SimulationSection", "Distribution", "MonteCarloSection",
+           "BatchSection", "ManeuverSection", "Scenario", "MANEUVER_KEYS"]
+
+#: A finite number: an integer or a float, never a boolean or a string.
+Number = Annotated[float, Strict(), AllowInfNan(False)]
+Positive = Annotated[float, Strict(), AllowInfNan(False), Field(gt=0)]
+Count = Annotated[int, Strict(), Field(ge=1)]
+
+SignalSpec = Number | dict[str, Any]
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class VesselSection(_Strict):
+    model: str | None = None  # the catalog entry's model when a catalog entry is named
+    catalog: str | None = None
+    params: dict[str, Number] = Field(default_factory=dict)
+    initial: dict[str, Number] = Field(default_factory=dict)
+
+
+class ActuatorSection(_Strict):
+    model: str = "rudder-servo"
+    params: dict[str, Number] = Field(default_factory=dict)
+
+
+class ControllerSection(_Strict):
+    model: str = "open-loop"
+    dt: Positive | None = None
+    params: dict[str, Number] = Field(default_factory=dict)
+    reference: dict[str, SignalSpec] = Field(default_factory=dict)
+
+
+class EnvironmentSection(_Strict):
+    disturbance: dict[str, SignalSpec] = Field(default_factory=dict)
+
+
+class SimulationSection(_Strict):
+    t_final: Positive
+    dt: Positive
+    integrator: str = "rk4"
+    record_every: Count = 1
+    bounds: dict[str, tuple[Number, Number]] = Field(default_factory=dict)
+
+    @field_validator("integrator")
+    @classmethod
+    def _known_integrator(cls, name: str) -> str:
+        if name not in INTEGRATORS:
+            raise ValueError(f"unknown integrator '{name}'; valid: {', '.join(INTEGRATORS)}")
+        return name
+
+
+class Distribution(_Strict):
+    distribution: Literal["normal", "uniform", "lognormal"]
+    mean: Number | None = None
+    std: Annotated[Number, Field(ge=0)] | None = None
+    low: Number | None = None
+    high: Number | None = None
+
+    @model_validator(mode="after")
+    def _check(self) -> "Distribution":
+        if self.distribution in ("normal", "lognormal"):
+            if self.mean is None or self.std is None:
+                raise ValueError(f"a {self.distribution} draw needs `mean` and `std`")
+            if self.low is not None or self.high is not None:
+                raise ValueError(f"a {self.distribution} draw takes `mean` and `std`, not "
+                                 "`low`/`high`")
+        if self.distribution == "uniform":
+            if self.low is None or self.high is None or not self.high > self.low:
+                raise ValueError("a uniform draw needs `low` < `high`")
+            if self.mean is not None or self.std is not None:
+                raise ValueError("a uniform draw takes `low` and `high`, not `mean`/`std`")
+        return self
+
+
+class MonteCarloSection(_Strict):
+    runs: Annotated[int, Strict(), Field(ge=1, le=1_000_000)]
+    seed: Annotated[int, Strict(), Field(ge=0)]
+    draws: dict[str, Distribution] = Field(default_factory=dict)
+
+
+class BatchSection(_Strict):
+    grid: dict[str, list[Number]] = Field(default_factory=dict)
+    monte_carlo: MonteCarloSection | None = None
+
+
+#: The keys each manoeuvre takes (angles also as ``<key>_deg``), besides ``kind``.
+MANEUVER_KEYS: dict[str, tuple[str, ...]] = {
+    "turning": ("rudder", "sides", "speed", "rps", "t_final", "dt", "record_dt"),
+    "zigzag": ("rudder", "heading", "sides", "speed", "rps", "t_final", "dt", "record_dt"),
+    "pullout": ("rudder", "sides", "speed", "rps", "t_final", "dt", "record_dt"),
+    "spiral": ("max_rudder", "hold", "speed", "rps", "dt"),
+    "imo": ("speed", "rps", "dt"),
+}
+_ANGLES = ("rudder", "heading", "max_rudder")
+
+Values = Number | Annotated[list[Number], Field(min_length=1)]
+
+
+class ManeuverSection(_Strict):
+    """``[maneuver]``: a standard manoeuvre of the vessel (see :mod:`.maneuver`)."""
+
+    kind: Literal["turning", "zigzag", "pullout", "spiral", "imo"]
+    rudder: Values | None = None
+    rudder_deg: Values | None = None
+    heading: Values | None = None
+    heading_deg: Values | None = None
+    max_rudder: Number | None = None
+    max_rudder_deg: Number | None = None
+    sides: Literal["both", "starboard", "port"] | None = None
+    speed: Values | None = None
+    rps: Values | None = None
+    t_final: Positive | None = None
+    dt: Positive | None = None
+    record_dt: Positive | None = None
+    hold: Positive | None = None
+
+    @model_validator(mode="after")
+    def _check(self) -> "ManeuverSection":
+        allowed = MANEUVER_KEYS[self.kind]
+        for key in self.model_fields_set - {"kind"}:
+            base = key[:-4] if key.endswith("_deg") and key[:-4] in _ANGLES else key
+            if base not in allowed:
+                shown = ", ".join(f"{k} (or {k}_deg)" if k in _ANGLES else k for k in allowed)
+                raise ValueError(f"`{key}` is not a key of a '{self.kind}' manoeuvre; its keys: "
+                                 f"{shown}")
+        for angle in _ANGLES:
+            if {angle, f"{angle}_deg"} <= self.model_fields_set:
+                raise ValueError(f"give `{angle}` [rad] or `{angle}_deg` [deg], not both")
+        for key, unit in (("speed", "m/s"), ("rps", "1/s")):
+            value = getattr(self, key)
+            for v in value if isinstance(value, list) else [value]:
+                if v is not None and not v > 0:
+                    raise ValueError(f"`{key}` must be > 0 [{unit}], got {v!r}")
+        if self.speed is not None and self.rps is not None:
+            raise ValueError("give the approach `speed` [m/s] or the propeller `rps` [1/s], "
+                             "not both")
+        return self
+
+
+class Scenario(_Strict):
+    """The validated structure of a scenario file: a simulation (``[simulation]``) or a
+    standard manoeuvre (``[maneuver]``)."""
+
+    title: str = ""
+    description: str = ""
+    vessel: VesselSection
+    actuator: ActuatorSection = Field(default_factory=ActuatorSection)
+    controller: ControllerSection = Field(default_factory=ControllerSection)
+    environment: EnvironmentSection = Field(default_factory=EnvironmentSection)
+    simulation: SimulationSection | None = None
+    batch: BatchSection = Field(default_factory=BatchSection)
+    maneuver: ManeuverSection | None = None
+
+    @model_validator(mode="after")
+    def _simulation_or_maneuver(self) -> "Scenario":
+        if self.maneuver is None and self.simulation is None:
+            raise ValueError("a scenario needs a [simulation] section (t_final, dt, ...) or a "
+                             "[maneuver] section (kind = turning, zigzag, pullout, spiral "
+                             "or imo)")
+        if self.maneuver is not None:
+            extra = [s for s in ("simulation", "controller", "environment", "batch")
+                     if s in self.model_fields_set]
+            if extra:
+                raise ValueError(
+                    f"a [maneuver] scenario takes no [{'], ['.join(extra)}] section: the "
+                    "manoeuvre sets its own rudder orders, timing and batch (rudder angles, "
+                    "speeds and sides as lists in [maneuver])")
+        return self
