@@ -88,6 +88,12 @@ COMBINATIONS = {
     ("mmg", "rudder-servo", "zigzag-rps"): (
         (), _SERVO + "\ncontroller.propeller_rps -> model.propeller_rps" + _HEADING),
     ("mariner", "rudder-servo", "zigzag"): ((), _SERVO + _HEADING),
+    # test_control_path_following, examples/mariner_route_*.toml: the guidance law feeds the
+    # PID's heading reference inside the controller; it reads the position as well
+    ("mariner", "rudder-servo", "los+pid-heading"): (
+        (), _SERVO + _HEADING + "\nmodel.north -> controller.north\nmodel.east -> controller.east"),
+    ("mariner", "rudder-servo", "ilos+pid-heading"): (
+        (), _SERVO + _HEADING + "\nmodel.north -> controller.north\nmodel.east -> controller.east"),
     # test_vessels_cpp_ship
     ("cpp-ship-waves", "direct", "open-loop"): (
         ("pitch_ratio",),
@@ -119,6 +125,10 @@ def _scenario_combo(text: str) -> tuple[str, str, str]:
         if scn["maneuver"]["kind"] == "zigzag":  # the zig-zag's own heading-triggered logic
             controller = "zigzag-rps" if model == "mmg" else "zigzag"
         return (model, "rudder-servo", controller)
+    model = scn["vessel"].get("model") or catalog.get(scn["vessel"]["catalog"]).model
+    if "guidance" in scn:  # the route's law steers the heading controller
+        return (model, scn.get("actuator", {}).get("model", ActuatorSection().model),
+                f"{scn['guidance'].get('law', 'los')}+{scn['controller']['model']}")
     return (scn["vessel"]["model"],
             scn.get("actuator", {}).get("model", ActuatorSection().model),
             scn.get("controller", {}).get("model", ControllerSection().model))

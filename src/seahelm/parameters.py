@@ -53,6 +53,7 @@ class ParamInfo:
     default: Any
     low: float
     high: float
+    size: int = 0  # 0: a number; N: a vector of N numbers
 
 
 def param(
@@ -64,6 +65,7 @@ def param(
     low: float = -math.inf,
     high: float = math.inf,
     low_inclusive: bool = True,
+    size: int = 0,
 ) -> Any:
     """Declare a parameter field with its unit [..], paper symbol and admissible range.
 
@@ -84,6 +86,10 @@ def param(
         Admissible range [unit] (default -inf, +inf; ``high`` inclusive).
     low_inclusive : bool, optional
         Whether ``low`` itself is admissible (default True).
+    size : int, optional
+        0 (default) for a number; N > 0 for a vector of N numbers (a tuple; each element in
+        the range), e.g. the coordinates of a route. Compiled code reads it as an array field
+        of the record (``p.route_north[k]``).
 
     Returns
     -------
@@ -97,6 +103,7 @@ def param(
         "low": low,
         "high": high,
         "low_inclusive": low_inclusive,
+        "size": int(size),
     }
     if default is dataclasses.MISSING:
         return dataclasses.field(metadata=meta)
@@ -113,25 +120,16 @@ class Params:
     def __post_init__(self) -> None:
         for f in dataclasses.fields(self):
             value = getattr(self, f.name)
-            if not isinstance(value, (int, float, np.floating, np.integer)) or isinstance(
-                value, bool
-            ):
-                if isinstance(value, bool):
-                    continue
-                raise ParameterError(
-                    f"`{f.name}` must be a number{_unit(f)}, got {value!r}"
-                )
-            v = float(value)
-            if not math.isfinite(v):
-                raise ParameterError(f"`{f.name}` must be finite{_unit(f)}, got {v!r}")
-            low = f.metadata.get("low", -math.inf)
-            high = f.metadata.get("high", math.inf)
-            incl = f.metadata.get("low_inclusive", True)
-            if (v < low if incl else v <= low) or v > high:
-                lo = "[" if incl else "("
-                raise ParameterError(
-                    f"`{f.name}` must be in {lo}{low:g}, {high:g}]{_unit(f)}, got {v!r}"
-                )
+            size = f.metadata.get("size", 0)
+            if size:
+                values = _vector(f, value, size)
+                object.__setattr__(self, f.name, values)  # a tuple of floats, however given
+                for k, v in enumerate(values):
+                    _check_number(f, f"{f.name}[{k}]", v)
+                continue
+            if isinstance(value, bool):
+                continue
+            _check_number(f, f.name, value)
         self.validate()
 
     def validate(self) -> None:
@@ -146,6 +144,26 @@ class Params:
 
     @classmethod
     @functools.cache
+    def field_sizes(cls) -> tuple[int, ...]:
+        """Values per field in packing order: 1 for a number, N for a vector of N."""
+        return tuple(max(f.metadata.get("size", 0), 1) for f in dataclasses.fields(cls))
+
+    @classmethod
+    @functools.cache
+    def n_values(cls) -> int:
+        """Length of the packed array (:meth:`to_array`): the fields' sizes summed."""
+        return sum(cls.field_sizes())
+
+    @classmethod
+    @functools.cache
+    def value_names(cls) -> tuple[str, ...]:
+        """A name per packed value: the field name, ``name[k]`` for a vector's elements."""
+        return tuple(n if size == 1 and not _is_vector(cls, n) else f"{n}[{k}]"
+                     for n, size in zip(cls.field_names(), cls.field_sizes())
+                     for k in range(size))
+
+    @classmethod
+    @functools.cache
     def record_dtype(cls) -> np.dtype:
         """The structured dtype compiled code sees: one float64 field per parameter, in order.
 
@@ -156,8 +174,10 @@ class Params:
         -------
         numpy.dtype
         """
-        names = cls.field_names() or ("_unused",)
-        return np.dtype([(n, np.float64) for n in names])
+        if not cls.field_names():
+            return np.dtype([("_unused", np.float64)])
+        return np.dtype([(n, np.float64, (size,)) if _is_vector(cls, n) else (n, np.float64)
+                         for n, size in zip(cls.field_names(), cls.field_sizes())])
 
     def to_record(self) -> np.record:
         """This parameter set as one record (``rec.kp``), for compiled code.
@@ -170,8 +190,16 @@ class Params:
         return as_records(self.to_array()[None, :], type(self))[0]
 
     def to_array(self) -> np.ndarray:
-        """Pack the fields, in declaration order, into a float64 array (SI units)."""
-        return np.array([float(getattr(self, n)) for n in self.field_names()], dtype=float)
+        """Pack the fields, in declaration order, into a float64 array (SI units; a vector field
+        gives its elements in order)."""
+        out: list[float] = []
+        for n, size in zip(self.field_names(), self.field_sizes()):
+            value = getattr(self, n)
+            if _is_vector(type(self), n):
+                out.extend(float(v) for v in value)
+            else:
+                out.append(float(value))
+        return np.array(out, dtype=float)
 
     @classmethod
     def from_array(cls, values: Sequence[float]) -> Self:
@@ -187,11 +215,20 @@ class Params:
         Params
         """
         names = cls.field_names()
-        if len(values) != len(names):
+        if len(values) != cls.n_values():
             raise ParameterError(
-                f"{cls.__name__} needs {len(names)} values ({', '.join(names)}), got {len(values)}"
+                f"{cls.__name__} needs {cls.n_values()} values ({', '.join(cls.value_names())}), "
+                f"got {len(values)}"
             )
-        return cls(**{n: float(v) for n, v in zip(names, values)})
+        kwargs: dict[str, Any] = {}
+        i = 0
+        for n, size in zip(names, cls.field_sizes()):
+            if _is_vector(cls, n):
+                kwargs[n] = tuple(float(v) for v in values[i:i + size])
+            else:
+                kwargs[n] = float(values[i])
+            i += size
+        return cls(**kwargs)
 
     @classmethod
     def info(cls) -> list[ParamInfo]:
@@ -208,6 +245,7 @@ class Params:
                     default,
                     f.metadata.get("low", -math.inf),
                     f.metadata.get("high", math.inf),
+                    f.metadata.get("size", 0),
                 )
             )
         return out
@@ -254,12 +292,53 @@ class Params:
                     f"unknown parameter `{key}` for {cls.__name__}; "
                     f"valid: {', '.join(fields)} (angles also as <name>_deg)"
                 )
+            size = fields[name].metadata.get("size", 0)
+            if size:
+                kwargs[name] = tuple(v * factor for v in _vector(fields[name], value, size,
+                                                                  key=key))
+                continue
             if isinstance(value, bool) or not isinstance(value, (int, float)):
                 raise ParameterError(
                     f"`{key}` must be a number{_unit(fields[name])}, got {value!r}"
                 )
             kwargs[name] = float(value) * factor
         return cls(**kwargs)
+
+
+def _is_vector(cls: type, name: str) -> bool:
+    return bool(cls.__dataclass_fields__[name].metadata.get("size", 0))
+
+
+def _vector(f: dataclasses.Field, value: Any, size: int, *, key: str | None = None
+            ) -> tuple[float, ...]:
+    """A vector field's value as a tuple of ``size`` floats (from a list, tuple or array)."""
+    key = key or f.name
+    if isinstance(value, (str, bytes, Mapping)) or not hasattr(value, "__len__"):
+        raise ParameterError(f"`{key}` must be a sequence of {size} numbers{_unit(f)}, "
+                             f"got {value!r}")
+    items = list(np.asarray(value, dtype=object).ravel()) if isinstance(value, np.ndarray) \
+        else list(value)
+    if len(items) != size:
+        raise ParameterError(f"`{key}` must have {size} values{_unit(f)}, got {len(items)}")
+    for k, v in enumerate(items):
+        if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)):
+            raise ParameterError(f"`{key}[{k}]` must be a number{_unit(f)}, got {v!r}")
+    return tuple(float(v) for v in items)
+
+
+def _check_number(f: dataclasses.Field, name: str, value: Any) -> None:
+    """A scalar parameter value: a finite number in the field's range."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
+        raise ParameterError(f"`{name}` must be a number{_unit(f)}, got {value!r}")
+    v = float(value)
+    if not math.isfinite(v):
+        raise ParameterError(f"`{name}` must be finite{_unit(f)}, got {v!r}")
+    low = f.metadata.get("low", -math.inf)
+    high = f.metadata.get("high", math.inf)
+    incl = f.metadata.get("low_inclusive", True)
+    if (v < low if incl else v <= low) or v > high:
+        lo = "[" if incl else "("
+        raise ParameterError(f"`{name}` must be in {lo}{low:g}, {high:g}]{_unit(f)}, got {v!r}")
 
 
 def _unit(f: dataclasses.Field) -> str:
@@ -316,7 +395,7 @@ def as_records(rows: Any, cls: type[Params]) -> np.ndarray:
     arr = np.asarray(rows, dtype=np.float64)
     if arr.ndim == 1:
         arr = arr[None, :]
-    n = len(cls.field_names())
+    n = cls.n_values()
     if arr.ndim != 2 or arr.shape[1] != n:
         raise ParameterError(
             f"{cls.__name__} rows must have shape (runs, {n}), got {arr.shape}"

@@ -105,10 +105,13 @@ def get_actuator(name: str | Actuator) -> Actuator:
 def get_controller(name: str | Controller) -> Controller:
     """A controller by registry name (or the controller itself).
 
+    ``"<law>+<name>"`` (e.g. ``"ilos+pid-heading"``) is the heading controller ``name`` steered
+    by a path-following law (:func:`seahelm.control.guided.guided`).
+
     Parameters
     ----------
     name : str or Controller
-        Registry name, or the controller itself.
+        Registry name, ``<law>+<name>``, or the controller itself.
 
     Returns
     -------
@@ -119,4 +122,13 @@ def get_controller(name: str | Controller) -> Controller:
     ValueError
         If ``name`` is not a registered controller (the message lists the valid ones).
     """
+    if isinstance(name, str) and "+" in name and name not in CONTROLLERS:
+        from .control.guided import guided
+        from .control.path_following import GUIDANCE_LAWS
+
+        law, _, inner = name.partition("+")
+        if law not in GUIDANCE_LAWS:
+            raise ValueError(f"unknown guidance law '{law}' in '{name}'; valid: "
+                             f"{', '.join(GUIDANCE_LAWS)}")
+        return guided(GUIDANCE_LAWS[law], _resolve("controller", CONTROLLERS, inner, Controller))
     return _resolve("controller", CONTROLLERS, name, Controller)

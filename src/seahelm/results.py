@@ -115,6 +115,7 @@ class SimResult:
     params: dict[str, tuple[type[Params], np.ndarray]]
     metadata: dict[str, Any]
     layout: "BatchLayout | None" = None
+    command_units: tuple[str, ...] = ()  # (the controller's recorded outputs have units)
 
     def __post_init__(self) -> None:
         if self.layout is not None and self.layout.size != self.n_runs:
@@ -209,17 +210,26 @@ class SimResult:
             if lab not in self.state_labels:
                 add(lab, self.output[..., j], unit, "output")
         for j, lab in enumerate(self.command_labels):
-            add(lab, self.command[..., j], "", "command")
+            add(lab, self.command[..., j],
+                self.command_units[j] if j < len(self.command_units) else "", "command")
         for j, (lab, unit) in enumerate(zip(self.reference_labels, self.reference_units)):
             add(f"reference_{lab}", self.reference[..., j], unit, "reference")
         for j, (lab, unit) in enumerate(zip(self.disturbance_labels, self.disturbance_units)):
             add(lab, self.disturbance[..., j], unit, "disturbance")
         for comp, (cls, arr) in self.params.items():
             arr = np.broadcast_to(arr, (n_runs, arr.shape[-1]))
-            for info, col in zip(cls.info(), arr.T):
-                data[f"{comp}.{info.name}"] = ("run", np.asarray(col, dtype=float),
-                                               {"units": info.unit, "kind": "parameter",
-                                                "symbol": info.symbol})
+            i = 0
+            for info in cls.info():
+                attrs = {"units": info.unit, "kind": "parameter", "symbol": info.symbol}
+                if info.size:  # a vector parameter: a dimension of its own
+                    data[f"{comp}.{info.name}"] = (
+                        ("run", f"{comp}.{info.name}_index"),
+                        np.asarray(arr[:, i:i + info.size], dtype=float), attrs)
+                    i += info.size
+                else:
+                    data[f"{comp}.{info.name}"] = ("run", np.asarray(arr[:, i], dtype=float),
+                                                   attrs)
+                    i += 1
         data["status"] = ("run", self.status.astype(np.int64),
                           {"flag_values": "0 1 2",
                            "flag_meanings": "ok diverged_nonfinite diverged_out_of_bounds"})

@@ -278,7 +278,9 @@ def models(
             for col in ("parameter", "symbol", "unit", "default", "description"):
                 table.add_column(col)
             for p in info["parameters"]:
-                default = "required" if p["default"] is None else f"{p['default']:.6g}"
+                d = p["default"]
+                default = ("required" if d is None else f"{d:.6g}" if not isinstance(d, tuple)
+                           else f"{len(d)} values")
                 table.add_row(p["name"], p["symbol"], p["unit"], default, p["doc"])
             console.print(table)
             if info["signals"] or info.get("passthrough"):

@@ -12,6 +12,9 @@ numba-compiled functions over one run:
     (e.g. ``heading``, ``yaw_rate``), routed to it by name — the reference vector ``ref`` at
     time ``t`` (``reference_labels`` order); updates ``cs`` in place and writes the commands
     ``cmd`` (``command_labels`` order). ``p`` is the run's parameter record (``p.kp``).
+    A controller that declares ``output_labels`` (signals worth recording that feed nothing,
+    e.g. a guidance law's cross-track error) writes them after its commands, into
+    ``cmd[n_commands + j]``; the engine records them with the commands.
 
 Commands are connected by name to an actuator's command channels or, with a pass-through
 actuator, to the model inputs they name (``rudder_command`` → ``rudder_angle`` or the input of
@@ -67,6 +70,8 @@ class Controller:
         Model outputs it reads, by name (routed into ``y`` in this order).
     passthrough : bool
         Reference = command, channels named after what they feed (open loop).
+    output_labels, output_units : tuple of str
+        Recorded signals it writes after its commands (they feed nothing).
     """
 
     name: str
@@ -80,10 +85,14 @@ class Controller:
     step: Any
     measurement_labels: tuple[str, ...] = ()
     passthrough: bool = False
+    output_labels: tuple[str, ...] = ()
+    output_units: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if len(self.reference_units) != len(self.reference_labels):
             raise ValueError(f"{self.name}: reference_units has the wrong length")
+        if len(self.output_units) != len(self.output_labels):
+            raise ValueError(f"{self.name}: output_units has the wrong length")
 
     @property
     def n_measurements(self) -> int:
@@ -105,6 +114,7 @@ class Controller:
         rows += [("measurement", n, "") for n in self.measurement_labels]
         if not self.passthrough:
             rows += [("command", n, "") for n in self.command_labels]
+        rows += [("output", n, u) for n, u in zip(self.output_labels, self.output_units)]
         return rows
 
     @property

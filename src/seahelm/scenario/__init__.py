@@ -25,6 +25,9 @@ Layout (see ``examples/*.toml``)::
     [environment]       disturbance (per channel)
     [simulation]        t_final, dt, integrator, record_every, bounds
     [batch]             grid = {"controller.params.kp" = [..]}, [batch.monte_carlo] runs, seed, draws
+    [guidance]          law (los | ilos), waypoints = [[north, east], ...], acceptance_radius,
+                        lookahead, lookahead_min, lookahead_gamma, kappa: the route steers the
+                        heading controller (grid keys "guidance.<name>")
     [maneuver]          kind = turning | zigzag | pullout | spiral | imo, and its keys
                         (instead of [simulation], [controller], [environment], [batch])
 

@@ -24,6 +24,8 @@ from ..parameters import Params
 from ..registry import get_actuator, get_controller, get_model
 from ..simulation.batch import BatchAxis, BatchLayout, BatchValues, RunBatch, grid_axes
 from ..simulation.composition import compose
+from ..control.guided import guided
+from ..control.path_following import GuidanceLaw, get_guidance_law, route_params
 from ..simulation.signals import Constant, make_signal
 from ..vessels import catalog
 from .errors import ScenarioError, at_key as _err
@@ -56,7 +58,7 @@ def _params(cls: type[Params], values: dict[str, float], base: Params | None) ->
 
 
 _OVERRIDABLE = ("vessel.params.", "vessel.initial.", "actuator.params.", "controller.params.",
-                "controller.reference.", "environment.disturbance.")
+                "controller.reference.", "environment.disturbance.", "guidance.")
 
 #: Engine argument (as its messages name it, in backticks) -> the scenario key it comes from.
 _ENGINE_KEYS = {
@@ -84,6 +86,7 @@ def _key_units(key: str, model: Any, actuator: Any, wiring: Any) -> str:
         "vessel.params": {i.name: i.unit for i in model.params_type.info()},
         "actuator.params": {i.name: i.unit for i in actuator.params_type.info()},
         "controller.params": {i.name: i.unit for i in wiring.controller.params_type.info()},
+        "guidance": {i.name: i.unit for i in wiring.controller.params_type.info()},
         "vessel.initial": dict(zip(model.state_labels, model.state_units)),
         "controller.reference": dict(zip(wiring.references, wiring.reference_units)),
         "environment.disturbance": dict(zip(model.disturbance_labels, model.disturbance_units)),
@@ -241,6 +244,12 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
         controller = get_controller(scn.controller.model)
     except ValueError as exc:
         raise _err(source, "controller.model", str(exc)) from None
+    guidance = _guidance(scn, source)
+    if guidance is not None:  # the route's law steers the heading controller
+        try:
+            controller = guided(guidance[0], controller)
+        except ParameterError as exc:
+            raise _err(source, "guidance.law", str(exc)) from None
     try:  # the engine's wiring by signal name: it names the reference channels
         wiring = compose(model, actuator, controller)
     except ParameterError as exc:
@@ -288,9 +297,14 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
             ("controller.params", scn.controller.params, controller.params_type, None, cp),
         ):
             values = section(over, key + ".", sec)
+            if key == "controller.params" and guidance is not None:
+                values = {**section(over, "guidance.", guidance[1]), **values}
             try:
                 bucket.append(_params(cls, values, base).to_array())
             except ParameterError as exc:
+                named = re.search(r"`(\w+)", str(exc))
+                if guidance is not None and named and named.group(1) in guidance[1]:
+                    key = "guidance"  # a route or law value, written in [guidance]
                 raise _err(source, key, f"{exc}{where}") from None
             except TypeError as exc:
                 missing = [f for f in cls.field_names() if f not in values]
@@ -416,3 +430,26 @@ def _vessel_model(scn: Scenario, source: str) -> Any:
         return get_model(name)
     except ValueError as exc:
         raise _err(source, "vessel.model", str(exc)) from None
+
+
+def _guidance(scn: Scenario, source: str) -> tuple[GuidanceLaw, dict[str, Any]] | None:
+    """The ``[guidance]`` law and its parameter values (route and gains), checked."""
+    g = scn.guidance
+    if g is None:
+        return None
+    try:
+        law = get_guidance_law(g.law)
+    except ParameterError as exc:
+        raise _err(source, "guidance.law", str(exc)) from None
+    gains = {k: v for k in ("acceptance_radius", "lookahead", "lookahead_min",
+                            "lookahead_gamma", "kappa")
+             if (v := getattr(g, k)) is not None}
+    if "kappa" in gains and "kappa" not in law.params_type.field_names():
+        raise _err(source, "guidance.kappa",
+                   f"the '{law.name}' law has no integral gain (kappa is ILOS's), got "
+                   f"{gains['kappa']!r}")
+    try:
+        values = route_params(g.waypoints, law=law, **gains).as_dict()
+    except ParameterError as exc:
+        raise _err(source, "guidance", str(exc)) from None
+    return law, values

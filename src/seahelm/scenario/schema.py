@@ -16,7 +16,7 @@ from ..simulation.integrators import INTEGRATORS
 
 __all__ = ["Number", "VesselSection", "ActuatorSection", "ControllerSection",
            "EnvironmentSection", "SimulationSection", "Distribution", "MonteCarloSection",
-           "BatchSection", "ManeuverSection", "Scenario", "MANEUVER_KEYS"]
+           "BatchSection", "ManeuverSection", "GuidanceSection", "Scenario", "MANEUVER_KEYS"]
 
 #: A finite number: an integer or a float, never a boolean or a string.
 Number = Annotated[float, Strict(), AllowInfNan(False)]
@@ -51,6 +51,18 @@ class ControllerSection(_Strict):
 
 class EnvironmentSection(_Strict):
     disturbance: dict[str, SignalSpec] = Field(default_factory=dict)
+
+
+class GuidanceSection(_Strict):
+    """``[guidance]``: a waypoint route followed by LOS/ILOS (:mod:`seahelm.control.guided`)."""
+
+    law: str = "los"
+    waypoints: list[tuple[Number, Number]]
+    acceptance_radius: Positive | None = None
+    lookahead: Positive | None = None
+    lookahead_min: Annotated[Number, Field(ge=0)] | None = None
+    lookahead_gamma: Annotated[Number, Field(ge=0)] | None = None
+    kappa: Positive | None = None
 
 
 class SimulationSection(_Strict):
@@ -169,6 +181,7 @@ class Scenario(_Strict):
     simulation: SimulationSection | None = None
     batch: BatchSection = Field(default_factory=BatchSection)
     maneuver: ManeuverSection | None = None
+    guidance: GuidanceSection | None = None
 
     @model_validator(mode="after")
     def _simulation_or_maneuver(self) -> "Scenario":
@@ -177,7 +190,7 @@ class Scenario(_Strict):
                              "[maneuver] section (kind = turning, zigzag, pullout, spiral "
                              "or imo)")
         if self.maneuver is not None:
-            extra = [s for s in ("simulation", "controller", "environment", "batch")
+            extra = [s for s in ("simulation", "controller", "environment", "batch", "guidance")
                      if s in self.model_fields_set]
             if extra:
                 raise ValueError(

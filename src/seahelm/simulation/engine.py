@@ -280,10 +280,10 @@ def _param_rows(name: str, params: Any, cls: type[Params]) -> tuple[np.ndarray, 
         return stack_params(params, cls), type(first)
     arr = as_float_array(name, params)
     arr = np.atleast_2d(arr)
-    if arr.ndim != 2 or arr.shape[1] != len(cls.field_names()):
+    if arr.ndim != 2 or arr.shape[1] != cls.n_values():
         raise ParameterError(
-            f"`{name}` as an array must have shape (runs, {len(cls.field_names())}) "
-            f"({', '.join(cls.field_names())}), got {arr.shape}"
+            f"`{name}` as an array must have shape (runs, {cls.n_values()}) "
+            f"({', '.join(cls.value_names())}), got {arr.shape}"
         )
     for row in arr:  # validate every row through the dataclass
         cls.from_array(row)
@@ -531,7 +531,7 @@ def simulate(
     ar = as_records(ap, a_cls)
     cr = as_records(cp, c_cls)
     nz = z.shape[1]
-    ncmd = len(wiring.commands)
+    ncmd = len(wiring.commands) + len(controller.output_labels)  # outputs after commands
     n_rec = n_steps // record_every + 1
     cs = np.zeros((n_runs, max(controller.n_states, 1)))
     cmd = np.zeros((n_runs, ncmd))
@@ -583,7 +583,8 @@ def simulate(
         output_labels=model.output_labels,
         output_units=model.output_units,
         command=rec_cmd,
-        command_labels=wiring.commands,
+        command_labels=wiring.commands + controller.output_labels,
+        command_units=("",) * len(wiring.commands) + controller.output_units,
         reference=ref[:, ref_idx] if ref.shape[1] > 1 else np.repeat(ref, n_rec, axis=1),
         reference_labels=wiring.references,
         reference_units=wiring.reference_units,

@@ -39,6 +39,16 @@ Sign convention
     The drift angle output is β = atan2(−v, U_0 + u), positive when the ship moves to port
     of its heading (as in a steady turn to starboard).
 
+Current
+    ``current_north``, ``current_east`` [m/s] are the velocity of a uniform current over
+    ground. The velocity states (u, v, r) are then relative to the water, so the hydrodynamic
+    forces see the velocity through the water, and the position moves with the current:
+    ẋ_N += V_c,N, ẏ_E += V_c,E. For a current constant in time this is exact: the rigid-body
+    inertial and Coriolis forces written in relative velocities equal those in absolute ones for
+    an irrotational, constant current (Fossen 2021, *Handbook of Marine Craft Hydrodynamics and
+    Motion Control*, 2nd ed., §10.3, Property 10.1). A current that changes in time would add the
+    inertia force of its acceleration, which is left out (so it is a slowly varying current).
+
 Low speed
     The non-dimensional velocities use U_f = max(U, Fn_min √(g L)) (``min_froude_number``);
     the forces keep the factor U² of the actual speed. The model is a perturbation model about
@@ -85,8 +95,8 @@ STATES = ("surge_perturbation", "sway_speed", "yaw_rate", "north", "east", "head
 STATE_UNITS = ("m/s", "m/s", "rad/s", "m", "m", "rad")
 INPUTS = ("rudder_angle",)
 INPUT_UNITS = ("rad",)
-DISTURBANCES = ("force_x", "force_y", "moment_z")
-DISTURBANCE_UNITS = ("N", "N", "N·m")
+DISTURBANCES = ("force_x", "force_y", "moment_z", "current_north", "current_east")
+DISTURBANCE_UNITS = ("N", "N", "N·m", "m/s", "m/s")
 OUTPUTS = ("north", "east", "heading", "yaw_rate", "surge_speed", "sway_speed", "speed",
            "drift_angle")
 OUTPUT_UNITS = ("m", "m", "rad", "rad/s", "m/s", "m/s", "m/s", "rad")
@@ -236,8 +246,9 @@ def mariner_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     dx[S.yaw_rate] = (-m32 * fy + m22 * mz) / (det * L * L)
     c = math.cos(psi)
     s = math.sin(psi)
-    dx[S.north] = surge * c - v * s
-    dx[S.east] = surge * s + v * c
+    # velocities through the water; the position moves with the current as well
+    dx[S.north] = surge * c - v * s + d[D.current_north]
+    dx[S.east] = surge * s + v * c + d[D.current_east]
     dx[S.heading] = r
 
 

@@ -59,6 +59,15 @@ Low speed
 External loads ``force_x``, ``force_y`` [N] and ``moment_z`` [N·m] (about midship) are added to
 X, Y, N; they are zero when not given.
 
+Current: ``current_north``, ``current_east`` [m/s] are the velocity of a uniform current over
+ground. The velocity states (u, v, r) are then relative to the water, so the hull, propeller
+and rudder forces see the velocity through the water, and the position moves with the current:
+ẋ_N += V_c,N, ẏ_E += V_c,E. For a current constant in time this is exact: the rigid-body
+inertial and Coriolis forces written in relative velocities equal those in absolute ones for
+an irrotational, constant current (Fossen 2021, *Handbook of Marine Craft Hydrodynamics and
+Motion Control*, 2nd ed., §10.3, Property 10.1). A current that changes in time would add the
+inertia force of its acceleration, which is left out (so it is a slowly varying current).
+
 References
 ----------
 Yasukawa, H., Yoshimura, Y. (2015). Introduction of MMG standard method for ship maneuvering
@@ -104,8 +113,8 @@ STATES = ("surge_speed", "sway_speed", "yaw_rate", "north", "east", "heading")
 STATE_UNITS = ("m/s", "m/s", "rad/s", "m", "m", "rad")
 INPUTS = ("rudder_angle", "propeller_rps")
 INPUT_UNITS = ("rad", "1/s")
-DISTURBANCES = ("force_x", "force_y", "moment_z")
-DISTURBANCE_UNITS = ("N", "N", "N·m")
+DISTURBANCES = ("force_x", "force_y", "moment_z", "current_north", "current_east")
+DISTURBANCE_UNITS = ("N", "N", "N·m", "m/s", "m/s")
 OUTPUTS = ("north", "east", "heading", "yaw_rate", "surge_speed", "sway_speed", "speed",
            "drift_angle", "thrust", "rudder_normal_force", "rudder_inflow_angle")
 OUTPUT_UNITS = ("m", "m", "rad", "rad/s", "m/s", "m/s", "m/s", "rad", "N", "N", "rad")
@@ -335,8 +344,9 @@ def mmg_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     dx[S.yaw_rate] = (a11 * b2 - a12 * b1) / det
     c = math.cos(psi)
     s = math.sin(psi)
-    dx[S.north] = uu * c - v * s
-    dx[S.east] = uu * s + v * c
+    # velocities through the water; the position moves with the current as well
+    dx[S.north] = uu * c - v * s + d[D.current_north]
+    dx[S.east] = uu * s + v * c + d[D.current_east]
     dx[S.heading] = r
 
 

@@ -19,7 +19,8 @@ as :mod:`xarray` Datasets; see :mod:`seahelm.analysis.maneuvers.common`):
 The IMO MSC.137(76) check on top of these is :mod:`seahelm.analysis.imo`.
 
 Metrics of recorded runs that the scenario runner uses (:mod:`.metrics`): :func:`settling_time`,
-:func:`overshoot`, :func:`turning_diameter`, :func:`rudder_reversals`, :func:`summarize`.
+:func:`overshoot`, :func:`turning_diameter`, :func:`rudder_reversals`,
+:func:`path_following_metrics`, :func:`summarize`.
 """
 
 from __future__ import annotations
@@ -32,7 +33,14 @@ from .common import (
     maneuver_ship,
     metrics_rows,
 )
-from .metrics import overshoot, rudder_reversals, settling_time, summarize, turning_diameter
+from .metrics import (
+    overshoot,
+    path_following_metrics,
+    rudder_reversals,
+    settling_time,
+    summarize,
+    turning_diameter,
+)
 from .pullout import pull_out
 from .spiral import DEFAULT_SPIRAL_RUDDERS_DEG, direct_spiral, reverse_spiral, spiral_loop, spirals
 from .turning_circle import track_distance, turning_circle
@@ -61,4 +69,5 @@ __all__ = [
     "turning_diameter",
     "rudder_reversals",
     "summarize",
+    "path_following_metrics",
 ]

@@ -147,6 +147,45 @@ def rudder_reversals(time: np.ndarray, rudder: np.ndarray, *, deadband: float = 
     return out
 
 
+def path_following_metrics(result) -> dict[str, np.ndarray]:  # noqa: ANN001 - SimResult
+    """Per-run metrics of guided runs (a :mod:`seahelm.control.guided` controller): largest
+    and RMS cross-track error [m] over the run, the error at its end, time to complete the route [s] (NaN if it was
+    not completed), rudder activity (mean |δ| [deg], reversals per minute).
+
+    Parameters
+    ----------
+    result : SimResult
+        A result whose controller recorded ``cross_track_error`` and ``waypoint_index``.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        ``max_abs_cross_track_error_m``, ``rms_cross_track_error_m``,
+        ``final_cross_track_error_m``, ``time_to_complete_s`` and, with a ``rudder_angle`` state, ``mean_abs_rudder_deg`` and
+        ``rudder_reversals_per_min``; empty for a run without guidance.
+    """
+    if "cross_track_error" not in result.command_labels:
+        return {}
+    xte = result["cross_track_error"]
+    wp = result["waypoint_index"]
+    cls, arr = result.params["controller"]
+    n_wp = np.broadcast_to(arr[:, cls.value_names().index("n_waypoints")], (result.n_runs,))
+    done = wp >= (n_wp[:, None] - 1.0)
+    t = result.time
+    out = {
+        "max_abs_cross_track_error_m": np.nanmax(np.abs(xte), axis=1),
+        "rms_cross_track_error_m": np.sqrt(np.nanmean(xte * xte, axis=1)),
+        "final_cross_track_error_m": xte[:, -1],
+        "time_to_complete_s": np.where(done.any(axis=1), t[np.argmax(done, axis=1)], np.nan),
+    }
+    if "rudder_angle" in result.state_labels:
+        rudder = result["rudder_angle"]
+        out["mean_abs_rudder_deg"] = np.degrees(np.nanmean(np.abs(rudder), axis=1))
+        out["rudder_reversals_per_min"] = rudder_reversals(t, rudder,
+                                                           deadband=np.radians(0.5))
+    return out
+
+
 def summarize(result) -> list[dict[str, float | str]]:  # noqa: ANN001 - SimResult
     """Per-run summary metrics of a :class:`~seahelm.results.SimResult` (SI units unless
     the key says ``_deg``).
@@ -190,6 +229,7 @@ def summarize(result) -> list[dict[str, float | str]]:  # noqa: ANN001 - SimResu
             tracking["overshoot_deg"] = np.degrees(overshoot(unwrapped, sig[:, 0], goal))
         else:
             tracking["yaw_rate_error"] = final_target[:, 0] - sig[:, -1]
+    tracking.update(path_following_metrics(result))
     messages = result.messages()
     for i in range(result.n_runs):
         row: dict[str, float | str] = {"run": i, "status": messages[i]}
