@@ -232,3 +232,46 @@ def test_bad_guidance_sections(edit, match):
     assert edit[0] in SCENARIO
     with pytest.raises(ScenarioError, match=match):
         parse_scenario(SCENARIO.replace(*edit), source="r.toml")
+
+
+def test_the_look_ahead_shrinks_with_the_cross_track_error():
+    """Δ(y_e) = (Δ_max − Δ_min) exp(−γ y_e²) + Δ_min (Fossen 2021 eq. 12.76)."""
+    from seahelm.control.path_following import _lookahead
+    from seahelm.parameters import as_records
+
+    p = route_params(STRAIGHT, lookahead=1000.0, lookahead_min=200.0, lookahead_gamma=1e-4)
+    rec = as_records(p.to_array()[None, :], type(p))[0]
+    for y_e in (0.0, 50.0, -120.0, 1000.0):
+        assert _lookahead(rec, y_e) == pytest.approx(800.0 * math.exp(-1e-4 * y_e**2) + 200.0)
+    const = as_records(route_params(STRAIGHT, lookahead=700.0).to_array()[None, :], LOS.params_type)
+    assert _lookahead(const[0], 300.0) == 700.0
+
+
+def test_any_heading_controller_on_any_model_and_many_routes_in_one_batch():
+    """Nomoto-2 (constant speed) with the PID and with the compensated PID of Lvov (2014),
+    whose other references (delta_k_wind, delta_k_wave) stay references of the guided
+    controller; two routes in one batch run as each alone."""
+    from seahelm.control.compensation import COMPENSATED_PID
+    from seahelm.registry import get_controller
+    from seahelm.vessels.catalog import get as catalog_entry
+    from seahelm.vessels.nomoto import NOMOTO2
+
+    ship = catalog_entry("mariner-nomoto2").params
+    routes = [[[0.0, 0.0], [20000.0, 0.0]], [[0.0, 0.0], [5000.0, 5000.0], [5000.0, 20000.0]]]
+    for inner in (PID_HEADING, COMPENSATED_PID):
+        ctrl = get_controller(f"los+{inner.name}")
+        assert ctrl is guided(LOS, inner)
+        assert ctrl.reference_labels == tuple(r for r in inner.reference_labels
+                                              if r != "heading")
+        cps = [ctrl.params_type(**route_params(r, lookahead=600.0).as_dict(), **GAINS)
+               for r in routes]
+        kw = dict(t_final=2000.0, dt=0.1, controller=ctrl, actuator=RUDDER_SERVO,
+                  actuator_params=MARINER_SERVO, controller_dt=0.5, record_every=10)
+        x0 = np.array([0.0, 200.0, 0.0, 0.0, 0.0])  # 200 m to starboard, heading north
+        batch = simulate(NOMOTO2, ship, x0, controller_params=cps, **kw)
+        assert batch.ok.all()
+        xte = batch["cross_track_error"]
+        assert abs(xte[0, -1]) < 0.05  # the straight route: on the path
+        assert batch["waypoint_index"][1, -1] == 1.0  # the second route turned its corner
+        alone = simulate(NOMOTO2, ship, x0, controller_params=cps[1], **kw)
+        np.testing.assert_array_equal(alone["cross_track_error"][0], xte[1])
