@@ -185,6 +185,18 @@ def test_sea_signal_has_the_spectrum_variance_and_a_realisation_per_run():
     np.testing.assert_array_equal(again.disturbance(t_grid), batch.disturbance(t_grid))
 
 
+def test_the_monte_carlo_seed_draws_new_seas():
+    """Changing [batch.monte_carlo] seed changes the irregular-sea realisations (the file
+    records that seed), keeping it reproduces them."""
+    base = _with(SEA.format(h3=3.0, q="ordinate", seed=5) + "[batch.monte_carlo]\nruns = 2\n")
+    t_grid = np.arange(201) * 0.1
+    one = parse_scenario(base + "seed = 1\n").disturbance(t_grid)
+    again = parse_scenario(base + "seed = 1\n").disturbance(t_grid)
+    other = parse_scenario(base + "seed = 2\n").disturbance(t_grid)
+    np.testing.assert_array_equal(one, again)
+    assert not np.allclose(one[:, :, 0], other[:, :, 0])
+
+
 def test_sea_signal_bad_input():
     with pytest.raises(ScenarioError, match=r"unknown sea quantity 'height'"):
         parse_scenario(_with(SEA.format(h3=3.0, q="height", seed=1)))

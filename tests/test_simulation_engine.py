@@ -116,7 +116,17 @@ def test_progress_callback_and_record_every(mariner2):
     res = simulate(NOMOTO2, mariner2, np.zeros(5), t_final=100.0, dt=0.1, reference=[0.0],
                    record_every=7, progress=lambda done, total: calls.append((done, total)))
     assert calls[-1] == (1000, 1000)
-    np.testing.assert_allclose(res.time, np.arange(0, 1001, 7) * 0.1)
+    # every 7th step and the final state (1000 is not a multiple of 7: a shorter last interval)
+    np.testing.assert_allclose(res.time, np.append(np.arange(0, 1001, 7), 1000) * 0.1)
+    every = simulate(NOMOTO2, mariner2, np.zeros(5), t_final=100.0, dt=0.1, reference=[0.0],
+                     record_every=1)
+    np.testing.assert_array_equal(res.state[:, -1], every.state[:, -1])  # the final state
+    np.testing.assert_array_equal(res.state[:, :-1], every.state[:, ::7])
+    np.testing.assert_array_equal(res.output[:, -1], every.output[:, -1])
+    # chunked (a progress callback) and in one go record the same samples
+    whole = simulate(NOMOTO2, mariner2, np.zeros(5), t_final=100.0, dt=0.1, reference=[0.0],
+                     record_every=7)
+    np.testing.assert_array_equal(whole.state, res.state)
 
 
 @pytest.mark.parametrize(

@@ -24,6 +24,7 @@ from ..parameters import Params
 from ..registry import get_actuator, get_controller, get_model
 from ..simulation.batch import BatchAxis, BatchLayout, BatchValues, RunBatch, grid_axes
 from ..simulation.composition import compose
+from ..simulation.engine import check_record_memory
 from ..control.guided import guided
 from ..control.path_following import GuidanceLaw, get_guidance_law, route_params
 from ..simulation.signals import Constant, make_signal
@@ -56,6 +57,9 @@ def _channel(name: str, labels: tuple[str, ...], units: tuple[str, ...]) -> tupl
 def _params(cls: type[Params], values: dict[str, float], base: Params | None) -> Params:
     return cls.from_mapping(values, base=base)
 
+
+#: Runs one scenario batch may have (grid points × Monte-Carlo samples).
+MAX_RUNS = 1_000_000
 
 _OVERRIDABLE = ("vessel.params.", "vessel.initial.", "actuator.params.", "controller.params.",
                 "controller.reference.", "environment.disturbance.", "guidance.")
@@ -149,7 +153,9 @@ class _ScenarioSignals:
 
     Called by the engine with its own time grid (the scenario does not build one); returns
     shape (runs|1, steps+1, channels). Random signals draw run ``i``'s realisation from the
-    ``i``-th child of ``SeedSequence(seed)``.
+    ``i``-th child of ``SeedSequence(seed)``, with the signal's own ``seed`` and, in a
+    Monte-Carlo batch, the batch's seed (``SeedSequence([seed, batch_seed])``): a new batch
+    seed draws new seas, as it draws new parameters.
     """
 
     source: str
@@ -157,6 +163,7 @@ class _ScenarioSignals:
     n_channels: int
     #: per run (or one for all runs): (channel index, name, spec as written, signal)
     runs: tuple[tuple[tuple[int, str, Any, Any], ...], ...]
+    batch_seed: int | None = None
 
     def __call__(self, t_grid: np.ndarray) -> np.ndarray:
         t_grid = np.asarray(t_grid, dtype=float)
@@ -165,7 +172,9 @@ class _ScenarioSignals:
             for j, name, spec, sig in channels:
                 try:
                     if getattr(sig, "random", False):
-                        seq = np.random.SeedSequence(sig.seed, spawn_key=(i,))
+                        entropy = sig.seed if self.batch_seed is None else [sig.seed,
+                                                                            self.batch_seed]
+                        seq = np.random.SeedSequence(entropy, spawn_key=(i,))
                         out[i, :, j] = sig(t_grid, seed=seq)
                     else:
                         out[i, :, j] = sig(t_grid)
@@ -177,7 +186,7 @@ class _ScenarioSignals:
 
 def _signal_input(
     per_run: list[dict[str, Any]], labels: tuple[str, ...], units: tuple[str, ...],
-    path: str, source: str,
+    path: str, source: str, batch_seed: int | None = None,
 ) -> Any:
     """A reference/disturbance input of :func:`simulate` from per-run channel specifications.
 
@@ -203,7 +212,8 @@ def _signal_input(
             for j, _, _, sig in chans:
                 arr[i, 0, j] = sig.value
         return arr
-    return _ScenarioSignals(source=source, path=path, n_channels=len(labels), runs=tuple(runs))
+    return _ScenarioSignals(source=source, path=path, n_channels=len(labels), runs=tuple(runs),
+                            batch_seed=batch_seed)
 
 
 def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> RunBatch:
@@ -271,6 +281,9 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
                 *wiring.commands, *model.disturbance_labels,
                 *(f"reference_{lab}" for lab in wiring.references),
                 "status", "failure_time", "status_message", "run", "sample", "time"}
+    _check_size(scn, source, model.n_states + actuator.n_states + model.n_outputs
+                + len(wiring.commands) + len(controller.output_labels) + len(wiring.references)
+                + model.n_disturbances)  # what the engine records, as it counts them
     runs, seed, layout = _expand_batch(
         scn, source, reserved, lambda key: _key_units(key, model, actuator, wiring))
 
@@ -338,9 +351,9 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
         actuator=actuator,
         actuator_params=np.array(ap),
         reference=_signal_input(refs, wiring.references, wiring.reference_units,
-                                "controller.reference", source),
+                                "controller.reference", source, seed),
         disturbance=_signal_input(dists, model.disturbance_labels, model.disturbance_units,
-                                  "environment.disturbance", source),
+                                  "environment.disturbance", source, seed),
         controller_dt=scn.controller.dt,
         integrator=sim.integrator,
         record_every=sim.record_every,
@@ -453,3 +466,28 @@ def _guidance(scn: Scenario, source: str) -> tuple[GuidanceLaw, dict[str, Any]] 
     except ParameterError as exc:
         raise _err(source, "guidance", str(exc)) from None
     return law, values
+
+
+def _check_size(scn: Scenario, source: str, channels: int) -> None:
+    """Refuse a batch whose recordings cannot fit in memory before it is expanded (drawing a
+    million Monte-Carlo samples takes a while; the engine checks the exact size again)."""
+    sim = scn.simulation
+    assert sim is not None
+    grid = scn.batch.grid
+    mc = scn.batch.monte_carlo
+    n_runs = math.prod(len(v) for v in grid.values()) * (mc.runs if mc is not None else 1)
+    if n_runs > MAX_RUNS:
+        sizes = " x ".join([str(len(v)) for v in grid.values()]
+                           + ([f"{mc.runs} samples"] if mc is not None else []))
+        raise _err(source, "batch",
+                   f"{n_runs:,} runs ({sizes}) is more than one batch holds ({MAX_RUNS:,}); "
+                   "split the study into several scenarios")
+    steps = sim.t_final / sim.dt
+    if not steps < 1e15:
+        raise _err(source, "simulation.t_final",
+                   f"{steps:.3g} steps (t_final/dt = {sim.t_final!r}/{sim.dt!r}) cannot run")
+    n_rec = int(steps) // sim.record_every + 1 + (int(steps) % sim.record_every != 0)
+    try:
+        check_record_memory(n_runs, n_rec, channels)
+    except ParameterError as exc:
+        raise _err(source, "simulation.record_every", str(exc)) from None

@@ -58,7 +58,8 @@ from .integrators import ButcherTableau, compiled_advance_source, get_integrator
 if TYPE_CHECKING:  # pragma: no cover
     from ..results import SimResult
 
-__all__ = ["RunStatus", "simulate", "compile_closed_loop", "kernel_cache_dir"]
+__all__ = ["RunStatus", "simulate", "compile_closed_loop", "kernel_cache_dir",
+           "check_record_memory", "physical_memory"]
 
 
 class RunStatus(enum.IntEnum):
@@ -361,6 +362,45 @@ def _signal(
     return np.ascontiguousarray(arr, dtype=float)
 
 
+#: Share of the machine's memory the recorded time series may take: the results Dataset
+#: and the file writer hold about as much again.
+RECORD_MEMORY_SHARE = 0.4
+
+
+def physical_memory() -> int | None:
+    """The machine's physical memory [bytes] (None where the OS does not say)."""
+    try:
+        return int(os.sysconf("SC_PHYS_PAGES")) * int(os.sysconf("SC_PAGE_SIZE"))
+    except (AttributeError, ValueError, OSError):  # pragma: no cover - not POSIX
+        return None
+
+
+def check_record_memory(n_runs: int, n_rec: int, channels: int) -> None:
+    """Refuse, before anything is allocated, recordings that cannot fit in memory.
+
+    Parameters
+    ----------
+    n_runs, n_rec, channels : int
+        Runs, records per run and recorded channels (states, outputs, commands, references,
+        disturbances).
+
+    Raises
+    ------
+    ParameterError
+        If the recorded arrays (8 B a value) would take more than
+        :data:`RECORD_MEMORY_SHARE` of the machine's memory.
+    """
+    need = 8 * n_runs * n_rec * channels
+    total = physical_memory()
+    if total is None or need <= RECORD_MEMORY_SHARE * total:
+        return
+    raise ParameterError(
+        f"`record_every`: the recorded time series would need {need / 1e9:.3g} GB ({n_runs:,} "
+        f"run(s) x {n_rec:,} records x {channels} channels x 8 B), more than "
+        f"{RECORD_MEMORY_SHARE:.0%} of this machine's {total / 1e9:.3g} GB memory; record fewer "
+        "samples (a larger record_every), fewer runs or a shorter t_final")
+
+
 def _runs(*sizes: tuple[str, int]) -> int:
     n = max(s for _, s in sizes)
     for name, s in sizes:
@@ -436,8 +476,8 @@ def simulate(
         Fixed-step method: a name in :data:`~seahelm.simulation.integrators.INTEGRATORS`
         (default "rk4") or an explicit :class:`~seahelm.simulation.integrators.ButcherTableau`.
     record_every : int
-        Record every n-th step (``t_final/dt`` need not be a multiple; the last record is at
-        the last multiple).
+        Record every n-th step, and the final state (``t_final/dt`` need not be a multiple:
+        the last recorded interval is then shorter).
     bounds : mapping label -> (low, high), optional
         Admissible state bounds beyond the model's declared ones; leaving them marks a run
         diverged.
@@ -532,7 +572,10 @@ def simulate(
     cr = as_records(cp, c_cls)
     nz = z.shape[1]
     ncmd = len(wiring.commands) + len(controller.output_labels)  # outputs after commands
-    n_rec = n_steps // record_every + 1
+    # every record_every-th step and the final one (the last interval may be shorter)
+    n_rec = n_steps // record_every + 1 + (n_steps % record_every != 0)
+    check_record_memory(n_runs, n_rec, nz + model.n_outputs + ncmd
+                         + len(wiring.references) + model.n_disturbances)
     cs = np.zeros((n_runs, max(controller.n_states, 1)))
     cmd = np.zeros((n_runs, ncmd))
     ca = np.zeros((n_runs, max(len(wiring.actuator_commands), 1)))
@@ -572,8 +615,8 @@ def simulate(
             break
     wall = _time.perf_counter() - wall0
 
-    rec_t = np.arange(n_rec) * record_every * float(dt)
-    ref_idx = np.arange(n_rec) * record_every
+    ref_idx = np.minimum(np.arange(n_rec) * record_every, n_steps)
+    rec_t = ref_idx * float(dt)
     result = SimResult(
         time=rec_t,
         state=rec_z,

@@ -214,14 +214,16 @@ def run_slice(
         # countdowns instead of k % n: integer division costs more than the model's algebra
         to_ctrl = (ctrl_every - k_start % ctrl_every) % ctrl_every
         to_rec = (rec_every - k_start % rec_every) % rec_every
-        # the record after the last step is one more iteration, that records and stops
-        k_end = k_stop + 1 if k_stop == n_steps and n_steps % rec_every == 0 else k_stop
+        # the record after the last step is one more iteration, that records and stops (the
+        # final state is recorded even when the step count is not a multiple of rec_every)
+        k_end = k_stop + 1 if k_stop == n_steps else k_stop
         for k in range(k_start, k_end):
             t = k * dt
             last = k == n_steps
-            record = to_rec == 0
+            on_grid = to_rec == 0
+            record = on_grid or last
             control = to_ctrl == 0 and not last
-            to_rec = rec_every - 1 if record else to_rec - 1
+            to_rec = rec_every - 1 if on_grid else to_rec - 1
             to_ctrl = ctrl_every - 1 if control else to_ctrl - 1
             # the model's outputs only when recorded or measured (NM is a compile-time
             # constant: for a controller that measures nothing the branch is gone)
@@ -241,7 +243,7 @@ def run_slice(
                 controller_step(t, dt_ctrl, zfull, y, refk, cpi, csi, cmdi)
                 route_actuator_commands(cmdi, cai)
             if record:
-                m = k // rec_every
+                m = k // rec_every if on_grid else k // rec_every + 1  # (the final record)
                 for j in range(NX):
                     rec_z[i, m, j] = xv[j]
                 for j in range(NA):
