@@ -275,3 +275,31 @@ def test_any_heading_controller_on_any_model_and_many_routes_in_one_batch():
         assert batch["waypoint_index"][1, -1] == 1.0  # the second route turned its corner
         alone = simulate(NOMOTO2, ship, x0, controller_params=cps[1], **kw)
         np.testing.assert_array_equal(alone["cross_track_error"][0], xte[1])
+
+
+def test_environment_current_section_sets_the_current_channels():
+    from seahelm.scenario import ScenarioError, parse_scenario
+
+    text = SCENARIO.replace("[environment.disturbance]\ncurrent_east = 1.0\n",
+                            "[environment.current]\nspeed = 2.0\ndirection_deg = 30.0\n")
+    batch = parse_scenario(text)
+    j = [MARINER.disturbance_labels.index(c) for c in ("current_north", "current_east")]
+    np.testing.assert_allclose(batch.disturbance[0, 0, j], [2.0 * math.cos(math.radians(30.0)),
+                                                            1.0], rtol=1e-15)
+    for edit, match in (
+        (("direction_deg = 30.0", "direction_deg = 360.0"),
+         r"\[environment.current.direction_deg\] Input should be less than 360"),
+        (("speed = 2.0", "speed = -1.0"),
+         r"\[environment.current.speed\] Input should be greater than or equal to 0"),
+        (("[environment.current]", "[environment.disturbance]\ncurrent_north = 0.5\n"
+          "[environment.current]"),
+         r"\[environment.current\] the current is given twice: here and as "
+         r"environment.disturbance.current_north"),
+    ):
+        with pytest.raises(ScenarioError, match=match):
+            parse_scenario(text.replace(*edit))
+    nomoto = ('[vessel]\ncatalog = "mariner-nomoto2"\n[environment.current]\nspeed = 1.0\n'
+              'direction_deg = 0.0\n[simulation]\nt_final = 10.0\ndt = 0.1\n')
+    with pytest.raises(ScenarioError, match=r"\[environment.current\] model 'nomoto2' has no "
+                                            r"current channels"):
+        parse_scenario(nomoto)

@@ -293,7 +293,8 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
     # a random signal gives every run its own realisation
     varied_ref = random(scn.controller.reference) or any(
         k.startswith("controller.reference.") for r in runs for k in r)
-    varied_dist = random(scn.environment.disturbance) or any(
+    disturbance = _with_current(scn, model, source)
+    varied_dist = random(disturbance) or any(
         k.startswith("environment.disturbance.") for r in runs for k in r)
 
     def section(over: dict[str, float], prefix: str, base: dict[str, Any]) -> dict[str, Any]:
@@ -336,7 +337,7 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
         if varied_ref or not refs:
             refs.append(section(over, "controller.reference.", scn.controller.reference))
         if varied_dist or not dists:
-            dists.append(section(over, "environment.disturbance.", scn.environment.disturbance))
+            dists.append(section(over, "environment.disturbance.", disturbance))
 
     sim = scn.simulation
     assert sim is not None  # (a [maneuver] scenario goes to .maneuver)
@@ -491,3 +492,26 @@ def _check_size(scn: Scenario, source: str, channels: int) -> None:
         check_record_memory(n_runs, n_rec, channels)
     except ParameterError as exc:
         raise _err(source, "simulation.record_every", str(exc)) from None
+
+
+def _with_current(scn: Scenario, model: Any, source: str) -> dict[str, Any]:
+    """The disturbance channels, with ``[environment.current]`` as ``current_north`` and
+    ``current_east`` [m/s] (for a model that has them)."""
+    out = dict(scn.environment.disturbance)
+    current = scn.environment.current
+    if current is None:
+        return out
+    channels = ("current_north", "current_east")
+    if not set(channels) <= set(model.disturbance_labels):
+        raise _err(source, "environment.current",
+                   f"model '{model.name}' has no current channels (current_north, current_east "
+                   "[m/s]; the 3-DOF models mariner and mmg have them)")
+    both = [c for c in channels if c in out]
+    if both:
+        raise _err(source, "environment.current",
+                   f"the current is given twice: here and as environment.disturbance."
+                   f"{both[0]}")
+    angle = math.radians(current.direction_deg)
+    out["current_north"] = current.speed * math.cos(angle)
+    out["current_east"] = current.speed * math.sin(angle)
+    return out

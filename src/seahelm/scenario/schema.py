@@ -15,7 +15,7 @@ from pydantic import AllowInfNan, BaseModel, ConfigDict, Field, Strict, field_va
 from ..simulation.integrators import INTEGRATORS
 
 __all__ = ["Number", "VesselSection", "ActuatorSection", "ControllerSection",
-           "EnvironmentSection", "SimulationSection", "Distribution", "MonteCarloSection",
+           "EnvironmentSection", "CurrentSection", "SimulationSection", "Distribution", "MonteCarloSection",
            "BatchSection", "ManeuverSection", "GuidanceSection", "Scenario", "MANEUVER_KEYS"]
 
 #: A finite number: an integer or a float, never a boolean or a string.
@@ -49,8 +49,19 @@ class ControllerSection(_Strict):
     reference: dict[str, SignalSpec] = Field(default_factory=dict)
 
 
+class CurrentSection(_Strict):
+    """``[environment.current]``: a uniform current, constant in time.
+
+    ``direction_deg`` is where the current sets to (flows towards), clockwise from north, in
+    [0, 360) (the oceanographic convention; wind is given by where it comes from)."""
+
+    speed: Annotated[Number, Field(ge=0)]
+    direction_deg: Annotated[Number, Field(ge=0, lt=360)]
+
+
 class EnvironmentSection(_Strict):
     disturbance: dict[str, SignalSpec] = Field(default_factory=dict)
+    current: CurrentSection | None = None
 
 
 class GuidanceSection(_Strict):
