@@ -163,19 +163,25 @@ def test_progress_bar_appears_only_for_long_runs(monkeypatch):
     assert quick.bar is None
 
 
-def test_cache_command_reports_and_clears(tmp_path, monkeypatch):
-    monkeypatch.setenv("SEAHELM_CACHE_DIR", str(tmp_path / "kernels"))
-    (tmp_path / "kernels").mkdir()
-    (tmp_path / "kernels" / "seahelm_kernel_0123.py").write_text("x = 1\n")
-    (tmp_path / "kernels" / "__pycache__").mkdir()
-    (tmp_path / "kernels" / "__pycache__" / "k.nbi").write_bytes(b"0" * 100)
+def test_cache_command_reports_and_clears_only_its_own_files(tmp_path, monkeypatch):
+    where = tmp_path / "kernels"
+    monkeypatch.setenv("SEAHELM_CACHE_DIR", str(where))
+    where.mkdir()
+    (where / "seahelm_kernel_0123.py").write_text("x = 1\n")
+    (where / "__pycache__").mkdir()
+    (where / "__pycache__" / "seahelm_kernel_0123.run_slice-1.py311.nbi").write_bytes(b"0" * 100)
+    (where / "notes.txt").write_text("mine\n")  # a user's file in the directory they chose
+    (where / "keep").mkdir()
+    (where / "keep" / "data.csv").write_text("1,2\n")
     res = runner.invoke(app, ["cache", "--json"])
     assert res.exit_code == 0
     info = json.loads(res.stdout)
     assert info["kernels"] == 1 and info["files"] == 2 and info["bytes"] == 106
+    assert info["other_files"] == 2
     res = runner.invoke(app, ["cache", "--clear", "--json"])
     assert json.loads(res.stdout)["cleared"] is True
-    assert list((tmp_path / "kernels").iterdir()) == []
+    left = sorted(str(p.relative_to(where)) for p in where.rglob("*") if p.is_file())
+    assert left == ["keep/data.csv", "notes.txt"]
 
 
 def _run_json(name):

@@ -299,11 +299,14 @@ def test_grid_dimension_names_fall_back_to_the_key_path():
                                  '"vessel.params.gain" = [0.1, 0.2, 0.3]\n'
                                  '"controller.reference.heading_deg" = [5.0]\n'
                                  '"vessel.initial.heading" = [0.0, 0.1]\n'))
-    # "heading" is the name of a state variable: that dimension keeps its full key path
-    assert batch.layout.dims == ("kp", "gain", "heading_deg", "vessel.initial.heading")
+    # "heading" is the name of a state variable and "heading_deg" of a summary metric (the
+    # final heading in degrees, whose column it would overwrite): those dimensions keep their
+    # full key paths
+    assert batch.layout.dims == ("kp", "gain", "controller.reference.heading_deg",
+                                 "vessel.initial.heading")
     assert batch.layout.shape == (2, 3, 1, 2)
     units = {a.name: a.units for a in batch.layout.axes}
-    assert units == {"kp": "rad/rad", "gain": "1/s", "heading_deg": "deg",
+    assert units == {"kp": "rad/rad", "gain": "1/s", "controller.reference.heading_deg": "deg",
                      "vessel.initial.heading": "rad"}
     clash = parse_scenario(_with('[batch.grid]\n"vessel.initial.heading_deg" = [5.0, 6.0]\n'
                                  '"controller.reference.heading_deg" = [1.0]\n'))

@@ -277,6 +277,9 @@ class Params:
         """
         fields = {f.name: f for f in dataclasses.fields(cls)}
         kwargs: dict[str, Any] = base.as_dict() if base is not None else {}
+        both = [k for k in values if k.endswith("_deg") and k[:-4] in values]
+        if both:
+            raise ParameterError(f"give `{both[0][:-4]}` [rad] or `{both[0]}` [deg], not both")
         for key, value in values.items():
             name, factor = key, 1.0
             if key not in fields and key.endswith("_deg") and key[:-4] in fields:

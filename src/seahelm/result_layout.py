@@ -54,6 +54,8 @@ def flatten_runs(ds: "xr.Dataset") -> "xr.Dataset":
     dims = batch_dims(ds)
     if dims == ("run",):
         return ds
+    if not dims:  # one run stored without a run dimension (a manoeuvre's single run)
+        return ds.expand_dims(run=[0]).transpose("run", ...)
     if "run" in ds.variables:
         raise ValueError(f"cannot flatten batch dims {dims}: the Dataset already has `run`")
     flat = ds.stack(run=dims, create_index=False)

@@ -365,5 +365,22 @@ def load_result(path: str | os.PathLike[str]) -> "xr.Dataset":
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(f"result file not found: {path}")
-    with xr.open_dataset(path, engine="h5netcdf") as ds:
-        return ds.load()
+    if not path.is_file():
+        raise ParameterError(f"{path} is not a regular file (a seahelm result file is needed)")
+    with path.open("rb") as fh:
+        magic = fh.read(8)
+    if magic != b"\x89HDF\r\n\x1a\n":
+        raise ParameterError(f"{path}: not a NetCDF-4/HDF5 file written by seahelm (a results "
+                             "file of `seahelm run --out` or SimResult.to_netcdf)")
+    try:
+        with xr.open_dataset(path, engine="h5netcdf") as ds:
+            ds = ds.load()
+    except (OSError, ValueError) as exc:
+        raise ParameterError(f"{path}: cannot be read as NetCDF ({exc})") from None
+    if "status" not in ds or "time" not in ds.dims:
+        kind = ds.attrs.get("maneuver")
+        what = f"a '{kind}' manoeuvre file" if kind else "not a seahelm simulation result"
+        raise ParameterError(f"{path}: {what} (no `status` over runs and `time`); `seahelm "
+                             "plot` draws a result.nc of `seahelm run --out` or a manoeuvre's "
+                             "*-runs.nc")
+    return ds

@@ -11,7 +11,9 @@ import json
 import math
 import os
 import sys
+import tempfile
 from collections.abc import Callable
+from pathlib import Path
 from typing import Annotated, Any, NoReturn, TypeVar
 
 import numpy as np
@@ -61,6 +63,9 @@ def handle_errors(func: F) -> F:
             raise
         except (ParameterError, ValueError, FileNotFoundError, KeyError) as exc:
             fail_bad_input(_one_line(exc))
+        except OSError as exc:  # a path the user gave: exists, not a directory, no permission
+            where = f": {exc.filename}" if getattr(exc, "filename", None) else ""
+            fail_bad_input(f"{exc.strerror or type(exc).__name__}{where}")
         except SeahelmError as exc:
             fail(_one_line(exc))
         except Exception as exc:  # noqa: BLE001 - the CLI's last line of defence
@@ -69,6 +74,79 @@ def handle_errors(func: F) -> F:
             fail(f"{type(exc).__name__}: {_one_line(exc)} (set SEAHELM_DEBUG=1 for a traceback)")
 
     return wrapper  # type: ignore[return-value]
+
+
+def output_dir(option: str, path: Path, names: tuple[str, ...] = ()) -> Path:
+    """Check, before any work, that ``path`` is (or can be made) a writable directory and that
+    none of the files to be written there (``names``) is a directory; returns ``path``.
+
+    Raises
+    ------
+    ParameterError
+        Naming the option and the path: an empty path, an existing file, a parent that is a
+        file, a directory that cannot be created or written, a target that is a directory.
+    """
+    if path.exists() and not path.is_dir():
+        raise ParameterError(f"`{option}` must be a directory, but {path} is a file")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ParameterError(f"`{option}`: cannot create the directory {path} "
+                             f"({exc.strerror or exc})") from None
+    _check_writable(option, path)
+    for name in names:
+        if (path / name).is_dir():
+            raise ParameterError(f"`{option}`: {path / name} is a directory; it would be "
+                                 "overwritten by a file")
+    return path
+
+
+def output_file(option: str, path: Path) -> Path:
+    """Check, before any work, that ``path`` can be written as a file: not empty, not a
+    directory, its directory existing (or creatable) and writable; returns ``path``."""
+    if path.is_dir():
+        raise ParameterError(f"`{option}` must be a file name, but {path} is a directory")
+    parent = path.parent
+    if parent.exists() and not parent.is_dir():
+        raise ParameterError(f"`{option}`: {parent} is a file, not a directory")
+    try:
+        parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ParameterError(f"`{option}`: cannot create the directory {parent} "
+                             f"({exc.strerror or exc})") from None
+    _check_writable(option, parent)
+    return path
+
+
+def _check_writable(option: str, directory: Path) -> None:
+    try:  # (os.access is True for root everywhere; a real file tells)
+        fd, probe = tempfile.mkstemp(dir=directory, prefix=".seahelm-probe-")
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as exc:
+        raise ParameterError(f"`{option}`: cannot write in {directory} "
+                             f"({exc.strerror or exc})") from None
+
+
+def check_figure_suffix(option: str, path: Path) -> None:
+    """A figure file name whose suffix matplotlib can write (checked before any work)."""
+    from ..plotting.save import check_figure_path
+
+    try:
+        check_figure_path(path)
+    except ParameterError as exc:
+        raise ParameterError(f"`{option}`: {exc}") from None
+
+
+def input_file(option: str, path: Path) -> Path:
+    """Check that ``path`` is an existing regular file (not a directory, FIFO or device)."""
+    if not path.exists():
+        raise ParameterError(f"`{option}`: no such file: {path}")
+    if path.is_dir():
+        raise ParameterError(f"`{option}`: {path} is a directory, not a file")
+    if not path.is_file():
+        raise ParameterError(f"`{option}`: {path} is not a regular file")
+    return path
 
 
 def _one_line(exc: BaseException) -> str:

@@ -11,7 +11,18 @@ from typing import Annotated, Optional
 
 import typer
 
-from ._common import JsonFlag, console, err_console, handle_errors, print_json
+from ._common import (
+    JsonFlag,
+    check_figure_suffix,
+    console,
+    err_console,
+    handle_errors,
+    output_file,
+    print_json,
+)
+
+#: Largest --grid: N × N/2 directions, each a support-function evaluation (2,000: 2e6).
+MAX_GRID = 2000
 
 app = typer.Typer(
     help="Full averaging of a controllable-pitch-propeller ship in waves and its admissible "
@@ -48,8 +59,11 @@ def cpp(
     from ..analysis.averaging import cpp_admissible_set
     from ..errors import ParameterError
 
-    if grid < 6:
-        raise ParameterError(f"`--grid` must be >= 6 [directions], got {grid}")
+    if not 6 <= grid <= MAX_GRID:
+        raise ParameterError(f"`--grid` must be in [6, {MAX_GRID}] [directions], got {grid}")
+    if plot is not None:  # checked before any work
+        output_file("--plot", plot)
+        check_figure_suffix("--plot", plot)
     result = cpp_admissible_set(immersion, amplitude, n_azimuth=grid, n_elevation=grid // 2)
     summary = result.summary()
     if plot is not None:

@@ -16,6 +16,8 @@ from typing import Annotated, Optional
 
 import typer
 
+from ..errors import ParameterError
+
 from ._common import JsonFlag, console, err_console, handle_errors, print_json
 
 app = typer.Typer(
@@ -78,6 +80,12 @@ def compensate(
     """
     from ..control.compensation import ShipParticulars, compensation_summary
 
+    for option, value, unit in (("--rudder-area", rudder_area, "m²"),
+                                ("--windage-area", windage_area, "m²"),
+                                ("--draft-fore", draft_fore, "m"), ("--draft-aft", draft_aft, "m")):
+        if value is not None and not (math.isfinite(value) and value > 0):
+            # (0 would mean "not given" below: the empirical default)
+            raise ParameterError(f"`{option}` must be > 0 [{unit}], got {value!r}")
     ship = ShipParticulars(
         length=length, beam=beam, draft=draft,
         draft_fore=draft_fore if draft_fore is not None else 0.0,

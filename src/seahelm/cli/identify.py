@@ -17,7 +17,7 @@ from typing import Annotated, Any, Optional
 import numpy as np
 import typer
 
-from ._common import JsonFlag, console, handle_errors, print_json
+from ._common import JsonFlag, console, handle_errors, input_file, print_json
 
 app = typer.Typer(
     help="Identify steering-model coefficients from recorded turns (Romanov & Chirkova: "
@@ -37,15 +37,18 @@ def read_turn_csv(path: Path) -> dict[str, np.ndarray]:
     """Numeric columns of a CSV file with a header row (ParameterError on bad content)."""
     from ..errors import ParameterError
 
-    if not path.is_file():
-        raise FileNotFoundError(f"no such file: {path}")
-    with path.open(newline="") as fh:
-        reader = csv.reader(fh)
-        try:
-            header = [h.strip() for h in next(reader)]
-        except StopIteration:
-            raise ParameterError(f"{path}: empty file (a header row is needed)") from None
-        rows = [r for r in reader if any(cell.strip() for cell in r)]
+    input_file("FILE", path)
+    try:
+        with path.open(newline="", encoding="utf-8-sig") as fh:
+            reader = csv.reader(fh)
+            try:
+                header = [h.strip() for h in next(reader)]
+            except StopIteration:
+                raise ParameterError(f"{path}: empty file (a header row is needed)") from None
+            rows = [r for r in reader if any(cell.strip() for cell in r)]
+    except UnicodeDecodeError as exc:
+        raise ParameterError(f"{path}: not UTF-8 text (byte {exc.start}); a CSV file with a "
+                             "header row is needed") from None
     cols: dict[str, list[float]] = {h: [] for h in header}
     for i, row in enumerate(rows, start=2):
         if len(row) != len(header):

@@ -21,7 +21,16 @@ from rich.markup import escape
 from rich.table import Table
 
 from ._common import JsonFlag, _jsonable, console, handle_errors, print_json
-from .maneuver import Dt, Out, Rps, Speed, check_positive_opt, check_speed_rps, ship_of
+from .maneuver import (
+    Dt,
+    Out,
+    Rps,
+    Speed,
+    check_out,
+    check_positive_opt,
+    check_speed_rps,
+    ship_of,
+)
 
 __all__ = ["imo", "show_report"]
 
@@ -52,6 +61,7 @@ def imo(
     ship = ship_of(model)
     check_speed_rps(ship, speed, rps)
     check_positive_opt("--dt", dt, "s")
+    check_out(out, "imo")
     show_report(imo_check(ship, speed=speed, rps=rps, dt=dt), out, json_out)
 
 

@@ -15,7 +15,17 @@ from rich.table import Table
 
 from .. import __version__
 from ..errors import ParameterError
-from ._common import JsonFlag, console, err_console, handle_errors, print_json
+from ._common import (
+    JsonFlag,
+    check_figure_suffix,
+    console,
+    err_console,
+    handle_errors,
+    input_file,
+    output_dir,
+    output_file,
+    print_json,
+)
 
 app = typer.Typer(
     name="seahelm",
@@ -159,6 +169,9 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
         present_job(batch, out, as_json, plot=plot)
         return None
 
+    if out is not None:  # every target checked before anything runs
+        output_dir("--out", out, ("result.nc",) + (("result.csv",) if csv else ())
+                   + (("overview.png",) if plot else ()))
     bar = _ProgressBar(f"simulating {batch.n_runs} run(s)")
     try:
         result = run_scenario(batch, progress=bar)
@@ -318,12 +331,15 @@ def plot(
     from ..plotting.timeseries import plot_result
     from ..results import flatten_runs, load_result
 
+    input_file("RESULT", result)
+    target = output_file("--out", out or result.with_suffix(".png"))
+    check_figure_suffix("--out", target)
     ds = flatten_runs(load_result(result))
     if runs:
         bad = [r for r in runs if r not in set(np.asarray(ds["run"].values).tolist())]
         if bad:
             raise ValueError(f"--run {bad} not in the file (runs 0..{ds.sizes['run'] - 1})")
-    path = save_figure(plot_result(ds, runs=runs), out or result.with_suffix(".png"))
+    path = save_figure(plot_result(ds, runs=runs), target)
     console.print(f"wrote {path}")
 
 
@@ -333,29 +349,33 @@ def cache(
     clear: Annotated[bool, typer.Option("--clear", help="Delete the compiled kernels.")] = False,
     json_out: JsonFlag = False,
 ) -> None:
-    """Show (or clear) the on-disk cache of compiled closed-loop kernels."""
-    import shutil
+    """Show (or clear) the on-disk cache of compiled closed-loop kernels.
 
+    Only seahelm's own files are counted and deleted (``seahelm_kernel_*``, ``seahelm_guided_*``
+    and their compiled caches); anything else in the directory is left alone and reported.
+    """
     from ..simulation.engine import kernel_cache_dir
 
     where = kernel_cache_dir()
-    files = [p for p in where.rglob("*") if p.is_file()]
-    size = sum(p.stat().st_size for p in files)
+    ours = [p for p in where.rglob("*") if p.is_file()
+            and p.name.startswith(("seahelm_kernel_", "seahelm_guided_", ".seahelm_"))]
+    others = [p for p in where.rglob("*") if p.is_file() and p not in set(ours)]
+    size = sum(p.stat().st_size for p in ours)
     kernels = len(list(where.glob("seahelm_kernel_*.py")))
     if clear:
-        for child in where.iterdir():
-            if child.is_dir():
-                shutil.rmtree(child)
-            else:
-                child.unlink()
-    payload = {"path": str(where), "kernels": kernels, "files": len(files), "bytes": size,
-               "cleared": clear}
+        for path in ours:
+            path.unlink(missing_ok=True)
+    payload = {"path": str(where), "kernels": kernels, "files": len(ours), "bytes": size,
+               "cleared": clear, "other_files": len(others)}
     if json_out:
         print_json(payload)
     else:
         verb = "cleared" if clear else "holds"
-        console.print(f"{where} {verb} {kernels} kernel(s), {len(files)} file(s), "
-                      f"{size / 1e6:.1f} MB")
+        console.print(f"{where} {verb} {kernels} kernel(s), {len(ours)} file(s), "
+                      f"{size / 1e6:.1f} MB", highlight=False)
+        if others:
+            console.print(f"  {len(others)} other file(s) there are not seahelm's and were "
+                          "left alone", highlight=False)
 
 
 def main() -> None:

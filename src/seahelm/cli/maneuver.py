@@ -22,7 +22,7 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..errors import ParameterError
-from ._common import JsonFlag, console, handle_errors, print_json
+from ._common import JsonFlag, console, handle_errors, output_dir, print_json
 
 app = typer.Typer(
     help="Standard manoeuvres: turning circle, zig-zag, spiral, pull-out (both sides).",
@@ -107,6 +107,24 @@ def sides_of(side: str) -> Any:
     if side not in _SIDES:
         raise ParameterError(f"`--side` must be one of {', '.join(_SIDES)}, got {side!r}")
     return _SIDES[side]
+
+
+#: The files each command writes with --out (checked before anything runs).
+OUT_FILES: dict[str, tuple[str, ...]] = {
+    "turning": ("turning-circle-metrics.nc", "turning-circle-runs.nc", "turning.png"),
+    "zigzag": ("zigzag-metrics.nc", "zigzag-runs.nc", "zigzag.png"),
+    "pullout": ("pull-out-metrics.nc", "pull-out-runs.nc", "pullout.png"),
+    "spiral": ("direct-spiral-metrics.nc", "direct-spiral-runs.nc",
+               "reverse-spiral-metrics.nc", "spiral.png"),
+    "imo": ("turning-circle-metrics.nc", "turning-circle-runs.nc", "zigzag-metrics.nc",
+            "zigzag-runs.nc", "imo-turning.png", "imo-zigzag.png", "imo-report.json"),
+}
+
+
+def check_out(out: Path | None, kind: str) -> None:
+    """``--out``: a writable directory where none of the kind's files is a directory."""
+    if out is not None:
+        output_dir("--out", out, OUT_FILES[kind])
 
 
 def checked(catalog: str, rudder: float, side: str, speed: float | None, rps: float | None,
@@ -301,6 +319,7 @@ def turning_cmd(
     from ..plotting.maneuvers import plot_turning
 
     ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt)
+    check_out(out, "turning")
     result = turning_circle(ship, delta, sides=sides, speed=speed, rps=rps, t_final=t_final,
                             dt=dt)
     finish(f"Turning circle, {ship.name}, {rudder:g} deg rudder", result, header(result),
@@ -344,6 +363,7 @@ def zigzag_cmd(
     from ..plotting.maneuvers import plot_zigzag
 
     ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt)
+    check_out(out, "zigzag")
     psi = rudder if heading is None else heading
     if not (math.isfinite(psi) and 0 < psi < 180):
         raise ParameterError(f"`--heading` must be in (0, 180) [deg], got {psi!r}")
@@ -382,6 +402,7 @@ def pullout_cmd(
     from ..plotting.maneuvers import plot_pullout
 
     ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt)
+    check_out(out, "pullout")
     result = pull_out(ship, delta, sides=sides, speed=speed, rps=rps, t_final=t_final, dt=dt)
     payload = header(result)
     if "residual_gap" in result.metrics:
@@ -414,6 +435,7 @@ def spiral_cmd(
     check_speed_rps(ship, speed, rps)
     check_positive_opt("--hold", hold, "s")
     check_positive_opt("--dt", dt, "s")
+    check_out(out, "spiral")
     direct, reverse = spirals(ship, top, speed=speed, rps=rps, hold=hold, dt=dt)
     show_spirals(f"Direct spiral, {ship.name}", direct, reverse, out, json_out)
 

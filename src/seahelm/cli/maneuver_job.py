@@ -10,6 +10,7 @@ from typing import Any
 from .imo import show_report
 from .maneuver import (
     PULLOUT_FIELDS,
+    check_out,
     TURNING_FIELDS,
     ZIGZAG_FIELDS,
     finish,
@@ -31,6 +32,7 @@ def present_job(job: Any, out: Path | None, as_json: bool, *, plot: bool = True)
     figures unless ``plot`` is False)."""
     from ..plotting.maneuvers import plot_pullout, plot_turning, plot_zigzag
 
+    check_out(out, job.kind)
     result = job.run()
     name = job.ship.name
     opts = job.options

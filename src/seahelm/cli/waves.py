@@ -17,7 +17,14 @@ from rich.markup import escape
 
 from ..errors import ParameterError
 from ..results import atomic_write
-from ._common import JsonFlag, console, handle_errors, print_json
+from ._common import (
+    JsonFlag,
+    check_figure_suffix,
+    console,
+    handle_errors,
+    output_file,
+    print_json,
+)
 
 app = typer.Typer(
     help="Sea-wave disturbances (Sushchenko & Lutsko 2010): tables, spectra, samples.",
@@ -26,6 +33,8 @@ app = typer.Typer(
 
 #: Largest runs × steps the CLI will generate in memory.
 MAX_SAMPLES = 200_000_000
+#: Longest realisation the paper's figure draws [s] (it plots every sample).
+MAX_FIGURE_DURATION = 100_000.0
 
 _H3 = Annotated[float, typer.Option("--h3", help=escape("Height of 3 % exceedance waves h3% [m]."))]
 _Table = Annotated[
@@ -89,6 +98,9 @@ def spectrum_cmd(
     from ..environment.sea_state import sea_state_parameters
     from ..environment.spectra import spectral_moment, spectrum_from_wave_height
 
+    if plot is not None:  # checked before any work
+        output_file("--plot", plot)
+        check_figure_suffix("--plot", plot)
     params = sea_state_parameters(h3, table=table)
     spec = spectrum_from_wave_height(model, h3, table=table)
     m0 = spectral_moment(spec, 0)
@@ -156,6 +168,8 @@ def sample_cmd(
 
     if runs < 1:
         raise ParameterError(f"`runs` must be >= 1, got {runs}")
+    if out is not None:
+        output_file("--out", out)
     spec = spectrum_from_wave_height(model, h3, table=table)
     filt = shaping_filter(spec, ("ordinate",))
     slope = shaping_filter(spec, ("ordinate", "slope"))
@@ -165,7 +179,11 @@ def sample_cmd(
         raise ParameterError(f"`dt` must be > 0 [s], got {dt!r}")
     if not (math.isfinite(duration) and duration > 0):
         raise ParameterError(f"`duration` must be > 0 [s], got {duration!r}")
-    steps = int(math.floor(duration / dt + 1e-9)) + 1
+    ratio = duration / dt
+    if ratio < 1.0 or abs(ratio - round(ratio)) > 1e-9 * max(ratio, 1.0):
+        raise ParameterError(f"`--duration` must be a whole multiple (>= 1) of `--dt` [s]: "
+                             f"duration={duration!r}, dt={dt!r}")
+    steps = int(round(ratio)) + 1
     if steps * runs > MAX_SAMPLES:
         raise ParameterError(
             f"runs × steps = {steps * runs} exceeds {MAX_SAMPLES}; shorten --duration or --runs"
@@ -212,7 +230,10 @@ def figure_cmd(
     from ..plotting.save import save_figure
     from ..plotting.waves import plot_paper_figure
 
-    if not duration > 0:
-        raise ParameterError(f"`--duration` must be > 0 [s], got {duration}")
+    if not (math.isfinite(duration) and 0 < duration <= MAX_FIGURE_DURATION):
+        raise ParameterError(f"`--duration` must be in (0, {MAX_FIGURE_DURATION:g}] [s], got "
+                             f"{duration!r}")
+    output_file("--out", out)
+    check_figure_suffix("--out", out)
     save_figure(plot_paper_figure(seed=seed, duration=duration), out, dpi=100)
     console.print(f"wrote {escape(str(out))}")

@@ -15,7 +15,37 @@ from typing import Any
 
 from ..errors import ParameterError
 
-__all__ = ["save_figure"]
+__all__ = ["save_figure", "check_figure_path"]
+
+
+def check_figure_path(path: str | os.PathLike[str]) -> Path:
+    """The path a figure will be written to (``.png`` appended to a name without a suffix),
+    checked: its suffix names a format matplotlib writes.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Destination.
+
+    Returns
+    -------
+    pathlib.Path
+
+    Raises
+    ------
+    ParameterError
+        For a suffix matplotlib cannot write, naming the supported ones.
+    """
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    path = Path(path)
+    if not path.suffix:
+        path = path.with_suffix(".png")
+    supported = FigureCanvasBase.get_supported_filetypes()
+    if path.suffix[1:].lower() not in supported:
+        raise ParameterError(f"cannot write a figure as '{path.suffix}' ({path}); supported: "
+                             + ", ".join(f".{k}" for k in sorted(supported)))
+    return path
 
 
 def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float = 110.0,

@@ -110,8 +110,12 @@ def load_scenario(path: str | Path) -> Any:
         If the file is missing or unreadable, not UTF-8, not valid TOML or fails validation.
     """
     path = Path(path)
-    if not path.is_file():
+    if not path.exists():
         raise ScenarioError(f"scenario file not found: {path}")
+    if path.is_dir():
+        raise ScenarioError(f"{path} is a directory, not a scenario file")
+    if not path.is_file():
+        raise ScenarioError(f"{path} is not a regular file (a TOML scenario file is needed)")
     try:
         text = path.read_bytes().decode("utf-8-sig")
     except UnicodeDecodeError as exc:

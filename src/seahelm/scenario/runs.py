@@ -278,6 +278,8 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
 
     # names a batch dimension must not take: the result's variables and dimensions
     reserved = {*model.state_labels, *actuator.state_labels, *model.output_labels,
+                *_summary_names(model.state_labels + actuator.state_labels),
+                *controller.output_labels,
                 *wiring.commands, *model.disturbance_labels,
                 *(f"reference_{lab}" for lab in wiring.references),
                 "status", "failure_time", "status_message", "run", "sample", "time"}
@@ -302,6 +304,13 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
         out.update({k[len(prefix):]: v for k, v in over.items() if k.startswith(prefix)})
         return out
 
+    for path, table in (("vessel.initial", scn.vessel.initial),
+                        ("controller.reference", scn.controller.reference),
+                        ("environment.disturbance", scn.environment.disturbance)):
+        both = [k for k in table if k.endswith("_deg") and k[:-4] in table]
+        if both:
+            raise _err(source, f"{path}.{both[0]}",
+                       f"give `{both[0][:-4]}` [rad] or `{both[0]}` [deg], not both")
     mp, ap, cp, x0s, refs, dists = [], [], [], [], [], []
     for i, over in enumerate(runs):
         where = f" (run {i}: {over})" if over else ""
@@ -515,3 +524,16 @@ def _with_current(scn: Scenario, model: Any, source: str) -> dict[str, Any]:
     out["current_north"] = current.speed * math.cos(angle)
     out["current_east"] = current.speed * math.sin(angle)
     return out
+
+
+def _summary_names(states: tuple[str, ...]) -> set[str]:
+    """The names of the per-run summary metrics (:func:`seahelm.analysis.maneuvers.summarize`),
+    which a batch dimension must not take (its column would be overwritten in the table)."""
+    names = {"final_yaw_rate", "final_heading_rad", "turning_diameter_m", "settling_time_s",
+             "heading_error_deg", "overshoot_deg", "yaw_rate_error",
+             "max_abs_cross_track_error_m", "rms_cross_track_error_m",
+             "final_cross_track_error_m", "time_to_complete_s", "mean_abs_rudder_deg",
+             "rudder_reversals_per_min"}
+    for lab in states:
+        names |= {f"final_{lab}", f"{lab}_deg", f"max_abs_{lab}_deg"}
+    return names

@@ -83,6 +83,14 @@ class SimulationSection(_Strict):
     record_every: Count = 1
     bounds: dict[str, tuple[Number, Number]] = Field(default_factory=dict)
 
+    @field_validator("bounds")
+    @classmethod
+    def _ordered(cls, bounds: dict[str, tuple[float, float]]) -> dict[str, tuple[float, float]]:
+        for key, (low, high) in bounds.items():
+            if not low < high:
+                raise ValueError(f"bounds of `{key}`: low {low!r} must be < high {high!r}")
+        return bounds
+
     @field_validator("integrator")
     @classmethod
     def _known_integrator(cls, name: str) -> str:
@@ -123,6 +131,16 @@ class MonteCarloSection(_Strict):
 class BatchSection(_Strict):
     grid: dict[str, list[Number]] = Field(default_factory=dict)
     monte_carlo: MonteCarloSection | None = None
+
+    @field_validator("grid")
+    @classmethod
+    def _distinct(cls, grid: dict[str, list[float]]) -> dict[str, list[float]]:
+        for key, values in grid.items():
+            seen = [v for i, v in enumerate(values) if v in values[:i]]
+            if seen:
+                raise ValueError(f"grid values of `{key}` repeat ({seen[0]!r}): a dimension's "
+                                 "coordinates must be distinct")
+        return grid
 
 
 #: The keys each manoeuvre takes (angles also as ``<key>_deg``), besides ``kind``.
@@ -168,6 +186,14 @@ class ManeuverSection(_Strict):
         for angle in _ANGLES:
             if {angle, f"{angle}_deg"} <= self.model_fields_set:
                 raise ValueError(f"give `{angle}` [rad] or `{angle}_deg` [deg], not both")
+        for key in ("rudder", "rudder_deg", "heading", "heading_deg", "max_rudder",
+                    "max_rudder_deg"):
+            value = getattr(self, key)
+            for v in value if isinstance(value, list) else [value]:
+                if v is not None and not v > 0:
+                    unit = "deg" if key.endswith("_deg") else "rad"
+                    raise ValueError(f"`{key}` must be > 0 [{unit}] (the side is `sides`), "
+                                     f"got {v!r}")
         for key, unit in (("speed", "m/s"), ("rps", "1/s")):
             value = getattr(self, key)
             for v in value if isinstance(value, list) else [value]:

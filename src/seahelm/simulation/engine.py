@@ -291,8 +291,22 @@ def _param_rows(name: str, params: Any, cls: type[Params]) -> tuple[np.ndarray, 
     return arr, cls
 
 
+class _TimeGrid:
+    """The grid t_k = k dt, k = 0 … n_steps, built only if a signal is a function of time."""
+
+    def __init__(self, n_steps: int, dt: float) -> None:
+        self.size = n_steps + 1
+        self.dt = dt
+        self._array: np.ndarray | None = None
+
+    def array(self) -> np.ndarray:
+        if self._array is None:
+            self._array = np.arange(self.size) * self.dt
+        return self._array
+
+
 def _by_name(name: str, value: Mapping[str, Any], labels: tuple[str, ...],
-             t_grid: np.ndarray, unit: str) -> np.ndarray:
+             t_grid: "_TimeGrid", unit: str) -> np.ndarray:
     """A mapping channel name -> specification, assembled into (runs|1, steps+1|1, channels)."""
     unknown = [k for k in value if k not in labels]
     if unknown:
@@ -309,7 +323,7 @@ def _by_name(name: str, value: Mapping[str, Any], labels: tuple[str, ...],
 
 
 def _signal(
-    name: str, value: Any, n_channels: int, t_grid: np.ndarray, unit: str,
+    name: str, value: Any, n_channels: int, t_grid: "_TimeGrid", unit: str,
     labels: tuple[str, ...] = (),
 ) -> np.ndarray:
     """Convert a reference/disturbance specification to shape (runs|1, steps+1|1, channels)."""
@@ -319,7 +333,7 @@ def _signal(
     if isinstance(value, Mapping):
         return _by_name(name, value, labels, t_grid, unit)
     if callable(value):
-        value = value(t_grid)
+        value = value(t_grid.array())
         arr = as_float_array(name, value, unit)
         if arr.ndim == 1 and arr.shape[0] == t_grid.size:
             arr = arr[:, None]
@@ -510,6 +524,10 @@ def simulate(
     ctrl_dt = float(dt) if controller_dt is None else float(controller_dt)
     check_positive("controller_dt", ctrl_dt, "s")
     ctrl_every = _steps(ctrl_dt, float(dt), "controller_dt")
+    if ctrl_every > n_steps:
+        raise ParameterError(
+            f"`controller_dt` = {ctrl_dt!r} s exceeds `t_final` = {float(t_final)!r} s: the "
+            "controller would act once, at t = 0")
     if isinstance(record_every, bool) or int(record_every) != record_every or record_every < 1:
         raise ParameterError(f"`record_every` must be a whole number >= 1, got {record_every!r}")
     record_every = int(record_every)
@@ -536,7 +554,14 @@ def simulate(
         raise ParameterError(
             f"`actuator_x0` must have {actuator.n_states} states, got shape {xa0.shape}"
         )
-    t_grid = np.arange(n_steps + 1) * float(dt)
+    # the recordings must fit before anything of the batch's size is built (the time grid too:
+    # a long run with a coarse record needs no array of all its steps)
+    n_rec_early = n_steps // record_every + 1 + (n_steps % record_every != 0)
+    check_record_memory(max(mp.shape[0], ap.shape[0], cp.shape[0], x0.shape[0]), n_rec_early,
+                        model.n_states + actuator.n_states + model.n_outputs
+                        + len(wiring.commands) + len(controller.output_labels)
+                        + len(wiring.references) + model.n_disturbances)
+    t_grid = _TimeGrid(n_steps, float(dt))
     ref = _signal("reference", reference, len(wiring.references), t_grid, "",
                   wiring.references)
     dist = _signal("disturbance", disturbance, model.n_disturbances, t_grid, "",

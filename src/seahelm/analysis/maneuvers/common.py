@@ -500,11 +500,19 @@ def record_every_for(dt: float, record_dt: float | None) -> int:
     if record_dt is None:
         return 1
     check_positive("record_dt", record_dt, "s")
-    return max(1, int(round(float(record_dt) / dt)))
+    ratio = float(record_dt) / dt
+    if ratio < 1.0 - 1e-9 or abs(ratio - round(ratio)) > 1e-9 * max(ratio, 1.0):
+        raise ParameterError(f"`record_dt` must be a whole multiple of `dt` [s]: "
+                             f"record_dt={record_dt!r}, dt={dt!r}")
+    return max(1, int(round(ratio)))
 
 
-def final_time(t_final: float, dt: float) -> float:
-    """``t_final`` rounded up to a whole number of steps."""
+def final_time(t_final: float, dt: float, name: str = "t_final") -> float:
+    """``t_final`` rounded up to a whole number of steps (at least one step: a duration
+    shorter than ``dt`` is an error, not one step of ``dt``)."""
+    if t_final < dt * (1.0 - 1e-9):
+        raise ParameterError(f"`{name}` must be at least one step `dt` [s]: {name}={t_final!r}, "
+                             f"dt={dt!r}")
     return math.ceil(t_final / dt - 1e-9) * dt
 
 

@@ -34,6 +34,7 @@ import numpy as np
 
 from ..._validate import as_float_array
 from ...errors import ParameterError
+from ...simulation.engine import check_record_memory
 from ..equilibrium import rudder_for_yaw_rate, steady_turn
 from .common import (
     ManeuverResult,
@@ -130,13 +131,20 @@ def direct_spiral(ship: Any, rudders: Any = None, *, speed: Any = None, rps: Any
         hold = max(50.0 * plan.ship(i).length / plan.approach(i).speed for i in range(n))
     if not (isinstance(hold, (int, float)) and hold > 0):
         raise ParameterError(f"`hold` must be > 0 [s], got {hold!r}")
-    hold = final_time(float(hold), float(dt))
+    hold = final_time(float(hold), float(dt), "hold")
     steps_per_hold = int(round(hold / dt))
+    n_steps = steps_per_hold * deltas.size
+    try:  # the rudder program is given on every step: it must fit
+        check_record_memory(1, n_steps + 1, 2)
+    except ParameterError:
+        raise ParameterError(
+            f"`hold`: {deltas.size} holds of {hold:g} s at dt = {dt:g} s are {n_steps:,} steps, "
+            "more than a rudder program in memory can span; shorten `hold` or enlarge `dt` "
+            "[s]") from None
     record_every = max(1, steps_per_hold // int(samples_per_hold))
     while steps_per_hold % record_every:
         record_every -= 1
     t_final = hold * deltas.size
-    n_steps = steps_per_hold * deltas.size
     program = deltas[np.minimum(np.arange(n_steps + 1) // steps_per_hold, deltas.size - 1)]
     reference: dict[str, Any] = {"rudder_command": program.reshape(1, -1, 1)}
     if plan.ships[0].has_propeller:
