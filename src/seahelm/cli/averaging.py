@@ -11,9 +11,10 @@ from typing import Annotated, Optional
 
 import typer
 
-from ._common import JsonFlag, console, err_console, handle_errors, print_json
+from ._common import JsonFlag, OneLineErrors, console, err_console, handle_errors, print_json
 
 app = typer.Typer(
+    cls=OneLineErrors,
     help="Full averaging of a controllable-pitch-propeller ship in waves and its admissible "
     "control set (Platonov & Platonova).",
     no_args_is_help=True,

@@ -17,9 +17,10 @@ from typing import Annotated, Any, Optional
 import numpy as np
 import typer
 
-from ._common import JsonFlag, console, handle_errors, print_json
+from ._common import JsonFlag, OneLineErrors, console, handle_errors, print_json
 
 app = typer.Typer(
+    cls=OneLineErrors,
     help="Identify steering-model coefficients from recorded turns (Romanov & Chirkova: "
     "reduced steady-turn model a·ω² + b·ω + α(1 + c·ω) = 0).",
     no_args_is_help=True,

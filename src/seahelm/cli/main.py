@@ -15,9 +15,10 @@ from rich.table import Table
 
 from .. import __version__
 from ..errors import ParameterError
-from ._common import JsonFlag, console, err_console, handle_errors, print_json
+from ._common import JsonFlag, OneLineErrors, console, err_console, handle_errors, print_json
 
 app = typer.Typer(
+    cls=OneLineErrors,
     name="seahelm",
     help="Batched, validated ship motion simulation and control.",
     no_args_is_help=True,

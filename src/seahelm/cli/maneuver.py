@@ -22,9 +22,10 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..errors import ParameterError
-from ._common import JsonFlag, console, handle_errors, print_json
+from ._common import JsonFlag, OneLineErrors, console, handle_errors, print_json
 
 app = typer.Typer(
+    cls=OneLineErrors,
     help="Standard manoeuvres: turning circle, zig-zag, spiral, pull-out (both sides).",
     no_args_is_help=True,
 )

@@ -17,9 +17,10 @@ from rich.markup import escape
 
 from ..errors import ParameterError
 from ..results import atomic_write
-from ._common import JsonFlag, console, handle_errors, print_json
+from ._common import JsonFlag, OneLineErrors, console, handle_errors, print_json
 
 app = typer.Typer(
+    cls=OneLineErrors,
     help="Sea-wave disturbances (Sushchenko & Lutsko 2010): tables, spectra, samples.",
     no_args_is_help=True,
 )
