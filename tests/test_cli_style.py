@@ -1,7 +1,8 @@
 """One CLI style across the command groups: options declared with ``Annotated`` (no
-``typer.Option`` defaults), one ``--json`` flag, declared once (``_common.JsonFlag``), and bad
-input found by the command-line parser reported as the commands report theirs: one ``error: ``
-line on stderr, exit code 2."""
+``typer.Option`` defaults), one ``--json`` flag, declared once (``_common.JsonFlag``), options
+with a fixed set of values typed as choices that ``--help`` lists, and bad input found by the
+command-line parser reported as the commands report theirs: one ``error: `` line on stderr,
+exit code 2."""
 
 from __future__ import annotations
 
@@ -64,9 +65,26 @@ def test_the_check_sees_commands():
 
 _runner = CliRunner()
 
-#: (arguments, what the one line must say): bad numbers, unknown options and
+#: (arguments, what the one line must say): bad choices, bad numbers, unknown options and
 #: commands, missing arguments and options, in the main command and each group.
 PARSER_ERRORS = [
+    (["maneuver", "turning", "--side", "left"],
+     "Invalid value for '--side': 'left' is not one of 'both', 'starboard', 'port'"),
+    (["maneuver", "zigzag", "--catalog", "kvlcc9"],
+     "Invalid value for '--catalog': 'kvlcc9' is not one of 'kvlcc2-l7', 'kvlcc2-full', "
+     "'kvlcc2-l7-wp0-0.35', 'kvlcc2-l7-xp-0.5', 'mariner-nonlinear'"),
+    (["imo", "kvlcc9"], "Invalid value for 'model': 'kvlcc9' is not one of 'kvlcc2-l7',"),
+    (["identify", "steady-turn", "x.csv", "--method", "ols"],
+     "Invalid value for '--method': 'ols' is not one of 'lsq', 'robust', 'brute'"),
+    (["identify", "steady-turn", "x.csv", "--form", "odd"],
+     "Invalid value for '--form': 'odd' is not one of 'paper', 'exact', 'paper-odd', "
+     "'exact-odd'"),
+    (["identify", "steady-turn", "x.csv", "--angles", "grad"],
+     "Invalid value for '--angles': 'grad' is not one of 'deg', 'rad'"),
+    (["waves", "spectrum", "--h3", "3", "--model", "nope"],
+     "Invalid value for '--model': 'nope' is not one of 'rakhmanin-firsov-1',"),
+    (["waves", "table", "--table", "misprinted"],
+     "Invalid value for '--table': 'misprinted' is not one of 'corrected', 'printed'"),
     (["waves", "spectrum", "--h3", "abc"],
      "Invalid value for '--h3': Input should be a valid number, unable to parse string as a "
      "number, got 'abc'"),
@@ -134,3 +152,40 @@ def test_every_app_reports_parser_errors_in_one_line():
     assert len(apps) >= 6
     for name, app in apps:
         assert app.info.cls is OneLineErrors, name
+
+
+# ------------------------------------------------------------------------------------------
+# choices: typed (Literal), listed by --help, the same as the library's registries
+# ------------------------------------------------------------------------------------------
+def test_choices_agree_with_the_library():
+    from seahelm.analysis.maneuvers import STEERING_GEAR
+    from seahelm.cli import identify, maneuver, waves
+    from seahelm.environment.sea_state import TABLE2
+    from seahelm.environment.spectra import SPECTRA, RationalSpectrum
+    from seahelm.identification.steady_turning import FIT_METHODS, REDUCED_FORMS
+
+    args = typing.get_args
+    assert set(args(maneuver.ShipName)) == set(STEERING_GEAR)
+    assert args(maneuver.SideName) == tuple(maneuver._SIDES)
+    assert args(identify.FitMethod) == tuple(FIT_METHODS)
+    assert args(identify.FormName) == tuple(REDUCED_FORMS)
+    assert args(waves.SpectrumName) == tuple(SPECTRA)
+    assert args(waves.RationalSpectrumName) == tuple(
+        n for n, cls in SPECTRA.items() if issubclass(cls, RationalSpectrum))
+    assert args(waves.TableVersion) == tuple(TABLE2)
+
+
+@pytest.mark.parametrize(("args", "choices"), [
+    (["maneuver", "turning"], ["both|starboard|port", "kvlcc2-l7, kvlcc2-full, "
+                               "kvlcc2-l7-wp0-0.35, kvlcc2-l7-xp-0.5, mariner-nonlinear"]),
+    (["maneuver", "zigzag"], ["both|starboard|port"]),
+    (["identify", "steady-turn"], ["deg|rad", "lsq|robust|brute"]),
+    (["waves", "spectrum"], ["corrected|printed", "pierson-moskowitz, jonswap, bretschneider"]),
+    (["waves", "sample"], ["rakhmanin-firsov-3, rakhmanin-firsov-3-printed."]),
+])
+def test_help_lists_the_choices(args, choices):
+    res = _runner.invoke(main_app, [*args, "--help"])
+    assert res.exit_code == 0
+    text = " ".join(res.stdout.replace("│", " ").split())  # lines of the help box, joined
+    for choice in choices:
+        assert choice in text, (choice, text)

@@ -21,7 +21,8 @@ from rich.markup import escape
 from rich.table import Table
 
 from ._common import JsonFlag, _jsonable, console, handle_errors, print_json
-from .maneuver import Dt, Out, Rps, Speed, check_positive_opt, check_speed_rps, ship_of
+from .maneuver import (Dt, Out, Rps, ShipName, Speed, check_positive_opt, check_speed_rps,
+                       ship_of)
 
 __all__ = ["imo", "show_report"]
 
@@ -37,9 +38,8 @@ def _display(criterion: Any) -> dict[str, Any]:
 
 @handle_errors
 def imo(
-    model: Annotated[str, typer.Argument(
-        help="Catalog entry with a steering gear (kvlcc2-l7, kvlcc2-full, mariner-nonlinear, "
-        "...).")],
+    model: Annotated[ShipName, typer.Argument(
+        help="Ship: a catalog entry with a manoeuvring model and a steering gear.")],
     speed: Speed = None,
     rps: Rps = None,
     dt: Dt = None,
