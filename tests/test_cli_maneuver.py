@@ -72,11 +72,14 @@ def test_turning_table_and_out(tmp_path):
     (["maneuver", "turning", "--rps", "0"], "`--rps` must be > 0 [1/s], got 0.0"),
     (["maneuver", "turning", "--catalog", "mariner-nonlinear", "--rps", "2"],
      "`--rps`: 'mariner-nonlinear' (model mariner) has no propeller input, got 2.0 [1/s]"),
-    (["maneuver", "turning", "--catalog", "kvlcc9"], "`--catalog` must be a catalog entry "
-                                                     "with a manoeuvring model"),
-    (["maneuver", "turning", "--catalog", "mariner-nomoto2"], "got 'mariner-nomoto2'"),
-    (["maneuver", "turning", "--side", "middle"], "`--side` must be one of both, starboard, "
-                                                  "port, got 'middle'"),
+    (["maneuver", "turning", "--catalog", "kvlcc9"],
+     "Invalid value for '--catalog': 'kvlcc9' is not one of 'kvlcc2-l7', 'kvlcc2-full', "
+     "'kvlcc2-l7-wp0-0.35', 'kvlcc2-l7-xp-0.5', 'mariner-nonlinear'"),
+    (["maneuver", "turning", "--catalog", "mariner-nomoto2"],  # in the catalog, no steering gear
+     "Invalid value for '--catalog': 'mariner-nomoto2' is not one of"),
+    (["maneuver", "turning", "--side", "middle"],
+     "Invalid value for '--side': 'middle' is not one of 'both', 'starboard', 'port'"),
+    (["maneuver", "zigzag", "--side", "left"], "Invalid value for '--side': 'left' is not one of"),
     (["maneuver", "turning", "--dt", "-0.1"], "`--dt` must be > 0 [s], got -0.1"),
     (["maneuver", "zigzag", "--heading", "200"], "`--heading` must be in (0, 180) [deg], got "
                                                  "200.0"),
@@ -85,7 +88,7 @@ def test_turning_table_and_out(tmp_path):
     (["maneuver", "pullout", "--rudder", "-5"], "`--rudder` must be in (0, 35] [deg]"),
     (["maneuver", "spiral", "--max-rudder", "36"], "`--max-rudder` must be in (0, 35] [deg]"),
     (["maneuver", "spiral", "--hold", "0"], "`--hold` must be > 0 [s], got 0.0"),
-    (["imo", "nope"], "`--catalog` must be a catalog entry"),
+    (["imo", "nope"], "Invalid value for 'model': 'nope' is not one of 'kvlcc2-l7',"),
     (["imo", "kvlcc2-l7", "--speed", "0"], "`--speed` must be > 0 [m/s], got 0.0"),
 ])
 def test_bad_input_exits_2_with_one_line(args, text):

@@ -1,18 +1,26 @@
 """One CLI style across the command groups: options declared with ``Annotated`` (no
-``typer.Option`` defaults), and one ``--json`` flag, declared once (``_common.JsonFlag``)."""
+``typer.Option`` defaults), one ``--json`` flag, declared once (``_common.JsonFlag``), options
+with a fixed set of values typed as choices that ``--help`` lists, and bad input found by the
+command-line parser reported as the commands report theirs: one ``error: `` line on stderr,
+exit code 2."""
 
 from __future__ import annotations
 
 import importlib
 import inspect
 import pkgutil
+import subprocess
+import sys
 import typing
 
 import pytest
+import typer
 from typer.models import ParameterInfo
+from typer.testing import CliRunner
 
 import seahelm.cli
-from seahelm.cli._common import JsonFlag
+from seahelm.cli._common import JsonFlag, OneLineErrors
+from seahelm.cli.main import app as main_app
 
 MODULES = [importlib.import_module(f"seahelm.cli.{m.name}")
            for m in pkgutil.iter_modules(seahelm.cli.__path__)]
@@ -49,3 +57,135 @@ def test_json_flag_is_the_shared_one(module, name, func):
 def test_the_check_sees_commands():
     names = {(m.rsplit(".", 1)[1], n) for m, n, _ in COMMANDS}
     assert {("main", "demo"), ("compensate", "compensate"), ("averaging", "cpp")} <= names
+
+
+# ------------------------------------------------------------------------------------------
+# bad input found by the command-line parser: one `error: ` line, exit code 2
+# ------------------------------------------------------------------------------------------
+
+_runner = CliRunner()
+
+#: (arguments, what the one line must say): bad choices, bad numbers, unknown options and
+#: commands, missing arguments and options, in the main command and each group.
+PARSER_ERRORS = [
+    (["maneuver", "turning", "--side", "left"],
+     "Invalid value for '--side': 'left' is not one of 'both', 'starboard', 'port'"),
+    (["maneuver", "zigzag", "--catalog", "kvlcc9"],
+     "Invalid value for '--catalog': 'kvlcc9' is not one of 'kvlcc2-l7', 'kvlcc2-full', "
+     "'kvlcc2-l7-wp0-0.35', 'kvlcc2-l7-xp-0.5', 'mariner-nonlinear'"),
+    (["imo", "kvlcc9"], "Invalid value for 'model': 'kvlcc9' is not one of 'kvlcc2-l7',"),
+    (["identify", "steady-turn", "x.csv", "--method", "ols"],
+     "Invalid value for '--method': 'ols' is not one of 'lsq', 'robust', 'brute'"),
+    (["identify", "steady-turn", "x.csv", "--form", "odd"],
+     "Invalid value for '--form': 'odd' is not one of 'paper', 'exact', 'paper-odd', "
+     "'exact-odd'"),
+    (["identify", "steady-turn", "x.csv", "--angles", "grad"],
+     "Invalid value for '--angles': 'grad' is not one of 'deg', 'rad'"),
+    (["waves", "spectrum", "--h3", "3", "--model", "nope"],
+     "Invalid value for '--model': 'nope' is not one of 'rakhmanin-firsov-1',"),
+    (["waves", "table", "--table", "misprinted"],
+     "Invalid value for '--table': 'misprinted' is not one of 'corrected', 'printed'"),
+    (["waves", "spectrum", "--h3", "abc"],
+     "Invalid value for '--h3': Input should be a valid number, unable to parse string as a "
+     "number, got 'abc'"),
+    (["waves", "sample", "--h3", "3", "--duration", "10", "--dt", "0.1", "--seed", "1.5"],
+     "Invalid value for '--seed': Input should be a valid integer, unable to parse string as "
+     "an integer, got '1.5'"),
+    (["compensate", "--length", "long"], "Invalid value for '--length':"),
+    (["averaging", "cpp", "--grid", "many"], "Invalid value for '--grid':"),
+    (["maneuver", "turning", "--rudder", "hard"], "Invalid value for '--rudder':"),
+    (["plot", "r.nc", "--run", "first"], "Invalid value for '--run':"),
+    (["--badflag"], "No such option: --badflag"),
+    (["maneuver", "turning", "--sides", "port"], "No such option: --sides"),
+    (["run"], "Missing argument 'scenario'"),
+    (["waves", "spectrum"], "Missing option '--h3'"),
+    (["waves", "spectrum", "--h3"], "Option '--h3' requires an argument"),
+    (["run", "a.toml", "b.toml"], "Got unexpected extra argument(s) (b.toml)"),
+    (["wave"], "No such command 'wave'. Did you mean 'waves'?"),
+    (["maneuver", "turnin"], "No such command 'turnin'. Did you mean 'turning'?"),
+]
+
+
+@pytest.mark.parametrize(("args", "text"), PARSER_ERRORS, ids=[" ".join(a) for a, _ in PARSER_ERRORS])
+def test_parser_errors_are_one_line_exit_2(args, text):
+    res = _runner.invoke(main_app, args)
+    assert res.exit_code == 2, (res.stdout, res.stderr)
+    assert res.stdout == ""
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), res.stderr
+    assert text in lines[0]
+
+
+def test_parser_errors_point_to_the_help():
+    res = _runner.invoke(main_app, ["waves", "spectrum", "--h3", "abc"])
+    assert res.stderr.strip().endswith("(see 'seahelm waves spectrum --help')")
+
+
+@pytest.mark.parametrize("args", [
+    ["--badflag"], ["maneuver", "turning", "--side", "left"], ["run"],
+    ["waves", "spectrum", "--h3", "abc"]])
+def test_the_console_script_prints_one_line(args):
+    """The installed entry point (its own ``sys.exit``, not CliRunner's) behaves the same."""
+    proc = subprocess.run([sys.executable, "-c", "from seahelm.cli.main import main; main()",
+                           *args], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 2 and proc.stdout == ""
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), proc.stderr
+
+
+def test_sub_apps_alone_print_one_line_too():
+    from seahelm.cli.waves import app as waves_app
+
+    res = _runner.invoke(waves_app, ["spectrum", "--h3", "abc"])
+    assert res.exit_code == 2 and res.stdout == ""
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: Invalid value for '--h3':")
+
+
+def test_no_arguments_still_show_the_help():
+    res = _runner.invoke(main_app, [])
+    assert res.exit_code == 2 and "Usage" in res.stdout and "error" not in res.stderr
+
+
+def test_every_app_reports_parser_errors_in_one_line():
+    apps = [(m.__name__, m.app) for m in MODULES if isinstance(getattr(m, "app", None), typer.Typer)]
+    assert len(apps) >= 6
+    for name, app in apps:
+        assert app.info.cls is OneLineErrors, name
+
+
+# ------------------------------------------------------------------------------------------
+# choices: typed (Literal), listed by --help, the same as the library's registries
+# ------------------------------------------------------------------------------------------
+def test_choices_agree_with_the_library():
+    from seahelm.analysis.maneuvers import STEERING_GEAR
+    from seahelm.cli import identify, maneuver, waves
+    from seahelm.environment.sea_state import TABLE2
+    from seahelm.environment.spectra import SPECTRA, RationalSpectrum
+    from seahelm.identification.steady_turning import FIT_METHODS, REDUCED_FORMS
+
+    args = typing.get_args
+    assert set(args(maneuver.ShipName)) == set(STEERING_GEAR)
+    assert args(maneuver.SideName) == tuple(maneuver._SIDES)
+    assert args(identify.FitMethod) == tuple(FIT_METHODS)
+    assert args(identify.FormName) == tuple(REDUCED_FORMS)
+    assert args(waves.SpectrumName) == tuple(SPECTRA)
+    assert args(waves.RationalSpectrumName) == tuple(
+        n for n, cls in SPECTRA.items() if issubclass(cls, RationalSpectrum))
+    assert args(waves.TableVersion) == tuple(TABLE2)
+
+
+@pytest.mark.parametrize(("args", "choices"), [
+    (["maneuver", "turning"], ["both|starboard|port", "kvlcc2-l7, kvlcc2-full, "
+                               "kvlcc2-l7-wp0-0.35, kvlcc2-l7-xp-0.5, mariner-nonlinear"]),
+    (["maneuver", "zigzag"], ["both|starboard|port"]),
+    (["identify", "steady-turn"], ["deg|rad", "lsq|robust|brute"]),
+    (["waves", "spectrum"], ["corrected|printed", "pierson-moskowitz, jonswap, bretschneider"]),
+    (["waves", "sample"], ["rakhmanin-firsov-3, rakhmanin-firsov-3-printed."]),
+])
+def test_help_lists_the_choices(args, choices):
+    res = _runner.invoke(main_app, [*args, "--help"])
+    assert res.exit_code == 0
+    text = " ".join(res.stdout.replace("│", " ").split())  # lines of the help box, joined
+    for choice in choices:
+        assert choice in text, (choice, text)

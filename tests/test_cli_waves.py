@@ -64,13 +64,18 @@ def test_spectrum_plot(tmp_path):
         (["spectrum", "--h3", "0"], "h3"),
         (["spectrum", "--h3", "nan"], "h3"),
         (["spectrum", "--h3", "12"], "h3"),
-        (["spectrum", "--h3", "3", "--model", "nope"], "unknown spectrum 'nope'"),
+        (["spectrum", "--h3", "3", "--model", "nope"],
+         "Invalid value for '--model': 'nope' is not one of 'rakhmanin-firsov-1',"),
+        (["table", "--table", "misprinted"],
+         "Invalid value for '--table': 'misprinted' is not one of 'corrected', 'printed'"),
         (["sample", "--h3", "3", "--duration", "10", "--dt", "0", "--seed", "1"], "dt"),
         (["sample", "--h3", "3", "--duration", "10", "--dt", "-0.1", "--seed", "1"], "dt"),
         (["sample", "--h3", "3", "--duration", "-10", "--dt", "0.1", "--seed", "1"], "duration"),
         (["sample", "--h3", "-3", "--duration", "10", "--dt", "0.1", "--seed", "1"], "h3"),
         (["sample", "--h3", "3", "--duration", "10", "--dt", "0.1", "--seed", "1", "--runs", "0"], "runs"),
-        (["sample", "--h3", "3", "--duration", "10", "--dt", "0.1", "--seed", "1", "--model", "jonswap"], "rational"),
+        # no shaping filter: sampling takes the rational (Rakhmanin–Firsov) spectra only
+        (["sample", "--h3", "3", "--duration", "10", "--dt", "0.1", "--seed", "1", "--model", "jonswap"],
+         "Invalid value for '--model': 'jonswap' is not one of 'rakhmanin-firsov-1',"),
     ],
 )
 def test_bad_input_exits_2(args, match):

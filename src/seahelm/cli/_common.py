@@ -2,6 +2,12 @@
 
 Exit codes: 0 success, 2 bad input (one-line reason on stderr), 1 any other failure.
 ``--json`` prints exactly one JSON object on stdout and nothing else there.
+
+Bad input is reported the same way whether a command finds it (:func:`handle_errors`) or the
+command-line parser does (an unknown option, a missing argument, a value that is not a
+number or not one of an option's choices): every ``typer.Typer`` of the CLI is built with
+``cls=OneLineErrors``, which prints the parser's message as one ``error: `` line instead of
+typer's usage box.
 """
 
 from __future__ import annotations
@@ -20,6 +26,7 @@ import numpy as np
 import typer
 from rich.console import Console
 from rich.text import Text
+from typer.core import TyperGroup
 
 from ..errors import ParameterError, SeahelmError
 
@@ -50,6 +57,75 @@ def fail(message: str) -> NoReturn:
     err_console.print(Text.assemble(("failed: ", "bold red"), message), highlight=False,
                       soft_wrap=True)
     raise typer.Exit(EXIT_FAILURE)
+
+
+#: click's base exception as typer uses it: click's own (typer < 0.26) or typer's vendored copy.
+_ClickException: type[Exception] = next(
+    c for c in typer.BadParameter.__mro__ if c.__name__ == "ClickException")
+
+
+def usage_error_message(exc: Exception) -> str:
+    """The one-line text of a command-line parser error (``click.UsageError`` and the like).
+
+    click's message names the option and, for a bad choice, the value and the valid choices;
+    where typer's type check hides the value (``--h3 abc``: "Input should be a valid number")
+    the value is appended (``, got 'abc'``), and where the error has a command the line ends
+    with where its help is (``(see 'seahelm waves spectrum --help')``).
+    """
+    message = exc.format_message()  # type: ignore[attr-defined]
+    # typer >= 0.29 checks values with pydantic, whose message for a check that raised
+    # ValueError (a bad choice) starts "Value error, "
+    message = message.replace(": Value error, ", ": ", 1)
+    errors = getattr(exc.__cause__, "errors", None)
+    if callable(errors):
+        try:
+            value = errors()[0]["input"]
+        except Exception:  # noqa: BLE001 - no value to show is fine
+            value = None
+        if isinstance(value, str) and repr(value) not in message:
+            message = f"{message.rstrip('.')}, got {value!r}"
+    ctx = getattr(exc, "ctx", None)
+    if ctx is not None:
+        message = f"{message.rstrip().rstrip('.')} (see '{ctx.command_path} --help')"
+    return _one_line(message)
+
+
+def _report_parser_error(exc: Exception) -> NoReturn:
+    """Exit on a click exception: code 2 (usage errors) with one ``error:`` line, any other
+    code with one ``failed:`` line."""
+    if type(exc).__name__ == "NoArgsIsHelpError":  # `seahelm` alone: the help, as typer shows it
+        raise exc
+    code = getattr(exc, "exit_code", EXIT_FAILURE)
+    if code == EXIT_BAD_INPUT:
+        fail_bad_input(usage_error_message(exc))
+    err_console.print(Text.assemble(("failed: ", "bold red"), usage_error_message(exc)),
+                      highlight=False, soft_wrap=True)
+    raise typer.Exit(code)
+
+
+class OneLineErrors(TyperGroup):
+    """A typer group whose parser errors are one ``error: `` line on stderr and exit code 2.
+
+    typer prints click's usage errors (unknown option, missing argument, a value that is not
+    a number or not one of the choices) as the usage, a hint and a boxed message. Options are
+    parsed when a group or command makes its context, so the group catches click's exceptions
+    there (its own options) and in ``invoke`` (its subcommands'), and reports them as
+    :func:`fail_bad_input` reports the commands' own checks. Use it for every app:
+    ``typer.Typer(cls=OneLineErrors, ...)`` (mounted sub-apps keep their ``cls``).
+    """
+
+    def make_context(self, info_name: str | None, args: list[str], parent: Any = None,
+                     **extra: Any) -> Any:
+        try:
+            return super().make_context(info_name, args, parent=parent, **extra)
+        except _ClickException as exc:
+            _report_parser_error(exc)
+
+    def invoke(self, ctx: Any) -> Any:
+        try:
+            return super().invoke(ctx)
+        except _ClickException as exc:
+            _report_parser_error(exc)
 
 
 def handle_errors(func: F) -> F:

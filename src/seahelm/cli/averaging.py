@@ -13,6 +13,7 @@ import typer
 
 from ._common import (
     JsonFlag,
+    OneLineErrors,
     check_figure_suffix,
     console,
     err_console,
@@ -25,6 +26,7 @@ from ._common import (
 MAX_GRID = 2000
 
 app = typer.Typer(
+    cls=OneLineErrors,
     help="Full averaging of a controllable-pitch-propeller ship in waves and its admissible "
     "control set (Platonov & Platonova).",
     no_args_is_help=True,

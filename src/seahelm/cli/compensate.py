@@ -17,10 +17,17 @@ from typing import Annotated, Optional
 import typer
 
 from ..errors import ParameterError
-
-from ._common import JsonFlag, console, err_console, handle_errors, print_json
+from ._common import (
+    JsonFlag,
+    OneLineErrors,
+    console,
+    err_console,
+    handle_errors,
+    print_json,
+)
 
 app = typer.Typer(
+    cls=OneLineErrors,
     help="Wave and wind loads on the hull and the compensating rudder angle δ_k "
     "(Lvov 2014, eq. (5)-(14)).",
     no_args_is_help=True,

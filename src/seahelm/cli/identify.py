@@ -12,20 +12,36 @@ from __future__ import annotations
 import csv
 import math
 from pathlib import Path
-from typing import Annotated, Any, Optional
+from typing import Annotated, Any, Literal, Optional
 
 import numpy as np
 import typer
 
-from ._common import JsonFlag, console, handle_errors, input_file, print_json
+from ._common import (
+    JsonFlag,
+    OneLineErrors,
+    console,
+    handle_errors,
+    input_file,
+    print_json,
+)
 
 app = typer.Typer(
+    cls=OneLineErrors,
     help="Identify steering-model coefficients from recorded turns (Romanov & Chirkova: "
     "reduced steady-turn model a·ω² + b·ω + α(1 + c·ω) = 0).",
     no_args_is_help=True,
 )
 
 _UNITS = {"a": "s²/rad", "b": "s", "c": "s/rad", "d": "1/rad"}
+
+#: The keys of :data:`~seahelm.identification.steady_turning.FIT_METHODS` and
+#: :data:`~seahelm.identification.steady_turning.REDUCED_FORMS`, spelled out so that the
+#: command line does not import the fitting code (tests/test_cli_style.py checks that they
+#: agree).
+FitMethod = Literal["lsq", "robust", "brute"]
+FormName = Literal["paper", "exact", "paper-odd", "exact-odd"]
+AngleUnit = Literal["deg", "rad"]
 
 
 @app.callback()
@@ -71,17 +87,14 @@ def steady_turn(
     file: Annotated[Path, typer.Argument(
         metavar="FILE.csv", help="Time series (time, rudder_angle, yaw_rate) or steady "
         "points (rudder_angle, yaw_rate).")],
-    angles: Annotated[str, typer.Option(
-        "--angles", metavar="deg|rad",
-        help="Units of rudder_angle [deg|rad] and yaw_rate [deg/s|rad/s].")] = "deg",
-    method: Annotated[str, typer.Option(
-        "--method", metavar="lsq|robust|brute",
-        help="Linear least squares, robust soft-L1, or the paper's "
-             "brute-force search (eq. (5)).")] = "lsq",
-    form: Annotated[str, typer.Option(
-        "--form", metavar="paper|exact|paper-odd|exact-odd",
-        help="Equation form: eq. (4), with the α² term of the exact "
-             "elimination, or made odd for turns to both sides.")] = "paper",
+    angles: Annotated[AngleUnit, typer.Option(
+        "--angles", help="Units of rudder_angle [deg|rad] and yaw_rate [deg/s|rad/s].")] = "deg",
+    method: Annotated[FitMethod, typer.Option(
+        "--method", help="Linear least squares, robust soft-L1, or the paper's "
+                         "brute-force search (eq. (5)).")] = "lsq",
+    form: Annotated[FormName, typer.Option(
+        "--form", help="Equation form: eq. (4), with the α² term of the exact "
+                       "elimination, or made odd for turns to both sides.")] = "paper",
     rudder_tolerance: Annotated[float, typer.Option(
         "--rudder-tolerance",
         help="Constant rudder: deviation allowed, in --angles units.")] = 0.2,
@@ -100,19 +113,8 @@ def steady_turn(
     Coefficients are reported in radian units (a [s²/rad], b [s], c [s/rad]) whatever --angles.
     """
     from ..errors import ParameterError
-    from ..identification.steady_turning import (
-        FIT_METHODS,
-        REDUCED_FORMS,
-        extract_steady_segments,
-        fit_steady_turns,
-    )
+    from ..identification.steady_turning import extract_steady_segments, fit_steady_turns
 
-    if angles not in ("deg", "rad"):
-        raise ParameterError(f"`--angles` must be deg or rad, got {angles!r}")
-    if method not in FIT_METHODS:
-        raise ParameterError(f"`--method` must be one of {', '.join(FIT_METHODS)}, got {method!r}")
-    if form not in REDUCED_FORMS:
-        raise ParameterError(f"`--form` must be one of {', '.join(REDUCED_FORMS)}, got {form!r}")
     scale = math.pi / 180.0 if angles == "deg" else 1.0
     cols = read_turn_csv(file)
     missing = [c for c in ("rudder_angle", "yaw_rate") if c not in cols]

@@ -25,6 +25,7 @@ from .maneuver import (
     Dt,
     Out,
     Rps,
+    ShipName,
     Speed,
     check_out,
     check_positive_opt,
@@ -46,9 +47,8 @@ def _display(criterion: Any) -> dict[str, Any]:
 
 @handle_errors
 def imo(
-    model: Annotated[str, typer.Argument(
-        help="Catalog entry with a steering gear (kvlcc2-l7, kvlcc2-full, mariner-nonlinear, "
-        "...).")],
+    model: Annotated[ShipName, typer.Argument(
+        help="Ship: a catalog entry with a manoeuvring model and a steering gear.")],
     speed: Speed = None,
     rps: Rps = None,
     dt: Dt = None,

@@ -17,6 +17,7 @@ from .. import __version__
 from ..errors import ParameterError
 from ._common import (
     JsonFlag,
+    OneLineErrors,
     check_figure_suffix,
     console,
     err_console,
@@ -28,6 +29,7 @@ from ._common import (
 )
 
 app = typer.Typer(
+    cls=OneLineErrors,
     name="seahelm",
     help="Batched, validated ship motion simulation and control.",
     no_args_is_help=True,

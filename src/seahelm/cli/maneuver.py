@@ -13,33 +13,50 @@ stderr naming the option, its unit and the value), 1 other failure.
 from __future__ import annotations
 
 import math
+import typing
 from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated, Any, Literal
 
 import typer
 from rich.markup import escape
 from rich.table import Table
 
 from ..errors import ParameterError
-from ._common import JsonFlag, console, handle_errors, output_dir, print_json
+from ._common import (
+    JsonFlag,
+    OneLineErrors,
+    console,
+    handle_errors,
+    output_dir,
+    print_json,
+)
 
 app = typer.Typer(
+    cls=OneLineErrors,
     help="Standard manoeuvres: turning circle, zig-zag, spiral, pull-out (both sides).",
     no_args_is_help=True,
 )
 
-_SIDES = {"both": (1, -1), "starboard": 1, "port": -1}
+#: The catalog entries with a steering gear: the keys of
+#: :data:`seahelm.analysis.maneuvers.STEERING_GEAR`, spelled out here because importing that
+#: module takes most of a second (tests/test_cli_style.py checks that the two agree).
+ShipName = Literal["kvlcc2-l7", "kvlcc2-full", "kvlcc2-l7-wp0-0.35", "kvlcc2-l7-xp-0.5",
+                   "mariner-nonlinear"]
+SideName = Literal["both", "starboard", "port"]
+
+_SIDES: dict[str, Any] = {"both": (1, -1), "starboard": 1, "port": -1}
 _SIDE_NAMES = {1: "starboard", -1: "port"}
 
-Catalog = Annotated[str, typer.Option(
-    "--catalog", help="Ship: a catalog entry with a steering gear (kvlcc2-l7, kvlcc2-full, "
-    "kvlcc2-l7-wp0-0.35, kvlcc2-l7-xp-0.5, mariner-nonlinear).")]
+#: Help of a ship option or argument: the choices, too long for the metavar column.
+SHIP_HELP = ("Ship: a catalog entry with a manoeuvring model and a steering gear: "
+             f"{', '.join(typing.get_args(ShipName))}.")
+Catalog = Annotated[ShipName, typer.Option("--catalog", metavar="NAME", help=SHIP_HELP)]
 Speed = Annotated[float | None, typer.Option(
     "--speed", help=escape("Approach speed U0 [m/s] (default: the entry's test speed)."))]
 Rps = Annotated[float | None, typer.Option(
     "--rps", help=escape("Instead of --speed: propeller rps of the approach [1/s] (MMG)."))]
-Side = Annotated[str, typer.Option("--side", help="both, starboard or port.")]
+Side = Annotated[SideName, typer.Option("--side", help="Turn to both sides or one.")]
 TFinal = Annotated[float | None, typer.Option(
     "--t-final", help=escape("Duration [s] (default: estimated from the steady turn)."))]
 Dt = Annotated[float | None, typer.Option(
@@ -57,14 +74,11 @@ def _main() -> None:
 # ------------------------------------------------------------------------------------------
 # input checks in command-line units
 # ------------------------------------------------------------------------------------------
-def ship_of(catalog: str) -> Any:
-    """The :class:`ManeuverShip` of a catalog entry with a steering gear (exit 2 otherwise)."""
-    from ..analysis.maneuvers import STEERING_GEAR, maneuver_ship
+def ship_of(catalog: ShipName) -> Any:
+    """The :class:`ManeuverShip` of a catalog entry with a steering gear (the parser has
+    checked the name against :data:`ShipName`)."""
+    from ..analysis.maneuvers import maneuver_ship
 
-    if catalog not in STEERING_GEAR:
-        raise ParameterError(
-            f"`--catalog` must be a catalog entry with a manoeuvring model and a steering gear "
-            f"({', '.join(sorted(STEERING_GEAR))}), got {catalog!r}")
     return maneuver_ship(catalog)
 
 
@@ -102,13 +116,6 @@ def check_positive_opt(name: str, value: float | None, unit: str) -> None:
         raise ParameterError(f"`{name}` must be > 0 [{unit}], got {value!r}")
 
 
-def sides_of(side: str) -> Any:
-    """``--side`` as +1/−1 or the pair (exit 2 on anything else)."""
-    if side not in _SIDES:
-        raise ParameterError(f"`--side` must be one of {', '.join(_SIDES)}, got {side!r}")
-    return _SIDES[side]
-
-
 #: The files each command writes with --out (checked before anything runs).
 OUT_FILES: dict[str, tuple[str, ...]] = {
     "turning": ("turning-circle-metrics.nc", "turning-circle-runs.nc", "turning.png"),
@@ -127,12 +134,14 @@ def check_out(out: Path | None, kind: str) -> None:
         output_dir("--out", out, OUT_FILES[kind])
 
 
-def checked(catalog: str, rudder: float, side: str, speed: float | None, rps: float | None,
-            t_final: float | None, dt: float | None) -> tuple[Any, float, Any]:
-    """The options every manoeuvre takes, checked: (ship, rudder [rad], sides)."""
+def checked(catalog: ShipName, rudder: float, side: SideName, speed: float | None,
+            rps: float | None, t_final: float | None, dt: float | None
+            ) -> tuple[Any, float, Any]:
+    """The options every manoeuvre takes, checked: (ship, rudder [rad], sides: +1/−1 or the
+    pair)."""
     ship = ship_of(catalog)
     delta = check_rudder_deg(ship, "--rudder", rudder)
-    sides = sides_of(side)
+    sides = _SIDES[side]
     check_speed_rps(ship, speed, rps)
     check_positive_opt("--t-final", t_final, "s")
     check_positive_opt("--dt", dt, "s")
@@ -349,8 +358,8 @@ def zigzag_cmd(
         "Rudder angle δ [deg], in (0, steering gear limit]."))] = 10.0,
     heading: Annotated[float | None, typer.Option("--heading", help=escape(
         "Heading trigger ψ [deg], in (0, 180) (default: equal to --rudder)."))] = None,
-    side: Annotated[str, typer.Option("--side", help="First execute: both, starboard or "
-                                                     "port.")] = "both",
+    side: Annotated[SideName, typer.Option(
+        "--side", help="First execute: to both sides or one.")] = "both",
     speed: Speed = None,
     rps: Rps = None,
     t_final: TFinal = None,

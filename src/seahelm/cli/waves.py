@@ -8,8 +8,9 @@ stdout and nothing else.
 from __future__ import annotations
 
 import math
+import typing
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated, Any, Literal
 
 import numpy as np
 import typer
@@ -19,6 +20,7 @@ from ..errors import ParameterError
 from ..results import atomic_write
 from ._common import (
     JsonFlag,
+    OneLineErrors,
     check_figure_suffix,
     console,
     handle_errors,
@@ -27,6 +29,7 @@ from ._common import (
 )
 
 app = typer.Typer(
+    cls=OneLineErrors,
     help="Sea-wave disturbances (Sushchenko & Lutsko 2010): tables, spectra, samples.",
     no_args_is_help=True,
 )
@@ -36,10 +39,24 @@ MAX_SAMPLES = 200_000_000
 #: Longest realisation the paper's figure draws [s] (it plots every sample).
 MAX_FIGURE_DURATION = 100_000.0
 
+#: The names of :data:`seahelm.environment.spectra.SPECTRA` and, of those, the rational ones
+#: (a shaping filter, so ``sample``), and the versions of
+#: :data:`seahelm.environment.sea_state.TABLE2`: spelled out so that the command line does not
+#: import the spectra (tests/test_cli_style.py checks that they agree).
+RationalSpectrumName = Literal["rakhmanin-firsov-1", "rakhmanin-firsov-2", "rakhmanin-firsov-3",
+                               "rakhmanin-firsov-3-printed"]
+SpectrumName = Literal[RationalSpectrumName, "pierson-moskowitz", "jonswap", "bretschneider",
+                       "ittc"]
+TableVersion = Literal["corrected", "printed"]
+
+
+def _names(choices: Any) -> str:
+    return ", ".join(typing.get_args(choices))
+
+
 _H3 = Annotated[float, typer.Option("--h3", help=escape("Height of 3 % exceedance waves h3% [m]."))]
-_Table = Annotated[
-    str, typer.Option("--table", help="Table 2 version: 'corrected' (default) or 'printed'.")
-]
+_Table = Annotated[TableVersion, typer.Option(
+    "--table", help="Table 2 version: as printed, or with its two misprints corrected.")]
 
 
 @app.command("table")
@@ -87,8 +104,8 @@ def _roman(g: int) -> str:
 @handle_errors
 def spectrum_cmd(
     h3: _H3,
-    model: Annotated[
-        str, typer.Option("--model", help="Spectrum name (see seahelm.environment.spectra.SPECTRA).")
+    model: Annotated[SpectrumName, typer.Option(
+        "--model", metavar="NAME", help=f"Spectrum: {_names(SpectrumName)}.")
     ] = "rakhmanin-firsov-2",
     plot: Annotated[Path | None, typer.Option("--plot", help="Write a PNG of the spectrum.")] = None,
     json_out: JsonFlag = False,
@@ -156,8 +173,9 @@ def sample_cmd(
     runs: Annotated[int, typer.Option("--runs", help="Number of realisations.")] = 1,
     out: Annotated[Path | None, typer.Option("--out", help="Write a NetCDF file (h5netcdf).")] = None,
     json_out: JsonFlag = False,
-    model: Annotated[
-        str, typer.Option("--model", help="Rakhmanin–Firsov variant with a finite-variance slope.")
+    model: Annotated[RationalSpectrumName, typer.Option(
+        "--model", metavar="NAME",
+        help=f"Spectrum with a shaping filter (Rakhmanin–Firsov): {_names(RationalSpectrumName)}.")
     ] = "rakhmanin-firsov-2",
     table: _Table = "corrected",
 ) -> None:
