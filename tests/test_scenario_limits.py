@@ -62,3 +62,30 @@ def test_a_step_count_that_cannot_run():
                                             r"\(t_final/dt = 1e\+300/0.001\) cannot run"):
         parse_scenario(BASE.replace("t_final = 600.0", "t_final = 1e300").replace(
             "dt = 0.1", "dt = 1e-3"), source="s.toml")
+
+
+@pytest.mark.parametrize("edit, match", [
+    (("heading_deg = 10.0", "heading_deg = 10.0\nheading = 0.2"),
+     r"\[controller.reference.heading_deg\] give `heading` \[rad\] or `heading_deg` \[deg\], "
+     r"not both"),
+    (("[controller]", "[actuator.params]\nmax_angle_deg = 35.0\nmax_angle = 0.6\n[controller]"),
+     r"\[actuator.params\] give `max_angle` \[rad\] or `max_angle_deg` \[deg\], not both"),
+    (("[simulation]", '[batch.grid]\n"controller.params.kp" = [1.0, 1.0]\n[simulation]'),
+     r"\[batch.grid\] grid values of `controller.params.kp` repeat \(1.0\)"),
+    (("dt = 0.1", "dt = 0.1\nbounds = { yaw_rate = [1.0, -1.0] }"),
+     r"\[simulation.bounds\] bounds of `yaw_rate`: low 1.0 must be < high -1.0"),
+    (("heading_deg = 10.0", 'heading_deg = { kind = "step", time = 10.0, after = true }'),
+     r"\[controller.reference.heading_deg\] signal 'step': `after` must be a number, got True"),
+])
+def test_values_that_used_to_be_silently_taken(edit, match):
+    assert edit[0] in BASE
+    with pytest.raises(ScenarioError, match=match):
+        parse_scenario(BASE.replace(*edit), source="s.toml")
+
+
+def test_a_negative_manoeuvre_rudder_is_an_error_not_the_other_side():
+    text = ('[vessel]\ncatalog = "kvlcc2-l7"\n[maneuver]\nkind = "turning"\n'
+            'sides = "starboard"\nrudder_deg = -10.0\n')
+    with pytest.raises(ScenarioError, match=r"\[maneuver\] `rudder_deg` must be > 0 \[deg\] "
+                                            r"\(the side is `sides`\), got -10.0"):
+        parse_scenario(text, source="s.toml")

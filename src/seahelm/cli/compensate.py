@@ -104,7 +104,6 @@ def compensate(
         sail_centre=sail_centre,
     )
     if (draft_fore is None) != (draft_aft is None):
-        from ..errors import ParameterError
 
         raise ParameterError("give both `--draft-fore` and `--draft-aft` [m], or neither")
     with warnings.catch_warnings(record=True) as caught:

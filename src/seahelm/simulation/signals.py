@@ -215,6 +215,9 @@ def make_signal(spec: Any, *, scale: float = 1.0) -> Any:
                                      f"got {value!r}")
             kwargs[key] = value
             continue
+        items = value if isinstance(value, (list, tuple)) else [value]
+        if any(isinstance(v, (bool, str)) for v in items):  # true is not 1.0, "3" not 3
+            raise ParameterError(f"signal '{kind}': `{key}` must be a number, got {value!r}")
         arr = as_float_array(key, value)
         if key in _SCALED:
             arr = arr * scale

@@ -1,0 +1,140 @@
+"""Bad paths and bad values found by a bad-input campaign (issue 18): every one exits 2 with
+one ``error:`` line naming the option or key, and an output problem is found before anything
+runs (the commands that would run are replaced by a tripwire here)."""
+
+from __future__ import annotations
+
+import math
+import os
+
+import pytest
+from typer.testing import CliRunner
+
+from seahelm.cli.main import app
+from seahelm.errors import ParameterError
+
+runner = CliRunner()
+
+
+def one_error(args: list[str]) -> str:
+    res = runner.invoke(app, args)
+    assert res.exit_code == 2, (res.stdout, res.stderr)
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), lines
+    return lines[0]
+
+
+@pytest.fixture
+def no_simulation(monkeypatch):
+    """Fail the test if a scenario or manoeuvre runs (the path must be refused first)."""
+    import seahelm.analysis.maneuvers as maneuvers
+    import seahelm.scenario as scenario
+
+    def tripwire(*args, **kwargs):
+        raise AssertionError("ran before the output path was checked")
+
+    monkeypatch.setattr(scenario, "run_scenario", tripwire)
+    monkeypatch.setattr(maneuvers, "turning_circle", tripwire)
+    monkeypatch.setattr(maneuvers, "spirals", tripwire)
+
+
+def test_output_directories_are_checked_before_anything_runs(tmp_path, no_simulation):
+    afile = tmp_path / "afile"
+    afile.write_text("x")
+    assert one_error(["demo", "--out", str(afile)]) == \
+        f"error: `--out` must be a directory, but {afile} is a file"
+    assert "cannot create the directory" in one_error(["demo", "--out", str(afile / "sub")])
+    (tmp_path / "o" / "overview.png").mkdir(parents=True)
+    assert one_error(["demo", "--out", str(tmp_path / "o")]) == (
+        f"error: `--out`: {tmp_path / 'o' / 'overview.png'} is a directory; it would be "
+        "overwritten by a file")
+    (tmp_path / "t" / "turning.png").mkdir(parents=True)
+    assert "turning.png is a directory" in one_error(
+        ["maneuver", "turning", "--side", "starboard", "--out", str(tmp_path / "t")])
+    assert "must be a directory" in one_error(["maneuver", "spiral", "--out", str(afile)])
+    assert not any((tmp_path / "o").glob("*.nc"))  # nothing half-written
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root writes everywhere")
+def test_an_unwritable_directory(tmp_path):
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    ro.chmod(0o500)
+    try:
+        assert "cannot write in" in one_error(["waves", "figure", "--out", str(ro / "w.png")])
+    finally:
+        ro.chmod(0o700)
+
+
+def test_file_outputs(tmp_path):
+    assert one_error(["waves", "figure", "--out", str(tmp_path)]) == \
+        f"error: `--out` must be a file name, but {tmp_path} is a directory"
+    assert "cannot write a figure as '.xyz'" in one_error(
+        ["waves", "figure", "--out", str(tmp_path / "w.xyz")])
+    assert "cannot write a figure as '.xyz'" in one_error(
+        ["waves", "spectrum", "--h3", "3", "--plot", str(tmp_path / "s.xyz")])
+
+
+def test_plot_refuses_what_is_not_a_result(tmp_path):
+    text = tmp_path / "notes.nc"
+    text.write_text("not netcdf\n")
+    assert one_error(["plot", str(text)]) == (
+        f"error: {text}: not a NetCDF-4/HDF5 file written by seahelm (a results file of "
+        "`seahelm run --out` or SimResult.to_netcdf)")
+    assert one_error(["plot", str(tmp_path)]) == \
+        f"error: `RESULT`: {tmp_path} is a directory, not a file"
+    import numpy as np
+    import xarray as xr
+
+    foreign = tmp_path / "foreign.nc"
+    xr.Dataset({"x": ("t", np.arange(3.0))}).to_netcdf(foreign, engine="h5netcdf")
+    assert "not a seahelm simulation result" in one_error(["plot", str(foreign)])
+    if hasattr(os, "mkfifo"):
+        fifo = tmp_path / "p.nc"
+        os.mkfifo(fifo)
+        assert one_error(["plot", str(fifo)]) == f"error: `RESULT`: {fifo} is not a regular file"
+
+
+def test_scenario_paths(tmp_path):
+    assert one_error(["run", str(tmp_path)]) == \
+        f"error: {tmp_path} is a directory, not a scenario file"
+
+
+@pytest.mark.parametrize("args, match", [
+    (["waves", "sample", "--h3", "3", "--duration", "10.3", "--dt", "0.5", "--seed", "1"],
+     "`--duration` must be a whole multiple (>= 1) of `--dt` [s]: duration=10.3, dt=0.5"),
+    (["averaging", "cpp", "--grid", "20000"], "`--grid` must be in [6, 2000] [directions], got "
+                                              "20000"),
+    (["waves", "figure", "--duration", "1e9"], "`--duration` must be in (0, 100000] [s]"),
+    (["maneuver", "spiral", "--hold", "1e9"], "`hold`: 33 holds of 1e+09 s"),
+    (["compensate", "--length", "160", "--beam", "23", "--draft", "8", "--block-coefficient",
+      "0.65", "--speed", "7.7", "--wind-speed", "15", "--wind-angle", "60", "--wave-height", "3",
+      "--wave-angle", "60", "--rudder-area", "0"], "`--rudder-area` must be > 0 [m²], got 0.0"),
+])
+def test_values_that_used_to_hang_blow_up_or_be_ignored(args, match):
+    assert match in one_error(args)
+
+
+def test_manoeuvre_timing_values():
+    from seahelm.analysis.maneuvers import turning_circle
+
+    with pytest.raises(ParameterError, match=r"`record_dt` must be a whole multiple of `dt` "
+                                             r"\[s\]: record_dt=0.5, dt=0.2"):
+        turning_circle("kvlcc2-l7", sides=1, dt=0.2, record_dt=0.5, t_final=10.0)
+    with pytest.raises(ParameterError, match=r"`t_final` must be at least one step `dt` \[s\]"):
+        turning_circle("kvlcc2-l7", sides=1, dt=5.0, t_final=1.0)
+
+
+def test_the_engine_refuses_a_controller_slower_than_the_run():
+    import numpy as np
+
+    from seahelm.control.pid import PID_HEADING, PIDHeadingParams
+    from seahelm.simulation.engine import simulate
+    from seahelm.vessels.catalog import get
+    from seahelm.vessels.nomoto import NOMOTO2
+
+    with pytest.raises(ParameterError, match=r"`controller_dt` = 120.0 s exceeds `t_final` = "
+                                             r"60.0 s"):
+        simulate(NOMOTO2, get("mariner-nomoto2").params, np.zeros(5), t_final=60.0, dt=0.1,
+                 controller=PID_HEADING, controller_params=PIDHeadingParams(),
+                 controller_dt=120.0, reference=[math.radians(10.0)])
