@@ -207,7 +207,7 @@ def test_kernel_fingerprint_follows_code_in_memory_and_its_dependencies(tmp_path
     """A kernel is named after the bytecode of its components *and* of the numba functions
     they call, as loaded: an edit of a helper in another module must give another kernel
     (a stale on-disk numba cache was once served after such an edit)."""
-    from seahelm.simulation.engine import _code_fingerprint
+    from seahelm.simulation.engine import code_fingerprint
 
     body = ("from numba import njit\n\n@njit\ndef helper(x):\n    return x + {k}\n\n"
             "SCALE = {s}\n\n@njit\ndef component(x):\n    return helper(x) * SCALE\n")
@@ -215,7 +215,7 @@ def test_kernel_fingerprint_follows_code_in_memory_and_its_dependencies(tmp_path
     b = _module_from_text(tmp_path, "fp_b", body.format(k=1, s=2.0))
     c = _module_from_text(tmp_path, "fp_c", body.format(k=2, s=2.0))
     d = _module_from_text(tmp_path, "fp_d", body.format(k=1, s=3.0))
-    fa, fb, fc, fd = (_code_fingerprint(m.component.py_func) for m in (a, b, c, d))
+    fa, fb, fc, fd = (code_fingerprint(m.component.py_func) for m in (a, b, c, d))
     assert fa.replace(b"fp_a", b"") == fb.replace(b"fp_b", b"")  # same code, same print
     assert fc.replace(b"fp_c", b"") != fa.replace(b"fp_a", b"")  # helper changed
     assert fd.replace(b"fp_d", b"") != fa.replace(b"fp_a", b"")  # frozen global changed

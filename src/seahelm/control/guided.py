@@ -23,10 +23,6 @@ from __future__ import annotations
 import dataclasses
 import functools
 import hashlib
-import importlib.util
-import os
-import sys
-import tempfile
 
 from ..errors import ParameterError
 from .base import Controller
@@ -64,7 +60,7 @@ def guided(law: "GuidanceLaw | str", controller: Controller) -> Controller:
     ParameterError
         If the controller has no ``heading`` reference, or the two share a parameter name.
     """
-    from ..simulation.engine import kernel_cache_dir
+    from ..simulation.engine import code_fingerprint, import_generated
 
     law = get_guidance_law(law)
     if controller.passthrough or "heading" not in controller.reference_labels:
@@ -119,21 +115,11 @@ def guided(law: "GuidanceLaw | str", controller: Controller) -> Controller:
         "    copy_references(ref, cs)\n"
         "    cs[NG + R_HEADING] = law_step(dt, p, cs[:NG], y[I_NORTH], y[I_EAST], cmd[NO:])\n"
         "    controller_step(t, dt, z, y, cs[NG:NG + NR], p, cs[NG + NR:], cmd)\n")
-    digest = hashlib.sha1(source.encode()).hexdigest()[:16]
-    name = f"seahelm_guided_{digest}"
-    module = sys.modules.get(name)
-    if module is None:
-        path = kernel_cache_dir() / f"{name}.py"
-        if not path.exists() or path.read_text() != source:
-            fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
-            with os.fdopen(fd, "w") as fh:
-                fh.write(source)
-            os.replace(tmp, path)
-        spec = importlib.util.spec_from_file_location(name, path)
-        assert spec is not None and spec.loader is not None
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[name] = module
-        spec.loader.exec_module(module)
+    # the name hashes the text and the code of the functions it imports (as the kernels do)
+    digest = hashlib.sha1(b"\0".join([source.encode()] + [
+        code_fingerprint(f.py_func) for f in (law.init, law.step, controller.init,
+                                               controller.step)])).hexdigest()[:16]
+    module = import_generated(f"seahelm_guided_{digest}", source)
     return Controller(
         name=f"{law.name}+{controller.name}",
         description=f"{law.description}, steering the {controller.description}",

@@ -58,7 +58,8 @@ from .integrators import ButcherTableau, compiled_advance_source, get_integrator
 if TYPE_CHECKING:  # pragma: no cover
     from ..results import SimResult
 
-__all__ = ["RunStatus", "simulate", "compile_closed_loop", "kernel_cache_dir",
+__all__ = ["RunStatus", "simulate", "compile_closed_loop", "kernel_cache_dir", "import_generated",
+           "code_fingerprint",
            "check_record_memory", "physical_memory"]
 
 
@@ -93,13 +94,24 @@ def kernel_cache_dir() -> Path:
         return fallback
 
 
-def _code_fingerprint(py: Any, seen: set[int] | None = None) -> bytes:
+def code_fingerprint(py: Any, seen: set[int] | None = None) -> bytes:
     """Bytes that change whenever the compiled behaviour of ``py`` could change.
 
     The bytecode of the function as it is *in memory* (not its file on disk, which may have
     been edited since it was imported), and recursively of every numba function it calls and
     the numeric globals that numba freezes into the code. Naming a kernel after this keeps the
     on-disk numba cache from serving a loop compiled from other code.
+
+    Parameters
+    ----------
+    py : function
+        A plain Python function (a numba dispatcher's ``py_func``).
+    seen : set of int, optional
+        Ids of functions already included (recursion guard).
+
+    Returns
+    -------
+    bytes
     """
     seen = set() if seen is None else seen
     if id(py) in seen:
@@ -116,7 +128,7 @@ def _code_fingerprint(py: Any, seen: set[int] | None = None) -> bytes:
         obj = py.__globals__.get(name)
         inner = getattr(obj, "py_func", None)
         if inner is not None:
-            parts.append(name.encode() + _code_fingerprint(inner, seen))
+            parts.append(name.encode() + code_fingerprint(inner, seen))
         elif isinstance(obj, (bool, int, float, complex, str)):
             parts.append(f"{name}={obj!r}".encode())
         elif isinstance(obj, np.ndarray):
@@ -142,7 +154,7 @@ def _binding(func: Any, alias: str) -> tuple[str, bytes]:
     # component boundaries (a helper left as a call cost the catamaran loop 25 %)
     line = (f"from {module} import {name} as _{alias}\n"
             f"{alias} = inline_always(_{alias})\n")
-    return line, _code_fingerprint(py)
+    return line, code_fingerprint(py)
 
 
 _TEMPLATE_TEXT = (Path(__file__).with_name("kernel_template.py")).read_text()
@@ -206,7 +218,26 @@ def compile_closed_loop(
     digest = hashlib.sha1(
         b"\0".join([text.encode(), __version__.encode(), *(p[1] for p in parts)])
     ).hexdigest()[:16]
-    name = f"seahelm_kernel_{digest}"
+    return import_generated(f"seahelm_kernel_{digest}", text)
+
+
+def import_generated(name: str, text: str) -> ModuleType:
+    """Import generated source as module ``name`` from the kernel cache directory.
+
+    The file is written atomically (only if missing or different), so numba's on-disk cache
+    of its ``cache=True`` functions lives beside it; a module already imported is returned.
+
+    Parameters
+    ----------
+    name : str
+        Module name, unique for the text (e.g. ``seahelm_kernel_<hash>``).
+    text : str
+        Its Python source.
+
+    Returns
+    -------
+    module
+    """
     if name in sys.modules:
         return sys.modules[name]
     path = kernel_cache_dir() / f"{name}.py"
