@@ -222,7 +222,7 @@ def test_scenario_grid_over_a_guidance_value_is_a_dimension():
     (("[8000.0, 6000.0]]", "[0.0, 6000.0]]"),
      r"r.toml: \[guidance\] route: waypoints 1 and 2 are the same point"),
     (("lookahead = 800.0", "lookahead = 0.0"),
-     r"r.toml: \[guidance.lookahead\] Input should be greater than 0, got 0.0"),
+     r"r.toml: \[guidance.lookahead\] must be > 0 \[m\], got 0.0"),
     (('model = "pid-heading"', 'model = "open-loop"'),
      r"r.toml: \[guidance.law\] guidance 'ilos' steers a heading controller"),
 ])
@@ -288,9 +288,9 @@ def test_environment_current_section_sets_the_current_channels():
                                                             1.0], rtol=1e-15)
     for edit, match in (
         (("direction_deg = 30.0", "direction_deg = 360.0"),
-         r"\[environment.current.direction_deg\] Input should be less than 360"),
+         r"\[environment.current.direction_deg\] must be < 360 \[deg\], got 360.0"),
         (("speed = 2.0", "speed = -1.0"),
-         r"\[environment.current.speed\] Input should be greater than or equal to 0"),
+         r"\[environment.current.speed\] must be >= 0 \[m/s\], got -1.0"),
         (("[environment.current]", "[environment.disturbance]\ncurrent_north = 0.5\n"
           "[environment.current]"),
          r"\[environment.current\] the current is given twice: here and as "

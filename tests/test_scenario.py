@@ -73,9 +73,9 @@ def test_default_scenario_is_valid_and_converts_degrees():
          r"s.toml: \[simulation.t_final\] `t_final` must be a positive whole multiple of `dt` "
          r"\[s\]: t_final=20.05, dt=0.1"),
         (_with(replace=("t_final = 20.0", "t_final = -5")),
-         r"\[simulation.t_final\] Input should be greater than 0, got -5"),
+         r"\[simulation.t_final\] must be > 0 \[s\], got -5"),
         (_with(replace=("dt = 0.1", 'dt = "fast"')),
-         r"\[simulation.dt\] Input should be a valid number.*got 'fast'"),
+         r"\[simulation.dt\] must be a number \[s\] \(not a string or a boolean\), got 'fast'"),
         (_with(replace=('model = "pid-heading"', 'model = "pid-heading"\ndt = 0.25'),),
          r"s.toml: \[controller.dt\] `controller_dt` must be a positive whole multiple of `dt` "
          r"\[s\]: controller_dt=0.25, dt=0.1"),

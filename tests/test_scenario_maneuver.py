@@ -98,7 +98,7 @@ def test_imo_scenario_is_the_imo_check():
         (("t_final = 60.0", "rps = [10.0, 0.0]"),
          r"t.toml: \[maneuver\] `rps` must be > 0 \[1/s\], got 0.0"),
         (("t_final = 60.0", 't_final = "60"'),
-         r"\[maneuver.t_final\] Input should be a valid number, got '60'"),
+         r"\[maneuver.t_final\] must be a number \[s\] \(not a string or a boolean\), got '60'"),
         (('sides = "starboard"', 'sides = "left"'),
          r"\[maneuver.sides\] Input should be 'both', 'starboard' or 'port', got 'left'"),
         (('catalog = "kvlcc2-l7"', 'catalog = "mariner-nomoto2"'),
@@ -137,10 +137,10 @@ def test_a_value_the_manoeuvre_rejects_names_the_key():
 def test_strict_numbers_in_simulation_scenarios():
     base = (EXAMPLES / "mariner_course_change.toml").read_text()
     for edit, match in (
-        (("kp = 3.0", "kp = true"), r"\[controller.params.kp\] Input should be a valid number, got True"),
-        (("t_final = 900.0", 't_final = "900"'), r"\[simulation.t_final\] Input should be a valid number"),
-        (("t_final = 900.0", "t_final = inf"), r"\[simulation.t_final\] Input should be a finite number"),
-        (("dt = 0.1", "dt = nan"), r"\[simulation.dt\] Input should be a finite number"),
+        (("kp = 3.0", "kp = true"), r"\[controller.params.kp\] must be a number \(not a string or a boolean\), got True"),
+        (("t_final = 900.0", 't_final = "900"'), r"\[simulation.t_final\] must be a number \[s\]"),
+        (("t_final = 900.0", "t_final = inf"), r"\[simulation.t_final\] must be a finite number \[s\], got inf"),
+        (("dt = 0.1", "dt = nan"), r"\[simulation.dt\] must be a finite number \[s\], got nan"),
     ):
         assert edit[0] in base
         with pytest.raises(ScenarioError, match=match):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import tomllib
 from importlib import resources
 from pathlib import Path
@@ -49,15 +50,61 @@ def validate_scenario(text: str, *, source: str = "<string>") -> Scenario:
     try:
         return Scenario.model_validate(raw)
     except ValidationError as exc:
-        lines = []
+        lines: list[str] = []
+        seen: set[str] = set()
         for err in exc.errors():
-            path = ".".join(str(p) for p in err["loc"])
+            # a value of a union type (a number or a signal table) fails once per member: the
+            # first says it; the members' type tags are not part of the key path
+            path = ".".join(str(p) for p in err["loc"] if not _TYPE_TAG.match(str(p)))
+            if path in seen:
+                continue
+            seen.add(path)
             value = err.get("input")
             shown = "" if isinstance(value, dict) else f", got {value!r}"
-            message = err["msg"].removeprefix("Value error, ")
             where = f" [{path}]" if path else ""  # (a whole-file check names no key)
-            lines.append(f"{source}:{where} {message}{shown}")
+            lines.append(f"{source}:{where} {_message(err, _unit_of(path))}{shown}")
         raise ScenarioError("\n".join(lines)) from None
+
+
+_TYPE_TAG = re.compile(r"^(float|int|str|bool|constrained-float|function-\w+\[.*\]|"
+                       r"list\[.*\]|dict\[.*\]|tuple\[.*\])$")
+
+#: Units of the scenario's own numeric keys (the components' parameters carry theirs).
+_UNITS = {
+    "simulation.t_final": "s", "simulation.dt": "s", "controller.dt": "s",
+    "maneuver.t_final": "s", "maneuver.dt": "s", "maneuver.record_dt": "s",
+    "maneuver.hold": "s", "maneuver.speed": "m/s", "maneuver.rps": "1/s",
+    "maneuver.rudder": "rad", "maneuver.heading": "rad", "maneuver.max_rudder": "rad",
+    "guidance.acceptance_radius": "m", "guidance.lookahead": "m", "guidance.lookahead_min": "m",
+    "guidance.lookahead_gamma": "1/m²", "guidance.kappa": "m/s",
+    "environment.current.speed": "m/s", "environment.current.direction_deg": "deg",
+}
+
+
+def _unit_of(path: str) -> str:
+    key = re.sub(r"\.\d+$", "", path)  # an element of a list has the list's unit
+    if key.endswith("_deg"):
+        return "deg"
+    return _UNITS.get(key, "")
+
+
+def _message(err: Any, unit: str) -> str:
+    """pydantic's message in the scenario's words: ``must be > 0 [s]`` for a bound."""
+    kind, ctx = err["type"], err.get("ctx") or {}
+    u = f" [{unit}]" if unit else ""
+    bounds = {"greater_than": ">", "greater_than_equal": ">=", "less_than": "<",
+              "less_than_equal": "<="}
+    if kind in bounds:
+        key = {"greater_than": "gt", "greater_than_equal": "ge", "less_than": "lt",
+               "less_than_equal": "le"}[kind]
+        limit = ctx.get(key)
+        shown = f"{limit:g}" if isinstance(limit, (int, float)) else str(limit)
+        return f"must be {bounds[kind]} {shown}{u}"
+    if kind == "finite_number":
+        return f"must be a finite number{u}"
+    if kind in ("float_type", "float_parsing", "int_type", "int_parsing"):
+        return f"must be a number{u} (not a string or a boolean)"
+    return err["msg"].removeprefix("Value error, ")
 
 
 def parse_scenario(text: str, *, source: str = "<string>") -> RunBatch | ManeuverJob:
