@@ -115,6 +115,15 @@ def test_values_that_used_to_hang_blow_up_or_be_ignored(args, match):
     assert match in one_error(args)
 
 
+@pytest.mark.parametrize("args", [
+    ["waves", "sample", "--h3", "3", "--duration", "10", "--dt", "0.5", "--seed", "-1"],
+    ["waves", "figure", "--seed", "-1"],
+])
+def test_a_negative_seed_names_the_option(args):
+    assert one_error(args) == ("error: Invalid value for '--seed': Input should be greater than "
+                               f"or equal to 0, got '-1' (see 'seahelm waves {args[1]} --help')")
+
+
 def test_manoeuvre_timing_values():
     from seahelm.analysis.maneuvers import turning_circle
 

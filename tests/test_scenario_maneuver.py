@@ -189,3 +189,10 @@ def test_spiral_scenario_prints_what_the_spiral_command_prints(tmp_path):
     assert cmd.exit_code == 0, cmd.stderr
     got, want = json.loads(res.stdout), json.loads(cmd.stdout)
     assert got == want and len(got["direct"]) == 33 and got["direct"][0]["rudder_deg"] == 10.0
+
+
+def test_a_rejected_angle_is_named_as_written():
+    job = parse_scenario(TURN.replace("rudder_deg = 35.0", "rudder_deg = 50.0"), source="t.toml")
+    with pytest.raises(ScenarioError, match=r"t.toml: \[maneuver.rudder_deg\] .* \(as written: "
+                                            r"rudder_deg = 50 deg\)$"):
+        run_scenario(job)

@@ -169,7 +169,8 @@ def sample_cmd(
     h3: _H3,
     duration: Annotated[float, typer.Option("--duration", help=escape("Length of each run [s]."))],
     dt: Annotated[float, typer.Option("--dt", help=escape("Sample interval Δt [s]."))],
-    seed: Annotated[int, typer.Option("--seed", help=escape("Seed; run i uses SeedSequence(seed).spawn(runs)[i]."))],
+    seed: Annotated[int, typer.Option("--seed", min=0, help=escape(
+        "Seed (>= 0); run i uses SeedSequence(seed).spawn(runs)[i]."))],
     runs: Annotated[int, typer.Option("--runs", help="Number of realisations.")] = 1,
     out: Annotated[Path | None, typer.Option("--out", help="Write a NetCDF file (h5netcdf).")] = None,
     json_out: JsonFlag = False,
@@ -238,7 +239,8 @@ def sample_cmd(
 @handle_errors
 def figure_cmd(
     out: Annotated[Path, typer.Option("--out", help="PNG file to write.")] = Path("waves.png"),
-    seed: Annotated[int, typer.Option("--seed", help="Seed of the sample realisations.")] = 0,
+    seed: Annotated[int, typer.Option("--seed", min=0,
+                                      help="Seed (>= 0) of the sample realisations.")] = 0,
     duration: Annotated[float, typer.Option("--duration", help="Realisation length [s].")] = 200.0,
 ) -> None:
     """The paper's figure: spectra for sea states 3, 6, 9, slope spectra, realisations."""

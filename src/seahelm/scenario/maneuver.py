@@ -31,6 +31,8 @@ import re
 from collections.abc import Mapping
 from typing import Any
 
+import numpy as np
+
 from ..errors import ParameterError
 from .errors import ScenarioError, at_key
 from .schema import Scenario
@@ -60,6 +62,8 @@ class ManeuverJob:
     ship: Any
     options: Mapping[str, Any]
     metadata: Mapping[str, str]
+    #: option -> the key the scenario wrote it as (``rudder`` -> ``rudder_deg``)
+    written: Mapping[str, str] = dataclasses.field(default_factory=dict)
 
     @property
     def title(self) -> str:
@@ -102,7 +106,13 @@ class ManeuverJob:
         message = str(exc)
         arg = re.search(r"`(\w+)`", message)
         if arg and arg.group(1) in self.options:
-            return at_key(source, f"maneuver.{arg.group(1)}", message)
+            name = arg.group(1)
+            written = self.written.get(name, name)
+            if written != name:  # the user wrote degrees: say it in degrees too
+                value = self.options[name]
+                deg = ", ".join(f"{math.degrees(v):g}" for v in np.atleast_1d(value))
+                message += f" (as written: {written} = {deg} deg)"
+            return at_key(source, f"maneuver.{written}", message)
         return ScenarioError(f"{source}: [maneuver] {message}")
 
 
@@ -193,11 +203,14 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
         value = getattr(man, key)
         if value is not None:
             options[key] = value
+    written: dict[str, str] = {}
     for key in ("rudder", "heading", "max_rudder"):
         value = _angle(man, key)
         if value is not None:
             options[key] = value
+            written[key] = key if getattr(man, key) is not None else f"{key}_deg"
     if man.sides is not None:
         options["sides"] = _SIDES[man.sides]
     metadata = {"title": scn.title, "scenario_source": source, "scenario_text": text}
-    return ManeuverJob(kind=man.kind, ship=ship, options=options, metadata=metadata)
+    return ManeuverJob(kind=man.kind, ship=ship, options=options, metadata=metadata,
+                       written=written)
