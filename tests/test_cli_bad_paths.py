@@ -147,3 +147,15 @@ def test_the_engine_refuses_a_controller_slower_than_the_run():
         simulate(NOMOTO2, get("mariner-nomoto2").params, np.zeros(5), t_final=60.0, dt=0.1,
                  controller=PID_HEADING, controller_params=PIDHeadingParams(),
                  controller_dt=120.0, reference=[math.radians(10.0)])
+
+
+def test_a_compensating_angle_no_rudder_gives_is_flagged():
+    args = ["compensate", "--length", "160", "--beam", "23", "--draft", "8",
+            "--block-coefficient", "0.65", "--speed", "7.7", "--wind-speed", "15",
+            "--wind-angle", "60", "--wave-height", "60", "--wave-angle", "60"]
+    res = runner.invoke(app, args)
+    assert res.exit_code == 0
+    assert "warning: delta_k_wave = 759.6 deg is beyond any rudder's 35 deg" in res.stderr
+    assert one_error(args + ["--strict"]).startswith("error: ")
+    calm = runner.invoke(app, args[:-3] + ["3", "--wave-angle", "60"])  # the README's case
+    assert calm.exit_code == 0 and "beyond any rudder" not in calm.stderr

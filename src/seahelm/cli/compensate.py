@@ -26,6 +26,9 @@ from ._common import (
     print_json,
 )
 
+#: A compensating angle beyond this [rad] no steering gear can give (35° is the usual limit).
+RUDDER_LIMIT = math.radians(35.0)
+
 app = typer.Typer(
     cls=OneLineErrors,
     help="Wave and wind loads on the hull and the compensating rudder angle δ_k "
@@ -104,7 +107,6 @@ def compensate(
         sail_centre=sail_centre,
     )
     if (draft_fore is None) != (draft_aft is None):
-
         raise ParameterError("give both `--draft-fore` and `--draft-aft` [m], or neither")
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -114,6 +116,15 @@ def compensate(
             wave_length=wave_length, a1=a1, strict=True if strict else None,
         )
     notes = [str(w.message) for w in caught]
+    for name, value in (("delta_k_wind", s.delta_k_wind), ("delta_k_wave", s.delta_k_wave),
+                        ("delta_k", s.delta_k)):
+        if abs(value) > RUDDER_LIMIT:  # no steering gear gives it: the formulas are past use
+            if strict:
+                raise ParameterError(f"{name} = {math.degrees(value):.4g} deg is beyond any "
+                                     f"rudder's {math.degrees(RUDDER_LIMIT):g} deg (--strict)")
+            notes.append(f"{name} = {math.degrees(value):.4g} deg is beyond any rudder's "
+                         f"{math.degrees(RUDDER_LIMIT):g} deg: the loads are outside the range "
+                         "where a compensating rudder angle means anything")
     for note in notes:
         err_console.print(f"[yellow]warning:[/] {note}", highlight=False, soft_wrap=True)
     out = {
