@@ -159,3 +159,25 @@ def test_a_compensating_angle_no_rudder_gives_is_flagged():
     assert one_error(args + ["--strict"]).startswith("error: ")
     calm = runner.invoke(app, args[:-3] + ["3", "--wave-angle", "60"])  # the README's case
     assert calm.exit_code == 0 and "beyond any rudder" not in calm.stderr
+
+
+def test_warnings_are_one_line_and_name_the_cause():
+    res = runner.invoke(app, ["maneuver", "turning", "--side", "starboard", "--speed", "2.5",
+                              "--t-final", "20", "--json"])
+    assert res.exit_code == 0
+    warned = [line for line in res.stderr.splitlines() if line.startswith("warning: ")]
+    assert warned == [line for line in res.stderr.splitlines() if line.strip()]  # nothing else
+    assert any("approach speed 2.5 m/s is 2.12 x the speed of 'kvlcc2-l7''s parameter set"
+               in line for line in warned)
+    res = runner.invoke(app, ["maneuver", "turning", "--side", "starboard", "--dt", "1",
+                              "--t-final", "20", "--json"])
+    assert any("`dt` = 1 s is 20 x the usual step of this ship (0.05 s" in line
+               for line in res.stderr.splitlines())
+
+
+def test_identify_smoothing_longer_than_the_log():
+    from pathlib import Path
+
+    log = Path(__file__).resolve().parents[1] / "examples" / "steady_turn_log.csv"
+    assert "`--smoothing` = 1e+09 s is longer than the whole log" in one_error(
+        ["identify", "steady-turn", str(log), "--smoothing", "1e9"])

@@ -130,7 +130,7 @@ def test_bad_maneuver_scenarios_name_file_key_and_value(edit, match):
 
 def test_a_value_the_manoeuvre_rejects_names_the_key():
     job = parse_scenario(TURN.replace("rudder_deg = 35.0", "rudder_deg = 40.0"), source="t.toml")
-    with pytest.raises(ScenarioError, match=r"t.toml: \[maneuver.rudder\] `rudder` .*"):
+    with pytest.raises(ScenarioError, match=r"t.toml: \[maneuver.rudder_deg\] `rudder` .*"):
         run_scenario(job)
 
 

@@ -18,6 +18,7 @@ import math
 import os
 import sys
 import tempfile
+import warnings
 from collections.abc import Callable
 from pathlib import Path
 from typing import Annotated, Any, NoReturn, TypeVar
@@ -134,7 +135,10 @@ def handle_errors(func: F) -> F:
     @functools.wraps(func)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         try:
-            return func(*args, **kwargs)
+            with warnings.catch_warnings():
+                warnings.simplefilter("default")
+                warnings.showwarning = _show_warning  # one line each: warning: ...
+                return func(*args, **kwargs)
         except typer.Exit:
             raise
         except (ParameterError, ValueError, FileNotFoundError, KeyError) as exc:
@@ -223,6 +227,12 @@ def input_file(option: str, path: Path) -> Path:
     if not path.is_file():
         raise ParameterError(f"`{option}`: {path} is not a regular file")
     return path
+
+
+def _show_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
+                  file: Any = None, line: str | None = None) -> None:
+    err_console.print(Text.assemble(("warning: ", "yellow"), _one_line(Exception(str(message)))),
+                      highlight=False, soft_wrap=True)
 
 
 def _one_line(exc: BaseException) -> str:

@@ -135,6 +135,10 @@ def steady_turn(
     out: dict[str, Any] = {"file": str(file), "input": "points"}
     segments = None
     if "time" in cols:
+        span = float(cols["time"][-1] - cols["time"][0]) if cols["time"].size else 0.0
+        if smoothing > span:
+            raise ParameterError(f"`--smoothing` = {smoothing:g} s is longer than the whole log "
+                                 f"({span:g} s of {file})")
         seg_kw: dict[str, Any] = dict(rudder_tolerance=rudder_tolerance * scale,
                                       min_duration=min_duration, smoothing=smoothing)
         if yaw_rate_tolerance is not None:

@@ -35,6 +35,7 @@ import sys
 import tempfile
 import time as _time
 import types
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -88,8 +89,10 @@ def kernel_cache_dir() -> Path:
         probe.write_text("")
         probe.unlink()
         return base
-    except OSError:
+    except OSError as exc:
         fallback = Path(tempfile.gettempdir()) / f"seahelm-kernels-{os.getuid()}"
+        warnings.warn(f"kernel cache {base} is not a writable directory ({exc.strerror or exc}); "
+                      f"using {fallback}", stacklevel=2)
         fallback.mkdir(parents=True, exist_ok=True)
         return fallback
 

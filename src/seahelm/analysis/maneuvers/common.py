@@ -34,6 +34,7 @@ import dataclasses
 import functools
 import itertools
 import math
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple
@@ -43,7 +44,7 @@ import numpy as np
 from ..._validate import as_float_array, check_positive
 from ...actuators.servo import RUDDER_SERVO, ServoParams
 from ...control.open_loop import OPEN_LOOP
-from ...errors import ParameterError
+from ...errors import ParameterError, ValidityRangeWarning
 from ...parameters import Params
 from ...vessels.base import VesselModel
 from ...vessels.mariner import MARINER_SERVO
@@ -78,6 +79,11 @@ STEERING_GEAR: dict[str, ServoParams] = {
 }
 
 STARBOARD, PORT = 1, -1
+
+#: An approach faster than this × the parameter set's speed warns (coefficients are identified
+#: near one speed), as does a step longer than this × :func:`default_time_step`.
+SPEED_VALIDITY = 1.5
+STEP_VALIDITY = 10.0
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -353,6 +359,13 @@ class Plan:
         self.approaches: dict[tuple[int, int], Approach] = {}
         for i, s in enumerate(self.ships):
             for j, U in enumerate(speeds[i]):
+                design = s.approach_speed
+                if math.isfinite(design) and U > SPEED_VALIDITY * design:
+                    warnings.warn(
+                        f"approach speed {U:.4g} m/s is {U / design:.3g} x the speed of "
+                        f"'{s.name}''s parameter set ({design:.4g} m/s): its hydrodynamic "
+                        "coefficients were identified near that speed", ValidityRangeWarning,
+                        stacklevel=3)
                 self.approaches[(i, j)] = steady_approach(s.model, s.params, float(U))
         if not speed_axis.is_dim and n_ships == 1:
             speed_axis.values = speeds[0].copy()
@@ -405,6 +418,13 @@ class Plan:
         outputs at every controller sample).
         """
         from ...simulation.batch import BatchAxis, BatchLayout, RunBatch, simulate_batch
+
+        usual = min(default_time_step(s, a.speed) for s in self.ships
+                    for a in self.approaches.values())
+        if dt > STEP_VALIDITY * usual:
+            warnings.warn(f"`dt` = {dt:g} s is {dt / usual:.3g} x the usual step of this ship "
+                          f"({usual:g} s = min(L/(100 U0), servo lag)): the manoeuvre's events "
+                          "may be missed or wrong", ValidityRangeWarning, stacklevel=3)
 
         dims = [a for a in self.axes if a.is_dim]
         layout = None
