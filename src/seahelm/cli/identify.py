@@ -104,8 +104,8 @@ def steady_turn(
              "(default 3e-5 rad/s).")] = None,
     min_duration: Annotated[float, typer.Option(
         "--min-duration", help="Minimum settled duration [s].")] = 60.0,
-    smoothing: Annotated[float, typer.Option(
-        "--smoothing", help="Moving average [s] for the settling test.")] = 20.0,
+    smoothing: Annotated[float | None, typer.Option(
+        "--smoothing", help="Moving average [s] for the settling test (default 20).")] = None,
     json_out: JsonFlag = False,
 ) -> None:
     """Fit a, b, c of the reduced steady-turn model to turns recorded in a CSV file.
@@ -136,11 +136,12 @@ def steady_turn(
     segments = None
     if "time" in cols:
         span = float(cols["time"][-1] - cols["time"][0]) if cols["time"].size else 0.0
-        if smoothing > span:
+        if smoothing is not None and smoothing > span:  # (the default is never an error)
             raise ParameterError(f"`--smoothing` = {smoothing:g} s is longer than the whole log "
                                  f"({span:g} s of {file})")
         seg_kw: dict[str, Any] = dict(rudder_tolerance=rudder_tolerance * scale,
-                                      min_duration=min_duration, smoothing=smoothing)
+                                      min_duration=min_duration,
+                                      smoothing=20.0 if smoothing is None else smoothing)
         if yaw_rate_tolerance is not None:
             seg_kw["yaw_rate_tolerance"] = yaw_rate_tolerance * scale
         segments = extract_steady_segments(cols["time"], rudder, yaw, **seg_kw)
