@@ -181,3 +181,17 @@ def test_identify_smoothing_longer_than_the_log():
     log = Path(__file__).resolve().parents[1] / "examples" / "steady_turn_log.csv"
     assert "`--smoothing` = 1e+09 s is longer than the whole log" in one_error(
         ["identify", "steady-turn", str(log), "--smoothing", "1e9"])
+
+
+@pytest.mark.parametrize("option, value, unit", [
+    ("--wind-angle", "nan", "deg"), ("--wave-angle", "inf", "deg"), ("--a1", "nan", "-"),
+    ("--speed", "-inf", "m/s"),
+])
+def test_compensate_names_the_option_of_a_non_finite_value(option, value, unit):
+    args = {"--length": "160", "--beam": "23", "--draft": "8", "--block-coefficient": "0.65",
+            "--speed": "7.7", "--wind-speed": "15", "--wind-angle": "60", "--wave-height": "3",
+            "--wave-angle": "60"}
+    args[option] = value
+    flat = ["compensate"] + [x for kv in args.items() for x in kv]
+    assert one_error(flat) == (f"error: `{option}` must be a finite number [{unit}], got "
+                               f"{float(value)!r}")

@@ -90,6 +90,19 @@ def compensate(
     """
     from ..control.compensation import ShipParticulars, compensation_summary
 
+    # every number finite, named as the user wrote it (the library names its own parameters)
+    for option, value, unit in (
+            ("--length", length, "m"), ("--beam", beam, "m"), ("--draft", draft, "m"),
+            ("--draft-fore", draft_fore, "m"), ("--draft-aft", draft_aft, "m"),
+            ("--block-coefficient", block_coefficient, "-"), ("--speed", speed, "m/s"),
+            ("--wind-speed", wind_speed, "m/s"), ("--wind-angle", wind_angle, "deg"),
+            ("--wave-height", wave_height, "m"), ("--wave-angle", wave_angle, "deg"),
+            ("--wave-length", wave_length, "m"), ("--rudder-area", rudder_area, "m²"),
+            ("--rudder-aspect-ratio", rudder_aspect_ratio, "-"),
+            ("--windage-area", windage_area, "m²"), ("--sail-centre", sail_centre, "m"),
+            ("--a1", a1, "-")):
+        if value is not None and not math.isfinite(value):
+            raise ParameterError(f"`{option}` must be a finite number [{unit}], got {value!r}")
     for option, value, unit in (("--rudder-area", rudder_area, "m²"),
                                 ("--windage-area", windage_area, "m²"),
                                 ("--draft-fore", draft_fore, "m"), ("--draft-aft", draft_aft, "m")):
