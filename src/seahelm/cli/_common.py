@@ -163,17 +163,12 @@ def output_dir(option: str, path: Path, names: tuple[str, ...] = ()) -> Path:
     Raises
     ------
     ParameterError
-        Naming the option and the path: an empty path, an existing file, a parent that is a
-        file, a directory that cannot be created or written, a target that is a directory.
+        Naming the option and the path: an existing file, a parent that is a file, a directory
+        that cannot be created or written, a target that is a directory.
     """
     if path.exists() and not path.is_dir():
         raise ParameterError(f"`{option}` must be a directory, but {path} is a file")
-    try:
-        path.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise ParameterError(f"`{option}`: cannot create the directory {path} "
-                             f"({exc.strerror or exc})") from None
-    _check_writable(option, path)
+    _writable_directory(option, path)
     for name in names:
         if (path / name).is_dir():
             raise ParameterError(f"`{option}`: {path / name} is a directory; it would be "
@@ -182,20 +177,24 @@ def output_dir(option: str, path: Path, names: tuple[str, ...] = ()) -> Path:
 
 
 def output_file(option: str, path: Path) -> Path:
-    """Check, before any work, that ``path`` can be written as a file: not empty, not a
-    directory, its directory existing (or creatable) and writable; returns ``path``."""
+    """Check, before any work, that ``path`` can be written as a file: not a directory, its
+    directory existing (or creatable) and writable; returns ``path``."""
     if path.is_dir():
         raise ParameterError(f"`{option}` must be a file name, but {path} is a directory")
-    parent = path.parent
-    if parent.exists() and not parent.is_dir():
-        raise ParameterError(f"`{option}`: {parent} is a file, not a directory")
-    try:
-        parent.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise ParameterError(f"`{option}`: cannot create the directory {parent} "
-                             f"({exc.strerror or exc})") from None
-    _check_writable(option, parent)
+    if path.parent.exists() and not path.parent.is_dir():
+        raise ParameterError(f"`{option}`: {path.parent} is a file, not a directory")
+    _writable_directory(option, path.parent)
     return path
+
+
+def _writable_directory(option: str, directory: Path) -> None:
+    """Create ``directory`` if needed and check that a file can be written in it."""
+    try:
+        directory.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ParameterError(f"`{option}`: cannot create the directory {directory} "
+                             f"({exc.strerror or exc})") from None
+    _check_writable(option, directory)
 
 
 def _check_writable(option: str, directory: Path) -> None:
