@@ -298,8 +298,8 @@ def test_environment_current_section_sets_the_current_channels():
     ):
         with pytest.raises(ScenarioError, match=match):
             parse_scenario(text.replace(*edit))
-    nomoto = ('[vessel]\ncatalog = "mariner-nomoto2"\n[environment.current]\nspeed = 1.0\n'
-              'direction_deg = 0.0\n[simulation]\nt_final = 10.0\ndt = 0.1\n')
-    with pytest.raises(ScenarioError, match=r"\[environment.current\] model 'nomoto2' has no "
+    voitkunsky = ('[vessel]\ncatalog = "mariner-voitkunsky"\n[environment.current]\n'
+                  'speed = 1.0\ndirection_deg = 0.0\n[simulation]\nt_final = 10.0\ndt = 0.1\n')
+    with pytest.raises(ScenarioError, match=r"\[environment.current\] model 'voitkunsky' has no "
                                             r"current channels"):
-        parse_scenario(nomoto)
+        parse_scenario(voitkunsky)

@@ -38,11 +38,11 @@ def test_more_runs_than_a_batch_holds():
 def test_recordings_beyond_memory_are_refused_before_expansion(monkeypatch):
     monkeypatch.setattr(engine, "physical_memory", lambda: 5_000_000)  # 5 MB
     text = BASE + '[batch.grid]\n"controller.params.kp" = [1.0, 2.0, 3.0, 4.0]\n'
-    # 4 runs x 6001 records x 17 channels x 8 B = 3.3 MB > 40 % of 5 MB (17: 5 states, servo,
-    # 7 outputs, the command, the reference, 2 disturbances)
+    # 4 runs x 6001 records x 19 channels x 8 B = 3.6 MB > 40 % of 5 MB (19: 5 states, servo,
+    # 7 outputs, the command, the reference, 4 disturbances)
     with pytest.raises(ScenarioError, match=r"s.toml: \[simulation.record_every\] `record_every`: "
-                                            r"the recorded time series would need 0.00326 GB "
-                                            r"\(4 run\(s\) x 6,001 records x 17 channels x 8 B\)"):
+                                            r"the recorded time series would need 0.00365 GB "
+                                            r"\(4 run\(s\) x 6,001 records x 19 channels x 8 B\)"):
         parse_scenario(text, source="s.toml")
     # recording every 10th step fits (0.29 MB)
     batch = parse_scenario(text.replace("dt = 0.1\n", "dt = 0.1\nrecord_every = 10\n"))

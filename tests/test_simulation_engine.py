@@ -24,7 +24,7 @@ def test_batch_equals_runs_one_by_one(mariner2):
     x0 = np.zeros((n, 5))
     x0[:, 2] = rng.uniform(-0.2, 0.2, n)
     ref = rng.uniform(-0.5, 0.5, (n, 1, 1))
-    dist = np.zeros((n, 3001, 2))
+    dist = np.zeros((n, 3001, 4))  # rudder disturbance, sway velocity, current north/east
     dist[:, :, 0] = 0.01 * np.sin(np.arange(3001) * 0.1 * 0.05)[None] * np.arange(1, n + 1)[:, None]
     kw = dict(t_final=300.0, dt=0.1, controller=PID_HEADING, controller_dt=0.5)
     batch = simulate(NOMOTO2, params, x0, controller_params=gains, reference=ref,
@@ -146,7 +146,7 @@ def test_progress_callback_and_record_every(mariner2):
          r"`record_every` = 101 exceeds the number of steps \(100 = t_final/dt\)"),
         ({"reference": np.zeros((7, 1))}, ParameterError, "needs 101 rows"),
         ({"bounds": {"speed": (0, 1)}}, ParameterError, "`bounds`: unknown state 'speed'"),
-        ({"disturbance": [0.0]}, ParameterError, "`disturbance` must have 2 channel"),
+        ({"disturbance": [0.0]}, ParameterError, "`disturbance` must have 4 channel"),
     ],
 )
 def test_bad_input_is_rejected_before_running(mariner2, kwargs, exc, match):
@@ -182,7 +182,8 @@ def test_disturbance_is_aligned_with_the_grid():
     p = Nomoto1Params(gain=0.2, time_constant=20.0, speed=5.0)
     a = 1e-3
     t_grid = np.arange(0, 1001) * 0.1
-    dist = np.stack([a * t_grid, np.zeros_like(t_grid)], axis=1)
+    z = np.zeros_like(t_grid)
+    dist = np.stack([a * t_grid, z, z, z], axis=1)
     res = simulate(NOMOTO1, p, np.zeros(4), t_final=100.0, dt=0.1, actuator=DIRECT,
                    reference=[0.0], disturbance=dist)
     t = res.time

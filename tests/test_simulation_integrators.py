@@ -203,7 +203,8 @@ def _heading_exact(t: float) -> float:
 
 def _kernel_error(method, dt: float) -> float:
     t = np.arange(int(round(T_FINAL / dt)) + 1) * dt
-    dist = np.stack([ALPHA + BETA * t, np.zeros_like(t)], axis=1)
+    z = np.zeros_like(t)  # (no sway velocity, no current)
+    dist = np.stack([ALPHA + BETA * t, z, z, z], axis=1)
     res = simulate(NOMOTO1, P1, np.zeros(4), t_final=T_FINAL, dt=dt, actuator=DIRECT,
                    reference=[DELTA], disturbance=dist, integrator=method)
     return abs(res["heading"][0, -1] - _heading_exact(T_FINAL))
@@ -224,7 +225,9 @@ DT, N_STEPS = 2.0, 60
 
 def _nonlinear_disturbance(phase: float) -> np.ndarray:
     t = np.arange(N_STEPS + 1) * DT
-    return np.stack([0.03 * np.sin(0.05 * t + phase), 0.4 * np.cos(0.03 * t + phase)], axis=1)
+    z = np.zeros_like(t)  # (no current)
+    return np.stack([0.03 * np.sin(0.05 * t + phase), 0.4 * np.cos(0.03 * t + phase), z, z],
+                    axis=1)
 
 
 def _nomoto1_numpy(t, x, p, grid, dist):

@@ -1,5 +1,5 @@
-"""A uniform current on the 3-DOF models (Mariner, MMG): the velocity states are relative to
-the water, so with a constant current the velocities are those of calm water and the track is
+"""A uniform current on the 3-DOF models (Mariner, MMG) and on Nomoto's kinematics: the
+velocity states are relative to the water, so with a constant current the velocities are those of calm water and the track is
 the calm-water track carried by the current, x(t) = x_0(t) + V_c t (Fossen 2021, Property 10.1).
 """
 
@@ -15,6 +15,8 @@ from seahelm.analysis.maneuvers.common import steady_approach
 from seahelm.simulation.engine import simulate
 from seahelm.vessels.mariner import MARINER, MARINER_NONLINEAR, MARINER_SERVO
 from seahelm.vessels.mmg import KVLCC2_L7, KVLCC2_L7_SERVO, MMG
+from seahelm.vessels import catalog
+from seahelm.vessels.nomoto import NOMOTO2
 
 
 @pytest.mark.parametrize("model, params, servo, speed", [
@@ -48,7 +50,28 @@ def test_constant_current_carries_the_calm_water_track(model, params, servo, spe
     np.testing.assert_array_equal(res.state[2, :, j], res.state[0, :, j])
 
 
+def test_constant_current_carries_the_nomoto_track():
+    """Nomoto with kinematics: the yaw dynamics are untouched, the position drifts by V_c t."""
+    params = catalog.get("mariner-nomoto2").params
+    current = np.array([[0.0, 0.0], [1.5, -0.7], [-2.0, 2.5]])
+    dist = np.zeros((3, 1, 4))
+    dist[:, 0, 2:] = current
+    res = simulate(NOMOTO2, params, np.zeros(5), t_final=300.0, dt=0.1, actuator=RUDDER_SERVO,
+                   reference={"rudder_command": math.radians(15.0)}, disturbance=dist)
+    assert res.ok.all()
+    labels = list(res.state_labels)
+    for name in ("heading", "yaw_rate", "yaw_aux", "rudder_angle"):
+        j = labels.index(name)
+        np.testing.assert_array_equal(res.state[1:, :, j], np.broadcast_to(
+            res.state[:1, :, j], res.state[1:, :, j].shape))
+    for i in (1, 2):
+        for k, name in enumerate(("north", "east")):
+            j = labels.index(name)
+            np.testing.assert_allclose(res.state[i, :, j] - res.state[0, :, j],
+                                       current[i, k] * res.time, rtol=1e-9, atol=1e-8)
+
+
 def test_current_channels_are_declared_with_units():
-    for model in (MARINER, MMG):
+    for model in (MARINER, MMG, NOMOTO2):
         d = dict(zip(model.disturbance_labels, model.disturbance_units))
         assert d["current_north"] == "m/s" and d["current_east"] == "m/s"

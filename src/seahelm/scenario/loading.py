@@ -11,6 +11,7 @@ from typing import Any
 from pydantic import ValidationError
 
 from ..simulation.batch import RunBatch
+from .environment import KEY_UNITS as _ENV_UNITS
 from .errors import ScenarioError
 from .maneuver import ManeuverJob, prepare_maneuver
 from .runs import prepare_runs
@@ -78,6 +79,7 @@ _UNITS = {
     "guidance.acceptance_radius": "m", "guidance.lookahead": "m", "guidance.lookahead_min": "m",
     "guidance.lookahead_gamma": "1/m²", "guidance.kappa": "m/s",
     "environment.current.speed": "m/s", "environment.current.direction_deg": "deg",
+    **_ENV_UNITS,
 }
 
 

@@ -211,6 +211,47 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
             written[key] = key if getattr(man, key) is not None else f"{key}_deg"
     if man.sides is not None:
         options["sides"] = _SIDES[man.sides]
+    conditions = _conditions(scn, ship.model, source)
+    if conditions is not None:
+        options["conditions"] = conditions
     metadata = {"title": scn.title, "scenario_source": source, "scenario_text": text}
     return ManeuverJob(kind=man.kind, ship=ship, options=options, metadata=metadata,
                        written=written)
+
+
+def _conditions(scn: Scenario, model: Any, source: str) -> Any:
+    """``[environment]`` of a manoeuvre as :class:`~seahelm.environment.loads.Conditions`:
+    wind, regular waves and a uniform current (None in calm water)."""
+    from ..environment.loads import Conditions
+    from .environment import environment_runs
+
+    env = scn.environment
+    if "environment" not in scn.model_fields_set:
+        return None
+    if scn.maneuver is not None and scn.maneuver.kind in ("spiral", "imo"):
+        raise at_key(source, "environment",
+                     f"a '{scn.maneuver.kind}' manoeuvre is a calm-water test (IMO MSC.137(76)); "
+                     "wind, waves and current act on turning, zigzag and pullout manoeuvres")
+    if env.disturbance:
+        raise at_key(source, "environment.disturbance",
+                     "a manoeuvre takes wind, waves and current ([environment.wind], "
+                     "[environment.waves], [environment.current]), not disturbance signals")
+    if env.waves is not None and env.waves.irregular:
+        raise at_key(source, "environment.waves.irregular",
+                     "irregular waves need a [simulation] scenario (a realisation per run); a "
+                     "manoeuvre takes regular waves")
+    if env.wind is not None and env.wind.gust is not None:
+        raise at_key(source, "environment.wind.gust",
+                     "gusts need a [simulation] scenario; a manoeuvre takes a steady wind")
+    runs = environment_runs(scn, model, [{}], source)
+    kwargs: dict[str, Any] = {}
+    if runs is not None:
+        kwargs.update(environment=runs.environment,
+                      params=runs.environment.params_type.from_array(runs.params[0]))
+    if env.current is not None:
+        if not {"current_north", "current_east"} <= set(model.disturbance_labels):
+            raise at_key(source, "environment.current",
+                         f"model '{model.name}' has no current channels")
+        kwargs.update(current_speed=env.current.speed,
+                      current_direction=math.radians(env.current.direction_deg))
+    return Conditions(**kwargs) if kwargs else None

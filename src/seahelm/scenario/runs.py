@@ -29,6 +29,7 @@ from ..control.guided import guided
 from ..control.path_following import GuidanceLaw, get_guidance_law, route_params
 from ..simulation.signals import Constant, make_signal
 from ..vessels import catalog
+from .environment import KEY_UNITS as _ENV_UNITS, environment_runs
 from .errors import ScenarioError, at_key as _err
 from .schema import Scenario
 
@@ -62,7 +63,8 @@ def _params(cls: type[Params], values: dict[str, float], base: Params | None) ->
 MAX_RUNS = 1_000_000
 
 _OVERRIDABLE = ("vessel.params.", "vessel.initial.", "actuator.params.", "controller.params.",
-                "controller.reference.", "environment.disturbance.", "guidance.")
+                "controller.reference.", "environment.disturbance.", "environment.wind.",
+                "environment.waves.", "guidance.")
 
 #: Engine argument (as its messages name it, in backticks) -> the scenario key it comes from.
 _ENGINE_KEYS = {
@@ -86,6 +88,8 @@ def _key_units(key: str, model: Any, actuator: Any, wiring: Any) -> str:
     section, _, name = key.rpartition(".")
     if name.endswith("_deg"):
         return "deg"
+    if key in _ENV_UNITS:
+        return _ENV_UNITS[key]
     tables = {
         "vessel.params": {i.name: i.unit for i in model.params_type.info()},
         "actuator.params": {i.name: i.unit for i in actuator.params_type.info()},
@@ -283,11 +287,21 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
                 *wiring.commands, *model.disturbance_labels,
                 *(f"reference_{lab}" for lab in wiring.references),
                 "status", "failure_time", "status_message", "run", "sample", "time"}
+    from ..environment.loads import WAVE_OUTPUTS, WIND_OUTPUTS
+
+    env_channels = (len(WIND_OUTPUTS) + 1 if scn.environment.wind is not None else 0) + (
+        len(WAVE_OUTPUTS) + 1 if scn.environment.waves is not None else 0)
+    reserved |= {*WIND_OUTPUTS, *WAVE_OUTPUTS, "wind_gust", "wave_load_fluctuation"}
     _check_size(scn, source, model.n_states + actuator.n_states + model.n_outputs
                 + len(wiring.commands) + len(controller.output_labels) + len(wiring.references)
-                + model.n_disturbances)  # what the engine records, as it counts them
+                + model.n_disturbances + env_channels)  # what the engine records
     runs, seed, layout = _expand_batch(
         scn, source, reserved, lambda key: _key_units(key, model, actuator, wiring))
+    env = environment_runs(scn, model, runs, source)
+    dist_labels, dist_units = model.disturbance_labels, model.disturbance_units
+    if env is not None:
+        dist_labels += env.environment.signal_labels
+        dist_units += env.environment.signal_units
 
     def random(spec: dict[str, Any]) -> bool:
         return any(isinstance(v, dict) and v.get("kind") == "sea" for v in spec.values())
@@ -297,7 +311,9 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
         k.startswith("controller.reference.") for r in runs for k in r)
     disturbance = _with_current(scn, model, source)
     varied_dist = random(disturbance) or any(
-        k.startswith("environment.disturbance.") for r in runs for k in r)
+        k.startswith(("environment.disturbance.", "environment.wind.", "environment.waves."))
+        for r in runs for k in r) or (env is not None and any(
+            getattr(v, "random", False) for sig in env.signals for v in sig.values()))
 
     def section(over: dict[str, float], prefix: str, base: dict[str, Any]) -> dict[str, Any]:
         out = dict(base)
@@ -346,7 +362,8 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
         if varied_ref or not refs:
             refs.append(section(over, "controller.reference.", scn.controller.reference))
         if varied_dist or not dists:
-            dists.append(section(over, "environment.disturbance.", disturbance))
+            dists.append({**section(over, "environment.disturbance.", disturbance),
+                          **(env.signals[i] if env is not None else {})})
 
     sim = scn.simulation
     assert sim is not None  # (a [maneuver] scenario goes to .maneuver)
@@ -362,8 +379,8 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
         actuator_params=np.array(ap),
         reference=_signal_input(refs, wiring.references, wiring.reference_units,
                                 "controller.reference", source, seed),
-        disturbance=_signal_input(dists, model.disturbance_labels, model.disturbance_units,
-                                  "environment.disturbance", source, seed),
+        disturbance=_signal_input(dists, dist_labels, dist_units, "environment.disturbance",
+                                  source, seed),
         controller_dt=scn.controller.dt,
         integrator=sim.integrator,
         record_every=sim.record_every,
@@ -371,6 +388,8 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
         seed=seed,
         metadata={"title": scn.title, "scenario_source": source, "scenario_text": text},
         layout=layout,
+        environment=None if env is None else env.environment,
+        environment_params=None if env is None else env.params,
     )
 
 
@@ -514,7 +533,7 @@ def _with_current(scn: Scenario, model: Any, source: str) -> dict[str, Any]:
     if not set(channels) <= set(model.disturbance_labels):
         raise _err(source, "environment.current",
                    f"model '{model.name}' has no current channels (current_north, current_east "
-                   "[m/s]; the 3-DOF models mariner and mmg have them)")
+                   "[m/s]; the mariner, mmg, nomoto1 and nomoto2 models have them)")
     both = [c for c in channels if c in out]
     if both:
         raise _err(source, "environment.current",

@@ -15,7 +15,8 @@ from pydantic import AllowInfNan, BaseModel, ConfigDict, Field, Strict, field_va
 from ..simulation.integrators import INTEGRATORS
 
 __all__ = ["Number", "VesselSection", "ActuatorSection", "ControllerSection",
-           "EnvironmentSection", "CurrentSection", "SimulationSection", "Distribution", "MonteCarloSection",
+           "EnvironmentSection", "CurrentSection",
+           "WindSection", "WavesSection", "SimulationSection", "Distribution", "MonteCarloSection",
            "BatchSection", "ManeuverSection", "GuidanceSection", "Scenario", "MANEUVER_KEYS"]
 
 #: A finite number: an integer or a float, never a boolean or a string.
@@ -59,9 +60,70 @@ class CurrentSection(_Strict):
     direction_deg: Annotated[Number, Field(ge=0, lt=360)]
 
 
+class WindSection(_Strict):
+    """``[environment.wind]``: the true wind and the load model (:mod:`seahelm.environment.loads`).
+
+    ``direction_deg`` is where the wind comes **from**, clockwise from north, in [0, 360) (the
+    meteorological convention). The ship's windage (areas, centre, length) defaults to the
+    catalog ship's particulars (:mod:`seahelm.vessels.particulars`); ``vessel_type`` picks
+    Blendermann's coefficients. ``gust`` is a signal [m/s] added to ``speed``."""
+
+    model: str = "blendermann"
+    speed: Annotated[Number, Field(ge=0)]
+    direction_deg: Annotated[Number, Field(ge=0, lt=360)]
+    gust: SignalSpec | None = None
+    vessel_type: str | None = None
+    frontal_area: Positive | None = None
+    lateral_area: Positive | None = None
+    centre: Number | None = None
+    length_overall: Positive | None = None
+    length: Positive | None = None
+    rho_air: Positive | None = None
+
+
+class WavesSection(_Strict):
+    """``[environment.waves]``: waves and the load model (:mod:`seahelm.environment.loads`).
+
+    The height is h3% (``height``) or the significant height (``hs``, converted with
+    Hs = 4 √(0.143) h3%/2, the same variance); the wave length is ``length`` [m] or follows
+    from ``period`` [s] (deep water, λ = g T²/2π). ``direction_deg``: where the waves come
+    **from**, clockwise from north, in [0, 360). ``irregular = true`` modulates the mean loads
+    by the envelope of a seeded sea of the ``spectrum`` (each run its own realisation); the
+    hull's beam, draft and block coefficient default to the catalog ship's particulars."""
+
+    model: str = "lvov"
+    height: Annotated[Number, Field(gt=0)] | None = None
+    hs: Annotated[Number, Field(gt=0)] | None = None
+    length: Positive | None = None
+    period: Positive | None = None
+    direction_deg: Annotated[Number, Field(ge=0, lt=360)]
+    irregular: bool = False
+    spectrum: str = "rakhmanin-firsov-2"
+    seed: Annotated[int, Strict(), Field(ge=0)] = 0
+    a1: Annotated[Number, Field(ge=1, le=8.5)] | None = None
+    hull_length: Positive | None = None
+    beam: Positive | None = None
+    draft: Positive | None = None
+    block_coefficient: Annotated[Number, Field(gt=0, le=1)] | None = None
+
+    @model_validator(mode="after")
+    def _one_each(self) -> "WavesSection":
+        if (self.height is None) == (self.hs is None):
+            raise ValueError("give the wave height as `height` (h3%) [m] or `hs` "
+                             "(significant) [m], one of them")
+        if (self.length is None) == (self.period is None):
+            raise ValueError("give the wave `length` [m] or the `period` [s], one of them")
+        if "seed" in self.model_fields_set and not self.irregular:
+            raise ValueError("`seed` draws an irregular sea: set `irregular = true` (regular "
+                             "waves are not random)")
+        return self
+
+
 class EnvironmentSection(_Strict):
     disturbance: dict[str, SignalSpec] = Field(default_factory=dict)
     current: CurrentSection | None = None
+    wind: WindSection | None = None
+    waves: WavesSection | None = None
 
 
 class GuidanceSection(_Strict):
@@ -227,11 +289,12 @@ class Scenario(_Strict):
                              "[maneuver] section (kind = turning, zigzag, pullout, spiral "
                              "or imo)")
         if self.maneuver is not None:
-            extra = [s for s in ("simulation", "controller", "environment", "batch", "guidance")
+            extra = [s for s in ("simulation", "controller", "batch", "guidance")
                      if s in self.model_fields_set]
             if extra:
                 raise ValueError(
                     f"a [maneuver] scenario takes no [{'], ['.join(extra)}] section: the "
                     "manoeuvre sets its own rudder orders, timing and batch (rudder angles, "
-                    "speeds and sides as lists in [maneuver])")
+                    "speeds and sides as lists in [maneuver]); [environment] may give wind, "
+                    "waves and a current")
         return self

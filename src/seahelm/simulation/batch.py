@@ -308,6 +308,8 @@ class RunBatch:
         Extra attributes stored with the results (e.g. the scenario text).
     layout : BatchLayout, optional
         The dimensions the runs span (default: one ``run`` dimension).
+    environment, environment_params : Environment, Params or array, optional
+        Wind and wave loads (:mod:`seahelm.environment.loads`) and their parameters.
     """
 
     model: "VesselModel"
@@ -329,6 +331,8 @@ class RunBatch:
     seed: int | None = None
     metadata: Mapping[str, Any] = dataclasses.field(default_factory=dict)
     layout: BatchLayout | None = None
+    environment: Any = None
+    environment_params: Any = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "bounds", types.MappingProxyType(dict(self.bounds)))

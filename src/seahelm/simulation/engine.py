@@ -27,15 +27,10 @@ from __future__ import annotations
 import enum
 import functools
 import hashlib
-import importlib.util
-import marshal
 import os
 import re
 import sys
-import tempfile
 import time as _time
-import types
-import warnings
 from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -54,6 +49,8 @@ from ..errors import ParameterError, SimulationDiverged
 from ..parameters import Params, as_records, stack_params
 from ..vessels.base import VesselModel
 from .composition import compose
+from .environment_stage import environment_stage, no_environment
+from .generated import code_fingerprint, import_generated, kernel_cache_dir
 from .integrators import ButcherTableau, compiled_advance_source, get_integrator
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -75,73 +72,6 @@ class RunStatus(enum.IntEnum):
 # ------------------------------------------------------------------------------------------
 # kernel generation
 # ------------------------------------------------------------------------------------------
-def kernel_cache_dir() -> Path:
-    """Directory for generated closed-loop kernels (``SEAHELM_CACHE_DIR`` overrides)."""
-    env = os.environ.get("SEAHELM_CACHE_DIR")
-    if env:
-        base = Path(env)
-    else:
-        xdg = os.environ.get("XDG_CACHE_HOME")
-        base = (Path(xdg) if xdg else Path.home() / ".cache") / "seahelm" / "kernels"
-    try:
-        base.mkdir(parents=True, exist_ok=True)
-        probe = base / f".probe-{os.getpid()}"
-        probe.write_text("")
-        probe.unlink()
-        return base
-    except OSError as exc:
-        fallback = Path(tempfile.gettempdir()) / f"seahelm-kernels-{os.getuid()}"
-        warnings.warn(f"kernel cache {base} is not a writable directory ({exc.strerror or exc}); "
-                      f"using {fallback}", stacklevel=2)
-        fallback.mkdir(parents=True, exist_ok=True)
-        return fallback
-
-
-def code_fingerprint(py: Any, seen: set[int] | None = None) -> bytes:
-    """Bytes that change whenever the compiled behaviour of ``py`` could change.
-
-    The bytecode of the function as it is *in memory* (not its file on disk, which may have
-    been edited since it was imported), and recursively of every numba function it calls and
-    the numeric globals that numba freezes into the code. Naming a kernel after this keeps the
-    on-disk numba cache from serving a loop compiled from other code.
-
-    Parameters
-    ----------
-    py : function
-        A plain Python function (a numba dispatcher's ``py_func``).
-    seen : set of int, optional
-        Ids of functions already included (recursion guard).
-
-    Returns
-    -------
-    bytes
-    """
-    seen = set() if seen is None else seen
-    if id(py) in seen:
-        return b""
-    seen.add(id(py))
-    parts = [marshal.dumps(py.__code__)]
-    stack = [py.__code__]
-    names: list[str] = []
-    while stack:
-        code = stack.pop()
-        names.extend(code.co_names)
-        stack.extend(c for c in code.co_consts if isinstance(c, types.CodeType))
-    for name in sorted(set(names)):
-        obj = py.__globals__.get(name)
-        inner = getattr(obj, "py_func", None)
-        if inner is not None:
-            parts.append(name.encode() + code_fingerprint(inner, seen))
-        elif isinstance(obj, (bool, int, float, complex, str)):
-            parts.append(f"{name}={obj!r}".encode())
-        elif isinstance(obj, np.ndarray):
-            parts.append(name.encode() + obj.tobytes())
-        elif isinstance(obj, tuple) and all(
-                isinstance(v, (bool, int, float, str)) for v in obj):  # signal_indices
-            parts.append(f"{name}={obj!r}{getattr(type(obj), '_fields', ())!r}".encode())
-    return b"\0".join(parts)
-
-
 def _binding(func: Any, alias: str) -> tuple[str, bytes]:
     py = getattr(func, "py_func", None)
     if py is None:
@@ -175,6 +105,7 @@ def compile_closed_loop(
     actuator: Actuator,
     controller: Controller,
     integrator: str | ButcherTableau = "rk4",
+    environment: Any = None,
 ) -> ModuleType:
     """The compiled closed-loop module for one combination of components (cached).
 
@@ -186,6 +117,9 @@ def compile_closed_loop(
         A name in :data:`~seahelm.simulation.integrators.INTEGRATORS` (default "rk4") or a
         tableau; its step is generated into the module, so the module's name (a hash of its
         text) differs between tableaus.
+    environment : Environment, optional
+        Wind and wave loads (:mod:`seahelm.environment.loads`), evaluated at every stage
+        from the live state (:mod:`seahelm.simulation.environment_stage`).
 
     Returns
     -------
@@ -201,11 +135,15 @@ def compile_closed_loop(
         _binding(actuator.output, "actuator_output"),
         _binding(controller.init, "controller_init"),
         _binding(controller.step, "controller_step"),
+        _binding(no_environment if environment is None
+                 else environment_stage(environment, model), "environment"),
     ]
+    n_env = 0 if environment is None else len(environment.output_labels)
     header = "".join(p[0] for p in parts) + (
         f"\nNX = {model.n_states}\nNA = {actuator.n_states}\nNU = {model.n_inputs}\n"
-        f"NYM = {model.n_outputs}\nNYA = {len(wiring.actuator_outputs)}\n"
+        f"NYM = {model.n_outputs + n_env}\nNYA = {len(wiring.actuator_outputs)}\n"
         f"NCA = {len(wiring.actuator_commands)}\nNM = {controller.n_measurements}\n"
+        f"NDM = {model.n_disturbances}\nHAS_ENV = {environment is not None}\n"
         "FASTMATH = {\"arcp\", \"contract\", \"afn\", \"reassoc\"}\n"
     )
     header += _route_source("route_actuator_commands", "cmd, ca", [
@@ -222,39 +160,6 @@ def compile_closed_loop(
         b"\0".join([text.encode(), __version__.encode(), *(p[1] for p in parts)])
     ).hexdigest()[:16]
     return import_generated(f"seahelm_kernel_{digest}", text)
-
-
-def import_generated(name: str, text: str) -> ModuleType:
-    """Import generated source as module ``name`` from the kernel cache directory.
-
-    The file is written atomically (only if missing or different), so numba's on-disk cache
-    of its ``cache=True`` functions lives beside it; a module already imported is returned.
-
-    Parameters
-    ----------
-    name : str
-        Module name, unique for the text (e.g. ``seahelm_kernel_<hash>``).
-    text : str
-        Its Python source.
-
-    Returns
-    -------
-    module
-    """
-    if name in sys.modules:
-        return sys.modules[name]
-    path = kernel_cache_dir() / f"{name}.py"
-    if not path.exists() or path.read_text() != text:
-        fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
-        with os.fdopen(fd, "w") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    spec = importlib.util.spec_from_file_location(name, path)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    spec.loader.exec_module(module)
-    return module
 
 
 class _Slices:
@@ -493,6 +398,8 @@ def simulate(
     progress: Callable[[int, int], None] | None = None,
     seed: int | None = None,
     metadata: Mapping[str, Any] | None = None,
+    environment: Any = None,
+    environment_params: Params | Sequence[Params] | np.ndarray | None = None,
 ) -> "SimResult":
     """Simulate a batch of closed-loop runs.
 
@@ -517,7 +424,8 @@ def simulate(
         a mapping gives channels by name (``{"heading": 0.3}``; missing channels are zero).
     disturbance : None, scalar, array, callable or mapping
         External disturbance inputs of the model (same forms as ``reference``; by name, e.g.
-        ``{"force_y": ..., "moment_z": ...}``).
+        ``{"force_y": ..., "moment_z": ...}``), then the environment's signals
+        (``wind_gust``, ``wave_load_fluctuation``) when there is an environment.
     controller_dt : float, optional
         Controller sample period [s], a multiple of ``dt`` (default ``dt``).
     integrator : str or ButcherTableau
@@ -538,6 +446,14 @@ def simulate(
         Stored with the results (for runs whose inputs were drawn at random).
     metadata : mapping, optional
         Extra attributes stored with the results (e.g. the scenario text).
+    environment : Environment, optional
+        Wind and/or wave loads (:func:`seahelm.environment.loads.environment`), computed at
+        every stage from each run's live heading and velocity and added to the model's
+        ``force_x``, ``force_y``, ``moment_z`` channels; its outputs (apparent wind, loads) are
+        recorded after the model's.
+    environment_params : Params, sequence of Params or array, optional
+        The environment's parameters (wind speed and direction, wave height, ship data), one
+        set or one per run.
 
     Returns
     -------
@@ -571,6 +487,24 @@ def simulate(
             f"t_final/dt): nothing after t = 0 would be recorded")
     tableau = get_integrator(integrator)
     wiring = compose(model, actuator, controller)
+    if environment is None:
+        if environment_params is not None:
+            raise ParameterError("`environment_params` given without an `environment`")
+        env_signals: tuple[str, ...] = ()
+        env_units: tuple[str, ...] = ()
+        env_outputs: tuple[str, ...] = ()
+        env_output_units: tuple[str, ...] = ()
+        ep, e_cls = np.zeros((1, 1)), None
+    else:
+        environment_stage(environment, model)  # checks the model has what the loads need
+        env_signals, env_units = environment.signal_labels, environment.signal_units
+        env_outputs, env_output_units = environment.output_labels, environment.output_units
+        ep, e_cls = _param_rows("environment_params", environment_params,
+                                environment.params_type)
+    dist_labels = model.disturbance_labels + env_signals
+    dist_units = model.disturbance_units + env_units
+    out_labels = model.output_labels + env_outputs
+    out_units = model.output_units + env_output_units
 
     mp, m_cls = _param_rows("params", params, model.params_type)
     ap, a_cls = _param_rows("actuator_params", actuator_params, actuator.params_type)
@@ -591,18 +525,19 @@ def simulate(
     # the recordings must fit before anything of the batch's size is built (the time grid too:
     # a long run with a coarse record needs no array of all its steps)
     n_rec_early = n_steps // record_every + 1 + (n_steps % record_every != 0)
-    check_record_memory(max(mp.shape[0], ap.shape[0], cp.shape[0], x0.shape[0]), n_rec_early,
-                        model.n_states + actuator.n_states + model.n_outputs
+    check_record_memory(max(mp.shape[0], ap.shape[0], cp.shape[0], ep.shape[0], x0.shape[0]),
+                        n_rec_early,
+                        model.n_states + actuator.n_states + len(out_labels)
                         + len(wiring.commands) + len(controller.output_labels)
-                        + len(wiring.references) + model.n_disturbances)
+                        + len(wiring.references) + len(dist_labels))
     t_grid = _TimeGrid(n_steps, float(dt))
     ref = _signal("reference", reference, len(wiring.references), t_grid, "",
                   wiring.references)
-    dist = _signal("disturbance", disturbance, model.n_disturbances, t_grid, "",
-                   model.disturbance_labels)
+    dist = _signal("disturbance", disturbance, len(dist_labels), t_grid, "", dist_labels)
     n_runs = _runs(
         ("params", mp.shape[0]), ("actuator_params", ap.shape[0]),
-        ("controller_params", cp.shape[0]), ("x0", x0.shape[0]),
+        ("controller_params", cp.shape[0]), ("environment_params", ep.shape[0]),
+        ("x0", x0.shape[0]),
         ("actuator_x0", xa0.shape[0]), ("reference", ref.shape[0]),
         ("disturbance", dist.shape[0]),
     )
@@ -610,7 +545,7 @@ def simulate(
     def rows(a: np.ndarray) -> np.ndarray:
         return np.ascontiguousarray(np.broadcast_to(a, (n_runs,) + a.shape[1:]), dtype=float)
 
-    mp, ap, cp = rows(mp), rows(ap), rows(cp)
+    mp, ap, cp, ep = rows(mp), rows(ap), rows(cp), rows(ep)
     z = np.concatenate([rows(x0), rows(xa0)], axis=1)
     labels = model.state_labels + actuator.state_labels
     lower = np.array(list(model.state_lower) + [-np.inf] * actuator.n_states, dtype=float)
@@ -625,16 +560,17 @@ def simulate(
         i = int(np.argmax(bad0))
         raise ParameterError(f"initial state of run {i} is not finite or outside bounds: {z[i]}")
 
-    kernel = compile_closed_loop(model, actuator, controller, tableau)
+    kernel = compile_closed_loop(model, actuator, controller, tableau, environment)
     mr = as_records(mp, m_cls)
     ar = as_records(ap, a_cls)
     cr = as_records(cp, c_cls)
+    er = ep if e_cls is None else as_records(ep, e_cls)
     nz = z.shape[1]
     ncmd = len(wiring.commands) + len(controller.output_labels)  # outputs after commands
     # every record_every-th step and the final one (the last interval may be shorter)
     n_rec = n_steps // record_every + 1 + (n_steps % record_every != 0)
-    check_record_memory(n_runs, n_rec, nz + model.n_outputs + ncmd
-                         + len(wiring.references) + model.n_disturbances)
+    check_record_memory(n_runs, n_rec, nz + len(out_labels) + ncmd
+                         + len(wiring.references) + len(dist_labels))
     cs = np.zeros((n_runs, max(controller.n_states, 1)))
     cmd = np.zeros((n_runs, ncmd))
     ca = np.zeros((n_runs, max(len(wiring.actuator_commands), 1)))
@@ -642,18 +578,17 @@ def simulate(
     t_fail = np.full(n_runs, np.nan)
     z_fail = np.full((n_runs, nz), np.nan)
     rec_z = np.full((n_runs, n_rec, nz), np.nan)
-    rec_y = np.full((n_runs, n_rec, model.n_outputs), np.nan)
+    rec_y = np.full((n_runs, n_rec, len(out_labels)), np.nan)
     rec_cmd = np.full((n_runs, n_rec, ncmd), np.nan)
 
-    slices = _Slices(kernel, (z, cs, cmd, ca, mr, ar, cr, dist, ref, lower, upper,
+    slices = _Slices(kernel, (z, cs, cmd, ca, mr, ar, cr, er, dist, ref, lower, upper,
                               status, t_fail, z_fail, rec_z, rec_y, rec_cmd),
                      (ncmd, ca.shape[1], cs.shape[1], dist.shape[2], ref.shape[2]))
     # compile or load the kernel before the clock starts: a zero-step call does it, so the
     # reported simulation time is the simulation's (first use of a combination compiles)
     c0 = _time.perf_counter()
     slices.run(0, 0, n_steps, float(dt), ctrl_every, record_every)
-    kernel.init_runs(*slices.arrays[:4], *slices.arrays[4:7], slices.arrays[8],
-                     *slices.scratch[0])
+    kernel.init_runs(*slices.arrays[:10], *slices.scratch[0])
     compile_time = _time.perf_counter() - c0
     wall0 = _time.perf_counter()
     k = 0
@@ -682,8 +617,8 @@ def simulate(
         state_labels=labels,
         state_units=model.state_units + actuator.state_units,
         output=rec_y,
-        output_labels=model.output_labels,
-        output_units=model.output_units,
+        output_labels=out_labels,
+        output_units=out_units,
         command=rec_cmd,
         command_labels=wiring.commands + controller.output_labels,
         command_units=("",) * len(wiring.commands) + controller.output_units,
@@ -691,8 +626,8 @@ def simulate(
         reference_labels=wiring.references,
         reference_units=wiring.reference_units,
         disturbance=dist[:, ref_idx] if dist.shape[1] > 1 else np.repeat(dist, n_rec, axis=1),
-        disturbance_labels=model.disturbance_labels,
-        disturbance_units=model.disturbance_units,
+        disturbance_labels=dist_labels,
+        disturbance_units=dist_units,
         status=status,
         failure_time=t_fail,
         failure_state=z_fail,
@@ -700,12 +635,14 @@ def simulate(
             "vessel": (m_cls, mp),
             "actuator": (a_cls, ap),
             "controller": (c_cls, cp),
+            **({} if e_cls is None else {"environment": (e_cls, ep)}),
         },
         metadata={
             "model": model.name,
             "actuator": actuator.name,
             "controller": controller.name,
             "integrator": tableau.name,
+            **({} if environment is None else {"environment": environment.name}),
             "dt": float(dt),
             "controller_dt": ctrl_dt,
             "t_final": float(t_final),

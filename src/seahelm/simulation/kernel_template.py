@@ -52,6 +52,7 @@ from seahelm.control.pid import pid_heading_init as _controller_init
 from seahelm.control.pid import pid_heading_step as _controller_step
 from seahelm.vessels.nomoto import nomoto1_output as _model_output
 from seahelm.vessels.nomoto import nomoto1_rhs as _model_rhs
+from seahelm.simulation.environment_stage import no_environment as _environment
 
 actuator_output = inline_always(_actuator_output)
 actuator_rhs = inline_always(_actuator_rhs)
@@ -59,6 +60,7 @@ controller_init = inline_always(_controller_init)
 controller_step = inline_always(_controller_step)
 model_output = inline_always(_model_output)
 model_rhs = inline_always(_model_rhs)
+environment = inline_always(_environment)
 
 NX = 4
 NA = 1
@@ -67,6 +69,8 @@ NYM = 6
 NYA = 1
 NCA = 1
 NM = 2
+NDM = 2
+HAS_ENV = False
 FASTMATH = {"arcp", "contract", "afn", "reassoc"}
 
 
@@ -90,10 +94,17 @@ NZ = NX + NA
 
 
 @njit(inline="always", fastmath=FASTMATH, _nrt=False)
-def closed_rhs(t, xv, xa, cmd, ca, d, mp, ap, ya, u, dxv, dxa):  # pragma: no cover - compiled
+def closed_rhs(t, xv, xa, cmd, ca, d, mp, ap, ep, ya, u, yms, dm, dxv, dxa):  # pragma: no cover
     actuator_output(xa, ca, ap, ya)
     route_inputs(ya, cmd, u)
-    model_rhs(t, xv, u, d, mp, dxv)
+    if HAS_ENV:
+        # the environment's loads from the live state (model outputs at this stage): written
+        # into the model's disturbance channels dm (= the given disturbances + the loads)
+        model_output(t, xv, u, mp, yms)
+        environment(t, yms, d, ep, dm)
+        model_rhs(t, xv, u, dm, mp, dxv)
+    else:
+        model_rhs(t, xv, u, d, mp, dxv)
     actuator_rhs(t, xa, ca, ap, dxa)
 
 
@@ -105,8 +116,8 @@ NSTAGES = 1
 
 
 @njit(inline="always", fastmath=FASTMATH, _nrt=False)
-def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ya, u, kv, ka, fv, fa, tv, ta):  # pragma: no cover
-    closed_rhs(t, xv, xa, cmd, ca, d0, mp, ap, ya, u, fv, fa)
+def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ep, ya, u, yms, dm, kv, ka, fv, fa, tv, ta):  # pragma: no cover
+    closed_rhs(t, xv, xa, cmd, ca, d0, mp, ap, ep, ya, u, yms, dm, fv, fa)
     for j in range(NX):
         xv[j] += h * fv[j]
     for j in range(NA):
@@ -124,7 +135,7 @@ def scratch(ncmd, nca, ncs, nd, nr):
     """
     shapes = [(NX,), (NA,), (NZ,), (ncmd,), (nca,), (ncs,), (NU,), (max(NYA, 1),), (NYM,),
               (max(NM, 1),), (NSTAGES, NX), (NSTAGES, NA), (NX,), (NA,), (NX,), (NA,), (nd,),
-              (nd,), (nd,), (nr,)]
+              (nd,), (nd,), (nr,), (max(NYM, 1),), (max(NDM, 1),)]
     line = 8  # float64 per 64-byte cache line
     counts = [math.prod(sh) for sh in shapes]  # (math.prod: np.prod costs µs per call)
     sizes = [-(-n // line) * line for n in counts]
@@ -153,9 +164,9 @@ def load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi):  # pragma: no cover - c
 
 
 @njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False)
-def init_runs(z, cs, cmd, ca, mp, ap, cp, ref,
+def init_runs(z, cs, cmd, ca, mp, ap, cp, ep, dist, ref,
               xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds,
-              refk):  # pragma: no cover - compiled
+              refk, yms, dm):  # pragma: no cover - compiled
     """Call the controller's init at t = 0 for every run (once per simulation)."""
     for i in range(z.shape[0]):
         ir = i if ref.shape[0] > 1 else 0
@@ -167,6 +178,11 @@ def init_runs(z, cs, cmd, ca, mp, ap, cp, ref,
         actuator_output(xa, cai, ap[i], ya)
         route_inputs(ya, cmdi, u)
         model_output(0.0, xv, u, mp[i], ym)
+        if HAS_ENV:
+            idist = i if dist.shape[0] > 1 else 0
+            for j in range(dist.shape[2]):
+                d0[j] = dist[idist, 0, j]
+            environment(0.0, ym, d0, ep[i], dm)
         route_measurements(ym, y)
         controller_init(zfull, y, refk, cp[i], csi)
         for j in range(cs.shape[1]):
@@ -176,9 +192,10 @@ def init_runs(z, cs, cmd, ca, mp, ap, cp, ref,
 @njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False)
 def run_slice(
     i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_every,
-    z, cs, cmd, ca, mp, ap, cp, dist, ref, lower, upper,
+    z, cs, cmd, ca, mp, ap, cp, ep, dist, ref, lower, upper,
     status, t_fail, z_fail, rec_z, rec_y, rec_cmd,
     xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds, refk,
+    yms, dm,
 ):  # pragma: no cover - compiled
     """Advance runs ``i_start`` to ``i_stop`` − 1 from step ``k_start`` to ``k_stop`` (the state
     arrays are updated in place, so a simulation goes on chunk by chunk).
@@ -204,6 +221,7 @@ def run_slice(
         mpi = mp[i]
         api = ap[i]
         cpi = cp[i]
+        epi = ep[i]
         idist = i if dist.shape[0] > 1 else 0
         iref = i if ref.shape[0] > 1 else 0
         if not dist_varies:
@@ -231,6 +249,14 @@ def run_slice(
                 actuator_output(xa, cai, api, ya)
                 route_inputs(ya, cmdi, u)
                 model_output(t, xv, u, mpi, ym)
+                if HAS_ENV:
+                    # the environment's outputs (loads, apparent wind) follow the model's
+                    if dist_varies:
+                        for j in range(nd):
+                            ds[j] = dist[idist, k, j]
+                        environment(t, ym, ds, epi, dm)
+                    else:
+                        environment(t, ym, d0, epi, dm)
             if control:
                 kr = k if ref_varies else 0
                 for j in range(nr):
@@ -258,7 +284,8 @@ def run_slice(
                 for j in range(nd):
                     d0[j] = dist[idist, k, j]
                     d1[j] = dist[idist, k + 1, j]
-            advance(t, dt, xv, xa, cmdi, cai, d0, d1, ds, mpi, api, ya, u, kv, ka, fv, fa, tv, ta)
+            advance(t, dt, xv, xa, cmdi, cai, d0, d1, ds, mpi, api, epi, ya, u, yms, dm, kv, ka, fv,
+                    fa, tv, ta)
             # one finiteness test of the sum per step (NaN or ±inf in any state makes it
             # non-finite); only then, or with declared bounds, the state-by-state test
             acc = 0.0

@@ -186,8 +186,9 @@ def make_signal(spec: Any, *, scale: float = 1.0) -> Any:
     if isinstance(spec, (int, float)) and not isinstance(spec, bool):
         check_finite("value", spec)
         return Constant(float(spec) * scale)
-    if isinstance(spec, tuple(SIGNALS.values())):
-        return spec
+    if isinstance(spec, tuple(SIGNALS.values())) or (
+            callable(spec) and not isinstance(spec, type)):
+        return spec  # a signal object (a registered kind, or any callable sig(t_grid))
     if not isinstance(spec, Mapping):
         raise ParameterError(f"a signal must be a number or a table with `kind`, got {spec!r}")
     spec = dict(spec)

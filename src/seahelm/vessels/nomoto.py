@@ -93,7 +93,11 @@ class Nomoto2Params(Params):
 NOMOTO1_STATES: tuple[str, ...] = ("north", "east", "heading", "yaw_rate")
 NOMOTO2_STATES: tuple[str, ...] = NOMOTO1_STATES + ("yaw_aux",)
 INPUTS: tuple[str, ...] = ("rudder_angle",)
-DISTURBANCES: tuple[str, ...] = ("rudder_disturbance", "sway_velocity")
+#: Rudder-equivalent disturbance, sway velocity through the water, and a uniform current over
+#: ground (north, east): the yaw dynamics see the water, the position moves with the current
+#: (Fossen 2021, §10.3, Property 10.1: exact for a constant, irrotational current).
+DISTURBANCES: tuple[str, ...] = ("rudder_disturbance", "sway_velocity", "current_north",
+                                 "current_east")
 #: The navigation outputs plus the speed U [m/s] of the ship.
 OUTPUTS: tuple[str, ...] = NAV_OUTPUTS + ("speed",)
 
@@ -111,10 +115,12 @@ def nomoto1_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     r = x[_X1.yaw_rate]
     delta_d = d[_D.rudder_disturbance] if d.shape[0] > _D.rudder_disturbance else 0.0
     v = d[_D.sway_velocity] if d.shape[0] > _D.sway_velocity else 0.0
+    cn = d[_D.current_north] if d.shape[0] > _D.current_north else 0.0
+    ce = d[_D.current_east] if d.shape[0] > _D.current_east else 0.0
     c = math.cos(psi)
     s = math.sin(psi)
-    dx[_X1.north] = speed * c - v * s
-    dx[_X1.east] = speed * s + v * c
+    dx[_X1.north] = speed * c - v * s + cn
+    dx[_X1.east] = speed * s + v * c + ce
     dx[_X1.heading] = r
     dx[_X1.yaw_rate] = (gain * (u[_U.rudder_angle] + delta_d) - (r + n3 * r * r * r)) / tc
 
@@ -139,12 +145,14 @@ def nomoto2_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     delta = u[_U.rudder_angle]
     delta_d = d[_D.rudder_disturbance] if d.shape[0] > _D.rudder_disturbance else 0.0
     v = d[_D.sway_velocity] if d.shape[0] > _D.sway_velocity else 0.0
+    cn = d[_D.current_north] if d.shape[0] > _D.current_north else 0.0
+    ce = d[_D.current_east] if d.shape[0] > _D.current_east else 0.0
     c = math.cos(psi)
     s = math.sin(psi)
     t12 = t1 * t2
     rdot = xi + gain * t3 / t12 * delta
-    dx[_X2.north] = speed * c - v * s
-    dx[_X2.east] = speed * s + v * c
+    dx[_X2.north] = speed * c - v * s + cn
+    dx[_X2.east] = speed * s + v * c + ce
     dx[_X2.heading] = r
     dx[_X2.yaw_rate] = rdot
     dx[_X2.yaw_aux] = (gain * (delta + delta_d) - (t1 + t2) * rdot - (r + n3 * r * r * r)) / t12
@@ -161,7 +169,7 @@ def nomoto2_output(t, x, u, p, y):  # pragma: no cover - compiled
     y[_Y.speed] = p.speed
 
 
-_DIST_UNITS = ("rad", "m/s")
+_DIST_UNITS = ("rad", "m/s", "m/s", "m/s")
 _OUTPUT_UNITS = NAV_OUTPUT_UNITS + ("m/s",)
 
 NOMOTO1 = VesselModel(

@@ -410,12 +410,14 @@ class Plan:
     def simulate(self, *, x0: np.ndarray, actuator_x0: np.ndarray, t_final: float, dt: float,
                  record_every: int, reference: Any = None, controller: Any = OPEN_LOOP,
                  controller_params: Any = None, metadata: Mapping[str, Any] | None = None,
-                 controller_every: int = 1) -> "SimResult":
+                 controller_every: int = 1, conditions: Any = None) -> "SimResult":
         """Run the grid as one batch (the engine validates the rest).
 
         ``controller_every`` steps per controller sample: an open-loop schedule that changes
         only at recorded samples can be sampled there (the engine evaluates the model's
-        outputs at every controller sample).
+        outputs at every controller sample). ``conditions``
+        (:class:`~seahelm.environment.loads.Conditions`): wind, waves and current acting from
+        t = 0 on (the approach is the calm-water one).
         """
         from ...simulation.batch import BatchAxis, BatchLayout, RunBatch, simulate_batch
 
@@ -442,7 +444,8 @@ class Plan:
             actuator_x0=actuator_x0, controller=controller,
             controller_params=controller_params, reference=reference,
             controller_dt=controller_every * dt,
-            record_every=record_every, metadata=dict(metadata or {}), layout=layout)
+            record_every=record_every, metadata=dict(metadata or {}), layout=layout,
+            **_conditions_kwargs(conditions, self.model))
         return simulate_batch(batch)
 
     def runs_dataset(self, result: "SimResult") -> "xr.Dataset":
@@ -513,6 +516,21 @@ class Plan:
     def run_messages(self, result: "SimResult") -> list[str]:
         """'ok' or what diverged, per run."""
         return result.messages()
+
+
+def _conditions_kwargs(conditions: Any, model: VesselModel) -> dict[str, Any]:
+    """The engine's environment and current arguments for a manoeuvre's ``conditions``."""
+    if conditions is None:
+        return {}
+    from ...environment.loads import Conditions
+
+    if not isinstance(conditions, Conditions):
+        raise ParameterError(f"`conditions` must be a Conditions (seahelm.environment.loads), "
+                             f"got {type(conditions).__name__}")
+    current = conditions.disturbance(model)
+    return {"environment": conditions.environment,
+            "environment_params": conditions.params,
+            "disturbance": current or None}
 
 
 def record_every_for(dt: float, record_dt: float | None) -> int:

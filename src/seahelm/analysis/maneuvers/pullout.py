@@ -42,7 +42,8 @@ __all__ = ["pull_out"]
 
 def pull_out(ship: Any, rudder: Any = math.radians(20.0), *, sides: Any = (1, -1),
              speed: Any = None, rps: Any = None, t_final: float | None = None,
-             dt: float | None = None, record_dt: float | None = None) -> ManeuverResult:
+             dt: float | None = None, record_dt: float | None = None,
+             conditions: Any = None) -> ManeuverResult:
     """Pull-out tests from steady turns to both sides, batched over ships, speeds, rudders.
 
     Parameters
@@ -64,6 +65,11 @@ def pull_out(ship: Any, rudder: Any = math.radians(20.0), *, sides: Any = (1, -1
         Integration step [s] (default :func:`~seahelm.analysis.maneuvers.default_time_step`).
     record_dt : float, optional
         Recording interval [s] (default: every step).
+
+    conditions : Conditions, optional
+        Wind, waves and a uniform current (:class:`seahelm.environment.loads.Conditions`)
+        acting from t = 0 on; the approach is the calm-water one, and the metrics are measured
+        on the track over ground (default: calm water).
 
     Returns
     -------
@@ -110,7 +116,7 @@ def pull_out(ship: Any, rudder: Any = math.radians(20.0), *, sides: Any = (1, -1
     result = plan.simulate(x0=x0_arr, actuator_x0=np.array(rudder0), reference=reference,
                            t_final=t_final, dt=dt, record_every=record_every,
                            metadata={"maneuver": "pull-out"},
-                           controller_every=record_every)
+                           controller_every=record_every, conditions=conditions)
     t = result.time
     r = result["yaw_rate"]
     r0 = x0_arr[:, plan.model.state_index("yaw_rate")]

@@ -90,7 +90,8 @@ def _estimate_t_final(plan: Plan, signed: dict[tuple[int, int], list[float]],
 def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = (1, -1),
                    speed: Any = None, rps: Any = None, t_final: float | None = None,
                    dt: float | None = None, record_dt: float | None = None,
-                   heading_change: float = 2.0 * math.pi) -> ManeuverResult:
+                   heading_change: float = 2.0 * math.pi,
+                   conditions: Any = None) -> ManeuverResult:
     """Turning circles to both sides (or one), batched over ships, speeds and rudder angles.
 
     From a steady straight approach the rudder is ordered to ``side × rudder`` at t = 0 and held;
@@ -121,6 +122,11 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
         Recording interval [s] (default: every step).
     heading_change : float, optional
         Heading change [rad] the default ``t_final`` aims at (default 2π, for the steady turn).
+
+    conditions : Conditions, optional
+        Wind, waves and a uniform current (:class:`seahelm.environment.loads.Conditions`)
+        acting from t = 0 on; the approach is the calm-water one, and the metrics are measured
+        on the track over ground (default: calm water).
 
     Returns
     -------
@@ -166,7 +172,7 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
     result = plan.simulate(x0=x0, actuator_x0=rudder0, reference=reference, t_final=t_final,
                            dt=dt, record_every=record_every,
                            metadata={"maneuver": "turning-circle"},
-                           controller_every=record_every)
+                           controller_every=record_every, conditions=conditions)
     metrics = _metrics(plan, result)
     return ManeuverResult("turning-circle", metrics, tuple(plan.ships), result,
                           lambda: plan.runs_dataset(result))

@@ -206,7 +206,7 @@ def zigzag_metrics(time: Any, heading: Any, *, trigger: Any, first_side: Any = 1
 def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
            sides: Any = (1, -1), speed: Any = None, rps: Any = None,
            t_final: float | None = None, dt: float | None = None,
-           record_dt: float | None = None) -> ManeuverResult:
+           record_dt: float | None = None, conditions: Any = None) -> ManeuverResult:
     """Zig-zag tests to either first side, batched over ships, speeds and δ/ψ pairs.
 
     Parameters
@@ -236,6 +236,11 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
         samples — see the module docstring).
     record_dt : float, optional
         Recording interval [s] (default: every step).
+
+    conditions : Conditions, optional
+        Wind, waves and a uniform current (:class:`seahelm.environment.loads.Conditions`)
+        acting from t = 0 on; the approach is the calm-water one, and the metrics are measured
+        on the track over ground (default: calm water).
 
     Returns
     -------
@@ -320,7 +325,8 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
                    for i in range(n)]
     result = plan.simulate(x0=x0, actuator_x0=rudder0, controller=controller,
                            controller_params=cparams, t_final=t_final, dt=dt,
-                           record_every=record_every, metadata={"maneuver": "zigzag"})
+                           record_every=record_every, metadata={"maneuver": "zigzag"},
+                           conditions=conditions)
     psi0 = x0[:, plan.model.state_index("heading")]
     zm = zigzag_metrics(result.time, result["heading"], trigger=trig, first_side=first,
                         base_heading=psi0)

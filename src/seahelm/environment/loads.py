@@ -1,0 +1,568 @@
+"""Wind and wave load models, as registries, and the environment component that uses them.
+
+An :class:`Environment` is a component of the closed loop (like a vessel model, an actuator or a
+controller): at every stage of every step the engine hands it the model's outputs (heading,
+surge and sway speed through the water) and the run's disturbance inputs, and it writes the
+loads of the wind and the waves onto the model's disturbance channels ``force_x`` [N],
+``force_y`` [N] and ``moment_z`` [N·m] (added to what is given there), so the loads follow the
+**live** heading and speed of each run. A uniform current is not a load: models that declare
+``current_north``/``current_east`` channels take the velocity through the water for their
+hydrodynamics and move with the current (:mod:`seahelm.vessels.mariner`, ``mmg``, ``nomoto``);
+the environment reads those channels to form the wind relative to the moving ship.
+
+Load models come from registries, by name or as objects (house style rule 4):
+
+* :data:`WIND_LOADS` — ``"lvov"``: Lvov (2014) eq. (12) (lateral force and yaw moment only, no
+  longitudinal force); ``"blendermann"``: Blendermann (1994), the coefficient model of
+  :mod:`seahelm.environment.blendermann` (surge, sway, yaw) with the vessel-type tables;
+* :data:`WAVE_LOADS` — ``"lvov"``: the mean (second-order) wave loads of Lvov (2014)
+  eq. (8)-(10) with the coefficients of eq. (5)-(7).
+
+Each takes the relative wind (speed [m/s], bearing it comes from relative to the bow [rad],
+positive from starboard) or the relative wave bearing and the ship's speed along the waves,
+and returns body-axis loads ``(X, Y, N)``: x forward, y to starboard, N positive turning the bow
+to starboard (the negatives of the paper's leeward-positive Y, M for wind and waves from
+starboard, see :mod:`seahelm.environment.wind` and :mod:`seahelm.environment.wave_forces`).
+
+Irregular seas (stated simplification)
+    Eq. (8)-(10) are mean loads in regular waves of height h3%. In an irregular sea the loads
+    are taken as quasi-steady and proportional to the square of the wave-height envelope
+    A(t): the mean loads times 1 + f(t), f = A²/E[A²] − 1 the ``wave_load_fluctuation``
+    channel (zero mean), with A² = ζ² + (ζ̇/ω̄)², ω̄² = E[ζ̇²]/E[ζ²], ζ the sea elevation from
+    the exact shaping filter of the spectrum (:func:`wave_load_fluctuation`). This is the
+    slowly varying (envelope) part only: the first-order, wave-frequency forces, the
+    encounter-frequency shift and memory effects of the drift force are left out.
+
+Gusts
+    ``wind_gust`` [m/s] is added to the true wind speed (zero when not given); any signal may
+    drive it.
+
+References
+----------
+Lvov, V. E. (2014), eq. (5)-(12). Blendermann, W. (1994). Parameter identification of wind
+loads on ships. J. Wind Eng. Ind. Aerodyn. 51, 339-351.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import math
+from typing import Any
+
+import numpy as np
+from numba import njit
+
+from .._validate import as_float_array, check_positive
+from ..constants import GRAVITY, RHO_AIR, RHO_SEAWATER
+from ..errors import ParameterError
+from ..parameters import Params, param
+from .blendermann import blendermann_loads, get_blendermann_type
+
+__all__ = [
+    "WindParams",
+    "WaveParams",
+    "LvovWindParams",
+    "BlendermannWindParams",
+    "LvovWaveParams",
+    "LoadModel",
+    "WIND_LOADS",
+    "WAVE_LOADS",
+    "get_wind_loads",
+    "get_wave_loads",
+    "Environment",
+    "environment",
+    "lvov_wave_params",
+    "blendermann_wind_params",
+    "wave_load_fluctuation",
+    "Conditions",
+]
+
+
+# ------------------------------------------------------------------------------------------
+# parameters: the weather, then each load model's ship data
+# ------------------------------------------------------------------------------------------
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class WindParams(Params):
+    """The true wind: speed and the direction it comes from."""
+
+    wind_speed: float = param(0.0, unit="m/s", symbol="W", low=0.0,
+                              doc="true wind speed (gusts: the `wind_gust` channel)")
+    wind_direction: float = param(0.0, unit="rad", symbol="θ_w",
+                                  doc="direction the wind comes from, clockwise from north")
+    rho_air: float = param(RHO_AIR, unit="kg/m³", symbol="ρ_a", low=0.0, low_inclusive=False,
+                           doc="air density")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class WaveParams(Params):
+    """Regular waves (or the mean of an irregular sea): height, length, direction."""
+
+    wave_height: float = param(0.0, unit="m", symbol="h3%", low=0.0,
+                               doc="wave height of 3 % exceedance")
+    wave_length: float = param(100.0, unit="m", symbol="λ", low=0.0, low_inclusive=False,
+                               doc="wave length (deep water: λ = g τ²/2π)")
+    wave_direction: float = param(0.0, unit="rad", symbol="θ_v",
+                                  doc="direction the waves come from, clockwise from north")
+    rho_water: float = param(RHO_SEAWATER, unit="kg/m³", symbol="ρ", low=0.0,
+                             low_inclusive=False, doc="water density")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class LvovWindParams(WindParams):
+    """Ship data of Lvov's wind loads, eq. (12): Y_a = 0.37 sin q ρ_a S_n W²,
+    N_a = (0.25 + ℓ_sail/L − |q|°/360) L Y_a."""
+
+    windage_lateral_area: float = param(unit="m²", symbol="S_n", low=0.0, low_inclusive=False,
+                                        doc="lateral windage area (hull and superstructure)")
+    windage_centre: float = param(0.0, unit="m", symbol="ℓ_sail",
+                                  doc="centre of the lateral windage area, forward of midships")
+    windage_length: float = param(unit="m", symbol="L", low=0.0, low_inclusive=False,
+                                  doc="ship length of the moment arm")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class BlendermannWindParams(WindParams):
+    """Ship data and coefficients of Blendermann's (1994) wind loads
+    (:mod:`seahelm.environment.blendermann`; coefficients from a vessel type by name:
+    :func:`blendermann_wind_params`)."""
+
+    windage_frontal_area: float = param(unit="m²", symbol="A_F", low=0.0, low_inclusive=False,
+                                        doc="frontal (transverse) projected windage area")
+    windage_lateral_area: float = param(unit="m²", symbol="A_L", low=0.0, low_inclusive=False,
+                                        doc="lateral projected windage area")
+    windage_centre: float = param(0.0, unit="m", symbol="s_L",
+                                  doc="centre of the lateral windage area, forward of midships")
+    length_overall: float = param(unit="m", symbol="L_oa", low=0.0, low_inclusive=False,
+                                  doc="length overall")
+    cd_transverse: float = param(unit="-", symbol="CD_t", low=0.0, low_inclusive=False,
+                                 doc="transverse drag coefficient")
+    cd_longitudinal_head: float = param(unit="-", symbol="CD_l,AF(0)", low=0.0,
+                                        low_inclusive=False,
+                                        doc="longitudinal drag coefficient, head wind (on A_F)")
+    cd_longitudinal_stern: float = param(unit="-", symbol="CD_l,AF(π)", low=0.0,
+                                         low_inclusive=False,
+                                         doc="longitudinal drag coefficient, stern wind (on A_F)")
+    cd_delta: float = param(unit="-", symbol="δ", low=0.0, doc="cross-force parameter")
+    cd_kappa: float = param(unit="-", symbol="κ", low=0.0, doc="rolling-moment factor")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class LvovWaveParams(WaveParams):
+    """Ship data of Lvov's mean wave loads, eq. (8)-(10) (coefficients from the hull by
+    eq. (5)-(7): :func:`lvov_wave_params`)."""
+
+    wave_cx: float = param(unit="-", symbol="C_x^w", doc="surge coefficient, eq. (5)")
+    wave_cy: float = param(unit="-", symbol="C_y^w", doc="sway coefficient, eq. (6)")
+    wave_cm: float = param(unit="-", symbol="C_m^w", doc="yaw coefficient, eq. (7)")
+    wave_a0: float = param(3.3, unit="-", symbol="A0", low=0.0, doc="length attenuation A0")
+    wave_a1: float = param(1.0, unit="-", symbol="A1", low=1.0, high=8.5,
+                           doc="speed coefficient A1 (published range 1-8.5)")
+    hull_length: float = param(unit="m", symbol="L", low=0.0, low_inclusive=False,
+                               doc="ship length of eq. (8)-(10)")
+    gravity: float = param(GRAVITY, unit="m/s²", symbol="g", low=0.0, low_inclusive=False,
+                           doc="gravitational acceleration")
+
+
+# ------------------------------------------------------------------------------------------
+# compiled loads (scalar, allocation-free: they run inside the closed loop)
+# ------------------------------------------------------------------------------------------
+@njit(cache=True)
+def lvov_wind_loads(p, speed, angle):  # pragma: no cover - compiled
+    """Lvov (2014) eq. (12) wind loads in body axes: (0, −Y_a, −N_a)."""
+    q = (angle + math.pi) % (2.0 * math.pi) - math.pi
+    y_a = 0.37 * math.sin(q) * p.rho_air * p.windage_lateral_area * speed * speed
+    arm = 0.25 + p.windage_centre / p.windage_length - abs(q) * (180.0 / math.pi) / 360.0
+    return 0.0, -y_a, -arm * p.windage_length * y_a
+
+
+@njit(cache=True)
+def blendermann_wind_loads_compiled(p, speed, angle):  # pragma: no cover - compiled
+    """Blendermann (1994) wind loads in body axes (:mod:`seahelm.environment.blendermann`)."""
+    return blendermann_loads(speed, angle, p.cd_transverse, p.cd_longitudinal_head,
+                             p.cd_longitudinal_stern, p.cd_delta, p.cd_kappa,
+                             p.windage_frontal_area, p.windage_lateral_area, p.length_overall,
+                             p.windage_centre, p.rho_air)
+
+
+@njit(cache=True)
+def lvov_wave_loads(p, angle, speed_along, factor):  # pragma: no cover - compiled
+    """Lvov (2014) eq. (8)-(10) mean wave loads in body axes: (X_w, −Y_w, −M_w), times
+    ``factor`` (1 + the irregular-sea fluctuation)."""
+    q = (angle + math.pi) % (2.0 * math.pi) - math.pi
+    L = p.hull_length
+    celerity = math.sqrt(p.gravity * p.wave_length / (2.0 * math.pi))
+    half = 0.5 * p.wave_height
+    f = (p.rho_water * p.gravity * L * half * half * math.exp(-p.wave_a0 * p.wave_length / L)
+         * (1.0 + p.wave_a1 * speed_along / celerity) * factor)
+    x = p.wave_cx * (0.1 - math.cos(q)) * f
+    y = p.wave_cy * math.sin(q) * f
+    m = p.wave_cm * math.sin(2.0 * q) / (1.0 + (math.pi - abs(q)) / math.pi) * f * L
+    return x, -y, -m
+
+
+# ------------------------------------------------------------------------------------------
+# registries
+# ------------------------------------------------------------------------------------------
+@dataclasses.dataclass(frozen=True, eq=False)
+class LoadModel:
+    """A wind or wave load model: its parameters and its compiled loads.
+
+    Attributes
+    ----------
+    name : str
+        Registry name.
+    description : str
+        One line, with the source.
+    params_type : type[Params]
+        Its parameters (a :class:`WindParams` or :class:`WaveParams` subclass).
+    loads : numba dispatcher
+        Wind: ``loads(p, speed, angle) -> (X, Y, N)`` of the relative wind (speed [m/s],
+        bearing it comes from relative to the bow [rad], positive from starboard). Waves:
+        ``loads(p, angle, speed_along, factor) -> (X, Y, N)`` of the relative bearing the waves
+        come from [rad], the ship's speed along the wave travel [m/s] and the load factor
+        (1 + fluctuation). Body axes, [N, N, N·m].
+    """
+
+    name: str
+    description: str
+    params_type: type[Params]
+    loads: Any
+
+
+LVOV_WIND = LoadModel(
+    "lvov", "Lvov (2014) eq. (12): lateral force 0.37 sin q ρ_a S_n W² and its yaw moment "
+    "(no longitudinal force)", LvovWindParams, lvov_wind_loads)
+BLENDERMANN_WIND = LoadModel(
+    "blendermann", "Blendermann (1994): surge, sway and yaw coefficients of the relative-wind "
+    "angle per vessel type (Fossen 2021, §10.1.2)", BlendermannWindParams,
+    blendermann_wind_loads_compiled)
+LVOV_WAVES = LoadModel(
+    "lvov", "Lvov (2014) eq. (8)-(10): mean wave surge, sway and yaw loads, coefficients of "
+    "eq. (5)-(7) (Yurkansky 2005)", LvovWaveParams, lvov_wave_loads)
+
+#: Wind load models by name.
+WIND_LOADS: dict[str, LoadModel] = {"blendermann": BLENDERMANN_WIND, "lvov": LVOV_WIND}
+#: Wave load models by name.
+WAVE_LOADS: dict[str, LoadModel] = {"lvov": LVOV_WAVES}
+
+
+def _lookup(registry: dict[str, LoadModel], value: "LoadModel | str", what: str) -> LoadModel:
+    if isinstance(value, LoadModel):
+        return value
+    try:
+        return registry[value]
+    except (KeyError, TypeError):
+        raise ValueError(f"unknown {what} model {value!r}; valid: {', '.join(registry)}") from None
+
+
+def get_wind_loads(model: "LoadModel | str") -> LoadModel:
+    """A wind load model by name or as given.
+
+    Parameters
+    ----------
+    model : LoadModel or str
+        A name in :data:`WIND_LOADS` or a model.
+
+    Returns
+    -------
+    LoadModel
+
+    Raises
+    ------
+    ValueError
+        For an unknown name (the message lists the valid ones).
+    """
+    return _lookup(WIND_LOADS, model, "wind load")
+
+
+def get_wave_loads(model: "LoadModel | str") -> LoadModel:
+    """A wave load model by name or as given.
+
+    Parameters
+    ----------
+    model : LoadModel or str
+        A name in :data:`WAVE_LOADS` or a model.
+
+    Returns
+    -------
+    LoadModel
+
+    Raises
+    ------
+    ValueError
+        For an unknown name (the message lists the valid ones).
+    """
+    return _lookup(WAVE_LOADS, model, "wave load")
+
+
+# ------------------------------------------------------------------------------------------
+# the environment component
+# ------------------------------------------------------------------------------------------
+WIND_OUTPUTS = ("apparent_wind_speed", "apparent_wind_angle", "wind_force_x", "wind_force_y",
+                "wind_moment_z")
+WIND_OUTPUT_UNITS = ("m/s", "rad", "N", "N", "N·m")
+WAVE_OUTPUTS = ("wave_force_x", "wave_force_y", "wave_moment_z")
+WAVE_OUTPUT_UNITS = ("N", "N", "N·m")
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Environment:
+    """Wind and/or waves acting on a vessel model in the closed loop (module docstring).
+
+    Build one with :func:`environment` (the same combination gives the same object, so its
+    compiled stage is generated once).
+
+    Attributes
+    ----------
+    wind, waves : LoadModel or None
+        The load models.
+    params_type : type[Params]
+        The parameters of both (one record per run).
+    signal_labels, signal_units : tuple of str
+        Time-varying inputs it reads after the model's disturbance channels: ``wind_gust``
+        [m/s] (with wind), ``wave_load_fluctuation`` [-] (with waves); zero when not given.
+    output_labels, output_units : tuple of str
+        What it reports after the model's outputs: the apparent wind and the wind loads, the
+        wave loads (body axes).
+    """
+
+    wind: LoadModel | None
+    waves: LoadModel | None
+    params_type: type[Params]
+    signal_labels: tuple[str, ...]
+    signal_units: tuple[str, ...]
+    output_labels: tuple[str, ...]
+    output_units: tuple[str, ...]
+
+    @property
+    def name(self) -> str:
+        parts = ([f"wind={self.wind.name}"] if self.wind else []) + (
+            [f"waves={self.waves.name}"] if self.waves else [])
+        return ", ".join(parts)
+
+    def params(self, **values: Any) -> Params:
+        """A parameter set of this environment (``params_type(**values)``).
+
+        Parameters
+        ----------
+        **values
+            Field values (SI units, radians).
+
+        Returns
+        -------
+        Params
+        """
+        return self.params_type(**values)
+
+
+@functools.lru_cache(maxsize=None)
+def environment(wind: "LoadModel | str | None" = None,
+                waves: "LoadModel | str | None" = None) -> Environment:
+    """The environment component of a wind and/or a wave load model.
+
+    Parameters
+    ----------
+    wind : LoadModel or str, optional
+        A name in :data:`WIND_LOADS` or a model.
+    waves : LoadModel or str, optional
+        A name in :data:`WAVE_LOADS` or a model.
+
+    Returns
+    -------
+    Environment
+
+    Raises
+    ------
+    ValueError
+        For an unknown name (the message lists the valid ones), or neither wind nor waves.
+    """
+    if wind is None and waves is None:
+        raise ValueError("an environment needs wind and/or waves (a current alone is a "
+                         "disturbance channel of the model: current_north, current_east)")
+    w = None if wind is None else get_wind_loads(wind)
+    v = None if waves is None else get_wave_loads(waves)
+    bases = tuple(m.params_type for m in (w, v) if m is not None)
+    if len(bases) == 1:
+        params_type = bases[0]
+    else:
+        params_type = dataclasses.make_dataclass(
+            f"{w.params_type.__name__[:-6]}{v.params_type.__name__}", [], bases=bases,
+            frozen=True, kw_only=True)
+        params_type.__doc__ = (f"Parameters of the wind ('{w.name}') and wave ('{v.name}') "
+                               "loads.")
+    signals, units, outs, out_units = [], [], [], []
+    if w is not None:
+        signals.append("wind_gust")
+        units.append("m/s")
+        outs += WIND_OUTPUTS
+        out_units += WIND_OUTPUT_UNITS
+    if v is not None:
+        signals.append("wave_load_fluctuation")
+        units.append("-")
+        outs += WAVE_OUTPUTS
+        out_units += WAVE_OUTPUT_UNITS
+    return Environment(w, v, params_type, tuple(signals), tuple(units), tuple(outs),
+                       tuple(out_units))
+
+
+# ------------------------------------------------------------------------------------------
+# parameters from ship data, irregular seas
+# ------------------------------------------------------------------------------------------
+def lvov_wave_params(*, length: float, beam: float, draft: float, block_coefficient: float,
+                     strict: bool | None = None, **values: Any) -> dict[str, float]:
+    """The fields of :class:`LvovWaveParams` from the hull (eq. (5)-(7)), plus ``values``.
+
+    Parameters
+    ----------
+    length, beam, draft : float
+        L, B, T [m].
+    block_coefficient : float
+        δ [-].
+    strict : bool, optional
+        Raise instead of warning outside the published range of eq. (5)-(7).
+    **values
+        Other fields (``wave_height``, ``wave_length``, ``wave_direction``, ``wave_a1``, ...).
+
+    Returns
+    -------
+    dict
+        ``hull_length``, ``wave_cx``, ``wave_cy``, ``wave_cm`` and ``values``.
+
+    Warns
+    -----
+    ValidityRangeWarning
+        Hull ratios outside 10 < L/T < 23, 1 < B/T < 3.7, 5 < L/B < 12, 0.6 < δ < 0.8.
+    """
+    from .wave_forces import wave_force_coefficients
+
+    c = wave_force_coefficients(length, beam, draft, block_coefficient, strict=strict)
+    return dict(hull_length=float(length), wave_cx=float(c.cx), wave_cy=float(c.cy),
+                wave_cm=float(c.cm), **values)
+
+
+def blendermann_wind_params(vessel_type: Any, **values: Any) -> dict[str, float]:
+    """The coefficient fields of :class:`BlendermannWindParams` for a vessel type, plus
+    ``values``.
+
+    Parameters
+    ----------
+    vessel_type : str or BlendermannCoefficients
+        A name in :data:`seahelm.environment.blendermann.BLENDERMANN_VESSEL_TYPES` (e.g.
+        ``"tanker-loaded"``) or coefficients.
+    **values
+        Other fields (``wind_speed``, ``windage_lateral_area``, ...).
+
+    Returns
+    -------
+    dict
+    """
+    c = get_blendermann_type(vessel_type)
+    return dict(cd_transverse=c.cd_transverse, cd_longitudinal_head=c.cd_longitudinal_head,
+                cd_longitudinal_stern=c.cd_longitudinal_stern, cd_delta=c.delta,
+                cd_kappa=c.kappa, **values)
+
+
+def wave_load_fluctuation(wave_height: float, n_steps: int, dt: float, seed: Any, *,
+                          spectrum: str = "rakhmanin-firsov-2") -> np.ndarray:
+    """The irregular-sea factor f(t) = A²/E[A²] − 1 of the wave loads on a uniform grid.
+
+    A² = ζ² + (ζ̇/ω̄)² is the squared envelope of the sea elevation ζ (module docstring), ζ and
+    ζ̇ sampled exactly by the shaping filter of the spectrum
+    (:func:`seahelm.environment.shaping.shaping_filter`), started in its stationary
+    distribution, so f has zero mean from t = 0 on.
+
+    Parameters
+    ----------
+    wave_height : float
+        h3% [m] (> 0).
+    n_steps : int
+        Samples t_k = k dt, k = 0 … n_steps − 1.
+    dt : float
+        Step [s].
+    seed : int, SeedSequence or Generator
+        The realisation (one per run: ``SeedSequence(seed).spawn(runs)``).
+    spectrum : str, optional
+        Registry name of the sea spectrum (default "rakhmanin-firsov-2").
+
+    Returns
+    -------
+    numpy.ndarray, shape (n_steps,)
+        f [-], ≥ −1.
+    """
+    from .shaping import shaping_filter
+    from .spectra import spectrum_from_wave_height
+
+    check_positive("wave_height", wave_height, "m")
+    check_positive("dt", dt, "s")
+    filt = shaping_filter(spectrum_from_wave_height(spectrum, float(wave_height)),
+                          outputs=("ordinate", "ordinate_rate"))
+    var = np.asarray(filt.output_variance(), dtype=float)
+    draw = filt.sample(n_steps=int(n_steps), dt=float(dt), seed=seed).values[0]
+    return 0.5 * (draw[:, 0] ** 2 / var[0] + draw[:, 1] ** 2 / var[1]) - 1.0
+
+
+@dataclasses.dataclass(frozen=True)
+class Conditions:
+    """Wind, waves and a uniform current for a run or a manoeuvre (SI units, radians).
+
+    Attributes
+    ----------
+    environment : Environment, optional
+        The wind/wave load models (:func:`environment`).
+    params : Params, optional
+        Its parameters (``environment.params(...)``), required with an environment.
+    current_speed : float
+        Speed of a uniform, constant current [m/s] (≥ 0; on models with ``current_north``,
+        ``current_east`` channels).
+    current_direction : float
+        Direction the current sets to (flows towards), clockwise from north [rad].
+    """
+
+    environment: Environment | None = None
+    params: Params | None = None
+    current_speed: float = 0.0
+    current_direction: float = 0.0
+
+    def __post_init__(self) -> None:
+        if self.environment is not None and self.params is None:
+            raise ParameterError("`params` of the environment are required (environment.params"
+                                 "(wind_speed=..., ...))")
+        if self.environment is None and self.params is not None:
+            raise ParameterError("`params` given without an `environment`")
+        if self.environment is not None and not isinstance(self.params,
+                                                           self.environment.params_type):
+            raise ParameterError(
+                f"`params` must be {self.environment.params_type.__name__}, got "
+                f"{type(self.params).__name__}")
+        speed = float(as_float_array("current_speed", self.current_speed, "m/s"))
+        if not speed >= 0:
+            raise ParameterError(f"`current_speed` must be >= 0 [m/s], got {speed!r}")
+        as_float_array("current_direction", self.current_direction, "rad")
+
+    def disturbance(self, model: Any) -> dict[str, float]:
+        """The current as the model's ``current_north``, ``current_east`` channels [m/s].
+
+        Parameters
+        ----------
+        model : VesselModel
+            The model the current acts on.
+
+        Returns
+        -------
+        dict
+            Channel values (empty without a current).
+
+        Raises
+        ------
+        ParameterError
+            If there is a current and the model has no current channels.
+        """
+        if self.current_speed == 0.0:
+            return {}
+        if not {"current_north", "current_east"} <= set(model.disturbance_labels):
+            raise ParameterError(
+                f"model '{model.name}' has no current channels (current_north, current_east "
+                "[m/s])")
+        return {"current_north": self.current_speed * math.cos(self.current_direction),
+                "current_east": self.current_speed * math.sin(self.current_direction)}

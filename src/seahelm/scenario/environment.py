@@ -1,0 +1,265 @@
+"""``[environment.wind]`` and ``[environment.waves]``: the loads a scenario's runs feel.
+
+Turns the two sections (and their per-run overrides from ``[batch]``, e.g.
+``environment.wind.speed = [5, 10, 15]``) into the engine's environment component, one
+parameter set per run, and the environment's time signals (``wind_gust``; the irregular sea's
+``wave_load_fluctuation``, a seeded realisation per run). Ship data the loads need (windage
+areas, hull beam, draft, block coefficient) come from the catalog ship's particulars
+(:mod:`seahelm.vessels.particulars`) unless the section gives them.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+import numpy as np
+
+from ..constants import GRAVITY
+from ..environment.loads import (
+    Environment,
+    blendermann_wind_params,
+    environment,
+    get_wave_loads,
+    get_wind_loads,
+    lvov_wave_params,
+    wave_load_fluctuation,
+)
+from ..errors import ParameterError
+from ..vessels.particulars import PARTICULARS, Particulars
+from .errors import at_key as _err
+from .schema import Scenario
+
+__all__ = ["KEY_UNITS", "WaveLoadFluctuation", "EnvironmentRuns", "environment_runs"]
+
+#: Units of the keys of the two sections (for messages and batch dimensions).
+KEY_UNITS: dict[str, str] = {
+    "environment.wind.speed": "m/s", "environment.wind.frontal_area": "m²",
+    "environment.wind.lateral_area": "m²", "environment.wind.centre": "m",
+    "environment.wind.length_overall": "m", "environment.wind.length": "m",
+    "environment.wind.rho_air": "kg/m³",
+    "environment.waves.height": "m", "environment.waves.hs": "m",
+    "environment.waves.length": "m", "environment.waves.period": "s",
+    "environment.waves.a1": "-", "environment.waves.hull_length": "m",
+    "environment.waves.beam": "m", "environment.waves.draft": "m",
+    "environment.waves.block_coefficient": "-",
+}
+
+#: Hs = HS_PER_H3 · h3%: Hs = 4 √D_r with D_r = 0.143 (h3%/2)² (Sushchenko & Lutsko 2010).
+HS_PER_H3 = 4.0 * math.sqrt(0.143) / 2.0
+
+
+@dataclasses.dataclass(frozen=True)
+class WaveLoadFluctuation:
+    """The ``wave_load_fluctuation`` signal of an irregular sea (a random signal: each run of a
+    batch draws its own realisation, see :func:`seahelm.environment.loads.wave_load_fluctuation`).
+    """
+
+    h3: float
+    spectrum: str = "rakhmanin-firsov-2"
+    seed: int = 0
+
+    random = True
+
+    def __call__(self, t: Any, *, seed: Any = None) -> np.ndarray:
+        t = np.asarray(t, dtype=float)
+        if t.size < 2 or not np.allclose(np.diff(t), t[1] - t[0]):
+            raise ParameterError("an irregular sea needs a uniform time grid of 2 or more "
+                                 "samples")
+        return wave_load_fluctuation(self.h3, t.size, float(t[1] - t[0]),
+                                     self.seed if seed is None else seed,
+                                     spectrum=self.spectrum)
+
+
+@dataclasses.dataclass(frozen=True)
+class EnvironmentRuns:
+    """What :func:`environment_runs` gives: the component, a parameter row per run (or one),
+    and per run the environment's signal specifications (by channel name)."""
+
+    environment: Environment
+    params: np.ndarray
+    signals: list[dict[str, Any]]
+
+
+def _ship(scn: Scenario) -> Particulars | None:
+    return PARTICULARS.get(scn.vessel.catalog or "")
+
+
+def _section(over: dict[str, Any], prefix: str, base: dict[str, Any]) -> dict[str, Any]:
+    out = dict(base)
+    out.update({k[len(prefix):]: v for k, v in over.items() if k.startswith(prefix)})
+    return out
+
+
+def _need(values: dict[str, Any], key: str, ship: Particulars | None, attr: str,
+          path: str, source: str, unit: str) -> float:
+    if values.get(key) is not None:
+        return float(values[key])
+    if ship is not None:
+        return float(getattr(ship, attr))
+    raise _err(source, f"{path}.{key}",
+               f"needed [{unit}]: the vessel has no catalog particulars to take it from "
+               f"(catalog ships with particulars: {', '.join(PARTICULARS)})")
+
+
+def _wind_fields(w: dict[str, Any], name: str, ship: Particulars | None,
+                 source: str) -> dict[str, float]:
+    path = "environment.wind"
+    fields: dict[str, Any] = {"wind_speed": float(w["speed"]),
+                              "wind_direction": math.radians(float(w["direction_deg"]))}
+    if w.get("rho_air") is not None:
+        fields["rho_air"] = float(w["rho_air"])
+    lateral = _need(w, "lateral_area", ship, "lateral_area", path, source, "m²")
+    centre = float(w["centre"]) if w.get("centre") is not None else (
+        ship.windage_centre if ship is not None else 0.0)
+    if name == "lvov":
+        extra = [k for k in ("frontal_area", "length_overall", "vessel_type") if w.get(k) is not None]
+        if extra:
+            raise _err(source, f"{path}.{extra[0]}",
+                       "Lvov's wind loads take no frontal area, length overall or vessel type "
+                       "(keys: speed, direction_deg, gust, lateral_area, centre, length, rho_air)")
+        fields.update(windage_lateral_area=lateral, windage_centre=centre,
+                      windage_length=_need(w, "length", ship, "length", path, source, "m"))
+        return fields
+    if w.get("length") is not None:
+        raise _err(source, f"{path}.length",
+                   "Blendermann's loads take `length_overall` [m], not `length`")
+    vessel_type = w.get("vessel_type") or (ship.vessel_type if ship is not None else None)
+    if vessel_type is None:
+        raise _err(source, f"{path}.vessel_type",
+                   "needed for Blendermann's coefficients (e.g. \"tanker-loaded\"): the vessel "
+                   "has no catalog particulars to take it from")
+    try:
+        return blendermann_wind_params(
+            vessel_type, **fields, windage_lateral_area=lateral, windage_centre=centre,
+            windage_frontal_area=_need(w, "frontal_area", ship, "frontal_area", path, source,
+                                       "m²"),
+            length_overall=_need(w, "length_overall", ship, "length_overall", path, source,
+                                 "m"))
+    except ValueError as exc:
+        raise _err(source, f"{path}.vessel_type", str(exc)) from None
+
+
+def _wave_fields(v: dict[str, Any], ship: Particulars | None, source: str
+                 ) -> tuple[dict[str, float], float]:
+    path = "environment.waves"
+    h3 = float(v["height"]) if v.get("height") is not None else float(v["hs"]) / HS_PER_H3
+    if v.get("length") is not None:
+        wave_length = float(v["length"])
+    else:
+        wave_length = GRAVITY * float(v["period"]) ** 2 / (2.0 * math.pi)
+    hull = {k: _need(v, k, ship, attr, path, source, unit) for k, attr, unit in (
+        ("hull_length", "length", "m"), ("beam", "beam", "m"), ("draft", "draft", "m"),
+        ("block_coefficient", "block_coefficient", "-"))}
+    fields = lvov_wave_params(
+        length=hull["hull_length"], beam=hull["beam"], draft=hull["draft"],
+        block_coefficient=hull["block_coefficient"], wave_height=h3, wave_length=wave_length,
+        wave_direction=math.radians(float(v["direction_deg"])))
+    if v.get("a1") is not None:
+        fields["wave_a1"] = float(v["a1"])
+    return fields, h3
+
+
+def _check_sea(v: dict[str, Any], h3: float, checked: set[tuple[float, str]], source: str,
+               where: str) -> None:
+    """The irregular sea's spectrum exists and is defined for the height (Table 2: 1-10 m)."""
+    from ..environment.sea_state import table2
+    from ..environment.spectra import SPECTRA, spectrum_from_wave_height
+
+    key = (h3, v["spectrum"])
+    if key in checked:
+        return
+    checked.add(key)
+    if v["spectrum"] not in SPECTRA:
+        raise _err(source, "environment.waves.spectrum",
+                   f"unknown spectrum {v['spectrum']!r}; valid: {', '.join(SPECTRA)}")
+    hs = table2()["h3"]
+    name = "height" if v.get("height") is not None else "hs"
+    if not hs[0] <= h3 <= hs[-1]:
+        shown = (f"{v['height']!r} [m]" if name == "height"
+                 else f"{v['hs']!r} [m] (h3% = {h3:.3g} m)")
+        raise _err(source, f"environment.waves.{name}",
+                   f"an irregular sea's h3% must be in [{hs[0]:g}, {hs[-1]:g}] [m] (the sea-state "
+                   f"Table 2 of Sushchenko & Lutsko (2010)), got {shown}{where}")
+    try:
+        spectrum_from_wave_height(v["spectrum"], h3)
+    except (ValueError, ParameterError) as exc:
+        raise _err(source, f"environment.waves.{name}", f"{exc}{where}") from None
+
+
+def environment_runs(scn: Scenario, model: Any, runs: list[dict[str, Any]], source: str
+                     ) -> EnvironmentRuns | None:
+    """The environment of a scenario's runs, or None without wind and waves.
+
+    Parameters
+    ----------
+    scn : Scenario
+        The validated scenario.
+    model : VesselModel
+        Its vessel model (the loads need its ``force_x``, ``force_y``, ``moment_z`` channels).
+    runs : list of dict
+        Per-run overrides ``{"environment.wind.speed": 10.0, ...}`` (may be empty dicts).
+    source : str
+        Scenario name for messages.
+
+    Returns
+    -------
+    EnvironmentRuns or None
+
+    Raises
+    ------
+    ScenarioError
+        Naming the key, its unit and the value.
+    """
+    from ..simulation.environment_stage import check_environment
+
+    env_sec = scn.environment
+    if env_sec.wind is None and env_sec.waves is None:
+        return None
+    wind_name = waves_name = None
+    if env_sec.wind is not None:
+        try:
+            wind_name = get_wind_loads(env_sec.wind.model).name
+        except ValueError as exc:
+            raise _err(source, "environment.wind.model", str(exc)) from None
+    if env_sec.waves is not None:
+        try:
+            waves_name = get_wave_loads(env_sec.waves.model).name
+        except ValueError as exc:
+            raise _err(source, "environment.waves.model", str(exc)) from None
+    env = environment(wind=wind_name, waves=waves_name)
+    try:
+        check_environment(env, model)
+    except ParameterError as exc:
+        raise _err(source, "environment.wind" if env_sec.wind is not None
+                   else "environment.waves", str(exc)) from None
+    ship = _ship(scn)
+    wind_base = env_sec.wind.model_dump(exclude_none=True) if env_sec.wind else {}
+    waves_base = env_sec.waves.model_dump(exclude_none=True) if env_sec.waves else {}
+    rows, signals = [], []
+    checked: set[tuple[float, str]] = set()
+    for i, over in enumerate(runs):
+        where = f" (run {i}: {over})" if over else ""
+        fields: dict[str, Any] = {}
+        sig: dict[str, Any] = {}
+        if env_sec.wind is not None:
+            w = _section(over, "environment.wind.", wind_base)
+            fields.update(_wind_fields(w, wind_name or "", ship, source))
+            if w.get("gust") is not None:
+                sig["wind_gust"] = w["gust"]
+        if env_sec.waves is not None:
+            v = _section(over, "environment.waves.", waves_base)
+            if v.get("irregular"):  # (errors before the hull's validity warnings)
+                h3 = float(v["height"]) if v.get("height") is not None else \
+                    float(v["hs"]) / HS_PER_H3
+                _check_sea(v, h3, checked, source, where)
+                sig["wave_load_fluctuation"] = WaveLoadFluctuation(
+                    h3=h3, spectrum=v["spectrum"], seed=int(v.get("seed", 0)))
+            fields.update(_wave_fields(v, ship, source)[0])
+        try:
+            rows.append(env.params_type(**fields).to_array())
+        except ParameterError as exc:
+            raise _err(source, "environment", f"{exc}{where}") from None
+        signals.append(sig)
+    return EnvironmentRuns(env, np.array(rows), signals)

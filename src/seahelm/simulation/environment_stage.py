@@ -1,0 +1,200 @@
+"""The environment's stage of the compiled closed loop: loads from the live state, by name.
+
+:func:`environment_stage` writes, for one :class:`~seahelm.environment.loads.Environment` and
+one vessel model, the compiled function the kernel calls before the model's right-hand side at
+every stage (and at every recorded or measured step, for its outputs)::
+
+    environment(t, ym, d, ep, dm)
+
+``ym`` holds the model's outputs (``heading``, ``surge_speed``, ``sway_speed`` are read: the
+velocity through the water) followed by the environment's outputs (written here), ``d`` the
+run's disturbance inputs (the model's channels, then the environment's signals ``wind_gust``,
+``wave_load_fluctuation``), ``ep`` the environment's parameter record, and ``dm`` receives
+the model's disturbance channels: what was given plus the loads on ``force_x``, ``force_y``
+[N] and ``moment_z`` [N·m]. The velocity over ground for the relative wind adds the current of
+the model's ``current_north``/``current_east`` channels, if it has them.
+
+Wind loads are those **of the true wind**: the loads of the relative wind minus those of the
+still air the ship moves through (its own air drag, which a calm-water model identified from
+trials contains, and which is small beside the hull's). So zero wind leaves a calm-water run
+exactly as it is, and a wind of speed W adds what W adds. The recorded ``apparent_wind_speed``
+and ``apparent_wind_angle`` are the full relative wind.
+
+The indices are resolved here, once, by name; a model without the channels or outputs the
+environment needs is a :class:`~seahelm.errors.ParameterError` naming what is missing.
+:func:`no_environment` is the stage of a loop without one (the kernel skips the call).
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+from typing import Any
+
+from numba import njit
+
+from ..errors import ParameterError
+
+__all__ = ["no_environment", "environment_stage", "LOAD_CHANNELS", "MOTION_OUTPUTS"]
+
+#: The model disturbance channels the environment's loads go to, with their units.
+LOAD_CHANNELS: dict[str, str] = {"force_x": "N", "force_y": "N", "moment_z": "N·m"}
+#: The model outputs the environment reads (velocity through the water, heading).
+MOTION_OUTPUTS: dict[str, str] = {"heading": "rad", "surge_speed": "m/s", "sway_speed": "m/s"}
+
+
+@njit(cache=True)
+def no_environment(t, ym, d, ep, dm):  # pragma: no cover - compiled
+    """The stage of a loop without an environment (never called: ``HAS_ENV`` is False)."""
+    return
+
+
+def _module_name(func: Any) -> tuple[str, str]:
+    py = func.py_func
+    return py.__module__, py.__name__
+
+
+def check_environment(environment: Any, model: Any) -> None:
+    """Raise a :class:`ParameterError` if ``model`` lacks what ``environment`` needs.
+
+    Parameters
+    ----------
+    environment : Environment
+    model : VesselModel
+    """
+    where = f"environment ({environment.name}) on model '{model.name}'"
+    for name, unit in MOTION_OUTPUTS.items():
+        if name not in model.output_labels:
+            raise ParameterError(
+                f"{where}: the model does not output '{name}' [{unit}], which the loads need "
+                f"(outputs: {', '.join(model.output_labels)})")
+    for name, unit in LOAD_CHANNELS.items():
+        if name not in model.disturbance_labels:
+            raise ParameterError(
+                f"{where}: the model has no disturbance channel '{name}' [{unit}] for the "
+                f"loads (channels: {', '.join(model.disturbance_labels) or 'none'})")
+        got = model.disturbance_units[model.disturbance_labels.index(name)]
+        if got != unit:
+            raise ParameterError(f"{where}: channel '{name}' is in [{got}], the loads in [{unit}]")
+    clash = set(environment.signal_labels) & set(model.disturbance_labels)
+    clash |= set(environment.output_labels) & set(model.output_labels)
+    if clash:
+        raise ParameterError(f"{where}: signal names used by both: {', '.join(sorted(clash))}")
+
+
+@functools.lru_cache(maxsize=None)
+def environment_stage(environment: Any, model: Any) -> Any:
+    """The compiled stage of ``environment`` acting on ``model`` (module docstring).
+
+    Parameters
+    ----------
+    environment : Environment
+    model : VesselModel
+
+    Returns
+    -------
+    numba dispatcher
+        ``environment(t, ym, d, ep, dm)``.
+
+    Raises
+    ------
+    ParameterError
+        If the model lacks an output or a channel the loads need.
+    """
+    from .generated import code_fingerprint, import_generated
+
+    check_environment(environment, model)
+    out, dist = model.output_labels, model.disturbance_labels
+    ndm, nym = len(dist), len(out)
+    sig = {name: ndm + j for j, name in enumerate(environment.signal_labels)}
+    eout = {name: nym + j for j, name in enumerate(environment.output_labels)}
+    imports, body = [], []
+
+    def current(axis: str) -> str:
+        name = f"current_{axis}"
+        return f" + d[{dist.index(name)}]" if name in dist else ""
+
+    body += [
+        f"    for j in range({ndm}):",
+        "        dm[j] = d[j]",
+        f"    psi = ym[{out.index('heading')}]",
+        f"    us = ym[{out.index('surge_speed')}]",
+        f"    vs = ym[{out.index('sway_speed')}]",
+        "    c = math.cos(psi)",
+        "    s = math.sin(psi)",
+        "    wn = us * c - vs * s  # velocity through the water, north and east",
+        "    we = us * s + vs * c",
+        "    fx = 0.0",
+        "    fy = 0.0",
+        "    mz = 0.0",
+    ]
+    funcs = []
+    if environment.wind is not None:
+        mod, name = _module_name(environment.wind.loads)
+        imports.append(f"from {mod} import {name} as wind_loads")
+        funcs.append(environment.wind.loads)
+        body += [
+            "    # relative wind: the air's velocity minus the ship's over ground (water + current)",
+            f"    w = ep.wind_speed + d[{sig['wind_gust']}]",
+            f"    an = -w * math.cos(ep.wind_direction) - (wn{current('north')})",
+            f"    ae = -w * math.sin(ep.wind_direction) - (we{current('east')})",
+            "    speed = math.sqrt(an * an + ae * ae)",
+            "    angle = math.atan2(-ae, -an) - psi  # the bearing it comes from, off the bow",
+            "    angle = (angle + math.pi) % (2.0 * math.pi) - math.pi",
+            "    if w != 0.0:",
+            "        x, y, n = wind_loads(ep, speed, angle)",
+            "        # minus the still air the ship moves through: the loads of the true wind",
+            f"        sn = -(wn{current('north')})",
+            f"        se = -(we{current('east')})",
+            "        still = math.sqrt(sn * sn + se * se)",
+            "        a0 = math.atan2(-se, -sn) - psi",
+            "        a0 = (a0 + math.pi) % (2.0 * math.pi) - math.pi",
+            "        x0, y0, n0 = wind_loads(ep, still, a0)",
+            "        x -= x0",
+            "        y -= y0",
+            "        n -= n0",
+            "    else:  # (exactly zero: no round-off of two equal evaluations)",
+            "        x = 0.0",
+            "        y = 0.0",
+            "        n = 0.0",
+            f"    ym[{eout['apparent_wind_speed']}] = speed",
+            f"    ym[{eout['apparent_wind_angle']}] = angle",
+            f"    ym[{eout['wind_force_x']}] = x",
+            f"    ym[{eout['wind_force_y']}] = y",
+            f"    ym[{eout['wind_moment_z']}] = n",
+            "    fx += x",
+            "    fy += y",
+            "    mz += n",
+        ]
+    if environment.waves is not None:
+        mod, name = _module_name(environment.waves.loads)
+        imports.append(f"from {mod} import {name} as wave_loads")
+        funcs.append(environment.waves.loads)
+        body += [
+            "    # the waves come from wave_direction and run the other way; the ship's speed",
+            "    # along their travel is its velocity through the water projected on it",
+            "    q = ep.wave_direction - psi",
+            "    along = -(wn * math.cos(ep.wave_direction) + we * math.sin(ep.wave_direction))",
+            f"    x, y, n = wave_loads(ep, q, along, 1.0 + d[{sig['wave_load_fluctuation']}])",
+            f"    ym[{eout['wave_force_x']}] = x",
+            f"    ym[{eout['wave_force_y']}] = y",
+            f"    ym[{eout['wave_moment_z']}] = n",
+            "    fx += x",
+            "    fy += y",
+            "    mz += n",
+        ]
+    body += [
+        f"    dm[{dist.index('force_x')}] += fx",
+        f"    dm[{dist.index('force_y')}] += fy",
+        f"    dm[{dist.index('moment_z')}] += mz",
+    ]
+    source = (
+        f'"""Generated by seahelm.simulation.environment_stage: {environment.name} on '
+        f'{model.name}."""\n'
+        "import math\n\nfrom numba import njit\n\n" + "\n".join(imports) + "\n\n\n"
+        "@njit(cache=True)\n"
+        "def environment(t, ym, d, ep, dm):  # pragma: no cover - compiled\n"
+        + "\n".join(body) + "\n")
+    digest = hashlib.sha1(b"\0".join([source.encode()] + [
+        code_fingerprint(f.py_func) for f in funcs])).hexdigest()[:16]
+    return import_generated(f"seahelm_environment_{digest}", source).environment
