@@ -10,8 +10,9 @@ CONSTRAINTS ?=
 PIP_CONSTRAINT_ARGS := $(if $(CONSTRAINTS),-c $(CONSTRAINTS),)
 STAMP_RUN  := $(VENV)/.installed-run$(if $(CONSTRAINTS),-locked,)
 STAMP_TEST := $(VENV)/.installed-test$(if $(CONSTRAINTS),-locked,)
+STAMP_DOCS := $(VENV)/.installed-docs$(if $(CONSTRAINTS),-locked,)
 
-.PHONY: demo test bench lock versions clean
+.PHONY: demo test docs bench lock versions clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -25,6 +26,10 @@ $(STAMP_TEST): $(BIN)/python pyproject.toml $(CONSTRAINTS)
 	$(BIN)/python -m pip install --quiet $(PIP_CONSTRAINT_ARGS) -e ".[test]"
 	touch $@ $(STAMP_RUN)
 
+$(STAMP_DOCS): $(BIN)/python pyproject.toml $(CONSTRAINTS)
+	$(BIN)/python -m pip install --quiet $(PIP_CONSTRAINT_ARGS) -e ".[docs]"
+	touch $@ $(STAMP_RUN)
+
 demo: $(STAMP_RUN)
 	MPLBACKEND=Agg $(BIN)/seahelm demo --out seahelm-out
 
@@ -35,6 +40,11 @@ test: $(STAMP_TEST)
 	@echo "tested with: $$($(BIN)/python -m seahelm.versions)"
 	@echo "kernel cache: $${SEAHELM_CACHE_DIR:-default (~/.cache/seahelm/kernels)}"
 	MPLBACKEND=Agg $(BIN)/python -m pytest -n 2 --dist worksteal -q
+
+# The documentation site (Sphinx): examples run, scenario reference generated from the schema,
+# warnings are errors. Open docs/_build/html/index.html.
+docs: $(STAMP_DOCS)
+	MPLBACKEND=Agg $(BIN)/python -m sphinx -W --keep-going -q -b html docs docs/_build/html
 
 bench: $(STAMP_RUN)
 	for f in benchmarks/bench_*.py; do $(BIN)/python $$f || exit 1; done
@@ -51,4 +61,5 @@ lock:
 	rm -rf .venv-lock
 
 clean:
-	rm -rf $(VENV) seahelm-out .pytest_cache build *.egg-info src/*.egg-info
+	rm -rf $(VENV) seahelm-out .pytest_cache build *.egg-info src/*.egg-info \
+	  docs/_build docs/generated docs/auto_examples docs/scenario-reference.rst

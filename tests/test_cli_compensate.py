@@ -9,6 +9,7 @@ import pytest
 from typer.testing import CliRunner
 
 from seahelm.cli.compensate import app
+from seahelm.errors import ValidityRangeWarning
 
 runner = CliRunner()
 
@@ -88,4 +89,42 @@ def test_bad_input_exit_2_and_table_output():
     assert "wave_height" in r.output
     r = runner.invoke(app, BASE)
     assert r.exit_code == 0, r.output
-    assert "delta_k_deg" in r.output and "Cm" in r.output
+    assert "total δ_k" in r.output and "Cm" in r.output
+
+
+def test_model_delta_k_beside_the_papers_and_which_one_the_autopilot_uses():
+    from seahelm.control import compensation as cp
+
+    args = ["--ship", "mariner", "--wind-speed", "15", "--wind-angle", "60", "--wave-height",
+            "6.75", "--wave-angle", "60", "--json"]
+    r = runner.invoke(app, args)
+    assert r.exit_code == 0, r.output
+    data = json.loads(r.stdout)
+    case = cp.WindWaveCase("wind + waves", wind_speed=15.0, wind_angle=math.radians(60.0),
+                           wave_height=6.75, wave_angle=math.radians(60.0))
+    for method, key in (("model", "delta_k_model"), ("paper", "delta_k")):
+        with pytest.warns(ValidityRangeWarning, match="block coefficient"):  # the Mariner's
+            info = cp.wind_wave_scenario(case, t_final=60.0, delta_k_method=method)["info"]
+        assert data[f"{key}_wind_deg"] == pytest.approx(math.degrees(info["delta_k_wind"]))
+        assert data[f"{key}_wave_deg"] == pytest.approx(math.degrees(info["delta_k_wave"]))
+        assert data[f"{key}_deg"] == pytest.approx(math.degrees(info["delta_k"]))
+    # the README's table: the model needs about -9.6 deg, the printed formulas give +13.3
+    assert data["delta_k_model_deg"] == pytest.approx(-9.57, abs=0.01)
+    assert data["delta_k_deg"] == pytest.approx(13.31, abs=0.01)
+    assert data["autopilot_delta_k"] == "model"
+    human = " ".join(runner.invoke(app, args[:-1]).stdout.split())
+    assert "ship model (the autopilot's)" in human and "│ total δ_k │ 13.31 │ -9.566 │" in human
+    assert "uses the ship model's δ_k" in human
+    # an explicit particular overrides the named ship's
+    longer = json.loads(runner.invoke(app, args + ["--length", "170"]).stdout)
+    assert longer["delta_k_deg"] != data["delta_k_deg"]
+
+
+def test_without_a_ship_model_the_model_delta_k_is_not_given():
+    data = json.loads(runner.invoke(app, BASE + ["--json"]).stdout)
+    assert data["delta_k_model_deg"] is None and data["autopilot_delta_k"] == "model"
+    human = " ".join(runner.invoke(app, BASE).stdout.split())
+    assert "needs --ship" in human and "The model's δ_k needs a ship model" in human
+    r = runner.invoke(app, BASE[2:])
+    assert r.exit_code == 2
+    assert "`--length` [m] is needed (or --ship mariner" in r.stderr

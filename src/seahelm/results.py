@@ -46,7 +46,8 @@ if TYPE_CHECKING:  # pragma: no cover
 
     from .simulation.batch import BatchLayout
 
-__all__ = ["SimResult", "atomic_write", "load_result", "flatten_runs", "batch_dims"]
+__all__ = ["SimResult", "atomic_write", "open_result_file", "load_result", "flatten_runs",
+           "batch_dims"]
 
 _STATUS_TEXT = {0: "ok", 1: "diverged: non-finite state", 2: "diverged: state out of bounds"}
 
@@ -340,6 +341,48 @@ def _shape_runs(ds: "xr.Dataset", layout: "BatchLayout") -> "xr.Dataset":
     return xr.Dataset(data, coords=coords, attrs=ds.attrs)
 
 
+def open_result_file(path: str | os.PathLike[str]) -> "xr.Dataset":
+    """Open a NetCDF file written by seahelm (loaded into memory), whatever it holds.
+
+    Checks that the path is a regular NetCDF-4/HDF5 file that xarray can read; what it holds
+    (a simulation result, a manoeuvre's metrics) is for the caller to check --
+    :func:`load_result` requires a simulation result.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        NetCDF file.
+
+    Returns
+    -------
+    xarray.Dataset
+
+    Raises
+    ------
+    FileNotFoundError
+        If ``path`` does not exist.
+    ParameterError
+        If ``path`` is not a regular file, not NetCDF-4/HDF5, or cannot be read.
+    """
+    import xarray as xr
+
+    path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(f"result file not found: {path}")
+    if not path.is_file():
+        raise ParameterError(f"{path} is not a regular file (a seahelm result file is needed)")
+    with path.open("rb") as fh:
+        magic = fh.read(8)
+    if magic != b"\x89HDF\r\n\x1a\n":
+        raise ParameterError(f"{path}: not a NetCDF-4/HDF5 file written by seahelm (a results "
+                             "file of `seahelm run --out` or SimResult.to_netcdf)")
+    try:
+        with xr.open_dataset(path, engine="h5netcdf") as ds:
+            return ds.load()
+    except (OSError, ValueError) as exc:
+        raise ParameterError(f"{path}: cannot be read as NetCDF ({exc})") from None
+
+
 def load_result(path: str | os.PathLike[str]) -> "xr.Dataset":
     """Open a result file written by :meth:`SimResult.to_netcdf` (loaded into memory).
 
@@ -359,24 +402,11 @@ def load_result(path: str | os.PathLike[str]) -> "xr.Dataset":
     ------
     FileNotFoundError
         If ``path`` does not exist.
+    ParameterError
+        If ``path`` is not a NetCDF file seahelm wrote, or holds no simulation result.
     """
-    import xarray as xr
-
     path = Path(path)
-    if not path.exists():
-        raise FileNotFoundError(f"result file not found: {path}")
-    if not path.is_file():
-        raise ParameterError(f"{path} is not a regular file (a seahelm result file is needed)")
-    with path.open("rb") as fh:
-        magic = fh.read(8)
-    if magic != b"\x89HDF\r\n\x1a\n":
-        raise ParameterError(f"{path}: not a NetCDF-4/HDF5 file written by seahelm (a results "
-                             "file of `seahelm run --out` or SimResult.to_netcdf)")
-    try:
-        with xr.open_dataset(path, engine="h5netcdf") as ds:
-            ds = ds.load()
-    except (OSError, ValueError) as exc:
-        raise ParameterError(f"{path}: cannot be read as NetCDF ({exc})") from None
+    ds = open_result_file(path)
     if "status" not in ds or "time" not in ds.dims:
         kind = ds.attrs.get("maneuver")
         what = f"a '{kind}' manoeuvre file" if kind else "not a seahelm simulation result"

@@ -6,13 +6,20 @@ typer app :data:`app` (its callback is the command: ``app --length 160 ...``).
 
 Angles are given in degrees on the command line and are the bearings the wind and the waves
 come *from*, relative to the bow (0 = head, 90 = from starboard, −90 = from port).
+
+Two compensating angles are printed side by side: the paper's (eq. (12)/(14) as printed) and
+the ship model's (the steady rudder angle that balances the same loads on the Voitkunsky
+model, :func:`seahelm.control.compensation.model_compensation`), which is the one the
+compensated autopilot uses. The model's needs a ship model: ``--ship mariner`` (the Mariner's
+particulars and its Voitkunsky model; any particular given explicitly overrides its value).
 """
 
 from __future__ import annotations
 
+import enum
 import math
 import warnings
-from typing import Annotated, Optional
+from typing import Annotated, Any, Optional
 
 import typer
 
@@ -37,22 +44,41 @@ app = typer.Typer(
 )
 
 
+class Ship(str, enum.Enum):
+    """Ships with particulars and a Voitkunsky model (for the model-based δ_k)."""
+
+    mariner = "mariner"
+
+
+#: What the compensated autopilot takes as δ_k, and why (printed with the angles).
+AUTOPILOT_NOTE = (
+    "The compensated autopilot ('compensated-pid' in seahelm.control.compensation."
+    "wind_wave_scenario) uses the ship model's δ_k (delta_k_method='model'). The printed eq. "
+    "(12)/(14) add the hull's drift moment to the wind's with the same sign, which gives the "
+    "wrong sign on the Mariner; they are kept to reproduce the paper (delta_k_method='paper').")
+
+
 @app.callback(invoke_without_command=True)
 @handle_errors
 def compensate(
     *,
-    length: Annotated[float, typer.Option(
-        "--length", metavar="L", help="Waterline length L \\[m].")],
-    beam: Annotated[float, typer.Option("--beam", metavar="B", help="Beam B \\[m].")],
-    draft: Annotated[float, typer.Option("--draft", metavar="T", help="Mean draft T \\[m].")],
+    ship_name: Annotated[Optional[Ship], typer.Option(
+        "--ship", help="A ship with particulars and a ship model: its values are the defaults "
+        "of the options below, and the model gives the model-based δ_k.")] = None,
+    length: Annotated[Optional[float], typer.Option(
+        "--length", metavar="L", help="Waterline length L \\[m].")] = None,
+    beam: Annotated[Optional[float], typer.Option(
+        "--beam", metavar="B", help="Beam B \\[m].")] = None,
+    draft: Annotated[Optional[float], typer.Option(
+        "--draft", metavar="T", help="Mean draft T \\[m].")] = None,
     draft_fore: Annotated[Optional[float], typer.Option(
         "--draft-fore", metavar="TF", help="Draft forward \\[m] (eq. (13); default T).")] = None,
     draft_aft: Annotated[Optional[float], typer.Option(
         "--draft-aft", metavar="TA", help="Draft aft \\[m] (eq. (13); default T).")] = None,
-    block_coefficient: Annotated[float, typer.Option(
-        "--block-coefficient", metavar="CB", help="Block coefficient δ \\[-].")],
-    speed: Annotated[float, typer.Option(
-        "--speed", metavar="V", help="Ship speed through the water \\[m/s].")],
+    block_coefficient: Annotated[Optional[float], typer.Option(
+        "--block-coefficient", metavar="CB", help="Block coefficient δ \\[-].")] = None,
+    speed: Annotated[Optional[float], typer.Option(
+        "--speed", metavar="V", help="Ship speed through the water \\[m/s].")] = None,
     wind_speed: Annotated[float, typer.Option(
         "--wind-speed", metavar="W", help="True wind speed \\[m/s] (also sets λ by eq. (2)).")],
     wind_angle: Annotated[float, typer.Option(
@@ -69,13 +95,15 @@ def compensate(
     rudder_area: Annotated[Optional[float], typer.Option(
         "--rudder-area", metavar="SP",
         help="Rudder area S_p \\[m²] (default 1.7 % of L·T).")] = None,
-    rudder_aspect_ratio: Annotated[float, typer.Option(
-        "--rudder-aspect-ratio", metavar="LP", help="Rudder aspect ratio λ_p \\[-].")] = 1.6,
+    rudder_aspect_ratio: Annotated[Optional[float], typer.Option(
+        "--rudder-aspect-ratio", metavar="LP",
+        help="Rudder aspect ratio λ_p \\[-] (default 1.6).")] = None,
     windage_area: Annotated[Optional[float], typer.Option(
         "--windage-area", metavar="SA",
         help="Lateral windage area \\[m²] (default 0.8·L·T).")] = None,
-    sail_centre: Annotated[float, typer.Option(
-        "--sail-centre", metavar="M", help="Centre of windage forward of midships \\[m].")] = 0.0,
+    sail_centre: Annotated[Optional[float], typer.Option(
+        "--sail-centre", metavar="M",
+        help="Centre of windage forward of midships \\[m] (default 0).")] = None,
     a1: Annotated[float, typer.Option(
         "--a1", metavar="A1", help="Speed coefficient A1 ∈ \\[1, 8.5] of eq. (8)-(10).")] = 1.0,
     strict: Annotated[bool, typer.Option(
@@ -88,7 +116,7 @@ def compensate(
     Forces are signed as in the paper (module docs of seahelm.environment.wave_forces):
     X_w positive forward, Y_w and M_w positive for waves from starboard.
     """
-    from ..control.compensation import ShipParticulars, compensation_summary
+    from ..control.compensation import compensation_summary, model_compensation
 
     # every number finite, named as the user wrote it (the library names its own parameters)
     for option, value, unit in (
@@ -109,16 +137,11 @@ def compensate(
         if value is not None and not (math.isfinite(value) and value > 0):
             # (0 would mean "not given" below: the empirical default)
             raise ParameterError(f"`{option}` must be > 0 [{unit}], got {value!r}")
-    ship = ShipParticulars(
-        length=length, beam=beam, draft=draft,
-        draft_fore=draft_fore if draft_fore is not None else 0.0,
-        draft_aft=draft_aft if draft_aft is not None else 0.0,
-        block_coefficient=block_coefficient, speed=speed,
-        rudder_area=rudder_area if rudder_area is not None else 0.0,
-        rudder_aspect_ratio=rudder_aspect_ratio,
-        windage_area=windage_area if windage_area is not None else 0.0,
-        sail_centre=sail_centre,
-    )
+    given = {"length": length, "beam": beam, "draft": draft, "draft_fore": draft_fore,
+             "draft_aft": draft_aft, "block_coefficient": block_coefficient, "speed": speed,
+             "rudder_area": rudder_area, "rudder_aspect_ratio": rudder_aspect_ratio,
+             "windage_area": windage_area, "sail_centre": sail_centre}
+    ship, vessel_params = _ship(ship_name, {k: v for k, v in given.items() if v is not None})
     if (draft_fore is None) != (draft_aft is None):
         raise ParameterError("give both `--draft-fore` and `--draft-aft` [m], or neither")
     with warnings.catch_warnings(record=True) as caught:
@@ -129,6 +152,8 @@ def compensate(
             wave_length=wave_length, a1=a1, strict=True if strict else None,
         )
     notes = [str(w.message) for w in caught]
+    model = (model_compensation(s, ship=ship, vessel_params=vessel_params)
+             if vessel_params is not None else None)
     for name, value in (("delta_k_wind", s.delta_k_wind), ("delta_k_wave", s.delta_k_wave),
                         ("delta_k", s.delta_k)):
         if abs(value) > RUDDER_LIMIT:  # no steering gear gives it: the formulas are past use
@@ -152,6 +177,11 @@ def compensate(
         "delta_k_wind_deg": math.degrees(s.delta_k_wind),
         "delta_k_wave_deg": math.degrees(s.delta_k_wave),
         "delta_k_deg": math.degrees(s.delta_k),
+        "delta_k_model_wind_deg": None if model is None else math.degrees(model.delta_k_wind),
+        "delta_k_model_wave_deg": None if model is None else math.degrees(model.delta_k_wave),
+        "delta_k_model_deg": None if model is None else math.degrees(model.delta_k),
+        "autopilot_delta_k": "model",
+        "autopilot_note": AUTOPILOT_NOTE,
         "warnings": notes,
     }
     if json_out:
@@ -167,8 +197,39 @@ def compensate(
     table.add_column("value", justify="right")
     table.add_column("unit")
     for key, value in out.items():
-        if key == "warnings":
+        if key in ("warnings", "autopilot_delta_k", "autopilot_note") or key.startswith(
+                "delta_k"):
             continue
         unit = "deg" if key.endswith("_deg") else units.get(key, "-")
         table.add_row(key, f"{value:.6g}", unit)
     console.print(table)
+    dk = Table(title="compensating rudder angle δ_k \\[deg]", title_justify="left")
+    dk.add_column("channel")
+    dk.add_column("paper, eq. (12)/(14)", justify="right")
+    dk.add_column("ship model (the autopilot's)", justify="right")
+    for label, key in (("wind (block 5)", "wind_"), ("waves (block 6)", "wave_"),
+                       ("total δ_k", "")):
+        paper, modelled = out[f"delta_k_{key}deg"], out[f"delta_k_model_{key}deg"]
+        dk.add_row(label, f"{paper:.4g}",
+                   "needs --ship" if modelled is None else f"{modelled:.4g}")
+    console.print(dk)
+    console.print(AUTOPILOT_NOTE if model is not None else
+                  f"{AUTOPILOT_NOTE} The model's δ_k needs a ship model: --ship mariner.",
+                  highlight=False)
+
+
+def _ship(name: "Ship | None", given: dict[str, float]) -> tuple[Any, Any]:
+    """The ship particulars (a named ship's, overridden by the options given, or the options
+    alone) and the ship model's parameters (None without ``--ship``)."""
+    from ..control.compensation import MARINER_PARTICULARS, ShipParticulars
+
+    if name is not None:  # (one ship so far: the Mariner, whose Voitkunsky set is the default)
+        from ..vessels.voitkunsky import MARINER_VOITKUNSKY
+
+        return MARINER_PARTICULARS.replace(**given), MARINER_VOITKUNSKY
+    for option, unit in (("length", "m"), ("beam", "m"), ("draft", "m"),
+                         ("block_coefficient", "-"), ("speed", "m/s")):
+        if option not in given:
+            raise ParameterError(f"`--{option.replace('_', '-')}` [{unit}] is needed (or "
+                                 "--ship mariner for the Mariner's particulars)")
+    return ShipParticulars(**given), None

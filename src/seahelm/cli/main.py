@@ -27,6 +27,15 @@ from ._common import (
     output_file,
     print_json,
 )
+from ._runs import (
+    batch_columns,
+    diverged_runs,
+    diverged_table,
+    monte_carlo_statistics,
+    statistics_tables,
+    status_counts,
+    summary_table,
+)
 
 app = typer.Typer(
     cls=OneLineErrors,
@@ -56,7 +65,7 @@ for _name, _module, _help in _GROUPS:
     app.add_typer(_sub.app, name=_name, help=_help)
 
 # Single commands of their own modules: (name, module, function).
-_COMMANDS = (("imo", "seahelm.cli.imo", "imo"),)
+_COMMANDS = (("imo", "seahelm.cli.imo", "imo"), ("inspect", "seahelm.cli.inspect", "inspect"))
 for _name, _module, _attr in _COMMANDS:
     try:
         _sub = importlib.import_module(_module)
@@ -65,6 +74,9 @@ for _name, _module, _attr in _COMMANDS:
             raise
         continue
     app.command(_name)(getattr(_sub, _attr))
+    if _name == "inspect":
+        app.command("summary", help="Same as `seahelm inspect`: what a result file holds.")(
+            _sub.inspect)
 
 
 def _version(value: bool) -> None:
@@ -113,50 +125,6 @@ class _ProgressBar:
             self.bar.stop()
 
 
-def _fmt(v: Any) -> str:
-    return f"{v:.5g}" if isinstance(v, float) else str(v)
-
-
-def _summary_table(summary: list[dict[str, Any]], title: str,
-                   batch_keys: tuple[str, ...] = ()) -> Table:
-    """One run: a metric/value table; a batch: one row per run (first 20), with the run's
-    grid coordinates (``batch_keys``) as columns."""
-    if len(summary) == 1:
-        table = Table(title=title)
-        table.add_column("metric")
-        table.add_column("value", justify="right")
-        for key, value in summary[0].items():
-            if key != "run":
-                table.add_row(key, _fmt(value))
-        return table
-    table = Table(title=title)
-    keys = ["run", *batch_keys, "status", "final_heading_rad", "final_yaw_rate",
-            "settling_time_s"]
-    for key in keys:
-        name = key if key in batch_keys else key.replace("_", " ")
-        table.add_column(name, justify="left" if key == "status" else "right")
-    for row in summary[:20]:
-        table.add_row(*(_fmt(row.get(k, "")) for k in keys))
-    if len(summary) > 20:
-        table.caption = f"first 20 of {len(summary)} runs"
-    return table
-
-
-def _batch_columns(result: Any, summary: list[dict[str, Any]]) -> tuple[str, ...]:
-    """Put each run's batch coordinates and drawn values after ``run`` in its summary row;
-    returns the grid dimensions (those that vary a key), the table's extra columns."""
-    layout = result.layout
-    if layout is None or layout.is_flat:
-        return ()
-    values = {v.name: v.values for v in layout.values}
-    for i, row in enumerate(summary):
-        extra = {**layout.point(i), **{k: float(v[i]) for k, v in values.items()}}
-        rest = {k: v for k, v in row.items() if k != "run"}
-        row.clear()
-        row.update({"run": i, **extra, **rest})
-    return tuple(a.name for a in layout.axes if a.key)
-
-
 def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bool,
              label: str) -> dict[str, Any] | None:
     from ..analysis.maneuvers import summarize
@@ -180,7 +148,8 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
     finally:
         bar.close()
     summary = summarize(result)
-    batch_keys = _batch_columns(result, summary)
+    batch_keys = batch_columns(result, summary)
+    stats = monte_carlo_statistics(result, summary)
     files: dict[str, str] = {}
     if out is not None:
         out.mkdir(parents=True, exist_ok=True)
@@ -198,18 +167,23 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
         "scenario": batch.metadata.get("title") or batch.metadata.get("scenario_source", ""),
         "n_runs": result.n_runs,
         "dims": dict(zip(result.dims, result.shape)),
-        "n_ok": int(result.ok.sum()),
-        "n_diverged": int((~result.ok).sum()),
+        **{k: v for k, v in status_counts(result.status).items() if k != "n_runs"},
         "wall_time_s": result.metadata["wall_time_s"],
         "files": files,
     }
     if result.n_runs == 1:
         payload.update({k: v for k, v in summary[0].items() if k != "run"})
     payload["runs"] = summary
+    if stats:
+        payload["statistics"] = stats
     if as_json:
         print_json(payload)
     else:
-        console.print(_summary_table(summary, label, batch_keys))
+        console.print(summary_table(summary, label, batch_keys))
+        for table in statistics_tables(stats):
+            console.print(table)
+        if payload["n_diverged"]:
+            console.print(diverged_table(diverged_runs(result)))
         console.print(
             f"{result.n_runs} run(s), {payload['n_ok']} ok, {payload['n_diverged']} diverged, "
             f"{result.metadata['wall_time_s']:.3g} s"

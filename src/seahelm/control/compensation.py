@@ -108,6 +108,8 @@ __all__ = [
     "MARINER_PARTICULARS",
     "CompensationSummary",
     "compensation_summary",
+    "ModelCompensation",
+    "model_compensation",
     "WindWaveCase",
     "wind_wave_scenario",
     "heading_metrics",
@@ -738,6 +740,71 @@ def _steady_rudder(
     return beta, delta
 
 
+class ModelCompensation(NamedTuple):
+    """The compensating rudder angle computed from the ship model (radians).
+
+    ``delta_k_wind`` balances the wind loads alone (channel 5 of Fig. 1), ``delta_k_wave`` is
+    the extra angle the wave loads need on top (channel 6), ``delta_k`` their sum (the steady
+    rudder angle under both) and ``drift`` the steady drift angle β under both.
+    """
+
+    delta_k_wind: float
+    delta_k_wave: float
+    delta_k: float
+    drift: float
+
+
+def model_compensation(
+    summary: CompensationSummary,
+    *,
+    ship: ShipParticulars | None = None,
+    vessel_params: Any = None,
+) -> ModelCompensation:
+    """δ_k from the ship model: the steady rudder angle that balances the loads of ``summary``.
+
+    The wind force and moment and the wave sway force and yaw moment that
+    :func:`compensation_summary` computes (Lvov 2014, eq. (9)-(12); the paper's signs, turned
+    into seahelm's body axes) are converted to the Voitkunsky model's normalised disturbances
+    (yaw moment / (I_z − N_ṙ), sway force / ((m − Y_v̇) V)) and its steady state with ω = 0 is
+    solved for β and δ. This is the δ_k that :func:`wind_wave_scenario` feeds the autopilot by
+    default (``delta_k_method="model"``); eq. (12)/(14) as printed have the wrong sign on the
+    Mariner (module docstring).
+
+    Parameters
+    ----------
+    summary : CompensationSummary
+        The loads, from :func:`compensation_summary` for ``ship``.
+    ship : ShipParticulars, optional
+        Its masses convert the loads (default: the Mariner particulars); ``sway_mass`` and
+        ``yaw_inertia`` must be > 0.
+    vessel_params : VoitkunskyParams, optional
+        The ship model (default: the Mariner set, ``MARINER_VOITKUNSKY``).
+
+    Returns
+    -------
+    ModelCompensation
+
+    Raises
+    ------
+    ParameterError
+        If the ship's masses are not given or the model is not course-stable.
+    """
+    from ..vessels.voitkunsky import MARINER_VOITKUNSKY
+
+    ship = MARINER_PARTICULARS if ship is None else ship
+    vp = MARINER_VOITKUNSKY if vessel_params is None else vessel_params
+    if ship.sway_mass <= 0 or ship.yaw_inertia <= 0:
+        raise ParameterError("`ship.sway_mass` and `ship.yaw_inertia` must be > 0 [kg, kg·m²]")
+    m_scale, f_scale = ship.yaw_inertia, ship.sway_mass * ship.speed
+    # seahelm body axes: the negatives of the paper-signed loads
+    md_wind, fd_wind = -summary.wind_moment / m_scale, -summary.wind_force / f_scale
+    md_wave, fd_wave = -summary.yaw / m_scale, -summary.sway / f_scale
+    _, dk_w = _steady_rudder(vp, np.asarray(md_wind), np.asarray(fd_wind))
+    beta_t, dk_t = _steady_rudder(vp, np.asarray(md_wind + md_wave),
+                                  np.asarray(fd_wind + fd_wave))
+    return ModelCompensation(float(dk_w), float(dk_t - dk_w), float(dk_t), float(beta_t))
+
+
 @dataclasses.dataclass(frozen=True)
 class WindWaveCase:
     """One weather case of the course-keeping scenario (SI units, radians).
@@ -867,10 +934,10 @@ def wind_wave_scenario(
     dist[:, 0] = on * (md_wind + md_wave * wave_mod)
     dist[:, 1] = on * (fd_wind + fd_wave * wave_mod)
 
-    beta_w, dk_w = _steady_rudder(vp, np.asarray(md_wind), np.asarray(fd_wind))
-    beta_t, dk_t = _steady_rudder(vp, np.asarray(md_wind + md_wave), np.asarray(fd_wind + fd_wave))
+    model = model_compensation(summ, ship=ship, vessel_params=vp)
+    dk_t = model.delta_k
     if delta_k_method == "model":
-        ch_wind, ch_wave, drift = float(dk_w), float(dk_t - dk_w), float(beta_t)
+        ch_wind, ch_wave, drift = model.delta_k_wind, model.delta_k_wave, model.drift
     else:
         ch_wind, ch_wave = summ.delta_k_wind, summ.delta_k_wave
         drift = summ.wind_drift + summ.wave_drift
@@ -882,7 +949,7 @@ def wind_wave_scenario(
     x0 = np.array([0.0, 0.0, heading, 0.0, 0.0])
     info = dict(summary=summ, heading_to_steer=heading, drift=drift,
                 delta_k_wind=ch_wind, delta_k_wave=ch_wave, delta_k=ch_wind + ch_wave,
-                steady_rudder=float(dk_t), steady_drift=float(beta_t), onset=case.onset)
+                steady_rudder=dk_t, steady_drift=model.drift, onset=case.onset)
     return dict(model=VOITKUNSKY, params=vp, x0=x0, t_final=t_final, dt=dt, reference=ref,
                 disturbance=dist, actuator=RUDDER_SERVO, actuator_params=ServoParams(),
                 controller=COMPENSATED_PID, controller_dt=1.0, info=info)

@@ -20,9 +20,15 @@ def _axes3d(ax: Any = None, fig: Any = None) -> Any:
 
 
 def _label(ax: Any, title: str) -> None:
-    ax.set_xlabel("ς1 = ⟨p c1⟩")
-    ax.set_ylabel("ς2 = ⟨p c2⟩")
-    ax.set_zlabel("ς3 = ⟨p² c2⟩")
+    from matplotlib.ticker import MaxNLocator
+
+    ax.set_xlabel("ς1 = ⟨p c1⟩", labelpad=8)
+    ax.set_ylabel("ς2 = ⟨p c2⟩", labelpad=8)
+    ax.set_zlabel("ς3 = ⟨p² c2⟩", labelpad=8)
+    # the default 0.25 steps crowd the foreshortened horizontal axes into overlapping labels
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        axis.set_major_locator(MaxNLocator(nbins=5, steps=[1, 2, 2.5, 5, 10]))
+    ax.tick_params(labelsize=8)
     ax.set_title(title)
 
 

@@ -11,10 +11,12 @@ from typing import Any
 
 import numpy as np
 
-from ..environment.sea_state import TABLE2, wave_height_range
+from ..environment.sea_state import TABLE1, TABLE2, wave_height_range
 
 __all__ = [
     "grade_wave_height",
+    "grade_label",
+    "spectrum_unit",
     "plot_spectrum",
     "plot_sea_state_spectra",
     "plot_realisations",
@@ -42,6 +44,64 @@ def grade_wave_height(grade: int | str) -> float:
     hs = TABLE2["corrected"][:, 0]
     mid = 0.5 * (lo + hi) if np.isfinite(hi) else lo
     return float(np.clip(mid, hs[0], hs[-1]))
+
+
+_ROMAN = ("I", "II", "III", "IV", "V", "VI", "VII", "VIII", "IX")
+
+#: Unit of each wave quantity whose spectrum is plotted (the spectrum's is unit²·s/rad).
+_QUANTITY_UNITS = {"ordinate": "m", "ordinate_rate": "m/s", "slope": "rad",
+                   "slope_rate": "rad/s", "slope_acceleration": "rad/s²"}
+
+
+def grade_label(grade: int | str, wave_height: float) -> str:
+    """A figure label for a sea-state grade drawn at ``wave_height``, in Table 1's words.
+
+    The grade is written as in Table 1 (Roman numerals); a height outside the grade's Table 1
+    range says so (grade IX, open above 11 m, is drawn at Table 2's last row, 10 m:
+    ``"sea state IX (h3% ≥ 11 m), drawn at 10 m"``).
+
+    Parameters
+    ----------
+    grade : int or str
+        Sea-state grade, e.g. 6 or "VI".
+    wave_height : float
+        h3% [m] at which the grade is drawn.
+
+    Returns
+    -------
+    str
+        E.g. ``"sea state VI (h3% = 4.75 m)"``.
+    """
+    lo, hi = wave_height_range(grade)
+    roman = _ROMAN[next(g for g, bounds in TABLE1.items() if bounds == (lo, hi)) - 1]
+    if lo <= wave_height < hi:
+        return f"sea state {roman} (h3% = {wave_height:g} m)"
+    return f"sea state {roman} (h3% ≥ {lo:g} m), drawn at {wave_height:g} m"
+
+
+def spectrum_unit(spectrum: Any) -> str:
+    """The unit of a spectral density S₁(ω): the quantity's unit squared per rad/s.
+
+    The ordinate's spectrum is in m²·s/rad, the slope's (eq. (5)) in rad²·s/rad; a derivative
+    spectrum is recognised by its ``label`` (``ordinate_rate``, ``slope``, ...).
+
+    Parameters
+    ----------
+    spectrum : WaveSpectrum
+        A wave spectrum (of the ordinate unless it is a labelled derivative spectrum).
+
+    Returns
+    -------
+    str
+        E.g. ``"m²·s/rad"``.
+    """
+    from ..environment.spectra import DerivativeSpectrum
+
+    quantity = spectrum.label if isinstance(spectrum, DerivativeSpectrum) else "ordinate"
+    unit = _QUANTITY_UNITS.get(quantity)
+    if unit is None:
+        return "unit²·s/rad"  # a derivative whose quantity is not named here
+    return f"({unit})²·s/rad" if "/" in unit else f"{unit}²·s/rad"
 
 
 def _axes(ax: Any) -> Any:
@@ -83,7 +143,7 @@ def plot_spectrum(
     w = np.linspace(0.0, 4.0, 801) if omega is None else np.asarray(omega, float)
     ax.plot(w, spectrum.one_sided(w), label=label or getattr(spectrum, "name", None), **line_kw)
     ax.set_xlabel("ω [rad/s]")
-    ax.set_ylabel("S₁(ω) [unit²·s/rad] (one-sided)")
+    ax.set_ylabel(f"S₁(ω) [{spectrum_unit(spectrum)}] (one-sided)")
     return ax
 
 
@@ -129,11 +189,11 @@ def plot_sea_state_spectra(
         h3 = grade_wave_height(g)
         spec = transforms[quantity](spectrum_from_wave_height(model, h3, table=table))
         plot_spectrum(
-            spec, ax=ax, omega=omega, label=f"sea state {g} (h3% = {h3:g} m)",
+            spec, ax=ax, omega=omega, label=grade_label(g, h3),
             linestyle=_LINESTYLES[i % len(_LINESTYLES)], color="k",
         )
     ax.set_title(f"{model}: {quantity}")
-    ax.legend()
+    ax.legend(loc="upper right", fontsize="small")
     return ax
 
 

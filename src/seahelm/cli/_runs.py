@@ -1,0 +1,185 @@
+"""How the runs of a simulation batch are shown: the per-run summary table with each run's
+batch coordinates and drawn values, the status of diverged runs, and the aggregate statistics
+of a Monte-Carlo batch. Shared by ``seahelm run``/``demo`` (a result in memory) and
+``seahelm inspect`` (a result read back from its file), so both show a batch the same way.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+from rich import box
+from rich.markup import escape
+from rich.table import Table
+
+from ..analysis.statistics import DEFAULT_QUANTILES, metric_statistics, quantile_name
+
+#: Rows shown in the per-run table of a batch (the JSON output has every run).
+MAX_ROWS = 20
+#: Grid points whose Monte-Carlo statistics are shown as tables (the JSON output has all).
+MAX_STAT_TABLES = 4
+
+
+def fmt(v: Any) -> str:
+    """A number in 5 significant digits; anything else as text."""
+    return f"{v:.5g}" if isinstance(v, float) else str(v)
+
+
+def batch_columns(result: Any, summary: list[dict[str, Any]]) -> tuple[str, ...]:
+    """Put each run's batch coordinates and drawn values after ``run`` in its summary row.
+
+    Returns the table's extra columns: the batch dimensions (a scenario's grid keys, a
+    manoeuvre's side or rudder angle; not the ``sample`` index of a Monte-Carlo batch) and the
+    drawn values of a Monte-Carlo batch (named by their key path).
+    """
+    layout = result.layout
+    if layout is None or layout.is_flat:
+        return ()
+    values = {v.name: v.values for v in layout.values}
+    for i, row in enumerate(summary):
+        extra = {**layout.point(i), **{k: float(v[i]) for k, v in values.items()}}
+        rest = {k: v for k, v in row.items() if k != "run"}
+        row.clear()
+        row.update({"run": i, **extra, **rest})
+    return tuple(a.name for a in layout.axes if a.name != "sample") + tuple(values)
+
+
+def summary_table(summary: list[dict[str, Any]], title: str,
+                  batch_keys: tuple[str, ...] = ()) -> Table:
+    """One run: a metric/value table; a batch: one row per run (first :data:`MAX_ROWS`), with
+    the run's grid coordinates and drawn values (``batch_keys``) as columns."""
+    if len(summary) == 1:
+        table = Table(title=title)
+        table.add_column("metric")
+        table.add_column("value", justify="right")
+        for key, value in summary[0].items():
+            if key != "run":
+                table.add_row(key, fmt(value))
+        return table
+    table = Table(title=title)
+    keys = ["run", *batch_keys, "status", "final_heading_rad", "final_yaw_rate",
+            "settling_time_s"]
+    for key in keys:
+        name = key if key in batch_keys else key.replace("_", " ")
+        table.add_column(escape(name), justify="left" if key == "status" else "right",
+                         overflow="fold", no_wrap=key == "status")
+    for row in summary[:MAX_ROWS]:
+        table.add_row(*(escape(_short_status(row[k]) if k == "status" else fmt(row.get(k, "")))
+                        for k in keys))
+    if len(summary) > MAX_ROWS:
+        table.caption = f"first {MAX_ROWS} of {len(summary)} runs"
+    return table
+
+
+def _short_status(message: str) -> str:
+    """'diverged: state out of bounds at t = 11.5 s' -> 'diverged at 11.5 s' (the diverged
+    runs' table gives the reason)."""
+    if " at t = " in message:
+        return f"diverged at {message.split(' at t = ')[1]}"
+    return message
+
+
+def status_counts(status: np.ndarray) -> dict[str, int]:
+    """``n_runs``, ``n_ok`` and ``n_diverged`` of a batch's status codes (0 = ok)."""
+    status = np.asarray(status).reshape(-1)
+    return {"n_runs": int(status.size), "n_ok": int((status == 0).sum()),
+            "n_diverged": int((status != 0).sum())}
+
+
+def diverged_runs(result: Any) -> list[dict[str, Any]]:
+    """The runs that diverged: flat run index, batch coordinates, time [s] and reason."""
+    out = []
+    layout = result.layout
+    for i in np.flatnonzero(np.asarray(result.status) != 0):
+        i = int(i)
+        row: dict[str, Any] = {"run": i}
+        if layout is not None and not layout.is_flat:
+            row.update(layout.point(i))
+        row["time_s"] = float(result.failure_time[i])
+        row["reason"] = result.messages()[i].split(" at t = ")[0].removeprefix("diverged: ")
+        out.append(row)
+    return out
+
+
+def diverged_table(rows: list[dict[str, Any]]) -> Table:
+    """The diverged runs (first :data:`MAX_ROWS`): run, coordinates, time, reason."""
+    keys = list(rows[0]) if rows else ["run", "time_s", "reason"]
+    table = Table(title="diverged runs", title_justify="left")
+    for key in keys:
+        table.add_column(escape("time [s]") if key == "time_s" else escape(key),
+                         justify="left" if key == "reason" else "right")
+    for row in rows[:MAX_ROWS]:
+        table.add_row(*(escape(fmt(row[k])) for k in keys))
+    if len(rows) > MAX_ROWS:
+        table.caption = f"first {MAX_ROWS} of {len(rows)} diverged runs"
+    return table
+
+
+def monte_carlo_statistics(result: Any, summary: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Aggregate statistics of the metrics over the samples of a Monte-Carlo batch.
+
+    One entry per grid point (a Monte-Carlo batch without a grid has one): the point's
+    coordinates, its run and ok counts, the statistics of every numeric metric over its ok
+    runs, and those of the drawn values over all its runs. Empty for a batch without a
+    ``sample`` dimension.
+    """
+    layout = result.layout
+    if layout is None or "sample" not in layout.dims:
+        return []
+    drawn = [v.name for v in layout.values]
+    skip = {"run", *layout.dims, *drawn}
+    metrics = [k for k, v in summary[0].items()
+               if k not in skip and isinstance(v, (int, float)) and not isinstance(v, bool)]
+    others = [d for d in layout.dims if d != "sample"]
+    groups: dict[tuple[Any, ...], list[int]] = {}
+    for i in range(len(summary)):
+        point = layout.point(i)
+        groups.setdefault(tuple(point[d] for d in others), []).append(i)
+    ok = np.asarray(result.status).reshape(-1) == 0
+    out = []
+    for key, runs in groups.items():
+        good = [i for i in runs if ok[i]]
+        entry: dict[str, Any] = {"point": dict(zip(others, key)), "n_runs": len(runs),
+                                 "n_ok": len(good)}
+        entry["metrics"] = metric_statistics(
+            {m: [float(summary[i][m]) for i in good] for m in metrics})
+        entry["drawn"] = metric_statistics(
+            {d: [float(summary[i][d]) for i in runs] for d in drawn})
+        out.append(entry)
+    return out
+
+
+def statistics_tables(stats: list[dict[str, Any]]) -> list[Table]:
+    """Tables of :func:`monte_carlo_statistics` (the first :data:`MAX_STAT_TABLES` points)."""
+    tables = []
+    qnames = [quantile_name(q) for q in DEFAULT_QUANTILES]
+    for entry in stats[:MAX_STAT_TABLES]:
+        where = ", ".join(f"{k}={fmt(v)}" for k, v in entry["point"].items())
+        title = (f"Monte-Carlo statistics{' at ' + where if where else ''}: drawn values "
+                 f"over all {entry['n_runs']} samples, metrics over the {entry['n_ok']} ok")
+        table = Table(title=escape(title), title_justify="left", box=box.SIMPLE_HEAD,
+                      pad_edge=False)
+        table.add_column("metric", no_wrap=True)
+        for col in ("n", "mean", "std", *qnames):
+            table.add_column(col, justify="right", overflow="fold")
+        for section in ("drawn", "metrics"):
+            if section == "metrics" and not entry["n_ok"]:
+                table.add_row("(no ok run: no metrics)")
+                continue
+            names = list(entry[section])
+            for name, s in entry[section].items():
+                table.add_row(escape(name), str(s["n"]),
+                              *(_num(s[k]) for k in ("mean", "std", *qnames)),
+                              end_section=section == "drawn" and name == names[-1])
+        table.caption = "min, max and more digits: --json"
+        tables.append(table)
+    if len(stats) > MAX_STAT_TABLES:
+        tables[-1].caption = (f"first {MAX_STAT_TABLES} of {len(stats)} grid points; all, "
+                              "with min, max and more digits: --json")
+    return tables
+
+
+def _num(v: float) -> str:
+    return "" if isinstance(v, float) and math.isnan(v) else f"{v:.4g}"

@@ -1,0 +1,190 @@
+"""``seahelm inspect RESULT.nc`` (alias ``seahelm summary``): what a result file holds.
+
+A simulation result (``result.nc`` of ``seahelm run``/``demo``, a manoeuvre's ``*-runs.nc``):
+
+The run metadata (scenario, components, integrator, timing, seed, versions), the batch (its
+dimensions with the key path each varies, Monte-Carlo draws), the status of every run (the
+diverged ones with the time and the reason) and the summary table that ``seahelm run`` printed
+when the file was written -- computed again from the file (:func:`seahelm.result_io.read_result`),
+with the Monte-Carlo statistics. ``--json`` prints all of it as one JSON object, with every run.
+
+A manoeuvre's metrics file (``*-metrics.nc`` of ``seahelm maneuver``/``imo``): its metadata
+and the metrics of every run. Anything else is refused (exit 2).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+from rich.markup import escape
+from rich.table import Table
+
+from ..errors import ParameterError
+from ._common import JsonFlag, console, handle_errors, input_file, print_json
+from ._runs import (
+    batch_columns,
+    diverged_runs,
+    diverged_table,
+    monte_carlo_statistics,
+    statistics_tables,
+    status_counts,
+    summary_table,
+)
+
+#: Metadata shown first, in this order, with units; other attributes follow.
+_METADATA = (("title", ""), ("scenario_source", ""), ("model", ""), ("actuator", ""),
+             ("controller", ""), ("integrator", ""), ("dt", "s"), ("controller_dt", "s"),
+             ("t_final", "s"), ("record_every", "steps"), ("seed", ""),
+             ("seahelm_version", ""), ("created", ""), ("wall_time_s", "s"),
+             ("compile_time_s", "s"))
+#: Runs of a manoeuvre's metrics file shown as columns (the JSON output has all).
+MAX_METRIC_RUNS = 6
+#: Attributes not shown in the human output (the JSON output has them).
+_LONG = ("scenario_text", "state_labels", "param_types")
+
+
+@handle_errors
+def inspect(
+    result: Annotated[Path, typer.Argument(help="Result file written by seahelm (NetCDF).")],
+    json_out: JsonFlag = False,
+) -> None:
+    """Show a result file: run metadata, batch, per-run status and the summary table."""
+    from ..results import open_result_file
+
+    input_file("RESULT", result)
+    ds = open_result_file(result)
+    if "status" in ds and "time" in ds.dims and "state_labels" in ds.attrs:
+        _show_runs(result, ds, json_out)
+    elif ds.attrs.get("maneuver") and "complete" in ds:
+        _show_metrics(result, ds, json_out)
+    else:
+        raise ParameterError(
+            f"{result}: not a seahelm result file: neither a simulation result (result.nc of "
+            "`seahelm run --out`, a manoeuvre's *-runs.nc) nor a manoeuvre's *-metrics.nc")
+
+
+def _show_runs(result: Path, ds: Any, json_out: bool) -> None:
+    from ..analysis.maneuvers import summarize
+    from ..result_io import result_from_dataset
+
+    res = result_from_dataset(ds)
+    summary = summarize(res)
+    batch_keys = batch_columns(res, summary)
+    stats = monte_carlo_statistics(res, summary)
+    diverged = diverged_runs(res)
+    metadata = {k: _plain(v) for k, v in ds.attrs.items()}
+    batch = _batch(res)
+    payload: dict[str, Any] = {
+        "file": str(result),
+        "metadata": metadata,
+        "dims": dict(zip(res.dims, res.shape)),
+        "time_samples": int(res.time.size),
+        "batch": batch,
+        **status_counts(res.status),
+        "diverged": diverged,
+        "runs": summary,
+    }
+    if stats:
+        payload["statistics"] = stats
+    if json_out:
+        print_json(payload)
+        return
+
+    meta = _metadata_table(result, metadata)
+    dims = " × ".join(f"{d}={n}" for d, n in payload["dims"].items())
+    meta.add_row("runs", f"{payload['n_runs']} ({dims}), {payload['time_samples']} time samples "
+                         f"over {res.time[-1]:.6g} s")
+    for axis in batch["axes"]:
+        meta.add_row(f"dimension {axis['name']}", escape(
+            f"{axis['key']} = {', '.join(f'{v:g}' for v in axis['values'])}"
+            + (f" [{axis['units']}]" if axis["units"] else "")))
+    for draw in batch["drawn"]:
+        what = draw.get("distribution", "")
+        meta.add_row("drawn", escape(f"{draw['name']}" + (f" ({what})" if what else "")
+                                     + (f" [{draw['units']}]" if draw["units"] else "")))
+    if "scenario_text" in metadata:
+        meta.add_row("scenario_text", f"{len(str(metadata['scenario_text']).splitlines())} "
+                                      "lines (--json shows it)")
+    console.print(meta)
+    console.print(f"status: {payload['n_runs']} run(s), {payload['n_ok']} ok, "
+                  f"{payload['n_diverged']} diverged", highlight=False)
+    if diverged:
+        console.print(diverged_table(diverged))
+    console.print(summary_table(summary, str(metadata.get("title") or result.name), batch_keys))
+    for table in statistics_tables(stats):
+        console.print(table)
+
+
+def _show_metrics(result: Path, ds: Any, json_out: bool) -> None:
+    """A manoeuvre's metrics file: metadata, then one column of metrics per run."""
+    from ..analysis.maneuvers import metrics_rows
+
+    metadata = {k: _plain(v) for k, v in ds.attrs.items()}
+    rows = metrics_rows(ds)
+    if json_out:
+        print_json({"file": str(result), "metadata": metadata, "n_runs": len(rows),
+                    "runs": rows})
+        return
+    console.print(_metadata_table(result, metadata))
+    shown = rows[:MAX_METRIC_RUNS]
+    table = Table(title=escape(f"{metadata['maneuver']} metrics, {len(rows)} run(s)"),
+                  title_justify="left")
+    table.add_column("metric", no_wrap=True)
+    for i in range(len(shown)):
+        table.add_column(f"run {i}", justify="right", overflow="fold")
+    for key in rows[0] if rows else ():
+        units = ds[key].attrs.get("units", "") if key in ds.variables else ""
+        label = f"{key} [{units}]" if units else key
+        table.add_row(escape(label), *(escape(_cell(row.get(key, ""))) for row in shown))
+    if len(rows) > MAX_METRIC_RUNS:
+        table.caption = f"first {MAX_METRIC_RUNS} of {len(rows)} runs (--json has all)"
+    console.print(table)
+
+
+def _metadata_table(result: Path, metadata: dict[str, Any]) -> Table:
+    meta = Table(title=escape(f"{result}"), title_justify="left", show_header=False)
+    meta.add_column("key")
+    meta.add_column("value", overflow="fold")
+    shown = set()
+    for key, unit in _METADATA:
+        if key == "seed" and metadata.get(key) == -1:
+            meta.add_row(key, "none (nothing random in the runs)")
+            shown.add(key)
+        elif key in metadata:
+            meta.add_row(key, escape(_text(metadata[key], unit)))
+            shown.add(key)
+    for key, value in metadata.items():
+        if key not in shown and key not in _LONG:
+            meta.add_row(key, escape(_text(value, "")))
+    return meta
+
+
+def _cell(value: Any) -> str:
+    return f"{value:.5g}" if isinstance(value, float) else str(value)
+
+
+def _batch(res: Any) -> dict[str, list[dict[str, Any]]]:
+    """The grid axes (name, key path, values, units) and drawn values (name, units, attrs)."""
+    layout = res.layout
+    if layout is None:
+        return {"axes": [], "drawn": []}
+    axes = [{"name": a.name, "key": a.key, "values": a.values.tolist(), "units": a.units}
+            for a in layout.axes if a.key]
+    drawn = [{"name": v.name, "units": v.units, **{k: str(x) for k, x in v.attrs.items()
+                                                   if k != "key"}}
+             for v in layout.values]
+    return {"axes": axes, "drawn": drawn}
+
+
+def _plain(value: Any) -> Any:
+    return value.item() if hasattr(value, "item") else value
+
+
+def _text(value: Any, unit: str) -> str:
+    if isinstance(value, float):
+        text = f"{value:.6g}"
+    else:
+        text = str(value)
+    return f"{text} {unit}" if unit and text else text
