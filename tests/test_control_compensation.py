@@ -200,7 +200,7 @@ def test_scenario_validation():
         cp.wind_wave_scenario(case, delta_k_method="x")
 
 
-def test_example_table_script_and_generated_scenarios(tmp_path):
+def test_example_table_script_runs_the_hand_written_scenarios():
     import importlib.util
     from pathlib import Path
 
@@ -208,12 +208,16 @@ def test_example_table_script_and_generated_scenarios(tmp_path):
     spec = importlib.util.spec_from_file_location("compensation_table", examples / "compensation_table.py")
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
-    rows = mod.run_case(mod.CASES[2], t_final=300.0)
+    rows = mod.run_case("windwaves", t_final=300.0)
     assert [r["controller"] for r in rows] == ["PID", "PID + δ_k", "PID + δ_k (12)/(14)"]
-    assert rows[1]["mean"] < rows[0]["mean"]
-    # the committed scenario files are exactly what the script writes
-    for path in mod.write_toml(tmp_path):
-        assert path.read_text() == (examples / path.name).read_text(), path.name
+    assert rows[1]["mean"] < 0.2 * rows[0]["mean"]  # the model's δ_k helps
+    assert rows[2]["mean"] > rows[0]["mean"]  # the printed formula's sign hurts
+    # the scenario files describe the weather; the engine computes the loads (none written in)
+    for key in mod.CASES:
+        for kind in ("pid", "compensated"):
+            text = (examples / f"compensation_{key}_{kind}.toml").read_text()
+            assert "[environment.disturbance]" not in text and "Generated" not in text
+            assert ("\n[environment.wind]\n" in text) == (key != "calm")
 
 
 def _steady_rudder_by_root_finding(p, yaw_moment, sway_force):

@@ -36,7 +36,7 @@ def test_integral_action_removes_steady_error_under_constant_disturbance(mariner
     gains = PIDHeadingParams(kp=3.0, ki=0.015, kd=60.0)
     res = simulate(NOMOTO2, mariner2, np.zeros(5), t_final=2400.0, dt=0.1,
                    controller=PID_HEADING, controller_params=gains, controller_dt=0.5,
-                   reference=[math.radians(20.0)], disturbance=[math.radians(2.0), 0.0])
+                   reference=[math.radians(20.0)], disturbance=[math.radians(2.0), 0.0, 0.0, 0.0])
     psi = np.degrees(res["heading"][0])
     assert abs(psi[-1] - 20.0) < 0.01
     # the steady rudder angle cancels the disturbance (2° equivalent rudder): δ = −δ_d
@@ -45,7 +45,7 @@ def test_integral_action_removes_steady_error_under_constant_disturbance(mariner
     pd = simulate(NOMOTO2, mariner2, np.zeros(5), t_final=2400.0, dt=0.1,
                   controller=PID_HEADING, controller_params=gains.replace(ki=0.0),
                   controller_dt=0.5, reference=[math.radians(20.0)],
-                  disturbance=[math.radians(2.0), 0.0])
+                  disturbance=[math.radians(2.0), 0.0, 0.0, 0.0])
     assert np.degrees(pd["heading"][0, -1]) == pytest.approx(20.0 + 2.0 / 3.0, abs=1e-3)
 
 

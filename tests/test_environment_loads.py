@@ -191,7 +191,7 @@ def test_registries_and_the_component():
 
 
 def test_a_model_without_force_channels_is_refused_by_name():
-    with pytest.raises(ParameterError, match="no disturbance channel 'force_x' \\[N\\]"):
+    with pytest.raises(ParameterError, match="no disturbance channel 'force_y' \\[N\\]"):
         simulate(NOMOTO2, NOMOTO2.params_type(gain=0.1, t1=50, t2=5, t3=10, speed=5.0),
                  np.zeros(5), t_final=10.0, dt=0.1, environment=ENV,
                  environment_params=env_params())
@@ -211,3 +211,22 @@ def test_conditions_validate_and_give_the_current_channels():
         Conditions(current_speed=-1.0)
     with pytest.raises(ParameterError, match="`params` of the environment are required"):
         Conditions(ENV)
+
+
+@pytest.mark.parametrize("catalog_name", ["kvlcc2-l7", "mariner-nonlinear", "mariner-voitkunsky"])
+def test_a_models_motion_equals_its_outputs(catalog_name):
+    """``motion`` (what the environment reads) is the model's own surge, sway and heading."""
+    from seahelm.registry import get_model
+    from seahelm.vessels import catalog
+
+    entry = catalog.get(catalog_name)
+    model = get_model(entry.model)
+    rng = np.random.default_rng(3)
+    x = rng.normal(size=(20, model.n_states)) * 0.3
+    u = np.zeros((20, model.n_inputs))
+    y = model.outputs(0.0, x, u, entry.params)
+    rec = as_records(entry.params.to_array()[None, :], type(entry.params))[0]
+    for xi, yi in zip(x, y):
+        got = model.motion(xi, rec)
+        want = [yi[model.output_index(n)] for n in ("surge_speed", "sway_speed", "heading")]
+        np.testing.assert_allclose(got, want, rtol=1e-14, atol=1e-15)

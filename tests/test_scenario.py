@@ -12,6 +12,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from seahelm.errors import ValidityRangeWarning
+
 from seahelm.scenario import ManeuverJob, ScenarioError, default_scenario_text, load_scenario, parse_scenario, run_scenario
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -154,7 +156,13 @@ def test_time_varying_reference_per_run():
 
 @pytest.mark.parametrize("path", sorted(EXAMPLES.glob("*.toml")), ids=lambda p: p.name)
 def test_every_example_scenario_runs(path):
-    job = load_scenario(path)
+    if "\n[environment.waves]" in path.read_text():
+        # Lvov's wave-force coefficients warn outside their fitted hulls (the Mariner's
+        # C_b = 0.542 < 0.6, the KVLCC2's 0.81 > 0.8): the example says so, and runs
+        with pytest.warns(ValidityRangeWarning, match="block coefficient"):
+            job = load_scenario(path)
+    else:
+        job = load_scenario(path)
     result = run_scenario(job)
     if isinstance(job, ManeuverJob):  # every event of every run reached
         assert bool(result.metrics["complete"].all()), result.metrics["message"].values

@@ -151,7 +151,7 @@ def test_a_model_without_load_channels_or_particulars_is_named():
     text = ('[vessel]\ncatalog = "mariner-nomoto2"\n[environment.wind]\nspeed = 5.0\n'
             'direction_deg = 10\n[simulation]\nt_final = 10.0\ndt = 0.1\n')
     with pytest.raises(ScenarioError, match=r"\[environment.wind\] .*no disturbance channel "
-                                            r"'force_x' \[N\]"):
+                                            r"'force_y' \[N\]"):
         parse(text)
     # a vessel given by model, not catalog: no particulars to take the windage from
     mariner = ('[vessel]\nmodel = "mariner"\n[environment.wind]\nspeed = 5.0\n'

@@ -136,7 +136,7 @@ def test_constant_disturbance_steady_state_matches_static():
     alpha = math.radians(5)
     res = simulate(VOITKUNSKY, P, VOITKUNSKY.initial_state(), t_final=1500.0, dt=0.5,
                    controller=OPEN_LOOP, actuator=DIRECT, reference=[alpha],
-                   disturbance=[md, fd, 0.0], record_every=100)
+                   disturbance=[md, fd, 0.0, 0.0, 0.0], record_every=100)
     turn = stable_steady_turn(P, alpha, yaw_moment=md, sway_force=fd)
     assert res["yaw_rate"][0, -1] == pytest.approx(turn.yaw_rate, rel=1e-6)
     assert res["drift_angle"][0, -1] == pytest.approx(turn.drift_angle, rel=1e-6)

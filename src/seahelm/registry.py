@@ -37,6 +37,7 @@ ACTUATORS: dict[str, str] = {
 
 CONTROLLERS: dict[str, str] = {
     "pid-heading": "seahelm.control.pid:PID_HEADING",
+    "pid-heading-rps": "seahelm.control.pid:PID_HEADING_RPS",
     "open-loop": "seahelm.control.open_loop:OPEN_LOOP",
     "compensated-pid": "seahelm.control.compensation:COMPENSATED_PID",
     "fsm-yaw-rate": "seahelm.control.final_state:FSM_YAW_RATE",

@@ -930,7 +930,7 @@ def wind_wave_scenario(
                               ["ordinate"])
         zeta = filt.sample(n_steps=n + 1, dt=dt, seed=seed, runs=1).values[0, :, 0]
         wave_mod = zeta**2 / float(filt.output_variance()[0])
-    dist = np.zeros((n + 1, 3))
+    dist = np.zeros((n + 1, VOITKUNSKY.n_disturbances))
     dist[:, 0] = on * (md_wind + md_wave * wave_mod)
     dist[:, 1] = on * (fd_wind + fd_wave * wave_mod)
 

@@ -30,7 +30,8 @@ from .._validate import check_positive
 from ..parameters import Params, param, signal_indices
 from .base import Controller, wrap_pi
 
-__all__ = ["PIDHeadingParams", "PID_HEADING", "pid_gains_from_nomoto"]
+__all__ = ["PIDHeadingParams", "PIDHeadingRpsParams", "PID_HEADING", "PID_HEADING_RPS",
+           "pid_gains_from_nomoto"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -88,6 +89,38 @@ PID_HEADING = Controller(
     command_labels=COMMANDS,
     init=pid_heading_init,
     step=pid_heading_step,
+    measurement_labels=MEASUREMENTS,
+)
+
+
+@dataclass(frozen=True, kw_only=True)
+class PIDHeadingRpsParams(PIDHeadingParams):
+    """Gains of the PID heading autopilot and the propeller rps it holds."""
+
+    propeller_rps: float = param(unit="1/s", symbol="n", low=0.0, low_inclusive=False,
+                                 doc="propeller revolutions held constant")
+
+
+_C_RPS = signal_indices(COMMANDS + ("propeller_rps",))
+
+
+@njit(cache=True)
+def pid_heading_rps_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
+    pid_heading_step(t, dt, z, y, ref, p, cs, cmd)
+    cmd[_C_RPS.propeller_rps] = p.propeller_rps
+
+
+PID_HEADING_RPS = Controller(
+    name="pid-heading-rps",
+    description="PID heading autopilot (as 'pid-heading') that also holds a constant propeller "
+    "rps, for models with rudder and propeller inputs (MMG)",
+    params_type=PIDHeadingRpsParams,
+    state_labels=STATES,
+    reference_labels=REFERENCES,
+    reference_units=("rad",),
+    command_labels=COMMANDS + ("propeller_rps",),
+    init=pid_heading_init,
+    step=pid_heading_rps_step,
     measurement_labels=MEASUREMENTS,
 )
 

@@ -164,13 +164,16 @@ class LvovWaveParams(WaveParams):
                            doc="gravitational acceleration")
 
 
+_TWO_PI = 2.0 * math.pi
+
+
 # ------------------------------------------------------------------------------------------
 # compiled loads (scalar, allocation-free: they run inside the closed loop)
 # ------------------------------------------------------------------------------------------
 @njit(cache=True)
 def lvov_wind_loads(p, speed, angle):  # pragma: no cover - compiled
     """Lvov (2014) eq. (12) wind loads in body axes: (0, −Y_a, −N_a)."""
-    q = (angle + math.pi) % (2.0 * math.pi) - math.pi
+    q = angle - _TWO_PI * math.floor((angle + math.pi) / _TWO_PI)  # to [-pi, pi)
     y_a = 0.37 * math.sin(q) * p.rho_air * p.windage_lateral_area * speed * speed
     arm = 0.25 + p.windage_centre / p.windage_length - abs(q) * (180.0 / math.pi) / 360.0
     return 0.0, -y_a, -arm * p.windage_length * y_a
@@ -189,7 +192,7 @@ def blendermann_wind_loads_compiled(p, speed, angle):  # pragma: no cover - comp
 def lvov_wave_loads(p, angle, speed_along, factor):  # pragma: no cover - compiled
     """Lvov (2014) eq. (8)-(10) mean wave loads in body axes: (X_w, −Y_w, −M_w), times
     ``factor`` (1 + the irregular-sea fluctuation)."""
-    q = (angle + math.pi) % (2.0 * math.pi) - math.pi
+    q = angle - _TWO_PI * math.floor((angle + math.pi) / _TWO_PI)  # to [-pi, pi)
     L = p.hull_length
     celerity = math.sqrt(p.gravity * p.wave_length / (2.0 * math.pi))
     half = 0.5 * p.wave_height
@@ -325,6 +328,10 @@ class Environment:
     output_labels, output_units : tuple of str
         What it reports after the model's outputs: the apparent wind and the wind loads, the
         wave loads (body axes).
+    hold_over_step : bool
+        Evaluate the loads once per integration step, at its start, and hold them over the
+        step's stages (cheaper; the loads then follow the state to first order within a step),
+        instead of at every stage (the default: the integrator's order is kept).
     """
 
     wind: LoadModel | None
@@ -334,11 +341,13 @@ class Environment:
     signal_units: tuple[str, ...]
     output_labels: tuple[str, ...]
     output_units: tuple[str, ...]
+    hold_over_step: bool = False
 
     @property
     def name(self) -> str:
         parts = ([f"wind={self.wind.name}"] if self.wind else []) + (
-            [f"waves={self.waves.name}"] if self.waves else [])
+            [f"waves={self.waves.name}"] if self.waves else []) + (
+            ["loads held over each step"] if self.hold_over_step else [])
         return ", ".join(parts)
 
     def params(self, **values: Any) -> Params:
@@ -358,7 +367,8 @@ class Environment:
 
 @functools.lru_cache(maxsize=None)
 def environment(wind: "LoadModel | str | None" = None,
-                waves: "LoadModel | str | None" = None) -> Environment:
+                waves: "LoadModel | str | None" = None, *,
+                hold_over_step: bool = False) -> Environment:
     """The environment component of a wind and/or a wave load model.
 
     Parameters
@@ -367,6 +377,9 @@ def environment(wind: "LoadModel | str | None" = None,
         A name in :data:`WIND_LOADS` or a model.
     waves : LoadModel or str, optional
         A name in :data:`WAVE_LOADS` or a model.
+    hold_over_step : bool, optional
+        Evaluate the loads once per step and hold them over its stages (default False: at
+        every stage). See :class:`Environment`.
 
     Returns
     -------
@@ -402,8 +415,10 @@ def environment(wind: "LoadModel | str | None" = None,
         units.append("-")
         outs += WAVE_OUTPUTS
         out_units += WAVE_OUTPUT_UNITS
+    if not isinstance(hold_over_step, bool):
+        raise ParameterError(f"`hold_over_step` must be True or False, got {hold_over_step!r}")
     return Environment(w, v, params_type, tuple(signals), tuple(units), tuple(outs),
-                       tuple(out_units))
+                       tuple(out_units), hold_over_step)
 
 
 # ------------------------------------------------------------------------------------------

@@ -49,7 +49,7 @@ from ..errors import ParameterError, SimulationDiverged
 from ..parameters import Params, as_records, stack_params
 from ..vessels.base import VesselModel
 from .composition import compose
-from .environment_stage import environment_stage, no_environment
+from .environment_stage import environment_stage, no_apply_loads, no_environment_loads
 from .generated import code_fingerprint, import_generated, kernel_cache_dir
 from .integrators import ButcherTableau, compiled_advance_source, get_integrator
 
@@ -135,15 +135,17 @@ def compile_closed_loop(
         _binding(actuator.output, "actuator_output"),
         _binding(controller.init, "controller_init"),
         _binding(controller.step, "controller_step"),
-        _binding(no_environment if environment is None
-                 else environment_stage(environment, model), "environment"),
     ]
+    loads, apply = ((no_environment_loads, no_apply_loads) if environment is None
+                    else environment_stage(environment, model))
+    parts += [_binding(loads, "environment_loads"), _binding(apply, "apply_loads")]
     n_env = 0 if environment is None else len(environment.output_labels)
     header = "".join(p[0] for p in parts) + (
         f"\nNX = {model.n_states}\nNA = {actuator.n_states}\nNU = {model.n_inputs}\n"
         f"NYM = {model.n_outputs + n_env}\nNYA = {len(wiring.actuator_outputs)}\n"
         f"NCA = {len(wiring.actuator_commands)}\nNM = {controller.n_measurements}\n"
         f"NDM = {model.n_disturbances}\nHAS_ENV = {environment is not None}\n"
+        f"HOLD_LOADS = {bool(getattr(environment, 'hold_over_step', False))}\n"
         "FASTMATH = {\"arcp\", \"contract\", \"afn\", \"reassoc\"}\n"
     )
     header += _route_source("route_actuator_commands", "cmd, ca", [
@@ -501,6 +503,15 @@ def simulate(
         env_outputs, env_output_units = environment.output_labels, environment.output_units
         ep, e_cls = _param_rows("environment_params", environment_params,
                                 environment.params_type)
+        mp_check, m_check_cls = _param_rows("params", params, model.params_type)
+        for name in model.load_params:
+            j = m_check_cls.value_names().index(name)
+            bad = ~(mp_check[:, j] > 0)
+            if bad.any():
+                raise ParameterError(
+                    f"`params`: model '{model.name}' needs `{name}` > 0 to take the "
+                    f"environment's loads, got {mp_check[bad, j][0]!r} (run "
+                    f"{int(np.argmax(bad))})")
     dist_labels = model.disturbance_labels + env_signals
     dist_units = model.disturbance_units + env_units
     out_labels = model.output_labels + env_outputs

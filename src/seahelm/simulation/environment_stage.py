@@ -4,14 +4,22 @@
 one vessel model, the compiled function the kernel calls before the model's right-hand side at
 every stage (and at every recorded or measured step, for its outputs)::
 
-    environment(t, ym, d, ep, dm)
+    environment_loads(t, x, u, p, ym, d, ep, lm)     the loads (X, Y, N) into lm
+    apply_loads(d, lm, dm)                           dm = d + the loads on the load channels
 
-``ym`` holds the model's outputs (``heading``, ``surge_speed``, ``sway_speed`` are read: the
-velocity through the water) followed by the environment's outputs (written here), ``d`` the
+(by default both at every stage of the integrator; an environment built with
+``hold_over_step=True`` evaluates the loads once per step, at its start, and applies them at
+every stage — cheaper, first-order in how the loads follow the state within a step).
+
+``x``, ``u``, ``p`` are the model's state, inputs and parameters; the heading and the velocity
+through the water come from the model's ``motion(x, p)`` if it declares one (cheap: a few
+states), else from its outputs ``heading``, ``surge_speed``, ``sway_speed`` (``output`` is then
+evaluated into ``ym``). ``ym`` holds the model's outputs followed by the environment's outputs
+(written here), ``d`` the
 run's disturbance inputs (the model's channels, then the environment's signals ``wind_gust``,
 ``wave_load_fluctuation``), ``ep`` the environment's parameter record, and ``dm`` receives
 the model's disturbance channels: what was given plus the loads on ``force_x``, ``force_y``
-[N] and ``moment_z`` [N·m]. The velocity over ground for the relative wind adds the current of
+[N] and ``moment_z`` [N·m] (a constant-speed model without ``force_x`` takes no surge load). The velocity over ground for the relative wind adds the current of
 the model's ``current_north``/``current_east`` channels, if it has them.
 
 Wind loads are those **of the true wind**: the loads of the relative wind minus those of the
@@ -35,7 +43,8 @@ from numba import njit
 
 from ..errors import ParameterError
 
-__all__ = ["no_environment", "environment_stage", "LOAD_CHANNELS", "MOTION_OUTPUTS"]
+__all__ = ["no_environment_loads", "no_apply_loads", "environment_stage", "check_environment",
+           "LOAD_CHANNELS", "MOTION_OUTPUTS"]
 
 #: The model disturbance channels the environment's loads go to, with their units.
 LOAD_CHANNELS: dict[str, str] = {"force_x": "N", "force_y": "N", "moment_z": "N·m"}
@@ -44,8 +53,14 @@ MOTION_OUTPUTS: dict[str, str] = {"heading": "rad", "surge_speed": "m/s", "sway_
 
 
 @njit(cache=True)
-def no_environment(t, ym, d, ep, dm):  # pragma: no cover - compiled
+def no_environment_loads(t, x, u, p, ym, d, ep, lm):  # pragma: no cover - compiled
     """The stage of a loop without an environment (never called: ``HAS_ENV`` is False)."""
+    return
+
+
+@njit(cache=True)
+def no_apply_loads(d, lm, dm):  # pragma: no cover - compiled
+    """(Never called: ``HAS_ENV`` is False.)"""
     return
 
 
@@ -69,6 +84,8 @@ def check_environment(environment: Any, model: Any) -> None:
                 f"{where}: the model does not output '{name}' [{unit}], which the loads need "
                 f"(outputs: {', '.join(model.output_labels)})")
     for name, unit in LOAD_CHANNELS.items():
+        if name == "force_x" and name not in model.disturbance_labels:
+            continue  # a constant-speed model takes no surge load
         if name not in model.disturbance_labels:
             raise ParameterError(
                 f"{where}: the model has no disturbance channel '{name}' [{unit}] for the "
@@ -93,8 +110,10 @@ def environment_stage(environment: Any, model: Any) -> Any:
 
     Returns
     -------
-    numba dispatcher
-        ``environment(t, ym, d, ep, dm)``.
+    tuple of numba dispatchers
+        ``environment_loads(t, x, u, p, ym, d, ep, lm)`` (the body-axis loads into ``lm[0:3]``,
+        the environment's outputs into ``ym``) and ``apply_loads(d, lm, dm)`` (``dm`` = ``d``
+        with the loads added on the model's load channels).
 
     Raises
     ------
@@ -114,12 +133,23 @@ def environment_stage(environment: Any, model: Any) -> Any:
         name = f"current_{axis}"
         return f" + d[{dist.index(name)}]" if name in dist else ""
 
+    funcs = []
+    if model.motion is not None:
+        mod, name = _module_name(model.motion)
+        imports.append(f"from {mod} import {name} as model_motion")
+        funcs.append(model.motion)
+        body += ["    us, vs, psi = model_motion(x, p)  # through the water"]
+    else:
+        mod, name = _module_name(model.output)
+        imports.append(f"from {mod} import {name} as model_output")
+        funcs.append(model.output)
+        body += [
+            "    model_output(t, x, u, p, ym)",
+            f"    psi = ym[{out.index('heading')}]",
+            f"    us = ym[{out.index('surge_speed')}]",
+            f"    vs = ym[{out.index('sway_speed')}]",
+        ]
     body += [
-        f"    for j in range({ndm}):",
-        "        dm[j] = d[j]",
-        f"    psi = ym[{out.index('heading')}]",
-        f"    us = ym[{out.index('surge_speed')}]",
-        f"    vs = ym[{out.index('sway_speed')}]",
         "    c = math.cos(psi)",
         "    s = math.sin(psi)",
         "    wn = us * c - vs * s  # velocity through the water, north and east",
@@ -128,7 +158,6 @@ def environment_stage(environment: Any, model: Any) -> Any:
         "    fy = 0.0",
         "    mz = 0.0",
     ]
-    funcs = []
     if environment.wind is not None:
         mod, name = _module_name(environment.wind.loads)
         imports.append(f"from {mod} import {name} as wind_loads")
@@ -140,7 +169,7 @@ def environment_stage(environment: Any, model: Any) -> Any:
             f"    ae = -w * math.sin(ep.wind_direction) - (we{current('east')})",
             "    speed = math.sqrt(an * an + ae * ae)",
             "    angle = math.atan2(-ae, -an) - psi  # the bearing it comes from, off the bow",
-            "    angle = (angle + math.pi) % (2.0 * math.pi) - math.pi",
+            "    angle -= TWO_PI * math.floor((angle + math.pi) / TWO_PI)  # to [-pi, pi)",
             "    if w != 0.0:",
             "        x, y, n = wind_loads(ep, speed, angle)",
             "        # minus the still air the ship moves through: the loads of the true wind",
@@ -148,7 +177,7 @@ def environment_stage(environment: Any, model: Any) -> Any:
             f"        se = -(we{current('east')})",
             "        still = math.sqrt(sn * sn + se * se)",
             "        a0 = math.atan2(-se, -sn) - psi",
-            "        a0 = (a0 + math.pi) % (2.0 * math.pi) - math.pi",
+            "        a0 -= TWO_PI * math.floor((a0 + math.pi) / TWO_PI)",
             "        x0, y0, n0 = wind_loads(ep, still, a0)",
             "        x -= x0",
             "        y -= y0",
@@ -183,18 +212,23 @@ def environment_stage(environment: Any, model: Any) -> Any:
             "    fy += y",
             "    mz += n",
         ]
-    body += [
-        f"    dm[{dist.index('force_x')}] += fx",
-        f"    dm[{dist.index('force_y')}] += fy",
-        f"    dm[{dist.index('moment_z')}] += mz",
-    ]
+    body += ["    lm[0] = fx", "    lm[1] = fy", "    lm[2] = mz"]
+    apply = [f"    for j in range({ndm}):", "        dm[j] = d[j]"]
+    apply += [f"    dm[{dist.index('force_x')}] += lm[0]"] if "force_x" in dist else []
+    apply += [f"    dm[{dist.index('force_y')}] += lm[1]",
+              f"    dm[{dist.index('moment_z')}] += lm[2]"]
     source = (
         f'"""Generated by seahelm.simulation.environment_stage: {environment.name} on '
         f'{model.name}."""\n'
-        "import math\n\nfrom numba import njit\n\n" + "\n".join(imports) + "\n\n\n"
+        "import math\n\nfrom numba import njit\n\n" + "\n".join(imports) + "\n\n"
+        "TWO_PI = 2.0 * math.pi\n\n\n"
         "@njit(cache=True)\n"
-        "def environment(t, ym, d, ep, dm):  # pragma: no cover - compiled\n"
-        + "\n".join(body) + "\n")
+        "def environment_loads(t, x, u, p, ym, d, ep, lm):  # pragma: no cover - compiled\n"
+        + "\n".join(body) + "\n\n\n"
+        "@njit(cache=True)\n"
+        "def apply_loads(d, lm, dm):  # pragma: no cover - compiled\n"
+        + "\n".join(apply) + "\n")
     digest = hashlib.sha1(b"\0".join([source.encode()] + [
         code_fingerprint(f.py_func) for f in funcs])).hexdigest()[:16]
-    return import_generated(f"seahelm_environment_{digest}", source).environment
+    module = import_generated(f"seahelm_environment_{digest}", source)
+    return module.environment_loads, module.apply_loads

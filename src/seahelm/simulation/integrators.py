@@ -424,7 +424,7 @@ def compiled_advance_source(method: str | ButcherTableau) -> str:
 
     The source defines ``NSTAGES`` (the number of stages, the first dimension of the kernel's
     stage buffers) and ``advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ep, ya, u, yms, dm,
-    kv, ka, fv, fa, tv, ta)``: one step of the vessel states ``xv`` (NX) and actuator states ``xa`` (NA) in place,
+    lm, kv, ka, fv, fa, tv, ta)``: one step of the vessel states ``xv`` (NX) and actuator states ``xa`` (NA) in place,
     straight-line, with the tableau's coefficients as literals and zero coefficients skipped.
     Each stage calls ``closed_rhs`` of :mod:`seahelm.simulation.kernel_template` into the 1-D
     buffers ``fv``/``fa`` and copies the derivatives that later stages need into rows of ``kv``
@@ -458,8 +458,8 @@ def compiled_advance_source(method: str | ButcherTableau) -> str:
         "",
         "",
         '@njit(cache=True, inline="always", fastmath=FASTMATH)',
-        "def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ep, ya, u, yms, dm, kv, ka, fv, fa, "
-        "tv, ta):"
+        "def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ep, ya, u, yms, dm, lm, kv, ka, fv, "
+        "fa, tv, ta):"
         "  # pragma: no cover",
     ]
     groups = (("xv", "tv", "kv", "fv", "NX"), ("xa", "ta", "ka", "fa", "NA"))
@@ -484,7 +484,7 @@ def compiled_advance_source(method: str | ButcherTableau) -> str:
                 ]
                 ds_node = ci
         lines.append(f"    closed_rhs({time}, {stage_input[0]}, {stage_input[1]}, cmd, ca, {d}, "
-                     f"mp, ap, ep, ya, u, yms, dm, fv, fa)")
+                     f"mp, ap, ep, ya, u, yms, dm, lm, fv, fa)")
         if i == s - 1:
             break
         # store k_i where later stages need it, and form the input of stage i + 1

@@ -52,7 +52,8 @@ from seahelm.control.pid import pid_heading_init as _controller_init
 from seahelm.control.pid import pid_heading_step as _controller_step
 from seahelm.vessels.nomoto import nomoto1_output as _model_output
 from seahelm.vessels.nomoto import nomoto1_rhs as _model_rhs
-from seahelm.simulation.environment_stage import no_environment as _environment
+from seahelm.simulation.environment_stage import no_apply_loads as _apply_loads
+from seahelm.simulation.environment_stage import no_environment_loads as _environment_loads
 
 actuator_output = inline_always(_actuator_output)
 actuator_rhs = inline_always(_actuator_rhs)
@@ -60,7 +61,8 @@ controller_init = inline_always(_controller_init)
 controller_step = inline_always(_controller_step)
 model_output = inline_always(_model_output)
 model_rhs = inline_always(_model_rhs)
-environment = inline_always(_environment)
+environment_loads = inline_always(_environment_loads)
+apply_loads = inline_always(_apply_loads)
 
 NX = 4
 NA = 1
@@ -71,6 +73,7 @@ NCA = 1
 NM = 2
 NDM = 2
 HAS_ENV = False
+HOLD_LOADS = False
 FASTMATH = {"arcp", "contract", "afn", "reassoc"}
 
 
@@ -94,14 +97,15 @@ NZ = NX + NA
 
 
 @njit(inline="always", fastmath=FASTMATH, _nrt=False)
-def closed_rhs(t, xv, xa, cmd, ca, d, mp, ap, ep, ya, u, yms, dm, dxv, dxa):  # pragma: no cover
+def closed_rhs(t, xv, xa, cmd, ca, d, mp, ap, ep, ya, u, yms, dm, lm, dxv, dxa):  # pragma: no cover
     actuator_output(xa, ca, ap, ya)
     route_inputs(ya, cmd, u)
     if HAS_ENV:
-        # the environment's loads from the live state (model outputs at this stage): written
-        # into the model's disturbance channels dm (= the given disturbances + the loads)
-        model_output(t, xv, u, mp, yms)
-        environment(t, yms, d, ep, dm)
+        # the environment's loads from the live state at this stage (or, held, from the
+        # step's start), added to the model's disturbance channels: dm = d + the loads
+        if not HOLD_LOADS:
+            environment_loads(t, xv, u, mp, yms, d, ep, lm)
+        apply_loads(d, lm, dm)
         model_rhs(t, xv, u, dm, mp, dxv)
     else:
         model_rhs(t, xv, u, d, mp, dxv)
@@ -116,8 +120,8 @@ NSTAGES = 1
 
 
 @njit(inline="always", fastmath=FASTMATH, _nrt=False)
-def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ep, ya, u, yms, dm, kv, ka, fv, fa, tv, ta):  # pragma: no cover
-    closed_rhs(t, xv, xa, cmd, ca, d0, mp, ap, ep, ya, u, yms, dm, fv, fa)
+def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ep, ya, u, yms, dm, lm, kv, ka, fv, fa, tv, ta):  # pragma: no cover
+    closed_rhs(t, xv, xa, cmd, ca, d0, mp, ap, ep, ya, u, yms, dm, lm, fv, fa)
     for j in range(NX):
         xv[j] += h * fv[j]
     for j in range(NA):
@@ -135,7 +139,7 @@ def scratch(ncmd, nca, ncs, nd, nr):
     """
     shapes = [(NX,), (NA,), (NZ,), (ncmd,), (nca,), (ncs,), (NU,), (max(NYA, 1),), (NYM,),
               (max(NM, 1),), (NSTAGES, NX), (NSTAGES, NA), (NX,), (NA,), (NX,), (NA,), (nd,),
-              (nd,), (nd,), (nr,), (max(NYM, 1),), (max(NDM, 1),)]
+              (nd,), (nd,), (nr,), (max(NYM, 1),), (max(NDM, 1),), (3,)]
     line = 8  # float64 per 64-byte cache line
     counts = [math.prod(sh) for sh in shapes]  # (math.prod: np.prod costs µs per call)
     sizes = [-(-n // line) * line for n in counts]
@@ -166,7 +170,7 @@ def load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi):  # pragma: no cover - c
 @njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False)
 def init_runs(z, cs, cmd, ca, mp, ap, cp, ep, dist, ref,
               xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds,
-              refk, yms, dm):  # pragma: no cover - compiled
+              refk, yms, dm, lm):  # pragma: no cover - compiled
     """Call the controller's init at t = 0 for every run (once per simulation)."""
     for i in range(z.shape[0]):
         ir = i if ref.shape[0] > 1 else 0
@@ -182,7 +186,7 @@ def init_runs(z, cs, cmd, ca, mp, ap, cp, ep, dist, ref,
             idist = i if dist.shape[0] > 1 else 0
             for j in range(dist.shape[2]):
                 d0[j] = dist[idist, 0, j]
-            environment(0.0, ym, d0, ep[i], dm)
+            environment_loads(0.0, xv, u, mp[i], ym, d0, ep[i], lm)
         route_measurements(ym, y)
         controller_init(zfull, y, refk, cp[i], csi)
         for j in range(cs.shape[1]):
@@ -195,7 +199,7 @@ def run_slice(
     z, cs, cmd, ca, mp, ap, cp, ep, dist, ref, lower, upper,
     status, t_fail, z_fail, rec_z, rec_y, rec_cmd,
     xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds, refk,
-    yms, dm,
+    yms, dm, lm,
 ):  # pragma: no cover - compiled
     """Advance runs ``i_start`` to ``i_stop`` − 1 from step ``k_start`` to ``k_stop`` (the state
     arrays are updated in place, so a simulation goes on chunk by chunk).
@@ -254,9 +258,9 @@ def run_slice(
                     if dist_varies:
                         for j in range(nd):
                             ds[j] = dist[idist, k, j]
-                        environment(t, ym, ds, epi, dm)
+                        environment_loads(t, xv, u, mpi, ym, ds, epi, lm)
                     else:
-                        environment(t, ym, d0, epi, dm)
+                        environment_loads(t, xv, u, mpi, ym, d0, epi, lm)
             if control:
                 kr = k if ref_varies else 0
                 for j in range(nr):
@@ -284,8 +288,10 @@ def run_slice(
                 for j in range(nd):
                     d0[j] = dist[idist, k, j]
                     d1[j] = dist[idist, k + 1, j]
-            advance(t, dt, xv, xa, cmdi, cai, d0, d1, ds, mpi, api, epi, ya, u, yms, dm, kv, ka, fv,
-                    fa, tv, ta)
+            if HAS_ENV and HOLD_LOADS:  # the loads of the step's start, held over the step
+                environment_loads(t, xv, u, mpi, yms, d0, epi, lm)
+            advance(t, dt, xv, xa, cmdi, cai, d0, d1, ds, mpi, api, epi, ya, u, yms, dm, lm, kv,
+                    ka, fv, fa, tv, ta)
             # one finiteness test of the sum per step (NaN or ±inf in any state makes it
             # non-finite); only then, or with declared bounds, the state-by-state test
             acc = 0.0

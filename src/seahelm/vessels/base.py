@@ -68,6 +68,14 @@ class VesselModel:
         See the module docstring for their signatures.
     state_lower, state_upper : tuple of float, optional
         Declared admissible bounds per state; leaving them marks a run diverged.
+    motion : numba dispatcher, optional
+        ``motion(x, p) -> (surge_speed, sway_speed, heading)``: the velocity through the water
+        [m/s] and the heading [rad] from the state, for the environment's loads (without it
+        they are read from the outputs, which costs a full ``output`` per stage).
+    load_params : tuple of str, optional
+        Parameters the model's load channels (``force_x``, ``force_y``, ``moment_z``) need, which
+        must be > 0 when an environment puts loads on them (e.g. the masses that normalise a
+        force in a model written in normalised units).
     """
 
     name: str
@@ -85,6 +93,8 @@ class VesselModel:
     output_units: tuple[str, ...] = ()
     state_lower: tuple[float, ...] | None = None
     state_upper: tuple[float, ...] | None = None
+    load_params: tuple[str, ...] = ()
+    motion: Any = None
 
     def __post_init__(self) -> None:
         n = len(self.state_labels)

@@ -267,6 +267,12 @@ def mariner_output(t, x, u, p, y):  # pragma: no cover - compiled
     y[Y.drift_angle] = math.atan2(-v, surge)
 
 
+@njit(cache=True)
+def mariner_motion(x, p):  # pragma: no cover - compiled
+    """Surge U_0 + u and sway speed through the water [m/s] and heading [rad] (for the loads)."""
+    return p.nominal_speed + x[S.surge_perturbation], x[S.sway_speed], x[S.heading]
+
+
 MARINER = VesselModel(
     name="mariner",
     description="Mariner-class cargo ship, nonlinear 3-DOF PMM model (surge perturbed about "
@@ -282,6 +288,7 @@ MARINER = VesselModel(
     output=mariner_output,
     output_labels=OUTPUTS,
     output_units=OUTPUT_UNITS,
+    motion=mariner_motion,
 )
 
 MARINER_NONLINEAR_PROVENANCE = (

@@ -369,6 +369,12 @@ def mmg_output(t, x, u, p, y):  # pragma: no cover - compiled
     y[Y.rudder_inflow_angle] = alpha_R
 
 
+@njit(cache=True)
+def mmg_motion(x, p):  # pragma: no cover - compiled
+    """Surge and sway speed through the water [m/s] and heading [rad] (for the loads)."""
+    return x[S.surge_speed], x[S.sway_speed], x[S.heading]
+
+
 MMG = VesselModel(
     name="mmg",
     description="MMG standard 3-DOF manoeuvring model (hull, propeller, rudder; midship "
@@ -386,6 +392,7 @@ MMG = VesselModel(
     output_units=OUTPUT_UNITS,
     # the MMG standard method covers ahead motion: going astern marks the run diverged
     state_lower=(0.0, -np.inf, -np.inf, -np.inf, -np.inf, -np.inf),
+    motion=mmg_motion,
 )
 
 

@@ -32,6 +32,11 @@ units so that issue 7's wind and wave loads add directly):
     β = −v/U it enters dβ/dt with a minus sign.
 ``sway_velocity`` v_c [m/s]
     a kinematic drift (current) added to the position kinematics only.
+``force_y`` [N], ``moment_z`` [N·m]
+    the same loads in newtons (wind and waves of :mod:`seahelm.environment.loads`), normalised
+    by the parameters ``sway_mass`` (m − Y_v̇) and ``yaw_inertia`` (I_z − N_ṙ), which must then
+    be given (> 0): f_d += F_y/((m − Y_v̇) U), m_d += N/(I_z − N_ṙ). A constant-speed model
+    takes no surge load.
 
 The static (steady-turn) regime, its branches and the reduced model eq. (4) live in
 :mod:`seahelm.identification.steady_turning`.
@@ -55,6 +60,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from ..constants import RHO_SEAWATER
 from ..parameters import Params, param, signal_indices
 from .base import NAV_OUTPUT_UNITS, NAV_OUTPUTS, VesselModel
 
@@ -82,11 +88,18 @@ class VoitkunskyParams(Params):
     speed: float = param(unit="m/s", symbol="U", low=0.0, doc="speed of the velocity vector")
     length: float = param(100.0, unit="m", symbol="L", low=0.0, low_inclusive=False,
                           doc="length between perpendiculars (for plots and scaling)")
+    sway_mass: float = param(0.0, unit="kg", symbol="m − Y_v̇", low=0.0,
+                             doc="mass plus added mass in sway, for the force_y channel "
+                                 "(0: not given)")
+    yaw_inertia: float = param(0.0, unit="kg·m²", symbol="I_z − N_ṙ", low=0.0,
+                               doc="yaw inertia plus added inertia, for the moment_z channel "
+                                   "(0: not given)")
 
 
 STATES: tuple[str, ...] = ("north", "east", "heading", "yaw_rate", "drift_angle")
 INPUTS: tuple[str, ...] = ("rudder_angle",)
-DISTURBANCES: tuple[str, ...] = ("yaw_moment", "sway_force", "sway_velocity")
+DISTURBANCES: tuple[str, ...] = ("yaw_moment", "sway_force", "sway_velocity", "force_y",
+                                 "moment_z")
 #: The navigation outputs plus the speed U [m/s] and the drift angle β [rad] (port positive).
 OUTPUTS: tuple[str, ...] = NAV_OUTPUTS + ("speed", "drift_angle")
 
@@ -107,6 +120,12 @@ def voitkunsky_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     m_d = d[_D.yaw_moment] if d.shape[0] > _D.yaw_moment else 0.0
     f_d = d[_D.sway_force] if d.shape[0] > _D.sway_force else 0.0
     v_c = d[_D.sway_velocity] if d.shape[0] > _D.sway_velocity else 0.0
+    force = d[_D.force_y] if d.shape[0] > _D.force_y else 0.0
+    moment = d[_D.moment_z] if d.shape[0] > _D.moment_z else 0.0
+    if force != 0.0:  # (a load in newtons, normalised as sway_force)
+        f_d += force / (p.sway_mass * speed)
+    if moment != 0.0:
+        m_d += moment / p.yaw_inertia
     cs = math.cos(psi)
     sn = math.sin(psi)
     dx[_X.north] = speed * math.cos(psi - beta) - v_c * sn
@@ -129,6 +148,13 @@ def voitkunsky_output(t, x, u, p, y):  # pragma: no cover - compiled
     y[_Y.drift_angle] = x[_X.drift_angle]
 
 
+@njit(cache=True)
+def voitkunsky_motion(x, p):  # pragma: no cover - compiled
+    """Surge U cos β and sway −U sin β [m/s] and heading [rad] (for the loads)."""
+    beta = x[_X.drift_angle]
+    return p.speed * math.cos(beta), -p.speed * math.sin(beta), x[_X.heading]
+
+
 VOITKUNSKY = VesselModel(
     name="voitkunsky",
     description="Voitkunsky nonlinear steering model (yaw rate, drift angle with β|β|), "
@@ -139,13 +165,15 @@ VOITKUNSKY = VesselModel(
     input_labels=INPUTS,
     input_units=("rad",),
     disturbance_labels=DISTURBANCES,
-    disturbance_units=("rad/s²", "rad/s", "m/s"),
+    disturbance_units=("rad/s²", "rad/s", "m/s", "N", "N·m"),
     rhs=voitkunsky_rhs,
     output=voitkunsky_output,
     output_labels=OUTPUTS,
     output_units=NAV_OUTPUT_UNITS + ("m/s", "rad"),
     state_lower=(-np.inf, -np.inf, -np.inf, -np.inf, -0.5 * math.pi),
     state_upper=(np.inf, np.inf, np.inf, np.inf, 0.5 * math.pi),
+    load_params=("sway_mass", "yaw_inertia"),
+    motion=voitkunsky_motion,
 )
 
 
@@ -169,6 +197,7 @@ def voitkunsky_from_linear_derivatives(
     speed: float,
     length: float,
     beta_range: float = 0.3,
+    rho: float = RHO_SEAWATER,
 ) -> VoitkunskyParams:
     """Voitkunsky coefficients from nondimensional (prime-system) manoeuvring derivatives.
 
@@ -204,6 +233,9 @@ def voitkunsky_from_linear_derivatives(
         Ship length L [m].
     beta_range : float, optional
         Drift-angle range |β| ≤ ``beta_range`` of the nonlinear fit [rad] (default 0.3).
+    rho : float, optional
+        Water density [kg/m³] of the dimensional masses ``sway_mass`` = (m' − Y_v̇') ½ρL³ and
+        ``yaw_inertia`` = (I_z' − N_ṙ') ½ρL⁵ (default sea water).
 
     Returns
     -------
@@ -226,6 +258,8 @@ def voitkunsky_from_linear_derivatives(
         s31=float(-s * s * b[1]),
         speed=float(speed),
         length=float(length),
+        sway_mass=float((mass - y_vdot) * 0.5 * rho * length ** 3),
+        yaw_inertia=float((inertia - n_rdot) * 0.5 * rho * length ** 5),
     )
 
 
