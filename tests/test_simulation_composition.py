@@ -129,7 +129,7 @@ def _scenario_combo(text: str) -> tuple[str, str, str]:
     if "guidance" in scn:  # the route's law steers the heading controller
         return (model, scn.get("actuator", {}).get("model", ActuatorSection().model),
                 f"{scn['guidance'].get('law', 'los')}+{scn['controller']['model']}")
-    return (scn["vessel"]["model"],
+    return (model,
             scn.get("actuator", {}).get("model", ActuatorSection().model),
             scn.get("controller", {}).get("model", ControllerSection().model))
 

@@ -222,7 +222,7 @@ def environment_stage(environment: Any, model: Any) -> Any:
         f'{model.name}."""\n'
         "import math\n\nfrom numba import njit\n\n" + "\n".join(imports) + "\n\n"
         "TWO_PI = 2.0 * math.pi\n\n\n"
-        "@njit(cache=True)\n"
+        "@njit(cache=True, _nrt=False, fastmath={'arcp', 'contract', 'afn', 'reassoc'})\n"
         "def environment_loads(t, x, u, p, ym, d, ep, lm):  # pragma: no cover - compiled\n"
         + "\n".join(body) + "\n\n\n"
         "@njit(cache=True)\n"
