@@ -34,16 +34,10 @@ import numpy as np
 from seahelm.actuators.servo import RUDDER_SERVO
 from seahelm.analysis.equilibrium import approach_state
 from seahelm.control.pid import PID_HEADING_RPS, PIDHeadingRpsParams
-from seahelm.environment.loads import (
-    blendermann_wind_params,
-    environment,
-    lvov_wave_params,
-    wave_load_fluctuation,
-)
+from seahelm.environment.loads import environment, ship_load_params, wave_load_fluctuation
 from seahelm.errors import ValidityRangeWarning
 from seahelm.simulation.engine import simulate
 from seahelm.vessels.mmg import KVLCC2_FULL, KVLCC2_FULL_SERVO, MMG
-from seahelm.vessels.particulars import particulars
 
 T_FINAL, DT = 1200.0, 0.5
 
@@ -54,20 +48,15 @@ def main() -> None:
     ap.add_argument("--repeats", type=int, default=5, help="timed repeats (default 5)")
     args = ap.parse_args()
 
-    ship = particulars("kvlcc2-full")
     app = approach_state(KVLCC2_FULL, 7.97)
     gains = PIDHeadingRpsParams(kp=4.0, ki=0.004, kd=120.0,
                                 propeller_rps=app.inputs["propeller_rps"])
     env = environment(wind="blendermann", waves="lvov")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityRangeWarning)  # C_b 0.81 > 0.8 of eq. (5)-(7)
-        waves = lvov_wave_params(length=ship.length, beam=ship.beam, draft=ship.draft,
-                                 block_coefficient=ship.block_coefficient, wave_height=3.0,
-                                 wave_length=120.0, wave_direction=math.radians(45.0))
-    ep = env.params(**blendermann_wind_params(
-        ship.vessel_type, wind_speed=20.0, wind_direction=math.radians(90.0),
-        windage_frontal_area=ship.frontal_area, windage_lateral_area=ship.lateral_area,
-        windage_centre=ship.windage_centre, length_overall=ship.length_overall), **waves)
+        ep = ship_load_params("kvlcc2-full", env, wind_speed=20.0,
+                              wind_direction=math.radians(90.0), wave_height=3.0,
+                              wave_length=120.0, wave_direction=math.radians(45.0))
     n = args.runs
     n_steps = int(round(T_FINAL / DT))
     x0 = np.tile(app.state, (n, 1))

@@ -24,32 +24,21 @@ import warnings
 from pathlib import Path
 
 from seahelm.analysis.maneuvers import turning_circle
-from seahelm.environment.loads import (
-    Conditions,
-    blendermann_wind_params,
-    environment,
-    lvov_wave_params,
-)
+from seahelm.environment.loads import Conditions, environment, ship_load_params
 from seahelm.errors import ValidityRangeWarning
-from seahelm.vessels.particulars import particulars
 
 SHIP = "kvlcc2-l7"
 
 
 def weather() -> Conditions:
     """Wind 3 m/s and regular waves h3% = 0.066 m, both from the east."""
-    p = particulars(SHIP)
     env = environment(wind="blendermann", waves="lvov")
     with warnings.catch_warnings():
         # the KVLCC2's C_b 0.81 is just above the 0.6-0.8 of Lvov's eq. (5)-(7)
         warnings.simplefilter("ignore", ValidityRangeWarning)
-        waves = lvov_wave_params(length=p.length, beam=p.beam, draft=p.draft,
-                                 block_coefficient=p.block_coefficient, wave_height=0.066,
-                                 wave_length=2.6, wave_direction=math.radians(90.0))
-    params = env.params(**blendermann_wind_params(
-        p.vessel_type, wind_speed=3.0, wind_direction=math.radians(90.0),
-        windage_frontal_area=p.frontal_area, windage_lateral_area=p.lateral_area,
-        windage_centre=p.windage_centre, length_overall=p.length_overall), **waves)
+        params = ship_load_params(SHIP, env, wind_speed=3.0, wind_direction=math.radians(90.0),
+                                  wave_height=0.066, wave_length=2.6,
+                                  wave_direction=math.radians(90.0))
     return Conditions(env, params)
 
 

@@ -230,3 +230,16 @@ def test_a_models_motion_equals_its_outputs(catalog_name):
         got = model.motion(xi, rec)
         want = [yi[model.output_index(n)] for n in ("surge_speed", "sway_speed", "heading")]
         np.testing.assert_allclose(got, want, rtol=1e-14, atol=1e-15)
+
+
+def test_ship_load_params_take_the_particulars():
+    from seahelm.environment.loads import ship_load_params
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityRangeWarning)
+        got = ship_load_params("kvlcc2-l7", ENV, wind_speed=2.0, wave_height=0.05)
+    assert got == env_params(wind_speed=2.0, wave_height=0.05, wave_length=100.0)
+    lvov = environment(wind="lvov")
+    p = ship_load_params(SHIP, lvov, wind_speed=1.0, windage_centre=0.1)
+    assert (p.windage_lateral_area, p.windage_length, p.windage_centre) == (
+        SHIP.lateral_area, SHIP.length, 0.1)

@@ -75,6 +75,7 @@ __all__ = [
     "lvov_wave_params",
     "blendermann_wind_params",
     "wave_load_fluctuation",
+    "ship_load_params",
     "Conditions",
 ]
 
@@ -476,6 +477,50 @@ def blendermann_wind_params(vessel_type: Any, **values: Any) -> dict[str, float]
     return dict(cd_transverse=c.cd_transverse, cd_longitudinal_head=c.cd_longitudinal_head,
                 cd_longitudinal_stern=c.cd_longitudinal_stern, cd_delta=c.delta,
                 cd_kappa=c.kappa, **values)
+
+
+def ship_load_params(ship: Any, environment: Environment, **values: Any) -> Params:
+    """The parameters of ``environment`` for a ship's particulars, plus the weather.
+
+    Windage (areas, centre, length, Blendermann's vessel type) and hull data (length, beam,
+    draft, block coefficient) come from ``ship``; ``values`` give the weather (``wind_speed``,
+    ``wind_direction``, ``wave_height``, ...) and may override any field.
+
+    Parameters
+    ----------
+    ship : Particulars or str
+        The ship (:class:`seahelm.vessels.particulars.Particulars`) or a catalog name.
+    environment : Environment
+        The load models.
+    **values
+        Field values (SI units, radians).
+
+    Returns
+    -------
+    Params
+        ``environment.params_type``.
+
+    Warns
+    -----
+    ValidityRangeWarning
+        With Lvov's waves, a hull outside the published range of eq. (5)-(7).
+    """
+    from ..vessels.particulars import particulars
+
+    ship = particulars(ship) if isinstance(ship, str) else ship
+    fields: dict[str, Any] = {}
+    if environment.wind is LVOV_WIND:
+        fields.update(windage_lateral_area=ship.lateral_area, windage_centre=ship.windage_centre,
+                      windage_length=ship.length)
+    elif environment.wind is BLENDERMANN_WIND:
+        fields.update(blendermann_wind_params(
+            ship.vessel_type, windage_frontal_area=ship.frontal_area,
+            windage_lateral_area=ship.lateral_area, windage_centre=ship.windage_centre,
+            length_overall=ship.length_overall))
+    if environment.waves is LVOV_WAVES:
+        fields.update(lvov_wave_params(length=ship.length, beam=ship.beam, draft=ship.draft,
+                                       block_coefficient=ship.block_coefficient))
+    return environment.params(**{**fields, **values})
 
 
 def wave_load_fluctuation(wave_height: float, n_steps: int, dt: float, seed: Any, *,
