@@ -220,3 +220,18 @@ def test_kernel_fingerprint_follows_code_in_memory_and_its_dependencies(tmp_path
     assert fa.replace(b"fp_a", b"") == fb.replace(b"fp_b", b"")  # same code, same print
     assert fc.replace(b"fp_c", b"") != fa.replace(b"fp_a", b"")  # helper changed
     assert fd.replace(b"fp_d", b"") != fa.replace(b"fp_a", b"")  # frozen global changed
+
+
+def test_one_run_and_a_batch_share_one_compiled_loop(mariner2):
+    """A single run's inputs are broadcast views (read-only); numba types those apart from
+    writable arrays, so without care the same loop compiled twice (15-80 s each)."""
+    from seahelm.simulation.engine import compile_closed_loop
+
+    kw = dict(t_final=2.0, dt=0.1, controller=PID_HEADING, controller_params=GAINS,
+              actuator=RUDDER_SERVO, actuator_params=ServoParams())
+    for n in (1, 3, 1):
+        res = simulate(NOMOTO2, mariner2, np.zeros((n, 5)), reference={"heading": 0.1}, **kw)
+        assert res.ok.all()
+    kernel = compile_closed_loop(NOMOTO2, RUDDER_SERVO, PID_HEADING)
+    assert len(kernel.run_slice.signatures) == 1, kernel.run_slice.signatures
+    assert len(kernel.init_runs.signatures) == 1

@@ -187,7 +187,9 @@ class _Slices:
 
         self.kernel = kernel
         n_runs = arrays[0].shape[0]
-        self.arrays = tuple(arrays)
+        # numba types a read-only array apart from a writable one: a kernel called with both
+        # (a broadcast view of one run, say) would compile twice, each 15-80 s
+        self.arrays = tuple(a if a.flags.writeable else a.copy() for a in arrays)
         self.threads = max(1, min(numba.get_num_threads(), n_runs))
         n_slices = 1 if self.threads == 1 else min(n_runs, 4 * self.threads)
         self.cuts = np.linspace(0, n_runs, n_slices + 1).round().astype(np.int64)
