@@ -164,14 +164,35 @@ def test_the_wave_load_fluctuation_has_zero_mean_and_a_floor_at_minus_one():
 def test_lvov_wind_kernel_equals_the_paper_functions():
     params = LvovWindParams(wind_speed=1.0, windage_lateral_area=1059.9, windage_centre=4.0,
                             windage_length=160.93)
-    p = as_records(params.to_array()[None, :], LvovWindParams)[0]
+    p = environment(wind="lvov").kernel_records(params.to_array()[None, :])[0]
     for angle in np.radians([0.0, 30.0, 60.0, 90.0, 150.0, -45.0, -120.0, 180.0]):
-        x, y, n = lvov_wind_loads(p, 12.0, angle)
+        x, y, n = lvov_wind_loads(p, 12.0, angle, math.cos(angle), math.sin(angle))
         assert x == 0.0
         np.testing.assert_allclose(y, -wind_lateral_force(12.0, angle, 1059.9), rtol=1e-12,
                                    atol=1e-9)
         np.testing.assert_allclose(n, -wind_yaw_moment(12.0, angle, 1059.9, length=160.93,
                                                        sail_centre=4.0), rtol=1e-12, atol=1e-6)
+
+
+def test_the_wave_kernel_with_its_per_run_constants_equals_the_paper_functions():
+    """The compiled wave loads read constants computed once per run (kernel_records)."""
+    params = env_params(wave_height=3.0, wave_length=120.0, wave_direction=math.radians(40.0))
+    rec = ENV.kernel_records(params.to_array()[None, :])[0]
+    assert rec.wave_from_cos == math.cos(params.wave_direction)
+    assert rec.wind_from_sin == math.sin(params.wind_direction)
+    loads = WAVE_LOADS["lvov"].loads
+    coeffs = (params.wave_cx, params.wave_cy, params.wave_cm)
+    for q_deg, along in ((0.0, 0.0), (30.0, -2.0), (90.0, 1.5), (-135.0, 3.0), (180.0, 0.5)):
+        q = math.radians(q_deg)
+        got = loads(rec, q, math.cos(q), math.sin(q), along, 1.25)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityRangeWarning)
+            wf = wave_forces(q, params.wave_height, params.wave_length, coeffs,
+                             length=params.hull_length, speed_along_waves=along)
+        sway, yaw = wave_disturbance_body(wf)
+        scale = 1.25 * max(abs(wf.surge), abs(sway), 1.0)
+        np.testing.assert_allclose(got, 1.25 * np.array([wf.surge, sway, yaw]), rtol=1e-12,
+                                   atol=1e-12 * scale * params.hull_length)
 
 
 def test_registries_and_the_component():

@@ -101,6 +101,7 @@ from ..constants import RHO_AIR
 from ..errors import ParameterError
 
 __all__ = [
+    "blendermann_loads_folded",
     "BlendermannCoefficients",
     "BLENDERMANN_VESSEL_TYPES",
     "get_blendermann_type",
@@ -296,18 +297,58 @@ def blendermann_loads(speed, angle, cd_transverse, cd_longitudinal_head, cd_long
         b = math.pi - a
         s = math.sin(b)
         c = -math.cos(b)
-        cd_l_af = cd_longitudinal_stern
     else:
         s = math.sin(a)
         c = math.cos(a)
-        cd_l_af = cd_longitudinal_head
-    cd_l = cd_l_af * (frontal_area / lateral_area)
+    return blendermann_loads_folded(
+        speed * speed, side, a, s, c, cd_transverse,
+        cd_longitudinal_head * (frontal_area / lateral_area),
+        cd_longitudinal_stern * (frontal_area / lateral_area), delta,
+        lateral_centre / length_overall, 0.5 * rho_air * lateral_area, length_overall)
+
+
+@njit(cache=True)
+def blendermann_loads_folded(speed_squared, side, a, s, c, cd_transverse, cd_l_head, cd_l_stern,
+                             delta, centre_ratio, dynamic_area,
+                             length_overall):  # pragma: no cover - compiled
+    """Blendermann (1994) loads of a wind given by its folded bearing (compiled, scalar).
+
+    The closed loop calls this form: it has the bearing's cosine and sine from the relative
+    wind's components (no trigonometric call) and the per-run constants computed once.
+
+    Parameters
+    ----------
+    speed_squared : float
+        V_rw² [m²/s²].
+    side : float
+        +1 for a wind from starboard (or dead ahead/astern), −1 from port.
+    a, s, c : float
+        |γ| ∈ [0, π] [rad] and its sine (≥ 0) and cosine.
+    cd_transverse : float
+        CD_t [-].
+    cd_l_head, cd_l_stern : float
+        CD_l,AF(0) A_F/A_L and CD_l,AF(π) A_F/A_L [-] (CD_l referred to A_L).
+    delta : float
+        Cross-force parameter δ [-].
+    centre_ratio : float
+        s_L/L_oa [-].
+    dynamic_area : float
+        ½ ρ_a A_L [kg/m].
+    length_overall : float
+        L_oa [m].
+
+    Returns
+    -------
+    tuple of float
+        ``(X [N], Y [N], N [N·m])`` as :func:`blendermann_loads`.
+    """
+    cd_l = cd_l_stern if a > 0.5 * math.pi else cd_l_head
     sin2 = 2.0 * s * c
     den = 1.0 - 0.5 * delta * (1.0 - cd_l / cd_transverse) * sin2 * sin2
     cx = -cd_l * c / den
     cy = -side * cd_transverse * s / den
-    cn = (lateral_centre / length_overall - _ARM_SLOPE * (a - 0.5 * math.pi)) * cy
-    q = 0.5 * rho_air * speed * speed * lateral_area
+    cn = (centre_ratio - _ARM_SLOPE * (a - 0.5 * math.pi)) * cy
+    q = dynamic_area * speed_squared
     return q * cx, q * cy, q * cn * length_overall
 
 

@@ -56,8 +56,8 @@ from numba import njit
 from .._validate import as_float_array, check_positive
 from ..constants import GRAVITY, RHO_AIR, RHO_SEAWATER
 from ..errors import ParameterError
-from ..parameters import Params, param
-from .blendermann import blendermann_loads, get_blendermann_type
+from ..parameters import Params, as_records, param
+from .blendermann import blendermann_loads_folded, get_blendermann_type
 
 __all__ = [
     "WindParams",
@@ -172,37 +172,51 @@ _TWO_PI = 2.0 * math.pi
 # compiled loads (scalar, allocation-free: they run inside the closed loop)
 # ------------------------------------------------------------------------------------------
 @njit(cache=True)
-def lvov_wind_loads(p, speed, angle):  # pragma: no cover - compiled
+def lvov_wind_loads(p, speed, angle, cos_angle, sin_angle):  # pragma: no cover - compiled
     """Lvov (2014) eq. (12) wind loads in body axes: (0, −Y_a, −N_a)."""
-    q = angle - _TWO_PI * math.floor((angle + math.pi) / _TWO_PI)  # to [-pi, pi)
-    y_a = 0.37 * math.sin(q) * p.rho_air * p.windage_lateral_area * speed * speed
-    arm = 0.25 + p.windage_centre / p.windage_length - abs(q) * (180.0 / math.pi) / 360.0
+    y_a = 0.37 * sin_angle * p.rho_air * p.windage_lateral_area * speed * speed
+    arm = 0.25 + p.windage_centre / p.windage_length - abs(angle) * (180.0 / math.pi) / 360.0
     return 0.0, -y_a, -arm * p.windage_length * y_a
 
 
 @njit(cache=True)
-def blendermann_wind_loads_compiled(p, speed, angle):  # pragma: no cover - compiled
-    """Blendermann (1994) wind loads in body axes (:mod:`seahelm.environment.blendermann`)."""
-    return blendermann_loads(speed, angle, p.cd_transverse, p.cd_longitudinal_head,
-                             p.cd_longitudinal_stern, p.cd_delta, p.cd_kappa,
-                             p.windage_frontal_area, p.windage_lateral_area, p.length_overall,
-                             p.windage_centre, p.rho_air)
+def blendermann_wind_loads_compiled(p, speed, angle, cos_angle,
+                                    sin_angle):  # pragma: no cover - compiled
+    """Blendermann (1994) wind loads in body axes (:mod:`seahelm.environment.blendermann`),
+    with the per-run constants of :data:`BLENDERMANN_WIND`."""
+    return blendermann_loads_folded(
+        speed * speed, -1.0 if sin_angle < 0.0 else 1.0, abs(angle), abs(sin_angle), cos_angle,
+        p.cd_transverse, p.cd_l_head, p.cd_l_stern, p.cd_delta, p.centre_ratio,
+        p.dynamic_area, p.length_overall)
+
+
+def _blendermann_constants(r: Any) -> dict[str, np.ndarray]:
+    ratio = r["windage_frontal_area"] / r["windage_lateral_area"]
+    return {"cd_l_head": r["cd_longitudinal_head"] * ratio,
+            "cd_l_stern": r["cd_longitudinal_stern"] * ratio,
+            "centre_ratio": r["windage_centre"] / r["length_overall"],
+            "dynamic_area": 0.5 * r["rho_air"] * r["windage_lateral_area"]}
 
 
 @njit(cache=True)
-def lvov_wave_loads(p, angle, speed_along, factor):  # pragma: no cover - compiled
+def lvov_wave_loads(p, angle, cos_angle, sin_angle, speed_along,
+                    factor):  # pragma: no cover - compiled
     """Lvov (2014) eq. (8)-(10) mean wave loads in body axes: (X_w, −Y_w, −M_w), times
-    ``factor`` (1 + the irregular-sea fluctuation)."""
-    q = angle - _TWO_PI * math.floor((angle + math.pi) / _TWO_PI)  # to [-pi, pi)
-    L = p.hull_length
-    celerity = math.sqrt(p.gravity * p.wave_length / (2.0 * math.pi))
-    half = 0.5 * p.wave_height
-    f = (p.rho_water * p.gravity * L * half * half * math.exp(-p.wave_a0 * p.wave_length / L)
-         * (1.0 + p.wave_a1 * speed_along / celerity) * factor)
-    x = p.wave_cx * (0.1 - math.cos(q)) * f
-    y = p.wave_cy * math.sin(q) * f
-    m = p.wave_cm * math.sin(2.0 * q) / (1.0 + (math.pi - abs(q)) / math.pi) * f * L
+    ``factor`` (1 + the irregular-sea fluctuation); the per-run constants of
+    :data:`LVOV_WAVES`."""
+    f = p.wave_force_scale * (1.0 + p.wave_a1 * speed_along * p.wave_slowness) * factor
+    x = p.wave_cx * (0.1 - cos_angle) * f
+    y = p.wave_cy * sin_angle * f
+    m = (p.wave_cm * (2.0 * sin_angle * cos_angle) / (1.0 + (math.pi - abs(angle)) / math.pi)
+         * f * p.hull_length)
     return x, -y, -m
+
+
+def _lvov_wave_constants(r: Any) -> dict[str, np.ndarray]:
+    length, half = r["hull_length"], 0.5 * r["wave_height"]
+    return {"wave_force_scale": (r["rho_water"] * r["gravity"] * length * half * half
+                                 * np.exp(-r["wave_a0"] * r["wave_length"] / length)),
+            "wave_slowness": 1.0 / np.sqrt(r["gravity"] * r["wave_length"] / (2.0 * math.pi))}
 
 
 # ------------------------------------------------------------------------------------------
@@ -221,17 +235,25 @@ class LoadModel:
     params_type : type[Params]
         Its parameters (a :class:`WindParams` or :class:`WaveParams` subclass).
     loads : numba dispatcher
-        Wind: ``loads(p, speed, angle) -> (X, Y, N)`` of the relative wind (speed [m/s],
-        bearing it comes from relative to the bow [rad], positive from starboard). Waves:
-        ``loads(p, angle, speed_along, factor) -> (X, Y, N)`` of the relative bearing the waves
-        come from [rad], the ship's speed along the wave travel [m/s] and the load factor
-        (1 + fluctuation). Body axes, [N, N, N·m].
+        Wind: ``loads(p, speed, angle, cos_angle, sin_angle) -> (X, Y, N)`` of the relative
+        wind (speed [m/s], bearing it comes from relative to the bow in [−π, π] [rad], positive
+        from starboard, and that bearing's cosine and sine). Waves:
+        ``loads(p, angle, cos_angle, sin_angle, speed_along, factor) -> (X, Y, N)`` of the
+        relative bearing the waves come from in [−π, π] [rad] (and its cosine and sine), the
+        ship's speed along the wave travel [m/s] and the load factor (1 + fluctuation). Body
+        axes, [N, N, N·m]. The closed loop has the cosines and sines from the velocity
+        components, without a trigonometric call.
+    constants : callable, optional
+        ``constants(r) -> {name: array}``: values of each run that do not change during the
+        run, from its parameter fields (``r["wave_length"]``, arrays over the runs), computed
+        once, before the loop, and appended to the record ``loads`` reads (``p.name``).
     """
 
     name: str
     description: str
     params_type: type[Params]
     loads: Any
+    constants: Any = None
 
 
 LVOV_WIND = LoadModel(
@@ -240,10 +262,10 @@ LVOV_WIND = LoadModel(
 BLENDERMANN_WIND = LoadModel(
     "blendermann", "Blendermann (1994): surge, sway and yaw coefficients of the relative-wind "
     "angle per vessel type (Fossen 2021, §10.1.2)", BlendermannWindParams,
-    blendermann_wind_loads_compiled)
+    blendermann_wind_loads_compiled, _blendermann_constants)
 LVOV_WAVES = LoadModel(
     "lvov", "Lvov (2014) eq. (8)-(10): mean wave surge, sway and yaw loads, coefficients of "
-    "eq. (5)-(7) (Yurkansky 2005)", LvovWaveParams, lvov_wave_loads)
+    "eq. (5)-(7) (Yurkansky 2005)", LvovWaveParams, lvov_wave_loads, _lvov_wave_constants)
 
 #: Wind load models by name.
 WIND_LOADS: dict[str, LoadModel] = {"blendermann": BLENDERMANN_WIND, "lvov": LVOV_WIND}
@@ -350,6 +372,40 @@ class Environment:
             [f"waves={self.waves.name}"] if self.waves else []) + (
             ["loads held over each step"] if self.hold_over_step else [])
         return ", ".join(parts)
+
+    def kernel_records(self, rows: np.ndarray) -> np.ndarray:
+        """The records the compiled stage reads: the parameter fields of every run, then the
+        per-run constants (the directions' cosines and sines, the load models' ``constants``),
+        computed once here instead of at every stage of every step.
+
+        Parameters
+        ----------
+        rows : numpy.ndarray, shape (runs, n_values)
+            Packed parameter rows of :attr:`params_type`.
+
+        Returns
+        -------
+        numpy.ndarray, shape (runs,)
+            Structured records (``rec.wave_length``, ``rec.wave_from_cos``, ...).
+        """
+        base = as_records(rows, self.params_type)
+        extra: dict[str, np.ndarray] = {}
+        if self.wind is not None:
+            extra["wind_from_cos"] = np.cos(base["wind_direction"])
+            extra["wind_from_sin"] = np.sin(base["wind_direction"])
+        if self.waves is not None:
+            extra["wave_from_cos"] = np.cos(base["wave_direction"])
+            extra["wave_from_sin"] = np.sin(base["wave_direction"])
+        for model in (self.wind, self.waves):
+            if model is not None and model.constants is not None:
+                extra.update(model.constants(base))
+        dtype = np.dtype(base.dtype.descr + [(name, np.float64) for name in extra])
+        out = np.zeros(base.shape[0], dtype=dtype)
+        for name in base.dtype.names:
+            out[name] = base[name]
+        for name, values in extra.items():
+            out[name] = values
+        return out.view(np.dtype((np.record, dtype)))
 
     def params(self, **values: Any) -> Params:
         """A parameter set of this environment (``params_type(**values)``).

@@ -583,7 +583,7 @@ def simulate(
     mr = as_records(mp, m_cls)
     ar = as_records(ap, a_cls)
     cr = as_records(cp, c_cls)
-    er = ep if e_cls is None else as_records(ep, e_cls)
+    er = ep if e_cls is None else environment.kernel_records(ep)  # + per-run constants
     nz = z.shape[1]
     ncmd = len(wiring.commands) + len(controller.output_labels)  # outputs after commands
     # every record_every-th step and the final one (the last interval may be shorter)

@@ -129,10 +129,6 @@ def environment_stage(environment: Any, model: Any) -> Any:
     eout = {name: nym + j for j, name in enumerate(environment.output_labels)}
     imports, body = [], []
 
-    def current(axis: str) -> str:
-        name = f"current_{axis}"
-        return f" + d[{dist.index(name)}]" if name in dist else ""
-
     funcs = []
     if model.motion is not None:
         mod, name = _module_name(model.motion)
@@ -149,11 +145,11 @@ def environment_stage(environment: Any, model: Any) -> Any:
             f"    us = ym[{out.index('surge_speed')}]",
             f"    vs = ym[{out.index('sway_speed')}]",
         ]
+    cn = f"d[{dist.index('current_north')}]" if "current_north" in dist else ""
+    ce = f"d[{dist.index('current_east')}]" if "current_east" in dist else ""
     body += [
         "    c = math.cos(psi)",
         "    s = math.sin(psi)",
-        "    wn = us * c - vs * s  # velocity through the water, north and east",
-        "    we = us * s + vs * c",
         "    fx = 0.0",
         "    fy = 0.0",
         "    mz = 0.0",
@@ -162,26 +158,34 @@ def environment_stage(environment: Any, model: Any) -> Any:
         mod, name = _module_name(environment.wind.loads)
         imports.append(f"from {mod} import {name} as wind_loads")
         funcs.append(environment.wind.loads)
+        # the ship's velocity over ground in body axes: through the water plus the current
+        over = ["    ub = us", "    vb = vs"] if not (cn or ce) else [
+            f"    ub = us + ({cn or '0.0'} * c + {ce or '0.0'} * s)",
+            f"    vb = vs + ({ce or '0.0'} * c - {cn or '0.0'} * s)"]
         body += [
-            "    # relative wind: the air's velocity minus the ship's over ground (water + current)",
+            "    # the air's velocity relative to the ship, body axes: the wind's (it blows",
+            "    # towards the opposite of where it comes from) minus the ship's over ground",
             f"    w = ep.wind_speed + d[{sig['wind_gust']}]",
-            f"    an = -w * math.cos(ep.wind_direction) - (wn{current('north')})",
-            f"    ae = -w * math.sin(ep.wind_direction) - (we{current('east')})",
-            "    speed = math.sqrt(an * an + ae * ae)",
-            "    angle = math.atan2(-ae, -an) - psi  # the bearing it comes from, off the bow",
-            "    angle -= TWO_PI * math.floor((angle + math.pi) / TWO_PI)  # to [-pi, pi)",
+            *over,
+            "    an = -w * ep.wind_from_cos",
+            "    ae = -w * ep.wind_from_sin",
+            "    ax = an * c + ae * s - ub",
+            "    ay = ae * c - an * s - vb",
+            "    speed = math.sqrt(ax * ax + ay * ay)",
+            "    angle = math.atan2(-ay, -ax)  # the bearing it comes from, off the bow",
             "    if w != 0.0:",
-            "        x, y, n = wind_loads(ep, speed, angle)",
+            "        if speed > 0.0:",
+            "            x, y, n = wind_loads(ep, speed, angle, -ax / speed, -ay / speed)",
+            "        else:",
+            "            x, y, n = wind_loads(ep, speed, angle, 1.0, 0.0)",
             "        # minus the still air the ship moves through: the loads of the true wind",
-            f"        sn = -(wn{current('north')})",
-            f"        se = -(we{current('east')})",
-            "        still = math.sqrt(sn * sn + se * se)",
-            "        a0 = math.atan2(-se, -sn) - psi",
-            "        a0 -= TWO_PI * math.floor((a0 + math.pi) / TWO_PI)",
-            "        x0, y0, n0 = wind_loads(ep, still, a0)",
-            "        x -= x0",
-            "        y -= y0",
-            "        n -= n0",
+            "        still = math.sqrt(ub * ub + vb * vb)",
+            "        if still > 0.0:",
+            "            x0, y0, n0 = wind_loads(ep, still, math.atan2(vb, ub), ub / still,",
+            "                                    vb / still)",
+            "            x -= x0",
+            "            y -= y0",
+            "            n -= n0",
             "    else:  # (exactly zero: no round-off of two equal evaluations)",
             "        x = 0.0",
             "        y = 0.0",
@@ -200,11 +204,14 @@ def environment_stage(environment: Any, model: Any) -> Any:
         imports.append(f"from {mod} import {name} as wave_loads")
         funcs.append(environment.waves.loads)
         body += [
-            "    # the waves come from wave_direction and run the other way; the ship's speed",
-            "    # along their travel is its velocity through the water projected on it",
-            "    q = ep.wave_direction - psi",
-            "    along = -(wn * math.cos(ep.wave_direction) + we * math.sin(ep.wave_direction))",
-            f"    x, y, n = wave_loads(ep, q, along, 1.0 + d[{sig['wave_load_fluctuation']}])",
+            "    # the bearing the waves come from, off the bow (q = θ_v − ψ), by its cosine and",
+            "    # sine; they run the other way, so the ship's speed along their travel is minus",
+            "    # its velocity through the water projected on q",
+            "    cq = ep.wave_from_cos * c + ep.wave_from_sin * s",
+            "    sq = ep.wave_from_sin * c - ep.wave_from_cos * s",
+            "    along = -(us * cq + vs * sq)",
+            "    x, y, n = wave_loads(ep, math.atan2(sq, cq), cq, sq, along,",
+            f"                         1.0 + d[{sig['wave_load_fluctuation']}])",
             f"    ym[{eout['wave_force_x']}] = x",
             f"    ym[{eout['wave_force_y']}] = y",
             f"    ym[{eout['wave_moment_z']}] = n",
@@ -221,7 +228,7 @@ def environment_stage(environment: Any, model: Any) -> Any:
         f'"""Generated by seahelm.simulation.environment_stage: {environment.name} on '
         f'{model.name}."""\n'
         "import math\n\nfrom numba import njit\n\n" + "\n".join(imports) + "\n\n"
-        "TWO_PI = 2.0 * math.pi\n\n\n"
+        "\n"
         "@njit(cache=True, _nrt=False, fastmath={'arcp', 'contract', 'afn', 'reassoc'})\n"
         "def environment_loads(t, x, u, p, ym, d, ep, lm):  # pragma: no cover - compiled\n"
         + "\n".join(body) + "\n\n\n"
