@@ -72,8 +72,7 @@ def main() -> None:
     sea[:, 0, :MMG.n_disturbances] = current[:, 0]
     sea[:, :, :MMG.n_disturbances] = current
     j = nd - 1  # wave_load_fluctuation
-    for i, s in enumerate(seeds):
-        sea[i, :, j] = wave_load_fluctuation(3.0, n_steps + 1, DT, s)
+    sea[:, :, j] = wave_load_fluctuation(3.0, n_steps + 1, DT, seeds, runs=n)
     draw = time.perf_counter() - t0
 
     common = dict(t_final=T_FINAL, dt=DT, actuator=RUDDER_SERVO, actuator_params=KVLCC2_FULL_SERVO,

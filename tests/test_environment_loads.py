@@ -161,6 +161,17 @@ def test_the_wave_load_fluctuation_has_zero_mean_and_a_floor_at_minus_one():
     np.testing.assert_array_equal(f, wave_load_fluctuation(3.0, 200_000, 0.5, 5))
 
 
+def test_many_seas_drawn_at_once_equal_the_seas_drawn_one_by_one():
+    seqs = np.random.SeedSequence(11).spawn(4)
+    batch = wave_load_fluctuation(2.5, 300, 0.5, seqs, runs=4)
+    assert batch.shape == (4, 300)
+    for i, seq in enumerate(seqs):
+        np.testing.assert_array_equal(batch[i], wave_load_fluctuation(2.5, 300, 0.5, seq))
+    np.testing.assert_array_equal(wave_load_fluctuation(2.5, 300, 0.5, [7, 8], runs=2)[1],
+                                  wave_load_fluctuation(2.5, 300, 0.5, 8))
+    assert not np.array_equal(batch[0], batch[1])
+
+
 def test_lvov_wind_kernel_equals_the_paper_functions():
     params = LvovWindParams(wind_speed=1.0, windage_lateral_area=1059.9, windage_centre=4.0,
                             windage_length=160.93)

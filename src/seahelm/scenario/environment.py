@@ -71,6 +71,16 @@ class WaveLoadFluctuation:
                                      self.seed if seed is None else seed,
                                      spectrum=self.spectrum)
 
+    def draw_runs(self, t: Any, seeds: list[Any]) -> np.ndarray:
+        """Many runs' realisations in one vectorised draw: row i equals
+        ``self(t, seed=seeds[i])``."""
+        t = np.asarray(t, dtype=float)
+        if t.size < 2 or not np.allclose(np.diff(t), t[1] - t[0]):
+            raise ParameterError("an irregular sea needs a uniform time grid of 2 or more "
+                                 "samples")
+        return wave_load_fluctuation(self.h3, t.size, float(t[1] - t[0]), list(seeds),
+                                     spectrum=self.spectrum, runs=len(seeds))
+
 
 @dataclasses.dataclass(frozen=True)
 class EnvironmentRuns:

@@ -172,6 +172,9 @@ class _ScenarioSignals:
     def __call__(self, t_grid: np.ndarray) -> np.ndarray:
         t_grid = np.asarray(t_grid, dtype=float)
         out = np.zeros((len(self.runs), t_grid.size, self.n_channels))
+        # random signals that draw many runs at once (draw_runs) are drawn per channel and
+        # signal in one call; row i equals the single-run draw of run i's seed
+        groups: dict[tuple[int, Any], list[tuple[int, Any, Any]]] = {}
         for i, channels in enumerate(self.runs):
             for j, name, spec, sig in channels:
                 try:
@@ -179,12 +182,23 @@ class _ScenarioSignals:
                         entropy = sig.seed if self.batch_seed is None else [sig.seed,
                                                                             self.batch_seed]
                         seq = np.random.SeedSequence(entropy, spawn_key=(i,))
-                        out[i, :, j] = sig(t_grid, seed=seq)
+                        if hasattr(sig, "draw_runs"):
+                            groups.setdefault((j, sig), []).append((i, seq, (name, spec)))
+                        else:
+                            out[i, :, j] = sig(t_grid, seed=seq)
                     else:
                         out[i, :, j] = sig(t_grid)
                 except (ValueError, TypeError) as exc:
                     raise _err(self.source, f"{self.path}.{name}",
                                f"{exc} (got {spec!r})") from None
+        for (j, sig), members in groups.items():
+            rows = [i for i, _, _ in members]
+            try:
+                out[rows, :, j] = sig.draw_runs(t_grid, [seq for _, seq, _ in members])
+            except (ValueError, TypeError) as exc:
+                name, spec = members[0][2]
+                raise _err(self.source, f"{self.path}.{name}",
+                           f"{exc} (got {spec!r})") from None
         return out
 
 
