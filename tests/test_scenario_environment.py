@@ -177,3 +177,26 @@ def test_manoeuvre_environment_limits(kind, section, message):
     with pytest.raises(ScenarioError, match=re.escape(message)):
         parse(text)
 
+
+
+def test_a_current_with_a_speed_profile_in_time():
+    """A tidal current: the speed a signal, the direction fixed (it reverses when negative)."""
+    text = BASE.replace("speed = 0.1\ndirection_deg = 180\n",
+                        'speed = {kind = "sine", amplitude = 0.4, period = 600.0}\n'
+                        "direction_deg = 60\n")
+    batch = parse(text)
+    t = np.arange(201) * 5.0
+    d = batch.disturbance(t)
+    labels = list(batch.model.disturbance_labels + batch.environment.signal_labels)
+    speed = 0.4 * np.sin(2.0 * math.pi * t / 600.0)
+    np.testing.assert_allclose(d[0, :, labels.index("current_north")],
+                               speed * math.cos(math.radians(60.0)), rtol=1e-14, atol=1e-16)
+    np.testing.assert_allclose(d[0, :, labels.index("current_east")],
+                               speed * math.sin(math.radians(60.0)), rtol=1e-14, atol=1e-16)
+    with pytest.raises(ScenarioError, match=r"\[environment.current.speed\].*unknown signal kind"):
+        parse(text.replace('kind = "sine"', 'kind = "tide"'))
+    steady = (f'[vessel]\ncatalog = "kvlcc2-l7"\n[maneuver]\nkind = "turning"\n'
+              '[environment.current]\nspeed = {kind = "step", time = 10.0, after = 1.0}\n'
+              'direction_deg = 0\n')
+    with pytest.raises(ScenarioError, match=r"a manoeuvre takes a steady current"):
+        parse(steady)

@@ -252,6 +252,10 @@ def _conditions(scn: Scenario, model: Any, source: str) -> Any:
         if not {"current_north", "current_east"} <= set(model.disturbance_labels):
             raise at_key(source, "environment.current",
                          f"model '{model.name}' has no current channels")
+        if isinstance(env.current.speed, dict):
+            raise at_key(source, "environment.current.speed",
+                         "a manoeuvre takes a steady current (a number [m/s]); a profile in "
+                         "time needs a [simulation] scenario")
         kwargs.update(current_speed=env.current.speed,
                       current_direction=math.radians(env.current.direction_deg))
     return Conditions(**kwargs) if kwargs else None

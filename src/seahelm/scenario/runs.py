@@ -554,6 +554,14 @@ def _with_current(scn: Scenario, model: Any, source: str) -> dict[str, Any]:
                    f"the current is given twice: here and as environment.disturbance."
                    f"{both[0]}")
     angle = math.radians(current.direction_deg)
+    if isinstance(current.speed, dict):  # a speed profile in time, along a fixed direction
+        try:
+            out["current_north"] = make_signal(current.speed, scale=math.cos(angle))
+            out["current_east"] = make_signal(current.speed, scale=math.sin(angle))
+        except (ParameterError, ValueError, TypeError) as exc:
+            raise _err(source, "environment.current.speed",
+                       f"{exc} (got {current.speed!r})") from None
+        return out
     out["current_north"] = current.speed * math.cos(angle)
     out["current_east"] = current.speed * math.sin(angle)
     return out

@@ -51,12 +51,16 @@ class ControllerSection(_Strict):
 
 
 class CurrentSection(_Strict):
-    """``[environment.current]``: a uniform current, constant in time.
+    """``[environment.current]``: a uniform current, constant or with a speed profile in time.
 
     ``direction_deg`` is where the current sets to (flows towards), clockwise from north, in
-    [0, 360) (the oceanographic convention; wind is given by where it comes from)."""
+    [0, 360) (the oceanographic convention; wind is given by where it comes from). ``speed``
+    [m/s] is a number ≥ 0, or a signal table for a profile in time (e.g. a tidal
+    ``{kind = "sine", ...}``; a negative value sets the other way). A current that changes in
+    time is applied through the velocity relative to the water only: the inertia force of an
+    accelerating current is left out."""
 
-    speed: Annotated[Number, Field(ge=0)]
+    speed: Annotated[Number, Field(ge=0)] | dict[str, Any]
     direction_deg: Annotated[Number, Field(ge=0, lt=360)]
 
 
