@@ -195,3 +195,23 @@ def test_compensate_names_the_option_of_a_non_finite_value(option, value, unit):
     flat = ["compensate"] + [x for kv in args.items() for x in kv]
     assert one_error(flat) == (f"error: `{option}` must be a finite number [{unit}], got "
                                f"{float(value)!r}")
+
+
+@pytest.mark.parametrize("argv", [
+    ["run", "scenario.toml", "--out", ""],
+    ["demo", "--out="],
+    ["maneuver", "turning", "kvlcc2-l7", "--out", ""],
+    ["waves", "sample", "--duration", ""],
+])
+def test_an_empty_option_value_is_refused_before_anything_runs(argv, monkeypatch, capsys):
+    """The parser turns an empty path into '.', which would write into the current directory."""
+    import sys
+
+    cli_main = sys.modules["seahelm.cli.main"]
+    monkeypatch.setattr("sys.argv", ["seahelm", *argv])
+    monkeypatch.setattr(type(app), "__call__", lambda *a, **k: pytest.fail("the command ran"))
+    with pytest.raises(SystemExit) as exc:
+        cli_main.main()
+    assert exc.value.code == 2
+    name = argv[-2] if argv[-1] == "" else argv[-1][:-1]
+    assert f"error: `{name}` must not be empty" in capsys.readouterr().err

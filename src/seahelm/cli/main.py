@@ -19,6 +19,7 @@ from ._common import (
     JsonFlag,
     OneLineErrors,
     check_figure_suffix,
+    fail_bad_input,
     console,
     err_console,
     handle_errors,
@@ -354,6 +355,40 @@ def cache(
                           "left alone", highlight=False)
 
 
+def _value_options() -> set[str]:
+    """The names of every option, in every command, that takes a value (not a flag)."""
+    from typer.main import get_command
+
+    names: set[str] = set()
+    stack = [get_command(app)]
+    while stack:
+        cmd = stack.pop()
+        for param in cmd.params:
+            if param.param_type_name == "option" and not getattr(param, "is_flag", False):
+                names.update(param.opts)
+        stack.extend(getattr(cmd, "commands", {}).values())
+    return names
+
+
+def _refuse_empty_values(argv: list[str]) -> None:
+    """An empty option value (``--out ''``, ``--out=``) is an error: the parser turns an empty
+    path into ``.``, the current directory, and would write there without a word; no option
+    of seahelm means anything by an empty value."""
+    if "" not in argv and not any(a.startswith("-") and a.endswith("=") for a in argv):
+        return
+    names = _value_options()
+    for k, arg in enumerate(argv):
+        name = arg[:-1] if arg.endswith("=") else (argv[k - 1] if arg == "" and k else None)
+        if name in names:
+            fail_bad_input(f"`{name}` must not be empty")
+
+
 def main() -> None:
     """Entry point of the ``seahelm`` console script."""
+    import sys
+
+    try:
+        _refuse_empty_values(sys.argv[1:])
+    except typer.Exit as exc:
+        raise SystemExit(exc.exit_code) from None
     app()
