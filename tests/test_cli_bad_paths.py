@@ -215,3 +215,34 @@ def test_an_empty_option_value_is_refused_before_anything_runs(argv, monkeypatch
     assert exc.value.code == 2
     name = argv[-2] if argv[-1] == "" else argv[-1][:-1]
     assert f"error: `{name}` must not be empty" in capsys.readouterr().err
+
+
+def test_a_write_killed_by_sigterm_leaves_no_temporary_file(tmp_path):
+    """The console script turns SIGTERM into SystemExit, so atomic_write's cleanup runs."""
+    import signal
+    import subprocess
+    import sys
+
+    script = (
+        "import sys, time\n"
+        "from seahelm.cli._common import exit_on_sigterm\n"
+        "from seahelm.results import atomic_write\n"
+        "if sys.argv[2] == 'handled':\n"
+        "    exit_on_sigterm()\n"
+        "def writer(tmp):\n"
+        "    open(tmp, 'w').write('half')\n"
+        "    print('writing', flush=True)\n"
+        "    time.sleep(60)\n"
+        "atomic_write(sys.argv[1], writer)\n")
+    for mode in ("handled", "default"):
+        target = tmp_path / mode / "result.nc"
+        proc = subprocess.Popen([sys.executable, "-c", script, str(target), mode],
+                                stdout=subprocess.PIPE, text=True)
+        assert proc.stdout.readline().strip() == "writing"
+        proc.send_signal(signal.SIGTERM)
+        code = proc.wait(timeout=30)
+        left = sorted(p.name for p in target.parent.iterdir())
+        if mode == "handled":
+            assert code == 143 and left == []  # nothing half-written, no temporary file
+        else:  # the contrast: Python's default leaves the temporary file behind
+            assert code == -signal.SIGTERM and len(left) == 1 and left[0].endswith(".tmp")

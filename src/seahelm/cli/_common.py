@@ -46,6 +46,21 @@ EXIT_BAD_INPUT = 2
 JsonFlag = Annotated[bool, typer.Option("--json", help="Print one JSON object on stdout.")]
 
 
+def exit_on_sigterm() -> None:
+    """Turn SIGTERM (``kill``, a job scheduler's stop) into ``SystemExit(143)``.
+
+    Python's default for SIGTERM ends the process at once, so a file being written
+    atomically (:func:`seahelm.results.atomic_write`) would leave its temporary file behind;
+    as an exception, the writers' cleanup runs and nothing half-written is left.
+    """
+    import signal
+
+    def _terminate(signum: int, frame: Any) -> None:
+        raise SystemExit(128 + signum)
+
+    signal.signal(signal.SIGTERM, _terminate)
+
+
 def fail_bad_input(message: str) -> NoReturn:
     """Print a one-line reason on stderr and exit with code 2."""
     err_console.print(Text.assemble(("error: ", "bold red"), message), highlight=False,

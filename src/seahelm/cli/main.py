@@ -19,6 +19,7 @@ from ._common import (
     JsonFlag,
     OneLineErrors,
     check_figure_suffix,
+    exit_on_sigterm,
     fail_bad_input,
     console,
     err_console,
@@ -387,6 +388,7 @@ def main() -> None:
     """Entry point of the ``seahelm`` console script."""
     import sys
 
+    exit_on_sigterm()  # a killed write cleans up its temporary file
     try:
         _refuse_empty_values(sys.argv[1:])
     except typer.Exit as exc:
