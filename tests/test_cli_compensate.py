@@ -128,3 +128,22 @@ def test_without_a_ship_model_the_model_delta_k_is_not_given():
     r = runner.invoke(app, BASE[2:])
     assert r.exit_code == 2
     assert "`--length` [m] is needed (or --ship mariner" in r.stderr
+
+
+def test_a_sail_centre_off_the_ship_is_refused():
+    r = runner.invoke(app, BASE + ["--sail-centre", "80"])
+    assert r.exit_code == 2
+    assert ("`--sail-centre` must lie on the ship, within ±L/2 = ±75 [m] of midships, got 80.0"
+            in " ".join(r.stderr.split()))
+    assert runner.invoke(app, BASE + ["--sail-centre", "-75", "--json"]).exit_code == 0
+
+
+def test_windage_centres_off_the_ship_are_refused_by_the_library():
+    from seahelm.environment.loads import LvovWindParams
+    from seahelm.environment.wind import wind_moment_arm
+    from seahelm.errors import ParameterError
+
+    with pytest.raises(ParameterError, match=r"`windage_centre` must lie on the ship.*±50"):
+        LvovWindParams(windage_lateral_area=900.0, windage_centre=60.0, windage_length=100.0)
+    with pytest.raises(ParameterError, match=r"`sail_centre` must lie on the ship.*got -51"):
+        wind_moment_arm(0.5, [0.0, -51.0], 100.0)

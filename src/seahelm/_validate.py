@@ -109,6 +109,26 @@ def check_range(
         )
 
 
+def check_on_hull(name: str, centre: Any, length: Any) -> None:
+    """Raise :class:`ParameterError` unless a centre measured from midships [m] lies on the
+    ship: ``|centre| <= length / 2``.
+
+    Parameters
+    ----------
+    name : str
+        Argument name used in the error message (e.g. ``sail_centre``).
+    centre, length : float or array_like
+        The centre forward of midships and the ship length [m] (broadcast together).
+    """
+    c, half = np.broadcast_arrays(np.asarray(centre, dtype=float),
+                                  0.5 * np.asarray(length, dtype=float))
+    bad = ~(np.abs(c) <= half)
+    if np.any(bad):
+        raise ParameterError(
+            f"`{name}` must lie on the ship, within ±L/2 = ±{float(half[bad].flat[0]):g} [m] of "
+            f"midships, got {_fmt(float(c[bad].flat[0]))} [m]")
+
+
 def as_float_array(name: str, value: Any, unit: str = "", *, finite: bool = True) -> np.ndarray:
     """Convert to a float64 array, naming the parameter when that fails or values are not finite.
 

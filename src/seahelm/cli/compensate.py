@@ -141,7 +141,10 @@ def compensate(
              "draft_aft": draft_aft, "block_coefficient": block_coefficient, "speed": speed,
              "rudder_area": rudder_area, "rudder_aspect_ratio": rudder_aspect_ratio,
              "windage_area": windage_area, "sail_centre": sail_centre}
-    ship, vessel_params = _ship(ship_name, {k: v for k, v in given.items() if v is not None})
+    try:
+        ship, vessel_params = _ship(ship_name, {k: v for k, v in given.items() if v is not None})
+    except ParameterError as exc:  # in the user's words: the option, not the field
+        raise ParameterError(str(exc).replace("`sail_centre`", "`--sail-centre`")) from None
     if (draft_fore is None) != (draft_aft is None):
         raise ParameterError("give both `--draft-fore` and `--draft-aft` [m], or neither")
     with warnings.catch_warnings(record=True) as caught:

@@ -82,7 +82,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import ArrayLike
 
-from .._validate import as_float_array, check_nonnegative, check_positive
+from .._validate import as_float_array, check_nonnegative, check_on_hull, check_positive
 from ..constants import RHO_AIR, RHO_SEAWATER, wrap_angle
 from ..errors import ParameterError
 from ..parameters import Params, param, signal_indices
@@ -306,6 +306,7 @@ def wind_compensation(
     check_nonnegative("windage_area", s_a, "m²")
     check_positive("underwater_area", s_h, "m²")
     l_sail = as_float_array("sail_centre", sail_centre, "m")
+    check_on_hull("sail_centre", l_sail, L)
     l_lr = as_float_array("resistance_centre", resistance_centre, "-")
     factor = _rudder_factor(rudder_area, rudder_aspect_ratio, rho)
     wind = (
@@ -568,6 +569,9 @@ class ShipParticulars(Params):
                              doc="mass plus added mass in sway (for the model's disturbances)")
     yaw_inertia: float = param(0.0, unit="kg·m²", symbol="I_z − N_ṙ", low=0.0,
                                doc="yaw inertia plus added inertia (for the model's disturbances)")
+
+    def validate(self) -> None:
+        check_on_hull("sail_centre", self.sail_centre, self.length)
 
     @property
     def t_fore(self) -> float:

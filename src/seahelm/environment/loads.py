@@ -53,7 +53,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
-from .._validate import as_float_array, check_positive
+from .._validate import as_float_array, check_on_hull, check_positive
 from ..constants import GRAVITY, RHO_AIR, RHO_SEAWATER
 from ..errors import ParameterError
 from ..parameters import Params, as_records, param
@@ -121,6 +121,9 @@ class LvovWindParams(WindParams):
     windage_length: float = param(unit="m", symbol="L", low=0.0, low_inclusive=False,
                                   doc="ship length of the moment arm")
 
+    def validate(self) -> None:
+        check_on_hull("windage_centre", self.windage_centre, self.windage_length)
+
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class BlendermannWindParams(WindParams):
@@ -146,6 +149,9 @@ class BlendermannWindParams(WindParams):
                                          doc="longitudinal drag coefficient, stern wind (on A_F)")
     cd_delta: float = param(unit="-", symbol="δ", low=0.0, doc="cross-force parameter")
     cd_kappa: float = param(unit="-", symbol="κ", low=0.0, doc="rolling-moment factor")
+
+    def validate(self) -> None:
+        check_on_hull("windage_centre", self.windage_centre, self.length_overall)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

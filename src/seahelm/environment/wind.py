@@ -36,7 +36,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import as_float_array, check_nonnegative, check_positive
+from .._validate import as_float_array, check_nonnegative, check_on_hull, check_positive
 from ..constants import GRAVITY, RHO_AIR, wrap_angle
 
 __all__ = [
@@ -221,6 +221,7 @@ def wind_moment_arm(wind_angle: ArrayLike, sail_centre: ArrayLike, length: Array
     L = as_float_array("length", length, "m")
     check_positive("length", L, "m")
     ls = as_float_array("sail_centre", sail_centre, "m")
+    check_on_hull("sail_centre", ls, L)
     return 0.25 + ls / L - np.degrees(np.abs(q)) / 360.0
 
 
