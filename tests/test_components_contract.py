@@ -150,3 +150,37 @@ def test_controller_measurements_are_outputs_of_some_model(name):
     outputs = {lab for m in VESSEL_MODELS for lab in get_model(m).output_labels}
     assert set(ctrl.measurement_labels) <= outputs
 
+
+
+@pytest.mark.parametrize("kind, name", [("model", n) for n in VESSEL_MODELS]
+                         + [("actuator", n) for n in ACTUATORS]
+                         + [("controller", n) for n in CONTROLLERS])
+def test_parameter_fields_refuse_booleans_strings_and_non_finite_values_by_name_and_unit(kind,
+                                                                                        name):
+    import dataclasses
+    import math
+
+    from seahelm.errors import ParameterError
+
+    comp = {"model": get_model, "actuator": get_actuator, "controller": get_controller}[kind](name)
+    cls = comp.params_type
+    fields = [f for f in dataclasses.fields(cls) if not f.metadata.get("size")]
+    if not fields:
+        pytest.skip(f"{kind} '{name}' has no scalar parameters")
+
+    def valid(f):  # the default, or a number inside the field's range
+        if f.default is not dataclasses.MISSING:
+            return f.default
+        low, high = f.metadata.get("low", -math.inf), f.metadata.get("high", math.inf)
+        return min(max(1.0, low + 0.5 if math.isfinite(low) else 1.0), high)
+
+    base = {f.name: valid(f) for f in dataclasses.fields(cls) if not f.metadata.get("size")
+            or f.default is dataclasses.MISSING}
+    for f in fields[:3]:
+        unit = f.metadata.get("unit", "")
+        for bad, what in ((True, "a number"), ("1.0", "a number"), (math.nan, "finite")):
+            with pytest.raises(ParameterError) as exc:
+                cls(**{**base, f.name: bad})
+            msg = str(exc.value)
+            assert msg.startswith(f"`{f.name}` must be {what}"), msg
+            assert not unit or f"[{unit}]" in msg, msg

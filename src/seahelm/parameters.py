@@ -127,9 +127,7 @@ class Params:
                 for k, v in enumerate(values):
                     _check_number(f, f"{f.name}[{k}]", v)
                 continue
-            if isinstance(value, bool):
-                continue
-            _check_number(f, f.name, value)
+            _check_number(f, f.name, value)  # (True/False are refused: no field is a flag)
         self.validate()
 
     def validate(self) -> None:
