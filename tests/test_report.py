@@ -267,3 +267,18 @@ def test_a_failure_while_writing_leaves_no_partial_html(report_demo_dir, tmp_pat
 def test_run_report_needs_out():
     scenario = Path(__file__).resolve().parents[1] / "examples" / "mariner_course_change.toml"
     assert "`--report` writes report.html" in one_error(["run", str(scenario), "--report"])
+
+
+def test_run_report_of_a_maneuver_scenario(tmp_path):
+    """A [maneuver] scenario (the KVLCC2 turning circles, the kernel of `seahelm imo`'s
+    turning): report.html beside the manoeuvre's files."""
+    scenario = Path(__file__).resolve().parents[1] / "examples" / "kvlcc2_turning_circles.toml"
+    res = runner.invoke(app, ["run", str(scenario), "--out", str(tmp_path), "--no-plot",
+                              "--report"])
+    assert res.exit_code == 0, res.stderr
+    assert "report:" in res.stdout
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "report.html", "turning-circle-metrics.nc", "turning-circle-runs.nc"]
+    page = (tmp_path / "report.html").read_text()
+    assert "tactical_diameter [m]" in page and "rudder 20°, starboard" in page
+    assert page.count("Plotly.newPlot(") == 2

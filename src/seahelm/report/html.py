@@ -31,6 +31,7 @@ th { background: #eef1f5; text-align: left; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; }
 caption { caption-side: bottom; text-align: left; font-size: .85em; color: #555; }
 table.meta td:first-child { font-weight: 600; white-space: nowrap; }
+table.summary td, table.diverged td, table.metrics td:first-child { white-space: nowrap; }
 tr.pass td:nth-child(8) { color: #176d2c; font-weight: 600; }
 tr.fail td:nth-child(8) { color: #b00020; font-weight: 600; }
 tr.not-evaluated td:nth-child(8) { color: #8a6d00; }

@@ -41,7 +41,7 @@ MAX_STATUS_ROWS = 500
 MAX_TABLE_RUNS = 200
 #: Up to this many runs, the summary has a column per run (else a row per run).
 MAX_COLUMN_RUNS = 6
-#: Histogram bins of the batch statistics.
+#: Histogram bins of the batch statistics at most (2 √n for n values, at least 5).
 HISTOGRAM_BINS = 30
 #: A batch this large (or any Monte-Carlo batch) gets the statistics section.
 STATISTICS_MIN_RUNS = 10
@@ -95,10 +95,11 @@ def fmt(value: Any, digits: int = 5) -> str:
     return str(value)
 
 
-def table(header: Sequence[str], rows: Sequence[Sequence[Any]], *, cls: str = "",
+def table(header: Sequence[str] | None, rows: Sequence[Sequence[Any]], *, cls: str = "",
           row_classes: Sequence[str] | None = None, caption: str = "") -> str:
-    """An HTML table, every cell escaped (numbers formatted by :func:`fmt`)."""
-    head = "".join(f"<th>{_e(h)}</th>" for h in header)
+    """An HTML table, every cell escaped (numbers formatted by :func:`fmt`); no header row if
+    ``header`` is None."""
+    head = "".join(f"<th>{_e(h)}</th>" for h in header or ())
     body = []
     for i, row in enumerate(rows):
         rc = f' class="{_e(row_classes[i])}"' if row_classes and row_classes[i] else ""
@@ -108,7 +109,8 @@ def table(header: Sequence[str], rows: Sequence[Sequence[Any]], *, cls: str = ""
         body.append(f"<tr{rc}>{cells}</tr>")
     cap = f"<caption>{_e(caption)}</caption>" if caption else ""
     klass = f' class="{_e(cls)}"' if cls else ""
-    return (f'<div class="table"><table{klass}>{cap}<thead><tr>{head}</tr></thead>'
+    thead = f"<thead><tr>{head}</tr></thead>" if header is not None else ""
+    return (f'<div class="table"><table{klass}>{cap}{thead}'
             f"<tbody>{''.join(body)}</tbody></table></div>")
 
 
@@ -166,7 +168,8 @@ def overview_sections(data: ReportData) -> list[Section]:
                                  f"{fmt(float(time[-1] - time[0]), 6)} s"])
             rows.extend(_batch_rows(run_set.shaped, dims))
         title = _set_title(run_set, data)
-        sec.blocks.append(table(["", title], rows, cls="meta"))
+        sec.blocks.append(table(["", title] if title else None,
+                                [[k, str(v)] for k, v in rows], cls="meta"))
         text = attrs.get("scenario_text")
         if text:
             sec.blocks.append(f"<details><summary>scenario text ({len(str(text).splitlines())}"
@@ -399,7 +402,8 @@ def _histograms(values: dict[str, np.ndarray]) -> dict[str, Any] | None:
         lo, hi = float(v.min()), float(v.max())
         if hi <= lo:
             lo, hi = lo - 0.5 * max(abs(lo), 1e-12), hi + 0.5 * max(abs(hi), 1e-12)
-        counts, edges = np.histogram(v, bins=HISTOGRAM_BINS, range=(lo, hi))
+        bins = int(np.clip(2 * math.sqrt(v.size), 5, HISTOGRAM_BINS))
+        counts, edges = np.histogram(v, bins=bins, range=(lo, hi))
         suffix = "" if k == 0 else str(k + 1)
         data.append({"type": "bar", "x": typed_array(0.5 * (edges[:-1] + edges[1:])),
                      "y": typed_array(counts), "width": float(edges[1] - edges[0]),
