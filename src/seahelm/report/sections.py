@@ -589,5 +589,15 @@ SECTIONS: tuple[Callable[[ReportData], list[Section]], ...] = (
 
 
 def build_sections(data: ReportData) -> list[Section]:
-    """Every section of the report, in page order (:data:`SECTIONS`)."""
+    """Every section of the report, in page order (:data:`SECTIONS`).
+
+    Parameters
+    ----------
+    data : ReportData
+        What the report shows.
+
+    Returns
+    -------
+    list of Section
+    """
     return [s for builder in SECTIONS for s in builder(data)]

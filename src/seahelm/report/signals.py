@@ -23,8 +23,8 @@ if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
 __all__ = ["MAX_POINTS", "MAX_RUNS_PLOTTED", "Signal", "find_signal", "TIME_SERIES",
-           "decimation", "plotted_runs", "run_labels", "ship_length", "ship_outlines",
-           "outline_interval"]
+           "decimation", "decimated_index", "plotted_runs", "run_labels", "ship_length",
+           "ship_breadth", "ship_outlines", "outline_interval"]
 
 #: Runs whose time series and track are drawn (the rest are in the band and the tables).
 MAX_RUNS_PLOTTED = 20
@@ -98,13 +98,37 @@ def find_signal(runs: "xr.Dataset", role: str) -> Signal | None:
 
 
 def decimation(n_time: int, max_points: int = MAX_POINTS) -> int:
-    """The stride that leaves at most ``max_points`` of ``n_time`` samples (the last sample
-    is kept by the callers)."""
+    """The stride that leaves at most ``max_points`` of ``n_time`` samples.
+
+    Parameters
+    ----------
+    n_time : int
+        Samples of the series.
+    max_points : int, optional
+        Samples kept at most (default :data:`MAX_POINTS`).
+
+    Returns
+    -------
+    int
+    """
     return max(1, math.ceil(n_time / max_points))
 
 
 def decimated_index(n_time: int, max_points: int = MAX_POINTS) -> np.ndarray:
-    """Indices of the kept samples: every ``decimation``-th and the last."""
+    """Indices of the kept samples: every ``decimation``-th and the last, at most
+    ``max_points``.
+
+    Parameters
+    ----------
+    n_time : int
+        Samples of the series.
+    max_points : int, optional
+        Samples kept at most (default :data:`MAX_POINTS`).
+
+    Returns
+    -------
+    numpy.ndarray
+    """
     idx = np.arange(0, n_time, decimation(n_time, max(2, max_points - 1)))
     if idx[-1] != n_time - 1:
         idx = np.append(idx, n_time - 1)
@@ -113,7 +137,20 @@ def decimated_index(n_time: int, max_points: int = MAX_POINTS) -> np.ndarray:
 
 def plotted_runs(status: np.ndarray, max_runs: int = MAX_RUNS_PLOTTED) -> np.ndarray:
     """The runs drawn: all if there are at most ``max_runs``; else up to a quarter of them
-    diverged runs (the first ones) and the rest spread evenly over the batch."""
+    diverged runs (the first ones) and the rest spread evenly over the batch.
+
+    Parameters
+    ----------
+    status : numpy.ndarray
+        Status code per run (0 = ok).
+    max_runs : int, optional
+        Runs drawn at most (default :data:`MAX_RUNS_PLOTTED`).
+
+    Returns
+    -------
+    numpy.ndarray
+        Sorted run indices.
+    """
     status = np.asarray(status).reshape(-1)
     n = status.size
     if n <= max_runs:
@@ -137,7 +174,17 @@ def _coordinate_text(name: str, value: object, units: str) -> str:
 
 
 def run_labels(runs: "xr.Dataset") -> list[str]:
-    """A short label per run: ``run i`` and its batch coordinates (angles in degrees)."""
+    """A short label per run: ``run i`` and its batch coordinates (angles in degrees).
+
+    Parameters
+    ----------
+    runs : xarray.Dataset
+        Flat view (dims ``run``, ``time``).
+
+    Returns
+    -------
+    list of str
+    """
     n = runs.sizes["run"]
     coords = [(str(name), c) for name, c in runs.coords.items()
               if c.dims == ("run",) and name != "run"]
@@ -151,7 +198,19 @@ def run_labels(runs: "xr.Dataset") -> list[str]:
 
 def ship_length(runs: "xr.Dataset", metrics: "xr.Dataset | None" = None) -> float | None:
     """The ship length [m] of a result: the vessel's ``length`` parameter, else the metrics'
-    ``length``; None if neither has one."""
+    ``length``; None if neither has one.
+
+    Parameters
+    ----------
+    runs : xarray.Dataset
+        Flat view of the runs.
+    metrics : xarray.Dataset, optional
+        A manoeuvre's metrics.
+
+    Returns
+    -------
+    float or None
+    """
     for ds, name in ((runs, "vessel.length"), (metrics, "length")):
         if ds is not None and name in ds:
             values = np.asarray(ds[name].values, dtype=float).reshape(-1)
@@ -162,7 +221,17 @@ def ship_length(runs: "xr.Dataset", metrics: "xr.Dataset | None" = None) -> floa
 
 
 def ship_breadth(runs: "xr.Dataset") -> float | None:
-    """The ship breadth [m] (the vessel's ``breadth`` parameter), None if not in the file."""
+    """The ship breadth [m] (the vessel's ``breadth`` parameter), None if not in the file.
+
+    Parameters
+    ----------
+    runs : xarray.Dataset
+        Flat view of the runs.
+
+    Returns
+    -------
+    float or None
+    """
     if "vessel.breadth" in runs:
         values = np.asarray(runs["vessel.breadth"].values, dtype=float).reshape(-1)
         if values.size and np.isfinite(values[0]) and values[0] > 0:
@@ -171,7 +240,20 @@ def ship_breadth(runs: "xr.Dataset") -> float | None:
 
 
 def outline_interval(duration: float, count: int = 12) -> float:
-    """Seconds between drawn outlines: about ``count`` over ``duration``, rounded to 1-2-5."""
+    """Seconds between drawn outlines: about ``count`` over ``duration``, rounded up to
+    1-2-5.
+
+    Parameters
+    ----------
+    duration : float
+        Length of the track in time [s].
+    count : int, optional
+        Outlines wanted, about.
+
+    Returns
+    -------
+    float
+    """
     if not (math.isfinite(duration) and duration > 0):
         return 1.0
     raw = duration / count
