@@ -282,3 +282,18 @@ def test_run_report_of_a_maneuver_scenario(tmp_path):
     page = (tmp_path / "report.html").read_text()
     assert "tactical_diameter [m]" in page and "rudder 20°, starboard" in page
     assert page.count("Plotly.newPlot(") == 2
+
+
+def test_the_report_target_is_checked_before_anything_runs(tmp_path, monkeypatch):
+    import seahelm.scenario as scenario
+
+    def tripwire(*args, **kwargs):
+        raise AssertionError("ran before the output path was checked")
+
+    monkeypatch.setattr(scenario, "run_scenario", tripwire)
+    (tmp_path / "report.html").mkdir()
+    assert "report.html is a directory" in one_error(["demo", "--out", str(tmp_path)])
+    example = Path(__file__).resolve().parents[1] / "examples" / "mariner_course_change.toml"
+    assert "report.html is a directory" in one_error(
+        ["run", str(example), "--out", str(tmp_path), "--report"])
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["report.html"]
