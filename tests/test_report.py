@@ -93,7 +93,9 @@ def test_batch_report_lists_diverged_runs_and_statistics(report_batch_dir):
     table = table[:table.index("</table>")]
     assert table.count("<tr>") == 1 + 5  # header + every diverged run
     assert "state out of bounds" in table and "kp 4" in table
-    assert '<section id="statistics">' in page and "over the 5 ok run(s) of 10" in page
+    assert '<section id="statistics">' in page
+    assert "over the ok runs: kp 1 rad/rad: 5 ok of 5; kp 4 rad/rad: 0 ok of 5" in page
+    assert "(no ok run: no metrics)" in page
     assert "dimension kp" in page and "controller.params.kp = 1, 4" in page
     assert "vessel.params.gain (normal)" in page
     assert page.count("Plotly.newPlot(") == 3  # histograms, track, time series
@@ -158,7 +160,7 @@ def test_a_10000_run_batch_gives_a_file_under_10_mb(report_demo_dir, tmp_path):
     assert "the band is the 5–95 % range over all ok runs" in page
     assert "10000 run(s): 9700 ok, 300 diverged" in page
     assert "first 500 of 300" not in page and page.count("state out of bounds") >= 300
-    assert '<section id="statistics">' in page
+    assert '<section id="statistics">' in page and "over the ok runs: 9700 ok of 10000" in page
 
 
 def test_plotted_runs_spread_and_diverged_first():

@@ -1,12 +1,13 @@
 """The sections of a report, each built from the Datasets of :class:`ReportData`.
 
 A section is a title and a list of blocks: HTML text (tables, built here with every value
-escaped) or a plotly figure (rendered by :mod:`seahelm.report.html`). Each builder in
+escaped) or a plotly figure specification (a dict of traces and layout, drawn by plotly.js in
+the page; :mod:`seahelm.report.html` writes it). Each builder in
 :data:`SECTIONS` takes the report data and returns its sections (none when the data has nothing
 for it), so a new kind of result (e.g. the statistics of a sweep store) is one more builder.
 
-plotly is imported inside the builders that draw (the CLI imports this package only when it
-writes a report).
+Arrays go into the figures as plotly.js typed arrays (base64, single precision), which keeps a
+page of many long runs small.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ import numpy as np
 from .inputs import ReportData, RunSet
 from .signals import (
     TIME_SERIES,
+    coordinate_text,
     decimated_index,
     find_signal,
     outline_interval,
@@ -43,6 +45,8 @@ MAX_TABLE_RUNS = 200
 MAX_COLUMN_RUNS = 6
 #: Histogram bins of the batch statistics at most (2 √n for n values, at least 5).
 HISTOGRAM_BINS = 30
+#: Grid points of a grid × Monte-Carlo batch whose statistics are shown.
+MAX_STAT_GROUPS = 6
 #: A batch this large (or any Monte-Carlo batch) gets the statistics section.
 STATISTICS_MIN_RUNS = 10
 
@@ -69,7 +73,7 @@ class Section:
     title : str
         Its heading.
     blocks : list
-        HTML strings (already escaped) and plotly figures, in order.
+        HTML strings (already escaped) and plotly figure specifications (dicts), in order.
     """
 
     id: str
@@ -356,9 +360,34 @@ def _summary_metrics(run_set: RunSet) -> list[str]:
                   cls="summary", caption=caption)]
 
 
+def _grid_groups(shaped: Any, n_runs: int) -> dict[str, np.ndarray]:
+    """The runs of each grid point of a Monte-Carlo batch (its batch dims other than
+    ``sample``), labelled by the point's coordinates; one group of all runs otherwise."""
+    from ..result_layout import batch_dims
+
+    dims = batch_dims(shaped)
+    others = [k for k, d in enumerate(dims) if d != "sample"] if "sample" in dims else []
+    if not others:
+        return {"": np.arange(n_runs)}
+    index = np.unravel_index(np.arange(n_runs), [shaped.sizes[d] for d in dims])
+    groups: dict[str, list[int]] = {}
+    for i in range(n_runs):
+        parts = []
+        for k in others:
+            d, j = dims[k], int(index[k][i])
+            if d in shaped.coords and shaped[d].ndim == 1:
+                c = shaped[d]
+                parts.append(coordinate_text(d, c.values[j].item(), str(c.attrs.get("units", ""))))
+            else:
+                parts.append(f"{d} {j}")
+        groups.setdefault(", ".join(parts), []).append(i)
+    return {k: np.asarray(v) for k, v in groups.items()}
+
+
 def statistics_sections(data: ReportData) -> list[Section]:
-    """Distribution of the summary metrics over the ok runs of a large or Monte-Carlo batch:
-    histograms and quantiles."""
+    """Distribution of the summary metrics over the ok runs of a large or Monte-Carlo batch,
+    per grid point of a grid × Monte-Carlo batch (the first :data:`MAX_STAT_GROUPS`):
+    quantile tables and histograms."""
     from ..analysis.statistics import DEFAULT_QUANTILES, metric_statistics, quantile_name
 
     sections = []
@@ -369,51 +398,74 @@ def statistics_sections(data: ReportData) -> list[Section]:
             continue
         summary = run_set.summary
         status = np.asarray(run_set.runs["status"].values).reshape(-1)
-        ok = np.flatnonzero(status == 0)
         metrics = [k for k, v in summary[0].items() if k != "run"
                    and isinstance(v, (int, float)) and not isinstance(v, bool)]
-        values = {m: np.array([float(summary[i][m]) for i in ok]) for m in metrics}
-        stats = metric_statistics(values)
+        groups = _grid_groups(run_set.shaped, status.size)
         sec = Section(_sid("statistics", run_set, data), "Batch statistics")
-        sec.blocks.append(_p(f"over the {ok.size} ok run(s) of {status.size}"))
+        shown = list(groups.items())[:MAX_STAT_GROUPS]
         qnames = [quantile_name(q) for q in DEFAULT_QUANTILES]
-        sec.blocks.append(table(["metric", "n", "mean", "std", "min", *qnames, "max"],
-                                [[m, s["n"], s["mean"], s["std"], s["min"],
-                                  *(s[q] for q in qnames), s["max"]] for m, s in stats.items()],
-                                cls="statistics"))
-        fig = _histograms(values)
+        rows, values_by_group = [], {}
+        counts = []
+        for label, runs in shown:
+            ok = runs[status[runs] == 0]
+            counts.append(f"{label + ': ' if label else ''}{ok.size} ok of {runs.size}")
+            values = {m: np.array([float(summary[i][m]) for i in ok]) for m in metrics}
+            values_by_group[label] = values
+            if not ok.size:
+                rows.append(([label] if label else []) + ["(no ok run: no metrics)"])
+                continue
+            for m, s in metric_statistics(values).items():
+                rows.append(([label] if label else []) + [m, s["n"], s["mean"], s["std"],
+                                                          s["min"], *(s[q] for q in qnames),
+                                                          s["max"]])
+        note = "over the ok runs: " + "; ".join(counts)
+        if len(groups) > len(shown):
+            note += f" (first {len(shown)} of {len(groups)} grid points)"
+        sec.blocks.append(_p(note))
+        header = (["grid point"] if len(shown) > 1 or shown[0][0] else []) + [
+            "metric", "n", "mean", "std", "min", *qnames, "max"]
+        sec.blocks.append(table(header, rows, cls="statistics"))
+        fig = _histograms(values_by_group)
         if fig is not None:
             sec.blocks.append(fig)
         sections.append(sec)
     return sections
 
 
-def _histograms(values: dict[str, np.ndarray]) -> dict[str, Any] | None:
+def _histograms(groups: dict[str, dict[str, np.ndarray]]) -> dict[str, Any] | None:
     """Histograms (binned here: the page holds the counts, not the values) of the metrics
-    with finite values, on plotly's grid of independent subplots."""
-    names = [m for m, v in values.items() if np.isfinite(v).any()]
+    with more than one distinct finite value, one subplot per metric on plotly's grid, the
+    grid points overlaid with common bins."""
+    first = next(iter(groups.values()))
+    names = [m for m in first
+             if np.unique(np.concatenate([g[m][np.isfinite(g[m])] for g in groups.values()])
+                          ).size > 1]
     if not names:
         return None
     cols = min(3, len(names))
     nrows = math.ceil(len(names) / cols)
+    colors = _colors(len(groups))
     data, layout = [], {}
     for k, name in enumerate(names):
-        v = values[name][np.isfinite(values[name])]
-        lo, hi = float(v.min()), float(v.max())
-        if hi <= lo:
-            lo, hi = lo - 0.5 * max(abs(lo), 1e-12), hi + 0.5 * max(abs(hi), 1e-12)
-        bins = int(np.clip(2 * math.sqrt(v.size), 5, HISTOGRAM_BINS))
-        counts, edges = np.histogram(v, bins=bins, range=(lo, hi))
+        every = np.concatenate([g[name][np.isfinite(g[name])] for g in groups.values()])
+        bins = int(np.clip(2 * math.sqrt(every.size), 5, HISTOGRAM_BINS))
+        edges = np.histogram_bin_edges(every, bins=bins)
         suffix = "" if k == 0 else str(k + 1)
-        data.append({"type": "bar", "x": typed_array(0.5 * (edges[:-1] + edges[1:])),
-                     "y": typed_array(counts), "width": float(edges[1] - edges[0]),
-                     "name": name, "showlegend": False, "marker": {"color": "#4c72b0"},
-                     "xaxis": f"x{suffix}", "yaxis": f"y{suffix}"})
+        for color, (label, values) in zip(colors, groups.items()):
+            v = values[name][np.isfinite(values[name])]
+            counts, _ = np.histogram(v, bins=edges)
+            data.append({"type": "bar", "x": typed_array(0.5 * (edges[:-1] + edges[1:])),
+                         "y": typed_array(counts), "width": float(edges[1] - edges[0]),
+                         "name": label or name, "legendgroup": label,
+                         "showlegend": bool(label) and k == 0, "opacity": 0.7,
+                         "marker": {"color": color}, "xaxis": f"x{suffix}",
+                         "yaxis": f"y{suffix}"})
         layout[f"xaxis{suffix}"] = {"title": {"text": name, "font": {"size": 11}}}
         layout[f"yaxis{suffix}"] = {"title": {"text": "runs" if k % cols == 0 else ""}}
     layout.update(grid={"rows": nrows, "columns": cols, "pattern": "independent",
-                        "ygap": 0.45, "xgap": 0.12},
-                  height=240 * nrows + 40, bargap=0.02, margin=dict(l=50, r=20, t=20, b=40))
+                        "ygap": 0.45, "xgap": 0.12}, barmode="overlay",
+                  height=240 * nrows + 40, bargap=0.02, margin=dict(l=50, r=20, t=20, b=40),
+                  legend=_LEGEND)
     return {"data": data, "layout": layout}
 
 

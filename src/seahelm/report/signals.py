@@ -23,7 +23,7 @@ if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
 __all__ = ["MAX_POINTS", "MAX_RUNS_PLOTTED", "Signal", "find_signal", "TIME_SERIES",
-           "decimation", "decimated_index", "plotted_runs", "run_labels", "ship_length",
+           "coordinate_text", "decimation", "decimated_index", "plotted_runs", "run_labels", "ship_length",
            "ship_breadth", "ship_outlines", "outline_interval"]
 
 #: Runs whose time series and track are drawn (the rest are in the band and the tables).
@@ -163,7 +163,23 @@ def plotted_runs(status: np.ndarray, max_runs: int = MAX_RUNS_PLOTTED) -> np.nda
     return np.sort(np.concatenate([chosen, extra]))
 
 
-def _coordinate_text(name: str, value: object, units: str) -> str:
+def coordinate_text(name: str, value: object, units: str) -> str:
+    """A batch coordinate as text: ``kp 4``, ``rudder 35°`` (radians shown in degrees),
+    ``starboard``/``port`` for a side.
+
+    Parameters
+    ----------
+    name : str
+        The coordinate's name.
+    value : object
+        Its value.
+    units : str
+        Its units.
+
+    Returns
+    -------
+    str
+    """
     if isinstance(value, (float, np.floating)):
         if units == "rad":
             return f"{name} {math.degrees(float(value)):.4g}°"
@@ -190,7 +206,7 @@ def run_labels(runs: "xr.Dataset") -> list[str]:
               if c.dims == ("run",) and name != "run"]
     labels = []
     for i in range(n):
-        parts = [_coordinate_text(name, c.values[i].item(), str(c.attrs.get("units", "")))
+        parts = [coordinate_text(name, c.values[i].item(), str(c.attrs.get("units", "")))
                  for name, c in coords]
         labels.append(f"run {i}" + (f" ({', '.join(parts)})" if parts else ""))
     return labels
