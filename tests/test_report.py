@@ -299,3 +299,23 @@ def test_the_report_target_is_checked_before_anything_runs(tmp_path, monkeypatch
     assert "report.html is a directory" in one_error(
         ["run", str(example), "--out", str(tmp_path), "--report"])
     assert sorted(p.name for p in tmp_path.iterdir()) == ["report.html"]
+
+
+def test_metrics_along_a_dimension_of_their_own_get_a_table(tmp_path):
+    """A direct spiral's metrics: one run, values per step (here synthetic, no time series)."""
+    from seahelm.report import ReportData, RunSet
+
+    steps = np.arange(6)
+    metrics = xr.Dataset(
+        {"yaw_rate": ("step", np.radians(np.linspace(2, -2, 6)), {"units": "rad/s"}),
+         "loop_width": ((), 0.01, {"units": "rad"}), "complete": ((), np.int8(1)),
+         "message": ((), "ok")},
+        coords={"step": steps, "step_rudder": ("step", np.radians(np.linspace(10, -10, 6)),
+                                               {"units": "rad"})},
+        attrs={"maneuver": "direct-spiral"})
+    data = ReportData("spiral", (RunSet("direct-spiral", None, metrics),))
+    summary = write_report(data, tmp_path / "s.html")
+    assert summary.sections == ("overview", "metrics") and summary.n_runs == 0
+    page = (tmp_path / "s.html").read_text()
+    assert "step_rudder [deg]" in page and "yaw_rate [deg/s]" in page and "per step" in page
+    assert "yaw_rate_1" not in page and "loop_width [deg]" in page

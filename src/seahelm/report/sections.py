@@ -41,7 +41,8 @@ __all__ = ["Section", "SECTIONS", "build_sections", "MAX_STATUS_ROWS", "MAX_TABL
 MAX_STATUS_ROWS = 500
 #: Runs of the per-run summary table.
 MAX_TABLE_RUNS = 200
-#: Up to this many runs, the summary has a column per run (else a row per run).
+#: Up to this many runs, the summary and metrics tables have a column per run (else a row per
+#: run).
 MAX_COLUMN_RUNS = 6
 #: Histogram bins of the batch statistics at most (2 √n for n values, at least 5).
 HISTOGRAM_BINS = 30
@@ -316,11 +317,14 @@ def _maneuver_metrics(run_set: RunSet, data: ReportData) -> list[str]:
                 parts.append(_coord_label(extra, row[extra], m))
         labels.append(", ".join(parts) or "run")
     skip = set(batch) | {"rudder", "trigger", "ship", "n"}
+    long_tables, long_vars = _long_dim_tables(m, batch) if len(rows) == 1 else ([], set())
     out_rows = []
     for key in rows[0]:
         if key in skip:
             continue
         base = key.rsplit("_", 1)[0] if key not in m.variables else key
+        if base in long_vars:
+            continue
         units = str(m[base].attrs.get("units", "")) if base in m.variables else ""
         values = [row.get(key) for row in rows]
         if units in ("rad", "rad/s"):
@@ -330,7 +334,49 @@ def _maneuver_metrics(run_set: RunSet, data: ReportData) -> list[str]:
             values = [bool(v) for v in values]
         out_rows.append([f"{key} [{units}]" if units else key, *values])
     caption = f"{run_set.name}: {len(rows)} run(s)"
-    return [table(["metric", *labels], out_rows, cls="metrics", caption=caption)]
+    if len(rows) <= MAX_COLUMN_RUNS:  # metrics down, runs across
+        return [table(["metric", *labels], out_rows, cls="metrics", caption=caption),
+                *long_tables]
+    shown = min(len(rows), MAX_TABLE_RUNS)  # runs down (a spiral's steps, a large batch)
+    if shown < len(rows):
+        caption += f"; the first {shown} shown"
+    return [table(["run", *(r[0] for r in out_rows)],
+                  [[labels[j], *(r[j + 1] for r in out_rows)] for j in range(shown)],
+                  cls="metrics", caption=caption)]
+
+
+def _display(var: Any) -> tuple[str, np.ndarray]:
+    """A variable's values and units for a table (radians in degrees)."""
+    units = str(var.attrs.get("units", ""))
+    values = np.asarray(var.values)
+    if units in ("rad", "rad/s") and values.dtype.kind == "f":
+        return units.replace("rad", "deg"), np.degrees(values)
+    return units, values
+
+
+def _long_dim_tables(m: Any, batch: list[str]) -> tuple[list[str], set[str]]:
+    """Metrics of one run along a dimension of their own longer than 4 (a spiral's steps): a
+    table with a row per index (its coordinates first); and the names of those variables."""
+    out, names = [], set()
+    for dim in [d for d in m.dims if d not in batch and m.sizes[d] > 4]:
+        columns = [(str(n), v) for n, v in m.coords.items() if v.dims == (dim,) and n != dim]
+        columns += [(str(n), v) for n, v in m.data_vars.items() if v.dims == (dim,)]
+        if not columns:
+            continue
+        header, data = [dim], [np.arange(m.sizes[dim])]
+        for name, var in columns:
+            units, values = _display(var)
+            header.append(f"{name} [{units}]" if units else name)
+            data.append(values)
+            names.add(name)
+        out.append(table(header, [[_plain(col[i]) for col in data]
+                                  for i in range(m.sizes[dim])],
+                         cls="metrics", caption=f"per {dim}"))
+    return out, names
+
+
+def _plain(value: Any) -> Any:
+    return value.item() if hasattr(value, "item") else value
 
 
 def _coord_label(key: str, value: Any, ds: Any) -> str:
