@@ -131,4 +131,13 @@ def test_imo_report_in_the_browser(browser, report_imo_dir):
     assert [c[7] for c in cells] == ["pass"] * 12 + ["not evaluated"]
     assert cells[-1][:2] == ["stopping", "track reach (full astern)"]
     assert "PASSES the evaluated criteria" in page.locator("#imo").inner_text()
+    # a run is selectable: its legend entry hides it in every panel of the time series
+    figure = "#timeseries-zigzag .plotly-graph-div"
+    page.locator(f"{figure} .legend .traces .legendtoggle").first.click(force=True)
+    visible = f"""() => document.querySelector('{figure}').data
+        .filter(t => t.legendgroup === '0').map(t => t.visible)"""
+    # (plotly applies a single click after its double-click delay)
+    page.wait_for_function(f"() => ({visible})().every(v => v === 'legendonly')",
+                           timeout=5_000)
+    assert page.evaluate(visible) == ["legendonly"] * 4  # heading, rudder, yaw rate, speed
     page.close()

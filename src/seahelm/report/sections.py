@@ -558,6 +558,9 @@ def _stride_note(idx: np.ndarray, n_time: int) -> str:
 
 
 _LEGEND = {"font": {"size": 10}}
+#: How the runs are selected (plotly's legend does it).
+LEGEND_HINT = ("click a run in the legend to hide or show it in every panel, double-click to "
+               "show it alone")
 
 
 def track_sections(data: ReportData) -> list[Section]:
@@ -673,8 +676,9 @@ def timeseries_sections(data: ReportData) -> list[Section]:
         title = "Time series" + (f": {run_set.name}" if len(data.sets) > 1 else "")
         sec = Section(_sid("timeseries", run_set, data), title)
         note = _note_for(run_set, shown, _stride_note(idx, time.size), band=band)
-        if note:
-            sec.blocks.append(_p(note, cls="caption"))
+        hint = LEGEND_HINT if shown.size > 1 else ""
+        if note or hint:
+            sec.blocks.append(_p("; ".join(x for x in (note, hint) if x), cls="caption"))
         sec.blocks.append({"data": traces, "layout": layout})
         sections.append(sec)
     return sections
