@@ -145,12 +145,10 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
         if csv:
             raise ParameterError("`--csv` writes the time series of a [simulation] scenario; "
                                  f"a [maneuver] scenario ({batch.kind}) writes NetCDF only")
-        if report:
-            assert out is not None
+        if report and out is not None:
             output_dir("--out", out, (REPORT_NAME,))
         present_job(batch, out, as_json, plot=plot)
-        if report:
-            assert out is not None
+        if report and out is not None:  # from the manoeuvre's files (it reads their pair)
             source = next(n for n in OUT_FILES[batch.kind] if n.endswith(".nc"))
             _write_report(out / source, out / REPORT_NAME, quiet=as_json)
         return None
@@ -212,8 +210,8 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
     return payload
 
 
-def _write_report(source: Any, target: Path, *, quiet: bool) -> Path:
-    """The HTML report of a result (file or Dataset) beside the result files."""
+def _write_report(source: Path, target: Path, *, quiet: bool) -> Path:
+    """The HTML report of a result file (:func:`seahelm.report.write_report`), beside it."""
     from ..report import write_report
 
     summary = write_report(source, target)
