@@ -177,9 +177,11 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
             from ..plotting.save import save_figure
 
             files["plot"] = str(save_figure(result.plot(), out / "overview.png"))
-        if report:
-            files["report"] = str(_write_report(out / "result.nc", out / REPORT_NAME,
-                                                quiet=True))
+        if report:  # from the result in memory (reading the file back costs more)
+            from ..report import report_data_from_dataset
+
+            data = report_data_from_dataset(result.to_xarray(), sources=(files["netcdf"],))
+            files["report"] = str(_write_report(data, out / REPORT_NAME, quiet=True))
     payload: dict[str, Any] = {
         "scenario": batch.metadata.get("title") or batch.metadata.get("scenario_source", ""),
         "n_runs": result.n_runs,
@@ -210,8 +212,9 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
     return payload
 
 
-def _write_report(source: Path, target: Path, *, quiet: bool) -> Path:
-    """The HTML report of a result file (:func:`seahelm.report.write_report`), beside it."""
+def _write_report(source: Any, target: Path, *, quiet: bool) -> Path:
+    """The HTML report (:func:`seahelm.report.write_report`) of a result file or of report
+    data, beside the result files."""
     from ..report import write_report
 
     summary = write_report(source, target)

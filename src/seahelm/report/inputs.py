@@ -124,8 +124,10 @@ def _flat(ds: "xr.Dataset") -> "xr.Dataset":
     return flatten_runs(ds)
 
 
-def report_data_from_dataset(ds: "xr.Dataset", *, title: str | None = None) -> ReportData:
-    """The report data of a simulation result Dataset (shaped or flat view), without files.
+def report_data_from_dataset(ds: "xr.Dataset", *, title: str | None = None,
+                             sources: tuple[str, ...] = ()) -> ReportData:
+    """The report data of a simulation result Dataset (shaped or flat view), without reading
+    files (``seahelm run``/``demo`` report the result they hold in memory).
 
     Parameters
     ----------
@@ -133,6 +135,8 @@ def report_data_from_dataset(ds: "xr.Dataset", *, title: str | None = None) -> R
         A Dataset of :meth:`SimResult.to_xarray` or :func:`~seahelm.results.load_result`.
     title : str, optional
         Page title (default: the scenario's title).
+    sources : tuple of str, optional
+        The files the Dataset was written to, named on the page.
 
     Returns
     -------
@@ -149,7 +153,7 @@ def report_data_from_dataset(ds: "xr.Dataset", *, title: str | None = None) -> R
     _check_runs(ds, Path("<dataset>"))
     name = str(ds.attrs.get("maneuver") or "result")
     return ReportData(title=title or str(ds.attrs.get("title") or name),
-                      sets=(RunSet(name, _flat(ds), None, ds),))
+                      sets=(RunSet(name, _flat(ds), None, ds),), sources=tuple(sources))
 
 
 def load_report_data(path: str | Path) -> ReportData:
