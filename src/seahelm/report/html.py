@@ -1,9 +1,9 @@
 """The report page: the sections as one self-contained HTML file.
 
 plotly.js is inlined once, in the page's head (about 4.8 MB); each figure is a ``<div>`` and
-the call that draws it, written by plotly (``plotly.io.to_html`` of the figure's specification, without the
-library), so the
-page opens from ``file://`` with no network. No MathJax, no fonts or scripts fetched.
+the call that draws it, written by plotly (``plotly.io.to_html`` of the figure's
+specification, without the library), so the page opens from ``file://`` with no network. No
+MathJax, no fonts or scripts fetched.
 """
 
 from __future__ import annotations

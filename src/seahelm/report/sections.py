@@ -1,39 +1,26 @@
 """The sections of a report, each built from the Datasets of :class:`ReportData`.
 
-A section is a title and a list of blocks: HTML text (tables, built here with every value
-escaped) or a plotly figure specification (a dict of traces and layout, drawn by plotly.js in
-the page; :mod:`seahelm.report.html` writes it). Each builder in
-:data:`SECTIONS` takes the report data and returns its sections (none when the data has nothing
-for it), so a new kind of result (e.g. the statistics of a sweep store) is one more builder.
-
-Arrays go into the figures as plotly.js typed arrays (base64, single precision), which keeps a
-page of many long runs small.
+A section (:class:`~seahelm.report.blocks.Section`) is a title and a list of blocks: HTML text
+(tables, built with every value escaped) or a plotly figure specification
+(:mod:`seahelm.report.figures`). Each builder in :data:`SECTIONS` takes the report data and
+returns its sections (none when the data has nothing for it), so a new kind of result (e.g. the
+statistics of a sweep store) is one more builder. This module holds the tabular sections --
+scenario and run metadata, per-run status, IMO criteria, metrics, batch statistics -- and the
+page order.
 """
 
 from __future__ import annotations
 
-import base64
-import dataclasses
-import html
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
+from .blocks import Section, escape, fmt, paragraph, run_attrs, section_id, set_title, table
+from .figures import histogram_figure, timeseries_sections, track_sections
 from .inputs import ReportData, RunSet
-from .signals import (
-    TIME_SERIES,
-    coordinate_text,
-    decimated_index,
-    find_signal,
-    outline_interval,
-    plotted_runs,
-    run_labels,
-    ship_breadth,
-    ship_length,
-    ship_outlines,
-)
+from .signals import coordinate_text, run_labels
 
 __all__ = ["Section", "SECTIONS", "build_sections", "MAX_STATUS_ROWS", "MAX_TABLE_RUNS"]
 
@@ -44,8 +31,6 @@ MAX_TABLE_RUNS = 200
 #: Up to this many runs, the summary and metrics tables have a column per run (else a row per
 #: run).
 MAX_COLUMN_RUNS = 6
-#: Histogram bins of the batch statistics at most (2 √n for n values, at least 5).
-HISTOGRAM_BINS = 30
 #: Grid points of a grid × Monte-Carlo batch whose statistics are shown.
 MAX_STAT_GROUPS = 6
 #: A batch this large (or any Monte-Carlo batch) gets the statistics section.
@@ -63,81 +48,6 @@ _METADATA = (("title", "title", ""), ("maneuver", "manoeuvre", ""),
 _HIDDEN = ("scenario_text", "state_labels", "param_types")
 
 
-@dataclasses.dataclass
-class Section:
-    """One section of the page.
-
-    Attributes
-    ----------
-    id : str
-        The HTML id (anchor) of the section.
-    title : str
-        Its heading.
-    blocks : list
-        HTML strings (already escaped) and plotly figure specifications (dicts), in order.
-    """
-
-    id: str
-    title: str
-    blocks: list[Any] = dataclasses.field(default_factory=list)
-
-
-# ------------------------------------------------------------------------------------------
-# HTML helpers
-# ------------------------------------------------------------------------------------------
-def _e(value: Any) -> str:
-    return html.escape(str(value), quote=True)
-
-
-def fmt(value: Any, digits: int = 5) -> str:
-    """A number in ``digits`` significant digits (— for NaN); anything else as text."""
-    if isinstance(value, (bool, np.bool_)):
-        return "yes" if value else "no"
-    if isinstance(value, (float, np.floating)):
-        return "—" if not math.isfinite(float(value)) else f"{float(value):.{digits}g}"
-    if isinstance(value, (int, np.integer)):
-        return str(int(value))
-    return str(value)
-
-
-def table(header: Sequence[str] | None, rows: Sequence[Sequence[Any]], *, cls: str = "",
-          row_classes: Sequence[str] | None = None, caption: str = "") -> str:
-    """An HTML table, every cell escaped (numbers formatted by :func:`fmt`); no header row if
-    ``header`` is None."""
-    head = "".join(f"<th>{_e(h)}</th>" for h in header or ())
-    body = []
-    for i, row in enumerate(rows):
-        rc = f' class="{_e(row_classes[i])}"' if row_classes and row_classes[i] else ""
-        cells = "".join(
-            f'<td class="num">{_e(fmt(v))}</td>' if isinstance(v, (int, float, np.number))
-            and not isinstance(v, (bool, np.bool_)) else f"<td>{_e(fmt(v))}</td>" for v in row)
-        body.append(f"<tr{rc}>{cells}</tr>")
-    cap = f"<caption>{_e(caption)}</caption>" if caption else ""
-    klass = f' class="{_e(cls)}"' if cls else ""
-    thead = f"<thead><tr>{head}</tr></thead>" if header is not None else ""
-    return (f'<div class="table"><table{klass}>{cap}{thead}'
-            f"<tbody>{''.join(body)}</tbody></table></div>")
-
-
-def _p(text: str, cls: str = "") -> str:
-    klass = f' class="{_e(cls)}"' if cls else ""
-    return f"<p{klass}>{_e(text)}</p>"
-
-
-def _set_title(run_set: RunSet, data: ReportData) -> str:
-    return run_set.name if len(data.sets) > 1 else ""
-
-
-def _sid(prefix: str, run_set: RunSet, data: ReportData) -> str:
-    return prefix if len(data.sets) == 1 else f"{prefix}-{run_set.name}"
-
-
-def _attrs(run_set: RunSet) -> dict[str, Any]:
-    ds = run_set.shaped if run_set.shaped is not None else run_set.metrics
-    return {} if ds is None else {str(k): (v.item() if hasattr(v, "item") else v)
-                                  for k, v in ds.attrs.items()}
-
-
 # ------------------------------------------------------------------------------------------
 # metadata and status
 # ------------------------------------------------------------------------------------------
@@ -148,7 +58,7 @@ def overview_sections(data: ReportData) -> list[Section]:
     if data.sources:
         sec.blocks.append(table(["file read"], [[s] for s in data.sources], cls="meta"))
     for run_set in data.sets:
-        attrs = _attrs(run_set)
+        attrs = run_attrs(run_set)
         rows: list[list[Any]] = []
         shown = set()
         for key, label, unit in _METADATA:
@@ -172,13 +82,13 @@ def overview_sections(data: ReportData) -> list[Section]:
             rows.append(["runs", f"{run_set.n_runs} ({sizes}), {time.size} time samples over "
                                  f"{fmt(float(time[-1] - time[0]), 6)} s"])
             rows.extend(_batch_rows(run_set.shaped, dims))
-        title = _set_title(run_set, data)
+        title = set_title(run_set, data)
         sec.blocks.append(table(["", title] if title else None,
                                 [[k, str(v)] for k, v in rows], cls="meta"))
         text = attrs.get("scenario_text")
         if text:
             sec.blocks.append(f"<details><summary>scenario text ({len(str(text).splitlines())}"
-                              f" lines)</summary><pre>{_e(text)}</pre></details>")
+                              f" lines)</summary><pre>{escape(text)}</pre></details>")
     return [sec]
 
 
@@ -225,7 +135,7 @@ def status_sections(data: ReportData) -> list[Section]:
         n = status.size
         n_bad = int((status != 0).sum())
         prefix = f"{run_set.name}: " if len(data.sets) > 1 else ""
-        sec.blocks.append(_p(f"{prefix}{n} run(s): {n - n_bad} ok, {n_bad} diverged",
+        sec.blocks.append(paragraph(f"{prefix}{n} run(s): {n - n_bad} ok, {n_bad} diverged",
                              cls="status-line " + ("bad" if n_bad else "good")))
         if not n_bad:
             continue
@@ -268,9 +178,9 @@ def imo_sections(data: ReportData) -> list[Section]:
     a = imo.attrs
     verdict = "PASSES" if a["passed"] else "FAILS"
     sec = Section("imo", "IMO MSC.137(76) criteria")
-    sec.blocks.append(_p(f"{a['ship']} (L = {fmt(a['length_m'])} m, V = {fmt(a['speed_mps'], 4)}"
-                         f" m/s, L/V = {fmt(a['L_over_V_s'], 4)} s) {verdict} the evaluated "
-                         "criteria", cls="verdict " + ("good" if a["passed"] else "bad")))
+    text = (f"{a['ship']} (L = {fmt(a['length_m'])} m, V = {fmt(a['speed_mps'], 4)} m/s, "
+            f"L/V = {fmt(a['L_over_V_s'], 4)} s) {verdict} the evaluated criteria")
+    sec.blocks.append(paragraph(text, cls="verdict " + ("good" if a["passed"] else "bad")))
     rows, classes = [], []
     for i in range(imo.sizes["row"]):
         r = {k: imo[k].values[i].item() for k in imo.data_vars}
@@ -285,7 +195,7 @@ def imo_sections(data: ReportData) -> list[Section]:
                              "status", "note"], rows, cls="imo", row_classes=classes))
     notes = [n for n in str(a.get("notes", "")).splitlines() if n]
     if notes:
-        sec.blocks.append("<ul class='notes'>" + "".join(f"<li>{_e(n)}</li>" for n in notes)
+        sec.blocks.append("<ul class='notes'>" + "".join(f"<li>{escape(n)}</li>" for n in notes)
                           + "</ul>")
     return [sec]
 
@@ -447,7 +357,7 @@ def statistics_sections(data: ReportData) -> list[Section]:
         metrics = [k for k, v in summary[0].items() if k != "run"
                    and isinstance(v, (int, float)) and not isinstance(v, bool)]
         groups = _grid_groups(run_set.shaped, status.size)
-        sec = Section(_sid("statistics", run_set, data), "Batch statistics")
+        sec = Section(section_id("statistics", run_set, data), "Batch statistics")
         shown = list(groups.items())[:MAX_STAT_GROUPS]
         qnames = [quantile_name(q) for q in DEFAULT_QUANTILES]
         rows, values_by_group = [], {}
@@ -467,219 +377,13 @@ def statistics_sections(data: ReportData) -> list[Section]:
         note = "over the ok runs: " + "; ".join(counts)
         if len(groups) > len(shown):
             note += f" (first {len(shown)} of {len(groups)} grid points)"
-        sec.blocks.append(_p(note))
+        sec.blocks.append(paragraph(note))
         header = (["grid point"] if len(shown) > 1 or shown[0][0] else []) + [
             "metric", "n", "mean", "std", "min", *qnames, "max"]
         sec.blocks.append(table(header, rows, cls="statistics"))
-        fig = _histograms(values_by_group)
+        fig = histogram_figure(values_by_group)
         if fig is not None:
             sec.blocks.append(fig)
-        sections.append(sec)
-    return sections
-
-
-def _histograms(groups: dict[str, dict[str, np.ndarray]]) -> dict[str, Any] | None:
-    """Histograms (binned here: the page holds the counts, not the values) of the metrics
-    with more than one distinct finite value, one subplot per metric on plotly's grid, the
-    grid points overlaid with common bins."""
-    first = next(iter(groups.values()))
-    names = [m for m in first
-             if np.unique(np.concatenate([g[m][np.isfinite(g[m])] for g in groups.values()])
-                          ).size > 1]
-    if not names:
-        return None
-    cols = min(3, len(names))
-    nrows = math.ceil(len(names) / cols)
-    colors = _colors(len(groups))
-    data, layout = [], {}
-    for k, name in enumerate(names):
-        every = np.concatenate([g[name][np.isfinite(g[name])] for g in groups.values()])
-        bins = int(np.clip(2 * math.sqrt(every.size), 5, HISTOGRAM_BINS))
-        edges = np.histogram_bin_edges(every, bins=bins)
-        suffix = "" if k == 0 else str(k + 1)
-        for color, (label, values) in zip(colors, groups.items()):
-            v = values[name][np.isfinite(values[name])]
-            counts, _ = np.histogram(v, bins=edges)
-            data.append({"type": "bar", "x": typed_array(0.5 * (edges[:-1] + edges[1:])),
-                         "y": typed_array(counts), "width": float(edges[1] - edges[0]),
-                         "name": label or name, "legendgroup": label,
-                         "showlegend": bool(label) and k == 0, "opacity": 0.7,
-                         "marker": {"color": color}, "xaxis": f"x{suffix}",
-                         "yaxis": f"y{suffix}"})
-        layout[f"xaxis{suffix}"] = {"title": {"text": name, "font": {"size": 11}}}
-        layout[f"yaxis{suffix}"] = {"title": {"text": "runs" if k % cols == 0 else ""}}
-    layout.update(grid={"rows": nrows, "columns": cols, "pattern": "independent",
-                        "ygap": 0.45, "xgap": 0.12}, barmode="overlay",
-                  height=240 * nrows + 40, bargap=0.02, margin=dict(l=50, r=20, t=20, b=40),
-                  legend=_LEGEND)
-    return {"data": data, "layout": layout}
-
-
-# ------------------------------------------------------------------------------------------
-# plots: plotly figure specifications (dicts), drawn by plotly.js in the page
-# ------------------------------------------------------------------------------------------
-def _colors(n: int) -> list[str]:
-    """Run colours: plotly's 24-colour "Dark24" qualitative palette."""
-    from plotly.colors import qualitative
-
-    palette = qualitative.Dark24
-    return [palette[i % len(palette)] for i in range(n)]
-
-
-def typed_array(values: Any) -> dict[str, str]:
-    """An array as plotly.js's typed-array spec (``dtype`` and base64 ``bdata``): floats in
-    single precision (a plot needs no more; a third of the size of JSON text), integers as
-    int32. NaN stays NaN (a break in a line)."""
-    arr = np.asarray(values)
-    if np.issubdtype(arr.dtype, np.integer):
-        arr, dtype = arr.astype("<i4"), "i4"
-    else:
-        arr, dtype = arr.astype("<f4"), "f4"
-    return {"dtype": dtype, "bdata": base64.b64encode(np.ascontiguousarray(arr).tobytes())
-            .decode("ascii")}
-
-
-def _note_for(run_set: RunSet, shown: np.ndarray, stride_note: str, *, band: bool) -> str:
-    n = run_set.n_runs
-    parts = []
-    if shown.size < n:
-        parts.append(f"{shown.size} of {n} runs drawn (spread over the batch, diverged runs "
-                     "first)" + ("; the band is the 5–95 % range over all ok runs"
-                                 if band else ""))
-    if stride_note:
-        parts.append(stride_note)
-    return "; ".join(parts)
-
-
-def _stride_note(idx: np.ndarray, n_time: int) -> str:
-    if idx.size == n_time:
-        return ""
-    return f"{idx.size} of {n_time} samples drawn (every {idx[1] - idx[0]}th)"
-
-
-_LEGEND = {"font": {"size": 10}}
-#: How the runs are selected (plotly's legend does it).
-LEGEND_HINT = ("click a run in the legend to hide or show it in every panel, double-click to "
-               "show it alone")
-
-
-def track_sections(data: ReportData) -> list[Section]:
-    """The track in the horizontal plane (east right, north up, equal scales) with hull
-    outlines every few seconds; the legend toggles a run."""
-    sections = []
-    for run_set in data.sets:
-        runs = run_set.runs
-        if runs is None:
-            continue
-        north, east = find_signal(runs, "north"), find_signal(runs, "east")
-        heading = find_signal(runs, "heading")
-        if north is None or east is None:
-            continue
-        time = np.asarray(runs["time"].values, dtype=float)
-        status = np.asarray(runs["status"].values).reshape(-1)
-        shown = plotted_runs(status)
-        idx = decimated_index(time.size)
-        labels = run_labels(runs)
-        colors = _colors(shown.size)
-        length = ship_length(runs, run_set.metrics)
-        note = ""
-        if length is None:
-            n_vals, e_vals = north.values[shown], east.values[shown]
-            extent = float(np.nanmax([np.nanmax(n_vals) - np.nanmin(n_vals),
-                                      np.nanmax(e_vals) - np.nanmin(e_vals), 1.0]))
-            length = extent / 15.0
-            note = (f"ship length not in the file: outlines drawn {length:.3g} m long "
-                    "(1/15 of the track's extent)")
-        breadth = ship_breadth(runs) or length / 6.5
-        interval = outline_interval(float(time[-1] - time[0]))
-        traces: list[dict[str, Any]] = []
-        for color, i in zip(colors, shown):
-            traces.append({"type": "scatter", "mode": "lines", "name": labels[i],
-                           "x": typed_array(east.values[i, idx]),
-                           "y": typed_array(north.values[i, idx]),
-                           "legendgroup": str(i), "line": {"color": color, "width": 1.5}})
-            if heading is not None:
-                ox, oy = ship_outlines(time, north.values[i], east.values[i], heading.values[i],
-                                       length, breadth, interval)
-                traces.append({"type": "scatter", "mode": "lines", "name": labels[i] + " hull",
-                               "x": typed_array(ox), "y": typed_array(oy),
-                               "legendgroup": str(i), "showlegend": False, "hoverinfo": "skip",
-                               "line": {"color": color, "width": 1}})
-        layout = {"xaxis": {"title": {"text": f"east [{east.units}]"}},
-                  "yaxis": {"title": {"text": f"north [{north.units}]"}, "scaleanchor": "x",
-                            "scaleratio": 1},
-                  "height": 560, "margin": dict(l=60, r=20, t=20, b=50), "legend": _LEGEND}
-        title = "Track" + (f": {run_set.name}" if len(data.sets) > 1 else "")
-        sec = Section(_sid("track", run_set, data), title)
-        caption = (f"hull outlines every {interval:g} s, L = {length:.4g} m"
-                   + (f"; {note}" if note else ""))
-        extra = _note_for(run_set, shown, _stride_note(idx, time.size), band=False)
-        sec.blocks.append(_p(caption + (f"; {extra}" if extra else ""), cls="caption"))
-        sec.blocks.append({"data": traces, "layout": layout})
-        sections.append(sec)
-    return sections
-
-
-def timeseries_sections(data: ReportData) -> list[Section]:
-    """Heading, rudder angle, yaw rate and speed over time (the signals the result has), one
-    panel each on a shared time axis; the legend toggles a run in every panel."""
-    sections = []
-    for run_set in data.sets:
-        runs = run_set.runs
-        if runs is None:
-            continue
-        panels = [(label, sig) for role, label in TIME_SERIES
-                  if (sig := find_signal(runs, role)) is not None]
-        if not panels:
-            continue
-        time = np.asarray(runs["time"].values, dtype=float)
-        status = np.asarray(runs["status"].values).reshape(-1)
-        shown = plotted_runs(status)
-        idx = decimated_index(time.size)
-        labels = run_labels(runs)
-        colors = _colors(shown.size)
-        ok = status == 0
-        band = shown.size < run_set.n_runs and bool(ok.any())
-        t = typed_array(time[idx])
-        traces: list[dict[str, Any]] = []
-        layout: dict[str, Any] = {}
-        for row, (label, sig) in enumerate(panels, start=1):
-            axis = "" if row == 1 else str(row)
-            on = {"xaxis": "x", "yaxis": f"y{axis}"}
-            if band:
-                lo, hi = np.nanquantile(sig.values[ok][:, idx], [0.05, 0.95], axis=0)
-                traces.append({"type": "scatter", "mode": "lines", "x": t, "y": typed_array(lo),
-                               "line": {"width": 0}, "legendgroup": "band",
-                               "showlegend": False, "hoverinfo": "skip", "name": "5 %", **on})
-                traces.append({"type": "scatter", "mode": "lines", "x": t, "y": typed_array(hi),
-                               "line": {"width": 0}, "fill": "tonexty",
-                               "fillcolor": "rgba(120,120,120,0.25)", "legendgroup": "band",
-                               "showlegend": row == 1, "hoverinfo": "skip",
-                               "name": f"5–95 % of {int(ok.sum())} ok runs", **on})
-            for color, i in zip(colors, shown):
-                traces.append({"type": "scatter", "mode": "lines", "name": labels[i], "x": t,
-                               "y": typed_array(sig.values[i, idx]), "legendgroup": str(i),
-                               "showlegend": row == 1, "line": {"color": color, "width": 1.3},
-                               **on})
-            if label == "heading" and "reference_heading" in runs:
-                ref = np.degrees(np.asarray(runs["reference_heading"].values, float))
-                traces.append({"type": "scatter", "mode": "lines", "x": t,
-                               "y": typed_array(ref[shown[0], idx]),
-                               "name": "reference heading",
-                               "line": {"color": "black", "dash": "dot", "width": 1}, **on})
-            layout[f"yaxis{axis}"] = {"title": {"text": f"{label} [{sig.units}]"}}
-        layout["xaxis"] = {"title": {"text": "time [s]"}}
-        layout.update(grid={"rows": len(panels), "columns": 1, "pattern": "coupled",
-                            "ygap": 0.08},
-                      height=220 * len(panels) + 80, margin=dict(l=70, r=20, t=20, b=50),
-                      legend=_LEGEND, hovermode="x")
-        title = "Time series" + (f": {run_set.name}" if len(data.sets) > 1 else "")
-        sec = Section(_sid("timeseries", run_set, data), title)
-        note = _note_for(run_set, shown, _stride_note(idx, time.size), band=band)
-        hint = LEGEND_HINT if shown.size > 1 else ""
-        if note or hint:
-            sec.blocks.append(_p("; ".join(x for x in (note, hint) if x), cls="caption"))
-        sec.blocks.append({"data": traces, "layout": layout})
         sections.append(sec)
     return sections
 

@@ -23,7 +23,8 @@ if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
 __all__ = ["MAX_POINTS", "MAX_RUNS_PLOTTED", "Signal", "find_signal", "TIME_SERIES",
-           "coordinate_text", "decimation", "decimated_index", "plotted_runs", "run_labels", "ship_length",
+           "coordinate_text", "decimation", "decimated_index", "plotted_runs", "run_labels",
+           "ship_length",
            "ship_breadth", "ship_outlines", "outline_interval"]
 
 #: Runs whose time series and track are drawn (the rest are in the band and the tables).
