@@ -50,3 +50,79 @@ def pytest_configure(config):
             if str(p) not in ("", ".") and p.is_dir() and any(f.is_file() for f in p.rglob("*"))]
     if warm:
         pytest.exit(f"the kernel cache is not empty at the start of the run: {warm}", returncode=3)
+
+
+# ------------------------------------------------------------------------------------------
+# result files of the HTML report's tests (tests/test_report*.py), made once per session on
+# component combinations the suite compiles anyway (the demo's; the KVLCC2 MMG of
+# `seahelm imo`)
+# ------------------------------------------------------------------------------------------
+#: A 2-point grid × 5 Monte-Carlo samples on the demo's components (tests/test_cli_inspect.py
+#: runs the same combination): kp = 4 leaves the yaw-rate bounds in every sample (diverged,
+#: "state out of bounds"), kp = 1 never does.
+REPORT_BATCH_SCENARIO = """
+title = "report test batch"
+[vessel]
+catalog = "mariner-nomoto2"
+[actuator]
+model = "rudder-servo"
+[controller]
+model = "pid-heading"
+dt = 0.5
+[controller.params]
+kp = 3.0
+kd = 60.0
+[controller.reference]
+heading_deg = 20.0
+[simulation]
+t_final = 120.0
+dt = 0.1
+record_every = 5
+bounds = { yaw_rate = [-0.006, 0.006] }
+[batch.grid]
+"controller.params.kp" = [1.0, 4.0]
+[batch.monte_carlo]
+runs = 5
+seed = 3
+[batch.monte_carlo.draws]
+"vessel.params.gain" = {distribution = "normal", mean = 0.185, std = 0.04}
+"""
+
+
+def _invoke(args):
+    from typer.testing import CliRunner
+
+    from seahelm.cli.main import app
+
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code == 0, (res.stdout, res.stderr)
+    return res
+
+
+@pytest.fixture(scope="session")
+def report_demo_dir(tmp_path_factory):
+    """`seahelm demo --out DIR`: result.nc, overview.png and report.html."""
+    out = tmp_path_factory.mktemp("report-demo")
+    _invoke(["demo", "--out", str(out)])
+    return out
+
+
+@pytest.fixture(scope="session")
+def report_batch_dir(tmp_path_factory):
+    """`seahelm run --report` of :data:`REPORT_BATCH_SCENARIO`: a grid × Monte-Carlo batch
+    with diverged runs (result.nc and report.html)."""
+    where = tmp_path_factory.mktemp("report-batch")
+    scenario = where / "batch.toml"
+    scenario.write_text(REPORT_BATCH_SCENARIO)
+    _invoke(["run", str(scenario), "--out", str(where / "out"), "--no-plot", "--report"])
+    return where / "out"
+
+
+@pytest.fixture(scope="session")
+def report_imo_dir(tmp_path_factory):
+    """`seahelm imo kvlcc2-l7 --out DIR` (turning and zig-zag runs and metrics, the criteria)
+    and `seahelm report` of it (report.html)."""
+    out = tmp_path_factory.mktemp("report-imo")
+    _invoke(["imo", "kvlcc2-l7", "--out", str(out)])
+    _invoke(["report", str(out / "turning-circle-runs.nc"), "-o", str(out / "report.html")])
+    return out

@@ -12,7 +12,8 @@ import seahelm
 
 
 def test_import_is_light():
-    code = ("import sys, seahelm; heavy = [m for m in ('numba', 'xarray', 'matplotlib', 'scipy')"
+    code = ("import sys, seahelm; heavy = [m for m in ('numba', 'xarray', 'matplotlib', 'scipy',"
+            " 'plotly')"
             " if m in sys.modules]; print(','.join(heavy))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == ""
@@ -21,9 +22,9 @@ def test_import_is_light():
 def test_the_demo_path_imports_no_solver_or_plotting_library():
     """What `seahelm demo` imports before it simulates (the user waits for it): no
     scipy.integrate/optimize (0.8 s together; only reference solves and equilibria need them),
-    no matplotlib before plotting."""
+    no matplotlib before plotting, no plotly before the report."""
     code = ("import sys; import seahelm.cli.main, seahelm.scenario, seahelm.analysis.maneuvers; "
-            "heavy = [m for m in ('scipy.integrate', 'scipy.optimize', 'matplotlib')"
+            "heavy = [m for m in ('scipy.integrate', 'scipy.optimize', 'matplotlib', 'plotly')"
             " if m in sys.modules]; print(','.join(heavy))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == ""

@@ -67,7 +67,8 @@ for _name, _module, _help in _GROUPS:
     app.add_typer(_sub.app, name=_name, help=_help)
 
 # Single commands of their own modules: (name, module, function).
-_COMMANDS = (("imo", "seahelm.cli.imo", "imo"), ("inspect", "seahelm.cli.inspect", "inspect"))
+_COMMANDS = (("imo", "seahelm.cli.imo", "imo"), ("inspect", "seahelm.cli.inspect", "inspect"),
+             ("report", "seahelm.cli.report", "report"))
 for _name, _module, _attr in _COMMANDS:
     try:
         _sub = importlib.import_module(_module)
@@ -127,23 +128,36 @@ class _ProgressBar:
             self.bar.stop()
 
 
+#: The report ``seahelm run --report`` and ``seahelm demo`` write beside the NetCDF.
+REPORT_NAME = "report.html"
+
+
 def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bool,
-             label: str) -> dict[str, Any] | None:
+             label: str, report: bool = False) -> dict[str, Any] | None:
     from ..analysis.maneuvers import summarize
     from ..scenario import ManeuverJob, run_scenario
 
+    if report and out is None:
+        raise ParameterError(f"`--report` writes {REPORT_NAME} beside the result files; give "
+                             "`--out DIR`")
     if isinstance(batch, ManeuverJob):  # a [maneuver] scenario: as `seahelm maneuver` shows it
+        from .maneuver import OUT_FILES
         from .maneuver_job import present_job
 
         if csv:
             raise ParameterError("`--csv` writes the time series of a [simulation] scenario; "
                                  f"a [maneuver] scenario ({batch.kind}) writes NetCDF only")
+        if report and out is not None:
+            output_dir("--out", out, (REPORT_NAME,))
         present_job(batch, out, as_json, plot=plot)
+        if report and out is not None:  # from the manoeuvre's files (it reads their pair)
+            source = next(n for n in OUT_FILES[batch.kind] if n.endswith(".nc"))
+            _write_report(out / source, out / REPORT_NAME, quiet=as_json)
         return None
 
     if out is not None:  # every target checked before anything runs
         output_dir("--out", out, ("result.nc",) + (("result.csv",) if csv else ())
-                   + (("overview.png",) if plot else ()))
+                   + (("overview.png",) if plot else ()) + ((REPORT_NAME,) if report else ()))
     bar = _ProgressBar(f"simulating {batch.n_runs} run(s)")
     try:
         result = run_scenario(batch, progress=bar)
@@ -165,6 +179,11 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
             from ..plotting.save import save_figure
 
             files["plot"] = str(save_figure(result.plot(), out / "overview.png"))
+        if report:  # from the result in memory (reading the file back costs more)
+            from ..report import report_data_from_dataset
+
+            data = report_data_from_dataset(result.to_xarray(), sources=(files["netcdf"],))
+            files["report"] = str(_write_report(data, out / REPORT_NAME, quiet=True))
     payload: dict[str, Any] = {
         "scenario": batch.metadata.get("title") or batch.metadata.get("scenario_source", ""),
         "n_runs": result.n_runs,
@@ -195,17 +214,29 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
     return payload
 
 
+def _write_report(source: Any, target: Path, *, quiet: bool) -> Path:
+    """The HTML report (:func:`seahelm.report.write_report`) of a result file or of report
+    data, beside the result files."""
+    from ..report import write_report
+
+    summary = write_report(source, target)
+    if not quiet:
+        console.print(f"  report: {summary.path}", highlight=False)
+    return summary.path
+
+
 @app.command()
 @handle_errors
 def demo(
     out: Annotated[Path, typer.Option(help="Output directory.")] = Path("seahelm-out"),
     json_out: JsonFlag = False,
 ) -> None:
-    """Run the embedded default scenario (Mariner, 20° course change, PID) and plot it."""
+    """Run the embedded default scenario (Mariner, 20° course change, PID): plot and report."""
     from ..scenario import default_scenario_text, parse_scenario
 
     batch = parse_scenario(default_scenario_text(), source="<embedded default scenario>")
-    _execute(batch, out, as_json=json_out, plot=True, csv=False, label=batch.metadata["title"])
+    _execute(batch, out, as_json=json_out, plot=True, csv=False, label=batch.metadata["title"],
+             report=True)
 
 
 @app.command()
@@ -218,13 +249,15 @@ def run(
     json_out: JsonFlag = False,
     csv: Annotated[bool, typer.Option(help="Also write result.csv.")] = False,
     plot: Annotated[bool, typer.Option(help="Write the figure with --out.")] = True,
+    report: Annotated[bool, typer.Option(
+        "--report", help=f"Also write {REPORT_NAME}, an HTML report, with --out.")] = False,
 ) -> None:
     """Validate and run a scenario file: a simulation or a standard manoeuvre."""
     from ..scenario import load_scenario
 
     batch = load_scenario(scenario)
     _execute(batch, out, as_json=json_out, plot=plot, csv=csv,
-             label=batch.metadata["title"] or str(scenario))
+             label=batch.metadata["title"] or str(scenario), report=report)
 
 
 @app.command()

@@ -1,0 +1,56 @@
+"""``seahelm report RESULT``: one self-contained HTML report of a result file.
+
+RESULT is ``result.nc`` of ``seahelm run``/``demo``, or a manoeuvre's ``*-runs.nc`` /
+``*-metrics.nc`` (``seahelm maneuver``; with ``imo-report.json`` beside them, the files of
+``seahelm imo --out`` and the IMO criteria). The page (:mod:`seahelm.report`) holds plotly.js
+and all the data, so it opens with no network. ``-o`` is checked before anything is read; the
+file is written atomically. A Zarr sweep store is refused for now (exit 2).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.markup import escape
+
+from ..errors import ParameterError
+from ._common import JsonFlag, console, handle_errors, input_file, output_file, print_json
+
+__all__ = ["report", "default_report_path"]
+
+
+def default_report_path(result: Path) -> Path:
+    """Where ``seahelm report RESULT`` writes without ``-o``: beside RESULT, ``.html``."""
+    return result.with_suffix(".html")
+
+
+@handle_errors
+def report(
+    result: Annotated[Path, typer.Argument(help=(
+        "Result file written by seahelm (NetCDF): result.nc of `seahelm run`/`demo`, a "
+        "manoeuvre's *-runs.nc or *-metrics.nc."))],
+    out: Annotated[Path | None, typer.Option(
+        "-o", "--out", help="HTML file to write (default: beside RESULT, with .html).")] = None,
+    json_out: JsonFlag = False,
+) -> None:
+    """Write an HTML report of a result file: metadata, status, metrics, interactive plots."""
+    if result.suffix == ".zarr":
+        raise ParameterError(f"{result}: Zarr sweep stores are not supported by `seahelm "
+                             "report` yet; give a NetCDF result file (result.nc, *-runs.nc, "
+                             "*-metrics.nc)")
+    input_file("RESULT", result)
+    target = output_file("--out", out or default_report_path(result))
+    if target.resolve() == result.resolve():
+        raise ParameterError(f"`--out` {target} is the result file itself")
+    from ..report import write_report
+
+    summary = write_report(result, target)
+    if json_out:
+        print_json({"file": str(result), "report": str(summary.path), "bytes": summary.bytes,
+                    "title": summary.title, "n_runs": summary.n_runs,
+                    "sections": list(summary.sections), "sources": list(summary.sources)})
+        return
+    console.print(f"wrote {escape(str(summary.path))} ({summary.bytes / 1e6:.1f} MB, "
+                  f"{summary.n_runs} run(s), {len(summary.sections)} sections)", highlight=False)

@@ -1,0 +1,115 @@
+"""An HTML report of a result: one self-contained file a person opens in a browser.
+
+``write_report(source, target)`` reads a result file and its companions
+(:mod:`~seahelm.report.inputs`), builds the sections from their Datasets
+(:mod:`~seahelm.report.sections`: scenario and run metadata, per-run status, IMO criteria,
+metrics, batch statistics, track with hull outlines, time series) and writes them as one HTML
+page with plotly.js and all data inlined (:mod:`~seahelm.report.html`), atomically. A large
+batch is summarised (:mod:`~seahelm.report.signals`): at most 20 runs drawn, time series
+decimated to 2000 samples, the batch as a 5-95 % band and histograms.
+
+plotly is imported only when a report is built.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from .inputs import ReportData, RunSet, load_report_data, report_data_from_dataset
+
+if TYPE_CHECKING:  # pragma: no cover
+    import xarray as xr
+
+__all__ = ["ReportData", "RunSet", "ReportSummary", "load_report_data",
+           "report_data_from_dataset", "report_html", "write_report"]
+
+
+@dataclasses.dataclass(frozen=True)
+class ReportSummary:
+    """What :func:`write_report` wrote.
+
+    Attributes
+    ----------
+    path : pathlib.Path
+        The HTML file.
+    bytes : int
+        Its size.
+    title : str
+        The page title.
+    sections : tuple of str
+        The section ids, in page order.
+    n_runs : int
+        Runs covered (over all batches).
+    sources : tuple of str
+        The files read.
+    """
+
+    path: Path
+    bytes: int
+    title: str
+    sections: tuple[str, ...]
+    n_runs: int
+    sources: tuple[str, ...]
+
+
+def report_html(data: ReportData) -> tuple[str, tuple[str, ...]]:
+    """The page of ``data`` and its section ids.
+
+    Parameters
+    ----------
+    data : ReportData
+        From :func:`load_report_data` or :func:`report_data_from_dataset`.
+
+    Returns
+    -------
+    (str, tuple of str)
+    """
+    from .. import __version__
+    from .html import render_html
+    from .sections import build_sections
+
+    sections = build_sections(data)
+    return render_html(data.title, sections, version=__version__), tuple(s.id for s in sections)
+
+
+def write_report(source: "str | os.PathLike[str] | xr.Dataset | ReportData",
+                 target: str | os.PathLike[str]) -> ReportSummary:
+    """Write the HTML report of a result to ``target`` (atomically: a failure leaves no
+    partial file under that name).
+
+    Parameters
+    ----------
+    source : path, xarray.Dataset or ReportData
+        A result file (``result.nc``, ``<manoeuvre>-runs.nc``, ``<manoeuvre>-metrics.nc``), a
+        result Dataset, or report data already read.
+    target : str or os.PathLike
+        The HTML file to write.
+
+    Returns
+    -------
+    ReportSummary
+
+    Raises
+    ------
+    FileNotFoundError
+        If ``source`` is a path that does not exist.
+    ParameterError
+        If ``source`` is not a seahelm result (or a Zarr store, not supported yet) or holds no
+        runs.
+    """
+    from ..results import atomic_write
+
+    if isinstance(source, ReportData):
+        data = source
+    elif isinstance(source, (str, os.PathLike)):
+        data = load_report_data(source)
+    else:
+        data = report_data_from_dataset(source)
+    page, ids = report_html(data)
+    encoded = page.encode("utf-8")
+    path = atomic_write(target, lambda tmp: Path(tmp).write_bytes(encoded))
+    return ReportSummary(path=path, bytes=len(encoded), title=data.title, sections=ids,
+                         n_runs=data.n_runs, sources=data.sources)

@@ -1,0 +1,289 @@
+"""What a report is made of: the result files read into :class:`ReportData`.
+
+A report covers one result file and the files seahelm wrote beside it for the same question:
+
+* a simulation result (``result.nc`` of ``seahelm run``/``demo``): its runs;
+* a manoeuvre's ``<name>-runs.nc`` or ``<name>-metrics.nc`` (``seahelm maneuver``): the runs
+  and the metrics of that manoeuvre (whichever of the two files exists);
+* either file of ``seahelm imo --out``: the turning and zig-zag runs and metrics, and the IMO
+  criteria of ``imo-report.json`` (the pass/fail table the command printed).
+
+Everything is held as xarray Datasets (the runs in their flat ``run`` view), so that a section
+of the report is a function of Datasets (:mod:`seahelm.report.sections`). A Zarr sweep store
+is refused for now (the sweep store format is not defined yet).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import json
+import math
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from ..errors import ParameterError
+
+if TYPE_CHECKING:  # pragma: no cover
+    import xarray as xr
+
+__all__ = ["RunSet", "ReportData", "load_report_data", "report_data_from_dataset"]
+
+#: The manoeuvres whose files ``seahelm imo --out`` writes (with ``imo-report.json``).
+IMO_MANEUVERS = ("turning-circle", "zigzag")
+#: The criteria file ``seahelm imo --out`` writes.
+IMO_REPORT = "imo-report.json"
+
+
+@dataclasses.dataclass(frozen=True)
+class RunSet:
+    """One batch of runs and, for a manoeuvre, its metrics.
+
+    Attributes
+    ----------
+    name : str
+        ``"result"`` for a simulation, else the manoeuvre (``"turning-circle"``, ``"zigzag"``,
+        ...).
+    runs : xarray.Dataset or None
+        The runs in their flat view (dims ``run`` and ``time``); None for a manoeuvre computed
+        without time series (the reverse spiral).
+    metrics : xarray.Dataset or None
+        A manoeuvre's metrics over its batch dims (None for a simulation).
+    shaped : xarray.Dataset or None
+        The runs as written (the batch's own dims), for the summary metrics.
+    """
+
+    name: str
+    runs: "xr.Dataset | None"
+    metrics: "xr.Dataset | None" = None
+    shaped: "xr.Dataset | None" = None
+
+    @property
+    def n_runs(self) -> int:
+        """Number of runs (0 without time series)."""
+        return 0 if self.runs is None else int(self.runs.sizes["run"])
+
+    @functools.cached_property
+    def summary(self) -> list[dict[str, Any]]:
+        """The per-run summary metrics of the runs, as ``seahelm run`` prints them
+        (:func:`seahelm.analysis.maneuvers.summarize`; empty without time series)."""
+        if self.shaped is None:
+            return []
+        from ..analysis.maneuvers import summarize
+        from ..result_io import result_from_dataset
+
+        return summarize(result_from_dataset(self.shaped))
+
+
+@dataclasses.dataclass(frozen=True)
+class ReportData:
+    """Everything a report shows.
+
+    Attributes
+    ----------
+    title : str
+        The page title (the scenario's title, the manoeuvre and ship, or the file name).
+    sets : tuple of RunSet
+        The batches, in the order shown.
+    imo : xarray.Dataset or None
+        The IMO MSC.137(76) criteria over a ``row`` dim (``ability``, ``criterion``,
+        ``side``, ``value``, ``limit``, ``margin``, ``unit``, ``status``, ``note``), with the
+        ship, L, V, L/V, verdict and notes in ``attrs``; None when the input is not an IMO check.
+    sources : tuple of str
+        The files read.
+    """
+
+    title: str
+    sets: tuple[RunSet, ...]
+    imo: "xr.Dataset | None" = None
+    sources: tuple[str, ...] = ()
+
+    @property
+    def n_runs(self) -> int:
+        """Runs over all sets."""
+        return sum(s.n_runs for s in self.sets)
+
+
+def _is_runs(ds: "xr.Dataset") -> bool:
+    return "status" in ds and "time" in ds.dims and "state_labels" in ds.attrs
+
+
+def _is_metrics(ds: "xr.Dataset") -> bool:
+    return bool(ds.attrs.get("maneuver")) and "complete" in ds
+
+
+def _check_runs(ds: "xr.Dataset", path: Path) -> None:
+    if any(size == 0 for dim, size in ds.sizes.items()):
+        empty = ", ".join(f"{d}={n}" for d, n in ds.sizes.items() if n == 0)
+        raise ParameterError(f"{path}: the result holds no runs or no time samples ({empty})")
+
+
+def _flat(ds: "xr.Dataset") -> "xr.Dataset":
+    from ..result_layout import flatten_runs
+
+    return flatten_runs(ds)
+
+
+def report_data_from_dataset(ds: "xr.Dataset", *, title: str | None = None,
+                             sources: tuple[str, ...] = ()) -> ReportData:
+    """The report data of a simulation result Dataset (shaped or flat view), without reading
+    files (``seahelm run``/``demo`` report the result they hold in memory).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A Dataset of :meth:`SimResult.to_xarray` or :func:`~seahelm.results.load_result`.
+    title : str, optional
+        Page title (default: the scenario's title).
+    sources : tuple of str, optional
+        The files the Dataset was written to, named on the page.
+
+    Returns
+    -------
+    ReportData
+
+    Raises
+    ------
+    ParameterError
+        If ``ds`` is not a seahelm simulation result or holds no runs.
+    """
+    if not _is_runs(ds):
+        raise ParameterError("not a seahelm simulation result (it needs `status` over the runs, "
+                             "a `time` dimension and the `state_labels` attribute)")
+    _check_runs(ds, Path("<dataset>"))
+    name = str(ds.attrs.get("maneuver") or "result")
+    return ReportData(title=title or str(ds.attrs.get("title") or name),
+                      sets=(RunSet(name, _flat(ds), None, ds),), sources=tuple(sources))
+
+
+def load_report_data(path: str | Path) -> ReportData:
+    """Read a result file and its companions (see the module docstring).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        ``result.nc``, ``<manoeuvre>-runs.nc`` or ``<manoeuvre>-metrics.nc``.
+
+    Returns
+    -------
+    ReportData
+
+    Raises
+    ------
+    FileNotFoundError
+        If ``path`` does not exist.
+    ParameterError
+        If ``path`` is a Zarr store (not supported yet), not a seahelm result file, or holds
+        no runs.
+    """
+    from ..results import open_result_file
+
+    path = Path(path)
+    if path.suffix == ".zarr" or (path.is_dir() and (path / ".zgroup").exists()):
+        raise ParameterError(f"{path}: Zarr sweep stores are not supported by `seahelm report` "
+                             "yet; give a NetCDF result file (result.nc, *-runs.nc, "
+                             "*-metrics.nc)")
+    ds = open_result_file(path)
+    if _is_runs(ds):
+        _check_runs(ds, path)
+        maneuver = ds.attrs.get("maneuver")
+        if not maneuver:
+            return ReportData(title=str(ds.attrs.get("title") or path.name),
+                              sets=(RunSet("result", _flat(ds), None, ds),),
+                              sources=(str(path),))
+    elif _is_metrics(ds):
+        maneuver = ds.attrs["maneuver"]
+    else:
+        raise ParameterError(
+            f"{path}: not a seahelm result file: neither a simulation result (result.nc of "
+            "`seahelm run --out`, a manoeuvre's *-runs.nc) nor a manoeuvre's *-metrics.nc")
+    directory = path.parent
+    imo_file = directory / IMO_REPORT
+    names = [str(maneuver)]
+    imo = None
+    if str(maneuver) in IMO_MANEUVERS and imo_file.is_file():
+        imo = _imo_dataset(imo_file)
+        if imo is not None:
+            names = list(IMO_MANEUVERS)
+    sets = []
+    sources = []
+    for name in names:
+        run_set, read = _maneuver_set(directory, name, path, ds)
+        if run_set is not None:
+            sets.append(run_set)
+            sources.extend(read)
+    if imo is not None:
+        sources.append(str(imo_file))
+        title = (f"IMO MSC.137(76) check: {imo.attrs['ship']} "
+                 f"({'passes' if imo.attrs['passed'] else 'fails'})")
+    else:
+        title = _maneuver_title(str(maneuver), sets)
+    return ReportData(title=title, sets=tuple(sets), imo=imo, sources=tuple(sources))
+
+
+def _maneuver_set(directory: Path, name: str, given: Path, given_ds: "xr.Dataset"
+                  ) -> tuple[RunSet | None, list[str]]:
+    """The runs and metrics files of manoeuvre ``name`` in ``directory`` (either may be
+    missing; the one given is used as read)."""
+    from ..results import open_result_file
+
+    found: dict[str, "xr.Dataset"] = {}
+    read = []
+    for kind in ("runs", "metrics"):
+        candidate = directory / f"{name}-{kind}.nc"
+        if candidate.resolve() == given.resolve():
+            found[kind] = given_ds
+            read.append(str(given))
+        elif candidate.is_file():
+            ds = open_result_file(candidate)
+            if (_is_runs(ds) if kind == "runs" else _is_metrics(ds)) and \
+                    ds.attrs.get("maneuver") == name:
+                found[kind] = ds
+                read.append(str(candidate))
+    if not found:
+        return None, read
+    runs = found.get("runs")
+    if runs is not None:
+        _check_runs(runs, directory / f"{name}-runs.nc")
+    return RunSet(name, None if runs is None else _flat(runs), found.get("metrics"),
+                  runs), read
+
+
+def _maneuver_title(maneuver: str, sets: list[RunSet]) -> str:
+    ship = ""
+    for s in sets:
+        for ds in (s.metrics, s.shaped):
+            if ds is not None and "ship_name" in ds.coords:
+                ship = str(ds["ship_name"].values.ravel()[0])
+                break
+        if ship:
+            break
+    return f"{maneuver.replace('-', ' ')}" + (f", {ship}" if ship else "")
+
+
+def _imo_dataset(path: Path) -> "xr.Dataset | None":
+    """The criteria of ``imo-report.json`` as a Dataset over ``row`` (None if the file
+    is not the report of ``seahelm imo``)."""
+    import numpy as np
+    import xarray as xr
+
+    try:
+        report = json.loads(path.read_text())
+        criteria = report["criteria"]
+        keys = ("ability", "criterion", "side", "value", "limit", "margin", "unit", "status",
+                "note")
+        rows = [{k: c[k] for k in keys} for c in criteria]
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+
+    def num(v: Any) -> float:
+        return math.nan if v is None else float(v)
+
+    data = {k: ("row", np.array([num(r[k]) for r in rows]) if k in
+                ("value", "limit", "margin") else np.array([str(r[k]) for r in rows]))
+            for k in keys}
+    attrs = {"ship": str(report.get("ship", "")), "length_m": num(report.get("length_m")),
+             "speed_mps": num(report.get("speed_mps")),
+             "L_over_V_s": num(report.get("L_over_V_s")), "passed": bool(report.get("passed")),
+             "notes": "\n".join(str(n) for n in report.get("notes", []))}
+    return xr.Dataset(data, attrs=attrs)

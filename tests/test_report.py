@@ -1,0 +1,321 @@
+"""The HTML report (``seahelm report``, ``seahelm run --report``, ``seahelm demo``): what the
+page holds, how a large batch is summarised, and bad input (exit 2, no HTML left behind).
+
+The page in a real browser: tests/test_report_browser.py. The result files come from the
+session fixtures of tests/conftest.py.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+from typer.testing import CliRunner
+
+from seahelm.cli.main import app
+from seahelm.errors import ParameterError
+from seahelm.report import load_report_data, write_report
+from seahelm.report.signals import (
+    MAX_POINTS,
+    MAX_RUNS_PLOTTED,
+    decimated_index,
+    find_signal,
+    outline_interval,
+    plotted_runs,
+    ship_outlines,
+)
+from seahelm.results import load_result
+
+runner = CliRunner()
+
+#: The first line of the inlined plotly.js bundle.
+PLOTLY_BANNER = re.compile(r"\* plotly\.js v\d")
+
+
+def one_error(args: list[str]) -> str:
+    res = runner.invoke(app, args)
+    assert res.exit_code == 2, (res.stdout, res.stderr)
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), res.stderr
+    return lines[0]
+
+
+def self_contained(page: str) -> None:
+    """plotly.js inlined exactly once, nothing loaded from anywhere."""
+    assert len(PLOTLY_BANNER.findall(page)) == 1
+    assert not re.search(r"<script[^>]*\bsrc\s*=", page)
+    assert not re.search(r"""<(link|img|iframe)[^>]*\b(src|href)\s*=\s*["']?(https?:)?//""",
+                         page)
+
+
+# ------------------------------------------------------------------------------------------
+# the demo, a batch with diverged runs, the IMO check
+# ------------------------------------------------------------------------------------------
+def test_demo_writes_the_report_beside_the_netcdf(report_demo_dir):
+    page = (report_demo_dir / "report.html").read_text()
+    self_contained(page)
+    for sid in ("overview", "status", "metrics", "track", "timeseries"):
+        assert f'<section id="{sid}">' in page
+    assert page.count("Plotly.newPlot(") == 2  # track and time series
+    assert "Mariner: 20 degree course change under PID" in page
+    for text in ("integrator", "rk4", "seahelm version", "none (nothing random in the runs)",
+                 "# The embedded default scenario", "1 run(s): 1 ok, 0 diverged",
+                 "hull outlines every 50 s, L = 160.9 m"):
+        assert text in page, text
+    assert (report_demo_dir / "report.html").stat().st_size < 6e6
+
+
+def test_report_command_default_path_and_json(report_demo_dir, tmp_path):
+    src = tmp_path / "result.nc"
+    src.write_bytes((report_demo_dir / "result.nc").read_bytes())
+    res = runner.invoke(app, ["report", str(src), "--json"])
+    assert res.exit_code == 0, res.stderr
+    got = json.loads(res.stdout)
+    assert got["report"] == str(tmp_path / "result.html") and got["n_runs"] == 1
+    assert got["sections"] == ["overview", "status", "metrics", "track", "timeseries"]
+    assert (tmp_path / "result.html").stat().st_size == got["bytes"]
+    res = runner.invoke(app, ["report", str(src), "-o", str(tmp_path / "sub" / "r.html")])
+    assert res.exit_code == 0 and "wrote" in res.stdout
+    assert (tmp_path / "sub" / "r.html").is_file()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["result.html", "result.nc", "sub"]
+
+
+def test_batch_report_lists_diverged_runs_and_statistics(report_batch_dir):
+    page = (report_batch_dir / "report.html").read_text()
+    self_contained(page)
+    assert "10 run(s): 5 ok, 5 diverged" in page
+    table = page[page.index('class="diverged"'):]
+    table = table[:table.index("</table>")]
+    assert table.count("<tr>") == 1 + 5  # header + every diverged run
+    assert "state out of bounds" in table and "kp 4" in table
+    assert '<section id="statistics">' in page
+    assert "over the ok runs: kp 1 rad/rad: 5 ok of 5; kp 4 rad/rad: 0 ok of 5" in page
+    assert "(no ok run: no metrics)" in page
+    assert "dimension kp" in page and "controller.params.kp = 1, 4" in page
+    assert "vessel.params.gain (normal)" in page
+    assert page.count("Plotly.newPlot(") == 3  # histograms, track, time series
+
+
+def test_imo_report_has_the_criteria_and_both_manoeuvres(report_imo_dir):
+    page = (report_imo_dir / "report.html").read_text()
+    self_contained(page)
+    assert "kvlcc2-l7 (L = 7 m" in page and "PASSES the evaluated criteria" in page
+    table = page[page.index('class="imo"'):]
+    table = table[:table.index("</table>")]
+    assert table.count('<tr class="pass">') == 12
+    assert table.count('<tr class="not-evaluated">') == 1
+    for sid in ("imo", "track-turning-circle", "track-zigzag", "timeseries-zigzag"):
+        assert f'id="{sid}"' in page
+    # either file of the check gives the same report
+    data = load_report_data(report_imo_dir / "zigzag-metrics.nc")
+    assert [s.name for s in data.sets] == ["turning-circle", "zigzag"]
+    assert data.imo is not None and data.imo.sizes["row"] == 13
+
+
+def test_a_manoeuvre_without_imo_report(report_imo_dir, tmp_path):
+    for name in ("zigzag-runs.nc", "zigzag-metrics.nc"):
+        (tmp_path / name).write_bytes((report_imo_dir / name).read_bytes())
+    data = load_report_data(tmp_path / "zigzag-runs.nc")
+    assert data.imo is None and [s.name for s in data.sets] == ["zigzag"]
+    assert data.sets[0].metrics is not None and data.title == "zigzag, kvlcc2-l7"
+    summary = write_report(data, tmp_path / "z.html")
+    assert summary.sections == ("overview", "status", "metrics", "track", "timeseries")
+    page = (tmp_path / "z.html").read_text()
+    assert "overshoot_1 [deg]" in page and "pair 1, starboard, rudder 20°, trigger 20°" in page
+
+
+# ------------------------------------------------------------------------------------------
+# large batches are summarised
+# ------------------------------------------------------------------------------------------
+def test_a_10000_run_batch_gives_a_file_under_10_mb(report_demo_dir, tmp_path):
+    """10,000 runs of a Monte-Carlo batch (the demo's result repeated with scattered
+    headings and 300 diverged runs) through the same path as a file."""
+    one = load_result(report_demo_dir / "result.nc").isel(time=slice(None, None, 30))
+    keep = [n for n, v in one.data_vars.items() if v.attrs.get("kind") in ("state", "output",
+                                                                            "reference")
+            or "time" not in v.dims]
+    one = one[keep]
+    n = 10_000
+    big = one.isel(run=np.zeros(n, dtype=int)).drop_vars("run").rename(run="sample")
+    rng = np.random.default_rng(1)
+    big["heading"] = big["heading"] * xr.DataArray(1 + 0.05 * rng.standard_normal(n),
+                                                   dims="sample")
+    status = np.zeros(n, dtype=np.int64)
+    status[rng.choice(n, 300, replace=False)] = 2
+    big["status"] = ("sample", status)
+    big["failure_time"] = ("sample", np.where(status != 0, 42.0, np.nan))
+    big["status_message"] = ("sample", np.where(status != 0, "diverged: state out of bounds "
+                                                "at t = 42 s", "ok"))
+    path = tmp_path / "big.html"
+    summary = write_report(big, path)
+    assert summary.n_runs == n
+    assert path.stat().st_size < 10e6
+    page = path.read_text()
+    assert f"{MAX_RUNS_PLOTTED} of {n} runs drawn" in page and "of 9700 ok runs" in page
+    assert "the band is the 5–95 % range over all ok runs" in page
+    assert "10000 run(s): 9700 ok, 300 diverged" in page
+    assert "first 500 of 300" not in page and page.count("state out of bounds") >= 300
+    assert '<section id="statistics">' in page and "over the ok runs: 9700 ok of 10000" in page
+
+
+def test_plotted_runs_spread_and_diverged_first():
+    status = np.zeros(1000, dtype=int)
+    status[[3, 500, 998]] = 2
+    shown = plotted_runs(status)
+    assert shown.size == MAX_RUNS_PLOTTED and {3, 500, 998} <= set(shown.tolist())
+    assert shown[0] == 0 and shown[-1] == 999
+    assert plotted_runs(np.zeros(5)).tolist() == [0, 1, 2, 3, 4]
+
+
+@pytest.mark.parametrize("n", [10, 2000, 2001, 6001, 100_000])
+def test_decimation_keeps_the_ends(n):
+    idx = decimated_index(n)
+    assert idx.size <= MAX_POINTS and idx[0] == 0 and idx[-1] == n - 1
+    assert np.all(np.diff(idx) > 0)
+
+
+def test_outline_interval_is_1_2_5():
+    assert outline_interval(600.0) == 50.0
+    assert outline_interval(108.0) == 10.0
+    assert outline_interval(30.0) == 5.0
+
+
+def test_hull_outline_points_along_the_heading():
+    t = np.array([0.0, 1.0])
+    east, north = ship_outlines(t, np.zeros(2), np.zeros(2), np.array([90.0, 90.0]),
+                                length=100.0, breadth=20.0, interval=10.0)
+    assert np.isnan(east[-1]) and east.size == 7  # one polygon (t = 0) and its break
+    assert east[0] == pytest.approx(50.0) and north[0] == pytest.approx(0.0, abs=1e-9)
+    assert np.nanmin(east) == pytest.approx(-50.0) and np.nanmax(north) == pytest.approx(10.0)
+
+
+def test_signals_found_by_name_in_other_spellings():
+    ds = xr.Dataset({"x": (("run", "time"), np.ones((1, 3)), {"units": "m"}),
+                     "psi": (("run", "time"), np.full((1, 3), math.pi), {"units": "rad"}),
+                     "u": (("run", "time"), np.full((1, 3), 3.0), {"units": "m/s"}),
+                     "v": (("run", "time"), np.full((1, 3), 4.0), {"units": "m/s"})})
+    assert find_signal(ds, "north").name == "x"
+    heading = find_signal(ds, "heading")
+    assert heading.units == "deg" and heading.values[0, 0] == pytest.approx(180.0)
+    assert find_signal(ds, "speed").values[0, 0] == pytest.approx(5.0)
+    assert find_signal(ds, "rudder") is None
+
+
+# ------------------------------------------------------------------------------------------
+# bad input: exit 2, one line, no HTML under the final name
+# ------------------------------------------------------------------------------------------
+def test_a_netcdf_not_written_by_seahelm(tmp_path):
+    path = tmp_path / "other.nc"
+    xr.Dataset({"a": ("x", np.arange(3.0))}).to_netcdf(path, engine="h5netcdf")
+    assert "not a seahelm result file" in one_error(["report", str(path)])
+    text = tmp_path / "notes.nc"
+    text.write_text("hello")
+    assert "not a NetCDF-4/HDF5 file" in one_error(["report", str(text)])
+    assert not list(tmp_path.glob("*.html")) and not list(tmp_path.glob(".*"))
+
+
+def test_a_result_without_runs(report_demo_dir, tmp_path):
+    empty = load_result(report_demo_dir / "result.nc").isel(run=slice(0, 0))
+    path = tmp_path / "empty.nc"
+    empty.to_netcdf(path, engine="h5netcdf")
+    assert "holds no runs" in one_error(["report", str(path)])
+    assert not (tmp_path / "empty.html").exists()
+
+
+@pytest.mark.parametrize("store", ["sweep.zarr", "empty.zarr/"])
+def test_zarr_stores_are_not_supported_yet(tmp_path, store):
+    path = tmp_path / store
+    if store.endswith("/"):
+        path.mkdir()
+    assert "Zarr sweep stores are not supported" in one_error(["report", str(path)])
+    with pytest.raises(ParameterError, match="not supported"):
+        load_report_data(tmp_path / "empty.zarr")
+    assert not list(tmp_path.rglob("*.html"))
+
+
+def test_missing_input_and_unwritable_output(report_demo_dir, tmp_path):
+    src = report_demo_dir / "result.nc"
+    assert "no such file" in one_error(["report", str(tmp_path / "nope.nc")])
+    afile = tmp_path / "afile"
+    afile.write_text("x")
+    assert "is a file, not a directory" in one_error(
+        ["report", str(src), "-o", str(afile / "r.html")])
+    assert "must be a file name" in one_error(["report", str(src), "-o", str(tmp_path)])
+    assert "cannot write in" in one_error(["report", str(src), "-o", "/proc/r.html"])
+    assert "is the result file itself" in one_error(["report", str(src), "-o", str(src)])
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["afile"]
+
+
+def test_a_failure_while_writing_leaves_no_partial_html(report_demo_dir, tmp_path,
+                                                        monkeypatch):
+    target = tmp_path / "r.html"
+    target.write_text("the previous report")
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("disk full")
+
+    monkeypatch.setattr("plotly.offline.get_plotlyjs", broken)
+    res = runner.invoke(app, ["report", str(report_demo_dir / "result.nc"), "-o", str(target)])
+    assert res.exit_code == 1 and "disk full" in res.stderr
+    assert target.read_text() == "the previous report"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.html"]
+
+
+def test_run_report_needs_out():
+    scenario = Path(__file__).resolve().parents[1] / "examples" / "mariner_course_change.toml"
+    assert "`--report` writes report.html" in one_error(["run", str(scenario), "--report"])
+
+
+def test_run_report_of_a_maneuver_scenario(tmp_path):
+    """A [maneuver] scenario (the KVLCC2 turning circles, the kernel of `seahelm imo`'s
+    turning): report.html beside the manoeuvre's files."""
+    scenario = Path(__file__).resolve().parents[1] / "examples" / "kvlcc2_turning_circles.toml"
+    res = runner.invoke(app, ["run", str(scenario), "--out", str(tmp_path), "--no-plot",
+                              "--report"])
+    assert res.exit_code == 0, res.stderr
+    assert "report:" in res.stdout
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "report.html", "turning-circle-metrics.nc", "turning-circle-runs.nc"]
+    page = (tmp_path / "report.html").read_text()
+    assert "tactical_diameter [m]" in page and "rudder 20°, starboard" in page
+    assert page.count("Plotly.newPlot(") == 2
+
+
+def test_the_report_target_is_checked_before_anything_runs(tmp_path, monkeypatch):
+    import seahelm.scenario as scenario
+
+    def tripwire(*args, **kwargs):
+        raise AssertionError("ran before the output path was checked")
+
+    monkeypatch.setattr(scenario, "run_scenario", tripwire)
+    (tmp_path / "report.html").mkdir()
+    assert "report.html is a directory" in one_error(["demo", "--out", str(tmp_path)])
+    example = Path(__file__).resolve().parents[1] / "examples" / "mariner_course_change.toml"
+    assert "report.html is a directory" in one_error(
+        ["run", str(example), "--out", str(tmp_path), "--report"])
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["report.html"]
+
+
+def test_metrics_along_a_dimension_of_their_own_get_a_table(tmp_path):
+    """A direct spiral's metrics: one run, values per step (here synthetic, no time series)."""
+    from seahelm.report import ReportData, RunSet
+
+    steps = np.arange(6)
+    metrics = xr.Dataset(
+        {"yaw_rate": ("step", np.radians(np.linspace(2, -2, 6)), {"units": "rad/s"}),
+         "loop_width": ((), 0.01, {"units": "rad"}), "complete": ((), np.int8(1)),
+         "message": ((), "ok")},
+        coords={"step": steps, "step_rudder": ("step", np.radians(np.linspace(10, -10, 6)),
+                                               {"units": "rad"})},
+        attrs={"maneuver": "direct-spiral"})
+    data = ReportData("spiral", (RunSet("direct-spiral", None, metrics),))
+    summary = write_report(data, tmp_path / "s.html")
+    assert summary.sections == ("overview", "metrics") and summary.n_runs == 0
+    page = (tmp_path / "s.html").read_text()
+    assert "step_rudder [deg]" in page and "yaw_rate [deg/s]" in page and "per step" in page
+    assert "yaw_rate_1" not in page and "loop_width [deg]" in page

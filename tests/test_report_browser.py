@@ -1,0 +1,143 @@
+"""The HTML report in a real headless browser: Debian's Chromium driven by Playwright.
+
+Each report (the demo's, a grid × Monte-Carlo batch with diverged runs, the IMO check of the
+KVLCC2) is opened from ``file://`` with every other request refused: the page must load with
+no network, log no console error, draw traces in every plot container, and (the IMO check)
+show the criteria table's rows; a screenshot must not be blank.
+
+Playwright is pointed at the system browser (``/usr/bin/chromium``); it never downloads one.
+Without Chromium or Playwright these tests are skipped with the reason (``.ci/run`` installs
+Chromium when it is missing).
+"""
+
+from __future__ import annotations
+
+import io
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+CHROMIUM = shutil.which("chromium") or ("/usr/bin/chromium" if Path("/usr/bin/chromium").exists()
+                                        else None)
+#: Headless, and nothing in the background: this network refuses Chromium's own connections.
+CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+                 "--no-first-run", "--disable-background-networking",
+                 "--disable-component-update", "--disable-sync"]
+
+pytestmark = pytest.mark.skipif(
+    CHROMIUM is None, reason="no Chromium at /usr/bin/chromium (apt-get install chromium; "
+                             ".ci/run installs it)")
+
+
+@pytest.fixture(scope="module")
+def browser(tmp_path_factory):
+    """One headless Chromium for the module (a fresh, empty profile)."""
+    sync_api = pytest.importorskip(
+        "playwright.sync_api", reason="playwright is not installed (pip install 'seahelm[test]')")
+    profile = tmp_path_factory.mktemp("chromium-profile")
+    with sync_api.sync_playwright() as pw:
+        context = pw.chromium.launch_persistent_context(
+            str(profile), executable_path=CHROMIUM, headless=True, args=CHROMIUM_ARGS,
+            viewport={"width": 1280, "height": 900})
+        try:
+            yield context
+        finally:
+            context.close()
+
+
+def open_report(context, path: Path) -> tuple[object, dict]:
+    """Open ``path`` with every non-file request refused; returns the page and what was
+    seen: console errors, page errors, refused requests."""
+    seen: dict[str, list[str]] = {"errors": [], "refused": []}
+    page = context.new_page()
+
+    def route(r):
+        if r.request.url.startswith("file://"):
+            r.continue_()
+        else:
+            seen["refused"].append(r.request.url)
+            r.abort()
+
+    page.route("**/*", route)
+    page.on("console", lambda m: m.type == "error" and seen["errors"].append(m.text))
+    page.on("pageerror", lambda e: seen["errors"].append(str(e)))
+    page.goto(path.resolve().as_uri(), wait_until="load")
+    page.wait_for_function("() => Array.from(document.querySelectorAll('.plotly-graph-div'))"
+                           ".every(d => d._fullLayout !== undefined)", timeout=30_000)
+    return page, seen
+
+
+#: Per plot container: its id, traces in its data, traces drawn (SVG groups) and the SVG paths
+#: drawn in them (lines, bars) that are not empty.
+PLOTS_JS = """() => Array.from(document.querySelectorAll('.plotly-graph-div')).map(d => ({
+    id: d.id, data: (d.data || []).length,
+    drawn: d.querySelectorAll('g.trace').length,
+    paths: Array.from(d.querySelectorAll('g.trace path'))
+        .filter(p => (p.getAttribute('d') || '').length > 10).length}))"""
+
+
+def not_blank(png: bytes) -> float:
+    """The share of pixels that are not the page's white."""
+    import matplotlib.image as mpimg
+
+    img = mpimg.imread(io.BytesIO(png), format="png")[..., :3]
+    return float(np.mean(np.any(img < 0.94, axis=-1)))
+
+
+def check_page(context, path: Path, n_plots: int, shot: Path) -> object:
+    page, seen = open_report(context, path)
+    assert seen["errors"] == [] and seen["refused"] == []
+    plots = page.evaluate(PLOTS_JS)
+    assert len(plots) == n_plots, plots
+    for plot in plots:
+        assert plot["data"] > 0 and plot["drawn"] > 0 and plot["paths"] > 0, plot
+    png = page.screenshot(full_page=True)
+    shot.write_bytes(png)
+    assert not_blank(png) > 0.03
+    return page
+
+
+def test_demo_report_in_the_browser(browser, report_demo_dir):
+    page = check_page(browser, report_demo_dir / "report.html", 2,
+                      report_demo_dir / "report.png")
+    assert page.title() == "Mariner: 20 degree course change under PID"
+    # the track figure: the run's line and its hull outlines
+    traces = page.evaluate("() => document.querySelector('#track .plotly-graph-div').data"
+                           ".map(t => t.name)")
+    assert traces == ["run 0", "run 0 hull"]
+    page.close()
+
+
+def test_batch_report_in_the_browser(browser, report_batch_dir):
+    page = check_page(browser, report_batch_dir / "report.html", 3,
+                      report_batch_dir / "report.png")
+    rows = page.locator("table.diverged tbody tr")
+    assert rows.count() == 5 and "state out of bounds" in rows.first.inner_text()
+    page.close()
+
+
+def test_imo_report_in_the_browser(browser, report_imo_dir):
+    page = check_page(browser, report_imo_dir / "report.html", 4,
+                      report_imo_dir / "report.png")
+    rows = page.locator("table.imo tbody tr")
+    assert rows.count() == 13
+    cells = [rows.nth(i).locator("td").all_inner_texts() for i in range(13)]
+    assert [c[:3] for c in cells[:3]] == [["turning", "advance", "starboard"],
+                                          ["turning", "tactical diameter", "starboard"],
+                                          ["initial turning", "distance to 10 deg heading change",
+                                           "starboard"]]
+    assert [c[7] for c in cells] == ["pass"] * 12 + ["not evaluated"]
+    assert cells[-1][:2] == ["stopping", "track reach (full astern)"]
+    assert "PASSES the evaluated criteria" in page.locator("#imo").inner_text()
+    # a run is selectable: its legend entry hides it in every panel of the time series
+    figure = "#timeseries-zigzag .plotly-graph-div"
+    page.locator(f"{figure} .legend .traces .legendtoggle").first.click(force=True)
+    visible = f"""() => document.querySelector('{figure}').data
+        .filter(t => t.legendgroup === '0').map(t => t.visible)"""
+    # (plotly applies a single click after its double-click delay)
+    page.wait_for_function(f"() => ({visible})().every(v => v === 'legendonly')",
+                           timeout=5_000)
+    assert page.evaluate(visible) == ["legendonly"] * 4  # heading, rudder, yaw rate, speed
+    page.close()
