@@ -114,7 +114,7 @@ def test_a_maneuver_in_wind_and_current():
      "must be < 360 [deg], got 360"),
     (("direction_deg = 45", "direction_deg = -1"), "environment.waves.direction_deg",
      "must be >= 0 [deg], got -1"),
-    (("height = 0.06", "height = 0"), "environment.waves.height", "must be > 0 [m], got 0"),
+    (("height = 0.06", "height = -1"), "environment.waves.height", "must be >= 0 [m], got -1"),
     (("period = 1.8", "period = 1.8\nlength = 5.0"), "environment.waves",
      "give the wave `length` [m] or the `period` [s], one of them"),
     (("direction_deg = 45\n", 'direction_deg = 45\nirregular = true\nspectrum = "pm"\n'),

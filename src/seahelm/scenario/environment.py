@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from typing import Any
 
 import numpy as np
@@ -26,7 +27,7 @@ from ..environment.loads import (
     lvov_wave_params,
     wave_load_fluctuation,
 )
-from ..errors import ParameterError
+from ..errors import ParameterError, ValidityRangeWarning
 from ..vessels.particulars import PARTICULARS, Particulars
 from .errors import at_key as _err
 from .schema import Scenario
@@ -162,10 +163,13 @@ def _wave_fields(v: dict[str, Any], ship: Particulars | None, source: str
     hull = {k: _need(v, k, ship, attr, path, source, unit) for k, attr, unit in (
         ("hull_length", "length", "m"), ("beam", "beam", "m"), ("draft", "draft", "m"),
         ("block_coefficient", "block_coefficient", "-"))}
-    fields = lvov_wave_params(
-        length=hull["hull_length"], beam=hull["beam"], draft=hull["draft"],
-        block_coefficient=hull["block_coefficient"], wave_height=h3, wave_length=wave_length,
-        wave_direction=math.radians(float(v["direction_deg"])))
+    with warnings.catch_warnings():
+        if h3 == 0.0:  # no waves: the hull's coefficients multiply zero, their range is moot
+            warnings.simplefilter("ignore", ValidityRangeWarning)
+        fields = lvov_wave_params(
+            length=hull["hull_length"], beam=hull["beam"], draft=hull["draft"],
+            block_coefficient=hull["block_coefficient"], wave_height=h3,
+            wave_length=wave_length, wave_direction=math.radians(float(v["direction_deg"])))
     if v.get("a1") is not None:
         fields["wave_a1"] = float(v["a1"])
     return fields, h3

@@ -93,11 +93,12 @@ class WavesSection(_Strict):
     from ``period`` [s] (deep water, λ = g T²/2π). ``direction_deg``: where the waves come
     **from**, clockwise from north, in [0, 360). ``irregular = true`` modulates the mean loads
     by the envelope of a seeded sea of the ``spectrum`` (each run its own realisation); the
-    hull's beam, draft and block coefficient default to the catalog ship's particulars."""
+    hull's beam, draft and block coefficient default to the catalog ship's particulars. A
+    height of 0 means no waves (zero loads, exactly)."""
 
     model: str = "lvov"
-    height: Annotated[Number, Field(gt=0)] | None = None
-    hs: Annotated[Number, Field(gt=0)] | None = None
+    height: Annotated[Number, Field(ge=0)] | None = None  # 0: no waves (an irregular sea: 1-10 m)
+    hs: Annotated[Number, Field(ge=0)] | None = None
     length: Positive | None = None
     period: Positive | None = None
     direction_deg: Annotated[Number, Field(ge=0, lt=360)]
