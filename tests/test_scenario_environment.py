@@ -200,3 +200,15 @@ def test_a_current_with_a_speed_profile_in_time():
               'direction_deg = 0\n')
     with pytest.raises(ScenarioError, match=r"a manoeuvre takes a steady current"):
         parse(steady)
+
+
+def test_loads_once_per_step_builds_the_held_environment():
+    held = parse(BASE.replace("[environment.wind]", '[environment]\nloads = "once-per-step"\n'
+                                                     "[environment.wind]"))
+    assert held.environment.hold_over_step and not parse(BASE).environment.hold_over_step
+    with pytest.raises(ScenarioError, match=r"\[environment.loads\] .*no \[environment.wind\]"):
+        parse('[vessel]\ncatalog = "kvlcc2-l7"\n[environment]\nloads = "once-per-step"\n'
+              '[simulation]\nt_final = 10.0\ndt = 0.1\n')
+    with pytest.raises(ScenarioError, match=r"environment.loads"):
+        parse(BASE.replace("[environment.wind]", '[environment]\nloads = "sometimes"\n'
+                                                 "[environment.wind]"))

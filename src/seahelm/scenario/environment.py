@@ -74,7 +74,19 @@ class WaveLoadFluctuation:
 
     def draw_runs(self, t: Any, seeds: list[Any]) -> np.ndarray:
         """Many runs' realisations in one vectorised draw: row i equals
-        ``self(t, seed=seeds[i])``."""
+        ``self(t, seed=seeds[i])``.
+
+        Parameters
+        ----------
+        t : array_like
+            The uniform time grid [s].
+        seeds : list
+            One seed (int or SeedSequence) per run.
+
+        Returns
+        -------
+        numpy.ndarray, shape (len(seeds), len(t))
+        """
         t = np.asarray(t, dtype=float)
         if t.size < 2 or not np.allclose(np.diff(t), t[1] - t[0]):
             raise ParameterError("an irregular sea needs a uniform time grid of 2 or more "
@@ -230,6 +242,9 @@ def environment_runs(scn: Scenario, model: Any, runs: list[dict[str, Any]], sour
 
     env_sec = scn.environment
     if env_sec.wind is None and env_sec.waves is None:
+        if "loads" in env_sec.model_fields_set:
+            raise _err(source, "environment.loads", "says when the wind and wave loads are "
+                       "evaluated, but there is no [environment.wind] or [environment.waves]")
         return None
     wind_name = waves_name = None
     if env_sec.wind is not None:
@@ -242,7 +257,8 @@ def environment_runs(scn: Scenario, model: Any, runs: list[dict[str, Any]], sour
             waves_name = get_wave_loads(env_sec.waves.model).name
         except ValueError as exc:
             raise _err(source, "environment.waves.model", str(exc)) from None
-    env = environment(wind=wind_name, waves=waves_name)
+    env = environment(wind=wind_name, waves=waves_name,
+                      hold_over_step=scn.environment.loads == "once-per-step")
     try:
         check_environment(env, model)
     except ParameterError as exc:

@@ -125,6 +125,12 @@ class WavesSection(_Strict):
 
 
 class EnvironmentSection(_Strict):
+    """``[environment]``: disturbance channels, a current, wind and waves. ``loads`` says when
+    the wind and wave loads are evaluated: at ``"every-stage"`` of the integrator (default:
+    its order is kept) or ``"once-per-step"``, at the step's start and held over its stages
+    (cheaper; the loads follow the state to first order within a step)."""
+
+    loads: Literal["every-stage", "once-per-step"] = "every-stage"
     disturbance: dict[str, SignalSpec] = Field(default_factory=dict)
     current: CurrentSection | None = None
     wind: WindSection | None = None
