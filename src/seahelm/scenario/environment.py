@@ -277,7 +277,11 @@ def environment_runs(scn: Scenario, model: Any, runs: list[dict[str, Any]], sour
             w = _section(over, "environment.wind.", wind_base)
             fields.update(_wind_fields(w, wind_name or "", ship, source))
             if w.get("gust") is not None:
-                sig["wind_gust"] = w["gust"]
+                gust = w["gust"]
+                if isinstance(gust, dict) and gust.get("kind") == "gust":
+                    # a gust spectrum's mean wind is the section's (and the run's) speed
+                    gust = {"mean_speed": float(w["speed"]), **gust}
+                sig["wind_gust"] = gust
         if env_sec.waves is not None:
             v = _section(over, "environment.waves.", waves_base)
             if v.get("irregular"):  # (errors before the hull's validity warnings)

@@ -9,6 +9,7 @@ from a number or a table (as written in scenario files) through the registry :da
     {kind = "sine", amplitude = 0.0072, period = 250.0, offset = 0.0, phase = 0.0}
     {kind = "ramp", start_time = 0.0, end_time = 60.0, start = 0.0, end = 0.8}
     {kind = "sea", h3 = 3.0, gain = 0.01, quantity = "ordinate", seed = 7}   irregular sea
+    {kind = "gust", mean_speed = 15.0, spectrum = "norsok", seed = 3}       wind gust [m/s]
 
 ``scale`` multiplies every value (degrees → radians at the edges).
 
@@ -31,7 +32,7 @@ import numpy as np
 from .._validate import as_float_array, check_finite, check_positive
 from ..errors import ParameterError
 
-__all__ = ["Constant", "Step", "Steps", "Sine", "Ramp", "Sea", "SIGNALS", "make_signal"]
+__all__ = ["Constant", "Step", "Steps", "Sine", "Ramp", "Sea", "Gust", "SIGNALS", "make_signal"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -156,8 +157,39 @@ class Sea:
         return self.mean + self.gain * draw.values[0, :, 0]
 
 
+@dataclasses.dataclass(frozen=True)
+class Gust:
+    """``gain · u(t)``, u a seeded wind gust [m/s] of a gust spectrum for the one-hour mean
+    wind speed ``mean_speed`` [m/s] at ``height`` [m] (:mod:`seahelm.environment.wind_gust`;
+    ``spectrum`` a name in its registry). In ``[environment.wind] gust``, ``mean_speed``
+    defaults to the section's ``speed``. The grid must be uniform.
+    """
+
+    mean_speed: float
+    gain: float = 1.0
+    height: float = 10.0
+    spectrum: str = "norsok"
+    seed: int = 0
+
+    random = True
+
+    def __post_init__(self) -> None:
+        check_positive("mean_speed", self.mean_speed, "m/s")
+        check_positive("height", self.height, "m")
+        from ..environment.wind_gust import get_gust_spectrum
+
+        get_gust_spectrum(self.spectrum)
+
+    def __call__(self, t: Any, *, seed: Any = None) -> np.ndarray:
+        from ..environment.wind_gust import gust_realisation
+
+        return self.gain * gust_realisation(t, self.mean_speed,
+                                            self.seed if seed is None else seed,
+                                            spectrum=self.spectrum, height=self.height)
+
+
 SIGNALS: dict[str, type] = {"constant": Constant, "step": Step, "steps": Steps, "sine": Sine,
-                            "ramp": Ramp, "sea": Sea}
+                            "ramp": Ramp, "sea": Sea, "gust": Gust}
 """Registry of signal kinds by name."""
 
 _SCALED = {"value", "before", "after", "values", "amplitude", "offset", "start", "end",
