@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from conftest import REPORT_BATCH_SCENARIO
 from seahelm.cli.main import app
 from seahelm.results import load_result
 
@@ -17,33 +18,7 @@ runner = CliRunner()
 #: A 2-point grid × 5 Monte-Carlo samples on the demo's component combination (its compiled
 #: kernel is shared with the other CLI tests); kp = 4 leaves the yaw-rate bounds in every
 #: sample (diverged, "state out of bounds"), kp = 1 never does.
-SCENARIO = """
-title = "inspect test"
-[vessel]
-catalog = "mariner-nomoto2"
-[actuator]
-model = "rudder-servo"
-[controller]
-model = "pid-heading"
-dt = 0.5
-[controller.params]
-kp = 3.0
-kd = 60.0
-[controller.reference]
-heading_deg = 20.0
-[simulation]
-t_final = 120.0
-dt = 0.1
-record_every = 5
-bounds = { yaw_rate = [-0.006, 0.006] }
-[batch.grid]
-"controller.params.kp" = [1.0, 4.0]
-[batch.monte_carlo]
-runs = 5
-seed = 3
-[batch.monte_carlo.draws]
-"vessel.params.gain" = {distribution = "normal", mean = 0.185, std = 0.04}
-"""
+SCENARIO = REPORT_BATCH_SCENARIO  # (tests/conftest.py: the report tests run it too)
 
 
 @pytest.fixture(scope="module")
