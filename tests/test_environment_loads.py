@@ -275,3 +275,15 @@ def test_ship_load_params_take_the_particulars():
     p = ship_load_params(SHIP, lvov, wind_speed=1.0, windage_centre=0.1)
     assert (p.windage_lateral_area, p.windage_length, p.windage_centre) == (
         SHIP.lateral_area, SHIP.length, 0.1)
+
+
+def test_a_sea_signal_draws_many_runs_at_once_as_one_by_one():
+    from seahelm.simulation.signals import Sea
+
+    sea = Sea(h3=3.0, gain=0.01, quantity="slope", seed=4)
+    t = np.arange(400) * 0.25
+    seqs = [np.random.SeedSequence(4, spawn_key=(i,)) for i in range(3)]
+    rows = sea.draw_runs(t, seqs)
+    for i, seq in enumerate(seqs):
+        np.testing.assert_array_equal(rows[i], sea(t, seed=seq))
+    assert not np.array_equal(rows[0], rows[1])

@@ -595,20 +595,6 @@ def _envelope_filter(spectrum: str, wave_height: float) -> tuple[Any, np.ndarray
     return filt, np.asarray(filt.output_variance(), dtype=float)
 
 
-def _alone(seed: Any) -> Any:
-    """The stream a single-run draw takes from ``seed`` (its first spawned child), without
-    advancing a SeedSequence given (a Generator is advanced, as a single-run draw would)."""
-    if isinstance(seed, np.random.Generator):
-        return seed.spawn(1)[0]
-    if isinstance(seed, np.random.SeedSequence):
-        seed = np.random.SeedSequence(seed.entropy, spawn_key=seed.spawn_key,
-                                      pool_size=seed.pool_size,
-                                      n_children_spawned=seed.n_children_spawned)
-    else:
-        seed = np.random.SeedSequence(seed)
-    return seed.spawn(1)[0]
-
-
 def wave_load_fluctuation(wave_height: float, n_steps: int, dt: float, seed: Any, *,
                           spectrum: str = "rakhmanin-firsov-2",
                           runs: int | None = None) -> np.ndarray:
@@ -644,9 +630,11 @@ def wave_load_fluctuation(wave_height: float, n_steps: int, dt: float, seed: Any
     """
     check_positive("wave_height", wave_height, "m")
     check_positive("dt", dt, "s")
+    from .shaping import single_run_stream
+
     filt, var = _envelope_filter(spectrum, float(wave_height))
     if runs is not None and isinstance(seed, (list, tuple)):
-        seed = [_alone(s) for s in seed]  # run i: the stream seed[i] gives alone
+        seed = [single_run_stream(s) for s in seed]  # run i: seed[i]'s own stream
     draw = filt.sample(n_steps=int(n_steps), dt=float(dt), seed=seed,
                        runs=1 if runs is None else int(runs)).values
     f = 0.5 * (draw[..., 0] ** 2 / var[0] + draw[..., 1] ** 2 / var[1]) - 1.0

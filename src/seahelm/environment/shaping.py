@@ -55,6 +55,7 @@ from ..errors import ParameterError
 from .spectra import RationalSpectrum, WaveSpectrum, get_spectrum
 
 __all__ = [
+    "single_run_stream",
     "NOISE_INTENSITY",
     "QUANTITIES",
     "PAPER_FILTERS",
@@ -298,6 +299,33 @@ class FilterSamples:
             coords={"run": np.arange(self.values.shape[0]), "time": ("time", self.time, {"units": "s"})},
             attrs=attrs,
         )
+
+
+def single_run_stream(seed: Any) -> Any:
+    """The stream a single-run :meth:`StateSpaceFilter.sample` takes from ``seed`` (its first
+    spawned child), so that ``sample(seed=[single_run_stream(s) for s in seeds], runs=R)``
+    row i equals ``sample(seed=seeds[i])``. A SeedSequence given is not advanced; a Generator
+    is, as a single-run draw would advance it.
+
+    Parameters
+    ----------
+    seed : int, SeedSequence or Generator
+        What a single-run draw would be given.
+
+    Returns
+    -------
+    SeedSequence or Generator
+        The stream it would draw from.
+    """
+    if isinstance(seed, np.random.Generator):
+        return seed.spawn(1)[0]
+    if isinstance(seed, np.random.SeedSequence):
+        seed = np.random.SeedSequence(seed.entropy, spawn_key=seed.spawn_key,
+                                      pool_size=seed.pool_size,
+                                      n_children_spawned=seed.n_children_spawned)
+    else:
+        seed = np.random.SeedSequence(seed)
+    return seed.spawn(1)[0]
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
