@@ -65,7 +65,8 @@ for _name, _module, _help in _GROUPS:
     app.add_typer(_sub.app, name=_name, help=_help)
 
 # Single commands of their own modules: (name, module, function).
-_COMMANDS = (("imo", "seahelm.cli.imo", "imo"), ("inspect", "seahelm.cli.inspect", "inspect"))
+_COMMANDS = (("imo", "seahelm.cli.imo", "imo"), ("inspect", "seahelm.cli.inspect", "inspect"),
+             ("sweep", "seahelm.cli.sweep", "sweep"))
 for _name, _module, _attr in _COMMANDS:
     try:
         _sub = importlib.import_module(_module)
