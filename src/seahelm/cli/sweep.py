@@ -127,5 +127,5 @@ def sweep(
         counts = f", {summary['n_ok']} ok, {summary['n_failed']} failed"
     console.print(f"{report.n_runs} run(s) in {report.n_chunks} chunk(s) of {report.chunk_size}"
                   f"{counts}; {report.computed} chunk(s) computed, {report.skipped} already "
-                  f"in the store; {report.wall_time_s:.3g} s", highlight=False)
-    console.print(f"  store: {report.store}", highlight=False)
+                  f"in the store; {report.wall_time_s:.3g} s", highlight=False, soft_wrap=True)
+    console.print(f"  store: {report.store}", highlight=False, soft_wrap=True)

@@ -34,7 +34,19 @@ class Distribution(Protocol):
 
     name: str
 
-    def sample(self, rng: np.random.Generator) -> float: ...
+    def sample(self, rng: np.random.Generator) -> float:
+        """One value drawn with ``rng``.
+
+        Parameters
+        ----------
+        rng : numpy.random.Generator
+            The sample's generator.
+
+        Returns
+        -------
+        float
+        """
+        ...
 
 
 def _finite(name: str, value: Any) -> float:
@@ -60,6 +72,17 @@ class Normal:
             raise ParameterError(f"`std` of a normal draw must be >= 0, got {self.std!r}")
 
     def sample(self, rng: np.random.Generator) -> float:
+        """One value drawn with ``rng``.
+
+        Parameters
+        ----------
+        rng : numpy.random.Generator
+            The sample's generator.
+
+        Returns
+        -------
+        float
+        """
         return float(rng.normal(self.mean, self.std))
 
 
@@ -77,6 +100,17 @@ class Uniform:
                                  f"{self.high!r}")
 
     def sample(self, rng: np.random.Generator) -> float:
+        """One value drawn with ``rng``.
+
+        Parameters
+        ----------
+        rng : numpy.random.Generator
+            The sample's generator.
+
+        Returns
+        -------
+        float
+        """
         return float(rng.uniform(self.low, self.high))
 
 
@@ -94,6 +128,17 @@ class LogNormal:
             raise ParameterError(f"`std` of a lognormal draw must be >= 0, got {self.std!r}")
 
     def sample(self, rng: np.random.Generator) -> float:
+        """One value drawn with ``rng``.
+
+        Parameters
+        ----------
+        rng : numpy.random.Generator
+            The sample's generator.
+
+        Returns
+        -------
+        float
+        """
         return float(rng.lognormal(self.mean, self.std))
 
 
@@ -122,6 +167,17 @@ class TruncatedNormal:
                                  f"{self.high!r}")
 
     def sample(self, rng: np.random.Generator) -> float:
+        """One value drawn with ``rng``.
+
+        Parameters
+        ----------
+        rng : numpy.random.Generator
+            The sample's generator.
+
+        Returns
+        -------
+        float
+        """
         from scipy.special import ndtr, ndtri
 
         a = (self.low - self.mean) / self.std
@@ -220,6 +276,17 @@ class CorrelatedNormal:
         object.__setattr__(self, "keys", keys)
 
     def sample(self, rng: np.random.Generator) -> np.ndarray:
+        """One vector drawn with ``rng`` (one standard normal number per key).
+
+        Parameters
+        ----------
+        rng : numpy.random.Generator
+            The sample's generator.
+
+        Returns
+        -------
+        ndarray, shape (k,)
+        """
         z = rng.standard_normal(len(self.keys))
         return self.mean + self.factor @ z
 
@@ -228,6 +295,17 @@ def sample_generator(seed: int, index: int) -> np.random.Generator:
     """The generator of sample ``index`` of a study seeded with ``seed``.
 
     The same as ``default_rng(SeedSequence(seed).spawn(n)[index])`` for any n > index.
+
+    Parameters
+    ----------
+    seed : int
+        The study's seed (>= 0).
+    index : int
+        The sample's index (>= 0).
+
+    Returns
+    -------
+    numpy.random.Generator
     """
     return np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(int(index),)))
 

@@ -89,7 +89,19 @@ def check_chunk_size(chunk_size: Any) -> int:
 
 
 def chunk_bounds(spec: SweepSpec, index: int) -> tuple[int, int]:
-    """First and one-past-last flat run of chunk ``index``."""
+    """First and one-past-last flat run of chunk ``index``.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+        The sweep.
+    index : int
+        Chunk index, 0 <= index < ``spec.n_chunks``.
+
+    Returns
+    -------
+    (int, int)
+    """
     if not 0 <= index < spec.n_chunks:
         raise IndexError(f"chunk {index} outside 0..{spec.n_chunks - 1}")
     start = index * spec.chunk_size

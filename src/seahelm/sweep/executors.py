@@ -38,6 +38,17 @@ class InProcess:
         return None
 
     def run(self, spec: SweepSpec, chunks: Iterable[int], on_done: OnDone) -> None:
+        """Compute the chunks and hand each one's results to ``on_done`` in this process.
+
+        Parameters
+        ----------
+        spec : SweepSpec
+            The sweep.
+        chunks : iterable of int
+            Chunk indices to compute.
+        on_done : callable(int, xarray.Dataset)
+            Called with each chunk's index and results, once per chunk, as they complete.
+        """
         for index in chunks:
             on_done(index, compute_chunk(spec, index))
 
@@ -54,18 +65,21 @@ class DaskCluster:
         Address of a running scheduler (``tcp://host:port``) to use instead.
     timeout : float, optional
         Seconds to wait for the scheduler (default 10).
+    client : distributed.Client, optional
+        A connected client to use instead (left open at the end).
     """
 
     def __init__(self, *, workers: int | None = None, scheduler: str | None = None,
-                 timeout: float = 10.0) -> None:
-        if (workers is None) == (scheduler is None):
-            raise ParameterError("give `workers` (a local cluster) or `scheduler` (an existing "
-                                 "one), one of them")
+                 timeout: float = 10.0, client: Any = None) -> None:
+        if sum(x is not None for x in (workers, scheduler, client)) != 1:
+            raise ParameterError("give `workers` (a local cluster), `scheduler` (an existing "
+                                 "one) or `client`, one of them")
         self.n_workers = workers
         self.scheduler = scheduler
         self.timeout = float(timeout)
-        self.client: Any = None
+        self.client: Any = client
         self.cluster: Any = None
+        self.own_client = client is None
 
     @property
     def workers(self) -> int:
@@ -76,6 +90,8 @@ class DaskCluster:
     def __enter__(self) -> "DaskCluster":
         distributed = optional_import("distributed", extra="dask",
                                       purpose="sweeps on a dask cluster (--workers/--scheduler)")
+        if not self.own_client:
+            return self
         if self.scheduler is not None:
             try:
                 self.client = distributed.Client(self.scheduler, timeout=self.timeout,
@@ -93,12 +109,23 @@ class DaskCluster:
         return self
 
     def __exit__(self, *exc: Any) -> None:
-        if self.client is not None:
+        if self.client is not None and self.own_client:
             self.client.close()
         if self.cluster is not None:
             self.cluster.close()
 
     def run(self, spec: SweepSpec, chunks: Iterable[int], on_done: OnDone) -> None:
+        """Compute the chunks and hand each one's results to ``on_done`` in this process.
+
+        Parameters
+        ----------
+        spec : SweepSpec
+            The sweep.
+        chunks : iterable of int
+            Chunk indices to compute.
+        on_done : callable(int, xarray.Dataset)
+            Called with each chunk's index and results, once per chunk, as they complete.
+        """
         distributed = optional_import("distributed", extra="dask")
         tag = spec.fingerprint[:12]
         futures = {}
@@ -108,7 +135,7 @@ class DaskCluster:
             futures[fut.key] = (index, fut)
         try:
             for fut, ds in distributed.as_completed([f for _, f in futures.values()],
-                                                    with_results=True):
+                                                    loop=self.client.loop, with_results=True):
                 index, _ = futures.pop(fut.key)
                 on_done(index, ds)
                 fut.release()
@@ -118,9 +145,35 @@ class DaskCluster:
 
 
 def executor(*, workers: int | None = None, scheduler: str | None = None,
-             timeout: float = 10.0) -> InProcess | DaskCluster:
-    """The executor for the options: in-process (neither), a local cluster (``workers``) or an
-    existing one (``scheduler``)."""
+             timeout: float = 10.0, client: Any = None) -> InProcess | DaskCluster:
+    """The executor for the options: in-process (none), a local cluster (``workers``), an
+    existing one (``scheduler``) or a connected dask ``client``.
+
+    Parameters
+    ----------
+    workers : int, optional
+        Worker processes of a local dask cluster.
+    scheduler : str, optional
+        Address of a running dask scheduler (``tcp://HOST:PORT``).
+    timeout : float, optional
+        Seconds to wait for ``scheduler`` (default 10).
+    client : distributed.Client, optional
+        A connected dask client.
+
+    Returns
+    -------
+    InProcess or DaskCluster
+        A context manager; :meth:`run` inside it computes chunks.
+
+    Raises
+    ------
+    ParameterError
+        For more than one of the options, or a bad value.
+    """
+    if client is not None:
+        if workers is not None or scheduler is not None:
+            raise ParameterError("give `client` alone (not with `workers` or `scheduler`)")
+        return DaskCluster(client=client)
     if workers is not None:
         if isinstance(workers, bool) or int(workers) != workers or workers < 1:
             raise ParameterError(f"`workers` must be a whole number >= 1, got {workers!r}")

@@ -69,6 +69,7 @@ def run_sweep(
     overwrite: bool = False,
     series: bool = True,
     timeout: float = 10.0,
+    client: Any = None,
     progress: Callable[[int, int], None] | None = None,
 ) -> SweepReport:
     """Run a scenario's batch (grid, Monte-Carlo draws or a manoeuvre's samples) in chunks and
@@ -101,6 +102,9 @@ def run_sweep(
         Store the time series (default True); False stores per-run values and metrics only.
     timeout : float, optional
         Seconds to wait for ``scheduler`` (default 10).
+    client : distributed.Client, optional
+        A connected dask client to run the chunks on (e.g. of a cluster started in a notebook;
+        left open), instead of ``workers`` or ``scheduler``.
     progress : callable(done_chunks, total_chunks), optional
         Called once chunks already in the store are counted, and after each chunk is written.
 
@@ -125,7 +129,7 @@ def run_sweep(
         chunk_size = check_chunk_size(chunk_size)
     store = Path(store)
     stored_size = check_store(store, text, chunk_size=chunk_size, overwrite=overwrite)
-    pool = executor(workers=workers, scheduler=scheduler, timeout=timeout)
+    pool = executor(workers=workers, scheduler=scheduler, timeout=timeout, client=client)
     source = str(scenario)
     job = prepared(text, source)
     with pool:

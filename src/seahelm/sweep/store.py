@@ -44,7 +44,18 @@ MARKERS = "sweep-chunks"
 
 
 def scenario_digest(text: str) -> str:
-    """SHA-256 of a scenario's text (the store's ``sweep_scenario_sha256``)."""
+    """SHA-256 of a scenario's text (the store's ``sweep_scenario_sha256``).
+
+    Parameters
+    ----------
+    text : str
+        The scenario's text.
+
+    Returns
+    -------
+    str
+        Hexadecimal digest.
+    """
     return hashlib.sha256(text.encode()).hexdigest()
 
 
@@ -64,7 +75,17 @@ def _quiet() -> Iterator[None]:
 
 
 def store_attrs(path: str | Path) -> dict[str, Any] | None:
-    """The root attributes of a sweep store, or None if ``path`` holds no sweep store."""
+    """The root attributes of a sweep store, or None if ``path`` holds no sweep store.
+
+    Parameters
+    ----------
+    path : str or Path
+        The store directory.
+
+    Returns
+    -------
+    dict or None
+    """
     path = Path(path)
     if not (path / "zarr.json").is_file():
         return None
@@ -80,8 +101,22 @@ def check_store(path: str | Path, text: str, *, chunk_size: int | None, overwrit
                 ) -> int | None:
     """Check, before any work, that the sweep of ``text`` may write to ``path``.
 
-    Returns the chunk size of an existing store of the same scenario (None for a new store),
-    which a sweep without an explicit chunk size resumes with.
+    Parameters
+    ----------
+    path : str or Path
+        The store directory.
+    text : str
+        The scenario's text.
+    chunk_size : int or None
+        The chunk size asked for (None: any).
+    overwrite : bool
+        Whether a store of another scenario or chunk size may be replaced.
+
+    Returns
+    -------
+    int or None
+        The chunk size of an existing store of the same scenario (None for a new store), which
+        a sweep without an explicit chunk size resumes with.
 
     Raises
     ------
@@ -187,7 +222,19 @@ def _marker(path: Path, index: int) -> Path:
 
 
 def completed_chunks(path: str | Path, spec: SweepSpec) -> set[int]:
-    """Indices of the chunks whose region is written (a marker exists)."""
+    """Indices of the chunks whose region is written (a marker exists).
+
+    Parameters
+    ----------
+    path : str or Path
+        The store directory.
+    spec : SweepSpec
+        The sweep (a store of another sweep has no completed chunk).
+
+    Returns
+    -------
+    set of int
+    """
     path = Path(path)
     if not _initialised(path, spec):
         return set()
@@ -199,6 +246,17 @@ def write_chunk(path: str | Path, spec: SweepSpec, index: int, ds: "xr.Dataset")
 
     Writing a chunk again writes the same bytes (the region is whole Zarr chunks and a chunk's
     results do not depend on where or when it ran).
+
+    Parameters
+    ----------
+    path : str or Path
+        The store directory (created by :func:`create_store`).
+    spec : SweepSpec
+        The sweep.
+    index : int
+        Chunk index.
+    ds : xarray.Dataset
+        The chunk's results (:func:`.chunks.compute_chunk`).
     """
     from .chunks import chunk_bounds
 
@@ -215,7 +273,15 @@ def write_chunk(path: str | Path, spec: SweepSpec, index: int, ds: "xr.Dataset")
 
 
 def mark_complete(path: str | Path, summary: dict[str, Any]) -> None:
-    """Store the summary statistics in the root attributes (``sweep_summary``, JSON)."""
+    """Store the summary statistics in the root attributes (``sweep_summary``, JSON).
+
+    Parameters
+    ----------
+    path : str or Path
+        The store directory.
+    summary : dict
+        :func:`~seahelm.sweep.run.summary_statistics` of the store.
+    """
     with _quiet():
         group = _zarr().open_group(Path(path), mode="r+", zarr_format=3)
     group.attrs.update({"sweep_summary": json.dumps(summary, sort_keys=True)})
