@@ -332,11 +332,13 @@ class Scenario(_Strict):
                              "or imo)")
         if self.maneuver is not None:
             extra = [s for s in ("simulation", "controller", "batch", "guidance")
-                     if s in self.model_fields_set]
+                     if s in self.model_fields_set
+                     and not (s == "batch" and not self.batch.grid)]
             if extra:
                 raise ValueError(
                     f"a [maneuver] scenario takes no [{'], ['.join(extra)}] section: the "
                     "manoeuvre sets its own rudder orders, timing and batch (rudder angles, "
-                    "speeds and sides as lists in [maneuver]); [environment] may give wind, "
+                    "speeds and sides as lists in [maneuver]; uncertain ship or steering-gear "
+                    "parameters as [batch.monte_carlo]); [environment] may give wind, "
                     "waves and a current")
         return self

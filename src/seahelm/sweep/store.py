@@ -328,5 +328,8 @@ def open_sweep(path: str | Path, *, flat: bool = False) -> "xr.Dataset":
     if flat or not dims or [d for d, _ in dims] == ["run"]:
         return ds
     names = [d for d, _ in dims]
-    shaped = ds.set_index(run=names).unstack("run")
+    if len(names) == 1:
+        shaped = ds.swap_dims(run=names[0]).drop_vars("run")
+    else:
+        shaped = ds.set_index(run=names).unstack("run")
     return shaped.transpose(*names, ...)
