@@ -297,3 +297,21 @@ def test_scheduler_and_workers_are_checked_before_any_run(scenario, tmp_path):
     with pytest.raises(ParameterError, match="address such as tcp://HOST:PORT"):
         run_sweep(scenario, tmp_path / "s.zarr", scheduler="localhost")
     assert not (tmp_path / "s.zarr").exists()
+
+
+def test_an_interrupted_initialisation_leaves_no_half_store(scenario, tmp_path, monkeypatch):
+    import seahelm.sweep.store as store_module
+
+    real = store_module._build
+
+    def build_then_die(*args, **kwargs):
+        real(*args, **kwargs)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(store_module, "_build", build_then_die)
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(scenario, tmp_path / "s.zarr", chunk_size=7)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["study.toml"]
+    monkeypatch.setattr(store_module, "_build", real)
+    report = run_sweep(scenario, tmp_path / "s.zarr", chunk_size=7)
+    assert (report.computed, report.skipped) == (2, 0)

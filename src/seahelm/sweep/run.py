@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import shutil
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -21,6 +22,7 @@ from .store import (
     create_store,
     mark_complete,
     open_sweep,
+    store_attrs,
     write_chunk,
 )
 
@@ -129,6 +131,7 @@ def run_sweep(
         chunk_size = check_chunk_size(chunk_size)
     store = Path(store)
     stored_size = check_store(store, text, chunk_size=chunk_size, overwrite=overwrite)
+    replace = overwrite and store_attrs(store) is not None  # (a sweep store: start afresh)
     pool = executor(workers=workers, scheduler=scheduler, timeout=timeout, client=client)
     source = str(scenario)
     job = prepared(text, source)
@@ -141,6 +144,8 @@ def run_sweep(
         spec = SweepSpec(text=text, source=source, chunk_size=chunk_size, n_runs=n_runs,
                          series=series)
         attrs["sweep_dims"] = json.dumps(_dims(job))
+        if replace:
+            shutil.rmtree(store)
         create_store(store, spec, template, layout_vars, attrs, coords=coords)
         done = completed_chunks(store, spec)
         todo = [i for i in range(spec.n_chunks) if i not in done]

@@ -21,7 +21,9 @@ from __future__ import annotations
 import contextlib
 import hashlib
 import json
+import os
 import shutil
+import tempfile
 import warnings
 from collections.abc import Iterator
 from pathlib import Path
@@ -183,8 +185,24 @@ def create_store(path: str | Path, spec: SweepSpec, template: "xr.Dataset",
     path = Path(path)
     if _initialised(path, spec):
         return
-    if path.exists():
-        shutil.rmtree(path)
+    # built next to the target and renamed onto it: an interruption never leaves half a store
+    path.parent.mkdir(parents=True, exist_ok=True)
+    final, path = path, Path(tempfile.mkdtemp(dir=path.parent, prefix=f".{path.name}.",
+                                              suffix=".tmp"))
+    try:
+        _build(path, spec, template, layout_vars, attrs, coords)
+        if final.exists():
+            shutil.rmtree(final)
+        os.replace(path, final)
+    except BaseException:
+        shutil.rmtree(path, ignore_errors=True)
+        raise
+
+
+def _build(path: Path, spec: SweepSpec, template: "xr.Dataset", layout_vars: dict[str, Any],
+           attrs: dict[str, Any], coords: tuple[str, ...]) -> None:
+    import xarray as xr
+
     n = spec.n_runs
     first = template.isel(run=slice(0, 1))
     for name, (dim, values, vattrs) in layout_vars.items():
