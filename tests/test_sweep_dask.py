@@ -79,6 +79,9 @@ def test_two_local_workers_equal_the_in_process_sweep(cluster, in_process, tmp_p
     cl, client = cluster
     path, here = in_process
     assert len(client.scheduler_info()["workers"]) == 2
+    # the workers inherit the kernel cache (they load what this process compiled)
+    seen = client.run(lambda: os.environ.get("SEAHELM_CACHE_DIR"))
+    assert set(seen.values()) == {os.environ.get("SEAHELM_CACHE_DIR")}
     with deadline(120):
         there = run_sweep(path, tmp_path / "there.zarr", chunk_size=3, client=client)
     assert (there.n_chunks, there.computed) == (5, 5)

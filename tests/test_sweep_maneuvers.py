@@ -96,3 +96,17 @@ def test_bad_manoeuvre_draws(edit, match):
 def test_a_grid_is_still_refused_in_a_manoeuvre():
     with pytest.raises(ScenarioError, match=r"takes no \[batch\] section"):
         parse_scenario(TURNING + '[batch.grid]\n"vessel.params.Y_v" = [-0.3, -0.31]\n')
+
+
+@pytest.mark.parametrize("names, speeds", [
+    (["kvlcc2-l7"], [0.5, 1.179]),
+    (["kvlcc2-l7", "kvlcc2-full"], [1.179, 7.97]),
+    (["mariner-nonlinear", "kvlcc2-l7"], [3.0, 7.0, 1.0]),
+])
+def test_the_usual_step_is_the_smallest_over_every_ship_and_speed(names, speeds):
+    """Evaluated once per distinct ship (10⁴ sampled ships were 10⁸ evaluations)."""
+    from seahelm.analysis.maneuvers.common import default_time_step, usual_time_step
+
+    ships = [maneuver_ship(n) for n in names]
+    every = min(default_time_step(s, u) for s in ships for u in speeds)
+    assert usual_time_step(ships, speeds) == every

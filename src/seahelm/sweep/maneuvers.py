@@ -61,13 +61,36 @@ def maneuver_chunk(job: "ManeuverJob", start: int, stop: int, *, with_attrs: boo
 
 
 def maneuver_dims(job: "ManeuverJob") -> list[list[Any]]:
-    """The batch dimensions over ``run``: ``sample`` for Monte-Carlo, else none."""
+    """The batch dimensions over ``run``: ``sample`` for Monte-Carlo, else none.
+
+    Parameters
+    ----------
+    job : ManeuverJob
+        The scenario's manoeuvre.
+
+    Returns
+    -------
+    list of [name, size]
+    """
     return [["sample", job.n_samples]] if job.monte_carlo is not None else []
 
 
 def maneuver_template(job: "ManeuverJob") -> tuple["xr.Dataset", dict[str, Any],
                                                    tuple[str, ...], dict[str, Any], int]:
-    """The store's template of a manoeuvre sweep (see :func:`seahelm.sweep.run._template`)."""
+    """The store's template of a manoeuvre sweep: sample 0's metrics, the drawn values of
+    every sample (and the ``sample`` coordinate) over ``run``, which of them are coordinates,
+    the root attributes and the number of samples.
+
+    Parameters
+    ----------
+    job : ManeuverJob
+        The scenario's manoeuvre.
+
+    Returns
+    -------
+    tuple
+        ``(template, layout_vars, coords, attrs, n_runs)``.
+    """
     template, attrs = maneuver_chunk(job, 0, 1, with_attrs=True)
     n = job.n_samples
     layout_vars: dict[str, Any] = {}
