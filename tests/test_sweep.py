@@ -273,6 +273,9 @@ def test_another_scenarios_store_is_refused_unless_overwrite(uninterrupted, tmp_
     assert sorted(p.name for p in store.rglob("*")) == before
     with pytest.raises(ParameterError, match="in chunks of 4 runs, not 5"):
         run_sweep(tmp_path / "s.toml", store, text=SCENARIO, chunk_size=5)
+    with pytest.raises(ParameterError, match="with the time series; resume without "
+                                             "--no-series"):
+        run_sweep(tmp_path / "s.toml", store, text=SCENARIO, series=False)
     report = run_sweep(other, store, overwrite=True, chunk_size=N_RUNS)
     assert report.computed == 1
     assert _load(store)["time"].values[-1] == 30.0

@@ -53,7 +53,7 @@ class _ChunkBar:
 
 
 def _fmt(value: Any) -> str:
-    return "–" if value is None else f"{value:.6g}"
+    return "–" if value is None else f"{value:.4g}"
 
 
 @handle_errors
@@ -93,7 +93,7 @@ def sweep(
         raise ParameterError("give --workers (a local cluster) or --scheduler (a running one), "
                              "not both")
     text = scenario.read_text()
-    check_store(target, text, chunk_size=chunk_size, overwrite=overwrite)
+    check_store(target, text, chunk_size=chunk_size, overwrite=overwrite, series=series)
     _writable_directory("--store", target.parent)
     bar = _ChunkBar(enabled=not json_out)
     try:
@@ -112,10 +112,15 @@ def sweep(
     summary = report.summary
     table = Table(title=f"{scenario}: statistics over {summary['n_runs']} run(s)",
                   title_justify="left")
-    for col in ("metric", "where", "units", "n", "mean", "std", "q05", "q50", "q95"):
-        table.add_column(col, justify="left" if col in ("metric", "where", "units") else "right")
-    for row in summary["metrics"][:MAX_ROWS]:
-        table.add_row(row["name"], row["where"], row["units"], str(row["n"]),
+    rows = summary["metrics"][:MAX_ROWS]
+    labels = [c for c in ("where", "units") if any(r[c] for r in rows)]  # (no empty columns)
+    table.add_column("metric", overflow="fold")
+    for col in labels:
+        table.add_column(col, no_wrap=True)
+    for col in ("n", "mean", "std", "q05", "q50", "q95"):
+        table.add_column(col, justify="right", no_wrap=True)
+    for row in rows:
+        table.add_row(row["name"], *(row[c] for c in labels), str(row["n"]),
                       *(_fmt(row[k]) for k in ("mean", "std", "q05", "q50", "q95")))
     console.print(table)
     more = len(summary["metrics"]) - MAX_ROWS

@@ -130,7 +130,8 @@ def run_sweep(
     if chunk_size is not None:
         chunk_size = check_chunk_size(chunk_size)
     store = Path(store)
-    stored_size = check_store(store, text, chunk_size=chunk_size, overwrite=overwrite)
+    stored_size = check_store(store, text, chunk_size=chunk_size, overwrite=overwrite,
+                              series=series)
     replace = overwrite and store_attrs(store) is not None  # (a sweep store: start afresh)
     pool = executor(workers=workers, scheduler=scheduler, timeout=timeout, client=client)
     source = str(scenario)

@@ -99,8 +99,8 @@ def store_attrs(path: str | Path) -> dict[str, Any] | None:
     return attrs if "sweep_scenario_sha256" in attrs else None
 
 
-def check_store(path: str | Path, text: str, *, chunk_size: int | None, overwrite: bool
-                ) -> int | None:
+def check_store(path: str | Path, text: str, *, chunk_size: int | None, overwrite: bool,
+                series: bool = True) -> int | None:
     """Check, before any work, that the sweep of ``text`` may write to ``path``.
 
     Parameters
@@ -113,6 +113,9 @@ def check_store(path: str | Path, text: str, *, chunk_size: int | None, overwrit
         The chunk size asked for (None: any).
     overwrite : bool
         Whether a store of another scenario or chunk size may be replaced.
+    series : bool, optional
+        Whether the sweep stores the time series (default True); a store written the other
+        way is refused unless ``overwrite``.
 
     Returns
     -------
@@ -150,6 +153,11 @@ def check_store(path: str | Path, text: str, *, chunk_size: int | None, overwrit
         raise ParameterError(
             f"`store`: {path} holds this scenario's sweep in chunks of {stored} runs, not "
             f"{chunk_size}; resume with --chunk-size {stored} (or without it) or --overwrite")
+    if int(attrs.get("sweep_series", 1)) != int(series):
+        held = "with" if int(attrs.get("sweep_series", 1)) else "without"
+        raise ParameterError(
+            f"`store`: {path} holds this scenario's sweep {held} the time series; resume "
+            f"{'without' if held == 'with' else 'with'} --no-series or give --overwrite")
     return stored
 
 
