@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import math
 import shutil
 import time
 from collections.abc import Callable
@@ -258,7 +257,3 @@ def _coord(ds: Any, dim: str, i: int) -> str:
         value = ds[dim].values[i]
         return f"{value:g}" if isinstance(value, (float, np.floating)) else str(value)
     return str(i)
-
-
-def _finite_or_none(x: float) -> float | None:  # pragma: no cover - helper for JSON
-    return x if math.isfinite(x) else None

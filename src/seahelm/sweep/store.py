@@ -188,8 +188,6 @@ def create_store(path: str | Path, spec: SweepSpec, template: "xr.Dataset",
     coords : tuple of str
         Names in ``layout_vars`` that are coordinates (the grid's; draws are variables).
     """
-    import xarray as xr
-
     path = Path(path)
     if _initialised(path, spec):
         return
