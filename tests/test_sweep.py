@@ -318,3 +318,24 @@ def test_an_interrupted_initialisation_leaves_no_half_store(scenario, tmp_path, 
     monkeypatch.setattr(store_module, "_build", real)
     report = run_sweep(scenario, tmp_path / "s.zarr", chunk_size=7)
     assert (report.computed, report.skipped) == (2, 0)
+
+
+def test_writing_a_chunk_again_writes_the_same_bytes(uninterrupted, tmp_path):
+    from seahelm.sweep import compute_chunk
+    from seahelm.sweep.chunks import SweepSpec
+    from seahelm.sweep.store import write_chunk
+
+    store = tmp_path / "copy.zarr"
+    shutil.copytree(uninterrupted[0], store)
+    attrs = json.loads((store / "zarr.json").read_text())["attributes"]
+    spec = SweepSpec(text=SCENARIO, source=attrs["scenario_source"],
+                     chunk_size=attrs["sweep_chunk_size"], n_runs=attrs["sweep_n_runs"])
+    assert spec.fingerprint == attrs["sweep_fingerprint"]
+
+    def files(root):
+        return {p.relative_to(root): p.read_bytes() for p in root.rglob("*")
+                if p.is_file() and MARKERS not in p.parts}
+
+    before = files(store)
+    write_chunk(store, spec, 1, compute_chunk(spec, 1))
+    assert files(store) == before
