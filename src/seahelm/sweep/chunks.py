@@ -264,8 +264,16 @@ def simulation_chunk(batch: "RunBatch", start: int, stop: int, *, series: bool =
         ds[name] = ("run", np.array([r[name] for r in rows], dtype=float), {"kind": "metric"})
     ds = ds.assign_coords(run=np.arange(start, stop))
     attrs = {k: v for k, v in ds.attrs.items() if k not in _VOLATILE}
+    attrs["sweep_bytes_per_run"] = result_bytes(result) // max(result.n_runs, 1)
     ds.attrs = {}
     return (ds, attrs) if with_attrs else ds
+
+
+def result_bytes(result: Any) -> int:
+    """Memory of a :class:`~seahelm.results.SimResult`'s recorded arrays [bytes] (what a
+    chunk holds while it runs, before anything is stored)."""
+    return int(sum(getattr(result, name).nbytes for name in
+                   ("state", "output", "command", "reference", "disturbance")))
 
 
 def layout_variables(layout: Any) -> dict[str, tuple[str, np.ndarray, dict[str, Any]]]:

@@ -56,6 +56,11 @@ def maneuver_chunk(job: "ManeuverJob", start: int, stop: int, *, with_attrs: boo
     ds = ds.transpose("run", ...)
     attrs = {k: v for k, v in metrics.attrs.items()
              if isinstance(v, (str, int, float)) and k not in ("created", "wall_time_s")}
+    if result.simulation is not None:  # (the time series recorded while a chunk runs)
+        from .chunks import result_bytes
+
+        attrs["sweep_bytes_per_run"] = (result_bytes(result.simulation) + ds.nbytes) \
+            // (stop - start)
     ds.attrs = {}
     return (ds, attrs) if with_attrs else ds
 

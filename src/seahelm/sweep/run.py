@@ -139,7 +139,8 @@ def run_sweep(
         template, layout_vars, coords, attrs, n_runs = _template(job, series)
         if chunk_size is None:
             chunk_size = stored_size or auto_chunk_size(
-                n_runs, template.nbytes / max(template.sizes.get("run", 1), 1),
+                n_runs, attrs.get("sweep_bytes_per_run",
+                                  template.nbytes / max(template.sizes.get("run", 1), 1)),
                 workers=pool.workers)
         spec = SweepSpec(text=text, source=source, chunk_size=chunk_size, n_runs=n_runs,
                          series=series)
