@@ -57,10 +57,10 @@ def maneuver_chunk(job: "ManeuverJob", start: int, stop: int, *, with_attrs: boo
     attrs = {k: v for k, v in metrics.attrs.items()
              if isinstance(v, (str, int, float)) and k not in ("created", "wall_time_s")}
     if result.simulation is not None:  # (the time series recorded while a chunk runs)
-        from .chunks import result_bytes
-
-        attrs["sweep_bytes_per_run"] = (result_bytes(result.simulation) + ds.nbytes) \
-            // (stop - start)
+        sim = result.simulation
+        recorded = sum(getattr(sim, name).nbytes for name in
+                       ("state", "output", "command", "reference", "disturbance"))
+        attrs["sweep_bytes_per_run"] = int(recorded + ds.nbytes) // (stop - start)
     ds.attrs = {}
     return (ds, attrs) if with_attrs else ds
 
