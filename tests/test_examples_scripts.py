@@ -8,6 +8,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 
@@ -48,3 +50,48 @@ def test_kvlcc2_environment_example(tmp_path):
         ("wind 3 m/s + waves from E", "port")]
     assert wind_s[1] < calm_s[1] and wind_p[1] > calm_p[1]
     assert (tmp_path / "kvlcc2_environment.png").stat().st_size > 20_000
+
+
+def test_kvlcc2_imo_uncertainty_example(tmp_path):
+    """A few samples of the 10,000-sample study: the printed table is the stores' numbers, and a
+    sample's criteria are those ``imo_check`` gives for that sample's ship."""
+    import json
+
+    import numpy as np
+
+    from seahelm.analysis.imo import imo_check
+    from seahelm.analysis.maneuvers import maneuver_ship
+    from seahelm.sweep import open_sweep
+    from seahelm.vessels.catalog import get
+
+    n = 6
+    proc = subprocess.run([sys.executable, str(EXAMPLES / "kvlcc2_imo_uncertainty.py"),
+                           "--samples", str(n), "--chunk-size", "4", "--out", str(tmp_path)],
+                          capture_output=True, text=True, timeout=900,
+                          env={**os.environ, "MPLBACKEND": "Agg"})
+    assert proc.returncode == 0, proc.stderr
+    turning = open_sweep(tmp_path / "turning.zarr").load()
+    zigzag = open_sweep(tmp_path / "zigzag.zarr").load()
+    for key in ("vessel.params.Y_v", "vessel.params.N_r"):  # sample i is one ship in both
+        assert np.array_equal(turning[key].values, zigzag[key].values)
+        assert len(set(turning[key].values.tolist())) == n
+    entry = get("kvlcc2-l7")
+    L = entry.params.length
+    advance = turning["advance"].sel(side=1).isel(rudder=0).values / L
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    row = summary["criteria"]["advance/L stbd"]
+    assert row["mean"] == np.mean(advance)
+    assert row["p_pass"] == np.mean(advance <= 4.5)
+    m = re.search(r"^advance/L stbd +([\d.]+) ", proc.stdout, re.M)
+    assert m and float(m.group(1)) == round(np.mean(advance), 3)
+    assert (tmp_path / "kvlcc2_imo_uncertainty.png").stat().st_size > 20_000
+    # sample 2 checked by the library's IMO check of that ship
+    values = {k.rsplit(".", 1)[1]: float(turning[k].values[2])
+              for k in turning.data_vars if k.startswith("vessel.params.")}
+    ship = maneuver_ship(type(entry.params).from_mapping(values, base=entry.params),
+                         servo=maneuver_ship("kvlcc2-l7").servo, name="sample 2")
+    report = {(c.ability, c.criterion, c.side): c.value for c in imo_check(ship).criteria}
+    assert report[("turning", "advance", "starboard")] == pytest.approx(advance[2], rel=1e-12)
+    first = np.degrees(zigzag["overshoot"].isel(pair=0).sel(side=-1, n=1).values[2])
+    assert np.degrees(report[("10/10 zig-zag", "first overshoot", "port")]) == \
+        pytest.approx(first, rel=1e-12)

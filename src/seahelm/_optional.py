@@ -7,7 +7,7 @@ from types import ModuleType
 
 from .errors import MissingDependencyError
 
-_EXTRAS = {"control": "control"}
+_EXTRAS = {"control": "control", "distributed": "dask", "dask": "dask"}
 
 
 def optional_import(module: str, *, extra: str | None = None, purpose: str = "") -> ModuleType:

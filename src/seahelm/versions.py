@@ -13,7 +13,8 @@ from importlib.metadata import PackageNotFoundError, version
 __all__ = ["CORE_DEPENDENCIES", "dependency_versions", "version_report"]
 
 CORE_DEPENDENCIES: tuple[str, ...] = ("numpy", "scipy", "numba", "llvmlite", "xarray",
-                                      "h5netcdf", "h5py", "pydantic", "typer", "matplotlib")
+                                      "h5netcdf", "h5py", "zarr", "pydantic", "typer",
+                                      "matplotlib")
 """The distributions whose versions decide seahelm's numerical results and behaviour."""
 
 

@@ -68,7 +68,7 @@ for _name, _module, _help in _GROUPS:
 
 # Single commands of their own modules: (name, module, function).
 _COMMANDS = (("imo", "seahelm.cli.imo", "imo"), ("inspect", "seahelm.cli.inspect", "inspect"),
-             ("report", "seahelm.cli.report", "report"))
+             ("report", "seahelm.cli.report", "report"), ("sweep", "seahelm.cli.sweep", "sweep"))
 for _name, _module, _attr in _COMMANDS:
     try:
         _sub = importlib.import_module(_module)

@@ -64,6 +64,87 @@ class ManeuverJob:
     metadata: Mapping[str, str]
     #: option -> the key the scenario wrote it as (``rudder`` -> ``rudder_deg``)
     written: Mapping[str, str] = dataclasses.field(default_factory=dict)
+    #: ``[batch.monte_carlo]``: uncertain ship (``vessel.params.*``) and steering-gear
+    #: (``actuator.params.*``) parameters, one ship per sample (a ``ship`` dimension)
+    monte_carlo: Any = None
+
+    @property
+    def n_samples(self) -> int:
+        """Monte-Carlo samples (1 without ``[batch.monte_carlo]``)."""
+        return 1 if self.monte_carlo is None else int(self.monte_carlo.runs)
+
+    def draws(self, indices: Any) -> dict[str, np.ndarray]:
+        """The drawn values of the samples ``indices`` (by key path; empty without draws).
+
+        Parameters
+        ----------
+        indices : array_like of int
+            Sample indices.
+
+        Returns
+        -------
+        dict of str to ndarray
+        """
+        if self.monte_carlo is None:
+            return {}
+        from .runs import monte_carlo_draws
+
+        source = str(self.metadata.get("scenario_source", "<string>"))
+        return monte_carlo_draws(self.monte_carlo, np.asarray(indices, dtype=np.int64), source)
+
+    def ships(self, start: int = 0, stop: int | None = None) -> list[Any]:
+        """The ships of samples ``start:stop``: the scenario's ship with each sample's drawn
+        parameters (its own steady approach is computed when it runs).
+
+        Parameters
+        ----------
+        start, stop : int, optional
+            Sample range (default: all samples).
+
+        Returns
+        -------
+        list of ManeuverShip
+
+        Raises
+        ------
+        ScenarioError
+            When a drawn value is out of its parameter's range (naming the key and sample).
+        """
+        from ..analysis.maneuvers import maneuver_ship
+
+        stop = self.n_samples if stop is None else stop
+        if self.monte_carlo is None:
+            return [self.ship][start:stop]
+        drawn = self.draws(np.arange(start, stop))
+        source = str(self.metadata.get("scenario_source", "<string>"))
+        out = []
+        for n, i in enumerate(range(start, stop)):
+            vessel = {k[len("vessel.params."):]: float(v[n]) for k, v in drawn.items()
+                      if k.startswith("vessel.params.")}
+            servo = {k[len("actuator.params."):]: float(v[n]) for k, v in drawn.items()
+                     if k.startswith("actuator.params.")}
+            try:
+                params = type(self.ship.params).from_mapping(vessel, base=self.ship.params)
+                gear = type(self.ship.servo).from_mapping(servo, base=self.ship.servo)
+            except (ParameterError, TypeError) as exc:
+                raise ScenarioError(f"{source}: [batch.monte_carlo] sample {i}: {exc}") from None
+            out.append(maneuver_ship(params, servo=gear, model=self.ship.model,
+                                     name=f"{self.ship.name} #{i}"))
+        return out
+
+    def run_ships(self, ships: list[Any]) -> Any:
+        """Run the manoeuvre for the given ships (one batch, a ``ship`` dimension).
+
+        Parameters
+        ----------
+        ships : list of ManeuverShip
+            E.g. :meth:`ships` of a range of samples.
+
+        Returns
+        -------
+        ManeuverResult
+        """
+        return dataclasses.replace(self, ship=ships, monte_carlo=None).run()
 
     @property
     def title(self) -> str:
@@ -91,8 +172,9 @@ class ManeuverJob:
         functions = {"turning": maneuvers.turning_circle, "zigzag": maneuvers.zigzag,
                      "pullout": maneuvers.pull_out, "spiral": maneuvers.spirals,
                      "imo": imo_check}
+        ship = self.ships() if self.monte_carlo is not None else self.ship
         try:
-            out = functions[self.kind](self.ship, **self.options)
+            out = functions[self.kind](ship, **self.options)
         except ScenarioError:
             raise
         except ParameterError as exc:
@@ -215,8 +297,26 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
     if conditions is not None:
         options["conditions"] = conditions
     metadata = {"title": scn.title, "scenario_source": source, "scenario_text": text}
-    return ManeuverJob(kind=man.kind, ship=ship, options=options, metadata=metadata,
-                       written=written)
+    mc = scn.batch.monte_carlo
+    if mc is not None:
+        if man.kind not in ("turning", "zigzag", "pullout"):
+            raise at_key(source, "batch.monte_carlo",
+                         f"Monte-Carlo samples of ships run turning, zigzag and pullout "
+                         f"manoeuvres, not '{man.kind}' (for the IMO criteria, sweep a turning "
+                         "and a zig-zag scenario with the same draws and seed: "
+                         "examples/kvlcc2_imo_uncertainty.py)")
+        keys = list(mc.draws) + [k for b in mc.correlated for k in b.keys]
+        for key in keys:
+            if not key.startswith(("vessel.params.", "actuator.params.")):
+                raise at_key(source, f"batch.monte_carlo.{key}",
+                             "a manoeuvre's draws vary the ship's parameters "
+                             "(vessel.params.<name>) or its steering gear's "
+                             f"(actuator.params.<name>), got '{key}'")
+    job = ManeuverJob(kind=man.kind, ship=ship, options=options, metadata=metadata,
+                      written=written, monte_carlo=mc)
+    if mc is not None:
+        job.ships(0, 1)  # the names and ranges of the drawn parameters, checked once
+    return job
 
 
 def _conditions(scn: Scenario, model: Any, source: str) -> Any:

@@ -33,7 +33,7 @@ from .environment import KEY_UNITS as _ENV_UNITS, environment_runs
 from .errors import ScenarioError, at_key as _err
 from .schema import Scenario
 
-__all__ = ["prepare_runs", "run_batch"]
+__all__ = ["prepare_runs", "run_batch", "monte_carlo_draws"]
 
 
 def _is_angle(unit: str) -> bool:
@@ -111,7 +111,8 @@ def _expand_batch(
     for key in grid_keys:
         if not scn.batch.grid[key]:
             raise _err(source, f"batch.grid.{key}", "needs at least one value, got []")
-    for key in grid_keys + (list(mc.draws) if mc is not None else []):
+    drawn_keys = [] if mc is None else list(mc.draws) + [k for b in mc.correlated for k in b.keys]
+    for key in grid_keys + drawn_keys:
         if not key.startswith(_OVERRIDABLE):
             raise _err(source, f"batch.{key}",
                        f"cannot vary '{key}'; keys start with one of: {', '.join(_OVERRIDABLE)}")
@@ -122,33 +123,64 @@ def _expand_batch(
     if mc is None:
         layout = BatchLayout(axes=tuple(axes)) if axes else BatchLayout.runs(1)
         return grid, None, layout
+    drawn = monte_carlo_draws(mc, np.arange(len(grid) * mc.runs), source)
     runs: list[dict[str, float]] = []
-    children = np.random.SeedSequence(mc.seed).spawn(len(grid) * mc.runs)
     n = 0
     for point in grid:
         for _ in range(mc.runs):
-            rng = np.random.default_rng(children[n])
-            n += 1
             draw = dict(point)
-            for key, dist in mc.draws.items():
-                if dist.distribution == "normal":
-                    draw[key] = float(rng.normal(dist.mean, dist.std))
-                elif dist.distribution == "lognormal":
-                    draw[key] = float(rng.lognormal(dist.mean, dist.std))
-                else:
-                    draw[key] = float(rng.uniform(dist.low, dist.high))
+            draw.update({key: float(v[n]) for key, v in drawn.items()})
             runs.append(draw)
+            n += 1
     axes.append(BatchAxis(name="sample", values=np.arange(mc.runs)))
+    kinds = {key: dist.distribution for key, dist in mc.draws.items()}
+    kinds.update({key: "correlated-normal" for block in mc.correlated for key in block.keys})
     values = tuple(
-        BatchValues(name=key, values=[r[key] for r in runs], units=units(key),
-                    attrs={"key": key, "distribution": dist.distribution})
-        for key, dist in mc.draws.items()
+        BatchValues(name=key, values=drawn[key], units=units(key),
+                    attrs={"key": key, "distribution": kind})
+        for key, kind in kinds.items()
     )
     try:
         layout = BatchLayout(axes=tuple(axes), values=values)
     except ParameterError as exc:
         raise _err(source, "batch", str(exc)) from None
     return runs, mc.seed, layout
+
+
+def monte_carlo_draws(mc: Any, indices: np.ndarray, source: str = "<string>"
+                      ) -> dict[str, np.ndarray]:
+    """The draws of ``[batch.monte_carlo]`` for the given sample indices (flat, over grid
+    points × samples): each sample from its own generator, ``SeedSequence(seed)``'s child of
+    that index (:func:`seahelm.numerics.sampling.draw_samples`), so any subset of samples,
+    drawn in any process, has the values the whole batch has.
+
+    Parameters
+    ----------
+    mc : MonteCarloSection
+        The validated section.
+    indices : ndarray of int
+        Flat sample indices.
+    source : str, optional
+        Name of the scenario in error messages.
+
+    Returns
+    -------
+    dict of key path to ndarray, shape (len(indices),)
+    """
+    from ..numerics.sampling import CorrelatedNormal, get_distribution
+
+    marginals = {}
+    for key, dist in mc.draws.items():
+        params = {k: getattr(dist, k) for k in ("mean", "std", "low", "high")
+                  if getattr(dist, k) is not None}
+        try:
+            marginals[key] = get_distribution(dist.distribution, **params)
+        except ParameterError as exc:
+            raise _err(source, f"batch.monte_carlo.draws.{key}", str(exc)) from None
+    blocks = [CorrelatedNormal(tuple(b.keys), b.mean, b.covariance) for b in mc.correlated]
+    from ..numerics.sampling import draw_samples
+
+    return draw_samples(marginals, mc.seed, indices, blocks)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -168,6 +200,8 @@ class _ScenarioSignals:
     #: per run (or one for all runs): (channel index, name, spec as written, signal)
     runs: tuple[tuple[tuple[int, str, Any, Any], ...], ...]
     batch_seed: int | None = None
+    #: flat index of the first run (a chunk of a larger batch draws the runs' own seas)
+    first_run: int = 0
 
     def __call__(self, t_grid: np.ndarray) -> np.ndarray:
         t_grid = np.asarray(t_grid, dtype=float)
@@ -181,7 +215,8 @@ class _ScenarioSignals:
                     if getattr(sig, "random", False):
                         entropy = sig.seed if self.batch_seed is None else [sig.seed,
                                                                             self.batch_seed]
-                        seq = np.random.SeedSequence(entropy, spawn_key=(i,))
+                        seq = np.random.SeedSequence(entropy,
+                                                     spawn_key=(self.first_run + i,))
                         if hasattr(sig, "draw_runs"):
                             groups.setdefault((j, sig), []).append((i, seq, (name, spec)))
                         else:

@@ -16,7 +16,8 @@ from ..simulation.integrators import INTEGRATORS
 
 __all__ = ["Number", "VesselSection", "ActuatorSection", "ControllerSection",
            "EnvironmentSection", "CurrentSection",
-           "WindSection", "WavesSection", "SimulationSection", "Distribution", "MonteCarloSection",
+           "WindSection", "WavesSection", "SimulationSection", "Distribution", "CorrelatedSection",
+           "MonteCarloSection",
            "BatchSection", "ManeuverSection", "GuidanceSection", "Scenario", "MANEUVER_KEYS"]
 
 #: A finite number: an integer or a float, never a boolean or a string.
@@ -173,7 +174,11 @@ class SimulationSection(_Strict):
 
 
 class Distribution(_Strict):
-    distribution: Literal["normal", "uniform", "lognormal"]
+    """A drawn key of ``[batch.monte_carlo.draws]``: ``normal`` (mean, std), ``uniform``
+    (low, high), ``lognormal`` (mean, std of the underlying normal) or ``truncnormal`` (mean,
+    std, cut to [low, high]; one bound may be left out)."""
+
+    distribution: Literal["normal", "uniform", "lognormal", "truncnormal"]
     mean: Number | None = None
     std: Annotated[Number, Field(ge=0)] | None = None
     low: Number | None = None
@@ -181,12 +186,21 @@ class Distribution(_Strict):
 
     @model_validator(mode="after")
     def _check(self) -> "Distribution":
-        if self.distribution in ("normal", "lognormal"):
+        if self.distribution in ("normal", "lognormal", "truncnormal"):
             if self.mean is None or self.std is None:
                 raise ValueError(f"a {self.distribution} draw needs `mean` and `std`")
+        if self.distribution in ("normal", "lognormal"):
             if self.low is not None or self.high is not None:
                 raise ValueError(f"a {self.distribution} draw takes `mean` and `std`, not "
                                  "`low`/`high`")
+        if self.distribution == "truncnormal":
+            if self.low is None and self.high is None:
+                raise ValueError("a truncnormal draw needs `low` and/or `high` (a normal draw "
+                                 "has neither)")
+            if self.low is not None and self.high is not None and not self.high > self.low:
+                raise ValueError("a truncnormal draw needs `low` < `high`")
+            if not self.std > 0:  # type: ignore[operator]
+                raise ValueError("a truncnormal draw needs `std` > 0")
         if self.distribution == "uniform":
             if self.low is None or self.high is None or not self.high > self.low:
                 raise ValueError("a uniform draw needs `low` < `high`")
@@ -195,10 +209,38 @@ class Distribution(_Strict):
         return self
 
 
+class CorrelatedSection(_Strict):
+    """``[[batch.monte_carlo.correlated]]``: keys drawn together from a normal distribution
+    with the given ``mean`` (one per key) and ``covariance`` (one row per key; symmetric,
+    positive definite; the keys' units squared)."""
+
+    keys: Annotated[list[str], Field(min_length=1)]
+    mean: list[Number]
+    covariance: list[list[Number]]
+
+    @model_validator(mode="after")
+    def _check(self) -> "CorrelatedSection":
+        from ..numerics.sampling import CorrelatedNormal
+
+        if len(set(self.keys)) != len(self.keys):
+            raise ValueError(f"`keys` repeat: {self.keys}")
+        CorrelatedNormal(tuple(self.keys), self.mean, self.covariance)  # shapes, symmetry, PD
+        return self
+
+
 class MonteCarloSection(_Strict):
     runs: Annotated[int, Strict(), Field(ge=1, le=1_000_000)]
     seed: Annotated[int, Strict(), Field(ge=0)]
     draws: dict[str, Distribution] = Field(default_factory=dict)
+    correlated: list[CorrelatedSection] = Field(default_factory=list)
+
+    @model_validator(mode="after")
+    def _once(self) -> "MonteCarloSection":
+        keys = list(self.draws) + [k for block in self.correlated for k in block.keys]
+        twice = sorted({k for k in keys if keys.count(k) > 1})
+        if twice:
+            raise ValueError(f"`{twice[0]}` is drawn twice (in `draws` and/or `correlated`)")
+        return self
 
 
 class BatchSection(_Strict):
@@ -301,11 +343,13 @@ class Scenario(_Strict):
                              "or imo)")
         if self.maneuver is not None:
             extra = [s for s in ("simulation", "controller", "batch", "guidance")
-                     if s in self.model_fields_set]
+                     if s in self.model_fields_set
+                     and not (s == "batch" and not self.batch.grid)]
             if extra:
                 raise ValueError(
                     f"a [maneuver] scenario takes no [{'], ['.join(extra)}] section: the "
                     "manoeuvre sets its own rudder orders, timing and batch (rudder angles, "
-                    "speeds and sides as lists in [maneuver]); [environment] may give wind, "
+                    "speeds and sides as lists in [maneuver]; uncertain ship or steering-gear "
+                    "parameters as [batch.monte_carlo]); [environment] may give wind, "
                     "waves and a current")
         return self

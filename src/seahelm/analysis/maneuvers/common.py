@@ -251,6 +251,22 @@ def default_time_step(ship: Any, speed: float | None = None) -> float:
     return float(f"{10.0 ** exponent:.12g}")  # pragma: no cover - mantissa 1 always fits
 
 
+def usual_time_step(ships: Sequence["ManeuverShip"], speeds: Any) -> float:
+    """The smallest :func:`default_time_step` of the ships at any of the approach speeds.
+
+    The step shrinks as the speed grows (dt ∝ L/U before rounding down), so it is each distinct
+    ship (length, steering-gear lag) at the fastest speed: one evaluation per distinct ship,
+    not one per ship and speed (10⁴ Monte-Carlo ships would make 10⁸).
+    """
+    fastest = max(float(u) for u in speeds)
+    steps: dict[tuple[float, float], float] = {}
+    for s in ships:
+        key = (s.length, float(s.servo.time_constant))
+        if key not in steps:
+            steps[key] = default_time_step(s, fastest)
+    return min(steps.values())
+
+
 # ------------------------------------------------------------------------------------------
 # grids of runs
 # ------------------------------------------------------------------------------------------
@@ -421,8 +437,7 @@ class Plan:
         """
         from ...simulation.batch import BatchAxis, BatchLayout, RunBatch, simulate_batch
 
-        usual = min(default_time_step(s, a.speed) for s in self.ships
-                    for a in self.approaches.values())
+        usual = usual_time_step(self.ships, [a.speed for a in self.approaches.values()])
         if dt > STEP_VALIDITY * usual:
             warnings.warn(f"`dt` = {dt:g} s is {dt / usual:.3g} x the usual step of this ship "
                           f"({usual:g} s = min(L/(100 U0), servo lag)): the manoeuvre's events "

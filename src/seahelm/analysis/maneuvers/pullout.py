@@ -31,6 +31,7 @@ from .common import (
     Plan,
     check_rudder,
     default_time_step,
+    usual_time_step,
     final_time,
     record_every_for,
     side_axis,
@@ -90,8 +91,7 @@ def pull_out(ship: Any, rudder: Any = math.radians(20.0), *, sides: Any = (1, -1
     check_rudder(plan.ships, "rudder", rudder_axis.values)
     n = plan.n_runs
     if dt is None:
-        dt = min(default_time_step(s, a.speed) for s in plan.ships
-                 for a in plan.approaches.values())
+        dt = usual_time_step(plan.ships, [a.speed for a in plan.approaches.values()])
     if t_final is None:
         t_final = max(60.0 * plan.ship(i).length / plan.approach(i).speed for i in range(n))
     t_final = final_time(float(t_final), float(dt))

@@ -41,6 +41,7 @@ from .common import (
     Plan,
     check_rudder,
     default_time_step,
+    usual_time_step,
     final_time,
 )
 
@@ -125,8 +126,7 @@ def direct_spiral(ship: Any, rudders: Any = None, *, speed: Any = None, rps: Any
     check_rudder(plan.ships, "rudders", deltas, allow_zero=True)
     n = plan.n_runs
     if dt is None:
-        dt = min(default_time_step(s, a.speed) for s in plan.ships
-                 for a in plan.approaches.values())
+        dt = usual_time_step(plan.ships, [a.speed for a in plan.approaches.values()])
     if hold is None:
         hold = max(50.0 * plan.ship(i).length / plan.approach(i).speed for i in range(n))
     if not (isinstance(hold, (int, float)) and hold > 0):

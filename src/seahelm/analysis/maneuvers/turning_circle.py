@@ -43,6 +43,7 @@ from .common import (
     Plan,
     check_rudder,
     default_time_step,
+    usual_time_step,
     final_time,
     record_every_for,
     side_axis,
@@ -150,8 +151,7 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
     check_rudder(plan.ships, "rudder", rudder_axis.values)
     check_positive_change(heading_change)
     if dt is None:
-        dt = min(default_time_step(s, a.speed) for s in plan.ships
-                 for a in plan.approaches.values())
+        dt = usual_time_step(plan.ships, [a.speed for a in plan.approaches.values()])
     if t_final is None:
         signed: dict[tuple[int, int], list[float]] = {}
         for key in plan.approaches:

@@ -54,6 +54,7 @@ from .common import (
     Plan,
     check_rudder,
     default_time_step,
+    usual_time_step,
     final_time,
     record_every_for,
     side_axis,
@@ -275,8 +276,7 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
     plan = Plan(ship, speed, rps, [pair, side])
     check_rudder(plan.ships, "rudder", np.atleast_1d(d))
     if dt is None:
-        dt = 0.5 * min(default_time_step(s, a.speed) for s in plan.ships
-                       for a in plan.approaches.values())
+        dt = 0.5 * usual_time_step(plan.ships, [a.speed for a in plan.approaches.values()])
     n = plan.n_runs
     amp = np.array([np.atleast_1d(d)[plan.index[i]["pair"]] for i in range(n)])
     trig = np.array([np.atleast_1d(h)[plan.index[i]["pair"]] for i in range(n)])

@@ -1,0 +1,136 @@
+"""``seahelm sweep SCENARIO``: a scenario's batch in chunks, streamed to a resumable Zarr store.
+
+Runs in this process by default (the compiled parallel engine, no scheduler); ``--workers N``
+starts a local dask.distributed cluster, ``--scheduler tcp://HOST:PORT`` uses a running one
+(``dask scheduler`` / ``dask worker``). The same command started again after an interruption
+skips the chunks already in the store. Prints the summary statistics (also stored in the
+store's attributes). Exit codes: 0 done, 2 bad input (checked before any run: scenario, chunk
+size, workers, scheduler, store path), 1 other failure.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+from rich.table import Table
+
+from ..errors import ParameterError
+from ._common import JsonFlag, _writable_directory, console, err_console, handle_errors, \
+    input_file, print_json
+
+__all__ = ["sweep"]
+
+#: Rows of the statistics table (the JSON output and the store have them all).
+MAX_ROWS = 40
+
+
+class _ChunkBar:
+    """Progress over chunks with the estimated time left (stderr)."""
+
+    def __init__(self, enabled: bool) -> None:
+        self.enabled = enabled
+        self.bar: Progress | None = None
+        self.task: Any = None
+
+    def __call__(self, done: int, total: int) -> None:
+        if not self.enabled:
+            return
+        if self.bar is None:
+            self.bar = Progress(TextColumn("chunks"), BarColumn(), MofNCompleteColumn(),
+                                TimeRemainingColumn(), console=err_console, transient=True)
+            self.bar.start()
+            self.task = self.bar.add_task("chunks", total=total, completed=done)
+            return
+        self.bar.update(self.task, completed=done)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.stop()
+
+
+def _fmt(value: Any) -> str:
+    return "–" if value is None else f"{value:.4g}"
+
+
+@handle_errors
+def sweep(
+    scenario: Annotated[Path, typer.Argument(help="Scenario TOML file ([batch] grid and/or "
+                                                  "Monte-Carlo draws, or a [maneuver]).")],
+    store: Annotated[Path | None, typer.Option(
+        help="Zarr store directory (default: <scenario name>.zarr here). A store of the same "
+             "scenario is resumed.")] = None,
+    chunk_size: Annotated[int | None, typer.Option(
+        "--chunk-size", help="Runs per chunk (default: chosen from the runs and workers, or "
+                             "the store's when resuming).")] = None,
+    workers: Annotated[int | None, typer.Option(
+        help="Start a local dask cluster of N worker processes (pip install 'seahelm[dask]').")
+    ] = None,
+    scheduler: Annotated[str | None, typer.Option(
+        help="Use a running dask scheduler, tcp://HOST:PORT.")] = None,
+    timeout: Annotated[float, typer.Option(
+        help="Seconds to wait for --scheduler.")] = 10.0,
+    overwrite: Annotated[bool, typer.Option(
+        "--overwrite", help="Replace a store of another scenario or chunk size.")] = False,
+    series: Annotated[bool, typer.Option(
+        help="Store the time series (--no-series: per-run values and metrics only).")] = True,
+    json_out: JsonFlag = False,
+) -> None:
+    """Run a scenario's sweep in chunks into a resumable Zarr store, in-process or on dask."""
+    from ..sweep import run_sweep
+    from ..sweep.store import check_store
+
+    input_file("SCENARIO", scenario)
+    target = store if store is not None else Path(f"{scenario.stem}.zarr")
+    if chunk_size is not None and chunk_size < 1:
+        raise ParameterError(f"`--chunk-size` must be >= 1 [runs], got {chunk_size}")
+    if workers is not None and workers < 1:
+        raise ParameterError(f"`--workers` must be >= 1, got {workers}")
+    if workers is not None and scheduler is not None:
+        raise ParameterError("give --workers (a local cluster) or --scheduler (a running one), "
+                             "not both")
+    text = scenario.read_text()
+    check_store(target, text, chunk_size=chunk_size, overwrite=overwrite, series=series)
+    _writable_directory("--store", target.parent)
+    bar = _ChunkBar(enabled=not json_out)
+    try:
+        report = run_sweep(scenario, target, text=text, chunk_size=chunk_size, workers=workers,
+                           scheduler=scheduler, overwrite=overwrite, series=series,
+                           timeout=timeout, progress=bar)
+    finally:
+        bar.close()
+    payload = {"store": str(report.store), "n_runs": report.n_runs,
+               "n_chunks": report.n_chunks, "chunk_size": report.chunk_size,
+               "chunks_computed": report.computed, "chunks_skipped": report.skipped,
+               "wall_time_s": report.wall_time_s, "summary": report.summary}
+    if json_out:
+        print_json(json.loads(json.dumps(payload)))
+        return
+    summary = report.summary
+    table = Table(title=f"{scenario}: statistics over {summary['n_runs']} run(s)",
+                  title_justify="left")
+    rows = summary["metrics"][:MAX_ROWS]
+    labels = [c for c in ("where", "units") if any(r[c] for r in rows)]  # (no empty columns)
+    table.add_column("metric", overflow="fold")
+    for col in labels:
+        table.add_column(col, no_wrap=True)
+    for col in ("n", "mean", "std", "q05", "q50", "q95"):
+        table.add_column(col, justify="right", no_wrap=True)
+    for row in rows:
+        table.add_row(row["name"], *(row[c] for c in labels), str(row["n"]),
+                      *(_fmt(row[k]) for k in ("mean", "std", "q05", "q50", "q95")))
+    console.print(table)
+    more = len(summary["metrics"]) - MAX_ROWS
+    if more > 0:
+        console.print(f"  ... {more} more row(s) in the store's sweep_summary and --json",
+                      highlight=False)
+    counts = ""
+    if "n_ok" in summary:
+        counts = f", {summary['n_ok']} ok, {summary['n_failed']} failed"
+    console.print(f"{report.n_runs} run(s) in {report.n_chunks} chunk(s) of {report.chunk_size}"
+                  f"{counts}; {report.computed} chunk(s) computed, {report.skipped} already "
+                  f"in the store; {report.wall_time_s:.3g} s", highlight=False, soft_wrap=True)
+    console.print(f"  store: {report.store}", highlight=False, soft_wrap=True)

@@ -1,0 +1,191 @@
+"""Where a sweep's chunks run: in this process (the default) or on a dask.distributed cluster.
+
+An executor computes chunks (:func:`.chunks.compute_chunk`) and hands each chunk's results to
+a callback in the coordinating process, which writes them to the store: the store is written
+by one process only, so workers on other machines need no access to it. Dask is the scheduler
+(a local cluster started here, or an existing one); a worker that dies has its chunks computed
+again elsewhere, and a chunk's results arrive once per chunk whatever happened.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable
+from typing import TYPE_CHECKING, Any
+
+from .._optional import optional_import
+from ..errors import ParameterError
+from .chunks import SweepSpec, compute_chunk
+
+if TYPE_CHECKING:  # pragma: no cover
+    import xarray as xr
+
+__all__ = ["InProcess", "DaskCluster", "executor"]
+
+OnDone = Callable[[int, "xr.Dataset"], None]
+
+
+class InProcess:
+    """Chunks one after the other in this process, each on the compiled parallel engine (all
+    cores)."""
+
+    workers = 1
+
+    def __enter__(self) -> "InProcess":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        return None
+
+    def run(self, spec: SweepSpec, chunks: Iterable[int], on_done: OnDone) -> None:
+        """Compute the chunks and hand each one's results to ``on_done`` in this process.
+
+        Parameters
+        ----------
+        spec : SweepSpec
+            The sweep.
+        chunks : iterable of int
+            Chunk indices to compute.
+        on_done : callable(int, xarray.Dataset)
+            Called with each chunk's index and results, once per chunk, as they complete.
+        """
+        for index in chunks:
+            on_done(index, compute_chunk(spec, index))
+
+
+class DaskCluster:
+    """Chunks as tasks of a dask.distributed cluster.
+
+    Parameters
+    ----------
+    workers : int, optional
+        Start a local cluster of this many worker processes (one thread each, loopback only,
+        no dashboard), closed at the end.
+    scheduler : str, optional
+        Address of a running scheduler (``tcp://host:port``) to use instead.
+    timeout : float, optional
+        Seconds to wait for the scheduler (default 10).
+    client : distributed.Client, optional
+        A connected client to use instead (left open at the end).
+    """
+
+    def __init__(self, *, workers: int | None = None, scheduler: str | None = None,
+                 timeout: float = 10.0, client: Any = None) -> None:
+        if sum(x is not None for x in (workers, scheduler, client)) != 1:
+            raise ParameterError("give `workers` (a local cluster), `scheduler` (an existing "
+                                 "one) or `client`, one of them")
+        self.n_workers = workers
+        self.scheduler = scheduler
+        self.timeout = float(timeout)
+        self.client: Any = client
+        self.cluster: Any = None
+        self.own_client = client is None
+
+    @property
+    def workers(self) -> int:
+        if self.client is None:
+            return self.n_workers or 1
+        return max(1, len(self.client.scheduler_info().get("workers", {})))
+
+    def __enter__(self) -> "DaskCluster":
+        distributed = optional_import("distributed", extra="dask",
+                                      purpose="sweeps on a dask cluster (--workers/--scheduler)")
+        if not self.own_client:
+            return self
+        if self.scheduler is not None:
+            try:
+                self.client = distributed.Client(self.scheduler, timeout=self.timeout,
+                                                 set_as_default=False)
+            except (OSError, TimeoutError, ValueError) as exc:
+                raise ParameterError(
+                    f"`scheduler`: cannot reach the dask scheduler at {self.scheduler} within "
+                    f"{self.timeout:g} s ({type(exc).__name__}: {exc}); start one with "
+                    "`dask scheduler` and give its address (tcp://HOST:PORT)") from None
+        else:
+            self.cluster = distributed.LocalCluster(
+                n_workers=self.n_workers, threads_per_worker=1, processes=True,
+                host="127.0.0.1", dashboard_address=None)
+            self.client = distributed.Client(self.cluster, set_as_default=False)
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        if self.client is not None and self.own_client:
+            self.client.close()
+        if self.cluster is not None:
+            self.cluster.close()
+
+    def run(self, spec: SweepSpec, chunks: Iterable[int], on_done: OnDone) -> None:
+        """Compute the chunks and hand each one's results to ``on_done`` in this process.
+
+        Parameters
+        ----------
+        spec : SweepSpec
+            The sweep.
+        chunks : iterable of int
+            Chunk indices to compute.
+        on_done : callable(int, xarray.Dataset)
+            Called with each chunk's index and results, once per chunk, as they complete.
+        """
+        distributed = optional_import("distributed", extra="dask")
+        tag = spec.fingerprint[:12]
+        futures = {}
+        for index in chunks:
+            fut = self.client.submit(compute_chunk, spec, index, key=f"seahelm-{tag}-{index}",
+                                     pure=False, retries=0)
+            futures[fut.key] = (index, fut)
+        try:
+            for fut, ds in distributed.as_completed([f for _, f in futures.values()],
+                                                    loop=self.client.loop, with_results=True):
+                index, _ = futures.pop(fut.key)
+                on_done(index, ds)
+                fut.release()
+        finally:
+            if futures:
+                self.client.cancel([f for _, f in futures.values()])
+
+
+def executor(*, workers: int | None = None, scheduler: str | None = None,
+             timeout: float = 10.0, client: Any = None) -> InProcess | DaskCluster:
+    """The executor for the options: in-process (none), a local cluster (``workers``), an
+    existing one (``scheduler``) or a connected dask ``client``.
+
+    Parameters
+    ----------
+    workers : int, optional
+        Worker processes of a local dask cluster.
+    scheduler : str, optional
+        Address of a running dask scheduler (``tcp://HOST:PORT``).
+    timeout : float, optional
+        Seconds to wait for ``scheduler`` (default 10).
+    client : distributed.Client, optional
+        A connected dask client.
+
+    Returns
+    -------
+    InProcess or DaskCluster
+        A context manager; :meth:`run` inside it computes chunks.
+
+    Raises
+    ------
+    ParameterError
+        For more than one of the options, or a bad value.
+    """
+    if client is not None:
+        if workers is not None or scheduler is not None:
+            raise ParameterError("give `client` alone (not with `workers` or `scheduler`)")
+        return DaskCluster(client=client)
+    if workers is not None:
+        if isinstance(workers, bool) or int(workers) != workers or workers < 1:
+            raise ParameterError(f"`workers` must be a whole number >= 1, got {workers!r}")
+        if scheduler is not None:
+            raise ParameterError("give `workers` (a local cluster) or `scheduler` (an existing "
+                                 "one), not both")
+    if scheduler is not None:
+        if not isinstance(scheduler, str) or "://" not in scheduler:
+            raise ParameterError(f"`scheduler` must be an address such as "
+                                 f"tcp://HOST:PORT, got {scheduler!r}")
+        if not (isinstance(timeout, (int, float)) and math.isfinite(timeout) and timeout > 0):
+            raise ParameterError(f"`timeout` must be > 0 [s], got {timeout!r}")
+    if workers is None and scheduler is None:
+        return InProcess()
+    return DaskCluster(workers=workers, scheduler=scheduler, timeout=timeout)

@@ -1,0 +1,260 @@
+"""Run a sweep: a scenario's runs in chunks, streamed to a resumable store."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import shutil
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import ParameterError
+from .chunks import SweepSpec, auto_chunk_size, check_chunk_size, prepared
+from .executors import executor
+from .store import (
+    check_store,
+    completed_chunks,
+    create_store,
+    mark_complete,
+    open_sweep,
+    store_attrs,
+    write_chunk,
+)
+
+__all__ = ["SweepReport", "run_sweep", "summary_statistics", "QUANTILES"]
+
+#: Quantiles of the summary statistics.
+QUANTILES = (0.05, 0.25, 0.5, 0.75, 0.95)
+
+
+@dataclasses.dataclass(frozen=True)
+class SweepReport:
+    """What :func:`run_sweep` did.
+
+    Attributes
+    ----------
+    store : Path
+        The store directory.
+    n_runs, n_chunks, chunk_size : int
+        Runs, chunks and runs per chunk.
+    computed, skipped : int
+        Chunks computed now, and found complete in the store (a resumed sweep).
+    wall_time_s : float
+        Time of this call [s].
+    summary : dict
+        The summary statistics (:func:`summary_statistics`), as stored.
+    """
+
+    store: Path
+    n_runs: int
+    n_chunks: int
+    chunk_size: int
+    computed: int
+    skipped: int
+    wall_time_s: float
+    summary: dict[str, Any]
+
+
+def run_sweep(
+    scenario: str | Path,
+    store: str | Path,
+    *,
+    text: str | None = None,
+    chunk_size: int | None = None,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    overwrite: bool = False,
+    series: bool = True,
+    timeout: float = 10.0,
+    client: Any = None,
+    progress: Callable[[int, int], None] | None = None,
+) -> SweepReport:
+    """Run a scenario's batch (grid, Monte-Carlo draws or a manoeuvre's samples) in chunks and
+    write the results to a Zarr store, resuming a store of the same sweep.
+
+    With neither ``workers`` nor ``scheduler`` the chunks run in this process on the compiled
+    parallel engine; ``workers`` starts a local dask.distributed cluster; ``scheduler`` uses an
+    existing one. The results are the same bit for bit in all three cases, and whatever the
+    chunk size.
+
+    Parameters
+    ----------
+    scenario : str or Path
+        Scenario TOML file (or its name in messages when ``text`` is given).
+    store : str or Path
+        Store directory (Zarr). A store of the same scenario is resumed: its completed chunks
+        are skipped.
+    text : str, optional
+        The scenario's text (default: read from ``scenario``).
+    chunk_size : int, optional
+        Runs per chunk (default: the store's when resuming, else chosen by
+        :func:`~seahelm.sweep.chunks.auto_chunk_size`).
+    workers : int, optional
+        Start a local dask cluster of this many worker processes.
+    scheduler : str, optional
+        Address of a running dask scheduler, ``tcp://HOST:PORT``.
+    overwrite : bool, optional
+        Replace a store of another scenario or chunk size (default False: refused).
+    series : bool, optional
+        Store the time series (default True); False stores per-run values and metrics only.
+    timeout : float, optional
+        Seconds to wait for ``scheduler`` (default 10).
+    client : distributed.Client, optional
+        A connected dask client to run the chunks on (e.g. of a cluster started in a notebook;
+        left open), instead of ``workers`` or ``scheduler``.
+    progress : callable(done_chunks, total_chunks), optional
+        Called once chunks already in the store are counted, and after each chunk is written.
+
+    Returns
+    -------
+    SweepReport
+
+    Raises
+    ------
+    ParameterError
+        Bad input (chunk size, workers, scheduler address or an unreachable scheduler, a store
+        path that is a file or another scenario's store), before any run; a
+        :class:`~seahelm.scenario.ScenarioError` for the scenario's own errors.
+    """
+    t0 = time.perf_counter()
+    scenario = Path(scenario)
+    if text is None:
+        if not scenario.is_file():
+            raise ParameterError(f"`scenario`: no such file: {scenario}")
+        text = scenario.read_text()
+    if chunk_size is not None:
+        chunk_size = check_chunk_size(chunk_size)
+    store = Path(store)
+    stored_size = check_store(store, text, chunk_size=chunk_size, overwrite=overwrite,
+                              series=series)
+    replace = overwrite and store_attrs(store) is not None  # (a sweep store: start afresh)
+    pool = executor(workers=workers, scheduler=scheduler, timeout=timeout, client=client)
+    source = str(scenario)
+    job = prepared(text, source)
+    with pool:
+        template, layout_vars, coords, attrs, n_runs = _template(job, series)
+        if chunk_size is None:
+            chunk_size = stored_size or auto_chunk_size(
+                n_runs, attrs.get("sweep_bytes_per_run",
+                                  template.nbytes / max(template.sizes.get("run", 1), 1)),
+                workers=pool.workers)
+        spec = SweepSpec(text=text, source=source, chunk_size=chunk_size, n_runs=n_runs,
+                         series=series)
+        attrs["sweep_dims"] = json.dumps(_dims(job))
+        if replace:
+            shutil.rmtree(store)
+        create_store(store, spec, template, layout_vars, attrs, coords=coords)
+        done = completed_chunks(store, spec)
+        todo = [i for i in range(spec.n_chunks) if i not in done]
+        count = [len(done)]
+        if progress is not None:
+            progress(count[0], spec.n_chunks)
+
+        def on_done(index: int, ds: Any) -> None:
+            write_chunk(store, spec, index, ds)
+            count[0] += 1
+            if progress is not None:
+                progress(count[0], spec.n_chunks)
+
+        pool.run(spec, todo, on_done)
+    summary = summary_statistics(open_sweep(store, flat=True))
+    mark_complete(store, summary)
+    return SweepReport(store=store, n_runs=n_runs, n_chunks=spec.n_chunks,
+                       chunk_size=chunk_size, computed=len(todo), skipped=len(done),
+                       wall_time_s=time.perf_counter() - t0, summary=summary)
+
+
+def _dims(job: Any) -> list[tuple[str, int]]:
+    from ..scenario import ManeuverJob
+
+    if isinstance(job, ManeuverJob):
+        from .maneuvers import maneuver_dims
+
+        return maneuver_dims(job)
+    layout = job.layout
+    return [] if layout is None else [[d, s] for d, s in zip(layout.dims, layout.shape)]
+
+
+def _template(job: Any, series: bool) -> tuple[Any, dict[str, Any], tuple[str, ...],
+                                                dict[str, Any], int]:
+    """One run's results (the store's template), the batch's variables over ``run``, which of
+    them are coordinates, the root attributes and the number of runs."""
+    from ..scenario import ManeuverJob
+
+    if isinstance(job, ManeuverJob):
+        from .maneuvers import maneuver_template
+
+        return maneuver_template(job)
+    from .chunks import layout_variables, simulation_chunk
+
+    template, attrs = simulation_chunk(job, 0, 1, series=series, with_attrs=True)
+    layout_vars = layout_variables(job.layout)
+    layout = job.layout
+    coords = tuple(a.name for a in layout.axes) if layout is not None else ()
+    return template, layout_vars, coords, attrs, int(job.n_runs or 1)
+
+
+def summary_statistics(ds: Any) -> dict[str, Any]:
+    """Failure counts and, per metric, the count of finite values, mean, standard deviation,
+    minimum, quantiles (:data:`QUANTILES`) and maximum over the runs.
+
+    Metrics are the per-run variables with ``kind = "metric"`` (and a manoeuvre's metrics),
+    for each position along their other dimensions (e.g. ``side``).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The flat view of a sweep store (:func:`~seahelm.sweep.open_sweep` with ``flat=True``).
+
+    Returns
+    -------
+    dict
+        ``{"n_runs", "n_ok", "n_failed", "metrics": [{"name", "where", "n", "mean", "std",
+        "min", "q05", ..., "max"}, ...]}`` (NaN written as None).
+    """
+    out: dict[str, Any] = {"n_runs": int(ds.sizes["run"])}
+    if "status" in ds:
+        status = np.asarray(ds["status"].values)
+        out["n_ok"] = int(np.sum(status == 0))
+        out["n_failed"] = int(np.sum(status != 0))
+    elif "complete" in ds and ds["complete"].dtype == bool:
+        flags = np.asarray(ds["complete"].values)
+        while flags.ndim > 1:
+            flags = flags.all(axis=-1)
+        out["n_ok"] = int(flags.sum())
+        out["n_failed"] = int((~flags).sum())
+    rows = []
+    for name in sorted(ds.data_vars):  # (a store lists its arrays in no particular order)
+        var = ds[name]
+        if var.attrs.get("kind") != "metric" or var.dims[:1] != ("run",):
+            continue
+        values = np.asarray(var.values, dtype=float)
+        rest = var.dims[1:]
+        for idx in np.ndindex(*values.shape[1:]):
+            where = ", ".join(f"{d}={_coord(ds, d, i)}" for d, i in zip(rest, idx))
+            column = values[(slice(None), *idx)]
+            finite = column[np.isfinite(column)]
+            row: dict[str, Any] = {"name": name, "where": where, "n": int(finite.size),
+                                   "units": var.attrs.get("units", "")}
+            if finite.size:
+                qs = np.quantile(finite, QUANTILES)
+                row.update(mean=float(finite.mean()), std=float(finite.std()),
+                           min=float(finite.min()), max=float(finite.max()))
+                row.update({f"q{round(100 * q):02d}": float(v) for q, v in zip(QUANTILES, qs)})
+            else:
+                row.update({k: None for k in ("mean", "std", "min", "max")})
+                row.update({f"q{round(100 * q):02d}": None for q in QUANTILES})
+            rows.append(row)
+    out["metrics"] = rows
+    return out
+
+
+def _coord(ds: Any, dim: str, i: int) -> str:
+    if dim in ds.coords:
+        value = ds[dim].values[i]
+        return f"{value:g}" if isinstance(value, (float, np.floating)) else str(value)
+    return str(i)
