@@ -126,3 +126,15 @@ def report_imo_dir(tmp_path_factory):
     _invoke(["imo", "kvlcc2-l7", "--out", str(out)])
     _invoke(["report", str(out / "turning-circle-runs.nc"), "-o", str(out / "report.html")])
     return out
+
+
+@pytest.fixture(scope="session")
+def report_sweep_dir(tmp_path_factory):
+    """`seahelm sweep` of :data:`REPORT_BATCH_SCENARIO` (the demo's components: its kernel is
+    compiled once for the suite) in chunks of 4 into a store, and `seahelm report` of it."""
+    where = tmp_path_factory.mktemp("report-sweep")
+    scenario = where / "batch.toml"
+    scenario.write_text(REPORT_BATCH_SCENARIO)
+    _invoke(["sweep", str(scenario), "--store", str(where / "sweep.zarr"), "--chunk-size", "4"])
+    _invoke(["report", str(where / "sweep.zarr"), "-o", str(where / "report.html")])
+    return where

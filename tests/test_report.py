@@ -227,13 +227,14 @@ def test_a_result_without_runs(report_demo_dir, tmp_path):
     assert not (tmp_path / "empty.html").exists()
 
 
-@pytest.mark.parametrize("store", ["sweep.zarr", "empty.zarr/"])
-def test_zarr_stores_are_not_supported_yet(tmp_path, store):
+@pytest.mark.parametrize("store", ["missing.zarr", "empty.zarr/"])
+def test_a_missing_or_empty_store_is_refused(tmp_path, store):
     path = tmp_path / store
     if store.endswith("/"):
         path.mkdir()
-    assert "Zarr sweep stores are not supported" in one_error(["report", str(path)])
-    with pytest.raises(ParameterError, match="not supported"):
+    message = one_error(["report", str(path)])
+    assert "no such sweep store" in message or "not a sweep store" in message
+    with pytest.raises(ParameterError, match="not a sweep store"):
         load_report_data(tmp_path / "empty.zarr")
     assert not list(tmp_path.rglob("*.html"))
 
@@ -319,3 +320,27 @@ def test_metrics_along_a_dimension_of_their_own_get_a_table(tmp_path):
     page = (tmp_path / "s.html").read_text()
     assert "step_rudder [deg]" in page and "yaw_rate [deg/s]" in page and "per step" in page
     assert "yaw_rate_1" not in page and "loop_width [deg]" in page
+
+
+def test_a_sweep_store_report(report_sweep_dir):
+    """The sweep section: state, statistics as stored with the sweep, histograms."""
+    import json
+
+    from seahelm.report.sections import sweep_sections
+    from seahelm.sweep.store import store_attrs
+
+    data = load_report_data(report_sweep_dir / "sweep.zarr")
+    assert data.sweep is not None and data.sweep.sizes["run"] == 10
+    [sec] = sweep_sections(data)
+    html_text = "".join(b for b in sec.blocks if isinstance(b, str))
+    stored = json.loads(store_attrs(report_sweep_dir / "sweep.zarr")["sweep_summary"])
+    assert f"{stored['n_ok']} ok, {stored['n_failed']} failed of 10 runs" in html_text
+    assert stored["n_failed"] == 5  # kp = 4 leaves the bounds in every sample
+    for m in stored["metrics"][:3]:
+        assert f"<td>{m['name']}</td>" in html_text
+    assert any(isinstance(b, dict) for b in sec.blocks)  # the histograms
+    assert (report_sweep_dir / "report.html").stat().st_size < 10e6
+    # a directory that is not a sweep store: a clear error, exit 2, nothing written
+    (report_sweep_dir / "other").mkdir(exist_ok=True)
+    assert "not a sweep store" in one_error(["report", str(report_sweep_dir / "other")])
+    assert not (report_sweep_dir / "other.html").exists()

@@ -141,3 +141,15 @@ def test_imo_report_in_the_browser(browser, report_imo_dir):
                            timeout=5_000)
     assert page.evaluate(visible) == ["legendonly"] * 4  # heading, rudder, yaw rate, speed
     page.close()
+
+
+def test_sweep_store_report_in_the_browser(browser, report_sweep_dir):
+    # the sweep's histograms, the track and the time series of its runs
+    page = check_page(browser, report_sweep_dir / "report.html", 3,
+                      report_sweep_dir / "report.png")
+    assert page.title().startswith("Sweep: report test batch")
+    text = page.locator("#sweep").inner_text()
+    assert "complete" in text and "10 ok, 0 failed of 10 runs" not in text  # 5 diverge
+    rows = page.locator("#sweep table.statistics tbody tr")
+    assert rows.count() >= 3
+    page.close()

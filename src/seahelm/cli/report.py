@@ -2,9 +2,9 @@
 
 RESULT is ``result.nc`` of ``seahelm run``/``demo``, or a manoeuvre's ``*-runs.nc`` /
 ``*-metrics.nc`` (``seahelm maneuver``; with ``imo-report.json`` beside them, the files of
-``seahelm imo --out`` and the IMO criteria). The page (:mod:`seahelm.report`) holds plotly.js
-and all the data, so it opens with no network. ``-o`` is checked before anything is read; the
-file is written atomically. A Zarr sweep store is refused for now (exit 2).
+``seahelm imo --out`` and the IMO criteria), or a sweep store (``seahelm sweep``). The page
+(:mod:`seahelm.report`) holds plotly.js and all the data, so it opens with no network. ``-o``
+is checked before anything is read; the file is written atomically.
 """
 
 from __future__ import annotations
@@ -30,17 +30,17 @@ def default_report_path(result: Path) -> Path:
 def report(
     result: Annotated[Path, typer.Argument(help=(
         "Result file written by seahelm (NetCDF): result.nc of `seahelm run`/`demo`, a "
-        "manoeuvre's *-runs.nc or *-metrics.nc."))],
+        "manoeuvre's *-runs.nc or *-metrics.nc; or a sweep store of `seahelm sweep`."))],
     out: Annotated[Path | None, typer.Option(
         "-o", "--out", help="HTML file to write (default: beside RESULT, with .html).")] = None,
     json_out: JsonFlag = False,
 ) -> None:
     """Write an HTML report of a result file: metadata, status, metrics, interactive plots."""
-    if result.suffix == ".zarr":
-        raise ParameterError(f"{result}: Zarr sweep stores are not supported by `seahelm "
-                             "report` yet; give a NetCDF result file (result.nc, *-runs.nc, "
-                             "*-metrics.nc)")
-    input_file("RESULT", result)
+    if result.is_dir() or result.suffix == ".zarr":  # a sweep store (a directory)
+        if not result.is_dir():
+            raise ParameterError(f"`RESULT`: no such sweep store: {result}")
+    else:
+        input_file("RESULT", result)
     target = output_file("--out", out or default_report_path(result))
     if target.resolve() == result.resolve():
         raise ParameterError(f"`--out` {target} is the result file itself")

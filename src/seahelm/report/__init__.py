@@ -97,7 +97,7 @@ def write_report(source: "str | os.PathLike[str] | xr.Dataset | ReportData",
     FileNotFoundError
         If ``source`` is a path that does not exist.
     ParameterError
-        If ``source`` is not a seahelm result (or a Zarr store, not supported yet) or holds no
+        If ``source`` is not a seahelm result file or sweep store, or holds no
         runs.
     """
     from ..results import atomic_write

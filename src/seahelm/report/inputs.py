@@ -8,9 +8,12 @@ A report covers one result file and the files seahelm wrote beside it for the sa
 * either file of ``seahelm imo --out``: the turning and zig-zag runs and metrics, and the IMO
   criteria of ``imo-report.json`` (the pass/fail table the command printed).
 
+* a sweep store (``seahelm sweep``, a Zarr directory): its state (chunks written), the
+  summary statistics stored with it, the distribution of every metric over the runs and,
+  when it holds time series, the first :data:`MAX_SWEEP_RUNS` runs for the plots.
+
 Everything is held as xarray Datasets (the runs in their flat ``run`` view), so that a section
-of the report is a function of Datasets (:mod:`seahelm.report.sections`). A Zarr sweep store
-is refused for now (the sweep store format is not defined yet).
+of the report is a function of Datasets (:mod:`seahelm.report.sections`).
 """
 
 from __future__ import annotations
@@ -21,6 +24,8 @@ import json
 import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from ..errors import ParameterError
 
@@ -33,6 +38,8 @@ __all__ = ["RunSet", "ReportData", "load_report_data", "report_data_from_dataset
 IMO_MANEUVERS = ("turning-circle", "zigzag")
 #: The criteria file ``seahelm imo --out`` writes.
 IMO_REPORT = "imo-report.json"
+#: Runs of a sweep store with time series read for the plots (the statistics use every run).
+MAX_SWEEP_RUNS = 200
 
 
 @dataclasses.dataclass(frozen=True)
@@ -91,12 +98,16 @@ class ReportData:
         ship, L, V, L/V, verdict and notes in ``attrs``; None when the input is not an IMO check.
     sources : tuple of str
         The files read.
+    sweep : xarray.Dataset or None
+        A sweep store's per-run variables (no time series) in its flat ``run`` view, with the
+        store's attributes (``sweep_summary`` when complete); None for other inputs.
     """
 
     title: str
     sets: tuple[RunSet, ...]
     imo: "xr.Dataset | None" = None
     sources: tuple[str, ...] = ()
+    sweep: "xr.Dataset | None" = None
 
     @property
     def n_runs(self) -> int:
@@ -162,7 +173,7 @@ def load_report_data(path: str | Path) -> ReportData:
     Parameters
     ----------
     path : str or pathlib.Path
-        ``result.nc``, ``<manoeuvre>-runs.nc`` or ``<manoeuvre>-metrics.nc``.
+        ``result.nc``, ``<manoeuvre>-runs.nc``, ``<manoeuvre>-metrics.nc`` or a sweep store.
 
     Returns
     -------
@@ -173,16 +184,13 @@ def load_report_data(path: str | Path) -> ReportData:
     FileNotFoundError
         If ``path`` does not exist.
     ParameterError
-        If ``path`` is a Zarr store (not supported yet), not a seahelm result file, or holds
-        no runs.
+        If ``path`` is not a seahelm result file or sweep store, or holds no runs.
     """
     from ..results import open_result_file
 
     path = Path(path)
-    if path.suffix == ".zarr" or (path.is_dir() and (path / ".zgroup").exists()):
-        raise ParameterError(f"{path}: Zarr sweep stores are not supported by `seahelm report` "
-                             "yet; give a NetCDF result file (result.nc, *-runs.nc, "
-                             "*-metrics.nc)")
+    if path.is_dir() or path.suffix == ".zarr":
+        return _sweep_data(path)
     ds = open_result_file(path)
     if _is_runs(ds):
         _check_runs(ds, path)
@@ -287,3 +295,29 @@ def _imo_dataset(path: Path) -> "xr.Dataset | None":
              "L_over_V_s": num(report.get("L_over_V_s")), "passed": bool(report.get("passed")),
              "notes": "\n".join(str(n) for n in report.get("notes", []))}
     return xr.Dataset(data, attrs=attrs)
+
+
+def _sweep_data(path: Path) -> ReportData:
+    """The report data of a sweep store (module docstring)."""
+    from ..sweep.store import open_sweep, store_attrs
+
+    if store_attrs(path) is None:
+        raise ParameterError(f"{path}: not a sweep store of `seahelm sweep` (no zarr.json with "
+                             "sweep attributes) and not a result file")
+    flat = open_sweep(path, flat=True)
+    if flat.sizes.get("run", 0) == 0:
+        raise ParameterError(f"{path}: the sweep store holds no runs")
+    per_run = flat[[v for v in flat.data_vars if "time" not in flat[v].dims]].load()
+    title = str(flat.attrs.get("title") or flat.attrs.get("sweep_title") or path.name)
+    sets: tuple[RunSet, ...] = ()
+    if "time" in flat.dims and "status" in flat and "state_labels" in flat.attrs:
+        n = min(MAX_SWEEP_RUNS, int(flat.sizes["run"]))
+        if "complete" in flat:
+            done = np.flatnonzero(np.asarray(flat["complete"].values).reshape(
+                flat.sizes["run"], -1).all(axis=1))[:n]
+        else:
+            done = np.arange(n)
+        if done.size:
+            runs = flat.isel(run=done).load()
+            sets = (RunSet("result", runs, None, None),)
+    return ReportData(title=f"Sweep: {title}", sets=sets, sources=(str(path),), sweep=per_run)

@@ -388,10 +388,75 @@ def statistics_sections(data: ReportData) -> list[Section]:
     return sections
 
 
+#: Metric columns of a sweep shown as histograms (the statistics table lists them all).
+MAX_SWEEP_HISTOGRAMS = 12
+
+
+def sweep_sections(data: ReportData) -> list[Section]:
+    """A sweep store: its state (chunks written), metadata and scenario text, the summary
+    statistics of every metric over the runs (stored with a complete sweep, else computed
+    from the chunks written) and their histograms."""
+    import json
+
+    ds = data.sweep
+    if ds is None:
+        return []
+    from ..sweep.run import summary_statistics
+
+    attrs = dict(ds.attrs)
+    sec = Section("sweep", "Sweep")
+    n_runs, n_chunks = int(ds.sizes["run"]), int(attrs.get("sweep_n_chunks", 0) or 0)
+    if "complete" in ds:
+        flags = np.asarray(ds["complete"].values).reshape(n_runs, -1).all(axis=1)
+        state = f"incomplete: {int(flags.sum())} of {n_runs} runs written"
+    else:
+        flags = np.ones(n_runs, bool)
+        state = "complete"
+    rows = [["state", state], ["runs", n_runs],
+            ["chunks", f"{n_chunks} of up to {attrs.get('sweep_chunk_size')} runs each"]]
+    rows += [[k, v] for k, v in attrs.items() if not k.startswith("sweep_")
+             and k not in _HIDDEN and k != "scenario_text" and len(str(v)) < 200]
+    sec.blocks.append(table(None, [[k, str(v)] for k, v in rows], cls="meta"))
+    if attrs.get("scenario_text"):
+        text = str(attrs["scenario_text"])
+        sec.blocks.append(f"<details><summary>scenario text ({len(text.splitlines())} lines)"
+                          f"</summary><pre>{escape(text)}</pre></details>")
+    summary = (json.loads(attrs["sweep_summary"]) if "sweep_summary" in attrs
+               else summary_statistics(ds.isel(run=np.flatnonzero(flags))))
+    if "n_ok" in summary:
+        sec.blocks.append(paragraph(f"{summary['n_ok']} ok, {summary['n_failed']} failed of "
+                                    f"{summary['n_runs']} runs"))
+    qnames = sorted(k for k in (summary["metrics"][0] if summary["metrics"] else {})
+                    if k.startswith("q") and k[1:].isdigit())
+    header = ["metric", "where", "unit", "n", "mean", "std", "min", *qnames, "max"]
+    sec.blocks.append(table(header, [[m["name"], m["where"], m.get("units", ""), m["n"],
+                                      *(fmt(m[k]) for k in ("mean", "std", "min")),
+                                      *(fmt(m[q]) for q in qnames), fmt(m["max"])]
+                                     for m in summary["metrics"]], cls="statistics"))
+    columns: dict[str, np.ndarray] = {}
+    for name in sorted(ds.data_vars):
+        var = ds[name]
+        if var.attrs.get("kind") != "metric" or var.dims[:1] != ("run",):
+            continue
+        values = np.asarray(var.values, dtype=float)[flags]
+        for idx in np.ndindex(*values.shape[1:]):
+            where = ", ".join(f"{d}={_plain(ds[d].values[i]) if d in ds.coords else i}"
+                              for d, i in zip(var.dims[1:], idx))
+            columns[f"{name} ({where})" if where else name] = values[(slice(None), *idx)]
+            if len(columns) == MAX_SWEEP_HISTOGRAMS:
+                break
+        if len(columns) == MAX_SWEEP_HISTOGRAMS:
+            break
+    fig = histogram_figure({"": columns}) if columns else None
+    if fig is not None:
+        sec.blocks.append(fig)
+    return [sec]
+
+
 #: The section builders, in page order.
 SECTIONS: tuple[Callable[[ReportData], list[Section]], ...] = (
-    overview_sections, status_sections, imo_sections, metrics_sections, statistics_sections,
-    track_sections, timeseries_sections)
+    overview_sections, sweep_sections, status_sections, imo_sections, metrics_sections,
+    statistics_sections, track_sections, timeseries_sections)
 
 
 def build_sections(data: ReportData) -> list[Section]:
