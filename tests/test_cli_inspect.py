@@ -47,7 +47,7 @@ def test_json_has_metadata_status_and_the_summary_run_printed(batch_file):
     res = runner.invoke(app, ["inspect", str(path), "--json"])
     assert res.exit_code == 0, res.output
     got = json.loads(res.stdout)
-    assert got["metadata"]["title"] == "inspect test"
+    assert got["metadata"]["title"] == "report test batch"
     assert got["metadata"]["seed"] == 3 and got["metadata"]["model"] == "nomoto2"
     assert "[batch.monte_carlo]" in got["metadata"]["scenario_text"]
     assert got["dims"] == {"kp": 2, "sample": 5} == ran["dims"]
