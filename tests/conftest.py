@@ -89,6 +89,21 @@ seed = 3
 """
 
 
+def one_error(args: list[str]) -> str:
+    """Run ``seahelm ARGS``; assert exit 2 with one ``error:`` line on stderr and nothing on
+    stdout; return that line."""
+    from typer.testing import CliRunner
+
+    from seahelm.cli.main import app
+
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code == 2, (res.stdout, res.stderr)
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), res.stderr
+    assert res.stdout == "", res.stdout
+    return lines[0]
+
+
 def _invoke(args):
     from typer.testing import CliRunner
 

@@ -10,18 +10,11 @@ import os
 import pytest
 from typer.testing import CliRunner
 
+from conftest import one_error
 from seahelm.cli.main import app
 from seahelm.errors import ParameterError
 
 runner = CliRunner()
-
-
-def one_error(args: list[str]) -> str:
-    res = runner.invoke(app, args)
-    assert res.exit_code == 2, (res.stdout, res.stderr)
-    lines = res.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), lines
-    return lines[0]
 
 
 @pytest.fixture

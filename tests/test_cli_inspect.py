@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from conftest import REPORT_BATCH_SCENARIO
+from conftest import REPORT_BATCH_SCENARIO, one_error
 from seahelm.cli.main import app
 from seahelm.results import load_result
 
@@ -31,15 +31,6 @@ def batch_file(tmp_path_factory):
                               "--no-plot"])
     assert res.exit_code == 0, res.output
     return where / "o" / "result.nc", json.loads(res.stdout)
-
-
-def one_error(args: list[str]) -> str:
-    res = runner.invoke(app, args)
-    assert res.exit_code == 2, (res.stdout, res.stderr)
-    lines = res.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), lines
-    assert res.stdout == ""
-    return lines[0]
 
 
 def test_json_has_metadata_status_and_the_summary_run_printed(batch_file):

@@ -145,11 +145,11 @@ def test_quickstart_example_runs(tmp_path):
 def test_progress_bar_appears_only_for_long_runs(monkeypatch):
     import importlib
 
-    cli_main = importlib.import_module("seahelm.cli.main")
+    common = importlib.import_module("seahelm.cli._common")
 
     clock = {"t": 0.0}
-    monkeypatch.setattr(cli_main.time, "perf_counter", lambda: clock["t"])
-    bar = cli_main._ProgressBar("x")
+    monkeypatch.setattr(common.time, "perf_counter", lambda: clock["t"])
+    bar = common.ProgressBar("x")
     bar(10, 100)  # after 0 s: no bar
     assert bar.bar is None
     clock["t"] = 1.5
@@ -157,7 +157,7 @@ def test_progress_bar_appears_only_for_long_runs(monkeypatch):
     assert bar.bar is not None
     assert bar.bar.tasks[0].completed == 20
     bar.close()
-    quick = cli_main._ProgressBar("y")
+    quick = common.ProgressBar("y")
     clock["t"] = 10.0
     quick(100, 100)  # finished: never a bar
     assert quick.bar is None

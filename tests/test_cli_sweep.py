@@ -9,6 +9,7 @@ import socket
 import pytest
 from typer.testing import CliRunner
 
+from conftest import one_error
 from seahelm.cli.main import app
 from seahelm.sweep import open_sweep
 
@@ -22,14 +23,6 @@ def scenario(tmp_path):
     path = tmp_path / "study.toml"
     path.write_text(SCENARIO)
     return path
-
-
-def one_error(args: list[str]) -> str:
-    res = runner.invoke(app, args)
-    assert res.exit_code == 2, (res.stdout, res.stderr)
-    lines = res.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), lines
-    return lines[0]
 
 
 @pytest.fixture

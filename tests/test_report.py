@@ -17,6 +17,7 @@ import pytest
 import xarray as xr
 from typer.testing import CliRunner
 
+from conftest import one_error
 from seahelm.cli.main import app
 from seahelm.errors import ParameterError
 from seahelm.report import load_report_data, write_report
@@ -35,14 +36,6 @@ runner = CliRunner()
 
 #: The first line of the inlined plotly.js bundle.
 PLOTLY_BANNER = re.compile(r"\* plotly\.js v\d")
-
-
-def one_error(args: list[str]) -> str:
-    res = runner.invoke(app, args)
-    assert res.exit_code == 2, (res.stdout, res.stderr)
-    lines = res.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), res.stderr
-    return lines[0]
 
 
 def self_contained(page: str) -> None:

@@ -129,6 +129,27 @@ def check_on_hull(name: str, centre: Any, length: Any) -> None:
             f"midships, got {_fmt(float(c[bad].flat[0]))} [m]")
 
 
+def uniform_time_step(t: Any, what: str) -> tuple[np.ndarray, float]:
+    """A time grid as a float array and its step, or a ParameterError if it is not uniform.
+
+    Parameters
+    ----------
+    t : array_like
+        Time grid [s]: 1-D, 2 or more equally spaced samples.
+    what : str
+        What needs the grid, for the message (e.g. "a gust").
+
+    Returns
+    -------
+    (numpy.ndarray, float)
+        The grid and its step [s].
+    """
+    t = np.asarray(t, dtype=float)
+    if t.ndim != 1 or t.size < 2 or not np.allclose(np.diff(t), t[1] - t[0]):
+        raise ParameterError(f"{what} needs a uniform time grid of 2 or more samples")
+    return t, float(t[1] - t[0])
+
+
 def as_float_array(name: str, value: Any, unit: str = "", *, finite: bool = True) -> np.ndarray:
     """Convert to a float64 array, naming the parameter when that fails or values are not finite.
 

@@ -18,6 +18,7 @@ import math
 import os
 import sys
 import tempfile
+import time
 import warnings
 from collections.abc import Callable
 from pathlib import Path
@@ -275,3 +276,41 @@ def print_json(obj: dict[str, Any]) -> None:
     """Write one JSON object to stdout (NaN/inf become null)."""
     sys.stdout.write(json.dumps(_jsonable(obj), indent=2, allow_nan=False) + "\n")
     sys.stdout.flush()
+
+
+class ProgressBar:
+    """A progress callback ``(done, total)`` drawing a transient bar on stderr once the work has
+    taken ``delay`` seconds (none if it finishes first); ``counted`` shows "done/total" instead
+    of a percentage."""
+
+    def __init__(self, label: str, *, enabled: bool = True, delay: float = 1.0,
+                 counted: bool = False) -> None:
+        self.label = label
+        self.enabled = enabled
+        self.delay = delay
+        self.counted = counted
+        self.start = time.perf_counter()
+        self.bar: Any = None
+        self.task: Any = None
+
+    def __call__(self, done: int, total: int) -> None:
+        if not self.enabled:
+            return
+        if self.bar is None:
+            if time.perf_counter() - self.start < self.delay or done >= total:
+                return
+            from rich.progress import (BarColumn, MofNCompleteColumn, Progress, TextColumn,
+                                       TimeRemainingColumn)
+
+            amount = MofNCompleteColumn() if self.counted else TextColumn(
+                "{task.percentage:>3.0f}%")
+            self.bar = Progress(TextColumn("{task.description}"), BarColumn(), amount,
+                                TimeRemainingColumn(), console=err_console, transient=True)
+            self.bar.start()
+            self.task = self.bar.add_task(self.label, total=total)
+        self.bar.update(self.task, completed=done)
+
+    def close(self) -> None:
+        """Remove the bar (if one was drawn)."""
+        if self.bar is not None:
+            self.bar.stop()

@@ -3,14 +3,12 @@
 from __future__ import annotations
 
 import importlib
-import time
 from pathlib import Path
 from typing import Annotated, Any
 
 import numpy as np
 import typer
 from rich.markup import escape
-from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
 from .. import __version__
@@ -18,11 +16,11 @@ from ..errors import ParameterError
 from ._common import (
     JsonFlag,
     OneLineErrors,
+    ProgressBar,
     check_figure_suffix,
     exit_on_sigterm,
     fail_bad_input,
     console,
-    err_console,
     handle_errors,
     input_file,
     output_dir,
@@ -99,35 +97,6 @@ def _root(
     """Batched, validated ship motion simulation and control."""
 
 
-# ------------------------------------------------------------------------------------------
-class _ProgressBar:
-    """A progress callback that shows a bar only once a run has taken about a second."""
-
-    def __init__(self, label: str, *, enabled: bool = True) -> None:
-        self.label = label
-        self.enabled = enabled
-        self.start = time.perf_counter()
-        self.bar: Progress | None = None
-        self.task: Any = None
-
-    def __call__(self, done: int, total: int) -> None:
-        if not self.enabled:
-            return
-        if self.bar is None:
-            if time.perf_counter() - self.start < 1.0 or done >= total:
-                return
-            self.bar = Progress(TextColumn("{task.description}"), BarColumn(),
-                                TextColumn("{task.percentage:>3.0f}%"), TimeRemainingColumn(),
-                                console=err_console, transient=True)
-            self.bar.start()
-            self.task = self.bar.add_task(self.label, total=total)
-        self.bar.update(self.task, completed=done)
-
-    def close(self) -> None:
-        if self.bar is not None:
-            self.bar.stop()
-
-
 #: The report ``seahelm run --report`` and ``seahelm demo`` write beside the NetCDF.
 REPORT_NAME = "report.html"
 
@@ -158,7 +127,7 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
     if out is not None:  # every target checked before anything runs
         output_dir("--out", out, ("result.nc",) + (("result.csv",) if csv else ())
                    + (("overview.png",) if plot else ()) + ((REPORT_NAME,) if report else ()))
-    bar = _ProgressBar(f"simulating {batch.n_runs} run(s)")
+    bar = ProgressBar(f"simulating {batch.n_runs} run(s)")
     try:
         result = run_scenario(batch, progress=bar)
     finally:

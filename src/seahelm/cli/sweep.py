@@ -15,41 +15,16 @@ from pathlib import Path
 from typing import Annotated, Any
 
 import typer
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
 from ..errors import ParameterError
-from ._common import JsonFlag, _writable_directory, console, err_console, handle_errors, \
-    input_file, print_json
+from ._common import JsonFlag, ProgressBar, _writable_directory, console, \
+    handle_errors, input_file, print_json
 
 __all__ = ["sweep"]
 
 #: Rows of the statistics table (the JSON output and the store have them all).
 MAX_ROWS = 40
-
-
-class _ChunkBar:
-    """Progress over chunks with the estimated time left (stderr)."""
-
-    def __init__(self, enabled: bool) -> None:
-        self.enabled = enabled
-        self.bar: Progress | None = None
-        self.task: Any = None
-
-    def __call__(self, done: int, total: int) -> None:
-        if not self.enabled:
-            return
-        if self.bar is None:
-            self.bar = Progress(TextColumn("chunks"), BarColumn(), MofNCompleteColumn(),
-                                TimeRemainingColumn(), console=err_console, transient=True)
-            self.bar.start()
-            self.task = self.bar.add_task("chunks", total=total, completed=done)
-            return
-        self.bar.update(self.task, completed=done)
-
-    def close(self) -> None:
-        if self.bar is not None:
-            self.bar.stop()
 
 
 def _fmt(value: Any) -> str:
@@ -95,7 +70,7 @@ def sweep(
     text = scenario.read_text()
     check_store(target, text, chunk_size=chunk_size, overwrite=overwrite, series=series)
     _writable_directory("--store", target.parent)
-    bar = _ChunkBar(enabled=not json_out)
+    bar = ProgressBar("chunks", enabled=not json_out, delay=0.0, counted=True)
     try:
         report = run_sweep(scenario, target, text=text, chunk_size=chunk_size, workers=workers,
                            scheduler=scheduler, overwrite=overwrite, series=series,

@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_float_array, check_positive
+from .._validate import as_float_array, check_positive, uniform_time_step
 from ..errors import ParameterError
 
 __all__ = ["GustSpectrum", "GUST_SPECTRA", "norsok_spectrum", "gust_realisation"]
@@ -118,15 +118,13 @@ def gust_realisation(t: Any, mean_speed: float, seed: Any, *, spectrum: str = "n
         u(t), zero mean in expectation, the shape of ``t``.
     """
     spec = get_gust_spectrum(spectrum)
-    t = np.asarray(t, dtype=float)
-    if t.ndim != 1 or t.size < 2 or not np.allclose(np.diff(t), t[1] - t[0]):
-        raise ParameterError("a gust needs a uniform time grid of 2 or more samples")
+    t, dt = uniform_time_step(t, "a gust")
     if isinstance(n_components, bool) or int(n_components) != n_components or n_components < 1:
         raise ParameterError(f"`n_components` must be an integer >= 1, got {n_components!r}")
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
-    f_max = min(F_MAX, 0.5 / float(t[1] - t[0]))
+    f_max = min(F_MAX, 0.5 / dt)
     if not f_max > F_MIN:
-        raise ParameterError(f"the time step {t[1] - t[0]:g} s is too long for gusts "
+        raise ParameterError(f"the time step {dt:g} s is too long for gusts "
                              f"(the grid must resolve periods under one hour)")
     edges = np.geomspace(F_MIN, f_max, int(n_components) + 1)
     freq = edges[:-1] + rng.random(int(n_components)) * np.diff(edges)

@@ -58,18 +58,8 @@ def _finite(name: str, value: Any) -> float:
     return value
 
 
-@dataclasses.dataclass(frozen=True, kw_only=True)
-class Normal:
-    """Normal distribution N(mean, std²)."""
-
-    mean: float
-    std: float
-    name = "normal"
-
-    def __post_init__(self) -> None:
-        _finite("mean", self.mean)
-        if not _finite("std", self.std) >= 0:
-            raise ParameterError(f"`std` of a normal draw must be >= 0, got {self.std!r}")
+class _Scalar:
+    """What every scalar distribution shares: :meth:`sample` draws through ``_draw``."""
 
     def sample(self, rng: np.random.Generator) -> float:
         """One value drawn with ``rng``.
@@ -83,11 +73,36 @@ class Normal:
         -------
         float
         """
+        return self._draw(rng)
+
+    def _draw(self, rng: np.random.Generator) -> float:
+        raise NotImplementedError
+
+
+def _check_mean_std(dist: Any) -> None:
+    """A finite mean and a finite std >= 0 of a normal or lognormal draw."""
+    _finite("mean", dist.mean)
+    if not _finite("std", dist.std) >= 0:
+        raise ParameterError(f"`std` of a {dist.name} draw must be >= 0, got {dist.std!r}")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Normal(_Scalar):
+    """Normal distribution N(mean, std²)."""
+
+    mean: float
+    std: float
+    name = "normal"
+
+    def __post_init__(self) -> None:
+        _check_mean_std(self)
+
+    def _draw(self, rng: np.random.Generator) -> float:
         return float(rng.normal(self.mean, self.std))
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
-class Uniform:
+class Uniform(_Scalar):
     """Uniform distribution on [low, high)."""
 
     low: float
@@ -99,23 +114,12 @@ class Uniform:
             raise ParameterError(f"a uniform draw needs `low` < `high`, got {self.low!r}, "
                                  f"{self.high!r}")
 
-    def sample(self, rng: np.random.Generator) -> float:
-        """One value drawn with ``rng``.
-
-        Parameters
-        ----------
-        rng : numpy.random.Generator
-            The sample's generator.
-
-        Returns
-        -------
-        float
-        """
+    def _draw(self, rng: np.random.Generator) -> float:
         return float(rng.uniform(self.low, self.high))
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
-class LogNormal:
+class LogNormal(_Scalar):
     """Log-normal distribution: exp of N(mean, std²) (mean and std of the underlying normal)."""
 
     mean: float
@@ -123,27 +127,14 @@ class LogNormal:
     name = "lognormal"
 
     def __post_init__(self) -> None:
-        _finite("mean", self.mean)
-        if not _finite("std", self.std) >= 0:
-            raise ParameterError(f"`std` of a lognormal draw must be >= 0, got {self.std!r}")
+        _check_mean_std(self)
 
-    def sample(self, rng: np.random.Generator) -> float:
-        """One value drawn with ``rng``.
-
-        Parameters
-        ----------
-        rng : numpy.random.Generator
-            The sample's generator.
-
-        Returns
-        -------
-        float
-        """
+    def _draw(self, rng: np.random.Generator) -> float:
         return float(rng.lognormal(self.mean, self.std))
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
-class TruncatedNormal:
+class TruncatedNormal(_Scalar):
     """N(mean, std²) cut to [low, high] (either bound may be infinite), by CDF inversion.
 
     One uniform number u per value: x = mean + std Φ⁻¹(Φ(a) + u (Φ(b) − Φ(a))) with
@@ -166,18 +157,7 @@ class TruncatedNormal:
             raise ParameterError(f"a truncnormal draw needs `low` < `high`, got {self.low!r}, "
                                  f"{self.high!r}")
 
-    def sample(self, rng: np.random.Generator) -> float:
-        """One value drawn with ``rng``.
-
-        Parameters
-        ----------
-        rng : numpy.random.Generator
-            The sample's generator.
-
-        Returns
-        -------
-        float
-        """
+    def _draw(self, rng: np.random.Generator) -> float:
         from scipy.special import ndtr, ndtri
 
         a = (self.low - self.mean) / self.std

@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from .._validate import uniform_time_step
 from ..constants import GRAVITY
 from ..environment.loads import (
     Environment,
@@ -64,11 +65,8 @@ class WaveLoadFluctuation:
     random = True
 
     def __call__(self, t: Any, *, seed: Any = None) -> np.ndarray:
-        t = np.asarray(t, dtype=float)
-        if t.size < 2 or not np.allclose(np.diff(t), t[1] - t[0]):
-            raise ParameterError("an irregular sea needs a uniform time grid of 2 or more "
-                                 "samples")
-        return wave_load_fluctuation(self.h3, t.size, float(t[1] - t[0]),
+        t, dt = uniform_time_step(t, "an irregular sea")
+        return wave_load_fluctuation(self.h3, t.size, dt,
                                      self.seed if seed is None else seed,
                                      spectrum=self.spectrum)
 
@@ -87,11 +85,8 @@ class WaveLoadFluctuation:
         -------
         numpy.ndarray, shape (len(seeds), len(t))
         """
-        t = np.asarray(t, dtype=float)
-        if t.size < 2 or not np.allclose(np.diff(t), t[1] - t[0]):
-            raise ParameterError("an irregular sea needs a uniform time grid of 2 or more "
-                                 "samples")
-        return wave_load_fluctuation(self.h3, t.size, float(t[1] - t[0]), list(seeds),
+        t, dt = uniform_time_step(t, "an irregular sea")
+        return wave_load_fluctuation(self.h3, t.size, dt, list(seeds),
                                      spectrum=self.spectrum, runs=len(seeds))
 
 

@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_float_array, check_finite, check_positive
+from .._validate import as_float_array, check_finite, check_positive, uniform_time_step
 from ..errors import ParameterError
 
 __all__ = ["Constant", "Step", "Steps", "Sine", "Ramp", "Sea", "Gust", "SIGNALS", "make_signal"]
@@ -147,12 +147,10 @@ class Sea:
         from ..environment.shaping import shaping_filter
         from ..environment.spectra import spectrum_from_wave_height
 
-        t = np.asarray(t, dtype=float)
-        if t.size < 2 or not np.allclose(np.diff(t), t[1] - t[0]):
-            raise ParameterError("a `sea` signal needs a uniform time grid of 2 or more samples")
+        t, dt = uniform_time_step(t, "a `sea` signal")
         spec = spectrum_from_wave_height(self.spectrum, self.h3)
         filt = shaping_filter(spec, outputs=(self.quantity,))
-        draw = filt.sample(n_steps=t.size, dt=float(t[1] - t[0]),
+        draw = filt.sample(n_steps=t.size, dt=dt,
                            seed=self.seed if seed is None else seed)
         return self.mean + self.gain * draw.values[0, :, 0]
 
@@ -174,12 +172,10 @@ class Sea:
         from ..environment.shaping import shaping_filter, single_run_stream
         from ..environment.spectra import spectrum_from_wave_height
 
-        t = np.asarray(t, dtype=float)
-        if t.size < 2 or not np.allclose(np.diff(t), t[1] - t[0]):
-            raise ParameterError("a `sea` signal needs a uniform time grid of 2 or more samples")
+        t, dt = uniform_time_step(t, "a `sea` signal")
         filt = shaping_filter(spectrum_from_wave_height(self.spectrum, self.h3),
                               outputs=(self.quantity,))
-        draw = filt.sample(n_steps=t.size, dt=float(t[1] - t[0]),
+        draw = filt.sample(n_steps=t.size, dt=dt,
                            seed=[single_run_stream(s) for s in seeds], runs=len(seeds))
         return self.mean + self.gain * draw.values[:, :, 0]
 
