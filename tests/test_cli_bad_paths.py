@@ -99,7 +99,7 @@ def test_scenario_paths(tmp_path):
     (["averaging", "cpp", "--grid", "20000"], "`--grid` must be in [6, 2000] [directions], got "
                                               "20000"),
     (["waves", "figure", "--duration", "1e9"], "`--duration` must be in (0, 100000] [s]"),
-    (["maneuver", "spiral", "--hold", "1e9"], "`hold`: 33 holds of 1e+09 s"),
+    (["maneuver", "spiral", "--hold", "1e9"], "`--hold`: 33 holds of 1e+09 s"),
     (["compensate", "--length", "160", "--beam", "23", "--draft", "8", "--block-coefficient",
       "0.65", "--speed", "7.7", "--wind-speed", "15", "--wind-angle", "60", "--wave-height", "3",
       "--wave-angle", "60", "--rudder-area", "0"], "`--rudder-area` must be > 0 [m²], got 0.0"),
@@ -164,7 +164,7 @@ def test_warnings_are_one_line_and_name_the_cause():
                in line for line in warned)
     res = runner.invoke(app, ["maneuver", "turning", "--side", "starboard", "--dt", "1",
                               "--t-final", "20", "--json"])
-    assert any("`dt` = 1 s is 20 x the usual step of this ship (0.05 s" in line
+    assert any("`--dt` = 1 s is 20 x the usual step of this ship (0.05 s" in line
                for line in res.stderr.splitlines())
 
 

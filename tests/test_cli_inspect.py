@@ -29,8 +29,23 @@ def batch_file(tmp_path_factory):
     scenario.write_text(SCENARIO)
     res = runner.invoke(app, ["run", str(scenario), "--json", "--out", str(where / "o"),
                               "--no-plot"])
-    assert res.exit_code == 0, res.output
+    assert res.exit_code == 3, res.output  # written, but 5 of the 10 runs diverged
     return where / "o" / "result.nc", json.loads(res.stdout)
+
+
+def test_diverged_runs_exit_3_after_writing_everything(tmp_path):
+    """Exit code 3 (README): the files and the summary are complete, and it says how many."""
+    scenario = tmp_path / "s.toml"
+    scenario.write_text(SCENARIO)
+    res = runner.invoke(app, ["run", str(scenario), "--out", str(tmp_path / "o")],
+                        env={"COLUMNS": "160"})
+    assert res.exit_code == 3, res.output
+    assert "10 run(s), 5 ok, 5 diverged" in res.stdout
+    assert {p.name for p in (tmp_path / "o").iterdir()} == {"result.nc", "overview.png"}
+    ok_only = tmp_path / "ok.toml"  # kp = 1 alone never diverges: exit 0
+    ok_only.write_text(SCENARIO.replace('"controller.params.kp" = [1.0, 4.0]',
+                                        '"controller.params.kp" = [1.0]'))
+    assert runner.invoke(app, ["run", str(ok_only)]).exit_code == 0
 
 
 def test_json_has_metadata_status_and_the_summary_run_printed(batch_file):
@@ -105,7 +120,7 @@ def test_run_prints_drawn_values_and_statistics(tmp_path):
     scenario.write_text(SCENARIO.replace('[batch.grid]\n"controller.params.kp" = [1.0, 4.0]\n',
                                          ""))
     res = runner.invoke(app, ["run", str(scenario)], env={"COLUMNS": "160"})
-    assert res.exit_code == 0, res.output
+    assert res.exit_code == 3, res.output  # (kp = 3: every sample diverges)
     gains = json.loads(runner.invoke(app, ["run", str(scenario), "--json"]).stdout)["runs"]
     first = next(line for line in res.stdout.splitlines() if line.startswith("│   0 │"))
     assert f"{gains[0]['vessel.params.gain']:.5g}" in first  # the draw: a column of the table

@@ -84,7 +84,11 @@ def test_turning_table_and_out(tmp_path):
     (["maneuver", "zigzag", "--heading", "200"], "`--heading` must be in (0, 180) [deg], got "
                                                  "200.0"),
     (["maneuver", "zigzag", "--rudder", "10", "--heading", "60", "--t-final", "20"],
-     "`heading` trigger 60 deg is not reached within `t_final` = 20.0 [s]"),
+     "`--heading` trigger 60 deg is not reached within `--t-final` = 20.0 [s]"),
+    # library messages name the command's options (the user typed `--t-final`, not t_final)
+    (["maneuver", "turning", "--rps", "0.001"], "GB, more than 40% of this machine's"),
+    (["maneuver", "turning", "--rps", "0.001"],
+     "give a faster approach (`--speed` or `--rps`) or a shorter `--t-final`"),
     (["maneuver", "pullout", "--rudder", "-5"], "`--rudder` must be in (0, 35] [deg]"),
     (["maneuver", "spiral", "--max-rudder", "36"], "`--max-rudder` must be in (0, 35] [deg]"),
     (["maneuver", "spiral", "--hold", "0"], "`--hold` must be > 0 [s], got 0.0"),
@@ -148,3 +152,37 @@ def test_imo_json_and_table(tmp_path):
     assert res.exit_code == 0
     text = " ".join(res.stdout.split())
     assert "PASSES" in text and "not evaluat" in text and "ahead motion only" in text
+
+
+def test_no_steady_turn_names_the_option_that_avoids_it():
+    """60 m/s (51 x the parameter set's speed): a validity warning, then one error line naming
+    `--t-final` (which skips the duration estimate that needs the steady turn)."""
+    res = runner.invoke(app, ["maneuver", "turning", "--speed", "60"])
+    assert res.exit_code == 2, (res.stdout, res.stderr)
+    lines = res.stderr.strip().splitlines()
+    assert [line.split(":")[0] for line in lines] == ["warning", "error"]
+    assert lines[1].startswith("error: `--t-final`: no steady turn of 'kvlcc2-l7' at rudder 35, "
+                               "-35 deg from the approach at 60 m/s")
+    assert lines[1].endswith("identified near 1.179 m/s; give `--t-final` to skip the estimate")
+    assert "t_final" not in lines[1]
+
+
+def test_library_messages_keep_python_names_outside_the_cli():
+    """The equilibrium failure names the keyword that avoids it (`t_final`), in degrees."""
+    from seahelm.analysis.equilibrium import EquilibriumError
+
+    with pytest.raises(EquilibriumError, match=r"^`t_final`: no steady turn of 'kvlcc2-l7' at "
+                                               r"rudder 35 deg .*\(35 deg\).*give `t_final`"):
+        with pytest.warns(Warning):  # 60 m/s is far above the parameter set's speed
+            turning_circle("kvlcc2-l7", sides=1, speed=60.0)
+
+
+def test_scenario_maneuver_equilibrium_failure_names_file_and_key(tmp_path):
+    path = tmp_path / "fast.toml"
+    path.write_text('[vessel]\ncatalog = "kvlcc2-l7"\n\n[maneuver]\nkind = "turning"\n'
+                    'speed = 60.0\n')
+    res = runner.invoke(app, ["run", str(path)])
+    assert res.exit_code == 2, (res.stdout, res.stderr)
+    line = res.stderr.strip().splitlines()[-1]  # (after the validity warning)
+    assert line.startswith(f"error: {path}: [maneuver.t_final]") and "no steady turn" in line
+

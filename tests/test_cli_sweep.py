@@ -67,11 +67,12 @@ def test_bad_input_is_refused_before_the_sweep(scenario, tmp_path, no_sweep):
     assert one_error([*base, "--chunk-size", "0"]) == \
         "error: `--chunk-size` must be >= 1 [runs], got 0"
     assert one_error([*base, "--workers", "0"]) == "error: `--workers` must be >= 1, got 0"
+    assert one_error([*base, "--timeout", "-1"]) == "error: `--timeout` must be > 0 [s], got -1.0"
     assert "not both" in one_error([*base, "--workers", "2", "--scheduler", "tcp://x:1"])
     afile = tmp_path / "afile"
     afile.write_text("x")
     assert one_error(["sweep", str(scenario), "--store", str(afile)]) == \
-        f"error: `store`: {afile} is a file, not a sweep store (a directory)"
+        f"error: `--store`: {afile} is a file, not a sweep store (a directory)"
     (tmp_path / "data").mkdir()
     (tmp_path / "data" / "keep.txt").write_text("x")
     assert "is not a sweep store" in one_error(

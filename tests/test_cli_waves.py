@@ -86,6 +86,18 @@ def test_bad_input_exits_2(args, match):
     assert "\n" not in err and match in err
 
 
+@pytest.mark.parametrize("command", [["spectrum"], ["sample", "--duration", "10", "--dt", "0.5",
+                                                   "--seed", "1"]])
+def test_height_outside_table2_names_the_cli_option_not_a_python_keyword(command):
+    res = runner.invoke(app, [*command, "--h3", "12"])
+    assert res.exit_code == 2
+    err = res.stderr.strip()
+    assert err.startswith("error: `--h3` must be in [1, 10] [m]") and "\n" not in err
+    assert "--extrapolate" in err and "extrapolate=True" not in err
+    out = run_json(*command, "--h3", "12", "--extrapolate")
+    assert out["h3"] == 12
+
+
 def test_sample_json_and_netcdf(tmp_path):
     xr = pytest.importorskip("xarray")
     nc = tmp_path / "waves.nc"

@@ -147,3 +147,25 @@ def test_sea_state_parameters_bad_h3(bad, match):
 def test_unknown_level():
     with pytest.raises(ParameterError, match="unknown level 'avg'.*'max', 'mean', 'min'"):
         ss.sea_state_parameters(3.0, level="avg")
+
+
+@pytest.mark.parametrize("name", ["rakhmanin-firsov-2", "bretschneider", "jonswap"])
+def test_spectra_from_wave_height_pass_extrapolate_on(name):
+    """The error's hint (pass extrapolate=True) holds for the spectra that read Table 2."""
+    from seahelm.environment.spectra import spectrum_from_wave_height
+
+    with pytest.raises(ParameterError, match="pass extrapolate=True"):
+        spectrum_from_wave_height(name, 12.0)
+    with pytest.warns(ValidityRangeWarning, match="outside Table 2"):
+        spec = spectrum_from_wave_height(name, 12.0, extrapolate=True)
+    with pytest.warns(ValidityRangeWarning):
+        assert spec == spectrum_from_wave_height(name, 12.0, extrapolate=True)
+
+
+def test_sea_signal_refuses_heights_outside_table2_without_a_python_hint():
+    from seahelm.simulation.signals import Sea
+
+    with pytest.raises(ParameterError, match=r"`h3` must be in \[1, 10\] \[m\].*got 12") as err:
+        Sea(h3=12.0)
+    assert "extrapolate" not in str(err.value)
+

@@ -110,7 +110,12 @@ def test_a_worker_killed_mid_sweep_loses_and_duplicates_nothing(cluster, tmp_pat
         if killed or done < 1:
             return
         pids = client.run(os.getpid)
-        busy = [addr for addr, keys in client.processing().items() if keys]
+        busy: list[str] = []
+        for _ in range(100):  # the scheduler may take a moment to hand out the next chunk
+            busy = [addr for addr, keys in client.processing().items() if keys]
+            if busy:
+                break
+            time.sleep(0.05)
         assert busy, "no worker is computing a chunk: the sweep is too short to test a kill"
         pid = pids[busy[0]]
         os.kill(pid, signal.SIGKILL)

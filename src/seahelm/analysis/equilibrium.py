@@ -380,8 +380,8 @@ def steady_turn(params: Any, rudder: Any, rps: float | None = None, *,
         surge, v, r = _turn(plant, trim, float(delta), n, float(rudder_step))
         if not surge > 0.0:
             raise EquilibriumError(
-                f"the steady turn at `rudder` = {delta!r} [rad] has surge speed {surge:.6g} "
-                "[m/s] <= 0")
+                f"the steady turn at `rudder` = {delta!r} [rad] ({math.degrees(delta):.4g} deg) "
+                f"has surge speed {surge:.6g} [m/s] <= 0")
         y = plant.model.outputs(0.0, plant.state(surge, v, r), plant.inputs(float(delta), n),
                                 plant.params)
         speed = y[plant.model.output_index("speed")]
@@ -429,8 +429,9 @@ def _turn(plant: _Plant, trim: np.ndarray, delta: float, n: float | None,
             except EquilibriumError:  # pragma: no cover - brentq's point is within 1e-13
                 return float(zs[0]), float(zs[1]), float(r_star)
         prev_r, prev = r, z
-    raise EquilibriumError(  # pragma: no cover - the loop reaches r L/U_0 = 3
-        f"no steady turn found at `rudder` = {delta!r} [rad] up to r L/U_0 = 3")
+    raise EquilibriumError(
+        f"no steady turn found at `rudder` = {delta!r} [rad] ({math.degrees(delta):.4g} deg) "
+        "up to r L/U_0 = 3")
 
 
 def _turn_in_rudder(plant: _Plant, d_from: float, d_to: float, guess: tuple[float, ...],

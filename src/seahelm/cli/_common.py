@@ -41,6 +41,21 @@ err_console = Console(stderr=True)
 EXIT_OK = 0
 EXIT_FAILURE = 1
 EXIT_BAD_INPUT = 2
+#: Everything ran and was written, but some runs diverged (their time, state and reason are in
+#: the results and the summary).
+EXIT_DIVERGED = 3
+
+
+def exit_if_diverged(n_failed: int) -> None:
+    """Exit with :data:`EXIT_DIVERGED` after a command's output when runs diverged.
+
+    Parameters
+    ----------
+    n_failed : int
+        How many runs did not end ok.
+    """
+    if n_failed:
+        raise typer.Exit(EXIT_DIVERGED)
 
 
 #: The one ``--json`` flag of every command (stdout then holds one JSON object, nothing else).
@@ -158,7 +173,7 @@ def handle_errors(func: F) -> F:
         except typer.Exit:
             raise
         except (ParameterError, ValueError, FileNotFoundError, KeyError) as exc:
-            fail_bad_input(_one_line(exc))
+            fail_bad_input(as_option(_one_line(exc)))
         except OSError as exc:  # a path the user gave: exists, not a directory, no permission
             where = f": {exc.filename}" if getattr(exc, "filename", None) else ""
             fail_bad_input(f"{exc.strerror or type(exc).__name__}{where}")
@@ -246,8 +261,28 @@ def input_file(option: str, path: Path) -> Path:
 
 def _show_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
                   file: Any = None, line: str | None = None) -> None:
-    err_console.print(Text.assemble(("warning: ", "yellow"), _one_line(Exception(str(message)))),
+    err_console.print(Text.assemble(("warning: ", "yellow"),
+                                    as_option(_one_line(Exception(str(message))))),
                       highlight=False, soft_wrap=True)
+
+
+def as_option(message: str) -> str:
+    """A library message that names keywords of the running command's function ("`t_final`:
+    ...", "`speed` must ...") names its options instead ("`--t-final`: ..."): the user typed
+    options, not Python keywords."""
+    import importlib
+    import re
+
+    # the click typer runs on: click itself (typer < 0.26) or typer's vendored copy
+    core = next(c.__module__ for c in typer.Context.__mro__ if c.__name__ == "Context"
+                and c.__module__.endswith(".core"))
+    ctx = importlib.import_module(core[:-len("core")] + "globals").get_current_context(
+        silent=True)
+    if ctx is None:
+        return message
+    options = {p.name: p.opts[0] for p in ctx.command.params
+               if getattr(p, "opts", None) and p.opts[0].startswith("--")}
+    return re.sub(r"`(\w+)`", lambda m: f"`{options.get(m.group(1), m.group(1))}`", message)
 
 
 def _one_line(exc: BaseException) -> str:

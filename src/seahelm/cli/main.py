@@ -18,6 +18,7 @@ from ._common import (
     OneLineErrors,
     ProgressBar,
     check_figure_suffix,
+    exit_if_diverged,
     exit_on_sigterm,
     fail_bad_input,
     console,
@@ -180,6 +181,7 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
         )
         for kind, path in files.items():
             console.print(f"  {kind}: {path}")
+    exit_if_diverged(payload["n_diverged"])
     return payload
 
 

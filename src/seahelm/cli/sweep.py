@@ -17,9 +17,10 @@ from typing import Annotated, Any
 import typer
 from rich.table import Table
 
+from .._validate import check_positive
 from ..errors import ParameterError
 from ._common import JsonFlag, ProgressBar, _writable_directory, console, \
-    handle_errors, input_file, print_json
+    exit_if_diverged, handle_errors, input_file, print_json
 
 __all__ = ["sweep"]
 
@@ -64,6 +65,7 @@ def sweep(
         raise ParameterError(f"`--chunk-size` must be >= 1 [runs], got {chunk_size}")
     if workers is not None and workers < 1:
         raise ParameterError(f"`--workers` must be >= 1, got {workers}")
+    check_positive("--timeout", timeout, "s")
     if workers is not None and scheduler is not None:
         raise ParameterError("give --workers (a local cluster) or --scheduler (a running one), "
                              "not both")
@@ -83,6 +85,7 @@ def sweep(
                "wall_time_s": report.wall_time_s, "summary": report.summary}
     if json_out:
         print_json(json.loads(json.dumps(payload)))
+        exit_if_diverged(report.summary.get("n_diverged", 0))
         return
     summary = report.summary
     table = Table(title=f"{scenario}: statistics over {summary['n_runs']} run(s)",
@@ -109,3 +112,4 @@ def sweep(
                   f"{counts}; {report.computed} chunk(s) computed, {report.skipped} already "
                   f"in the store; {report.wall_time_s:.3g} s", highlight=False, soft_wrap=True)
     console.print(f"  store: {report.store}", highlight=False, soft_wrap=True)
+    exit_if_diverged(summary.get("n_diverged", 0))

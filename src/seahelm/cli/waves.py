@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import typing
+import warnings
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
@@ -57,6 +58,17 @@ def _names(choices: Any) -> str:
 _H3 = Annotated[float, typer.Option("--h3", help=escape("Height of 3 % exceedance waves h3% [m]."))]
 _Table = Annotated[TableVersion, typer.Option(
     "--table", help="Table 2 version: as printed, or with its two misprints corrected.")]
+_Extrapolate = Annotated[bool, typer.Option(
+    "--extrapolate", help=escape("Beyond Table 2 (h3% outside [1, 10] m): extend μ and λ with "
+                                 "the h^(-1/2) law (with a warning) instead of refusing."))]
+
+
+def _table_height(h3: float, extrapolate: bool) -> None:
+    """Refuse an ``--h3`` outside Table 2 unless ``--extrapolate`` (checked before any work)."""
+    from ..environment.sea_state import check_table_height
+
+    if not extrapolate:
+        check_table_height("--h3", h3, "--extrapolate extends the table with the h^(-1/2) law")
 
 
 @app.command("table")
@@ -110,6 +122,7 @@ def spectrum_cmd(
     plot: Annotated[Path | None, typer.Option("--plot", help="Write a PNG of the spectrum.")] = None,
     json_out: JsonFlag = False,
     table: _Table = "corrected",
+    extrapolate: _Extrapolate = False,
 ) -> None:
     """Spectrum for a wave height: D_r, μ, λ, m0 (numerical), peak frequency."""
     from ..environment.sea_state import sea_state_parameters
@@ -118,8 +131,11 @@ def spectrum_cmd(
     if plot is not None:  # checked before any work
         output_file("--plot", plot)
         check_figure_suffix("--plot", plot)
-    params = sea_state_parameters(h3, table=table)
-    spec = spectrum_from_wave_height(model, h3, table=table)
+    _table_height(h3, extrapolate)
+    params = sea_state_parameters(h3, table=table, extrapolate=extrapolate)
+    with warnings.catch_warnings():  # an extrapolated table has been warned of once above
+        warnings.simplefilter("ignore")
+        spec = spectrum_from_wave_height(model, h3, table=table, extrapolate=extrapolate)
     m0 = spectral_moment(spec, 0)
     result: dict[str, Any] = {
         "model": model,
@@ -179,6 +195,7 @@ def sample_cmd(
         help=f"Spectrum with a shaping filter (Rakhmanin–Firsov): {_names(RationalSpectrumName)}.")
     ] = "rakhmanin-firsov-2",
     table: _Table = "corrected",
+    extrapolate: _Extrapolate = False,
 ) -> None:
     """Seeded wave ordinate (and slope) realisations, discretised exactly."""
     from ..environment.shaping import shaping_filter
@@ -189,7 +206,8 @@ def sample_cmd(
         raise ParameterError(f"`runs` must be >= 1, got {runs}")
     if out is not None:
         output_file("--out", out)
-    spec = spectrum_from_wave_height(model, h3, table=table)
+    _table_height(h3, extrapolate)
+    spec = spectrum_from_wave_height(model, h3, table=table, extrapolate=extrapolate)
     filt = shaping_filter(spec, ("ordinate",))
     slope = shaping_filter(spec, ("ordinate", "slope"))
     if np.all(slope.D == 0.0):

@@ -253,6 +253,31 @@ class SeaStateParameters:
     extrapolated: bool = False
 
 
+def check_table_height(name: str, h3: float, hint: str = "") -> None:
+    """Refuse a wave height outside Table 2 (1…10 m) naming the parameter.
+
+    Parameters
+    ----------
+    name : str
+        The parameter as the user wrote it (e.g. ``"h3"``, ``"--h3"``).
+    h3 : float
+        Height of 3 %-exceedance waves h3% [m].
+    hint : str, optional
+        What the caller offers instead, appended after a semicolon (e.g. how to extrapolate).
+
+    Raises
+    ------
+    ParameterError
+        If ``h3`` lies outside Table 2.
+    """
+    hs = table2()["h3"]
+    lo, hi = float(hs[0]), float(hs[-1])
+    if not lo <= float(h3) <= hi:
+        raise ParameterError(
+            f"`{name}` must be in [{lo:g}, {hi:g}] [m] (Sushchenko & Lutsko (2010), Table 2), "
+            f"got {h3!r}" + (f"; {hint}" if hint else ""))
+
+
 def sea_state_parameters(
     h3: float,
     *,
@@ -297,11 +322,8 @@ def sea_state_parameters(
     hs = cols["h3"]
     lo, hi = float(hs[0]), float(hs[-1])
     outside = h < lo or h > hi
-    if outside and not extrapolate:
-        raise ParameterError(
-            f"`h3` must be in [{lo:g}, {hi:g}] [m] (Sushchenko & Lutsko (2010), Table 2), "
-            f"got {h!r}; pass extrapolate=True to use the h^(-1/2) law"
-        )
+    if not extrapolate:
+        check_table_height("h3", h, "pass extrapolate=True to use the h^(-1/2) law")
     if outside:
         warn_validity(
             f"h3 = {h:g} m is outside Table 2 (1…10 m); μ and λ extrapolated with h^(-1/2)"

@@ -268,14 +268,15 @@ class _RakhmaninFirsov(RationalSpectrum):
 
     @classmethod
     def from_wave_height(
-        cls, h3: float, *, level: str = "mean", table: str = "corrected", **_: Any
+        cls, h3: float, *, level: str = "mean", table: str = "corrected",
+        extrapolate: bool = False, **_: Any
     ) -> "_RakhmaninFirsov":
         """Build from h3% [m] with D_r = 0.143 (h3%/2)² and μ, λ from Table 2.
 
-        See :func:`seahelm.environment.sea_state.sea_state_parameters` for ``level`` and
-        ``table`` (default: the corrected Table 2).
+        See :func:`seahelm.environment.sea_state.sea_state_parameters` for ``level``,
+        ``table`` (default: the corrected Table 2) and ``extrapolate`` (beyond 1…10 m).
         """
-        p = sea_state_parameters(h3, level=level, table=table)
+        p = sea_state_parameters(h3, level=level, table=table, extrapolate=extrapolate)
         return cls(variance=p.variance, decay_rate=p.decay_rate, resonance_frequency=p.resonance_frequency)
 
     @property
@@ -692,8 +693,8 @@ def slope_acceleration_spectrum(
 # ---------------------------------------------------------------------------------------------
 
 
-def _default_peak_period(h3: float, level: str, table: str) -> float:
-    p = sea_state_parameters(h3, level=level, table=table)
+def _default_peak_period(h3: float, level: str, table: str, extrapolate: bool) -> float:
+    p = sea_state_parameters(h3, level=level, table=table, extrapolate=extrapolate)
     return 2.0 * math.pi / p.resonance_frequency
 
 
@@ -730,6 +731,7 @@ class Bretschneider(WaveSpectrum):
         peak_period: float | None = None,
         level: str = "mean",
         table: str = "corrected",
+        extrapolate: bool = False,
         **_: Any,
     ) -> "Bretschneider":
         """Hs = 4√D_r from h3%; Tp given, or 2π/λ with λ from Table 2 (``level``, ``table``).
@@ -744,6 +746,8 @@ class Bretschneider(WaveSpectrum):
             Which Table 2 column gives λ (default "mean").
         table : {"corrected", "printed"}, optional
             Version of Table 2 (default "corrected").
+        extrapolate : bool, optional
+            Extend Table 2 beyond 1…10 m with the h^(-1/2) law (default False: refuse).
         **_
             Ignored (accepted for a uniform interface).
 
@@ -751,7 +755,8 @@ class Bretschneider(WaveSpectrum):
         -------
         Bretschneider
         """
-        tp = _default_peak_period(h3, level, table) if peak_period is None else peak_period
+        tp = (_default_peak_period(h3, level, table, extrapolate) if peak_period is None
+              else peak_period)
         return cls(significant_height=significant_height_from_h3(h3), peak_period=tp)
 
     @property
@@ -914,6 +919,7 @@ class Jonswap(Bretschneider):
         peak_period: float | None = None,
         level: str = "mean",
         table: str = "corrected",
+        extrapolate: bool = False,
         **kwargs: Any,
     ) -> "Jonswap":
         """Hs = 4√D_r from h3%; Tp given or 2π/λ (Table 2); other keywords passed on.
@@ -928,6 +934,8 @@ class Jonswap(Bretschneider):
             Which Table 2 column gives λ (default "mean").
         table : {"corrected", "printed"}, optional
             Version of Table 2 (default "corrected").
+        extrapolate : bool, optional
+            Extend Table 2 beyond 1…10 m with the h^(-1/2) law (default False: refuse).
         **kwargs
             Other fields of :class:`Jonswap` (``gamma``, ``sigma_a``, ``sigma_b``,
             ``exact_normalization``).
@@ -936,7 +944,8 @@ class Jonswap(Bretschneider):
         -------
         Jonswap
         """
-        tp = _default_peak_period(h3, level, table) if peak_period is None else peak_period
+        tp = (_default_peak_period(h3, level, table, extrapolate) if peak_period is None
+              else peak_period)
         return cls(significant_height=significant_height_from_h3(h3), peak_period=tp, **kwargs)
 
     def _enhancement(self, w: np.ndarray) -> np.ndarray:

@@ -167,6 +167,7 @@ class ManeuverJob:
             When the manoeuvre rejects a value (naming the scenario file and the key).
         """
         from ..analysis import maneuvers
+        from ..analysis.equilibrium import EquilibriumError
         from ..analysis.imo import imo_check
 
         functions = {"turning": maneuvers.turning_circle, "zigzag": maneuvers.zigzag,
@@ -177,13 +178,13 @@ class ManeuverJob:
             out = functions[self.kind](ship, **self.options)
         except ScenarioError:
             raise
-        except ParameterError as exc:
+        except (ParameterError, EquilibriumError) as exc:
             raise self._error(exc) from exc
         for result in _results(out):
             result.metrics.attrs.update(self.metadata)
         return out
 
-    def _error(self, exc: ParameterError) -> ScenarioError:
+    def _error(self, exc: Exception) -> ScenarioError:
         source = str(self.metadata.get("scenario_source", "<string>"))
         message = str(exc)
         arg = re.search(r"`(\w+)`", message)

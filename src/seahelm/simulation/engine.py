@@ -58,7 +58,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = ["RunStatus", "simulate", "compile_closed_loop", "kernel_cache_dir", "import_generated",
            "code_fingerprint",
-           "check_record_memory", "physical_memory"]
+           "check_record_memory", "physical_memory", "RecordingTooLarge"]
 
 
 class RunStatus(enum.IntEnum):
@@ -338,6 +338,23 @@ def physical_memory() -> int | None:
         return None
 
 
+class RecordingTooLarge(ParameterError):
+    """The recorded time series would not fit in memory (raised before anything is allocated).
+
+    ``need`` and ``total`` [B] are the recording's size and the machine's memory, so a caller
+    can name its own options in the advice (a manoeuvre's approach speed, say).
+    """
+
+    def __init__(self, message: str, *, need: int, total: int) -> None:
+        super().__init__(message)
+        self.need, self.total = need, total
+
+    def size_text(self) -> str:
+        """"62.3 GB, more than 40% of this machine's 25.3 GB memory"."""
+        return (f"{self.need / 1e9:.3g} GB, more than {RECORD_MEMORY_SHARE:.0%} of this "
+                f"machine's {self.total / 1e9:.3g} GB memory")
+
+
 def check_record_memory(n_runs: int, n_rec: int, channels: int) -> None:
     """Refuse, before anything is allocated, recordings that cannot fit in memory.
 
@@ -349,19 +366,20 @@ def check_record_memory(n_runs: int, n_rec: int, channels: int) -> None:
 
     Raises
     ------
-    ParameterError
-        If the recorded arrays (8 B a value) would take more than
-        :data:`RECORD_MEMORY_SHARE` of the machine's memory.
+    RecordingTooLarge
+        A :class:`~seahelm.errors.ParameterError`: the recorded arrays (8 B a value) would
+        take more than :data:`RECORD_MEMORY_SHARE` of the machine's memory.
     """
     need = 8 * n_runs * n_rec * channels
     total = physical_memory()
     if total is None or need <= RECORD_MEMORY_SHARE * total:
         return
-    raise ParameterError(
+    raise RecordingTooLarge(
         f"`record_every`: the recorded time series would need {need / 1e9:.3g} GB ({n_runs:,} "
         f"run(s) x {n_rec:,} records x {channels} channels x 8 B), more than "
         f"{RECORD_MEMORY_SHARE:.0%} of this machine's {total / 1e9:.3g} GB memory; record fewer "
-        "samples (a larger record_every), fewer runs or a shorter t_final")
+        "samples (a larger record_every), fewer runs or a shorter t_final", need=need,
+        total=total)
 
 
 def _runs(*sizes: tuple[str, int]) -> int:

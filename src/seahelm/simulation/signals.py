@@ -135,7 +135,10 @@ class Sea:
 
     def __post_init__(self) -> None:
         check_positive("h3", self.h3, "m")
+        from ..environment.sea_state import check_table_height
         from ..environment.shaping import QUANTITIES
+
+        check_table_height("h3", self.h3)
 
         if self.quantity not in ("ordinate", "ordinate_rate", "slope"):
             raise ParameterError(

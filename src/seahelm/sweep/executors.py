@@ -14,6 +14,7 @@ from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING, Any
 
 from .._optional import optional_import
+from .._validate import check_positive
 from ..errors import ParameterError
 from .chunks import SweepSpec, compute_chunk
 
@@ -74,6 +75,7 @@ class DaskCluster:
         if sum(x is not None for x in (workers, scheduler, client)) != 1:
             raise ParameterError("give `workers` (a local cluster), `scheduler` (an existing "
                                  "one) or `client`, one of them")
+        check_positive("timeout", timeout, "s")
         self.n_workers = workers
         self.scheduler = scheduler
         self.timeout = float(timeout)

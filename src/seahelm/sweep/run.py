@@ -214,13 +214,15 @@ def summary_statistics(ds: Any) -> dict[str, Any]:
     -------
     dict
         ``{"n_runs", "n_ok", "n_failed", "metrics": [{"name", "where", "n", "mean", "std",
-        "min", "q05", ..., "max"}, ...]}`` (NaN written as None).
+        "min", "q05", ..., "max"}, ...]}`` (NaN written as None); simulation sweeps also
+        ``n_diverged`` (= ``n_failed``: runs whose status is not ok), manoeuvre sweeps count
+        incomplete manoeuvres as failed.
     """
     out: dict[str, Any] = {"n_runs": int(ds.sizes["run"])}
     if "status" in ds:
         status = np.asarray(ds["status"].values)
         out["n_ok"] = int(np.sum(status == 0))
-        out["n_failed"] = int(np.sum(status != 0))
+        out["n_failed"] = out["n_diverged"] = int(np.sum(status != 0))
     elif "complete" in ds and ds["complete"].dtype == bool:
         flags = np.asarray(ds["complete"].values)
         while flags.ndim > 1:

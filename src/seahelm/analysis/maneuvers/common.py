@@ -51,6 +51,7 @@ from ...vessels.mariner import MARINER_SERVO
 from ...vessels.mmg import KVLCC2_FULL_SERVO, KVLCC2_L7_SERVO
 from ..equilibrium import (
     DEFAULT_MODELS,
+    EquilibriumError,
     approach_state,
     straight_run_speed,
 )
@@ -340,6 +341,38 @@ def side_axis(sides: Any) -> Axis:
                 attrs={"long_name": "side of the turn: +1 starboard, -1 port"})
 
 
+def _identified_near(ship: Any) -> str:
+    """"; its parameter set was identified near 1.18 m/s" (empty without a design speed)."""
+    design = ship.approach_speed
+    return (f"; the parameter set of '{ship.name}' was identified near {design:.4g} m/s"
+            if math.isfinite(design) else "")
+
+
+def _straight_run_speed(ship: Any, rps: float) -> float:
+    try:
+        return straight_run_speed(ship.params, rps, model=ship.model)
+    except EquilibriumError as exc:
+        raise EquilibriumError(f"`rps`: no straight run of '{ship.name}' at {rps:.6g} 1/s "
+                               f"({exc})") from None
+
+
+def steady_yaw_rate(ship: Any, rudder: Any, approach: Approach) -> np.ndarray:
+    """|r| [rad/s] of the steady turns at ``rudder`` [rad] from ``approach``
+    (:func:`~seahelm.analysis.equilibrium.steady_turn`), an error naming the approach and
+    `t_final` (which skips the estimate that needs it) if there is none."""
+    from ..equilibrium import steady_turn
+
+    try:
+        return np.abs(steady_turn(ship.params, rudder, approach.rps, model=ship.model,
+                                  max_rudder=ship.max_rudder).yaw_rate)
+    except EquilibriumError as exc:
+        deg = ", ".join(f"{math.degrees(d):.4g}" for d in np.atleast_1d(rudder))
+        raise EquilibriumError(
+            f"`t_final`: no steady turn of '{ship.name}' at rudder {deg} deg from the approach "
+            f"at {approach.speed:.6g} m/s, to estimate the manoeuvre's duration ({exc})"
+            f"{_identified_near(ship)}; give `t_final` to skip the estimate") from None
+
+
 class Plan:
     """A grid of runs: ships × approach speeds × the manoeuvre's own axes (C order)."""
 
@@ -359,8 +392,8 @@ class Plan:
                 f"got {rps!r} [1/s]")
         if rps is not None:
             rps_axis = value_axis("rps", rps, "1/s", positive=True)
-            speeds = np.array([[straight_run_speed(s.params, n, model=s.model)
-                                for n in rps_axis.values] for s in self.ships])
+            speeds = np.array([[_straight_run_speed(s, n) for n in rps_axis.values]
+                               for s in self.ships])
             speed_values = speeds[0] if n_ships == 1 else rps_axis.values
             speed_axis = Axis(name="approach_speed" if n_ships == 1 else "approach_rps",
                               values=speed_values, units="m/s" if n_ships == 1 else "1/s",
@@ -382,7 +415,12 @@ class Plan:
                         f"'{s.name}''s parameter set ({design:.4g} m/s): its hydrodynamic "
                         "coefficients were identified near that speed", ValidityRangeWarning,
                         stacklevel=3)
-                self.approaches[(i, j)] = steady_approach(s.model, s.params, float(U))
+                try:
+                    self.approaches[(i, j)] = steady_approach(s.model, s.params, float(U))
+                except EquilibriumError as exc:
+                    raise EquilibriumError(
+                        f"`speed`: no straight approach of '{s.name}' at {U:.6g} m/s "
+                        f"({exc}){_identified_near(s)}") from None
         if not speed_axis.is_dim and n_ships == 1:
             speed_axis.values = speeds[0].copy()
         self.axes = [ship_axis, speed_axis, *axes]
@@ -436,6 +474,7 @@ class Plan:
         t = 0 on (the approach is the calm-water one).
         """
         from ...simulation.batch import BatchAxis, BatchLayout, RunBatch, simulate_batch
+        from ...simulation.engine import RecordingTooLarge
 
         usual = usual_time_step(self.ships, [a.speed for a in self.approaches.values()])
         if dt > STEP_VALIDITY * usual:
@@ -461,7 +500,15 @@ class Plan:
             controller_dt=controller_every * dt,
             record_every=record_every, metadata=dict(metadata or {}), layout=layout,
             **_conditions_kwargs(conditions, self.model))
-        return simulate_batch(batch)
+        try:
+            return simulate_batch(batch)
+        except RecordingTooLarge as exc:  # name the manoeuvre's options, not the engine's
+            slowest = min(a.speed for a in self.approaches.values())
+            raise ParameterError(
+                f"`t_final`: {self.n_runs} run(s) of {t_final:.6g} s (at the slowest approach "
+                f"speed, {slowest:.4g} m/s) would record {exc.size_text()}; give a faster "
+                "approach (`speed` or `rps`) or a shorter `t_final`"
+            ) from None
 
     def runs_dataset(self, result: "SimResult") -> "xr.Dataset":
         """The result's Dataset with the grid's coordinates; a single run loses ``run``."""

@@ -30,7 +30,6 @@ from .common import (
     ManeuverResult,
     Plan,
     check_rudder,
-    default_time_step,
     usual_time_step,
     final_time,
     record_every_for,

@@ -40,7 +40,6 @@ from .common import (
     ManeuverResult,
     Plan,
     check_rudder,
-    default_time_step,
     usual_time_step,
     final_time,
 )

@@ -37,16 +37,15 @@ from typing import Any
 import numpy as np
 
 from ...errors import ParameterError
-from ..equilibrium import steady_turn
 from .common import (
     ManeuverResult,
     Plan,
     check_rudder,
-    default_time_step,
     usual_time_step,
     final_time,
     record_every_for,
     side_axis,
+    steady_yaw_rate,
     value_axis,
 )
 
@@ -81,8 +80,7 @@ def _estimate_t_final(plan: Plan, signed: dict[tuple[int, int], list[float]],
     for (i_ship, j_speed), rudders in signed.items():
         ship = plan.ships[i_ship]
         a = plan.approaches[(i_ship, j_speed)]
-        rates = np.abs(steady_turn(ship.params, np.array(rudders), a.rps, model=ship.model,
-                                   max_rudder=ship.max_rudder).yaw_rate)
+        rates = steady_yaw_rate(ship, np.array(rudders), a)
         travel = max(abs(d - a.rudder) for d in rudders) / ship.servo.max_rate
         t = max(t, travel + 1.3 * heading_change / float(np.min(rates)))
     return t

@@ -47,17 +47,16 @@ import numpy as np
 from ..._validate import as_float_array
 from ...control.zigzag import ZIGZAG, ZIGZAG_RPS, ZigZagParams, ZigZagRpsParams
 from ...errors import ParameterError
-from ..equilibrium import steady_turn
 from .common import (
     Axis,
     ManeuverResult,
     Plan,
     check_rudder,
-    default_time_step,
     usual_time_step,
     final_time,
     record_every_for,
     side_axis,
+    steady_yaw_rate,
 )
 
 __all__ = ["ZigZagMetrics", "zigzag_metrics", "zigzag"]
@@ -290,8 +289,7 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
                float(first[i] * amp[i]))
         if key not in cache:
             a, s = plan.approach(i), plan.ship(i)
-            cache[key] = abs(steady_turn(s.params, key[2], a.rps, model=s.model,
-                                         max_rudder=s.max_rudder).yaw_rate)
+            cache[key] = float(steady_yaw_rate(s, key[2], a))
         rates[i] = cache[key]
     swing = np.array([2.0 * amp[i] / plan.ship(i).servo.max_rate for i in range(n)])
     if t_final is None:
