@@ -414,6 +414,25 @@ class Plan:
         a = next(a for a in self.axes if a.name == axis)
         return a.values[self.index[run][axis]]
 
+    @functools.cached_property
+    def _positions(self) -> np.ndarray:
+        """Each run's position along every axis, (axes, runs) in C order (as ``index``)."""
+        return np.indices(self.shape).reshape(len(self.shape), -1)
+
+    def run_values(self, axis: str) -> np.ndarray:
+        """An axis's value of every run, (runs,): :meth:`value` for all runs at once."""
+        pos = next(k for k, a in enumerate(self.axes) if a.name == axis)
+        return self.axes[pos].values[self._positions[pos]]
+
+    def run_approaches(self) -> list[Approach]:
+        """The approach of every run: :meth:`approach` for all runs at once."""
+        ship, speed = self._positions[0].tolist(), self._positions[1].tolist()
+        return [self.approaches[key] for key in zip(ship, speed)]
+
+    def run_lengths(self) -> np.ndarray:
+        """Ship length L of every run [m], (runs,)."""
+        return np.array([s.length for s in self.ships])[self._positions[0]]
+
     @property
     def dims(self) -> tuple[str, ...]:
         return tuple(a.name for a in self.axes if a.is_dim)

@@ -161,14 +161,13 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
     t_final = final_time(float(t_final), float(dt))
     record_every = record_every_for(float(dt), record_dt)
 
-    n = plan.n_runs
-    x0 = np.stack([plan.approach(i).state for i in range(n)])
-    rudder0 = np.array([[plan.approach(i).rudder] for i in range(n)])
-    orders = np.array([plan.value(i, "side") * plan.value(i, "rudder") for i in range(n)])
+    approaches = plan.run_approaches()
+    x0 = np.stack([a.state for a in approaches])
+    rudder0 = np.array([[a.rudder] for a in approaches])
+    orders = plan.run_values("side") * plan.run_values("rudder")
     reference: dict[str, Any] = {"rudder_command": orders.reshape(-1, 1, 1)}
     if plan.ships[0].has_propeller:
-        reference["propeller_rps"] = np.array(
-            [plan.approach(i).rps for i in range(n)]).reshape(-1, 1, 1)
+        reference["propeller_rps"] = np.array([a.rps for a in approaches]).reshape(-1, 1, 1)
     result = plan.simulate(x0=x0, actuator_x0=rudder0, reference=reference, t_final=t_final,
                            dt=dt, record_every=record_every,
                            metadata={"maneuver": "turning-circle"},
@@ -241,10 +240,10 @@ def _metrics(plan: Plan, result: Any) -> Any:
     r = result["yaw_rate"]
     beta = result["drift_angle"]
     n = plan.n_runs
-    U0 = np.array([plan.approach(i).speed for i in range(n)])
-    rps = np.array([np.nan if plan.approach(i).rps is None else plan.approach(i).rps
-                    for i in range(n)])
-    length = np.array([plan.ship(i).length for i in range(n)])
+    approaches = plan.run_approaches()
+    U0 = np.array([a.speed for a in approaches])
+    rps = np.array([np.nan if a.rps is None else a.rps for a in approaches])
+    length = plan.run_lengths()
     steady_r = r[:, -1]
     steady_U = speed[:, -1]
     radius = np.where(steady_r != 0.0, steady_U / np.abs(steady_r), np.inf)
