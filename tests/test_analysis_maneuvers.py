@@ -168,6 +168,24 @@ def test_batched_equals_one_by_one():
                                        rtol=0, atol=1e-12)
 
 
+def test_single_run_metrics_built_directly_equal_xarrays_construction(monkeypatch):
+    """A single run's metrics skip xarray's merge (common._indexless_dataset); the Dataset is
+    the one xr.Dataset(...) builds: same variables in the same order, values, attributes."""
+    from seahelm.analysis.maneuvers import common
+
+    def calls():
+        return (turning_circle("kvlcc2-l7", 35 * DEG, sides=1, t_final=40.0).metrics,
+                pull_out("kvlcc2-l7", 20 * DEG, sides=1, t_final=40.0).metrics)
+
+    fast = calls()
+    monkeypatch.setattr(common, "_indexless_dataset", lambda *args: None)
+    slow = calls()
+    for f, s in zip(fast, slow):
+        assert f.identical(s)
+        assert list(f.variables) == list(s.variables) and repr(f) == repr(s)
+        assert f["message"].dtype == s["message"].dtype and not f.indexes
+
+
 def test_speed_and_rps_dimensions():
     n = self_propulsion_rps(KVLCC2_L7, 1.0)
     by_rps = turning_circle("kvlcc2-l7", 35 * DEG, sides=1, rps=n, t_final=10.0)

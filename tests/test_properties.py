@@ -52,6 +52,12 @@ def test_params_round_trip_through_arrays(gain, t1, t2, t3, speed):
     p = Nomoto2Params(gain=gain, t1=t1, t2=t2, t3=t3, speed=speed)
     assert Nomoto2Params.from_array(p.to_array()) == p
     assert isinstance(p, Params)
+    # packed once per (frozen) instance; every call gets its own writeable copy
+    a = p.to_array()
+    a[:] = -1.0
+    again = p.to_array()
+    assert again.flags.writeable and again is not a
+    assert np.array_equal(again[:5], [gain, t1, t2, t3, speed])
 
 
 @settings(max_examples=25, deadline=None)
@@ -72,3 +78,23 @@ def test_steps_signal_takes_the_last_value_switched_on(times, t):
     sig = Steps(tuple(times), tuple(float(v) for v in values))
     expected = values[max(sum(tt <= t for tt in times) - 1, 0)]
     assert float(sig(np.array([t]))[0]) == expected
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.integers(-3, 3),
+                 st.lists(st.floats(allow_nan=True, allow_infinity=True), max_size=3)))
+def test_scalar_fast_paths_of_the_checks_agree_with_the_array_checks(value):
+    """check_finite/check_positive decide a Python float without numpy: the same verdict."""
+    import pytest
+
+    from seahelm._validate import check_finite, check_positive
+    from seahelm.errors import ParameterError
+
+    arr = np.asarray(value, dtype=float)
+    for check, ok in ((check_finite, np.isfinite(arr).all()),
+                      (check_positive, np.isfinite(arr).all() and (arr > 0).all())):
+        if ok:
+            check("x", value, "m")
+        else:
+            with pytest.raises(ParameterError, match="`x` must be"):
+                check("x", value, "m")

@@ -36,8 +36,10 @@ def check_finite(name: str, value: Any, unit: str = "") -> None:
     unit : str, optional
         Unit shown in brackets in the error message (default: none).
     """
+    if isinstance(value, float) and math.isfinite(value):  # (the common scalar, quickly)
+        return
     arr = np.asarray(value, dtype=float)
-    if not np.all(np.isfinite(arr)):
+    if not np.isfinite(arr).all():
         raise ParameterError(f"`{name}` must be finite{_unit(unit)}, got {_fmt(value)}")
 
 
@@ -53,6 +55,8 @@ def check_positive(name: str, value: Any, unit: str = "") -> None:
     unit : str, optional
         Unit shown in brackets in the error message (default: none).
     """
+    if isinstance(value, float) and 0.0 < value < math.inf:  # (the common scalar, quickly)
+        return
     check_finite(name, value, unit)
     if not np.all(np.asarray(value, dtype=float) > 0):
         raise ParameterError(f"`{name}` must be > 0{_unit(unit)}, got {_fmt(value)}")

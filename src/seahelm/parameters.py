@@ -190,6 +190,18 @@ class Params:
     def to_array(self) -> np.ndarray:
         """Pack the fields, in declaration order, into a float64 array (SI units; a vector field
         gives its elements in order)."""
+        return self._packed().copy()
+
+    def _packed(self) -> np.ndarray:
+        """:meth:`to_array`, read-only, packed once per instance (the fields are frozen)."""
+        packed = self.__dict__.get("_packed_values")
+        if packed is None:
+            packed = self._pack()
+            packed.setflags(write=False)
+            object.__setattr__(self, "_packed_values", packed)
+        return packed
+
+    def _pack(self) -> np.ndarray:
         out: list[float] = []
         for n, size in zip(self.field_names(), self.field_sizes()):
             value = getattr(self, n)
@@ -373,7 +385,7 @@ def stack_params(params: "Params | Sequence[Params]", cls: type[Params] | None =
         raise ParameterError(
             f"expected {cls.__name__} parameters, got {type(params[0]).__name__}"
         )
-    return np.stack([p.to_array() for p in params])
+    return np.stack([p._packed() for p in params])
 
 
 def as_records(rows: Any, cls: type[Params]) -> np.ndarray:

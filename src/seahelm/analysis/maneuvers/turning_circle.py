@@ -159,14 +159,13 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
     t_final = final_time(float(t_final), float(dt))
     record_every = record_every_for(float(dt), record_dt)
 
-    n = plan.n_runs
-    x0 = np.stack([plan.approach(i).state for i in range(n)])
-    rudder0 = np.array([[plan.approach(i).rudder] for i in range(n)])
-    orders = np.array([plan.value(i, "side") * plan.value(i, "rudder") for i in range(n)])
+    approaches = plan.run_approaches()
+    x0 = np.stack([a.state for a in approaches])
+    rudder0 = np.array([[a.rudder] for a in approaches])
+    orders = plan.run_values("side") * plan.run_values("rudder")
     reference: dict[str, Any] = {"rudder_command": orders.reshape(-1, 1, 1)}
     if plan.ships[0].has_propeller:
-        reference["propeller_rps"] = np.array(
-            [plan.approach(i).rps for i in range(n)]).reshape(-1, 1, 1)
+        reference["propeller_rps"] = np.array([a.rps for a in approaches]).reshape(-1, 1, 1)
     result = plan.simulate(x0=x0, actuator_x0=rudder0, reference=reference, t_final=t_final,
                            dt=dt, record_every=record_every,
                            metadata={"maneuver": "turning-circle"},
@@ -184,27 +183,38 @@ def check_positive_change(heading_change: float) -> None:
             f"{heading_change!r}")
 
 
-def _crossings(change: np.ndarray, level: float) -> tuple[np.ndarray, np.ndarray]:
-    """First sample k with ``change >= level`` per run and the weight w of sample k in the
-    linear interpolation with sample k − 1 (k = −1, w = NaN where never reached)."""
-    hit = change >= level
-    k = np.argmax(hit, axis=1)
+def _crossings(change: np.ndarray, levels: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """First sample k with ``change >= level`` per level and run, and the weight w of sample k
+    in the linear interpolation with sample k − 1 (k = −1, w = NaN where never reached).
+
+    ``change`` has the shape (runs, steps), ``levels`` (levels,); k and w (levels, runs).
+    """
+    hit = change >= levels[:, None, None]
+    k = np.argmax(hit, axis=2)
     rows = np.arange(change.shape[0])
-    k = np.where(hit[rows, k], k, -1)
+    k = np.where(np.take_along_axis(hit, k[:, :, None], axis=2)[:, :, 0], k, -1)
     prev = change[rows, np.maximum(k - 1, 0)]
     cur = change[rows, np.maximum(k, 0)]
     with np.errstate(invalid="ignore", divide="ignore"):
-        w = np.where(k > 0, (level - prev) / (cur - prev), 1.0)
+        w = np.where(k > 0, (levels[:, None] - prev) / (cur - prev), 1.0)
     return k, np.where(k >= 0, w, np.nan)
 
 
-def _at_crossing(values: np.ndarray, k: np.ndarray, w: np.ndarray) -> np.ndarray:
-    """Values (runs, steps) interpolated at the crossings of :func:`_crossings`."""
-    rows = np.arange(values.shape[0])
-    cur = values[rows, np.maximum(k, 0)]
-    prev = values[rows, np.maximum(k - 1, 0)]
+def _at_crossings(values: np.ndarray, k: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """Signals (signals, runs, steps) interpolated at the crossings of :func:`_crossings`:
+    (signals, levels, runs)."""
+    rows = np.arange(values.shape[1])
+    cur = values[:, rows, np.maximum(k, 0)]
+    prev = values[:, rows, np.maximum(k - 1, 0)]
     out = np.where(k > 0, prev + w * (cur - prev), cur)
     return np.where(k >= 0, out, np.nan)
+
+
+#: Heading changes of the events: 90 deg (advance, transfer), 180 deg (tactical diameter),
+#: 10 deg (initial turning).
+_LEVELS = np.array([0.5 * math.pi, math.pi, _DEG10])
+_NOT_STEADY = ("ok; the turn was not yet steady at the end (yaw rate still changing by > 1 % "
+               "over the last 90 deg): steady values are the last sample's")
 
 
 def _metrics(plan: Plan, result: Any) -> Any:
@@ -216,38 +226,41 @@ def _metrics(plan: Plan, result: Any) -> Any:
     along, across = dn * c0 + de * s0, np.abs(-dn * s0 + de * c0)
     change = np.abs(psi - psi[:, :1])
     times = np.broadcast_to(t, psi.shape)
-    k90, w90 = _crossings(change, 0.5 * math.pi)
-    k180, w180 = _crossings(change, math.pi)
-    k10, w10 = _crossings(change, _DEG10)
+    k, w = _crossings(change, _LEVELS)
     dist = track_distance(north, east)
-    advance = _at_crossing(along, k90, w90)
-    transfer = _at_crossing(across, k90, w90)
-    time_90 = _at_crossing(times, k90, w90)
-    tactical_diameter = _at_crossing(across, k180, w180)
-    time_180 = _at_crossing(times, k180, w180)
-    time_10 = _at_crossing(times, k10, w10)
-    distance_10 = _at_crossing(dist, k10, w10)
+    # every signal at every event (one gather: a few are not needed, all cost one numpy call)
+    (along_at, across_at, time_at, dist_at) = _at_crossings(
+        np.stack([along, across, times, dist]), k, w)
+    advance, transfer, time_90 = along_at[0], across_at[0], time_at[0]
+    tactical_diameter, time_180 = across_at[1], time_at[1]
+    time_10, distance_10 = time_at[2], dist_at[2]
     speed = result["speed"]
     r = result["yaw_rate"]
     beta = result["drift_angle"]
     n = plan.n_runs
-    U0 = np.array([plan.approach(i).speed for i in range(n)])
-    rps = np.array([np.nan if plan.approach(i).rps is None else plan.approach(i).rps
-                    for i in range(n)])
-    length = np.array([plan.ship(i).length for i in range(n)])
+    approaches = plan.run_approaches()
+    U0 = np.array([a.speed for a in approaches])
+    rps = np.array([np.nan if a.rps is None else a.rps for a in approaches])
+    length = plan.run_lengths()
     steady_r = r[:, -1]
     steady_U = speed[:, -1]
     radius = np.where(steady_r != 0.0, steady_U / np.abs(steady_r), np.inf)
-    steady = np.zeros(n, dtype=bool)
-    for i in range(n):
-        back = np.flatnonzero(change[i] <= change[i, -1] - 0.5 * math.pi)
-        if back.size and np.isfinite(steady_r[i]):
-            r_back = r[i, back[-1]]
-            steady[i] = abs(steady_r[i] - r_back) <= 0.01 * abs(steady_r[i])
+    # steady: |r| changed by <= 1 % since the last sample 90 deg of heading before the end
+    back = change <= change[:, -1:] - 0.5 * math.pi
+    last_back = back.shape[1] - 1 - np.argmax(back[:, ::-1], axis=1)
+    r_back = r[np.arange(n), last_back]
+    with np.errstate(invalid="ignore"):
+        steady = (back.any(axis=1) & np.isfinite(steady_r)
+                  & (np.abs(steady_r - r_back) <= 0.01 * np.abs(steady_r)))
     messages = []
     complete = np.zeros(n, dtype=bool)
     status = result.messages()
+    reached = ~np.isnan(time_10) & ~np.isnan(time_90) & ~np.isnan(time_180)
     for i in range(n):
+        if reached[i] and status[i] == "ok":  # (most runs: nothing to say)
+            complete[i] = True
+            messages.append("ok" if steady[i] else _NOT_STEADY)
+            continue
         missing = [f"{name} heading change" for name, value in
                    (("10 deg", time_10[i]), ("90 deg", time_90[i]), ("180 deg", time_180[i]))
                    if np.isnan(value)]
@@ -259,8 +272,7 @@ def _metrics(plan: Plan, result: Any) -> Any:
                         f"(final heading change {math.degrees(change[i, -1]):.4g} deg)")
         complete[i] = not text
         if not steady[i] and not text:
-            text.append("ok; the turn was not yet steady at the end (yaw rate still changing "
-                        "by > 1 % over the last 90 deg): steady values are the last sample's")
+            text.append(_NOT_STEADY)
         messages.append("; ".join(text) if text else "ok")
     variables = {
         "advance": (advance, "m", "advance at 90 deg heading change"),
