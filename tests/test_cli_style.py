@@ -162,7 +162,8 @@ def test_choices_agree_with_the_library():
     from seahelm.cli import identify, maneuver, waves
     from seahelm.environment.sea_state import TABLE2
     from seahelm.environment.spectra import SPECTRA, RationalSpectrum
-    from seahelm.identification.steady_turning import FIT_METHODS, REDUCED_FORMS
+    from seahelm.identification.fitting import FIT_METHODS
+    from seahelm.identification.reduced_forms import REDUCED_FORMS
 
     args = typing.get_args
     assert set(args(maneuver.ShipName)) == set(STEERING_GEAR)

@@ -151,7 +151,6 @@ KNOWN_LONG = frozenset({
     "seahelm.environment.loads",
     "seahelm.environment.shaping",
     "seahelm.environment.spectra",
-    "seahelm.identification.steady_turning",
     "seahelm.scenario.runs",
     "seahelm.simulation.engine",
     "seahelm.vessels.catamaran",
