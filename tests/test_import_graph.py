@@ -147,7 +147,6 @@ KNOWN_LONG = frozenset({
     "seahelm.analysis.averaging",
     "seahelm.analysis.equilibrium",
     "seahelm.analysis.maneuvers.common",
-    "seahelm.control.final_state",
     "seahelm.environment.loads",
     "seahelm.environment.shaping",
     "seahelm.environment.spectra",
