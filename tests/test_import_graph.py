@@ -144,7 +144,6 @@ MAX_LINES = 600
 #: vessels.catamaran and simulation.engine are under performance work elsewhere (not edited
 #: here); the others wait for their split into components and studies (issue 12).
 KNOWN_LONG = frozenset({
-    "seahelm.analysis.averaging",
     "seahelm.analysis.equilibrium",
     "seahelm.analysis.maneuvers.common",
     "seahelm.environment.loads",

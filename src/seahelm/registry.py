@@ -56,7 +56,8 @@ CONTROLLERS: dict[str, str] = {
 }
 
 
-def lookup(kind: str, table: Mapping[str, Any], name: Any, cls: type | tuple[type, ...]) -> Any:
+def lookup(kind: str, table: Mapping[str, Any], name: Any, cls: type | tuple[type, ...],
+           *, error: type[ValueError] = ValueError) -> Any:
     """A strategy by name from a registry ``table``, or the strategy object itself.
 
     The one lookup rule of every registry: an instance of ``cls`` is returned as is, a name is
@@ -73,6 +74,8 @@ def lookup(kind: str, table: Mapping[str, Any], name: Any, cls: type | tuple[typ
         A key of ``table``, or an instance of ``cls``.
     cls : type or tuple of type
         The strategy type(s) accepted as they are.
+    error : type, optional
+        ValueError or a subclass (e.g. :class:`~seahelm.errors.ParameterError`) to raise.
 
     Returns
     -------
@@ -87,7 +90,7 @@ def lookup(kind: str, table: Mapping[str, Any], name: Any, cls: type | tuple[typ
     if isinstance(name, cls):
         return name
     if not isinstance(name, str) or name not in table:
-        raise ValueError(f"unknown {kind} '{name}'; valid: {', '.join(sorted(table))}")
+        raise error(f"unknown {kind} '{name}'; valid: {', '.join(sorted(table))}")
     entry = table[name]
     if isinstance(entry, str):
         module, attr = entry.split(":")

@@ -6,5 +6,6 @@ and metrics tables. The components it builds on (vessels, actuators, control, en
 identification, analysis, simulation) know nothing about it; only the studies and the CLI
 import ``seahelm.studies`` (``tests/test_import_graph.py``).
 
-* :mod:`seahelm.studies.lvov2014` — wind and wave compensation of a course autopilot.
+* :mod:`seahelm.studies.lvov2014` — wind and wave compensation of a course autopilot;
+* :mod:`seahelm.studies.platonov` — full averaging of a CPP ship in waves (Platonov & Platonova).
 """
