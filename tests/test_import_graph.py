@@ -148,7 +148,6 @@ KNOWN_LONG = frozenset({
     "seahelm.analysis.maneuvers.common",
     "seahelm.environment.loads",
     "seahelm.environment.shaping",
-    "seahelm.environment.spectra",
     "seahelm.scenario.runs",
     "seahelm.simulation.engine",
     "seahelm.vessels.catamaran",

@@ -12,11 +12,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 import pytest  # noqa: E402
 
 from seahelm.environment.sea_state import TABLE1, sea_state_grade  # noqa: E402
-from seahelm.environment.spectra import (  # noqa: E402
+from seahelm.environment.rational_spectra import (  # noqa: E402
     ordinate_rate_spectrum,
     slope_spectrum,
-    spectrum_from_wave_height,
 )
+from seahelm.environment.spectra import spectrum_from_wave_height  # noqa: E402
 from seahelm.plotting.waves import (  # noqa: E402
     grade_label,
     plot_paper_figure,

@@ -52,7 +52,9 @@ from .._optional import optional_import
 from .._validate import as_float_array, check_positive
 from ..constants import GRAVITY
 from ..errors import ParameterError
-from .spectra import RationalSpectrum, WaveSpectrum, get_spectrum
+from .rational_spectra import RationalSpectrum
+from .spectra import get_spectrum
+from .spectrum_base import WaveSpectrum
 
 __all__ = [
     "single_run_stream",
