@@ -147,7 +147,6 @@ KNOWN_LONG = frozenset({
     "seahelm.analysis.equilibrium",
     "seahelm.analysis.maneuvers.common",
     "seahelm.environment.loads",
-    "seahelm.environment.shaping",
     "seahelm.scenario.runs",
     "seahelm.simulation.engine",
     "seahelm.vessels.catamaran",
