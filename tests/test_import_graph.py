@@ -145,7 +145,6 @@ MAX_LINES = 600
 #: here); the others wait for their split into components and studies (issue 12).
 KNOWN_LONG = frozenset({
     "seahelm.analysis.equilibrium",
-    "seahelm.analysis.maneuvers.common",
     "seahelm.environment.loads",
     "seahelm.scenario.runs",
     "seahelm.simulation.engine",

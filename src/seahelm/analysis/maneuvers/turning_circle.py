@@ -39,7 +39,6 @@ import numpy as np
 from ...errors import ParameterError
 from ..equilibrium import steady_turn
 from .common import (
-    ManeuverResult,
     Plan,
     check_rudder,
     default_time_step,
@@ -49,6 +48,7 @@ from .common import (
     side_axis,
     value_axis,
 )
+from .result import ManeuverResult
 
 __all__ = ["turning_circle", "track_distance"]
 

@@ -50,7 +50,6 @@ from ...errors import ParameterError
 from ..equilibrium import steady_turn
 from .common import (
     Axis,
-    ManeuverResult,
     Plan,
     check_rudder,
     default_time_step,
@@ -59,6 +58,7 @@ from .common import (
     record_every_for,
     side_axis,
 )
+from .result import ManeuverResult
 
 __all__ = ["ZigZagMetrics", "zigzag_metrics", "zigzag"]
 
