@@ -19,15 +19,15 @@ import time
 
 import numpy as np
 
-from seahelm.analysis.averaging import (
+from seahelm.analysis.averaging import sphere_grid
+from seahelm.studies.platonov.averaged_system import (
     STUDY_DIRECTION,
     _original_rhs,
-    cpp_admissible_set,
     cpp_averaging_study,
-    cpp_boundary_map,
     rhs_averaged,
-    sphere_grid,
 )
+from seahelm.studies.platonov.control_set import cpp_boundary_map
+from seahelm.studies.platonov.flat_set import cpp_admissible_set
 from seahelm.vessels.cpp_ship import CPPShipParams
 
 REPEATS = 5

@@ -12,7 +12,7 @@ the ship's live heading and speed. Per case:
   wind (channel 5) and the extra angle for the waves (channel 6), as written in the file
   (what ``seahelm compensate --ship mariner ...`` prints);
 * ``PID + δ_k (12)/(14)`` — the same file with the heading to steer and δ_k of eq. (12) and the
-  wave term of eq. (14) as printed (computed here by ``seahelm.control.compensation``).
+  wave term of eq. (14) as printed (computed here by ``seahelm.studies.lvov2014``).
 
 The weather acts from t = 0: the ship starts on the heading to steer with the rudder amidships.
 Metrics over the run: mean and max |heading error|, ∫|e| dt, rudder reversals per minute (moves
@@ -34,18 +34,20 @@ from pathlib import Path
 
 import numpy as np
 
-from seahelm.control import compensation as cp
+from seahelm.analysis.course_keeping import heading_metrics
+from seahelm.control.compensation import controllability_monitor
 from seahelm.errors import ValidityRangeWarning
 from seahelm.scenario import parse_scenario, run_batch
+from seahelm.studies.lvov2014 import WindWaveCase, wind_wave_scenario
 
 EXAMPLES = Path(__file__).resolve().parent
 R = math.radians
 #: case key in the file names -> (name in the table, the weather for the paper's δ_k)
 CASES = {
-    "calm": ("calm", cp.WindWaveCase("calm")),
-    "wind": ("wind", cp.WindWaveCase("wind", 15.0, R(60))),
-    "windwaves": ("wind + waves", cp.WindWaveCase("wind + waves", 15.0, R(60), 6.75, R(60))),
-    "storm": ("storm (irregular)", cp.WindWaveCase("storm", 15.0, R(120), 6.75, R(120))),
+    "calm": ("calm", WindWaveCase("calm")),
+    "wind": ("wind", WindWaveCase("wind", 15.0, R(60))),
+    "windwaves": ("wind + waves", WindWaveCase("wind + waves", 15.0, R(60), 6.75, R(60))),
+    "storm": ("storm (irregular)", WindWaveCase("storm", 15.0, R(120), 6.75, R(120))),
 }
 
 
@@ -53,9 +55,9 @@ def _value(text: str, key: str) -> float:
     return float(re.search(rf"^{key} = (\S+)", text, re.M).group(1))
 
 
-def _paper_text(text: str, case: cp.WindWaveCase) -> str:
+def _paper_text(text: str, case: WindWaveCase) -> str:
     """The compensated file with the paper's heading to steer and δ_k (eq. (12)/(14))."""
-    info = cp.wind_wave_scenario(case, t_final=10.0, delta_k_method="paper")["info"]
+    info = wind_wave_scenario(case, t_final=10.0, delta_k_method="paper")["info"]
     values = {"heading_deg": math.degrees(info["heading_to_steer"]),
               "delta_k_wind_deg": math.degrees(info["delta_k_wind"]),
               "delta_k_wave_deg": math.degrees(info["delta_k_wave"])}
@@ -90,8 +92,8 @@ def run_case(key: str, t_final: float = 900.0) -> list[dict]:
         res, text = _run(text, file, t_final)
         e = R(_value(text, "heading_deg")) - res["heading"][0]
         dt = float(res.time[1] - res.time[0])
-        m = cp.heading_metrics(e, res["rudder_angle"][0], dt=dt, delta_k=steady, start=0.0)
-        mon = cp.controllability_monitor(res["rudder_angle"][0], np.full(e.size, steady), dt=dt,
+        m = heading_metrics(e, res["rudder_angle"][0], dt=dt, delta_k=steady, start=0.0)
+        mon = controllability_monitor(res["rudder_angle"][0], np.full(e.size, steady), dt=dt,
                                          start=120.0)
         dk = _value(text, "delta_k_wind_deg") + _value(text, "delta_k_wave_deg")
         rows.append(dict(

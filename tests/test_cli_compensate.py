@@ -93,18 +93,18 @@ def test_bad_input_exit_2_and_table_output():
 
 
 def test_model_delta_k_beside_the_papers_and_which_one_the_autopilot_uses():
-    from seahelm.control import compensation as cp
+    from seahelm.studies import lvov2014 as lv
 
     args = ["--ship", "mariner", "--wind-speed", "15", "--wind-angle", "60", "--wave-height",
             "6.75", "--wave-angle", "60", "--json"]
     r = runner.invoke(app, args)
     assert r.exit_code == 0, r.output
     data = json.loads(r.stdout)
-    case = cp.WindWaveCase("wind + waves", wind_speed=15.0, wind_angle=math.radians(60.0),
+    case = lv.WindWaveCase("wind + waves", wind_speed=15.0, wind_angle=math.radians(60.0),
                            wave_height=6.75, wave_angle=math.radians(60.0))
     for method, key in (("model", "delta_k_model"), ("paper", "delta_k")):
         with pytest.warns(ValidityRangeWarning, match="block coefficient"):  # the Mariner's
-            info = cp.wind_wave_scenario(case, t_final=60.0, delta_k_method=method)["info"]
+            info = lv.wind_wave_scenario(case, t_final=60.0, delta_k_method=method)["info"]
         assert data[f"{key}_wind_deg"] == pytest.approx(math.degrees(info["delta_k_wind"]))
         assert data[f"{key}_wave_deg"] == pytest.approx(math.degrees(info["delta_k_wave"]))
         assert data[f"{key}_deg"] == pytest.approx(math.degrees(info["delta_k"]))

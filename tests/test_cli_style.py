@@ -161,8 +161,10 @@ def test_choices_agree_with_the_library():
     from seahelm.analysis.maneuvers import STEERING_GEAR
     from seahelm.cli import identify, maneuver, waves
     from seahelm.environment.sea_state import TABLE2
-    from seahelm.environment.spectra import SPECTRA, RationalSpectrum
-    from seahelm.identification.steady_turning import FIT_METHODS, REDUCED_FORMS
+    from seahelm.environment.rational_spectra import RationalSpectrum
+    from seahelm.environment.spectra import SPECTRA
+    from seahelm.identification.fitting import FIT_METHODS
+    from seahelm.identification.reduced_forms import REDUCED_FORMS
 
     args = typing.get_args
     assert set(args(maneuver.ShipName)) == set(STEERING_GEAR)

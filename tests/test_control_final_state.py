@@ -30,16 +30,15 @@ from seahelm.control.final_state import (
     FSM_YAW_RATE,
     FSM_YAW_RATE_SIMPLE,
     FSM_YAW_RATE_SIMPLE_DRIVE,
-    FinalStateController,
     FinalStateHeadingParams,
     FinalStateYawRateParams,
     closed_loop_eigenvalues,
     fsm_thruster_rate,
     heading_params,
     heading_program,
-    simulate_final_state,
     yaw_rate_params,
 )
+from seahelm.control.final_state_general import FinalStateController, simulate_final_state
 from seahelm.control.open_loop import OPEN_LOOP
 from seahelm.errors import ParameterError
 from seahelm.simulation.engine import simulate

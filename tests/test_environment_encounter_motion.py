@@ -11,11 +11,11 @@ from scipy import integrate
 from seahelm.constants import GRAVITY
 from seahelm.environment import encounter as enc
 from seahelm.environment import motion as mo
-from seahelm.environment import spectra as sp
+from seahelm.environment import rational_spectra as rs
 from seahelm.errors import ParameterError
 
 D, MU, LAM = 0.32175, 0.214, 1.003
-BASE = sp.RakhmaninFirsov2(variance=D, decay_rate=MU, resonance_frequency=LAM)
+BASE = rs.RakhmaninFirsov2(variance=D, decay_rate=MU, resonance_frequency=LAM)
 
 
 def test_encounter_frequency_formula():

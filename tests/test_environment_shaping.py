@@ -25,6 +25,7 @@ from scipy import integrate, linalg, signal
 from seahelm.constants import GRAVITY
 from seahelm.environment import shaping as sh
 from seahelm.environment import spectra as sp
+from seahelm.environment import spectrum_base as sb
 from seahelm.errors import MissingDependencyError, ParameterError
 
 D, MU, LAM = 0.32175, 0.214, 1.003
@@ -41,7 +42,7 @@ def K(name: str, tau):
     }[name]
 
 
-def spec(name: str) -> sp.WaveSpectrum:
+def spec(name: str) -> sb.WaveSpectrum:
     return sp.get_spectrum(name, variance=D, decay_rate=MU, resonance_frequency=LAM)
 
 

@@ -13,20 +13,22 @@ import pytest
 from scipy import integrate, special
 
 from seahelm.constants import GRAVITY
+from seahelm.environment import rational_spectra as rs
 from seahelm.environment import spectra as sp
+from seahelm.environment import spectrum_base as sb
 from seahelm.errors import ParameterError
 
 D, MU, LAM = 0.32175, 0.214, 1.003  # h3% = 3 m, Table 2 means
 A2 = MU**2 + LAM**2
 
 RF_CLASSES = {
-    "rakhmanin-firsov-1": sp.RakhmaninFirsov1,
-    "rakhmanin-firsov-2": sp.RakhmaninFirsov2,
-    "rakhmanin-firsov-3": sp.RakhmaninFirsov3,
+    "rakhmanin-firsov-1": rs.RakhmaninFirsov1,
+    "rakhmanin-firsov-2": rs.RakhmaninFirsov2,
+    "rakhmanin-firsov-3": rs.RakhmaninFirsov3,
 }
 
 
-def rf(name: str, d: float = D, mu: float = MU, lam: float = LAM) -> sp.WaveSpectrum:
+def rf(name: str, d: float = D, mu: float = MU, lam: float = LAM) -> sb.WaveSpectrum:
     return sp.get_spectrum(name, variance=d, decay_rate=mu, resonance_frequency=lam)
 
 
@@ -112,7 +114,7 @@ def test_one_sided_rejects_negative_frequency():
 
 def test_slope_spectrum_eq5_and_variance():
     base = rf("rakhmanin-firsov-2")
-    slope = sp.slope_spectrum(base)
+    slope = rs.slope_spectrum(base)
     w = np.linspace(0, 4, 9)
     np.testing.assert_allclose(
         slope.one_sided(w), [x**2 / GRAVITY**2 * printed_formula("rakhmanin-firsov-2", x) for x in w], rtol=1e-13
@@ -124,22 +126,22 @@ def test_slope_spectrum_eq5_and_variance():
 
 def test_ordinate_rate_variance_is_papers_D_alpha():
     """The paper's D_α = (μ² + λ²)D_r is the variance of dζ/dt (erratum: no 1/g²)."""
-    assert sp.ordinate_rate_spectrum(rf("rakhmanin-firsov-2")).variance == pytest.approx(A2 * D, rel=1e-8)
+    assert rs.ordinate_rate_spectrum(rf("rakhmanin-firsov-2")).variance == pytest.approx(A2 * D, rel=1e-8)
 
 
 @pytest.mark.parametrize("name", ["rakhmanin-firsov-1", "rakhmanin-firsov-3"])
 def test_slope_variance_diverges_for_variants_1_and_3(name):
-    assert math.isinf(sp.slope_spectrum(rf(name)).variance)
+    assert math.isinf(rs.slope_spectrum(rf(name)).variance)
 
 
 def test_rate_and_acceleration_spectra():
     base = rf("rakhmanin-firsov-2")
     w = np.array([0.1, 0.5, 1.0, 3.0])
     s_alpha = w**2 / GRAVITY**2 * base.one_sided(w)
-    np.testing.assert_allclose(sp.slope_rate_spectrum(base).one_sided(w), w**2 * s_alpha, rtol=1e-14)
-    np.testing.assert_allclose(sp.slope_acceleration_spectrum(base).one_sided(w), w**4 * s_alpha, rtol=1e-14)
-    assert math.isinf(sp.slope_rate_spectrum(base).variance)
-    assert math.isinf(sp.slope_acceleration_spectrum(base).variance)
+    np.testing.assert_allclose(rs.slope_rate_spectrum(base).one_sided(w), w**2 * s_alpha, rtol=1e-14)
+    np.testing.assert_allclose(rs.slope_acceleration_spectrum(base).one_sided(w), w**4 * s_alpha, rtol=1e-14)
+    assert math.isinf(rs.slope_rate_spectrum(base).variance)
+    assert math.isinf(rs.slope_acceleration_spectrum(base).variance)
 
 
 def test_moments_of_variant_2():
@@ -253,7 +255,7 @@ def test_from_wave_height_all_have_m0_equal_to_Dr(name):
 )
 def test_rf_bad_parameters(kwargs, match):
     with pytest.raises(ParameterError, match=match):
-        sp.RakhmaninFirsov1(**kwargs)
+        rs.RakhmaninFirsov1(**kwargs)
 
 
 @pytest.mark.parametrize(

@@ -11,15 +11,16 @@ import pytest
 from scipy.optimize import fsolve
 
 from seahelm.errors import ParameterError
-from seahelm.identification.steady_turning import (
-    REDUCED_FORMS,
-    extract_steady_segments,
+from seahelm.identification.fitting import (
     fit_brute_force,
     fit_lsq,
     fit_robust,
     fit_steady_turns,
-    get_form,
     identify_from_time_series,
+)
+from seahelm.identification.reduced_forms import REDUCED_FORMS, get_form
+from seahelm.identification.segments import extract_steady_segments
+from seahelm.identification.steady_turns import (
     reduced_coefficients,
     stable_steady_turn,
     steady_turns,

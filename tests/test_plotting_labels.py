@@ -12,11 +12,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 import pytest  # noqa: E402
 
 from seahelm.environment.sea_state import TABLE1, sea_state_grade  # noqa: E402
-from seahelm.environment.spectra import (  # noqa: E402
+from seahelm.environment.rational_spectra import (  # noqa: E402
     ordinate_rate_spectrum,
     slope_spectrum,
-    spectrum_from_wave_height,
 )
+from seahelm.environment.spectra import spectrum_from_wave_height  # noqa: E402
 from seahelm.plotting.waves import (  # noqa: E402
     grade_label,
     plot_paper_figure,
@@ -75,7 +75,7 @@ def test_averaging_3d_panels_have_few_enough_ticks_not_to_overlap():
     # are those of unprojected positions), so the check is on what made them overlap: at the
     # size `seahelm averaging cpp --plot` writes (12 x 5 in at 120 dpi, checked by eye), the
     # default 0.25 steps put 9 labels on an axis foreshortened to ~300 px. At most 5 fit.
-    from seahelm.analysis.averaging import cpp_admissible_set
+    from seahelm.studies.platonov.flat_set import cpp_admissible_set
     from seahelm.plotting.averaging import plot_control_sets
 
     fig = plot_control_sets(cpp_admissible_set(1.2, 0.96, n_azimuth=24, n_elevation=12))

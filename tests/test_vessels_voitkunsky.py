@@ -10,7 +10,7 @@ import pytest
 from seahelm.actuators.servo import DIRECT, RUDDER_SERVO, ServoParams
 from seahelm.control.open_loop import OPEN_LOOP
 from seahelm.errors import ParameterError
-from seahelm.identification.steady_turning import stable_steady_turn, steady_turns
+from seahelm.identification.steady_turns import stable_steady_turn, steady_turns
 from seahelm.registry import get_model
 from seahelm.simulation.engine import simulate
 from seahelm.vessels.catalog import get

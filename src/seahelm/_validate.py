@@ -9,7 +9,8 @@ import numpy as np
 
 from .errors import ParameterError
 
-__all__ = ["check_finite", "check_positive", "check_nonnegative", "check_range", "as_float_array"]
+__all__ = ["check_finite", "check_positive", "check_nonnegative", "check_range", "as_float_array",
+           "as_finite_series"]
 
 
 def _fmt(value: Any) -> str:
@@ -180,3 +181,32 @@ def as_float_array(name: str, value: Any, unit: str = "", *, finite: bool = True
     if finite:
         check_finite(name, arr, unit)
     return arr
+
+
+def as_finite_series(name: str, value: Any, unit: str, *, what: str = "sample(s)") -> np.ndarray:
+    """A finite 1-D float array, or ParameterError naming ``name``, ``unit`` and where.
+
+    Parameters
+    ----------
+    name : str
+        Argument name for the message.
+    value : array_like
+        The series.
+    unit : str
+        Unit for the message.
+    what : str, optional
+        What the indices of non-finite entries count ("sample(s)", "point(s)").
+    """
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(f"`{name}` must be numbers [{unit}], got {value!r}") from None
+    if a.ndim != 1:
+        raise ParameterError(f"`{name}` must be one-dimensional [{unit}], got shape {a.shape}")
+    bad = ~np.isfinite(a)
+    if bad.any():
+        raise ParameterError(
+            f"`{name}` must be finite [{unit}], got NaN/inf at {what} "
+            f"{np.flatnonzero(bad)[:6].tolist()}"
+        )
+    return a

@@ -2,12 +2,14 @@
 
 Entries are ``"module:attribute"`` strings resolved on first lookup, so listing names imports
 nothing heavy. :func:`get_model`, :func:`get_actuator` and :func:`get_controller` accept a name
-or the object itself; an unknown name raises ValueError listing the valid ones.
+or the object itself; an unknown name raises ValueError listing the valid ones. :func:`lookup`
+is that rule for any registry (the studies' printed-vs-corrected variants use it too).
 """
 
 from __future__ import annotations
 
 import importlib
+from collections.abc import Mapping
 from typing import Any
 
 from .actuators.base import Actuator
@@ -15,7 +17,7 @@ from .control.base import Controller
 from .vessels.base import VesselModel
 
 __all__ = ["VESSEL_MODELS", "ACTUATORS", "CONTROLLERS", "get_model", "get_actuator",
-           "get_controller"]
+           "get_controller", "lookup"]
 
 VESSEL_MODELS: dict[str, str] = {
     "nomoto1": "seahelm.vessels.nomoto:NOMOTO1",
@@ -54,13 +56,46 @@ CONTROLLERS: dict[str, str] = {
 }
 
 
-def _resolve(kind: str, table: dict[str, str], name: Any, cls: type) -> Any:
+def lookup(kind: str, table: Mapping[str, Any], name: Any, cls: type | tuple[type, ...],
+           *, error: type[ValueError] = ValueError) -> Any:
+    """A strategy by name from a registry ``table``, or the strategy object itself.
+
+    The one lookup rule of every registry: an instance of ``cls`` is returned as is, a name is
+    looked up, anything else raises. Entries are the objects themselves or ``"module:attribute"``
+    strings, imported on first lookup (so listing names imports nothing heavy).
+
+    Parameters
+    ----------
+    kind : str
+        What is looked up, for the error message (``"vessel model"``, ``"delta_k_method"``).
+    table : mapping of str to object or str
+        The registry: name -> object, or name -> ``"module:attribute"``.
+    name : str or object
+        A key of ``table``, or an instance of ``cls``.
+    cls : type or tuple of type
+        The strategy type(s) accepted as they are.
+    error : type, optional
+        ValueError or a subclass (e.g. :class:`~seahelm.errors.ParameterError`) to raise.
+
+    Returns
+    -------
+    object
+        The registered (or given) strategy.
+
+    Raises
+    ------
+    ValueError
+        If ``name`` is neither a key of ``table`` nor a ``cls`` (the message lists the keys).
+    """
     if isinstance(name, cls):
         return name
     if not isinstance(name, str) or name not in table:
-        raise ValueError(f"unknown {kind} '{name}'; valid: {', '.join(sorted(table))}")
-    module, attr = table[name].split(":")
-    return getattr(importlib.import_module(module), attr)
+        raise error(f"unknown {kind} '{name}'; valid: {', '.join(sorted(table))}")
+    entry = table[name]
+    if isinstance(entry, str):
+        module, attr = entry.split(":")
+        return getattr(importlib.import_module(module), attr)
+    return entry
 
 
 def get_model(name: str | VesselModel) -> VesselModel:
@@ -80,7 +115,7 @@ def get_model(name: str | VesselModel) -> VesselModel:
     ValueError
         If ``name`` is not a registered vessel model (the message lists the valid ones).
     """
-    return _resolve("vessel model", VESSEL_MODELS, name, VesselModel)
+    return lookup("vessel model", VESSEL_MODELS, name, VesselModel)
 
 
 def get_actuator(name: str | Actuator) -> Actuator:
@@ -100,7 +135,7 @@ def get_actuator(name: str | Actuator) -> Actuator:
     ValueError
         If ``name`` is not a registered actuator (the message lists the valid ones).
     """
-    return _resolve("actuator", ACTUATORS, name, Actuator)
+    return lookup("actuator", ACTUATORS, name, Actuator)
 
 
 def get_controller(name: str | Controller) -> Controller:
@@ -131,5 +166,5 @@ def get_controller(name: str | Controller) -> Controller:
         if law not in GUIDANCE_LAWS:
             raise ValueError(f"unknown guidance law '{law}' in '{name}'; valid: "
                              f"{', '.join(GUIDANCE_LAWS)}")
-        return guided(GUIDANCE_LAWS[law], _resolve("controller", CONTROLLERS, inner, Controller))
-    return _resolve("controller", CONTROLLERS, name, Controller)
+        return guided(GUIDANCE_LAWS[law], lookup("controller", CONTROLLERS, inner, Controller))
+    return lookup("controller", CONTROLLERS, name, Controller)

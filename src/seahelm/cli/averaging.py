@@ -58,7 +58,7 @@ def cpp(
 
     Defaults give the paper's α(τ) = 0.5 − 0.4 sin τ.
     """
-    from ..analysis.averaging import cpp_admissible_set
+    from ..studies.platonov.flat_set import cpp_admissible_set
     from ..errors import ParameterError
 
     if not 6 <= grid <= MAX_GRID:

@@ -9,7 +9,7 @@ come *from*, relative to the bow (0 = head, 90 = from starboard, −90 = from po
 
 Two compensating angles are printed side by side: the paper's (eq. (12)/(14) as printed) and
 the ship model's (the steady rudder angle that balances the same loads on the Voitkunsky
-model, :func:`seahelm.control.compensation.model_compensation`), which is the one the
+model, :func:`seahelm.studies.lvov2014.model_compensation`), which is the one the
 compensated autopilot uses. The model's needs a ship model: ``--ship mariner`` (the Mariner's
 particulars and its Voitkunsky model; any particular given explicitly overrides its value).
 """
@@ -52,7 +52,7 @@ class Ship(str, enum.Enum):
 
 #: What the compensated autopilot takes as δ_k, and why (printed with the angles).
 AUTOPILOT_NOTE = (
-    "The compensated autopilot ('compensated-pid' in seahelm.control.compensation."
+    "The compensated autopilot ('compensated-pid' in seahelm.studies.lvov2014."
     "wind_wave_scenario) uses the ship model's δ_k (delta_k_method='model'). The printed eq. "
     "(12)/(14) add the hull's drift moment to the wind's with the same sign, which gives the "
     "wrong sign on the Mariner; they are kept to reproduce the paper (delta_k_method='paper').")
@@ -116,7 +116,7 @@ def compensate(
     Forces are signed as in the paper (module docs of seahelm.environment.wave_forces):
     X_w positive forward, Y_w and M_w positive for waves from starboard.
     """
-    from ..control.compensation import compensation_summary, model_compensation
+    from ..studies.lvov2014 import compensation_summary, model_compensation
 
     # every number finite, named as the user wrote it (the library names its own parameters)
     for option, value, unit in (
@@ -224,7 +224,7 @@ def compensate(
 def _ship(name: "Ship | None", given: dict[str, float]) -> tuple[Any, Any]:
     """The ship particulars (a named ship's, overridden by the options given, or the options
     alone) and the ship model's parameters (None without ``--ship``)."""
-    from ..control.compensation import MARINER_PARTICULARS, ShipParticulars
+    from ..studies.lvov2014 import MARINER_PARTICULARS, ShipParticulars
 
     if name is not None:  # (one ship so far: the Mariner, whose Voitkunsky set is the default)
         from ..vessels.voitkunsky import MARINER_VOITKUNSKY

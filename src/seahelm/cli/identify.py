@@ -35,8 +35,8 @@ app = typer.Typer(
 
 _UNITS = {"a": "s²/rad", "b": "s", "c": "s/rad", "d": "1/rad"}
 
-#: The keys of :data:`~seahelm.identification.steady_turning.FIT_METHODS` and
-#: :data:`~seahelm.identification.steady_turning.REDUCED_FORMS`, spelled out so that the
+#: The keys of :data:`~seahelm.identification.fitting.FIT_METHODS` and
+#: :data:`~seahelm.identification.reduced_forms.REDUCED_FORMS`, spelled out so that the
 #: command line does not import the fitting code (tests/test_cli_style.py checks that they
 #: agree).
 FitMethod = Literal["lsq", "robust", "brute"]
@@ -113,7 +113,8 @@ def steady_turn(
     Coefficients are reported in radian units (a [s²/rad], b [s], c [s/rad]) whatever --angles.
     """
     from ..errors import ParameterError
-    from ..identification.steady_turning import extract_steady_segments, fit_steady_turns
+    from ..identification.fitting import fit_steady_turns
+    from ..identification.segments import extract_steady_segments
 
     scale = math.pi / 180.0 if angles == "deg" else 1.0
     cols = read_turn_csv(file)

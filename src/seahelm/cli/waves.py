@@ -126,7 +126,8 @@ def spectrum_cmd(
 ) -> None:
     """Spectrum for a wave height: D_r, μ, λ, m0 (numerical), peak frequency."""
     from ..environment.sea_state import sea_state_parameters
-    from ..environment.spectra import spectral_moment, spectrum_from_wave_height
+    from ..environment.spectra import spectrum_from_wave_height
+    from ..environment.spectrum_base import spectral_moment
 
     if plot is not None:  # checked before any work
         output_file("--plot", plot)

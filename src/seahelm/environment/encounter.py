@@ -34,7 +34,7 @@ from numpy.typing import ArrayLike
 
 from .._validate import as_float_array, check_nonnegative, check_positive
 from ..constants import GRAVITY
-from .spectra import WaveSpectrum
+from .spectrum_base import WaveSpectrum
 
 __all__ = [
     "encounter_frequency",

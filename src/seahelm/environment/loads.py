@@ -630,7 +630,7 @@ def wave_load_fluctuation(wave_height: float, n_steps: int, dt: float, seed: Any
     """
     check_positive("wave_height", wave_height, "m")
     check_positive("dt", dt, "s")
-    from .shaping import single_run_stream
+    from .discretisation import single_run_stream
 
     filt, var = _envelope_filter(spectrum, float(wave_height))
     if runs is not None and isinstance(seed, (list, tuple)):

@@ -1,7 +1,7 @@
 """Means over one period by piecewise Gauss–Legendre quadrature, split at known kinks.
 
 Generic numerics at the bottom of the package: :mod:`seahelm.vessels.cpp_ship` (the balanced
-emergence coefficients) and :mod:`seahelm.analysis.averaging` (the averaged system of
+emergence coefficients) and :mod:`seahelm.studies.platonov` (the averaged system of
 Platonov & Platonova) both use it, and neither needs the other for it.
 """
 

@@ -35,7 +35,7 @@ def _label(ax: Any, title: str) -> None:
 def plot_set_V(result: Any, *, ax: Any = None, fig: Any = None, **surface_kw: Any) -> Any:
     """Boundary of V, ς(z) on the direction grid of eq. (17), as a 3-D surface (Fig. 1).
 
-    ``result`` is a :class:`seahelm.analysis.averaging.CPPControlSetResult`. Returns the axes.
+    ``result`` is a :class:`seahelm.studies.platonov.flat_set.CPPControlSetResult`. Returns the axes.
 
     Parameters
     ----------
@@ -76,7 +76,7 @@ def plot_set_Y(
     Parameters
     ----------
     betas : sequence of float
-        (β1, β2, β3) [-] of :func:`~seahelm.analysis.averaging.cpp_betas`.
+        (β1, β2, β3) [-] of :func:`~seahelm.studies.platonov.control_set.cpp_betas`.
     variant : {"hull", "printed"}, optional
         Reading of eq. (24) (default "hull").
     n : int, optional
@@ -149,7 +149,7 @@ def plot_averaging_study(study: Any, *, ax: Any = None) -> Any:
     Parameters
     ----------
     study : AveragingStudy
-        Result of :func:`~seahelm.analysis.averaging.cpp_averaging_study`.
+        Result of :func:`~seahelm.studies.platonov.averaged_system.cpp_averaging_study`.
     ax : matplotlib Axes, optional
         Axes to draw into (default: new axes).
 

@@ -95,7 +95,7 @@ def spectrum_unit(spectrum: Any) -> str:
     str
         E.g. ``"m²·s/rad"``.
     """
-    from ..environment.spectra import DerivativeSpectrum
+    from ..environment.rational_spectra import DerivativeSpectrum
 
     quantity = spectrum.label if isinstance(spectrum, DerivativeSpectrum) else "ordinate"
     unit = _QUANTITY_UNITS.get(quantity)
@@ -179,7 +179,8 @@ def plot_sea_state_spectra(
     -------
     matplotlib Axes
     """
-    from ..environment.spectra import slope_spectrum, spectrum_from_wave_height
+    from ..environment.rational_spectra import slope_spectrum
+    from ..environment.spectra import spectrum_from_wave_height
 
     transforms = {"ordinate": lambda s: s, "slope": slope_spectrum}
     if quantity not in transforms:

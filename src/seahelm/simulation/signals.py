@@ -172,7 +172,8 @@ class Sea:
         -------
         numpy.ndarray, shape (len(seeds), len(t))
         """
-        from ..environment.shaping import shaping_filter, single_run_stream
+        from ..environment.discretisation import single_run_stream
+        from ..environment.shaping import shaping_filter
         from ..environment.spectra import spectrum_from_wave_height
 
         t, dt = uniform_time_step(t, "a `sea` signal")

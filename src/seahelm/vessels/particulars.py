@@ -12,7 +12,7 @@ not published data: KVLCC2 — the hull above the waterline (freeboard 30 − 20
 a typical aft superstructure of 40 m × 15 m (lateral) and 40 m × 15 m (frontal), giving
 A_L ≈ 3,540 m², A_F ≈ 1,130 m², the lateral centre ≈ 24 m aft of midships; the L7 model is
 the same scaled by 7/320; Mariner — Lvov's (2014) working assumption S_n = 0.8 L T centred
-amidships (as :data:`seahelm.control.compensation.MARINER_PARTICULARS`), and A_F = 0.8 B T.
+amidships (as :data:`seahelm.studies.lvov2014.MARINER_PARTICULARS`), and A_F = 0.8 B T.
 Blendermann's vessel type for the KVLCC2 is a loaded tanker and for the Mariner a loaded
 general cargo ship.
 """

@@ -39,7 +39,7 @@ units so that issue 7's wind and wave loads add directly):
     takes no surge load.
 
 The static (steady-turn) regime, its branches and the reduced model eq. (4) live in
-:mod:`seahelm.identification.steady_turning`.
+:mod:`seahelm.identification.steady_turns`.
 
 References
 ----------
@@ -59,8 +59,10 @@ from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
+from numpy.typing import ArrayLike
 
 from ..constants import RHO_SEAWATER
+from ..errors import ParameterError
 from ..parameters import Params, param, signal_indices
 from .base import NAV_OUTPUT_UNITS, NAV_OUTPUTS, VesselModel
 
@@ -70,6 +72,7 @@ __all__ = [
     "MARINER_VOITKUNSKY",
     "MARINER_VOITKUNSKY_PROVENANCE",
     "voitkunsky_from_linear_derivatives",
+    "steady_course_keeping",
 ]
 
 
@@ -175,6 +178,52 @@ VOITKUNSKY = VesselModel(
     load_params=("sway_mass", "yaw_inertia"),
     motion=voitkunsky_motion,
 )
+
+
+def steady_course_keeping(
+    params: VoitkunskyParams, yaw_moment: ArrayLike, sway_force: ArrayLike
+) -> tuple[np.ndarray, np.ndarray]:
+    """Steady course keeping (ω = 0) under constant loads: drift angle β and rudder angle δ.
+
+    With the normalised disturbances m_d (``yaw_moment``) and f_d (``sway_force``) of the
+    model, ω = 0 in eq. (1) gives 0 = −q31 β − s31 δ + m_d, 0 = −q21 β − h2 β|β| − s21 δ − f_d;
+    eliminating δ gives h2 β|β| − a β + c = 0 with a = s21 q31/s31 − q21, c = f_d + s21 m_d/s31,
+    a monotone equation in β when a < 0 (a course-stable ship), solved in closed form.
+
+    Parameters
+    ----------
+    params : VoitkunskyParams
+        The model.
+    yaw_moment : array_like
+        Normalised yaw-moment disturbance m_d [rad/s²] (the ``yaw_moment`` channel).
+    sway_force : array_like
+        Normalised sway-force disturbance f_d [rad/s] (the ``sway_force`` channel).
+
+    Returns
+    -------
+    drift, rudder : numpy.ndarray
+        Steady drift angle β [rad] and rudder angle δ [rad].
+
+    Raises
+    ------
+    ParameterError
+        If the model is not course-stable (a ≥ 0): there is no steady state.
+    """
+    q21, s21, h2, q31, s31 = params.q21, params.s21, params.h2, params.q31, params.s31
+    yaw_moment = np.asarray(yaw_moment, dtype=float)
+    sway_force = np.asarray(sway_force, dtype=float)
+    a = s21 * q31 / s31 - q21
+    c = sway_force + s21 * yaw_moment / s31
+    if a >= 0.0:
+        raise ParameterError("the Voitkunsky model is not course-stable (a >= 0); no steady state")
+    if h2 == 0.0:
+        beta = c / a
+    else:
+        # β ≥ 0 branch: h2 β² + |a| β + c = 0 (c ≤ 0); β < 0 branch mirrored
+        disc = np.sqrt(a * a + 4.0 * h2 * np.abs(c))
+        beta = -np.sign(c) * (disc - abs(a)) / (2.0 * h2)
+    delta = (yaw_moment - q31 * beta) / s31
+    return beta, delta
 
 
 def voitkunsky_from_linear_derivatives(

@@ -1,7 +1,7 @@
 """Standard manoeuvres and their metrics, over batches of runs.
 
 Manoeuvres (each one batch through the compiled engine, returning a
-:class:`~seahelm.analysis.maneuvers.common.ManeuverResult` with the runs and a metrics table
+:class:`~seahelm.analysis.maneuvers.result.ManeuverResult` with the runs and a metrics table
 as :mod:`xarray` Datasets; see :mod:`seahelm.analysis.maneuvers.common`):
 
 :func:`turning_circle`
@@ -27,11 +27,9 @@ from __future__ import annotations
 
 from .common import (
     STEERING_GEAR,
-    ManeuverResult,
     ManeuverShip,
     default_time_step,
     maneuver_ship,
-    metrics_rows,
 )
 from .metrics import (
     overshoot,
@@ -42,6 +40,7 @@ from .metrics import (
     turning_diameter,
 )
 from .pullout import pull_out
+from .result import ManeuverResult, metrics_rows
 from .spiral import DEFAULT_SPIRAL_RUDDERS_DEG, direct_spiral, reverse_spiral, spiral_loop, spirals
 from .turning_circle import track_distance, turning_circle
 from .zigzag import ZigZagMetrics, zigzag, zigzag_metrics

@@ -27,7 +27,6 @@ import numpy as np
 
 from ..equilibrium import steady_turn_state
 from .common import (
-    ManeuverResult,
     Plan,
     check_rudder,
     usual_time_step,
@@ -36,6 +35,7 @@ from .common import (
     side_axis,
     value_axis,
 )
+from .result import ManeuverResult
 
 __all__ = ["pull_out"]
 

@@ -37,12 +37,12 @@ from ...errors import ParameterError
 from ...simulation.engine import check_record_memory
 from ..equilibrium import rudder_for_yaw_rate, steady_turn
 from .common import (
-    ManeuverResult,
     Plan,
     check_rudder,
     usual_time_step,
     final_time,
 )
+from .result import ManeuverResult
 
 __all__ = ["DEFAULT_SPIRAL_RUDDERS_DEG", "direct_spiral", "reverse_spiral", "spiral_loop", "spirals"]
 

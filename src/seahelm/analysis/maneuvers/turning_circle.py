@@ -38,7 +38,6 @@ import numpy as np
 
 from ...errors import ParameterError
 from .common import (
-    ManeuverResult,
     Plan,
     check_rudder,
     usual_time_step,
@@ -48,6 +47,7 @@ from .common import (
     steady_yaw_rate,
     value_axis,
 )
+from .result import ManeuverResult
 
 __all__ = ["turning_circle", "track_distance"]
 

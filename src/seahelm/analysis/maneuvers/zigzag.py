@@ -49,7 +49,6 @@ from ...control.zigzag import ZIGZAG, ZIGZAG_RPS, ZigZagParams, ZigZagRpsParams
 from ...errors import ParameterError
 from .common import (
     Axis,
-    ManeuverResult,
     Plan,
     check_rudder,
     usual_time_step,
@@ -58,6 +57,7 @@ from .common import (
     side_axis,
     steady_yaw_rate,
 )
+from .result import ManeuverResult
 
 __all__ = ["ZigZagMetrics", "zigzag_metrics", "zigzag"]
 

@@ -1,0 +1,11 @@
+"""Paper reproductions on top of the reusable components, one module per paper.
+
+A study holds what only its paper needs: the paper's ship data, its printed variants (as
+objects next to the corrected ones, in a small registry), summary tables, scenario builders
+and metrics tables. The components it builds on (vessels, actuators, control, environment,
+identification, analysis, simulation) know nothing about it; only the studies and the CLI
+import ``seahelm.studies`` (``tests/test_import_graph.py``).
+
+* :mod:`seahelm.studies.lvov2014` — wind and wave compensation of a course autopilot;
+* :mod:`seahelm.studies.platonov` — full averaging of a CPP ship in waves (Platonov & Platonova).
+"""

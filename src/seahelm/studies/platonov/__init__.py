@@ -1,0 +1,13 @@
+"""Platonov & Platonova: full averaging of the motion of a CPP ship in regular waves.
+
+The ship is a component (:mod:`seahelm.vessels.cpp_ship`, eq. (5)-(12)), the averaging theory
+for control-affine periodic systems too (:mod:`seahelm.analysis.averaging`, eq. (1)-(4)). The
+paper's application of one to the other is here:
+
+* :mod:`seahelm.studies.platonov.control_set` — the admissible control set V (eq. (14)-(16)),
+  with the printed eq. (15) as a registry object next to the clipped maximiser;
+* :mod:`seahelm.studies.platonov.flat_set` — the flat approximation Y (eq. (24), printed and
+  corrected) and its Hausdorff distance to V;
+* :mod:`seahelm.studies.platonov.averaged_system` — the averaged system eq. (13) (printed and
+  corrected ς2/ς3 assignment) and the check of the averaging theorem by simulation.
+"""
