@@ -86,7 +86,7 @@ def test_bad_input_exit_2_and_table_output():
     args[args.index("--wave-height") + 1] = "-1"
     r = runner.invoke(app, args)
     assert r.exit_code == 2
-    assert "wave_height" in r.output
+    assert "`--wave-height`" in r.output
     r = runner.invoke(app, BASE)
     assert r.exit_code == 0, r.output
     assert "total δ_k" in r.output and "Cm" in r.output

@@ -184,5 +184,5 @@ def test_scenario_maneuver_equilibrium_failure_names_file_and_key(tmp_path):
     res = runner.invoke(app, ["run", str(path)])
     assert res.exit_code == 2, (res.stdout, res.stderr)
     line = res.stderr.strip().splitlines()[-1]  # (after the validity warning)
-    assert line.startswith(f"error: {path}: [maneuver.t_final]") and "no steady turn" in line
+    assert line.startswith(f"error: {path}: [maneuver] `t_final`: no steady turn")
 
