@@ -44,9 +44,9 @@ from .common import (
     final_time,
     record_every_for,
     side_axis,
-    steady_yaw_rate,
     value_axis,
 )
+from .ships import steady_yaw_rate
 from .result import ManeuverResult
 
 __all__ = ["turning_circle", "track_distance"]

@@ -55,8 +55,8 @@ from .common import (
     final_time,
     record_every_for,
     side_axis,
-    steady_yaw_rate,
 )
+from .ships import steady_yaw_rate
 from .result import ManeuverResult
 
 __all__ = ["ZigZagMetrics", "zigzag_metrics", "zigzag"]
