@@ -282,3 +282,53 @@ def test_engine_takes_a_tableau_and_keys_its_kernel_on_the_coefficients():
     assert len(names) == len(METHODS) + 1
     with pytest.raises(ValueError, match="unknown integrator 'rk45'; valid: euler, midpoint"):
         simulate(NOMOTO1, P1, np.zeros(4), integrator="rk45", **kw)
+
+
+# --- the step as a loop over the stages (heavy models) ----------------------------------------
+@pytest.fixture
+def stage_loop_everywhere(monkeypatch):
+    """Every kernel built in the test loops over its stages (threshold below any model)."""
+    from seahelm.simulation import engine
+
+    monkeypatch.setattr(engine, "STAGE_LOOP_ABOVE", -1)
+    engine.compile_closed_loop.cache_clear()
+    yield
+    engine.compile_closed_loop.cache_clear()
+
+
+# nodes 0 only, 2/3, 1/2 and 1, 1/3 and 2/3 and 1, 3/4: every branch of the stage disturbance
+@pytest.mark.parametrize("method", ["euler", "ralston", "kutta3", "rk38", CUSTOM], ids=_id)
+def test_looped_kernel_step_equals_the_numpy_step(method, stage_loop_everywhere):
+    dist = _nonlinear_disturbance(0.3)
+    x0 = np.array([0.0, 0.0, 0.1, 0.002])
+    kernel = compile_closed_loop(NOMOTO1, DIRECT, OPEN_LOOP, method)
+    assert kernel.RK_A.shape == (get_integrator(method).stages,) * 2  # (the looped form)
+    res = simulate(NOMOTO1, P_NONLINEAR, x0, t_final=N_STEPS * DT, dt=DT, actuator=DIRECT,
+                   reference=[DELTA], disturbance=dist, integrator=method)
+    grid = np.arange(N_STEPS + 1) * DT
+    xs = integrate(_nomoto1_numpy, x0, grid, P_NONLINEAR, grid, dist, method=method)
+    assert res.ok.all()
+    np.testing.assert_allclose(res.state[0], xs, rtol=1e-12, atol=1e-12)
+
+
+def test_heavy_models_loop_over_the_stages_and_light_ones_write_them_out():
+    from seahelm.actuators.servo import RUDDER_PROPELLER, RUDDER_SERVO
+    from seahelm.control.pid import PID_HEADING
+    from seahelm.simulation.engine import STAGE_LOOP_ABOVE, _stage_code_size
+    from seahelm.vessels.catamaran import CATAMARAN
+    from seahelm.vessels.mariner import MARINER
+    from seahelm.vessels.mmg import MMG
+    from seahelm.vessels.nomoto import NOMOTO2
+
+    rk4, euler = get_integrator("rk4"), get_integrator("euler")
+
+    def looped(model, actuator, tab):
+        return _stage_code_size(model, actuator, tab, None) > STAGE_LOOP_ABOVE
+
+    assert looped(MMG, RUDDER_PROPELLER, rk4) and looped(MARINER, RUDDER_SERVO, rk4)
+    assert not looped(NOMOTO2, RUDDER_SERVO, rk4) and not looped(CATAMARAN, DIRECT, rk4)
+    assert not looped(MMG, RUDDER_PROPELLER, euler)  # one stage: one copy either way
+    # the size counts what the right-hand side calls, each function once
+    assert _stage_code_size(MMG, DIRECT, rk4, None) > 4 * 500
+    assert hasattr(compile_closed_loop(MMG, RUDDER_PROPELLER, OPEN_LOOP, "rk4"), "RK_A")
+    assert not hasattr(compile_closed_loop(NOMOTO2, RUDDER_SERVO, PID_HEADING, "rk4"), "RK_A")

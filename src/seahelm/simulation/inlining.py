@@ -15,13 +15,14 @@ untouched (components keep their own ``cache=True`` dispatchers for direct use).
 
 from __future__ import annotations
 
+import dis
 import types
 from typing import Any
 
 from numba import njit
 from numba.core.dispatcher import Dispatcher
 
-__all__ = ["inline_always"]
+__all__ = ["inline_always", "inlined_size"]
 
 
 def _names(code: types.CodeType) -> set[str]:
@@ -32,6 +33,41 @@ def _names(code: types.CodeType) -> set[str]:
         names.update(c.co_names)
         stack.extend(k for k in c.co_consts if isinstance(k, types.CodeType))
     return names
+
+
+def inlined_size(func: Dispatcher) -> int:
+    """Bytecode instructions of ``func`` and of every numba function it calls (each once).
+
+    What :func:`inline_always` copies into a call site: a measure of the code numba and LLVM
+    compile for each inlined call (compile time grows with it), used by the engine to decide
+    whether the integrator's stages are written out or looped over
+    (:func:`seahelm.simulation.engine.compile_closed_loop`).
+
+    Parameters
+    ----------
+    func : numba dispatcher
+
+    Returns
+    -------
+    int
+    """
+    seen: set[int] = set()
+    todo = [func]
+    total = 0
+    while todo:
+        f = todo.pop()
+        if id(f) in seen:
+            continue
+        seen.add(id(f))
+        py = f.py_func
+        codes = [py.__code__]
+        while codes:
+            c = codes.pop()
+            total += sum(1 for _ in dis.get_instructions(c))
+            codes.extend(k for k in c.co_consts if isinstance(k, types.CodeType))
+        todo.extend(obj for name in _names(py.__code__)
+                    if isinstance(obj := py.__globals__.get(name), Dispatcher))
+    return total
 
 
 def inline_always(func: Dispatcher) -> Dispatcher:
