@@ -15,7 +15,16 @@ that does what ``seahelm demo`` does, step by step:
 The whole command is timed too (``seahelm demo --json``, a subprocess, wall clock). Prints
 medians of several warm repetitions and the cold figures.
 
-    python benchmarks/bench_startup.py [--repeats 5]
+Then the first use of other component combinations, each in a fresh process with empty caches:
+the example scenarios of every kind of model (Nomoto, the nonlinear Mariner, the KVLCC2 MMG
+with and without wind and waves, the catamaran, the compensated autopilot), with the kernel's
+compile time (``compile_time_s``) and the whole first run (imports excluded).
+
+Python's own bytecode cache is left on (``PYTHONDONTWRITEBYTECODE`` is removed from the
+environment), as on a user's machine: with it set, every seahelm module is compiled from
+source at each start (about 0.1 s).
+
+    python benchmarks/bench_startup.py [--repeats 5] [--no-combinations]
 """
 
 from __future__ import annotations
@@ -60,7 +69,39 @@ print(json.dumps({"imports": t_import, "compile/load": result.metadata["compile_
 def _env(cache: Path) -> dict[str, str]:
     env = dict(os.environ, MPLBACKEND="Agg", SEAHELM_CACHE_DIR=str(cache / "kernels"),
                NUMBA_CACHE_DIR=str(cache / "numba"))
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
     return env
+
+
+#: Example scenarios whose component combinations are compiled from empty caches.
+COMBINATIONS = {
+    "Nomoto-2 + servo + PID (demo)": None,
+    "nonlinear Mariner zig-zag": "mariner_zigzag.toml",
+    "KVLCC2 MMG turning circles": "kvlcc2_turning_circles.toml",
+    "KVLCC2 MMG + wind and waves": "kvlcc2_turning_weather.toml",
+    "catamaran + final-state heading": "catamaran_heading_0p8.toml",
+    "Nomoto-2 + compensated PID + loads": "compensation_storm_compensated.toml",
+    "Nomoto-2 + route following (LOS)": "mariner_route_los.toml",
+}
+
+FIRST_USE = r"""
+import json, sys, time
+from seahelm.scenario import default_scenario_text, load_scenario, parse_scenario, run_scenario
+job = (parse_scenario(default_scenario_text()) if sys.argv[1] == "-"
+       else load_scenario(sys.argv[1]))
+t0 = time.perf_counter()
+result = run_scenario(job)
+first = time.perf_counter() - t0
+attrs = result.metadata if hasattr(result, "metadata") else result.runs.attrs
+print(json.dumps({"compile": attrs["compile_time_s"], "first run": first}))
+"""
+
+
+def first_use(scenario: str | None, cache: Path) -> dict[str, float]:
+    path = "-" if scenario is None else str(Path(__file__).parents[1] / "examples" / scenario)
+    res = subprocess.run([sys.executable, "-c", FIRST_USE, path], env=_env(cache),
+                         capture_output=True, text=True, check=True)
+    return json.loads(res.stdout.strip().splitlines()[-1])
 
 
 def phases(cache: Path, out: Path) -> dict[str, float]:
@@ -81,6 +122,8 @@ def demo_wall(cache: Path, out: Path) -> float:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--no-combinations", dest="combinations", action="store_false",
+                        help="Skip the first use of the other component combinations.")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         root = Path(tmp)
@@ -95,6 +138,12 @@ def main() -> None:
         print(f"{'seahelm demo (wall clock)':>26}: cold {cold_wall:7.2f} s   warm {warm_wall:6.2f} s")
         for key in cold:
             print(f"{key:>26}: cold {cold[key]:7.2f} s   warm {warm[key]:6.2f} s")
+        if args.combinations:
+            print("\nfirst use of a component combination (empty caches, one process each):")
+            print(f"{'combination':>38}  {'compile':>8}  {'first run':>9}")
+            for i, (label, scenario) in enumerate(COMBINATIONS.items()):
+                fig = first_use(scenario, root / f"cache-c{i}")
+                print(f"{label:>38}  {fig['compile']:7.2f}s  {fig['first run']:8.2f}s")
 
 
 if __name__ == "__main__":

@@ -133,6 +133,17 @@ def test_the_console_script_prints_one_line(args):
     assert len(lines) == 1 and lines[0].startswith("error: "), proc.stderr
 
 
+def test_python_dash_m_seahelm_is_the_same_command():
+    ok = subprocess.run([sys.executable, "-m", "seahelm", "--version"], capture_output=True,
+                        text=True, timeout=120)
+    assert ok.returncode == 0 and "seahelm" in ok.stdout, ok.stderr
+    bad = subprocess.run([sys.executable, "-m", "seahelm", "waves", "spectrum", "--h3", "abc"],
+                         capture_output=True, text=True, timeout=120)
+    assert bad.returncode == 2 and bad.stdout == ""
+    assert bad.stderr.strip().splitlines() == [
+        line for line in bad.stderr.strip().splitlines() if line.startswith("error: ")]
+
+
 def test_sub_apps_alone_print_one_line_too():
     from seahelm.cli.waves import app as waves_app
 
