@@ -13,6 +13,10 @@ are finite.
 with arbitrary option text where a number belongs. The command must exit 0 with one JSON
 object on stdout, or exit 2 with one ``error:`` line on stderr (after any ``warning:`` lines
 about the values) and nothing on stdout; never 1 (an internal failure), never a traceback.
+
+The draws are derandomized (the same examples in every run), so that CI time and outcome do
+not depend on luck; run with ``--hypothesis-seed=N`` after removing ``derandomize`` to explore
+further (seeds 1-4 passed when this was written).
 """
 
 from __future__ import annotations
@@ -172,7 +176,8 @@ def test_the_base_document_runs_and_the_toml_writer_round_trips():
 MAX_WORK = 200_000
 
 
-@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=200, deadline=None, derandomize=True,
+          suppress_health_check=[HealthCheck.too_slow])
 @given(st.lists(_mutation, min_size=1, max_size=3))
 def test_fuzzed_scenarios_give_a_clean_error_or_a_valid_result(mutations):
     from seahelm.scenario import ManeuverJob, parse_scenario, run_scenario
@@ -254,7 +259,7 @@ def test_fuzzed_numeric_cli_options_exit_0_or_2_on_one_line(command):
     fixed, options = COMMANDS[command]
     examples = 15 if command == "maneuver-turning" else 40
 
-    @settings(max_examples=examples, deadline=None,
+    @settings(max_examples=examples, deadline=None, derandomize=True,
               suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
     @given(st.fixed_dictionaries({o: st.one_of(st.just(DEFAULTS[o]), _option_text)
                                   for o in options}))
