@@ -49,19 +49,18 @@ from ..control.open_loop import OPEN_LOOP
 from ..errors import ParameterError, SimulationDiverged
 from ..parameters import Params, as_records, stack_params
 from ..vessels.base import VesselModel
+from .compiled_step import compiled_advance_source, compiled_stage_loop_source
 from .composition import compose
 from .environment_stage import environment_stage, no_apply_loads, no_environment_loads
 from .generated import code_fingerprint, import_generated, kernel_cache_dir
 from .inlining import inlined_size
-from .compiled_step import compiled_advance_source, compiled_stage_loop_source
 from .integrators import ButcherTableau, get_integrator
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..results import SimResult
 
 __all__ = ["RunStatus", "simulate", "compile_closed_loop", "STAGE_LOOP_ABOVE", "kernel_cache_dir",
-           "import_generated",
-           "code_fingerprint",
+           "import_generated", "code_fingerprint",
            "check_record_memory", "physical_memory", "RecordingTooLarge"]
 
 
