@@ -10,7 +10,8 @@ that does what ``seahelm demo`` does, step by step:
   cache (``metadata["compile_time_s"]``);
 * run — the simulation itself (``metadata["wall_time_s"]``);
 * write — ``result.nc`` (NetCDF through xarray/h5netcdf);
-* plot — matplotlib import, the overview figure and its PNG.
+* plot — matplotlib import, the overview figure and its PNG;
+* report — the HTML report (``report.html``) from the result in memory.
 
 The whole command is timed too (``seahelm demo --json``, a subprocess, wall clock). Prints
 medians of several warm repetitions and the cold figures.
@@ -60,9 +61,14 @@ fig = result.plot()
 fig.savefig(sys.argv[1] + "/overview.png", dpi=110, format="png")
 plt.close(fig)
 t_plot = time.perf_counter() - t2
+t3 = time.perf_counter()
+from seahelm.report import report_data_from_dataset, write_report
+write_report(report_data_from_dataset(result.to_xarray(), sources=(sys.argv[1] + "/result.nc",)),
+             sys.argv[1] + "/report.html")
+t_report = time.perf_counter() - t3
 print(json.dumps({"imports": t_import, "compile/load": result.metadata["compile_time_s"],
                   "run": result.metadata["wall_time_s"], "write": t_write, "plot": t_plot,
-                  "total in process": time.perf_counter() - t0}))
+                  "report": t_report, "total in process": time.perf_counter() - t0}))
 """
 
 
