@@ -18,7 +18,8 @@ medians of several warm repetitions and the cold figures.
 
 Then the first use of other component combinations, each in a fresh process with empty caches:
 the example scenarios of every kind of model (Nomoto, the nonlinear Mariner, the KVLCC2 MMG
-with and without wind and waves, the catamaran, the compensated autopilot), with the kernel's
+with and without wind and waves, the catamaran, Voitkunsky's model under the compensated
+autopilot), with the kernel's
 compile time (``compile_time_s``) and the whole first run (imports excluded).
 
 Python's own bytecode cache is left on (``PYTHONDONTWRITEBYTECODE`` is removed from the
@@ -86,8 +87,8 @@ COMBINATIONS = {
     "KVLCC2 MMG turning circles": "kvlcc2_turning_circles.toml",
     "KVLCC2 MMG + wind and waves": "kvlcc2_turning_weather.toml",
     "catamaran + final-state heading": "catamaran_heading_0p8.toml",
-    "Nomoto-2 + compensated PID + loads": "compensation_storm_compensated.toml",
-    "Nomoto-2 + route following (LOS)": "mariner_route_los.toml",
+    "Voitkunsky + compensated PID + loads": "compensation_storm_compensated.toml",
+    "nonlinear Mariner on a LOS route": "mariner_route_los.toml",
 }
 
 FIRST_USE = r"""

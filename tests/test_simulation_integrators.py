@@ -296,8 +296,10 @@ def stage_loop_everywhere(monkeypatch):
     engine.compile_closed_loop.cache_clear()
 
 
-# nodes 0 only, 2/3, 1/2 and 1, 1/3 and 2/3 and 1, 3/4: every branch of the stage disturbance
-@pytest.mark.parametrize("method", ["euler", "ralston", "kutta3", "rk38", CUSTOM], ids=_id)
+# nodes 0 only, 2/3, 1/2 and 1, 1/3 and 2/3 and 1, 3/4, a repeated 1/2 (rk4), 1 before 1/2
+# (ssprk3): every branch of the stage disturbance
+@pytest.mark.parametrize("method", ["euler", "ralston", "kutta3", "rk38", "rk4", "ssprk3", CUSTOM],
+                         ids=_id)
 def test_looped_kernel_step_equals_the_numpy_step(method, stage_loop_everywhere):
     dist = _nonlinear_disturbance(0.3)
     x0 = np.array([0.0, 0.0, 0.1, 0.002])
@@ -309,6 +311,40 @@ def test_looped_kernel_step_equals_the_numpy_step(method, stage_loop_everywhere)
     xs = integrate(_nomoto1_numpy, x0, grid, P_NONLINEAR, grid, dist, method=method)
     assert res.ok.all()
     np.testing.assert_allclose(res.state[0], xs, rtol=1e-12, atol=1e-12)
+
+
+def test_looped_and_written_out_steps_agree_with_actuator_states_and_a_controller():
+    """Nomoto-2 + rudder servo (an actuator state, ka/ta) + PID, RK4, a time-varying rudder
+    disturbance: the two forms of the step give the same run to rounding."""
+    from seahelm.actuators.servo import RUDDER_SERVO
+    from seahelm.control.pid import PID_HEADING, PIDHeadingParams
+    from seahelm.simulation import engine
+    from seahelm.vessels.catalog import get
+    from seahelm.vessels.nomoto import NOMOTO2
+
+    p = get("mariner-nomoto2").params
+    t = np.arange(301) * 0.5
+    dist = np.zeros((301, NOMOTO2.n_disturbances))
+    dist[:, 0] = 0.02 * np.sin(0.05 * t)
+    kw = dict(t_final=150.0, dt=0.5, actuator=RUDDER_SERVO, controller=PID_HEADING,
+              controller_params=PIDHeadingParams(kp=3.0, ki=0.001, kd=90.0),
+              reference=[math.radians(20.0)], disturbance=dist)
+    x0 = np.array([0.0, 0.0, 0.05, 0.001, 0.0])
+    written = simulate(NOMOTO2, p, x0, **kw)
+    looped_kernel = compile_closed_loop(NOMOTO2, RUDDER_SERVO, PID_HEADING, "rk4",
+                                        stage_loop=True)
+    assert hasattr(looped_kernel, "RK_A")
+    old = engine.STAGE_LOOP_ABOVE
+    engine.compile_closed_loop.cache_clear()
+    try:
+        engine.STAGE_LOOP_ABOVE = -1
+        looped = simulate(NOMOTO2, p, x0, **kw)
+    finally:
+        engine.STAGE_LOOP_ABOVE = old
+        engine.compile_closed_loop.cache_clear()
+    assert written.ok.all() and looped.ok.all()
+    assert np.ptp(written.state[0, :, -1]) > 0.1  # the servo moved
+    np.testing.assert_allclose(looped.state, written.state, rtol=1e-12, atol=1e-12)
 
 
 def test_heavy_models_loop_over_the_stages_and_light_ones_write_them_out():

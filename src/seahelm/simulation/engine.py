@@ -106,14 +106,19 @@ _BLOCK = re.compile(r"# <(header|footer)>\n.*?# </\1>\n", re.S)
 #: KVLCC2 MMG (4 × 837) compile 9.4 → 4.6 s, 1,000 turning circles 0.86 → 0.87 s;
 #: nonlinear Mariner (4 × 596) 5.8 → 3.3 s, 0.50 → 0.40 s; Nomoto-2 + PID (4 × 253)
 #: 5.9 → 3.7 s but 1.67e7 → 1.44e7 vessel-steps/s; catamaran (4 × 368) 5.7 → 3.7 s but
-#: 75 % → 67 % of the hand-fused kernel.
+#: 75 % → 67 % of the hand-fused kernel. Bytecode counts differ a little between Python
+#: versions (4-9 % from 3.11 to 3.13); no shipped combination is near enough to change side.
+#: The choice is made when a combination is first compiled in a process: to change it, set
+#: this and call ``compile_closed_loop.cache_clear()``, or pass ``stage_loop=`` to
+#: :func:`compile_closed_loop`.
 STAGE_LOOP_ABOVE = 2000
 
 
 def _stage_code_size(model: VesselModel, actuator: Actuator, tableau: ButcherTableau,
                      environment: Any) -> int:
     """The code each stage of a written-out step inlines (see :data:`STAGE_LOOP_ABOVE`)."""
-    per_stage = inlined_size(model.rhs) + inlined_size(actuator.rhs)
+    per_stage = (inlined_size(model.rhs) + inlined_size(actuator.rhs)
+                 + inlined_size(actuator.output))
     if environment is not None:
         per_stage += inlined_size(environment_stage(environment, model)[1])
     return tableau.stages * per_stage
@@ -139,7 +144,8 @@ def compile_closed_loop(
     Parameters
     ----------
     model, actuator, controller
-        The components; they are wired by signal name (:func:`~seahelm.simulation.composition.compose`).
+        The components; they are wired by signal name
+        (:func:`~seahelm.simulation.composition.compose`).
     integrator : str or ButcherTableau
         A name in :data:`~seahelm.simulation.integrators.INTEGRATORS` (default "rk4") or a
         tableau; its step is generated into the module, so the module's name (a hash of its

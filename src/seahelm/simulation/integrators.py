@@ -3,10 +3,10 @@
 A fixed-step method is data, not code: a :class:`ButcherTableau` (``a``, ``b``, ``c`` and the
 order), registered by name in :data:`INTEGRATORS`. One numpy step, :func:`rk_step`, advances
 a batch of states ``(..., n)`` with any tableau, and :func:`integrate` runs it over a time
-grid. For the compiled closed loop, :mod:`seahelm.simulation.compiled_step` writes the same step as
-numba source, which :func:`seahelm.simulation.engine.compile_closed_loop` puts into the kernel. Adding a
-method is one tableau and one registry line; the tests check every registered tableau's
-declared order against closed-form solutions, in numpy and in the compiled engine.
+grid. For the compiled closed loop, :mod:`seahelm.simulation.compiled_step` writes the same
+step as numba source, which :func:`seahelm.simulation.engine.compile_closed_loop` puts into the
+kernel. Adding a method is one tableau and one registry line; the tests check every registered
+tableau's declared order against closed-form solutions, in numpy and in the compiled engine.
 
 For a tableau with s stages, the step from ``t`` to ``t + h`` is::
 

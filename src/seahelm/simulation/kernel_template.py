@@ -27,11 +27,12 @@ exact.
 Compile time shapes the loop (a new combination of components compiles on first use, and the
 user waits): the components are inlined at numba-IR level (``inline="always"``), once per
 call site, so the loop has one site that evaluates the outputs and each stage of the step one
-site of the right-hand side (a heavy model's step loops over the stages: one site); and everything is compiled without numba's reference-counted
-runtime (``_nrt=False``): the per-run vectors are scratch buffers passed in, one set per
-slice of runs, so nothing is allocated and no reference count is touched in the loop. (Marking the
-array arguments ``noalias``, as numba does for a ``prange`` body, made the Nomoto loop 25 %
-slower and the catamaran loop no faster, measured; it is not done.) The loop is serial and
+site of the right-hand side (a heavy model's step loops over the stages: one site); and
+everything is compiled without numba's reference-counted runtime (``_nrt=False``): the
+per-run vectors are scratch buffers passed in, one set per slice of runs, so nothing is
+allocated and no reference count is touched in the loop. (Marking the array arguments
+``noalias``, as numba does for a ``prange`` body, made the Nomoto loop 25 % slower and the
+catamaran loop no faster, measured; it is not done.) The loop is serial and
 releases the GIL (``nogil=True``); the engine runs slices of the batch on a pool of threads.
 A ``parallel=True``/``prange`` loop ran at the same speed but compiled 3× slower (numba's
 parfor passes on the inlined loop: 46 s against 14 s for Nomoto-2 + servo + PID with RK4, on
