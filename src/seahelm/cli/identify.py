@@ -9,7 +9,6 @@ main command as ``seahelm identify``; usable on its own as the typer app :data:`
 
 from __future__ import annotations
 
-import csv
 import math
 from pathlib import Path
 from typing import Annotated, Any, Literal, Optional
@@ -49,38 +48,6 @@ def _main() -> None:
     """Identification of steering-model coefficients."""
 
 
-def read_turn_csv(path: Path) -> dict[str, np.ndarray]:
-    """Numeric columns of a CSV file with a header row (ParameterError on bad content)."""
-    from ..errors import ParameterError
-
-    input_file("FILE", path)
-    try:
-        with path.open(newline="", encoding="utf-8-sig") as fh:
-            reader = csv.reader(fh)
-            try:
-                header = [h.strip() for h in next(reader)]
-            except StopIteration:
-                raise ParameterError(f"{path}: empty file (a header row is needed)") from None
-            rows = [r for r in reader if any(cell.strip() for cell in r)]
-    except UnicodeDecodeError as exc:
-        raise ParameterError(f"{path}: not UTF-8 text (byte {exc.start}); a CSV file with a "
-                             "header row is needed") from None
-    cols: dict[str, list[float]] = {h: [] for h in header}
-    for i, row in enumerate(rows, start=2):
-        if len(row) != len(header):
-            raise ParameterError(
-                f"{path}, line {i}: {len(row)} fields, the header has {len(header)}"
-            )
-        for h, cell in zip(header, row):
-            try:
-                cols[h].append(float(cell))
-            except ValueError:
-                raise ParameterError(
-                    f"{path}, line {i}: column `{h}` is not a number: {cell!r}"
-                ) from None
-    return {h: np.asarray(v, dtype=float) for h, v in cols.items()}
-
-
 @app.command("steady-turn")
 @handle_errors
 def steady_turn(
@@ -115,9 +82,11 @@ def steady_turn(
     from ..errors import ParameterError
     from ..identification.fitting import fit_steady_turns
     from ..identification.segments import extract_steady_segments
+    from ..identification.turn_log import read_turn_log
 
     scale = math.pi / 180.0 if angles == "deg" else 1.0
-    cols = read_turn_csv(file)
+    input_file("FILE", file)
+    cols = read_turn_log(file)
     missing = [c for c in ("rudder_angle", "yaw_rate") if c not in cols]
     if missing:
         raise ParameterError(
