@@ -62,10 +62,14 @@ def run(params, *, rudder=0.0, t_final=60.0, environment=ENV, disturbance=None, 
                     disturbance=disturbance)
 
 
-def test_zero_wind_and_waves_reproduce_the_calm_water_run_exactly():
+def test_zero_wind_and_waves_reproduce_the_calm_water_run_to_rounding():
     calm = run(None, rudder=math.radians(20.0), environment=None)
     still = run(env_params(wind_direction=1.0, wave_direction=2.0), rudder=math.radians(20.0))
-    np.testing.assert_array_equal(still.state, calm.state)
+    # two kernels (with and without the environment stage), compiled with fastmath's
+    # reassociation: the same arithmetic up to the order LLVM picks for each (measured: at most
+    # 1 ulp apart)
+    assert np.ptp(calm["heading"][0]) > 0.1  # the ship turned
+    np.testing.assert_allclose(still.state, calm.state, rtol=1e-13, atol=1e-15)
     # the recorded loads are zero, the apparent wind is the ship's own
     for name in ("wind_force_x", "wind_force_y", "wind_moment_z", "wave_force_x",
                  "wave_force_y", "wave_moment_z"):

@@ -28,7 +28,8 @@ from test_sweep import N_RUNS, SCENARIO  # noqa: E402
 
 #: Each run integrates 1500 s at 10 ms (~0.1 s of CPU): a chunk of one run is still being
 #: computed when the worker is killed.
-SLOW = SCENARIO.replace("t_final = 60.0", "t_final = 1500.0").replace(
+# chunks long enough (a run each, ~0.2 s) for a worker to be caught computing one
+SLOW = SCENARIO.replace("t_final = 60.0", "t_final = 20000.0").replace(
     "dt = 0.1\n", "dt = 0.01\n").replace("record_every = 10", "record_every = 1000")
 
 

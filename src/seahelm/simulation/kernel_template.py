@@ -47,7 +47,7 @@ import math
 import numpy as np
 from numba import njit
 
-from seahelm.simulation.inlining import inline_always
+from seahelm.simulation.inlining import inline_always, local_record
 
 # <header>
 from seahelm.actuators.servo import servo_output as _actuator_output
@@ -226,10 +226,11 @@ def run_slice(
         if status[i] != 0:
             continue
         load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi)
-        mpi = mp[i]
-        api = ap[i]
-        cpi = cp[i]
-        epi = ep[i]
+        # stack copies of the run's parameter records: see local_record
+        mpi = local_record(mp[i])
+        api = local_record(ap[i])
+        cpi = local_record(cp[i])
+        epi = local_record(ep[i])
         idist = i if dist.shape[0] > 1 else 0
         iref = i if ref.shape[0] > 1 else 0
         if not dist_varies:
