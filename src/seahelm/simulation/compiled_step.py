@@ -55,7 +55,7 @@ def compiled_advance_source(method: str | ButcherTableau) -> str:
     Parameters
     ----------
     method : str or ButcherTableau
-        A name in :data:`INTEGRATORS` or a tableau.
+        A name in :data:`~seahelm.simulation.integrators.INTEGRATORS` or a tableau.
 
     Returns
     -------
@@ -142,7 +142,7 @@ def compiled_stage_loop_source(method: str | ButcherTableau) -> str:
     Parameters
     ----------
     method : str or ButcherTableau
-        A name in :data:`INTEGRATORS` or a tableau.
+        A name in :data:`~seahelm.simulation.integrators.INTEGRATORS` or a tableau.
 
     Returns
     -------
