@@ -300,15 +300,24 @@ def _forces(u, v, r, delta, n, p):  # pragma: no cover - compiled
     beta_R = beta - p.l_R * rn
     gamma_R = p.gamma_R_minus if beta_R < 0.0 else p.gamma_R_plus
     v_R = speed * gamma_R * beta_R
-    alpha_R = delta - math.atan2(v_R, u_R)
-    F_N = 0.5 * rho * p.rudder_area * (u_R * u_R + v_R * v_R) * p.f_alpha * math.sin(alpha_R)
+    # F_N = ½ρ A_R U_R² f_α sin α_R with α_R = δ − atan2(v_R, u_R), U_R = √(u_R² + v_R²):
+    # U_R² sin α_R = U_R (u_R sin δ − v_R cos δ), without the arctangent (α_R: rudder_inflow_angle)
+    sin_d = math.sin(delta)
+    cos_d = math.cos(delta)
+    U_R = math.sqrt(u_R * u_R + v_R * v_R)
+    F_N = 0.5 * rho * p.rudder_area * p.f_alpha * U_R * (u_R * sin_d - v_R * cos_d)
     x_R = p.x_R * L  # metres
     x_H = p.x_H * L
-    X_R = -(1.0 - p.t_R) * F_N * math.sin(delta)
-    Y_R = -(1.0 + p.a_H) * F_N * math.cos(delta)
-    N_R = -(x_R + p.a_H * x_H) * F_N * math.cos(delta)
-    return (X_H, Y_H, N_H, X_P, X_R, Y_R, N_R, thrust, F_N, alpha_R, w_P, u_R, v_R,
-            speed, beta)
+    X_R = -(1.0 - p.t_R) * F_N * sin_d
+    Y_R = -(1.0 + p.a_H) * F_N * cos_d
+    N_R = -(x_R + p.a_H * x_H) * F_N * cos_d
+    return (X_H, Y_H, N_H, X_P, X_R, Y_R, N_R, thrust, F_N, w_P, u_R, v_R, speed, beta)
+
+
+@njit(cache=True)
+def rudder_inflow_angle(delta, u_R, v_R):  # pragma: no cover - compiled
+    """Effective rudder inflow angle α_R = δ − atan2(v_R, u_R) [rad] (Yasukawa & Yoshimura 2015)."""
+    return delta - math.atan2(v_R, u_R)
 
 
 @njit(cache=True)
@@ -318,7 +327,7 @@ def mmg_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     v = x[S.sway_speed]
     r = x[S.yaw_rate]
     psi = x[S.heading]
-    X_H, Y_H, N_H, X_P, X_R, Y_R, N_R, _T, _F_N, _a_R, _w_P, _u_R, _v_R, _U, _b = _forces(
+    X_H, Y_H, N_H, X_P, X_R, Y_R, N_R, _T, _F_N, _w_P, _u_R, _v_R, _U, _b = _forces(
         uu, v, r, u[U.rudder_angle], u[U.propeller_rps], p)
     X = X_H + X_P + X_R + d[D.force_x]
     Yf = Y_H + Y_R + d[D.force_y]
@@ -353,8 +362,9 @@ def mmg_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
 @njit(cache=True)
 def mmg_output(t, x, u, p, y):  # pragma: no cover - compiled
     """Outputs of the MMG model (``OUTPUTS`` order) for one run."""
-    (_X_H, _Y_H, _N_H, _X_P, _X_R, _Y_R, _N_R, thrust, F_N, alpha_R, _w_P, _u_R, _v_R, speed,
-     beta) = _forces(x[S.surge_speed], x[S.sway_speed], x[S.yaw_rate], u[U.rudder_angle],
+    delta = u[U.rudder_angle]
+    (_X_H, _Y_H, _N_H, _X_P, _X_R, _Y_R, _N_R, thrust, F_N, _w_P, u_R, v_R, speed,
+     beta) = _forces(x[S.surge_speed], x[S.sway_speed], x[S.yaw_rate], delta,
                      u[U.propeller_rps], p)
     y[Y.north] = x[S.north]
     y[Y.east] = x[S.east]
@@ -366,7 +376,7 @@ def mmg_output(t, x, u, p, y):  # pragma: no cover - compiled
     y[Y.drift_angle] = beta
     y[Y.thrust] = thrust
     y[Y.rudder_normal_force] = F_N
-    y[Y.rudder_inflow_angle] = alpha_R
+    y[Y.rudder_inflow_angle] = rudder_inflow_angle(delta, u_R, v_R)
 
 
 @njit(cache=True)
@@ -459,9 +469,11 @@ def force_components(params: MMGParams, state: Any, inputs: Any) -> MMGForces:
         raise ParameterError(
             f"`state` must have shape ({len(STATES)},) and `inputs` ({len(INPUTS)},), got "
             f"{x.shape} and {uin.shape}")
-    f = _forces(float(x[0]), float(x[1]), float(x[2]), float(uin[0]), float(uin[1]),
-                params.to_record())
-    return MMGForces(*(float(v) for v in f))
+    delta = float(uin[0])
+    f = [float(v) for v in _forces(float(x[0]), float(x[1]), float(x[2]), delta,
+                                   float(uin[1]), params.to_record())]
+    alpha_R = float(rudder_inflow_angle(delta, f[10], f[11]))
+    return MMGForces(*f[:9], alpha_R, *f[9:])
 
 
 # ------------------------------------------------------------------------------------------
