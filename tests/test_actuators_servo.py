@@ -91,3 +91,80 @@ def test_propeller_parameters_are_required_and_validated():
         RP.replace(max_rps_rate=-1.0)
     with pytest.raises(ParameterError, match=r"`propeller_time_constant`.*\[s\]"):
         RP.replace(propeller_time_constant=0.0)
+
+
+# --- the closed-form step (``advance``) -----------------------------------------------------
+def _advance(actuator, params, xa, ca, h):
+    out = np.empty(len(xa))
+    actuator.advance(float(h), np.asarray(xa, float), np.asarray(ca, float), params.to_record(),
+                     out)
+    return out
+
+
+def _integrated(actuator, params, xa, ca, h, steps=20000):
+    """The servo ODE integrated with RK4 at h/steps (the rate is continuous in the state)."""
+    x = np.asarray(xa, float)
+    dt = h / steps
+    for _ in range(steps):
+        k1 = _rhs(actuator, params, x, ca)
+        k2 = _rhs(actuator, params, x + 0.5 * dt * k1, ca)
+        k3 = _rhs(actuator, params, x + 0.5 * dt * k2, ca)
+        k4 = _rhs(actuator, params, x + dt * k3, ca)
+        x = x + dt / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
+    return x
+
+
+# rudder from, command, time: inside the lag band (|e| <= rate * T = 2.33 deg), a ramp that
+# ends inside the interval, a ramp that does not, the command beyond the angle limit, going
+# to port, at rest on the target, zero time
+ADVANCE_CASES = [(0.0, math.radians(1.0), 3.0), (0.0, math.radians(20.0), 12.0),
+                 (0.0, math.radians(20.0), 4.0), (math.radians(-10.0), 1.5, 30.0),
+                 (math.radians(30.0), math.radians(-25.0), 10.0), (0.2, 0.2, 5.0),
+                 (0.1, -0.3, 0.0)]
+
+
+@pytest.mark.parametrize("rudder, cmd, h", ADVANCE_CASES)
+def test_closed_form_step_is_the_integrated_servo(rudder, cmd, h):
+    servo = ServoParams(max_angle=math.radians(35.0), max_rate=math.radians(2.33),
+                        time_constant=1.0)
+    got = _advance(RUDDER_SERVO, servo, [rudder], [cmd], h)
+    want = _integrated(RUDDER_SERVO, servo, [rudder], [cmd], h, steps=max(1, int(2000 * h)))
+    np.testing.assert_allclose(got, want, rtol=0, atol=1e-10)
+    # both channels of the rudder + propeller servo, the shaft accelerating at its limit
+    got = _advance(RUDDER_PROPELLER, RP, [rudder, 0.5], [cmd, 1.8], h)
+    want = _integrated(RUDDER_PROPELLER, RP, [rudder, 0.5], [cmd, 1.8], h,
+                       steps=max(1, int(2000 * h)))
+    np.testing.assert_allclose(got, want, rtol=0, atol=1e-10)
+
+
+def test_closed_form_step_ramp_then_lag_by_hand():
+    # 20 deg from rest at 2.33 deg/s, T = 1 s: the ramp ends 2.33 deg short of the target at
+    # t1 = (20 - 2.33)/2.33 s, then the error decays as 2.33 deg * exp(-(t - t1)/T)
+    servo = ServoParams(max_angle=math.radians(35.0), max_rate=math.radians(2.33),
+                        time_constant=1.0)
+    t1 = (20.0 - 2.33) / 2.33
+    for t in (0.5 * t1, t1, t1 + 0.7, t1 + 5.0):
+        want = 2.33 * t if t <= t1 else 20.0 - 2.33 * math.exp(-(t - t1))
+        got = math.degrees(_advance(RUDDER_SERVO, servo, [0.0], [math.radians(20.0)], t)[0])
+        assert got == pytest.approx(want, abs=1e-12)
+
+
+def test_closed_form_step_composes_over_time():
+    # the exact solution of an autonomous ODE: advancing by a then by b is advancing by a + b
+    for rudder, cmd, h in ADVANCE_CASES:
+        for part in (0.1, 0.37, 0.5, 0.9):
+            x1 = _advance(RUDDER_PROPELLER, RP, [rudder, 0.5], [cmd, 1.8], part * h)
+            x2 = _advance(RUDDER_PROPELLER, RP, x1, [cmd, 1.8], (1.0 - part) * h)
+            whole = _advance(RUDDER_PROPELLER, RP, [rudder, 0.5], [cmd, 1.8], h)
+            np.testing.assert_allclose(x2, whole, rtol=0, atol=1e-14)
+
+
+def test_closed_form_step_with_a_rate_never_reached_is_the_plain_lag():
+    servo = ServoParams(max_angle=1.0, max_rate=1e6, time_constant=2.0)
+    got = _advance(RUDDER_SERVO, servo, [0.1], [5.0], 3.0)[0]  # target saturated to 1.0
+    assert got == pytest.approx(1.0 - 0.9 * math.exp(-1.5), abs=1e-15)
+
+
+def test_only_the_servos_have_a_closed_form_step():
+    assert RUDDER_SERVO.advance is not None and RUDDER_PROPELLER.advance is not None
+    assert DIRECT.advance is None

@@ -313,27 +313,29 @@ def test_looped_kernel_step_equals_the_numpy_step(method, stage_loop_everywhere)
     np.testing.assert_allclose(res.state[0], xs, rtol=1e-12, atol=1e-12)
 
 
-def test_looped_and_written_out_steps_agree_with_actuator_states_and_a_controller():
-    """Nomoto-2 + rudder servo (an actuator state, ka/ta) + PID, RK4, a time-varying rudder
-    disturbance: the two forms of the step give the same run to rounding."""
+@pytest.mark.parametrize("exact", [True, False], ids=["closed-form servo", "integrated servo"])
+def test_looped_and_written_out_steps_agree_with_actuator_states_and_a_controller(exact):
+    """Nomoto-2 + rudder servo (an actuator state: from its closed-form step, or integrated with
+    the tableau through ka/ta) + PID, RK4, a time-varying rudder disturbance: the two forms of
+    the step give the same run to rounding."""
     from seahelm.actuators.servo import RUDDER_SERVO
     from seahelm.control.pid import PID_HEADING, PIDHeadingParams
     from seahelm.simulation import engine
     from seahelm.vessels.catalog import get
     from seahelm.vessels.nomoto import NOMOTO2
 
+    servo = RUDDER_SERVO if exact else dataclasses.replace(RUDDER_SERVO, advance=None)
     p = get("mariner-nomoto2").params
     t = np.arange(301) * 0.5
     dist = np.zeros((301, NOMOTO2.n_disturbances))
     dist[:, 0] = 0.02 * np.sin(0.05 * t)
-    kw = dict(t_final=150.0, dt=0.5, actuator=RUDDER_SERVO, controller=PID_HEADING,
+    kw = dict(t_final=150.0, dt=0.5, actuator=servo, controller=PID_HEADING,
               controller_params=PIDHeadingParams(kp=3.0, ki=0.001, kd=90.0),
               reference=[math.radians(20.0)], disturbance=dist)
     x0 = np.array([0.0, 0.0, 0.05, 0.001, 0.0])
     written = simulate(NOMOTO2, p, x0, **kw)
-    looped_kernel = compile_closed_loop(NOMOTO2, RUDDER_SERVO, PID_HEADING, "rk4",
-                                        stage_loop=True)
-    assert hasattr(looped_kernel, "RK_A")
+    looped_kernel = compile_closed_loop(NOMOTO2, servo, PID_HEADING, "rk4", stage_loop=True)
+    assert hasattr(looped_kernel, "RK_A") and looped_kernel.EXACT_ACTUATOR == exact
     old = engine.STAGE_LOOP_ABOVE
     engine.compile_closed_loop.cache_clear()
     try:
@@ -368,3 +370,76 @@ def test_heavy_models_loop_over_the_stages_and_light_ones_write_them_out():
     assert _stage_code_size(MMG, DIRECT, rk4, None) > 4 * 500
     assert hasattr(compile_closed_loop(MMG, RUDDER_PROPELLER, OPEN_LOOP, "rk4"), "RK_A")
     assert not hasattr(compile_closed_loop(NOMOTO2, RUDDER_SERVO, PID_HEADING, "rk4"), "RK_A")
+
+
+# --- actuators with a closed-form step --------------------------------------------------------
+def _kvlcc2_circle(actuator, dt: float, method: str = "rk4"):
+    """60 s of a 35 deg starboard turn of the KVLCC2 L7 model from a straight run at the
+    self-propulsion rps, the rudder through its steering gear (15.8 deg/s, 0.1 s lag)."""
+    from seahelm.analysis.equilibrium import self_propulsion_rps
+    from seahelm.vessels.mmg import KVLCC2_L7, KVLCC2_L7_SERVO, MMG
+
+    rps = float(self_propulsion_rps(KVLCC2_L7, 1.179))
+    return simulate(MMG, KVLCC2_L7, np.array([1.179, 0.0, 0.0, 0.0, 0.0, 0.0]), t_final=60.0,
+                    dt=dt, actuator=actuator, actuator_params=KVLCC2_L7_SERVO,
+                    integrator=method,
+                    reference={"rudder_command": math.radians(35.0), "propeller_rps": rps})
+
+
+def test_a_closed_form_servo_frees_the_step_from_the_servo_lag():
+    """The 0.1 s steering-gear lag makes RK4 unstable for the servo beyond 0.28 s (the rate
+    limit then bounds a rudder chatter): integrated, a 0.5 s step is 0.7 % off in heading
+    after 60 s; with the closed-form servo 0.5 s and 1 s steps stay within 0.005 % of a
+    0.05 s run, and at 0.05 s the two agree to 1e-7 (the integrated servo's error)."""
+    from seahelm.actuators.servo import RUDDER_SERVO
+
+    integrated = dataclasses.replace(RUDDER_SERVO, advance=None)
+    fine = _kvlcc2_circle(RUDDER_SERVO, 0.05)
+    psi = fine["heading"][0, -1]
+    assert psi > 3.0  # (well into the turn)
+    assert _kvlcc2_circle(integrated, 0.05)["heading"][0, -1] == pytest.approx(psi, rel=1e-7)
+    for dt in (0.5, 1.0):
+        run = _kvlcc2_circle(RUDDER_SERVO, dt)
+        assert run.ok.all()
+        assert run["heading"][0, -1] == pytest.approx(psi, rel=5e-5)
+        assert run.state[0, -1, 3] == pytest.approx(fine.state[0, -1, 3], rel=1e-3)  # north
+    assert abs(_kvlcc2_circle(integrated, 0.5)["heading"][0, -1] / psi - 1.0) > 3e-3
+
+
+@pytest.mark.parametrize("method", ["euler", "ssprk3", CUSTOM], ids=_id)
+def test_closed_form_servo_written_out_and_looped_for_any_nodes(method):
+    """Nodes 0 only (the step ends advancing the servo by h), 1 before 1/2, a last node that
+    is not 1: written out and looped agree, and the servo's state at every step is its closed
+    form (a 20 deg order at 5 deg/s, T = 1 s: a ramp for 3 s, then the lag)."""
+    from seahelm.actuators.servo import RUDDER_SERVO, ServoParams
+    from seahelm.simulation import engine
+    from seahelm.vessels.catalog import get
+    from seahelm.vessels.nomoto import NOMOTO2
+
+    kw = dict(t_final=20.0, dt=0.25, actuator=RUDDER_SERVO, integrator=method,
+              actuator_params=ServoParams(max_rate=math.radians(5.0), time_constant=1.0),
+              reference=[math.radians(20.0)])
+    p, x0 = get("mariner-nomoto2").params, np.zeros(5)
+    old = engine.STAGE_LOOP_ABOVE
+    engine.compile_closed_loop.cache_clear()
+    try:
+        engine.STAGE_LOOP_ABOVE = 10 ** 9
+        written = simulate(NOMOTO2, p, x0, **kw)
+        engine.compile_closed_loop.cache_clear()
+        engine.STAGE_LOOP_ABOVE = -1
+        looped = simulate(NOMOTO2, p, x0, **kw)
+        assert compile_closed_loop(NOMOTO2, RUDDER_SERVO, OPEN_LOOP, method).EXACT_ACTUATOR
+    finally:
+        engine.STAGE_LOOP_ABOVE = old
+        engine.compile_closed_loop.cache_clear()
+    assert written.ok.all() and looped.ok.all()
+    np.testing.assert_allclose(looped.state, written.state, rtol=1e-12, atol=1e-12)
+    t = np.arange(81) * 0.25
+    want = np.where(t <= 3.0, 5.0 * t, 20.0 - 5.0 * np.exp(-(t - 3.0)))
+    np.testing.assert_allclose(np.degrees(written.state[0, :, -1]), want, rtol=0, atol=1e-9)
+    assert np.ptp(written.state[0, :, 2]) > 0.1  # (and the ship turned)
+
+
+def test_exact_actuator_needs_a_closed_form_step():
+    with pytest.raises(ValueError, match="exact_actuator: the actuator 'direct' has no"):
+        compile_closed_loop(NOMOTO1, DIRECT, OPEN_LOOP, "rk4", exact_actuator=True)

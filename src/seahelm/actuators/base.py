@@ -11,6 +11,11 @@ together with the vessel's) and is a bundle of numba-compiled functions:
     writes the actuator state derivative; ``ca`` are its (zero-order-held) command channels.
 ``output(xa, ca, p, ya)``
     writes its outputs (``output_labels`` order).
+``advance(h, xa, ca, p, out)`` (optional)
+    writes into ``out`` the state ``h`` seconds after ``xa`` under the constant commands
+    ``ca``, in closed form. The engine then takes the actuator states from it at every stage of
+    the step instead of integrating ``rhs`` with the step's tableau: exact, and without the
+    stability bound a fast servo (a lag of 0.1 s) puts on an explicit step.
 
 ``p`` is the run's parameter record (``p.max_rate``). A *pass-through* actuator (``DIRECT``)
 has no channels of its own: the composer gives it one channel per model input it feeds, and it
@@ -47,6 +52,9 @@ class Actuator:
         See the module docstring.
     passthrough : bool
         No channels of its own: one channel per model input it feeds, output = command.
+    advance : numba dispatcher or None
+        The closed-form state after a time under constant commands (see the module docstring),
+        or None: the engine integrates ``rhs``.
     """
 
     name: str
@@ -61,6 +69,7 @@ class Actuator:
     output_labels: tuple[str, ...] = ()
     output_units: tuple[str, ...] = ()
     passthrough: bool = False
+    advance: Any = None
 
     def __post_init__(self) -> None:
         for attr, ref in (("state_units", self.state_labels),

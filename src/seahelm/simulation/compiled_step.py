@@ -38,7 +38,7 @@ def _lincomb(terms: list[tuple[float, str]]) -> str:
         else f"({out})"
 
 
-def compiled_advance_source(method: str | ButcherTableau) -> str:
+def compiled_advance_source(method: str | ButcherTableau, exact_actuator: bool = False) -> str:
     """Python source of the closed-loop kernel's ``advance`` for one tableau.
 
     The source defines ``NSTAGES`` (the number of stages, the first dimension of the kernel's
@@ -52,16 +52,22 @@ def compiled_advance_source(method: str | ButcherTableau) -> str:
     hold the stage state. The disturbance at stage time t + c_i h is interpolated linearly
     between the grid values ``d0`` (at t) and ``d1`` (at t + h) into ``ds``.
 
+    With ``exact_actuator`` the actuator states are not integrated: each stage takes them from
+    the actuator's closed-form step, ``actuator_advance(c_i h, xa, ca, ap, ta)`` (once per
+    distinct node; ``xa`` itself at c_i = 0), and the step ends with ``xa`` advanced by h.
+
     Parameters
     ----------
     method : str or ButcherTableau
         A name in :data:`~seahelm.simulation.integrators.INTEGRATORS` or a tableau.
+    exact_actuator : bool
+        Take the actuator states from ``actuator_advance`` (see above).
 
     Returns
     -------
     str
         Module-level source (needs ``njit``, ``closed_rhs``, ``NX``, ``NA`` and ``FASTMATH``
-        in scope).
+        in scope, and ``actuator_advance`` with ``exact_actuator``).
     """
     tab = get_integrator(method)
     s, a, b, c = tab.stages, tab.a, tab.b, tab.c
@@ -83,7 +89,9 @@ def compiled_advance_source(method: str | ButcherTableau) -> str:
         "fa, tv, ta):"
         "  # pragma: no cover",
     ]
-    groups = (("xv", "tv", "kv", "fv", "NX"), ("xa", "ta", "ka", "fa", "NA"))
+    groups = (("xv", "tv", "kv", "fv", "NX"),) + (
+        () if exact_actuator else (("xa", "ta", "ka", "fa", "NA"),))
+    advanced_to: float | None = None  # the node ta holds, with exact_actuator
 
     def derivative(j: int, current: int, k: str, f: str) -> str:
         return f"{f}[j]" if j == current else f"{k}[{j}, j]"
@@ -104,7 +112,15 @@ def compiled_advance_source(method: str | ButcherTableau) -> str:
                     f"        ds[j] = d0[j] + {ci!r} * (d1[j] - d0[j])",
                 ]
                 ds_node = ci
-        lines.append(f"    closed_rhs({time}, {stage_input[0]}, {stage_input[1]}, cmd, ca, {d}, "
+        actuator_input = stage_input[1]
+        if exact_actuator and ci != 0.0:
+            actuator_input = "ta"
+            if advanced_to != ci:
+                lines.append(f"    actuator_advance({ci!r} * h, xa, ca, ap, ta)")
+                advanced_to = ci
+        elif exact_actuator:
+            actuator_input = "xa"
+        lines.append(f"    closed_rhs({time}, {stage_input[0]}, {actuator_input}, cmd, ca, {d}, "
                      f"mp, ap, ep, ya, u, yms, dm, lm, fv, fa)")
         if i == s - 1:
             break
@@ -124,10 +140,15 @@ def compiled_advance_source(method: str | ButcherTableau) -> str:
     for x, _tx, k, f, n in groups:
         expr = _lincomb([(bj, derivative(j, s - 1, k, f)) for bj, j in final])
         lines += [f"    for j in range({n}):", f"        {x}[j] += h * {expr}"]
+    if exact_actuator:
+        # the last node is usually c = 1: ta already holds the state at t + h
+        lines += ([] if advanced_to == 1.0 else ["    actuator_advance(h, xa, ca, ap, ta)"]) + [
+            "    for j in range(NA):", "        xa[j] = ta[j]"]
     return "\n".join(lines) + "\n"
 
 
-def compiled_stage_loop_source(method: str | ButcherTableau) -> str:
+def compiled_stage_loop_source(method: str | ButcherTableau,
+                               exact_actuator: bool = False) -> str:
     """Python source of the closed-loop kernel's ``advance`` for one tableau, as a loop over
     the stages with the tableau as constant arrays.
 
@@ -138,21 +159,54 @@ def compiled_stage_loop_source(method: str | ButcherTableau) -> str:
     numpy step passes it unchanged) and every stage derivative kept in
     ``kv``/``ka``; the disturbance at the stage time is ``d0`` for c_i = 0, ``d1`` for
     c_i = 1 and the linear interpolation between them otherwise (copied into ``ds``).
+    ``exact_actuator`` as in :func:`compiled_advance_source`.
 
     Parameters
     ----------
     method : str or ButcherTableau
         A name in :data:`~seahelm.simulation.integrators.INTEGRATORS` or a tableau.
+    exact_actuator : bool
+        Take the actuator states from ``actuator_advance`` at each stage node.
 
     Returns
     -------
     str
         Module-level source (needs ``np``, ``njit``, ``closed_rhs``, ``NX``, ``NA`` and
-        ``FASTMATH`` in scope).
+        ``FASTMATH`` in scope, and ``actuator_advance`` with ``exact_actuator``).
     """
     tab = get_integrator(method)
     s = tab.stages
     a = [[float(tab.a[i][j]) if j < i else 0.0 for j in range(s)] for i in range(s)]
+    if exact_actuator:
+        actuator_stage = [
+            "        ci = RK_C[i]",
+            "        if ci == 0.0:",
+            "            for j in range(NA):",
+            "                ta[j] = xa[j]",
+            "        elif i == 0 or ci != RK_C[i - 1]:",
+            "            actuator_advance(ci * h, xa, ca, ap, ta)",
+        ]
+        actuator_keep: list[str] = []
+        # the last node is usually c = 1: ta already holds the state at t + h
+        actuator_final = ([] if tab.c[-1] == 1.0 else ["    actuator_advance(h, xa, ca, ap, ta)"]
+                          ) + ["    for j in range(NA):", "        xa[j] = ta[j]"]
+    else:
+        actuator_stage = [
+            "        for j in range(NA):",
+            "            acc = 0.0",
+            "            for m in range(i):",
+            "                acc += RK_A[i, m] * ka[m, j]",
+            "            ta[j] = xa[j] + h * acc if i > 0 else xa[j]",
+            "        ci = RK_C[i]",
+        ]
+        actuator_keep = ["        for j in range(NA):", "            ka[i, j] = fa[j]"]
+        actuator_final = [
+            "    for j in range(NA):",
+            "        acc = 0.0",
+            "        for m in range(NSTAGES):",
+            "            acc += RK_B[m] * ka[m, j]",
+            "        xa[j] += h * acc",
+        ]
     return "\n".join([
         f"# generated by seahelm.simulation.compiled_step.compiled_stage_loop_source "
         f"from the tableau '{tab.name}'",
@@ -172,12 +226,7 @@ def compiled_stage_loop_source(method: str | ButcherTableau) -> str:
         "            for m in range(i):",
         "                acc += RK_A[i, m] * kv[m, j]",
         "            tv[j] = xv[j] + h * acc if i > 0 else xv[j]",
-        "        for j in range(NA):",
-        "            acc = 0.0",
-        "            for m in range(i):",
-        "                acc += RK_A[i, m] * ka[m, j]",
-        "            ta[j] = xa[j] + h * acc if i > 0 else xa[j]",
-        "        ci = RK_C[i]",
+        *actuator_stage,
         "        for j in range(ds.shape[0]):",
         "            if ci == 0.0:",
         "                ds[j] = d0[j]",
@@ -189,16 +238,11 @@ def compiled_stage_loop_source(method: str | ButcherTableau) -> str:
         " fa)",
         "        for j in range(NX):",
         "            kv[i, j] = fv[j]",
-        "        for j in range(NA):",
-        "            ka[i, j] = fa[j]",
+        *actuator_keep,
         "    for j in range(NX):",
         "        acc = 0.0",
         "        for m in range(NSTAGES):",
         "            acc += RK_B[m] * kv[m, j]",
         "        xv[j] += h * acc",
-        "    for j in range(NA):",
-        "        acc = 0.0",
-        "        for m in range(NSTAGES):",
-        "            acc += RK_B[m] * ka[m, j]",
-        "        xa[j] += h * acc",
+        *actuator_final,
     ]) + "\n"

@@ -17,6 +17,9 @@ Timing: the state is integrated on the grid t_k = k·dt; the controller is stepp
 ``controller_dt`` (an integer multiple of dt) and its command held in between (zero-order hold);
 disturbances are given on the grid and interpolated linearly inside a step: a stage at
 t_k + c_i dt sees d_k + c_i (d_{k+1} − d_k) (for RK4's mid-step stages, the mean of the two).
+An actuator with a closed-form step (the rudder servos: a ramp at the rate limit, then an
+exponential lag) is not integrated: each stage takes its state at t_k + c_i dt from that
+solution under the held command, so a 0.1 s steering-gear lag does not bound the step.
 
 A run whose state turns NaN/inf or leaves its declared bounds stops and is recorded with its
 status, time and state; the other runs go on (``throw=True`` raises
@@ -115,10 +118,10 @@ STAGE_LOOP_ABOVE = 2000
 
 
 def _stage_code_size(model: VesselModel, actuator: Actuator, tableau: ButcherTableau,
-                     environment: Any) -> int:
+                     environment: Any, exact_actuator: bool = False) -> int:
     """The code each stage of a written-out step inlines (see :data:`STAGE_LOOP_ABOVE`)."""
-    per_stage = (inlined_size(model.rhs) + inlined_size(actuator.rhs)
-                 + inlined_size(actuator.output))
+    per_stage = (inlined_size(model.rhs) + inlined_size(actuator.output)
+                 + inlined_size(actuator.advance if exact_actuator else actuator.rhs))
     if environment is not None:
         per_stage += inlined_size(environment_stage(environment, model)[1])
     return tableau.stages * per_stage
@@ -138,6 +141,7 @@ def compile_closed_loop(
     integrator: str | ButcherTableau = "rk4",
     environment: Any = None,
     stage_loop: bool | None = None,
+    exact_actuator: bool | None = None,
 ) -> ModuleType:
     """The compiled closed-loop module for one combination of components (cached).
 
@@ -160,6 +164,11 @@ def compile_closed_loop(
         (:func:`~seahelm.simulation.compiled_step.compiled_advance_source`: inlined once per
         stage). Default: a loop when the code inlined per stage is larger than
         :data:`STAGE_LOOP_ABOVE` (see there).
+    exact_actuator : bool, optional
+        Take the actuator states at every stage from its closed-form step
+        (``actuator.advance``: exact under the held command, and no stability bound on the
+        step from a fast servo) instead of integrating ``actuator.rhs`` with the tableau.
+        Default: whenever the actuator has one.
 
     Returns
     -------
@@ -168,6 +177,11 @@ def compile_closed_loop(
     """
     tableau = get_integrator(integrator)
     wiring = compose(model, actuator, controller)
+    if exact_actuator is None:
+        exact_actuator = actuator.advance is not None
+    elif exact_actuator and actuator.advance is None:
+        raise ValueError(f"exact_actuator: the actuator {actuator.name!r} has no closed-form "
+                         "step (advance)")
     parts = [
         _binding(model.rhs, "model_rhs"),
         _binding(model.output, "model_output"),
@@ -176,6 +190,8 @@ def compile_closed_loop(
         _binding(controller.init, "controller_init"),
         _binding(controller.step, "controller_step"),
     ]
+    if exact_actuator:
+        parts.append(_binding(actuator.advance, "actuator_advance"))
     loads, apply = ((no_environment_loads, no_apply_loads) if environment is None
                     else environment_stage(environment, model))
     # the environment's loads are called, not inlined: inlined at every stage and record site
@@ -190,6 +206,7 @@ def compile_closed_loop(
         f"NCA = {len(wiring.actuator_commands)}\nNM = {controller.n_measurements}\n"
         f"NDM = {model.n_disturbances}\nHAS_ENV = {environment is not None}\n"
         f"HOLD_LOADS = {bool(getattr(environment, 'hold_over_step', False))}\n"
+        f"EXACT_ACTUATOR = {bool(exact_actuator)}\n"
         "FASTMATH = {\"arcp\", \"contract\", \"afn\", \"reassoc\"}\n"
     )
     header += _route_source("route_actuator_commands", "cmd, ca", [
@@ -200,8 +217,10 @@ def compile_closed_loop(
     header += _route_source("route_measurements", "ym, y", [
         f"y[{i}] = ym[{j}]" for i, j in enumerate(wiring.measurement_from)])
     if stage_loop is None:
-        stage_loop = _stage_code_size(model, actuator, tableau, environment) > STAGE_LOOP_ABOVE
-    footer = (compiled_stage_loop_source if stage_loop else compiled_advance_source)(tableau)
+        stage_loop = _stage_code_size(model, actuator, tableau, environment,
+                                      exact_actuator) > STAGE_LOOP_ABOVE
+    footer = (compiled_stage_loop_source if stage_loop else compiled_advance_source)(
+        tableau, exact_actuator)
     blocks = iter([header, footer])
     text = _BLOCK.sub(lambda m: next(blocks), _TEMPLATE_TEXT)
     digest = hashlib.sha1(

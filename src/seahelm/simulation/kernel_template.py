@@ -3,7 +3,8 @@
 :func:`seahelm.simulation.engine.compile_closed_loop` writes one module per combination of
 components: this file's text with the ``<header>`` block replaced by imports that bind
 ``model_rhs``, ``model_output``, ``actuator_rhs``, ``actuator_output``, ``controller_init``,
-``controller_step`` (each through :func:`~seahelm.simulation.inlining.inline_always`), the
+``controller_step`` (each through :func:`~seahelm.simulation.inlining.inline_always`) and,
+for an actuator with a closed-form step (``EXACT_ACTUATOR``), ``actuator_advance``, the
 sizes, and the routing functions that the composition
 (:mod:`seahelm.simulation.composition`) derives from the components' signal names; the
 ``<footer>`` block holds the integrator's step, generated from its Butcher tableau by
@@ -78,6 +79,7 @@ NM = 2
 NDM = 2
 HAS_ENV = False
 HOLD_LOADS = False
+EXACT_ACTUATOR = False
 FASTMATH = {"arcp", "contract", "afn", "reassoc"}
 
 
@@ -113,7 +115,8 @@ def closed_rhs(t, xv, xa, cmd, ca, d, mp, ap, ep, ya, u, yms, dm, lm, dxv, dxa):
         model_rhs(t, xv, u, dm, mp, dxv)
     else:
         model_rhs(t, xv, u, d, mp, dxv)
-    actuator_rhs(t, xa, ca, ap, dxa)
+    if not EXACT_ACTUATOR:  # else the step takes the actuator states from actuator_advance
+        actuator_rhs(t, xa, ca, ap, dxa)
 
 
 # <footer>

@@ -179,11 +179,14 @@ def default_time_step(ship: Any, speed: float | None = None) -> float:
     """The integration step the manoeuvres use by default [s].
 
     dt = min(L/(100 U), T_δ) rounded down to 1, 2 or 5 × 10ⁿ s: a hundred steps per ship
-    length travelled, and no longer than the steering gear's lag. For the KVLCC2 L7 model
-    (L/U = 5.94 s, T_δ = 0.1 s) this is 0.05 s; Mariner (20.9 s, 1 s) 0.2 s; KVLCC2 full scale
-    (40.1 s, 0.68 s) 0.2 s. With RK4 the turning-circle advance and tactical diameter then
-    agree with a run at dt/4 to better than 0.1 % (``benchmarks/bench_maneuvers.py`` checks
-    it).
+    length travelled, and no longer than the steering gear's lag (the rudder's motion is
+    resolved at any speed). For the KVLCC2 L7 model (L/U = 5.94 s, T_δ = 0.1 s) this is
+    0.05 s; Mariner (20.9 s, 1 s) 0.2 s; KVLCC2 full scale (40.1 s, 0.68 s) 0.2 s. With RK4
+    the turning-circle advance and tactical diameter then agree with a run at dt/4 to better
+    than 0.001 %, and still to better than 0.1 % at 10× this step (:data:`STEP_VALIDITY`,
+    beyond which a manoeuvre warns; ``benchmarks/bench_maneuvers.py`` checks both). The lag
+    does not bound the step for stability: the engine takes the servo's states from its
+    closed-form solution (:func:`seahelm.actuators.servo.limited_lag_advance`).
 
     Parameters
     ----------
