@@ -171,9 +171,8 @@ def test_every_app_reports_parser_errors_in_one_line():
 def test_choices_agree_with_the_library():
     from seahelm.analysis.maneuvers import STEERING_GEAR
     from seahelm.cli import identify, maneuver, waves
-    from seahelm.environment.sea_state import TABLE2
     from seahelm.environment.rational_spectra import RationalSpectrum
-    from seahelm.environment.spectra import SPECTRA
+    from seahelm.studies.sushchenko2010 import SPECTRA, TABLE2_VERSIONS
     from seahelm.identification.fitting import FIT_METHODS
     from seahelm.identification.reduced_forms import REDUCED_FORMS
 
@@ -185,7 +184,7 @@ def test_choices_agree_with_the_library():
     assert args(waves.SpectrumName) == tuple(SPECTRA)
     assert args(waves.RationalSpectrumName) == tuple(
         n for n, cls in SPECTRA.items() if issubclass(cls, RationalSpectrum))
-    assert args(waves.TableVersion) == tuple(TABLE2)
+    assert args(waves.TableVersion) == tuple(TABLE2_VERSIONS)
 
 
 @pytest.mark.parametrize(("args", "choices"), [

@@ -141,6 +141,7 @@ def test_plotting_functions():
     from seahelm.environment.shaping import shaping_filter
     from seahelm.environment.spectra import spectrum_from_wave_height
     from seahelm.plotting import waves as pw
+    from seahelm.studies.sushchenko2010 import plot_paper_figure
 
     assert pw.grade_wave_height(3) == 1.0 and pw.grade_wave_height(6) == 4.75 and pw.grade_wave_height(9) == 10.0
     fig, ax = plt.subplots()
@@ -155,7 +156,7 @@ def test_plotting_functions():
     ax2 = pw.plot_realisations(samples, runs=(0, 1), ax=fig.add_subplot(2, 1, 2))
     np.testing.assert_array_equal(ax2.lines[1].get_ydata(), samples["ordinate"][1])
     plt.close(fig)
-    f = pw.plot_paper_figure(duration=20.0, dt=0.5)
+    f = plot_paper_figure(duration=20.0, dt=0.5)
     assert len(f.axes) == 6
     plt.close(f)
 

@@ -132,25 +132,6 @@ def test_rolloff_band_limits(order_out, k):
     assert f.output_variance()[1] == pytest.approx(ref, rel=1e-7)
 
 
-def test_paper_filters_as_printed():
-    kw = dict(variance=D, decay_rate=MU, resonance_frequency=LAM)
-    # factorisation before eq. (6): poles −λ ± jμ, variance (μ/λ) D_r ≈ 0.21 D_r
-    assert sh.paper_filter("ordinate-printed", **kw).output_variance()[0] == pytest.approx(MU / LAM * D, rel=1e-10)
-    # eq. (6) is biproper: infinite variance
-    eq6 = sh.paper_filter("eq6", **kw)
-    assert eq6.D[0, 0] != 0 and math.isinf(eq6.output_variance()[0])
-    # eq. (7): one-sided ∫|W|² = D μ a⁴/(λ g²) instead of the correct a² D / g²
-    eq7 = sh.paper_filter("eq7", **kw).output_variance()[0]
-    assert eq7 == pytest.approx(D * MU * A2**2 / (LAM * GRAVITY**2), rel=1e-10)
-    with pytest.raises(ParameterError, match="unknown paper filter.*'eq6'"):
-        sh.paper_filter("eq8", **kw)
-    with pytest.raises(ParameterError, match="`decay_rate` must be > 0"):
-        sh.paper_filter("eq7", variance=D, decay_rate=-1.0, resonance_frequency=LAM)
-
-
-# ---- exact discretisation ----------------------------------------------------------------------
-
-
 @pytest.mark.parametrize("dt", [0.05, 1.0, 7.0])
 def test_van_loan_against_quadrature(dt):
     f = sh.shaping_filter(spec("rakhmanin-firsov-1"))

@@ -48,11 +48,10 @@ def printed_formula(name: str, w: float, d: float = D, mu: float = MU, lam: floa
         "rakhmanin-firsov-1": 2 * d * mu / math.pi * (w**2 + mu**2 + lam**2) / den,
         "rakhmanin-firsov-2": 4 * d * mu / math.pi * (mu**2 + lam**2) / den,
         "rakhmanin-firsov-3": 4 * d * mu / math.pi * w**2 / den,
-        "rakhmanin-firsov-3-printed": 2 * d * mu * w**2 / den,
     }[name]
 
 
-@pytest.mark.parametrize("name", [*RF_CLASSES, "rakhmanin-firsov-3-printed"])
+@pytest.mark.parametrize("name", list(RF_CLASSES))
 def test_rf_formula_matches_paper(name):
     s = rf(name)
     w = np.linspace(0.0, 6.0, 61)
@@ -66,12 +65,6 @@ def test_rf_integrates_to_variance(name, d, mu, lam):
     total = quad_0_inf(lambda w: printed_formula(name, w, d, mu, lam), peak=math.hypot(mu, lam))
     assert total == pytest.approx(d, rel=1e-9)
     assert rf(name, d, mu, lam).moment(0) == pytest.approx(d, rel=1e-8)
-
-
-def test_printed_third_spectrum_integrates_to_pi_over_2():
-    s = rf("rakhmanin-firsov-3-printed")
-    assert quad_0_inf(lambda w: float(s.one_sided(w)), peak=1.0) == pytest.approx(math.pi / 2 * D, rel=1e-9)
-    assert s.actual_variance == pytest.approx(math.pi / 2 * D)
 
 
 @pytest.mark.parametrize("name", list(RF_CLASSES))
@@ -238,9 +231,8 @@ def test_from_wave_height_all_have_m0_equal_to_Dr(name):
     h3 = 5.0
     s = sp.spectrum_from_wave_height(name, h3)
     dr = 0.143 * (h3 / 2) ** 2
-    expected = math.pi / 2 * dr if name.endswith("printed") else dr
     tol = 0.02 if name == "jonswap" else 1e-6
-    assert abs(s.moment(0) / expected - 1) < tol
+    assert abs(s.moment(0) / dr - 1) < tol
 
 
 @pytest.mark.parametrize(

@@ -19,10 +19,10 @@ from seahelm.environment.rational_spectra import (  # noqa: E402
 from seahelm.environment.spectra import spectrum_from_wave_height  # noqa: E402
 from seahelm.plotting.waves import (  # noqa: E402
     grade_label,
-    plot_paper_figure,
     plot_spectrum,
     spectrum_unit,
 )
+from seahelm.studies.sushchenko2010 import plot_paper_figure  # noqa: E402
 
 _ROMAN = ("I", "II", "III", "IV", "V", "VI", "VII", "VIII", "IX")
 

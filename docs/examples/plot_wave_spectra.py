@@ -8,7 +8,7 @@ corrected shaping filter and from the paper's printed eq. (7).
 """
 
 from seahelm.environment.spectra import spectrum_from_wave_height
-from seahelm.plotting.waves import plot_paper_figure
+from seahelm.studies.sushchenko2010 import plot_paper_figure
 
 spec = spectrum_from_wave_height("rakhmanin-firsov-2", 3.0)
 print(f"variance D_r = {spec.variance:.4f} m², zeroth moment of S₁ = {spec.moment(0):.4f} m²")

@@ -40,10 +40,11 @@ MAX_SAMPLES = 200_000_000
 #: Longest realisation the paper's figure draws [s] (it plots every sample).
 MAX_FIGURE_DURATION = 100_000.0
 
-#: The names of :data:`seahelm.environment.spectra.SPECTRA` and, of those, the rational ones
-#: (a shaping filter, so ``sample``), and the versions of
-#: :data:`seahelm.environment.sea_state.TABLE2`: spelled out so that the command line does not
-#: import the spectra (tests/test_cli_style.py checks that they agree).
+#: The names of :data:`seahelm.studies.sushchenko2010.SPECTRA` (the component spectra and the
+#: paper's printed third one) and, of those, the rational ones (a shaping filter, so
+#: ``sample``), and the versions of :data:`seahelm.studies.sushchenko2010.TABLE2_VERSIONS`:
+#: spelled out so that the command line does not import the spectra (tests/test_cli_style.py
+#: checks that they agree).
 RationalSpectrumName = Literal["rakhmanin-firsov-1", "rakhmanin-firsov-2", "rakhmanin-firsov-3",
                                "rakhmanin-firsov-3-printed"]
 SpectrumName = Literal[RationalSpectrumName, "pierson-moskowitz", "jonswap", "bretschneider",
@@ -76,18 +77,16 @@ def _table_height(h3: float, extrapolate: bool) -> None:
 def table_cmd(json_out: JsonFlag = False, table: _Table = "corrected") -> None:
     """Table 1 (grade → h3%) and Table 2 (μ, λ versus h3%)."""
     from ..environment.sea_state import TABLE1, TABLE2_COLUMNS, table2
+    from ..studies.sushchenko2010 import get_table2
 
-    cols = table2(table)
+    version = get_table2(table)
+    cols = table2(version)
     grades = [
         {"grade": g, "roman": _roman(g), "h3_min": lo, "h3_max": (hi if math.isfinite(hi) else None)}
         for g, (lo, hi) in TABLE1.items()
     ]
     rows = [{k: float(cols[k][i]) for k in ("h3",) + TABLE2_COLUMNS} for i in range(cols["h3"].size)]
-    note = (
-        "corrected: lambda_mean(4 m) 0.667 -> 0.867 and mu_min(1 m) 0.138 -> 0.188 (misprints)"
-        if table == "corrected"
-        else "as printed in Sushchenko & Lutsko (2010)"
-    )
+    note = version.note
     if json_out:
         print_json({"table1": grades, "table2": {"version": table, "note": note, "rows": rows}})
         return
@@ -126,14 +125,14 @@ def spectrum_cmd(
 ) -> None:
     """Spectrum for a wave height: D_r, μ, λ, m0 (numerical), peak frequency."""
     from ..environment.sea_state import sea_state_parameters
-    from ..environment.spectra import spectrum_from_wave_height
     from ..environment.spectrum_base import spectral_moment
+    from ..studies.sushchenko2010 import get_table2, spectrum_from_wave_height
 
     if plot is not None:  # checked before any work
         output_file("--plot", plot)
         check_figure_suffix("--plot", plot)
     _table_height(h3, extrapolate)
-    params = sea_state_parameters(h3, table=table, extrapolate=extrapolate)
+    params = sea_state_parameters(h3, table=get_table2(table), extrapolate=extrapolate)
     with warnings.catch_warnings():  # an extrapolated table has been warned of once above
         warnings.simplefilter("ignore")
         spec = spectrum_from_wave_height(model, h3, table=table, extrapolate=extrapolate)
@@ -200,8 +199,8 @@ def sample_cmd(
 ) -> None:
     """Seeded wave ordinate (and slope) realisations, discretised exactly."""
     from ..environment.shaping import shaping_filter
-    from ..environment.spectra import spectrum_from_wave_height
     from ..errors import ParameterError
+    from ..studies.sushchenko2010 import spectrum_from_wave_height
 
     if runs < 1:
         raise ParameterError(f"`runs` must be >= 1, got {runs}")
@@ -267,7 +266,7 @@ def figure_cmd(
 
     matplotlib.use("Agg")
     from ..plotting.save import save_figure
-    from ..plotting.waves import plot_paper_figure
+    from ..studies.sushchenko2010 import plot_paper_figure
 
     if not (math.isfinite(duration) and 0 < duration <= MAX_FIGURE_DURATION):
         raise ParameterError(f"`--duration` must be in (0, {MAX_FIGURE_DURATION:g}] [s], got "

@@ -11,8 +11,8 @@ Rakhmanin–Firsov variants (D_r variance, μ decay rate, λ resonance frequency
 * ``"rakhmanin-firsov-2"``: K = D_r e^{−μ|τ|}(cos λτ + (μ/λ) sin λ|τ|), S₁ = (4D_rμ/π) a²/Δ — eq. (4).
 * ``"rakhmanin-firsov-3"``: K = D_r e^{−μ|τ|}(cos λτ − (μ/λ) sin λ|τ|), S₁ = (4D_rμ/π) ω²/Δ —
   the paper's third variant *corrected* (erratum: as printed, S₁ = 2D_rμω²/Δ integrates to
-  (π/2)D_r and the printed correlation is garbled).
-* ``"rakhmanin-firsov-3-printed"``: the third spectrum exactly as printed, for reproduction.
+  (π/2)D_r and the printed correlation is garbled). The spectrum as printed is the paper's
+  reproduction, :class:`seahelm.studies.sushchenko2010.RakhmaninFirsov3Printed`.
 
 References
 ----------
@@ -41,7 +41,6 @@ __all__ = [
     "RakhmaninFirsov1",
     "RakhmaninFirsov2",
     "RakhmaninFirsov3",
-    "RakhmaninFirsov3Printed",
     "DerivativeSpectrum",
     "ordinate_rate_spectrum",
     "slope_spectrum",
@@ -111,7 +110,7 @@ class _RakhmaninFirsov(RationalSpectrum):
 
     @classmethod
     def from_wave_height(
-        cls, h3: float, *, level: str = "mean", table: str = "corrected",
+        cls, h3: float, *, level: str = "mean", table: Any = "corrected",
         extrapolate: bool = False, **_: Any
     ) -> "_RakhmaninFirsov":
         """Build from h3% [m] with D_r = 0.143 (h3%/2)² and μ, λ from Table 2.
@@ -258,7 +257,7 @@ class RakhmaninFirsov3(_RakhmaninFirsov):
     factor 2D_rμ (no 1/π; it then integrates to (π/2)D_r) and a garbled correlation; this
     variant integrates to D_r. It is the spectrum of the derivative of a variant-2 process,
     scaled by 1/a². Factor: W(s) = 2√(D_rμ/π) s/(s² + 2μs + a²).
-    The printed form is :class:`RakhmaninFirsov3Printed`.
+    The printed form is :class:`seahelm.studies.sushchenko2010.RakhmaninFirsov3Printed`.
     """
 
     name: ClassVar[str] = "rakhmanin-firsov-3"
@@ -307,59 +306,6 @@ class RakhmaninFirsov3(_RakhmaninFirsov):
     def peak_frequency(self) -> float:  # type: ignore[override]
         """a = √(μ² + λ²) [rad/s] (maximum of ω²/Δ(ω))."""
         return math.sqrt(self._a2)
-
-
-@dataclasses.dataclass(frozen=True, kw_only=True)
-class RakhmaninFirsov3Printed(RakhmaninFirsov3):
-    """The third Rakhmanin–Firsov spectrum exactly as printed (for reproducing the paper).
-
-    S₁(ω) = 2D_rμω²/(ω⁴ + 2(μ² − λ²)ω² + (μ² + λ²)²), which integrates to (π/2)D_r, not D_r
-    (Sushchenko & Lutsko (2010), spectrum after eq. (4); erratum). :attr:`variance` is the
-    nominal D_r parameter; the true variance is :attr:`actual_variance` = (π/2)D_r.
-    The correlation returned is that of the corrected shape times π/2 (the printed one is
-    garbled and not a valid correlation function).
-    """
-
-    name: ClassVar[str] = "rakhmanin-firsov-3-printed"
-
-    def one_sided(self, omega: ArrayLike) -> np.ndarray:
-        """One-sided spectral density as printed: π/2 times :meth:`RakhmaninFirsov3.one_sided`.
-
-        Parameters
-        ----------
-        omega : array_like
-            Frequencies ω [rad/s] (>= 0).
-
-        Returns
-        -------
-        numpy.ndarray
-            S₁(ω) [m²·s/rad], shape of ``omega``.
-        """
-        return super().one_sided(omega) * (math.pi / 2.0)
-
-    def correlation(self, tau: ArrayLike) -> np.ndarray:
-        """Correlation function as printed: π/2 times :meth:`RakhmaninFirsov3.correlation`.
-
-        Parameters
-        ----------
-        tau : array_like
-            Time lags τ [s].
-
-        Returns
-        -------
-        numpy.ndarray
-            K(τ) [m²], shape of ``tau``.
-        """
-        return super().correlation(tau) * (math.pi / 2.0)
-
-    def factor(self) -> tuple[np.ndarray, np.ndarray]:
-        num, den = super().factor()
-        return num * math.sqrt(math.pi / 2.0), den
-
-    @property
-    def actual_variance(self) -> float:
-        """(π/2) D_r [m²], the integral of the printed spectrum."""
-        return 0.5 * math.pi * self.variance
 
 
 @dataclasses.dataclass(frozen=True)
@@ -546,5 +492,5 @@ _RF_PARAMETERS = """
     ParameterError
         If a parameter is not finite and > 0 (the message names it).
 """
-for _cls in (RakhmaninFirsov1, RakhmaninFirsov2, RakhmaninFirsov3, RakhmaninFirsov3Printed):
+for _cls in (RakhmaninFirsov1, RakhmaninFirsov2, RakhmaninFirsov3):
     _cls.__doc__ = (_cls.__doc__ or "").rstrip() + "\n" + _RF_PARAMETERS

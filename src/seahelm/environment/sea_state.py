@@ -8,8 +8,10 @@ Table 2 as printed has two misprints (Sushchenko & Lutsko (2010), Table 2; see t
 errata for this paper): every column follows h^(-1/2) within 2 % and μ_mean/λ_mean is
 0.213–0.214 in every row except h3% = 4 m, so λ_mean(4 m) = 0.667 is a misprint for 0.867;
 μ_min(1 m) = 0.138 breaks μ_min/λ_min = 0.150 of every other row, so it should read 0.188.
-:data:`TABLE2` holds both versions by name: ``"corrected"`` (the default everywhere) and
-``"printed"`` (to reproduce the paper).
+This module holds the corrected table (:data:`TABLE2`, :data:`CORRECTED_TABLE2`), the default
+everywhere; the table as printed is the paper's reproduction,
+:data:`seahelm.studies.sushchenko2010.PRINTED_TABLE2`. Every ``table`` argument takes a name of
+:data:`TABLE2` or a :class:`Table2Version` object such as that one.
 
 References
 ----------
@@ -35,6 +37,8 @@ __all__ = [
     "TABLE1",
     "TABLE2",
     "TABLE2_COLUMNS",
+    "Table2Version",
+    "CORRECTED_TABLE2",
     "LEVELS",
     "SeaStateParameters",
     "wave_variance",
@@ -77,13 +81,14 @@ TABLE2_COLUMNS: tuple[str, ...] = (
     "mu_over_lambda",
 )
 
-# h3% [m], then the columns of TABLE2_COLUMNS, exactly as printed.
-_PRINTED = np.array(
+# h3% [m], then the columns of TABLE2_COLUMNS, with the two misprints of the printed table
+# corrected: λ_mean(4 m) = 0.867 (printed 0.667) and μ_min(1 m) = 0.188 (printed 0.138).
+_CORRECTED = np.array(
     [
-        [1, 0.56, 0.374, 0.138, 2.24, 1.745, 1.25, 0.215],
+        [1, 0.56, 0.374, 0.188, 2.24, 1.745, 1.25, 0.215],
         [2, 0.394, 0.265, 0.136, 1.573, 1.239, 0.905, 0.214],
         [3, 0.316, 0.214, 0.111, 1.266, 1.003, 0.74, 0.213],
-        [4, 0.274, 0.185, 0.096, 1.094, 0.667, 0.64, 0.213],
+        [4, 0.274, 0.185, 0.096, 1.094, 0.867, 0.64, 0.213],
         [5, 0.246, 0.166, 0.086, 0.982, 0.777, 0.572, 0.213],
         [6, 0.224, 0.151, 0.078, 0.898, 0.709, 0.52, 0.213],
         [7, 0.207, 0.14, 0.072, 0.828, 0.654, 0.48, 0.214],
@@ -93,15 +98,48 @@ _PRINTED = np.array(
     ],
     dtype=float,
 )
-_CORRECTED = _PRINTED.copy()
-_CORRECTED[3, 5] = 0.867  # λ_mean(4 m): printed 0.667 (erratum 1)
-_CORRECTED[0, 3] = 0.188  # μ_min(1 m): printed 0.138 (erratum 2)
-_PRINTED.setflags(write=False)
 _CORRECTED.setflags(write=False)
 
-#: Table 2 by name: ``"corrected"`` (default) and ``"printed"`` (as in the paper). Each is a
-#: read-only array of shape (10, 8): h3% [m] followed by :data:`TABLE2_COLUMNS`.
-TABLE2: Mapping[str, np.ndarray] = MappingProxyType({"corrected": _CORRECTED, "printed": _PRINTED})
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Table2Version:
+    """One version of Table 2: its name, its rows and what it is.
+
+    Parameters
+    ----------
+    name : str
+        Name of the version (reported in :attr:`SeaStateParameters.table`).
+    rows : numpy.ndarray, shape (n, 8)
+        h3% [m] (increasing) followed by the columns :data:`TABLE2_COLUMNS`; stored read-only.
+    note : str, optional
+        One line on where the version comes from.
+    """
+
+    name: str
+    rows: np.ndarray
+    note: str = ""
+
+    def __post_init__(self) -> None:
+        rows = np.array(self.rows, dtype=float)
+        if rows.ndim != 2 or rows.shape[1] != 1 + len(TABLE2_COLUMNS) or rows.shape[0] < 2:
+            raise ParameterError(f"Table 2 `rows` must have shape (n >= 2, "
+                                 f"{1 + len(TABLE2_COLUMNS)}), got {rows.shape}")
+        if not np.all(np.isfinite(rows)) or np.any(np.diff(rows[:, 0]) <= 0):
+            raise ParameterError("Table 2 `rows` must be finite with increasing h3%")
+        rows.setflags(write=False)
+        object.__setattr__(self, "rows", rows)
+
+
+#: Table 2 with its two misprints corrected (the default of every ``table`` argument).
+CORRECTED_TABLE2 = Table2Version(
+    "corrected", _CORRECTED,
+    "corrected: lambda_mean(4 m) 0.667 -> 0.867 and mu_min(1 m) 0.138 -> 0.188 (misprints)")
+
+_VERSIONS: Mapping[str, Table2Version] = MappingProxyType({"corrected": CORRECTED_TABLE2})
+#: Table 2 by name: ``"corrected"``, a read-only array of shape (10, 8): h3% [m] followed by
+#: :data:`TABLE2_COLUMNS`. The printed table is the study's,
+#: :data:`seahelm.studies.sushchenko2010.PRINTED_TABLE2`.
+TABLE2: Mapping[str, np.ndarray] = MappingProxyType({k: v.rows for k, v in _VERSIONS.items()})
 
 #: Which Table 2 columns a ``level`` selects: (μ column, λ column).
 LEVELS: Mapping[str, tuple[str, str]] = MappingProxyType(
@@ -199,22 +237,34 @@ def wave_height_range(grade: int | str) -> tuple[float, float]:
     return TABLE1[int(key)]
 
 
-def table2(name: str = "corrected") -> dict[str, np.ndarray]:
+def _table_version(table: str | Table2Version) -> Table2Version:
+    """The Table 2 version named ``table`` (or ``table`` itself)."""
+    if isinstance(table, Table2Version):
+        return table
+    if not isinstance(table, str) or table not in _VERSIONS:
+        valid = ", ".join(repr(k) for k in _VERSIONS)
+        raise ParameterError(
+            f"unknown Table 2 version {table!r}; valid: {valid} or a Table2Version (the table "
+            "as printed is seahelm.studies.sushchenko2010.PRINTED_TABLE2)")
+    return _VERSIONS[table]
+
+
+def table2(name: str | Table2Version = "corrected") -> dict[str, np.ndarray]:
     """Table 2 as a dict of columns: ``"h3"`` [m] and :data:`TABLE2_COLUMNS`.
 
     Parameters
     ----------
-    name : {"corrected", "printed"}
-        ``"corrected"`` fixes the two misprints (λ_mean(4 m) = 0.867, μ_min(1 m) = 0.188);
-        ``"printed"`` is the table exactly as in Sushchenko & Lutsko (2010).
+    name : str or Table2Version
+        A name of :data:`TABLE2` (``"corrected"``: the two misprints fixed,
+        λ_mean(4 m) = 0.867, μ_min(1 m) = 0.188) or a version object, e.g. the table as
+        printed, :data:`seahelm.studies.sushchenko2010.PRINTED_TABLE2`.
 
     Raises
     ------
     ParameterError
         For an unknown table name (the message lists the valid ones).
     """
-    arr = _lookup(TABLE2, name, "Table 2 version")
-    assert isinstance(arr, np.ndarray)
+    arr = _table_version(name).rows
     cols = ("h3",) + TABLE2_COLUMNS
     return {c: arr[:, i].copy() for i, c in enumerate(cols)}
 
@@ -238,7 +288,7 @@ class SeaStateParameters:
     level : str
         Table 2 column used: "max", "mean" or "min".
     table : str
-        Table 2 version used: "corrected" or "printed".
+        Name of the Table 2 version used (``"corrected"``, or e.g. ``"printed"``).
     extrapolated : bool
         True if h3% lies outside 1…10 m and the h^(-1/2) law was used.
     """
@@ -282,7 +332,7 @@ def sea_state_parameters(
     h3: float,
     *,
     level: str = "mean",
-    table: str = "corrected",
+    table: str | Table2Version = "corrected",
     extrapolate: bool = False,
 ) -> SeaStateParameters:
     """D_r, μ and λ for a wave height h3% by linear interpolation between the rows of Table 2.
@@ -293,9 +343,11 @@ def sea_state_parameters(
         Height of 3 %-exceedance waves h3% [m]; Table 2 covers 1 ≤ h3% ≤ 10 m.
     level : {"max", "mean", "min"}
         Which Table 2 columns to use for μ and λ.
-    table : {"corrected", "printed"}
-        Table 2 version. The default ``"corrected"`` fixes the two misprints of the paper
-        (λ_mean(4 m) 0.667 → 0.867, μ_min(1 m) 0.138 → 0.188); ``"printed"`` reproduces it.
+    table : str or Table2Version
+        Table 2 version: a name of :data:`TABLE2` or a version object. The default
+        ``"corrected"`` fixes the two misprints of the paper (λ_mean(4 m) 0.667 → 0.867,
+        μ_min(1 m) 0.138 → 0.188); :data:`seahelm.studies.sushchenko2010.PRINTED_TABLE2`
+        reproduces it.
     extrapolate : bool
         Outside 1…10 m, raise (default) or extrapolate with μ, λ ∝ h^(-1/2) fitted to the
         nearest row (every column follows this law within 2 %), warning with
@@ -318,7 +370,8 @@ def sea_state_parameters(
     h = float(as_float_array("h3", h3, "m"))
     check_positive("h3", h, "m")
     mu_col, lam_col = _lookup(LEVELS, level, "level")  # type: ignore[misc]
-    cols = table2(table)
+    version = _table_version(table)
+    cols = table2(version)
     hs = cols["h3"]
     lo, hi = float(hs[0]), float(hs[-1])
     outside = h < lo or h > hi
@@ -342,6 +395,6 @@ def sea_state_parameters(
         decay_rate=mu,
         resonance_frequency=lam,
         level=level,
-        table=table,
+        table=version.name,
         extrapolated=outside,
     )

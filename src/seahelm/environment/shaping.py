@@ -16,8 +16,8 @@ Wiener increments (E[dw²] = dt), multiply B and D by √π.
 
 The paper's factors (6)-(7) are wrong (erratum: the middle term of the denominator in jω has
 the opposite sign, so the damping is 2μ, not 2λ; (6) is biproper and (6)-(7) carry an extra
-√(μ² + λ²)). The correct factors are built by :func:`shaping_filter`; the printed ones are in
-:data:`PAPER_FILTERS` for reproduction.
+√(μ² + λ²)). The correct factors are built by :func:`shaping_filter`; the printed ones are the
+paper's reproduction, :data:`seahelm.studies.sushchenko2010.PRINTED_FILTERS`.
 
 Sampling is exact: the filter is discretised by Van Loan's matrix exponential and started
 from its stationary covariance, so samples reproduce the continuous autocovariance at the
@@ -35,7 +35,7 @@ import concurrent.futures
 import dataclasses
 import math
 import os
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from types import MappingProxyType
 from typing import Any
 
@@ -63,11 +63,9 @@ from .spectrum_base import WaveSpectrum
 __all__ = [
     "NOISE_INTENSITY",
     "QUANTITIES",
-    "PAPER_FILTERS",
     "StateSpaceFilter",
     "from_transfer_functions",
     "shaping_filter",
-    "paper_filter",
 ]
 
 #: One-sided intensity 1 of the input white noise: E[n(t)n(t')] = π δ(t − t').
@@ -513,77 +511,4 @@ def shaping_filter(
         label += f" × (ω_c/(s+ω_c))^{int(r)}, ω_c={rolloff:g}"
     return from_transfer_functions(
         nums, den, labels=tuple(outputs), units=tuple(q[2] for q in quantities), name=label
-    )
-
-
-# ---------------------------------------------------------------------------------------------
-# The paper's printed filters (for reproduction only)
-# ---------------------------------------------------------------------------------------------
-
-
-def _printed_ordinate(d: float, mu: float, lam: float, g: float) -> tuple[np.ndarray, np.ndarray, str]:
-    a = math.hypot(mu, lam)
-    k = math.sqrt(2.0 * d * mu / math.pi)
-    return np.array([k, k * a]), np.array([1.0, 2.0 * lam, a * a]), "m"
-
-
-def _printed_eq6(d: float, mu: float, lam: float, g: float) -> tuple[np.ndarray, np.ndarray, str]:
-    a = math.hypot(mu, lam)
-    k = math.sqrt(2.0 * d * mu * a * a / math.pi) / g
-    return np.array([k, k * a, 0.0]), np.array([1.0, 2.0 * lam, a * a]), "rad"
-
-
-def _printed_eq7(d: float, mu: float, lam: float, g: float) -> tuple[np.ndarray, np.ndarray, str]:
-    a = math.hypot(mu, lam)
-    k = 2.0 * math.sqrt(d * mu * a * a / math.pi) / g
-    return np.array([k * a, 0.0]), np.array([1.0, 2.0 * lam, a * a]), "rad"
-
-
-#: The paper's filters exactly as printed (Sushchenko & Lutsko (2010)): ``"ordinate-printed"``
-#: (the factorisation result before eq. (6), poles −λ ± jμ: output variance (μ/λ)D_r ≈ 0.21 D_r),
-#: ``"eq6"`` (biproper: infinite output variance) and ``"eq7"``.
-PAPER_FILTERS: Mapping[str, Callable[[float, float, float, float], tuple[np.ndarray, np.ndarray, str]]] = (
-    MappingProxyType(
-        {"ordinate-printed": _printed_ordinate, "eq6": _printed_eq6, "eq7": _printed_eq7}
-    )
-)
-
-
-def paper_filter(
-    name: str,
-    *,
-    variance: float,
-    decay_rate: float,
-    resonance_frequency: float,
-    gravity: float = GRAVITY,
-) -> StateSpaceFilter:
-    """A filter of the paper exactly as printed (wrong; for reproducing the paper's figure).
-
-    Parameters
-    ----------
-    name : {"ordinate-printed", "eq6", "eq7"}
-    variance : float
-        D_r [m²], > 0.
-    decay_rate : float
-        μ [1/s], > 0.
-    resonance_frequency : float
-        λ [rad/s], > 0.
-    gravity : float
-        g [m/s²].
-
-    Raises
-    ------
-    ParameterError
-        For an unknown name (listing the valid ones) or bad parameters.
-    """
-    if name not in PAPER_FILTERS:
-        valid = ", ".join(repr(k) for k in PAPER_FILTERS)
-        raise ParameterError(f"unknown paper filter {name!r}; valid: {valid}")
-    check_positive("variance", variance, "m^2")
-    check_positive("decay_rate", decay_rate, "1/s")
-    check_positive("resonance_frequency", resonance_frequency, "rad/s")
-    check_positive("gravity", gravity, "m/s^2")
-    num, den, unit = PAPER_FILTERS[name](variance, decay_rate, resonance_frequency, gravity)
-    return from_transfer_functions(
-        [num], den, labels=(name,), units=(unit,), name=f"Sushchenko & Lutsko (2010) {name} (as printed)"
     )

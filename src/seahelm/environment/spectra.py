@@ -23,8 +23,9 @@ Rakhmanin–Firsov variants (D_r variance, μ decay rate, λ resonance frequency
 * ``"rakhmanin-firsov-2"``: K = D_r e^{−μ|τ|}(cos λτ + (μ/λ) sin λ|τ|), S₁ = (4D_rμ/π) a²/Δ — eq. (4).
 * ``"rakhmanin-firsov-3"``: K = D_r e^{−μ|τ|}(cos λτ − (μ/λ) sin λ|τ|), S₁ = (4D_rμ/π) ω²/Δ —
   the paper's third variant *corrected* (erratum: as printed, S₁ = 2D_rμω²/Δ integrates to
-  (π/2)D_r and the printed correlation is garbled).
-* ``"rakhmanin-firsov-3-printed"``: the third spectrum exactly as printed, for reproduction.
+  (π/2)D_r and the printed correlation is garbled). The spectrum as printed is the paper's
+  reproduction, :class:`seahelm.studies.sushchenko2010.RakhmaninFirsov3Printed`; pass the class
+  (or an instance) wherever a spectrum name is taken.
 
 Standard spectra, by significant wave height Hs and peak period Tp:
 ``"pierson-moskowitz"``, ``"jonswap"`` (γ, σ_a, σ_b), ``"bretschneider"`` (alias ``"ittc"``).
@@ -56,7 +57,6 @@ from .rational_spectra import (
     RakhmaninFirsov1,
     RakhmaninFirsov2,
     RakhmaninFirsov3,
-    RakhmaninFirsov3Printed,
 )
 from .sea_state import sea_state_parameters
 from .spectrum_base import WaveSpectrum, significant_height_from_h3, spectral_moment
@@ -76,7 +76,7 @@ __all__ = [
 # ---------------------------------------------------------------------------------------------
 
 
-def _default_peak_period(h3: float, level: str, table: str, extrapolate: bool) -> float:
+def _default_peak_period(h3: float, level: str, table: Any, extrapolate: bool) -> float:
     p = sea_state_parameters(h3, level=level, table=table, extrapolate=extrapolate)
     return 2.0 * math.pi / p.resonance_frequency
 
@@ -113,7 +113,7 @@ class Bretschneider(WaveSpectrum):
         *,
         peak_period: float | None = None,
         level: str = "mean",
-        table: str = "corrected",
+        table: Any = "corrected",
         extrapolate: bool = False,
         **_: Any,
     ) -> "Bretschneider":
@@ -127,8 +127,9 @@ class Bretschneider(WaveSpectrum):
             Peak period Tp [s] (default 2π/λ from Table 2).
         level : {"max", "mean", "min"}, optional
             Which Table 2 column gives λ (default "mean").
-        table : {"corrected", "printed"}, optional
-            Version of Table 2 (default "corrected").
+        table : str or Table2Version, optional
+            Version of Table 2 (default "corrected", see
+            :func:`~seahelm.environment.sea_state.sea_state_parameters`).
         extrapolate : bool, optional
             Extend Table 2 beyond 1…10 m with the h^(-1/2) law (default False: refuse).
         **_
@@ -301,7 +302,7 @@ class Jonswap(Bretschneider):
         *,
         peak_period: float | None = None,
         level: str = "mean",
-        table: str = "corrected",
+        table: Any = "corrected",
         extrapolate: bool = False,
         **kwargs: Any,
     ) -> "Jonswap":
@@ -315,8 +316,9 @@ class Jonswap(Bretschneider):
             Peak period Tp [s] (default 2π/λ from Table 2).
         level : {"max", "mean", "min"}, optional
             Which Table 2 column gives λ (default "mean").
-        table : {"corrected", "printed"}, optional
-            Version of Table 2 (default "corrected").
+        table : str or Table2Version, optional
+            Version of Table 2 (default "corrected", see
+            :func:`~seahelm.environment.sea_state.sea_state_parameters`).
         extrapolate : bool, optional
             Extend Table 2 beyond 1…10 m with the h^(-1/2) law (default False: refuse).
         **kwargs
@@ -374,7 +376,6 @@ SPECTRA: Mapping[str, type[WaveSpectrum]] = MappingProxyType(
         "rakhmanin-firsov-1": RakhmaninFirsov1,
         "rakhmanin-firsov-2": RakhmaninFirsov2,
         "rakhmanin-firsov-3": RakhmaninFirsov3,
-        "rakhmanin-firsov-3-printed": RakhmaninFirsov3Printed,
         "pierson-moskowitz": PiersonMoskowitz,
         "jonswap": Jonswap,
         "bretschneider": Bretschneider,
@@ -414,7 +415,8 @@ def get_spectrum(spectrum: str | WaveSpectrum, **params: Any) -> WaveSpectrum:
     return _spectrum_class(spectrum)(**params)
 
 
-def spectrum_from_wave_height(spectrum: str | WaveSpectrum, h3: float, **kwargs: Any) -> WaveSpectrum:
+def spectrum_from_wave_height(spectrum: str | type[WaveSpectrum] | WaveSpectrum, h3: float,
+                              **kwargs: Any) -> WaveSpectrum:
     """A spectrum for a 3 %-exceedance wave height h3% [m].
 
     Rakhmanin–Firsov variants take D_r = 0.143 (h3%/2)² and μ, λ from Table 2 (keywords
@@ -423,8 +425,10 @@ def spectrum_from_wave_height(spectrum: str | WaveSpectrum, h3: float, **kwargs:
 
     Parameters
     ----------
-    spectrum : str or WaveSpectrum
-        Registry name of the spectrum (e.g. "rakhmanin-firsov-2", "jonswap") or a spectrum.
+    spectrum : str, WaveSpectrum class or WaveSpectrum
+        Registry name of the spectrum (e.g. "rakhmanin-firsov-2", "jonswap"), a spectrum class
+        with a ``from_wave_height`` constructor (e.g. the paper's printed third spectrum,
+        :class:`seahelm.studies.sushchenko2010.RakhmaninFirsov3Printed`) or a spectrum.
     h3 : float
         Wave height of 3 % exceedance h3% [m].
     **kwargs
@@ -436,5 +440,8 @@ def spectrum_from_wave_height(spectrum: str | WaveSpectrum, h3: float, **kwargs:
     """
     if isinstance(spectrum, WaveSpectrum):
         return spectrum
-    cls = _spectrum_class(spectrum)
+    if isinstance(spectrum, type) and issubclass(spectrum, WaveSpectrum):
+        cls = spectrum
+    else:
+        cls = _spectrum_class(spectrum)  # type: ignore[arg-type]
     return cls.from_wave_height(h3, **kwargs)  # type: ignore[attr-defined]

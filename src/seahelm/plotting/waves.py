@@ -1,5 +1,8 @@
 """Plots of wave spectra and disturbance realisations (like Sushchenko & Lutsko (2010), figure).
 
+The paper's figure itself, which also draws the printed eq. (7) filter, is the study's
+:func:`seahelm.studies.sushchenko2010.plot_paper_figure`.
+
 matplotlib is imported inside the functions; every function takes ``ax=`` (or ``fig=``) and
 returns what it drew on.
 """
@@ -20,7 +23,6 @@ __all__ = [
     "plot_spectrum",
     "plot_sea_state_spectra",
     "plot_realisations",
-    "plot_paper_figure",
 ]
 
 _LINESTYLES = ("-", "--", ":")
@@ -227,50 +229,3 @@ def plot_realisations(
     ax.set_xlabel("t [s]")
     ax.set_ylabel(f"{label} [{unit}]")
     return ax
-
-
-def plot_paper_figure(*, fig: Any = None, seed: int = 0, duration: float = 200.0, dt: float = 0.1) -> Any:
-    """The six panels of Sushchenko & Lutsko (2010)'s figure, with the corrected models.
-
-    a, b: ordinate spectra of variants 1 (eq. (3)) and 2 (eq. (4)) for sea states 3, 6, 9;
-    c, d: slope spectra (eq. (5)) of both for sea states 3, 6; e: slope realisation from the
-    corrected filter (s/g)W₂(s); f: from the paper's printed eq. (7) filter, for comparison.
-
-    Parameters
-    ----------
-    fig : matplotlib Figure, optional
-        Figure to draw into (default: a new one).
-    seed : int, optional
-        Seed of the realisations (default 0).
-    duration : float, optional
-        Length of the realisations [s] (default 200).
-    dt : float, optional
-        Sample period [s] (default 0.1).
-
-    Returns
-    -------
-    matplotlib Figure
-    """
-    import matplotlib.pyplot as plt
-
-    from ..environment.shaping import paper_filter, shaping_filter
-    from ..environment.spectra import spectrum_from_wave_height
-
-    fig = fig if fig is not None else plt.figure(figsize=(11, 11))
-    axs = fig.subplots(3, 2)
-    for j, model in enumerate(("rakhmanin-firsov-1", "rakhmanin-firsov-2")):
-        plot_sea_state_spectra(model, (3, 6, 9), ax=axs[0, j])
-        plot_sea_state_spectra(model, (3, 6), quantity="slope", ax=axs[1, j])
-    spec = spectrum_from_wave_height("rakhmanin-firsov-2", grade_wave_height(6))
-    good = shaping_filter(spec, ("slope",)).sample(duration=duration, dt=dt, seed=seed)
-    printed = paper_filter(
-        "eq7",
-        variance=spec.variance,  # type: ignore[attr-defined]
-        decay_rate=spec.decay_rate,  # type: ignore[attr-defined]
-        resonance_frequency=spec.resonance_frequency,  # type: ignore[attr-defined]
-    ).sample(duration=duration, dt=dt, seed=seed)
-    plot_realisations(good, ax=axs[2, 0]).set_title("slope, corrected filter (s/g)·W₂")
-    plot_realisations(printed, ax=axs[2, 1]).set_title("slope, eq. (7) as printed")
-    fig.tight_layout()
-    return fig
-

@@ -7,5 +7,7 @@ identification, analysis, simulation) know nothing about it; only the studies an
 import ``seahelm.studies`` (``tests/test_import_graph.py``).
 
 * :mod:`seahelm.studies.lvov2014` — wind and wave compensation of a course autopilot;
-* :mod:`seahelm.studies.platonov` — full averaging of a CPP ship in waves (Platonov & Platonova).
+* :mod:`seahelm.studies.platonov` — full averaging of a CPP ship in waves (Platonov & Platonova);
+* :mod:`seahelm.studies.sushchenko2010` — sea-wave disturbances: Table 2, the third spectrum
+  and the shaping filters as printed, the paper's figure (Sushchenko & Lutsko).
 """
