@@ -8,6 +8,9 @@ import ``seahelm.studies`` (``tests/test_import_graph.py``).
 
 * :mod:`seahelm.studies.lvov2014` — wind and wave compensation of a course autopilot;
 * :mod:`seahelm.studies.platonov` — full averaging of a CPP ship in waves (Platonov & Platonova);
+* :mod:`seahelm.studies.shushlyapin2017` — the catamaran's strong manoeuvres: the ship as
+  printed (sway eq. (3), resistance eq. (6)-(7)) next to the listing, the published results
+  (Shushlyapin et al.);
 * :mod:`seahelm.studies.sushchenko2010` — sea-wave disturbances: Table 2, the third spectrum
   and the shaping filters as printed, the paper's figure (Sushchenko & Lutsko).
 """
