@@ -8,6 +8,9 @@ import ``seahelm.studies`` (``tests/test_import_graph.py``).
 
 * :mod:`seahelm.studies.lvov2014` — wind and wave compensation of a course autopilot;
 * :mod:`seahelm.studies.platonov` — full averaging of a CPP ship in waves (Platonov & Platonova);
+* :mod:`seahelm.studies.romanov_chirkova` — steering-model identification from three steady
+  turns: the printed eq. (5) criterion next to proper ones, the paper's procedure on a model
+  ship (Romanov & Chirkova);
 * :mod:`seahelm.studies.shushlyapin2017` — the catamaran's strong manoeuvres: the ship as
   printed (sway eq. (3), resistance eq. (6)-(7)) next to the listing, the published results
   (Shushlyapin et al.);
