@@ -69,3 +69,23 @@ def test_three_turn_study_needs_three_turns_on_one_branch():
         rc.three_turn_study(rudder_angles=(0.1, 0.2))
     with pytest.raises(ParameterError, match="one sign"):
         rc.three_turn_study(rudder_angles=(math.radians(-10.0), 0.1, 0.2))
+
+
+def test_brute_force_search_takes_the_criteria_as_objects():
+    from seahelm.identification.criteria import CRITERIA, SQUARED
+    from seahelm.identification.fitting import fit_brute_force
+
+    assert rc.SQUARED is SQUARED and set(CRITERIA) == {"squared", "absolute"}
+    bounds = [(-400.0, -200.0), (-8.0, -3.0), (9.0, 25.0)]  # the truth on the grid
+    # on a grid through the true (a, b, c) the proper criteria find them ...
+    for crit in ("squared", rc.ABSOLUTE):
+        fit = fit_brute_force(W, ALPHA, bounds=bounds, n_grid=41, criterion=crit)
+        np.testing.assert_allclose(fit.coef, [A, B, C], rtol=1e-9)
+    # ... the printed plain sum, linear in (a, b, c), runs to a corner of the box: each
+    # coefficient to the bound where its term Σ ω_i², Σ ω_i, Σ α_i ω_i lowers the sum
+    fit = fit_brute_force(W, ALPHA, bounds=bounds, n_grid=41, criterion=rc.PRINTED_EQ5)
+    slopes = [np.sum(W**2), np.sum(W), np.sum(ALPHA * W)]
+    corner = [lo if s > 0 else hi for (lo, hi), s in zip(bounds, slopes)]
+    np.testing.assert_allclose(fit.coef, corner, rtol=1e-12)
+    with pytest.raises(ValueError, match="unknown criterion 'printed'; valid: absolute, squared"):
+        fit_brute_force(W, ALPHA, criterion="printed")  # (the printed one is the study's)

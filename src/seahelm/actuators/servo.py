@@ -90,7 +90,8 @@ def servo_rhs(t, xa, ca, p, dxa):  # pragma: no cover - compiled
 
 @njit(cache=True)
 def servo_advance(h, xa, ca, p, out):  # pragma: no cover - compiled
-    """δ after ``h`` seconds under the held command, in closed form (:func:`limited_lag_advance`)."""
+    """δ after ``h`` seconds under the held command, in closed form
+    (:func:`limited_lag_advance`)."""
     for j in range(xa.shape[0]):
         out[j] = limited_lag_advance(ca[j], xa[j], p.max_angle, p.time_constant, p.max_rate, h)
 

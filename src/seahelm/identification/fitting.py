@@ -37,6 +37,8 @@ import numpy as np
 
 from .._validate import as_finite_series, check_positive
 from ..errors import ParameterError
+from ..registry import lookup
+from .criteria import CRITERIA, Criterion
 from .reduced_forms import ReducedForm, SteadyTurnFit, get_form
 from .segments import SteadySegments, extract_steady_segments
 
@@ -325,14 +327,16 @@ def fit_brute_force(
     form: str | ReducedForm = "paper",
     bounds: Sequence[tuple[float, float]] | None = None,
     n_grid: int = 41,
-    criterion: str = "squared",
+    criterion: str | Criterion = "squared",
     chunk: int = 200_000,
 ) -> SteadyTurnFit:
     """The paper's brute-force search, eq. (5), with a proper criterion — a baseline.
 
     Every point of a regular grid of ``n_grid`` values per coefficient inside ``bounds`` is
     evaluated and the one minimising Σ N_i² (``criterion="squared"``) or Σ|N_i|
-    ("absolute") is returned. (The paper's plain Σ N_i has no minimum.) The accuracy is
+    ("absolute") is returned. (The paper's plain Σ N_i has no minimum: passed as
+    :data:`seahelm.studies.romanov_chirkova.PRINTED_EQ5`, the search ends on the grid's
+    boundary.) The accuracy is
     limited by the grid spacing; the cost is n_grid^p · n.
 
     Default bounds come from the data alone: b ∈ ±3 b₀, a ∈ ±3 b₀/ω_m, c ∈ ±3/ω_m (d ∈ ±3),
@@ -354,8 +358,9 @@ def fit_brute_force(
         the data, see above).
     n_grid : int, optional
         Grid values per coefficient (>= 2, default 41).
-    criterion : {"squared", "absolute"}, optional
-        Σ N_i² or Σ|N_i| (default "squared").
+    criterion : str or Criterion, optional
+        A name of :data:`~seahelm.identification.criteria.CRITERIA` (``"squared"``, Σ N_i²,
+        the default; ``"absolute"``, Σ|N_i|) or a criterion object.
     chunk : int, optional
         Grid points evaluated at once (memory bound; default 200 000).
 
@@ -366,8 +371,7 @@ def fit_brute_force(
     t0 = _time.perf_counter()
     f = get_form(form)
     w, al = _check_points(yaw_rate, rudder_angle, f.n_coef)
-    if criterion not in ("squared", "absolute"):
-        raise ValueError(f"unknown criterion '{criterion}'; valid: squared, absolute")
+    crit_of = lookup("criterion", CRITERIA, criterion, Criterion)
     if int(n_grid) < 2:
         raise ParameterError(f"`n_grid` must be >= 2, got {n_grid!r}")
     n_grid = int(n_grid)
@@ -394,7 +398,7 @@ def fit_brute_force(
         sub = np.unravel_index(idx, (n_grid,) * f.n_coef)
         g = np.stack([grids[k][sub[k]] for k in range(f.n_coef)], axis=1)
         r = g @ x.T - y
-        crit = np.sum(r * r, axis=1) if criterion == "squared" else np.sum(np.abs(r), axis=1)
+        crit = crit_of(r)
         k = int(np.argmin(crit))
         if crit[k] < best_val:
             best_val, best_idx = float(crit[k]), int(idx[k])

@@ -51,13 +51,16 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..errors import ParameterError
 from ..vessels.voitkunsky import VoitkunskyParams
 from .reduced_forms import get_form
+
+if TYPE_CHECKING:
+    from .reduced_forms import ReducedForm
 
 __all__ = [
     "SteadyTurn",

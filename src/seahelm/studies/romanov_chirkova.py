@@ -11,10 +11,12 @@ steady segments of a log in :mod:`seahelm.identification.segments`. The paper gi
 coefficient values (no year is printed on it either, hence the module name). This module holds
 the paper's procedure on a model ship:
 
-* the criterion of eq. (5) as printed next to proper ones, as objects: registry
-  :data:`CRITERIA` with :data:`PRINTED_EQ5` (``"printed"``, the plain sum Σ N_i),
-  :data:`SQUARED` (``"squared"``, Σ N_i², the default of the fits) and :data:`ABSOLUTE`
-  (``"absolute"``, Σ|N_i|); :func:`eq5_criterion` evaluates one;
+* the criterion of eq. (5) as printed next to the proper ones of
+  :mod:`seahelm.identification.criteria`, as objects: registry :data:`CRITERIA` with
+  :data:`PRINTED_EQ5` (``"printed"``, the plain sum Σ N_i), ``"squared"`` (Σ N_i², the default
+  of the fits) and ``"absolute"`` (Σ|N_i|); :func:`eq5_criterion` evaluates one, and
+  :func:`~seahelm.identification.fitting.fit_brute_force` takes any of them (with the printed
+  one it ends on the search box's boundary);
 * :func:`three_turn_study` — three steady turns of a Voitkunsky ship, eq. (4) fitted to them,
   the closed-form coefficients of the branch and the prediction of held-out turns.
 
@@ -32,15 +34,15 @@ minimise the time to estimate its coefficients (in Russian), VGAVT. Eq. (1)-(5).
 
 from __future__ import annotations
 
-import abc
 import math
 from collections.abc import Mapping, Sequence
 from types import MappingProxyType
-from typing import Any, ClassVar, NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from ..errors import ParameterError
+from ..identification.criteria import ABSOLUTE, SQUARED, Criterion
 from ..identification.fitting import fit_lsq
 from ..identification.reduced_forms import SteadyTurnFit
 from ..identification.steady_turns import (
@@ -67,20 +69,6 @@ __all__ = [
 # ---------------------------------------------------------------------------------------------
 # The criterion of eq. (5)
 # ---------------------------------------------------------------------------------------------
-class Criterion(abc.ABC):
-    """A criterion over the residuals N_i of eq. (5), to be minimised over (a, b, c)."""
-
-    #: Registry name.
-    name: ClassVar[str]
-
-    @abc.abstractmethod
-    def __call__(self, residuals: np.ndarray) -> np.ndarray:
-        """The criterion of residuals N_i (summed over the last axis)."""
-
-    def __repr__(self) -> str:
-        return f"<eq. (5) criterion {self.name!r}>"
-
-
 class _PlainSum(Criterion):
     name = "printed"
 
@@ -88,27 +76,8 @@ class _PlainSum(Criterion):
         return np.sum(residuals, axis=-1)
 
 
-class _Squared(Criterion):
-    name = "squared"
-
-    def __call__(self, residuals: np.ndarray) -> np.ndarray:
-        return np.sum(residuals * residuals, axis=-1)
-
-
-class _Absolute(Criterion):
-    name = "absolute"
-
-    def __call__(self, residuals: np.ndarray) -> np.ndarray:
-        return np.sum(np.abs(residuals), axis=-1)
-
-
 #: Eq. (5) as printed: N = Σ N_i. Not a criterion: linear in (a, b, c), unbounded below.
 PRINTED_EQ5: Criterion = _PlainSum()
-#: Σ N_i²: eq. (5) corrected (what :func:`~seahelm.identification.fitting.fit_lsq` minimises).
-SQUARED: Criterion = _Squared()
-#: Σ |N_i|: the other correction of eq. (5).
-ABSOLUTE: Criterion = _Absolute()
-
 #: The criteria of eq. (5) by name: ``"printed"``, ``"squared"``, ``"absolute"``.
 CRITERIA: Mapping[str, Criterion] = MappingProxyType(
     {c.name: c for c in (PRINTED_EQ5, SQUARED, ABSOLUTE)})
