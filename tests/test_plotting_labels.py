@@ -76,7 +76,7 @@ def test_averaging_3d_panels_have_few_enough_ticks_not_to_overlap():
     # size `seahelm averaging cpp --plot` writes (12 x 5 in at 120 dpi, checked by eye), the
     # default 0.25 steps put 9 labels on an axis foreshortened to ~300 px. At most 5 fit.
     from seahelm.studies.platonov.flat_set import cpp_admissible_set
-    from seahelm.plotting.averaging import plot_control_sets
+    from seahelm.studies.platonov.figures import plot_control_sets
 
     fig = plot_control_sets(cpp_admissible_set(1.2, 0.96, n_azimuth=24, n_elevation=12))
     fig.canvas.draw()

@@ -227,7 +227,7 @@ def test_error_order_one_and_printed_does_not_converge():
 def test_plots_return_what_they_drew_on():
     import matplotlib.pyplot as plt
 
-    from seahelm.plotting.averaging import (
+    from seahelm.studies.platonov.figures import (
         plot_averaging_study,
         plot_control_sets,
         plot_set_V,
@@ -239,6 +239,18 @@ def test_plots_return_what_they_drew_on():
     ax = fig.add_subplot(projection="3d")
     assert plot_set_V(r, ax=ax) is ax
     assert plot_set_Y(r.betas, variant="printed", ax=ax) is ax
+    # the printed reading draws its segment y1 = y2 in [-1, 1], y3 = beta3; the hull nothing more
+    seg = [ln for ln in ax.lines if ln.get_label() == "printed segment"]
+    assert len(seg) == 1
+    xs, ys, zs = seg[0].get_data_3d()
+    np.testing.assert_array_equal(xs, [-1.0, 1.0])
+    np.testing.assert_array_equal(ys, [-1.0, 1.0])
+    np.testing.assert_array_equal(zs, [r.betas[2]] * 2)
+    from seahelm.studies.platonov.flat_set import ARC_HULL
+
+    ax_hull = plt.figure().add_subplot(projection="3d")
+    plot_set_Y(r.betas, variant=ARC_HULL, ax=ax_hull)
+    assert not [ln for ln in ax_hull.lines if "segment" in ln.get_label()]
     with pytest.raises(ValueError, match="variant"):
         plot_set_Y(r.betas, variant="flat", ax=ax)
     fig2 = plt.figure()

@@ -69,7 +69,7 @@ def cpp(
     result = cpp_admissible_set(immersion, amplitude, n_azimuth=grid, n_elevation=grid // 2)
     summary = result.summary()
     if plot is not None:
-        from ..plotting.averaging import plot_control_sets
+        from ..studies.platonov.figures import plot_control_sets
         from ..plotting.save import save_figure
 
         written = save_figure(plot_control_sets(result), plot, dpi=120)

@@ -9,5 +9,7 @@ paper's application of one to the other is here:
 * :mod:`seahelm.studies.platonov.flat_set` — the flat approximation Y (eq. (24), printed and
   corrected) and its Hausdorff distance to V;
 * :mod:`seahelm.studies.platonov.averaged_system` — the averaged system eq. (13) (printed and
-  corrected ς2/ς3 assignment) and the check of the averaging theorem by simulation.
+  corrected ς2/ς3 assignment) and the check of the averaging theorem by simulation;
+* :mod:`seahelm.studies.platonov.figures` — Figs. 1 and 2 (V, and Y in either reading) and the
+  averaging error against ε.
 """

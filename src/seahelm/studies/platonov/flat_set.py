@@ -69,6 +69,21 @@ class FlatVariant(abc.ABC):
             h_Y(z).
         """
 
+    def extra_segment(self, beta3: float) -> np.ndarray | None:
+        """The segment this reading adds to the arc's hull, as its two end points (2, 3), or
+        None (drawn by :func:`~seahelm.studies.platonov.figures.plot_set_Y`).
+
+        Parameters
+        ----------
+        beta3 : float
+            β3 [-].
+
+        Returns
+        -------
+        numpy.ndarray or None
+        """
+        return None
+
 
 class ArcHull(FlatVariant):
     """Y = conv{(β1 t, β2 t, β3 t²) : t ∈ [-1, 1]} (the correct reading)."""
@@ -119,6 +134,20 @@ class PrintedEq24(FlatVariant):
             h_Y(z).
         """
         return np.maximum(h_arc, np.abs(z[..., 0] + z[..., 1]) + beta3 * z[..., 2])
+
+    def extra_segment(self, beta3: float) -> np.ndarray:
+        """The printed segment {(s, s, β3) : s ∈ [-1, 1]}: its end points.
+
+        Parameters
+        ----------
+        beta3 : float
+            β3 [-].
+
+        Returns
+        -------
+        numpy.ndarray, shape (2, 3)
+        """
+        return np.array([[-1.0, -1.0, beta3], [1.0, 1.0, beta3]])
 
 
 #: The arc's convex hull (``"hull"``, the default).

@@ -1,11 +1,14 @@
-"""Plots of the averaged control set V and its flat approximation Y (Platonov & Platonova,
-Figs. 1 and 2). matplotlib is imported inside the functions."""
+"""The paper's figures: the averaged control set V and its flat approximation Y (Platonov &
+Platonova, Figs. 1 and 2) and the averaging error against ε. matplotlib is imported inside the
+functions."""
 
 from __future__ import annotations
 
 from typing import Any
 
 import numpy as np
+
+from .flat_set import FlatVariant, get_flat_variant
 
 __all__ = ["plot_set_V", "plot_set_Y", "plot_control_sets", "plot_averaging_study"]
 
@@ -62,23 +65,25 @@ def plot_set_V(result: Any, *, ax: Any = None, fig: Any = None, **surface_kw: An
 
 
 def plot_set_Y(
-    betas: Any, *, variant: str = "hull", n: int = 101, ax: Any = None, fig: Any = None,
-    **surface_kw: Any,
+    betas: Any, *, variant: str | FlatVariant = "hull", n: int = 101, ax: Any = None,
+    fig: Any = None, **surface_kw: Any,
 ) -> Any:
     """The flat set Y of eq. (24) as a 3-D surface (Fig. 2).
 
-    ``variant="hull"``: the convex hull of the arc (β1 t, β2 t, β3 t²), t ∈ [-1, 1]: the arc is
-    a parabola in the plane β2 y1 = β1 y2, and its hull, drawn as the union of the chords
-    between t and −t, is the flat region between the parabola and the chord y3 = β3.
-    ``variant="printed"``: additionally the printed segment
-    y1 = y2 ∈ [-1, 1], y3 = β3 (which does not meet the arc, see the errata).
+    The convex hull of the arc (β1 t, β2 t, β3 t²), t ∈ [-1, 1]: the arc is a parabola in the
+    plane β2 y1 = β1 y2, and its hull, drawn as the union of the chords between t and −t, is
+    the flat region between the parabola and the chord y3 = β3; plus what the reading of
+    eq. (24) adds to it (:meth:`~seahelm.studies.platonov.flat_set.FlatVariant.extra_segment`):
+    nothing for ``"hull"``, the printed segment y1 = y2 ∈ [-1, 1], y3 = β3 (which does not meet
+    the arc, see the errata) for ``"printed"``.
 
     Parameters
     ----------
     betas : sequence of float
         (β1, β2, β3) [-] of :func:`~seahelm.studies.platonov.control_set.cpp_betas`.
-    variant : {"hull", "printed"}, optional
-        Reading of eq. (24) (default "hull").
+    variant : str or FlatVariant, optional
+        Reading of eq. (24): a name of
+        :data:`~seahelm.studies.platonov.flat_set.FLAT_VARIANTS` (default "hull") or the object.
     n : int, optional
         Number of chord positions t ∈ [0, 1] (default 101).
     ax : matplotlib Axes3D, optional
@@ -92,8 +97,7 @@ def plot_set_Y(
     -------
     matplotlib Axes3D
     """
-    if variant not in ("hull", "printed"):
-        raise ValueError(f"`variant` must be 'hull' or 'printed', got {variant!r}")
+    reading = get_flat_variant(variant)
     ax = _axes3d(ax, fig)
     b1, b2, b3 = (float(b) for b in betas)
     t = np.linspace(0.0, 1.0, n)
@@ -106,8 +110,9 @@ def plot_set_Y(
     ax.plot_surface(x, y, zz, **kw)
     tt = np.linspace(-1, 1, 201)
     ax.plot(b1 * tt, b2 * tt, b3 * tt * tt, color="k", lw=1.5, label="arc (β1 t, β2 t, β3 t²)")
-    if variant == "printed":
-        ax.plot([-1, 1], [-1, 1], [b3, b3], color="tab:red", lw=2, label="printed segment")
+    extra = reading.extra_segment(b3)
+    if extra is not None:
+        ax.plot(*extra.T, color="tab:red", lw=2, label=f"{reading.name} segment")
     ax.legend(loc="upper left")
     _label(ax, "Y (Platonov & Platonova, Fig. 2, eq. (24))")
     return ax
