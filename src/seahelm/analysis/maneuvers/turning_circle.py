@@ -190,14 +190,16 @@ def _crossings(change: np.ndarray, levels: np.ndarray) -> tuple[np.ndarray, np.n
     ``change`` has the shape (runs, steps), ``levels`` (levels,); k and w (levels, runs).
     """
     hit = change >= levels[:, None, None]
-    k = np.argmax(hit, axis=2)
+    k = np.argmax(hit, axis=2)  # (0 where never reached, told apart below)
     rows = np.arange(change.shape[0])
-    k = np.where(np.take_along_axis(hit, k[:, :, None], axis=2)[:, :, 0], k, -1)
     prev = change[rows, np.maximum(k - 1, 0)]
-    cur = change[rows, np.maximum(k, 0)]
-    with np.errstate(invalid="ignore", divide="ignore"):
-        w = np.where(k > 0, (levels[:, None] - prev) / (cur - prev), 1.0)
-    return k, np.where(k >= 0, w, np.nan)
+    cur = change[rows, k]
+    # k > 0: cur >= level > prev, so cur - prev > 0 (no division by zero to guard)
+    w = (levels[:, None] - prev) / np.where(k > 0, cur - prev, 1.0)
+    w[k == 0] = 1.0
+    k[~hit.any(axis=2)] = -1
+    w[k < 0] = np.nan
+    return k, w
 
 
 def _at_crossings(values: np.ndarray, k: np.ndarray, w: np.ndarray) -> np.ndarray:
