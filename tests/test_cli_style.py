@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import importlib
 import inspect
+import json
+import os
 import pkgutil
 import subprocess
 import sys
@@ -201,3 +203,39 @@ def test_help_lists_the_choices(args, choices):
     text = " ".join(res.stdout.replace("│", " ").split())  # lines of the help box, joined
     for choice in choices:
         assert choice in text, (choice, text)
+
+
+def test_the_console_script_exits_at_once_with_its_output_flushed():
+    """main() ends with os._exit after flushing (no interpreter shutdown): the output of a
+    command is complete through a pipe, the status is the command's, atexit hooks do not run."""
+    proc = subprocess.run([sys.executable, "-m", "seahelm", "models", "--json"],
+                          capture_output=True, text=True, timeout=120,
+                          env={k: v for k, v in os.environ.items()
+                               if k != "SEAHELM_ORDINARY_EXIT"})
+    assert proc.returncode == 0, proc.stderr
+    assert "vessel_models" in json.loads(proc.stdout)  # 100 kB, all of it
+    code = ("import atexit, sys; from seahelm.cli.main import exit_now; "
+            "atexit.register(lambda: print('atexit ran')); print('out', end=''); "
+            "sys.stderr.write('partial'); exit_now({arg})")
+    env = {k: v for k, v in os.environ.items() if k != "SEAHELM_ORDINARY_EXIT"}
+    for arg, status in (("None", 0), ("3", 3), ("'bye'", 1)):
+        p = subprocess.run([sys.executable, "-c", code.format(arg=arg)], capture_output=True,
+                           text=True, timeout=120, env=env)
+        assert p.returncode == status and p.stdout == "out", (arg, p.stdout, p.stderr)
+        assert p.stderr.startswith("partial")
+        assert ("bye" in p.stderr) == (arg == "'bye'")
+    # the ordinary shutdown on request: SystemExit, so atexit hooks run
+    p = subprocess.run([sys.executable, "-c", code.format(arg="3")], capture_output=True,
+                       text=True, timeout=120, env={**env, "SEAHELM_ORDINARY_EXIT": "1"})
+    assert p.returncode == 3 and p.stdout == "outatexit ran\n", p.stdout
+
+
+def test_exit_now_leaves_coverage_its_shutdown(monkeypatch):
+    import types
+
+    from seahelm.cli.main import exit_now
+
+    monkeypatch.setitem(sys.modules, "coverage", types.ModuleType("coverage"))
+    with pytest.raises(SystemExit) as exc:
+        exit_now(2)
+    assert exc.value.code == 2
