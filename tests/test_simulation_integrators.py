@@ -370,6 +370,21 @@ def test_heavy_models_loop_over_the_stages_and_light_ones_write_them_out():
     assert _stage_code_size(MMG, DIRECT, rk4, None) > 4 * 500
     assert hasattr(compile_closed_loop(MMG, RUDDER_PROPELLER, OPEN_LOOP, "rk4"), "RK_A")
     assert not hasattr(compile_closed_loop(NOMOTO2, RUDDER_SERVO, PID_HEADING, "rk4"), "RK_A")
+    # the environment's loads count (compiled in the same go): Voitkunsky's model with Lvov's
+    # loads loops, without them it stays written out
+    import warnings
+    from pathlib import Path
+
+    from seahelm.scenario import load_scenario
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # (the example ship is outside Lvov's hull range)
+        job = load_scenario(Path(__file__).resolve().parents[1] / "examples"
+                            / "compensation_storm_compensated.toml")
+    assert job.environment is not None and job.model.name == "voitkunsky"
+    with_loads = _stage_code_size(job.model, job.actuator, rk4, job.environment, True)
+    without = _stage_code_size(job.model, job.actuator, rk4, None, True)
+    assert without < STAGE_LOOP_ABOVE < with_loads
 
 
 # --- actuators with a closed-form step --------------------------------------------------------

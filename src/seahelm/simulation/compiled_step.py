@@ -246,3 +246,4 @@ def compiled_stage_loop_source(method: str | ButcherTableau,
         "        xv[j] += h * acc",
         *actuator_final,
     ]) + "\n"
+

@@ -101,16 +101,21 @@ def _binding(func: Any, alias: str, inline: bool = True) -> tuple[str, bytes]:
 _TEMPLATE_TEXT = (Path(__file__).with_name("kernel_template.py")).read_text()
 _BLOCK = re.compile(r"# <(header|footer)>\n.*?# </\1>\n", re.S)
 
-#: Stage code size (bytecode instructions of the model's and the actuator's right-hand sides and
-#: what they call, times the number of stages) above which the integrator's stages are looped
-#: over rather than written out. Written out, each stage inlines its own copy of the
-#: right-hand side: light models run faster that way, heavy ones compile much longer for no
-#: speed. Measured with empty caches (2 cores, RK4), written out → looped:
+#: Step code size (bytecode instructions of the model's and the actuator's right-hand sides and
+#: what they call, times the number of stages, plus the environment's loads) above which the
+#: integrator's stages are looped over rather than written out. Written out, each stage inlines
+#: its own copy of the right-hand side: light models run faster that way, heavy ones compile
+#: much longer for no speed. Measured with empty caches (2 cores, RK4), written out → looped:
 #: KVLCC2 MMG (4 × 837) compile 9.4 → 4.6 s, 1,000 turning circles 0.86 → 0.87 s;
 #: nonlinear Mariner (4 × 596) 5.8 → 3.3 s, 0.50 → 0.40 s; Nomoto-2 + PID (4 × 253)
 #: 5.9 → 3.7 s but 1.67e7 → 1.44e7 vessel-steps/s; catamaran (4 × 368) 5.7 → 3.7 s but
-#: 75 % → 67 % of the hand-fused kernel. Bytecode counts differ a little between Python
-#: versions (4-9 % from 3.11 to 3.13); no shipped combination is near enough to change side.
+#: 97 % → 70 % of the hand-fused kernel (2026-11-26); Voitkunsky + compensated PID + Lvov's
+#: loads (4 × 421 + 450) 7.8–8.6 → 5.1–5.5 s at the same speed (a single run 5.7 ms). A third
+#: form, the stage inputs written out but one right-hand side in a loop (a switch on the
+#: stage), compiled like the loop (catamaran 5.4 s, Voitkunsky 5.8 s) but ran Nomoto-2 16–30 %
+#: and the catamaran 4–10 % slower than written out; it is not used. Bytecode counts differ a
+#: little between Python versions (4-9 % from 3.11 to 3.13): the nearest shipped combinations
+#: are the Voitkunsky one (2,134) and the MMG with waves (1,696–1,868 before the loads counted).
 #: The choice is made when a combination is first compiled in a process: to change it, set
 #: this and call ``compile_closed_loop.cache_clear()``, or pass ``stage_loop=`` to
 #: :func:`compile_closed_loop`.
@@ -119,12 +124,17 @@ STAGE_LOOP_ABOVE = 2000
 
 def _stage_code_size(model: VesselModel, actuator: Actuator, tableau: ButcherTableau,
                      environment: Any, exact_actuator: bool = False) -> int:
-    """The code each stage of a written-out step inlines (see :data:`STAGE_LOOP_ABOVE`)."""
+    """The code a written-out step makes numba compile (see :data:`STAGE_LOOP_ABOVE`): what
+    each stage inlines, times the stages, plus the environment's loads (compiled once, as a
+    function of their own, but in the same compile the user waits for)."""
     per_stage = (inlined_size(model.rhs) + inlined_size(actuator.output)
                  + inlined_size(actuator.advance if exact_actuator else actuator.rhs))
+    once = 0
     if environment is not None:
-        per_stage += inlined_size(environment_stage(environment, model)[1])
-    return tableau.stages * per_stage
+        loads, apply = environment_stage(environment, model)
+        per_stage += inlined_size(apply)
+        once = inlined_size(loads)
+    return tableau.stages * per_stage + once
 
 
 def _route_source(name: str, args: str, assignments: list[str]) -> str:
