@@ -230,6 +230,32 @@ def test_the_console_script_exits_at_once_with_its_output_flushed():
     assert p.returncode == 3 and p.stdout == "outatexit ran\n", p.stdout
 
 
+def test_a_tool_running_seahelm_inside_itself_gets_the_ordinary_exit(tmp_path):
+    """A wrapper that runs seahelm as __main__ through runpy (as pyinstrument or pdb do) and
+    works after it: no os._exit, its code after the run and its atexit hooks run."""
+    wrapper = tmp_path / "wrap.py"
+    wrapper.write_text(
+        "import atexit, runpy, sys\n"
+        "atexit.register(lambda: print('atexit ran'))\n"
+        "sys.argv = ['seahelm', '--version']\n"
+        "try:\n"
+        "    runpy.run_module('seahelm', run_name='__main__', alter_sys=True)\n"
+        "except SystemExit as exc:\n"
+        "    print('wrapper: exit', exc.code)\n"
+        "print('wrapper: after')\n")
+    env = {k: v for k, v in os.environ.items() if k != "SEAHELM_ORDINARY_EXIT"}
+    p = subprocess.run([sys.executable, str(wrapper)], capture_output=True, text=True,
+                       timeout=120, env=env)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.splitlines()[-3:] == ["wrapper: exit 0", "wrapper: after", "atexit ran"]
+    # and "0" does not ask for the ordinary exit
+    code = "from seahelm.cli.main import exit_now; import atexit; " \
+           "atexit.register(lambda: print('atexit ran')); exit_now(0)"
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                       timeout=120, env={**env, "SEAHELM_ORDINARY_EXIT": "0"})
+    assert p.returncode == 0 and p.stdout == ""
+
+
 def test_exit_now_leaves_coverage_its_shutdown(monkeypatch):
     import types
 

@@ -416,16 +416,32 @@ def main() -> None:
 
 
 def _is_the_program() -> bool:
-    """True when seahelm is the process's program: ``python -m seahelm`` or the console script
-    (a ``__main__`` file named ``seahelm``), not a caller's interpreter."""
+    """True when seahelm is the process's program and nothing else runs around it: ``python -m
+    seahelm`` or the console script (a ``__main__`` file named ``seahelm``, or the
+    ``__main__.py`` inside a Windows ``seahelm.exe`` launcher), called straight from that
+    ``__main__`` (only runpy's frames and the ``__main__`` module's own above ``main()``), with
+    no tracer or profiler set. A tool that runs seahelm inside itself (pdb, pyinstrument,
+    ``runpy`` in a script of one's own) does work after the command returns, so it gets the
+    ordinary ``SystemExit``.
+    """
     import sys
     from pathlib import Path
 
+    if sys.gettrace() is not None or sys.getprofile() is not None:
+        return False
     program = sys.modules.get("__main__")
     spec = getattr(program, "__spec__", None)
-    if spec is not None and spec.name == "seahelm.__main__":
-        return True
-    return Path(getattr(program, "__file__", None) or "").stem == "seahelm"
+    path = Path(getattr(program, "__file__", None) or "")
+    if not ((spec is not None and spec.name == "seahelm.__main__") or path.stem == "seahelm"
+            or (path.name == "__main__.py" and path.parent.stem == "seahelm")):
+        return False
+    main_globals = vars(program)
+    frame = sys._getframe(2)  # (1 is main())
+    while frame is not None:
+        if frame.f_globals is not main_globals and frame.f_globals.get("__name__") != "runpy":
+            return False
+        frame = frame.f_back
+    return True
 
 
 def exit_now(code: object) -> None:
@@ -434,7 +450,7 @@ def exit_now(code: object) -> None:
 
     Under coverage measurement (``coverage`` imported, which writes its data at exit) it raises
     ``SystemExit`` instead, as does any process that wants the ordinary shutdown and sets
-    ``SEAHELM_ORDINARY_EXIT=1``.
+    ``SEAHELM_ORDINARY_EXIT`` (to anything but empty, ``0``, ``false`` or ``no``).
     """
     import os
     import sys
@@ -446,7 +462,8 @@ def exit_now(code: object) -> None:
     else:  # SystemExit("text"): the text on stderr, status 1
         print(code, file=sys.stderr)
         status = 1
-    if "coverage" in sys.modules or os.environ.get("SEAHELM_ORDINARY_EXIT"):
+    ordinary = os.environ.get("SEAHELM_ORDINARY_EXIT", "").strip().lower()
+    if "coverage" in sys.modules or ordinary not in ("", "0", "false", "no"):
         raise SystemExit(status)
     if "logging" in sys.modules:
         import logging
@@ -454,7 +471,9 @@ def exit_now(code: object) -> None:
         logging.shutdown()
     for stream in (sys.stdout, sys.stderr):
         try:
-            stream.flush()
+            if stream is not None:  # (None under pythonw)
+                stream.flush()
         except (OSError, ValueError):  # a closed pipe (`seahelm ... | head`) or stream
-            pass
+            if stream is sys.stdout and status == 0:
+                status = 120  # what Python's own shutdown returns when it cannot flush stdout
     os._exit(status)
