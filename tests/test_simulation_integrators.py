@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from scipy.linalg import expm
 
-from seahelm.actuators.servo import DIRECT
+from seahelm.actuators.servo import DIRECT, RUDDER_SERVO
 from seahelm.control.open_loop import OPEN_LOOP
 from seahelm.errors import ParameterError
 from seahelm.simulation.engine import compile_closed_loop, simulate
@@ -318,7 +318,6 @@ def test_looped_and_written_out_steps_agree_with_actuator_states_and_a_controlle
     """Nomoto-2 + rudder servo (an actuator state: from its closed-form step, or integrated with
     the tableau through ka/ta) + PID, RK4, a time-varying rudder disturbance: the two forms of
     the step give the same run to rounding."""
-    from seahelm.actuators.servo import RUDDER_SERVO
     from seahelm.control.pid import PID_HEADING, PIDHeadingParams
     from seahelm.simulation import engine
     from seahelm.vessels.catalog import get
@@ -406,8 +405,6 @@ def test_a_closed_form_servo_frees_the_step_from_the_servo_lag():
     limit then bounds a rudder chatter): integrated, a 0.5 s step is 0.7 % off in heading
     after 60 s; with the closed-form servo 0.5 s and 1 s steps stay within 0.005 % of a
     0.05 s run, and at 0.05 s the two agree to 1e-7 (the integrated servo's error)."""
-    from seahelm.actuators.servo import RUDDER_SERVO
-
     integrated = dataclasses.replace(RUDDER_SERVO, advance=None)
     fine = _kvlcc2_circle(RUDDER_SERVO, 0.05)
     psi = fine["heading"][0, -1]
@@ -418,7 +415,32 @@ def test_a_closed_form_servo_frees_the_step_from_the_servo_lag():
         assert run.ok.all()
         assert run["heading"][0, -1] == pytest.approx(psi, rel=5e-5)
         assert run.state[0, -1, 3] == pytest.approx(fine.state[0, -1, 3], rel=1e-3)  # north
-    assert abs(_kvlcc2_circle(integrated, 0.5)["heading"][0, -1] / psi - 1.0) > 3e-3
+    coarse = _kvlcc2_circle(integrated, 0.5)
+    assert abs(coarse["heading"][0, -1] / psi - 1.0) > 3e-3
+    assert fine.metadata["actuator_step"] == "closed-form"
+    assert coarse.metadata["actuator_step"] == "integrated"
+
+
+def test_simulate_integrates_the_servo_on_request():
+    """``exact_actuator=False`` is the integrated servo (the behaviour before the closed form),
+    the same run as an actuator without ``advance``; ``True`` needs a closed form."""
+    from seahelm.analysis.equilibrium import self_propulsion_rps
+    from seahelm.vessels.mmg import KVLCC2_L7, KVLCC2_L7_SERVO, MMG
+
+    rps = float(self_propulsion_rps(KVLCC2_L7, 1.179))
+    kw = dict(t_final=30.0, dt=0.2, actuator_params=KVLCC2_L7_SERVO,
+              reference={"rudder_command": math.radians(35.0), "propeller_rps": rps})
+    x0 = np.array([1.179, 0.0, 0.0, 0.0, 0.0, 0.0])
+    asked = simulate(MMG, KVLCC2_L7, x0, actuator=RUDDER_SERVO, exact_actuator=False, **kw)
+    bare = simulate(MMG, KVLCC2_L7, x0, actuator=dataclasses.replace(RUDDER_SERVO, advance=None),
+                    **kw)
+    np.testing.assert_array_equal(asked.state, bare.state)
+    assert asked.metadata["actuator_step"] == "integrated"
+    exact = simulate(MMG, KVLCC2_L7, x0, actuator=RUDDER_SERVO, **kw)
+    assert np.max(np.abs(exact.state - asked.state)) > 0  # (a different step)
+    with pytest.raises(ParameterError, match="`exact_actuator`: the actuator 'direct' has no"):
+        simulate(NOMOTO1, P1, np.zeros(4), t_final=10.0, dt=1.0, actuator=DIRECT,
+                 reference=[0.1], exact_actuator=True)
 
 
 @pytest.mark.parametrize("method", ["euler", "ssprk3", CUSTOM], ids=_id)

@@ -69,7 +69,7 @@ def limited_lag_advance(command, value, limit, time_constant, rate_limit, h):  #
     """
     target = min(max(command, -limit), limit)
     e = target - value
-    if e == 0.0:  # at rest on the target (the shaft at constant rps): no exponential to take
+    if e == 0.0 or h <= 0.0:  # on the target (the shaft at constant rps), or no time: as is
         return value
     band = rate_limit * time_constant  # |error| above which the rate is clipped
     if abs(e) > band:

@@ -114,12 +114,14 @@ _BLOCK = re.compile(r"# <(header|footer)>\n.*?# </\1>\n", re.S)
 #: form, the stage inputs written out but one right-hand side in a loop (a switch on the
 #: stage), compiled like the loop (catamaran 5.4 s, Voitkunsky 5.8 s) but ran Nomoto-2 16–30 %
 #: and the catamaran 4–10 % slower than written out; it is not used. Bytecode counts differ a
-#: little between Python versions (4-9 % from 3.11 to 3.13): the nearest shipped combinations
-#: are the Voitkunsky one (2,134) and the MMG with waves (1,696–1,868 before the loads counted).
+#: little between Python versions (4-9 % from 3.11 to 3.13), so the threshold sits between
+#: the nearest combinations with room both ways: written out, the catamaran (1,552 on 3.11, at
+#: most ~1,690 elsewhere) and the CPP ship in waves (1,664, ~1,810); looped, the Voitkunsky
+#: model with Lvov's loads (2,134, at least ~1,940).
 #: The choice is made when a combination is first compiled in a process: to change it, set
 #: this and call ``compile_closed_loop.cache_clear()``, or pass ``stage_loop=`` to
 #: :func:`compile_closed_loop`.
-STAGE_LOOP_ABOVE = 2000
+STAGE_LOOP_ABOVE = 1850
 
 
 def _stage_code_size(model: VesselModel, actuator: Actuator, tableau: ButcherTableau,
@@ -510,6 +512,7 @@ def simulate(
     metadata: Mapping[str, Any] | None = None,
     environment: Any = None,
     environment_params: Params | Sequence[Params] | np.ndarray | None = None,
+    exact_actuator: bool | None = None,
 ) -> "SimResult":
     """Simulate a batch of closed-loop runs.
 
@@ -564,6 +567,12 @@ def simulate(
     environment_params : Params, sequence of Params or array, optional
         The environment's parameters (wind speed and direction, wave height, ship data), one
         set or one per run.
+    exact_actuator : bool, optional
+        Take the actuator's states from its closed-form step (default: when it has one, as the
+        rudder servos do) or integrate its rhs with the step (``False``: the behaviour before
+        the closed form, to reproduce older results); see :func:`compile_closed_loop`. The
+        result's ``metadata["actuator_step"]`` says which (``"closed-form"`` or
+        ``"integrated"``).
 
     Returns
     -------
@@ -681,7 +690,13 @@ def simulate(
         i = int(np.argmax(bad0))
         raise ParameterError(f"initial state of run {i} is not finite or outside bounds: {z[i]}")
 
-    kernel = compile_closed_loop(model, actuator, controller, tableau, environment)
+    if exact_actuator is None:
+        exact_actuator = actuator.advance is not None
+    elif exact_actuator and actuator.advance is None:
+        raise ParameterError(f"`exact_actuator`: the actuator '{actuator.name}' has no "
+                             "closed-form step")
+    kernel = compile_closed_loop(model, actuator, controller, tableau, environment,
+                                 exact_actuator=bool(exact_actuator))
     mr = as_records(mp, m_cls)
     ar = as_records(ap, a_cls)
     cr = as_records(cp, c_cls)
@@ -763,6 +778,7 @@ def simulate(
             "actuator": actuator.name,
             "controller": controller.name,
             "integrator": tableau.name,
+            "actuator_step": "closed-form" if exact_actuator else "integrated",
             **({} if environment is None else {"environment": environment.name}),
             "dt": float(dt),
             "controller_dt": ctrl_dt,
