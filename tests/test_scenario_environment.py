@@ -212,3 +212,23 @@ def test_loads_once_per_step_builds_the_held_environment():
     with pytest.raises(ScenarioError, match=r"environment.loads"):
         parse(BASE.replace("[environment.wind]", '[environment]\nloads = "sometimes"\n'
                                                  "[environment.wind]"))
+
+
+def test_the_papers_printed_spectrum_is_reachable_by_name_in_a_scenario():
+    """The printed third Rakhmanin–Firsov spectrum lives in the paper's study
+    (seahelm.studies.sushchenko2010) and is still named in a scenario file: it is taken as the
+    corrected third spectrum is (whose wave-load rate, like the printed one's, has white-noise
+    feedthrough, so both stop before the run with the same clear error)."""
+    from seahelm.scenario import run_scenario
+    from seahelm.scenario.errors import ScenarioError
+
+    text = BASE.replace("height = 0.06\nperiod = 1.8\n", "height = 3.0\nperiod = 1.8\n").replace(
+        "direction_deg = 45\n", 'direction_deg = 45\nirregular = true\nseed = 4\n'
+        'spectrum = "rakhmanin-firsov-3-printed"\n')
+    messages = []
+    for name in ("rakhmanin-firsov-3-printed", "rakhmanin-firsov-3"):
+        job = parse(text.replace("rakhmanin-firsov-3-printed", name))  # the name is known
+        with pytest.raises(ScenarioError, match="white-noise feedthrough") as exc:
+            run_scenario(job)
+        messages.append(str(exc.value).replace(name, "NAME"))
+    assert messages[0] == messages[1]

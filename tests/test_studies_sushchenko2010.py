@@ -67,6 +67,13 @@ def test_sea_state_parameters_with_the_printed_table():
     p = ss.sea_state_parameters(3.5, table=su.get_table2("printed"))
     assert p.resonance_frequency == pytest.approx((1.003 + 0.667) / 2)
     assert p.table == "printed"
+    # the name reaches the study's table from the component too (resolved on first use)
+    assert ss.sea_state_parameters(4.0, table="printed").resonance_frequency == 0.667
+    np.testing.assert_array_equal(ss.table2("printed")["lambda_mean"],
+                                  su.PRINTED_TABLE2.rows[:, 5])
+    with pytest.raises(ParameterError, match="unknown Table 2 version 'nope'; valid: "
+                       "'corrected', 'printed'"):
+        ss.table2("nope")
 
 
 # ---- the third spectrum ------------------------------------------------------------------
@@ -80,6 +87,10 @@ def _quad_0_inf(f) -> float:
 def test_printed_third_spectrum_is_reachable_and_differs_from_the_corrected_one():
     assert su.SPECTRA["rakhmanin-firsov-3-printed"] is su.RakhmaninFirsov3Printed
     assert "rakhmanin-firsov-3-printed" not in sp.SPECTRA  # the component registry: correct only
+    # ... but the name reaches the study's class wherever a spectrum is named
+    assert "rakhmanin-firsov-3-printed" in sp.spectrum_names()
+    assert type(sp.get_spectrum("rakhmanin-firsov-3-printed", variance=D, decay_rate=MU,
+                                resonance_frequency=LAM)) is su.RakhmaninFirsov3Printed
     assert set(sp.SPECTRA) < set(su.SPECTRA)
     kw = dict(variance=D, decay_rate=MU, resonance_frequency=LAM)
     printed, corrected = su.RakhmaninFirsov3Printed(**kw), RakhmaninFirsov3(**kw)

@@ -11,7 +11,8 @@ errata for this paper): every column follows h^(-1/2) within 2 % and μ_mean/λ_
 This module holds the corrected table (:data:`TABLE2`, :data:`CORRECTED_TABLE2`), the default
 everywhere; the table as printed is the paper's reproduction,
 :data:`seahelm.studies.sushchenko2010.PRINTED_TABLE2`. Every ``table`` argument takes a name of
-:data:`TABLE2` or a :class:`Table2Version` object such as that one.
+:data:`TABLE2`, ``"printed"`` (:data:`PRINTED_TABLE2_VERSIONS`, resolved to that object on
+first use) or a :class:`Table2Version` object.
 
 References
 ----------
@@ -39,6 +40,7 @@ __all__ = [
     "TABLE2_COLUMNS",
     "Table2Version",
     "CORRECTED_TABLE2",
+    "PRINTED_TABLE2_VERSIONS",
     "LEVELS",
     "SeaStateParameters",
     "wave_variance",
@@ -237,15 +239,26 @@ def wave_height_range(grade: int | str) -> tuple[float, float]:
     return TABLE1[int(key)]
 
 
+#: Table 2 as printed, by name: reachable wherever a version is named (``table="printed"``)
+#: though it lives with the paper's reproduction, as a ``"module:attribute"`` reference
+#: resolved on first use (:func:`seahelm.registry.lookup`).
+PRINTED_TABLE2_VERSIONS: Mapping[str, str] = MappingProxyType({
+    "printed": "seahelm.studies.sushchenko2010:PRINTED_TABLE2",
+})
+
+
 def _table_version(table: str | Table2Version) -> Table2Version:
     """The Table 2 version named ``table`` (or ``table`` itself)."""
     if isinstance(table, Table2Version):
         return table
+    if isinstance(table, str) and table in PRINTED_TABLE2_VERSIONS:
+        from ..registry import lookup
+
+        return lookup("Table 2 version", PRINTED_TABLE2_VERSIONS, table, Table2Version)
     if not isinstance(table, str) or table not in _VERSIONS:
-        valid = ", ".join(repr(k) for k in _VERSIONS)
+        valid = ", ".join(repr(k) for k in (*_VERSIONS, *PRINTED_TABLE2_VERSIONS))
         raise ParameterError(
-            f"unknown Table 2 version {table!r}; valid: {valid} or a Table2Version (the table "
-            "as printed is seahelm.studies.sushchenko2010.PRINTED_TABLE2)")
+            f"unknown Table 2 version {table!r}; valid: {valid} or a Table2Version")
     return _VERSIONS[table]
 
 

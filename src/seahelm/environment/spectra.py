@@ -66,6 +66,8 @@ __all__ = [
     "Jonswap",
     "Bretschneider",
     "SPECTRA",
+    "PRINTED_SPECTRA",
+    "spectrum_names",
     "get_spectrum",
     "spectrum_from_wave_height",
 ]
@@ -384,11 +386,29 @@ SPECTRA: Mapping[str, type[WaveSpectrum]] = MappingProxyType(
 )
 
 
+#: Spectra as printed in a paper, by name: reachable wherever a spectrum is named (a scenario
+#: file, :func:`get_spectrum`, the CLI) though they live with the paper's reproduction, as
+#: ``"module:attribute"`` references resolved on first use (:func:`seahelm.registry.lookup`).
+PRINTED_SPECTRA: Mapping[str, str] = MappingProxyType({
+    "rakhmanin-firsov-3-printed": "seahelm.studies.sushchenko2010:RakhmaninFirsov3Printed",
+})
+
+
+def spectrum_names() -> tuple[str, ...]:
+    """Every spectrum name: those of :data:`SPECTRA`, then the printed ones
+    (:data:`PRINTED_SPECTRA`)."""
+    return tuple(SPECTRA) + tuple(PRINTED_SPECTRA)
+
+
 def _spectrum_class(name: str) -> type[WaveSpectrum]:
+    if isinstance(name, str) and name in PRINTED_SPECTRA:
+        from ..registry import lookup
+
+        return lookup("spectrum", PRINTED_SPECTRA, name, type)
     try:
         return SPECTRA[name]
     except (KeyError, TypeError):
-        valid = ", ".join(repr(k) for k in SPECTRA)
+        valid = ", ".join(repr(k) for k in spectrum_names())
         raise ParameterError(f"unknown spectrum {name!r}; valid: {valid}") from None
 
 

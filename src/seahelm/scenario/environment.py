@@ -186,15 +186,15 @@ def _check_sea(v: dict[str, Any], h3: float, checked: set[tuple[float, str]], so
                where: str) -> None:
     """The irregular sea's spectrum exists and is defined for the height (Table 2: 1-10 m)."""
     from ..environment.sea_state import table2
-    from ..environment.spectra import SPECTRA, spectrum_from_wave_height
+    from ..environment.spectra import spectrum_from_wave_height, spectrum_names
 
     key = (h3, v["spectrum"])
     if key in checked:
         return
     checked.add(key)
-    if v["spectrum"] not in SPECTRA:
+    if v["spectrum"] not in spectrum_names():
         raise _err(source, "environment.waves.spectrum",
-                   f"unknown spectrum {v['spectrum']!r}; valid: {', '.join(SPECTRA)}")
+                   f"unknown spectrum {v['spectrum']!r}; valid: {', '.join(spectrum_names())}")
     hs = table2()["h3"]
     name = "height" if v.get("height") is not None else "hs"
     if not hs[0] <= h3 <= hs[-1]:
