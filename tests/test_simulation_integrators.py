@@ -441,6 +441,9 @@ def test_simulate_integrates_the_servo_on_request():
     with pytest.raises(ParameterError, match="`exact_actuator`: the actuator 'direct' has no"):
         simulate(NOMOTO1, P1, np.zeros(4), t_final=10.0, dt=1.0, actuator=DIRECT,
                  reference=[0.1], exact_actuator=True)
+    for bad in ("no", 0, 1.0):  # (a string or a number is not a choice: "no" would be truthy)
+        with pytest.raises(ParameterError, match="`exact_actuator` must be True, False or None"):
+            simulate(MMG, KVLCC2_L7, x0, actuator=RUDDER_SERVO, exact_actuator=bad, **kw)
 
 
 @pytest.mark.parametrize("method", ["euler", "ssprk3", CUSTOM], ids=_id)

@@ -692,6 +692,9 @@ def simulate(
 
     if exact_actuator is None:
         exact_actuator = actuator.advance is not None
+    elif not isinstance(exact_actuator, (bool, np.bool_)):
+        raise ParameterError(f"`exact_actuator` must be True, False or None, got "
+                             f"{exact_actuator!r}")
     elif exact_actuator and actuator.advance is None:
         raise ParameterError(f"`exact_actuator`: the actuator '{actuator.name}' has no "
                              "closed-form step")
