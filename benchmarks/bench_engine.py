@@ -19,7 +19,7 @@ import numpy as np
 
 from seahelm.control.pid import PID_HEADING, PIDHeadingParams
 from seahelm.simulation.engine import simulate
-from seahelm.vessels.catalog import get
+from seahelm.ships import get_ship
 from seahelm.vessels.nomoto import NOMOTO2
 
 DT = 0.1
@@ -27,7 +27,7 @@ GAINS = PIDHeadingParams(kp=3.0, ki=0.001, kd=90.0)
 
 
 def run_engine(n_runs: int, n_steps: int) -> float:
-    p = get("mariner-nomoto2").params
+    p = get_ship("mariner-nomoto2").params
     x0 = np.zeros((n_runs, 5))
     x0[:, 2] = np.linspace(-0.1, 0.1, n_runs)
     t0 = time.perf_counter()
@@ -38,7 +38,7 @@ def run_engine(n_runs: int, n_steps: int) -> float:
 
 def run_python_loop(n_steps: int) -> float:
     """The same closed loop (Nomoto-2, servo, PID every step, RK4) as a per-step Python loop."""
-    p = get("mariner-nomoto2").params
+    p = get_ship("mariner-nomoto2").params
     k, t1, t2, t3, u_speed = p.gain, p.t1, p.t2, p.t3, p.speed
     a = k * t3 / (t1 * t2)
     dmax, rmax, tau = math.radians(35.0), math.radians(2.33), 1.0

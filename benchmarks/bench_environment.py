@@ -35,6 +35,7 @@ from seahelm.actuators.servo import RUDDER_SERVO
 from seahelm.analysis.equilibrium import approach_state
 from seahelm.control.pid import PID_HEADING_RPS, PIDHeadingRpsParams
 from seahelm.environment.loads import environment, ship_load_params, wave_load_fluctuation
+from seahelm.ships import get_ship
 from seahelm.errors import ValidityRangeWarning
 from seahelm.simulation.engine import simulate
 from seahelm.vessels.mmg import KVLCC2_FULL, KVLCC2_FULL_SERVO, MMG
@@ -54,7 +55,7 @@ def main() -> None:
     env = environment(wind="blendermann", waves="lvov")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityRangeWarning)  # C_b 0.81 > 0.8 of eq. (5)-(7)
-        ep = ship_load_params("kvlcc2-full", env, wind_speed=20.0,
+        ep = ship_load_params(get_ship("kvlcc2-full"), env, wind_speed=20.0,
                               wind_direction=math.radians(90.0), wave_height=3.0,
                               wave_length=120.0, wave_direction=math.radians(45.0))
     n = args.runs

@@ -32,13 +32,13 @@ from pathlib import Path
 
 from seahelm.scenario import parse_scenario
 from seahelm.sweep import run_sweep
-from seahelm.vessels.catalog import get
+from seahelm.ships import get_ship
 
 DERIVATIVES = ("Y_v", "Y_r", "N_v", "N_r")
 
 
 def scenario(runs: int, seed: int = 1) -> str:
-    params = get("kvlcc2-l7").params
+    params = get_ship("kvlcc2-l7").params
     draws = "\n".join(
         f'"vessel.params.{n}" = {{ distribution = "normal", mean = {getattr(params, n)!r}, '
         f'std = {abs(0.1 * getattr(params, n))!r} }}' for n in DERIVATIVES)

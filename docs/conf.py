@@ -34,6 +34,7 @@ extensions = [
     "numpydoc",
     "sphinx_gallery.gen_gallery",
     "scenario_reference",
+    "ship_reference",
 ]
 
 exclude_patterns = ["_build", "examples/README.rst"]

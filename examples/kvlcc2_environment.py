@@ -25,9 +25,10 @@ from pathlib import Path
 
 from seahelm.analysis.maneuvers import turning_circle
 from seahelm.environment.loads import Conditions, environment, ship_load_params
+from seahelm.ships import get_ship
 from seahelm.errors import ValidityRangeWarning
 
-SHIP = "kvlcc2-l7"
+SHIP = get_ship("kvlcc2-l7")  # its particulars give the windage and hull data
 
 
 def weather() -> Conditions:

@@ -33,14 +33,14 @@ from seahelm.analysis.imo import (
     imo_overshoot_limits,
 )
 from seahelm.sweep import open_sweep, run_sweep
-from seahelm.vessels.catalog import get
+from seahelm.ships import get_ship
 
 DERIVATIVES = ("Y_v", "Y_r", "N_v", "N_r")
 
 
 def scenarios(samples: int, seed: int, std: float) -> dict[str, str]:
     """The turning and zig-zag scenarios with the same draws (TOML text)."""
-    params = get("kvlcc2-l7").params
+    params = get_ship("kvlcc2-l7").params
     draws = "\n".join(
         f'"vessel.params.{name}" = {{ distribution = "normal", mean = {getattr(params, name)!r},'
         f' std = {abs(std * getattr(params, name))!r} }}' for name in DERIVATIVES)
@@ -101,7 +101,7 @@ def main() -> None:
         print(f"{kind}: {report.n_runs} samples in {report.n_chunks} chunk(s), "
               f"{report.computed} computed, {report.wall_time_s:.1f} s")
         stores[kind] = open_sweep(args.out / f"{kind}.zarr").load()
-    params = get("kvlcc2-l7").params
+    params = get_ship("kvlcc2-l7").params
     table = criteria(stores["turning"], stores["zigzag"], params.length, params.approach_speed)
 
     print(f"\nKVLCC2 L7, {args.samples} samples, {100 * args.std:g} % std on "

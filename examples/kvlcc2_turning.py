@@ -18,10 +18,10 @@ from seahelm.analysis.equilibrium import approach_state
 from seahelm.analysis.turning import turning_metrics
 from seahelm.control.open_loop import OPEN_LOOP
 from seahelm.simulation.engine import simulate
-from seahelm.vessels.catalog import get
+from seahelm.ships import get_ship
 from seahelm.vessels.mmg import KVLCC2_L7_SERVO, MMG
 
-kvlcc2 = get("kvlcc2-l7").params
+kvlcc2 = get_ship("kvlcc2-l7").params
 approach = approach_state(kvlcc2, 1.179)  # steady straight run at 1.179 m/s (Fn 0.142)
 result = simulate(
     MMG, kvlcc2, approach.state, t_final=80.0, dt=0.02,

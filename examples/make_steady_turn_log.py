@@ -33,10 +33,10 @@ def simulate_manoeuvre(rudder_steps_deg=RUDDER_STEPS_DEG, hold=HOLD, dt=DT,
     from seahelm.actuators.servo import RUDDER_SERVO, ServoParams
     from seahelm.control.open_loop import OPEN_LOOP
     from seahelm.simulation.engine import simulate
-    from seahelm.vessels.catalog import get
+    from seahelm.ships import get_ship
     from seahelm.vessels.voitkunsky import VOITKUNSKY
 
-    params = get("mariner-voitkunsky").params
+    params = get_ship("mariner-voitkunsky").params
     steps = np.radians(np.asarray(rudder_steps_deg, dtype=float))
     t_final = hold * len(steps)
     grid = np.arange(int(round(t_final / dt)) + 1) * dt

@@ -13,12 +13,12 @@ import numpy as np
 
 from seahelm.control.pid import PID_HEADING, PIDHeadingParams
 from seahelm.simulation.engine import simulate
-from seahelm.vessels.catalog import get
+from seahelm.ships import get_ship
 from seahelm.vessels.nomoto import NOMOTO2
 
 
 def main(out: Path) -> None:
-    mariner = get("mariner-nomoto2").params
+    mariner = get_ship("mariner-nomoto2").params
     # one compiled batch: four course changes at once
     courses = np.radians([10.0, 20.0, 45.0, 90.0])
     result = simulate(

@@ -13,16 +13,16 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 
 @pytest.fixture
 def mariner2():
-    from seahelm.vessels.catalog import get
+    from seahelm.ships import get_ship
 
-    return get("mariner-nomoto2").params
+    return get_ship("mariner-nomoto2").params
 
 
 @pytest.fixture
 def mariner1():
-    from seahelm.vessels.catalog import get
+    from seahelm.ships import get_ship
 
-    return get("mariner-nomoto1").params
+    return get_ship("mariner-nomoto1").params
 
 
 def pytest_report_header(config):

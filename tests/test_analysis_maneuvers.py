@@ -521,7 +521,8 @@ def test_direct_spiral_mariner_has_no_loop():
     (lambda: reverse_spiral("kvlcc2-l7", [0.0, -0.01, 0.01]), r"increasing"),
     (lambda: maneuver_ship(KVLCC2_L7.replace(R_0=0.03)),
      r"`servo`: no steering gear is known for this parameter set"),
-    (lambda: maneuver_ship(3.0), r"`ship` must be a catalog name"),
+    (lambda: maneuver_ship(3.0), r"`ship` must be a Ship, a catalog name, a ship file path or a "
+                                 r"parameter set, got float"),
 ])
 def test_bad_inputs_are_refused(call, match):
     with pytest.raises(ParameterError, match=match):
@@ -529,14 +530,14 @@ def test_bad_inputs_are_refused(call, match):
 
 
 def test_unknown_catalog_entry_lists_the_valid_ones():
-    with pytest.raises(ValueError, match=r"unknown catalog entry 'kvlcc3'; valid: .*kvlcc2-l7"):
+    with pytest.raises(ValueError, match=r"unknown catalog ship 'kvlcc3'; valid: .*kvlcc2-l7"):
         turning_circle("kvlcc3")
 
 
 def test_maneuver_ship_and_time_step():
     s = maneuver_ship(KVLCC2_L7)  # equal to the catalog entry: its steering gear
-    assert isinstance(s, ManeuverShip) and s.name == "kvlcc2-l7" and s.servo is KVLCC2_L7_SERVO
-    assert maneuver_ship("mariner-nonlinear").servo is MARINER_SERVO
+    assert isinstance(s, ManeuverShip) and s.name == "kvlcc2-l7" and s.servo == KVLCC2_L7_SERVO
+    assert maneuver_ship("mariner-nonlinear").servo == MARINER_SERVO
     assert default_time_step("kvlcc2-l7") == 0.05  # min(7/117.9, 0.1) -> 0.05
     assert default_time_step("mariner-nonlinear") == 0.2  # min(0.2085, 1) -> 0.2
     assert default_time_step("kvlcc2-full") == 0.2  # min(0.401, 0.676) -> 0.2

@@ -132,12 +132,12 @@ def test_the_engine_refuses_a_controller_slower_than_the_run():
 
     from seahelm.control.pid import PID_HEADING, PIDHeadingParams
     from seahelm.simulation.engine import simulate
-    from seahelm.vessels.catalog import get
+    from seahelm.ships import get_ship
     from seahelm.vessels.nomoto import NOMOTO2
 
     with pytest.raises(ParameterError, match=r"`controller_dt` = 120.0 s exceeds `t_final` = "
                                              r"60.0 s"):
-        simulate(NOMOTO2, get("mariner-nomoto2").params, np.zeros(5), t_final=60.0, dt=0.1,
+        simulate(NOMOTO2, get_ship("mariner-nomoto2").params, np.zeros(5), t_final=60.0, dt=0.1,
                  controller=PID_HEADING, controller_params=PIDHeadingParams(),
                  controller_dt=120.0, reference=[math.radians(10.0)])
 

@@ -73,9 +73,11 @@ PARSER_ERRORS = [
     (["maneuver", "turning", "--side", "left"],
      "Invalid value for '--side': 'left' is not one of 'both', 'starboard', 'port'"),
     (["maneuver", "zigzag", "--catalog", "kvlcc9"],
-     "Invalid value for '--catalog': 'kvlcc9' is not one of 'kvlcc2-l7', 'kvlcc2-full', "
-     "'kvlcc2-l7-wp0-0.35', 'kvlcc2-l7-xp-0.5', 'mariner-nonlinear'"),
-    (["imo", "kvlcc9"], "Invalid value for 'model': 'kvlcc9' is not one of 'kvlcc2-l7',"),
+     "unknown ship 'kvlcc9'; catalog ships with a steering gear: kvlcc2-full, kvlcc2-l7, "
+     "kvlcc2-l7-wp0-0.35, kvlcc2-l7-xp-0.5, mariner-nonlinear (or the path of a ship file"),
+    (["maneuver", "zigzag", "--ship", "kvlcc9"], "unknown ship 'kvlcc9'; catalog ships with"),
+    (["imo", "kvlcc9"], "unknown ship 'kvlcc9'; catalog ships with a steering gear: kvlcc2-full"),
+    (["imo", "missing.toml"], "missing.toml: no such ship file"),
     (["identify", "steady-turn", "x.csv", "--method", "ols"],
      "Invalid value for '--method': 'ols' is not one of 'lsq', 'robust', 'brute'"),
     (["identify", "steady-turn", "x.csv", "--form", "odd"],
@@ -171,15 +173,18 @@ def test_every_app_reports_parser_errors_in_one_line():
 # choices: typed (Literal), listed by --help, the same as the library's registries
 # ------------------------------------------------------------------------------------------
 def test_choices_agree_with_the_library():
-    from seahelm.analysis.maneuvers import STEERING_GEAR
     from seahelm.cli import identify, maneuver, waves
+    from seahelm.ships import CATALOG, with_steering_gear
     from seahelm.environment.rational_spectra import RationalSpectrum
     from seahelm.studies.sushchenko2010 import SPECTRA, TABLE2_VERSIONS
     from seahelm.identification.fitting import FIT_METHODS
     from seahelm.identification.reduced_forms import REDUCED_FORMS
 
     args = typing.get_args
-    assert set(args(maneuver.ShipName)) == set(STEERING_GEAR)
+    # ships are a catalog name or a file: the help lists the catalog's, from the catalog
+    assert with_steering_gear() == tuple(n for n, s in CATALOG.items()
+                                         if s.steering_gear is not None)
+    assert ", ".join(with_steering_gear()) in maneuver.SHIP_HELP
     assert args(maneuver.SideName) == tuple(maneuver._SIDES)
     assert args(identify.FitMethod) == tuple(FIT_METHODS)
     assert args(identify.FormName) == tuple(REDUCED_FORMS)
@@ -190,7 +195,7 @@ def test_choices_agree_with_the_library():
 
 
 @pytest.mark.parametrize(("args", "choices"), [
-    (["maneuver", "turning"], ["both|starboard|port", "kvlcc2-l7, kvlcc2-full, "
+    (["maneuver", "turning"], ["both|starboard|port", "kvlcc2-full, kvlcc2-l7, "
                                "kvlcc2-l7-wp0-0.35, kvlcc2-l7-xp-0.5, mariner-nonlinear"]),
     (["maneuver", "zigzag"], ["both|starboard|port"]),
     (["identify", "steady-turn"], ["deg|rad", "lsq|robust|brute"]),

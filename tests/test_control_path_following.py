@@ -253,7 +253,7 @@ def test_any_heading_controller_on_any_model_and_many_routes_in_one_batch():
     controller; two routes in one batch run as each alone."""
     from seahelm.control.compensation import COMPENSATED_PID
     from seahelm.registry import get_controller
-    from seahelm.vessels.catalog import get as catalog_entry
+    from seahelm.ships import get_ship as catalog_entry
     from seahelm.vessels.nomoto import NOMOTO2
 
     ship = catalog_entry("mariner-nomoto2").params

@@ -120,3 +120,21 @@ def test_the_site_sources_are_in_place():
     assert sorted(p.name for p in (DOCS / "examples").glob("plot_*.py"))
     makefile = (DOCS.parent / "Makefile").read_text()
     assert re.search(r"^docs:.*\n\t.*sphinx -W", makefile, flags=re.MULTILINE)
+
+
+def test_the_ship_file_reference_lists_every_key_and_catalog_ship():
+    spec = importlib.util.spec_from_file_location("ship_reference",
+                                                  DOCS / "_ext" / "ship_reference.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    from seahelm.ships import ship_names
+    from seahelm.ships.file_format import FORMAT_REFERENCE
+
+    page = module.render()
+    for key, unit, _, _ in FORMAT_REFERENCE:
+        assert f"``{key}``" in page, key
+    for name in ship_names():
+        assert f"``{name}``" in page, name
+    assert "[m]" in page and "max_angle = 0.6108652381980153" in page
+    conf = (DOCS / "conf.py").read_text()
+    assert '"ship_reference"' in conf and "ship-file-reference" in (DOCS / "index.rst").read_text()

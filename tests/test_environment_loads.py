@@ -4,6 +4,8 @@ irregular seas, and the registries."""
 
 from __future__ import annotations
 
+import dataclasses
+
 import math
 import warnings
 
@@ -32,11 +34,11 @@ from seahelm.parameters import as_records
 from seahelm.simulation.engine import simulate
 from seahelm.vessels.mmg import KVLCC2_L7, KVLCC2_L7_SERVO, MMG
 from seahelm.vessels.nomoto import NOMOTO2
-from seahelm.vessels.particulars import particulars
+from seahelm.ships import get_ship
 
 # one environment for the whole file (each combination of components compiles once)
 ENV = environment(wind="blendermann", waves="lvov")
-SHIP = particulars("kvlcc2-l7")
+SHIP = get_ship("kvlcc2-l7").particulars
 SPEED = 1.179  # KVLCC2 L7 approach [m/s]
 
 
@@ -253,7 +255,7 @@ def test_conditions_validate_and_give_the_current_channels():
 def test_a_models_motion_equals_its_outputs(catalog_name):
     """``motion`` (what the environment reads) is the model's own surge, sway and heading."""
     from seahelm.registry import get_model
-    from seahelm.vessels import catalog
+    from seahelm.ships import catalog
 
     entry = catalog.get(catalog_name)
     model = get_model(entry.model)
@@ -273,12 +275,19 @@ def test_ship_load_params_take_the_particulars():
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityRangeWarning)
-        got = ship_load_params("kvlcc2-l7", ENV, wind_speed=2.0, wave_height=0.05)
+        got = ship_load_params(get_ship("kvlcc2-l7"), ENV, wind_speed=2.0, wave_height=0.05)
     assert got == env_params(wind_speed=2.0, wave_height=0.05, wave_length=100.0)
     lvov = environment(wind="lvov")
     p = ship_load_params(SHIP, lvov, wind_speed=1.0, windage_centre=0.1)
     assert (p.windage_lateral_area, p.windage_length, p.windage_centre) == (
         SHIP.lateral_area, SHIP.length, 0.1)
+    with pytest.raises(ParameterError, match="Ship with particulars or a Particulars"):
+        ship_load_params("kvlcc2-l7", lvov, wind_speed=1.0)
+    with pytest.raises(ParameterError, match="without particulars"):
+        ship_load_params(get_ship("mariner-nonlinear").replace(particulars=None), lvov)
+    no_windage = dataclasses.replace(SHIP, lateral_area=None)
+    with pytest.raises(ParameterError, match=r"`particulars.lateral_area` is not known \[m²\]"):
+        ship_load_params(no_windage, lvov, wind_speed=1.0)
 
 
 def test_a_sea_signal_draws_many_runs_at_once_as_one_by_one():

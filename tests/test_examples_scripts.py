@@ -62,7 +62,7 @@ def test_kvlcc2_imo_uncertainty_example(tmp_path):
     from seahelm.analysis.imo import imo_check
     from seahelm.analysis.maneuvers import maneuver_ship
     from seahelm.sweep import open_sweep
-    from seahelm.vessels.catalog import get
+    from seahelm.ships import get_ship
 
     n = 6
     proc = subprocess.run([sys.executable, str(EXAMPLES / "kvlcc2_imo_uncertainty.py"),
@@ -75,7 +75,7 @@ def test_kvlcc2_imo_uncertainty_example(tmp_path):
     for key in ("vessel.params.Y_v", "vessel.params.N_r"):  # sample i is one ship in both
         assert np.array_equal(turning[key].values, zigzag[key].values)
         assert len(set(turning[key].values.tolist())) == n
-    entry = get("kvlcc2-l7")
+    entry = get_ship("kvlcc2-l7")
     L = entry.params.length
     advance = turning["advance"].sel(side=1).isel(rudder=0).values / L
     summary = json.loads((tmp_path / "summary.json").read_text())

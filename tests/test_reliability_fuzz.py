@@ -76,7 +76,7 @@ PATHS = [
 def _valid_names() -> set[str]:
     from seahelm.registry import ACTUATORS, CONTROLLERS, VESSEL_MODELS
     from seahelm.simulation.integrators import INTEGRATORS
-    from seahelm.vessels.catalog import CATALOG
+    from seahelm.ships import CATALOG
 
     return {n.lower() for table in (ACTUATORS, CONTROLLERS, VESSEL_MODELS, INTEGRATORS, CATALOG)
             for n in table}

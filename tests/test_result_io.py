@@ -17,9 +17,9 @@ from seahelm.vessels.nomoto import NOMOTO2
 
 @pytest.fixture(scope="module")
 def result():
-    from seahelm.vessels.catalog import get
+    from seahelm.ships import get_ship
 
-    mariner = get("mariner-nomoto2").params
+    mariner = get_ship("mariner-nomoto2").params
     gains = [PIDHeadingParams(kp=kp, kd=60.0) for kp in (1.0, 4.0) for _ in range(3)]
     layout = BatchLayout(
         axes=(BatchAxis(name="kp", values=[1.0, 4.0], key="controller.params.kp",

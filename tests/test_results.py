@@ -17,9 +17,9 @@ from seahelm.vessels.nomoto import NOMOTO2
 
 @pytest.fixture(scope="module")
 def result():
-    from seahelm.vessels.catalog import get
+    from seahelm.ships import get_ship
 
-    p = get("mariner-nomoto2").params
+    p = get_ship("mariner-nomoto2").params
     return simulate(NOMOTO2, [p, p.replace(gain=0.2)], np.zeros(5), t_final=60.0, dt=0.1,
                     controller=PID_HEADING, controller_params=PIDHeadingParams(kp=2.0),
                     reference=[math.radians(10.0)], record_every=10, seed=42,

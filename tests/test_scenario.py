@@ -54,9 +54,10 @@ def test_default_scenario_is_valid_and_converts_degrees():
         (_with(replace=('model = "nomoto2"', 'model = "nomoto3"')),
          r"s.toml: \[vessel.model\] unknown vessel model 'nomoto3'; valid: .*nomoto1, nomoto2"),
         (_with(replace=('catalog = "mariner-nomoto2"', 'catalog = "titanic"')),
-         r"\[vessel.catalog\] unknown catalog entry 'titanic'; valid: .*mariner-nomoto2"),
+         r"\[vessel.catalog\] unknown catalog ship 'titanic'; valid: .*mariner-nomoto2, .*\(or the "
+         r"path of a ship file, \*.toml\)"),
         (_with(replace=('catalog = "mariner-nomoto2"', 'catalog = "mariner-nomoto1"')),
-         r"\[vessel.catalog\] 'mariner-nomoto1' is a parameter set for model 'nomoto1'"),
+         r"\[vessel.catalog\] 'mariner-nomoto1' is a ship of model 'nomoto1', not 'nomoto2'"),
         (_with("[vessel.params]\ngain = -0.1\n"),
          r"\[vessel.params\] `gain` must be in \(0, inf\] \[1/s\], got -0.1"),
         (_with("[vessel.params]\ngian = 0.1\n"),

@@ -10,7 +10,7 @@ import pytest
 import seahelm.simulation.engine as engine
 from seahelm.errors import ParameterError
 from seahelm.scenario import ScenarioError, parse_scenario
-from seahelm.vessels import catalog
+from seahelm.ships import catalog
 from seahelm.vessels.nomoto import NOMOTO2
 
 BASE = """[vessel]

@@ -102,12 +102,13 @@ def test_imo_scenario_is_the_imo_check():
         (('sides = "starboard"', 'sides = "left"'),
          r"\[maneuver.sides\] Input should be 'both', 'starboard' or 'port', got 'left'"),
         (('catalog = "kvlcc2-l7"', 'catalog = "mariner-nomoto2"'),
-         r"\[vessel.catalog\] a manoeuvre needs a catalog ship with a steering gear \(kvlcc2-full, "
-         r".*\), got 'mariner-nomoto2'"),
+         r"\[vessel.catalog\] a manoeuvre needs a ship with a steering gear: a catalog ship "
+         r"\(kvlcc2-full, .*\) or a ship file with a \[steering_gear\], got 'mariner-nomoto2' "
+         r"\(it has no \[steering_gear\]\)"),
         (('catalog = "kvlcc2-l7"', 'model = "mmg"'),
-         r"\[vessel.catalog\] a manoeuvre needs a catalog ship with a steering gear .* got none"),
+         r"\[vessel.ship\] a manoeuvre needs a ship with a steering gear: .* got none"),
         (('catalog = "kvlcc2-l7"', 'catalog = "kvlcc2-l7"\nmodel = "mariner"'),
-         r"\[vessel.model\] 'kvlcc2-l7' is a parameter set for model 'mmg', not 'mariner'"),
+         r"\[vessel.model\] 'kvlcc2-l7' is a ship of model 'mmg', not 'mariner'"),
         (("[maneuver]", "[vessel.initial]\nyaw_rate = 0.1\n[maneuver]"),
          r"\[vessel.initial\] a manoeuvre starts from its steady straight approach"),
         (("[maneuver]", '[actuator]\nmodel = "direct"\n[maneuver]'),

@@ -22,7 +22,7 @@ from seahelm.errors import ParameterError
 from seahelm.registry import get_actuator, get_controller, get_model
 from seahelm.scenario import ActuatorSection, ControllerSection
 from seahelm.simulation.composition import compose
-from seahelm.vessels import catalog
+from seahelm.ships import catalog
 from seahelm.vessels.base import VesselModel
 from seahelm.vessels.nomoto import NOMOTO2, Nomoto2Params, nomoto2_output, nomoto2_rhs
 
@@ -120,12 +120,12 @@ def test_every_combination_in_use_composes_as_expected(combo):
 def _scenario_combo(text: str) -> tuple[str, str, str]:
     scn = tomllib.loads(text)
     if "maneuver" in scn:  # the manoeuvre's loop: the catalog ship's model and steering gear
-        model = catalog.get(scn["vessel"]["catalog"]).model
+        model = catalog.get(scn["vessel"]["catalog"]).model.name
         controller = "open-loop"
         if scn["maneuver"]["kind"] == "zigzag":  # the zig-zag's own heading-triggered logic
             controller = "zigzag-rps" if model == "mmg" else "zigzag"
         return (model, "rudder-servo", controller)
-    model = scn["vessel"].get("model") or catalog.get(scn["vessel"]["catalog"]).model
+    model = scn["vessel"].get("model") or catalog.get(scn["vessel"]["catalog"]).model.name
     if "guidance" in scn:  # the route's law steers the heading controller
         return (model, scn.get("actuator", {}).get("model", ActuatorSection().model),
                 f"{scn['guidance'].get('law', 'los')}+{scn['controller']['model']}")

@@ -320,11 +320,11 @@ def test_looped_and_written_out_steps_agree_with_actuator_states_and_a_controlle
     the step give the same run to rounding."""
     from seahelm.control.pid import PID_HEADING, PIDHeadingParams
     from seahelm.simulation import engine
-    from seahelm.vessels.catalog import get
+    from seahelm.ships import get_ship
     from seahelm.vessels.nomoto import NOMOTO2
 
     servo = RUDDER_SERVO if exact else dataclasses.replace(RUDDER_SERVO, advance=None)
-    p = get("mariner-nomoto2").params
+    p = get_ship("mariner-nomoto2").params
     t = np.arange(301) * 0.5
     dist = np.zeros((301, NOMOTO2.n_disturbances))
     dist[:, 0] = 0.02 * np.sin(0.05 * t)
@@ -453,13 +453,13 @@ def test_closed_form_servo_written_out_and_looped_for_any_nodes(method):
     form (a 20 deg order at 5 deg/s, T = 1 s: a ramp for 3 s, then the lag)."""
     from seahelm.actuators.servo import RUDDER_SERVO, ServoParams
     from seahelm.simulation import engine
-    from seahelm.vessels.catalog import get
+    from seahelm.ships import get_ship
     from seahelm.vessels.nomoto import NOMOTO2
 
     kw = dict(t_final=20.0, dt=0.25, actuator=RUDDER_SERVO, integrator=method,
               actuator_params=ServoParams(max_rate=math.radians(5.0), time_constant=1.0),
               reference=[math.radians(20.0)])
-    p, x0 = get("mariner-nomoto2").params, np.zeros(5)
+    p, x0 = get_ship("mariner-nomoto2").params, np.zeros(5)
     old = engine.STAGE_LOOP_ABOVE
     engine.compile_closed_loop.cache_clear()
     try:

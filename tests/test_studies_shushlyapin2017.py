@@ -14,7 +14,7 @@ import pytest
 
 from seahelm.errors import ParameterError
 from seahelm.studies import shushlyapin2017 as sh
-from seahelm.vessels import catalog
+from seahelm.ships import catalog
 from seahelm.vessels.catamaran import steady_turn
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -13,7 +13,7 @@ import pytest
 from seahelm.analysis.maneuvers import maneuver_ship, turning_circle
 from seahelm.scenario import ManeuverJob, ScenarioError, parse_scenario
 from seahelm.sweep import open_sweep, run_sweep
-from seahelm.vessels.catalog import get
+from seahelm.ships import get_ship
 
 TURNING = """
 title = "KVLCC2 L7: turning under uncertain linear derivatives"
@@ -48,7 +48,7 @@ def test_the_sweep_equals_the_manoeuvre_of_the_sampled_ships(swept):
     report, ds = swept
     assert (report.n_runs, report.n_chunks) == (5, 3)
     assert dict(ds["advance"].sizes) == {"sample": 5, "side": 2}
-    entry = get("kvlcc2-l7")
+    entry = get_ship("kvlcc2-l7")
     ships = []
     for i in range(5):  # the ships built by hand from the stored draws
         values = {k.rsplit(".", 1)[1]: float(ds[k].values[i])

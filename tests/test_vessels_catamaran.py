@@ -13,7 +13,7 @@ from seahelm.errors import ParameterError
 from seahelm.registry import get_controller, get_model
 from seahelm.simulation.engine import simulate
 from seahelm.vessels.base import NAV_OUTPUTS
-from seahelm.vessels import catalog
+from seahelm.ships import catalog
 from seahelm.vessels.catamaran import (
     CATAMARAN,
     CATAMARAN_SERVO,
@@ -51,7 +51,7 @@ def test_listing_constants_reproduce_eq_10_and_11():
 def test_catalog_and_registry_entries():
     assert catalog.get("shushlyapin2017-listing").params == paper_params()
     assert catalog.get("shushlyapin2017-consistent").params == consistent_params()
-    assert catalog.get("shushlyapin2017-listing").model == "catamaran"
+    assert catalog.get("shushlyapin2017-listing").model is CATAMARAN
     assert get_model("catamaran") is CATAMARAN
     assert get_model("catamaran-servo") is CATAMARAN_SERVO
     for name in ("fsm-yaw-rate", "fsm-yaw-rate-simple", "fsm-heading", "heading-rate-baseline",

@@ -15,7 +15,7 @@ from seahelm.analysis.maneuvers.common import steady_approach
 from seahelm.simulation.engine import simulate
 from seahelm.vessels.mariner import MARINER, MARINER_NONLINEAR, MARINER_SERVO
 from seahelm.vessels.mmg import KVLCC2_L7, KVLCC2_L7_SERVO, MMG
-from seahelm.vessels import catalog
+from seahelm.ships import catalog
 from seahelm.vessels.nomoto import NOMOTO2
 
 

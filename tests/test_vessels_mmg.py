@@ -30,14 +30,14 @@ from seahelm.vessels.mmg import (
 )
 
 try:  # the catalog imports every vessel module; other models are mid-conversion on this branch
-    from seahelm.vessels import catalog as _catalog
+    from seahelm.ships import catalog as _catalog
     _CATALOG_ERROR = None
 except Exception as exc:  # pragma: no cover - depends on the state of the other modules
     _catalog, _CATALOG_ERROR = None, exc
 
 needs_catalog = pytest.mark.skipif(
     _CATALOG_ERROR is not None,
-    reason=f"seahelm.vessels.catalog does not import on this branch: {_CATALOG_ERROR}")
+    reason=f"seahelm.ships.catalog does not import on this branch: {_CATALOG_ERROR}")
 
 U0_L7 = 1.179  # [m/s] KVLCC2 L7 test speed (Fn 0.142)
 SYMMETRIC = KVLCC2_L7.replace(gamma_R_minus=0.5, gamma_R_plus=0.5, C_2_minus=1.3, C_2_plus=1.3)
@@ -234,7 +234,7 @@ def test_catalog_entries():
                                 ("kvlcc2-l7-wp0-0.35", KVLCC2_L7_WP0_035, "w_P0"),
                                 ("kvlcc2-l7-xp-0.5", KVLCC2_L7_XP_050, "x'_P")):
         entry = _catalog.get(name)
-        assert entry.model == "mmg" and entry.params == params
+        assert entry.model.name == "mmg" and entry.params == params
         assert "Yasukawa & Yoshimura (2015)" in entry.provenance
         if field:
             assert "Variant" in entry.provenance and field in entry.provenance

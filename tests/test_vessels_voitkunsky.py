@@ -13,7 +13,7 @@ from seahelm.errors import ParameterError
 from seahelm.identification.steady_turns import stable_steady_turn, steady_turns
 from seahelm.registry import get_model
 from seahelm.simulation.engine import simulate
-from seahelm.vessels.catalog import get
+from seahelm.ships import get_ship
 from seahelm.vessels.voitkunsky import (
     MARINER_VOITKUNSKY,
     VOITKUNSKY,
@@ -40,8 +40,8 @@ def _eq1(x, alpha, d, p):
 
 def test_registry_and_catalog():
     assert get_model("voitkunsky") is VOITKUNSKY
-    entry = get("mariner-voitkunsky")
-    assert entry.model == "voitkunsky" and entry.params == P
+    entry = get_ship("mariner-voitkunsky")
+    assert entry.model is VOITKUNSKY and entry.params == P
     assert "Chislett" in entry.provenance and "mariner.m" in entry.provenance
 
 

@@ -37,9 +37,10 @@ def _names() -> dict[str, list[str]]:
     from seahelm.control.path_following import GUIDANCE_LAWS
     from seahelm.registry import ACTUATORS, CONTROLLERS, VESSEL_MODELS
     from seahelm.simulation.integrators import INTEGRATORS
-    from seahelm.vessels.catalog import CATALOG
+    from seahelm.ships import CATALOG
 
-    return {"vessel.model": sorted(VESSEL_MODELS), "vessel.catalog": sorted(CATALOG),
+    return {"vessel.model": sorted(VESSEL_MODELS), "vessel.ship": sorted(CATALOG),
+            "vessel.catalog": sorted(CATALOG),
             "actuator.model": sorted(ACTUATORS), "controller.model": sorted(CONTROLLERS),
             "simulation.integrator": list(INTEGRATORS), "guidance.law": list(GUIDANCE_LAWS)}
 

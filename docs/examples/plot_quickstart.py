@@ -11,10 +11,10 @@ import numpy as np
 
 from seahelm.control.pid import PID_HEADING, PIDHeadingParams
 from seahelm.simulation.engine import simulate
-from seahelm.vessels.catalog import get
+from seahelm.ships import get_ship
 from seahelm.vessels.nomoto import NOMOTO2
 
-mariner = get("mariner-nomoto2").params
+mariner = get_ship("mariner-nomoto2").params
 courses = np.radians([10.0, 20.0, 45.0, 90.0])
 result = simulate(NOMOTO2, mariner, np.zeros(5), t_final=900.0, dt=0.1,
                   controller=PID_HEADING,

@@ -37,7 +37,7 @@ _LAZY = {
     "get_model": "seahelm.registry",
     "get_actuator": "seahelm.registry",
     "get_controller": "seahelm.registry",
-    "catalog": "seahelm.vessels.catalog",  # the module itself
+    "catalog": "seahelm.ships.catalog",  # the module itself
     "wrap_angle": "seahelm.constants",
 }
 

@@ -41,7 +41,8 @@ def check_finite(name: str, value: Any, unit: str = "") -> None:
         return
     arr = np.asarray(value, dtype=float)
     if not np.isfinite(arr).all():
-        raise ParameterError(f"`{name}` must be finite{_unit(unit)}, got {_fmt(value)}")
+        raise ParameterError(f"must be finite{_unit(unit)}, got {_fmt(value)}",
+                             field=name, unit=unit or None, value=value)
 
 
 def check_positive(name: str, value: Any, unit: str = "") -> None:
@@ -60,7 +61,8 @@ def check_positive(name: str, value: Any, unit: str = "") -> None:
         return
     check_finite(name, value, unit)
     if not np.all(np.asarray(value, dtype=float) > 0):
-        raise ParameterError(f"`{name}` must be > 0{_unit(unit)}, got {_fmt(value)}")
+        raise ParameterError(f"must be > 0{_unit(unit)}, got {_fmt(value)}",
+                             field=name, unit=unit or None, value=value)
 
 
 def check_nonnegative(name: str, value: Any, unit: str = "") -> None:
@@ -77,7 +79,8 @@ def check_nonnegative(name: str, value: Any, unit: str = "") -> None:
     """
     check_finite(name, value, unit)
     if not np.all(np.asarray(value, dtype=float) >= 0):
-        raise ParameterError(f"`{name}` must be >= 0{_unit(unit)}, got {_fmt(value)}")
+        raise ParameterError(f"must be >= 0{_unit(unit)}, got {_fmt(value)}",
+                             field=name, unit=unit or None, value=value)
 
 
 def check_range(
@@ -110,8 +113,8 @@ def check_range(
     if not np.all(ok):
         lo, hi = ("[", "]") if inclusive else ("(", ")")
         raise ParameterError(
-            f"`{name}` must be in {lo}{low:g}, {high:g}{hi}{_unit(unit)}, got {_fmt(value)}"
-        )
+            f"must be in {lo}{low:g}, {high:g}{hi}{_unit(unit)}, got {_fmt(value)}",
+            field=name, unit=unit or None, value=value)
 
 
 def check_on_hull(name: str, centre: Any, length: Any) -> None:
@@ -130,8 +133,9 @@ def check_on_hull(name: str, centre: Any, length: Any) -> None:
     bad = ~(np.abs(c) <= half)
     if np.any(bad):
         raise ParameterError(
-            f"`{name}` must lie on the ship, within ±L/2 = ±{float(half[bad].flat[0]):g} [m] of "
-            f"midships, got {_fmt(float(c[bad].flat[0]))} [m]")
+            f"must lie on the ship, within ±L/2 = ±{float(half[bad].flat[0]):g} [m] of "
+            f"midships, got {_fmt(float(c[bad].flat[0]))} [m]", field=name, unit="m",
+            value=centre)
 
 
 def uniform_time_step(t: Any, what: str) -> tuple[np.ndarray, float]:
@@ -177,7 +181,8 @@ def as_float_array(name: str, value: Any, unit: str = "", *, finite: bool = True
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError) as exc:
-        raise ParameterError(f"`{name}` must be numeric{_unit(unit)}, got {value!r}") from exc
+        raise ParameterError(f"must be numeric{_unit(unit)}, got {value!r}",
+                             field=name, unit=unit or None, value=value) from exc
     if finite:
         check_finite(name, arr, unit)
     return arr
@@ -200,13 +205,15 @@ def as_finite_series(name: str, value: Any, unit: str, *, what: str = "sample(s)
     try:
         a = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise ParameterError(f"`{name}` must be numbers [{unit}], got {value!r}") from None
+        raise ParameterError(f"must be numbers [{unit}], got {value!r}",
+                             field=name, unit=unit or None, value=value) from None
     if a.ndim != 1:
-        raise ParameterError(f"`{name}` must be one-dimensional [{unit}], got shape {a.shape}")
+        raise ParameterError(f"must be one-dimensional [{unit}], got shape {a.shape}",
+                             field=name, unit=unit or None, value=value)
     bad = ~np.isfinite(a)
     if bad.any():
         raise ParameterError(
-            f"`{name}` must be finite [{unit}], got NaN/inf at {what} "
-            f"{np.flatnonzero(bad)[:6].tolist()}"
+            f"must be finite [{unit}], got NaN/inf at {what} "
+            f"{np.flatnonzero(bad)[:6].tolist()}", field=name, unit=unit or None
         )
     return a

@@ -28,7 +28,75 @@ class SeahelmError(Exception):
 
 
 class ParameterError(SeahelmError, ValueError):
-    """A parameter is outside its admissible domain (names the parameter, unit and value)."""
+    """A parameter is outside its admissible domain (names the parameter, unit and value).
+
+    The error carries what it is about as fields, so that a scenario loader or the CLI can say
+    it in its own words (a TOML key, a ``--option``) without reading the message text:
+
+    Attributes
+    ----------
+    field : str or None
+        Dotted path of the parameter (``"dt"``, ``"params.Y_v"``, ``"steering_gear.params.
+        max_angle"``); :meth:`within` prefixes it as the error travels outwards.
+    reason : str
+        What is wrong with it, without the name (``"must be > 0 [s], got -1.0"``).
+    unit : str or None
+        The parameter's unit, where it has one.
+    value : object
+        The bad value, where there is one.
+    run : int or None
+        Index of the run in a batch, where the error concerns one run.
+
+    With a ``field`` the message reads ``"`field` reason"``; without, it is ``reason``.
+    """
+
+    def __init__(self, reason: str = "", *, field: str | None = None, unit: str | None = None,
+                 value: Any = None, run: int | None = None) -> None:
+        self.reason = str(reason)
+        self.field = field
+        self.unit = unit
+        self.value = value
+        self.run = run
+        super().__init__(self._render())
+
+    def _render(self) -> str:
+        text = f"`{self.field}` {self.reason}" if self.field else self.reason
+        return text if self.run is None else f"run {self.run}: {text}"
+
+    def within(self, prefix: str, *, run: int | None = None) -> "ParameterError":
+        """The same error one level out: ``field`` prefixed with ``prefix`` (and a run index).
+
+        Parameters
+        ----------
+        prefix : str
+            Path of the object the field belongs to (``"params"``, ``"vessel"``).
+        run : int, optional
+            Run index to attach (default: keep this error's).
+
+        Returns
+        -------
+        ParameterError
+            A new error of the same type (the traceback is the caller's to chain).
+        """
+        field = f"{prefix}.{self.field}" if self.field else prefix
+        new = type(self).__new__(type(self))
+        new.__dict__.update(self.__dict__)
+        new.field = field
+        if run is not None:
+            new.run = run
+        Exception.__init__(new, new._render())
+        return new
+
+    def __reduce__(self) -> Any:
+        # pickled with its fields (dask sends errors between processes)
+        return (_restore_error, (type(self), self.args, self.__dict__.copy()))
+
+
+def _restore_error(cls: type, args: tuple, state: dict) -> BaseException:
+    err = Exception.__new__(cls)
+    Exception.__init__(err, *args)
+    err.__dict__.update(state)
+    return err
 
 
 class ValidityRangeWarning(UserWarning):

@@ -311,9 +311,8 @@ class Params:
                                                                   key=key))
                 continue
             if isinstance(value, bool) or not isinstance(value, (int, float)):
-                raise ParameterError(
-                    f"`{key}` must be a number{_unit(fields[name])}, got {value!r}"
-                )
+                raise ParameterError(f"must be a number{_unit(fields[name])}, got {value!r}",
+                                     field=key, unit=_unit_of(fields[name]), value=value)
             kwargs[name] = float(value) * factor
         return cls(**kwargs)
 
@@ -327,31 +326,40 @@ def _vector(f: dataclasses.Field, value: Any, size: int, *, key: str | None = No
     """A vector field's value as a tuple of ``size`` floats (from a list, tuple or array)."""
     key = key or f.name
     if isinstance(value, (str, bytes, Mapping)) or not hasattr(value, "__len__"):
-        raise ParameterError(f"`{key}` must be a sequence of {size} numbers{_unit(f)}, "
-                             f"got {value!r}")
+        raise ParameterError(f"must be a sequence of {size} numbers{_unit(f)}, got {value!r}",
+                             field=key, unit=_unit_of(f), value=value)
     items = list(np.asarray(value, dtype=object).ravel()) if isinstance(value, np.ndarray) \
         else list(value)
     if len(items) != size:
-        raise ParameterError(f"`{key}` must have {size} values{_unit(f)}, got {len(items)}")
+        raise ParameterError(f"must have {size} values{_unit(f)}, got {len(items)}",
+                             field=key, unit=_unit_of(f), value=value)
     for k, v in enumerate(items):
         if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)):
-            raise ParameterError(f"`{key}[{k}]` must be a number{_unit(f)}, got {v!r}")
+            raise ParameterError(f"must be a number{_unit(f)}, got {v!r}", field=f"{key}[{k}]",
+                                 unit=_unit_of(f), value=v)
     return tuple(float(v) for v in items)
 
 
 def _check_number(f: dataclasses.Field, name: str, value: Any) -> None:
     """A scalar parameter value: a finite number in the field's range."""
     if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
-        raise ParameterError(f"`{name}` must be a number{_unit(f)}, got {value!r}")
+        raise ParameterError(f"must be a number{_unit(f)}, got {value!r}", field=name,
+                             unit=_unit_of(f), value=value)
     v = float(value)
     if not math.isfinite(v):
-        raise ParameterError(f"`{name}` must be finite{_unit(f)}, got {v!r}")
+        raise ParameterError(f"must be finite{_unit(f)}, got {v!r}", field=name,
+                             unit=_unit_of(f), value=v)
     low = f.metadata.get("low", -math.inf)
     high = f.metadata.get("high", math.inf)
     incl = f.metadata.get("low_inclusive", True)
     if (v < low if incl else v <= low) or v > high:
         lo = "[" if incl else "("
-        raise ParameterError(f"`{name}` must be in {lo}{low:g}, {high:g}]{_unit(f)}, got {v!r}")
+        raise ParameterError(f"must be in {lo}{low:g}, {high:g}]{_unit(f)}, got {v!r}",
+                             field=name, unit=_unit_of(f), value=v)
+
+
+def _unit_of(f: dataclasses.Field) -> str | None:
+    return f.metadata.get("unit", "") or None
 
 
 def _unit(f: dataclasses.Field) -> str:

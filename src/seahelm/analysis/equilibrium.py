@@ -125,26 +125,26 @@ class Approach(NamedTuple):
 # ------------------------------------------------------------------------------------------
 # plumbing: which model, which signals
 # ------------------------------------------------------------------------------------------
-def _resolve_params(value: Any) -> Params:
+def _resolve_params(value: Any) -> tuple[Params, VesselModel | None]:
+    """The parameter set (and the model, for a ship) of a parameter set, ship or ship name."""
     if isinstance(value, Params):
-        return value
-    from ..vessels.catalog import CatalogEntry, get
+        return value, None
+    from ..ships import Ship, get_ship
 
-    if isinstance(value, CatalogEntry):
-        return value.params
-    if isinstance(value, str):
-        return get(value).params
+    if isinstance(value, (Ship, str)) or hasattr(value, "__fspath__"):
+        ship = get_ship(value)
+        return ship.params, ship.model
     raise ParameterError(
-        f"expected a parameter set, a catalog entry or its name, got {type(value).__name__}")
+        f"expected a parameter set, a ship or a catalog name, got {type(value).__name__}")
 
 
 class _Plant:
     """A model and one parameter set, with the indices of the signals the solvers need."""
 
     def __init__(self, params: Any, model: VesselModel | None) -> None:
-        self.params = _resolve_params(params)
+        self.params, ship_model = _resolve_params(params)
         if model is None:
-            model = DEFAULT_MODELS.get(type(self.params))
+            model = ship_model or DEFAULT_MODELS.get(type(self.params))
             if model is None:
                 raise ParameterError(
                     f"no default model for {type(self.params).__name__}; pass `model=` "
@@ -262,9 +262,9 @@ def self_propulsion_rps(model_or_params: Any, speed: Any, *, model: VesselModel 
 
     Parameters
     ----------
-    model_or_params : Params, CatalogEntry or str
-        Parameter set (e.g. :data:`~seahelm.vessels.mmg.KVLCC2_L7`), a catalog entry or its
-        name (``"kvlcc2-l7"``).
+    model_or_params : Params, Ship or str
+        Parameter set (e.g. :data:`~seahelm.vessels.mmg.KVLCC2_L7`), a ship, a catalog name
+        (``"kvlcc2-l7"``) or a ship file path.
     speed : float or array_like
         Straight-run speed(s) [m/s], > 0.
     model : VesselModel, optional
@@ -339,8 +339,8 @@ def steady_turn(params: Any, rudder: Any, rps: float | None = None, *,
 
     Parameters
     ----------
-    params : Params, CatalogEntry or str
-        Parameter set, catalog entry or its name.
+    params : Params, Ship or str
+        Parameter set, ship, catalog name or ship file path.
     rudder : float or array_like
         Rudder angle(s) δ [rad]; positive turns to starboard.
     rps : float, optional
@@ -457,8 +457,8 @@ def approach_state(params: Any, speed: float | None = None, *, model: VesselMode
 
     Parameters
     ----------
-    params : Params, CatalogEntry or str
-        Parameter set, catalog entry or its name.
+    params : Params, Ship or str
+        Parameter set, ship, catalog name or ship file path.
     speed : float, optional
         Approach speed U_0 [m/s] (default: ``approach_speed`` of an MMG set, ``nominal_speed``
         of the Mariner; the Mariner admits no other speed).
@@ -514,8 +514,9 @@ def straight_run_speed(model_or_params: Any, rps: Any, *, model: VesselModel | N
 
     Parameters
     ----------
-    model_or_params : Params, CatalogEntry or str
-        Parameter set, catalog entry or its name (a model with a ``propeller_rps`` input).
+    model_or_params : Params, Ship or str
+        Parameter set, ship, catalog name or ship file path (a model with a
+        ``propeller_rps`` input).
     rps : float or array_like
         Propeller rps [1/s], > 0.
     model : VesselModel, optional
@@ -573,8 +574,8 @@ def steady_turn_state(params: Any, rudder: float, rps: float | None = None, *,
 
     Parameters
     ----------
-    params : Params, CatalogEntry or str
-        Parameter set, catalog entry or its name.
+    params : Params, Ship or str
+        Parameter set, ship, catalog name or ship file path.
     rudder : float
         Rudder angle δ [rad]; positive turns to starboard.
     rps : float, optional
@@ -626,8 +627,8 @@ def rudder_for_yaw_rate(params: Any, yaw_rate: Any, rps: float | None = None, *,
 
     Parameters
     ----------
-    params : Params, CatalogEntry or str
-        Parameter set, catalog entry or its name.
+    params : Params, Ship or str
+        Parameter set, ship, catalog name or ship file path.
     yaw_rate : float or array_like
         Yaw rates r [rad/s] (any order, both signs).
     rps : float, optional

@@ -250,7 +250,7 @@ def imo_check(ship: Any, *, speed: float | None = None, rps: float | None = None
 
     Parameters
     ----------
-    ship : str, CatalogEntry, Params or ManeuverShip
+    ship : Ship, str (catalog name or ship file path) or Params
         The ship (:func:`~seahelm.analysis.maneuvers.maneuver_ship`), e.g. ``"kvlcc2-l7"``.
     speed : float, optional
         Test speed V [m/s] (default: the parameter set's test speed).

@@ -1,4 +1,4 @@
-"""``seahelm imo MODEL``: check a catalog ship against IMO Resolution MSC.137(76).
+"""``seahelm imo SHIP``: check a ship (catalog name or ship file) against IMO Resolution MSC.137(76).
 
 Runs :func:`seahelm.analysis.imo.imo_check` (35° turning circles and 10° initial turning to
 both sides, 10/10 and 20/20 zig-zags to both sides) and prints a table of the criteria with
@@ -25,6 +25,7 @@ from .maneuver import (
     Dt,
     Out,
     Rps,
+    SHIP_HELP,
     ShipName,
     Speed,
     check_out,
@@ -47,8 +48,7 @@ def _display(criterion: Any) -> dict[str, Any]:
 
 @handle_errors
 def imo(
-    model: Annotated[ShipName, typer.Argument(
-        help="Ship: a catalog entry with a manoeuvring model and a steering gear.")],
+    model: Annotated[ShipName, typer.Argument(metavar="SHIP", help=SHIP_HELP)],
     speed: Speed = None,
     rps: Rps = None,
     dt: Dt = None,

@@ -55,6 +55,7 @@ _GROUPS = (
     ("compensate", "seahelm.cli.compensate", "Wave/wind forces and compensating rudder angle."),
     ("maneuver", "seahelm.cli.maneuver",
      "Standard manoeuvres: turning circle, zig-zag, spiral, pull-out."),
+    ("ship", "seahelm.cli.ship", "Ships: the catalog, and ship files (TOML)."),
 )
 for _name, _module, _help in _GROUPS:
     try:
@@ -238,7 +239,7 @@ def models(
 ) -> None:
     """List the registered vessel models, actuators and controllers with their parameters."""
     from ..registry import ACTUATORS, CONTROLLERS, VESSEL_MODELS, get_actuator, get_controller, get_model
-    from ..vessels.catalog import CATALOG
+    from ..ships import CATALOG
 
     payload: dict[str, Any] = {}
     for kind, table, getter in (("vessel_models", VESSEL_MODELS, get_model),
@@ -259,7 +260,7 @@ def models(
                 {"kind": k, "name": n, "unit": u} for k, n, u in comp.signals()]
             if getattr(comp, "passthrough", False):
                 payload[kind][name]["passthrough"] = True
-    payload["catalog"] = {n: {"model": e.model, "provenance": e.provenance}
+    payload["catalog"] = {n: {"model": e.model.name, "provenance": e.provenance}
                           for n, e in sorted(CATALOG.items())}
     if json_out:
         print_json(payload)
@@ -288,7 +289,7 @@ def models(
                 if info.get("passthrough"):
                     sig.add_row("channels", "named after what it is wired to", "")
                 console.print(sig)
-    cat = Table(title="catalog (named parameter sets)", title_justify="left")
+    cat = Table(title="catalog ships (seahelm ship show NAME)", title_justify="left")
     cat.add_column("name")
     cat.add_column("model")
     cat.add_column("provenance")

@@ -13,7 +13,6 @@ stderr naming the option, its unit and the value), 1 other failure.
 from __future__ import annotations
 
 import math
-import typing
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -23,6 +22,7 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..errors import ParameterError
+from ..ships.catalog import with_steering_gear
 from ._common import (
     JsonFlag,
     OneLineErrors,
@@ -38,20 +38,20 @@ app = typer.Typer(
     no_args_is_help=True,
 )
 
-#: The catalog entries with a steering gear: the keys of
-#: :data:`seahelm.analysis.maneuvers.STEERING_GEAR`, spelled out here because importing that
-#: module takes most of a second (tests/test_cli_style.py checks that the two agree).
-ShipName = Literal["kvlcc2-l7", "kvlcc2-full", "kvlcc2-l7-wp0-0.35", "kvlcc2-l7-xp-0.5",
-                   "mariner-nonlinear"]
+#: A ship on the command line: a catalog name or the path of a ship file (checked by
+#: :func:`ship_of`, which lists the catalog ships with a steering gear on a typo).
+ShipName = str
 SideName = Literal["both", "starboard", "port"]
 
 _SIDES: dict[str, Any] = {"both": (1, -1), "starboard": 1, "port": -1}
 _SIDE_NAMES = {1: "starboard", -1: "port"}
 
-#: Help of a ship option or argument: the choices, too long for the metavar column.
-SHIP_HELP = ("Ship: a catalog entry with a manoeuvring model and a steering gear: "
-             f"{', '.join(typing.get_args(ShipName))}.")
-Catalog = Annotated[ShipName, typer.Option("--catalog", metavar="NAME", help=SHIP_HELP)]
+#: Help of a ship option or argument: the choices, from the catalog (its files' names).
+SHIP_HELP = ("Ship: a catalog ship with a steering gear "
+             f"({', '.join(with_steering_gear())}) or the path of a ship file (*.toml; "
+             "`seahelm ship show NAME --toml` writes one).")
+Catalog = Annotated[ShipName, typer.Option("--ship", "--catalog", metavar="SHIP",
+                                           help=SHIP_HELP)]
 Speed = Annotated[float | None, typer.Option(
     "--speed", help=escape("Approach speed U0 [m/s] (default: the entry's test speed)."))]
 Rps = Annotated[float | None, typer.Option(
@@ -74,12 +74,31 @@ def _main() -> None:
 # ------------------------------------------------------------------------------------------
 # input checks in command-line units
 # ------------------------------------------------------------------------------------------
-def ship_of(catalog: ShipName) -> Any:
-    """The :class:`ManeuverShip` of a catalog entry with a steering gear (the parser has
-    checked the name against :data:`ShipName`)."""
-    from ..analysis.maneuvers import maneuver_ship
+def ship_of(ship: ShipName) -> Any:
+    """The :class:`~seahelm.ships.Ship` of a catalog name or ship file, with a steering gear.
 
-    return maneuver_ship(catalog)
+    Raises
+    ------
+    ParameterError
+        For an unknown name (listing the catalog ships with a steering gear), an invalid ship
+        file (naming its key and unit), or a ship without a steering gear.
+    """
+    from ..analysis.maneuvers import maneuver_ship
+    from ..ships import get_ship
+
+    try:
+        found = get_ship(ship)
+    except ParameterError:
+        raise
+    except ValueError:
+        raise ParameterError(
+            f"unknown ship '{ship}'; catalog ships with a steering gear: "
+            f"{', '.join(with_steering_gear())} (or the path of a ship file, *.toml)") from None
+    if found.steering_gear is None:
+        raise ParameterError(
+            f"ship '{found.name}' has no steering gear (a ship file's [steering_gear]); "
+            f"catalog ships with one: {', '.join(with_steering_gear())}")
+    return maneuver_ship(found)
 
 
 def check_speed_rps(ship: Any, speed: float | None, rps: float | None) -> None:

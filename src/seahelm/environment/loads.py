@@ -550,8 +550,9 @@ def ship_load_params(ship: Any, environment: Environment, **values: Any) -> Para
 
     Parameters
     ----------
-    ship : Particulars or str
-        The ship (:class:`seahelm.vessels.particulars.Particulars`) or a catalog name.
+    ship : Ship or Particulars
+        The ship (:class:`seahelm.ships.Ship`, its particulars are used) or its particulars
+        (:class:`seahelm.vessels.particulars.Particulars`).
     environment : Environment
         The load models.
     **values
@@ -567,18 +568,28 @@ def ship_load_params(ship: Any, environment: Environment, **values: Any) -> Para
     ValidityRangeWarning
         With Lvov's waves, a hull outside the published range of eq. (5)-(7).
     """
-    from ..vessels.particulars import particulars
+    from ..vessels.particulars import Particulars
 
-    ship = particulars(ship) if isinstance(ship, str) else ship
+    particulars = getattr(ship, "particulars", ship)  # a Ship, or its particulars
+    if not isinstance(particulars, Particulars):
+        raise ParameterError(
+            "`ship` must be a Ship with particulars or a Particulars (a catalog ship: "
+            f"seahelm.ships.get_ship(name)), got {type(ship).__name__}"
+            + (" without particulars" if particulars is None else ""))
+    ship = particulars
+    need = "the environment's loads"
     fields: dict[str, Any] = {}
     if environment.wind is LVOV_WIND:
-        fields.update(windage_lateral_area=ship.lateral_area, windage_centre=ship.windage_centre,
+        fields.update(windage_lateral_area=ship.require("lateral_area", need),
+                      windage_centre=ship.require("windage_centre", need),
                       windage_length=ship.length)
     elif environment.wind is BLENDERMANN_WIND:
         fields.update(blendermann_wind_params(
-            ship.vessel_type, windage_frontal_area=ship.frontal_area,
-            windage_lateral_area=ship.lateral_area, windage_centre=ship.windage_centre,
-            length_overall=ship.length_overall))
+            ship.require("vessel_type", need),
+            windage_frontal_area=ship.require("frontal_area", need),
+            windage_lateral_area=ship.require("lateral_area", need),
+            windage_centre=ship.require("windage_centre", need),
+            length_overall=ship.require("length_overall", need)))
     if environment.waves is LVOV_WAVES:
         fields.update(lvov_wave_params(length=ship.length, beam=ship.beam, draft=ship.draft,
                                        block_coefficient=ship.block_coefficient))

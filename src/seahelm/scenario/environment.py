@@ -29,7 +29,7 @@ from ..environment.loads import (
     wave_load_fluctuation,
 )
 from ..errors import ParameterError, ValidityRangeWarning
-from ..vessels.particulars import PARTICULARS, Particulars
+from ..vessels.particulars import Particulars
 from .errors import at_key as _err
 from .schema import Scenario
 
@@ -100,8 +100,12 @@ class EnvironmentRuns:
     signals: list[dict[str, Any]]
 
 
-def _ship(scn: Scenario) -> Particulars | None:
-    return PARTICULARS.get(scn.vessel.catalog or "")
+def _ship(scn: Scenario, source: str) -> Particulars | None:
+    """The particulars of the scenario's ship (None without a ship or particulars)."""
+    from .vessel import vessel_ship
+
+    ship = vessel_ship(scn, source)
+    return None if ship is None else ship.particulars
 
 
 def _section(over: dict[str, Any], prefix: str, base: dict[str, Any]) -> dict[str, Any]:
@@ -114,11 +118,12 @@ def _need(values: dict[str, Any], key: str, ship: Particulars | None, attr: str,
           path: str, source: str, unit: str) -> float:
     if values.get(key) is not None:
         return float(values[key])
-    if ship is not None:
+    if ship is not None and getattr(ship, attr) is not None:
         return float(getattr(ship, attr))
-    raise _err(source, f"{path}.{key}",
-               f"needed [{unit}]: the vessel has no catalog particulars to take it from "
-               f"(catalog ships with particulars: {', '.join(PARTICULARS)})")
+    why = ("the vessel has no catalog particulars to take it from (a ship with "
+           "[particulars]: a catalog ship or a ship file)" if ship is None else
+           f"the ship's particulars do not give `{attr}`")
+    raise _err(source, f"{path}.{key}", f"needed [{unit}]: {why}")
 
 
 def _wind_fields(w: dict[str, Any], name: str, ship: Particulars | None,
@@ -130,7 +135,7 @@ def _wind_fields(w: dict[str, Any], name: str, ship: Particulars | None,
         fields["rho_air"] = float(w["rho_air"])
     lateral = _need(w, "lateral_area", ship, "lateral_area", path, source, "m²")
     centre = float(w["centre"]) if w.get("centre") is not None else (
-        ship.windage_centre if ship is not None else 0.0)
+        ship.windage_centre if ship is not None and ship.windage_centre is not None else 0.0)
     if name == "lvov":
         extra = [k for k in ("frontal_area", "length_overall", "vessel_type") if w.get(k) is not None]
         if extra:
@@ -259,7 +264,7 @@ def environment_runs(scn: Scenario, model: Any, runs: list[dict[str, Any]], sour
     except ParameterError as exc:
         raise _err(source, "environment.wind" if env_sec.wind is not None
                    else "environment.waves", str(exc)) from None
-    ship = _ship(scn)
+    ship = _ship(scn, source)
     wind_base = env_sec.wind.model_dump(exclude_none=True) if env_sec.wind else {}
     waves_base = env_sec.waves.model_dump(exclude_none=True) if env_sec.waves else {}
     rows, signals = [], []

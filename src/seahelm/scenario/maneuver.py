@@ -4,7 +4,7 @@
 
     title = "KVLCC2 L7: turning circles"
     [vessel]
-    catalog = "kvlcc2-l7"           # a catalog ship with a steering gear (model from the entry)
+    ship = "kvlcc2-l7"              # a ship with a steering gear: catalog name or ship file
     params = { ... }                # optional: overrides of the entry's parameters
     [actuator]
     params = { rate_limit_deg = 2.32 }   # optional: overrides of the entry's steering gear
@@ -51,7 +51,7 @@ class ManeuverJob:
     kind : str
         ``turning``, ``zigzag``, ``pullout``, ``spiral`` or ``imo``.
     ship : ManeuverShip
-        The ship with its steering gear (catalog entry with the scenario's overrides).
+        The ship with its steering gear (with the scenario's overrides).
     options : mapping
         Keyword arguments of the manoeuvre's function (SI units, radians).
     metadata : mapping
@@ -238,40 +238,43 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
     ------
     ScenarioError
         Naming the source, the key path, the value and what was expected: a vessel that is
-        not a catalog ship with a steering gear, a model other than the entry's, an unknown or
+        not a ship with a steering gear, a model other than the ship's, an unknown or
         out-of-range parameter, initial states (a manoeuvre starts from its steady approach),
         an actuator other than the rudder servo.
     """
-    from ..analysis.maneuvers import STEERING_GEAR, maneuver_ship
-    from ..registry import get_model
-    from ..vessels import catalog
+    from ..analysis.maneuvers import maneuver_ship
+    from ..ships import with_steering_gear
+    from .vessel import ship_key, vessel_ship
 
     man = scn.maneuver
     assert man is not None
     vessel = scn.vessel
-    if vessel.catalog is None or vessel.catalog not in STEERING_GEAR:
-        got = "none" if vessel.catalog is None else repr(vessel.catalog)
-        raise at_key(source, "vessel.catalog",
-                     "a manoeuvre needs a catalog ship with a steering gear "
-                     f"({', '.join(sorted(STEERING_GEAR))}), got {got}")
-    entry = catalog.get(vessel.catalog)
-    if vessel.model is not None and vessel.model != entry.model:
+    entry = vessel_ship(scn, source)
+    key = ship_key(scn)
+    if entry is None or entry.steering_gear is None:
+        got = "none" if entry is None else repr(entry.name) + " (it has no [steering_gear])"
+        raise at_key(source, key,
+                     "a manoeuvre needs a ship with a steering gear: a catalog ship "
+                     f"({', '.join(with_steering_gear())}) or a ship file with a "
+                     f"[steering_gear], got {got}")
+    if vessel.model is not None and vessel.model != entry.model.name:
         raise at_key(source, "vessel.model",
-                     f"'{entry.name}' is a parameter set for model '{entry.model}', not "
+                     f"'{entry.name}' is a ship of model '{entry.model.name}', not "
                      f"'{vessel.model}'")
     if vessel.initial:
         raise at_key(source, "vessel.initial",
                      "a manoeuvre starts from its steady straight approach (set `speed` or "
                      f"`rps` in [maneuver]), got {dict(vessel.initial)}")
-    if scn.actuator.model != "rudder-servo":
+    if scn.actuator.model != entry.steering_gear.actuator.name:
         raise at_key(source, "actuator.model",
-                     "a manoeuvre steers with the ship's steering gear, the 'rudder-servo' "
-                     f"(its params may be overridden), got {scn.actuator.model!r}")
+                     "a manoeuvre steers with the ship's steering gear, the "
+                     f"'{entry.steering_gear.actuator.name}' (its params may be overridden), "
+                     f"got {scn.actuator.model!r}")
     try:
         params = type(entry.params).from_mapping(dict(vessel.params), base=entry.params)
     except (ParameterError, TypeError) as exc:
         raise at_key(source, "vessel.params", str(exc)) from None
-    servo0 = STEERING_GEAR[entry.name]
+    servo0 = entry.steering_gear.params
     try:
         servo = type(servo0).from_mapping(dict(scn.actuator.params), base=servo0)
     except (ParameterError, TypeError) as exc:
@@ -279,7 +282,8 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
     name = entry.name
     if vessel.params:
         name += f" (modified: {', '.join(vessel.params)})"
-    ship = maneuver_ship(params, servo=servo, model=get_model(entry.model), name=name)
+    ship = maneuver_ship(entry.replace(params=params, name=name) if vessel.params else entry,
+                         servo=None if not scn.actuator.params else servo)
 
     options: dict[str, Any] = {}
     for key in ("speed", "rps", "t_final", "dt", "record_dt", "hold"):

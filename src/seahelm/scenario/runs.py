@@ -28,9 +28,9 @@ from ..simulation.engine import check_record_memory
 from ..control.guided import guided
 from ..control.path_following import GuidanceLaw, get_guidance_law, route_params
 from ..simulation.signals import Constant, make_signal
-from ..vessels import catalog
 from .environment import KEY_UNITS as _ENV_UNITS, environment_runs
 from .errors import ScenarioError, at_key as _err
+from .vessel import ship_key, vessel_ship
 from .schema import Scenario
 
 __all__ = ["prepare_runs", "run_batch", "monte_carlo_draws"]
@@ -318,16 +318,13 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
     except ParameterError as exc:
         raise _err(source, "controller.model", str(exc)) from None
     base_params: Params | None = None
-    if scn.vessel.catalog is not None:
-        try:
-            entry = catalog.get(scn.vessel.catalog)
-        except ValueError as exc:
-            raise _err(source, "vessel.catalog", str(exc)) from None
-        if scn.vessel.model is not None and entry.model != model.name:
-            raise _err(source, "vessel.catalog",
-                       f"'{entry.name}' is a parameter set for model '{entry.model}', "
-                       f"not '{model.name}'")
-        base_params = entry.params
+    ship = vessel_ship(scn, source)
+    if ship is not None:
+        if ship.model is not model:
+            raise _err(source, ship_key(scn),
+                       f"'{ship.name}' is a ship of model '{ship.model.name}', not "
+                       f"'{model.name}'")
+        base_params = ship.params
 
     # names a batch dimension must not take: the result's variables and dimensions
     reserved = {*model.state_labels, *actuator.state_labels, *model.output_labels,
@@ -506,17 +503,15 @@ def run_batch(
 
 
 def _vessel_model(scn: Scenario, source: str) -> Any:
-    """The vessel model: ``vessel.model``, or the model of ``vessel.catalog``."""
+    """The vessel model: ``vessel.model``, or the model of the ship ``vessel.ship``."""
     name = scn.vessel.model
     if name is None:
-        if scn.vessel.catalog is None:
+        ship = vessel_ship(scn, source)
+        if ship is None:
             raise _err(source, "vessel.model",
-                       "give a vessel model (see `seahelm models`) or a catalog entry "
-                       "(vessel.catalog)")
-        try:
-            name = catalog.get(scn.vessel.catalog).model
-        except ValueError as exc:
-            raise _err(source, "vessel.catalog", str(exc)) from None
+                       "give a vessel model (see `seahelm models`) or a ship (vessel.ship: a "
+                       "catalog name or a ship file)")
+        return ship.model
     try:
         return get_model(name)
     except ValueError as exc:

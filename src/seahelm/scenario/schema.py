@@ -33,10 +33,21 @@ class _Strict(BaseModel):
 
 
 class VesselSection(_Strict):
-    model: str | None = None  # the catalog entry's model when a catalog entry is named
+    """``[vessel]``: a ship (``ship``: a catalog name or the path of a ship file, relative to
+    the scenario file; ``catalog`` is its older name) or a bare ``model``; ``params`` override
+    the ship's parameters, ``initial`` its initial state."""
+
+    model: str | None = None  # the ship's model when a ship is named
+    ship: str | None = None
     catalog: str | None = None
     params: dict[str, Number] = Field(default_factory=dict)
     initial: dict[str, Number] = Field(default_factory=dict)
+
+    @model_validator(mode="after")
+    def _one_ship(self) -> "VesselSection":
+        if self.ship is not None and self.catalog is not None:
+            raise ValueError("give `ship` or `catalog` (its older name), not both")
+        return self
 
 
 class ActuatorSection(_Strict):

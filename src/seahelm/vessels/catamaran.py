@@ -54,7 +54,7 @@ that produced the paper's figures)
       outputs ``speed`` V, ``drift_angle`` β (the paper's, port positive) and
       ``thruster_angle`` δ.
 
-Two parameter sets (registered in :mod:`seahelm.vessels.catalog`)
+Two parameter sets (registered in :mod:`seahelm.ships.catalog`)
     ``shushlyapin2017-listing`` (:func:`paper_params`): every constant of the listing —
     D = 155000 kg, L = 22.3 m, σ = 0.697, T_m = 1.55 m (missing from the paper; it reproduces
     both constants of eq. (10), C_d = 0.148 and A_Ls = 24.092 m²), T_v = 20400 N per thruster,

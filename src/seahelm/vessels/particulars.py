@@ -1,36 +1,29 @@
-"""Main dimensions and windage of the catalog ships, for wind and wave loads.
+"""Main dimensions and windage of a ship, for wind and wave loads.
 
 A load model needs what a manoeuvring model does not: the hull's beam, draft and block
 coefficient (Lvov's wave-load coefficients, eq. (5)-(7)), and the projected windage areas above
-the water (wind loads). :data:`PARTICULARS` gives them for the catalog entries by name; a
-scenario's ``[environment.wind]``/``[environment.waves]`` keys override any of them.
-
-Provenance: the main dimensions are the published ones (KVLCC2: SIMMAN 2008 / Yasukawa &
-Yoshimura 2015, L_pp 320 m, B 58 m, T 20.8 m, depth 30 m, C_b 0.8098; Mariner: Chislett &
-Strøm-Tejsen 1965 via Fossen's ``mariner.m``, C_b from m'). **The windage areas are estimates**,
-not published data: KVLCC2 — the hull above the waterline (freeboard 30 − 20.8 = 9.2 m) plus
-a typical aft superstructure of 40 m × 15 m (lateral) and 40 m × 15 m (frontal), giving
-A_L ≈ 3,540 m², A_F ≈ 1,130 m², the lateral centre ≈ 24 m aft of midships; the L7 model is
-the same scaled by 7/320; Mariner — Lvov's (2014) working assumption S_n = 0.8 L T centred
-amidships (as :data:`seahelm.studies.lvov2014.MARINER_PARTICULARS`), and A_F = 0.8 B T.
-Blendermann's vessel type for the KVLCC2 is a loaded tanker and for the Mariner a loaded
-general cargo ship.
+the water (wind loads). A :class:`~seahelm.ships.Ship` carries its :class:`Particulars`; the
+catalog ships' are in their ship files (``seahelm/ships/data/``, each with its provenance);
+a scenario's ``[environment.wind]``/``[environment.waves]`` keys override any of them.
 """
 
 from __future__ import annotations
 
 import dataclasses
-from types import MappingProxyType
-from typing import Mapping
+import math
+from typing import Any
 
 from ..errors import ParameterError
 
-__all__ = ["Particulars", "PARTICULARS", "particulars"]
+__all__ = ["Particulars", "FIELD_UNITS"]
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class Particulars:
     """Main dimensions and windage of one ship (SI units).
+
+    The hull's length, beam, draft and block coefficient are required; the rest is optional
+    (``None``: not known), and a load model that needs a missing value says so.
 
     Attributes
     ----------
@@ -39,14 +32,16 @@ class Particulars:
     beam, draft : float
         B, T [m].
     block_coefficient : float
-        C_b [-].
-    length_overall : float
+        C_b [-], in (0, 1].
+    displacement : float or None
+        Displacement volume ∇ [m³] (C_b L B T when not given).
+    length_overall : float or None
         L_oa [m].
-    frontal_area, lateral_area : float
+    frontal_area, lateral_area : float or None
         Projected windage areas above the water A_F, A_L [m²].
-    windage_centre : float
+    windage_centre : float or None
         Centre of the lateral windage area, forward of midships [m].
-    vessel_type : str
+    vessel_type : str or None
         Blendermann (1994) vessel type (:mod:`seahelm.environment.blendermann`).
     provenance : str
         Where the numbers come from.
@@ -56,23 +51,69 @@ class Particulars:
     beam: float
     draft: float
     block_coefficient: float
-    length_overall: float
-    frontal_area: float
-    lateral_area: float
-    windage_centre: float
-    vessel_type: str
+    displacement: float | None = None
+    length_overall: float | None = None
+    frontal_area: float | None = None
+    lateral_area: float | None = None
+    windage_centre: float | None = None
+    vessel_type: str | None = None
     provenance: str = ""
 
     def __post_init__(self) -> None:
-        for name, unit in (("length", "m"), ("beam", "m"), ("draft", "m"),
-                           ("block_coefficient", "-"), ("length_overall", "m"),
-                           ("frontal_area", "m²"), ("lateral_area", "m²")):
+        for name, unit, required in FIELD_UNITS:
             value = getattr(self, name)
-            if not value > 0:
-                raise ParameterError(f"`{name}` must be > 0 [{unit}], got {value!r}")
+            if name == "vessel_type":
+                if value is not None and not isinstance(value, str):
+                    raise ParameterError(f"must be a text, got {value!r}", field=name)
+                continue
+            if value is None:
+                if required:
+                    raise ParameterError(f"is required [{unit}]", field=name, unit=unit)
+                continue
+            if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                    or not math.isfinite(value):
+                raise ParameterError(f"must be a finite number [{unit}], got {value!r}",
+                                     field=name, unit=unit, value=value)
+            if name != "windage_centre" and not value > 0:
+                raise ParameterError(f"must be > 0 [{unit}], got {value!r}", field=name,
+                                     unit=unit, value=value)
+        if self.block_coefficient > 1:
+            raise ParameterError(f"must be in (0, 1] [-], got {self.block_coefficient!r}",
+                                 field="block_coefficient", unit="-",
+                                 value=self.block_coefficient)
+
+    @property
+    def displacement_volume(self) -> float:
+        """∇ [m³]: the given displacement, else C_b L B T."""
+        if self.displacement is not None:
+            return float(self.displacement)
+        return self.block_coefficient * self.length * self.beam * self.draft
+
+    def require(self, name: str, purpose: str) -> Any:
+        """A field that ``purpose`` needs; ParameterError naming it if it is not known.
+
+        Parameters
+        ----------
+        name : str
+            The field (``"lateral_area"``, ...).
+        purpose : str
+            What needs it, for the message (``"Lvov's wind loads"``).
+
+        Returns
+        -------
+        float or str
+            Its value.
+        """
+        value = getattr(self, name)
+        if value is None:
+            unit = next(u for n, u, _ in FIELD_UNITS if n == name)
+            raise ParameterError(f"is not known [{unit}] and {purpose} needs it",
+                                 field=f"particulars.{name}", unit=unit)
+        return value
 
     def scaled(self, factor: float, provenance: str = "") -> "Particulars":
-        """The same ship at ``factor`` times the size (lengths × factor, areas × factor²).
+        """The same ship at ``factor`` times the size (lengths × factor, areas × factor²,
+        volumes × factor³).
 
         Parameters
         ----------
@@ -86,54 +127,23 @@ class Particulars:
         Particulars
         """
         f = float(factor)
+
+        def times(value: float | None, k: float) -> float | None:
+            return None if value is None else value * k
+
         return dataclasses.replace(
             self, length=self.length * f, beam=self.beam * f, draft=self.draft * f,
-            length_overall=self.length_overall * f, frontal_area=self.frontal_area * f * f,
-            lateral_area=self.lateral_area * f * f, windage_centre=self.windage_centre * f,
+            displacement=times(self.displacement, f * f * f),
+            length_overall=times(self.length_overall, f),
+            frontal_area=times(self.frontal_area, f * f),
+            lateral_area=times(self.lateral_area, f * f),
+            windage_centre=times(self.windage_centre, f),
             provenance=provenance or self.provenance)
 
 
-_KVLCC2 = Particulars(
-    length=320.0, beam=58.0, draft=20.8, block_coefficient=0.8098, length_overall=325.0,
-    frontal_area=58.0 * 9.2 + 40.0 * 15.0, lateral_area=320.0 * 9.2 + 40.0 * 15.0,
-    windage_centre=-(40.0 * 15.0 * 140.0) / (320.0 * 9.2 + 40.0 * 15.0),
-    vessel_type="tanker-loaded",
-    provenance="KVLCC2 main dimensions (SIMMAN 2008; Yasukawa & Yoshimura 2015); windage "
-               "areas estimated (module docstring)")
-_MARINER = Particulars(
-    length=160.93, beam=23.17, draft=8.23, block_coefficient=0.542, length_overall=171.8,
-    frontal_area=0.8 * 23.17 * 8.23, lateral_area=0.8 * 160.93 * 8.23, windage_centre=0.0,
-    vessel_type="cargo-loaded",
-    provenance="Mariner main dimensions (Chislett & Strøm-Tejsen 1965, Fossen's mariner.m); "
-               "windage S_n = 0.8 L T amidships as Lvov (2014) assumes, A_F = 0.8 B T")
-
-#: Particulars of the catalog entries, by catalog name.
-PARTICULARS: Mapping[str, Particulars] = MappingProxyType({
-    "kvlcc2-full": _KVLCC2,
-    **{name: _KVLCC2.scaled(7.0 / 320.0, "KVLCC2 L7 model: the full-scale particulars scaled "
-                                          "by 7/320")
-       for name in ("kvlcc2-l7", "kvlcc2-l7-wp0-0.35", "kvlcc2-l7-xp-0.5")},
-    "mariner-nonlinear": _MARINER,
-    "mariner-voitkunsky": _MARINER,
-    "mariner-nomoto1": _MARINER,
-    "mariner-nomoto2": _MARINER,
-})
-
-
-def particulars(name: str) -> Particulars:
-    """The particulars of a catalog ship (ValueError listing the ships that have them).
-
-    Parameters
-    ----------
-    name : str
-        Catalog name.
-
-    Returns
-    -------
-    Particulars
-    """
-    try:
-        return PARTICULARS[name]
-    except KeyError:
-        raise ValueError(f"no particulars (dimensions, windage) for '{name}'; known: "
-                         f"{', '.join(PARTICULARS)}") from None
+#: The fields of :class:`Particulars` with their units and whether they are required.
+FIELD_UNITS: tuple[tuple[str, str, bool], ...] = (
+    ("length", "m", True), ("beam", "m", True), ("draft", "m", True),
+    ("block_coefficient", "-", True), ("displacement", "m³", False),
+    ("length_overall", "m", False), ("frontal_area", "m²", False),
+    ("lateral_area", "m²", False), ("windage_centre", "m", False), ("vessel_type", "", False))

@@ -26,7 +26,6 @@ Metrics of recorded runs that the scenario runner uses (:mod:`.metrics`): :func:
 from __future__ import annotations
 
 from .common import (
-    STEERING_GEAR,
     ManeuverShip,
     default_time_step,
     maneuver_ship,
@@ -46,7 +45,6 @@ from .turning_circle import track_distance, turning_circle
 from .zigzag import ZigZagMetrics, zigzag, zigzag_metrics
 
 __all__ = [
-    "STEERING_GEAR",
     "ManeuverResult",
     "ManeuverShip",
     "default_time_step",

@@ -48,7 +48,6 @@ from ...errors import ParameterError, ValidityRangeWarning
 from ...vessels.base import VesselModel
 from ..equilibrium import EquilibriumError
 from .ships import (  # re-exported: the manoeuvres and tests import them from here
-    STEERING_GEAR,
     SPEED_VALIDITY,
     STEP_VALIDITY,
     ManeuverShip,
@@ -68,7 +67,6 @@ if TYPE_CHECKING:  # pragma: no cover
     from ...results import SimResult
 
 __all__ = [
-    "STEERING_GEAR",
     "ManeuverShip",
     "maneuver_ship",
     "default_time_step",

@@ -48,7 +48,7 @@ def pull_out(ship: Any, rudder: Any = math.radians(20.0), *, sides: Any = (1, -1
 
     Parameters
     ----------
-    ship : str, CatalogEntry, Params, ManeuverShip or a sequence of them
+    ship : Ship, str (catalog name or ship file path), Params, or a sequence of them
         The ship(s); a sequence gives a ``ship`` dimension (one model).
     rudder : float or sequence of float, optional
         Rudder angle of the steady turn [rad], in (0, steering-gear limit] (default 20°).

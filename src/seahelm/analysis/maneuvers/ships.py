@@ -1,5 +1,5 @@
-"""The ships of a manoeuvre: catalog entries with their steering gear, the usual time step,
-and the steady straight approach (with the equilibrium failures named for the user)."""
+"""The ships of a manoeuvre: ships with their steering gear, the usual time step, and the steady
+straight approach (with the equilibrium failures named for the user)."""
 
 from __future__ import annotations
 
@@ -16,8 +16,7 @@ from ...actuators.servo import ServoParams
 from ...errors import ParameterError
 from ...parameters import Params
 from ...vessels.base import VesselModel
-from ...vessels.mariner import MARINER_SERVO
-from ...vessels.mmg import KVLCC2_FULL_SERVO, KVLCC2_L7_SERVO
+from ...ships import Ship
 from ..equilibrium import (
     DEFAULT_MODELS,
     EquilibriumError,
@@ -25,16 +24,7 @@ from ..equilibrium import (
     straight_run_speed,
 )
 
-__all__ = ["STEERING_GEAR", "ManeuverShip", "maneuver_ship", "default_time_step"]
-
-#: Steering gear of the catalog entries that have one (the presets of the vessel modules).
-STEERING_GEAR: dict[str, ServoParams] = {
-    "kvlcc2-full": KVLCC2_FULL_SERVO,
-    "kvlcc2-l7": KVLCC2_L7_SERVO,
-    "kvlcc2-l7-wp0-0.35": KVLCC2_L7_SERVO,
-    "kvlcc2-l7-xp-0.5": KVLCC2_L7_SERVO,
-    "mariner-nonlinear": MARINER_SERVO,
-}
+__all__ = ["ManeuverShip", "maneuver_ship", "default_time_step"]
 
 STARBOARD, PORT = 1, -1
 
@@ -43,122 +33,104 @@ STARBOARD, PORT = 1, -1
 SPEED_VALIDITY = 1.5
 STEP_VALIDITY = 10.0
 
-
-@dataclasses.dataclass(frozen=True, eq=False)
-class ManeuverShip:
-    """A ship ready for manoeuvres: its model, parameter set, steering gear and a name.
-
-    Attributes
-    ----------
-    name : str
-        Label in results and tables (the catalog name for a catalog entry).
-    model : VesselModel
-        The 3-DOF model (signals as :mod:`seahelm.analysis.equilibrium` needs them).
-    params : Params
-        Its parameter set.
-    servo : ServoParams
-        Steering gear (``rudder-servo`` actuator): angle limit, rate limit, lag.
-    """
-
-    name: str
-    model: VesselModel
-    params: Params
-    servo: ServoParams
-
-    @property
-    def length(self) -> float:
-        """Ship length L [m] (the parameter set's ``length``)."""
-        return float(self.params.length)
-
-    @property
-    def approach_speed(self) -> float:
-        """Default approach (test) speed U_0 [m/s] of the parameter set."""
-        p = self.params
-        return float(getattr(p, "approach_speed", getattr(p, "nominal_speed", math.nan)))
-
-    @property
-    def max_rudder(self) -> float:
-        """Steering-gear angle limit [rad]."""
-        return float(self.servo.max_angle)
-
-    @property
-    def has_propeller(self) -> bool:
-        """Whether the model has a ``propeller_rps`` input."""
-        return "propeller_rps" in self.model.input_labels
+#: A ship ready for manoeuvres is a :class:`~seahelm.ships.Ship` with a steering gear (the
+#: name stays for code written against it).
+ManeuverShip = Ship
 
 
 def maneuver_ship(ship: Any, *, servo: ServoParams | None = None,
-                  model: VesselModel | None = None, name: str | None = None) -> ManeuverShip:
-    """A :class:`ManeuverShip` from a catalog name, catalog entry or parameter set.
+                  model: VesselModel | None = None, name: str | None = None) -> Ship:
+    """A :class:`~seahelm.ships.Ship` with a steering gear, ready for manoeuvres.
 
     Parameters
     ----------
-    ship : str, CatalogEntry, Params or ManeuverShip
-        Catalog name (e.g. ``"kvlcc2-l7"``, ``"mariner-nonlinear"``), catalog entry, parameter
-        set, or a ship already made (returned as is unless ``servo``/``model``/``name`` change
-        it).
+    ship : Ship, str, path-like or Params
+        A ship, a catalog name (e.g. ``"kvlcc2-l7"``, ``"mariner-nonlinear"``), the path of a
+        ship file, or a bare parameter set (then ``servo`` is required unless the parameter set
+        equals a catalog ship's).
     servo : ServoParams, optional
-        Steering gear. Default: :data:`STEERING_GEAR` for a catalog entry (or a parameter set
-        equal to one); required otherwise.
+        Steering gear (``rudder-servo``) replacing the ship's.
     model : VesselModel, optional
-        The model (default: the catalog entry's, or the one for the parameter type).
+        The model (default: the ship's, or the one for the parameter type).
     name : str, optional
-        Label (default: the catalog name, or the parameter class name).
+        Label (default: the ship's name, or the parameter class name).
 
     Returns
     -------
-    ManeuverShip
+    Ship
 
     Raises
     ------
     ValueError
         For an unknown catalog name (listing the valid ones).
     ParameterError
-        If no steering gear is known for the parameter set and none is given, or the model
-        does not take the parameter set.
+        If the ship has no steering gear and none is given, or the model does not take the
+        parameter set.
     """
-    from ...registry import get_model
-    from ...vessels.catalog import CATALOG, CatalogEntry, get
+    from ...ships import CATALOG, get_ship
 
-    if isinstance(ship, ManeuverShip):
-        if servo is None and model is None and name is None:
-            return ship
-        return ManeuverShip(name=name or ship.name, model=model or ship.model,
-                            params=ship.params, servo=servo or ship.servo)
-    entry = None
-    if isinstance(ship, str):
-        entry = get(ship)
-    elif isinstance(ship, CatalogEntry):
-        entry = ship
-    elif isinstance(ship, Params):
-        entry = next((e for e in CATALOG.values()
-                      if type(e.params) is type(ship) and e.params == ship
-                      and e.name in STEERING_GEAR), None)
+    if isinstance(ship, Params):
+        params = ship
+        found = next((s for s in map(CATALOG.__getitem__, CATALOG)
+                      if type(s.params) is type(params) and s.params == params
+                      and s.steering_gear is not None), None) if servo is None else None
+        if found is not None and model is None:
+            base = found
+        else:
+            if model is None:
+                model = DEFAULT_MODELS.get(type(params))
+                if model is None:
+                    raise ParameterError(
+                        f"no default model for {type(params).__name__}; pass `model=`")
+            if not isinstance(params, model.params_type):
+                raise ParameterError(
+                    f"model '{model.name}' takes {model.params_type.__name__}, got "
+                    f"{type(params).__name__}")
+            if servo is None:
+                raise ParameterError(
+                    "`servo`: no steering gear is known for this parameter set; pass "
+                    "`servo=ServoParams(...)` (or a Ship with a steering gear)")
+            if not isinstance(servo, ServoParams):
+                raise ParameterError(f"`servo` must be ServoParams, got {type(servo).__name__}")
+            # one construction (a Monte-Carlo study makes one ship per sample)
+            return Ship(name=name or type(params).__name__, model=model, params=params,
+                        steering_gear=_gear(servo))
+    elif isinstance(ship, (Ship, str)) or hasattr(ship, "__fspath__"):
+        base = get_ship(ship)
     else:
         raise ParameterError(
-            "`ship` must be a catalog name, a catalog entry, a parameter set or a "
-            f"ManeuverShip, got {type(ship).__name__}")
-    params = entry.params if entry is not None and not isinstance(ship, Params) else ship
-    if model is None:
-        model = get_model(entry.model) if entry is not None else DEFAULT_MODELS.get(type(params))
-        if model is None:
+            "`ship` must be a Ship, a catalog name, a ship file path or a parameter set, got "
+            f"{type(ship).__name__}")
+    changes: dict[str, Any] = {}
+    if model is not None and model is not base.model:
+        if not isinstance(base.params, model.params_type):
             raise ParameterError(
-                f"no default model for {type(params).__name__}; pass `model=`")
-    if not isinstance(params, model.params_type):
+                f"model '{model.name}' takes {model.params_type.__name__}, got "
+                f"{type(base.params).__name__}")
+        changes["model"] = model
+    if servo is not None:
+        if not isinstance(servo, ServoParams):
+            raise ParameterError(f"`servo` must be ServoParams, got {type(servo).__name__}")
+        if base.steering_gear is None or servo is not base.steering_gear.params:
+            changes["steering_gear"] = _gear(servo)
+    elif base.steering_gear is None:
+        from ...ships import with_steering_gear
+
         raise ParameterError(
-            f"model '{model.name}' takes {model.params_type.__name__}, got "
-            f"{type(params).__name__}")
-    if servo is None:
-        servo = STEERING_GEAR.get(entry.name) if entry is not None else None
-        if servo is None:
-            raise ParameterError(
-                "`servo`: no steering gear is known for this parameter set; pass "
-                "`servo=ServoParams(...)` (known for the catalog entries "
-                f"{', '.join(sorted(STEERING_GEAR))})")
-    if not isinstance(servo, ServoParams):
-        raise ParameterError(f"`servo` must be ServoParams, got {type(servo).__name__}")
-    label = name or (entry.name if entry is not None else type(params).__name__)
-    return ManeuverShip(name=label, model=model, params=params, servo=servo)
+            f"`servo`: ship '{base.name}' has no steering gear; pass `servo=ServoParams(...)` "
+            f"(catalog ships with one: {', '.join(with_steering_gear())})")
+    if name is not None and name != base.name:
+        changes["name"] = name
+    return dataclasses.replace(base, **changes) if changes else base
+
+
+@functools.lru_cache(maxsize=64)
+def _gear(servo: ServoParams) -> Any:
+    """The rudder-servo steering gear of ``servo`` (one object per parameter set)."""
+    from ...ships import SteeringGear
+
+    return SteeringGear(actuator="rudder-servo", params=servo,
+                        provenance="given as a parameter set (ServoParams)")
 
 
 def _ships(ship: Any) -> tuple[list[ManeuverShip], bool]:
@@ -190,7 +162,7 @@ def default_time_step(ship: Any, speed: float | None = None) -> float:
 
     Parameters
     ----------
-    ship : str, CatalogEntry, Params or ManeuverShip
+    ship : Ship, str (catalog name or ship file path) or Params
         The ship (:func:`maneuver_ship`).
     speed : float, optional
         Approach speed [m/s] (default: the ship's).

@@ -80,7 +80,7 @@ def direct_spiral(ship: Any, rudders: Any = None, *, speed: Any = None, rps: Any
 
     Parameters
     ----------
-    ship : str, CatalogEntry, Params, ManeuverShip or a sequence of them
+    ship : Ship, str (catalog name or ship file path), Params, or a sequence of them
         The ship(s); a sequence gives a ``ship`` dimension (one model).
     rudders : sequence of float, optional
         Absolute rudder angles [rad] in the order they are set (default
@@ -226,7 +226,7 @@ def spiral_loop(params: Any, yaw_rate: np.ndarray, rudder: np.ndarray, rps: floa
 
     Parameters
     ----------
-    params : Params, CatalogEntry or str
+    params : Params, Ship or str
         Parameter set.
     yaw_rate : numpy.ndarray, shape (k,)
         Yaw rates [rad/s], increasing.
@@ -272,7 +272,7 @@ def reverse_spiral(ship: Any, yaw_rates: Any = None, *, speed: Any = None, rps: 
 
     Parameters
     ----------
-    ship : str, CatalogEntry, Params, ManeuverShip or a sequence of them
+    ship : Ship, str (catalog name or ship file path), Params, or a sequence of them
         The ship(s); a sequence gives a ``ship`` dimension.
     yaw_rates : sequence of float, optional
         Yaw rates r [rad/s], increasing (default: ``points`` values evenly between the steady
@@ -367,7 +367,7 @@ def spirals(ship: Any, max_rudder: float = math.radians(20.0), *, speed: Any = N
 
     Parameters
     ----------
-    ship : str, CatalogEntry, Params or ManeuverShip
+    ship : Ship, str (catalog name or ship file path) or Params
         The ship (:func:`~seahelm.analysis.maneuvers.maneuver_ship`).
     max_rudder : float, optional
         Largest rudder angle [rad], within the steering gear's limit (default 20°).

@@ -98,7 +98,7 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
 
     Parameters
     ----------
-    ship : str, CatalogEntry, Params, ManeuverShip or a sequence of them
+    ship : Ship, str (catalog name or ship file path), Params, or a sequence of them
         The ship(s) (:func:`~seahelm.analysis.maneuvers.maneuver_ship`); a sequence gives a
         ``ship`` dimension (all on one model).
     rudder : float or sequence of float, optional

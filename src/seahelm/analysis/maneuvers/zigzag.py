@@ -211,7 +211,7 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
 
     Parameters
     ----------
-    ship : str, CatalogEntry, Params, ManeuverShip or a sequence of them
+    ship : Ship, str (catalog name or ship file path), Params, or a sequence of them
         The ship(s); a sequence gives a ``ship`` dimension (one model).
     rudder : float or sequence of float, optional
         Rudder angle δ_z [rad], in (0, steering-gear limit] (default 10°).

@@ -1,0 +1,172 @@
+"""``seahelm ship``: the catalog's ships and ship files.
+
+``seahelm ship list`` lists the catalog; ``seahelm ship show SHIP`` prints one ship (a catalog
+name or a ship file): model, steering gear, propulsion, particulars, every parameter with its
+unit and source, validity notes. ``--toml`` prints its ship file instead (``seahelm ship show
+kvlcc2-l7 --toml > my.toml`` starts a ship of your own); ``--json`` one JSON object.
+``seahelm ship check FILE`` reads a ship file and says whether it is valid. Exit codes: 0, 2
+bad input (one line naming the file, the key and the unit), 1 other failure.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from typing import Annotated, Any
+
+import typer
+from rich.markup import escape
+from rich.table import Table
+
+from ..errors import ParameterError
+from ._common import JsonFlag, OneLineErrors, console, handle_errors, print_json
+
+__all__ = ["app"]
+
+app = typer.Typer(cls=OneLineErrors, help="Ships: the catalog, and ship files (TOML).",
+                  no_args_is_help=True)
+
+ShipArg = Annotated[str, typer.Argument(
+    metavar="SHIP", help="A catalog ship (`seahelm ship list`) or the path of a ship file.")]
+
+
+@app.callback()
+def _main() -> None:
+    """Ships: the catalog, and ship files (TOML)."""
+
+
+def _ship(ref: str) -> Any:
+    from ..ships import get_ship
+
+    return get_ship(ref)
+
+
+def _payload(ship: Any) -> dict[str, Any]:
+    from ..ships.writing import ship_to_mapping
+
+    data = ship_to_mapping(ship)
+    data["test_speed"] = ship.test_speed
+    data["parameters"] = [
+        {"name": i.name, "value": getattr(ship.params, i.name), "unit": i.unit,
+         "symbol": i.symbol, "doc": i.doc, "source": ship.source_of(i.name)}
+        for i in ship.params.info()]
+    return data
+
+
+@app.command("list")
+@handle_errors
+def list_cmd(json_out: JsonFlag = False) -> None:
+    """List the catalog's ships: name, model, steering gear, test speed, description."""
+    from ..ships import CATALOG
+
+    rows = [{"name": n, "model": s.model.name,
+             "steering_gear": s.steering_gear.actuator.name if s.steering_gear else None,
+             "test_speed_mps": s.test_speed, "description": s.description}
+            for n, s in CATALOG.items()]
+    if json_out:
+        print_json({"ships": rows})
+        return
+    table = Table(title="catalog ships (seahelm ship show NAME)", title_justify="left")
+    for col in ("name", "model", "steering gear", "U0 [m/s]"):
+        table.add_column(escape(col), no_wrap=True)
+    table.add_column("description")
+    for r in rows:
+        speed = "" if r["test_speed_mps"] is None else f"{r['test_speed_mps']:.4g}"
+        table.add_row(r["name"], r["model"], r["steering_gear"] or "-", speed,
+                      escape(r["description"]))
+    console.print(table)
+
+
+@app.command("show")
+@handle_errors
+def show(
+    ship: ShipArg,
+    toml: Annotated[bool, typer.Option("--toml", help="Print the ship file (TOML) instead.")]
+    = False,
+    json_out: JsonFlag = False,
+) -> None:
+    """Print a ship: model, steering gear, propulsion, particulars, parameters, provenance."""
+    if toml and json_out:
+        raise ParameterError("give `--toml` or `--json`, not both")
+    s = _ship(ship)
+    if toml:
+        from ..ships import ship_to_toml
+
+        sys.stdout.write(ship_to_toml(s))
+        sys.stdout.flush()
+        return
+    payload = _payload(s)
+    if json_out:
+        print_json(payload)
+        return
+    _print(s, payload)
+
+
+@app.command("check")
+@handle_errors
+def check(path: Annotated[str, typer.Argument(metavar="FILE", help="A ship file.")],
+          json_out: JsonFlag = False) -> None:
+    """Read a ship file and say whether it is valid (exit 2 naming the key if not)."""
+    from ..ships import read_ship
+
+    s = read_ship(path)
+    if json_out:
+        print_json({"file": path, "valid": True, "name": s.name, "model": s.model.name})
+        return
+    console.print(f"{escape(path)}: valid ship '{escape(s.name)}' (model {s.model.name})",
+                  highlight=False, soft_wrap=True)
+
+
+def _print(ship: Any, payload: dict[str, Any]) -> None:
+    head = Table(title=f"ship '{ship.name}'", title_justify="left", show_header=False)
+    head.add_column("what")
+    head.add_column("value")
+    head.add_row("description", escape(ship.description or "-"))
+    head.add_row("model", escape(f"{ship.model.name}: {ship.model.description}"))
+    head.add_row("test speed", "-" if ship.test_speed is None else
+                 escape(f"{ship.test_speed:.6g} [m/s]"))
+    if ship.steering_gear is not None:
+        g = ship.steering_gear
+        p = g.params
+        text = g.actuator.name
+        if hasattr(p, "max_angle"):
+            text += (f": ±{math.degrees(p.max_angle):.4g} deg, "
+                     f"{math.degrees(p.max_rate):.4g} deg/s, lag {p.time_constant:.4g} s")
+        head.add_row("steering gear", escape(text))
+    else:
+        head.add_row("steering gear", "- (manoeuvres and the IMO check need one)")
+    head.add_row("propulsion", "-" if ship.propulsion is None else escape(
+        f"{ship.propulsion.kind} (inputs: {', '.join(ship.propulsion.inputs) or '-'})"))
+    for note in ship.validity:
+        head.add_row("valid for", escape(note))
+    console.print(head)
+    if ship.particulars is not None:
+        from ..vessels.particulars import FIELD_UNITS
+
+        part = Table(title="particulars", title_justify="left")
+        for col in ("particular", "value", "unit"):
+            part.add_column(col)
+        for n, unit, _ in FIELD_UNITS:
+            value = getattr(ship.particulars, n)
+            if value is not None:
+                part.add_row(n, value if isinstance(value, str) else f"{value:.6g}",
+                             escape(f"[{unit}]") if unit else "")
+        console.print(part)
+    params = Table(title=f"parameters ({type(ship.params).__name__})", title_justify="left")
+    for col in ("parameter", "symbol", "value", "unit", "description"):
+        params.add_column(col)
+    own = dict(ship.coefficient_sources)
+    for row in payload["parameters"]:
+        value = row["value"]
+        text = (f"{len(value)} values" if isinstance(value, tuple) else f"{value:.6g}")
+        doc = row["doc"] + (f" (source: {own[row['name']]})" if row["name"] in own else "")
+        params.add_row(row["name"], row["symbol"], text,
+                       escape(f"[{row['unit']}]") if row["unit"] else "", escape(doc))
+    console.print(params)
+    prov = Table(title="provenance", title_justify="left", show_header=False)
+    prov.add_column("of")
+    prov.add_column("source")
+    for key, text in payload.get("provenance", {}).items():
+        if isinstance(text, str):
+            prov.add_row(key, escape(text))
+    console.print(prov)

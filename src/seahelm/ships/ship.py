@@ -1,0 +1,269 @@
+"""A ship as one object: its manoeuvring model and parameters, steering gear, propulsion, main
+particulars, test speed, and where every number comes from.
+
+A :class:`Ship` is what a user means by "the KVLCC2" or "my ship": everything seahelm needs to
+simulate it, check it against the IMO criteria or put wind and waves on it. The catalog
+(:mod:`seahelm.ships.catalog`) is a registry of ships, and a ship file
+(:mod:`seahelm.ships.files`) is the same object on disk, so a user's own ship goes wherever a
+catalog ship goes.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
+
+from ..errors import ParameterError
+from ..parameters import Params
+from ..vessels.particulars import Particulars
+
+if TYPE_CHECKING:  # (the registry imports them when a ship is made: listing ships needs no numba)
+    from ..actuators.base import Actuator
+    from ..vessels.base import VesselModel
+
+__all__ = ["Ship", "SteeringGear", "Propulsion", "SPEED_FIELDS"]
+
+#: Parameter fields that hold a model's design (test) speed, in the order they are looked for:
+#: the MMG model's approach speed, the Mariner's nominal speed U_0, the Nomoto and Voitkunsky
+#: models' speed U.
+SPEED_FIELDS: tuple[str, ...] = ("approach_speed", "nominal_speed", "speed")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class SteeringGear:
+    """The steering gear: an actuator (by registry name or object) and its parameters.
+
+    Attributes
+    ----------
+    actuator : Actuator
+        The actuator (``seahelm models`` lists them; a name is looked up on construction).
+    params : Params
+        Its parameters (for ``rudder-servo``: angle limit [rad], rate limit [rad/s], lag [s]).
+    provenance : str
+        Where the numbers come from.
+    """
+
+    actuator: Actuator
+    params: Params
+    provenance: str = ""
+
+    def __post_init__(self) -> None:
+        from ..registry import get_actuator
+
+        try:
+            actuator = get_actuator(self.actuator)
+        except ValueError as exc:
+            raise ParameterError(str(exc), field="actuator") from None
+        object.__setattr__(self, "actuator", actuator)
+        if not isinstance(self.params, actuator.params_type):
+            raise ParameterError(
+                f"actuator '{actuator.name}' takes {actuator.params_type.__name__}, got "
+                f"{type(self.params).__name__}", field="params")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Propulsion:
+    """What drives the ship, as far as the manoeuvring model represents it.
+
+    Attributes
+    ----------
+    kind : str
+        In words, e.g. ``"single fixed-pitch propeller"``.
+    inputs : tuple of str
+        The model inputs it is commanded through (e.g. ``("propeller_rps",)``); empty when the
+        model holds the propulsion constant (a speed-perturbation model).
+    provenance : str
+        Where the description and its coefficients come from.
+    """
+
+    kind: str
+    inputs: tuple[str, ...] = ()
+    provenance: str = ""
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.kind, str) or not self.kind.strip():
+            raise ParameterError(f"must be a non-empty text, got {self.kind!r}", field="kind")
+        object.__setattr__(self, "inputs", tuple(self.inputs))
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Ship:
+    """A ship: manoeuvring model and parameters, steering gear, propulsion, particulars.
+
+    Frozen and validated on construction; change one with :meth:`replace`. Two ships are equal
+    when every field is (the model by identity).
+
+    Attributes
+    ----------
+    name : str
+        Label in results and tables (the catalog name for a catalog ship).
+    model : VesselModel
+        The manoeuvring model (``seahelm models`` lists them; a registry name is looked up on
+        construction).
+    params : Params
+        Its parameter set (SI units, radians), of ``model.params_type``.
+    description : str
+        One line: what ship this is.
+    steering_gear : SteeringGear or None
+        The steering gear, where the ship has one that seahelm knows (manoeuvres and the IMO
+        check need it).
+    propulsion : Propulsion or None
+        What drives the ship, where the model represents it.
+    particulars : Particulars or None
+        Main dimensions (L, B, T, C_b, displacement, …) and windage, with units.
+    test_speed : float or None
+        Approach (test) speed U_0 [m/s]. Default: the parameter set's design speed
+        (:data:`SPEED_FIELDS`); given together with one, the two must agree.
+    provenance : str
+        Where the parameter set comes from.
+    coefficient_sources : tuple of (str, str)
+        Per-coefficient sources where they differ from ``provenance`` (a formula, a paper, a
+        fit with its standard error), as ``(parameter name, source)`` pairs.
+    validity : tuple of str
+        What the parameter set is valid for (speed range, water depth, loading, …), one note a
+        line.
+    """
+
+    name: str
+    model: VesselModel
+    params: Params
+    description: str = ""
+    steering_gear: SteeringGear | None = None
+    propulsion: Propulsion | None = None
+    particulars: Particulars | None = None
+    test_speed: float | None = None
+    provenance: str = ""
+    coefficient_sources: tuple[tuple[str, str], ...] = ()
+    validity: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        from ..registry import get_model
+
+        if not isinstance(self.name, str) or not self.name.strip():
+            raise ParameterError(f"must be a non-empty text, got {self.name!r}", field="name")
+        try:
+            model = get_model(self.model)
+        except ValueError as exc:
+            raise ParameterError(str(exc), field="model") from None
+        object.__setattr__(self, "model", model)
+        if not isinstance(self.params, model.params_type):
+            raise ParameterError(
+                f"model '{model.name}' takes {model.params_type.__name__}, got "
+                f"{type(self.params).__name__}", field="params")
+        for attr, cls in (("steering_gear", SteeringGear), ("propulsion", Propulsion),
+                          ("particulars", Particulars)):
+            value = getattr(self, attr)
+            if value is not None and not isinstance(value, cls):
+                raise ParameterError(f"must be {cls.__name__} or None, got "
+                                     f"{type(value).__name__}", field=attr)
+        if self.propulsion is not None:
+            missing = [n for n in self.propulsion.inputs if n not in model.input_labels]
+            if missing:
+                raise ParameterError(
+                    f"model '{model.name}' has no input {', '.join(map(repr, missing))}; its "
+                    f"inputs: {', '.join(model.input_labels)}", field="propulsion.inputs")
+        design = self.design_speed
+        if self.test_speed is None:
+            object.__setattr__(self, "test_speed", design)
+        else:
+            if isinstance(self.test_speed, bool) or not isinstance(self.test_speed, (int, float)):
+                raise ParameterError(f"must be a number [m/s], got {self.test_speed!r}",
+                                     field="test_speed", unit="m/s", value=self.test_speed)
+            speed = float(self.test_speed)
+            if not (math.isfinite(speed) and speed > 0):
+                raise ParameterError(f"must be > 0 [m/s], got {speed!r}", field="test_speed",
+                                     unit="m/s", value=speed)
+            if design is not None and speed != design:
+                raise ParameterError(
+                    f"is {speed!r} [m/s] but the parameter set's design speed "
+                    f"`params.{self._speed_field}` is {design!r} [m/s]; give one of them",
+                    field="test_speed", unit="m/s", value=speed)
+            object.__setattr__(self, "test_speed", speed)
+        sources = self.coefficient_sources
+        if isinstance(sources, Mapping):
+            sources = tuple(sources.items())
+        sources = tuple((str(k), str(v)) for k, v in sources)
+        unknown = [k for k, _ in sources if k not in self.params.field_names()]
+        if unknown:
+            raise ParameterError(
+                f"names no parameter of {type(self.params).__name__}: "
+                f"{', '.join(unknown)}", field="coefficient_sources")
+        object.__setattr__(self, "coefficient_sources", sources)
+        validity = (self.validity,) if isinstance(self.validity, str) else self.validity
+        object.__setattr__(self, "validity", tuple(str(v) for v in validity))
+
+    # -- derived -----------------------------------------------------------------------
+    @property
+    def _speed_field(self) -> str | None:
+        names = self.params.field_names()
+        return next((n for n in SPEED_FIELDS if n in names), None)
+
+    @property
+    def design_speed(self) -> float | None:
+        """The parameter set's own design speed [m/s] (:data:`SPEED_FIELDS`), if it has one."""
+        name = self._speed_field
+        return None if name is None else float(getattr(self.params, name))
+
+    @property
+    def approach_speed(self) -> float:
+        """Test speed U_0 [m/s] (NaN when the ship has none)."""
+        return math.nan if self.test_speed is None else float(self.test_speed)
+
+    @property
+    def length(self) -> float:
+        """Ship length L [m]: the parameter set's ``length``, else the particulars'."""
+        if "length" in self.params.field_names():
+            return float(self.params.length)
+        if self.particulars is not None:
+            return float(self.particulars.length)
+        return math.nan
+
+    @property
+    def servo(self) -> Params:
+        """The steering gear's parameters (ParameterError if the ship has no steering gear)."""
+        if self.steering_gear is None:
+            raise ParameterError(f"ship '{self.name}' has no steering gear", field="steering_gear")
+        return self.steering_gear.params
+
+    @property
+    def max_rudder(self) -> float:
+        """Steering-gear angle limit [rad]."""
+        return float(self.servo.max_angle)
+
+    @property
+    def has_propeller(self) -> bool:
+        """Whether the model has a ``propeller_rps`` input."""
+        return "propeller_rps" in self.model.input_labels
+
+    def source_of(self, parameter: str) -> str:
+        """Where one coefficient comes from (its own source, else the parameter set's).
+
+        Parameters
+        ----------
+        parameter : str
+            A field of :attr:`params`.
+
+        Returns
+        -------
+        str
+        """
+        if parameter not in self.params.field_names():
+            raise ParameterError(f"unknown parameter `{parameter}` for "
+                                 f"{type(self.params).__name__}")
+        return dict(self.coefficient_sources).get(parameter, self.provenance)
+
+    def replace(self, **changes: Any) -> "Ship":
+        """A copy with some fields changed (validated again).
+
+        ``params=`` may be a mapping of parameter changes (applied to this ship's parameters,
+        ``<name>_deg`` for angles) instead of a whole parameter set; a changed parameter set
+        drops the test speed taken from the old one.
+        """
+        params = changes.get("params")
+        if isinstance(params, Mapping):
+            changes["params"] = type(self.params).from_mapping(params, base=self.params)
+        if "params" in changes and "test_speed" not in changes and self.design_speed is not None:
+            changes["test_speed"] = None
+        return dataclasses.replace(self, **changes)
