@@ -44,7 +44,7 @@ import numpy as np
 
 from .._validate import as_float_array, check_positive
 from ..errors import ParameterError
-from ..simulation.integrators import ButcherTableau, get_integrator, rk_step
+from ..numerics.runge_kutta import ButcherTableau, get_integrator, rk_step
 
 __all__ = [
     "FinalStateController",
@@ -179,7 +179,7 @@ class FinalStateController:
         Integration steps for ``prediction="integrate"``.
     integrator : str or ButcherTableau
         Fixed-step method of ``prediction="integrate"`` and of :func:`simulate_final_state`:
-        a name in :data:`~seahelm.simulation.integrators.INTEGRATORS` (default "rk4") or a
+        a name in :data:`~seahelm.numerics.runge_kutta.INTEGRATORS` (default "rk4") or a
         tableau.
 
     Raises

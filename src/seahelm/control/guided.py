@@ -60,7 +60,7 @@ def guided(law: "GuidanceLaw | str", controller: Controller) -> Controller:
     ParameterError
         If the controller has no ``heading`` reference, or the two share a parameter name.
     """
-    from ..simulation.generated import code_fingerprint, import_generated
+    from .._codegen import code_fingerprint, import_generated
 
     law = get_guidance_law(law)
     if controller.passthrough or "heading" not in controller.reference_labels:

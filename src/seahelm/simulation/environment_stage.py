@@ -120,7 +120,7 @@ def environment_stage(environment: Any, model: Any) -> Any:
     ParameterError
         If the model lacks an output or a channel the loads need.
     """
-    from .generated import code_fingerprint, import_generated
+    from .._codegen import code_fingerprint, import_generated
 
     check_environment(environment, model)
     out, dist = model.output_labels, model.disturbance_labels

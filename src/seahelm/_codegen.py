@@ -1,0 +1,129 @@
+"""Generated modules: where they live, what they are named after, how they are imported.
+
+The engine writes one module per combination of components (the closed-loop kernel,
+:func:`seahelm.simulation.engine.compile_closed_loop`), and so do the guided controllers
+(:mod:`seahelm.control.guided`) and the environment's stage
+(:mod:`seahelm.simulation.environment_stage`). Each is written to the kernel cache directory,
+named after a hash of its text and of the code it calls (:func:`code_fingerprint`), and
+imported from there, so numba's ``cache=True`` compiles it once per machine.
+
+A basic under every layer (it imports no seahelm module), so a component that generates code
+(the guided controllers) needs no simulation import; :mod:`seahelm.simulation.generated`
+re-exports it for the engine.
+"""
+from __future__ import annotations
+
+import importlib.util
+import marshal
+import os
+import sys
+import tempfile
+import types
+import warnings
+from pathlib import Path
+from types import ModuleType
+from typing import Any
+
+import numpy as np
+
+__all__ = ["kernel_cache_dir", "code_fingerprint", "import_generated"]
+
+
+def kernel_cache_dir() -> Path:
+    """Directory for generated closed-loop kernels (``SEAHELM_CACHE_DIR`` overrides)."""
+    env = os.environ.get("SEAHELM_CACHE_DIR")
+    if env:
+        base = Path(env)
+    else:
+        xdg = os.environ.get("XDG_CACHE_HOME")
+        base = (Path(xdg) if xdg else Path.home() / ".cache") / "seahelm" / "kernels"
+    try:
+        base.mkdir(parents=True, exist_ok=True)
+        probe = base / f".probe-{os.getpid()}"
+        probe.write_text("")
+        probe.unlink()
+        return base
+    except OSError as exc:
+        fallback = Path(tempfile.gettempdir()) / f"seahelm-kernels-{os.getuid()}"
+        warnings.warn(f"kernel cache {base} is not a writable directory ({exc.strerror or exc}); "
+                      f"using {fallback}", stacklevel=2)
+        fallback.mkdir(parents=True, exist_ok=True)
+        return fallback
+
+
+def code_fingerprint(py: Any, seen: set[int] | None = None) -> bytes:
+    """Bytes that change whenever the compiled behaviour of ``py`` could change.
+
+    The bytecode of the function as it is *in memory* (not its file on disk, which may have
+    been edited since it was imported), and recursively of every numba function it calls and
+    the numeric globals that numba freezes into the code. Naming a kernel after this keeps the
+    on-disk numba cache from serving a loop compiled from other code.
+
+    Parameters
+    ----------
+    py : function
+        A plain Python function (a numba dispatcher's ``py_func``).
+    seen : set of int, optional
+        Ids of functions already included (recursion guard).
+
+    Returns
+    -------
+    bytes
+    """
+    seen = set() if seen is None else seen
+    if id(py) in seen:
+        return b""
+    seen.add(id(py))
+    parts = [marshal.dumps(py.__code__)]
+    stack = [py.__code__]
+    names: list[str] = []
+    while stack:
+        code = stack.pop()
+        names.extend(code.co_names)
+        stack.extend(c for c in code.co_consts if isinstance(c, types.CodeType))
+    for name in sorted(set(names)):
+        obj = py.__globals__.get(name)
+        inner = getattr(obj, "py_func", None)
+        if inner is not None:
+            parts.append(name.encode() + code_fingerprint(inner, seen))
+        elif isinstance(obj, (bool, int, float, complex, str)):
+            parts.append(f"{name}={obj!r}".encode())
+        elif isinstance(obj, np.ndarray):
+            parts.append(name.encode() + obj.tobytes())
+        elif isinstance(obj, tuple) and all(
+                isinstance(v, (bool, int, float, str)) for v in obj):  # signal_indices
+            parts.append(f"{name}={obj!r}{getattr(type(obj), '_fields', ())!r}".encode())
+    return b"\0".join(parts)
+
+
+def import_generated(name: str, text: str) -> ModuleType:
+    """Import generated source as module ``name`` from the kernel cache directory.
+
+    The file is written atomically (only if missing or different), so numba's on-disk cache
+    of its ``cache=True`` functions lives beside it; a module already imported is returned.
+
+    Parameters
+    ----------
+    name : str
+        Module name, unique for the text (e.g. ``seahelm_kernel_<hash>``).
+    text : str
+        Its Python source.
+
+    Returns
+    -------
+    module
+    """
+    if name in sys.modules:
+        return sys.modules[name]
+    path = kernel_cache_dir() / f"{name}.py"
+    if not path.exists() or path.read_text() != text:
+        fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
+        with os.fdopen(fd, "w") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    spec = importlib.util.spec_from_file_location(name, path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    return module
