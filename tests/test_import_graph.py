@@ -87,7 +87,7 @@ def test_the_scan_sees_imports_inside_functions():
     # scan still reports function-level imports (results imports plotting in .plot())
     assert "seahelm.numerics.periodic" in GRAPH["seahelm.vessels.cpp_ship"]
     assert "seahelm.plotting.timeseries" in GRAPH["seahelm.results"]
-    assert "seahelm.simulation.batch" not in GRAPH["seahelm.results"]  # TYPE_CHECKING only
+    assert "seahelm.vessels.base" not in GRAPH["seahelm.simulation.batch"]  # TYPE_CHECKING only
 
 
 def test_generic_numerics_import_no_component():

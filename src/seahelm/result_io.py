@@ -13,8 +13,8 @@ which are rebuilt from the file (same field names, units and symbols, in the fil
 named as in the file's ``param_types`` attribute) rather than imported, so that a file written
 by a generated or user-defined component reads back too.
 
-Lives above :mod:`seahelm.results` and :mod:`seahelm.simulation.batch` (it needs both, and
-the engine imports :mod:`seahelm.results`).
+Lives above :mod:`seahelm.results` and :mod:`seahelm.result_layout` (it needs both) and imports
+no simulation module: the layout classes are :mod:`seahelm.result_layout`'s.
 """
 
 from __future__ import annotations
@@ -27,9 +27,8 @@ import numpy as np
 
 from .errors import ParameterError
 from .parameters import Params, param
-from .result_layout import batch_dims, flatten_runs
+from .result_layout import BatchAxis, BatchLayout, BatchValues, batch_dims, flatten_runs
 from .results import SimResult, load_result
-from .simulation.batch import BatchAxis, BatchLayout, BatchValues
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr

@@ -1,7 +1,7 @@
 """Simulation results: :class:`SimResult` and its xarray / NetCDF / CSV forms.
 
 Results keep the shape of the question. ``SimResult.to_xarray()`` gives a Dataset whose
-dimensions are the batch's (its :class:`~seahelm.simulation.batch.BatchLayout`) and ``time``:
+dimensions are the batch's (its :class:`~seahelm.result_layout.BatchLayout`) and ``time``:
 ``(kp, kd, time)`` for a grid over two controller gains, with the grid values as coordinates
 (``attrs["key"]`` holds the full key path, e.g. ``controller.params.kp``); ``(sample, time)``
 for Monte-Carlo, with the drawn values as variables over ``sample`` (named by their key path);
@@ -39,12 +39,10 @@ import numpy as np
 from . import __version__
 from .parameters import Params
 from .errors import ParameterError
-from .result_layout import batch_dims, flatten_runs
+from .result_layout import BatchLayout, batch_dims, flatten_runs
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
-
-    from .simulation.batch import BatchLayout
 
 __all__ = ["SimResult", "atomic_write", "open_result_file", "load_result", "flatten_runs",
            "batch_dims"]
@@ -90,7 +88,7 @@ class SimResult:
     """The recorded runs of a batch simulation.
 
     The arrays have a leading flat ``run`` axis (C order over the batch dimensions);
-    ``layout`` (a :class:`~seahelm.simulation.batch.BatchLayout`, set by
+    ``layout`` (a :class:`~seahelm.result_layout.BatchLayout`, set by
     :func:`~seahelm.simulation.batch.simulate_batch`) gives the dimensions the runs span and
     shapes :meth:`to_xarray`. Without it the runs span one ``run`` dimension.
     """
@@ -115,7 +113,7 @@ class SimResult:
     failure_state: np.ndarray
     params: dict[str, tuple[type[Params], np.ndarray]]
     metadata: dict[str, Any]
-    layout: "BatchLayout | None" = None
+    layout: BatchLayout | None = None
     command_units: tuple[str, ...] = ()  # (the controller's recorded outputs have units)
 
     def __post_init__(self) -> None:
@@ -321,7 +319,7 @@ class SimResult:
         return plot_result(self.to_xarray(flat=True), runs=runs, fig=fig)
 
 
-def _shape_runs(ds: "xr.Dataset", layout: "BatchLayout") -> "xr.Dataset":
+def _shape_runs(ds: "xr.Dataset", layout: BatchLayout) -> "xr.Dataset":
     """The flat Dataset of :meth:`SimResult.to_xarray` with ``run`` reshaped to the layout."""
     import xarray as xr
 
