@@ -14,7 +14,13 @@ from rich import box
 from rich.markup import escape
 from rich.table import Table
 
-from ..analysis.statistics import DEFAULT_QUANTILES, metric_statistics, quantile_name
+from ..analysis.statistics import (
+    DEFAULT_QUANTILES,
+    batch_statistics,
+    group_runs,
+    numeric_keys,
+    quantile_name,
+)
 
 #: Rows shown in the per-run table of a batch (the JSON output has every run).
 MAX_ROWS = 20
@@ -118,7 +124,8 @@ def diverged_table(rows: list[dict[str, Any]]) -> Table:
 
 
 def monte_carlo_statistics(result: Any, summary: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    """Aggregate statistics of the metrics over the samples of a Monte-Carlo batch.
+    """Aggregate statistics of the metrics over the samples of a Monte-Carlo batch
+    (:func:`seahelm.analysis.statistics.batch_statistics`).
 
     One entry per grid point (a Monte-Carlo batch without a grid has one): the point's
     coordinates, its run and ok counts, the statistics of every numeric metric over its ok
@@ -129,26 +136,17 @@ def monte_carlo_statistics(result: Any, summary: list[dict[str, Any]]) -> list[d
     if layout is None or "sample" not in layout.dims:
         return []
     drawn = [v.name for v in layout.values]
-    skip = {"run", *layout.dims, *drawn}
-    metrics = [k for k, v in summary[0].items()
-               if k not in skip and isinstance(v, (int, float)) and not isinstance(v, bool)]
+    metrics = numeric_keys(summary[0], skip={"run", *layout.dims, *drawn})
     others = [d for d in layout.dims if d != "sample"]
-    groups: dict[tuple[Any, ...], list[int]] = {}
-    for i in range(len(summary)):
-        point = layout.point(i)
-        groups.setdefault(tuple(point[d] for d in others), []).append(i)
-    ok = np.asarray(result.status).reshape(-1) == 0
-    out = []
-    for key, runs in groups.items():
-        good = [i for i in runs if ok[i]]
-        entry: dict[str, Any] = {"point": dict(zip(others, key)), "n_runs": len(runs),
-                                 "n_ok": len(good)}
-        entry["metrics"] = metric_statistics(
-            {m: [float(summary[i][m]) for i in good] for m in metrics})
-        entry["drawn"] = metric_statistics(
-            {d: [float(summary[i][d]) for i in runs] for d in drawn})
-        out.append(entry)
-    return out
+    points = [layout.point(i) for i in range(len(summary))]
+    groups = group_runs(tuple(point[d] for d in others) for point in points)
+    stats = batch_statistics(
+        {m: [row[m] for row in summary] for m in metrics},
+        drawn={d: [row[d] for row in summary] for d in drawn},
+        ok=np.asarray(result.status).reshape(-1) == 0, groups=groups)
+    return [{"point": dict(zip(others, entry["key"])), "n_runs": entry["n_runs"],
+             "n_ok": entry["n_ok"], "metrics": entry["metrics"], "drawn": entry["drawn"]}
+            for entry in stats]
 
 
 def statistics_tables(stats: list[dict[str, Any]]) -> list[Table]:

@@ -316,17 +316,17 @@ def _summary_metrics(run_set: RunSet) -> list[str]:
                   cls="summary", caption=caption)]
 
 
-def _grid_groups(shaped: Any, n_runs: int) -> dict[str, np.ndarray]:
-    """The runs of each grid point of a Monte-Carlo batch (its batch dims other than
-    ``sample``), labelled by the point's coordinates; one group of all runs otherwise."""
+def _grid_labels(shaped: Any, n_runs: int) -> list[str]:
+    """Each run's grid point label of a Monte-Carlo batch (its batch dims other than
+    ``sample``, by their coordinates); "" for every run otherwise."""
     from ..result_layout import batch_dims
 
     dims = batch_dims(shaped)
     others = [k for k, d in enumerate(dims) if d != "sample"] if "sample" in dims else []
     if not others:
-        return {"": np.arange(n_runs)}
+        return [""] * n_runs
     index = np.unravel_index(np.arange(n_runs), [shaped.sizes[d] for d in dims])
-    groups: dict[str, list[int]] = {}
+    labels = []
     for i in range(n_runs):
         parts = []
         for k in others:
@@ -336,15 +336,21 @@ def _grid_groups(shaped: Any, n_runs: int) -> dict[str, np.ndarray]:
                 parts.append(coordinate_text(d, c.values[j].item(), str(c.attrs.get("units", ""))))
             else:
                 parts.append(f"{d} {j}")
-        groups.setdefault(", ".join(parts), []).append(i)
-    return {k: np.asarray(v) for k, v in groups.items()}
+        labels.append(", ".join(parts))
+    return labels
 
 
 def statistics_sections(data: ReportData) -> list[Section]:
     """Distribution of the summary metrics over the ok runs of a large or Monte-Carlo batch,
     per grid point of a grid × Monte-Carlo batch (the first :data:`MAX_STAT_GROUPS`):
-    quantile tables and histograms."""
-    from ..analysis.statistics import DEFAULT_QUANTILES, metric_statistics, quantile_name
+    quantile tables and histograms (:func:`seahelm.analysis.statistics.batch_statistics`)."""
+    from ..analysis.statistics import (
+        DEFAULT_QUANTILES,
+        batch_statistics,
+        group_runs,
+        numeric_keys,
+        quantile_name,
+    )
 
     sections = []
     for run_set in data.sets:
@@ -354,23 +360,23 @@ def statistics_sections(data: ReportData) -> list[Section]:
             continue
         summary = run_set.summary
         status = np.asarray(run_set.runs["status"].values).reshape(-1)
-        metrics = [k for k, v in summary[0].items() if k != "run"
-                   and isinstance(v, (int, float)) and not isinstance(v, bool)]
-        groups = _grid_groups(run_set.shaped, status.size)
+        metrics = numeric_keys(summary[0], skip={"run"})
+        groups = group_runs(_grid_labels(run_set.shaped, status.size))
         sec = Section(section_id("statistics", run_set, data), "Batch statistics")
-        shown = list(groups.items())[:MAX_STAT_GROUPS]
+        shown = dict(list(groups.items())[:MAX_STAT_GROUPS])
         qnames = [quantile_name(q) for q in DEFAULT_QUANTILES]
+        columns = {m: np.array([float(row[m]) for row in summary]) for m in metrics}
         rows, values_by_group = [], {}
         counts = []
-        for label, runs in shown:
-            ok = runs[status[runs] == 0]
-            counts.append(f"{label + ': ' if label else ''}{ok.size} ok of {runs.size}")
-            values = {m: np.array([float(summary[i][m]) for i in ok]) for m in metrics}
-            values_by_group[label] = values
-            if not ok.size:
+        for entry in batch_statistics(columns, ok=status == 0, groups=shown):
+            label, ok = entry["key"], entry["ok_runs"]
+            counts.append(f"{label + ': ' if label else ''}{entry['n_ok']} ok of "
+                          f"{entry['n_runs']}")
+            values_by_group[label] = {m: v[ok] for m, v in columns.items()}
+            if not entry["n_ok"]:
                 rows.append(([label] if label else []) + ["(no ok run: no metrics)"])
                 continue
-            for m, s in metric_statistics(values).items():
+            for m, s in entry["metrics"].items():
                 rows.append(([label] if label else []) + [m, s["n"], s["mean"], s["std"],
                                                           s["min"], *(s[q] for q in qnames),
                                                           s["max"]])
@@ -378,7 +384,7 @@ def statistics_sections(data: ReportData) -> list[Section]:
         if len(groups) > len(shown):
             note += f" (first {len(shown)} of {len(groups)} grid points)"
         sec.blocks.append(paragraph(note))
-        header = (["grid point"] if len(shown) > 1 or shown[0][0] else []) + [
+        header = (["grid point"] if len(shown) > 1 or next(iter(shown)) else []) + [
             "metric", "n", "mean", "std", "min", *qnames, "max"]
         sec.blocks.append(table(header, rows, cls="statistics"))
         fig = histogram_figure(values_by_group)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 import shutil
 import time
 from collections.abc import Callable
@@ -12,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from ..analysis.statistics import metric_statistics, quantile_name
 from ..errors import ParameterError
 from .chunks import SweepSpec, auto_chunk_size, check_chunk_size, prepared
 from .executors import executor
@@ -199,8 +201,9 @@ def _template(job: Any, series: bool) -> tuple[Any, dict[str, Any], tuple[str, .
 
 
 def summary_statistics(ds: Any) -> dict[str, Any]:
-    """Failure counts and, per metric, the count of finite values, mean, standard deviation,
-    minimum, quantiles (:data:`QUANTILES`) and maximum over the runs.
+    """Failure counts and, per metric, the count of finite values, mean, standard deviation
+    (population, ``ddof=0``), minimum, quantiles (:data:`QUANTILES`) and maximum over the runs
+    (:func:`seahelm.analysis.statistics.metric_statistics`).
 
     Metrics are the per-run variables with ``kind = "metric"`` (and a manoeuvre's metrics),
     for each position along their other dimensions (e.g. ``side``).
@@ -229,6 +232,7 @@ def summary_statistics(ds: Any) -> dict[str, Any]:
             flags = flags.all(axis=-1)
         out["n_ok"] = int(flags.sum())
         out["n_failed"] = int((~flags).sum())
+    qnames = [quantile_name(q) for q in QUANTILES]
     rows = []
     for name in sorted(ds.data_vars):  # (a store lists its arrays in no particular order)
         var = ds[name]
@@ -238,18 +242,12 @@ def summary_statistics(ds: Any) -> dict[str, Any]:
         rest = var.dims[1:]
         for idx in np.ndindex(*values.shape[1:]):
             where = ", ".join(f"{d}={_coord(ds, d, i)}" for d, i in zip(rest, idx))
-            column = values[(slice(None), *idx)]
-            finite = column[np.isfinite(column)]
-            row: dict[str, Any] = {"name": name, "where": where, "n": int(finite.size),
+            s = metric_statistics({name: values[(slice(None), *idx)]}, quantiles=QUANTILES,
+                                  ddof=0)[name]
+            row: dict[str, Any] = {"name": name, "where": where, "n": s["n"],
                                    "units": var.attrs.get("units", "")}
-            if finite.size:
-                qs = np.quantile(finite, QUANTILES)
-                row.update(mean=float(finite.mean()), std=float(finite.std()),
-                           min=float(finite.min()), max=float(finite.max()))
-                row.update({f"q{round(100 * q):02d}": float(v) for q, v in zip(QUANTILES, qs)})
-            else:
-                row.update({k: None for k in ("mean", "std", "min", "max")})
-                row.update({f"q{round(100 * q):02d}": None for q in QUANTILES})
+            row.update({k: None if math.isnan(s[k]) else s[k]
+                        for k in ("mean", "std", "min", "max", *qnames)})
             rows.append(row)
     out["metrics"] = rows
     return out
