@@ -1,1 +1,2 @@
-"""Generic numerics under the components: no ship, no paper (quadrature over a period, …)."""
+"""Generic numerics under the components: no ship, no paper (quadrature over a period, sampling,
+explicit Runge–Kutta tableaus and their batched step, …)."""
