@@ -14,6 +14,7 @@ re-exports it for the engine.
 from __future__ import annotations
 
 import importlib.util
+import linecache
 import marshal
 import os
 import sys
@@ -26,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["kernel_cache_dir", "code_fingerprint", "import_generated"]
+__all__ = ["kernel_cache_dir", "code_fingerprint", "import_generated", "exec_generated"]
 
 
 def kernel_cache_dir() -> Path:
@@ -126,4 +127,36 @@ def import_generated(name: str, text: str) -> ModuleType:
     module = importlib.util.module_from_spec(spec)
     sys.modules[name] = module
     spec.loader.exec_module(module)
+    return module
+
+
+def exec_generated(name: str, text: str) -> ModuleType:
+    """Run generated source as a module ``name`` in memory (nothing is written to disk).
+
+    For the pure-Python closed loop: the module is registered in ``sys.modules`` (so generated
+    code imports from it by name, and a module already there is returned) but leaves no file in
+    :func:`kernel_cache_dir` (numba's cache therefore has nowhere to go either). Its
+    text is registered with :mod:`linecache` under the file name ``<name>``, so a debugger
+    steps through it and a traceback shows its lines.
+
+    Parameters
+    ----------
+    name : str
+        Module name (e.g. ``seahelm_python_loop_<hash>``).
+    text : str
+        Its Python source.
+
+    Returns
+    -------
+    module
+    """
+    if name in sys.modules:
+        return sys.modules[name]
+    filename = f"<{name}>"
+    # (no modification time: linecache.checkcache leaves the entry alone)
+    linecache.cache[filename] = (len(text), None, text.splitlines(keepends=True), filename)
+    module = ModuleType(name)
+    module.__file__ = filename
+    sys.modules[name] = module
+    exec(compile(text, filename, "exec"), module.__dict__)
     return module

@@ -12,6 +12,12 @@ per RK4 step, not inlined, put the engine at 74–77 % of a hand-fused kernel.
 ``inline="always"`` copies of every numba function it names, recursively. The originals are
 untouched (components keep their own ``cache=True`` dispatchers for direct use).
 
+:func:`python_function` is its plain-Python twin, for the pure-Python closed loop
+(``simulate(..., jit=False)``): a copy of the component's Python function whose globals see
+Python twins of every numba function it names, so nothing is compiled and a breakpoint in the
+component's source is hit. :func:`no_jit` and :func:`record_in_place` stand in for ``njit`` and
+:func:`local_record` there.
+
 :func:`local_record` is the other half of what the inlined loop needs to be fast: each run's
 parameter record copied onto the stack, so that LLVM can keep the parameters (and what the
 components compute from them alone) out of the step loop.
@@ -30,7 +36,54 @@ from numba.core.dispatcher import Dispatcher
 from numba.core.imputils import impl_ret_borrowed
 from numba.extending import intrinsic
 
-__all__ = ["inline_always", "inlined_size", "local_record"]
+__all__ = ["inline_always", "inlined_size", "local_record", "python_function", "no_jit",
+           "record_in_place", "is_numba_function", "py_func_of"]
+
+
+def is_numba_function(obj: Any) -> bool:
+    """Whether ``obj`` is a function of numba's: a dispatcher, or any plain function while
+    numba's JIT is disabled (``NUMBA_DISABLE_JIT=1``: ``njit`` then returns the function
+    itself, and the components call each other as plain functions).
+
+    Parameters
+    ----------
+    obj : object
+
+    Returns
+    -------
+    bool
+    """
+    if isinstance(obj, Dispatcher):
+        return True
+    from numba.core import config
+
+    return bool(config.DISABLE_JIT) and isinstance(obj, types.FunctionType)
+
+
+def py_func_of(func: Any) -> types.FunctionType:
+    """The Python function of a numba dispatcher (its ``py_func``), or a plain function itself
+    (what ``njit`` returns with numba's JIT disabled).
+
+    Parameters
+    ----------
+    func : numba dispatcher or function
+
+    Returns
+    -------
+    function
+    """
+    return getattr(func, "py_func", func)
+
+
+def _copy(py: types.FunctionType, glb: dict[str, Any],
+          closure: tuple[Any, ...] | None) -> types.FunctionType:
+    """``py`` with other globals (and closure cells): the same code object, so a breakpoint
+    or a tracer set on the original's lines sees the copy run."""
+    clone = types.FunctionType(py.__code__, glb, py.__name__, py.__defaults__, closure)
+    clone.__qualname__ = py.__qualname__
+    clone.__doc__ = py.__doc__
+    clone.__kwdefaults__ = py.__kwdefaults__
+    return clone
 
 
 def _names(code: types.CodeType) -> set[str]:
@@ -54,6 +107,7 @@ def inlined_size(func: Dispatcher) -> int:
     Parameters
     ----------
     func : numba dispatcher
+        (or, with numba's JIT disabled, the plain function ``njit`` returned)
 
     Returns
     -------
@@ -67,14 +121,14 @@ def inlined_size(func: Dispatcher) -> int:
         if id(f) in seen:
             continue
         seen.add(id(f))
-        py = f.py_func
+        py = py_func_of(f)
         codes = [py.__code__]
         while codes:
             c = codes.pop()
             total += sum(1 for _ in dis.get_instructions(c))
             codes.extend(k for k in c.co_consts if isinstance(k, types.CodeType))
         todo.extend(obj for name in _names(py.__code__)
-                    if isinstance(obj := py.__globals__.get(name), Dispatcher))
+                    if is_numba_function(obj := py.__globals__.get(name)))
     return total
 
 
@@ -108,13 +162,97 @@ def _inline(func: Dispatcher, memo: dict[int, Any]) -> Dispatcher:
         obj = glb.get(name)
         if isinstance(obj, Dispatcher) and obj is not func:
             glb[name] = _inline(obj, memo)
-    clone = types.FunctionType(py.__code__, glb, py.__name__, py.__defaults__, py.__closure__)
-    clone.__qualname__ = py.__qualname__
-    clone.__doc__ = py.__doc__
-    clone.__kwdefaults__ = py.__kwdefaults__
-    out = njit(inline="always")(clone)
+    out = njit(inline="always")(_copy(py, glb, py.__closure__))
     memo[key] = out
     return out
+
+
+def python_function(func: Any) -> types.FunctionType:
+    """The plain-Python twin of :func:`inline_always`: ``func``'s Python function, calling the
+    Python functions of the numba functions it names.
+
+    A copy of ``func.py_func`` (the same code object, so a breakpoint in the component's
+    source is hit) whose globals and closure cells see the twins of every numba function they
+    hold, recursively: calling it compiles nothing, and no numba cache is written.
+
+    Parameters
+    ----------
+    func : numba dispatcher or function
+        A function decorated with ``@njit`` (with numba's JIT disabled, the plain function).
+
+    Returns
+    -------
+    function
+        A plain Python function; a function that calls itself calls its own twin.
+    """
+    return _python_twin(func, {})
+
+
+def _python_twin(func: Any, memo: dict[int, types.FunctionType]) -> types.FunctionType:
+    key = id(func)
+    if key in memo:
+        return memo[key]
+    py = py_func_of(func)
+    glb = dict(py.__globals__)
+    # a component made by a factory holds its helpers in closure cells: new cells for those
+    old_cells = py.__closure__ or ()
+    cells = tuple(types.CellType() if is_numba_function(_cell_contents(c)) else c
+                  for c in old_cells)
+    # the copy is registered before its globals and cells are filled in: a recursion finds
+    # its twin
+    memo[key] = twin = _copy(py, glb, cells if py.__closure__ is not None else None)
+    for new, old in zip(cells, old_cells):
+        if new is not old:
+            new.cell_contents = _python_twin(old.cell_contents, memo)
+    for name in _names(py.__code__):
+        obj = glb.get(name)
+        if obj is not func and is_numba_function(obj):
+            glb[name] = _python_twin(obj, memo)
+        elif obj is func:
+            glb[name] = twin
+    return twin
+
+
+def _cell_contents(cell: types.CellType) -> Any:
+    try:
+        return cell.cell_contents
+    except ValueError:  # an empty cell
+        return None
+
+
+def no_jit(*args: Any, **options: Any) -> Any:
+    """A stand-in for ``njit`` that leaves a function as it is (``@no_jit`` or
+    ``@no_jit(cache=True, ...)``), for the pure-Python closed loop.
+
+    Parameters
+    ----------
+    *args
+        The function, when used without options.
+    **options
+        ``njit``'s options (ignored).
+
+    Returns
+    -------
+    function or decorator
+    """
+    if len(args) == 1 and callable(args[0]) and not options:
+        return args[0]
+    return lambda func: func
+
+
+def record_in_place(rec: Any) -> Any:
+    """:func:`local_record` in plain Python: the record itself (read in place; the compiled
+    stack copy is only for speed).
+
+    Parameters
+    ----------
+    rec : numpy.record or any
+
+    Returns
+    -------
+    The same object.
+    """
+    return rec
 
 
 @intrinsic
