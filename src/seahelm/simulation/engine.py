@@ -24,10 +24,16 @@ solution under the held command, so a 0.1 s steering-gear lag does not bound the
 A run whose state turns NaN/inf or leaves its declared bounds stops and is recorded with its
 status, time and state; the other runs go on (``throw=True`` raises
 :class:`~seahelm.errors.SimulationDiverged` instead).
+
+For debugging, ``simulate(..., jit=False)`` (or ``SEAHELM_DISABLE_JIT=1``, or numba's own
+``NUMBA_DISABLE_JIT=1``) runs the same generated module as plain Python, in memory, with the
+components' Python functions bound in (:data:`PYTHON_HEADER`): a breakpoint in a model's
+``rhs`` is hit, and nothing is compiled or cached.
 """
 
 from __future__ import annotations
 
+import contextlib
 import enum
 import functools
 import hashlib
@@ -38,7 +44,7 @@ import time as _time
 from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
-from types import ModuleType
+from types import FunctionType, ModuleType
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -54,8 +60,13 @@ from ..parameters import Params, as_records, stack_params
 from ..vessels.base import VesselModel
 from .compiled_step import compiled_advance_source, compiled_stage_loop_source
 from .composition import compose
-from .environment_stage import environment_stage, no_apply_loads, no_environment_loads
-from .generated import code_fingerprint, import_generated, kernel_cache_dir
+from .environment_stage import (
+    environment_stage,
+    no_apply_loads,
+    no_environment_loads,
+    python_environment_stage,
+)
+from .generated import code_fingerprint, exec_generated, import_generated, kernel_cache_dir
 from .inlining import inlined_size
 from .integrators import ButcherTableau, get_integrator
 
@@ -63,6 +74,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..results import SimResult
 
 __all__ = ["RunStatus", "simulate", "compile_closed_loop", "STAGE_LOOP_ABOVE", "kernel_cache_dir",
+           "jit_enabled",
            "import_generated", "code_fingerprint",
            "check_record_memory", "physical_memory", "RecordingTooLarge"]
 
@@ -78,8 +90,10 @@ class RunStatus(enum.IntEnum):
 # ------------------------------------------------------------------------------------------
 # kernel generation
 # ------------------------------------------------------------------------------------------
-def _binding(func: Any, alias: str, inline: bool = True) -> tuple[str, bytes]:
+def _binding(func: Any, alias: str, inline: bool = True, jit: bool = True) -> tuple[str, bytes]:
     py = getattr(func, "py_func", None)
+    if py is None and not jit and isinstance(func, FunctionType):
+        py = func  # the pure-Python loop (numba's JIT disabled: njit returned the function)
     if py is None:
         raise TypeError(f"{alias} must be a numba @njit function, got {func!r}")
     module, name = py.__module__, py.__name__
@@ -88,7 +102,7 @@ def _binding(func: Any, alias: str, inline: bool = True) -> tuple[str, bytes]:
         raise TypeError(
             f"{alias} '{module}.{name}' must be importable as a module-level name"
         )
-    if not inline:  # called, not inlined (compiled once, with _nrt=False, by its module)
+    if not inline and jit:  # called, not inlined (compiled once, with _nrt=False, by its module)
         return f"from {module} import {name} as {alias}\n", code_fingerprint(py)
     # re-jit the component, and every numba function it calls, with inline="always": numba
     # then inlines them at IR level into the loop, which lets LLVM optimise across the
@@ -99,6 +113,57 @@ def _binding(func: Any, alias: str, inline: bool = True) -> tuple[str, bytes]:
 
 
 _TEMPLATE_TEXT = (Path(__file__).with_name("kernel_template.py")).read_text()
+
+#: The first lines of the header of a pure-Python loop (``compile_closed_loop(jit=False)``):
+#: after the template's imports, they rebind ``njit``, ``inline_always`` and ``local_record``
+#: to their plain-Python stand-ins, so the rest of the module is the compiled loop's text.
+PYTHON_HEADER = (
+    "# the pure-Python loop (simulate(jit=False)): njit leaves the functions below as they\n"
+    "# are, the components are their Python functions, a parameter record is read in place\n"
+    "from seahelm.simulation.inlining import no_jit as njit\n"
+    "from seahelm.simulation.inlining import python_function as inline_always\n"
+    "from seahelm.simulation.inlining import record_in_place as local_record\n\n"
+)
+
+#: Values of ``SEAHELM_DISABLE_JIT`` that leave the JIT on (any other non-empty value turns the
+#: pure-Python loop on).
+_OFF = ("", "0", "false", "no", "off")
+
+
+def _numba_jit_disabled() -> bool:
+    from numba.core import config
+
+    return bool(config.DISABLE_JIT)
+
+
+def jit_enabled(jit: bool | None = None) -> bool:
+    """Whether :func:`simulate` runs the compiled loop (``True``) or the pure-Python one.
+
+    Parameters
+    ----------
+    jit : bool, optional
+        The caller's choice. Default: compiled, unless ``SEAHELM_DISABLE_JIT`` is set (to
+        anything but empty, ``0``, ``false``, ``no`` or ``off``) or numba's own JIT is disabled
+        (``NUMBA_DISABLE_JIT=1``, read by numba when it is imported).
+
+    Returns
+    -------
+    bool
+
+    Raises
+    ------
+    ParameterError
+        If ``jit`` is not True, False or None, or is True while numba's JIT is disabled.
+    """
+    if jit is None:
+        off = os.environ.get("SEAHELM_DISABLE_JIT", "").strip().lower() not in _OFF
+        return not (off or _numba_jit_disabled())
+    if not isinstance(jit, (bool, np.bool_)):
+        raise ParameterError(f"`jit` must be True, False or None, got {jit!r}")
+    if jit and _numba_jit_disabled():
+        raise ParameterError("`jit` = True, but numba's JIT is disabled (NUMBA_DISABLE_JIT=1): "
+                             "nothing can be compiled in this process")
+    return bool(jit)
 _BLOCK = re.compile(r"# <(header|footer)>\n.*?# </\1>\n", re.S)
 
 #: Step code size (bytecode instructions of the model's and the actuator's right-hand sides and
@@ -125,7 +190,7 @@ STAGE_LOOP_ABOVE = 1850
 
 
 def _stage_code_size(model: VesselModel, actuator: Actuator, tableau: ButcherTableau,
-                     environment: Any, exact_actuator: bool = False) -> int:
+                     environment: Any, exact_actuator: bool = False, jit: bool = True) -> int:
     """The code a written-out step makes numba compile (see :data:`STAGE_LOOP_ABOVE`): what
     each stage inlines, times the stages, plus the environment's loads (compiled once, as a
     function of their own, but in the same compile the user waits for)."""
@@ -133,7 +198,8 @@ def _stage_code_size(model: VesselModel, actuator: Actuator, tableau: ButcherTab
                  + inlined_size(actuator.advance if exact_actuator else actuator.rhs))
     once = 0
     if environment is not None:
-        loads, apply = environment_stage(environment, model)
+        loads, apply = (environment_stage if jit else python_environment_stage)(environment,
+                                                                                  model)
         per_stage += inlined_size(apply)
         once = inlined_size(loads)
     return tableau.stages * per_stage + once
@@ -154,6 +220,7 @@ def compile_closed_loop(
     environment: Any = None,
     stage_loop: bool | None = None,
     exact_actuator: bool | None = None,
+    jit: bool = True,
 ) -> ModuleType:
     """The compiled closed-loop module for one combination of components (cached).
 
@@ -181,12 +248,26 @@ def compile_closed_loop(
         (``actuator.advance``: exact under the held command, and no stability bound on the
         step from a fast servo) instead of integrating ``actuator.rhs`` with the tableau.
         Default: whenever the actuator has one.
+    jit : bool
+        ``False``: the same generated module as plain Python (:data:`PYTHON_HEADER`), run in
+        memory: ``njit`` leaves its functions as they are and the components are bound as their
+        Python functions (:func:`~seahelm.simulation.inlining.python_function`), so nothing is
+        compiled, nothing is written to the kernel cache or numba's, and a breakpoint in a
+        component's source is hit. The stages are written out or looped over as compiled.
 
     Returns
     -------
     module
         The imported kernel module (``init_runs``, ``run_slice``, ``scratch``).
+
+    Raises
+    ------
+    ValueError
+        If ``exact_actuator`` asks for a closed-form step the actuator lacks, or ``jit`` is
+        True while numba's JIT is disabled (``NUMBA_DISABLE_JIT=1``).
     """
+    if jit and _numba_jit_disabled():
+        raise ValueError("jit: numba's JIT is disabled (NUMBA_DISABLE_JIT=1); pass jit=False")
     tableau = get_integrator(integrator)
     wiring = compose(model, actuator, controller)
     if exact_actuator is None:
@@ -195,24 +276,25 @@ def compile_closed_loop(
         raise ValueError(f"exact_actuator: the actuator {actuator.name!r} has no closed-form "
                          "step (advance)")
     parts = [
-        _binding(model.rhs, "model_rhs"),
-        _binding(model.output, "model_output"),
-        _binding(actuator.rhs, "actuator_rhs"),
-        _binding(actuator.output, "actuator_output"),
-        _binding(controller.init, "controller_init"),
-        _binding(controller.step, "controller_step"),
+        _binding(model.rhs, "model_rhs", jit=jit),
+        _binding(model.output, "model_output", jit=jit),
+        _binding(actuator.rhs, "actuator_rhs", jit=jit),
+        _binding(actuator.output, "actuator_output", jit=jit),
+        _binding(controller.init, "controller_init", jit=jit),
+        _binding(controller.step, "controller_step", jit=jit),
     ]
     if exact_actuator:
-        parts.append(_binding(actuator.advance, "actuator_advance"))
+        parts.append(_binding(actuator.advance, "actuator_advance", jit=jit))
     loads, apply = ((no_environment_loads, no_apply_loads) if environment is None
-                    else environment_stage(environment, model))
+                    else (environment_stage if jit else python_environment_stage)(environment,
+                                                                                  model))
     # the environment's loads are called, not inlined: inlined at every stage and record site
     # they doubled the loop's compile time (76 s against 31 s for the KVLCC2), and a call
     # costs little beside their transcendental functions
-    parts += [_binding(loads, "environment_loads", inline=environment is None),
-              _binding(apply, "apply_loads")]
+    parts += [_binding(loads, "environment_loads", inline=environment is None, jit=jit),
+              _binding(apply, "apply_loads", jit=jit)]
     n_env = 0 if environment is None else len(environment.output_labels)
-    header = "".join(p[0] for p in parts) + (
+    header = ("" if jit else PYTHON_HEADER) + "".join(p[0] for p in parts) + (
         f"\nNX = {model.n_states}\nNA = {actuator.n_states}\nNU = {model.n_inputs}\n"
         f"NYM = {model.n_outputs + n_env}\nNYA = {len(wiring.actuator_outputs)}\n"
         f"NCA = {len(wiring.actuator_commands)}\nNM = {controller.n_measurements}\n"
@@ -230,7 +312,7 @@ def compile_closed_loop(
         f"y[{i}] = ym[{j}]" for i, j in enumerate(wiring.measurement_from)])
     if stage_loop is None:
         stage_loop = _stage_code_size(model, actuator, tableau, environment,
-                                      exact_actuator) > STAGE_LOOP_ABOVE
+                                      exact_actuator, jit) > STAGE_LOOP_ABOVE
     footer = (compiled_stage_loop_source if stage_loop else compiled_advance_source)(
         tableau, exact_actuator)
     blocks = iter([header, footer])
@@ -238,6 +320,8 @@ def compile_closed_loop(
     digest = hashlib.sha1(
         b"\0".join([text.encode(), __version__.encode(), *(p[1] for p in parts)])
     ).hexdigest()[:16]
+    if not jit:
+        return exec_generated(f"seahelm_python_loop_{digest}", text)
     return import_generated(f"seahelm_kernel_{digest}", text)
 
 
@@ -249,11 +333,12 @@ class _Slices:
     more threads than runs (a single run stays in the calling thread). ``numba.set_num_threads``
     and ``NUMBA_NUM_THREADS`` set the number of threads, as for any numba parallel code.
 
-    Every slice has its own scratch buffers (the kernel allocates nothing).
+    Every slice has its own scratch buffers (the kernel allocates nothing). ``threads`` caps
+    the threads (the pure-Python loop runs in the calling thread: ``threads=1``).
     """
 
     def __init__(self, kernel: ModuleType, arrays: Sequence[np.ndarray],
-                 scratch_sizes: tuple[int, ...]) -> None:
+                 scratch_sizes: tuple[int, ...], threads: int | None = None) -> None:
         import numba
 
         self.kernel = kernel
@@ -261,7 +346,8 @@ class _Slices:
         # numba types a read-only array apart from a writable one: a kernel called with both
         # (a broadcast view of one run, say) would compile twice, each 15-80 s
         self.arrays = tuple(a if a.flags.writeable else a.copy() for a in arrays)
-        self.threads = max(1, min(numba.get_num_threads(), n_runs))
+        self.threads = max(1, min(numba.get_num_threads() if threads is None else threads,
+                                  n_runs))
         n_slices = 1 if self.threads == 1 else min(n_runs, 4 * self.threads)
         self.cuts = (np.array([0, n_runs]) if n_slices == 1 else
                      np.linspace(0, n_runs, n_slices + 1).round().astype(np.int64))
@@ -513,6 +599,7 @@ def simulate(
     environment: Any = None,
     environment_params: Params | Sequence[Params] | np.ndarray | None = None,
     exact_actuator: bool | None = None,
+    jit: bool | None = None,
 ) -> "SimResult":
     """Simulate a batch of closed-loop runs.
 
@@ -573,6 +660,19 @@ def simulate(
         the closed form, to reproduce older results); see :func:`compile_closed_loop`. The
         result's ``metadata["actuator_step"]`` says which (``"closed-form"`` or
         ``"integrated"``).
+    jit : bool, optional
+        Run the compiled loop (``True``) or the same loop as plain Python (``False``), for
+        debugging: the components run as their Python functions, so a breakpoint in a model's
+        ``rhs`` (``breakpoint()``, or ``b seahelm/vessels/mmg.py:LINE`` in pdb) stops there,
+        an index out of range raises instead of reading memory, and nothing is compiled or
+        written to the kernel cache. It runs in the calling thread at some 10³-10⁴ steps/s
+        (KVLCC2 MMG 1.1e3, Nomoto-2 + PID 7.6e3): meant for a few runs of some hundred steps.
+        The results agree with the compiled loop's to rounding (the compiled loop may fuse
+        and reorder floating-point operations; 1e-12 on short runs of every model, tested).
+        Default: compiled, unless the environment variable ``SEAHELM_DISABLE_JIT`` is set
+        (to anything but empty, ``0``, ``false``, ``no`` or ``off``) or numba's JIT is
+        disabled (``NUMBA_DISABLE_JIT=1``); see :func:`jit_enabled`. The result's
+        ``metadata["execution"]`` says which loop ran (``"compiled"`` or ``"python"``).
 
     Returns
     -------
@@ -587,6 +687,7 @@ def simulate(
     """
     from ..results import SimResult
 
+    use_jit = jit_enabled(jit)
     check_positive("dt", dt, "s")
     check_positive("t_final", t_final, "s")
     n_steps = _steps(float(t_final), float(dt))
@@ -615,7 +716,8 @@ def simulate(
         env_output_units: tuple[str, ...] = ()
         ep, e_cls = np.zeros((1, 1)), None
     else:
-        environment_stage(environment, model)  # checks the model has what the loads need
+        # checks the model has what the loads need
+        (environment_stage if use_jit else python_environment_stage)(environment, model)
         env_signals, env_units = environment.signal_labels, environment.signal_units
         env_outputs, env_output_units = environment.output_labels, environment.output_units
         ep, e_cls = _param_rows("environment_params", environment_params,
@@ -699,7 +801,7 @@ def simulate(
         raise ParameterError(f"`exact_actuator`: the actuator '{actuator.name}' has no "
                              "closed-form step")
     kernel = compile_closed_loop(model, actuator, controller, tableau, environment,
-                                 exact_actuator=bool(exact_actuator))
+                                 exact_actuator=bool(exact_actuator), jit=use_jit)
     mr = as_records(mp, m_cls)
     ar = as_records(ap, a_cls)
     cr = as_records(cp, c_cls)
@@ -722,12 +824,19 @@ def simulate(
 
     slices = _Slices(kernel, (z, cs, cmd, ca, mr, ar, cr, er, dist, ref, lower, upper,
                               status, t_fail, z_fail, rec_z, rec_y, rec_cmd),
-                     (ncmd, ca.shape[1], cs.shape[1], dist.shape[2], ref.shape[2]))
+                     (ncmd, ca.shape[1], cs.shape[1], dist.shape[2], ref.shape[2]),
+                     threads=None if use_jit else 1)
     # compile or load the kernel before the clock starts: a zero-step call does it, so the
     # reported simulation time is the simulation's (first use of a combination compiles)
     c0 = _time.perf_counter()
-    slices.warm_up(n_steps, float(dt), ctrl_every, record_every)
-    kernel.init_runs(*slices.arrays[:10], *slices.scratch[0])
+    # the pure-Python loop's numpy scalars warn where the compiled loop silently makes inf/NaN
+    # (then recorded as the run's divergence, as compiled)
+    def quiet() -> Any:
+        return contextlib.nullcontext() if use_jit else np.errstate(all="ignore")
+
+    with quiet():
+        slices.warm_up(n_steps, float(dt), ctrl_every, record_every)
+        kernel.init_runs(*slices.arrays[:10], *slices.scratch[0])
     compile_time = _time.perf_counter() - c0
     wall0 = _time.perf_counter()
     k = 0
@@ -735,7 +844,8 @@ def simulate(
     while k < n_steps:
         k_stop = min(n_steps, k + chunk)
         t0 = _time.perf_counter()
-        slices.run(k, k_stop, n_steps, float(dt), ctrl_every, record_every)
+        with quiet():
+            slices.run(k, k_stop, n_steps, float(dt), ctrl_every, record_every)
         elapsed = _time.perf_counter() - t0
         done, k = k_stop - k, k_stop
         if progress is not None:
@@ -782,6 +892,7 @@ def simulate(
             "controller": controller.name,
             "integrator": tableau.name,
             "actuator_step": "closed-form" if exact_actuator else "integrated",
+            "execution": "compiled" if use_jit else "python",
             **({} if environment is None else {"environment": environment.name}),
             "dt": float(dt),
             "controller_dt": ctrl_dt,
