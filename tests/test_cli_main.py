@@ -261,5 +261,5 @@ def test_engine_error_in_a_scenario_exits_2_naming_file_and_key(tmp_path):
     bad.write_text(GRID_SCENARIO.replace("t_final = 20.0", "t_final = 20.05"))
     res = runner.invoke(app, ["run", str(bad)])
     assert res.exit_code == 2
-    assert f"{bad}: [simulation.t_final] `t_final` must be a positive whole multiple" in res.stderr
+    assert f"{bad}: [simulation.t_final] must be a positive whole multiple" in res.stderr
     assert res.stdout == ""

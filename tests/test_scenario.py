@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from seahelm.errors import ValidityRangeWarning
+from seahelm.errors import ParameterError, ValidityRangeWarning
 
 from seahelm.scenario import ManeuverJob, ScenarioError, default_scenario_text, load_scenario, parse_scenario, run_scenario
 
@@ -73,17 +73,17 @@ def test_default_scenario_is_valid_and_converts_degrees():
         (_with(replace=("heading_deg = 10.0", 'heading = { kind = "square" }')),
          r"\[controller.reference.heading\] unknown signal kind 'square'; valid: constant"),
         (_with(replace=("t_final = 20.0", "t_final = 20.05")),
-         r"s.toml: \[simulation.t_final\] `t_final` must be a positive whole multiple of `dt` "
+         r"s.toml: \[simulation.t_final\] must be a positive whole multiple of `dt` "
          r"\[s\]: t_final=20.05, dt=0.1"),
         (_with(replace=("t_final = 20.0", "t_final = -5")),
          r"\[simulation.t_final\] must be > 0 \[s\], got -5"),
         (_with(replace=("dt = 0.1", 'dt = "fast"')),
          r"\[simulation.dt\] must be a number \[s\] \(not a string or a boolean\), got 'fast'"),
         (_with(replace=('model = "pid-heading"', 'model = "pid-heading"\ndt = 0.25'),),
-         r"s.toml: \[controller.dt\] `controller_dt` must be a positive whole multiple of `dt` "
+         r"s.toml: \[controller.dt\] must be a positive whole multiple of `dt` "
          r"\[s\]: controller_dt=0.25, dt=0.1"),
         (_with(replace=("dt = 0.1", "dt = 0.1\nrecord_every = 500")),
-         r"s.toml: \[simulation.record_every\] `record_every` = 500 exceeds the number of steps "
+         r"s.toml: \[simulation.record_every\] = 500 exceeds the number of steps "
          r"\(200 = t_final/dt\): nothing after t = 0 would be recorded"),
         (_with(replace=("dt = 0.1", 'dt = 0.1\nintegrator = "rk5"')),
          r"s.toml: \[simulation.integrator\] unknown integrator 'rk5'; "
@@ -95,7 +95,7 @@ def test_default_scenario_is_valid_and_converts_degrees():
         (_with("[environment.disturbance]\nwave = 1.0\n"),
          r"\[environment.disturbance.wave\] unknown channel 'wave'; valid: rudder_disturbance"),
         (_with("[simulation.bounds]\nspeed = [0, 1]\n"),
-         r"s.toml: \[simulation.bounds.speed\] `bounds`: unknown state 'speed'; states: north"),
+         r"s.toml: \[simulation.bounds.speed\] is an unknown state; states: north"),
         (_with("[batch.grid]\n\"vessel.colour\" = [1.0]\n"),
          r"\[batch.vessel.colour\] cannot vary 'vessel.colour'"),
         (_with("[batch.grid]\n\"vessel.params.gain\" = [0.1, -0.2]\n"),
@@ -376,43 +376,70 @@ def test_grid_times_monte_carlo_is_grid_dims_then_sample():
     np.testing.assert_array_equal(batch.controller_params[:, 0], [1.0] * 5 + [2.0] * 5)
 
 
-# -- one validator: the engine -------------------------------------------------------------
+# -- one validator: the Problem; the key from the error's field, never from its words -------
 @pytest.mark.parametrize(
-    ("edit", "key"),
+    ("edit", "key", "field"),
     [
-        (("t_final = 20.0", "t_final = 20.05"), "simulation.t_final"),
-        (('model = "pid-heading"', 'model = "pid-heading"\ndt = 0.25'), "controller.dt"),
-        (("dt = 0.1", "dt = 0.1\n[simulation.bounds]\nspeed = [0, 1]"), "simulation.bounds.speed"),
+        (("t_final = 20.0", "t_final = 20.05"), "simulation.t_final", "t_final"),
+        (('model = "pid-heading"', 'model = "pid-heading"\ndt = 0.25'), "controller.dt",
+         "controller_dt"),
+        (("dt = 0.1", "dt = 0.1\n[simulation.bounds]\nspeed = [0, 1]"), "simulation.bounds.speed",
+         "bounds.speed"),
     ],
 )
-def test_engine_checks_are_made_once_by_the_engine(edit, key):
+def test_the_problem_checks_once_and_the_scenario_names_the_key(edit, key, field):
     from seahelm.errors import ParameterError
-    from seahelm.simulation.engine import simulate
+    from seahelm.simulation.problem import Problem
 
-    batch = parse_scenario(_with(replace=edit), source="s.toml")  # the scenario lets it through
-    with pytest.raises(ParameterError) as engine:
-        simulate(**batch.simulate_kwargs())
     with pytest.raises(ScenarioError) as scenario:
-        run_scenario(batch)
-    assert str(scenario.value) == f"s.toml: [{key}] {engine.value}"
-    assert isinstance(scenario.value.__cause__, ParameterError)
+        parse_scenario(_with(replace=edit), source="s.toml")
+    cause = scenario.value.__cause__
+    assert isinstance(cause, ParameterError) and cause.field == field
+    assert str(scenario.value) == f"s.toml: [{key}] {cause.reason.lstrip(': ')}"
+    # the same check from Python names the Problem's field
+    good = parse_scenario(_with(), source="s.toml")
+    kwargs = good.simulate_kwargs()
+    with pytest.raises(ParameterError) as direct:
+        Problem(**_changed(kwargs, field))
+    assert direct.value.field == field
 
 
-def test_miswiring_comes_from_the_engine_with_the_key():
+def _changed(kwargs, field):
+    changes = {"t_final": {"t_final": 20.05}, "controller_dt": {"controller_dt": 0.25},
+               "bounds.speed": {"bounds": {"speed": (0, 1)}}}[field]
+    return {**kwargs, **changes}
+
+
+def test_attribution_survives_reworded_messages(monkeypatch):
+    # reword the problem's timing message: the scenario still names the key, from the field
+    import seahelm.simulation.problem as problem
+    from seahelm.errors import ParameterError
+
+    def reworded(t_final, dt, what="t_final"):
+        raise ParameterError("is not what I wanted at all", field=what)
+
+    monkeypatch.setattr(problem, "steps", reworded)
+    with pytest.raises(ScenarioError, match=r"^s.toml: \[simulation.t_final\] is not what I "
+                                            r"wanted at all$"):
+        parse_scenario(_with(), source="s.toml")
+
+
+def test_miswiring_comes_from_the_problem_with_the_key():
     import dataclasses
 
     batch = parse_scenario(_with(), source="s.toml")
     two = dataclasses.replace(batch.controller, command_labels=("a", "b"))
-    with pytest.raises(ScenarioError, match=r"s.toml: \[controller.model\] model 'nomoto2', "
-                                            r"actuator 'rudder-servo', controller 'pid-heading': "
-                                            r"actuator channel 'rudder_command' gets no command; "
-                                            r"the controller gives a, b"):
-        run_scenario(batch.replace(controller=two))
+    with pytest.raises(ParameterError, match=r"`controller`: model 'nomoto2', "
+                                             r"actuator 'rudder-servo', controller 'pid-heading': "
+                                             r"actuator channel 'rudder_command' gets no command; "
+                                             r"the controller gives a, b") as err:
+        batch.replace(controller=two)
+    assert err.value.field == "controller"
 
 
 def test_engine_error_about_a_run_names_its_grid_point():
     batch = parse_scenario(_with('[simulation.bounds]\nheading = [-1.0, 1.0]\n[batch.grid]\n'
                                  '"vessel.initial.heading" = [0.0, 2.0]\n'), source="s.toml")
-    with pytest.raises(ScenarioError, match=r"s.toml: \[vessel.initial\] initial state of run 1 "
+    with pytest.raises(ScenarioError, match=r"s.toml: \[vessel.initial\] the initial state of run 1 "
                                             r".*\(run 1: \{'vessel.initial.heading': 2.0\}\)"):
         run_scenario(batch)

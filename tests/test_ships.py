@@ -293,7 +293,7 @@ def test_parameter_errors_carry_fields_and_survive_pickling():
     assert (err.field, err.unit, err.value) == ("max_rate", "rad/s", -1.0)
     outer = err.within("actuator.params", run=3)
     assert outer.field == "actuator.params.max_rate" and outer.run == 3
-    assert str(outer).startswith("run 3: `actuator.params.max_rate` must be in (0, inf]")
+    assert str(outer).startswith("`actuator.params.max_rate` must be in (0, inf]")
     again = pickle.loads(pickle.dumps(outer))
     assert type(again) is ParameterError and again.__dict__ == outer.__dict__
     assert str(again) == str(outer)

@@ -8,6 +8,8 @@ import math
 import numpy as np
 import pytest
 
+from seahelm.actuators.servo import RUDDER_SERVO
+
 from seahelm.control.pid import PID_HEADING, PIDHeadingParams
 from seahelm.errors import ParameterError
 from seahelm.results import flatten_runs
@@ -75,15 +77,24 @@ def test_run_batch_is_frozen_and_passes_the_engine_its_arguments(mariner2):
     kwargs = batch.simulate_kwargs()
     assert "layout" not in kwargs
     assert kwargs["t_final"] == 30.0 and kwargs["controller"] is PID_HEADING
-    assert "actuator" not in kwargs  # None: the engine's default
+    assert kwargs["actuator"] is RUDDER_SERVO  # the default, resolved once
     assert batch.n_runs == 6 and batch.replace(dt=0.05).dt == 0.05
+    # the keyword form makes the same problem: the same numbers
+    again = simulate(**kwargs)
+    np.testing.assert_array_equal(again.state, simulate_batch(batch).state)
 
 
-def test_engine_is_the_validator_of_a_run_batch(mariner2):
-    # RunBatch itself accepts the bad timing; the engine rejects it before running
-    batch = _gain_grid(mariner2, t_final=30.05)
-    with pytest.raises(ParameterError, match=r"`t_final` must be a positive whole multiple"):
-        simulate_batch(batch)
+def test_a_problem_is_validated_once_on_construction(mariner2):
+    # the problem refuses bad timing itself, naming the field; replace() validates again
+    with pytest.raises(ParameterError, match=r"`t_final` must be a positive whole multiple") as e:
+        _gain_grid(mariner2, t_final=30.05)
+    assert (e.value.field, e.value.unit) == ("t_final", "s")
+    batch = _gain_grid(mariner2)
+    with pytest.raises(ParameterError) as e:
+        batch.replace(controller_dt=0.15)
+    assert e.value.field == "controller_dt"
+    with pytest.raises(ParameterError, match="give a Problem or keyword arguments, not both"):
+        simulate(batch, dt=0.1)
 
 
 def test_layout_point_and_size():

@@ -145,7 +145,7 @@ def test_progress_callback_and_record_every(mariner2):
         ({"record_every": 101}, ParameterError,
          r"`record_every` = 101 exceeds the number of steps \(100 = t_final/dt\)"),
         ({"reference": np.zeros((7, 1))}, ParameterError, "needs 101 rows"),
-        ({"bounds": {"speed": (0, 1)}}, ParameterError, "`bounds`: unknown state 'speed'"),
+        ({"bounds": {"speed": (0, 1)}}, ParameterError, "`bounds.speed` is an unknown state; states: "),
         ({"disturbance": [0.0]}, ParameterError, "`disturbance` must have 4 channel"),
     ],
 )
@@ -158,7 +158,7 @@ def test_bad_input_is_rejected_before_running(mariner2, kwargs, exc, match):
 
 
 def test_initial_state_outside_bounds_is_rejected(mariner2):
-    with pytest.raises(ParameterError, match="initial state of run 0"):
+    with pytest.raises(ParameterError, match="the initial state of run 0"):
         simulate(NOMOTO2, mariner2, [0, 0, 0, 0.5, 0], t_final=1.0, dt=0.1,
                  bounds={"yaw_rate": (-0.1, 0.1)})
 

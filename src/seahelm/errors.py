@@ -47,7 +47,9 @@ class ParameterError(SeahelmError, ValueError):
     run : int or None
         Index of the run in a batch, where the error concerns one run.
 
-    With a ``field`` the message reads ``"`field` reason"``; without, it is ``reason``.
+    With a ``field`` the message reads ``"`field` reason"`` (``"`field`: reason"`` for a reason
+    that starts with a colon); without, it is ``reason``. The run index is an attribute only
+    (a batch's caller names the run in its own terms, e.g. a grid point).
     """
 
     def __init__(self, reason: str = "", *, field: str | None = None, unit: str | None = None,
@@ -60,8 +62,12 @@ class ParameterError(SeahelmError, ValueError):
         super().__init__(self._render())
 
     def _render(self) -> str:
-        text = f"`{self.field}` {self.reason}" if self.field else self.reason
-        return text if self.run is None else f"run {self.run}: {text}"
+        if not self.field:
+            text = self.reason
+        else:  # "`dt` must be > 0 ...", or "`bounds`: ..." for a reason that starts with ":"
+            sep = "" if self.reason.startswith((":", ",", " ")) else " "
+            text = f"`{self.field}`{sep}{self.reason}"
+        return text
 
     def within(self, prefix: str, *, run: int | None = None) -> "ParameterError":
         """The same error one level out: ``field`` prefixed with ``prefix`` (and a run index).

@@ -50,7 +50,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from .._validate import as_float_array, check_finite, check_positive, check_range
-from ..errors import ParameterError, SeahelmError
+from ..errors import ParameterError
 from ..parameters import Params
 from ..vessels.base import VesselModel
 from ..vessels.mariner import MARINER, MarinerParams
@@ -75,8 +75,11 @@ __all__ = [
 DEFAULT_MODELS: dict[type[Params], VesselModel] = {MMGParams: MMG, MarinerParams: MARINER}
 
 
-class EquilibriumError(SeahelmError, ValueError):
-    """The equilibrium equations have no solution for the given arguments (or it was not found)."""
+class EquilibriumError(ParameterError):
+    """The equilibrium equations have no solution for the given arguments (or it was not found).
+
+    A :class:`~seahelm.errors.ParameterError` (so a ``ValueError``): it names the argument it
+    concerns in its ``field`` where there is one."""
 
 
 class SteadyTurn(NamedTuple):

@@ -118,7 +118,7 @@ def imo_overshoot_limits(L_over_V: Any) -> OvershootLimits:
     """
     lv = as_float_array("L_over_V", L_over_V, "s")
     if not np.all(lv > 0):
-        raise ParameterError(f"`L_over_V` must be > 0 [s], got {L_over_V!r}")
+        raise ParameterError(f"must be > 0 [s], got {L_over_V!r}", field='L_over_V')
     first = np.where(lv < 10.0, 10.0, np.where(lv < 30.0, 5.0 + 0.5 * lv, 20.0))
     second = np.where(lv < 10.0, 25.0, np.where(lv < 30.0, 17.5 + 0.75 * lv, 40.0))
     first, second = np.radians(first), np.radians(second)
@@ -270,7 +270,8 @@ def imo_check(ship: Any, *, speed: float | None = None, rps: float | None = None
     """
     s = maneuver_ship(ship)
     if np.ndim(speed) or np.ndim(rps):
-        raise ParameterError("`speed` [m/s] and `rps` [1/s] must be scalars for the IMO check")
+        raise ParameterError("[m/s] and `rps` [1/s] must be scalars for the IMO check",
+        field="speed")
     hard = min(math.radians(35.0), s.max_rudder)
     ten = math.radians(10.0)
     turning = turning_circle(s, np.array([hard, ten]), sides=(1, -1), speed=speed, rps=rps,

@@ -27,7 +27,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import re
 from collections.abc import Mapping
 from typing import Any
 
@@ -187,9 +186,8 @@ class ManeuverJob:
     def _error(self, exc: Exception) -> ScenarioError:
         source = str(self.metadata.get("scenario_source", "<string>"))
         message = str(exc)
-        arg = re.search(r"`(\w+)`", message)
-        if arg and arg.group(1) in self.options:
-            name = arg.group(1)
+        name = (getattr(exc, "field", None) or "").partition(".")[0].partition("[")[0]
+        if name in self.options:  # the error's field names the option: the key from it
             written = self.written.get(name, name)
             if written != name:  # the user wrote degrees: say it in degrees too
                 value = self.options[name]

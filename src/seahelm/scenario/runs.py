@@ -13,7 +13,6 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
-import re
 from collections.abc import Callable
 from typing import Any
 
@@ -66,8 +65,16 @@ _OVERRIDABLE = ("vessel.params.", "vessel.initial.", "actuator.params.", "contro
                 "controller.reference.", "environment.disturbance.", "environment.wind.",
                 "environment.waves.", "guidance.")
 
-#: Engine argument (as its messages name it, in backticks) -> the scenario key it comes from.
+#: Field of the :class:`~seahelm.simulation.problem.Problem` (an error's ``field``, its first
+#: part) -> the scenario key it comes from.
 _ENGINE_KEYS = {
+    "model": "vessel.model",
+    "ship": "vessel.ship",
+    "actuator": "actuator.model",
+    "controller": "controller.model",
+    "environment": "environment",
+    "environment_params": "environment",
+    "exact_actuator": "simulation.exact_actuator",
     "t_final": "simulation.t_final",
     "dt": "simulation.dt",
     "controller_dt": "controller.dt",
@@ -387,8 +394,8 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
             try:
                 bucket.append(_params(cls, values, base).to_array())
             except ParameterError as exc:
-                named = re.search(r"`(\w+)", str(exc))
-                if guidance is not None and named and named.group(1) in guidance[1]:
+                named = (exc.field or "").partition("[")[0]
+                if guidance is not None and named in guidance[1]:
                     key = "guidance"  # a route or law value, written in [guidance]
                 raise _err(source, key, f"{exc}{where}") from None
             except TypeError as exc:
@@ -413,7 +420,7 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
 
     sim = scn.simulation
     assert sim is not None  # (a [maneuver] scenario goes to .maneuver)
-    return RunBatch(
+    inputs = dict(
         model=model,
         params=np.array(mp),
         x0=np.array(x0s),
@@ -436,26 +443,30 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
         layout=layout,
         environment=None if env is None else env.environment,
         environment_params=None if env is None else env.params,
+        exact_actuator=sim.exact_actuator,
     )
+    try:  # the problem validates itself: its errors name their field, the key comes from it
+        return RunBatch(**inputs)
+    except ParameterError as exc:
+        raise _engine_error(source, exc, layout) from exc
 
 
 def _engine_error(source: str, exc: ParameterError, layout: BatchLayout | None) -> ScenarioError:
-    """The engine's error with the scenario's file and the key it most likely comes from."""
+    """The problem's (or the engine's) error with the scenario's file and the key of its field.
+
+    The key comes from the error's ``field`` (:data:`_ENGINE_KEYS`), the grid point from its
+    ``run``: never from the message's words."""
     message = str(exc)
     key = None
-    arg = re.search(r"`(\w+)`", message)
-    if arg and arg.group(1) in _ENGINE_KEYS:
-        key = _ENGINE_KEYS[arg.group(1)]
-        state = re.search(r"unknown state '(\w+)'", message)
-        if key == "simulation.bounds" and state:
-            key += f".{state.group(1)}"
-    elif re.match(r"model '[^']*', actuator '[^']*', controller '[^']*': ", message):
-        key = "controller.model"  # the wiring by signal name (simulation.composition)
-    elif message.startswith("initial state"):
-        key = "vessel.initial"
-    run = re.search(r"\brun (\d+)\b", message)
-    if run and layout is not None and not layout.is_flat and int(run.group(1)) < layout.size:
-        message += f" (run {run.group(1)}: {layout.point(int(run.group(1)))})"
+    if exc.field:
+        head, _, rest = exc.field.partition(".")
+        base = _ENGINE_KEYS.get(head)
+        if base is not None:  # said in the scenario's words: the key, then the reason
+            key = f"{base}.{rest}" if rest else base
+            message = exc.reason.lstrip(": ")
+    run = exc.run
+    if run is not None and layout is not None and not layout.is_flat and run < layout.size:
+        message += f" (run {run}: {layout.point(run)})"
     return ScenarioError(f"{source}: [{key}] {message}" if key else f"{source}: {message}")
 
 

@@ -10,7 +10,16 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
-from pydantic import AllowInfNan, BaseModel, ConfigDict, Field, Strict, field_validator, model_validator
+from pydantic import (
+    AllowInfNan,
+    BaseModel,
+    ConfigDict,
+    Field,
+    Strict,
+    StrictBool,
+    field_validator,
+    model_validator,
+)
 
 from ..simulation.integrators import INTEGRATORS
 
@@ -162,11 +171,16 @@ class GuidanceSection(_Strict):
 
 
 class SimulationSection(_Strict):
+    """``[simulation]``: duration and step [s], integrator, recording, state bounds, and
+    ``exact_actuator`` (take the actuator's closed-form step, the default when it has one;
+    ``false`` integrates it with the step, as before the closed form)."""
+
     t_final: Positive
     dt: Positive
     integrator: str = "rk4"
     record_every: Count = 1
     bounds: dict[str, tuple[Number, Number]] = Field(default_factory=dict)
+    exact_actuator: StrictBool | None = None
 
     @field_validator("bounds")
     @classmethod

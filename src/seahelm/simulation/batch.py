@@ -1,9 +1,8 @@
 """A batch of closed-loop runs described once: what the engine runs, and the shape of the question.
 
-:class:`RunBatch` is a frozen, typed description of everything
-:func:`seahelm.simulation.engine.simulate` needs (components, per-run parameter rows, initial
-states, signals, timing, bounds, seed, metadata) plus the batch's :class:`BatchLayout`: the
-dimensions the runs span. A 3 × 4 grid over ``controller.params.kp`` and
+:class:`RunBatch` is the :class:`~seahelm.simulation.problem.Problem` (the one typed request of
+a run: components, per-run parameter rows, initial states, signals, timing, bounds, seed,
+metadata, options), whose :class:`BatchLayout` gives the dimensions the runs span. A 3 × 4 grid over ``controller.params.kp`` and
 ``controller.params.kd`` has the layout ``kp × kd`` (runs in C order: ``kd`` varies fastest);
 Monte-Carlo adds a ``sample`` dimension (its drawn values are :class:`BatchValues`); a plain
 batch of ``n`` runs has one ``run`` dimension. :func:`simulate_batch` runs it and returns a
@@ -14,10 +13,11 @@ way).
 The layout classes live below the results and the simulation, in :mod:`seahelm.result_layout`
 (the results keep a layout without importing the simulation); they are re-exported here.
 
-Nothing here validates what the engine runs (timing, command counts, bounds labels, shapes):
-the engine is the one validator of its inputs. A :class:`BatchLayout` checks only itself
-(unique dimension names, coordinate lengths); its size is checked against the runs the engine
-made when the result is built.
+The :class:`~seahelm.simulation.problem.Problem` validates itself on construction (components,
+timing, wiring, bounds labels, options); the engine checks what depends on the per-run inputs'
+sizes when it builds its arrays. A :class:`BatchLayout` checks only itself (unique dimension
+names, coordinate lengths); its size is checked against the runs the engine made when the
+result is built.
 
 Example::
 
@@ -31,19 +31,14 @@ Example::
 
 from __future__ import annotations
 
-import dataclasses
-import types
 from collections.abc import Callable, Collection, Mapping, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
-from ..errors import ParameterError
 from ..result_layout import RESERVED_DIMS, BatchAxis, BatchLayout, BatchValues
+from .problem import Problem
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..actuators.base import Actuator
-    from ..control.base import Controller
     from ..results import SimResult
-    from ..vessels.base import VesselModel
 
 __all__ = ["BatchAxis", "BatchValues", "BatchLayout", "RunBatch", "simulate_batch", "grid_axes"]
 
@@ -84,116 +79,9 @@ def grid_axes(
     return tuple(axes)
 
 
-@dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
-class RunBatch:
-    """Everything :func:`~seahelm.simulation.engine.simulate` needs, and the batch's layout.
-
-    The fields are the engine's arguments (see :func:`~seahelm.simulation.engine.simulate` for
-    their forms and units); the engine validates them when the batch runs. ``None`` for a
-    component (controller, actuator) means the engine's default.
-
-    Parameters
-    ----------
-    model : VesselModel
-        The vessel model.
-    params : Params, sequence of Params or array (runs, n_params)
-        Vessel parameters, one set for all runs or one per run.
-    x0 : array_like, shape (n_states,) or (runs, n_states)
-        Initial vessel state (SI units, radians).
-    t_final, dt : float
-        Duration [s] and integration step [s].
-    controller, controller_params : Controller, Params or array, optional
-        Controller (default: the engine's, open loop) and its parameters.
-    actuator, actuator_params, actuator_x0 : Actuator, Params or array, array_like, optional
-        Actuator (default: the engine's, rudder servo), its parameters and initial state.
-    reference, disturbance : None, array or callable, optional
-        Controller reference and model disturbances, as :func:`simulate` takes them (a callable
-        is evaluated by the engine on its own time grid).
-    controller_dt : float, optional
-        Controller sample period [s] (default ``dt``).
-    integrator : str, optional
-        Fixed-step method, a name in :data:`seahelm.simulation.integrators.INTEGRATORS`
-        (default "rk4").
-    record_every : int, optional
-        Record every n-th step (default 1).
-    bounds : mapping label -> (low, high), optional
-        Admissible state bounds (default none).
-    seed : int, optional
-        Seed the batch's random inputs came from, stored with the results.
-    metadata : mapping, optional
-        Extra attributes stored with the results (e.g. the scenario text).
-    layout : BatchLayout, optional
-        The dimensions the runs span (default: one ``run`` dimension).
-    environment, environment_params : Environment, Params or array, optional
-        Wind and wave loads (:mod:`seahelm.environment.loads`) and their parameters.
-    """
-
-    model: "VesselModel"
-    params: Any
-    x0: Any
-    t_final: float
-    dt: float
-    controller: "Controller | None" = None
-    controller_params: Any = None
-    actuator: "Actuator | None" = None
-    actuator_params: Any = None
-    actuator_x0: Any = None
-    reference: Any = None
-    disturbance: Any = None
-    controller_dt: float | None = None
-    integrator: str = "rk4"
-    record_every: int = 1
-    bounds: Mapping[str, tuple[float, float]] = dataclasses.field(default_factory=dict)
-    seed: int | None = None
-    metadata: Mapping[str, Any] = dataclasses.field(default_factory=dict)
-    layout: BatchLayout | None = None
-    environment: Any = None
-    environment_params: Any = None
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "bounds", types.MappingProxyType(dict(self.bounds)))
-        object.__setattr__(self, "metadata", types.MappingProxyType(dict(self.metadata)))
-        if self.layout is not None and not isinstance(self.layout, BatchLayout):
-            raise ParameterError(
-                f"`layout` must be a BatchLayout, got {type(self.layout).__name__}")
-
-    @property
-    def n_runs(self) -> int | None:
-        """Number of runs the layout spans (None without a layout: the engine decides)."""
-        return None if self.layout is None else self.layout.size
-
-    def simulate_kwargs(self) -> dict[str, Any]:
-        """Keyword arguments of :func:`~seahelm.simulation.engine.simulate` for this batch.
-
-        Returns
-        -------
-        dict
-            The engine's arguments; components given as ``None`` are left out (engine
-            defaults).
-        """
-        kwargs: dict[str, Any] = {
-            f.name: getattr(self, f.name) for f in dataclasses.fields(self) if f.name != "layout"
-        }
-        for name in ("controller", "actuator"):
-            if kwargs[name] is None:
-                del kwargs[name]
-        kwargs["bounds"] = dict(self.bounds)
-        kwargs["metadata"] = dict(self.metadata)
-        return kwargs
-
-    def replace(self, **changes: Any) -> "RunBatch":
-        """A copy with some fields changed (``dataclasses.replace``).
-
-        Parameters
-        ----------
-        **changes
-            New field values.
-
-        Returns
-        -------
-        RunBatch
-        """
-        return dataclasses.replace(self, **changes)
+#: The batch of runs a scenario or a manoeuvre describes is a :class:`Problem` (the name stays
+#: for code written against it).
+RunBatch = Problem
 
 
 def simulate_batch(
@@ -230,9 +118,6 @@ def simulate_batch(
     """
     from .engine import simulate
 
-    if not isinstance(batch, RunBatch):
-        raise TypeError(f"`batch` must be a RunBatch, got {type(batch).__name__}")
-    result = simulate(**batch.simulate_kwargs(), throw=throw, progress=progress)
-    if batch.layout is None:
-        return result
-    return dataclasses.replace(result, layout=batch.layout)
+    if not isinstance(batch, Problem):
+        raise TypeError(f"`batch` must be a Problem, got {type(batch).__name__}")
+    return simulate(batch, throw=throw, progress=progress)

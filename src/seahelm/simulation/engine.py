@@ -50,11 +50,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .. import __version__
-from .._validate import as_float_array, check_positive
+from .._validate import as_float_array
 from ..actuators.base import Actuator
-from ..actuators.servo import RUDDER_SERVO
 from ..control.base import Controller
-from ..control.open_loop import OPEN_LOOP
 from ..errors import ParameterError, SimulationDiverged
 from ..parameters import Params, as_records, stack_params
 from ..vessels.base import VesselModel
@@ -68,6 +66,7 @@ from .environment_stage import (
 )
 from .generated import code_fingerprint, exec_generated, import_generated, kernel_cache_dir
 from .inlining import inlined_size
+from .problem import Problem, _numba_jit_disabled, jit_enabled
 from .integrators import ButcherTableau, get_integrator
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -125,45 +124,6 @@ PYTHON_HEADER = (
     "from seahelm.simulation.inlining import record_in_place as local_record\n\n"
 )
 
-#: Values of ``SEAHELM_DISABLE_JIT`` that leave the JIT on (any other non-empty value turns the
-#: pure-Python loop on).
-_OFF = ("", "0", "false", "no", "off")
-
-
-def _numba_jit_disabled() -> bool:
-    from numba.core import config
-
-    return bool(config.DISABLE_JIT)
-
-
-def jit_enabled(jit: bool | None = None) -> bool:
-    """Whether :func:`simulate` runs the compiled loop (``True``) or the pure-Python one.
-
-    Parameters
-    ----------
-    jit : bool, optional
-        The caller's choice. Default: compiled, unless ``SEAHELM_DISABLE_JIT`` is set (to
-        anything but empty, ``0``, ``false``, ``no`` or ``off``) or numba's own JIT is disabled
-        (``NUMBA_DISABLE_JIT=1``, read by numba when it is imported).
-
-    Returns
-    -------
-    bool
-
-    Raises
-    ------
-    ParameterError
-        If ``jit`` is not True, False or None, or is True while numba's JIT is disabled.
-    """
-    if jit is None:
-        off = os.environ.get("SEAHELM_DISABLE_JIT", "").strip().lower() not in _OFF
-        return not (off or _numba_jit_disabled())
-    if not isinstance(jit, (bool, np.bool_)):
-        raise ParameterError(f"`jit` must be True, False or None, got {jit!r}")
-    if jit and _numba_jit_disabled():
-        raise ParameterError("`jit` = True, but numba's JIT is disabled (NUMBA_DISABLE_JIT=1): "
-                             "nothing can be compiled in this process")
-    return bool(jit)
 _BLOCK = re.compile(r"# <(header|footer)>\n.*?# </\1>\n", re.S)
 
 #: Step code size (bytecode instructions of the model's and the actuator's right-hand sides and
@@ -187,7 +147,6 @@ _BLOCK = re.compile(r"# <(header|footer)>\n.*?# </\1>\n", re.S)
 #: this and call ``compile_closed_loop.cache_clear()``, or pass ``stage_loop=`` to
 #: :func:`compile_closed_loop`.
 STAGE_LOOP_ABOVE = 1850
-
 
 def _stage_code_size(model: VesselModel, actuator: Actuator, tableau: ButcherTableau,
                      environment: Any, exact_actuator: bool = False, jit: bool = True) -> int:
@@ -392,7 +351,7 @@ def _param_rows(name: str, params: Any, cls: type[Params]) -> tuple[np.ndarray, 
         try:
             params = _default_params(cls)
         except TypeError:
-            raise ParameterError(f"`{name}` is required for {cls.__name__}") from None
+            raise ParameterError(f"is required for {cls.__name__}", field=name) from None
     if isinstance(params, Params) or (
         isinstance(params, Sequence) and len(params) > 0 and isinstance(params[0], Params)
     ):
@@ -402,9 +361,8 @@ def _param_rows(name: str, params: Any, cls: type[Params]) -> tuple[np.ndarray, 
     arr = np.array(np.atleast_2d(as_float_array(name, params)), dtype=float, order="C")
     if arr.ndim != 2 or arr.shape[1] != cls.n_values():
         raise ParameterError(
-            f"`{name}` as an array must have shape (runs, {cls.n_values()}) "
-            f"({', '.join(cls.value_names())}), got {arr.shape}"
-        )
+            f"as an array must have shape (runs, {cls.n_values()}) "
+            f"({', '.join(cls.value_names())}), got {arr.shape}", field=name)
     for row in arr:  # validate every row through the dataclass
         cls.from_array(row)
     return arr, cls
@@ -430,8 +388,8 @@ def _by_name(name: str, value: Mapping[str, Any], labels: tuple[str, ...],
     unknown = [k for k in value if k not in labels]
     if unknown:
         raise ParameterError(
-            f"`{name}`: unknown channel(s) {', '.join(map(repr, unknown))}; channels: "
-            f"{', '.join(labels) if labels else 'none'}")
+            f": unknown channel(s) {', '.join(map(repr, unknown))}; channels: "
+            f"{', '.join(labels) if labels else 'none'}", field=name)
     cols = [_signal(f"{name}['{lab}']", value.get(lab, 0.0), 1, t_grid, unit) for lab in labels]
     if not cols:
         return np.zeros((1, 1, 1))
@@ -460,9 +418,9 @@ def _signal(
             arr = arr[None]
         if arr.ndim != 3 or arr.shape[1] != t_grid.size:
             raise ParameterError(
-                f"`{name}` callable must return shape (steps+1,), (steps+1, channels) or "
-                f"(runs, steps+1, channels) for {t_grid.size} grid times, got {np.shape(value)}"
-            )
+                f"callable must return shape (steps+1,), (steps+1, channels) or "
+                f"(runs, steps+1, channels) for {t_grid.size} grid times, got {np.shape(value)}",
+                field=name)
     else:
         arr = as_float_array(name, value, unit)
         if arr.ndim == 0:
@@ -472,26 +430,23 @@ def _signal(
         elif arr.ndim == 2:
             if arr.shape[0] != t_grid.size:
                 raise ParameterError(
-                    f"`{name}` as a 2-D array is a time series on the grid and needs "
+                    f"as a 2-D array is a time series on the grid and needs "
                     f"{t_grid.size} rows (steps+1), got {arr.shape}; per-run constants have "
-                    "shape (runs, 1, channels)"
-                )
+                    "shape (runs, 1, channels)", field=name)
             arr = arr[None]
         elif arr.ndim != 3:
-            raise ParameterError(f"`{name}` must have at most 3 dimensions, got {arr.shape}")
+            raise ParameterError(f"must have at most 3 dimensions, got {arr.shape}", field=name)
         if arr.shape[1] not in (1, t_grid.size):
             raise ParameterError(
-                f"`{name}` time axis must have 1 or {t_grid.size} samples, got {arr.shape[1]}"
-            )
+                f"time axis must have 1 or {t_grid.size} samples, got {arr.shape[1]}", field=name)
     if n_channels == 0:
         if arr.shape[-1] not in (0, 1) or np.any(arr != 0):
-            raise ParameterError(f"`{name}` given, but the component takes none")
+            raise ParameterError("given, but the component takes none", field=name)
         return np.zeros(arr.shape[:2] + (1,))
     if arr.shape[-1] != n_channels:
         named = f" ({', '.join(labels)})" if labels else ""
         raise ParameterError(
-            f"`{name}` must have {n_channels} channel(s){named}, got {arr.shape[-1]}"
-        )
+            f"must have {n_channels} channel(s){named}, got {arr.shape[-1]}", field=name)
     return np.ascontiguousarray(arr, dtype=float)
 
 
@@ -516,7 +471,7 @@ class RecordingTooLarge(ParameterError):
     """
 
     def __init__(self, message: str, *, need: int, total: int) -> None:
-        super().__init__(message)
+        super().__init__(message, field="record_every", unit="B", value=need)
         self.need, self.total = need, total
 
     def size_text(self) -> str:
@@ -545,7 +500,7 @@ def check_record_memory(n_runs: int, n_rec: int, channels: int) -> None:
     if total is None or need <= RECORD_MEMORY_SHARE * total:
         return
     raise RecordingTooLarge(
-        f"`record_every`: the recorded time series would need {need / 1e9:.3g} GB ({n_runs:,} "
+        f": the recorded time series would need {need / 1e9:.3g} GB ({n_runs:,} "
         f"run(s) x {n_rec:,} records x {channels} channels x 8 B), more than "
         f"{RECORD_MEMORY_SHARE:.0%} of this machine's {total / 1e9:.3g} GB memory; record fewer "
         "samples (a larger record_every), fewer runs or a shorter t_final", need=need,
@@ -557,17 +512,8 @@ def _runs(*sizes: tuple[str, int]) -> int:
     for name, s in sizes:
         if s not in (1, n):
             others = ", ".join(f"{k}={v}" for k, v in sizes)
-            raise ParameterError(f"batch sizes do not broadcast: `{name}` has {s} runs ({others})")
-    return n
-
-
-def _steps(t_final: float, dt: float, what: str = "t_final") -> int:
-    ratio = t_final / dt
-    n = int(round(ratio))
-    if n < 1 or abs(ratio - n) > 1e-9 * max(1.0, ratio):
-        raise ParameterError(
-            f"`{what}` must be a positive whole multiple of `dt` [s]: {what}={t_final!r}, dt={dt!r}"
-        )
+            raise ParameterError(f": batch sizes do not broadcast: `{name}` has {s} runs "
+                                 f"({others})", field=name)
     return n
 
 
@@ -575,22 +521,23 @@ def _steps(t_final: float, dt: float, what: str = "t_final") -> int:
 # the public entry point
 # ------------------------------------------------------------------------------------------
 def simulate(
-    model: VesselModel,
-    params: Params | Sequence[Params] | np.ndarray,
-    x0: Any,
+    model: "VesselModel | Problem | None" = None,
+    params: Params | Sequence[Params] | np.ndarray | None = None,
+    x0: Any = None,
     *,
-    t_final: float,
-    dt: float,
-    controller: Controller = OPEN_LOOP,
+    t_final: float | None = None,
+    dt: float | None = None,
+    ship: Any = None,
+    controller: Controller | None = None,
     controller_params: Params | Sequence[Params] | np.ndarray | None = None,
-    actuator: Actuator = RUDDER_SERVO,
+    actuator: Actuator | None = None,
     actuator_params: Params | Sequence[Params] | np.ndarray | None = None,
     actuator_x0: Any = None,
     reference: Any = None,
     disturbance: Any = None,
     controller_dt: float | None = None,
-    integrator: str | ButcherTableau = "rk4",
-    record_every: int = 1,
+    integrator: str | ButcherTableau | None = None,
+    record_every: int | None = None,
     bounds: Mapping[str, tuple[float, float]] | None = None,
     throw: bool = False,
     progress: Callable[[int, int], None] | None = None,
@@ -601,12 +548,20 @@ def simulate(
     exact_actuator: bool | None = None,
     jit: bool | None = None,
 ) -> "SimResult":
-    """Simulate a batch of closed-loop runs.
+    """Simulate a batch of closed-loop runs: a :class:`~seahelm.simulation.problem.Problem`.
+
+    ``simulate(problem)`` runs a problem (with ``throw`` and ``progress``, nothing else);
+    the keyword form ``simulate(model, params, x0, t_final=..., dt=..., ...)`` is a
+    convenience that builds the :class:`~seahelm.simulation.problem.Problem` of its arguments
+    (the one validation of them) and runs it.
 
     Parameters
     ----------
-    model : VesselModel
-        The vessel model (e.g. :data:`seahelm.vessels.nomoto.NOMOTO2`).
+    model : VesselModel or Problem
+        The vessel model (e.g. :data:`seahelm.vessels.nomoto.NOMOTO2`), or a whole problem.
+    ship : Ship, str or path-like, optional
+        A ship (catalog name or ship file) instead of ``model`` and ``params``: its steering
+        gear is the default actuator.
     params : Params, sequence of Params, or array (runs, n_params)
         Vessel parameters; one set for all runs or one per run.
     x0 : array_like, shape (n_states,) or (runs, n_states)
@@ -685,31 +640,51 @@ def simulate(
     SimulationDiverged
         With ``throw=True``, when a run diverges.
     """
+    from .problem import Problem
+
+    given = {"params": params, "x0": x0, "t_final": t_final, "dt": dt, "ship": ship,
+             "controller": controller, "controller_params": controller_params,
+             "actuator": actuator, "actuator_params": actuator_params,
+             "actuator_x0": actuator_x0, "reference": reference, "disturbance": disturbance,
+             "controller_dt": controller_dt, "integrator": integrator,
+             "record_every": record_every, "bounds": bounds, "seed": seed,
+             "metadata": metadata, "environment": environment,
+             "environment_params": environment_params, "exact_actuator": exact_actuator,
+             "jit": jit}
+    given = {k: v for k, v in given.items() if v is not None}
+    if isinstance(model, Problem):
+        if given:
+            raise ParameterError(
+                f"give a Problem or keyword arguments, not both (got {', '.join(given)})",
+                field=next(iter(given)))
+        problem = model
+    else:
+        if model is not None:
+            given["model"] = model
+        for name in ("t_final", "dt"):
+            if name not in given:
+                raise ParameterError("is required [s]", field=name, unit="s")
+        problem = Problem(**given)
+    return _run(problem, throw=throw, progress=progress)
+
+
+def _run(problem: "Problem", *, throw: bool,
+         progress: Callable[[int, int], None] | None) -> "SimResult":
+    """Run a validated problem (:func:`simulate`)."""
     from ..results import SimResult
 
-    use_jit = jit_enabled(jit)
-    check_positive("dt", dt, "s")
-    check_positive("t_final", t_final, "s")
-    n_steps = _steps(float(t_final), float(dt))
-    ctrl_dt = float(dt) if controller_dt is None else float(controller_dt)
-    check_positive("controller_dt", ctrl_dt, "s")
-    ctrl_every = _steps(ctrl_dt, float(dt), "controller_dt")
-    if ctrl_every > n_steps:
-        raise ParameterError(
-            f"`controller_dt` = {ctrl_dt!r} s exceeds `t_final` = {float(t_final)!r} s: the "
-            "controller would act once, at t = 0")
-    if isinstance(record_every, bool) or int(record_every) != record_every or record_every < 1:
-        raise ParameterError(f"`record_every` must be a whole number >= 1, got {record_every!r}")
-    record_every = int(record_every)
-    if record_every > n_steps:
-        raise ParameterError(
-            f"`record_every` = {record_every} exceeds the number of steps ({n_steps} = "
-            f"t_final/dt): nothing after t = 0 would be recorded")
-    tableau = get_integrator(integrator)
-    wiring = compose(model, actuator, controller)
+    model, actuator, controller = problem.model, problem.actuator, problem.controller
+    params, x0, actuator_x0 = problem.params, problem.x0, problem.actuator_x0
+    actuator_params, controller_params = problem.actuator_params, problem.controller_params
+    reference, disturbance = problem.reference, problem.disturbance
+    environment, environment_params = problem.environment, problem.environment_params
+    bounds, seed, metadata = problem.bounds, problem.seed, problem.metadata
+    exact_actuator, dt, t_final = problem.exact_actuator, problem.dt, problem.t_final
+    use_jit = jit_enabled(problem.jit)
+    n_steps, ctrl_every = problem.n_steps, problem.controller_every
+    ctrl_dt, record_every = problem._derived["controller_dt"], problem.record_every
+    tableau, wiring = problem.tableau, problem.wiring
     if environment is None:
-        if environment_params is not None:
-            raise ParameterError("`environment_params` given without an `environment`")
         env_signals: tuple[str, ...] = ()
         env_units: tuple[str, ...] = ()
         env_outputs: tuple[str, ...] = ()
@@ -728,9 +703,9 @@ def simulate(
             bad = ~(mp_check[:, j] > 0)
             if bad.any():
                 raise ParameterError(
-                    f"`params`: model '{model.name}' needs `{name}` > 0 to take the "
+                    f": model '{model.name}' needs `{name}` > 0 to take the "
                     f"environment's loads, got {mp_check[bad, j][0]!r} (run "
-                    f"{int(np.argmax(bad))})")
+                    f"{int(np.argmax(bad))})", field="params", run=int(np.argmax(bad)))
     dist_labels = model.disturbance_labels + env_signals
     dist_units = model.disturbance_units + env_units
     out_labels = model.output_labels + env_outputs
@@ -742,16 +717,14 @@ def simulate(
     x0 = np.atleast_2d(as_float_array("x0", x0))
     if x0.shape[-1] != model.n_states or x0.ndim != 2:
         raise ParameterError(
-            f"`x0` must have {model.n_states} states ({', '.join(model.state_labels)}), "
-            f"got shape {x0.shape}"
-        )
+            f"must have {model.n_states} states ({', '.join(model.state_labels)}), "
+            f"got shape {x0.shape}", field="x0")
     xa0 = np.zeros((1, actuator.n_states)) if actuator_x0 is None else np.atleast_2d(
         as_float_array("actuator_x0", actuator_x0)
     )
     if xa0.shape[-1] != actuator.n_states:
         raise ParameterError(
-            f"`actuator_x0` must have {actuator.n_states} states, got shape {xa0.shape}"
-        )
+            f"must have {actuator.n_states} states, got shape {xa0.shape}", field="actuator_x0")
     # the recordings must fit before anything of the batch's size is built (the time grid too:
     # a long run with a coarse record needs no array of all its steps)
     n_rec_early = n_steps // record_every + 1 + (n_steps % record_every != 0)
@@ -784,22 +757,18 @@ def simulate(
     upper = np.array(list(model.state_upper) + [np.inf] * actuator.n_states, dtype=float)
     for label, (lo, hi) in (bounds or {}).items():
         if label not in labels:
-            raise ParameterError(f"`bounds`: unknown state '{label}'; states: {', '.join(labels)}")
+            raise ParameterError(f"is an unknown state; states: {', '.join(labels)}",
+                                 field=f"bounds.{label}")  # (the Problem checks it first)
         j = labels.index(label)
         lower[j], upper[j] = max(lower[j], float(lo)), min(upper[j], float(hi))
     if not (np.isfinite(z).all() and (z >= lower).all() and (z <= upper).all()):
         bad0 = ~np.isfinite(z).all(axis=1) | (z < lower).any(axis=1) | (z > upper).any(axis=1)
         i = int(np.argmax(bad0))
-        raise ParameterError(f"initial state of run {i} is not finite or outside bounds: {z[i]}")
+        raise ParameterError(f": the initial state of run {i} is not finite or outside the "
+                             f"bounds: {z[i]}", field="x0", run=i)
 
     if exact_actuator is None:
         exact_actuator = actuator.advance is not None
-    elif not isinstance(exact_actuator, (bool, np.bool_)):
-        raise ParameterError(f"`exact_actuator` must be True, False or None, got "
-                             f"{exact_actuator!r}")
-    elif exact_actuator and actuator.advance is None:
-        raise ParameterError(f"`exact_actuator`: the actuator '{actuator.name}' has no "
-                             "closed-form step")
     kernel = compile_closed_loop(model, actuator, controller, tableau, environment,
                                  exact_actuator=bool(exact_actuator), jit=use_jit)
     mr = as_records(mp, m_cls)
@@ -861,6 +830,7 @@ def simulate(
     ref_idx = np.minimum(np.arange(n_rec) * record_every, n_steps)
     rec_t = ref_idx * float(dt)
     result = SimResult(
+        layout=problem.layout,
         time=rec_t,
         state=rec_z,
         state_labels=labels,

@@ -95,8 +95,8 @@ def value_axis(name: str, value: Any, units: str, *, positive: bool = False,
     arr = as_float_array(name, value, units)
     if arr.ndim > 1 or arr.size == 0:
         raise ParameterError(
-            f"`{name}` must be a number or a non-empty 1-D sequence [{units}], got shape "
-            f"{arr.shape}")
+            f"must be a number or a non-empty 1-D sequence [{units}], got shape "
+            f"{arr.shape}", field=name)
     if positive:
         check_positive(name, arr, units)
     return Axis(name=name, values=np.atleast_1d(arr).astype(float), units=units,
@@ -109,7 +109,8 @@ def side_axis(sides: Any) -> Axis:
     flat = np.atleast_1d(arr).ravel()
     if arr.ndim > 1 or flat.size == 0 or not all(v in (1, -1) for v in flat.tolist()):
         raise ParameterError(
-            f"`sides` must be +1 (starboard), -1 (port) or a sequence of them [-], got {sides!r}")
+            f"must be +1 (starboard), -1 (port) or a sequence of them [-], got {sides!r}",
+            field="sides")
     return Axis(name="side", values=flat.astype(np.int64), units="", is_dim=arr.ndim == 1,
                 attrs={"long_name": "side of the turn: +1 starboard, -1 port"})
 
@@ -129,8 +130,8 @@ class Plan:
                 "give the approach `speed` [m/s] or the propeller `rps` [1/s], not both")
         if rps is not None and not has_prop:
             raise ParameterError(
-                f"`rps`: model '{self.ships[0].model.name}' has no propeller_rps input, "
-                f"got {rps!r} [1/s]")
+                f": model '{self.ships[0].model.name}' has no propeller_rps input, "
+                f"got {rps!r} [1/s]", field="rps")
         if rps is not None:
             rps_axis = value_axis("rps", rps, "1/s", positive=True)
             speeds = np.array([[_straight_run_speed(s, n) for n in rps_axis.values]
@@ -160,8 +161,8 @@ class Plan:
                     self.approaches[(i, j)] = steady_approach(s.model, s.params, float(U))
                 except EquilibriumError as exc:
                     raise EquilibriumError(
-                        f"`speed`: no straight approach of '{s.name}' at {U:.6g} m/s "
-                        f"({exc}){_identified_near(s)}") from None
+                        f": no straight approach of '{s.name}' at {U:.6g} m/s "
+                        f"({exc}){_identified_near(s)}", field="speed") from None
         if not speed_axis.is_dim and n_ships == 1:
             speed_axis.values = speeds[0].copy()
         self.axes = [ship_axis, speed_axis, *axes]
@@ -265,10 +266,9 @@ class Plan:
         except RecordingTooLarge as exc:  # name the manoeuvre's options, not the engine's
             slowest = min(a.speed for a in self.approaches.values())
             raise ParameterError(
-                f"`t_final`: {self.n_runs} run(s) of {t_final:.6g} s (at the slowest approach "
+                f": {self.n_runs} run(s) of {t_final:.6g} s (at the slowest approach "
                 f"speed, {slowest:.4g} m/s) would record {exc.size_text()}; give a faster "
-                "approach (`speed` or `rps`) or a shorter `t_final`"
-            ) from None
+                "approach (`speed` or `rps`) or a shorter `t_final`", field="t_final") from None
 
     def runs_dataset(self, result: "SimResult") -> "xr.Dataset":
         """The result's Dataset with the grid's coordinates; a single run loses ``run``."""
@@ -386,8 +386,8 @@ def _conditions_kwargs(conditions: Any, model: VesselModel) -> dict[str, Any]:
     from ...environment.loads import Conditions
 
     if not isinstance(conditions, Conditions):
-        raise ParameterError(f"`conditions` must be a Conditions (seahelm.environment.loads), "
-                             f"got {type(conditions).__name__}")
+        raise ParameterError(f"must be a Conditions (seahelm.environment.loads), "
+                             f"got {type(conditions).__name__}", field="conditions")
     current = conditions.disturbance(model)
     return {"environment": conditions.environment,
             "environment_params": conditions.params,
@@ -401,8 +401,8 @@ def record_every_for(dt: float, record_dt: float | None) -> int:
     check_positive("record_dt", record_dt, "s")
     ratio = float(record_dt) / dt
     if ratio < 1.0 - 1e-9 or abs(ratio - round(ratio)) > 1e-9 * max(ratio, 1.0):
-        raise ParameterError(f"`record_dt` must be a whole multiple of `dt` [s]: "
-                             f"record_dt={record_dt!r}, dt={dt!r}")
+        raise ParameterError(f"must be a whole multiple of `dt` [s]: "
+                             f"record_dt={record_dt!r}, dt={dt!r}", field="record_dt")
     return max(1, int(round(ratio)))
 
 
@@ -410,8 +410,8 @@ def final_time(t_final: float, dt: float, name: str = "t_final") -> float:
     """``t_final`` rounded up to a whole number of steps (at least one step: a duration
     shorter than ``dt`` is an error, not one step of ``dt``)."""
     if t_final < dt * (1.0 - 1e-9):
-        raise ParameterError(f"`{name}` must be at least one step `dt` [s]: {name}={t_final!r}, "
-                             f"dt={dt!r}")
+        raise ParameterError(f"must be at least one step `dt` [s]: {name}={t_final!r}, "
+                             f"dt={dt!r}", field=name)
     return math.ceil(t_final / dt - 1e-9) * dt
 
 
@@ -425,5 +425,5 @@ def check_rudder(ships: Sequence[ManeuverShip], name: str, values: np.ndarray, *
             v = float(np.asarray(values).ravel()[np.flatnonzero(np.asarray(bad).ravel())[0]])
             lo = "[0" if allow_zero else "(0"
             raise ParameterError(
-                f"`{name}` must be in {lo}, {limit:.6g}] [rad] in magnitude (the steering "
-                f"gear limit of '{s.name}', {math.degrees(limit):.4g} deg), got {v!r}")
+                f"must be in {lo}, {limit:.6g}] [rad] in magnitude (the steering "
+                f"gear limit of '{s.name}', {math.degrees(limit):.4g} deg), got {v!r}", field=name)

@@ -88,10 +88,11 @@ def maneuver_ship(ship: Any, *, servo: ServoParams | None = None,
                     f"{type(params).__name__}")
             if servo is None:
                 raise ParameterError(
-                    "`servo`: no steering gear is known for this parameter set; pass "
-                    "`servo=ServoParams(...)` (or a Ship with a steering gear)")
+                    ": no steering gear is known for this parameter set; pass "
+                    "`servo=ServoParams(...)` (or a Ship with a steering gear)", field="servo")
             if not isinstance(servo, ServoParams):
-                raise ParameterError(f"`servo` must be ServoParams, got {type(servo).__name__}")
+                raise ParameterError(f"must be ServoParams, got {type(servo).__name__}",
+                field="servo")
             # one construction (a Monte-Carlo study makes one ship per sample)
             return Ship(name=name or type(params).__name__, model=model, params=params,
                         steering_gear=_gear(servo))
@@ -99,8 +100,8 @@ def maneuver_ship(ship: Any, *, servo: ServoParams | None = None,
         base = get_ship(ship)
     else:
         raise ParameterError(
-            "`ship` must be a Ship, a catalog name, a ship file path or a parameter set, got "
-            f"{type(ship).__name__}")
+            "must be a Ship, a catalog name, a ship file path or a parameter set, got "
+            f"{type(ship).__name__}", field="ship")
     changes: dict[str, Any] = {}
     if model is not None and model is not base.model:
         if not isinstance(base.params, model.params_type):
@@ -110,15 +111,15 @@ def maneuver_ship(ship: Any, *, servo: ServoParams | None = None,
         changes["model"] = model
     if servo is not None:
         if not isinstance(servo, ServoParams):
-            raise ParameterError(f"`servo` must be ServoParams, got {type(servo).__name__}")
+            raise ParameterError(f"must be ServoParams, got {type(servo).__name__}", field="servo")
         if base.steering_gear is None or servo is not base.steering_gear.params:
             changes["steering_gear"] = _gear(servo)
     elif base.steering_gear is None:
         from ...ships import with_steering_gear
 
         raise ParameterError(
-            f"`servo`: ship '{base.name}' has no steering gear; pass `servo=ServoParams(...)` "
-            f"(catalog ships with one: {', '.join(with_steering_gear())})")
+            f": ship '{base.name}' has no steering gear; pass `servo=ServoParams(...)` "
+            f"(catalog ships with one: {', '.join(with_steering_gear())})", field="servo")
     if name is not None and name != base.name:
         changes["name"] = name
     return dataclasses.replace(base, **changes) if changes else base
@@ -137,12 +138,13 @@ def _ships(ship: Any) -> tuple[list[ManeuverShip], bool]:
     """One ship or a sequence of them (a ``ship`` dimension); all on one model."""
     if isinstance(ship, (list, tuple)):
         if not ship:
-            raise ParameterError("`ship`: an empty sequence of ships")
+            raise ParameterError(": an empty sequence of ships", field="ship")
         ships = [maneuver_ship(s) for s in ship]
         models = {s.model.name for s in ships}
         if len(models) > 1:
             raise ParameterError(
-                f"`ship`: all ships of one batch must use one model, got {', '.join(models)}")
+                f": all ships of one batch must use one model, got {', '.join(models)}",
+                field="ship")
         return ships, True
     return [maneuver_ship(ship)], False
 
@@ -242,8 +244,8 @@ def _straight_run_speed(ship: Any, rps: float) -> float:
     try:
         return straight_run_speed(ship.params, rps, model=ship.model)
     except EquilibriumError as exc:
-        raise EquilibriumError(f"`rps`: no straight run of '{ship.name}' at {rps:.6g} 1/s "
-                               f"({exc})") from None
+        raise EquilibriumError(f": no straight run of '{ship.name}' at {rps:.6g} 1/s "
+                               f"({exc})", field="rps") from None
 
 
 def steady_yaw_rate(ship: Any, rudder: Any, approach: Approach) -> np.ndarray:
@@ -258,6 +260,7 @@ def steady_yaw_rate(ship: Any, rudder: Any, approach: Approach) -> np.ndarray:
     except EquilibriumError as exc:
         deg = ", ".join(f"{math.degrees(d):.4g}" for d in np.atleast_1d(rudder))
         raise EquilibriumError(
-            f"`t_final`: no steady turn of '{ship.name}' at rudder {deg} deg from the approach "
+            f": no steady turn of '{ship.name}' at rudder {deg} deg from the approach "
             f"at {approach.speed:.6g} m/s, to estimate the manoeuvre's duration ({exc})"
-            f"{_identified_near(ship)}; give `t_final` to skip the estimate") from None
+            f"{_identified_near(ship)}; give `t_final` to skip the estimate",
+            field="t_final") from None

@@ -115,12 +115,12 @@ def direct_spiral(ship: Any, rudders: Any = None, *, speed: Any = None, rps: Any
         as_float_array("rudders", rudders, "rad")
     if deltas.ndim != 1 or deltas.size < 2:
         raise ParameterError(
-            f"`rudders` must be a 1-D sequence of at least 2 angles [rad], got shape "
-            f"{deltas.shape}")
+            f"must be a 1-D sequence of at least 2 angles [rad], got shape "
+            f"{deltas.shape}", field="rudders")
     if isinstance(samples_per_hold, bool) or int(samples_per_hold) != samples_per_hold \
             or samples_per_hold < 10:
         raise ParameterError(
-            f"`samples_per_hold` must be a whole number >= 10, got {samples_per_hold!r}")
+            f"must be a whole number >= 10, got {samples_per_hold!r}", field="samples_per_hold")
     plan = Plan(ship, speed, rps, [])
     check_rudder(plan.ships, "rudders", deltas, allow_zero=True)
     n = plan.n_runs
@@ -129,7 +129,7 @@ def direct_spiral(ship: Any, rudders: Any = None, *, speed: Any = None, rps: Any
     if hold is None:
         hold = max(50.0 * plan.ship(i).length / plan.approach(i).speed for i in range(n))
     if not (isinstance(hold, (int, float)) and hold > 0):
-        raise ParameterError(f"`hold` must be > 0 [s], got {hold!r}")
+        raise ParameterError(f"must be > 0 [s], got {hold!r}", field="hold")
     hold = final_time(float(hold), float(dt), "hold")
     steps_per_hold = int(round(hold / dt))
     n_steps = steps_per_hold * deltas.size
@@ -137,9 +137,9 @@ def direct_spiral(ship: Any, rudders: Any = None, *, speed: Any = None, rps: Any
         check_record_memory(1, n_steps + 1, 2)
     except ParameterError:
         raise ParameterError(
-            f"`hold`: {deltas.size} holds of {hold:g} s at dt = {dt:g} s are {n_steps:,} steps, "
+            f": {deltas.size} holds of {hold:g} s at dt = {dt:g} s are {n_steps:,} steps, "
             "more than a rudder program in memory can span; shorten `hold` or enlarge `dt` "
-            "[s]") from None
+            "[s]", field="hold") from None
     record_every = max(1, steps_per_hold // int(samples_per_hold))
     while steps_per_hold % record_every:
         record_every -= 1
@@ -247,7 +247,7 @@ def spiral_loop(params: Any, yaw_rate: np.ndarray, rudder: np.ndarray, rps: floa
     r = np.asarray(yaw_rate, dtype=float)
     d = np.asarray(rudder, dtype=float)
     if r.ndim != 1 or r.shape != d.shape or np.any(np.diff(r) <= 0):
-        raise ParameterError("`yaw_rate` must be increasing and `rudder` of its shape")
+        raise ParameterError("must be increasing and `rudder` of its shape", field="yaw_rate")
     maxima, minima = [], []
     for k in range(1, r.size - 1):
         if d[k] > d[k - 1] and d[k] >= d[k + 1]:
@@ -302,13 +302,14 @@ def reverse_spiral(ship: Any, yaw_rates: Any = None, *, speed: Any = None, rps: 
         If a yaw rate has no steady turn (beyond what the hull and rudder can balance).
     """
     if isinstance(points, bool) or int(points) != points or points < 5:
-        raise ParameterError(f"`points` must be a whole number >= 5, got {points!r}")
+        raise ParameterError(f"must be a whole number >= 5, got {points!r}", field="points")
     given = None
     if yaw_rates is not None:
         given = as_float_array("yaw_rates", yaw_rates, "rad/s")
         if given.ndim != 1 or given.size < 3 or np.any(np.diff(given) <= 0):
             raise ParameterError(
-                "`yaw_rates` must be an increasing 1-D sequence of at least 3 values [rad/s]")
+                "must be an increasing 1-D sequence of at least 3 values [rad/s]",
+                field="yaw_rates")
     plan = Plan(ship, speed, rps, [])
     check_rudder(plan.ships, "max_rudder", np.array([max_rudder]))
     n = plan.n_runs

@@ -179,8 +179,8 @@ def check_positive_change(heading_change: float) -> None:
     """``heading_change`` must be > π (the tactical diameter needs 180°)."""
     if not (isinstance(heading_change, (int, float)) and heading_change >= math.pi):
         raise ParameterError(
-            f"`heading_change` must be >= pi [rad] (180 deg, for the tactical diameter), got "
-            f"{heading_change!r}")
+            f"must be >= pi [rad] (180 deg, for the tactical diameter), got "
+            f"{heading_change!r}", field="heading_change")
 
 
 def _crossings(change: np.ndarray, levels: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -157,19 +157,19 @@ def zigzag_metrics(time: Any, heading: Any, *, trigger: Any, first_side: Any = 1
     psi = np.atleast_2d(as_float_array("heading", heading, "rad", finite=False))
     if t.ndim != 1 or psi.shape[-1] != t.size or t.size < 3:
         raise ParameterError(
-            f"`time` must be 1-D with at least 3 samples and the length of the last axis of "
-            f"`heading`, got {t.shape} and {psi.shape}")
+            f"must be 1-D with at least 3 samples and the length of the last axis of "
+            f"`heading`, got {t.shape} and {psi.shape}", field="time")
     runs = psi.shape[0]
     trig = np.broadcast_to(as_float_array("trigger", trigger, "rad"), (runs,))
     if not np.all(trig > 0):
-        raise ParameterError(f"`trigger` must be > 0 [rad], got {trigger!r}")
+        raise ParameterError(f"must be > 0 [rad], got {trigger!r}", field="trigger")
     sides = np.broadcast_to(np.asarray(first_side, dtype=float), (runs,))
     if not np.all(np.isin(sides, (-1.0, 1.0))):
-        raise ParameterError(f"`first_side` must be +1 or -1 [-], got {first_side!r}")
+        raise ParameterError(f"must be +1 or -1 [-], got {first_side!r}", field="first_side")
     base = np.broadcast_to(as_float_array("base_heading", base_heading, "rad"), (runs,))
     if not t[0] <= order_time <= t[-1]:
         raise ParameterError(
-            f"`order_time` must lie in [{t[0]:g}, {t[-1]:g}] [s], got {order_time!r}")
+            f"must lie in [{t[0]:g}, {t[-1]:g}] [s], got {order_time!r}", field="order_time")
     k0 = int(np.searchsorted(t, order_time, side="left"))
     nan3 = np.full((runs, N_OVERSHOOTS), np.nan)
     executes, overshoots, times, extremes = nan3.copy(), nan3.copy(), nan3.copy(), nan3.copy()
@@ -261,10 +261,10 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
     h = d if heading is None else as_float_array("heading", heading, "rad")
     if d.ndim > 1 or h.ndim > 1 or d.shape != h.shape or d.size == 0:
         raise ParameterError(
-            "`rudder` and `heading` must be numbers or 1-D sequences of one length (pairs) "
-            f"[rad], got shapes {d.shape} and {h.shape}")
+            "and `heading` must be numbers or 1-D sequences of one length (pairs) "
+            f"[rad], got shapes {d.shape} and {h.shape}", field="rudder")
     if not np.all((h > 0) & (h < math.pi)):
-        raise ParameterError(f"`heading` trigger must be in (0, pi) [rad], got {heading!r}")
+        raise ParameterError(f"trigger must be in (0, pi) [rad], got {heading!r}", field="heading")
     is_pair = d.ndim == 1
     pair = Axis(name="pair", values=np.arange(max(d.size, 1)), is_dim=is_pair,
                 coords={"rudder": (np.atleast_1d(d), {"units": "rad",
@@ -300,10 +300,11 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
         if bad.size:
             i = int(bad[0])
             raise ParameterError(
-                f"`heading` trigger {math.degrees(trig[i]):.4g} deg is not reached within "
+                f"trigger {math.degrees(trig[i]):.4g} deg is not reached within "
                 f"`t_final` = {t_final!r} [s] with {math.degrees(amp[i]):.4g} deg rudder: "
                 f"the steady turn of '{plan.ship(i).name}' at that rudder angle turns at "
-                f"{math.degrees(rates[i]):.4g} deg/s, which needs at least {need[i]:.4g} s")
+                f"{math.degrees(rates[i]):.4g} deg/s, which needs at least {need[i]:.4g} s",
+                field="heading")
     t_final = final_time(float(t_final), float(dt))
     record_every = record_every_for(float(dt), record_dt)
     x0 = np.stack([plan.approach(i).state for i in range(n)])

@@ -1,0 +1,403 @@
+"""One simulation request: :class:`Problem`, validated once and run by ``simulate(problem)``.
+
+A :class:`Problem` says everything the engine needs — what to simulate (a ship, or a model
+with its parameters), the actuator and the controller, the environment, the references and
+disturbances, the timing, what to record, the batch's axes (:class:`BatchLayout`), the seed and
+the options — and checks it in its constructor: the components by name, the timing, the
+wiring by signal name, the bounds' labels, the options. Python code, the scenario loader, the
+CLI and sweeps all build one; :func:`seahelm.simulation.engine.simulate` runs it (its keyword
+form builds one). capytaine's problem objects (validated in their constructor, their
+coordinates becoming the result's dimensions) are the model.
+
+What depends on the sizes of the per-run inputs (parameter rows, initial states, signal
+arrays, their broadcast to one batch, the recording's memory) is checked by the engine when it
+builds those arrays, once, before anything runs.
+
+Every error is a :class:`~seahelm.errors.ParameterError` whose ``field`` is the problem's
+field (``dt``, ``controller_dt``, ``bounds.heading``, ``params.Y_v``): a scenario file or the
+CLI names it in its own words from that field, never from the message text.
+
+Example::
+
+    problem = Problem(ship="kvlcc2-l7", x0=approach, t_final=120.0, dt=0.05,
+                      reference={"rudder_angle": math.radians(35.0), "propeller_rps": rps})
+    result = simulate(problem)
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+import types
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..result_layout import BatchLayout
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..actuators.base import Actuator
+    from ..control.base import Controller
+    from ..vessels.base import VesselModel
+
+__all__ = ["Problem", "OPTION_FIELDS", "jit_enabled"]
+
+#: The fields that are options of the run rather than its inputs.
+OPTION_FIELDS: tuple[str, ...] = ("exact_actuator", "jit")
+
+
+#: Values of ``SEAHELM_DISABLE_JIT`` that leave the JIT on (any other non-empty value turns the
+#: pure-Python loop on).
+_OFF = ("", "0", "false", "no", "off")
+
+
+def _numba_jit_disabled() -> bool:
+    from numba.core import config
+
+    return bool(config.DISABLE_JIT)
+
+
+def jit_enabled(jit: bool | None = None) -> bool:
+    """Whether :func:`~seahelm.simulation.engine.simulate` runs the compiled loop (``True``) or the pure-Python one.
+
+    Parameters
+    ----------
+    jit : bool, optional
+        The caller's choice. Default: compiled, unless ``SEAHELM_DISABLE_JIT`` is set (to
+        anything but empty, ``0``, ``false``, ``no`` or ``off``) or numba's own JIT is disabled
+        (``NUMBA_DISABLE_JIT=1``, read by numba when it is imported).
+
+    Returns
+    -------
+    bool
+
+    Raises
+    ------
+    ParameterError
+        If ``jit`` is not True, False or None, or is True while numba's JIT is disabled.
+    """
+    if jit is None:
+        off = os.environ.get("SEAHELM_DISABLE_JIT", "").strip().lower() not in _OFF
+        return not (off or _numba_jit_disabled())
+    if not isinstance(jit, (bool, np.bool_)):
+        raise ParameterError(f"must be True, False or None, got {jit!r}", field="jit",
+                             value=jit)
+    if jit and _numba_jit_disabled():
+        raise ParameterError("= True, but numba's JIT is disabled (NUMBA_DISABLE_JIT=1): "
+                             "nothing can be compiled in this process", field="jit", value=jit)
+    return bool(jit)
+
+
+
+def steps(t_final: float, dt: float, what: str = "t_final") -> int:
+    """``t_final / dt`` as a whole number of steps (ParameterError naming ``what`` if not)."""
+    ratio = t_final / dt
+    n = int(round(ratio))
+    if n < 1 or abs(ratio - n) > 1e-9 * max(1.0, ratio):
+        raise ParameterError(
+            f"must be a positive whole multiple of `dt` [s]: {what}={t_final!r}, dt={dt!r}",
+            field=what, unit="s", value=t_final)
+    return n
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
+class Problem:
+    """One simulation request, validated on construction.
+
+    Attributes
+    ----------
+    t_final, dt : float
+        Duration [s] and integration step [s]; ``t_final`` a whole multiple of ``dt``.
+    ship : Ship, str or path-like, optional
+        A ship (:mod:`seahelm.ships`: a catalog name or a ship file): gives the model, the
+        parameters and, where it has one, the steering gear as the actuator.
+    model : VesselModel or str, optional
+        The vessel model (or its registry name); from the ship when one is given.
+    params : Params, sequence of Params or array (runs, n_params), optional
+        Vessel parameters, one set or one per run (default: the ship's).
+    x0 : array_like, shape (n_states,) or (runs, n_states)
+        Initial vessel state (SI units, radians).
+    controller, controller_params : Controller or str, Params or array, optional
+        Controller (default: open loop, reference = command) and its parameters.
+    actuator, actuator_params, actuator_x0 : Actuator or str, Params or array, array_like
+        Actuator (default: the ship's steering gear, else the rudder servo), its parameters
+        (default: the steering gear's) and initial state (default zeros).
+    reference, disturbance : None, scalar, array, callable or mapping, optional
+        Controller reference and the model's disturbance inputs
+        (:func:`~seahelm.simulation.engine.simulate` lists the forms).
+    environment, environment_params : Environment, Params or array, optional
+        Wind and wave loads (:mod:`seahelm.environment.loads`) and their parameters.
+    controller_dt : float, optional
+        Controller sample period [s], a whole multiple of ``dt`` (default ``dt``).
+    integrator : str or ButcherTableau, optional
+        Fixed-step method (default ``"rk4"``).
+    record_every : int, optional
+        Record every n-th step and the final state (default 1).
+    bounds : mapping state label -> (low, high), optional
+        Admissible state bounds beyond the model's declared ones.
+    seed : int, optional
+        Seed the batch's random inputs came from, stored with the results.
+    metadata : mapping, optional
+        Extra attributes stored with the results.
+    layout : BatchLayout, optional
+        The dimensions the runs span (default: one ``run`` dimension).
+    exact_actuator : bool, optional
+        Take the actuator's states from its closed-form step (default: when it has one).
+    jit : bool, optional
+        Run the compiled loop (default) or the same loop as plain Python (``False``).
+
+    Derived (read-only)
+    -------------------
+    n_steps, controller_every : int
+        Integration steps, and steps per controller sample.
+    tableau : ButcherTableau
+        The integrator.
+    wiring : Composition
+        Controller → actuator → model by signal name (:func:`~.composition.compose`).
+    """
+
+    t_final: float
+    dt: float
+    ship: Any = None
+    model: "VesselModel | str | None" = None
+    params: Any = None
+    x0: Any = None
+    controller: "Controller | str | None" = None
+    controller_params: Any = None
+    actuator: "Actuator | str | None" = None
+    actuator_params: Any = None
+    actuator_x0: Any = None
+    reference: Any = None
+    disturbance: Any = None
+    environment: Any = None
+    environment_params: Any = None
+    controller_dt: float | None = None
+    integrator: Any = "rk4"
+    record_every: int = 1
+    bounds: Mapping[str, tuple[float, float]] = dataclasses.field(default_factory=dict)
+    seed: int | None = None
+    metadata: Mapping[str, Any] = dataclasses.field(default_factory=dict)
+    layout: BatchLayout | None = None
+    exact_actuator: bool | None = None
+    jit: bool | None = None
+
+    def __post_init__(self) -> None:
+        from ..actuators.base import Actuator
+        from ..actuators.servo import RUDDER_SERVO
+        from ..control.base import Controller
+        from ..control.open_loop import OPEN_LOOP
+        from ..numerics.runge_kutta import get_integrator
+        from ..registry import get_actuator, get_controller, get_model
+        from ..vessels.base import VesselModel
+        from .composition import compose
+
+        def field_error(name: str, exc: Exception) -> ParameterError:
+            if isinstance(exc, ParameterError) and exc.field is not None:
+                return exc.within(name) if not exc.field.startswith(name) else exc
+            return ParameterError(f": {exc}", field=name)
+
+        put = object.__setattr__
+        ship = self.ship
+        if ship is not None:
+            from ..ships import get_ship
+
+            try:
+                ship = get_ship(ship)
+            except ValueError as exc:
+                raise field_error("ship", exc) from None
+            put(self, "ship", ship)
+        # the model: given, or the ship's
+        model = self.model
+        if model is None:
+            if ship is None:
+                raise ParameterError("is required: give a `model` (seahelm models lists them) "
+                                     "or a `ship`", field="model")
+            model = ship.model
+        else:
+            try:
+                model = get_model(model)
+            except ValueError as exc:
+                raise field_error("model", exc) from None
+            if ship is not None and model is not ship.model:
+                raise ParameterError(f"'{model.name}' is not the model of ship '{ship.name}' "
+                                     f"('{ship.model.name}')", field="model")
+        if not isinstance(model, VesselModel):  # pragma: no cover - get_model checks
+            raise ParameterError(f"must be a VesselModel, got {type(model).__name__}",
+                                 field="model")
+        put(self, "model", model)
+        if self.params is None:
+            if ship is None:
+                raise ParameterError(f"is required ({model.params_type.__name__} of model "
+                                     f"'{model.name}', or a `ship`)", field="params")
+            put(self, "params", ship.params)
+        if self.x0 is None:
+            raise ParameterError(f"is required: the initial state ({', '.join(model.state_labels)})",
+                                 field="x0")
+        # the actuator: given, the ship's steering gear, or the rudder servo
+        gear = None if ship is None else ship.steering_gear
+        actuator = self.actuator
+        if actuator is None:
+            actuator = gear.actuator if gear is not None else RUDDER_SERVO
+        else:
+            try:
+                actuator = get_actuator(actuator)
+            except ValueError as exc:
+                raise field_error("actuator", exc) from None
+        if not isinstance(actuator, Actuator):  # pragma: no cover - get_actuator checks
+            raise ParameterError(f"must be an Actuator, got {type(actuator).__name__}",
+                                 field="actuator")
+        put(self, "actuator", actuator)
+        if self.actuator_params is None and gear is not None and gear.actuator is actuator:
+            put(self, "actuator_params", gear.params)
+        controller = OPEN_LOOP if self.controller is None else self.controller
+        try:
+            controller = get_controller(controller)
+        except ValueError as exc:
+            raise field_error("controller", exc) from None
+        if not isinstance(controller, Controller):  # pragma: no cover - get_controller checks
+            raise ParameterError(f"must be a Controller, got {type(controller).__name__}",
+                                 field="controller")
+        put(self, "controller", controller)
+
+        # timing
+        for name in ("dt", "t_final"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating,
+                                                                 np.integer)) \
+                    or not (math.isfinite(value) and value > 0):
+                raise ParameterError(f"must be > 0 [s], got {value!r}", field=name, unit="s",
+                                     value=value)
+        dt, t_final = float(self.dt), float(self.t_final)
+        n_steps = steps(t_final, dt)
+        ctrl_dt = dt if self.controller_dt is None else self.controller_dt
+        if isinstance(ctrl_dt, bool) or not isinstance(ctrl_dt, (int, float, np.floating,
+                                                                 np.integer)) \
+                or not (math.isfinite(ctrl_dt) and ctrl_dt > 0):
+            raise ParameterError(f"must be > 0 [s], got {ctrl_dt!r}", field="controller_dt",
+                                 unit="s", value=ctrl_dt)
+        ctrl_every = steps(float(ctrl_dt), dt, "controller_dt")
+        if ctrl_every > n_steps:
+            raise ParameterError(
+                f"= {float(ctrl_dt)!r} s exceeds `t_final` = {t_final!r} s: the controller "
+                "would act once, at t = 0", field="controller_dt", unit="s", value=ctrl_dt)
+        every = self.record_every
+        if isinstance(every, bool) or not isinstance(every, (int, float, np.integer)) \
+                or int(every) != every or every < 1:
+            raise ParameterError(f"must be a whole number >= 1, got {every!r}",
+                                 field="record_every", value=every)
+        if int(every) > n_steps:
+            raise ParameterError(
+                f"= {int(every)} exceeds the number of steps ({n_steps} = t_final/dt): nothing "
+                "after t = 0 would be recorded", field="record_every", value=every)
+        put(self, "record_every", int(every))
+        try:
+            tableau = get_integrator(self.integrator)
+        except ValueError as exc:
+            raise field_error("integrator", exc) from None
+        # wiring, environment, bounds, options
+        try:
+            wiring = compose(model, actuator, controller)
+        except ParameterError as exc:
+            raise field_error("controller", exc) from None
+        if self.environment is None:
+            if self.environment_params is not None:
+                raise ParameterError("given without an `environment`",
+                                     field="environment_params")
+        else:
+            from .environment_stage import check_environment
+
+            try:
+                check_environment(self.environment, model)
+            except ParameterError as exc:
+                raise field_error("environment", exc) from None
+        labels = model.state_labels + actuator.state_labels
+        bounds = dict(self.bounds or {})
+        for label, pair in bounds.items():
+            if label not in labels:
+                raise ParameterError(f"is an unknown state; states: {', '.join(labels)}",
+                                     field=f"bounds.{label}")
+        exact = self.exact_actuator
+        if exact is not None and not isinstance(exact, (bool, np.bool_)):
+            raise ParameterError(f"must be True, False or None, got {exact!r}",
+                                 field="exact_actuator", value=exact)
+        if exact and actuator.advance is None:
+            raise ParameterError(f": the actuator '{actuator.name}' has no closed-form step",
+                                 field="exact_actuator", value=exact)
+        try:
+            jit_enabled(self.jit)
+        except ParameterError as exc:
+            raise field_error("jit", exc) from None
+        if self.layout is not None and not isinstance(self.layout, BatchLayout):
+            raise ParameterError(f"must be a BatchLayout, got {type(self.layout).__name__}",
+                                 field="layout")
+        put(self, "bounds", types.MappingProxyType(bounds))
+        put(self, "metadata", types.MappingProxyType(dict(self.metadata or {})))
+        put(self, "_derived", types.MappingProxyType({
+            "n_steps": n_steps, "controller_every": ctrl_every, "controller_dt": float(ctrl_dt),
+            "tableau": tableau, "wiring": wiring}))
+
+    # -- derived ------------------------------------------------------------------------
+    @property
+    def n_steps(self) -> int:
+        """Integration steps, ``t_final / dt``."""
+        return self._derived["n_steps"]
+
+    @property
+    def controller_every(self) -> int:
+        """Integration steps per controller sample."""
+        return self._derived["controller_every"]
+
+    @property
+    def tableau(self) -> Any:
+        """The integrator's Butcher tableau."""
+        return self._derived["tableau"]
+
+    @property
+    def wiring(self) -> Any:
+        """Controller → actuator → model by signal name."""
+        return self._derived["wiring"]
+
+    @property
+    def n_runs(self) -> int | None:
+        """Number of runs the layout spans (None without a layout: the engine decides)."""
+        return None if self.layout is None else self.layout.size
+
+    def simulate_kwargs(self) -> dict[str, Any]:
+        """The keyword arguments of :func:`~seahelm.simulation.engine.simulate` that make this
+        problem again (components resolved; the layout is the problem's own).
+
+        Returns
+        -------
+        dict
+        """
+        kwargs = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)
+                  if f.name not in ("layout", "ship")}
+        kwargs["bounds"] = dict(self.bounds)
+        kwargs["metadata"] = dict(self.metadata)
+        return kwargs
+
+    def __reduce__(self) -> Any:
+        # pickled by its fields, made (and validated) again when unpickled
+        return (_rebuild, ({f.name: getattr(self, f.name) if f.name not in ("bounds", "metadata")
+                            else dict(getattr(self, f.name)) for f in dataclasses.fields(self)},))
+
+    def replace(self, **changes: Any) -> "Problem":
+        """A copy with some fields changed, validated again.
+
+        Parameters
+        ----------
+        **changes
+            New field values.
+
+        Returns
+        -------
+        Problem
+        """
+        return dataclasses.replace(self, **changes)
+
+
+def _rebuild(fields: dict[str, Any]) -> Problem:
+    return Problem(**fields)
