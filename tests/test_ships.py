@@ -418,3 +418,15 @@ def test_a_scenario_takes_a_ship_file_relative_to_itself(tmp_path):
                                                         'catalog = "mariner-nomoto2"'))
     with pytest.raises(ParameterError, match="give `ship` or `catalog`"):
         load_scenario(folder / "d.toml")
+
+
+def test_lvovs_particulars_come_from_the_ship():
+    from seahelm.studies.lvov2014 import MARINER_PARTICULARS, ShipParticulars
+
+    made = ShipParticulars.from_ship("mariner-voitkunsky",
+                                     rudder_area=MARINER_PARTICULARS.rudder_area,
+                                     sway_mass=MARINER_PARTICULARS.sway_mass,
+                                     yaw_inertia=MARINER_PARTICULARS.yaw_inertia)
+    assert made == MARINER_PARTICULARS  # the study's Mariner is the catalog's Mariner
+    with pytest.raises(ParameterError, match="has no particulars"):
+        ShipParticulars.from_ship("shushlyapin2017-listing")

@@ -8,6 +8,7 @@ is that rule for any registry (the studies' printed-vs-corrected variants use it
 
 from __future__ import annotations
 
+import functools
 import importlib
 from collections.abc import Mapping
 from typing import Any
@@ -17,7 +18,7 @@ from .control.base import Controller
 from .vessels.base import VesselModel
 
 __all__ = ["VESSEL_MODELS", "ACTUATORS", "CONTROLLERS", "get_model", "get_actuator",
-           "get_controller", "lookup"]
+           "get_controller", "lookup", "model_for_params"]
 
 VESSEL_MODELS: dict[str, str] = {
     "nomoto1": "seahelm.vessels.nomoto:NOMOTO1",
@@ -168,3 +169,24 @@ def get_controller(name: str | Controller) -> Controller:
                              f"{', '.join(GUIDANCE_LAWS)}")
         return guided(GUIDANCE_LAWS[law], lookup("controller", CONTROLLERS, inner, Controller))
     return lookup("controller", CONTROLLERS, name, Controller)
+
+
+@functools.lru_cache(maxsize=None)
+def model_for_params(params_type: type) -> VesselModel | None:
+    """The one registered vessel model whose parameters are ``params_type`` (exactly).
+
+    What a bare parameter set is simulated with when no model is named (``MMGParams`` → the
+    MMG model): found in the registry, so a new model needs no table of defaults. None when no
+    model, or more than one, takes that type.
+
+    Parameters
+    ----------
+    params_type : type
+        A :class:`~seahelm.parameters.Params` subclass.
+
+    Returns
+    -------
+    VesselModel or None
+    """
+    found = [m for m in map(get_model, VESSEL_MODELS) if m.params_type is params_type]
+    return found[0] if len(found) == 1 else None

@@ -52,9 +52,8 @@ import numpy as np
 from .._validate import as_float_array, check_finite, check_positive, check_range
 from ..errors import ParameterError
 from ..parameters import Params
+from ..registry import model_for_params
 from ..vessels.base import VesselModel
-from ..vessels.mariner import MARINER, MarinerParams
-from ..vessels.mmg import MMG, MMGParams
 
 # scipy.optimize (0.2 s to import) is imported inside the functions that use it
 
@@ -71,8 +70,6 @@ __all__ = [
     "approach_state",
 ]
 
-#: The model used for a parameter type when none is given.
-DEFAULT_MODELS: dict[type[Params], VesselModel] = {MMGParams: MMG, MarinerParams: MARINER}
 
 
 class EquilibriumError(ParameterError):
@@ -147,11 +144,11 @@ class _Plant:
     def __init__(self, params: Any, model: VesselModel | None) -> None:
         self.params, ship_model = _resolve_params(params)
         if model is None:
-            model = ship_model or DEFAULT_MODELS.get(type(self.params))
+            model = ship_model or model_for_params(type(self.params))
             if model is None:
                 raise ParameterError(
                     f"no default model for {type(self.params).__name__}; pass `model=` "
-                    f"(defaults exist for {', '.join(c.__name__ for c in DEFAULT_MODELS)})")
+                    "(a default exists for a parameter type only one registered model takes)")
         if not isinstance(self.params, model.params_type):
             raise ParameterError(
                 f"model '{model.name}' takes {model.params_type.__name__}, got "

@@ -149,14 +149,12 @@ class Problem:
     jit : bool, optional
         Run the compiled loop (default) or the same loop as plain Python (``False``).
 
-    Derived (read-only)
-    -------------------
-    n_steps, controller_every : int
-        Integration steps, and steps per controller sample.
-    tableau : ButcherTableau
-        The integrator.
-    wiring : Composition
-        Controller → actuator → model by signal name (:func:`~.composition.compose`).
+    Notes
+    -----
+    Derived on construction (read-only properties): :attr:`n_steps` and
+    :attr:`controller_every` (integration steps, and steps per controller sample),
+    :attr:`tableau` (the integrator) and :attr:`wiring` (controller → actuator → model by signal
+    name, :func:`~seahelm.simulation.composition.compose`).
     """
 
     t_final: float

@@ -32,6 +32,10 @@ printed δ_k forward then makes course keeping worse than PID alone (see
 model for the loads the wind and wave compensators (blocks 5, 6) estimate — and keeps
 :data:`PRINTED_EQ14` (eq. (12)/(14) as printed) reachable by name, ``delta_k_method="paper"``.
 
+Longer than 600 lines because it holds the paper's whole reproduction, which is read
+together: its ship data (made from a catalog ship by :meth:`ShipParticulars.from_ship`), the
+δ_k variants, the one-shot summary and the closed-loop scenario builder.
+
 References
 ----------
 Lvov, V. E. (2014), eq. (1)-(14), Fig. 1. Lvov, V. E. (2008), Sudovozhdenie 15, 109-114
@@ -119,6 +123,41 @@ class ShipParticulars(Params):
 
     def validate(self) -> None:
         check_on_hull("sail_centre", self.sail_centre, self.length)
+
+    @classmethod
+    def from_ship(cls, ship: Any, *, speed: float | None = None, **values: Any
+                  ) -> "ShipParticulars":
+        """Lvov's data of a :class:`~seahelm.ships.Ship`: its main particulars and windage
+        (length, beam, draft, block coefficient, lateral windage area and its centre), its
+        test speed, and ``values`` for what a ship does not hold (rudder, masses).
+
+        Parameters
+        ----------
+        ship : Ship, str or path-like
+            The ship (a catalog name or a ship file).
+        speed : float, optional
+            Speed through the water [m/s] (default: the ship's test speed).
+        **values
+            Any other field (SI units).
+
+        Returns
+        -------
+        ShipParticulars
+        """
+        from ..ships import get_ship
+
+        s = get_ship(ship)
+        p = s.particulars
+        if p is None:
+            raise ParameterError(f"ship '{s.name}' has no particulars", field="ship")
+        fields: dict[str, Any] = dict(length=p.length, beam=p.beam, draft=p.draft,
+                                      block_coefficient=p.block_coefficient,
+                                      speed=s.test_speed if speed is None else speed)
+        if p.lateral_area is not None:
+            fields["windage_area"] = p.lateral_area
+        if p.windage_centre is not None:
+            fields["sail_centre"] = p.windage_centre
+        return cls(**{**fields, **values})
 
     @property
     def t_fore(self) -> float:

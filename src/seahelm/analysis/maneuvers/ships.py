@@ -15,10 +15,10 @@ from ..._validate import check_positive
 from ...actuators.servo import ServoParams
 from ...errors import ParameterError
 from ...parameters import Params
+from ...registry import model_for_params
 from ...vessels.base import VesselModel
 from ...ships import Ship
 from ..equilibrium import (
-    DEFAULT_MODELS,
     EquilibriumError,
     approach_state,
     straight_run_speed,
@@ -78,7 +78,7 @@ def maneuver_ship(ship: Any, *, servo: ServoParams | None = None,
             base = found
         else:
             if model is None:
-                model = DEFAULT_MODELS.get(type(params))
+                model = model_for_params(type(params))
                 if model is None:
                     raise ParameterError(
                         f"no default model for {type(params).__name__}; pass `model=`")
