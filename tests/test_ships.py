@@ -430,3 +430,28 @@ def test_lvovs_particulars_come_from_the_ship():
     assert made == MARINER_PARTICULARS  # the study's Mariner is the catalog's Mariner
     with pytest.raises(ParameterError, match="has no particulars"):
         ShipParticulars.from_ship("shushlyapin2017-listing")
+
+
+def test_a_new_vessel_model_is_one_module_and_one_registry_line(tmp_path, monkeypatch):
+    # the "module": a model declared by its signals over compiled functions (here Nomoto-2's)
+    from seahelm.registry import VESSEL_MODELS
+    from seahelm.simulation.engine import simulate
+    from seahelm.simulation.problem import Problem
+    from seahelm.vessels.base import VesselModel
+    from seahelm.vessels.nomoto import NOMOTO2
+
+    toy = VesselModel(**{**{f.name: getattr(NOMOTO2, f.name)
+                            for f in dataclasses.fields(VesselModel)},
+                         "name": "toy", "description": "a new model"})
+    monkeypatch.setitem(VESSEL_MODELS, "toy", toy)  # the one registry line
+    # its ships are ship files, with nothing else to write
+    path = tmp_path / "toy.toml"
+    text = ship_to_toml(get_ship("mariner-nomoto2")).replace('model = "nomoto2"',
+                                                             'model = "toy"')
+    path.write_text(text.replace('name = "mariner-nomoto2"', 'name = "toy-ship"'))
+    ship = read_ship(path)
+    assert ship.model is toy and ship.test_speed == 7.7175
+    kw = dict(x0=np.zeros(5), t_final=2.0, dt=0.1, reference={"rudder_command": 0.1})
+    new = simulate(Problem(ship=path, jit=False, **kw))
+    old = simulate(NOMOTO2, get_ship("mariner-nomoto2").params, **kw)
+    np.testing.assert_allclose(new.state, old.state, rtol=1e-12, atol=1e-14)

@@ -173,7 +173,7 @@ def handle_errors(func: F) -> F:
         except typer.Exit:
             raise
         except (ParameterError, ValueError, FileNotFoundError, KeyError) as exc:
-            fail_bad_input(as_option(_one_line(exc)))
+            fail_bad_input(cli_message(exc))
         except OSError as exc:  # a path the user gave: exists, not a directory, no permission
             where = f": {exc.filename}" if getattr(exc, "filename", None) else ""
             fail_bad_input(f"{exc.strerror or type(exc).__name__}{where}")
@@ -266,12 +266,9 @@ def _show_warning(message: Warning | str, category: type[Warning], filename: str
                       highlight=False, soft_wrap=True)
 
 
-def as_option(message: str) -> str:
-    """A library message that names keywords of the running command's function ("`t_final`:
-    ...", "`speed` must ...") names its options instead ("`--t-final`: ..."): the user typed
-    options, not Python keywords."""
+def _command_options() -> dict[str, str]:
+    """The running command's options by parameter name (``{"t_final": "--t-final"}``)."""
     import importlib
-    import re
 
     # the click typer runs on: click itself (typer < 0.26) or typer's vendored copy
     core = next(c.__module__ for c in typer.Context.__mro__ if c.__name__ == "Context"
@@ -279,9 +276,60 @@ def as_option(message: str) -> str:
     ctx = importlib.import_module(core[:-len("core")] + "globals").get_current_context(
         silent=True)
     if ctx is None:
+        return {}
+    return {p.name: p.opts[0] for p in ctx.command.params
+            if getattr(p, "opts", None) and p.opts[0].startswith("--")}
+
+
+def cli_message(exc: BaseException) -> str:
+    """An error as one line in the command's words.
+
+    A :class:`~seahelm.errors.ParameterError` about a keyword of the running command's function
+    is said about its option, from the error's ``field`` (``--t-final must be > 0 [s]``), not
+    from its text; other argument names quoted in the prose are then given as options too
+    (:func:`as_option`).
+
+    Parameters
+    ----------
+    exc : BaseException
+        The error.
+
+    Returns
+    -------
+    str
+    """
+    field = getattr(exc, "field", None) if isinstance(exc, ParameterError) else None
+    if field:
+        head = field.partition(".")[0].partition("[")[0]
+        option = _command_options().get(head)
+        if option is not None:
+            reason = exc.reason
+            sep = "" if reason.startswith((":", ",", " ")) else " "
+            return as_option(_one_line(Exception(
+                f"`{option}{field[len(head):]}`{sep}{reason}")))
+    return as_option(_one_line(exc))
+
+
+def as_option(message: str) -> str:
+    """Argument names quoted in a message's prose ("give a faster approach (`speed` or `rps`)")
+    given as the running command's options ("(`--speed` or `--rps`)"): the user typed options,
+    not Python keywords. (Which option an error is *about* comes from its field,
+    :func:`cli_message`.)
+
+    Parameters
+    ----------
+    message : str
+        One line.
+
+    Returns
+    -------
+    str
+    """
+    import re
+
+    options = _command_options()
+    if not options:
         return message
-    options = {p.name: p.opts[0] for p in ctx.command.params
-               if getattr(p, "opts", None) and p.opts[0].startswith("--")}
     return re.sub(r"`(\w+)`", lambda m: f"`{options.get(m.group(1), m.group(1))}`", message)
 
 

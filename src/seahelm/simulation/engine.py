@@ -680,7 +680,7 @@ def _run(problem: "Problem", *, throw: bool,
     environment, environment_params = problem.environment, problem.environment_params
     bounds, seed, metadata = problem.bounds, problem.seed, problem.metadata
     exact_actuator, dt, t_final = problem.exact_actuator, problem.dt, problem.t_final
-    use_jit = jit_enabled(problem.jit)
+    use_jit = problem._derived["jit"]  # (resolved when the problem was made)
     n_steps, ctrl_every = problem.n_steps, problem.controller_every
     ctrl_dt, record_every = problem._derived["controller_dt"], problem.record_every
     tableau, wiring = problem.tableau, problem.wiring

@@ -31,17 +31,23 @@ import math
 import os
 import types
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..result_layout import BatchLayout
+from numba.core import config as _numba_config
 
-if TYPE_CHECKING:  # pragma: no cover
-    from ..actuators.base import Actuator
-    from ..control.base import Controller
-    from ..vessels.base import VesselModel
+from ..actuators.base import Actuator
+from ..actuators.servo import RUDDER_SERVO
+from ..control.base import Controller
+from ..control.open_loop import OPEN_LOOP
+from ..errors import ParameterError
+from ..numerics.runge_kutta import get_integrator
+from ..registry import get_actuator, get_controller, get_model
+from ..result_layout import BatchLayout
+from ..vessels.base import VesselModel
+from .composition import compose
+from .environment_stage import check_environment
 
 __all__ = ["Problem", "OPTION_FIELDS", "jit_enabled"]
 
@@ -55,9 +61,7 @@ _OFF = ("", "0", "false", "no", "off")
 
 
 def _numba_jit_disabled() -> bool:
-    from numba.core import config
-
-    return bool(config.DISABLE_JIT)
+    return bool(_numba_config.DISABLE_JIT)
 
 
 def jit_enabled(jit: bool | None = None) -> bool:
@@ -183,15 +187,6 @@ class Problem:
     jit: bool | None = None
 
     def __post_init__(self) -> None:
-        from ..actuators.base import Actuator
-        from ..actuators.servo import RUDDER_SERVO
-        from ..control.base import Controller
-        from ..control.open_loop import OPEN_LOOP
-        from ..numerics.runge_kutta import get_integrator
-        from ..registry import get_actuator, get_controller, get_model
-        from ..vessels.base import VesselModel
-        from .composition import compose
-
         def field_error(name: str, exc: Exception) -> ParameterError:
             if isinstance(exc, ParameterError) and exc.field is not None:
                 return exc.within(name) if not exc.field.startswith(name) else exc
@@ -305,8 +300,6 @@ class Problem:
                 raise ParameterError("given without an `environment`",
                                      field="environment_params")
         else:
-            from .environment_stage import check_environment
-
             try:
                 check_environment(self.environment, model)
             except ParameterError as exc:
@@ -325,7 +318,7 @@ class Problem:
             raise ParameterError(f": the actuator '{actuator.name}' has no closed-form step",
                                  field="exact_actuator", value=exact)
         try:
-            jit_enabled(self.jit)
+            use_jit = jit_enabled(self.jit)
         except ParameterError as exc:
             raise field_error("jit", exc) from None
         if self.layout is not None and not isinstance(self.layout, BatchLayout):
@@ -335,7 +328,7 @@ class Problem:
         put(self, "metadata", types.MappingProxyType(dict(self.metadata or {})))
         put(self, "_derived", types.MappingProxyType({
             "n_steps": n_steps, "controller_every": ctrl_every, "controller_dt": float(ctrl_dt),
-            "tableau": tableau, "wiring": wiring}))
+            "tableau": tableau, "wiring": wiring, "jit": use_jit}))
 
     # -- derived ------------------------------------------------------------------------
     @property
