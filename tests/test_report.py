@@ -241,7 +241,8 @@ def test_missing_input_and_unwritable_output(report_demo_dir, tmp_path):
         ["report", str(src), "-o", str(afile / "r.html")])
     assert "must be a file name" in one_error(["report", str(src), "-o", str(tmp_path)])
     assert "cannot write in" in one_error(["report", str(src), "-o", "/proc/r.html"])
-    assert "is the result file itself" in one_error(["report", str(src), "-o", str(src)])
+    assert "is a file this command reads: writing it would destroy it" in one_error(
+        ["report", str(src), "-o", str(src)])
     assert sorted(p.name for p in tmp_path.iterdir()) == ["afile"]
 
 

@@ -20,7 +20,7 @@ import sys
 import tempfile
 import time
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Annotated, Any, NoReturn, TypeVar
 
@@ -187,18 +187,24 @@ def handle_errors(func: F) -> F:
     return wrapper  # type: ignore[return-value]
 
 
-def output_dir(option: str, path: Path, names: tuple[str, ...] = ()) -> Path:
+def output_dir(option: str, path: Path, names: tuple[str, ...] = (), *,
+               reads: Iterable[Path] = ()) -> Path:
     """Check, before any work, that ``path`` is (or can be made) a writable directory and that
-    none of the files to be written there (``names``) is a directory; returns ``path``.
+    none of the files to be written there (``names``) is a directory, a file the command reads
+    (``reads``) or inside a store; returns ``path``.
 
     Raises
     ------
     ParameterError
         Naming the option and the path: an existing file, a parent that is a file, a directory
-        that cannot be created or written, a target that is a directory.
+        that cannot be created or written, a target that is a directory, an input of the
+        command, a place inside a sweep store (:func:`protect_inputs`).
     """
     if path.exists() and not path.is_dir():
         raise ParameterError(f"`{option}` must be a directory, but {path} is a file")
+    protect_inputs(option, path, reads)
+    for name in names:
+        protect_inputs(option, path / name, reads)
     _writable_directory(option, path)
     for name in names:
         if (path / name).is_dir():
@@ -207,15 +213,79 @@ def output_dir(option: str, path: Path, names: tuple[str, ...] = ()) -> Path:
     return path
 
 
-def output_file(option: str, path: Path) -> Path:
+def output_file(option: str, path: Path, *, reads: Iterable[Path] = ()) -> Path:
     """Check, before any work, that ``path`` can be written as a file: not a directory, its
-    directory existing (or creatable) and writable; returns ``path``."""
+    directory existing (or creatable) and writable, none of the files the command reads
+    (``reads``) and not inside a store (:func:`protect_inputs`); returns ``path``."""
     if path.is_dir():
         raise ParameterError(f"`{option}` must be a file name, but {path} is a directory")
     if path.parent.exists() and not path.parent.is_dir():
         raise ParameterError(f"`{option}`: {path.parent} is a file, not a directory")
+    protect_inputs(option, path, reads)
     _writable_directory(option, path.parent)
     return path
+
+
+#: Files that mark a directory as a Zarr store (a seahelm sweep store is one): nothing of a
+#: command's output may be written inside one.
+STORE_MARKERS = ("zarr.json", ".zgroup", ".zarray")
+
+
+def store_containing(path: Path) -> Path | None:
+    """The Zarr store (a sweep store) that ``path`` is, or lies inside; None if there is none.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        A file or directory (need not exist).
+
+    Returns
+    -------
+    pathlib.Path or None
+    """
+    resolved = path.resolve()
+    found = None  # the outermost: an array inside a store is part of the store
+    for candidate in (resolved, *resolved.parents):
+        if candidate.is_dir() and any((candidate / m).is_file() for m in STORE_MARKERS):
+            found = candidate
+    return found
+
+
+def protect_inputs(option: str, target: Path, reads: Iterable[Path] = ()) -> None:
+    """Refuse an output that would destroy what the user has: one of the files the command
+    reads, a place inside a store the command reads, or a place inside any store.
+
+    Parameters
+    ----------
+    option : str
+        The output option, for the message (``--out``).
+    target : pathlib.Path
+        What would be written (symbolic links are followed: a link to an input is the input).
+    reads : iterable of pathlib.Path
+        The files and stores the command reads.
+
+    Raises
+    ------
+    ParameterError
+        Naming the option, the target and what it would destroy.
+    """
+    t = target.resolve()
+    for read in reads:
+        r = Path(read).resolve()
+        if t == r:
+            same = "" if Path(read) == target else f" ({read})"
+            raise ParameterError(
+                f"`{option}` {target} is a file this command reads{same}: writing it would "
+                "destroy it; choose another path")
+        if r.is_dir() and r in t.parents:
+            raise ParameterError(
+                f"`{option}` {target} is inside {read}, which this command reads: writing "
+                "there would corrupt it; choose a path outside it")
+    store = store_containing(t)
+    if store is not None:
+        raise ParameterError(
+            f"`{option}` {target} is inside the store {store}: writing there would corrupt "
+            "it; choose a path outside it")
 
 
 def _writable_directory(option: str, directory: Path) -> None:

@@ -31,6 +31,7 @@ from .maneuver import (
     check_out,
     check_positive_opt,
     check_speed_rps,
+    ship_reads,
     ship_of,
 )
 
@@ -61,7 +62,7 @@ def imo(
     ship = ship_of(model)
     check_speed_rps(ship, speed, rps)
     check_positive_opt("--dt", dt, "s")
-    check_out(out, "imo")
+    check_out(out, "imo", ship_reads(model))
     show_report(imo_check(ship, speed=speed, rps=rps, dt=dt), out, json_out)
 
 

@@ -104,7 +104,8 @@ REPORT_NAME = "report.html"
 
 
 def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bool,
-             label: str, report: bool = False) -> dict[str, Any] | None:
+             label: str, report: bool = False, reads: tuple[Path, ...] = ()
+             ) -> dict[str, Any] | None:
     from ..analysis.maneuvers import summarize
     from ..scenario import ManeuverJob, run_scenario
 
@@ -119,8 +120,8 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
             raise ParameterError("`--csv` writes the time series of a [simulation] scenario; "
                                  f"a [maneuver] scenario ({batch.kind}) writes NetCDF only")
         if report and out is not None:
-            output_dir("--out", out, (REPORT_NAME,))
-        present_job(batch, out, as_json, plot=plot)
+            output_dir("--out", out, (REPORT_NAME,), reads=reads)
+        present_job(batch, out, as_json, plot=plot, reads=reads)
         if report and out is not None:  # from the manoeuvre's files (it reads their pair)
             source = next(n for n in OUT_FILES[batch.kind] if n.endswith(".nc"))
             _write_report(out / source, out / REPORT_NAME, quiet=as_json)
@@ -128,7 +129,8 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
 
     if out is not None:  # every target checked before anything runs
         output_dir("--out", out, ("result.nc",) + (("result.csv",) if csv else ())
-                   + (("overview.png",) if plot else ()) + ((REPORT_NAME,) if report else ()))
+                   + (("overview.png",) if plot else ()) + ((REPORT_NAME,) if report else ()),
+                   reads=reads)
     bar = ProgressBar(f"simulating {batch.n_runs} run(s)")
     try:
         result = run_scenario(batch, progress=bar)
@@ -229,7 +231,7 @@ def run(
 
     batch = load_scenario(scenario)
     _execute(batch, out, as_json=json_out, plot=plot, csv=csv,
-             label=batch.metadata["title"] or str(scenario), report=report)
+             label=batch.metadata["title"] or str(scenario), report=report, reads=(scenario,))
 
 
 @app.command()
@@ -315,7 +317,7 @@ def plot(
     from ..results import flatten_runs, load_result
 
     input_file("RESULT", result)
-    target = output_file("--out", out or result.with_suffix(".png"))
+    target = output_file("--out", out or result.with_suffix(".png"), reads=(result,))
     check_figure_suffix("--out", target)
     ds = flatten_runs(load_result(result))
     if runs:

@@ -147,10 +147,18 @@ OUT_FILES: dict[str, tuple[str, ...]] = {
 }
 
 
-def check_out(out: Path | None, kind: str) -> None:
-    """``--out``: a writable directory where none of the kind's files is a directory."""
+def check_out(out: Path | None, kind: str, reads: tuple[Path, ...] = ()) -> None:
+    """``--out``: a writable directory where none of the kind's files is a directory, a file
+    the command reads (``reads``: a ship file, a scenario) or inside a store."""
     if out is not None:
-        output_dir("--out", out, OUT_FILES[kind])
+        output_dir("--out", out, OUT_FILES[kind], reads=reads)
+
+
+def ship_reads(ship: str) -> tuple[Path, ...]:
+    """The ship file a command reads, if ``ship`` names one (a catalog name reads none)."""
+    from ..ships.file_format import is_ship_path
+
+    return (Path(ship),) if is_ship_path(ship) else ()
 
 
 def checked(catalog: ShipName, rudder: float, side: SideName, speed: float | None,
@@ -347,7 +355,7 @@ def turning_cmd(
     from ..plotting.maneuvers import plot_turning
 
     ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt)
-    check_out(out, "turning")
+    check_out(out, "turning", ship_reads(catalog))
     result = turning_circle(ship, delta, sides=sides, speed=speed, rps=rps, t_final=t_final,
                             dt=dt)
     finish(f"Turning circle, {ship.name}, {rudder:g} deg rudder", result, header(result),
@@ -391,7 +399,7 @@ def zigzag_cmd(
     from ..plotting.maneuvers import plot_zigzag
 
     ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt)
-    check_out(out, "zigzag")
+    check_out(out, "zigzag", ship_reads(catalog))
     psi = rudder if heading is None else heading
     if not (math.isfinite(psi) and 0 < psi < 180):
         raise ParameterError(f"`--heading` must be in (0, 180) [deg], got {psi!r}")
@@ -430,7 +438,7 @@ def pullout_cmd(
     from ..plotting.maneuvers import plot_pullout
 
     ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt)
-    check_out(out, "pullout")
+    check_out(out, "pullout", ship_reads(catalog))
     result = pull_out(ship, delta, sides=sides, speed=speed, rps=rps, t_final=t_final, dt=dt)
     payload = header(result)
     if "residual_gap" in result.metrics:
@@ -463,7 +471,7 @@ def spiral_cmd(
     check_speed_rps(ship, speed, rps)
     check_positive_opt("--hold", hold, "s")
     check_positive_opt("--dt", dt, "s")
-    check_out(out, "spiral")
+    check_out(out, "spiral", ship_reads(catalog))
     direct, reverse = spirals(ship, top, speed=speed, rps=rps, hold=hold, dt=dt)
     show_spirals(f"Direct spiral, {ship.name}", direct, reverse, out, json_out)
 

@@ -26,13 +26,14 @@ def _deg_text(value: Any) -> str:
     return ", ".join(f"{math.degrees(v):g}" for v in values)
 
 
-def present_job(job: Any, out: Path | None, as_json: bool, *, plot: bool = True) -> None:
+def present_job(job: Any, out: Path | None, as_json: bool, *, plot: bool = True,
+                reads: tuple[Path, ...] = ()) -> None:
     """Run a ``[maneuver]`` scenario's :class:`~seahelm.scenario.ManeuverJob` and show it as
     the matching ``seahelm maneuver``/``seahelm imo`` command would (files with ``out``,
-    figures unless ``plot`` is False)."""
+    figures unless ``plot`` is False; never over ``reads``, the files the command read)."""
     from ..plotting.maneuvers import plot_pullout, plot_turning, plot_zigzag
 
-    check_out(out, job.kind)
+    check_out(out, job.kind, reads)
     result = job.run()
     name = job.ship.name
     opts = job.options

@@ -41,9 +41,11 @@ def report(
             raise ParameterError(f"`RESULT`: no such sweep store: {result}")
     else:
         input_file("RESULT", result)
-    target = output_file("--out", out or default_report_path(result))
-    if target.resolve() == result.resolve():
-        raise ParameterError(f"`--out` {target} is the result file itself")
+    from ..report.inputs import report_inputs
+
+    # never over what the report reads: the result, its companion files, a store's insides
+    target = output_file("--out", out or default_report_path(result),
+                         reads=report_inputs(result))
     from ..report import write_report
 
     summary = write_report(result, target)

@@ -20,7 +20,7 @@ from rich.table import Table
 from .._validate import check_positive
 from ..errors import ParameterError
 from ._common import JsonFlag, ProgressBar, _writable_directory, console, \
-    exit_if_diverged, handle_errors, input_file, print_json
+    exit_if_diverged, handle_errors, input_file, print_json, store_containing
 
 __all__ = ["sweep"]
 
@@ -69,6 +69,15 @@ def sweep(
     if workers is not None and scheduler is not None:
         raise ParameterError("give --workers (a local cluster) or --scheduler (a running one), "
                              "not both")
+    # the store is never the scenario, nor inside another store (it may be a store itself:
+    # resuming writes into it)
+    if target.resolve() == scenario.resolve():
+        raise ParameterError(f"`--store` {target} is the scenario file: writing the store "
+                             "there would destroy it; choose another path")
+    outer = store_containing(target.parent)
+    if outer is not None:
+        raise ParameterError(f"`--store` {target} is inside the store {outer}: writing there "
+                             "would corrupt it; choose a path outside it")
     text = scenario.read_text()
     check_store(target, text, chunk_size=chunk_size, overwrite=overwrite, series=series)
     _writable_directory("--store", target.parent)

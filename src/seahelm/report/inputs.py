@@ -32,7 +32,7 @@ from ..errors import ParameterError
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
-__all__ = ["RunSet", "ReportData", "load_report_data", "report_data_from_dataset"]
+__all__ = ["report_inputs", "RunSet", "ReportData", "load_report_data", "report_data_from_dataset"]
 
 #: The manoeuvres whose files ``seahelm imo --out`` writes (with ``imo-report.json``).
 IMO_MANEUVERS = ("turning-circle", "zigzag")
@@ -321,3 +321,28 @@ def _sweep_data(path: Path) -> ReportData:
             runs = flat.isel(run=done).load()
             sets = (RunSet("result", runs, None, None),)
     return ReportData(title=f"Sweep: {title}", sets=sets, sources=(str(path),), sweep=per_run)
+
+
+def report_inputs(path: str | Path) -> list[Path]:
+    """Every file (or store) :func:`load_report_data` may read for ``path``, so that a report
+    is never written over one of them.
+
+    For a sweep store, the store; for a file, it and the manoeuvre files (``*-runs.nc``,
+    ``*-metrics.nc``) and ``imo-report.json`` beside it (a manoeuvre's file is reported with
+    its pair and its IMO set; which one a file is shows only once it is read).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        What ``seahelm report`` was given.
+
+    Returns
+    -------
+    list of pathlib.Path
+    """
+    p = Path(path)
+    if p.is_dir():
+        return [p]
+    folder = p.parent
+    return [p, *sorted(folder.glob("*-runs.nc")), *sorted(folder.glob("*-metrics.nc")),
+            folder / IMO_REPORT]

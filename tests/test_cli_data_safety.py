@@ -1,0 +1,115 @@
+"""Nothing a user has is overwritten by accident: an output is never an input of the command,
+a file it reads beside its input, or a place inside a store (issue 33, part 1)."""
+
+from __future__ import annotations
+
+import hashlib
+import os
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from seahelm.cli._common import protect_inputs, store_containing
+from seahelm.cli.main import app
+from seahelm.errors import ParameterError
+from seahelm.ships import get_ship, write_ship
+
+runner = CliRunner()
+
+
+def _digest(path: Path) -> str:
+    if path.is_dir():
+        return "".join(_digest(p) + str(p.relative_to(path)) for p in sorted(path.rglob("*")))
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def _refused(args, *, keep, match):
+    before = {p: _digest(p) for p in keep}
+    res = runner.invoke(app, args)
+    assert res.exit_code == 2, (res.stdout, res.stderr)
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1 and match in lines[0], lines
+    assert {p: _digest(p) for p in keep} == before  # nothing touched
+
+
+def _fake_store(path: Path) -> Path:
+    path.mkdir()
+    (path / "zarr.json").write_text('{"zarr_format": 3, "node_type": "group"}')
+    (path / "status").mkdir()
+    (path / "status" / "zarr.json").write_text("{}")
+    return path
+
+
+def test_report_never_writes_into_the_store_it_reads(tmp_path):
+    store = _fake_store(tmp_path / "s.zarr")
+    _refused(["report", str(store), "-o", str(store / "zarr.json")], keep=[store],
+             match="which this command reads: writing there would corrupt it")
+    _refused(["report", str(store), "-o", str(store / "status" / "r.html")], keep=[store],
+             match="is inside")
+
+
+def test_report_never_overwrites_the_companion_files_it_reads(tmp_path):
+    runs = tmp_path / "turning-circle-runs.nc"
+    metrics = tmp_path / "turning-circle-metrics.nc"
+    imo = tmp_path / "imo-report.json"
+    for p in (runs, metrics, imo):
+        p.write_bytes(os.urandom(64))
+    for target in (metrics, imo, runs):
+        _refused(["report", str(runs), "-o", str(target)], keep=[runs, metrics, imo],
+                 match="is a file this command reads")
+
+
+def test_a_link_to_an_input_is_the_input(tmp_path):
+    result = tmp_path / "result.nc"
+    result.write_bytes(b"x" * 10)
+    link = tmp_path / "link.html"
+    link.symlink_to(result)
+    _refused(["report", str(result), "-o", str(link)], keep=[result], match="is a file this command reads")
+    _refused(["plot", str(result), "--out", str(link)], keep=[result], match="is a file this command reads")
+
+
+def test_nothing_is_written_inside_any_store(tmp_path):
+    store = _fake_store(tmp_path / "other.zarr")
+    _refused(["waves", "sample", "--h3", "3", "--duration", "10", "--dt", "0.5", "--seed", "1",
+              "--out", str(store / "w.nc")], keep=[store], match="is inside the store")
+    _refused(["maneuver", "turning", "--out", str(store / "turn")], keep=[store],
+             match="is inside the store")
+
+
+def test_run_and_manoeuvres_never_overwrite_their_scenario_or_ship_file(tmp_path):
+    out = tmp_path / "out"
+    out.mkdir()
+    scenario = out / "result.nc"  # (a scenario may be called anything)
+    scenario.write_text((Path(__file__).parent.parent / "examples" /
+                         "mariner_pid_sweep.toml").read_text())
+    _refused(["run", str(scenario), "--out", str(out)], keep=[scenario],
+             match="is a file this command reads")
+    ship = out / "turning-circle-runs.nc"  # a ship file by another name
+    write_ship(get_ship("kvlcc2-l7"), ship)
+    _refused(["maneuver", "turning", "--ship", str(ship), "--out", str(out)], keep=[ship],
+             match="is a file this command reads")
+    _refused(["imo", str(ship), "--out", str(out)], keep=[ship], match="is a file this command reads")
+
+
+def test_a_sweep_store_is_neither_the_scenario_nor_inside_a_store(tmp_path):
+    scenario = tmp_path / "s.toml"
+    scenario.write_text((Path(__file__).parent.parent / "examples" /
+                         "mariner_pid_sweep.toml").read_text())
+    _refused(["sweep", str(scenario), "--store", str(scenario)], keep=[scenario],
+             match="is the scenario file")
+    outer = _fake_store(tmp_path / "outer.zarr")
+    _refused(["sweep", str(scenario), "--store", str(outer / "inner.zarr")], keep=[outer],
+             match="is inside the store")
+
+
+def test_the_guard_itself(tmp_path):
+    store = _fake_store(tmp_path / "a.zarr")
+    assert store_containing(store / "status" / "x") == store.resolve()
+    assert store_containing(store) == store.resolve()
+    assert store_containing(tmp_path / "b.nc") is None
+    protect_inputs("--out", tmp_path / "b.nc", reads=[tmp_path / "c.nc"])  # fine
+    with pytest.raises(ParameterError, match=r"`--out` .*c.nc is a file this command reads: "):
+        protect_inputs("--out", tmp_path / "c.nc", reads=[tmp_path / "c.nc"])
+    with pytest.raises(ParameterError, match="is inside the store"):
+        protect_inputs("--out", store / "new.nc")
