@@ -113,3 +113,43 @@ def test_the_guard_itself(tmp_path):
         protect_inputs("--out", tmp_path / "c.nc", reads=[tmp_path / "c.nc"])
     with pytest.raises(ParameterError, match="is inside the store"):
         protect_inputs("--out", store / "new.nc")
+
+
+# ------------------------------------------------------------------------------------------
+# resource limits that hold (issue 33, part 4)
+# ------------------------------------------------------------------------------------------
+def _sweep_scenario(tmp_path):
+    scenario = tmp_path / "s.toml"
+    scenario.write_text((Path(__file__).parent.parent / "examples" /
+                         "mariner_pid_sweep.toml").read_text())
+    return scenario
+
+
+def test_sweep_workers_are_checked_against_the_cores(tmp_path):
+    scenario = _sweep_scenario(tmp_path)
+    cores = os.cpu_count() or 1
+    _refused(["sweep", str(scenario), "--store", str(tmp_path / "s.zarr"), "--workers",
+              str(cores * 500)], keep=[scenario],
+             match=f"is more than this machine's {cores} core(s)")
+    assert not (tmp_path / "s.zarr").exists()
+
+
+def test_an_explicit_chunk_size_is_checked_against_memory(tmp_path, monkeypatch):
+    from seahelm.resources import MemoryLimit
+    from seahelm.sweep import chunks
+
+    import seahelm.resources as resources
+
+    scenario = _sweep_scenario(tmp_path)
+    _refused(["sweep", str(scenario), "--store", str(tmp_path / "s.zarr"), "--chunk-size",
+              str(10 ** 12)], keep=[scenario], match="`--chunk-size` = 1,000,000,000,000 runs "
+                                                     "would hold")
+    # a small limit (a cgroup's, say) refuses what the machine would take
+    monkeypatch.setattr(resources, "memory_limit",
+                        lambda: MemoryLimit(1_000_000, "the cgroup's memory limit"))
+    with pytest.raises(ParameterError, match=r"more than 80% of the 0.001 GB this process may "
+                                             r"use \(the cgroup's memory limit\); give at "
+                                             r"most") as err:
+        chunks.check_chunk_memory(1000, 10_000.0, workers=2)
+    assert err.value.field == "chunk_size"
+    chunks.check_chunk_memory(10, 10_000.0, workers=2)  # 0.4 MB: fits

@@ -144,7 +144,7 @@ def test_a_cycle_is_detected():
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("seahelm.errors",),
     ("seahelm", "seahelm.constants", "seahelm.numerics", "seahelm.versions", "seahelm._optional",
-     "seahelm._codegen"),
+     "seahelm._codegen", "seahelm.resources"),
     ("seahelm.parameters", "seahelm._validate"),
     ("seahelm.actuators",),
     ("seahelm.vessels",),

@@ -35,14 +35,24 @@ def test_more_runs_than_a_batch_holds():
         parse_scenario(text, source="s.toml")
 
 
+def _limit(monkeypatch, nbytes, source="this machine's memory"):
+    from seahelm.resources import MemoryLimit
+
+    monkeypatch.setattr(engine, "memory_limit", lambda: MemoryLimit(nbytes, source))
+    monkeypatch.setattr(engine, "ASK_ABOVE", 0)
+
+
 def test_recordings_beyond_memory_are_refused_before_expansion(monkeypatch):
-    monkeypatch.setattr(engine, "physical_memory", lambda: 5_000_000)  # 5 MB
+    _limit(monkeypatch, 5_000_000)  # 5 MB
     text = BASE + '[batch.grid]\n"controller.params.kp" = [1.0, 2.0, 3.0, 4.0]\n'
-    # 4 runs x 6001 records x 19 channels x 8 B = 3.6 MB > 40 % of 5 MB (19: 5 states, servo,
-    # 7 outputs, the command, the reference, 4 disturbances)
+    # 4 runs x 6001 records x 19 channels x 8 B = 3.6 MB, a peak of 2 x that > 80 % of 5 MB
+    # (19: 5 states, servo, 7 outputs, the command, the reference, 4 disturbances)
     with pytest.raises(ScenarioError, match=r"s.toml: \[simulation.record_every\] `record_every`: "
                                             r"the recorded time series would need 0.00365 GB "
-                                            r"\(4 run\(s\) x 6,001 records x 19 channels x 8 B\)"):
+                                            r"\(a peak of about 2x that\), more than 80% of the "
+                                            r"0.005 GB this process may use \(this machine's "
+                                            r"memory\) \(4 run\(s\) x 6,001 records x 19 "
+                                            r"channels x 8 B\)"):
         parse_scenario(text, source="s.toml")
     # recording every 10th step fits (0.29 MB)
     batch = parse_scenario(text.replace("dt = 0.1\n", "dt = 0.1\nrecord_every = 10\n"))
@@ -50,9 +60,10 @@ def test_recordings_beyond_memory_are_refused_before_expansion(monkeypatch):
 
 
 def test_the_engine_refuses_too_large_recordings_too(monkeypatch):
-    monkeypatch.setattr(engine, "physical_memory", lambda: 10_000_000)
+    _limit(monkeypatch, 10_000_000, "the cgroup's memory limit")
     with pytest.raises(ParameterError, match=r"`record_every`: the recorded time series would "
-                                             r"need .* GB \(1,000 run\(s\) x 1,001 records"):
+                                             r"need .* GB .*\(the cgroup's memory limit\) "
+                                             r"\(1,000 run\(s\) x 1,001 records"):
         engine.simulate(NOMOTO2, catalog.get("mariner-nomoto2").params, np.zeros((1000, 5)),
                         t_final=100.0, dt=0.1)
 

@@ -31,7 +31,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..simulation.batch import RunBatch
 
 __all__ = ["SweepSpec", "prepared", "select_runs", "compute_chunk", "chunk_bounds",
-           "auto_chunk_size", "MAX_CHUNK_BYTES"]
+           "auto_chunk_size", "check_chunk_memory", "MAX_CHUNK_BYTES"]
 
 #: Upper bound of the memory a chunk's results take [bytes] (the automatic chunk size keeps
 #: each chunk below it).
@@ -133,6 +133,46 @@ def auto_chunk_size(n_runs: int, bytes_per_run: float, *, workers: int = 1) -> i
     size = max(target, min(256, n_runs))
     cap = max(1, int(MAX_CHUNK_BYTES // max(bytes_per_run, 1.0)))
     return max(1, min(size, cap, n_runs))
+
+
+def check_chunk_memory(chunk_size: int, bytes_per_run: float, *, workers: int = 1) -> None:
+    """Refuse, before any run, chunks whose results cannot fit in memory.
+
+    Each of ``workers`` processes on this machine holds one chunk's results at a time, with the
+    engine's peak (:data:`~seahelm.simulation.engine.RECORD_PEAK_FACTOR` of them); together they
+    may take :data:`~seahelm.simulation.engine.RECORD_MEMORY_SHARE` of the memory this process
+    may use (:func:`seahelm.resources.memory_limit`). The sweep's whole study is never held at
+    once: a streamed sweep is bounded by its chunk, not by the study.
+
+    Parameters
+    ----------
+    chunk_size : int
+        Runs per chunk.
+    bytes_per_run : float
+        Memory of one run's results [bytes].
+    workers : int, optional
+        Processes computing chunks on this machine (default 1).
+
+    Raises
+    ------
+    ParameterError
+        With ``field="chunk_size"``, naming the chunk's size, the peak and the limit.
+    """
+    from ..resources import memory_limit
+    from ..simulation.engine import RECORD_MEMORY_SHARE, RECORD_PEAK_FACTOR
+
+    need = RECORD_PEAK_FACTOR * chunk_size * bytes_per_run * max(1, workers)
+    limit = memory_limit()
+    if limit is None or need <= RECORD_MEMORY_SHARE * limit.bytes:
+        return
+    fits = max(1, int(RECORD_MEMORY_SHARE * limit.bytes
+                      / (RECORD_PEAK_FACTOR * max(bytes_per_run, 1.0) * max(1, workers))))
+    raise ParameterError(
+        f"= {chunk_size:,} runs would hold {chunk_size * bytes_per_run / 1e9:.3g} GB of results "
+        f"per chunk ({max(1, workers)} at a time, a peak of about {RECORD_PEAK_FACTOR:g}x), "
+        f"more than {RECORD_MEMORY_SHARE:.0%} of the {limit.bytes / 1e9:.3g} GB this process "
+        f"may use ({limit.source}); give at most {fits:,}", field="chunk_size",
+        value=chunk_size)
 
 
 @functools.lru_cache(maxsize=2)

@@ -10,6 +10,7 @@ again elsewhere, and a chunk's results arrive once per chunk whatever happened.
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING, Any
 
@@ -179,6 +180,13 @@ def executor(*, workers: int | None = None, scheduler: str | None = None,
     if workers is not None:
         if isinstance(workers, bool) or int(workers) != workers or workers < 1:
             raise ParameterError(f"`workers` must be a whole number >= 1, got {workers!r}")
+        cores = os.cpu_count() or 1
+        if workers > cores:  # (each worker is a process running the engine on its threads)
+            raise ParameterError(
+                f"`workers` = {workers} is more than this machine's {cores} core(s): a local "
+                "cluster of more processes than cores only adds their memory and start-up; "
+                f"give at most {cores}, or `scheduler` for a larger cluster",
+                field="workers", value=workers)
         if scheduler is not None:
             raise ParameterError("give `workers` (a local cluster) or `scheduler` (an existing "
                                  "one), not both")

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..analysis.statistics import metric_statistics, quantile_name
 from ..errors import ParameterError
-from .chunks import SweepSpec, auto_chunk_size, check_chunk_size, prepared
+from .chunks import SweepSpec, auto_chunk_size, check_chunk_memory, check_chunk_size, prepared
 from .executors import executor
 from .store import (
     check_store,
@@ -139,11 +139,13 @@ def run_sweep(
     job = prepared(text, source)
     with pool:
         template, layout_vars, coords, attrs, n_runs = _template(job, series)
+        bytes_per_run = attrs.get("sweep_bytes_per_run",
+                                  template.nbytes / max(template.sizes.get("run", 1), 1))
         if chunk_size is None:
-            chunk_size = stored_size or auto_chunk_size(
-                n_runs, attrs.get("sweep_bytes_per_run",
-                                  template.nbytes / max(template.sizes.get("run", 1), 1)),
-                workers=pool.workers)
+            chunk_size = stored_size or auto_chunk_size(n_runs, bytes_per_run,
+                                                         workers=pool.workers)
+        local = pool.workers if workers is not None else 1  # (a remote cluster: its own)
+        check_chunk_memory(chunk_size, bytes_per_run, workers=local)
         spec = SweepSpec(text=text, source=source, chunk_size=chunk_size, n_runs=n_runs,
                          series=series)
         attrs["sweep_dims"] = json.dumps(_dims(job))
