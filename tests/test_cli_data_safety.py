@@ -153,3 +153,45 @@ def test_an_explicit_chunk_size_is_checked_against_memory(tmp_path, monkeypatch)
         chunks.check_chunk_memory(1000, 10_000.0, workers=2)
     assert err.value.field == "chunk_size"
     chunks.check_chunk_memory(10, 10_000.0, workers=2)  # 0.4 MB: fits
+
+
+# ------------------------------------------------------------------------------------------
+# result files verify themselves (issue 33, part 2, NetCDF)
+# ------------------------------------------------------------------------------------------
+def _damage(path: Path, variable: str) -> None:
+    import h5py
+
+    with h5py.File(path) as f:
+        assert f[variable].fletcher32  # written with a checksum
+        offset = f[variable].id.get_chunk_info(0).byte_offset
+    with open(path, "r+b") as fh:
+        fh.seek(offset + 16)
+        fh.write(b"\x13" * 64)
+
+
+def test_a_damaged_result_file_is_one_clear_error(tmp_path):
+    import numpy as np
+
+    from seahelm.results import CorruptResultError, load_result
+    from seahelm.simulation.engine import simulate
+    from seahelm.vessels.nomoto import NOMOTO2
+
+    result = simulate(NOMOTO2, get_ship("mariner-nomoto2").params, np.zeros((3, 5)),
+                      t_final=20.0, dt=0.1, reference=[0.1])
+    path = result.to_netcdf(tmp_path / "result.nc")
+    ds = load_result(path)  # intact: reads back as written
+    np.testing.assert_array_equal(ds["heading"].values, result["heading"])
+    assert ds.attrs["seahelm_checksums"] == "fletcher32"
+    _damage(path, "heading")
+    with pytest.raises(CorruptResultError) as err:
+        load_result(path)
+    assert err.value.field == "heading"
+    assert str(err.value) == (f"{path}: variable `heading` is damaged: its data do not match "
+                              "their checksum (Fletcher-32); the file was changed after seahelm "
+                              "wrote it (write it again from its scenario)")
+    for args in (["inspect", str(path)], ["report", str(path), "-o", str(tmp_path / "r.html")],
+                 ["plot", str(path), "--out", str(tmp_path / "p.png")]):
+        res = runner.invoke(app, args)
+        assert res.exit_code == 2, (args, res.stdout, res.stderr)
+        assert res.stderr.strip() == f"error: {err.value}", res.stderr
+    assert not (tmp_path / "r.html").exists() and not (tmp_path / "p.png").exists()

@@ -44,10 +44,40 @@ from .result_layout import BatchLayout, batch_dims, flatten_runs
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
-__all__ = ["SimResult", "atomic_write", "open_result_file", "load_result", "flatten_runs",
-           "batch_dims"]
+__all__ = ["SimResult", "atomic_write", "write_netcdf", "open_result_file", "load_result",
+           "flatten_runs", "batch_dims", "CorruptResultError"]
 
 _STATUS_TEXT = {0: "ok", 1: "diverged: non-finite state", 2: "diverged: state out of bounds"}
+
+
+class CorruptResultError(ParameterError):
+    """A result file's data do not match their checksums (or cannot be read): the file was
+    damaged after it was written. ``field`` names the variable; the message names the file."""
+
+    def _render(self) -> str:
+        return self.reason
+
+
+def write_netcdf(ds: "xr.Dataset", path: str | os.PathLike[str]) -> Path:
+    """Write a Dataset to NetCDF-4 (h5netcdf) atomically, each numeric variable with an HDF5
+    Fletcher-32 checksum, so that reading it finds damage (:func:`open_result_file`).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+    path : str or os.PathLike
+        Destination file.
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    encoding = {name: {"fletcher32": True} for name, var in ds.variables.items()
+                if var.ndim > 0 and var.dtype.kind in "biufc" and var.size > 0}
+    out = ds.copy()
+    out.attrs = {**ds.attrs, "seahelm_checksums": "fletcher32"}
+    return atomic_write(path, lambda tmp: out.to_netcdf(tmp, engine="h5netcdf",
+                                                        encoding=encoding))
 
 
 def atomic_write(path: str | os.PathLike[str], writer: Callable[[str], None]) -> Path:
@@ -279,7 +309,7 @@ class SimResult:
         """
         ds = self.to_xarray()
         ds["status_message"] = ds["status_message"].astype(str)
-        return atomic_write(path, lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf"))
+        return write_netcdf(ds, path)
 
     def to_csv(self, path: str | os.PathLike[str]) -> Path:
         """Write a long-format CSV of the flat view atomically; returns the path.
@@ -361,6 +391,9 @@ def open_result_file(path: str | os.PathLike[str]) -> "xr.Dataset":
         If ``path`` does not exist.
     ParameterError
         If ``path`` is not a regular file, not NetCDF-4/HDF5, or cannot be read.
+    CorruptResultError
+        A :class:`ParameterError` naming the variable whose data do not match their checksum
+        (files written by :func:`write_netcdf`) or cannot be read.
     """
     import xarray as xr
 
@@ -376,7 +409,22 @@ def open_result_file(path: str | os.PathLike[str]) -> "xr.Dataset":
                              "file of `seahelm run --out` or SimResult.to_netcdf)")
     try:
         with xr.open_dataset(path, engine="h5netcdf") as ds:
+            for name in list(ds.variables):  # one by one: a damaged one is named
+                try:
+                    ds[name].load()
+                except (OSError, ValueError, RuntimeError) as exc:
+                    text = str(exc)
+                    checksum = ("letcher" in text or "checksum" in text.lower()
+                                or "filter returned failure" in text)
+                    why = ("its data do not match their checksum (Fletcher-32)" if checksum
+                           else f"it cannot be read ({' '.join(text.split())[:200]})")
+                    raise CorruptResultError(
+                        f"{path}: variable `{name}` is damaged: {why}; the file was changed "
+                        "after seahelm wrote it (write it again from its scenario)",
+                        field=str(name)) from None
             return ds.load()
+    except CorruptResultError:
+        raise
     except (OSError, ValueError) as exc:
         raise ParameterError(f"{path}: cannot be read as NetCDF ({exc})") from None
 

@@ -18,7 +18,7 @@ import typer
 from rich.markup import escape
 
 from ..errors import ParameterError
-from ..results import atomic_write
+from ..results import write_netcdf
 from ._common import (
     JsonFlag,
     OneLineErrors,
@@ -244,7 +244,7 @@ def sample_cmd(
     if out is not None:
         ds = res.to_xarray()
         ds.attrs.update({"model": spec.name, "h3": float(h3), "table": table, "seed": seed})
-        atomic_write(out, lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf"))
+        write_netcdf(ds, out)
         result["out"] = str(out)
     if json_out:
         print_json(result)

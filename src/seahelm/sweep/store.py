@@ -39,7 +39,8 @@ if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
 __all__ = ["MARKERS", "check_store", "create_store", "completed_chunks", "write_chunk",
-           "mark_complete", "open_sweep", "store_attrs", "scenario_digest"]
+           "mark_complete", "open_sweep", "store_attrs", "scenario_digest", "chunk_digests",
+           "damaged_chunks", "CorruptStoreError"]
 
 #: Directory (inside the store) of the completion markers.
 MARKERS = "sweep-chunks"
@@ -262,7 +263,16 @@ def completed_chunks(path: str | Path, spec: SweepSpec) -> set[int]:
     path = Path(path)
     if not _initialised(path, spec):
         return set()
-    return {i for i in range(spec.n_chunks) if _marker(path, i).is_file()}
+    marked = {i for i in range(spec.n_chunks) if _marker(path, i).is_file()}
+    damaged = damaged_chunks(path, sorted(marked))
+    if damaged:  # computed again by the resume (the same bytes), with a word to the user
+        warnings.warn(f"{path}: {len(damaged)} chunk(s) damaged since they were written, "
+                      "computed again: " + "; ".join(f"chunk {i} ({why})"
+                                                      for i, why in sorted(damaged.items())),
+                      stacklevel=2)
+        for i in damaged:
+            _marker(path, i).unlink(missing_ok=True)
+    return marked - set(damaged)
 
 
 def write_chunk(path: str | Path, spec: SweepSpec, index: int, ds: "xr.Dataset") -> None:
@@ -290,10 +300,100 @@ def write_chunk(path: str | Path, spec: SweepSpec, index: int, ds: "xr.Dataset")
         raise ParameterError(f"chunk {index}: the results are for runs "
                              f"{int(ds['run'][0])}..., not {start}:{stop}")
     shared = [v for v in ds.variables if "run" not in ds[v].dims]  # (time: written once)
+    region = ds.drop_vars(shared)
     with _quiet():
-        ds.drop_vars(shared).to_zarr(path, region={"run": slice(start, stop)}, mode="r+",
-                                     consolidated=False, zarr_format=3)
-    atomic_write(_marker(path, index), lambda tmp: Path(tmp).write_text(""))
+        region.to_zarr(path, region={"run": slice(start, stop)}, mode="r+",
+                       consolidated=False, zarr_format=3)
+    # the marker holds each variable's checksum: a chunk lost or damaged later is found
+    marker = json.dumps({"runs": [start, stop], "sha256": chunk_digests(region)},
+                        sort_keys=True)
+    atomic_write(_marker(path, index), lambda tmp: Path(tmp).write_text(marker))
+
+
+def _digest(values: Any) -> str:
+    arr = np.asarray(values)
+    h = hashlib.sha256(f"{arr.shape}".encode())
+    if arr.dtype.kind in "OUS":  # text: by value (its storage differs between writers)
+        h.update("\0".join(map(str, arr.ravel())).encode())
+    else:
+        h.update(arr.dtype.str.lstrip("<>=|").encode())
+        h.update(np.ascontiguousarray(arr, dtype=arr.dtype.newbyteorder("<")).tobytes())
+    return h.hexdigest()
+
+
+def chunk_digests(ds: "xr.Dataset") -> dict[str, str]:
+    """SHA-256 of each variable of a chunk's results (its values as read back).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A chunk's region (variables over ``run``).
+
+    Returns
+    -------
+    dict
+        Variable name -> hexadecimal digest.
+    """
+    return {str(name): _digest(ds[name].values) for name in ds.data_vars}
+
+
+def damaged_chunks(path: str | Path, indices: Any = None) -> dict[int, str]:
+    """The written chunks whose data no longer match the checksums of their markers.
+
+    A chunk file deleted (its values read as the array's fill value) or altered (a different
+    value, or a compressed chunk that no longer decompresses) is found by reading the chunk's
+    region back and comparing each variable with its marker's SHA-256. Markers of stores
+    written before markers held checksums are taken as they are.
+
+    Parameters
+    ----------
+    path : str or Path
+        The store directory.
+    indices : iterable of int, optional
+        The chunks to check (default: every chunk with a marker).
+
+    Returns
+    -------
+    dict
+        Chunk index -> what is wrong (``"runs 64:128: variable `status` does not match its
+        checksum"``); empty when all is well.
+    """
+    import xarray as xr
+
+    path = Path(path)
+    attrs = store_attrs(path) or {}
+    n_chunks = int(attrs.get("sweep_n_chunks", 0))
+    if indices is None:
+        indices = [i for i in range(n_chunks) if _marker(path, i).is_file()]
+    bad: dict[int, str] = {}
+    with _quiet():
+        ds = xr.open_zarr(path, consolidated=False, zarr_format=3, chunks=None)
+        for index in indices:
+            try:
+                record = json.loads(_marker(path, index).read_text() or "{}")
+            except (OSError, ValueError):
+                bad[index] = "its completion marker cannot be read"
+                continue
+            digests = record.get("sha256")
+            if not digests:
+                continue  # (a marker of an older seahelm: nothing to compare)
+            start, stop = record["runs"]
+            where = f"runs {start}:{stop}"
+            region = ds.isel(run=slice(start, stop))
+            for name, digest in sorted(digests.items()):
+                if name not in region:
+                    bad[index] = f"{where}: variable `{name}` is missing"
+                    break
+                try:
+                    values = region[name].values
+                except Exception as exc:  # noqa: BLE001 - a codec's error on damaged bytes
+                    bad[index] = (f"{where}: variable `{name}` cannot be read "
+                                  f"({type(exc).__name__}: {' '.join(str(exc).split())[:120]})")
+                    break
+                if _digest(values) != digest:
+                    bad[index] = f"{where}: variable `{name}` does not match its checksum"
+                    break
+    return bad
 
 
 def mark_complete(path: str | Path, summary: dict[str, Any]) -> None:
@@ -311,7 +411,16 @@ def mark_complete(path: str | Path, summary: dict[str, Any]) -> None:
     group.attrs.update({"sweep_summary": json.dumps(summary, sort_keys=True)})
 
 
-def open_sweep(path: str | Path, *, flat: bool = False) -> "xr.Dataset":
+class CorruptStoreError(ParameterError):
+    """A sweep store's chunks do not match the checksums written with them (``field`` is
+    ``"store"``; the message names the store, the chunks and the runs)."""
+
+    def _render(self) -> str:
+        return self.reason
+
+
+def open_sweep(path: str | Path, *, flat: bool = False, verify: bool = True
+               ) -> "xr.Dataset":
     """Open a sweep store (lazily) as a Dataset.
 
     Parameters
@@ -322,6 +431,9 @@ def open_sweep(path: str | Path, *, flat: bool = False) -> "xr.Dataset":
         Keep the flat ``run`` dimension with the batch coordinates over it (default False:
         the batch's own dimensions, e.g. ``(kp, kd, time)`` or ``(sample, time)``, when every
         chunk is written).
+    verify : bool, optional
+        Check every written chunk against its checksums first (default True; it reads the
+        store once).
 
     Returns
     -------
@@ -333,6 +445,8 @@ def open_sweep(path: str | Path, *, flat: bool = False) -> "xr.Dataset":
     ------
     ParameterError
         If ``path`` holds no sweep store.
+    CorruptStoreError
+        If a written chunk no longer matches its checksums (a chunk file lost or altered).
     """
     import xarray as xr
 
@@ -340,6 +454,13 @@ def open_sweep(path: str | Path, *, flat: bool = False) -> "xr.Dataset":
     attrs = store_attrs(path)
     if attrs is None:
         raise ParameterError(f"{path}: not a sweep store (no zarr.json with sweep attributes)")
+    damaged = damaged_chunks(path) if verify else {}
+    if damaged:
+        raise CorruptStoreError(
+            f"{path}: {len(damaged)} chunk(s) damaged since they were written: "
+            + "; ".join(f"chunk {i}, {why}" for i, why in sorted(damaged.items()))
+            + " (`seahelm sweep` on the same scenario and store computes them again)",
+            field="store")
     with _quiet():
         ds = xr.open_zarr(path, consolidated=False, zarr_format=3, chunks=None)
     size = int(attrs["sweep_chunk_size"])

@@ -74,7 +74,7 @@ class ManeuverResult:
         dict of str to pathlib.Path
             ``{"metrics": path, "runs": path}`` (no ``runs`` for the reverse spiral).
         """
-        from ...results import atomic_write
+        from ...results import write_netcdf
 
         directory = Path(directory)
         prefix = prefix or self.maneuver
@@ -83,8 +83,7 @@ class ManeuverResult:
             if ds is None:
                 continue
             ds = _netcdf_ready(ds)
-            out[key] = atomic_write(directory / f"{prefix}-{key}.nc",
-                                    lambda tmp, ds=ds: ds.to_netcdf(tmp, engine="h5netcdf"))
+            out[key] = write_netcdf(ds, directory / f"{prefix}-{key}.nc")
         return out
 
 
