@@ -96,14 +96,7 @@ class DaskCluster:
         if not self.own_client:
             return self
         if self.scheduler is not None:
-            try:
-                self.client = distributed.Client(self.scheduler, timeout=self.timeout,
-                                                 set_as_default=False)
-            except (OSError, TimeoutError, ValueError) as exc:
-                raise ParameterError(
-                    f"`scheduler`: cannot reach the dask scheduler at {self.scheduler} within "
-                    f"{self.timeout:g} s ({type(exc).__name__}: {exc}); start one with "
-                    "`dask scheduler` and give its address (tcp://HOST:PORT)") from None
+            self.client = _connect(distributed, self.scheduler, self.timeout)
         else:
             self.cluster = distributed.LocalCluster(
                 n_workers=self.n_workers, threads_per_worker=1, processes=True,
@@ -145,6 +138,52 @@ class DaskCluster:
         finally:
             if futures:
                 self.client.cancel([f for _, f in futures.values()])
+
+
+def _connect(distributed: Any, address: str, timeout: float) -> Any:
+    """A client of the dask scheduler at ``address``, or a ParameterError within about
+    ``timeout`` seconds.
+
+    dask's own timeout covers the connection, not a peer that accepts it and then says
+    nothing a scheduler would (an HTTP server: dask waits for its handshake for ever) or
+    something else (its first bytes read as a length of exabytes: MemoryError). The client is
+    therefore made in a helper thread that is given ``timeout`` and a little more; a peer that
+    has not answered by then, or answered wrongly, is named as not a dask scheduler (the thread,
+    stuck on the peer, is left to end with the process).
+    """
+    import threading
+
+    hint = "start one with `dask scheduler` and give its address (tcp://HOST:PORT)"
+    outcome: dict[str, Any] = {}
+
+    def connect() -> None:
+        try:
+            outcome["client"] = distributed.Client(address, timeout=timeout,
+                                                   set_as_default=False)
+        except BaseException as exc:  # noqa: BLE001 - handed to the caller below
+            outcome["error"] = exc
+
+    # a daemon thread: one stuck on a silent peer does not keep the process from exiting
+    thread = threading.Thread(target=connect, name="seahelm-dask-connect", daemon=True)
+    thread.start()
+    thread.join(timeout + 2.0)
+    if thread.is_alive():
+        raise ParameterError(
+            f"`scheduler`: {address} accepted the connection but did not answer as a dask "
+            f"scheduler within {timeout:g} s: it is not a dask scheduler (or is stuck); "
+            f"{hint}")
+    exc = outcome.get("error")
+    if exc is None:
+        return outcome["client"]
+    if isinstance(exc, (OSError, TimeoutError)):
+        raise ParameterError(
+            f"`scheduler`: cannot reach the dask scheduler at {address} within {timeout:g} s "
+            f"({type(exc).__name__}: {exc}); {hint}") from None
+    if isinstance(exc, (ValueError, MemoryError, EOFError, TypeError, KeyError)):
+        raise ParameterError(
+            f"`scheduler`: {address} is not a dask scheduler: its answer is not dask's "
+            f"protocol ({type(exc).__name__}); {hint}") from None
+    raise exc
 
 
 def executor(*, workers: int | None = None, scheduler: str | None = None,
