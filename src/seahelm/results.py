@@ -26,11 +26,13 @@ directory, then rename), so a crash never leaves a half-written result.
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import dataclasses
 import datetime as _dt
 import os
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -44,10 +46,46 @@ from .result_layout import BatchLayout, batch_dims, flatten_runs
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
-__all__ = ["SimResult", "atomic_write", "write_netcdf", "open_result_file", "load_result",
-           "flatten_runs", "batch_dims", "CorruptResultError"]
+__all__ = ["SimResult", "atomic_write", "write_together", "write_netcdf", "netcdf_bytes",
+           "open_result_file", "load_result", "flatten_runs", "batch_dims",
+           "CorruptResultError"]
 
 _STATUS_TEXT = {0: "ok", 1: "diverged: non-finite state", 2: "diverged: state out of bounds"}
+
+
+_TOGETHER: "contextvars.ContextVar[list[tuple[str, Path]] | None]" = contextvars.ContextVar(
+    "seahelm_write_together", default=None)
+
+
+@contextlib.contextmanager
+def write_together() -> Iterator[None]:
+    """Files written inside the block (:func:`atomic_write`) appear together or not at all.
+
+    Each is written to its temporary file as usual; they are renamed onto their names only
+    when the block ends without an error. On an error (a full disk at the third file) every
+    temporary file is removed and none of the files appears: a manoeuvre's metrics never
+    stand without its runs.
+
+    Yields
+    ------
+    None
+    """
+    if _TOGETHER.get() is not None:  # (nested: the outer set decides)
+        yield
+        return
+    pending: list[tuple[str, Path]] = []
+    token = _TOGETHER.set(pending)
+    try:
+        yield
+    except BaseException:
+        for tmp, _ in pending:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)
+        raise
+    finally:
+        _TOGETHER.reset(token)
+    for tmp, path in pending:
+        os.replace(tmp, path)
 
 
 class CorruptResultError(ParameterError):
@@ -72,12 +110,37 @@ def write_netcdf(ds: "xr.Dataset", path: str | os.PathLike[str]) -> Path:
     -------
     pathlib.Path
     """
+    data = netcdf_bytes(ds)
+    return atomic_write(path, lambda tmp: Path(tmp).write_bytes(data))
+
+
+def netcdf_bytes(ds: "xr.Dataset") -> memoryview:
+    """The NetCDF-4 file of ``ds`` (h5netcdf) in memory, each numeric variable with a
+    Fletcher-32 checksum.
+
+    Built in memory and written to disk by plain file I/O (:func:`write_netcdf`): a full disk
+    or an I/O error is then an ``OSError`` naming the file, with nothing half-written, where
+    HDF5 failing inside its own writer left its handles half-closed (the process crashed
+    with a segmentation fault on the next clean-up).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+
+    Returns
+    -------
+    memoryview
+        The file's bytes.
+    """
+    import io
+
     encoding = {name: {"fletcher32": True} for name, var in ds.variables.items()
                 if var.ndim > 0 and var.dtype.kind in "biufc" and var.size > 0}
     out = ds.copy()
     out.attrs = {**ds.attrs, "seahelm_checksums": "fletcher32"}
-    return atomic_write(path, lambda tmp: out.to_netcdf(tmp, engine="h5netcdf",
-                                                        encoding=encoding))
+    buffer = io.BytesIO()
+    out.to_netcdf(buffer, engine="h5netcdf", encoding=encoding)
+    return buffer.getbuffer()
 
 
 def atomic_write(path: str | os.PathLike[str], writer: Callable[[str], None]) -> Path:
@@ -99,13 +162,24 @@ def atomic_write(path: str | os.PathLike[str], writer: Callable[[str], None]) ->
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
     os.close(fd)
+    together = _TOGETHER.get()
     try:
         writer(tmp)
         # mkstemp creates the file private (0600); give it the permissions a plain open() would
         umask = os.umask(0)
         os.umask(umask)
         os.chmod(tmp, 0o666 & ~umask)
+        if together is not None:  # renamed with the others of its set (write_together)
+            together.append((tmp, path))
+            return path
         os.replace(tmp, path)
+    except OSError as exc:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        if exc.errno is None:
+            raise
+        # said about the file the user asked for, not the temporary one
+        raise OSError(exc.errno, exc.strerror or os.strerror(exc.errno), str(path)) from exc
     except BaseException:
         if os.path.exists(tmp):
             os.unlink(tmp)

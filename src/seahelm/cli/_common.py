@@ -12,6 +12,7 @@ typer's usage box.
 
 from __future__ import annotations
 
+import errno
 import functools
 import json
 import math
@@ -37,6 +38,11 @@ F = TypeVar("F", bound=Callable[..., Any])
 #: Human output goes to stdout unless --json, where it goes to stderr.
 console = Console()
 err_console = Console(stderr=True)
+
+#: OS errors that are the machine's failure, not bad input (exit 1): a full disk, a quota, an
+#: I/O error. Every file is written to a temporary file and renamed, so nothing half-written
+#: is left.
+ENVIRONMENT_ERRNOS = frozenset({errno.ENOSPC, errno.EDQUOT, errno.EIO, errno.EFBIG})
 
 EXIT_OK = 0
 EXIT_FAILURE = 1
@@ -174,9 +180,12 @@ def handle_errors(func: F) -> F:
             raise
         except (ParameterError, ValueError, FileNotFoundError, KeyError) as exc:
             fail_bad_input(cli_message(exc))
-        except OSError as exc:  # a path the user gave: exists, not a directory, no permission
+        except OSError as exc:
             where = f": {exc.filename}" if getattr(exc, "filename", None) else ""
-            fail_bad_input(f"{exc.strerror or type(exc).__name__}{where}")
+            text = f"{exc.strerror or type(exc).__name__}{where}"
+            if exc.errno in ENVIRONMENT_ERRNOS:  # the machine failed, not the input: exit 1
+                fail(text)
+            fail_bad_input(text)  # a path the user gave: exists, not a directory, no access
         except SeahelmError as exc:
             fail(_one_line(exc))
         except Exception as exc:  # noqa: BLE001 - the CLI's last line of defence

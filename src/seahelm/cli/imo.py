@@ -105,6 +105,14 @@ def show_report(report: Any, out: Path | None, as_json: bool, *, plot: bool = Tr
 
 def _write(out: Path, report: Any, payload: dict[str, Any], plot: bool = True
            ) -> dict[str, str]:
+    from ..results import write_together
+
+    with write_together():  # the runs, metrics, figures and report appear together or not
+        return _write_files(out, report, payload, plot)
+
+
+def _write_files(out: Path, report: Any, payload: dict[str, Any], plot: bool
+                 ) -> dict[str, str]:
     from ..plotting.maneuvers import plot_turning, plot_zigzag
     from ..results import atomic_write
     from .maneuver import write_outputs

@@ -141,22 +141,11 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
     stats = monte_carlo_statistics(result, summary)
     files: dict[str, str] = {}
     if out is not None:
+        from ..results import write_together
+
         out.mkdir(parents=True, exist_ok=True)
-        files["netcdf"] = str(result.to_netcdf(out / "result.nc"))
-        if csv:
-            files["csv"] = str(result.to_csv(out / "result.csv"))
-        if plot:
-            import matplotlib
-
-            matplotlib.use("Agg")
-            from ..plotting.save import save_figure
-
-            files["plot"] = str(save_figure(result.plot(), out / "overview.png"))
-        if report:  # from the result in memory (reading the file back costs more)
-            from ..report import report_data_from_dataset
-
-            data = report_data_from_dataset(result.to_xarray(), sources=(files["netcdf"],))
-            files["report"] = str(_write_report(data, out / REPORT_NAME, quiet=True))
+        with write_together():  # result.nc, csv, figure and report together, or none
+            _write_files(result, out, files, csv=csv, plot=plot, report=report)
     payload: dict[str, Any] = {
         "scenario": batch.metadata.get("title") or batch.metadata.get("scenario_source", ""),
         "n_runs": result.n_runs,
@@ -186,6 +175,26 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
             console.print(f"  {kind}: {path}")
     exit_if_diverged(payload["n_diverged"])
     return payload
+
+
+def _write_files(result: Any, out: Path, files: dict[str, str], *, csv: bool, plot: bool,
+                 report: bool) -> None:
+    """Write a simulation's files into ``out`` (inside a :func:`write_together` block)."""
+    files["netcdf"] = str(result.to_netcdf(out / "result.nc"))
+    if csv:
+        files["csv"] = str(result.to_csv(out / "result.csv"))
+    if plot:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        from ..plotting.save import save_figure
+
+        files["plot"] = str(save_figure(result.plot(), out / "overview.png"))
+    if report:  # from the result in memory (reading the file back costs more)
+        from ..report import report_data_from_dataset
+
+        data = report_data_from_dataset(result.to_xarray(), sources=(files["netcdf"],))
+        files["report"] = str(_write_report(data, out / REPORT_NAME, quiet=True))
 
 
 def _write_report(source: Any, target: Path, *, quiet: bool) -> Path:

@@ -271,19 +271,22 @@ def header(result: Any) -> dict[str, Any]:
 
 def write_outputs(out: Path, results: Sequence[Any], plot: Callable[[], Any] | None,
                   png: str) -> dict[str, str]:
-    """NetCDF of every result and one PNG (none if ``plot`` is None), atomically; returns
-    {kind: path}."""
+    """NetCDF of every result and one PNG (none if ``plot`` is None), atomically and together
+    (all appear, or none); returns {kind: path}."""
+    from ..results import write_together
+
     files: dict[str, str] = {}
-    for result in results:
-        for kind, path in result.to_netcdf(out).items():
-            files[f"{result.maneuver}-{kind}"] = str(path)
-    if plot is not None:
-        import matplotlib
+    with write_together():  # all of them, or none (a full disk leaves no lone metrics file)
+        for result in results:
+            for kind, path in result.to_netcdf(out).items():
+                files[f"{result.maneuver}-{kind}"] = str(path)
+        if plot is not None:
+            import matplotlib
 
-        matplotlib.use("Agg")
-        from ..plotting.save import save_figure
+            matplotlib.use("Agg")
+            from ..plotting.save import save_figure
 
-        files["plot"] = str(save_figure(plot(), out / png))
+            files["plot"] = str(save_figure(plot(), out / png))
     return files
 
 

@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import json
 import math
+import os
 import shutil
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -137,7 +139,7 @@ def run_sweep(
     pool = executor(workers=workers, scheduler=scheduler, timeout=timeout, client=client)
     source = str(scenario)
     job = prepared(text, source)
-    with pool:
+    with pool, _naming_the_store(store):
         template, layout_vars, coords, attrs, n_runs = _template(job, series)
         bytes_per_run = attrs.get("sweep_bytes_per_run",
                                   template.nbytes / max(template.sizes.get("run", 1), 1))
@@ -260,3 +262,15 @@ def _coord(ds: Any, dim: str, i: int) -> str:
         value = ds[dim].values[i]
         return f"{value:g}" if isinstance(value, (float, np.floating)) else str(value)
     return str(i)
+
+
+@contextlib.contextmanager
+def _naming_the_store(store: Path) -> Iterator[None]:
+    """An OS error while the store is written (a full disk, an I/O error) names the store:
+    zarr's own errors name no file."""
+    try:
+        yield
+    except OSError as exc:
+        if exc.filename is not None or exc.errno is None:
+            raise
+        raise OSError(exc.errno, exc.strerror or os.strerror(exc.errno), str(store)) from exc
