@@ -195,3 +195,26 @@ def test_a_damaged_result_file_is_one_clear_error(tmp_path):
         assert res.exit_code == 2, (args, res.stdout, res.stderr)
         assert res.stderr.strip() == f"error: {err.value}", res.stderr
     assert not (tmp_path / "r.html").exists() and not (tmp_path / "p.png").exists()
+
+
+def test_a_sweep_is_bounded_by_its_chunk_not_by_the_study(tmp_path, monkeypatch):
+    # 80 runs of 1,201 records: 14.6 MB of series, a 36 MB peak in memory at once; with 20 MB
+    # to use, `run` refuses the study, `sweep` streams it in chunks that fit
+    import seahelm.resources as resources
+    import seahelm.simulation.engine as engine
+    from seahelm.resources import MemoryLimit
+
+    limit = MemoryLimit(20_000_000, "the cgroup's memory limit")
+    monkeypatch.setattr(engine, "memory_limit", lambda: limit)
+    monkeypatch.setattr(resources, "memory_limit", lambda: limit)
+    monkeypatch.setattr(engine, "ASK_ABOVE", 0)
+    scenario = _sweep_scenario(tmp_path)
+    _refused(["run", str(scenario)], keep=[scenario], match="more than 80% of the 0.02 GB")
+    _refused(["sweep", str(scenario), "--store", str(tmp_path / "a.zarr"), "--chunk-size", "80"],
+             keep=[scenario], match="`--chunk-size` = 80 runs would hold")
+    res = runner.invoke(app, ["sweep", str(scenario), "--store", str(tmp_path / "b.zarr"),
+                              "--chunk-size", "10", "--no-series", "--json"])
+    assert res.exit_code == 0, res.stderr
+    res = runner.invoke(app, ["sweep", str(scenario), "--store", str(tmp_path / "c.zarr"),
+                              "--chunk-size", "10", "--json"])
+    assert res.exit_code == 0, res.stderr

@@ -45,11 +45,11 @@ def _limit(monkeypatch, nbytes, source="this machine's memory"):
 def test_recordings_beyond_memory_are_refused_before_expansion(monkeypatch):
     _limit(monkeypatch, 5_000_000)  # 5 MB
     text = BASE + '[batch.grid]\n"controller.params.kp" = [1.0, 2.0, 3.0, 4.0]\n'
-    # 4 runs x 6001 records x 19 channels x 8 B = 3.6 MB, a peak of 2 x that > 80 % of 5 MB
+    # 4 runs x 6001 records x 19 channels x 8 B = 3.6 MB, a peak of 2.5 x that > 80 % of 5 MB
     # (19: 5 states, servo, 7 outputs, the command, the reference, 4 disturbances)
     with pytest.raises(ScenarioError, match=r"s.toml: \[simulation.record_every\] `record_every`: "
                                             r"the recorded time series would need 0.00365 GB "
-                                            r"\(a peak of about 2x that\), more than 80% of the "
+                                            r"\(a peak of about 2.5x that\), more than 80% of the "
                                             r"0.005 GB this process may use \(this machine's "
                                             r"memory\) \(4 run\(s\) x 6,001 records x 19 "
                                             r"channels x 8 B\)"):

@@ -109,7 +109,8 @@ def _message(err: Any, unit: str) -> str:
     return err["msg"].removeprefix("Value error, ")
 
 
-def parse_scenario(text: str, *, source: str = "<string>") -> RunBatch | ManeuverJob:
+def parse_scenario(text: str, *, source: str = "<string>", in_memory: bool = True
+                   ) -> RunBatch | ManeuverJob:
     """Parse and validate scenario text into what it describes; nothing runs.
 
     A ``[simulation]`` scenario gives the :class:`~seahelm.simulation.batch.RunBatch` of its
@@ -125,6 +126,10 @@ def parse_scenario(text: str, *, source: str = "<string>") -> RunBatch | Maneuve
     source : str, optional
         Name of the source used in error messages (default "<string>").
 
+    in_memory : bool, optional
+        The whole batch is to be held in memory (default True; False for a sweep, which streams
+        it in chunks: :func:`~seahelm.scenario.runs.prepare_runs`).
+
     Returns
     -------
     RunBatch or ManeuverJob
@@ -137,7 +142,7 @@ def parse_scenario(text: str, *, source: str = "<string>") -> RunBatch | Maneuve
     scn = validate_scenario(text, source=source)
     if scn.maneuver is not None:
         return prepare_maneuver(scn, source=source, text=text)
-    return prepare_runs(scn, source=source, text=text)
+    return prepare_runs(scn, source=source, text=text, in_memory=in_memory)
 
 
 def load_scenario(path: str | Path) -> Any:

@@ -276,7 +276,8 @@ def _signal_input(
                             batch_seed=batch_seed)
 
 
-def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> RunBatch:
+def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
+                 in_memory: bool = True) -> RunBatch:
     """The batch a validated scenario describes: components, per-run inputs and the layout.
 
     Resolves and validates names, parameters (through the components' parameter
@@ -291,6 +292,11 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
         Name of the source used in error messages (default "<string>").
     text : str, optional
         Scenario text, stored with the results (default "").
+
+    in_memory : bool, optional
+        The whole batch will be held in memory at once (default True: its recordings are
+        checked against the memory this process may use before it is expanded); False for a
+        sweep, which streams it in chunks, each checked on its own.
 
     Returns
     -------
@@ -345,7 +351,7 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "") -> 
     env_channels = (len(WIND_OUTPUTS) + 1 if scn.environment.wind is not None else 0) + (
         len(WAVE_OUTPUTS) + 1 if scn.environment.waves is not None else 0)
     reserved |= {*WIND_OUTPUTS, *WAVE_OUTPUTS, "wind_gust", "wave_load_fluctuation"}
-    _check_size(scn, source, model.n_states + actuator.n_states + model.n_outputs
+    _check_size(scn, source, in_memory, model.n_states + actuator.n_states + model.n_outputs
                 + len(wiring.commands) + len(controller.output_labels) + len(wiring.references)
                 + model.n_disturbances + env_channels)  # what the engine records
     runs, seed, layout = _expand_batch(
@@ -552,7 +558,7 @@ def _guidance(scn: Scenario, source: str) -> tuple[GuidanceLaw, dict[str, Any]] 
     return law, values
 
 
-def _check_size(scn: Scenario, source: str, channels: int) -> None:
+def _check_size(scn: Scenario, source: str, in_memory: bool, channels: int) -> None:
     """Refuse a batch whose recordings cannot fit in memory before it is expanded (drawing a
     million Monte-Carlo samples takes a while; the engine checks the exact size again)."""
     sim = scn.simulation
@@ -571,6 +577,8 @@ def _check_size(scn: Scenario, source: str, channels: int) -> None:
         raise _err(source, "simulation.t_final",
                    f"{steps:.3g} steps (t_final/dt = {sim.t_final!r}/{sim.dt!r}) cannot run")
     n_rec = int(steps) // sim.record_every + 1 + (int(steps) % sim.record_every != 0)
+    if not in_memory:  # (a sweep: each chunk is checked when it is made)
+        return
     try:
         check_record_memory(n_runs, n_rec, channels)
     except ParameterError as exc:

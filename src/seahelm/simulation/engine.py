@@ -451,11 +451,12 @@ def _signal(
 
 
 #: The engine's peak memory per byte of recorded time series: the recordings themselves, the
-#: results Dataset made from them and the NetCDF writer's copies. Measured (tracemalloc, 2,000
-#: and 500 runs of Nomoto-2 + PID, 0.3 GB of recordings): simulate 0.74x the estimate below
-#: (it counts every channel at 8 B), then to_xarray 1.47-1.63x and to_netcdf 1.52x in all;
-#: 2 leaves room for HDF5's own buffers.
-RECORD_PEAK_FACTOR = 2.0
+#: results Dataset made from them and the NetCDF file built in memory before it is written
+#: (:func:`seahelm.results.netcdf_bytes`). Measured (tracemalloc, 2,000 and 500 runs of
+#: Nomoto-2 + PID, 0.3 GB of recordings, 2026-11-27): simulate 0.74x the estimate below (it
+#: counts every channel at 8 B), to_xarray 1.47-1.63x, simulate then to_netcdf 2.33x in all;
+#: 2.5 leaves room for HDF5's own buffers.
+RECORD_PEAK_FACTOR = 2.5
 
 #: A peak below this [bytes] is not checked against the memory limit (every limit that matters
 #: is larger; asking the OS costs more than a short run).
@@ -487,8 +488,8 @@ class RecordingTooLarge(ParameterError):
         self.need, self.total, self.source = need, total, source
 
     def size_text(self) -> str:
-        """"62.3 GB (peak about 2x), more than 80% of the 25.3 GB this process may use
-        (this machine's memory)"."""
+        """"62.3 GB (a peak of about 2.5x that), more than 80% of the 25.3 GB this process
+        may use (this machine's memory)"."""
         return (f"{self.need / 1e9:.3g} GB (a peak of about {RECORD_PEAK_FACTOR:g}x that), "
                 f"more than {RECORD_MEMORY_SHARE:.0%} of the {self.total / 1e9:.3g} GB this "
                 f"process may use ({self.source})")

@@ -181,7 +181,8 @@ def prepared(text: str, source: str) -> Any:
     :class:`~seahelm.scenario.ManeuverJob`), prepared once per process and text."""
     from ..scenario import parse_scenario
 
-    return parse_scenario(text, source=source)
+    # streamed in chunks: bounded by the chunk (check_chunk_memory), not by the whole study
+    return parse_scenario(text, source=source, in_memory=False)
 
 
 def _rows(value: Any, n: int, start: int, stop: int, ndim: int) -> Any:
