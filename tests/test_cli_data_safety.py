@@ -218,3 +218,109 @@ def test_a_sweep_is_bounded_by_its_chunk_not_by_the_study(tmp_path, monkeypatch)
     res = runner.invoke(app, ["sweep", str(scenario), "--store", str(tmp_path / "c.zarr"),
                               "--chunk-size", "10", "--json"])
     assert res.exit_code == 0, res.stderr
+
+
+# ------------------------------------------------------------------------------------------
+# every range check wherever the value comes from (issue 33, part 5)
+# ------------------------------------------------------------------------------------------
+ROUTE = """
+title = "r"
+[vessel]
+ship = "mariner-nonlinear"
+[controller]
+model = "pid-heading"
+[guidance]
+law = "los"
+waypoints = [[0.0, 0.0], [2000.0, 0.0], [2000.0, 2000.0]]
+acceptance_radius = {radius}
+[simulation]
+t_final = 20.0
+dt = 0.1
+"""
+
+WIND_GRID = """
+title = "w"
+[vessel]
+ship = "mariner-voitkunsky"
+[controller]
+model = "pid-heading"
+[controller.reference]
+heading_deg = 10.0
+[simulation]
+t_final = 20.0
+dt = 0.1
+[environment]
+loads = "once-per-step"
+[environment.wind]
+model = "lvov"
+speed = 2.0
+direction_deg = 90
+lateral_area = 1000.0
+[batch.grid]
+"environment.wind.direction_deg" = [0.0, {direction}]
+"""
+
+
+def _scenario_error(tmp_path, text, match):
+    path = tmp_path / "s.toml"
+    path.write_text(text)
+    _refused(["run", str(path)], keep=[path], match=match)
+
+
+def test_a_grid_value_is_checked_like_a_single_one(tmp_path):
+    _scenario_error(tmp_path, WIND_GRID.format(direction=720.0),
+                    "[environment.wind.direction_deg] `direction_deg` must be in [-360, 360] "
+                    "[deg], got 720 (run 1: {'environment.wind.direction_deg': 720.0})")
+
+
+def test_an_acceptance_circle_larger_than_the_route_is_refused(tmp_path):
+    from seahelm.control.path_following import LOS, route_params
+
+    _scenario_error(tmp_path, ROUTE.format(radius=1e9),
+                    "must be shorter than the route's legs [m]: 1000000000.0 >= the longest "
+                    "leg, 2000 m")
+    with pytest.raises(ParameterError) as err:
+        route_params([[0.0, 0.0], [100.0, 0.0]], law=LOS, acceptance_radius=150.0)
+    assert err.value.field == "acceptance_radius"
+
+
+def test_absurd_currents_and_angles_are_refused(tmp_path):
+    import numpy as np
+
+    from seahelm.control.pid import PID_HEADING
+    from seahelm.simulation.engine import simulate
+    from seahelm.vessels.nomoto import NOMOTO2
+
+    base = ROUTE.split("[guidance]")[0].replace('[controller]\nmodel = "pid-heading"\n', "")
+    current = (base + '[simulation]\nt_final = 20.0\ndt = 0.1\n[controller]\n'
+               'model = "pid-heading"\n[controller.reference]\nheading_deg = 10.0\n'
+               '[environment.current]\nspeed = 1000.0\ndirection_deg = 90\n')
+    _scenario_error(tmp_path, current, "[environment.current.speed] must be <= 15 [m/s], "
+                                       "got 1000.0")
+    with pytest.raises(ParameterError, match=r"channel 'heading' reaches 1e\+300 rad, more "
+                                             r"than a thousand turns") as err:
+        simulate(NOMOTO2, get_ship("mariner-nomoto2").params, np.zeros(5), t_final=1.0,
+                 dt=0.1, controller=PID_HEADING, reference={"heading": 1e300})
+    assert err.value.field == "reference"
+
+
+# ------------------------------------------------------------------------------------------
+# messages in the user's words (issue 33, part 6)
+# ------------------------------------------------------------------------------------------
+def test_an_angle_given_in_degrees_is_refused_in_degrees():
+    from seahelm.actuators.servo import ServoParams
+
+    with pytest.raises(ParameterError) as err:
+        ServoParams.from_mapping({"max_angle_deg": 200})
+    assert str(err.value) == "`max_angle_deg` must be in (0, 180] [deg], got 200"
+    assert (err.value.field, err.value.unit, err.value.value) == ("max_angle_deg", "deg", 200.0)
+    with pytest.raises(ParameterError, match=r"`max_angle` must be in \(0, 3.14159\] \[rad\]"):
+        ServoParams.from_mapping({"max_angle": 3.5})  # (radians written: radians said)
+
+
+def test_an_empty_list_is_not_called_a_number(tmp_path):
+    path = tmp_path / "m.toml"
+    path.write_text('title = "t"\n[vessel]\nship = "kvlcc2-l7"\n[maneuver]\nkind = "turning"\n'
+                    'rudder_deg = []\n')
+    _refused(["run", str(path)], keep=[path], match="[maneuver.rudder_deg] must be a number or "
+                                                    "a non-empty list of numbers [deg], got []")

@@ -103,7 +103,13 @@ def test_default_scenario_is_valid_and_converts_degrees():
         (_with("[batch.monte_carlo]\nruns = 3\nseed = 1\n[batch.monte_carlo.draws]\n"
                "\"vessel.params.gain\" = { distribution = \"normal\", mean = 0.2 }\n"),
          r"\[batch.monte_carlo.draws.vessel.params.gain\] a normal draw needs `mean` and `std`"),
-        (_with("colour = \"red\"\n"), r"\[simulation.colour\] Extra inputs are not permitted, got .red."),
+        (_with("colour = \"red\"\n"), r"\[simulation.colour\] is an unknown key; valid in "
+                                      r"\[simulation\]: bounds, dt, exact_actuator, integrator, "
+                                      r"record_every, t_final$"),
+        (_with("record_dt = 1.0\n"), r"\[simulation.record_dt\] is an unknown key \(did you "
+                                     r"mean `record_every`\?\); valid in \[simulation\]: "),
+        (_with(replace=("[vessel]", "[vesel]")), r"\[vesel\] is an unknown key \(did you mean "
+                                                 r"`vessel`\?\)"),
         ("[vessel\nmodel=1", r"s.toml: not valid TOML"),
         (_with(replace=("[simulation]\nt_final = 20.0\ndt = 0.1\n", "")),
          r"s.toml: a scenario needs a \[simulation\] section \(t_final, dt, ...\) or a "

@@ -98,3 +98,30 @@ def test_an_intact_store_and_an_older_store_pass(store, tmp_path):
         warnings.simplefilter("error")
         assert damaged_chunks(older) == {}
         open_sweep(older)
+
+
+def test_a_stopped_sweep_leaves_no_partial_file(tmp_path, monkeypatch):
+    # SIGTERM arrives as SystemExit (seahelm's handler) in the middle of zarr's atomic write,
+    # whose clean-up catches Exception only: its *.partial file would stay in the store
+    import seahelm.sweep.run as run
+
+    scenario = tmp_path / "s.toml"
+    scenario.write_text(SCENARIO)
+    path = tmp_path / "s.zarr"
+    real = run.write_chunk
+    calls = []
+
+    def stopped(store, spec, index, ds):
+        calls.append(index)
+        if len(calls) == 2:
+            (Path(store) / "heading" / "c" / "x.1234.partial").write_bytes(b"half")
+            raise SystemExit(143)
+        real(store, spec, index, ds)
+
+    monkeypatch.setattr(run, "write_chunk", stopped)
+    with pytest.raises(SystemExit):
+        run_sweep(scenario, path, chunk_size=2)
+    assert not list(path.rglob("*.partial"))
+    monkeypatch.setattr(run, "write_chunk", real)
+    report = run_sweep(scenario, path, chunk_size=2)  # and it resumes
+    assert report.skipped == 1 and damaged_chunks(path) == {}

@@ -287,6 +287,7 @@ class Params:
         """
         fields = {f.name: f for f in dataclasses.fields(cls)}
         kwargs: dict[str, Any] = base.as_dict() if base is not None else {}
+        in_degrees: dict[str, str] = {}  # field -> the `_deg` key it was given by
         both = [k for k in values if k.endswith("_deg") and k[:-4] in values]
         if both:
             raise ParameterError(f"give `{both[0][:-4]}` [rad] or `{both[0]}` [deg], not both")
@@ -314,7 +315,30 @@ class Params:
                 raise ParameterError(f"must be a number{_unit(fields[name])}, got {value!r}",
                                      field=key, unit=_unit_of(fields[name]), value=value)
             kwargs[name] = float(value) * factor
-        return cls(**kwargs)
+            if factor != 1.0:
+                in_degrees[name] = key
+        try:
+            return cls(**kwargs)
+        except ParameterError as exc:
+            key = in_degrees.get((exc.field or "").partition("[")[0])
+            if key is None or exc.value is None:
+                raise
+            raise _in_degrees(exc, key, fields[key[:-4]]) from None
+
+
+def _in_degrees(exc: ParameterError, key: str, f: dataclasses.Field) -> ParameterError:
+    """A range error of an angle given in degrees (``max_angle_deg = 200``), said in degrees
+    about the key the user wrote, not in radians about the field."""
+    deg = 180.0 / math.pi
+    low, high = f.metadata.get("low", -math.inf), f.metadata.get("high", math.inf)
+    lo = "[" if f.metadata.get("low_inclusive", True) else "("
+    value = float(exc.value) * deg
+    if math.isfinite(low) or math.isfinite(high):
+        reason = (f"must be in {lo}{low * deg:.6g}, {high * deg:.6g}] [deg], got "
+                  f"{value:.6g}")
+    else:
+        reason = f"{exc.reason} (as written: {value:.6g} deg)"
+    return ParameterError(reason, field=key, unit="deg", value=value)
 
 
 def _is_vector(cls: type, name: str) -> bool:

@@ -98,6 +98,14 @@ class LOSParams(Params):
             raise ParameterError(
                 f"route: waypoints {k} and {k + 1} are the same point ({pts[k, 0]:g}, "
                 f"{pts[k, 1]:g}) [m]; consecutive waypoints must differ")
+        longest = float(legs.max())
+        if self.acceptance_radius >= longest:
+            # every waypoint would be "reached" at once: the route would complete at t = 0
+            raise ParameterError(
+                f"must be shorter than the route's legs [m]: {self.acceptance_radius!r} >= the "
+                f"longest leg, {longest:.6g} m (a waypoint inside its circle counts as "
+                "reached, so the route would be complete at once)", field="acceptance_radius",
+                unit="m", value=self.acceptance_radius)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

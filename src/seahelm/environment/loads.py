@@ -89,7 +89,8 @@ class WindParams(Params):
 
     wind_speed: float = param(0.0, unit="m/s", symbol="W", low=0.0,
                               doc="true wind speed (gusts: the `wind_gust` channel)")
-    wind_direction: float = param(0.0, unit="rad", symbol="θ_w",
+    wind_direction: float = param(0.0, unit="rad", symbol="θ_w", low=-2.0 * math.pi,
+                                  high=2.0 * math.pi,
                                   doc="direction the wind comes from, clockwise from north")
     rho_air: float = param(RHO_AIR, unit="kg/m³", symbol="ρ_a", low=0.0, low_inclusive=False,
                            doc="air density")
@@ -103,7 +104,8 @@ class WaveParams(Params):
                                doc="wave height of 3 % exceedance")
     wave_length: float = param(100.0, unit="m", symbol="λ", low=0.0, low_inclusive=False,
                                doc="wave length (deep water: λ = g τ²/2π)")
-    wave_direction: float = param(0.0, unit="rad", symbol="θ_v",
+    wave_direction: float = param(0.0, unit="rad", symbol="θ_v", low=-2.0 * math.pi,
+                                  high=2.0 * math.pi,
                                   doc="direction the waves come from, clockwise from north")
     rho_water: float = param(RHO_SEAWATER, unit="kg/m³", symbol="ρ", low=0.0,
                              low_inclusive=False, doc="water density")

@@ -114,6 +114,37 @@ def _section(over: dict[str, Any], prefix: str, base: dict[str, Any]) -> dict[st
     return out
 
 
+#: Fields of the environment's parameters -> the scenario key they come from, and the factor
+#: from the field's unit to the key's (directions are written in degrees).
+_FIELD_KEYS: dict[str, tuple[str, float, str]] = {
+    "wind_direction": ("environment.wind.direction_deg", 180.0 / math.pi, "deg"),
+    "wave_direction": ("environment.waves.direction_deg", 180.0 / math.pi, "deg"),
+    "wind_speed": ("environment.wind.speed", 1.0, "m/s"),
+    "wave_height": ("environment.waves.height", 1.0, "m"),
+}
+
+
+def _in_scenario_words(exc: ParameterError, where: str) -> tuple[str, str]:
+    """The key and message of an environment parameter's error, in the scenario's key and unit
+    (from the error's field: "`direction_deg` 720 deg is out of [-360, 360] deg")."""
+    key = _FIELD_KEYS.get(exc.field or "")
+    if key is None or exc.value is None:
+        return "environment", f"{exc}{where}"
+    path, factor, unit = key
+    name = path.rpartition(".")[2]
+    from ..environment.loads import WaveParams, WindParams
+
+    lo = hi = None
+    for cls in (WindParams, WaveParams):
+        f = {x.name: x for x in dataclasses.fields(cls)}.get(exc.field)
+        if f is not None:
+            lo, hi = f.metadata.get("low"), f.metadata.get("high")
+    bounds = (f" must be in [{lo * factor:g}, {hi * factor:g}] [{unit}]"
+              if lo is not None and hi is not None and math.isfinite(lo) and math.isfinite(hi)
+              else f" is out of range [{unit}]")
+    return path, f"`{name}`{bounds}, got {float(exc.value) * factor:g}{where}"
+
+
 def _need(values: dict[str, Any], key: str, ship: Particulars | None, attr: str,
           path: str, source: str, unit: str) -> float:
     if values.get(key) is not None:
@@ -294,6 +325,6 @@ def environment_runs(scn: Scenario, model: Any, runs: list[dict[str, Any]], sour
         try:
             rows.append(env.params_type(**fields).to_array())
         except ParameterError as exc:
-            raise _err(source, "environment", f"{exc}{where}") from None
+            raise _err(source, *_in_scenario_words(exc, where)) from None
         signals.append(sig)
     return EnvironmentRuns(env, np.array(rows), signals)

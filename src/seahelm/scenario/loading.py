@@ -52,19 +52,66 @@ def validate_scenario(text: str, *, source: str = "<string>") -> Scenario:
         return Scenario.model_validate(raw)
     except ValidationError as exc:
         lines: list[str] = []
-        seen: set[str] = set()
+        errors: dict[str, list[Any]] = {}
         for err in exc.errors():
             # a value of a union type (a number or a signal table) fails once per member: the
-            # first says it; the members' type tags are not part of the key path
+            # members' type tags are not part of the key path, the errors are said once
             path = ".".join(str(p) for p in err["loc"] if not _TYPE_TAG.match(str(p)))
-            if path in seen:
-                continue
-            seen.add(path)
+            errors.setdefault(path, []).append(err)
+        for path, errs in errors.items():
+            err = errs[0]
             value = err.get("input")
             shown = "" if isinstance(value, dict) else f", got {value!r}"
             where = f" [{path}]" if path else ""  # (a whole-file check names no key)
-            lines.append(f"{source}:{where} {_message(err, _unit_of(path))}{shown}")
+            unit = _unit_of(path)
+            if any(e["type"] == "too_short" for e in errs):  # a number or a list of them
+                message = f"must be a number or a non-empty list of numbers{_bracket(unit)}"
+            elif err["type"] == "extra_forbidden":
+                message, shown = _unknown_key(path), ""
+            else:
+                message = _message(err, unit)
+            lines.append(f"{source}:{where} {message}{shown}")
         raise ScenarioError("\n".join(lines)) from None
+
+
+def _bracket(unit: str) -> str:
+    return f" [{unit}]" if unit else ""
+
+
+def _unknown_key(path: str) -> str:
+    """"is an unknown key (did you mean `record_every`?); valid here: ..." for a key the
+    section does not have."""
+    import difflib
+
+    parts = path.split(".")
+    model: Any = Scenario
+    for part in parts[:-1]:
+        field = getattr(model, "model_fields", {}).get(part)
+        model = _model_in(field.annotation) if field is not None else None
+        if model is None:
+            return "is an unknown key"
+    valid = sorted(model.model_fields)
+    close = difflib.get_close_matches(parts[-1], valid, n=1)
+    hint = f" (did you mean `{close[0]}`?)" if close else ""
+    section = ".".join(parts[:-1])
+    return (f"is an unknown key{hint}; valid in {f'[{section}]' if section else 'the file'}: "
+            f"{', '.join(valid)}")
+
+
+def _model_in(annotation: Any) -> Any:
+    """The pydantic model an annotation holds (itself, optional, or in a union)."""
+    import inspect
+    import typing
+
+    from pydantic import BaseModel
+
+    if inspect.isclass(annotation) and issubclass(annotation, BaseModel):
+        return annotation
+    for arg in typing.get_args(annotation):
+        found = _model_in(arg)
+        if found is not None:
+            return found
+    return None
 
 
 _TYPE_TAG = re.compile(r"^(float|int|str|bool|constrained-float|function-\w+\[.*\]|"

@@ -71,6 +71,11 @@ class ControllerSection(_Strict):
     reference: dict[str, SignalSpec] = Field(default_factory=dict)
 
 
+#: The fastest current a scenario may give [m/s]: the strongest tidal races run at about
+#: 10 m/s (Saltstraumen, ~20 kn); a larger value is a unit mix-up (km/h, knots x 10, ...).
+MAX_CURRENT = 15.0
+
+
 class CurrentSection(_Strict):
     """``[environment.current]``: a uniform current, constant or with a speed profile in time.
 
@@ -81,7 +86,7 @@ class CurrentSection(_Strict):
     time is applied through the velocity relative to the water only: the inertia force of an
     accelerating current is left out."""
 
-    speed: Annotated[Number, Field(ge=0)] | dict[str, Any]
+    speed: Annotated[Number, Field(ge=0, le=MAX_CURRENT)] | dict[str, Any]
     direction_deg: Annotated[Number, Field(ge=0, lt=360)]
 
 

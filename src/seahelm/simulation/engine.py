@@ -37,6 +37,7 @@ import contextlib
 import enum
 import functools
 import hashlib
+import math
 import re
 import sys
 import time as _time
@@ -526,6 +527,24 @@ def check_record_memory(n_runs: int, n_rec: int, channels: int) -> None:
         source=limit.source)
 
 
+#: Largest magnitude of an angle signal [rad]: a thousand turns. A heading reference of 1e300
+#: (a unit mix-up, a garbage file) is no course: wrapped, it is noise of float precision.
+MAX_ANGLE = 2000.0 * math.pi
+
+
+def _check_angles(name: str, values: np.ndarray, labels: tuple[str, ...],
+                  units: tuple[str, ...]) -> None:
+    """Angle channels ([rad]) of a signal within ±:data:`MAX_ANGLE`."""
+    for j, (label, unit) in enumerate(zip(labels, units)):
+        if unit == "rad" and j < values.shape[-1]:
+            worst = float(np.max(np.abs(values[..., j])))
+            if worst > MAX_ANGLE:
+                raise ParameterError(
+                    f": channel '{label}' reaches {worst:.6g} rad, more than a thousand turns "
+                    f"(±{MAX_ANGLE:.6g} rad); an angle is given in radians here (degrees in a "
+                    "scenario as <name>_deg)", field=name, unit="rad", value=worst)
+
+
 def _runs(*sizes: tuple[str, int]) -> int:
     n = max(s for _, s in sizes)
     for name, s in sizes:
@@ -755,6 +774,7 @@ def _run(problem: "Problem", *, throw: bool,
     t_grid = _TimeGrid(n_steps, float(dt))
     ref = _signal("reference", reference, len(wiring.references), t_grid, "",
                   wiring.references)
+    _check_angles("reference", ref, wiring.references, wiring.reference_units)
     dist = _signal("disturbance", disturbance, len(dist_labels), t_grid, "", dist_labels)
     n_runs = _runs(
         ("params", mp.shape[0]), ("actuator_params", ap.shape[0]),

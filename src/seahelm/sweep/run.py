@@ -266,11 +266,17 @@ def _coord(ds: Any, dim: str, i: int) -> str:
 
 @contextlib.contextmanager
 def _naming_the_store(store: Path) -> Iterator[None]:
-    """An OS error while the store is written (a full disk, an I/O error) names the store:
-    zarr's own errors name no file."""
+    """While the store is written: an OS error (a full disk, an I/O error) names the store
+    (zarr's own errors name no file), and a stop of any kind (SIGTERM is a ``SystemExit``
+    here, which zarr's atomic writes do not clean up after) leaves none of zarr's temporary
+    ``*.partial`` files in it."""
     try:
         yield
-    except OSError as exc:
-        if exc.filename is not None or exc.errno is None:
-            raise
-        raise OSError(exc.errno, exc.strerror or os.strerror(exc.errno), str(store)) from exc
+    except BaseException as exc:
+        for partial in store.rglob("*.partial") if store.is_dir() else ():
+            with contextlib.suppress(OSError):
+                partial.unlink()
+        if isinstance(exc, OSError) and exc.filename is None and exc.errno is not None:
+            raise OSError(exc.errno, exc.strerror or os.strerror(exc.errno),
+                          str(store)) from exc
+        raise
