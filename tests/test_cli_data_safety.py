@@ -324,3 +324,10 @@ def test_an_empty_list_is_not_called_a_number(tmp_path):
                     'rudder_deg = []\n')
     _refused(["run", str(path)], keep=[path], match="[maneuver.rudder_deg] must be a number or "
                                                     "a non-empty list of numbers [deg], got []")
+
+
+def test_a_turn_log_in_degrees_read_as_radians_is_refused():
+    log = Path(__file__).resolve().parent.parent / "examples" / "steady_turn_log.csv"
+    _refused(["identify", "steady-turn", str(log), "--angles", "rad"], keep=[log],
+             match="column `rudder_angle` reaches 30, read as radians (`--angles rad`) that is "
+                   "1719 deg, beyond any rudder; the log is in degrees? (`--angles deg`)")

@@ -95,6 +95,12 @@ def steady_turn(
         )
     rudder = cols["rudder_angle"] * scale
     yaw = cols["yaw_rate"] * scale
+    largest = float(np.nanmax(np.abs(cols["rudder_angle"]))) if cols["rudder_angle"].size else 0.0
+    if angles == "rad" and largest > math.pi / 2:  # no rudder turns beyond 90 deg
+        raise ParameterError(
+            f"{file}: column `rudder_angle` reaches {largest:g}, read as radians "
+            f"(`--angles rad`) that is {math.degrees(largest):.4g} deg, beyond any rudder; "
+            "the log is in degrees? (`--angles deg`)")
     for name, arr in (("rudder_angle", rudder), ("yaw_rate", yaw)) + (
             (("time", cols["time"]),) if "time" in cols else ()):
         if not np.all(np.isfinite(arr)):
@@ -123,7 +129,13 @@ def steady_turn(
                 "steady points (hold the rudder longer, or relax --yaw-rate-tolerance / "
                 "--min-duration)"
             )
-    fit = fit_steady_turns(yaw, rudder, method=method, form=form)
+    try:
+        fit = fit_steady_turns(yaw, rudder, method=method, form=form)
+    except np.linalg.LinAlgError as exc:  # (numpy's words name no cause a user can act on)
+        raise ParameterError(
+            f"{file}: the fit failed: the steady points do not determine the coefficients of "
+            f"form {form!r} ({exc}); give turns at more distinct rudder angles, to both "
+            "sides") from None
     summary = fit.to_dict()
     out.update(summary)
     out["units"] = {n: _UNITS[n] for n in fit.form.names}
