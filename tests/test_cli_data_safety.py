@@ -331,3 +331,19 @@ def test_a_turn_log_in_degrees_read_as_radians_is_refused():
     _refused(["identify", "steady-turn", str(log), "--angles", "rad"], keep=[log],
              match="column `rudder_angle` reaches 30, read as radians (`--angles rad`) that is "
                    "1719 deg, beyond any rudder; the log is in degrees? (`--angles deg`)")
+
+
+def test_a_report_or_figure_never_replaces_another_result(tmp_path):
+    import numpy as np
+
+    from seahelm.simulation.engine import simulate
+    from seahelm.vessels.nomoto import NOMOTO2
+
+    result = simulate(NOMOTO2, get_ship("mariner-nomoto2").params, np.zeros((2, 5)),
+                      t_final=5.0, dt=0.1, reference=[0.1])
+    a = result.to_netcdf(tmp_path / "a" / "result.nc")
+    b = result.to_netcdf(tmp_path / "b" / "result.nc")
+    _refused(["report", str(a), "-o", str(b)], keep=[a, b],
+             match="is a NetCDF result file; this command writes an HTML report")
+    _refused(["plot", str(a), "--out", str(b)], keep=[a, b],
+             match="is a NetCDF result file; this command writes a figure")

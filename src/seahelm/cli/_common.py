@@ -222,17 +222,33 @@ def output_dir(option: str, path: Path, names: tuple[str, ...] = (), *,
     return path
 
 
-def output_file(option: str, path: Path, *, reads: Iterable[Path] = ()) -> Path:
+def output_file(option: str, path: Path, *, reads: Iterable[Path] = (),
+                writes: str | None = None) -> Path:
     """Check, before any work, that ``path`` can be written as a file: not a directory, its
     directory existing (or creatable) and writable, none of the files the command reads
-    (``reads``) and not inside a store (:func:`protect_inputs`); returns ``path``."""
+    (``reads``), not inside a store (:func:`protect_inputs`) and, for a command that writes
+    something else (``writes``: ``"an HTML report"``), not an existing NetCDF/HDF5 result;
+    returns ``path``."""
     if path.is_dir():
         raise ParameterError(f"`{option}` must be a file name, but {path} is a directory")
     if path.parent.exists() and not path.parent.is_dir():
         raise ParameterError(f"`{option}`: {path.parent} is a file, not a directory")
     protect_inputs(option, path, reads)
+    if writes is not None and _is_hdf5(path):
+        raise ParameterError(
+            f"`{option}` {path} is a NetCDF result file; this command writes {writes}: "
+            "writing it there would destroy the result; choose another path")
     _writable_directory(option, path.parent)
     return path
+
+
+def _is_hdf5(path: Path) -> bool:
+    """Whether ``path`` is an existing NetCDF-4/HDF5 file (by its signature)."""
+    try:
+        with path.open("rb") as fh:
+            return fh.read(8) == b"\x89HDF\r\n\x1a\n"
+    except OSError:
+        return False
 
 
 #: Files that mark a directory as a Zarr store (a seahelm sweep store is one): nothing of a

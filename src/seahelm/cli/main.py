@@ -326,7 +326,8 @@ def plot(
     from ..results import flatten_runs, load_result
 
     input_file("RESULT", result)
-    target = output_file("--out", out or result.with_suffix(".png"), reads=(result,))
+    target = output_file("--out", out or result.with_suffix(".png"), reads=(result,),
+                         writes="a figure")
     check_figure_suffix("--out", target)
     ds = flatten_runs(load_result(result))
     if runs:

@@ -45,7 +45,7 @@ def report(
 
     # never over what the report reads: the result, its companion files, a store's insides
     target = output_file("--out", out or default_report_path(result),
-                         reads=report_inputs(result))
+                         reads=report_inputs(result), writes="an HTML report")
     from ..report import write_report
 
     summary = write_report(result, target)
