@@ -62,3 +62,18 @@ def test_a_sweep_on_a_full_disk_names_its_store(small_disk, tmp_path):
     store = small_disk / "s.zarr"
     _full(["sweep", str(scenario), "--store", str(store), "--chunk-size", "20"], store)
     assert not [p for p in small_disk.rglob("*") if p.name.endswith((".tmp", ".partial"))]
+
+
+def test_a_report_on_a_full_disk_names_its_file(small_disk, tmp_path):
+    import numpy as np
+
+    from seahelm.ships import get_ship
+    from seahelm.simulation.engine import simulate
+    from seahelm.vessels.nomoto import NOMOTO2
+
+    result = simulate(NOMOTO2, get_ship("mariner-nomoto2").params, np.zeros((2, 5)),
+                      t_final=5.0, dt=0.1, reference=[0.1])
+    source = result.to_netcdf(tmp_path / "result.nc")
+    target = small_disk / "r.html"  # the report inlines plotly.js: ~4 MB
+    _full(["report", str(source), "-o", str(target)], target)
+    _nothing_left(small_disk)
