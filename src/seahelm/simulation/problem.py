@@ -20,7 +20,7 @@ CLI names it in its own words from that field, never from the message text.
 Example::
 
     problem = Problem(ship="kvlcc2-l7", x0=approach, t_final=120.0, dt=0.05,
-                      reference={"rudder_angle": math.radians(35.0), "propeller_rps": rps})
+                      reference={"rudder_command": math.radians(35.0), "propeller_rps": rps})
     result = simulate(problem)
 """
 
