@@ -294,7 +294,10 @@ def protect_inputs(option: str, target: Path, reads: Iterable[Path] = ()) -> Non
     ParameterError
         Naming the option, the target and what it would destroy.
     """
-    t = target.resolve()
+    try:
+        t = target.resolve()
+    except RuntimeError:  # (Python's word for a symbolic-link loop)
+        raise ParameterError(f"`{option}` {target} is a loop of symbolic links") from None
     for read in reads:
         r = Path(read).resolve()
         if t == r:
@@ -306,6 +309,14 @@ def protect_inputs(option: str, target: Path, reads: Iterable[Path] = ()) -> Non
             raise ParameterError(
                 f"`{option}` {target} is inside {read}, which this command reads: writing "
                 "there would corrupt it; choose a path outside it")
+    if target.is_symlink() and not target.is_dir():  # (a linked directory is written into)
+        raise ParameterError(
+            f"`{option}` {target} is a symbolic link (to {os.readlink(target)}): the file "
+            "written would replace the link; give the path of the file itself")
+    if target.exists() and not target.is_file() and not target.is_dir():
+        raise ParameterError(
+            f"`{option}` {target} is not a regular file (a device, a FIFO or a socket): "
+            "writing it would replace it; choose a file path")
     store = store_containing(t)
     if store is not None:
         raise ParameterError(

@@ -58,10 +58,8 @@ def vessel_ship(scn: Scenario, source: str) -> Any:
     if ref is None:
         return None
     key = ship_key(scn)
-    if is_ship_path(ref) and not Path(ref).is_absolute():
-        folder = Path(source).parent
-        if Path(source).is_file() and (folder / ref).exists():
-            ref = str(folder / ref)
+    if is_ship_path(ref) and not Path(ref).is_absolute() and Path(source).is_file():
+        ref = str(Path(source).parent / ref)  # relative to the scenario, wherever it is run
     try:
         return get_ship(ref)
     except ValueError as exc:

@@ -146,7 +146,7 @@ def get(ship: Any) -> Ship:
             f"{type(ship).__name__}")
     if ship in CATALOG:
         return CATALOG[ship]
-    if is_ship_path(ship):
+    if is_ship_path(ship) or Path(ship).is_dir():  # (a directory: said as one)
         return read_ship(ship)
     raise ValueError(f"unknown catalog ship '{ship}'; valid: {', '.join(names())} "
                      "(or the path of a ship file, *.toml)")

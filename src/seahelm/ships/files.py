@@ -45,6 +45,7 @@ docs generate their reference page from it (:mod:`.file_format`).
 
 from __future__ import annotations
 
+import contextvars
 import dataclasses
 import os
 import tomllib
@@ -66,6 +67,17 @@ SECTION_KEYS = {"steering_gear": {"actuator", "params"}, "propulsion": {"kind", 
                 "particulars": {n for n, _, _ in FIELD_UNITS},
                 "provenance": {"params", "steering_gear", "propulsion", "particulars",
                                "coefficients"}}
+
+#: Largest ship file read [bytes] (a ship file is a few kB; anything this large is not one).
+MAX_FILE_BYTES = 10_000_000
+
+#: The ship files being read (their ``base`` chain), to find a cycle.
+_READING: "contextvars.ContextVar[tuple[str, ...]]" = contextvars.ContextVar(
+    "seahelm_reading_ship_files", default=())
+
+#: Top-level keys that make a file a scenario, not a ship file.
+SCENARIO_KEYS = frozenset({"title", "vessel", "simulation", "maneuver", "controller",
+                           "actuator", "batch", "environment", "guidance"})
 
 #: How a ``base`` ship is found: a catalog name or a ship-file path -> Ship
 #: (:func:`seahelm.ships.get_ship`; the catalog passes it, as it reads ship files itself).
@@ -98,18 +110,37 @@ def read_ship(path: str | os.PathLike[str], *, lookup: BaseLookup | None = None)
     p = Path(path)
     source = str(path)
     try:
-        text = p.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ShipFileError("no such ship file", source=source) from None
-    except IsADirectoryError:
-        raise ShipFileError("is a directory, not a ship file", source=source) from None
+        if p.is_dir():
+            raise ShipFileError("is a directory, not a ship file", source=source)
+        if not p.exists():
+            raise ShipFileError("no such ship file", source=source)
+        if not p.is_file():  # a FIFO would block, /dev/zero never end
+            raise ShipFileError("is not a regular file (a ship file is a TOML file)",
+                                source=source)
+        if p.stat().st_size > MAX_FILE_BYTES:
+            raise ShipFileError(f"is {p.stat().st_size / 1e6:.3g} MB: not a ship file (at most "
+                                f"{MAX_FILE_BYTES / 1e6:g} MB)", source=source)
+        text = p.read_text(encoding="utf-8-sig")  # (a byte-order mark is allowed)
+    except ShipFileError:
+        raise
+    except RuntimeError:  # (Python's word for a symbolic-link loop)
+        raise ShipFileError("is a loop of symbolic links", source=source) from None
     except (OSError, UnicodeDecodeError) as exc:
         raise ShipFileError(f"cannot be read ({exc})", source=source) from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ShipFileError(f"is not valid TOML ({exc})", source=source) from None
-    return ship_from_mapping(data, source=source, directory=p.parent, lookup=lookup)
+    key = str(p.resolve())
+    chain = _READING.get()
+    if key in chain:
+        names = " -> ".join(Path(c).name for c in (*chain, key))
+        raise _BaseCycle(f"forms a cycle: {names}", source=source, field="base")
+    token = _READING.set((*chain, key))
+    try:
+        return ship_from_mapping(data, source=source, directory=p.parent, lookup=lookup)
+    finally:
+        _READING.reset(token)
 
 
 def ship_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>",
@@ -221,6 +252,10 @@ def ship_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>",
         coefficient_sources=tuple(sources.items()), validity=tuple(validity))
 
 
+class _BaseCycle(ShipFileError):
+    """Ship files whose ``base`` chain returns to one of them."""
+
+
 class _Fail:
     """Makes the :class:`ShipFileError` of one key of one source."""
 
@@ -241,6 +276,9 @@ def _check_keys(data: Mapping[str, Any], fail: Any) -> None:
         return fail(f"{path}{key}", f"is an unknown key{hint}; valid here: "
                                     f"{', '.join(sorted(valid))}")
 
+    if "format" not in data and SCENARIO_KEYS & set(data):
+        raise fail(None, "is a scenario file, not a ship file (run it with `seahelm run`; a "
+                         "ship file has `format`, `name`, `model` and [params])")
     for key in data:
         if key not in TOP_KEYS:
             raise unknown("", key, TOP_KEYS)
@@ -264,8 +302,15 @@ def _merged_with_base(data: dict[str, Any], fail: Any, directory: Any,
         base_name = str(Path(directory) / base_name)
     try:
         base = lookup(base_name)
+    except _BaseCycle:
+        raise  # (said once, about the file the chain closes on)
     except (ParameterError, ValueError) as exc:
         raise fail("base", str(exc)) from None
+    model = data.get("model")
+    if isinstance(model, str) and model != base.model.name:
+        raise fail("base", f"'{base.name}' is a ship of model '{base.model.name}', not "
+                           f"'{model}': a base gives its parameters, so it must be of the same "
+                           "model")
     merged = ship_to_mapping(base)
     if "params" in data:  # new parameters: the base's test speed no longer applies
         merged.pop("test_speed", None)

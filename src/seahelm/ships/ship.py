@@ -143,6 +143,9 @@ class Ship:
 
         if not isinstance(self.name, str) or not self.name.strip():
             raise ParameterError(f"must be a non-empty text, got {self.name!r}", field="name")
+        if not self.name.isprintable():  # (it labels files, tables and terminals)
+            raise ParameterError(f"must be printable text (no control characters), got "
+                                 f"{self.name!r}", field="name")
         try:
             model = get_model(self.model)
         except ValueError as exc:
@@ -158,6 +161,22 @@ class Ship:
             if value is not None and not isinstance(value, cls):
                 raise ParameterError(f"must be {cls.__name__} or None, got "
                                      f"{type(value).__name__}", field=attr)
+        gear = self.steering_gear
+        if gear is not None and not set(gear.actuator.output_labels) & set(model.input_labels):
+            raise ParameterError(
+                f": the actuator '{gear.actuator.name}' drives "
+                f"{', '.join(gear.actuator.output_labels)}, which model '{model.name}' takes "
+                f"no input of (its inputs: {', '.join(model.input_labels)})",
+                field="steering_gear.actuator")
+        vessel_type = None if self.particulars is None else self.particulars.vessel_type
+        if vessel_type is not None:
+            from ..environment.blendermann import BLENDERMANN_VESSEL_TYPES
+
+            if vessel_type not in BLENDERMANN_VESSEL_TYPES:
+                raise ParameterError(
+                    f"'{vessel_type}' is not one of Blendermann's vessel types: "
+                    f"{', '.join(sorted(BLENDERMANN_VESSEL_TYPES))}",
+                    field="particulars.vessel_type", value=vessel_type)
         if self.propulsion is not None:
             missing = [n for n in self.propulsion.inputs if n not in model.input_labels]
             if missing:

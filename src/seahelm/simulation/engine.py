@@ -690,6 +690,13 @@ def simulate(
              "environment_params": environment_params, "exact_actuator": exact_actuator,
              "jit": jit}
     given = {k: v for k, v in given.items() if v is not None}
+    if model is not None and not isinstance(model, (Problem, VesselModel)):
+        raise ParameterError(
+            f"must be a VesselModel or a Problem, got {type(model).__name__} (a ship is given "
+            "as `ship=`)", field="model")
+    if model is None and "ship" not in given:
+        raise ParameterError("is required: give a Problem, or a `model` (or `ship=`) with "
+                             "`t_final` and `dt`", field="model")
     if isinstance(model, Problem):
         if given:
             raise ParameterError(

@@ -41,8 +41,10 @@ from ..actuators.base import Actuator
 from ..actuators.servo import RUDDER_SERVO
 from ..control.base import Controller
 from ..control.open_loop import OPEN_LOOP
+from ..environment.loads import Environment
 from ..errors import ParameterError
 from ..numerics.runge_kutta import get_integrator
+from ..parameters import Params
 from ..registry import get_actuator, get_controller, get_model
 from ..result_layout import BatchLayout
 from ..vessels.base import VesselModel
@@ -226,6 +228,7 @@ class Problem:
                 raise ParameterError(f"is required ({model.params_type.__name__} of model "
                                      f"'{model.name}', or a `ship`)", field="params")
             put(self, "params", ship.params)
+        _check_params("params", self.params, model.params_type)
         if self.x0 is None:
             raise ParameterError(f"is required: the initial state ({', '.join(model.state_labels)})",
                                  field="x0")
@@ -254,6 +257,9 @@ class Problem:
             raise ParameterError(f"must be a Controller, got {type(controller).__name__}",
                                  field="controller")
         put(self, "controller", controller)
+        for name, comp in (("actuator_params", actuator), ("controller_params", controller)):
+            if getattr(self, name) is not None:
+                _check_params(name, getattr(self, name), comp.params_type)
 
         # timing
         for name in ("dt", "t_final"):
@@ -288,13 +294,17 @@ class Problem:
         put(self, "record_every", int(every))
         try:
             tableau = get_integrator(self.integrator)
-        except ValueError as exc:
+        except (ValueError, TypeError) as exc:
             raise field_error("integrator", exc) from None
         # wiring, environment, bounds, options
         try:
             wiring = compose(model, actuator, controller)
         except ParameterError as exc:
             raise field_error("controller", exc) from None
+        if self.environment is not None and not isinstance(self.environment, Environment):
+            raise ParameterError(
+                f"must be an Environment (seahelm.environment.loads.environment(wind=..., "
+                f"waves=...)), got {type(self.environment).__name__}", field="environment")
         if self.environment is None:
             if self.environment_params is not None:
                 raise ParameterError("given without an `environment`",
@@ -310,6 +320,26 @@ class Problem:
             if label not in labels:
                 raise ParameterError(f"is an unknown state; states: {', '.join(labels)}",
                                      field=f"bounds.{label}")
+            ok = (isinstance(pair, (tuple, list)) and len(pair) == 2
+                  and all(not isinstance(v, bool) and isinstance(v, (int, float, np.floating))
+                          and not math.isnan(v) for v in pair) and pair[0] < pair[1])
+            if not ok:
+                raise ParameterError(f"must be a pair (low, high) of numbers with low < high, "
+                                     f"got {pair!r}", field=f"bounds.{label}", value=pair)
+        seed = self.seed
+        if seed is not None and (isinstance(seed, bool) or not isinstance(
+                seed, (int, np.integer)) or seed < 0):
+            raise ParameterError(f"must be a whole number >= 0 (or None), got {seed!r}",
+                                 field="seed", value=seed)
+        if not isinstance(self.metadata or {}, Mapping):
+            raise ParameterError(f"must be a mapping of names to values, got "
+                                 f"{type(self.metadata).__name__}", field="metadata")
+        for key, value in (self.metadata or {}).items():
+            if not isinstance(key, str) or not isinstance(
+                    value, (str, int, float, bool, np.integer, np.floating)):
+                raise ParameterError(
+                    f"values must be text or numbers (they are stored with the results), "
+                    f"got {key!r}: {type(value).__name__}", field=f"metadata.{key}")
         exact = self.exact_actuator
         if exact is not None and not isinstance(exact, (bool, np.bool_)):
             raise ParameterError(f"must be True, False or None, got {exact!r}",
@@ -388,6 +418,21 @@ class Problem:
         Problem
         """
         return dataclasses.replace(self, **changes)
+
+
+def _check_params(name: str, value: Any, cls: type) -> None:
+    """A parameter input: a ``cls`` set, a sequence of them, or an array of rows."""
+    if isinstance(value, Params) or (isinstance(value, (list, tuple)) and value
+                                      and isinstance(value[0], Params)):
+        first = value if isinstance(value, Params) else value[0]
+        if not isinstance(first, cls):
+            raise ParameterError(f"must be {cls.__name__}, got {type(first).__name__}",
+                                 field=name)
+        return
+    if isinstance(value, (Mapping, str, bytes)):
+        raise ParameterError(f"must be {cls.__name__}, a sequence of them or an array of "
+                             f"rows (runs, {cls.n_values()}), got {type(value).__name__}",
+                             field=name)
 
 
 def _rebuild(fields: dict[str, Any]) -> Problem:
