@@ -143,3 +143,22 @@ def test_simulate_says_what_it_takes():
         simulate("kvlcc2-l7")
     with pytest.raises(ParameterError, match="give a Problem, or a `model`"):
         simulate(None)
+
+
+def test_more_cases_said_clearly(tmp_path):
+    text = ship_to_toml(get_ship("mariner-nomoto2")) + (
+        '[steering_gear]\nactuator = "rudder-servo"\n[steering_gear.params]\n'
+        'max_angle = 0.6\nmax_rate = 0.04\ntime_constant = 1.0\n')
+    path = tmp_path / "n.toml"
+    path.write_text(text)
+    _one_error(["maneuver", "turning", "--ship", str(path)],
+               "ship 'mariner-nomoto2' (model 'nomoto2') cannot run the standard manoeuvres: "
+               "they need a 3-DOF model with surge, sway and yaw states")
+    _one_error(["maneuver", "turning", "--dt", "inf"], "`--dt` must be a finite number > 0 [s]")
+    with pytest.raises(ParameterError, match=r"`t_final` must be a finite number > 0 \[s\]"):
+        Problem(**{**BASE, "t_final": float("inf")})
+    with pytest.raises(ParameterError, match="must be real numbers, got complex") as err:
+        simulate(Problem(**{**BASE, "x0": np.zeros(5, dtype=complex)}))
+    assert err.value.field == "x0"
+    with pytest.raises(ParameterError, match="must be real numbers, got text"):
+        simulate(Problem(**{**BASE, "reference": {"rudder_command": "0.1"}}))

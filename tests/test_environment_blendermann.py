@@ -319,7 +319,7 @@ def test_coefficients_are_frozen_and_keyword_only():
                                     r"got 30.0 with length_overall/2 = 27.5"),
         (dict(lateral_centre=math.inf), r"`lateral_centre` must be finite \[m\], got inf"),
         (dict(angle=math.nan), r"`angle` must be finite \[rad\], got nan"),
-        (dict(angle="ahead"), r"`angle` must be numeric \[rad\], got 'ahead'"),
+        (dict(angle="ahead"), r"`angle` must be real numbers \[rad\], got text: 'ahead'"),
     ],
 )
 @pytest.mark.parametrize("function", ["coefficients", "loads"])

@@ -178,6 +178,12 @@ def as_float_array(name: str, value: Any, unit: str = "", *, finite: bool = True
     numpy.ndarray
         ``value`` as a float64 array.
     """
+    raw = np.asarray(value) if not isinstance(value, np.ndarray) else value
+    if raw.dtype.kind in "cUSO" and raw.dtype != object or raw.dtype.kind == "b":
+        # complex, text or booleans: not read as numbers (a complex part would be dropped)
+        kind = {"c": "complex", "U": "text", "S": "text", "b": "booleans"}[raw.dtype.kind]
+        raise ParameterError(f"must be real numbers{_unit(unit)}, got {kind}: {value!r}",
+                             field=name, unit=unit or None, value=value)
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError) as exc:

@@ -98,7 +98,12 @@ def ship_of(ship: ShipName) -> Any:
         raise ParameterError(
             f"ship '{found.name}' has no steering gear (a ship file's [steering_gear]); "
             f"catalog ships with one: {', '.join(with_steering_gear())}")
-    return maneuver_ship(found)
+    try:
+        return maneuver_ship(found)
+    except ParameterError as exc:  # (about the ship the user named: said without a field)
+        if exc.field != "ship":
+            raise
+        raise ParameterError(exc.reason.lstrip(": ")) from None
 
 
 def check_speed_rps(ship: Any, speed: float | None, rps: float | None) -> None:
@@ -132,7 +137,8 @@ def check_rudder_deg(ship: Any, name: str, value: float, *, allow_zero: bool = F
 def check_positive_opt(name: str, value: float | None, unit: str) -> None:
     """An optional option that must be > 0 when given."""
     if value is not None and not (math.isfinite(value) and value > 0):
-        raise ParameterError(f"`{name}` must be > 0 [{unit}], got {value!r}")
+        what = "> 0" if math.isfinite(value) else "a finite number > 0"
+        raise ParameterError(f"`{name}` must be {what} [{unit}], got {value!r}")
 
 
 #: The files each command writes with --out (checked before anything runs).

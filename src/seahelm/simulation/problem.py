@@ -267,7 +267,9 @@ class Problem:
             if isinstance(value, bool) or not isinstance(value, (int, float, np.floating,
                                                                  np.integer)) \
                     or not (math.isfinite(value) and value > 0):
-                raise ParameterError(f"must be > 0 [s], got {value!r}", field=name, unit="s",
+                what = "a finite number > 0" if isinstance(value, (int, float)) and not \
+                    math.isfinite(value) else "> 0"
+                raise ParameterError(f"must be {what} [s], got {value!r}", field=name, unit="s",
                                      value=value)
         dt, t_final = float(self.dt), float(self.t_final)
         n_steps = steps(t_final, dt)

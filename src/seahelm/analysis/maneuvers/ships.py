@@ -122,7 +122,15 @@ def maneuver_ship(ship: Any, *, servo: ServoParams | None = None,
             f"(catalog ships with one: {', '.join(with_steering_gear())})", field="servo")
     if name is not None and name != base.name:
         changes["name"] = name
-    return dataclasses.replace(base, **changes) if changes else base
+    ship = dataclasses.replace(base, **changes) if changes else base
+    states = set(ship.model.state_labels)
+    if not ({"sway_speed", "yaw_rate", "heading"} <= states
+            and states & {"surge_speed", "surge_perturbation"}):
+        raise ParameterError(
+            f": ship '{ship.name}' (model '{ship.model.name}') cannot run the standard "
+            "manoeuvres: they need a 3-DOF model with surge, sway and yaw states (mmg, "
+            f"mariner); its states: {', '.join(ship.model.state_labels)}", field="ship")
+    return ship
 
 
 @functools.lru_cache(maxsize=64)
