@@ -162,3 +162,15 @@ def test_more_cases_said_clearly(tmp_path):
     assert err.value.field == "x0"
     with pytest.raises(ParameterError, match="must be real numbers, got text"):
         simulate(Problem(**{**BASE, "reference": {"rudder_command": "0.1"}}))
+
+
+def test_a_manoeuvre_scenario_on_a_ship_that_cannot_names_the_key(tmp_path):
+    text = ship_to_toml(get_ship("mariner-nomoto2")) + (
+        '[steering_gear]\nactuator = "rudder-servo"\n[steering_gear.params]\n'
+        'max_angle = 0.6\nmax_rate = 0.04\ntime_constant = 1.0\n')
+    (tmp_path / "n.toml").write_text(text)
+    scenario = tmp_path / "s.toml"
+    scenario.write_text('title = "t"\n[vessel]\nship = "n.toml"\n[maneuver]\nkind = "turning"\n'
+                        'rudder_deg = 20\n')
+    _one_error(["run", str(scenario)], f"error: {scenario}: [vessel.ship] ship "
+                                       "'mariner-nomoto2' (model 'nomoto2') cannot run")

@@ -280,8 +280,11 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
     name = entry.name
     if vessel.params:
         name += f" (modified: {', '.join(vessel.params)})"
-    ship = maneuver_ship(entry.replace(params=params, name=name) if vessel.params else entry,
-                         servo=None if not scn.actuator.params else servo)
+    try:
+        ship = maneuver_ship(entry.replace(params=params, name=name) if vessel.params else entry,
+                             servo=None if not scn.actuator.params else servo)
+    except ParameterError as exc:  # (a ship whose model cannot run the manoeuvres)
+        raise at_key(source, key, exc.reason.lstrip(": ")) from None
 
     options: dict[str, Any] = {}
     for key in ("speed", "rps", "t_final", "dt", "record_dt", "hold"):
