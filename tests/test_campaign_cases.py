@@ -174,3 +174,17 @@ def test_a_manoeuvre_scenario_on_a_ship_that_cannot_names_the_key(tmp_path):
                         'rudder_deg = 20\n')
     _one_error(["run", str(scenario)], f"error: {scenario}: [vessel.ship] ship "
                                        "'mariner-nomoto2' (model 'nomoto2') cannot run")
+
+
+def test_the_default_rudder_never_exceeds_the_steering_gear(tmp_path):
+    import json
+
+    (tmp_path / "g30.toml").write_text('format = 1\nname = "g30"\nmodel = "mmg"\n'
+                                       'base = "kvlcc2-l7"\n[steering_gear.params]\n'
+                                       'max_angle_deg = 30\n')
+    res = runner.invoke(app, ["maneuver", "turning", "--ship", str(tmp_path / "g30.toml"),
+                              "--side", "starboard", "--t-final", "30", "--json"])
+    assert res.exit_code == 0, res.stderr
+    assert json.loads(res.stdout)["runs"][0]["rudder_deg"] == pytest.approx(30.0, rel=1e-12)
+    _one_error(["maneuver", "turning", "--ship", str(tmp_path / "g30.toml"), "--rudder", "35"],
+               "`--rudder` must be in (0, 30] [deg]")

@@ -167,13 +167,19 @@ def ship_reads(ship: str) -> tuple[Path, ...]:
     return (Path(ship),) if is_ship_path(ship) else ()
 
 
-def checked(catalog: ShipName, rudder: float, side: SideName, speed: float | None,
-            rps: float | None, t_final: float | None, dt: float | None
-            ) -> tuple[Any, float, Any]:
+def rudder_or_default(ship: Any, rudder: float | None, default: float) -> float:
+    """``--rudder`` [deg], or ``default`` capped at the ship's steering-gear limit."""
+    return rudder if rudder is not None else min(default, math.degrees(ship.max_rudder))
+
+
+def checked(catalog: ShipName, rudder: float | None, side: SideName, speed: float | None,
+            rps: float | None, t_final: float | None, dt: float | None, *,
+            default_rudder: float = 35.0) -> tuple[Any, float, Any]:
     """The options every manoeuvre takes, checked: (ship, rudder [rad], sides: +1/−1 or the
-    pair)."""
+    pair). Without ``--rudder``, ``default_rudder`` [deg], or the steering gear's limit where
+    that is smaller (a default is never refused)."""
     ship = ship_of(catalog)
-    delta = check_rudder_deg(ship, "--rudder", rudder)
+    delta = check_rudder_deg(ship, "--rudder", rudder_or_default(ship, rudder, default_rudder))
     sides = _SIDES[side]
     check_speed_rps(ship, speed, rps)
     check_positive_opt("--t-final", t_final, "s")
@@ -349,8 +355,8 @@ TURNING_FIELDS: tuple[Field, ...] = (
 @handle_errors
 def turning_cmd(
     catalog: Catalog = "kvlcc2-l7",
-    rudder: Annotated[float, typer.Option("--rudder", help=escape(
-        "Rudder angle [deg], in (0, steering gear limit]."))] = 35.0,
+    rudder: Annotated[float | None, typer.Option("--rudder", help=escape(
+        "Rudder angle [deg], in (0, steering gear limit] (default 35 deg, or the gear's limit if smaller)."))] = None,
     side: Side = "both",
     speed: Speed = None,
     rps: Rps = None,
@@ -363,7 +369,9 @@ def turning_cmd(
     from ..analysis.maneuvers import turning_circle
     from ..plotting.maneuvers import plot_turning
 
-    ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt)
+    ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt,
+                                 default_rudder=35.0)
+    rudder = rudder_or_default(ship, rudder, 35.0)
     check_out(out, "turning", ship_reads(catalog))
     result = turning_circle(ship, delta, sides=sides, speed=speed, rps=rps, t_final=t_final,
                             dt=dt)
@@ -390,8 +398,8 @@ ZIGZAG_FIELDS: tuple[Field, ...] = (
 @handle_errors
 def zigzag_cmd(
     catalog: Catalog = "kvlcc2-l7",
-    rudder: Annotated[float, typer.Option("--rudder", help=escape(
-        "Rudder angle δ [deg], in (0, steering gear limit]."))] = 10.0,
+    rudder: Annotated[float | None, typer.Option("--rudder", help=escape(
+        "Rudder angle δ [deg], in (0, steering gear limit] (default 10 deg, or the gear's limit if smaller)."))] = None,
     heading: Annotated[float | None, typer.Option("--heading", help=escape(
         "Heading trigger ψ [deg], in (0, 180) (default: equal to --rudder)."))] = None,
     side: Annotated[SideName, typer.Option(
@@ -407,7 +415,9 @@ def zigzag_cmd(
     from ..analysis.maneuvers import zigzag
     from ..plotting.maneuvers import plot_zigzag
 
-    ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt)
+    ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt,
+                                 default_rudder=10.0)
+    rudder = rudder_or_default(ship, rudder, 10.0)
     check_out(out, "zigzag", ship_reads(catalog))
     psi = rudder if heading is None else heading
     if not (math.isfinite(psi) and 0 < psi < 180):
@@ -432,8 +442,8 @@ PULLOUT_FIELDS: tuple[Field, ...] = (
 @handle_errors
 def pullout_cmd(
     catalog: Catalog = "kvlcc2-l7",
-    rudder: Annotated[float, typer.Option("--rudder", help=escape(
-        "Rudder angle of the steady turn [deg], in (0, steering gear limit]."))] = 20.0,
+    rudder: Annotated[float | None, typer.Option("--rudder", help=escape(
+        "Rudder angle of the steady turn [deg], in (0, steering gear limit] (default 20 deg, or the gear's limit if smaller)."))] = None,
     side: Side = "both",
     speed: Speed = None,
     rps: Rps = None,
@@ -446,7 +456,9 @@ def pullout_cmd(
     from ..analysis.maneuvers import pull_out
     from ..plotting.maneuvers import plot_pullout
 
-    ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt)
+    ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt,
+                                 default_rudder=20.0)
+    rudder = rudder_or_default(ship, rudder, 20.0)
     check_out(out, "pullout", ship_reads(catalog))
     result = pull_out(ship, delta, sides=sides, speed=speed, rps=rps, t_final=t_final, dt=dt)
     payload = header(result)
