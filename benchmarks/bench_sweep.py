@@ -50,7 +50,7 @@ def scenario(runs: int, seed: int = 1) -> str:
 
 
 def _clear() -> None:
-    from seahelm.analysis.maneuvers.common import _approach
+    from seahelm.analysis.maneuvers.ships import _approach
 
     _approach.cache_clear()
 

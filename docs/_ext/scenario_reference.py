@@ -68,14 +68,11 @@ def sections(model: type[BaseModel] | None = None, prefix: str = "") -> list[tup
 
 
 def _model_of(ann: Any) -> type[BaseModel] | None:
-    """The model a field holds: itself, optional, or as the values of a mapping."""
-    if inspect.isclass(ann) and issubclass(ann, BaseModel):
-        return ann
-    for arg in typing.get_args(ann):
-        found = _model_of(arg)
-        if found is not None:
-            return found
-    return None
+    """The model a field holds: itself, optional, or as the values of a mapping (the schema's
+    own walker, :func:`seahelm.scenario.loading.section_model`)."""
+    from seahelm.scenario.loading import section_model
+
+    return section_model(ann)
 
 
 def _is_mapping(ann: Any) -> bool:

@@ -15,6 +15,7 @@ import sys
 from typing import Annotated, Any
 
 import typer
+from rich import box
 from rich.markup import escape
 from rich.table import Table
 
@@ -33,12 +34,6 @@ ShipArg = Annotated[str, typer.Argument(
 @app.callback()
 def _main() -> None:
     """Ships: the catalog, and ship files (TOML)."""
-
-
-def _ship(ref: str) -> Any:
-    from ..ships import get_ship
-
-    return get_ship(ref)
 
 
 def _payload(ship: Any) -> dict[str, Any]:
@@ -66,15 +61,21 @@ def list_cmd(json_out: JsonFlag = False) -> None:
     if json_out:
         print_json({"ships": rows})
         return
-    table = Table(title="catalog ships (seahelm ship show NAME)", title_justify="left")
+    table = Table(title="catalog ships (seahelm ship show NAME)", title_justify="left",
+                  box=box.SIMPLE_HEAD, pad_edge=False)
+    wide = console.width >= 100  # (a description squeezed into 10 columns reads as noise)
     for col in ("name", "model", "steering gear", "U0 [m/s]"):
-        table.add_column(escape(col), no_wrap=True)
-    table.add_column("description")
+        table.add_column(escape(col), no_wrap=True)  # (whole names: they are what one types)
+    if wide:
+        table.add_column("description")
     for r in rows:
         speed = "" if r["test_speed_mps"] is None else f"{r['test_speed_mps']:.4g}"
-        table.add_row(r["name"], r["model"], r["steering_gear"] or "-", speed,
-                      escape(r["description"]))
+        cells = [r["name"], r["model"], r["steering_gear"] or "-", speed]
+        table.add_row(*cells, *([escape(r["description"])] if wide else []))
     console.print(table)
+    if not wide:
+        console.print("descriptions: `seahelm ship show NAME`, `--json`, or a terminal of 100 "
+                      "columns or more", highlight=False)
 
 
 @app.command("show")
@@ -88,7 +89,9 @@ def show(
     """Print a ship: model, steering gear, propulsion, particulars, parameters, provenance."""
     if toml and json_out:
         raise ParameterError("give `--toml` or `--json`, not both")
-    s = _ship(ship)
+    from ..ships import get_ship
+
+    s = get_ship(ship)
     if toml:
         from ..ships import ship_to_toml
 

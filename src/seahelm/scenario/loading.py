@@ -17,7 +17,8 @@ from .maneuver import ManeuverJob, prepare_maneuver
 from .runs import prepare_runs
 from .schema import Scenario
 
-__all__ = ["default_scenario_text", "parse_scenario", "load_scenario", "validate_scenario"]
+__all__ = ["default_scenario_text", "parse_scenario", "load_scenario", "validate_scenario",
+           "section_model"]
 
 
 def default_scenario_text() -> str:
@@ -87,7 +88,7 @@ def _unknown_key(path: str) -> str:
     model: Any = Scenario
     for part in parts[:-1]:
         field = getattr(model, "model_fields", {}).get(part)
-        model = _model_in(field.annotation) if field is not None else None
+        model = section_model(field.annotation) if field is not None else None
         if model is None:
             return "is an unknown key"
     valid = sorted(model.model_fields)
@@ -98,8 +99,19 @@ def _unknown_key(path: str) -> str:
             f"{', '.join(valid)}")
 
 
-def _model_in(annotation: Any) -> Any:
-    """The pydantic model an annotation holds (itself, optional, or in a union)."""
+def section_model(annotation: Any) -> Any:
+    """The pydantic model an annotation of the schema holds (itself, optional, in a union or
+    as a mapping's values); None for a plain value.
+
+    Parameters
+    ----------
+    annotation : object
+        A field's annotation.
+
+    Returns
+    -------
+    type or None
+    """
     import inspect
     import typing
 
@@ -108,7 +120,7 @@ def _model_in(annotation: Any) -> Any:
     if inspect.isclass(annotation) and issubclass(annotation, BaseModel):
         return annotation
     for arg in typing.get_args(annotation):
-        found = _model_in(arg)
+        found = section_model(arg)
         if found is not None:
             return found
     return None

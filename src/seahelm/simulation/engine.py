@@ -801,10 +801,7 @@ def _run(problem: "Problem", *, throw: bool,
     labels = model.state_labels + actuator.state_labels
     lower = np.array(list(model.state_lower) + [-np.inf] * actuator.n_states, dtype=float)
     upper = np.array(list(model.state_upper) + [np.inf] * actuator.n_states, dtype=float)
-    for label, (lo, hi) in (bounds or {}).items():
-        if label not in labels:
-            raise ParameterError(f"is an unknown state; states: {', '.join(labels)}",
-                                 field=f"bounds.{label}")  # (the Problem checks it first)
+    for label, (lo, hi) in (bounds or {}).items():  # (labels checked by the Problem)
         j = labels.index(label)
         lower[j], upper[j] = max(lower[j], float(lo)), min(upper[j], float(hi))
     if not (np.isfinite(z).all() and (z >= lower).all() and (z <= upper).all()):
