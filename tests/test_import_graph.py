@@ -146,6 +146,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("seahelm", "seahelm.constants", "seahelm.numerics", "seahelm.versions", "seahelm._optional",
      "seahelm._codegen", "seahelm.resources"),
     ("seahelm.parameters", "seahelm._validate"),
+    ("seahelm.hydrodynamics",),
     ("seahelm.actuators",),
     ("seahelm.vessels",),
     ("seahelm.control",),
