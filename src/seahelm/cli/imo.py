@@ -22,6 +22,7 @@ from rich.table import Table
 
 from ._common import JsonFlag, _jsonable, console, handle_errors, print_json
 from .maneuver import (
+    Depth,
     Dt,
     Out,
     Rps,
@@ -53,13 +54,14 @@ def imo(
     speed: Speed = None,
     rps: Rps = None,
     dt: Dt = None,
+    water_depth: Depth = None,
     json_out: JsonFlag = False,
     out: Out = None,
 ) -> None:
     """Check a ship against IMO MSC.137(76): turning, initial turning, zig-zags, stopping."""
     from ..analysis.imo import imo_check
 
-    ship = ship_of(model)
+    ship = ship_of(model, water_depth)
     check_speed_rps(ship, speed, rps)
     check_positive_opt("--dt", dt, "s")
     check_out(out, "imo", ship_reads(model))

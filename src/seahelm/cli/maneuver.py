@@ -64,6 +64,10 @@ Dt = Annotated[float | None, typer.Option(
                         "rounded down to 1-2-5)."))]
 Out = Annotated[Path | None, typer.Option(
     "--out", help="Write NetCDF (runs, metrics) and a PNG here.")]
+Depth = Annotated[float | None, typer.Option(
+    "--depth", help=escape("Water depth h [m] (> draught; default: the ship's, deep water for a "
+                           "catalog ship): the MMG coefficients corrected for shallow water."),
+    show_default=False)]
 
 
 @app.callback()
@@ -74,8 +78,9 @@ def _main() -> None:
 # ------------------------------------------------------------------------------------------
 # input checks in command-line units
 # ------------------------------------------------------------------------------------------
-def ship_of(ship: ShipName) -> Any:
-    """The :class:`~seahelm.ships.Ship` of a catalog name or ship file, with a steering gear.
+def ship_of(ship: ShipName, water_depth: float | None = None) -> Any:
+    """The :class:`~seahelm.ships.Ship` of a catalog name or ship file, with a steering gear,
+    in water of depth ``water_depth`` [m] (``--depth``) when given.
 
     Raises
     ------
@@ -98,6 +103,8 @@ def ship_of(ship: ShipName) -> Any:
         raise ParameterError(
             f"ship '{found.name}' has no steering gear (a ship file's [steering_gear]); "
             f"catalog ships with one: {', '.join(with_steering_gear())}")
+    if water_depth is not None:
+        found = found.at_depth(water_depth)
     try:
         return maneuver_ship(found)
     except ParameterError as exc:  # (about the ship the user named: said without a field)
@@ -174,11 +181,12 @@ def rudder_or_default(ship: Any, rudder: float | None, default: float) -> float:
 
 def checked(catalog: ShipName, rudder: float | None, side: SideName, speed: float | None,
             rps: float | None, t_final: float | None, dt: float | None, *,
-            default_rudder: float = 35.0) -> tuple[Any, float, Any]:
+            default_rudder: float = 35.0, water_depth: float | None = None
+            ) -> tuple[Any, float, Any]:
     """The options every manoeuvre takes, checked: (ship, rudder [rad], sides: +1/−1 or the
     pair). Without ``--rudder``, ``default_rudder`` [deg], or the steering gear's limit where
     that is smaller (a default is never refused)."""
-    ship = ship_of(catalog)
+    ship = ship_of(catalog, water_depth)
     delta = check_rudder_deg(ship, "--rudder", rudder_or_default(ship, rudder, default_rudder))
     sides = _SIDES[side]
     check_speed_rps(ship, speed, rps)
@@ -362,6 +370,7 @@ def turning_cmd(
     rps: Rps = None,
     t_final: TFinal = None,
     dt: Dt = None,
+    water_depth: Depth = None,
     json_out: JsonFlag = False,
     out: Out = None,
 ) -> None:
@@ -370,7 +379,7 @@ def turning_cmd(
     from ..plotting.maneuvers import plot_turning
 
     ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt,
-                                 default_rudder=35.0)
+                                 default_rudder=35.0, water_depth=water_depth)
     rudder = rudder_or_default(ship, rudder, 35.0)
     check_out(out, "turning", ship_reads(catalog))
     result = turning_circle(ship, delta, sides=sides, speed=speed, rps=rps, t_final=t_final,
@@ -408,6 +417,7 @@ def zigzag_cmd(
     rps: Rps = None,
     t_final: TFinal = None,
     dt: Dt = None,
+    water_depth: Depth = None,
     json_out: JsonFlag = False,
     out: Out = None,
 ) -> None:
@@ -416,7 +426,7 @@ def zigzag_cmd(
     from ..plotting.maneuvers import plot_zigzag
 
     ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt,
-                                 default_rudder=10.0)
+                                 default_rudder=10.0, water_depth=water_depth)
     rudder = rudder_or_default(ship, rudder, 10.0)
     check_out(out, "zigzag", ship_reads(catalog))
     psi = rudder if heading is None else heading
@@ -449,6 +459,7 @@ def pullout_cmd(
     rps: Rps = None,
     t_final: TFinal = None,
     dt: Dt = None,
+    water_depth: Depth = None,
     json_out: JsonFlag = False,
     out: Out = None,
 ) -> None:
@@ -457,7 +468,7 @@ def pullout_cmd(
     from ..plotting.maneuvers import plot_pullout
 
     ship, delta, sides = checked(catalog, rudder, side, speed, rps, t_final, dt,
-                                 default_rudder=20.0)
+                                 default_rudder=20.0, water_depth=water_depth)
     rudder = rudder_or_default(ship, rudder, 20.0)
     check_out(out, "pullout", ship_reads(catalog))
     result = pull_out(ship, delta, sides=sides, speed=speed, rps=rps, t_final=t_final, dt=dt)
@@ -481,13 +492,14 @@ def spiral_cmd(
     speed: Speed = None,
     rps: Rps = None,
     dt: Dt = None,
+    water_depth: Depth = None,
     json_out: JsonFlag = False,
     out: Out = None,
 ) -> None:
     """Direct (simulated) and reverse (equilibria) spiral: r–δ curve and loop width."""
     from ..analysis.maneuvers import spirals
 
-    ship = ship_of(catalog)
+    ship = ship_of(catalog, water_depth)
     top = check_rudder_deg(ship, "--max-rudder", max_rudder)
     check_speed_rps(ship, speed, rps)
     check_positive_opt("--hold", hold, "s")

@@ -44,11 +44,13 @@ class _Strict(BaseModel):
 class VesselSection(_Strict):
     """``[vessel]``: a ship (``ship``: a catalog name or the path of a ship file, relative to
     the scenario file; ``catalog`` is its older name) or a bare ``model``; ``params`` override
-    the ship's parameters, ``initial`` its initial state."""
+    the ship's parameters, ``initial`` its initial state; ``water_depth`` [m] puts the ship in
+    shallow water (its MMG coefficients corrected; ``params`` then change the deep-water ones)."""
 
     model: str | None = None  # the ship's model when a ship is named
     ship: str | None = None
     catalog: str | None = None
+    water_depth: Positive | None = None
     params: dict[str, Number] = Field(default_factory=dict)
     initial: dict[str, Number] = Field(default_factory=dict)
 
@@ -56,6 +58,9 @@ class VesselSection(_Strict):
     def _one_ship(self) -> "VesselSection":
         if self.ship is not None and self.catalog is not None:
             raise ValueError("give `ship` or `catalog` (its older name), not both")
+        if self.water_depth is not None and self.ship is None and self.catalog is None:
+            raise ValueError("`water_depth` needs a `ship` (its particulars and MMG "
+                             "coefficients are corrected)")
         return self
 
 

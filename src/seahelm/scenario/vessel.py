@@ -6,6 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from ..errors import ParameterError
 from .errors import at_key
 from .schema import Scenario
 
@@ -61,6 +62,12 @@ def vessel_ship(scn: Scenario, source: str) -> Any:
     if is_ship_path(ref) and not Path(ref).is_absolute() and Path(source).is_file():
         ref = str(Path(source).parent / ref)  # relative to the scenario, wherever it is run
     try:
-        return get_ship(ref)
+        ship = get_ship(ref)
     except ValueError as exc:
         raise at_key(source, key, str(exc)) from None
+    if v.water_depth is not None:
+        try:
+            ship = ship.at_depth(v.water_depth)
+        except ParameterError as exc:
+            raise at_key(source, "vessel.water_depth", exc.reason.lstrip(": ")) from None
+    return ship

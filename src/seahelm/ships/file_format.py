@@ -27,6 +27,9 @@ FORMAT_REFERENCE: tuple[tuple[str, str, str, str], ...] = (
                        "every key not given here; tables merge key by key"),
     ("test_speed", "m/s", "no", "approach (test) speed U_0; only for a model whose parameters "
                                 "have no design speed (approach_speed, nominal_speed, speed)"),
+    ("water_depth", "m", "no", "water depth h (default: deep water); [params] are then the "
+                               "deep-water ones, corrected for h (MMG model; needs [particulars]; "
+                               "h > T)"),
     ("validity", "", "no", "what the parameter set is valid for: a text or a list of texts"),
     ("params.<name>", "model's", "yes", "every parameter of the model (its unit: `seahelm "
                                         "models`); an angle also as <name>_deg in degrees"),

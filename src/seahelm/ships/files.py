@@ -62,7 +62,7 @@ from .writing import ship_to_mapping
 
 #: The keys of a ship file, and of each of its tables (other than the parameter tables).
 TOP_KEYS = {"format", "name", "description", "model", "base", "test_speed", "validity", "params",
-            "steering_gear", "propulsion", "particulars", "provenance"}
+            "steering_gear", "propulsion", "particulars", "provenance", "water_depth"}
 SECTION_KEYS = {"steering_gear": {"actuator", "params"}, "propulsion": {"kind", "inputs"},
                 "particulars": {n for n, _, _ in FIELD_UNITS},
                 "provenance": {"params", "steering_gear", "propulsion", "particulars",
@@ -243,13 +243,19 @@ def ship_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>",
     test_speed = data.get("test_speed")
     if test_speed is not None:
         test_speed = _number(test_speed, "test_speed", "m/s", fail)
-    return _build(
+    ship = _build(
         Ship, None, fail, name=name, model=model, params=params,
         description=_opt_text(data, "description", "description", fail),
         steering_gear=steering, propulsion=propulsion, particulars=particulars,
         test_speed=test_speed,
         provenance=_opt_text(prov, "provenance.params", "params", fail),
         coefficient_sources=tuple(sources.items()), validity=tuple(validity))
+    if "water_depth" in data:  # [params] are the deep-water ones, corrected for the depth
+        depth = data["water_depth"]
+        if not (isinstance(depth, str) and depth.strip().lower() in ("inf", "infinity")):
+            depth = _number(depth, "water_depth", "m", fail)
+        ship = _build(ship.at_depth, None, fail, depth=float(depth))
+    return ship
 
 
 class _BaseCycle(ShipFileError):

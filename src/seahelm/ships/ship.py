@@ -124,6 +124,12 @@ class Ship:
     validity : tuple of str
         What the parameter set is valid for (speed range, water depth, loading, …), one note a
         line.
+    water_depth : float
+        Water depth h [m] the parameters hold at; ``inf`` (the default) is deep water. A ship
+        in shallow water is made by :meth:`at_depth`, which keeps the deep-water parameters.
+    deep_water_params : Params or None
+        The deep-water parameters a shallow-water ship was corrected from (``None`` in deep
+        water).
     """
 
     name: str
@@ -137,6 +143,8 @@ class Ship:
     provenance: str = ""
     coefficient_sources: tuple[tuple[str, str], ...] = ()
     validity: tuple[str, ...] = ()
+    water_depth: float = math.inf
+    deep_water_params: Params | None = None
 
     def __post_init__(self) -> None:
         from ..registry import get_model
@@ -212,6 +220,26 @@ class Ship:
         object.__setattr__(self, "coefficient_sources", sources)
         validity = (self.validity,) if isinstance(self.validity, str) else self.validity
         object.__setattr__(self, "validity", tuple(str(v) for v in validity))
+        self._check_depth()
+
+    def _check_depth(self) -> None:
+        depth = self.water_depth
+        if isinstance(depth, bool) or not isinstance(depth, (int, float)) or math.isnan(depth) \
+                or not depth > 0:
+            raise ParameterError(f"must be a number > 0 [m] (inf: deep water), got {depth!r}",
+                                 field="water_depth", unit="m", value=depth)
+        object.__setattr__(self, "water_depth", float(depth))
+        draft = None if self.particulars is None else self.particulars.draft
+        if draft is not None and not depth > draft:
+            raise ParameterError(f"must be greater than the draft {draft!r} [m], got {depth!r}",
+                                 field="water_depth", unit="m", value=depth)
+        deep = self.deep_water_params
+        if math.isinf(depth) and deep is not None:
+            raise ParameterError("is given but the ship is in deep water (water_depth = inf)",
+                                 field="deep_water_params")
+        if deep is not None and not isinstance(deep, type(self.params)):
+            raise ParameterError(f"must be {type(self.params).__name__}, got "
+                                 f"{type(deep).__name__}", field="deep_water_params")
 
     # -- derived -----------------------------------------------------------------------
     @property
@@ -273,14 +301,53 @@ class Ship:
                                  f"{type(self.params).__name__}")
         return dict(self.coefficient_sources).get(parameter, self.provenance)
 
+    @property
+    def in_shallow_water(self) -> bool:
+        """Whether the ship's parameters hold at a finite water depth."""
+        return not math.isinf(self.water_depth)
+
+    def at_depth(self, depth: float, *, strict: bool | None = None) -> "Ship":
+        """The ship in water of depth ``depth`` [m] (``inf``: deep water).
+
+        The MMG coefficients are corrected from the deep-water ones by the shallow-water set of
+        :mod:`seahelm.hydrodynamics.shallow_water` (Taimuri et al. 2020; needs the MMG model and
+        the ship's particulars). Deep water gives the deep-water parameters back unchanged.
+
+        Parameters
+        ----------
+        depth : float
+            Water depth h [m], greater than the draft.
+        strict : bool, optional
+            Raise instead of warning below h/d = 1.2.
+
+        Returns
+        -------
+        Ship
+        """
+        from .water_depth import ship_at_depth
+
+        return ship_at_depth(self, depth, strict=strict)
+
     def replace(self, **changes: Any) -> "Ship":
         """A copy with some fields changed (validated again).
 
         ``params=`` may be a mapping of parameter changes (applied to this ship's parameters,
         ``<name>_deg`` for angles) instead of a whole parameter set; a changed parameter set
-        drops the test speed taken from the old one.
+        drops the test speed taken from the old one. On a ship in shallow water, a parameter
+        change is to the deep-water parameters, which are corrected for the depth again.
         """
         params = changes.get("params")
+        if self.in_shallow_water and params is not None and "deep_water_params" not in changes:
+            # in shallow water a change is to the deep-water parameters, corrected again
+            deep = self.deep_water_params or self.params
+            if isinstance(params, Mapping):
+                params = type(deep).from_mapping(params, base=deep)
+            depth = changes.pop("water_depth", self.water_depth)
+            changes.pop("params")
+            speed = None if self.design_speed is not None else self.test_speed
+            shallow = dataclasses.replace(self, params=params, water_depth=math.inf,
+                                          deep_water_params=None, test_speed=speed)
+            return dataclasses.replace(shallow.at_depth(depth), **changes)
         if isinstance(params, Mapping):
             changes["params"] = type(self.params).from_mapping(params, base=self.params)
         if "params" in changes and "test_speed" not in changes and self.design_speed is not None:

@@ -38,7 +38,9 @@ def ship_to_mapping(ship: Ship) -> dict[str, Any]:
         out["test_speed"] = ship.test_speed
     if ship.validity:
         out["validity"] = list(ship.validity)
-    out["params"] = _values(ship.params)
+    if ship.in_shallow_water:  # the deep-water parameters and the depth they are corrected to
+        out["water_depth"] = ship.water_depth
+    out["params"] = _values(ship.deep_water_params or ship.params)
     prov: dict[str, Any] = {"params": ship.provenance}
     if ship.steering_gear is not None:
         out["steering_gear"] = {"actuator": ship.steering_gear.actuator.name,
@@ -84,15 +86,21 @@ def ship_to_toml(ship: Ship) -> str:
                             "(any angle may be given as <name>_deg in degrees)."))
     doc.add(tomlkit.comment("Every key: the docs' ship-file reference (seahelm.ships.files); "
                             "`seahelm ship show NAME --toml` writes one."))
-    for key in ("format", "name", "description", "model", "test_speed", "validity"):
+    for key in ("format", "name", "description", "model", "test_speed", "water_depth",
+                "validity"):
         if key in data:
             doc.add(key, data[key])
     if "test_speed" in data:
         doc["test_speed"].comment("[m/s] approach (test) speed")
+    if "water_depth" in data:
+        doc["water_depth"].comment("[m] water depth h: [params] below are the deep-water ones, "
+                                   "corrected for h on reading")
     doc["model"].comment("the manoeuvring model (seahelm models lists them)")
     doc.add(tomlkit.nl())
-    doc.add("params", _commented(ship.params, f"{type(ship.params).__name__} of model "
-                                              f"'{ship.model.name}'"))
+    title = f"{type(ship.params).__name__} of model '{ship.model.name}'"
+    if ship.in_shallow_water:
+        title += " (deep water)"
+    doc.add("params", _commented(ship.deep_water_params or ship.params, title))
     if ship.steering_gear is not None:
         gear = tomlkit.table()
         gear.add("actuator", ship.steering_gear.actuator.name)
