@@ -39,11 +39,15 @@ rest of the table). The sign of the (1,0,2,1) term is taken from B because every
 transcription seen agrees with B, among them the same repository as A in its own Python script
 (``R&P&M Ship A_WORKING.py``, −0.00383637) and a C++ transcription that cites Bernitsas, Ray &
 Kinley (1981); with −0.00383637 the polynomials reproduce Kuiper's (1992) chart readings and
-worked example (see the tests). The ΔK_T, ΔK_Q tables were compared between B and the same
-repository's script: they agree term by term, except that a third transcription (a TypeScript
-one, which says so) squares (log Rn − 0.301) in the last ΔK_T term to match a spreadsheet; B's
-first power is taken, as in every other transcription seen. With it, ΔK_T and ΔK_Q nearly
-vanish at Rn = 2·10⁶ (|ΔK_T| < 0.002), as a correction to the 2·10⁶ data should.
+worked example (see the tests).
+
+The ΔK_T, ΔK_Q tables were compared between B and the same repository as A (its script): they
+agree term by term except the ΔK_Q term J (P/D) (A_E/A_0) Z (log Rn − 0.301)², −0.00000088538
+in A's script and −0.00000088528 in B; B's is taken, as a third transcription seen also has
+it (the difference is below 10⁻⁷ in K_Q). A TypeScript transcription squares (log Rn − 0.301)
+in the last ΔK_T term to match a spreadsheet (it says so); B's first power is taken, as in
+every other transcription seen. With it, ΔK_T and ΔK_Q nearly vanish at Rn = 2·10⁶
+(|ΔK_T| < 0.0004, |ΔK_Q| < 0.00003), as a correction to the 2·10⁶ data should.
 
 Validity
 --------
