@@ -54,6 +54,7 @@ from ..errors import ParameterError
 from ..parameters import Params
 from ..registry import model_for_params
 from ..vessels.base import VesselModel
+from .constant_speed import ConstantSpeedPlant, is_constant_speed
 
 # scipy.optimize (0.2 s to import) is imported inside the functions that use it
 
@@ -227,6 +228,21 @@ class _Plant:
         return sol.x * s
 
 
+def _constant_speed(value: Any, model: VesselModel | None,
+                    rps: Any = None) -> ConstantSpeedPlant | None:
+    """The plant of a constant-speed model (:mod:`.constant_speed`), None for another model
+    (whose :class:`_Plant` then says what it lacks)."""
+    params, ship_model = _resolve_params(value)
+    model = model or ship_model or model_for_params(type(params))
+    if model is None or not is_constant_speed(model) or not isinstance(params,
+                                                                      model.params_type):
+        return None
+    if rps is not None:
+        raise ParameterError(f": model '{model.name}' has no propeller_rps input, got {rps!r}",
+                             field="rps", unit="1/s", value=rps)
+    return ConstantSpeedPlant(params, model)
+
+
 def _propelled_plant(model_or_params: Any, model: VesselModel | None) -> _Plant:
     """The plant of a model that has a ``propeller_rps`` input (ParameterError otherwise)."""
     plant = _Plant(model_or_params, model)
@@ -367,6 +383,12 @@ def steady_turn(params: Any, rudder: Any, rps: float | None = None, *,
     EquilibriumError
         If the continuation fails to converge.
     """
+    cs = _constant_speed(params, model, rps)
+    if cs is not None:
+        fields = cs.steady_turns(rudder, max_rudder, rudder_step)[0]
+        if np.ndim(rudder) == 0:
+            return SteadyTurn(*(float(f) for f in fields))
+        return SteadyTurn(*fields)
     plant = _Plant(params, model)
     check_positive("max_rudder", max_rudder, "rad")
     check_positive("rudder_step", rudder_step, "rad")
@@ -482,6 +504,10 @@ def approach_state(params: Any, speed: float | None = None, *, model: VesselMode
     EquilibriumError
         If the self-propulsion point or the trim is not found.
     """
+    cs = _constant_speed(params, model)
+    if cs is not None:  # no surge state: the model's own speed, at rest in yaw
+        state, rudder = cs.approach(speed, heading=heading, trim=trim)
+        return Approach(state, {"rudder_angle": rudder})
     plant = _Plant(params, model)
     U0 = plant.u_ref if speed is None else speed
     check_positive("speed", U0, "m/s")
@@ -601,10 +627,14 @@ def steady_turn_state(params: Any, rudder: float, rps: float | None = None, *,
     EquilibriumError
         If the steady turn is not found.
     """
-    plant = _Plant(params, model)
     if np.ndim(rudder) != 0:
         raise ParameterError(f"`rudder` must be a scalar [rad], got shape {np.shape(rudder)}")
     check_finite("heading", heading, "rad")
+    cs = _constant_speed(params, model, rps)
+    if cs is not None:
+        states = cs.steady_turns(rudder, max_rudder, math.radians(2.5))[1]
+        return Approach(cs.state(states, float(heading)), {"rudder_angle": float(rudder)})
+    plant = _Plant(params, model)
     turn = steady_turn(plant.params, rudder, rps, model=plant.model, max_rudder=max_rudder)
     n = _check_rps(plant, rps)
     inputs = {"rudder_angle": float(rudder)}
@@ -651,8 +681,14 @@ def rudder_for_yaw_rate(params: Any, yaw_rate: Any, rps: float | None = None, *,
         If the continuation fails to converge (e.g. a yaw rate beyond what the hull forces can
         balance).
     """
-    plant = _Plant(params, model)
     rates = as_float_array("yaw_rate", yaw_rate, "rad/s")
+    cs = _constant_speed(params, model, rps)
+    if cs is not None:
+        fields = cs.spiral(rates)
+        if rates.ndim == 0:
+            return SpiralCurve(*(float(f[0]) for f in fields))
+        return SpiralCurve(*(f.reshape(rates.shape) for f in fields))
+    plant = _Plant(params, model)
     n = _check_rps(plant, rps)
     free = ("surge", "v", "rudder")
     r_step = 0.01 * plant.u_ref / plant.length

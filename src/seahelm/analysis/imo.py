@@ -31,6 +31,10 @@ models have no astern propulsion — the MMG standard method covers ahead motion
 surge speed is bounded below by 0, going astern ends the run as out of bounds) and the Mariner
 model has no propeller input — and seahelm does not invent one.
 
+A constant-speed steering model (Nomoto 1 or 2, Voitkunsky; :mod:`.constant_speed`) is checked
+at its own speed, which does not change in the manoeuvres: turning, initial turning and the
+zig-zags are evaluated, and the report says that the speed is constant (no speed loss).
+
 The "distance travelled" of the initial turning test is taken along the track of the midship
 point (the chord sum of :func:`~seahelm.analysis.maneuvers.track_distance`). The test speed V
 is the approach speed used (default: the parameter set's test speed); the resolution asks for
@@ -55,6 +59,7 @@ import numpy as np
 
 from .._validate import as_float_array
 from ..errors import ParameterError
+from .constant_speed import is_constant_speed
 from .maneuvers import ManeuverResult, maneuver_ship, turning_circle, zigzag
 
 __all__ = [
@@ -320,6 +325,10 @@ def imo_check(ship: Any, *, speed: float | None = None, rps: float | None = None
              f"{math.degrees(limits.second):.4g} deg (second)",
              "distances at the midship point, from the rudder order; initial turning distance "
              "along the track"]
+    if is_constant_speed(s.model):
+        notes.append(f"constant-speed model '{s.model.name}': the speed stays V = {V:.6g} m/s "
+                     "through every manoeuvre (no speed loss in the turn), so advance and "
+                     "tactical diameter are those of a ship that keeps its speed")
     if L < 100.0:
         notes.append(f"L = {L:g} m < 100 m: MSC.137(76) applies to ships of 100 m and over; "
                      "the criteria are applied to this parameter set as given, with its own "

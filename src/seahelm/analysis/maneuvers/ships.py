@@ -18,6 +18,7 @@ from ...parameters import Params
 from ...registry import model_for_params
 from ...vessels.base import VesselModel
 from ...ships import Ship
+from ..constant_speed import is_constant_speed
 from ..equilibrium import (
     EquilibriumError,
     approach_state,
@@ -124,12 +125,15 @@ def maneuver_ship(ship: Any, *, servo: ServoParams | None = None,
         changes["name"] = name
     ship = dataclasses.replace(base, **changes) if changes else base
     states = set(ship.model.state_labels)
-    if not ({"sway_speed", "yaw_rate", "heading"} <= states
-            and states & {"surge_speed", "surge_perturbation"}):
+    if not (({"sway_speed", "yaw_rate", "heading"} <= states
+             and states & {"surge_speed", "surge_perturbation"})
+            or is_constant_speed(ship.model)):
         raise ParameterError(
             f": ship '{ship.name}' (model '{ship.model.name}') cannot run the standard "
             "manoeuvres: they need a 3-DOF model with surge, sway and yaw states (mmg, "
-            f"mariner); its states: {', '.join(ship.model.state_labels)}", field="ship")
+            "mariner) or a constant-speed steering model with a `speed` parameter (nomoto1, "
+            f"nomoto2, voitkunsky); its states: {', '.join(ship.model.state_labels)}",
+            field="ship")
     return ship
 
 
@@ -254,6 +258,23 @@ def _straight_run_speed(ship: Any, rps: float) -> float:
     except EquilibriumError as exc:
         raise EquilibriumError(f": no straight run of '{ship.name}' at {rps:.6g} 1/s "
                                f"({exc})", field="rps") from None
+
+
+def yaw_lag(ship: Any) -> float:
+    """The time a constant-speed model's yaw rate takes to build up [s]
+    (:meth:`~seahelm.analysis.constant_speed.ConstantSpeedPlant.lag`; T of Nomoto 1), added to
+    the default durations of the manoeuvres; 0 for a model with a surge state (whose defaults
+    stay as they were)."""
+    if not is_constant_speed(ship.model):
+        return 0.0
+    return _lag(ship.model, ship.params)
+
+
+@functools.lru_cache(maxsize=64)
+def _lag(model: VesselModel, params: Params) -> float:
+    from ..constant_speed import ConstantSpeedPlant
+
+    return ConstantSpeedPlant(params, model).lag()
 
 
 def steady_yaw_rate(ship: Any, rudder: Any, approach: Approach) -> np.ndarray:

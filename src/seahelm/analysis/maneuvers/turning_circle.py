@@ -37,6 +37,7 @@ from typing import Any
 import numpy as np
 
 from ...errors import ParameterError
+from ..constant_speed import is_constant_speed
 from .common import (
     Plan,
     check_rudder,
@@ -46,12 +47,15 @@ from .common import (
     side_axis,
     value_axis,
 )
-from .ships import steady_yaw_rate
+from .ships import steady_yaw_rate, yaw_lag
 from .result import ManeuverResult
 
 __all__ = ["turning_circle", "track_distance"]
 
 _DEG10 = math.radians(10.0)
+#: What the metrics of a constant-speed model (:mod:`seahelm.analysis.constant_speed`) say.
+CONSTANT_SPEED_NOTE = ("constant-speed model: the speed does not change in the turn, the "
+                       "speed loss is not modelled")
 
 
 def track_distance(north: Any, east: Any) -> np.ndarray:
@@ -82,7 +86,7 @@ def _estimate_t_final(plan: Plan, signed: dict[tuple[int, int], list[float]],
         a = plan.approaches[(i_ship, j_speed)]
         rates = steady_yaw_rate(ship, np.array(rudders), a)
         travel = max(abs(d - a.rudder) for d in rudders) / ship.servo.max_rate
-        t = max(t, travel + 1.3 * heading_change / float(np.min(rates)))
+        t = max(t, travel + 1.3 * heading_change / float(np.min(rates)) + 3.0 * yaw_lag(ship))
     return t
 
 
@@ -114,7 +118,9 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
         of the straight run at this rps.
     t_final : float, optional
         Duration [s] (default: rudder travel time + 1.3 × ``heading_change`` / the slowest
-        steady yaw rate of the grid, from :func:`~seahelm.analysis.equilibrium.steady_turn`).
+        steady yaw rate of the grid, from :func:`~seahelm.analysis.equilibrium.steady_turn`;
+        for a constant-speed model plus 3 × its yaw time constant, T of Nomoto 1, so that
+        the turn is steady at the end).
     dt : float, optional
         Integration step [s] (default :func:`~seahelm.analysis.maneuvers.default_time_step`).
     record_dt : float, optional
@@ -238,7 +244,10 @@ def _metrics(plan: Plan, result: Any) -> Any:
     time_10, distance_10 = time_at[2], dist_at[2]
     speed = result["speed"]
     r = result["yaw_rate"]
-    beta = result["drift_angle"]
+    constant = is_constant_speed(plan.model)
+    # a constant-speed model has no drift angle unless it declares one (Voitkunsky's β)
+    beta = (result["drift_angle"] if "drift_angle" in result.channel_names()
+            else np.full_like(r, np.nan))
     n = plan.n_runs
     approaches = plan.run_approaches()
     U0 = np.array([a.speed for a in approaches])
@@ -288,8 +297,12 @@ def _metrics(plan: Plan, result: Any) -> Any:
                         "distance along the track to 10 deg heading change"),
         "steady_radius": (radius, "m", "turning radius U/|r| at the end of the run"),
         "steady_speed": (steady_U, "m/s", "speed at the end of the run"),
-        "speed_loss": (1.0 - steady_U / U0, "1", "speed loss 1 - U/U_0 at the end of the run"),
-        "steady_drift_angle": (beta[:, -1], "rad", "drift angle at the end of the run"),
+        "speed_loss": (np.full(n, np.nan) if constant else 1.0 - steady_U / U0, "1",
+                       "speed loss 1 - U/U_0 at the end of the run"
+                       + (f" (NaN: {CONSTANT_SPEED_NOTE})" if constant else "")),
+        "steady_drift_angle": (beta[:, -1], "rad", "drift angle at the end of the run"
+                               + (" (NaN: the model has no drift angle)"
+                                  if constant and np.isnan(beta[:, -1]).all() else "")),
         "steady_yaw_rate": (steady_r, "rad/s", "yaw rate at the end of the run"),
         "steady": (steady, "", "yaw rate changed < 1 % over the last 90 deg of heading"),
         "final_heading_change": (change[:, -1], "rad", "heading change at the end of the run"),
@@ -304,4 +317,6 @@ def _metrics(plan: Plan, result: Any) -> Any:
              "reference_point": "midship (the model's origin)",
              "measured_from": "rudder order at t = 0",
              "interpolation": "linear between the recorded samples bracketing each event"}
+    if constant:
+        attrs["speed"] = CONSTANT_SPEED_NOTE
     return plan.dataset(variables, attrs=attrs)

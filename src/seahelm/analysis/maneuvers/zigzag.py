@@ -56,7 +56,7 @@ from .common import (
     record_every_for,
     side_axis,
 )
-from .ships import steady_yaw_rate
+from .ships import steady_yaw_rate, yaw_lag
 from .result import ManeuverResult
 
 __all__ = ["ZigZagMetrics", "zigzag_metrics", "zigzag"]
@@ -229,7 +229,8 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
         Instead of ``speed``: the approach's propeller rps [1/s] (MMG).
     t_final : float, optional
         Duration [s] (default: 4 rudder swings + 4 × 6 ψ_z / the slowest steady yaw rate at
-        δ_z, about a third more than the third overshoot of the KVLCC2 and the Mariner needs).
+        δ_z, about a third more than the third overshoot of the KVLCC2 and the Mariner needs;
+        for a constant-speed model plus 6 × its yaw time constant, T of Nomoto 1).
     dt : float, optional
         Integration step [s]; the controller samples every step (default: half of
         :func:`~seahelm.analysis.maneuvers.default_time_step`, since the reversals fall on
@@ -293,7 +294,8 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
         rates[i] = cache[key]
     swing = np.array([2.0 * amp[i] / plan.ship(i).servo.max_rate for i in range(n)])
     if t_final is None:
-        t_final = float(np.max(4.0 * swing + 4.0 * 6.0 * trig / rates))
+        lags = np.array([yaw_lag(plan.ship(i)) for i in range(n)])
+        t_final = float(np.max(4.0 * swing + 4.0 * 6.0 * trig / rates + 6.0 * lags))
     else:
         need = 0.5 * swing + trig / rates
         bad = np.flatnonzero(need > t_final)
