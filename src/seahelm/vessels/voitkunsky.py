@@ -81,7 +81,7 @@ class VoitkunskyParams(Params):
     """Coefficients of Voitkunsky's steering model, Romanov & Chirkova eq. (1) (SI units)."""
 
     q21: float = param(unit="1/s", symbol="q21", doc="drift damping: dβ/dt per drift angle (−)")
-    r21: float = param(unit="", symbol="r21", doc="dβ/dt per yaw rate (−); ≈ −(1 − Y_r/mU)")
+    r21: float = param(unit="-", symbol="r21", doc="dβ/dt per yaw rate (−); ≈ −(1 − Y_r/mU)")
     s21: float = param(unit="1/s", symbol="s21", doc="dβ/dt per rudder angle (−)")
     h2: float = param(unit="1/s", symbol="h2", low=0.0,
                       doc="nonlinear drift damping: dβ/dt per β|β| (−), ≥ 0")
