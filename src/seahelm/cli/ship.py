@@ -4,7 +4,8 @@
 name or a ship file): model, steering gear, propulsion, particulars, every parameter with its
 unit and source, validity notes. ``--toml`` prints its ship file instead (``seahelm ship show
 kvlcc2-l7 --toml > my.toml`` starts a ship of your own); ``--json`` one JSON object.
-``seahelm ship check FILE`` reads a ship file and says whether it is valid. Exit codes: 0, 2
+``seahelm ship check FILE`` reads a ship file and says whether it is valid. ``seahelm ship scale
+SHIP --length L`` Froude-scales a ship (steering gear included) and prints its ship file. Exit codes: 0, 2
 bad input (one line naming the file, the key and the unit), 1 other failure.
 """
 
@@ -12,7 +13,8 @@ from __future__ import annotations
 
 import math
 import sys
-from typing import Annotated, Any
+from pathlib import Path
+from typing import Annotated, Any, Optional
 
 import typer
 from rich import box
@@ -118,6 +120,42 @@ def check(path: Annotated[str, typer.Argument(metavar="FILE", help="A ship file.
         return
     console.print(f"{escape(path)}: valid ship '{escape(s.name)}' (model {s.model.name})",
                   highlight=False, soft_wrap=True)
+
+
+@app.command("scale")
+@handle_errors
+def scale(
+    ship: ShipArg,
+    length: Annotated[float, typer.Option(
+        "--length", help="New length L [m]; the scale is lambda = L / the ship's length.")],
+    rho: Annotated[Optional[float], typer.Option(
+        "--rho", help="Water density of the scaled ship [kg/m³] (default: the ship's).")]
+    = None,
+    name: Annotated[Optional[str], typer.Option(
+        "--name", help="Name of the scaled ship (default: NAME-L<length>).")] = None,
+    out: Annotated[Optional[Path], typer.Option(
+        "--out", help="Write the ship file here (atomically) instead of printing it.")] = None,
+) -> None:
+    """Froude-scale a ship to another length and print (or write) its ship file.
+
+    lambda = L_new/L_old: lengths x lambda, areas x lambda², volumes x lambda³, times and
+    speeds x sqrt(lambda), rates (K, rudder rate, rps) / sqrt(lambda), masses and forces
+    x lambda³; angles and non-dimensional coefficients unchanged; the steering gear too.
+    """
+    from ..ships import get_ship, ship_to_toml, write_ship
+    from ._common import output_file
+
+    source = get_ship(ship)
+    if out is not None:
+        output_file("--out", out, reads=(Path(ship),) if Path(ship).is_file() else ())
+    scaled = source.scaled(length, rho=rho, name=name)
+    if out is None:
+        sys.stdout.write(ship_to_toml(scaled))
+        sys.stdout.flush()
+        return
+    write_ship(scaled, out, overwrite=True)
+    console.print(f"wrote {escape(str(out))}: ship '{escape(scaled.name)}', L = {length:g} m "
+                  f"(lambda = {length / source.length:.6g})", highlight=False, soft_wrap=True)
 
 
 def _print(ship: Any, payload: dict[str, Any]) -> None:

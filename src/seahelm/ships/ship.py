@@ -328,6 +328,29 @@ class Ship:
 
         return ship_at_depth(self, depth, strict=strict)
 
+    def scaled(self, length: float, *, rho: float | None = None,
+               name: str | None = None) -> "Ship":
+        """This ship Froude-scaled to another length, steering gear included
+        (:func:`seahelm.ships.scaling.scale_ship`: λ = L_new/L_old; lengths × λ, times and
+        speeds × √λ, rates / √λ, masses and forces × λ³, each parameter by its unit).
+
+        Parameters
+        ----------
+        length : float
+            New length L [m].
+        rho : float, optional
+            Water density of the scaled ship [kg/m³] (default: this ship's).
+        name : str, optional
+            Its name (default ``"<name>-L<length>"``).
+
+        Returns
+        -------
+        Ship
+        """
+        from .scaling import scale_ship
+
+        return scale_ship(self, length, rho=rho, name=name)
+
     def replace(self, **changes: Any) -> "Ship":
         """A copy with some fields changed (validated again).
 
