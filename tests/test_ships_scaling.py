@@ -90,7 +90,7 @@ def test_kvlcc2_l7_scaled_to_320_m_is_the_full_scale_ship():
 
 
 def test_froude_similarity_of_the_turning_circle():
-    """Same density: the scaled ship's track is the model's, times lambda, in time x sqrt(lambda)."""
+    """Same density: the scaled ship's track is the model's x lambda, in time x sqrt(lambda)."""
     l7 = get_ship("kvlcc2-l7")
     big = l7.scaled(320.0)
     dt, t_final = 0.05, 120.0

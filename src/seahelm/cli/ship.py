@@ -5,8 +5,8 @@ name or a ship file): model, steering gear, propulsion, particulars, every param
 unit and source, validity notes. ``--toml`` prints its ship file instead (``seahelm ship show
 kvlcc2-l7 --toml > my.toml`` starts a ship of your own); ``--json`` one JSON object.
 ``seahelm ship check FILE`` reads a ship file and says whether it is valid. ``seahelm ship scale
-SHIP --length L`` Froude-scales a ship (steering gear included) and prints its ship file. Exit codes: 0, 2
-bad input (one line naming the file, the key and the unit), 1 other failure.
+SHIP --length L`` Froude-scales a ship (steering gear included) and prints its ship file.
+Exit codes: 0, 2 bad input (one line naming the file, the key and the unit), 1 other failure.
 """
 
 from __future__ import annotations
