@@ -102,17 +102,54 @@ class ConstantSpeedPlant:
 
     # -- the model's right-hand side -----------------------------------------------------
     def state(self, steering: np.ndarray, heading: float = 0.0) -> np.ndarray:
+        """The full state vector at the origin.
+
+        Parameters
+        ----------
+        steering : numpy.ndarray
+            The steering states (model order, SI units).
+        heading : float, optional
+            Heading ψ [rad] (default 0).
+
+        Returns
+        -------
+        numpy.ndarray
+        """
         x = np.zeros(self.model.n_states)
         x[self.steering] = steering
         x[self.i_psi] = heading
         return x
 
     def inputs(self, rudder: float) -> np.ndarray:
+        """The input vector.
+
+        Parameters
+        ----------
+        rudder : float
+            Rudder angle δ [rad].
+
+        Returns
+        -------
+        numpy.ndarray
+        """
         u = np.zeros(self.model.n_inputs)
         u[self.j_delta] = rudder
         return u
 
     def residual(self, steering: np.ndarray, rudder: float) -> np.ndarray:
+        """The steering states' derivatives, each over its typical size × U/L [-].
+
+        Parameters
+        ----------
+        steering : numpy.ndarray
+            The steering states (SI units).
+        rudder : float
+            Rudder angle δ [rad].
+
+        Returns
+        -------
+        numpy.ndarray
+        """
         dx = self.model.derivative(0.0, self.state(steering), self.inputs(rudder), self.params)
         return dx[self.steering] / (self.scale * self.rate)
 
@@ -132,8 +169,23 @@ class ConstantSpeedPlant:
     # -- equilibria ----------------------------------------------------------------------
     def at_rudder(self, rudder: float, start: tuple[float, np.ndarray] | None = None,
                   rudder_step: float = math.radians(2.5)) -> np.ndarray:
-        """Steering states [SI] with zero derivatives at ``rudder`` [rad], continued from the
-        equilibrium ``start`` = (rudder, steering states) (default: the straight run)."""
+        """Steering states with zero derivatives at a rudder angle, by continuation.
+
+        Parameters
+        ----------
+        rudder : float
+            Rudder angle δ [rad].
+        start : tuple of (float, numpy.ndarray), optional
+            An equilibrium (rudder [rad], steering states) to continue from (default: the
+            straight run).
+        rudder_step : float, optional
+            Largest rudder change per continuation step [rad] (default 2.5°).
+
+        Returns
+        -------
+        numpy.ndarray
+            The steering states [SI].
+        """
         d_from, z = start if start is not None else self.trim()
         z = np.asarray(z, dtype=float) / self.scale
         steps = max(1, int(math.ceil(abs(rudder - d_from) / rudder_step)))
@@ -144,9 +196,21 @@ class ConstantSpeedPlant:
 
     def at_yaw_rate(self, yaw_rate: float, start: tuple[float, np.ndarray] | None = None
                     ) -> tuple[float, np.ndarray]:
-        """(rudder [rad], steering states [SI]) of the equilibrium with ``yaw_rate`` [rad/s],
-        continued in r from ``start`` = (rudder, steering states) (default: the straight run)
-        in steps of 0.01 U/L."""
+        """The equilibrium with a prescribed yaw rate, by continuation in r (steps 0.01 U/L).
+
+        Parameters
+        ----------
+        yaw_rate : float
+            Yaw rate r [rad/s].
+        start : tuple of (float, numpy.ndarray), optional
+            An equilibrium (rudder [rad], steering states) to continue from (default: the
+            straight run).
+
+        Returns
+        -------
+        tuple of (float, numpy.ndarray)
+            Rudder angle [rad] and steering states [SI].
+        """
         d, z = start if start is not None else self.trim()
         z = np.asarray(z, dtype=float)
         k_r = self.steering.index(self.i_r)
@@ -191,12 +255,41 @@ class ConstantSpeedPlant:
         return float(min(20.0 / self.rate, 1.0 / rates.min())) if rates.size else 0.0
 
     def outputs(self, steering: np.ndarray, rudder: float) -> dict[str, float]:
+        """The model's outputs by name.
+
+        Parameters
+        ----------
+        steering : numpy.ndarray
+            The steering states (SI units).
+        rudder : float
+            Rudder angle δ [rad].
+
+        Returns
+        -------
+        dict
+        """
         y = self.model.outputs(0.0, self.state(steering), self.inputs(rudder), self.params)
         return dict(zip(self.model.output_labels, (float(v) for v in y)))
 
     # -- what equilibrium.py hands over ---------------------------------------------------
     def check_speed(self, speed: Any) -> float:
-        """The approach speed: the model's own; another one is refused (ParameterError)."""
+        """The approach speed: the model's own; another one is refused.
+
+        Parameters
+        ----------
+        speed : float or None
+            Requested approach speed [m/s] (None: the model's).
+
+        Returns
+        -------
+        float
+            The model's speed U [m/s].
+
+        Raises
+        ------
+        ParameterError
+            If ``speed`` is not the model's speed (``field="speed"``).
+        """
         if speed is None:
             return self.speed
         check_positive("speed", speed, "m/s")
@@ -210,7 +303,22 @@ class ConstantSpeedPlant:
         return U
 
     def approach(self, speed: Any, *, heading: float, trim: bool) -> tuple[np.ndarray, float]:
-        """(state, rudder) of the straight approach (heading ``heading``, at the origin)."""
+        """The straight approach: at the origin, at rest in yaw.
+
+        Parameters
+        ----------
+        speed : float or None
+            Approach speed [m/s] (:meth:`check_speed`).
+        heading : float
+            Heading ψ [rad].
+        trim : bool
+            Solve the rudder angle for an exact equilibrium with zero yaw rate.
+
+        Returns
+        -------
+        tuple of (numpy.ndarray, float)
+            State vector and rudder angle [rad].
+        """
         self.check_speed(speed)
         check_finite("heading", heading, "rad")
         rudder, steering = self.trim() if trim else (0.0, np.zeros(len(self.steering)))
@@ -218,8 +326,23 @@ class ConstantSpeedPlant:
 
     def steady_turns(self, rudder: Any, max_rudder: float, rudder_step: float
                      ) -> tuple[np.ndarray, tuple[int, ...]]:
-        """Fields of :class:`~seahelm.analysis.equilibrium.SteadyTurn` (6, *rudder.shape) and
-        the steering states of each (states, *rudder.shape)."""
+        """Steady turns at rudder angles.
+
+        Parameters
+        ----------
+        rudder : float or array_like
+            Rudder angles δ [rad].
+        max_rudder : float
+            Largest admissible |δ| [rad].
+        rudder_step : float
+            Largest rudder change per continuation step [rad].
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            The fields of :class:`~seahelm.analysis.equilibrium.SteadyTurn`, shape
+            (6, *rudder.shape), and the steering states, shape (states, *rudder.shape).
+        """
         check_positive("max_rudder", max_rudder, "rad")
         check_positive("rudder_step", rudder_step, "rad")
         deltas = as_float_array("rudder", rudder, "rad")
@@ -243,7 +366,18 @@ class ConstantSpeedPlant:
                 U / abs(r) if r != 0.0 else math.inf)
 
     def spiral(self, rates: np.ndarray) -> np.ndarray:
-        """(yaw rate, rudder, surge, sway, speed, drift) of each yaw rate, (6, n) for flat n."""
+        """Spiral-curve points at prescribed yaw rates.
+
+        Parameters
+        ----------
+        rates : numpy.ndarray
+            Yaw rates r [rad/s].
+
+        Returns
+        -------
+        numpy.ndarray
+            (yaw rate, rudder, surge, sway, speed, drift angle) of each, shape (6, rates.size).
+        """
         flat = rates.ravel()
         out = np.full((6, flat.size), np.nan)
         trim = self.trim()

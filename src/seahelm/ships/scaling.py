@@ -11,7 +11,7 @@ quantity (unit)                          factor
 length (m), area (m²), volume (m³)       λ, λ², λ³
 time (s), e.g. T of Nomoto, a gear lag   √λ
 speed (m/s)                              √λ
-rate (1/s, rad/s), e.g. K, rps, δ̇_max   1/√λ
+rate (1/s, rad/s): K, rps, rudder rate   1/√λ
 mass (kg), force (N)                     λ³ · ρ_new/ρ_old
 moment of inertia (kg·m²)                λ⁵ · ρ_new/ρ_old
 density (kg/m³)                          ρ_new/ρ_old (1: same water)
