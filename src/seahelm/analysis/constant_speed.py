@@ -84,9 +84,15 @@ class ConstantSpeedPlant:
         The model's parameter set.
     model : VesselModel
         A model for which :func:`is_constant_speed` holds.
+    error : type, optional
+        The exception raised where an equilibrium is not found (a ParameterError subclass;
+        :mod:`.equilibrium` passes its ``EquilibriumError``, which this module cannot import
+        without a cycle).
     """
 
-    def __init__(self, params: Params, model: VesselModel) -> None:
+    def __init__(self, params: Params, model: VesselModel,
+                 error: type[ParameterError] = ParameterError) -> None:
+        self.error = error
         if not is_constant_speed(model):  # pragma: no cover - the callers check
             raise ParameterError(f"model '{model.name}' is not a constant-speed model")
         self.params, self.model = params, model
@@ -159,9 +165,7 @@ class ConstantSpeedPlant:
         sol = root(fun, guess, method="hybr", options={"xtol": 1e-13})
         res = fun(sol.x)
         if not np.all(np.isfinite(res)) or np.max(np.abs(res), initial=0.0) > 1e-9:
-            from .equilibrium import EquilibriumError
-
-            raise EquilibriumError(
+            raise self.error(
                 f"no equilibrium of model '{self.model.name}' found {what} "
                 f"({sol.message.strip()}; residual {np.max(np.abs(res), initial=0.0):.3g})")
         return sol.x

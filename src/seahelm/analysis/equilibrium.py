@@ -240,7 +240,7 @@ def _constant_speed(value: Any, model: VesselModel | None,
     if rps is not None:
         raise ParameterError(f": model '{model.name}' has no propeller_rps input, got {rps!r}",
                              field="rps", unit="1/s", value=rps)
-    return ConstantSpeedPlant(params, model)
+    return ConstantSpeedPlant(params, model, EquilibriumError)
 
 
 def _propelled_plant(model_or_params: Any, model: VesselModel | None) -> _Plant:

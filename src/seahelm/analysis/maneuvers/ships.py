@@ -274,7 +274,7 @@ def yaw_lag(ship: Any) -> float:
 def _lag(model: VesselModel, params: Params) -> float:
     from ..constant_speed import ConstantSpeedPlant
 
-    return ConstantSpeedPlant(params, model).lag()
+    return ConstantSpeedPlant(params, model, EquilibriumError).lag()
 
 
 def steady_yaw_rate(ship: Any, rudder: Any, approach: Approach) -> np.ndarray:
