@@ -205,7 +205,7 @@ def test_linear_sets_differ_only_in_the_four_linear_derivatives():
     a = shallow_water_factors(KVLCC2, 2 * 20.8)
     k = shallow_water_factors(KVLCC2, 2 * 20.8, linear="kijima")
     differ = {n for n in CORRECTED if a[n] != k[n]}
-    assert differ == {"Y_v", "Y_r", "N_r"}  # N'_v is Ankudinov's f_nv in both
+    assert differ == {"Y_v", "Y_r", "N_r", "N_vvr", "N_vrr"}  # N'_v: Ankudinov's f_nv in both
     t = 0.5
     assert k["Y_v"] == pytest.approx(1 / (1 - t) ** (0.4 * 0.8098 * 58 / 20.8) - t)
     assert a["Y_v"] == pytest.approx(1.5 * a["X_rr"] - 0.5)  # f_yv = 1.5 f_nr − 0.5

@@ -109,3 +109,25 @@ def test_scenario_water_depth(tmp_path):
     result = run_cli("run", str(scn))
     assert result.exit_code == 2
     assert "[vessel.water_depth] must be greater than the draft" in result.output
+
+
+def test_froude_scaling_in_shallow_water_keeps_h_over_t(kvlcc2):
+    l7 = get_ship("kvlcc2-l7")
+    l7 = l7.at_depth(1.5 * l7.particulars.draft)
+    big = l7.scaled(320.0)
+    assert big.water_depth / big.particulars.draft == pytest.approx(1.5)
+    assert big.deep_water_params == get_ship("kvlcc2-l7").scaled(320.0).params
+
+
+def test_scenario_params_in_shallow_water_change_the_deep_value(tmp_path):
+    """[vessel] params on a ship with water_depth: the deep-water value, corrected (as the ship
+    file's [params]); a Monte-Carlo draw likewise."""
+    from seahelm.scenario import load_scenario
+
+    kvlcc2 = get_ship("kvlcc2-full")
+    expected = kvlcc2.replace(params={"N_r": -0.06}).at_depth(31.2).params
+    scn = tmp_path / "s.toml"
+    scn.write_text('[vessel]\nship = "kvlcc2-full"\nwater_depth = 31.2\n'
+                   '[vessel.params]\nN_r = -0.06\n[maneuver]\nkind = "turning"\n')
+    job = load_scenario(scn)
+    assert job.ship.params == expected

@@ -329,6 +329,11 @@ def imo_check(ship: Any, *, speed: float | None = None, rps: float | None = None
         notes.append(f"constant-speed model '{s.model.name}': the speed stays V = {V:.6g} m/s "
                      "through every manoeuvre (no speed loss in the turn), so advance and "
                      "tactical diameter are those of a ship that keeps its speed")
+    depth = float(s.water_depth)
+    if math.isfinite(depth):
+        notes.append(f"water depth {depth:g} m: MSC.137(76) applies in deep, unrestricted water; "
+                     "the criteria are shown against the shallow-water manoeuvres for "
+                     "information")
     if L < 100.0:
         notes.append(f"L = {L:g} m < 100 m: MSC.137(76) applies to ships of 100 m and over; "
                      "the criteria are applied to this parameter set as given, with its own "

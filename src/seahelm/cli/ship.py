@@ -211,3 +211,146 @@ def _print(ship: Any, payload: dict[str, Any]) -> None:
         if isinstance(text, str):
             prov.add_row(key, escape(text))
     console.print(prov)
+
+
+
+
+def _opt(*names: str, unit: str, text: str) -> Any:
+    return typer.Option(*names, help=f"{text} [{unit}].", show_default=False)
+
+
+@app.command("estimate")
+@handle_errors
+def estimate(
+    particulars: Annotated[str | None, typer.Argument(
+        metavar="[FILE]", help="A TOML file of particulars (keys as the options, with "
+                               "underscores: length, beam, draft, block_coefficient, speed, "
+                               "...; max_rudder_deg, rudder_rate_deg); options override it.")]
+    = None,
+    length: Annotated[float | None, _opt("--length", unit="m", text="Length between "
+                                                                    "perpendiculars L_pp")] = None,
+    beam: Annotated[float | None, _opt("--beam", unit="m", text="Moulded breadth B")] = None,
+    draft: Annotated[float | None, _opt("--draft", unit="m", text="Mean draught T")] = None,
+    draft_fore: Annotated[float | None, _opt("--draft-fore", unit="m",
+                                             text="Draught at the fore perpendicular")] = None,
+    draft_aft: Annotated[float | None, _opt("--draft-aft", unit="m",
+                                            text="Draught at the aft perpendicular")] = None,
+    block_coefficient: Annotated[float | None, _opt("--cb", "--block-coefficient", unit="-",
+                                                    text="Block coefficient C_b")] = None,
+    speed: Annotated[float | None, _opt("--speed", unit="m/s",
+                                        text="Test (approach) speed U_0")] = None,
+    displacement: Annotated[float | None, _opt("--displacement", unit="m³", text=(
+        "Displacement volume (default C_b L B T)"))] = None,
+    x_G: Annotated[float | None, _opt("--x-g", unit="m", text=(
+        "Centre of gravity forward of midship (default 0)"))] = None,
+    propeller_diameter: Annotated[float | None, _opt("--propeller-diameter", unit="m", text=(
+        "Propeller diameter D_P (default 0.65 T)"))] = None,
+    pitch_ratio: Annotated[float | None, _opt("--pitch-ratio", unit="-", text=(
+        "Propeller pitch ratio P/D (default 0.8)"))] = None,
+    area_ratio: Annotated[float | None, _opt("--area-ratio", unit="-", text=(
+        "Expanded blade-area ratio A_E/A_0 (default 0.55)"))] = None,
+    blades: Annotated[int | None, _opt("--blades", unit="-", text="Number of blades (default "
+                                                                  "4)")] = None,
+    rudder_area: Annotated[float | None, _opt("--rudder-area", unit="m²", text=(
+        "Movable rudder area A_R (default DNV's minimum)"))] = None,
+    rudder_span: Annotated[float | None, _opt("--rudder-span", unit="m", text=(
+        "Rudder span H_R (default 0.75 T)"))] = None,
+    max_rudder: Annotated[float | None, _opt("--max-rudder", unit="deg", text=(
+        "Steering-gear angle limit (default 35)"))] = None,
+    rudder_rate: Annotated[float | None, _opt("--rudder-rate", unit="deg/s", text=(
+        "Steering-gear rate (default IMO's minimum 2.32)"))] = None,
+    rho: Annotated[float | None, _opt("--rho", unit="kg/m³", text="Water density (default "
+                                                                  "1025)")] = None,
+    water_depth: Annotated[float | None, _opt("--depth", unit="m", text=(
+        "Water depth h (default deep water)"))] = None,
+    wetted_surface: Annotated[float | None, _opt("--wetted-surface", unit="m²", text=(
+        "Wetted surface (default Holtrop's estimate)"))] = None,
+    name: Annotated[str | None, typer.Option("--name", help="The ship's name.",
+                                             show_default=False)] = None,
+    model: Annotated[str, typer.Option("--model", help=(
+        "mmg (the full model), nomoto2 or nomoto1 (Clarke et al. 1983's linear hull with the "
+        "estimated rudder)."))] = "mmg",
+    out: Annotated[str | None, typer.Option("--out", "-o", metavar="FILE", help=(
+        "Write the ship file here (default: print it)."), show_default=False)] = None,
+    force: Annotated[bool, typer.Option("--force", help="Replace an existing --out file.")]
+    = False,
+    strict: Annotated[bool, typer.Option("--strict", help=(
+        "A regression used outside its data is an error, not a warning."))] = False,
+) -> None:
+    """Estimate a complete ship from its main particulars and write its ship file."""
+    from pathlib import Path
+
+    from ..errors import strict_validity
+    from ..ships.estimate import Design, estimate_nomoto, estimate_ship
+    from ..ships.writing import ship_to_toml, write_ship
+    from ._common import output_file
+
+    if model not in ("mmg", "nomoto1", "nomoto2"):
+        raise ParameterError(f"must be mmg, nomoto2 or nomoto1, got '{model}'", field="model")
+    given = {k: v for k, v in dict(
+        length=length, beam=beam, draft=draft, draft_fore=draft_fore, draft_aft=draft_aft,
+        block_coefficient=block_coefficient, speed=speed, displacement=displacement, x_G=x_G,
+        propeller_diameter=propeller_diameter, pitch_ratio=pitch_ratio, area_ratio=area_ratio,
+        blades=blades, rudder_area=rudder_area, rudder_span=rudder_span, rho=rho,
+        water_depth=water_depth, wetted_surface=wetted_surface, name=name).items()
+        if v is not None}
+    for option, value, high in (("max_rudder", max_rudder, 90.0), ("rudder_rate", rudder_rate,
+                                                                    math.inf)):
+        if value is None:
+            continue
+        unit = "deg" if option == "max_rudder" else "deg/s"
+        if not (math.isfinite(value) and 0 < value <= high):
+            raise ParameterError(f"must be in (0, {high:g}] [{unit}], got {value!r}",
+                                 field=option, unit=unit, value=value)
+        given[option] = math.radians(value)
+    values: dict[str, Any] = {}
+    reads: tuple[Path, ...] = ()
+    if particulars is not None:
+        values = _particulars_file(particulars)
+        reads = (Path(particulars),)
+    target = None if out is None else output_file("--out", Path(out), reads=reads)
+    if target is not None and target.exists() and not force:
+        raise ParameterError(f"`--out` {target} exists; pass --force to replace it")
+    merged = {**values, **given}
+    try:
+        design = Design.from_mapping(merged)
+        with strict_validity(strict) if strict else _nothing():
+            ship = (estimate_ship(design) if model == "mmg"
+                    else estimate_nomoto(design, order=int(model[-1])))
+    except ParameterError as exc:
+        key = (exc.field or "").partition(".")[0]
+        if particulars is not None and key in values and key not in given:
+            raise ParameterError(f"{particulars}: `{exc.field}` {exc.reason}") from None
+        raise
+    if target is None:
+        sys.stdout.write(ship_to_toml(ship))
+        sys.stdout.flush()
+        return
+    write_ship(ship, target, overwrite=force)
+    console.print(f"wrote {escape(str(target))}: ship '{escape(ship.name)}' (model "
+                  f"{ship.model.name}); `seahelm imo {escape(str(target))}` checks it",
+                  highlight=False, soft_wrap=True)
+
+
+def _nothing() -> Any:
+    import contextlib
+
+    return contextlib.nullcontext()
+
+
+def _particulars_file(path: str) -> dict[str, Any]:
+    """The particulars TOML file's keys (a ``[particulars]`` table or top-level keys)."""
+    import tomllib
+    from pathlib import Path
+
+    p = Path(path)
+    if not p.is_file():
+        raise ParameterError(f"{path}: no such file" if not p.exists() else
+                             f"{path}: not a regular file")
+    try:
+        data = tomllib.loads(p.read_text(encoding="utf-8-sig"))
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise ParameterError(f"{path}: not a TOML file ({exc})") from None
+    if set(data) == {"particulars"} and isinstance(data["particulars"], dict):
+        data = data["particulars"]
+    return dict(data)

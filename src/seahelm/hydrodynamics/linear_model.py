@@ -162,5 +162,5 @@ def nomoto_constants(mass: np.ndarray, damping: np.ndarray, rudder: np.ndarray, 
     t_fast, t_slow = -1.0 / p1, -1.0 / p2
     t3 = num1 / num0 if num0 != 0 else math.nan
     scale = length / speed
-    return NomotoConstants(gain=gain / scale, t1=t_slow * scale, t2=t_fast * scale,
-                           t3=t3 * scale, speed=speed)
+    return NomotoConstants(gain=float(gain / scale), t1=float(t_slow * scale),
+                           t2=float(t_fast * scale), t3=float(t3 * scale), speed=float(speed))

@@ -13,27 +13,31 @@ Ankudinov's depth functions::
     f_yv = 1.5 f_nr − 0.5,  f_nv = K_0 + K_1 B_1/d + K_2 (B_1/d)²
     g_v  = K_0 + 2/3 K_1 B_1/d + 8/15 K_2 (B_1/d)²,  g_nr = K_0 + 8/15 K_1 B_1/d + 40/105 K_2 (B_1/d)²
 
-Two sets of factors on the four linear derivatives are registered (:data:`LINEAR_SETS`):
+Two sets are registered (:data:`LINEAR_SETS`), differing in the four linear derivatives and
+the two cross terms of the yaw moment N'_vvr, N'_vrr:
 
 ``"ankudinov"`` (the default): Ankudinov's own factors, Y'_v × f_yv, Y'_r × f_yr, N'_v × f_nv,
-N'_r × f_nr. With them the KVLCC2's tactical diameter grows steadily as the depth falls (h/d
-2.0, 1.5, 1.2; the docs' validation).
+N'_r × f_nr, and N'_vvr, N'_vrr × f_nv (seahelm's choice: the factor of the sway-induced yaw
+moment they extend). With them the KVLCC2's tactical diameter grows steadily as the depth
+falls (h/d 2.0, 1.5, 1.2; the docs' validation).
 
 ``"kijima"`` (the transcription's choice): Kijima et al.'s (1990) corrections for Y'_v, Y'_r,
-N'_r and Ankudinov's f_nv for N'_v::
+N'_r, N'_vvr, N'_vrr and Ankudinov's f_nv for N'_v::
 
     Y'_v × [1/(1 − t)^(0.4 C_b B/d) − t],   N'_r × [1/(1 − t)^(1.5 − 14.28 d/L) − t]
-    Y'_r × (1 + A_1 t + A_2 t² + A_3 t³)   (A_i quadratics in C_b B/d)
+    Y'_r, N'_vvr, N'_vrr × (1 + A_1 t + A_2 t² + A_3 t³)   (A_i quadratics in C_b B/d, C_b d/B)
 
 With it N'_r barely grows at moderate depth (× 0.99 at h/d = 2 for the KVLCC2) while N'_v
-grows by 40 %, and the KVLCC2 turns *tighter* at h/d = 2 than in deep water (3.0 L against
-3.1 L): kept so the published set can be reproduced, not the default.
+grows by 40 %, so the KVLCC2 turns *tighter* at h/d = 2 than in deep water (2.9 L against
+3.1 L), and Kijima's cubic multiplies N'_vrr by 5.7 at h/d = 1.43 for a C_b 0.7 cargo ship,
+which with the negative N'_vrr of Yoshimura & Masumoto's regression makes the ship spin up
+in a 35° turn: kept so the published set can be reproduced, not the default.
 
 Both: X'_vv, X'_vvvv, Y'_vvv, N'_vvv, Y'_vvr, Y'_vrr × f_yv; X'_rr × f_nr; X'_vr × f_yr;
-Y'_rrr, N'_rrr × g_nr; N'_vvr, N'_vrr × Kijima's cubics in t; the added masses m'_y × g_v and
-J'_z × g_nr (Ankudinov's factors for the sway added mass and the yaw added inertia, which the
-transcription computes but does not apply; m'_x unchanged); the wake fraction, thrust
-deduction and flow-straightening coefficient by the regressions of the same set.
+Y'_rrr, N'_rrr × g_nr; the added masses m'_y × g_v and J'_z × g_nr (Ankudinov's factors for
+the sway added mass and the yaw added inertia, which the transcription computes but does not
+apply; m'_x unchanged); the wake fraction, thrust deduction and flow-straightening
+coefficient by the regressions of the same set.
 
 Range: 1.2 ≤ h/d (warned below, an error at h ≤ d). Deep water, h = ∞, changes nothing; at a
 finite but large depth every factor tends to 1 except the thrust deduction's, which tends to
@@ -148,14 +152,15 @@ def shallow_water_factors(hull: HullParticulars, depth: float, *, linear: str = 
         gamma = 1 + ((-5129 / 500 + 178.207 * cbl - 2745 / 4 * cbl ** 2)
                      * (-1927 / 500 + 2733 * t / 200 - 2617 * t ** 2 / 250))
     if linear == "ankudinov":
-        lin = {"Y_v": f_yv, "Y_r": f_yr, "N_v": f_nv, "N_r": f_nr}
+        lin = {"Y_v": f_yv, "Y_r": f_yr, "N_v": f_nv, "N_r": f_nr, "N_vvr": f_nv, "N_vrr": f_nv}
     else:
         lin = {"Y_v": 1 / (1 - t) ** (0.4 * cbt) - t, "Y_r": cubic(a_yr), "N_v": f_nv,
-               "N_r": 1 / (1 - t) ** (1.5 - 14.28 * T / L) - t}
+               "N_r": 1 / (1 - t) ** (1.5 - 14.28 * T / L) - t, "N_vvr": cubic(a_nvvr),
+               "N_vrr": cubic(a_nvrr)}
     return {
-        "X_vv": f_yv, "X_vvvv": f_yv, "X_rr": f_nr, "X_vr": f_yr, **lin,
+        "X_vv": f_yv, "X_vvvv": f_yv, "X_rr": f_nr, "X_vr": f_yr,
         "Y_vvv": f_yv, "Y_vvr": f_yv, "Y_vrr": f_yv, "Y_rrr": g_nr,
-        "N_vvv": f_yv, "N_vvr": cubic(a_nvvr), "N_vrr": cubic(a_nvrr), "N_rrr": g_nr,
+        "N_vvv": f_yv, "N_rrr": g_nr, **lin,
         "m_y": g_v, "J_z": g_nr, "w_P0": wake, "t_P": thrust,
         "gamma_R_minus": gamma, "gamma_R_plus": gamma,
     }

@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
+from ..ships.water_depth import params_at_depth
 from .errors import ScenarioError, at_key
 from .schema import Scenario
 
@@ -123,7 +124,8 @@ class ManeuverJob:
             servo = {k[len("actuator.params."):]: float(v[n]) for k, v in drawn.items()
                      if k.startswith("actuator.params.")}
             try:
-                params = type(self.ship.params).from_mapping(vessel, base=self.ship.params)
+                deep = self.ship.deep_water_params or self.ship.params
+                params = params_at_depth(self.ship, type(deep).from_mapping(vessel, base=deep))
                 gear = type(self.ship.servo).from_mapping(servo, base=self.ship.servo)
             except (ParameterError, TypeError) as exc:
                 raise ScenarioError(f"{source}: [batch.monte_carlo] sample {i}: {exc}") from None
@@ -268,8 +270,9 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
                      "a manoeuvre steers with the ship's steering gear, the "
                      f"'{entry.steering_gear.actuator.name}' (its params may be overridden), "
                      f"got {scn.actuator.model!r}")
-    try:
-        params = type(entry.params).from_mapping(dict(vessel.params), base=entry.params)
+    try:  # checked here (on a ship in shallow water: the deep-water values, as in its file)
+        deep = entry.deep_water_params or entry.params
+        params_at_depth(entry, type(deep).from_mapping(dict(vessel.params), base=deep))
     except (ParameterError, TypeError) as exc:
         raise at_key(source, "vessel.params", str(exc)) from None
     servo0 = entry.steering_gear.params
@@ -281,7 +284,8 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
     if vessel.params:
         name += f" (modified: {', '.join(vessel.params)})"
     try:
-        ship = maneuver_ship(entry.replace(params=params, name=name) if vessel.params else entry,
+        ship = maneuver_ship(entry.replace(params=dict(vessel.params), name=name)
+                             if vessel.params else entry,
                              servo=None if not scn.actuator.params else servo)
     except ParameterError as exc:  # (a ship whose model cannot run the manoeuvres)
         raise at_key(source, key, exc.reason.lstrip(": ")) from None

@@ -29,6 +29,7 @@ from ..control.path_following import GuidanceLaw, get_guidance_law, route_params
 from ..simulation.signals import Constant, make_signal
 from .environment import KEY_UNITS as _ENV_UNITS, environment_runs
 from .errors import ScenarioError, at_key as _err
+from ..ships.water_depth import params_at_depth
 from .vessel import ship_key, vessel_ship
 from .schema import Scenario
 
@@ -337,7 +338,8 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
             raise _err(source, ship_key(scn),
                        f"'{ship.name}' is a ship of model '{ship.model.name}', not "
                        f"'{model.name}'")
-        base_params = ship.params
+        # on a ship in shallow water an override is to the deep-water value (as in its file)
+        base_params = ship.deep_water_params or ship.params
 
     # names a batch dimension must not take: the result's variables and dimensions
     reserved = {*model.state_labels, *actuator.state_labels, *model.output_labels,
@@ -398,7 +400,10 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
             if key == "controller.params" and guidance is not None:
                 values = {**section(over, "guidance.", guidance[1]), **values}
             try:
-                bucket.append(_params(cls, values, base).to_array())
+                built = _params(cls, values, base)
+                if key == "vessel.params" and ship is not None and ship.in_shallow_water:
+                    built = params_at_depth(ship, built)
+                bucket.append(built.to_array())
             except ParameterError as exc:
                 named = (exc.field or "").partition("[")[0]
                 if guidance is not None and named in guidance[1]:

@@ -200,6 +200,11 @@ def scale_ship(ship: "Ship", length: float, *, rho: float | None = None,
         the rule knows.
     """
     new_length = _positive("length", length, "m")
+    if ship.in_shallow_water:  # scale the deep-water ship, then put it in water λ times deeper
+        deep = dataclasses.replace(ship, params=ship.deep_water_params or ship.params,
+                                   water_depth=math.inf, deep_water_params=None)
+        scaled = scale_ship(deep, length, rho=rho, name=name)
+        return scaled.at_depth(ship.water_depth * new_length / ship.length)
     old_length = ship.length
     if not (math.isfinite(old_length) and old_length > 0):
         raise ParameterError(

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from ..errors import ParameterError
 from ..hydrodynamics.hull import HullParticulars
@@ -21,15 +21,17 @@ from ..hydrodynamics.shallow_water import MIN_DEPTH_RATIO, shallow_water_coeffic
 if TYPE_CHECKING:  # pragma: no cover
     from .ship import Ship
 
-__all__ = ["ship_at_depth", "hull_particulars"]
+__all__ = ["ship_at_depth", "hull_particulars", "params_at_depth"]
 
 
-def hull_particulars(ship: "Ship") -> HullParticulars:
+def hull_particulars(ship: "Ship", params: Any = None) -> HullParticulars:
     """The hull particulars of a ship: its particulars, with ∇ and x_G from MMG parameters.
 
     Parameters
     ----------
     ship : Ship
+    params : Params, optional
+        The (deep-water) parameters to take ∇ and x_G from (default: the ship's).
 
     Returns
     -------
@@ -44,7 +46,7 @@ def hull_particulars(ship: "Ship") -> HullParticulars:
     if p is None:
         raise ParameterError(f"ship '{ship.name}' has no particulars (L, B, T, C_b: a ship "
                              "file's [particulars])", field="particulars")
-    params = ship.deep_water_params or ship.params
+    params = params if params is not None else (ship.deep_water_params or ship.params)
     names = params.field_names()
     volume = float(params.displacement) if "displacement" in names else p.displacement
     x_G = float(params.x_G) if "x_G" in names else 0.0
@@ -96,6 +98,28 @@ def ship_at_depth(ship: "Ship", depth: float, *, strict: bool | None = None) -> 
     return dataclasses.replace(ship, params=params, water_depth=float(depth),
                                deep_water_params=deep,
                                validity=_validity(ship.validity, float(depth) / hull.draft))
+
+
+def params_at_depth(ship: "Ship", deep: Any) -> Any:
+    """Deep-water parameters ``deep`` of ``ship``'s model corrected for the ship's water depth
+    (unchanged in deep water): what a scenario's parameter override on a ship in shallow water
+    becomes (the override is to the deep-water value, as in the ship file).
+
+    Parameters
+    ----------
+    ship : Ship
+    deep : Params
+        Deep-water parameters of the ship's model.
+
+    Returns
+    -------
+    Params
+    """
+    if not ship.in_shallow_water:
+        return deep
+    corrected = shallow_water_coefficients(deep.as_dict(), hull_particulars(ship, deep),
+                                           ship.water_depth)
+    return type(deep).from_mapping(corrected)
 
 
 def _validity(notes: tuple[str, ...], ratio: float | None) -> tuple[str, ...]:
