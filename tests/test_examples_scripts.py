@@ -95,3 +95,27 @@ def test_kvlcc2_imo_uncertainty_example(tmp_path):
     first = np.degrees(zigzag["overshoot"].isel(pair=0).sel(side=-1, n=1).values[2])
     assert np.degrees(report[("10/10 zig-zag", "first overshoot", "port")]) == \
         pytest.approx(first, rel=1e-12)
+
+
+def test_own_ship_validation_example(tmp_path):
+    """The estimated KVLCC2 L7 against the captive-test model (the figures the docs quote):
+    tactical diameter within 15 %, advance within 30 %, first overshoots within 20 %; the
+    shallow-water tactical diameter grows as the depth falls; the figure is written."""
+    proc = subprocess.run([sys.executable, str(EXAMPLES / "own_ship_validation.py"),
+                           str(tmp_path)], capture_output=True, text=True, timeout=900,
+                          env={**os.environ, "MPLBACKEND": "Agg"})
+    assert proc.returncode == 0, proc.stderr
+    out = proc.stdout
+    l7 = out.split("KVLCC2 L7 at 1.179 m/s")[1].split("\n\n")[0]
+    rows = {m.group(1).strip(): (float(m.group(2)), float(m.group(3)))
+            for m in re.finditer(r"^ *(.+?\]) +([\d.]+) +([\d.]+) +[+-]\d+%$", l7, re.M)}
+    for key, tol in (("tactical diameter [L]", 0.15), ("advance [L]", 0.30),
+                     ("10/10 first overshoot [deg]", 0.20),
+                     ("20/20 first overshoot [deg]", 0.20)):
+        est, cap = rows[key]
+        assert abs(est - cap) <= tol * cap, (key, est, cap)
+    shallow = out.split("in shallow water")[1]
+    tactical = [float(m.group(1)) for m in re.finditer(r"^ *(?:deep|[\d.]+) +([\d.]+) /", shallow,
+                                                       re.M)]
+    assert len(tactical) == 4 and all(b > a for a, b in zip(tactical, tactical[1:])), tactical
+    assert (tmp_path / "own_ship_validation.png").stat().st_size > 10_000

@@ -82,6 +82,8 @@ DESIGN_FIELDS: tuple[tuple[str, str, bool, str], ...] = (
     ("rho", "kg/m³", False, "water density (default 1025, sea water)"),
     ("water_depth", "m", False, "water depth h (default deep water)"),
     ("wetted_surface", "m²", False, "wetted surface S (default Holtrop's estimate)"),
+    ("lcb", "%", False, "longitudinal centre of buoyancy, % of L forward of midship (default "
+                        "0; Holtrop's resistance and wake use it)"),
 )
 
 
@@ -114,6 +116,7 @@ class Design:
     rho: float = 1025.0
     water_depth: float = math.inf
     wetted_surface: float | None = None
+    lcb: float = 0.0
 
     def __post_init__(self) -> None:
         units = {n: u for n, u, _, _ in DESIGN_FIELDS}
@@ -130,7 +133,7 @@ class Design:
             if math.isnan(value) or (math.isinf(value) and name != "water_depth"):
                 raise ParameterError(f"must be finite [{unit}], got {value!r}", field=name,
                                      unit=unit, value=value)
-            if name != "x_G" and not value > 0:
+            if name not in ("x_G", "lcb") and not value > 0:
                 raise ParameterError(f"must be > 0 [{unit}], got {value!r}", field=name,
                                      unit=unit, value=value)
             object.__setattr__(self, name, int(value) if name == "blades" else value)
@@ -287,7 +290,8 @@ def _resistance(design: Design, diameter: float, strict: bool | None
     hull = design.hull
     form = HullForm(length=design.length, beam=design.beam, draft=design.mean_draft,
                     displacement_volume=hull.volume, draft_fore=design.draft_fore,
-                    draft_aft=design.draft_aft, wetted_surface=design.wetted_surface)
+                    draft_aft=design.draft_aft, wetted_surface=design.wetted_surface,
+                    lcb=design.lcb)
     water = Water(density=design.rho)
     r0 = float(resistance_coefficient(form, design.speed, water=water, strict=strict))
     w = float(wake_fraction(form, design.speed, diameter, water=water))
