@@ -131,3 +131,10 @@ def test_scenario_params_in_shallow_water_change_the_deep_value(tmp_path):
                    '[vessel.params]\nN_r = -0.06\n[maneuver]\nkind = "turning"\n')
     job = load_scenario(scn)
     assert job.ship.params == expected
+
+
+def test_ship_show_says_the_depth(kvlcc2, tmp_path):
+    path = write_ship(kvlcc2.at_depth(31.2), tmp_path / "s.toml")
+    res = run_cli("ship", "show", str(path))
+    assert res.exit_code == 0 and "water depth" in res.output and "31.2 [m]" in res.output
+    assert "│ deep" in run_cli("ship", "show", "kvlcc2-full").output

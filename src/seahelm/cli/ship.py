@@ -166,6 +166,8 @@ def _print(ship: Any, payload: dict[str, Any]) -> None:
     head.add_row("model", escape(f"{ship.model.name}: {ship.model.description}"))
     head.add_row("test speed", "-" if ship.test_speed is None else
                  escape(f"{ship.test_speed:.6g} [m/s]"))
+    head.add_row("water depth", "deep" if not ship.in_shallow_water else escape(
+        f"{ship.water_depth:.6g} [m] (parameters below corrected from the deep-water ones)"))
     if ship.steering_gear is not None:
         g = ship.steering_gear
         p = g.params
