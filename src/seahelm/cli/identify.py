@@ -166,3 +166,143 @@ def steady_turn(
     console.print(table)
     console.print(f"residual rms {fit.residual_rms:.3g} rad, condition number "
                   f"{fit.condition_number:.3g} (column-scaled {fit.condition_number_scaled:.3g})")
+
+
+@app.command("nomoto")
+@handle_errors
+def nomoto(
+    files: Annotated[list[Path], typer.Argument(
+        metavar="LOG...", help="Records: CSV files (time, rudder_angle, heading and/or "
+        "yaw_rate, ...) or seahelm NetCDF results; several are fitted together.")],
+    order: Annotated[int, typer.Option("--order", help="Nomoto's first or second order.",
+                                       min=1, max=2)] = 1,
+    angles: Annotated[AngleUnit, typer.Option(
+        "--angles", help="Units of the CSV angles [deg|rad] and rates [deg/s|rad/s].")] = "deg",
+    bootstrap: Annotated[int, typer.Option(
+        "--bootstrap", help="Moving-block bootstrap refits for percentile intervals (0: "
+        "none).", min=0)] = 0,
+    seed: Annotated[Optional[int], typer.Option("--seed", help="Seed of the bootstrap.")] = None,
+    level: Annotated[float, typer.Option("--level", help="Confidence level.")] = 0.95,
+    speed: Annotated[Optional[float], typer.Option(
+        "--speed", help="Ship speed U of the records [m/s] (for --out; default: the mean "
+        "surge speed of the records where logged).")] = None,
+    length: Annotated[Optional[float], typer.Option(
+        "--length", help="Ship length L [m] (for --out).")] = None,
+    name: Annotated[Optional[str], typer.Option("--name", help="Ship name (for --out).")] = None,
+    max_rudder: Annotated[float, typer.Option(
+        "--max-rudder", help="Steering-gear limit [deg] (for --out).")] = 35.0,
+    rudder_rate: Annotated[float, typer.Option(
+        "--rudder-rate", help="Steering-gear rate [deg/s] (for --out; IMO's minimum).")]
+    = 65.0 / 28.0,
+    out: Annotated[Optional[Path], typer.Option(
+        "--out", "-o", metavar="SHIP.toml", help="Write a ship file of the identified model "
+        "(values, intervals, covariance in its provenance).")] = None,
+    plot: Annotated[Optional[Path], typer.Option(
+        "--plot", metavar="FIT.png", help="Draw measured and fitted output and the residuals.")]
+    = None,
+    json_out: JsonFlag = False,
+) -> None:
+    """Identify Nomoto K, T (or K, T1, T2, T3) and the rudder offset from manoeuvre records."""
+    from ..analysis.nomoto_fit import fit_nomoto
+    from ..analysis.records import read_records
+    from ..errors import ParameterError
+    from ._common import output_file
+
+    for f in files:
+        input_file("LOG", f)
+    if not 0.0 < level < 1.0:
+        raise ParameterError(f"`--level` must be in (0, 1), got {level!r}")
+    for opt, value in (("--speed", speed), ("--length", length)):
+        if value is not None and not (math.isfinite(value) and value > 0):
+            raise ParameterError(f"`{opt}` must be > 0, got {value!r}")
+    if not (math.isfinite(max_rudder) and 0 < max_rudder <= 90):
+        raise ParameterError(f"`--max-rudder` must be in (0, 90] [deg], got {max_rudder!r}")
+    if not (math.isfinite(rudder_rate) and rudder_rate > 0):
+        raise ParameterError(f"`--rudder-rate` must be > 0 [deg/s], got {rudder_rate!r}")
+    if out is not None:
+        output_file("--out", out, reads=tuple(files))
+    if plot is not None:
+        output_file("--plot", plot, reads=tuple(files), writes="a figure")
+    records = read_records(files, angles=angles)
+    fit = fit_nomoto(records, order, bootstrap=bootstrap, seed=seed)
+    payload = fit.as_dict(level)
+    boot = fit.bootstrap_intervals(level)
+    if boot is not None:
+        for row, (lo, hi) in zip(payload["parameters"], boot):
+            row["bootstrap_low"], row["bootstrap_high"] = float(lo), float(hi)
+    if out is not None:
+        payload["ship_file"] = str(_write_ship(fit, records, out, speed, length, name,
+                                               max_rudder, rudder_rate, level))
+    if plot is not None:
+        from ..plotting.identification import plot_nomoto_fit
+
+        payload["plot"] = str(plot_nomoto_fit(fit, records, plot))
+    if json_out:
+        print_json(payload)
+        return
+    _print_nomoto(fit, payload, level)
+
+
+def _write_ship(fit: Any, records: Any, out: Path, speed: float | None, length: float | None,
+                name: str | None, max_rudder: float, rudder_rate: float, level: float) -> Path:
+    from ..analysis.nomoto_fit_result import nomoto_ship
+    from ..errors import ParameterError
+    from ..ships import write_ship
+
+    if speed is None:
+        logged = [r.channels["surge_speed"] for r in records if "surge_speed" in r.channels]
+        if not logged:
+            raise ParameterError("`--speed` is needed for --out (the records log no "
+                                 "surge_speed): the ship's speed U [m/s] in the records")
+        speed = float(np.mean(np.concatenate(logged)))
+    if length is None:
+        raise ParameterError("`--length` is needed for --out: the ship's length L [m]")
+    ship = nomoto_ship(fit, name=name or out.stem, speed=speed, length=length,
+                       max_rudder=math.radians(max_rudder),
+                       rudder_rate=math.radians(rudder_rate), level=level)
+    return write_ship(ship, out, overwrite=True)
+
+
+def _print_nomoto(fit: Any, payload: dict[str, Any], level: float) -> None:
+    from rich.markup import escape
+    from rich.table import Table
+
+    console.print(escape(f"Nomoto {fit.order}, output error on the {fit.output}, "
+                         f"{len(fit.records)} record(s): {', '.join(fit.records)}"),
+                  highlight=False, soft_wrap=True)
+    from rich.table import Column
+
+    table = Table("parameter", Column("value", min_width=14, no_wrap=True), "std. error",
+                  f"{100 * level:g} % interval", "unit", "start")
+    for row in payload["parameters"]:
+        deg = row["name"] == "rudder_offset"
+        k = 180.0 / math.pi if deg else 1.0
+        unit = "deg" if deg else row["unit"]
+        start = f"{row['equation_error_start'] * k:.4g}"
+        if not row["identified"]:
+            table.add_row(escape(row["symbol"]), "unidentifiable", "—", "—", unit, start)
+            continue
+        table.add_row(escape(row["symbol"]), f"{row['value'] * k:.5g}",
+                      f"{row['standard_error'] * k:.3g}",
+                      f"{row['ci_low'] * k:.5g} .. {row['ci_high'] * k:.5g}", unit, start)
+    console.print(table)
+    for row in payload["parameters"]:
+        if not row["identified"]:
+            console.print(escape(f"  {row['symbol']} is not identified by these records: "
+                                 f"{row['evidence']}"), highlight=False, soft_wrap=True)
+    unit = "deg" if fit.output == "heading" else "deg/s"
+    console.print("start: the equation-error least-squares estimate the output-error fit "
+                  "began from", highlight=False, soft_wrap=True)
+    console.print(f"residual σ {math.degrees(fit.residual_std):.3g} {unit}, condition number "
+                  f"{fit.condition_number:.3g}, {fit.dof} degrees of freedom"
+                  + ("" if fit.bootstrap is None else f", {len(fit.bootstrap)} bootstrap refits"),
+                  highlight=False)
+    if fit.residual_autocorrelation > 0.9 and fit.bootstrap is None:
+        console.print(f"  the residuals are correlated (lag-one autocorrelation "
+                      f"{fit.residual_autocorrelation:.3f}: model mismatch or coloured noise), "
+                      "so these intervals are too narrow; --bootstrap N gives honest ones",
+                      highlight=False, soft_wrap=True)
+    if "ship_file" in payload:
+        console.print(escape(f"wrote {payload['ship_file']}"), highlight=False, soft_wrap=True)
+    if "plot" in payload:
+        console.print(escape(f"wrote {payload['plot']}"), highlight=False, soft_wrap=True)

@@ -1,0 +1,382 @@
+"""Nomoto steering models identified from manoeuvre records, with their uncertainty.
+
+First order (Nomoto et al. 1957), with a rudder offset δ_0 (the rudder angle that keeps the
+ship straight: propeller asymmetry, wind)::
+
+    T ṙ + r = K (δ + δ_0)
+
+second order::
+
+    T_1 T_2 r̈ + (T_1 + T_2) ṙ + r = K (δ + δ_0) + K T_3 δ̇
+
+(:mod:`seahelm.vessels.nomoto`, where δ_0 is the model's ``rudder_disturbance``).
+
+:func:`fit_nomoto` works in two stages, as identification from trials usually does:
+
+1. **Equation error** (the start): r and ṙ (and r̈) from the record — the logged yaw rate, or
+   the heading differentiated by a Savitzky–Golay filter on a uniform resampling — and a linear
+   least-squares regression of ṙ on (r, δ, 1) (first order) or of r̈ on (ṙ, r, δ, δ̇, 1)
+   (second order). Fast and biased by the noise of the derivatives.
+2. **Output error** (the estimate): the heading (or, without one, the yaw rate) is simulated
+   from the recorded rudder angle with seahelm's compiled engine and the model of
+   :mod:`seahelm.vessels.nomoto`, and the parameters — K, T (or T_1, T_2, T_3), δ_0 and each
+   record's initial heading and yaw rate (and ṙ for the second order) — minimise the sum of
+   squared heading errors (:func:`scipy.optimize.least_squares`, trust-region reflective, the
+   time constants bounded positive). The Jacobian is one batched run of the engine: the
+   nominal parameter set and one perturbed set per parameter simulated together.
+
+**Uncertainty** (Laplace approximation at the optimum): covariance σ² (JᵀJ)⁻¹ with σ² the
+residual variance (residuals taken as independent — with coloured residuals, e.g. waves, use
+the bootstrap), standard errors, Student-t confidence intervals, the correlation matrix and the
+condition number of JᵀJ (scaled). A parameter whose standard error exceeds its value, or whose
+correlation with another exceeds 0.999, is reported as **unidentifiable** with that evidence,
+never as a confident number. ``bootstrap=N`` adds a moving-block residual bootstrap
+(Künsch 1989): N records made of the fitted output plus resampled residual blocks, each refitted
+from the estimate; the spread of the refits gives percentile intervals.
+
+Several records (a 10/10 and a 20/20 zig-zag, a turning circle of the same ship) are fitted
+together: common K, T, δ_0, each record its own initial state. Time must increase; uneven
+sampling is fine (the rudder is interpolated linearly to the simulation grid, the simulated
+heading linearly back to the record's times).
+
+References
+----------
+Nomoto, K., Taguchi, T., Honda, K., Hirano, S. (1957). On the steering qualities of ships.
+Int. Shipbuilding Progress 4(35), 354–370.
+Fossen, T.I. (2021). Handbook of Marine Craft Hydrodynamics and Motion Control, 2nd ed. Wiley,
+§7.1 and ch. 13 (identification of Nomoto models).
+Künsch, H.R. (1989). The jackknife and the bootstrap for general stationary observations. Ann.
+Statist. 17(3), 1217–1241.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from ..errors import ParameterError
+from .records import ManoeuvreRecord
+
+__all__ = ["NomotoFit", "fit_nomoto", "equation_error_start", "simulate_records"]
+
+from .nomoto_fit_result import _NAMES, NomotoFit
+
+# ------------------------------------------------------------------------------------------
+# equation error
+# ------------------------------------------------------------------------------------------
+def _derivatives(record: ManoeuvreRecord, order: int) -> tuple[np.ndarray, ...]:
+    """Uniformly resampled t, δ, δ̇, r, ṙ, r̈ of a record (Savitzky–Golay)."""
+    from scipy.signal import savgol_filter
+
+    dt = record.median_interval
+    t = np.arange(record.time[0], record.time[-1] + 0.5 * dt, dt)
+    delta = np.interp(t, record.time, record.rudder_angle)
+    window = max(7, int(round(2.0 / dt)) | 1)
+    window = min(window, (t.size - 1) | 1 if t.size % 2 == 0 else t.size)
+    if window < 5:
+        raise ParameterError(f"{record.name}: too short to differentiate ({t.size} samples)",
+                             field="time")
+    if record.heading is not None:
+        psi = np.interp(t, record.time, record.heading)
+        r = savgol_filter(psi, window, 3, deriv=1, delta=dt)
+        rdot = savgol_filter(psi, window, 3, deriv=2, delta=dt)
+        rddot = savgol_filter(psi, window, 4, deriv=3, delta=dt) if order == 2 else None
+    else:
+        rr = np.interp(t, record.time, record.yaw_rate)
+        r = savgol_filter(rr, window, 3)
+        rdot = savgol_filter(rr, window, 3, deriv=1, delta=dt)
+        rddot = savgol_filter(rr, window, 3, deriv=2, delta=dt) if order == 2 else None
+    ddelta = np.gradient(delta, dt)
+    return t, delta, ddelta, r, rdot, rddot
+
+
+def equation_error_start(records: Sequence[ManoeuvreRecord], order: int = 1) -> np.ndarray:
+    """Equation-error least-squares estimate of the Nomoto parameters (module docstring).
+
+    Parameters
+    ----------
+    records : sequence of ManoeuvreRecord
+    order : {1, 2}
+
+    Returns
+    -------
+    ndarray
+        (K, T, δ_0) or (K, T_1, T_2, T_3, δ_0).
+    """
+    rows, rhs = [], []
+    for rec in records:
+        _, delta, ddelta, r, rdot, rddot = _derivatives(rec, order)
+        one = np.ones_like(r)
+        if order == 1:
+            rows.append(np.column_stack([r, delta, one]))
+            rhs.append(rdot)
+        else:
+            rows.append(np.column_stack([rdot, r, delta, ddelta, one]))
+            rhs.append(rddot)
+    A, b = np.vstack(rows), np.concatenate(rhs)
+    coef, *_ = np.linalg.lstsq(A, b, rcond=None)
+    if order == 1:
+        a, bd, c = coef
+        T = -1.0 / a if a < 0 else 100.0
+        K = bd * T
+        return np.array([K, T, c / bd if bd else 0.0])
+    a1, a0, b0, b1, c = coef
+    P = -1.0 / a0 if a0 < 0 else 100.0
+    S = max(-a1 * P, 1e-3)
+    disc = S * S - 4 * P
+    if disc > 0:
+        t1, t2 = 0.5 * (S + math.sqrt(disc)), 0.5 * (S - math.sqrt(disc))
+    else:
+        t1, t2 = 0.9 * S, 0.1 * S
+    K = b0 * P
+    return np.array([K, t1, max(t2, 1e-2), b1 / b0 if b0 else 0.0, c / b0 if b0 else 0.0])
+
+
+# ------------------------------------------------------------------------------------------
+# output error
+# ------------------------------------------------------------------------------------------
+def _grid(record: ManoeuvreRecord) -> tuple[float, int]:
+    dt = min(record.median_interval, 0.25)
+    n = int(math.ceil(record.duration / dt))
+    return dt, n
+
+
+def simulate_records(order: int, thetas: np.ndarray, inits: np.ndarray,
+                     record: ManoeuvreRecord, output: str) -> np.ndarray:
+    """The model output at the record's times for a batch of parameter sets (one engine run).
+
+    Parameters
+    ----------
+    order : {1, 2}
+    thetas : ndarray, shape (runs, parameters)
+        (K, T, δ_0) or (K, T_1, T_2, T_3, δ_0) per run.
+    inits : ndarray, shape (runs, 2 or 3)
+        Initial ψ, r (and ṙ) per run.
+    record : ManoeuvreRecord
+    output : {"heading", "yaw_rate"}
+
+    Returns
+    -------
+    ndarray, shape (runs, samples)
+    """
+    from ..registry import get_model
+    from ..simulation.engine import simulate
+    from ..vessels.nomoto import Nomoto1Params, Nomoto2Params
+
+    model = get_model(f"nomoto{order}")
+    dt, n = _grid(record)
+    t = record.time[0] + dt * np.arange(n + 1)
+    delta = np.interp(t, record.time, record.rudder_angle)
+    runs = thetas.shape[0]
+    if order == 1:
+        params = [Nomoto1Params(gain=th[0], time_constant=th[1], speed=1.0) for th in thetas]
+    else:
+        params = [Nomoto2Params(gain=th[0], t1=th[1], t2=th[2], t3=th[3], speed=1.0)
+                  for th in thetas]
+    x0 = np.zeros((runs, model.n_states))
+    labels = model.state_labels
+    x0[:, labels.index("heading")] = inits[:, 0]
+    x0[:, labels.index("yaw_rate")] = inits[:, 1]
+    if order == 2:  # ξ = ṙ − K T_3/(T_1 T_2) δ(0)
+        a = thetas[:, 0] * thetas[:, 3] / (thetas[:, 1] * thetas[:, 2])
+        x0[:, labels.index("yaw_aux")] = inits[:, 2] - a * delta[0]
+    dist = np.zeros((runs, 1, len(model.disturbance_labels)))
+    dist[:, 0, model.disturbance_labels.index("rudder_disturbance")] = thetas[:, -1]
+    result = simulate(model, params=params, x0=x0, t_final=n * dt, dt=dt, actuator="direct",
+                      reference=delta[None, :, None], disturbance=dist)
+    y = np.asarray(result[output])
+    ok = np.isfinite(y).all(axis=1)
+    out = np.full((runs, record.time.size), np.nan)
+    for i in np.flatnonzero(ok):
+        out[i] = np.interp(record.time, t, y[i])
+    return out
+
+
+def _measured(record: ManoeuvreRecord, output: str) -> np.ndarray:
+    return record.heading if output == "heading" else record.yaw_rate
+
+
+def fit_nomoto(records: ManoeuvreRecord | Sequence[ManoeuvreRecord], order: int = 1, *,
+               bootstrap: int = 0, seed: int | None = None, speed: float | None = None
+               ) -> NomotoFit:
+    """Identify a first- or second-order Nomoto model from records (module docstring).
+
+    Parameters
+    ----------
+    records : ManoeuvreRecord or sequence of them
+        Records of the same ship at the same speed (:func:`~seahelm.analysis.records.
+        read_records`).
+    order : {1, 2}
+        Nomoto's first or second order.
+    bootstrap : int, optional
+        Moving-block bootstrap refits (0: none).
+    seed : int, optional
+        Seed of the bootstrap.
+    speed : float, optional
+        The ship's speed U [m/s] in the records, kept with the fit (for a ship file).
+
+    Returns
+    -------
+    NomotoFit
+
+    Raises
+    ------
+    ParameterError
+        A bad order, no records, a non-positive speed, a bootstrap < 0.
+    """
+    from scipy.optimize import least_squares
+
+    if order not in (1, 2):
+        raise ParameterError(f"must be 1 or 2, got {order!r}", field="order", value=order)
+    recs = [records] if isinstance(records, ManoeuvreRecord) else list(records)
+    if not recs:
+        raise ParameterError("no records to fit", field="records")
+    if isinstance(bootstrap, bool) or not isinstance(bootstrap, int) or bootstrap < 0:
+        raise ParameterError(f"must be a whole number >= 0, got {bootstrap!r}",
+                             field="bootstrap", value=bootstrap)
+    if speed is not None and not (math.isfinite(speed) and speed > 0):
+        raise ParameterError(f"must be > 0 [m/s], got {speed!r}", field="speed", unit="m/s",
+                             value=speed)
+    output = "heading" if all(r.heading is not None for r in recs) else "yaw_rate"
+    start = equation_error_start(recs, order)
+    n_theta = start.size
+    if order == 2:
+        # the third derivative of a noisy heading makes a poor start: start from the first-order
+        # output-error fit instead, T_1 = T, T_2 = T_3 = T/10 (so T_1 + T_2 − T_3 = T)
+        first = fit_nomoto(recs, 1)
+        k, tc, offset = first.values
+        guess = np.array([k, tc, 0.1 * tc, 0.1 * tc, offset])
+    else:
+        guess = start
+    n_init = 2 if order == 1 else 3
+    inits = []
+    for rec in recs:
+        _, _, _, r, rdot, _ = _derivatives(rec, order)
+        psi0 = float(rec.heading[0]) if rec.heading is not None else 0.0
+        inits.append([psi0, float(r[0])] + ([float(rdot[0])] if order == 2 else []))
+    x0 = np.concatenate([_sane(guess, order), np.ravel(inits)])
+    measured = [_measured(rec, output) for rec in recs]
+    values, jac, residuals = _output_error(order, recs, measured, output, x0, n_theta, n_init,
+                                           least_squares)
+    n = sum(m.size for m in measured)
+    dof = n - values.size
+    rss = float(sum(np.sum(e * e) for e in residuals))
+    sigma2 = rss / max(dof, 1)
+    cov_all, cond = _laplace(jac, sigma2)
+    boot = None
+    if bootstrap:
+        boot = _bootstrap(order, recs, output, values, residuals, n_theta, n_init, bootstrap,
+                          seed, least_squares)
+    return NomotoFit(
+        order=order, names=_NAMES[order], values=values[:n_theta],
+        covariance=cov_all[:n_theta, :n_theta], dof=dof, residual_std=math.sqrt(sigma2),
+        output=output, records=tuple(r.name for r in recs),
+        initial_states=values[n_theta:].reshape(len(recs), n_init), equation_error=start,
+        condition_number=cond, residuals=tuple(residuals), bootstrap=boot, speed=speed)
+
+
+def _sane(theta: np.ndarray, order: int) -> np.ndarray:
+    """An equation-error start inside the bounds (positive time constants, T_1 ≥ T_2)."""
+    th = np.array(theta, dtype=float)
+    th[1:order + 1] = np.clip(np.abs(th[1:order + 1]), 0.05, 1e5)
+    if order == 2 and th[2] > th[1]:
+        th[1], th[2] = th[2], th[1]
+    if not np.isfinite(th[0]) or th[0] <= 0:
+        th[0] = 0.01
+    th[-1] = float(np.clip(th[-1], -0.5, 0.5)) if np.isfinite(th[-1]) else 0.0
+    if order == 2:
+        th[3] = float(np.clip(th[3], 0.0, 1e5)) if np.isfinite(th[3]) else 0.0
+    return th
+
+
+def _unpack(x: np.ndarray, n_theta: int, n_init: int, k: int) -> tuple[np.ndarray, np.ndarray]:
+    return x[:n_theta], x[n_theta + k * n_init:n_theta + (k + 1) * n_init]
+
+
+def _output_error(order, recs, measured, output, x0, n_theta, n_init, least_squares):
+    """Least squares on the simulated output; the Jacobian is one batched engine run per
+    record (forward differences)."""
+    lower = np.full(x0.size, -np.inf)
+    upper = np.full(x0.size, np.inf)
+    lower[0] = 1e-9  # K > 0: a positive rudder angle turns to starboard (the models' range)
+    lower[1:order + 1] = 1e-3  # time constants > 0
+    if order == 2:
+        lower[3] = 0.0  # T_3 >= 0 (the model's range)
+    cache: dict[bytes, list[np.ndarray]] = {}
+
+    def outputs(x: np.ndarray) -> list[np.ndarray]:
+        key = x.tobytes()
+        if key not in cache:
+            cache.clear()
+            cache[key] = [simulate_records(order, x[None, :n_theta],
+                                           _unpack(x, n_theta, n_init, k)[1][None], rec,
+                                           output)[0] for k, rec in enumerate(recs)]
+        return cache[key]
+
+    def fun(x: np.ndarray) -> np.ndarray:
+        res = [m - y for m, y in zip(measured, outputs(x))]
+        out = np.concatenate(res)
+        return np.where(np.isfinite(out), out, 1e3)
+
+    def jac(x: np.ndarray) -> np.ndarray:
+        base = outputs(x)
+        steps = 1e-6 * np.maximum(np.abs(x), 1e-3)
+        cols = []
+        for k, rec in enumerate(recs):
+            theta, init = _unpack(x, n_theta, n_init, k)
+            # the nominal set and one perturbation per parameter this record depends on
+            own = list(range(n_theta)) + [n_theta + k * n_init + j for j in range(n_init)]
+            thetas = np.repeat(theta[None], len(own), axis=0)
+            inits = np.repeat(init[None], len(own), axis=0)
+            for row, j in enumerate(own):
+                if j < n_theta:
+                    thetas[row, j] += steps[j]
+                else:
+                    inits[row, j - n_theta - k * n_init] += steps[j]
+            y = simulate_records(order, thetas, inits, rec, output)
+            block = np.zeros((rec.time.size, x.size))
+            for row, j in enumerate(own):
+                block[:, j] = -(y[row] - base[k]) / steps[j]
+            cols.append(block)
+        J = np.vstack(cols)
+        return np.where(np.isfinite(J), J, 0.0)
+
+    sol = least_squares(fun, x0, jac=jac, bounds=(lower, upper), x_scale="jac",
+                        method="trf", xtol=1e-10, ftol=1e-12, gtol=1e-10, max_nfev=200)
+    residuals = [m - y for m, y in zip(measured, outputs(sol.x))]
+    return sol.x, jac(sol.x), residuals
+
+
+def _laplace(J: np.ndarray, sigma2: float) -> tuple[np.ndarray, float]:
+    """σ² (JᵀJ)⁻¹ by SVD of the column-scaled J, and the condition number of JᵀJ."""
+    norms = np.linalg.norm(J, axis=0)
+    norms[norms == 0] = 1.0
+    U, s, Vt = np.linalg.svd(J / norms, full_matrices=False)
+    cond = float((s[0] / s[-1]) ** 2) if s[-1] > 0 else math.inf
+    with np.errstate(divide="ignore"):
+        inv = np.where(s > s[0] * 1e-12, 1.0 / (s * s), np.inf)
+    cov_scaled = (Vt.T * inv) @ Vt
+    cov = cov_scaled / np.outer(norms, norms) * sigma2
+    return cov, cond
+
+
+def _bootstrap(order, recs, output, values, residuals, n_theta, n_init, n_boot, seed,
+               least_squares):
+    """Moving-block residual bootstrap: refits from the estimate (module docstring)."""
+    rng = np.random.default_rng(seed)
+    fitted = [_measured(rec, output) - e for rec, e in zip(recs, residuals)]
+    out = []
+    for _ in range(n_boot):
+        measured = []
+        for f, e in zip(fitted, residuals):
+            block = max(1, int(round(e.size ** (1.0 / 3.0))) * 2)
+            starts = rng.integers(0, max(e.size - block, 1), size=e.size // block + 1)
+            resampled = np.concatenate([e[s:s + block] for s in starts])[:e.size]
+            measured.append(f + resampled)
+        x, _, _ = _output_error(order, recs, measured, output, values.copy(), n_theta,
+                                n_init, least_squares)
+        out.append(x[:n_theta])
+    return np.array(out)
+

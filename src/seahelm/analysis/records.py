@@ -1,0 +1,273 @@
+"""Manoeuvre records: what a sea trial or a free-running model test logged, for identification.
+
+A :class:`ManoeuvreRecord` is one continuous record: times [s], the rudder angle [rad] and the
+heading [rad] and/or yaw rate [rad/s], and optionally surge and sway speed [m/s], position
+[m] and propeller rps [1/s]. :func:`read_records` reads them from
+
+* a **CSV file** with a header row: columns ``time`` [s], ``rudder_angle``, ``heading`` or
+  ``yaw_rate`` (or both), optional ``surge_speed``, ``sway_speed``, ``x`` (north) and ``y``
+  (east) [m], ``propeller_rps`` [1/s]; angles in degrees by default (``angles="rad"`` for
+  radians; angular rates then in deg/s or rad/s);
+* a **NetCDF result file** written by seahelm (``seahelm run --out``, a manoeuvre's
+  ``*-runs.nc``): every run is a record (variables ``heading``, ``yaw_rate``,
+  ``rudder_angle``, ``surge_speed``, ``sway_speed``, ``north``, ``east``,
+  ``propeller_rps`` where present; SI units and radians), so a method can be checked on
+  synthetic data.
+
+Time must increase strictly (uneven sampling is fine). A **gap** — an interval longer than
+five times the median sampling interval — splits a record in two (each part is then fitted
+with its own initial state). NaN in a column, a time that does not increase, a missing column,
+a rudder that does not move (no rudder activity: nothing to identify), a record shorter than
+10 samples: :class:`~seahelm.errors.ParameterError` naming the file, the column and the row.
+The heading is unwrapped (continuous through ±180°).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+
+from ..errors import ParameterError
+
+__all__ = ["ManoeuvreRecord", "read_records", "record_from_arrays", "GAP_FACTOR",
+           "MIN_RUDDER_ACTIVITY"]
+
+#: An interval longer than this many times the median sampling interval is a gap.
+GAP_FACTOR = 5.0
+
+#: The least rudder activity (standard deviation of the rudder angle) a record must have to
+#: identify anything from it [rad] (0.1°).
+MIN_RUDDER_ACTIVITY = math.radians(0.1)
+
+#: The fewest samples of a record (each part after splitting at gaps).
+MIN_SAMPLES = 10
+
+_OPTIONAL = ("surge_speed", "sway_speed", "x", "y", "propeller_rps")
+_ANGLES = ("rudder_angle", "heading")
+_RATES = ("yaw_rate",)
+
+
+@dataclasses.dataclass(frozen=True)
+class ManoeuvreRecord:
+    """One continuous record of a manoeuvre (SI units, radians).
+
+    Attributes
+    ----------
+    name : str
+        Where it comes from (``file.csv``, ``file.nc[run 3]``, with ``#2`` for the second part
+        of a record split at a gap).
+    time : ndarray
+        Times [s], strictly increasing.
+    rudder_angle : ndarray
+        δ [rad], positive turning to starboard.
+    heading : ndarray or None
+        ψ [rad], unwrapped (None when only the yaw rate was logged).
+    yaw_rate : ndarray or None
+        r [rad/s].
+    channels : dict of str to ndarray
+        The optional channels that were logged (surge_speed, sway_speed, x, y,
+        propeller_rps).
+    """
+
+    name: str
+    time: np.ndarray
+    rudder_angle: np.ndarray
+    heading: np.ndarray | None = None
+    yaw_rate: np.ndarray | None = None
+    channels: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
+
+    @property
+    def duration(self) -> float:
+        """Length of the record [s]."""
+        return float(self.time[-1] - self.time[0])
+
+    @property
+    def median_interval(self) -> float:
+        """Median sampling interval [s]."""
+        return float(np.median(np.diff(self.time)))
+
+    def __len__(self) -> int:
+        return int(self.time.size)
+
+
+def _check_column(source: str, name: str, values: np.ndarray, first_row: int) -> None:
+    bad = ~np.isfinite(values)
+    if np.any(bad):
+        i = int(np.flatnonzero(bad)[0])
+        raise ParameterError(f"{source}: column `{name}` row {first_row + i} is not a finite "
+                             f"number ({values[i]!r})", field=name)
+
+
+def record_from_arrays(name: str, time: Any, rudder_angle: Any, heading: Any = None,
+                       yaw_rate: Any = None, *, first_row: int = 0,
+                       **channels: Any) -> list[ManoeuvreRecord]:
+    """Records from arrays (SI units, radians), checked and split at gaps.
+
+    Parameters
+    ----------
+    name : str
+        Source, for messages and labels.
+    time, rudder_angle : array_like
+        t [s] (strictly increasing), δ [rad].
+    heading, yaw_rate : array_like, optional
+        ψ [rad] (unwrapped here), r [rad/s]; at least one.
+    first_row : int, optional
+        Row number of the first sample in the source (for messages; a CSV file's data start
+        at line 2).
+    **channels : array_like
+        Optional channels (surge_speed, sway_speed, x, y, propeller_rps).
+
+    Returns
+    -------
+    list of ManoeuvreRecord
+        One per part between gaps.
+    """
+    t = np.asarray(time, dtype=float)
+    cols: dict[str, np.ndarray] = {"time": t, "rudder_angle": np.asarray(rudder_angle, float)}
+    if heading is None and yaw_rate is None:
+        raise ParameterError(f"{name}: a `heading` or `yaw_rate` column is needed",
+                             field="heading")
+    if heading is not None:
+        cols["heading"] = np.asarray(heading, dtype=float)
+    if yaw_rate is not None:
+        cols["yaw_rate"] = np.asarray(yaw_rate, dtype=float)
+    for key, values in channels.items():
+        if key not in _OPTIONAL:
+            raise ParameterError(f"{name}: unknown channel `{key}`; valid: "
+                                 f"{', '.join(_OPTIONAL)}", field=key)
+        cols[key] = np.asarray(values, dtype=float)
+    for key, values in cols.items():
+        if values.shape != t.shape or values.ndim != 1:
+            raise ParameterError(f"{name}: column `{key}` has shape {values.shape}, time "
+                                 f"{t.shape}", field=key)
+        _check_column(name, key, values, first_row)
+    if t.size < MIN_SAMPLES:
+        raise ParameterError(f"{name}: {t.size} samples; a record needs at least "
+                             f"{MIN_SAMPLES}", field="time")
+    step = np.diff(t)
+    if np.any(step <= 0):
+        i = int(np.flatnonzero(step <= 0)[0]) + 1
+        raise ParameterError(f"{name}: column `time` row {first_row + i} does not increase "
+                             f"({t[i - 1]!r} then {t[i]!r})", field="time")
+    if "heading" in cols:
+        cols["heading"] = np.unwrap(cols["heading"])
+    gaps = np.flatnonzero(step > GAP_FACTOR * np.median(step)) + 1
+    bounds = [0, *gaps.tolist(), t.size]
+    parts = []
+    for k, (a, b) in enumerate(zip(bounds[:-1], bounds[1:])):
+        label = name if len(bounds) == 2 else f"{name}#{k + 1}"
+        if b - a < MIN_SAMPLES:
+            continue  # (a few samples between gaps: nothing to fit)
+        part = {key: v[a:b].copy() for key, v in cols.items()}
+        if float(np.std(part["rudder_angle"])) < MIN_RUDDER_ACTIVITY:
+            raise ParameterError(
+                f"{label}: the rudder angle does not move (standard deviation "
+                f"{math.degrees(float(np.std(part['rudder_angle']))):.3g} deg < "
+                f"{math.degrees(MIN_RUDDER_ACTIVITY):g} deg): no rudder activity, nothing to "
+                "identify", field="rudder_angle")
+        parts.append(ManoeuvreRecord(
+            name=label, time=part.pop("time"), rudder_angle=part.pop("rudder_angle"),
+            heading=part.pop("heading", None), yaw_rate=part.pop("yaw_rate", None),
+            channels=part))
+    if not parts:
+        raise ParameterError(f"{name}: every part between gaps is shorter than {MIN_SAMPLES} "
+                             "samples", field="time")
+    return parts
+
+
+def _read_csv(path: Path, angles: str) -> list[ManoeuvreRecord]:
+    from ..identification.turn_log import read_turn_log
+
+    cols = read_turn_log(path)
+    for required in ("time", "rudder_angle"):
+        if required not in cols:
+            raise ParameterError(f"{path}: missing column `{required}` (columns: "
+                                 f"{', '.join(cols)})", field=required)
+    if "heading" not in cols and "yaw_rate" not in cols:
+        raise ParameterError(f"{path}: missing column `heading` or `yaw_rate` (columns: "
+                             f"{', '.join(cols)})", field="heading")
+    scale = math.pi / 180.0 if angles == "deg" else 1.0
+    for key in _ANGLES + _RATES:
+        if key in cols:
+            cols[key] = cols[key] * scale
+    if angles == "rad" and np.nanmax(np.abs(cols["rudder_angle"])) > math.pi / 2:
+        raise ParameterError(
+            f"{path}: column `rudder_angle` reaches {np.nanmax(np.abs(cols['rudder_angle'])):.4g}"
+            " rad (more than 90°) with angles in radians: are they degrees? (drop --angles rad)",
+            field="rudder_angle")
+    channels = {k: cols[k] for k in _OPTIONAL if k in cols}
+    return record_from_arrays(str(path), cols["time"], cols["rudder_angle"],
+                              cols.get("heading"), cols.get("yaw_rate"), first_row=2,
+                              **channels)
+
+
+def _read_netcdf(path: Path) -> list[ManoeuvreRecord]:
+    from ..result_layout import flatten_runs
+    from ..results import load_result
+
+    ds = flatten_runs(load_result(path))
+    if "rudder_angle" not in ds:
+        raise ParameterError(f"{path}: no variable `rudder_angle` (a model whose input it is, "
+                             "e.g. the Nomoto, Mariner or MMG model, is needed)",
+                             field="rudder_angle")
+    names = {"north": "x", "east": "y"}
+    out: list[ManoeuvreRecord] = []
+    runs = ds.sizes.get("run", 1)
+    time = np.asarray(ds["time"].values, dtype=float)
+    for i in range(runs):
+        run = ds.isel(run=i) if "run" in ds.dims else ds
+        if "status" in run and int(np.asarray(run["status"].values)) != 0:
+            continue  # a diverged run is no record
+
+        def get(v: str, run: Any = run) -> np.ndarray | None:
+            return np.asarray(run[v].values, dtype=float) if v in run else None
+
+        channels = {names.get(v, v): get(v) for v in ("surge_speed", "sway_speed", "north",
+                                                      "east", "propeller_rps") if v in run}
+        out += record_from_arrays(f"{path}[run {i}]", time, get("rudder_angle"),
+                                  get("heading"), get("yaw_rate"), **channels)
+    return out
+
+
+def read_records(paths: Any, *, angles: Literal["deg", "rad"] = "deg"
+                 ) -> list[ManoeuvreRecord]:
+    """Records from CSV and NetCDF files (module docstring), split at gaps.
+
+    Parameters
+    ----------
+    paths : path-like or sequence of path-like
+        CSV files (``*.csv``) and seahelm NetCDF result files (``*.nc``).
+    angles : {"deg", "rad"}
+        Units of the CSV files' angles and angular rates (NetCDF files are always SI).
+
+    Returns
+    -------
+    list of ManoeuvreRecord
+
+    Raises
+    ------
+    ParameterError
+        A missing file or column, a bad value (naming the file, column and row), no rudder
+        activity, too few samples.
+    """
+    if angles not in ("deg", "rad"):
+        raise ParameterError(f"must be 'deg' or 'rad', got {angles!r}", field="angles")
+    if isinstance(paths, (str, os.PathLike)):
+        paths = [paths]
+    out: list[ManoeuvreRecord] = []
+    for p in paths:
+        path = Path(p)
+        if not path.exists():
+            raise ParameterError(f"no such file: {path}")
+        if path.suffix.lower() in (".nc", ".nc4", ".h5", ".netcdf"):
+            out += _read_netcdf(path)
+        else:
+            out += _read_csv(path, angles)
+    if not out:
+        raise ParameterError("no records (every run of the files diverged)")
+    return out
