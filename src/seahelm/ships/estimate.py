@@ -34,13 +34,15 @@ the Nomoto K, T_1, T_2, T_3 it implies, as a ``nomoto2`` or ``nomoto1`` ship.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
+import warnings
 from typing import Any
 
 import numpy as np
 
 from ..constants import GRAVITY
-from ..errors import ParameterError
+from ..errors import ParameterError, ValidityRangeWarning, warn_validity
 from ..hydrodynamics.hull import Coefficient, HullParticulars, check_ranges
 from ..hydrodynamics.hull_derivatives import hull_derivatives
 from ..hydrodynamics.linear_model import NomotoConstants, clarke_derivatives, nomoto_constants
@@ -240,6 +242,30 @@ class Design:
         return cls(**kwargs)
 
 
+@functools.lru_cache(maxsize=64)
+def _fit_and_warnings(pitch_ratio: float, area_ratio: float, blades: int
+                      ) -> tuple[Any, tuple[tuple[str, type[Warning]], ...]]:
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        fit = fit_thrust_polynomial(pitch_ratio, area_ratio, blades, strict=False)
+    return fit, tuple((str(w.message), w.category) for w in caught)
+
+
+def _thrust_fit(pitch_ratio: float, area_ratio: float, blades: int, strict: bool | None
+                ) -> Any:
+    """:func:`fit_thrust_polynomial` of one propeller, fitted once per process and reused, its
+    warnings said again (an error in strict mode) at every use: a Monte-Carlo study that
+    varies the hull, not the propeller, estimates a ship per sample, and the fit was three
+    quarters of each estimate."""
+    fit, said = _fit_and_warnings(float(pitch_ratio), float(area_ratio), int(blades))
+    for message, category in said:
+        if issubclass(category, ValidityRangeWarning):
+            warn_validity(message, strict=strict, stacklevel=4)
+        else:
+            warnings.warn(message, category, stacklevel=4)
+    return fit
+
+
 def _propeller(design: Design, strict: bool | None) -> dict[str, Coefficient]:
     draft = design.mean_draft
     out: dict[str, Coefficient] = {}
@@ -251,7 +277,7 @@ def _propeller(design: Design, strict: bool | None) -> dict[str, Coefficient]:
     ae = design.area_ratio if design.area_ratio is not None else 0.55
     given = "given" if design.pitch_ratio is not None and design.area_ratio is not None \
         else "P/D, A_E/A_0 assumed 0.8, 0.55 where not given"
-    fit = fit_thrust_polynomial(pd, ae, design.blades, strict=strict)
+    fit = _thrust_fit(pd, ae, design.blades, strict)
     text = (f"Wageningen B-series (Oosterveld & van Oossanen 1975) B{design.blades}-"
             f"{round(ae * 100)} P/D {pd:g} ({given}), least-squares quadratic over J "
             f"{fit.J_min:.3g}..{fit.J_max:.3g} (max. error {fit.max_error:.2g} in K_T)")
