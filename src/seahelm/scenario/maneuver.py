@@ -27,14 +27,16 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError
+from ..errors import ParameterError, ValidityRangeWarning
 from ..ships.water_depth import params_at_depth
 from .errors import ScenarioError, at_key
+from .particulars import PREFIX, EstimatedSamples, check_drawn_particulars
 from .schema import Scenario
 
 __all__ = ["ManeuverJob", "prepare_maneuver"]
@@ -67,6 +69,11 @@ class ManeuverJob:
     #: ``[batch.monte_carlo]``: uncertain ship (``vessel.params.*``) and steering-gear
     #: (``actuator.params.*``) parameters, one ship per sample (a ``ship`` dimension)
     monte_carlo: Any = None
+    #: drawn ``vessel.particulars.*``: the samples' estimated ships
+    #: (:class:`~seahelm.scenario.particulars.EstimatedSamples`), and the scenario's own
+    #: ``vessel.params`` and ``actuator.params`` overrides applied to each
+    estimated: Any = None
+    overrides: tuple[Mapping[str, float], Mapping[str, float]] = ({}, {})
 
     @property
     def n_samples(self) -> int:
@@ -94,7 +101,9 @@ class ManeuverJob:
 
     def ships(self, start: int = 0, stop: int | None = None) -> list[Any]:
         """The ships of samples ``start:stop``: the scenario's ship with each sample's drawn
-        parameters (its own steady approach is computed when it runs).
+        parameters (its own steady approach is computed when it runs); with drawn particulars,
+        the ship estimated from each sample's particulars, with the scenario's and the
+        sample's parameters.
 
         Parameters
         ----------
@@ -117,19 +126,23 @@ class ManeuverJob:
             return [self.ship][start:stop]
         drawn = self.draws(np.arange(start, stop))
         source = str(self.metadata.get("scenario_source", "<string>"))
+        estimated = (None if self.estimated is None
+                     else self.estimated.ships(drawn, range(start, stop)))
         out = []
         for n, i in enumerate(range(start, stop)):
-            vessel = {k[len("vessel.params."):]: float(v[n]) for k, v in drawn.items()
-                      if k.startswith("vessel.params.")}
-            servo = {k[len("actuator.params."):]: float(v[n]) for k, v in drawn.items()
-                     if k.startswith("actuator.params.")}
+            base = self.ship if estimated is None else estimated[n]
+            fixed = ({}, {}) if estimated is None else self.overrides
+            vessel = {**fixed[0], **{k[len("vessel.params."):]: float(v[n])
+                                     for k, v in drawn.items() if k.startswith("vessel.params.")}}
+            servo = {**fixed[1], **{k[len("actuator.params."):]: float(v[n])
+                                    for k, v in drawn.items() if k.startswith("actuator.params.")}}
             try:
-                deep = self.ship.deep_water_params or self.ship.params
-                params = params_at_depth(self.ship, type(deep).from_mapping(vessel, base=deep))
-                gear = type(self.ship.servo).from_mapping(servo, base=self.ship.servo)
+                deep = base.deep_water_params or base.params
+                params = params_at_depth(base, type(deep).from_mapping(vessel, base=deep))
+                gear = type(base.servo).from_mapping(servo, base=base.servo)
             except (ParameterError, TypeError) as exc:
                 raise ScenarioError(f"{source}: [batch.monte_carlo] sample {i}: {exc}") from None
-            out.append(maneuver_ship(params, servo=gear, model=self.ship.model,
+            out.append(maneuver_ship(params, servo=gear, model=base.model,
                                      name=f"{self.ship.name} #{i}"))
         return out
 
@@ -145,7 +158,7 @@ class ManeuverJob:
         -------
         ManeuverResult
         """
-        return dataclasses.replace(self, ship=ships, monte_carlo=None).run()
+        return dataclasses.replace(self, ship=ships, monte_carlo=None, estimated=None).run()
 
     @property
     def title(self) -> str:
@@ -249,7 +262,13 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
     man = scn.maneuver
     assert man is not None
     vessel = scn.vessel
-    entry = vessel_ship(scn, source)
+    mc = scn.batch.monte_carlo
+    drawn_keys = [] if mc is None else list(mc.draws) + [k for b in mc.correlated for k in b.keys]
+    varied = check_drawn_particulars(scn, drawn_keys, source)
+    with warnings.catch_warnings():
+        if varied:  # (the samples' ships are estimated and their warnings said when they run)
+            warnings.simplefilter("ignore", ValidityRangeWarning)
+        entry = vessel_ship(scn, source)
     key = ship_key(scn)
     if entry is None or entry.steering_gear is None:
         got = "none" if entry is None else repr(entry.name) + " (it has no [steering_gear])"
@@ -307,7 +326,6 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
     if conditions is not None:
         options["conditions"] = conditions
     metadata = {"title": scn.title, "scenario_source": source, "scenario_text": text}
-    mc = scn.batch.monte_carlo
     if mc is not None:
         if man.kind not in ("turning", "zigzag", "pullout"):
             raise at_key(source, "batch.monte_carlo",
@@ -315,17 +333,23 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
                          f"manoeuvres, not '{man.kind}' (for the IMO criteria, sweep a turning "
                          "and a zig-zag scenario with the same draws and seed: "
                          "examples/kvlcc2_imo_uncertainty.py)")
-        keys = list(mc.draws) + [k for b in mc.correlated for k in b.keys]
-        for key in keys:
-            if not key.startswith(("vessel.params.", "actuator.params.")):
+        for key in drawn_keys:
+            if not key.startswith(("vessel.params.", "actuator.params.", PREFIX)):
                 raise at_key(source, f"batch.monte_carlo.{key}",
                              "a manoeuvre's draws vary the ship's parameters "
-                             "(vessel.params.<name>) or its steering gear's "
-                             f"(actuator.params.<name>), got '{key}'")
+                             "(vessel.params.<name>), its steering gear's "
+                             "(actuator.params.<name>) or the particulars it is estimated from "
+                             f"(vessel.particulars.<name>), got '{key}'")
+    estimated = None if not varied else EstimatedSamples(
+        particulars=dict(vessel.particulars or {}), water_depth=vessel.water_depth,
+        source=source)
     job = ManeuverJob(kind=man.kind, ship=ship, options=options, metadata=metadata,
-                      written=written, monte_carlo=mc)
+                      written=written, monte_carlo=mc, estimated=estimated,
+                      overrides=(dict(vessel.params), dict(scn.actuator.params)))
     if mc is not None:
-        job.ships(0, 1)  # the names and ranges of the drawn parameters, checked once
+        with warnings.catch_warnings():  # (said when the samples run)
+            warnings.simplefilter("ignore", ValidityRangeWarning)
+            job.ships(0, 1)  # the names and ranges of the drawn parameters, checked once
     return job
 
 

@@ -30,6 +30,7 @@ from ..simulation.signals import Constant, make_signal
 from .environment import KEY_UNITS as _ENV_UNITS, environment_runs
 from .errors import ScenarioError, at_key as _err
 from ..ships.water_depth import params_at_depth
+from .particulars import refuse_varied_particulars
 from .vessel import ship_key, vessel_ship
 from .schema import Scenario
 
@@ -312,6 +313,7 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
     ScenarioError
         Naming the source, the key path, the value and what was expected.
     """
+    refuse_varied_particulars(scn, source)  # (they vary in [maneuver] scenarios only)
     model = _vessel_model(scn, source)
     try:
         actuator = get_actuator(scn.actuator.model)

@@ -43,13 +43,19 @@ class _Strict(BaseModel):
 
 class VesselSection(_Strict):
     """``[vessel]``: a ship (``ship``: a catalog name or the path of a ship file, relative to
-    the scenario file; ``catalog`` is its older name) or a bare ``model``; ``params`` override
-    the ship's parameters, ``initial`` its initial state; ``water_depth`` [m] puts the ship in
-    shallow water (its MMG coefficients corrected; ``params`` then change the deep-water ones)."""
+    the scenario file; ``catalog`` is its older name), a bare ``model``, or the ship's main
+    ``particulars`` (``[vessel.particulars]``: the ship is estimated from them, an MMG ship as
+    ``seahelm ship estimate`` makes; the keys are those of its particulars file, angles also in
+    degrees with ``_deg``; in a ``[maneuver]`` scenario they may be drawn in
+    ``[batch.monte_carlo]`` as ``vessel.particulars.<key>``, one estimated ship per sample).
+    ``params`` override the ship's parameters (of an estimated ship: its estimated MMG
+    coefficients), ``initial`` its initial state; ``water_depth`` [m] puts the ship in shallow
+    water (its MMG coefficients corrected; ``params`` then change the deep-water ones)."""
 
     model: str | None = None  # the ship's model when a ship is named
     ship: str | None = None
     catalog: str | None = None
+    particulars: dict[str, Number | str] | None = None
     water_depth: Positive | None = None
     params: dict[str, Number] = Field(default_factory=dict)
     initial: dict[str, Number] = Field(default_factory=dict)
@@ -58,9 +64,20 @@ class VesselSection(_Strict):
     def _one_ship(self) -> "VesselSection":
         if self.ship is not None and self.catalog is not None:
             raise ValueError("give `ship` or `catalog` (its older name), not both")
-        if self.water_depth is not None and self.ship is None and self.catalog is None:
-            raise ValueError("`water_depth` needs a `ship` (its particulars and MMG "
-                             "coefficients are corrected)")
+        if self.particulars is not None:
+            named = [k for k in ("ship", "catalog", "model") if getattr(self, k) is not None]
+            if named:
+                raise ValueError(
+                    f"give `{named[0]}` or [vessel.particulars], not both: from its particulars "
+                    "the ship is estimated (an MMG ship, as `seahelm ship estimate` makes; "
+                    "write that ship file and name it in `ship` for another model)")
+            if self.water_depth is not None and "water_depth" in self.particulars:
+                raise ValueError("the water depth is given twice: as `water_depth` in [vessel] "
+                                 "and in [vessel.particulars]; give it once")
+        if (self.water_depth is not None and self.ship is None and self.catalog is None
+                and self.particulars is None):
+            raise ValueError("`water_depth` needs a `ship` or [vessel.particulars] (its "
+                             "particulars and MMG coefficients are corrected)")
         return self
 
 

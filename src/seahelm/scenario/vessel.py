@@ -1,5 +1,6 @@
 """The ship a scenario names: ``[vessel] ship`` (or its older name ``catalog``), a catalog name
-or the path of a ship file, relative to the scenario file."""
+or the path of a ship file, relative to the scenario file; or the ship estimated from
+``[vessel.particulars]`` (:mod:`.particulars`)."""
 
 from __future__ import annotations
 
@@ -24,8 +25,11 @@ def ship_key(scn: Scenario) -> str:
     Returns
     -------
     str
-        ``"vessel.catalog"`` when the scenario uses that older key, else ``"vessel.ship"``.
+        ``"vessel.particulars"`` for an estimated ship, ``"vessel.catalog"`` when the scenario
+        uses that older key, else ``"vessel.ship"``.
     """
+    if scn.vessel.particulars is not None:
+        return "vessel.particulars"
     return "vessel.catalog" if scn.vessel.ship is None and scn.vessel.catalog is not None \
         else "vessel.ship"
 
@@ -49,12 +53,18 @@ def vessel_ship(scn: Scenario, source: str) -> Any:
     ------
     ScenarioError
         At ``vessel.ship`` (or ``vessel.catalog``): an unknown catalog name (listing the valid
-        ones), a ship file that cannot be read or is invalid (naming its key and unit).
+        ones), a ship file that cannot be read or is invalid (naming its key and unit); at
+        ``vessel.particulars.<key>``: particulars that cannot be estimated
+        (:func:`.particulars.estimated_ship`).
     """
     from ..ships import get_ship
     from ..ships.file_format import is_ship_path
 
     v = scn.vessel
+    if v.particulars is not None:
+        from .particulars import estimated_ship
+
+        return estimated_ship(scn, source)
     ref = v.ship if v.ship is not None else v.catalog
     if ref is None:
         return None
