@@ -174,6 +174,8 @@ def test_the_sweep_stores_the_drawn_particulars(tmp_path):
         assert np.array_equal(ds[key].values, values)
         assert ds[key].attrs["kind"] == "batch_values" and ds[key].attrs["key"] == key
     assert ds["vessel.particulars.draft"].attrs["distribution"] == "uniform"
+    assert ds["vessel.particulars.draft"].attrs["units"] == "m"
+    assert ds["vessel.particulars.block_coefficient"].attrs["units"] == "-"
     ref = job.run().metrics
     assert np.array_equal(ds["tactical_diameter"].values,
                           np.ravel(ref["tactical_diameter"].values))

@@ -402,6 +402,6 @@ class Scenario(_Strict):
                     f"a [maneuver] scenario takes no [{'], ['.join(extra)}] section: the "
                     "manoeuvre sets its own rudder orders, timing and batch (rudder angles, "
                     "speeds and sides as lists in [maneuver]; uncertain ship or steering-gear "
-                    "parameters as [batch.monte_carlo]); [environment] may give wind, "
-                    "waves and a current")
+                    "parameters, or particulars, as [batch.monte_carlo]); [environment] may "
+                    "give wind, waves and a current")
         return self

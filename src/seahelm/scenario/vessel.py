@@ -1,6 +1,6 @@
 """The ship a scenario names: ``[vessel] ship`` (or its older name ``catalog``), a catalog name
 or the path of a ship file, relative to the scenario file; or the ship estimated from
-``[vessel.particulars]`` (:mod:`.particulars`)."""
+``[vessel.particulars]`` (:mod:`seahelm.scenario.particulars`)."""
 
 from __future__ import annotations
 
@@ -55,7 +55,7 @@ def vessel_ship(scn: Scenario, source: str) -> Any:
         At ``vessel.ship`` (or ``vessel.catalog``): an unknown catalog name (listing the valid
         ones), a ship file that cannot be read or is invalid (naming its key and unit); at
         ``vessel.particulars.<key>``: particulars that cannot be estimated
-        (:func:`.particulars.estimated_ship`).
+        (:func:`seahelm.scenario.particulars.estimated_ship`).
     """
     from ..ships import get_ship
     from ..ships.file_format import is_ship_path

@@ -108,7 +108,26 @@ def maneuver_template(job: "ManeuverJob") -> tuple["xr.Dataset", dict[str, Any],
         kinds.update({key: "correlated-normal" for b in mc.correlated for key in b.keys})
         for key, values in job.draws(np.arange(n)).items():
             layout_vars[key] = ("run", values, {"kind": "batch_values", "key": key,
-                                                "distribution": kinds[key]})
+                                                "distribution": kinds[key],
+                                                **_units(job, key)})
         attrs["seed"] = int(mc.seed)
     attrs["maneuver"] = job.kind
     return template, layout_vars, coords, attrs, n
+
+
+def _units(job: "ManeuverJob", key: str) -> dict[str, str]:
+    """``{"units": ...}`` of a drawn key (the parameter's or the particular's, in degrees for a
+    ``_deg`` key; empty if it has none)."""
+    section, _, name = key.rpartition(".")
+    degrees = name.endswith("_deg")
+    name = name[:-4] if degrees else name
+    if section == "vessel.particulars":
+        from ..ships.estimate import DESIGN_FIELDS
+
+        unit = {n: u for n, u, _, _ in DESIGN_FIELDS}.get(name, "")
+    else:
+        params = {"vessel.params": job.ship.params, "actuator.params": job.ship.servo}.get(section)
+        unit = "" if params is None else {i.name: i.unit for i in type(params).info()}.get(name, "")
+    if degrees:
+        unit = unit.replace("rad", "deg") if unit.startswith("rad") else "deg"
+    return {"units": unit} if unit else {}
