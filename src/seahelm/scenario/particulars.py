@@ -341,6 +341,6 @@ def aggregate_warnings(per_sample: Sequence[Sequence[warnings.WarningMessage]]) 
                 parts.append(f"{before}{shown}{after}")
             count = len({i for i, _ in found})
             if count != k:
-                parts[-1] += f" (in {count})"
+                parts[-1] += f" (in {count} of them)"
         warnings.warn(f"{head} in {k} of {n} samples: " + "; ".join(parts),
                       ValidityRangeWarning, stacklevel=3)
