@@ -186,3 +186,16 @@ def test_cli_estimate_strict(tmp_path):
     assert "warning:" in warned.output and "L/B = 10 outside 4..8" in warned.output
     strict = run(*args, "--strict")
     assert strict.exit_code == 2 and "L/B = 10 outside 4..8" in strict.output
+
+
+def test_very_full_ship_falls_back_to_taylor_wake_with_a_warning():
+    """Holtrop's wake has no value for C_P above about 0.9 (a square root of a negative
+    number): Taylor's is used, said in a warning (an error in strict mode)."""
+    from seahelm.errors import strict_validity
+
+    with pytest.warns(ValidityRangeWarning, match="Taylor's w_P0 = 0.5 C_b - 0.05 = 0.425"):
+        ship = estimate_ship(Design(**{**CARGO, "block_coefficient": 0.95}))
+    assert ship.params.w_P0 == pytest.approx(0.425)
+    assert "Taylor" in ship.source_of("w_P0")
+    with strict_validity(), pytest.raises(ParameterError):
+        estimate_ship(Design(**{**CARGO, "block_coefficient": 0.95}))

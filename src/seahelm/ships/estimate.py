@@ -51,6 +51,7 @@ from ..hydrodynamics.rudder_propeller import (
     interaction_coefficients,
     rudder_area_dnv,
     rudder_lift_slope,
+    wake_fraction_taylor,
 )
 from ..vessels.particulars import Particulars
 from .ship import Propulsion, Ship, SteeringGear
@@ -320,16 +321,30 @@ def _resistance(design: Design, diameter: float, strict: bool | None
                     lcb=design.lcb)
     water = Water(density=design.rho)
     r0 = float(resistance_coefficient(form, design.speed, water=water, strict=strict))
-    w = float(wake_fraction(form, design.speed, diameter, water=water))
-    t = float(thrust_deduction(form, diameter))
     holtrop = "Holtrop (1984)"
+    try:
+        w = float(wake_fraction(form, design.speed, diameter, water=water))
+    except (ValueError, ZeroDivisionError):  # (1.45 C_P − 0.315 − 0.0225 lcb ≥ 1: no root)
+        w = math.nan
+    wake_source = f"{holtrop}, single screw, conventional stern, at the test speed"
+    if not 0.0 <= w <= 0.7:
+        from ..errors import warn_validity
+
+        taylor = wake_fraction_taylor(hull, strict=False)
+        warn_validity(
+            f"{holtrop}'s wake fraction is not defined for C_P = "
+            f"{form.prismatic_coefficient:.3g} (it gives {w:.3g}; its data: C_P <= 0.85): "
+            f"Taylor's w_P0 = 0.5 C_b - 0.05 = {taylor.value:.3g} used instead", strict=strict,
+            stacklevel=3)
+        w, wake_source = taylor.value, taylor.source + f" ({holtrop}'s is not defined here)"
+    t = float(thrust_deduction(form, diameter))
     surface = ("given S" if design.wetted_surface is not None
                else "S by Holtrop & Mennen's estimate")
     return {
         "R_0": Coefficient(r0, f"Holtrop & Mennen (1982) / {holtrop} total resistance at the "
                                f"test speed ({surface}; L_WL = L_pp, no bulb, transom or "
                                "appendages), R'_0 = R_T/(½ρ L d U²)"),
-        "w_P0": Coefficient(w, f"{holtrop}, single screw, conventional stern, at the test speed"),
+        "w_P0": Coefficient(w, wake_source),
         "t_P": Coefficient(t, f"{holtrop}, single screw, conventional stern"),
     }
 
