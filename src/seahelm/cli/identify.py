@@ -306,3 +306,82 @@ def _print_nomoto(fit: Any, payload: dict[str, Any], level: float) -> None:
         console.print(escape(f"wrote {payload['ship_file']}"), highlight=False, soft_wrap=True)
     if "plot" in payload:
         console.print(escape(f"wrote {payload['plot']}"), highlight=False, soft_wrap=True)
+
+
+RegressionMethod = Literal["ridge", "ols", "tsvd"]
+
+
+@app.command("mmg")
+@handle_errors
+def mmg(
+    files: Annotated[list[Path], typer.Argument(
+        metavar="LOG...", help="Free-running records with u, v, r, δ, n: CSV (time, "
+        "rudder_angle, yaw_rate, surge_speed, sway_speed, propeller_rps, ...) or seahelm "
+        "NetCDF results.")],
+    ship: Annotated[str, typer.Option(
+        "--ship", metavar="BASE", help="The MMG ship whose masses, propeller and rudder are "
+        "taken as given (a catalog name or a ship file, e.g. from `seahelm ship estimate`).")],
+    method: Annotated[RegressionMethod, typer.Option(
+        "--method", help="Regression on accelerations: ridge (by generalised cross-validation), "
+        "ordinary least squares or truncated SVD.")] = "ridge",
+    output_error: Annotated[bool, typer.Option(
+        "--output-error/--regression-only", help="Refine the regression by output error over "
+        "all records (the engine simulates each record).")] = True,
+    angles: Annotated[AngleUnit, typer.Option(
+        "--angles", help="Units of the CSV angles [deg|rad] and rates [deg/s|rad/s].")] = "deg",
+    out: Annotated[Optional[Path], typer.Option(
+        "--out", "-o", metavar="SHIP.toml", help="Write the base ship with the identified "
+        "derivatives (each with its source).")] = None,
+    name: Annotated[Optional[str], typer.Option("--name", help="Ship name (for --out).")] = None,
+    json_out: JsonFlag = False,
+) -> None:
+    """Identify the MMG hull derivatives from free-running records, the rest from a base ship."""
+    from ..analysis.mmg_fit import identify_mmg
+    from ..analysis.records import read_records
+    from ..errors import ParameterError
+    from ..ships import get_ship, write_ship
+    from ._common import output_file
+
+    for f in files:
+        input_file("LOG", f)
+    try:
+        base = get_ship(ship)
+    except ValueError as exc:
+        raise ParameterError(f"`--ship`: {exc}") from None
+    if base.model.name != "mmg":
+        raise ParameterError(f"`--ship` '{base.name}' uses model '{base.model.name}'; the MMG "
+                             "identification needs an MMG ship (e.g. `seahelm ship estimate`)")
+    if out is not None:
+        output_file("--out", out, reads=tuple(files))
+    records = read_records(files, angles=angles)
+    fit = identify_mmg(records, base, method=method, output_error=output_error)
+    payload = fit.as_dict()
+    if out is not None:
+        payload["ship_file"] = str(write_ship(fit.ship(base, name=name), out, overwrite=True))
+    if json_out:
+        print_json(payload)
+        return
+    from rich.markup import escape
+    from rich.table import Table
+
+    console.print(escape(f"MMG hull derivatives of '{base.name}' ({fit.method}), "
+                         f"{len(fit.records)} record(s)"), highlight=False, soft_wrap=True)
+    table = Table("derivative", "value", "std. error", f"{base.name}")
+    for row in payload["parameters"]:
+        ref = f"{getattr(base.params, row['name']):.4g}"
+        if row["identified"]:
+            table.add_row(row["name"], f"{row['value']:.5g}", f"{row['standard_error']:.3g}",
+                          ref)
+        else:
+            table.add_row(row["name"], "base value" if row.get("fixed_at_base") else
+                          "unidentifiable", "—", ref)
+    console.print(table)
+    for row in payload["parameters"]:
+        if not row["identified"]:
+            kept = " (kept at the base ship's value)" if row.get("fixed_at_base") else ""
+            console.print(escape(f"  {row['name']} not identified{kept}: {row['evidence']}"),
+                          highlight=False, soft_wrap=True)
+    console.print("condition numbers " + ", ".join(
+        f"{k} {v:.3g}" for k, v in fit.condition_numbers.items()), highlight=False)
+    if "ship_file" in payload:
+        console.print(escape(f"wrote {payload['ship_file']}"), highlight=False, soft_wrap=True)
