@@ -454,11 +454,30 @@ def refine_mmg(start: HullFit | Any, records: ManoeuvreRecord | Sequence[Manoeuv
                    params=with_values(sol.x))
 
 
+def _with_velocities(records: ManoeuvreRecord | Sequence[ManoeuvreRecord],
+                     length: float) -> list[ManoeuvreRecord]:
+    """Records without u and v but with x, y and heading get them from the EKF/RTS smoother
+    (:func:`~seahelm.analysis.velocity_smoother.reconstruct_velocities`, default noise
+    levels); the others are returned as they are."""
+    from .velocity_smoother import reconstruct_velocities
+
+    recs = [records] if isinstance(records, ManoeuvreRecord) else list(records)
+    out = []
+    for rec in recs:
+        has_uv = "surge_speed" in rec.channels and "sway_speed" in rec.channels
+        if not has_uv and {"x", "y"} <= set(rec.channels) and rec.heading is not None:
+            rec = reconstruct_velocities(rec, length=length)
+        out.append(rec)
+    return out
+
+
 def identify_mmg(records: ManoeuvreRecord | Sequence[ManoeuvreRecord], base: Any, *,
                  method: str = "ridge", output_error: bool = True) -> HullFit:
     """Regression, output error, and the identifiable subset (module docstring).
 
-    After the output-error fit of every hull derivative, the ones the records do not identify
+    Records that log position and heading but not u and v get them from the smoother of
+    :mod:`seahelm.analysis.velocity_smoother` first. After the output-error fit of every hull
+    derivative, the ones the records do not identify
     (:meth:`HullFit.unidentifiable`) are set back to the base ship's values and the others
     fitted again (parameter-subset selection); the fit lists them in :attr:`HullFit.fixed`
     with their evidence.
@@ -478,6 +497,7 @@ def identify_mmg(records: ManoeuvreRecord | Sequence[ManoeuvreRecord], base: Any
     -------
     HullFit
     """
+    records = _with_velocities(records, float(getattr(base, "params", base).length))
     fit = regress_hull(records, base, method=method)
     if output_error:
         fit = refine_mmg(fit, records)
@@ -485,6 +505,12 @@ def identify_mmg(records: ManoeuvreRecord | Sequence[ManoeuvreRecord], base: Any
     if not bad:
         return fit
     keep = [n for n in fit.names if n not in bad]
+    if not keep:
+        raise ParameterError(
+            "the records identify none of the hull derivatives (e.g. "
+            + "; ".join(f"{k}: {v}" for k, v in list(bad.items())[:3])
+            + "): give records with more manoeuvring (zig-zags and turns to both sides), or "
+            "measured velocities", field="records")
     start = fit.params.replace(**{n: float(getattr(base.params, n)) for n in bad})
     if output_error:
         sub = refine_mmg(start, records, names=keep)
