@@ -218,3 +218,17 @@ def test_cli_identify_nomoto_bad_input(tmp_path, args, message):
     res = run("identify", "nomoto", *args, "--speed", "7")
     assert res.exit_code == 2, res.output
     assert message in res.output
+
+
+def test_cli_imo_probabilities_given_the_identification(tmp_path):
+    rec = synthetic(5)
+    path = write_csv(tmp_path / "zz.csv", ("time", "rudder_angle", "heading"),
+                     zip(rec.time, np.degrees(rec.rudder_angle), np.degrees(rec.heading)))
+    res = run("identify", "nomoto", str(path), "--imo", "8", "--seed", "1", "--speed", "7",
+              "--length", "150", "--json")
+    assert res.exit_code == 0, res.output
+    imo = json.loads(res.stdout)["imo"]
+    assert imo["total"] + imo["excluded"] == 8 and 0.0 <= imo["probability"] <= 1.0
+    assert {r["criterion"] for r in imo["criteria"]} >= {"advance", "tactical diameter"}
+    bad = run("identify", "nomoto", str(path), "--imo", "8")
+    assert bad.exit_code == 2 and "`--imo` needs `--speed` and `--length`" in bad.output

@@ -7,7 +7,7 @@ from types import ModuleType
 
 from .errors import MissingDependencyError
 
-_EXTRAS = {"control": "control", "distributed": "dask", "dask": "dask"}
+_EXTRAS = {"control": "control", "distributed": "dask", "dask": "dask", "emcee": "mcmc"}
 
 
 def optional_import(module: str, *, extra: str | None = None, purpose: str = "") -> ModuleType:

@@ -41,6 +41,7 @@ _UNITS = {"a": "s²/rad", "b": "s", "c": "s/rad", "d": "1/rad"}
 FitMethod = Literal["lsq", "robust", "brute"]
 FormName = Literal["paper", "exact", "paper-odd", "exact-odd"]
 AngleUnit = Literal["deg", "rad"]
+PosteriorName = Literal["laplace", "mcmc"]
 
 
 @app.callback()
@@ -200,6 +201,12 @@ def nomoto(
     plot: Annotated[Optional[Path], typer.Option(
         "--plot", metavar="FIT.png", help="Draw measured and fitted output and the residuals.")]
     = None,
+    imo: Annotated[int, typer.Option(
+        "--imo", metavar="N", help="Draw N ships from the posterior and give the probability of "
+        "passing each IMO criterion (needs --speed, --length; 0: no).", min=0)] = 0,
+    posterior: Annotated[PosteriorName, typer.Option(
+        "--posterior", help="Posterior of --imo: the Laplace Gaussian or MCMC (emcee, "
+        "the extra seahelm[mcmc]).")] = "laplace",
     json_out: JsonFlag = False,
 ) -> None:
     """Identify Nomoto K, T (or K, T1, T2, T3) and the rudder offset from manoeuvre records."""
@@ -237,10 +244,57 @@ def nomoto(
         from ..plotting.identification import plot_nomoto_fit
 
         payload["plot"] = str(plot_nomoto_fit(fit, records, plot))
+    if imo:
+        payload["imo"] = _imo_given_fit(fit, records, imo, posterior, seed, speed, length,
+                                        max_rudder, rudder_rate, level)
     if json_out:
         print_json(payload)
         return
     _print_nomoto(fit, payload, level)
+    if imo:
+        _print_imo_probabilities(payload["imo"])
+
+
+def _imo_given_fit(fit: Any, records: Any, n: int, posterior: str, seed: int | None,
+                   speed: float | None, length: float | None, max_rudder: float,
+                   rudder_rate: float, level: float) -> dict[str, Any]:
+    from ..analysis.imo_probability import imo_probabilities
+    from ..analysis.nomoto_posterior import posterior_samples, posterior_ships
+    from ..errors import ParameterError
+
+    if speed is None or length is None:
+        raise ParameterError("`--imo` needs `--speed` and `--length` (the ship's U [m/s] and "
+                             "L [m]: the IMO limits are in ship lengths and L/V)")
+    bad = {k for k in fit.unidentifiable() if k != "rudder_offset"}
+    if bad:
+        raise ParameterError(f"`--imo`: the records do not identify {', '.join(sorted(bad))}; "
+                             "no posterior to draw ships from (fit the other --order)")
+    samples = posterior_samples(fit, records, n=n, method=posterior, seed=seed)
+    ships = posterior_ships(fit, samples, name="posterior", speed=speed, length=length,
+                            max_rudder=math.radians(max_rudder),
+                            rudder_rate=math.radians(rudder_rate))
+    out = imo_probabilities(ships, level=level).as_dict()
+    out.update(samples=n, posterior=posterior, seed=seed)
+    return out
+
+
+def _print_imo_probabilities(p: dict[str, Any]) -> None:
+    from rich.markup import escape
+    from rich.table import Table
+
+    level = 100 * p["confidence_level"]
+    table = Table("criterion", "side", "median", "limit", "P(pass)", f"{level:g} % interval",
+                  title=escape(f"IMO MSC.137(76) given the identification: {p['total']} "
+                               f"ships from the {p['posterior']} posterior"),
+                  title_justify="left")
+    for r in p["criteria"]:
+        table.add_row(escape(f"{r['ability']}: {r['criterion']}"), r["side"],
+                      f"{r['median']:.3g} {r['unit']}", f"{r['limit']:.4g}",
+                      f"{r['probability']:.3f}", f"{r['ci_low']:.3f} .. {r['ci_high']:.3f}")
+    console.print(table)
+    console.print(f"all evaluated criteria: P(pass) = {p['probability']:.3f} "
+                  f"({p['ci_low']:.3f} .. {p['ci_high']:.3f}, Wilson); {p['excluded']} "
+                  f"incomplete run(s) excluded; {p['note']}", highlight=False, soft_wrap=True)
 
 
 def _write_ship(fit: Any, records: Any, out: Path, speed: float | None, length: float | None,

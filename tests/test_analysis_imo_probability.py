@@ -1,0 +1,83 @@
+"""Posteriors of identified Nomoto models and IMO pass probabilities over an ensemble
+(issue 30, item 4)."""
+
+from __future__ import annotations
+
+
+import numpy as np
+import pytest
+
+from seahelm.analysis.imo import imo_check
+from seahelm.analysis.imo_probability import imo_probabilities, wilson_interval
+from seahelm.analysis.nomoto_fit import fit_nomoto
+from seahelm.analysis.nomoto_posterior import posterior_samples, posterior_ships
+from seahelm.errors import ParameterError
+
+from test_analysis_nomoto_fit import synthetic
+
+
+def test_wilson_interval_known_values():
+    assert wilson_interval(0, 10) == pytest.approx((0.0, 0.2775), abs=1e-4)
+    assert wilson_interval(10, 10) == pytest.approx((0.7225, 1.0), abs=1e-4)
+    lo, hi = wilson_interval(50, 100)
+    assert lo == pytest.approx(0.4038, abs=1e-4) and hi == pytest.approx(0.5962, abs=1e-4)
+
+
+@pytest.fixture(scope="module")
+def fit_and_record():
+    rec = synthetic(3)
+    return fit_nomoto(rec), rec
+
+
+def test_laplace_samples_have_the_fit_mean_and_covariance(fit_and_record):
+    fit, _ = fit_and_record
+    s = posterior_samples(fit, n=20_000, seed=2)
+    assert np.all(np.abs(s.mean(0) - fit.values) < 0.03 * fit.standard_errors)
+    np.testing.assert_allclose(s.std(0), fit.standard_errors, rtol=0.03)
+    assert np.all(s[:, :2] > 0)
+
+
+def test_mcmc_agrees_with_laplace_for_a_well_identified_model(fit_and_record):
+    """First-order model, 0.2° noise: the posterior is nearly Gaussian, so the ensemble
+    sampler's spread matches the Laplace standard errors (within 25 %) — with the records'
+    initial states sampled too."""
+    fit, rec = fit_and_record
+    s = posterior_samples(fit, [rec], n=600, method="mcmc", seed=1, walkers=16, burn=150)
+    assert s.shape == (600, 3)
+    np.testing.assert_allclose(s.std(0), fit.standard_errors, rtol=0.25)
+    assert np.all(np.abs(s.mean(0) - fit.values) < 2 * fit.standard_errors)
+
+
+@pytest.mark.parametrize("kwargs, field", [({"method": "bayes"}, "method"), ({"n": 0}, "n")])
+def test_posterior_bad_arguments(fit_and_record, kwargs, field):
+    with pytest.raises(ParameterError) as info:
+        posterior_samples(fit_and_record[0], **kwargs)
+    assert info.value.field == field
+
+
+def test_ensemble_probabilities_equal_single_checks(fit_and_record):
+    """Six Nomoto ships whose gain makes the tactical diameter cross the 5 L limit: the batched
+    ensemble's per-criterion pass counts equal the single IMO checks' verdicts."""
+    fit, _ = fit_and_record
+    samples = np.array([[k, 30.0, 0.0] for k in (0.004, 0.006, 0.008, 0.012, 0.02, 0.04)])
+    ships = posterior_ships(fit, samples, name="g", speed=7.0, length=150.0)
+    ens = imo_probabilities(ships)
+    td = [r for r in ens.rows if r["criterion"] == "tactical diameter"
+          and r["side"] == "starboard"][0]
+    singles = [imo_check(s) for s in ships]
+    single_td = [next(c for c in rep.criteria if c.criterion == "tactical diameter"
+                      and c.side == "starboard") for rep in singles]
+    assert td["passed"] == sum(c.status == "pass" for c in single_td)
+    assert 0 < td["passed"] < 6  # the ensemble straddles the limit
+    assert ens.total == 6 and ens.excluded == 0
+    every = sum(all(c.status == "pass" for c in rep.criteria
+                    if c.status in ("pass", "fail")) for rep in singles)
+    assert ens.passed == every
+
+
+def test_ensemble_needs_one_length(fit_and_record):
+    fit, _ = fit_and_record
+    a = posterior_ships(fit, np.array([[0.05, 30.0, 0.0]]), name="a", speed=7, length=150)
+    b = posterior_ships(fit, np.array([[0.05, 30.0, 0.0]]), name="b", speed=7, length=100)
+    with pytest.raises(ParameterError, match="share their length"):
+        imo_probabilities(a + b)
