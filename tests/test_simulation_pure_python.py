@@ -39,6 +39,7 @@ from seahelm.vessels.catamaran import CatamaranServoParams, paper_params
 from seahelm.vessels.cpp_ship import CPPShipParams
 from seahelm.vessels.mariner import MARINER_NONLINEAR, MARINER_SERVO
 from seahelm.vessels.mmg import KVLCC2_L7, KVLCC2_L7_SERVO, KVLCC2_L7_WP0_035
+from seahelm.vessels.mmg_four_quadrant import KVLCC2_L7_4Q
 from seahelm.vessels.nomoto import Nomoto1Params, Nomoto2Params
 from seahelm.vessels.voitkunsky import MARINER_VOITKUNSKY
 
@@ -99,6 +100,12 @@ CASES = {
         controller=OPEN_LOOP,
         reference={"rudder_command": np.radians([35.0, -20.0]).reshape(2, 1, 1),
                    "propeller_rps": RPS_L7}),
+    "mmg-4q": lambda: dict(  # a crash stop: full astern ordered from the approach
+        params=[KVLCC2_L7_4Q, KVLCC2_L7_4Q.replace(backing_side_force=0.1)],
+        x0=np.array([U0_L7, 0, 0, 0, 0, 0, RPS_L7]), t_final=2.0, dt=0.1,
+        actuator=RUDDER_SERVO, actuator_params=KVLCC2_L7_SERVO, controller=OPEN_LOOP,
+        reference={"rudder_command": np.radians([0.0, 10.0]).reshape(2, 1, 1),
+                   "engine_order": -1.0}),
     "mariner": lambda: dict(
         params=MARINER_NONLINEAR, x0=np.zeros(6), t_final=2.0, dt=0.1, actuator=RUDDER_SERVO,
         actuator_params=MARINER_SERVO, controller=OPEN_LOOP,

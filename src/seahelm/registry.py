@@ -29,6 +29,7 @@ VESSEL_MODELS: dict[str, str] = {
     "cpp-ship-calm": "seahelm.vessels.cpp_ship:CPP_SHIP_CALM",
     "cpp-ship-waves": "seahelm.vessels.cpp_ship:CPP_SHIP_WAVES",
     "mmg": "seahelm.vessels.mmg:MMG",
+    "mmg-4q": "seahelm.vessels.mmg_four_quadrant:MMG_4Q",
     "mariner": "seahelm.vessels.mariner:MARINER",
 }
 

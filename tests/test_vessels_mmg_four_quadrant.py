@@ -1,0 +1,91 @@
+"""Four-quadrant MMG model (mmg-4q): engine and shaft, equality with mmg ahead, crash stop."""
+
+import math
+
+import numpy as np
+import pytest
+
+from seahelm.actuators.servo import RUDDER_SERVO
+from seahelm.control.open_loop import OPEN_LOOP
+from seahelm.errors import ParameterError
+from seahelm.registry import get_model
+from seahelm.simulation.engine import simulate
+from seahelm.vessels.mmg import KVLCC2_FULL, KVLCC2_FULL_SERVO, MMG
+from seahelm.vessels.mmg_four_quadrant import (
+    KVLCC2_FULL_4Q,
+    KVLCC2_L7_4Q,
+    MMG_4Q,
+    from_mmg,
+    self_propulsion_rps,
+)
+
+@pytest.mark.parametrize("field, value", [("reversal_time", 0.0), ("max_power", -1.0),
+                                          ("astern_rps", 1.2)])
+def test_bad_engine_fields_of_a_ship(field, value):
+    with pytest.raises(ParameterError, match=field):
+        from_mmg(KVLCC2_FULL, **{field: value})
+
+
+def test_registry_and_catalog_estimates():
+    assert get_model("mmg-4q") is MMG_4Q
+    p = KVLCC2_FULL_4Q
+    n_sp = self_propulsion_rps(KVLCC2_FULL, KVLCC2_FULL.approach_speed)
+    assert p.rated_rps == pytest.approx(n_sp / 0.85 ** (1 / 3))
+    assert p.astern_rps < 0.0 < p.reversal_rps < p.rated_rps
+    # the L7 is close to the Froude-scaled full-scale ship (same coefficients, fresh water)
+    assert KVLCC2_L7_4Q.rated_rps == pytest.approx(p.rated_rps * math.sqrt(45.7), rel=0.01)
+
+
+def _states(n):
+    rng = np.random.default_rng(3)
+    u = rng.uniform(2.0, 8.0, 20)
+    return np.column_stack([u, rng.uniform(-1, 1, 20), rng.uniform(-0.01, 0.01, 20),
+                            np.zeros(20), np.zeros(20), rng.uniform(-3, 3, 20),
+                            np.full(20, n)])
+
+
+def test_ahead_derivative_equals_mmg_bit_for_bit():
+    n = self_propulsion_rps(KVLCC2_FULL, KVLCC2_FULL.approach_speed)
+    x = _states(n)
+    delta = np.linspace(-0.6, 0.6, 20)
+    d_mmg = MMG.derivative(0.0, x[:, :6], np.column_stack([delta, np.full(20, n)]),
+                           KVLCC2_FULL)
+    order = n / KVLCC2_FULL_4Q.rated_rps
+    d_4q = MMG_4Q.derivative(0.0, x, np.column_stack([delta, np.full(20, order)]),
+                             KVLCC2_FULL_4Q)
+    np.testing.assert_array_equal(d_4q[:, :6], d_mmg)
+    np.testing.assert_allclose(d_4q[:, 6], 0.0, atol=1e-12)  # governor holds the rps
+
+
+def _run(model, params, x0, ref, t_final=600.0, dt=1.0):
+    return simulate(model, params, x0, t_final=t_final, dt=dt, actuator=RUDDER_SERVO,
+                    actuator_params=KVLCC2_FULL_SERVO, actuator_x0=[0.0],
+                    controller=OPEN_LOOP, reference=ref, record_every=10)
+
+
+@pytest.mark.parametrize("rudder", [math.radians(35.0), math.radians(-10.0)])
+def test_turning_circle_equals_mmg(rudder):
+    U0 = KVLCC2_FULL.approach_speed
+    n = self_propulsion_rps(KVLCC2_FULL, U0)
+    a = _run(MMG, KVLCC2_FULL, [U0, 0, 0, 0, 0, 0],
+             {"rudder_command": rudder, "propeller_rps": n})
+    b = _run(MMG_4Q, KVLCC2_FULL_4Q, [U0, 0, 0, 0, 0, 0, n],
+             {"rudder_command": rudder, "engine_order": n / KVLCC2_FULL_4Q.rated_rps})
+    for name in ("north", "east", "heading", "surge_speed"):
+        scale = 1.0 + np.abs(a[name]).max()
+        np.testing.assert_allclose(b[name], a[name], rtol=0, atol=1e-9 * scale)
+
+
+def test_crash_stop_comes_to_rest_and_reverses_the_shaft():
+    p = KVLCC2_FULL_4Q
+    U0 = p.approach_speed
+    n = self_propulsion_rps(p, U0)
+    r = _run(MMG_4Q, p, [U0, 0, 0, 0, 0, 0, n], {"rudder_command": 0.0, "engine_order": -1.0},
+             t_final=2400.0)
+    u = r["surge_speed"][0]
+    rps = r["propeller_rps"][0]
+    assert rps[-1] == pytest.approx(p.astern_rps, rel=1e-3)
+    assert np.any(u <= 0.0)  # dead in the water, then astern
+    k = int(np.argmax(u <= 0.0))
+    reach = r["north"][0, k]
+    assert 0.0 < reach < 20 * p.length
