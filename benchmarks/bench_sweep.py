@@ -50,9 +50,9 @@ def scenario(runs: int, seed: int = 1) -> str:
 
 
 def _clear() -> None:
-    from seahelm.analysis.maneuvers.ships import _approach
+    from seahelm.analysis.maneuvers.ships import clear_approaches
 
-    _approach.cache_clear()
+    clear_approaches()
 
 
 def _forget_approaches(client) -> None:

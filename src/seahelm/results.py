@@ -50,7 +50,8 @@ __all__ = ["SimResult", "atomic_write", "write_together", "write_netcdf", "netcd
            "open_result_file", "load_result", "flatten_runs", "batch_dims",
            "CorruptResultError"]
 
-_STATUS_TEXT = {0: "ok", 1: "diverged: non-finite state", 2: "diverged: state out of bounds"}
+_STATUS_TEXT = {0: "ok", 1: "diverged: non-finite state", 2: "diverged: state out of bounds",
+                3: "not run: no initial state (its steady approach was not found)"}
 
 
 _TOGETHER: "contextvars.ContextVar[list[tuple[str, Path]] | None]" = contextvars.ContextVar(
@@ -251,7 +252,7 @@ class SimResult:
         """One line per run: 'ok' or what diverged and when."""
         out = []
         for s, t in zip(self.status, self.failure_time):
-            out.append(_STATUS_TEXT[int(s)] + ("" if s == 0 else f" at t = {t:.6g} s"))
+            out.append(_STATUS_TEXT[int(s)] + ("" if s == 0 or s == 3 else f" at t = {t:.6g} s"))
         return out
 
     def __getitem__(self, label: str) -> np.ndarray:
@@ -334,8 +335,9 @@ class SimResult:
                                                    attrs)
                     i += 1
         data["status"] = ("run", self.status.astype(np.int64),
-                          {"flag_values": "0 1 2",
-                           "flag_meanings": "ok diverged_nonfinite diverged_out_of_bounds"})
+                          {"flag_values": "0 1 2 3",
+                           "flag_meanings": "ok diverged_nonfinite diverged_out_of_bounds "
+                                            "not_run"})
         data["failure_time"] = ("run", self.failure_time, {"units": "s"})
         data["status_message"] = ("run", np.array(self.messages(), dtype=object))
         layout = self.layout

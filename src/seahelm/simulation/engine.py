@@ -85,6 +85,9 @@ class RunStatus(enum.IntEnum):
     OK = 0
     NONFINITE = 1
     OUT_OF_BOUNDS = 2
+    NOT_RUN = 3
+    """Left out of the batch: its initial state could not be found (a manoeuvre whose steady
+    approach failed; the engine itself never sets it)."""
 
 
 # ------------------------------------------------------------------------------------------

@@ -57,6 +57,7 @@ from .ships import (  # re-exported: the manoeuvres and tests import them from h
     usual_time_step,
     Approach,
     steady_approach,
+    steady_approaches,
     _identified_near,
     _straight_run_speed,
 )
@@ -148,21 +149,9 @@ class Plan:
                               is_dim=False)
             speeds = np.array([[s.approach_speed] for s in self.ships])
         self.approaches: dict[tuple[int, int], Approach] = {}
-        for i, s in enumerate(self.ships):
-            for j, U in enumerate(speeds[i]):
-                design = s.approach_speed
-                if math.isfinite(design) and U > SPEED_VALIDITY * design:
-                    warnings.warn(
-                        f"approach speed {U:.4g} m/s is {U / design:.3g} x the speed of "
-                        f"'{s.name}''s parameter set ({design:.4g} m/s): its hydrodynamic "
-                        "coefficients were identified near that speed", ValidityRangeWarning,
-                        stacklevel=3)
-                try:
-                    self.approaches[(i, j)] = steady_approach(s.model, s.params, float(U))
-                except EquilibriumError as exc:
-                    raise EquilibriumError(
-                        f": no straight approach of '{s.name}' at {U:.6g} m/s "
-                        f"({exc}){_identified_near(s)}", field="speed") from None
+        #: (ship, speed) -> why its approach was not found; its runs are left out of the batch
+        self.failed: dict[tuple[int, int], str] = {}
+        self._solve_approaches(speeds, ship_dim)
         if not speed_axis.is_dim and n_ships == 1:
             speed_axis.values = speeds[0].copy()
         self.axes = [ship_axis, speed_axis, *axes]
@@ -173,7 +162,58 @@ class Plan:
         self.index = [dict(zip(names, idx)) for idx in itertools.product(
             *(range(n) for n in self.shape))]
 
+    def _solve_approaches(self, speeds: np.ndarray, ship_dim: bool) -> None:
+        """Every (ship, speed)'s steady approach in one batch (:func:`steady_approaches`).
+
+        A batch of ships records a ship's failure in :attr:`failed` (its runs are not
+        simulated, their metrics are NaN and their message the reason) and gives it a stand-in
+        approach that is never run; a single ship's failure, or every ship's, raises.
+        """
+        keys = []
+        for i, s in enumerate(self.ships):
+            design = s.approach_speed
+            for j, U in enumerate(speeds[i]):
+                if math.isfinite(design) and U > SPEED_VALIDITY * design:
+                    warnings.warn(
+                        f"approach speed {U:.4g} m/s is {U / design:.3g} x the speed of "
+                        f"'{s.name}''s parameter set ({design:.4g} m/s): its hydrodynamic "
+                        "coefficients were identified near that speed", ValidityRangeWarning,
+                        stacklevel=4)
+                keys.append((i, j))
+        solved = steady_approaches(self.model, [self.ships[i].params for i, _ in keys],
+                                   [float(speeds[i][j]) for i, j in keys])
+        for (i, j), a in zip(keys, solved):
+            if isinstance(a, Approach):
+                self.approaches[(i, j)] = a
+                continue
+            s, U = self.ships[i], float(speeds[i][j])
+            why = f"no straight approach of '{s.name}' at {U:.6g} m/s ({a})"
+            if not ship_dim or len(self.failed) + 1 == len(keys):
+                every = "" if not ship_dim else f"none of the {len(keys)} approaches: "
+                raise EquilibriumError(f": {every}{why}{_identified_near(s)}",
+                                       field="speed")
+            self.failed[(i, j)] = why
+        if self.failed:
+            stand_in = next(iter(self.approaches.values()))
+            for (i, j) in self.failed:
+                self.approaches[(i, j)] = stand_in._replace(speed=float(speeds[i][j]))
+
     # -- per run ------------------------------------------------------------------------
+    @functools.cached_property
+    def run_ok(self) -> np.ndarray:
+        """Whether each run's approach was found (False: left out of the batch), (runs,)."""
+        if not self.failed:
+            return np.ones(self.n_runs, dtype=bool)
+        speed_pos = self._positions[1]
+        return np.array([(i, j) not in self.failed
+                         for i, j in zip(self._positions[0].tolist(), speed_pos.tolist())])
+
+    def run_failure(self, run: int) -> str | None:
+        """Why run ``run``'s approach was not found (None if it was)."""
+        i = self.index[run]
+        return self.failed.get((i["ship"], i["approach_speed" if "approach_speed" in i
+                                            else "approach_rps"]))
+
     @property
     def n_runs(self) -> int:
         return len(self.index)
@@ -248,21 +288,29 @@ class Plan:
         if dims:
             layout = BatchLayout(axes=tuple(
                 BatchAxis(name=a.name, values=a.values, units=a.units) for a in dims))
+        runs = np.arange(self.n_runs)
+        extra = _conditions_kwargs(conditions, self.model)
+        if self.failed:  # only the runs with an approach (scattered back below)
+            runs = np.flatnonzero(self.run_ok)
+            x0, actuator_x0, reference, controller_params, extra = (
+                _select_runs(v, runs, self.n_runs)
+                for v in (x0, actuator_x0, reference, controller_params, extra))
         # (the engine uses no more threads than runs, so a small batch wakes no idle thread)
         batch = RunBatch(
             model=self.model,
             params=(self.ships[0].params if len(self.ships) == 1
-                    else [self.ship(i).params for i in range(self.n_runs)]),
+                    else [self.ship(i).params for i in runs.tolist()]),
             x0=x0, t_final=t_final, dt=dt, actuator=RUDDER_SERVO,
             actuator_params=(self.ships[0].servo if len(self.ships) == 1
-                             else [self.ship(i).servo for i in range(self.n_runs)]),
+                             else [self.ship(i).servo for i in runs.tolist()]),
             actuator_x0=actuator_x0, controller=controller,
             controller_params=controller_params, reference=reference,
             controller_dt=controller_every * dt,
-            record_every=record_every, metadata=dict(metadata or {}), layout=layout,
-            **_conditions_kwargs(conditions, self.model))
+            record_every=record_every, metadata=dict(metadata or {}),
+            layout=None if self.failed else layout, **extra)
         try:
-            return simulate_batch(batch)
+            result = simulate_batch(batch)
+            return _scatter_runs(result, runs, self.n_runs, layout) if self.failed else result
         except RecordingTooLarge as exc:  # name the manoeuvre's options, not the engine's
             slowest = min(a.speed for a in self.approaches.values())
             raise ParameterError(
@@ -294,8 +342,11 @@ class Plan:
         data = {}
         grid_dims: tuple[str, ...] = self.dims
         grid_shape = self.dim_shape
+        failed = np.flatnonzero(~self.run_ok) if self.failed else None
         for name, (values, units, long_name) in variables.items():
             arr = np.asarray(values)
+            if failed is not None and arr.shape[:1] == (self.n_runs,):
+                arr = _mask_failed(self, name, arr, failed)
             if arr.dtype == object:
                 arr = arr.astype(str)
             dims, shape = grid_dims, grid_shape
@@ -345,6 +396,56 @@ class Plan:
     def run_messages(self, result: "SimResult") -> list[str]:
         """'ok' or what diverged, per run."""
         return result.messages()
+
+
+def _select_runs(value: Any, runs: np.ndarray, n: int) -> Any:
+    """``value`` (an array, a list or a dict of them over the grid's runs) for ``runs`` only;
+    what does not run along the first axis (one value for all) as it is."""
+    if isinstance(value, Mapping):
+        return {k: _select_runs(v, runs, n) for k, v in value.items()}
+    if isinstance(value, list) and len(value) == n:
+        return [value[i] for i in runs.tolist()]
+    if isinstance(value, np.ndarray) and value.ndim and value.shape[0] == n and n > 1:
+        return value[runs]
+    return value
+
+
+def _scatter_runs(result: "SimResult", runs: np.ndarray, n: int, layout: Any) -> "SimResult":
+    """The result of the runs ``runs`` as a result over all ``n`` runs of the grid: the others
+    NaN, status :attr:`~seahelm.simulation.engine.RunStatus.NOT_RUN`, parameters NaN."""
+    from ...simulation.engine import RunStatus
+
+    def full(a: np.ndarray, fill: Any = np.nan) -> np.ndarray:
+        if a.shape[0] != runs.size:  # (one row for all runs)
+            return a
+        out = np.full((n,) + a.shape[1:], fill, dtype=np.result_type(a, type(fill)))
+        out[runs] = a
+        return out
+
+    return dataclasses.replace(
+        result, state=full(result.state), output=full(result.output),
+        command=full(result.command), reference=full(result.reference),
+        disturbance=full(result.disturbance),
+        status=full(result.status, int(RunStatus.NOT_RUN)).astype(result.status.dtype),
+        failure_time=full(result.failure_time), failure_state=full(result.failure_state),
+        params={k: (cls, full(np.broadcast_to(arr, (runs.size, arr.shape[-1]))))
+                for k, (cls, arr) in result.params.items()},
+        layout=layout)
+
+
+def _mask_failed(plan: "Plan", name: str, arr: np.ndarray, failed: np.ndarray) -> np.ndarray:
+    """A metric with the runs left out (no approach) as NaN / False, their message the
+    reason."""
+    out = arr.copy()
+    if name == "message":
+        out = out.astype(object)
+        for i in failed.tolist():
+            out[i] = f"not run: {plan.run_failure(i)}"
+    elif out.dtype.kind == "f":
+        out[failed] = np.nan
+    elif out.dtype.kind == "b":
+        out[failed] = False
+    return out
 
 
 def _indexless_dataset(data: Mapping[str, Any], coords: Mapping[str, Any],

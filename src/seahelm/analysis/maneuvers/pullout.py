@@ -101,6 +101,10 @@ def pull_out(ship: Any, rudder: Any = math.radians(20.0), *, sides: Any = (1, -1
         idx = plan.index[i]
         delta = float(plan.value(i, "side") * plan.value(i, "rudder"))
         key = (idx["ship"], idx.get("approach_speed", idx.get("approach_rps", 0)), delta)
+        if plan.run_failure(i) is not None:  # left out of the batch: any state
+            x0.append(plan.approach(i).state)
+            rudder0.append([delta])
+            continue
         if key not in cache:
             s, a = plan.ship(i), plan.approach(i)
             cache[key] = steady_turn_state(s.params, delta, a.rps, model=s.model,

@@ -3,6 +3,7 @@ straight approach (with the equilibrium failures named for the user)."""
 
 from __future__ import annotations
 
+import collections
 import dataclasses
 import functools
 import math
@@ -21,7 +22,6 @@ from ...ships import Ship
 from ..constant_speed import is_constant_speed
 from ..equilibrium import (
     EquilibriumError,
-    approach_state,
     straight_run_speed,
 )
 
@@ -226,23 +226,95 @@ class Approach(NamedTuple):
     speed: float
 
 
-@functools.lru_cache(maxsize=512)
-def _approach(model: VesselModel, params: Params, speed: float) -> Approach:
-    a = approach_state(params, speed, model=model, trim=True)
-    state = a.state.copy()
-    state.setflags(write=False)
-    return Approach(state, float(a.inputs["rudder_angle"]), a.inputs.get("propeller_rps"),
-                    float(speed))
+#: Steady approaches memoised per (model, parameter set, speed): parameter sets are frozen, so
+#: the equilibrium of a ship at a speed is computed once per process (least recently used out).
+_MEMO: "collections.OrderedDict[tuple[Any, ...], Approach]" = collections.OrderedDict()
+MEMO_SIZE = 512
+
+
+def clear_approaches() -> None:
+    """Forget the memoised steady approaches (a benchmark times their computation)."""
+    _MEMO.clear()
+
+
+def steady_approaches(model: VesselModel, params: Sequence[Params],
+                      speeds: Sequence[float]) -> list[Approach | str]:
+    """The trimmed straight approaches of many (parameter set, speed) pairs of one model.
+
+    Those not memoised are solved in one batch
+    (:func:`~seahelm.analysis.batch_equilibrium.approach_states`, trim rudder included); the
+    results equal :func:`~seahelm.analysis.equilibrium.approach_state` with ``trim=True`` to
+    the solvers' tolerance.
+
+    Parameters
+    ----------
+    model : VesselModel
+        The model of every parameter set.
+    params : sequence of Params
+        One parameter set per pair.
+    speeds : sequence of float
+        Approach speed U_0 [m/s] per pair.
+
+    Returns
+    -------
+    list of Approach or str
+        Per pair, the approach, or the reason it was not found (a failure is not memoised).
+
+    Raises
+    ------
+    ParameterError
+        If a speed is not > 0 or differs from a perturbation model's nominal speed.
+    """
+    from ..batch_equilibrium import approach_states
+
+    out: list[Approach | str | None] = [None] * len(params)
+    keys = [(model, p, float(U)) for p, U in zip(params, speeds)]
+    missing = []
+    for k, key in enumerate(keys):
+        hit = _MEMO.get(key)
+        if hit is None:
+            missing.append(k)
+        else:
+            _MEMO.move_to_end(key)
+            out[k] = hit
+    if missing:
+        todo = {}  # (one solve per distinct pair: a batch may repeat a ship)
+        for k in missing:
+            todo.setdefault(keys[k], []).append(k)
+        solved = approach_states(model, [key[1] for key in todo],
+                                 np.array([key[2] for key in todo]), trim=True)
+        has_rps = "propeller_rps" in model.input_labels
+        for m, (key, ks) in enumerate(todo.items()):
+            if solved.status[m] != 0:
+                for k in ks:
+                    out[k] = solved.message[m]
+                continue
+            state = solved.state[m].copy()
+            state.setflags(write=False)
+            a = Approach(state, float(solved.rudder[m]),
+                         float(solved.rps[m]) if has_rps else None, key[2])
+            _MEMO[key] = a
+            for k in ks:
+                out[k] = a
+        while len(_MEMO) > MEMO_SIZE:
+            _MEMO.popitem(last=False)
+    return out  # type: ignore[return-value]
 
 
 def steady_approach(model: VesselModel, params: Params, speed: float) -> Approach:
     """The trimmed straight approach of :func:`~seahelm.analysis.equilibrium.approach_state`.
 
-    Memoised per (model, parameter set, speed): parameter sets are frozen, so the equilibrium
-    of a ship at a speed is computed once per process (the self-propulsion rps and the trim
-    take a few tens of milliseconds, more than a short manoeuvre's simulation).
+    Memoised per (model, parameter set, speed) (:func:`steady_approaches`).
+
+    Raises
+    ------
+    EquilibriumError
+        If the approach is not found (its reason as the message).
     """
-    return _approach(model, params, float(speed))
+    a = steady_approaches(model, [params], [float(speed)])[0]
+    if isinstance(a, str):
+        raise EquilibriumError(a)
+    return a
 
 
 def _identified_near(ship: Any) -> str:

@@ -319,7 +319,7 @@ def reverse_spiral(ship: Any, yaw_rates: Any = None, *, speed: Any = None, rps: 
     width = np.full(n, np.nan)
     low = np.full(n, np.nan)
     high = np.full(n, np.nan)
-    for i in range(n):
+    for i in np.flatnonzero(plan.run_ok).tolist():
         s, a = plan.ship(i), plan.approach(i)
         if given is None:
             ends = steady_turn(s.params, np.array([-max_rudder, max_rudder]), a.rps,

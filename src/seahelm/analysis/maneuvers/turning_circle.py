@@ -159,6 +159,8 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
     if t_final is None:
         signed: dict[tuple[int, int], list[float]] = {}
         for key in plan.approaches:
+            if key in plan.failed:  # (not run)
+                continue
             signed[key] = [float(s_) * float(np.min(rudder_axis.values))
                            for s_ in side.values]
         t_final = _estimate_t_final(plan, signed, heading_change)

@@ -282,9 +282,9 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
     trig = np.array([np.atleast_1d(h)[plan.index[i]["pair"]] for i in range(n)])
     first = np.array([plan.value(i, "side") for i in range(n)], dtype=float)
     # steady yaw rate at ±δ_z per (ship, speed, pair, side): reachability and default t_final
-    rates = np.empty(n)
+    rates = np.full(n, np.nan)  # (NaN: a run left out, without an approach)
     cache: dict[tuple[int, int, float], float] = {}
-    for i in range(n):
+    for i in np.flatnonzero(plan.run_ok).tolist():
         idx = plan.index[i]
         key = (idx["ship"], idx.get("approach_speed", idx.get("approach_rps", 0)),
                float(first[i] * amp[i]))
@@ -295,7 +295,7 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
     swing = np.array([2.0 * amp[i] / plan.ship(i).servo.max_rate for i in range(n)])
     if t_final is None:
         lags = np.array([yaw_lag(plan.ship(i)) for i in range(n)])
-        t_final = float(np.max(4.0 * swing + 4.0 * 6.0 * trig / rates + 6.0 * lags))
+        t_final = float(np.nanmax(4.0 * swing + 4.0 * 6.0 * trig / rates + 6.0 * lags))
     else:
         need = 0.5 * swing + trig / rates
         bad = np.flatnonzero(need > t_final)
