@@ -9,11 +9,13 @@ Prints, for several ε:
   own converged solution (equal accuracy of the two integrations);
 and the time to compute ς(z) and h_V on a 200 × 100 direction grid. Medians of several runs.
 
-Run: ``.venv/bin/python benchmarks/bench_averaging.py``
+Run: ``.venv/bin/python benchmarks/bench_averaging.py [--quick]`` (``--quick``, the test suite's
+smoke run: one ε, a 20 × 10 grid, 1 repeat)
 """
 
 from __future__ import annotations
 
+import argparse
 import statistics
 import time
 
@@ -34,8 +36,9 @@ REPEATS = 5
 EPSILONS = (0.2, 0.1, 0.05, 0.02, 0.01)
 
 
-def median_time(fn, repeats: int = REPEATS) -> tuple[float, object]:
+def median_time(fn, repeats: int | None = None) -> tuple[float, object]:
     times, out = [], None
+    repeats = REPEATS if repeats is None else repeats
     for _ in range(repeats):
         t0 = time.perf_counter()
         out = fn()
@@ -74,7 +77,7 @@ def rk4_to_tolerance(f, t_end: float, x0: np.ndarray, reference: np.ndarray,
         ts, traj = rk4(f, t_end, x0, n)
         err = np.max(np.abs(traj[:: n // n_out].T - reference))
         if err <= target:
-            wall, _ = median_time(lambda: rk4(f, t_end, x0, n), repeats=3)
+            wall, _ = median_time(lambda: rk4(f, t_end, x0, n), repeats=min(3, REPEATS))
             return 4 * n, wall
         n *= 2
     return -1, float("nan")
@@ -82,6 +85,13 @@ def rk4_to_tolerance(f, t_end: float, x0: np.ndarray, reference: np.ndarray,
 
 def main() -> None:
     from scipy.integrate import solve_ivp
+    global REPEATS, EPSILONS
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true",
+                        help="smoke run (the test suite's): tiny sizes, 1 repeat")
+    grid = (200, 100)
+    if parser.parse_args().quick:
+        REPEATS, EPSILONS, grid = 1, (0.2,), (20, 10)
 
     print("CPP ship in waves: original eq. (10) vs averaged eq. (13) "
           f"(DOP853, rtol 1e-9, L = 2, median of {REPEATS})")
@@ -130,12 +140,12 @@ def main() -> None:
         (no, to), (na, ta) = out
         print(f"{e:6.3f} {no:11d} {na:10d} {1e3 * to:12.2f} {1e3 * ta:11.2f}")
 
-    print("\nAdmissible set V on a 200 x 100 direction grid (eq. (17)):")
-    z, _, _ = sphere_grid(200, 100)
+    print(f"\nAdmissible set V on a {grid[0]} x {grid[1]} direction grid (eq. (17)):")
+    z, _, _ = sphere_grid(*grid)
     cpp_boundary_map(z[:2, :2])
     t_v, _ = median_time(lambda: cpp_boundary_map(z))
-    print(f"  ς(z) for 20000 directions: {1e3 * t_v:.1f} ms (median of {REPEATS})")
-    t_all, res = median_time(lambda: cpp_admissible_set(), repeats=3)
+    print(f"  ς(z) for {grid[0] * grid[1]} directions: {1e3 * t_v:.1f} ms (median of {REPEATS})")
+    t_all, res = median_time(lambda: cpp_admissible_set(), repeats=min(3, REPEATS))
     print(f"  V, Y, both Hausdorff distances (refined): {1e3 * t_all:.1f} ms; "
           f"d_H(V, hull) = {res.hausdorff_V_Y:.5f}, d_H(V, printed) = "
           f"{res.hausdorff_V_Y_printed:.5f}")

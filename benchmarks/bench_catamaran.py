@@ -15,7 +15,9 @@ the first and last state), against
 
 All measured in the same run; medians of several repetitions.
 
-    python benchmarks/bench_catamaran.py [--repeats 5]
+    python benchmarks/bench_catamaran.py [--repeats 5] [--quick]
+
+``--quick`` (the test suite's smoke run): tiny sizes, 1 repeat.
 
 Targets (2 cores): ≥ 3e6 steps/s single run, ≥ 1e7 vessel-steps/s at batch 10,000.
 """
@@ -126,16 +128,21 @@ def run_fused(n_runs: int, n_steps: int) -> float:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--quick", action="store_true",
+                        help="smoke run (the test suite's): tiny sizes, 1 repeat")
     args = parser.parse_args()
+    sizes = ((1, 2_000_000), (10_000, 1_000))
+    py_steps = 5_000
+    if args.quick:
+        args.repeats, sizes, py_steps = 1, ((1, 2_000), (100, 20)), 200
     run_engine(2, 10)  # compile (or load from the kernel cache) outside the timing
     run_fused(2, 10)
     print(f"catamaran benchmark, {os.cpu_count()} cores, catamaran + eq. (21) every step, RK4, "
           f"dt = {DT} s; medians of {args.repeats} runs")
-    py_steps = 5_000
     py = statistics.median(run_python_loop(py_steps) for _ in range(args.repeats))
     py_rate = py_steps / py
     print(f"{'per-step Python loop':>32}: {py_rate:12.3e} steps/s")
-    for n_runs, n_steps in ((1, 2_000_000), (10_000, 1_000)):
+    for n_runs, n_steps in sizes:
         wall = statistics.median(run_engine(n_runs, n_steps) for _ in range(args.repeats))
         rate = n_runs * n_steps / wall
         fwall = statistics.median(run_fused(n_runs, n_steps) for _ in range(args.repeats))

@@ -4,7 +4,9 @@ Batch sizes 1, 100 and 10,000 through :func:`seahelm.simulation.engine.simulate`
 plain per-step Python loop of the same closed loop (the way most existing ship simulators run),
 measured in the same run. Prints medians of several repetitions and the ratios.
 
-    python benchmarks/bench_engine.py [--repeats 5]
+    python benchmarks/bench_engine.py [--repeats 5] [--quick]
+
+``--quick`` (the test suite's smoke run): tiny batches and step counts, 1 repeat.
 """
 
 from __future__ import annotations
@@ -70,15 +72,20 @@ def run_python_loop(n_steps: int) -> float:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--quick", action="store_true",
+                        help="smoke run (the test suite's): tiny sizes, 1 repeat")
     args = parser.parse_args()
+    sizes = ((1, 2_000_000), (100, 200_000), (10_000, 5_000))
+    py_steps = 20_000
+    if args.quick:
+        args.repeats, sizes, py_steps = 1, ((1, 2_000), (10, 200), (100, 50)), 500
     run_engine(2, 10)  # compile (or load from the kernel cache) outside the timing
     print(f"seahelm engine benchmark, {os.cpu_count()} cores, Nomoto-2 + servo + PID, RK4, "
           f"dt = {DT} s; medians of {args.repeats} runs")
-    py_steps = 20_000
     py = statistics.median(run_python_loop(py_steps) for _ in range(args.repeats))
     py_rate = py_steps / py
     print(f"{'per-step Python loop':>28}: {py_rate:12.3e} steps/s")
-    for n_runs, n_steps in ((1, 2_000_000), (100, 200_000), (10_000, 5_000)):
+    for n_runs, n_steps in sizes:
         wall = statistics.median(run_engine(n_runs, n_steps) for _ in range(args.repeats))
         rate = n_runs * n_steps / wall
         print(f"{'engine, batch ' + format(n_runs, ','):>28}: {rate:12.3e} vessel-steps/s "

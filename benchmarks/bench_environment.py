@@ -47,7 +47,11 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=1000, help="vessels in the batch (default 1000)")
     ap.add_argument("--repeats", type=int, default=5, help="timed repeats (default 5)")
+    ap.add_argument("--quick", action="store_true",
+                    help="smoke run (the test suite's): tiny sizes, 1 repeat")
     args = ap.parse_args()
+    if args.quick:
+        args.runs, args.repeats = 4, 1
 
     app = approach_state(KVLCC2_FULL, 7.97)
     gains = PIDHeadingRpsParams(kp=4.0, ki=0.004, kd=120.0,

@@ -7,7 +7,9 @@ runs at the speed of the catalog MMG ship (the same compiled kernel).
 2. 1,000 turning circles in one batch (500 rudder angles 20°–35° × both sides, 1 s records)
    of the estimated KVLCC2 L7 against the catalog ``kvlcc2-l7``: the medians and their ratio.
 
-    python benchmarks/bench_estimate.py [--repeats 5]
+    python benchmarks/bench_estimate.py [--repeats 5] [--quick]
+
+``--quick`` (the test suite's smoke run): 1 repeat of 2 estimates, 10 turning circles.
 """
 
 from __future__ import annotations
@@ -48,24 +50,31 @@ def _median(fn, repeats: int) -> float:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--quick", action="store_true",
+                        help="smoke run (the test suite's): tiny sizes, 1 repeat")
     args = parser.parse_args()
+    per_rep, n_rudders = 20, 500
+    if args.quick:
+        args.repeats, per_rep, n_rudders = 1, 2, 5
     warnings.simplefilter("ignore")
 
     estimate_ship(CARGO)  # warm the imports
-    per = _median(lambda: [estimate_ship(CARGO) for _ in range(20)], args.repeats) / 20
+    per = _median(lambda: [estimate_ship(CARGO) for _ in range(per_rep)],
+                  args.repeats) / per_rep
     print(f"estimate_ship (in-process, warm): {per * 1e3:.2f} ms per ship "
-          f"(median of {args.repeats} x 20)")
+          f"(median of {args.repeats} x {per_rep})")
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "my.toml")
         cmd = [sys.executable, "-m", "seahelm", "ship", "estimate", "--length", "120", "--beam",
                "18", "--draft", "7", "--cb", "0.7", "--speed", "6.5", "-o", out, "--force"]
-        subprocess.run(cmd, check=True, capture_output=True)  # warm the caches
+        if not args.quick:
+            subprocess.run(cmd, check=True, capture_output=True)  # warm the caches
         cli = _median(lambda: subprocess.run(cmd, check=True, capture_output=True),
                       args.repeats)
     print(f"seahelm ship estimate ... -o FILE (new interpreter): {cli:.2f} s "
           f"(median of {args.repeats}; target < 1 s)")
 
-    rudders = np.radians(np.linspace(20.0, 35.0, 500))
+    rudders = np.radians(np.linspace(20.0, 35.0, n_rudders))
     ships = {"catalog kvlcc2-l7": get_ship("kvlcc2-l7"), "estimated L7": estimate_ship(L7)}
     runs = {}
     for name, ship in ships.items():
@@ -81,7 +90,8 @@ def main() -> None:
             samples[name].append(time.perf_counter() - t0)
     times = {name: statistics.median(v) for name, v in samples.items()}
     for name, t in times.items():
-        print(f"1,000 turning circles, {name}: {t:.3f} s (median of {args.repeats})")
+        print(f"{2 * n_rudders:,} turning circles, {name}: {t:.3f} s (median of "
+              f"{args.repeats})")
     ratio = times["estimated L7"] / times["catalog kvlcc2-l7"]
     print(f"estimated / catalog: {ratio:.2f} (same kernel: ~1 expected)")
 

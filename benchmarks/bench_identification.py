@@ -8,11 +8,13 @@ data alone — and a grid of n_grid³ points (squared criterion); least squares 
 but the data.
 
 Prints the median wall time of several runs of each, the speed-up, and the largest relative
-coefficient error of each. Run: ``python benchmarks/bench_identification.py``.
+coefficient error of each. Run: ``python benchmarks/bench_identification.py`` (``--quick``, the
+test suite's smoke run: one grid, 2 seeds, 1 repeat).
 """
 
 from __future__ import annotations
 
+import argparse
 import math
 import statistics
 import time
@@ -49,20 +51,26 @@ def _err(coef: np.ndarray) -> float:
 
 
 def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true",
+                        help="smoke run (the test suite's): tiny sizes, 1 repeat")
+    quick = parser.parse_args().quick
+    grids = (("truth", 51), ("truth", 101), ("truth", 201), ("data", 101), ("data", 201))
+    lsq_repeats, bf_repeats, seeds = 300, 7, range(1, 21)
+    if quick:
+        grids, lsq_repeats, bf_repeats, seeds = (("truth", 21),), 3, 1, range(1, 3)
     # a generous box that does not put the truth on a grid node
     bounds = [(v - 0.2713 * abs(v), v + 0.3291 * abs(v)) for v in TRUTH]
     fit_lsq(*_points(6, False))  # warm up imports
     print(f"{'data':<8}{'box':<7}{'n_grid':>7}{'lsq [s]':>11}{'brute [s]':>11}{'speed-up':>10}"
           f"{'lsq err':>10}{'brute err':>11}{'brute-lsq':>11}")
-    seeds = range(1, 21)
     for noise in (False, True):
         w, al = _points(6, noise)
-        t_lsq, _ = _median_time(lambda: fit_lsq(w, al), 300)
-        for box, n_grid in (("truth", 51), ("truth", 101), ("truth", 201), ("data", 101),
-                             ("data", 201)):
+        t_lsq, _ = _median_time(lambda: fit_lsq(w, al), lsq_repeats)
+        for box, n_grid in grids:
             bd = bounds if box == "truth" else None
             t_bf, _ = _median_time(
-                lambda: fit_brute_force(w, al, bounds=bd, n_grid=n_grid), 7)
+                lambda: fit_brute_force(w, al, bounds=bd, n_grid=n_grid), bf_repeats)
             errs = []
             for seed in (seeds if noise else [0]):
                 ws, als = _points(6, noise, seed)

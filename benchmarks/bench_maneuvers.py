@@ -22,7 +22,10 @@ message and seahelm's figures are still printed. Then seahelm runs 1,000 circles
 (500 rudder angles from 20° to 35° × both sides, recorded every second) and the time is set
 against shipmmg's for 10 circles. Medians of ``--repeats`` runs; the ratios are within one run.
 
-    python benchmarks/bench_maneuvers.py [--repeats 5] [--shipmmg-python PATH]
+    python benchmarks/bench_maneuvers.py [--repeats 5] [--shipmmg-python PATH] [--quick]
+
+``--quick`` (the test suite's smoke run): steps 0.5 and 0.25 s, 20 circles in the batch,
+1 repeat, no shipmmg.
 """
 
 from __future__ import annotations
@@ -141,7 +144,13 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--shipmmg-python", default=os.environ.get(
         "SHIPMMG_PYTHON", "/tmp/venv-shipmmg/bin/python"))
+    parser.add_argument("--quick", action="store_true",
+                        help="smoke run (the test suite's): tiny sizes, 1 repeat")
     args = parser.parse_args()
+    steps, n_rudders = SEAHELM_STEPS, 500
+    if args.quick:
+        args.repeats, steps, n_rudders = 1, (0.5, 0.25), 10
+        args.shipmmg_python = "(none: --quick)"
     rps = float(self_propulsion_rps(KVLCC2_L7, U0))
     seahelm_circle(0.2)  # compile (or load) the kernel and the approach outside the timing
     print(f"KVLCC2 L7, 35 deg starboard turning circle, {T_FINAL:g} s, U0 = {U0} m/s, "
@@ -152,7 +161,7 @@ def main() -> None:
     # -- seahelm: step by accuracy -------------------------------------------------------
     print("seahelm (RK4, fixed step): advance / tactical diameter against a run at dt/4")
     chosen = None
-    for dt in SEAHELM_STEPS:
+    for dt in steps:
         a, td, _ = seahelm_circle(dt)
         a4, td4, _ = seahelm_circle(dt / 4)
         ea, etd = rel(a, a4), rel(td, td4)
@@ -168,7 +177,7 @@ def main() -> None:
           "compiled run, metrics)")
 
     # -- seahelm: 1,000 circles in one batch ---------------------------------------------
-    rudders = np.radians(np.linspace(20.0, 35.0, 500))
+    rudders = np.radians(np.linspace(20.0, 35.0, n_rudders))
     batch_times = []
     for _ in range(max(1, args.repeats // 2)):
         t0 = time.perf_counter()
@@ -178,9 +187,11 @@ def main() -> None:
         adv35, td35 = float(m["advance"][-1, 0]), float(m["tactical_diameter"][-1, 0])
         batch_times.append(time.perf_counter() - t0)
     t_batch = statistics.median(batch_times)
-    assert int(m["complete"].sum()) == 1000
-    print(f"  1,000 circles (500 rudder angles x 2 sides, recorded every 1 s) in one batch: "
-          f"{t_batch:.3f} s ({1e3 * t_batch / 1000:.3f} ms per circle); its 35 deg starboard "
+    assert int(m["complete"].sum()) == 2 * n_rudders
+    print(f"  {2 * n_rudders:,} circles ({n_rudders} rudder angles x 2 sides, recorded every 1 s) "
+          "in one batch: "
+          f"{t_batch:.3f} s ({1e3 * t_batch / (2 * n_rudders):.3f} ms per circle); its 35 deg "
+          "starboard "
           f"circle: advance {100 * rel(adv35, ref[0]):.4f} %, TD {100 * rel(td35, ref[1]):.4f} % "
           "from the dt/4 run")
 

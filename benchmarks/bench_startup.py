@@ -26,7 +26,10 @@ Python's own bytecode cache is left on (``PYTHONDONTWRITEBYTECODE`` is removed f
 environment), as on a user's machine: with it set, every seahelm module is compiled from
 source at each start (about 0.1 s).
 
-    python benchmarks/bench_startup.py [--repeats 5] [--no-combinations]
+    python benchmarks/bench_startup.py [--repeats 5] [--no-combinations] [--quick]
+
+``--quick`` (the test suite's smoke run): the warm phases only, once, with the caches as they
+are (no demo command, no cold run, no combinations).
 """
 
 from __future__ import annotations
@@ -73,9 +76,10 @@ print(json.dumps({"imports": t_import, "compile/load": result.metadata["compile_
 """
 
 
-def _env(cache: Path) -> dict[str, str]:
-    env = dict(os.environ, MPLBACKEND="Agg", SEAHELM_CACHE_DIR=str(cache / "kernels"),
-               NUMBA_CACHE_DIR=str(cache / "numba"))
+def _env(cache: Path | None) -> dict[str, str]:
+    env = dict(os.environ, MPLBACKEND="Agg")
+    if cache is not None:  # (None: the caches as they are)
+        env.update(SEAHELM_CACHE_DIR=str(cache / "kernels"), NUMBA_CACHE_DIR=str(cache / "numba"))
     env.pop("PYTHONDONTWRITEBYTECODE", None)
     return env
 
@@ -111,13 +115,13 @@ def first_use(scenario: str | None, cache: Path) -> dict[str, float]:
     return json.loads(res.stdout.strip().splitlines()[-1])
 
 
-def phases(cache: Path, out: Path) -> dict[str, float]:
+def phases(cache: Path | None, out: Path) -> dict[str, float]:
     res = subprocess.run([sys.executable, "-c", PHASES, str(out)], env=_env(cache),
                          capture_output=True, text=True, check=True)
     return json.loads(res.stdout.strip().splitlines()[-1])
 
 
-def demo_wall(cache: Path, out: Path) -> float:
+def demo_wall(cache: Path | None, out: Path) -> float:
     exe = Path(sys.executable).with_name("seahelm")
     cmd = [str(exe)] if exe.exists() else [sys.executable, "-m", "seahelm"]
     t0 = time.perf_counter()
@@ -131,9 +135,17 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--no-combinations", dest="combinations", action="store_false",
                         help="Skip the first use of the other component combinations.")
+    parser.add_argument("--quick", action="store_true",
+                        help="smoke run (the test suite's): tiny sizes, 1 repeat")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         root = Path(tmp)
+        if args.quick:  # (the demo command itself is the CLI tests')
+            print(f"seahelm startup benchmark (--quick: the phases once, warm caches as they "
+                  f"are), {os.cpu_count()} cores")
+            for key, value in phases(None, root).items():
+                print(f"{key:>26}: {value:6.2f} s")
+            return
         print(f"seahelm startup benchmark, {os.cpu_count()} cores; warm figures are medians "
               f"of {args.repeats} runs")
         cold_wall = demo_wall(root / "cache-a", root)

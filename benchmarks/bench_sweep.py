@@ -17,7 +17,9 @@ Medians of ``--repeats`` runs; the chunking overhead is in-process / monolithic 
 issue's bound: ≤ 10 %). On a machine shared with other jobs the figures move by tens of per
 cent from one run to the next; the ratios are taken within one repeat.
 
-    python benchmarks/bench_sweep.py [--runs 10000] [--repeats 3] [--no-dask]
+    python benchmarks/bench_sweep.py [--runs 10000] [--repeats 3] [--no-dask] [--quick]
+
+``--quick`` (the test suite's smoke run): 20 runs, 1 repeat, no dask.
 """
 
 from __future__ import annotations
@@ -68,7 +70,11 @@ def main() -> None:
     ap.add_argument("--runs", type=int, default=10_000)
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--no-dask", action="store_true", help="skip the 2-worker timing")
+    ap.add_argument("--quick", action="store_true",
+                    help="smoke run (the test suite's): 20 runs, 1 repeat, no dask")
     args = ap.parse_args()
+    if args.quick:
+        args.runs, args.repeats, args.no_dask = 20, 1, True
 
     work = Path(tempfile.mkdtemp(prefix="seahelm-bench-sweep-"))
     text = scenario(args.runs)

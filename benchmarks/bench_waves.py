@@ -11,6 +11,8 @@ in the same process, reporting the median of several repeats and the ratio. Targ
 filter: ≥ 5e7 samples/s on 2 cores.
 
 Run:  .venv/bin/python benchmarks/bench_waves.py [--repeats 5] [--runs 8] [--steps 2000000]
+
+``--quick`` (the test suite's smoke run): tiny sizes, 1 repeat.
 """
 
 from __future__ import annotations
@@ -60,7 +62,11 @@ def main() -> None:
     ap.add_argument("--harmonics", type=int, default=256)
     ap.add_argument("--h3", type=float, default=3.0)
     ap.add_argument("--dt", type=float, default=0.1)
+    ap.add_argument("--quick", action="store_true",
+                    help="smoke run (the test suite's): tiny sizes, 1 repeat")
     args = ap.parse_args()
+    if args.quick:
+        args.repeats, args.runs, args.steps = 1, 2, 20_000
 
     spec = spectrum_from_wave_height("rakhmanin-firsov-2", args.h3)
     filt = shaping_filter(spec)
