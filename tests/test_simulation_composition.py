@@ -117,15 +117,23 @@ def test_every_combination_in_use_composes_as_expected(combo):
         assert model.output_labels[j] == name
 
 
+def _ship_model(vessel: dict) -> str:
+    """The model of a scenario's ship: a catalog ship's, or the MMG model of a ship estimated
+    from its particulars."""
+    if "particulars" in vessel:
+        return "mmg"
+    return catalog.get(vessel.get("ship") or vessel["catalog"]).model.name
+
+
 def _scenario_combo(text: str) -> tuple[str, str, str]:
     scn = tomllib.loads(text)
     if "maneuver" in scn:  # the manoeuvre's loop: the catalog ship's model and steering gear
-        model = catalog.get(scn["vessel"]["catalog"]).model.name
+        model = _ship_model(scn["vessel"])
         controller = "open-loop"
         if scn["maneuver"]["kind"] == "zigzag":  # the zig-zag's own heading-triggered logic
             controller = "zigzag-rps" if model == "mmg" else "zigzag"
         return (model, "rudder-servo", controller)
-    model = scn["vessel"].get("model") or catalog.get(scn["vessel"]["catalog"]).model.name
+    model = scn["vessel"].get("model") or _ship_model(scn["vessel"])
     if "guidance" in scn:  # the route's law steers the heading controller
         return (model, scn.get("actuator", {}).get("model", ActuatorSection().model),
                 f"{scn['guidance'].get('law', 'los')}+{scn['controller']['model']}")

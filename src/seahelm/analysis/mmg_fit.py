@@ -239,14 +239,18 @@ def _smooth(record: ManoeuvreRecord) -> dict[str, np.ndarray]:
     return out
 
 
+_X, _Y, _N = 0, 1, 2  # columns of _propeller_rudder's output: surge force, sway force, moment
+
+
 @njit(cache=True)
 def _propeller_rudder(u, v, r, delta, n, p, out):  # pragma: no cover - compiled
     """X_P + X_R, Y_R, N_R [N, N·m] of the MMG model for each sample (its own _forces)."""
     for i in range(u.size):
-        f = _mmg_forces(u[i], v[i], r[i], delta[i], n[i], p)
-        out[i, 0] = f[3] + f[4]
-        out[i, 1] = f[5]
-        out[i, 2] = f[6]
+        (_X_H, _Y_H, _N_H, X_P, X_R, Y_R, N_R, _T, _F_N, _w_P, _u_R, _v_R, _U,
+         _beta) = _mmg_forces(u[i], v[i], r[i], delta[i], n[i], p)
+        out[i, _X] = X_P + X_R
+        out[i, _Y] = Y_R
+        out[i, _N] = N_R
 
 
 def _hull_forces(p: Any, s: dict[str, np.ndarray]) -> tuple[np.ndarray, ...]:
