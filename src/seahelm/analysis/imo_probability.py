@@ -8,8 +8,9 @@ criterion for every member with the limits of :mod:`seahelm.analysis.imo`, and g
 fraction that passes each criterion and the whole check with a Wilson score interval (Wilson
 1927; it stays inside [0, 1] and keeps its coverage for fractions near 0 or 1, where the normal
 interval does not). A member whose manoeuvres did not complete (a diverged run, an event not
-reached) is excluded from the fractions and counted. The stopping criterion needs a model that
-can stop and is not part of the ensemble check.
+reached within 1.5 times the first member's durations) is excluded from the fractions and
+counted. The stopping criterion needs a model that can stop and is not part of the ensemble
+check.
 
 References
 ----------
@@ -29,7 +30,11 @@ import numpy as np
 
 from ..errors import ParameterError
 
-__all__ = ["ImoProbabilities", "imo_probabilities", "wilson_interval"]
+#: Members simulated together (a bound on the memory of the recorded manoeuvres).
+CHUNK = 500
+
+__all__ = ["ImoProbabilities", "imo_probabilities", "wilson_interval", "monte_carlo_ships",
+           "UNCERTAIN_COEFFICIENTS", "DEFAULT_UNCERTAINTY"]
 
 
 def wilson_interval(passed: int, total: int, level: float = 0.95) -> tuple[float, float]:
@@ -140,38 +145,58 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
     if not 0 < level < 1:
         raise ParameterError(f"must be in (0, 1), got {level!r}", field="level")
     hard = min(math.radians(35.0), members[0].max_rudder)
-    turning = turning_circle(members, np.array([hard, math.radians(10.0)]), sides=(1, -1),
-                             dt=dt, heading_change=math.pi).metrics
-    zz = zigzag(members, np.radians([10.0, 20.0]), np.radians([10.0, 20.0]), sides=(1, -1),
-                dt=dt).metrics
+    rudders = np.array([hard, math.radians(10.0)])
+    pairs = np.radians([10.0, 20.0])
+    # the durations of the first member's manoeuvres, with room (× 1.5), for all: estimating
+    # them member by member (a steady turn each) would cost more than the ensemble's runs
+    first_turn = turning_circle(members[0], rudders, sides=(1, -1), dt=dt,
+                                heading_change=math.pi).metrics
+    t_turn = 1.5 * first_turn.attrs["t_final"]
+    t_zz = 1.5 * zigzag(members[0], pairs, pairs, sides=(1, -1), dt=dt).metrics.attrs["t_final"]
     L = members[0].length
-    speed = np.asarray(turning["approach_speed_value"].values, dtype=float).reshape(-1)
-    limits = imo_overshoot_limits(L / float(np.median(speed)))
+    V = float(np.asarray(first_turn["approach_speed_value"].values).reshape(-1)[0])
+    limits = imo_overshoot_limits(L / V)
+    dt = float(first_turn.attrs["dt"])
+    # records every ~L/(20 V) (at most 1 s), a whole number of steps: the overshoots are
+    # extremes, found to about r·Δt²; every step would be gigabytes for thousands of members
+    record_dt = dt * max(1, math.floor(min(1.0, L / V / 20.0) / dt + 1e-9))
+    names = [("turning", "advance", "L", ADVANCE_LIMIT),
+             ("turning", "tactical diameter", "L", TACTICAL_DIAMETER_LIMIT),
+             ("initial turning", "distance to 10 deg heading change", "L",
+              INITIAL_TURNING_LIMIT),
+             ("10/10 zig-zag", "first overshoot", "deg", math.degrees(limits.first)),
+             ("10/10 zig-zag", "second overshoot", "deg", math.degrees(limits.second)),
+             ("20/20 zig-zag", "first overshoot", "deg",
+              math.degrees(ZIGZAG_20_FIRST_OVERSHOOT_LIMIT))]
+    sides = ((1, "starboard"), (-1, "port"))
+    parts: dict[tuple[str, str, str], list[np.ndarray]] = {
+        (a, c, side): [] for side in ("starboard", "port") for a, c, _, _ in names}
+    for start in range(0, len(members), CHUNK):
+        chunk = members[start:start + CHUNK]
 
-    def values(da: Any) -> np.ndarray:
-        return np.asarray(da.transpose("ship", ...).values, dtype=float).reshape(len(members))
+        def values(da: Any, n: int = len(chunk)) -> np.ndarray:
+            return np.asarray(da.transpose("ship", ...).values if "ship" in da.dims
+                              else da.values, dtype=float).reshape(n)
 
-    checks = []  # (ability, criterion, side, values, limit, unit)
-    for side, name in ((1, "starboard"), (-1, "port")):
-        t35 = turning.isel(rudder=0).sel(side=side)
-        t10 = turning.isel(rudder=1).sel(side=side)
-        checks += [("turning", "advance", name, values(t35["advance"]) / L, ADVANCE_LIMIT, "L"),
-                   ("turning", "tactical diameter", name, values(t35["tactical_diameter"]) / L,
-                    TACTICAL_DIAMETER_LIMIT, "L"),
-                   ("initial turning", "distance to 10 deg heading change", name,
-                    values(t10["distance_10"]) / L, INITIAL_TURNING_LIMIT, "L")]
-    for side, name in ((1, "starboard"), (-1, "port")):
-        z10 = zz.isel(pair=0).sel(side=side)
-        z20 = zz.isel(pair=1).sel(side=side)
-        checks += [("10/10 zig-zag", "first overshoot", name,
-                    np.degrees(values(z10["overshoot"].sel(n=1))), math.degrees(limits.first),
-                    "deg"),
-                   ("10/10 zig-zag", "second overshoot", name,
-                    np.degrees(values(z10["overshoot"].sel(n=2))),
-                    math.degrees(limits.second), "deg"),
-                   ("20/20 zig-zag", "first overshoot", name,
-                    np.degrees(values(z20["overshoot"].sel(n=1))),
-                    math.degrees(ZIGZAG_20_FIRST_OVERSHOOT_LIMIT), "deg")]
+        turning = turning_circle(chunk, rudders, sides=(1, -1), dt=dt,
+                                 heading_change=math.pi, t_final=t_turn,
+                                 record_dt=record_dt).metrics
+        zz = zigzag(chunk, pairs, pairs, sides=(1, -1), dt=dt, t_final=t_zz,
+                    record_dt=record_dt).metrics
+        for side, name in sides:
+            t35 = turning.isel(rudder=0).sel(side=side)
+            t10 = turning.isel(rudder=1).sel(side=side)
+            z10 = zz.isel(pair=0).sel(side=side)
+            z20 = zz.isel(pair=1).sel(side=side)
+            got = (values(t35["advance"]) / L, values(t35["tactical_diameter"]) / L,
+                   values(t10["distance_10"]) / L,
+                   np.degrees(values(z10["overshoot"].sel(n=1))),
+                   np.degrees(values(z10["overshoot"].sel(n=2))),
+                   np.degrees(values(z20["overshoot"].sel(n=1))))
+            for (a, c, _, _), v in zip(names, got):
+                parts[(a, c, name)].append(v)
+    checks = [(a, c, side, np.concatenate(parts[(a, c, side)]), limit, unit)
+              for side in ("starboard", "port") for a, c, unit, limit in names]
     complete = np.all([np.isfinite(c[3]) for c in checks], axis=0)
     total = int(complete.sum())
     rows = []
@@ -192,3 +217,80 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
                             excluded=len(members) - total,
                             probability=passed_all / total if total else math.nan,
                             ci_low=lo, ci_high=hi, level=level)
+
+
+#: The coefficients an uncertain ship's default Monte-Carlo draws (their relative standard
+#: deviation :data:`DEFAULT_UNCERTAINTY`), per model: the linear manoeuvring derivatives, whose
+#: uncertainty dominates the IMO manoeuvres (the KVLCC2 example, examples/kvlcc2_imo_uncertainty.py).
+UNCERTAIN_COEFFICIENTS: dict[str, tuple[str, ...]] = {
+    "mmg": ("Y_v", "Y_r", "N_v", "N_r"),
+    "mariner": ("Y_v", "Y_r", "N_v", "N_r"),
+    "nomoto1": ("gain", "time_constant"),
+    "nomoto2": ("gain", "t1", "t2", "t3"),
+}
+
+#: Default relative standard deviation of :data:`UNCERTAIN_COEFFICIENTS` (10 %).
+DEFAULT_UNCERTAINTY = 0.10
+
+
+def monte_carlo_ships(ship: Any, n: int, *, seed: int = 0, draws: Any = None,
+                      uncertainty: float = DEFAULT_UNCERTAINTY) -> list[Any]:
+    """``n`` copies of ``ship`` with drawn coefficients (one generator per sample, from
+    ``SeedSequence(seed)``: any subset of samples has the values the whole set has).
+
+    Parameters
+    ----------
+    ship : Ship
+    n : int
+        Samples (≥ 1).
+    seed : int, optional
+        The study's seed (≥ 0).
+    draws : mapping of parameter name to Distribution, optional
+        What to draw (:mod:`seahelm.numerics.sampling` distributions). Default: a normal
+        distribution of relative standard deviation ``uncertainty`` around each of the
+        model's :data:`UNCERTAIN_COEFFICIENTS`.
+    uncertainty : float, optional
+        Relative standard deviation of the default draws.
+
+    Returns
+    -------
+    list of Ship
+        Named ``<name> #i``.
+
+    Raises
+    ------
+    ParameterError
+        A bad ``n``, ``seed`` or ``uncertainty``; a draw on a parameter the ship does not have;
+        a drawn value outside the parameter's range (naming the sample).
+    """
+    from ..numerics.sampling import draw_samples, get_distribution
+
+    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+        raise ParameterError(f"must be a whole number >= 1, got {n!r}", field="n", value=n)
+    if not (math.isfinite(uncertainty) and uncertainty > 0):
+        raise ParameterError(f"must be > 0, got {uncertainty!r}", field="uncertainty",
+                             value=uncertainty)
+    names = ship.params.field_names()
+    if draws is None:
+        coefficients = UNCERTAIN_COEFFICIENTS.get(ship.model.name)
+        if coefficients is None:
+            raise ParameterError(f"no default uncertainty for model '{ship.model.name}': give "
+                                 "the draws", field="draws")
+        draws = {k: get_distribution("normal", mean=float(getattr(ship.params, k)),
+                                     std=uncertainty * abs(float(getattr(ship.params, k))))
+                 for k in coefficients}
+    unknown = [k for k in draws if k not in names]
+    if unknown:
+        raise ParameterError(f"`{unknown[0]}` is not a parameter of model '{ship.model.name}'"
+                             f" ({', '.join(names)})", field="draws")
+    drawn = draw_samples(dict(draws), seed, np.arange(n))
+    ships = []
+    for i in range(n):
+        values = {k: float(v[i]) for k, v in drawn.items()}
+        try:
+            ships.append(ship.replace(params=values, name=f"{ship.name} #{i}"))
+        except ParameterError as exc:
+            raise ParameterError(f"sample {i}: {exc} (drawn: "
+                                 + ", ".join(f"{k} = {v:.6g}" for k, v in values.items()) + ")",
+                                 field="draws", run=i) from None
+    return ships
