@@ -56,6 +56,7 @@ _GROUPS = (
     ("maneuver", "seahelm.cli.maneuver",
      "Standard manoeuvres: turning circle, zig-zag, spiral, pull-out."),
     ("ship", "seahelm.cli.ship", "Ships: the catalog, and ship files (TOML)."),
+    ("autopilot", "seahelm.cli.autopilot", "Autopilot design: PID and LQ gains from the ship."),
 )
 for _name, _module, _help in _GROUPS:
     try:
@@ -68,7 +69,8 @@ for _name, _module, _help in _GROUPS:
 
 # Single commands of their own modules: (name, module, function).
 _COMMANDS = (("imo", "seahelm.cli.imo", "imo"), ("inspect", "seahelm.cli.inspect", "inspect"),
-             ("report", "seahelm.cli.report", "report"), ("sweep", "seahelm.cli.sweep", "sweep"))
+             ("report", "seahelm.cli.report", "report"), ("sweep", "seahelm.cli.sweep", "sweep"),
+             ("linearize", "seahelm.cli.linearize", "linearize"))
 for _name, _module, _attr in _COMMANDS:
     try:
         _sub = importlib.import_module(_module)

@@ -18,7 +18,10 @@ masses ÷ ½ρL³, inertias ÷ ½ρL⁵), with c = −π (T/L)²::
 (time in units of L/U) has the transfer function r/δ = K (1 + T_3 s)/((1 + T_1 s)(1 + T_2 s))
 (Nomoto 1957; Fossen 2021, §7.1); the first-order approximation has T = T_1 + T_2 − T_3.
 :func:`nomoto_constants` solves it for any such model (Clarke's or the MMG model's linear
-part), dimensional at a speed U: K [1/s] = K' U/L, T_i [s] = T'_i L/U.
+part), dimensional at a speed U: K [1/s] = K' U/L, T_i [s] = T'_i L/U; it hands the
+dimensional system to :func:`nomoto_from_state_space`, which does the same for any one- or
+two-state steering system ẋ = A x + b δ (the linearisation of a vessel model at an equilibrium,
+:mod:`seahelm.analysis.linearisation`).
 
 References
 ----------
@@ -39,7 +42,8 @@ import numpy as np
 from ..errors import ParameterError
 from .hull import Coefficient, HullParticulars, check_ranges
 
-__all__ = ["clarke_derivatives", "NomotoConstants", "nomoto_constants"]
+__all__ = ["clarke_derivatives", "NomotoConstants", "nomoto_constants",
+           "nomoto_from_state_space"]
 
 CLARKE = "Clarke, Gedling & Hine (1983)"
 
@@ -146,21 +150,83 @@ def nomoto_constants(mass: np.ndarray, damping: np.ndarray, rudder: np.ndarray, 
     M = np.asarray(mass, dtype=float)
     N = np.asarray(damping, dtype=float)
     b = np.asarray(rudder, dtype=float)
-    A = -np.linalg.solve(M, N)
-    Bv = np.linalg.solve(M, b)
+    # time in units of L/U, r' = r L/U: K [1/s] = K' U/L, T_i [s] = T'_i L/U
+    prime = nomoto_from_state_space(-np.linalg.solve(M, N), np.linalg.solve(M, b), unit="-")
+    scale = length / speed
+    return NomotoConstants(gain=prime.gain / scale, t1=prime.t1 * scale, t2=prime.t2 * scale,
+                           t3=prime.t3 * scale, speed=float(speed))
+
+
+def nomoto_from_state_space(A: np.ndarray, b: np.ndarray, *, speed: float = math.nan,
+                            yaw_rate_index: int = -1, require_stable: bool = True,
+                            unit: str = "1/s") -> NomotoConstants:
+    """Nomoto K, T_1, T_2, T_3 of the yaw rate of a linear steering system ẋ = A x + b δ.
+
+    The system has one or two states (yaw rate r and, for two, a sway or auxiliary state);
+    its transfer function r/δ = c (sI − A)⁻¹ b is put in Nomoto's (1957) form
+    K (1 + T_3 s)/((1 + T_1 s)(1 + T_2 s)), with T_1 the slower pole (Fossen 2021, eq. (7.16)).
+    With two states, A = [[a_vv, a_vr], [a_rv, a_rr]], b = (b_v, b_r)::
+
+        r/δ = (b_r s + a_rv b_v − a_vv b_r) / (s² − (a_vv + a_rr) s + det A)
+
+    so K = (a_rv b_v − a_vv b_r)/det A, T_3 = b_r/(a_rv b_v − a_vv b_r), T_{1,2} = −1/p_{1,2}.
+    With one state r/δ = b/(s − a): K = −b/a, T_1 = −1/a, T_2 = T_3 = 0.
+
+    A course-unstable ship (a positive real pole) has T_1 < 0 (and K < 0): Nomoto's form still
+    holds (Fossen 2021, §7.1), and it is returned with ``require_stable=False``.
+
+    Parameters
+    ----------
+    A : array_like, shape (n, n), n = 1 or 2
+        System matrix [1/s] (or non-dimensional, time in units of L/U, with ``unit="-"``).
+    b : array_like, shape (n,)
+        Rudder column [rad/s² per rad for r], for a positive rudder giving a positive yaw rate.
+    speed : float, optional
+        The speed U [m/s] the system holds at (recorded in the result only).
+    yaw_rate_index : int, optional
+        Which state is r (default the last).
+    require_stable : bool, optional
+        Refuse a model with a pole in the closed right half-plane (default True).
+    unit : str, optional
+        Unit of the time of A for the messages.
+
+    Returns
+    -------
+    NomotoConstants
+
+    Raises
+    ------
+    ParameterError
+        When the poles are complex (Nomoto's form needs real poles), or not negative with
+        ``require_stable``, or the shapes are wrong.
+    """
+    A = np.atleast_2d(np.asarray(A, dtype=float))
+    b = np.atleast_1d(np.asarray(b, dtype=float))
+    n = A.shape[0]
+    if A.shape != (n, n) or b.shape != (n,) or n not in (1, 2):
+        raise ParameterError(f"must be a 1×1 or 2×2 system with a matching b, got A "
+                             f"{A.shape}, b {b.shape}", field="A")
+    if n == 1:
+        a = A[0, 0]
+        if a == 0.0 or (require_stable and a > 0):
+            raise ParameterError(
+                f"the model has the pole {a:.4g} [{unit}]: Nomoto's form needs a negative "
+                "real pole (a straight-line stable ship)", field="model")
+        return NomotoConstants(gain=float(-b[0] / a), t1=float(-1.0 / a), t2=0.0, t3=0.0,
+                               speed=float(speed))
+    ir = yaw_rate_index % 2
+    iv = 1 - ir
     poles = np.linalg.eigvals(A)
-    if np.any(np.abs(poles.imag) > 1e-12 * np.abs(poles).max()) or np.any(poles.real >= 0):
+    bad = np.any(np.abs(poles.imag) > 1e-12 * np.abs(poles).max()) or np.any(poles == 0)
+    if bad or (require_stable and np.any(poles.real >= 0)):
         raise ParameterError(
-            f"the linear model has poles {', '.join(f'{p:.4g}' for p in poles)} (non-dim.): "
+            f"the linear model has poles {', '.join(f'{p:.4g}' for p in poles)} [{unit}]: "
             "Nomoto's form needs two real negative poles (a straight-line stable ship)",
             field="model")
-    # r/δ = (s B_r + (A_rv B_v − A_vv B_r)) / ((s − p1)(s − p2))
-    num1 = Bv[1]
-    num0 = A[1, 0] * Bv[0] - A[0, 0] * Bv[1]
-    p1, p2 = sorted(poles.real)  # p1 the faster (more negative)
-    gain = num0 / (p1 * p2)
-    t_fast, t_slow = -1.0 / p1, -1.0 / p2
+    num1 = b[ir]
+    num0 = A[ir, iv] * b[iv] - A[iv, iv] * b[ir]
+    p_slow, p_fast = sorted(poles.real, key=abs)  # T_1 the slower pole
+    gain = num0 / (p_slow * p_fast)
     t3 = num1 / num0 if num0 != 0 else math.nan
-    scale = length / speed
-    return NomotoConstants(gain=float(gain / scale), t1=float(t_slow * scale),
-                           t2=float(t_fast * scale), t3=float(t3 * scale), speed=float(speed))
+    return NomotoConstants(gain=float(gain), t1=float(-1.0 / p_slow), t2=float(-1.0 / p_fast),
+                           t3=float(t3), speed=float(speed))
