@@ -30,7 +30,7 @@ from seahelm.ships import (
 from seahelm.ships import catalog as catalog_module
 from seahelm.ships.files import ship_from_mapping
 from seahelm.ships.writing import ship_to_mapping
-from seahelm.vessels import catamaran, mariner, mmg, voitkunsky
+from seahelm.vessels import catamaran, container, mariner, mmg, voitkunsky
 from seahelm.vessels.nomoto import Nomoto1Params, Nomoto2Params
 from seahelm.vessels.particulars import Particulars
 
@@ -50,6 +50,7 @@ PRESETS = {
                                       speed=7.7175, length=160.93), None),
     "shushlyapin2017-listing": (catamaran.paper_params(), None),
     "shushlyapin2017-consistent": (catamaran.consistent_params(), None),
+    "son-nomoto-container": (container.CONTAINER_SHIP, container.CONTAINER_SERVO),
 }
 
 
@@ -58,7 +59,8 @@ def test_the_catalog_is_its_ship_files():
     assert sorted(p.stem for p in catalog_module.DATA_DIR.glob("*.toml")) == sorted(PRESETS)
     assert set(CATALOG) == set(PRESETS) and len(CATALOG) == len(PRESETS)
     assert with_steering_gear() == ("kvlcc2-full", "kvlcc2-l7", "kvlcc2-l7-wp0-0.35",
-                                    "kvlcc2-l7-xp-0.5", "mariner-nonlinear")
+                                    "kvlcc2-l7-xp-0.5", "mariner-nonlinear",
+                                    "son-nomoto-container")
 
 
 @pytest.mark.parametrize("name", sorted(PRESETS))

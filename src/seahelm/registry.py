@@ -31,6 +31,7 @@ VESSEL_MODELS: dict[str, str] = {
     "mmg": "seahelm.vessels.mmg:MMG",
     "mmg-4q": "seahelm.vessels.mmg_four_quadrant:MMG_4Q",
     "mariner": "seahelm.vessels.mariner:MARINER",
+    "container": "seahelm.vessels.container:CONTAINER",
 }
 
 ACTUATORS: dict[str, str] = {

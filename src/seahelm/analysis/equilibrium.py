@@ -55,6 +55,7 @@ from ..parameters import Params
 from ..registry import model_for_params
 from ..vessels.base import VesselModel
 from .constant_speed import ConstantSpeedPlant, is_constant_speed
+from .heel import heel_balance
 
 # scipy.optimize (0.2 s to import) is imported inside the functions that use it
 
@@ -176,14 +177,18 @@ class _Plant:
         self.length = float(self.params.length)
         self.u_ref = float(getattr(self.params, "approach_speed",
                                    getattr(self.params, "nominal_speed", 1.0)))
+        self.heel = heel_balance(model)  # a model with roll: its steady heel (.heel)
 
-    def state(self, surge: float, v: float, r: float, heading: float = 0.0) -> np.ndarray:
+    def state(self, surge: float, v: float, r: float, heading: float = 0.0,
+              inputs: np.ndarray | None = None) -> np.ndarray:
         x = np.zeros(self.model.n_states)
         x[self.i_u] = surge - self.u_offset
         x[self.i_v] = v
         x[self.i_r] = r
         if self.i_psi is not None:
             x[self.i_psi] = heading
+        if self.heel is not None and inputs is not None:
+            x = self.heel(x, inputs, self.params)
         return x
 
     def inputs(self, rudder: float, rps: float | None) -> np.ndarray:
@@ -195,8 +200,8 @@ class _Plant:
 
     def accelerations(self, surge: float, v: float, r: float, rudder: float,
                       rps: float | None) -> np.ndarray:
-        dx = self.model.derivative(0.0, self.state(surge, v, r), self.inputs(rudder, rps),
-                                   self.params)
+        u = self.inputs(rudder, rps)
+        dx = self.model.derivative(0.0, self.state(surge, v, r, inputs=u), u, self.params)
         return dx[[self.i_u, self.i_v, self.i_r]]
 
     def solve(self, fixed: dict[str, float], unknowns: tuple[str, ...], guess: np.ndarray,
@@ -527,7 +532,8 @@ def approach_state(params: Any, speed: float | None = None, *, model: VesselMode
         surge, v, delta = plant.solve({"r": 0.0}, ("surge", "v", "rudder"),
                                       np.array([U0, 0.0, 0.0]), n)
         inputs["rudder_angle"] = float(delta)
-    return Approach(plant.state(surge, v, 0.0, float(heading)), inputs)
+    return Approach(plant.state(surge, v, 0.0, float(heading),
+                                plant.inputs(inputs["rudder_angle"], n)), inputs)
 
 
 def straight_run_speed(model_or_params: Any, rps: Any, *, model: VesselModel | None = None,
@@ -641,7 +647,7 @@ def steady_turn_state(params: Any, rudder: float, rps: float | None = None, *,
     if n is not None:
         inputs["propeller_rps"] = n
     return Approach(plant.state(turn.surge_speed, turn.sway_speed, turn.yaw_rate,
-                                float(heading)), inputs)
+                                float(heading), plant.inputs(float(rudder), n)), inputs)
 
 
 def rudder_for_yaw_rate(params: Any, yaw_rate: Any, rps: float | None = None, *,

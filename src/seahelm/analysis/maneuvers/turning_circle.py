@@ -20,6 +20,9 @@ steady turn
     at the end of the run (by default after an estimated 360° heading change): turning radius
     U/|r| of the reference point, speed U and speed loss 1 − U/U_0, drift angle β, yaw rate r;
     ``steady`` says whether the yaw rate changed by less than 1 % over the last 90° of heading.
+heel (models with roll only, :func:`seahelm.analysis.heel.heel_metrics`)
+    ``max_heel_angle``, the heel of largest magnitude over the run, and ``steady_heel_angle``
+    at its end (signed, positive starboard down: outward heel has the yaw rate's opposite sign).
 
 Event times and the positions at them are interpolated linearly between the two recorded
 samples that bracket the heading change (as :func:`seahelm.analysis.turning.turning_metrics`
@@ -38,6 +41,7 @@ import numpy as np
 
 from ...errors import ParameterError
 from ..constant_speed import is_constant_speed
+from ..heel import heel_metrics
 from .common import (
     Plan,
     check_rudder,
@@ -314,6 +318,7 @@ def _metrics(plan: Plan, result: Any) -> Any:
         "complete": (complete, "", "every event reached and the run did not diverge"),
         "message": (np.array(messages, dtype=object), "", "what was not reached, or ok"),
     }
+    variables.update(heel_metrics(result))  # a model with roll: maximum and steady heel
     attrs = {"maneuver": "turning-circle", "dt": float(result.metadata["dt"]),
              "t_final": float(result.metadata["t_final"]),
              "reference_point": "midship (the model's origin)",
