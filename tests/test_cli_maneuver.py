@@ -74,7 +74,8 @@ def test_turning_table_and_out(tmp_path):
      "`--rps`: 'mariner-nonlinear' (model mariner) has no propeller input, got 2.0 [1/s]"),
     (["maneuver", "turning", "--catalog", "kvlcc9"],
      "unknown ship 'kvlcc9'; catalog ships with a steering gear: kvlcc2-full, kvlcc2-l7, "
-     "kvlcc2-l7-wp0-0.35, kvlcc2-l7-xp-0.5, mariner-nonlinear (or the path of a ship file"),
+     "kvlcc2-l7-wp0-0.35, kvlcc2-l7-xp-0.5, mariner-nonlinear, son-nomoto-container (or the "
+     "path of a ship file"),
     (["maneuver", "turning", "--catalog", "mariner-nomoto2"],  # in the catalog, no steering gear
      "ship 'mariner-nomoto2' has no steering gear"),
     (["maneuver", "turning", "--side", "middle"],

@@ -74,7 +74,8 @@ PARSER_ERRORS = [
      "Invalid value for '--side': 'left' is not one of 'both', 'starboard', 'port'"),
     (["maneuver", "zigzag", "--catalog", "kvlcc9"],
      "unknown ship 'kvlcc9'; catalog ships with a steering gear: kvlcc2-full, kvlcc2-l7, "
-     "kvlcc2-l7-wp0-0.35, kvlcc2-l7-xp-0.5, mariner-nonlinear (or the path of a ship file"),
+     "kvlcc2-l7-wp0-0.35, kvlcc2-l7-xp-0.5, mariner-nonlinear, son-nomoto-container (or the "
+     "path of a ship file"),
     (["maneuver", "zigzag", "--ship", "kvlcc9"], "unknown ship 'kvlcc9'; catalog ships with"),
     (["imo", "kvlcc9"], "unknown ship 'kvlcc9'; catalog ships with a steering gear: kvlcc2-full"),
     (["imo", "missing.toml"], "missing.toml: no such ship file"),

@@ -88,6 +88,12 @@ COMBINATIONS = {
     ("mmg", "rudder-servo", "zigzag-rps"): (
         (), _SERVO + "\ncontroller.propeller_rps -> model.propeller_rps" + _HEADING),
     ("mariner", "rudder-servo", "zigzag"): ((), _SERVO + _HEADING),
+    # the 4-DOF container ship: examples/container_turning_heel.toml, test_vessels_container
+    ("container", "rudder-servo", "open-loop"): (
+        ("rudder_command", "propeller_rps"),
+        _SERVO + "\ncontroller.propeller_rps -> model.propeller_rps"),
+    ("container", "rudder-servo", "zigzag-rps"): (
+        (), _SERVO + "\ncontroller.propeller_rps -> model.propeller_rps" + _HEADING),
     # test_control_path_following, examples/mariner_route_*.toml: the guidance law feeds the
     # PID's heading reference inside the controller; it reads the position as well
     ("mariner", "rudder-servo", "los+pid-heading"): (

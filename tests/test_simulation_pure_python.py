@@ -36,6 +36,7 @@ from seahelm.registry import VESSEL_MODELS, get_model
 from seahelm.simulation.engine import compile_closed_loop, jit_enabled, simulate
 from seahelm.simulation.inlining import python_function
 from seahelm.vessels.catamaran import CatamaranServoParams, paper_params
+from seahelm.vessels.container import CONTAINER_MSS_SERVO, CONTAINER_SHIP
 from seahelm.vessels.cpp_ship import CPPShipParams
 from seahelm.vessels.mariner import MARINER_NONLINEAR, MARINER_SERVO
 from seahelm.vessels.mmg import KVLCC2_L7, KVLCC2_L7_SERVO, KVLCC2_L7_WP0_035
@@ -110,6 +111,11 @@ CASES = {
         params=MARINER_NONLINEAR, x0=np.zeros(6), t_final=2.0, dt=0.1, actuator=RUDDER_SERVO,
         actuator_params=MARINER_SERVO, controller=OPEN_LOOP,
         reference={"rudder_command": np.radians([35.0, -20.0]).reshape(2, 1, 1)}),
+    "container": lambda: dict(
+        params=CONTAINER_SHIP, x0=np.array([8.0, 0, 0, 0, 0, 0, 0, 0.01]), t_final=2.0,
+        dt=0.1, actuator=RUDDER_SERVO, actuator_params=CONTAINER_MSS_SERVO, controller=OPEN_LOOP,
+        reference={"rudder_command": np.radians([10.0, -5.0]).reshape(2, 1, 1),
+                   "propeller_rps": 80.0 / 60.0}),
 }
 
 
