@@ -81,3 +81,49 @@ def test_ensemble_needs_one_length(fit_and_record):
     b = posterior_ships(fit, np.array([[0.05, 30.0, 0.0]]), name="b", speed=7, length=100)
     with pytest.raises(ParameterError, match="share their length"):
         imo_probabilities(a + b)
+
+
+def test_monte_carlo_ships_default_and_given_draws():
+    from seahelm.analysis.imo_probability import monte_carlo_ships
+    from seahelm.numerics.sampling import get_distribution
+    from seahelm.ships import get_ship
+
+    ship = get_ship("kvlcc2-l7")
+    a = monte_carlo_ships(ship, 50, seed=4)
+    yv = np.array([s.params.Y_v for s in a])
+    assert abs(yv.std() / abs(ship.params.Y_v) - 0.10) < 0.04
+    assert a[3].params.N_r == monte_carlo_ships(ship, 10, seed=4)[3].params.N_r  # by index
+    assert a[0].params.R_0 == ship.params.R_0
+    b = monte_carlo_ships(ship, 5, seed=1, draws={"R_0": get_distribution(
+        "uniform", low=0.02, high=0.024)})
+    assert all(0.02 <= s.params.R_0 <= 0.024 for s in b)
+    with pytest.raises(ParameterError, match="`Z_v` is not a parameter"):
+        monte_carlo_ships(ship, 5, draws={"Z_v": get_distribution("normal", mean=0, std=1)})
+    with pytest.raises(ParameterError, match="sample 0:"):
+        monte_carlo_ships(ship, 5, draws={"R_0": get_distribution("normal", mean=-1.0,
+                                                                  std=0.01)})
+
+
+def test_cli_imo_monte_carlo(tmp_path):
+    import json
+
+    from typer.testing import CliRunner
+
+    from seahelm.cli.main import app
+
+    runner = CliRunner()
+    res = runner.invoke(app, ["imo", "kvlcc2-l7", "--monte-carlo", "6", "--seed", "2", "--json"])
+    assert res.exit_code == 0, res.output
+    data = json.loads(res.stdout)
+    assert data["samples"] == 6 and data["total"] + data["excluded"] == 6
+    assert len(data["criteria"]) == 12 and 0 <= data["probability"] <= 1
+    draws = tmp_path / "d.toml"
+    draws.write_text('[draws]\nN_r = {distribution = "normal", mean = -0.049, std = 0.005}\n')
+    ok = runner.invoke(app, ["imo", "kvlcc2-l7", "--monte-carlo", "4", "--draws", str(draws),
+                             "--json"])
+    assert ok.exit_code == 0, ok.output
+    draws.write_text('[draws]\nN_r = {distribution = "normal", mean = -0.049}\n')
+    bad = runner.invoke(app, ["imo", "kvlcc2-l7", "--monte-carlo", "4", "--draws", str(draws)])
+    assert bad.exit_code == 2 and "[draws.N_r]" in bad.output and "`std`" in bad.output
+    both = runner.invoke(app, ["imo", "kvlcc2-l7", "--monte-carlo", "4", "--speed", "1.0"])
+    assert both.exit_code == 2 and "--monte-carlo" in both.output

@@ -252,7 +252,11 @@ def nomoto(
         return
     _print_nomoto(fit, payload, level)
     if imo:
-        _print_imo_probabilities(payload["imo"])
+        from .imo import print_imo_probabilities
+
+        p = payload["imo"]
+        print_imo_probabilities(p, f"IMO MSC.137(76) given the identification: {p['total']} "
+                                   f"ships from the {p['posterior']} posterior")
 
 
 def _imo_given_fit(fit: Any, records: Any, n: int, posterior: str, seed: int | None,
@@ -276,25 +280,6 @@ def _imo_given_fit(fit: Any, records: Any, n: int, posterior: str, seed: int | N
     out = imo_probabilities(ships, level=level).as_dict()
     out.update(samples=n, posterior=posterior, seed=seed)
     return out
-
-
-def _print_imo_probabilities(p: dict[str, Any]) -> None:
-    from rich.markup import escape
-    from rich.table import Table
-
-    level = 100 * p["confidence_level"]
-    table = Table("criterion", "side", "median", "limit", "P(pass)", f"{level:g} % interval",
-                  title=escape(f"IMO MSC.137(76) given the identification: {p['total']} "
-                               f"ships from the {p['posterior']} posterior"),
-                  title_justify="left")
-    for r in p["criteria"]:
-        table.add_row(escape(f"{r['ability']}: {r['criterion']}"), r["side"],
-                      f"{r['median']:.3g} {r['unit']}", f"{r['limit']:.4g}",
-                      f"{r['probability']:.3f}", f"{r['ci_low']:.3f} .. {r['ci_high']:.3f}")
-    console.print(table)
-    console.print(f"all evaluated criteria: P(pass) = {p['probability']:.3f} "
-                  f"({p['ci_low']:.3f} .. {p['ci_high']:.3f}, Wilson); {p['excluded']} "
-                  f"incomplete run(s) excluded; {p['note']}", highlight=False, soft_wrap=True)
 
 
 def _write_ship(fit: Any, records: Any, out: Path, speed: float | None, length: float | None,

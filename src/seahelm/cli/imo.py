@@ -14,12 +14,13 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated, Any, Optional
 
 import typer
 from rich.markup import escape
 from rich.table import Table
 
+from ..errors import ParameterError
 from ._common import JsonFlag, _jsonable, console, handle_errors, print_json
 from .maneuver import (
     Depth,
@@ -55,6 +56,22 @@ def imo(
     rps: Rps = None,
     dt: Dt = None,
     water_depth: Depth = None,
+    monte_carlo: Annotated[int, typer.Option(
+        "--monte-carlo", metavar="N", min=0, help=escape(
+            "Check N ships with uncertain coefficients instead of one: the probability of "
+            "passing each criterion (Wilson intervals). Default uncertainty: normal, "
+            "--uncertainty of each linear derivative (Y_v, Y_r, N_v, N_r; Nomoto K, T).")),
+    ] = 0,
+    seed: Annotated[int, typer.Option("--seed", min=0, help="Seed of the Monte-Carlo draws.")]
+    = 0,
+    uncertainty: Annotated[float, typer.Option(
+        "--uncertainty", help="Relative standard deviation of the default draws.")] = 0.10,
+    draws: Annotated[Optional[Path], typer.Option(
+        "--draws", metavar="FILE.toml", help=escape(
+            "Your own draws: a TOML table [draws] of parameter = {distribution = \"normal\", "
+            "mean = …, std = …} (normal, uniform, lognormal, truncnormal as in scenario "
+            "files).")),
+    ] = None,
     json_out: JsonFlag = False,
     out: Out = None,
 ) -> None:
@@ -64,8 +81,82 @@ def imo(
     ship = ship_of(model, water_depth)
     check_speed_rps(ship, speed, rps)
     check_positive_opt("--dt", dt, "s")
+    if monte_carlo:
+        if speed is not None or rps is not None or out is not None:
+            raise ParameterError("`--monte-carlo` runs at the ship's test speed and writes no "
+                                 "files: drop `--speed`/`--rps`/`--out`")
+        _monte_carlo(ship, monte_carlo, seed, uncertainty, draws, dt, json_out)
+        return
     check_out(out, "imo", ship_reads(model))
     show_report(imo_check(ship, speed=speed, rps=rps, dt=dt), out, json_out)
+
+
+def _monte_carlo(ship: Any, n: int, seed: int, uncertainty: float, draws: Path | None,
+                 dt: float | None, json_out: bool) -> None:
+    from ..analysis.imo_probability import imo_probabilities, monte_carlo_ships
+
+    if not (math.isfinite(uncertainty) and uncertainty > 0):
+        raise ParameterError(f"`--uncertainty` must be > 0, got {uncertainty!r}")
+    dists = None if draws is None else _read_draws(draws)
+    ships = monte_carlo_ships(ship, n, seed=seed, draws=dists, uncertainty=uncertainty)
+    payload = imo_probabilities(ships, dt=dt).as_dict()
+    payload.update(ship=ship.name, samples=n, seed=seed,
+                   draws="default" if draws is None else str(draws),
+                   uncertainty=uncertainty if draws is None else None)
+    if json_out:
+        print_json(payload)
+        return
+    print_imo_probabilities(payload, f"IMO MSC.137(76): {ship.name}, {n} Monte-Carlo "
+                                     f"samples (seed {seed})")
+
+
+def _read_draws(path: Path) -> dict[str, Any]:
+    """The ``[draws]`` of a TOML file as sampling distributions (names, units checked later
+    against the ship's parameters)."""
+    import tomllib
+
+    from pydantic import ValidationError
+
+    from ..numerics.sampling import get_distribution
+    from ..scenario.schema import Distribution
+    from ._common import input_file
+
+    input_file("--draws", path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8-sig"))
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise ParameterError(f"`--draws` {path}: not a TOML file ({exc})") from None
+    table = data.get("draws")
+    if not isinstance(table, dict) or not table:
+        raise ParameterError(f"`--draws` {path}: needs a table [draws] of parameter = "
+                             "{distribution = ..., ...}")
+    out = {}
+    for key, spec in table.items():
+        try:
+            d = Distribution.model_validate(spec)
+        except ValidationError as exc:
+            why = "; ".join(e["msg"] for e in exc.errors())
+            raise ParameterError(f"`--draws` {path}: [draws.{key}] {why}") from None
+        params = {k: getattr(d, k) for k in ("mean", "std", "low", "high")
+                  if getattr(d, k) is not None}
+        out[key] = get_distribution(d.distribution, **params)
+    return out
+
+
+def print_imo_probabilities(p: dict[str, Any], title: str) -> None:
+    """The pass probabilities of an ensemble (:func:`~seahelm.analysis.imo_probability.
+    imo_probabilities`), as a table and a line for the whole check."""
+    level = 100 * p["confidence_level"]
+    table = Table("criterion", "side", "median", "limit", "P(pass)", f"{level:g} % interval",
+                  title=escape(title), title_justify="left")
+    for r in p["criteria"]:
+        table.add_row(escape(f"{r['ability']}: {r['criterion']}"), r["side"],
+                      f"{r['median']:.3g} {r['unit']}", f"{r['limit']:.4g}",
+                      f"{r['probability']:.3f}", f"{r['ci_low']:.3f} .. {r['ci_high']:.3f}")
+    console.print(table)
+    console.print(f"all evaluated criteria: P(pass) = {p['probability']:.3f} "
+                  f"({p['ci_low']:.3f} .. {p['ci_high']:.3f}, Wilson); {p['excluded']} "
+                  f"incomplete run(s) excluded; {p['note']}", highlight=False, soft_wrap=True)
 
 
 def show_report(report: Any, out: Path | None, as_json: bool, *, plot: bool = True) -> None:
