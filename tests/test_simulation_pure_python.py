@@ -103,7 +103,7 @@ CASES = {
                    "propeller_rps": RPS_L7}),
     "mmg-4q": lambda: dict(  # a crash stop: full astern ordered from the approach
         params=[KVLCC2_L7_4Q, KVLCC2_L7_4Q.replace(backing_side_force=0.1)],
-        x0=np.array([U0_L7, 0, 0, 0, 0, 0, RPS_L7]), t_final=2.0, dt=0.1,
+        x0=np.array([U0_L7, 0, 0, 0, 0, 0, RPS_L7, 0]), t_final=2.0, dt=0.1,
         actuator=RUDDER_SERVO, actuator_params=KVLCC2_L7_SERVO, controller=OPEN_LOOP,
         reference={"rudder_command": np.radians([0.0, 10.0]).reshape(2, 1, 1),
                    "engine_order": -1.0}),

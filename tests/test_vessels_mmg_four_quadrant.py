@@ -41,7 +41,7 @@ def _states(n):
     u = rng.uniform(2.0, 8.0, 20)
     return np.column_stack([u, rng.uniform(-1, 1, 20), rng.uniform(-0.01, 0.01, 20),
                             np.zeros(20), np.zeros(20), rng.uniform(-3, 3, 20),
-                            np.full(20, n)])
+                            np.full(20, n), np.zeros(20)])
 
 
 def test_ahead_derivative_equals_mmg_bit_for_bit():
@@ -55,6 +55,7 @@ def test_ahead_derivative_equals_mmg_bit_for_bit():
                              KVLCC2_FULL_4Q)
     np.testing.assert_array_equal(d_4q[:, :6], d_mmg)
     np.testing.assert_allclose(d_4q[:, 6], 0.0, atol=1e-12)  # governor holds the rps
+    np.testing.assert_array_equal(d_4q[:, 7], 0.0)  # no reversal: the clock stays at 0
 
 
 def _run(model, params, x0, ref, t_final=600.0, dt=1.0):
@@ -69,7 +70,7 @@ def test_turning_circle_equals_mmg(rudder):
     n = self_propulsion_rps(KVLCC2_FULL, U0)
     a = _run(MMG, KVLCC2_FULL, [U0, 0, 0, 0, 0, 0],
              {"rudder_command": rudder, "propeller_rps": n})
-    b = _run(MMG_4Q, KVLCC2_FULL_4Q, [U0, 0, 0, 0, 0, 0, n],
+    b = _run(MMG_4Q, KVLCC2_FULL_4Q, [U0, 0, 0, 0, 0, 0, n, 0],
              {"rudder_command": rudder, "engine_order": n / KVLCC2_FULL_4Q.rated_rps})
     for name in ("north", "east", "heading", "surge_speed"):
         scale = 1.0 + np.abs(a[name]).max()
@@ -80,8 +81,8 @@ def test_crash_stop_comes_to_rest_and_reverses_the_shaft():
     p = KVLCC2_FULL_4Q
     U0 = p.approach_speed
     n = self_propulsion_rps(p, U0)
-    r = _run(MMG_4Q, p, [U0, 0, 0, 0, 0, 0, n], {"rudder_command": 0.0, "engine_order": -1.0},
-             t_final=2400.0)
+    r = _run(MMG_4Q, p, [U0, 0, 0, 0, 0, 0, n, 0], {"rudder_command": 0.0,
+                                                    "engine_order": -1.0}, t_final=2400.0)
     u = r["surge_speed"][0]
     rps = r["propeller_rps"][0]
     assert rps[-1] == pytest.approx(p.astern_rps, rel=1e-3)
@@ -89,3 +90,24 @@ def test_crash_stop_comes_to_rest_and_reverses_the_shaft():
     k = int(np.argmax(u <= 0.0))
     reach = r["north"][0, k]
     assert 0.0 < reach < 20 * p.length
+
+
+@pytest.mark.parametrize("delay", [0.0, 30.0, 90.0])
+def test_reversal_delay_is_honoured_as_a_time(delay):
+    """Fuel cut for t_d after the full-astern order (the shaft windmills, still ahead), then
+    the air brake reverses it within seconds: astern rotation in (t_d, t_d + 15 s]."""
+    p = from_mmg(KVLCC2_FULL, reversal_delay=delay)
+    U0 = p.approach_speed
+    n = self_propulsion_rps(p, U0)
+    r = simulate(MMG_4Q, p, [U0, 0, 0, 0, 0, 0, n, 0], t_final=delay + 60.0, dt=0.05,
+                 actuator=RUDDER_SERVO, actuator_params=KVLCC2_FULL_SERVO, actuator_x0=[0.0],
+                 controller=OPEN_LOOP, reference={"rudder_command": 0.0, "engine_order": -1.0})
+    t = r.time
+    rps = r["propeller_rps"][0]
+    astern = t[np.argmax(rps < 0.0)]
+    assert delay < astern <= delay + 15.0
+    assert np.all(rps[t <= delay] > 0.2 * n)  # windmilling: not stopped before t_d
+    # the sequence clock counted the time of the reversal, then returned towards 0
+    clock = r["reversal_clock"][0]
+    assert clock[np.searchsorted(t, astern) - 1] == pytest.approx(astern, abs=0.1)
+    assert clock[-1] < 0.1 * astern

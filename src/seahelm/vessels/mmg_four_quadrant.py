@@ -3,7 +3,8 @@
 The MMG standard model (:mod:`seahelm.vessels.mmg`, Yasukawa & Yoshimura 2015) with
 
 * the propeller rps as a state driven by an engine order through the engine, shaft and
-  reversal sequence of :mod:`seahelm.vessels.engine_shaft`;
+  reversal sequence of :mod:`seahelm.vessels.engine_shaft` (its sequence clock τ is the
+  state ``reversal_clock`` [s], 0 in a steady run);
 * the four-quadrant propeller (:mod:`seahelm.hydrodynamics.four_quadrant`, Wageningen B4-70
   P/D 1.0 of Roddy, Hess & Faller 2006) for the thrust outside the first quadrant and for the
   torque everywhere, scaled to the ship's propeller by s = k_0 / K_T0(B4-70), so that the
@@ -67,7 +68,12 @@ from ..hydrodynamics.four_quadrant import (
 )
 from ..parameters import param, signal_indices
 from .base import VesselModel
-from .engine_shaft import EngineShaftParams, check_engine, shaft_acceleration
+from .engine_shaft import (
+    EngineShaftParams,
+    check_engine,
+    reversal_clock_rate,
+    shaft_acceleration,
+)
 from .mmg import (
     DISTURBANCE_UNITS,
     DISTURBANCES,
@@ -85,8 +91,9 @@ __all__ = ["MMG4QParams", "MMG_4Q", "STATES", "INPUTS", "OUTPUTS", "KVLCC2_FULL_
            "KVLCC2_L7_4Q", "KVLCC2_ENGINE_NOTE", "self_propulsion_rps", "propeller_torque",
            "from_mmg"]
 
-STATES = ("surge_speed", "sway_speed", "yaw_rate", "north", "east", "heading", "propeller_rps")
-STATE_UNITS = ("m/s", "m/s", "rad/s", "m", "m", "rad", "1/s")
+STATES = ("surge_speed", "sway_speed", "yaw_rate", "north", "east", "heading", "propeller_rps",
+          "reversal_clock")
+STATE_UNITS = ("m/s", "m/s", "rad/s", "m", "m", "rad", "1/s", "s")
 INPUTS = ("rudder_angle", "engine_order")
 INPUT_UNITS = ("rad", "1")
 OUTPUTS = _MMG_OUTPUTS + ("propeller_rps", "propeller_torque", "advance_angle")
@@ -225,7 +232,9 @@ def mmg4q_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     dx[S.north] = uu * c - v * s + d[D.current_north]
     dx[S.east] = uu * s + v * c + d[D.current_east]
     dx[S.heading] = r
-    dx[S.propeller_rps] = shaft_acceleration(n, u[U.engine_order], torque, p)
+    clock = x[S.reversal_clock]
+    dx[S.propeller_rps] = shaft_acceleration(n, u[U.engine_order], torque, clock, p)
+    dx[S.reversal_clock] = reversal_clock_rate(n, u[U.engine_order], clock, p)
 
 
 @njit(cache=True)
@@ -338,8 +347,8 @@ KVLCC2_ENGINE_NOTE = (
     "reversal below 0.25 n_MCR; reversal (brake) time 40 s full scale; governor 2 s; shaft "
     "inertia 1.2e6 kg m^2 full scale (propeller of about 65 t with a radius of gyration of "
     "about 0.22 D, its entrained water about 25 %, engine and shafting of the same order as "
-    "the propeller). L7 model: the same Froude-scaled (times 1/sqrt(45.7), inertia times "
-    "(1000/1025)/45.7^5).")
+    "the propeller), scaled to another ship by (rho/1025) (D_P/9.86 m)^5. L7 model: the times "
+    "Froude-scaled (1/sqrt(45.7)), the inertia by that rule (= (1000/1025)/45.65^5).")
 
 
 def from_mmg(params: MMGParams, *, scale: float = 1.0, **engine: float) -> MMG4QParams:
@@ -352,7 +361,8 @@ def from_mmg(params: MMGParams, *, scale: float = 1.0, **engine: float) -> MMG4Q
     params : MMGParams
         The ship.
     scale : float, optional
-        Froude scale factor λ (45.7 for the L7 model) for the time and inertia estimates.
+        Froude scale factor λ (45.7 for the L7 model) of the time estimates (the inertia
+        scales with ρ D_P⁵ whatever λ).
     **engine : float
         Any :class:`MMG4QParams` field to set instead of the estimate.
 
@@ -366,8 +376,10 @@ def from_mmg(params: MMGParams, *, scale: float = 1.0, **engine: float) -> MMG4Q
     n_mcr = n_sp / 0.85 ** (1.0 / 3.0)
     root = math.sqrt(scale)
     values = dict(
-        shaft_inertia=1.2e6 * (params.rho / 1025.0) / scale ** 5, rated_rps=n_mcr,
+        shaft_inertia=1.2e6 * (params.rho / 1025.0) * (params.propeller_diameter / 9.86) ** 5,
+        rated_rps=n_mcr,
         max_power=p_mcr, astern_rps=-0.7 * n_mcr, reversal_time=40.0 / root,
+        reversal_delay=60.0 / root,
         reversal_rps=0.25 * n_mcr, governor_time_constant=2.0 / root,
         R_0_astern=params.R_0)
     values.update(engine)
