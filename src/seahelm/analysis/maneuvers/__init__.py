@@ -14,7 +14,10 @@ as :mod:`xarray` Datasets; see :mod:`seahelm.analysis.maneuvers.common`):
     and its hysteresis loop (:mod:`.spiral`); :func:`spirals` runs both up to one rudder
     angle;
 :func:`pull_out`
-    rudder to zero after steady turns to both sides (:mod:`.pullout`).
+    rudder to zero after steady turns to both sides (:mod:`.pullout`);
+:func:`crash_stop`
+    the stopping test, full astern with the rudder amidships (:mod:`.stopping`; an ``mmg`` ship
+    is given its engine by :func:`stopping_ship`; metrics of records: :func:`stopping_metrics`).
 
 The IMO MSC.137(76) check on top of these is :mod:`seahelm.analysis.imo`.
 
@@ -40,6 +43,7 @@ from .metrics import (
 )
 from .pullout import pull_out
 from .result import ManeuverResult, metrics_rows
+from .stopping import crash_stop, stopping_metrics, stopping_ship
 from .spiral import DEFAULT_SPIRAL_RUDDERS_DEG, direct_spiral, reverse_spiral, spiral_loop, spirals
 from .turning_circle import track_distance, turning_circle
 from .zigzag import ZigZagMetrics, zigzag, zigzag_metrics
@@ -61,6 +65,9 @@ __all__ = [
     "spirals",
     "DEFAULT_SPIRAL_RUDDERS_DEG",
     "pull_out",
+    "crash_stop",
+    "stopping_ship",
+    "stopping_metrics",
     "settling_time",
     "overshoot",
     "turning_diameter",
