@@ -83,11 +83,13 @@ def test_kvlcc2_l7_report(l7_report):
     init = by[("initial turning", "distance to 10 deg heading change", "port")]
     assert init.limit == 2.5 and 1.0 < init.value < 2.5
     stop = by[("stopping", "track reach (full astern)", "-")]
-    assert stop.status == "not evaluated" and math.isnan(stop.value)
-    assert "ahead motion only" in stop.note
+    sm = r.stopping.metrics
+    assert stop.status == "pass" and stop.value == pytest.approx(float(sm["track_reach"]) / 7.0)
+    assert stop.limit == 15.0 and 5.0 < stop.value < 9.0
+    assert float(sm["approach_speed_value"]) == 1.179
+    assert any("the engine is an estimate" in note for note in r.notes)
     for c in r.criteria:
-        if c.status != "not evaluated":
-            assert c.status == ("pass" if c.margin >= 0 else "fail")
+        assert c.status == ("pass" if c.margin >= 0 else "fail")
     assert r.passed
     assert any("100 m" in note for note in r.notes)
     data = r.to_dict()
@@ -111,3 +113,10 @@ def test_imo_check_validation():
         imo_check("kvlcc2-l7", speed=[1.0, 1.1])
     with pytest.raises(ParameterError, match=r"`approach_speed` must be > 0 \[m/s\]"):
         imo_check("kvlcc2-l7", speed=-1.0)
+
+
+def test_a_ship_without_a_propeller_is_not_evaluated_for_stopping():
+    r = imo_check("mariner-nonlinear")
+    stop = r.criteria[-1]
+    assert (stop.ability, stop.status) == ("stopping", "not evaluated")
+    assert "no propeller input" in stop.note and r.stopping is None

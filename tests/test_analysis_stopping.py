@@ -62,7 +62,10 @@ def test_bad_inputs_name_their_field():
 
 
 def test_a_model_size_ship_of_unknown_scale_warns():
-    own = maneuver_ship("kvlcc2-l7").replace(name="my-model")
+    l7 = maneuver_ship("kvlcc2-l7")
+    assert stopping_ship(l7.replace(name="variant")).params.reversal_delay == pytest.approx(
+        60.0 / math.sqrt(45.7))  # the L7's geometry: its scale
+    own = l7.replace(name="my-model", params={"propeller_diameter": 0.2})
     with pytest.warns(ValidityRangeWarning, match="scale"):
         ship = stopping_ship(own)
     assert ship.params.reversal_delay == 60.0
@@ -74,7 +77,8 @@ def test_a_model_size_ship_of_unknown_scale_warns():
 
 def test_kvlcc2_l7_crash_stop_metrics(l7_stop):
     m = l7_stop.metrics
-    assert l7_stop.maneuver == "stopping" and bool(m["complete"]) and str(m["message"].item()) == "ok"
+    assert l7_stop.maneuver == "stopping" and bool(m["complete"])
+    assert str(m["message"].item()) == "ok"
     L = float(m["length"])
     head, track = float(m["head_reach"]), float(m["track_reach"])
     assert 5.0 * L < head <= track < 9.0 * L
@@ -82,7 +86,8 @@ def test_kvlcc2_l7_crash_stop_metrics(l7_stop):
     delay = float(m["reversal_delay"])
     assert delay < float(m["time_astern"]) < delay + 2.0
     assert float(m["time_astern"]) < float(m["time_dead"])
-    assert abs(float(m["lateral_deviation"])) <= float(m["max_lateral_deviation"]) < 0.5 * L
+    lateral = abs(float(m["lateral_deviation"]))
+    assert lateral <= float(m["max_lateral_deviation"]) < 0.5 * L
     # the backing single screw swings the bow to starboard
     assert math.degrees(float(m["heading_change"])) > 5.0
     assert m.attrs["rudder"].startswith("held amidships")
@@ -201,3 +206,14 @@ def test_head_reach_is_plausible_against_the_momentum_estimate(l7_stop):
                   * p.propeller_diameter ** 2)
     estimate = U0 * p.reversal_delay + 0.5 * M * U0 ** 2 / bollard
     assert 0.5 * estimate < float(m["head_reach"]) < 1.1 * estimate
+
+
+def test_ensemble_check_includes_stopping_for_ships_that_can_stop():
+    from seahelm.analysis.imo_probability import imo_probabilities
+
+    ens = imo_probabilities(["kvlcc2-l7", "kvlcc2-l7-xp-0.5"])
+    (row,) = [r for r in ens.rows if r["ability"] == "stopping"]
+    assert row["passed"] == row["total"] == 2 and row["limit"] == 15.0
+    assert 5.0 < row["median"] < 9.0 and ens.stopping_note == ""
+    single = crash_stop("kvlcc2-l7-xp-0.5").metrics
+    assert float(single["track_reach"]) / 7.0 < 9.0

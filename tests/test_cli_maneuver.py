@@ -96,6 +96,12 @@ def test_turning_table_and_out(tmp_path):
     (["imo", "nope"], "unknown ship 'nope'; catalog ships with a steering gear: kvlcc2-full, "),
     (["imo", "mariner-nomoto2"], "ship 'mariner-nomoto2' has no steering gear"),
     (["imo", "kvlcc2-l7", "--speed", "0"], "`--speed` must be > 0 [m/s], got 0.0"),
+    (["maneuver", "stopping", "--ship", "mariner-nonlinear"],
+     "`--ship`: ship 'mariner-nonlinear' has no propeller"),
+    (["maneuver", "stopping", "--order", "0.5"], "`--order` must be in [-1, 0) [-]"),
+    (["maneuver", "stopping", "--reversal-delay", "-3"],
+     "`--reversal-delay` must be >= 0 [s], got -3.0"),
+    (["maneuver", "stopping", "--dead-fraction", "1"], "`--dead-fraction` must be in [0, 1)"),
 ])
 def test_bad_input_exits_2_with_one_line(args, text):
     res = runner.invoke(app, args)
@@ -144,16 +150,33 @@ def test_imo_json_and_table(tmp_path):
     crit = {(c["ability"], c["criterion"], c["side"]): c for c in out["criteria"]}
     first = crit[("10/10 zig-zag", "first overshoot", "starboard")]
     assert first["unit"] == "deg" and first["limit"] == pytest.approx(10.0)
-    assert crit[("stopping", "track reach (full astern)", "-")]["status"] == "not evaluated"
-    assert crit[("stopping", "track reach (full astern)", "-")]["value"] is None
+    stop = crit[("stopping", "track reach (full astern)", "-")]
+    assert stop["status"] == "pass" and 5.0 < stop["value"] < 9.0 and stop["limit"] == 15.0
     report = json.loads((tmp_path / "imo-report.json").read_text())
     assert report["criteria"] == out["criteria"]
     assert {"imo-turning.png", "imo-zigzag.png", "turning-circle-metrics.nc",
-            "zigzag-metrics.nc"} <= set(os.listdir(tmp_path))
+            "zigzag-metrics.nc", "stopping-metrics.nc", "stopping-runs.nc",
+            "imo-stopping.png"} <= set(os.listdir(tmp_path))
     res = runner.invoke(app, ["imo", "kvlcc2-l7"])
     assert res.exit_code == 0
     text = " ".join(res.stdout.split())
-    assert "PASSES" in text and "not evaluat" in text and "ahead motion only" in text
+    assert "PASSES" in text and "the engine is an estimate" in text
+    mariner = run_json("imo", "mariner-nonlinear")
+    stop = {(c["ability"], c["side"]): c for c in mariner["criteria"]}[("stopping", "-")]
+    assert stop["status"] == "not evaluated" and "no propeller" in stop["note"]
+
+
+def test_stopping_json_and_out(tmp_path):
+    out = run_json("maneuver", "stopping", "--ship", "kvlcc2-l7", "--reversal-delay", "5",
+                   "--out", str(tmp_path))
+    assert out["maneuver"] == "stopping" and out["engine_order"] == -1.0
+    (run,) = out["runs"]
+    assert run["complete"] and run["reversal_delay_s"] == 5.0
+    assert 5.0 < run["time_astern_s"] < 7.0
+    assert run["head_reach_L"] == pytest.approx(run["head_reach_m"] / 7.0)
+    assert run["head_reach_m"] <= run["track_reach_m"]
+    assert sorted(os.listdir(tmp_path)) == ["stopping-metrics.nc", "stopping-runs.nc",
+                                            "stopping.png"]
 
 
 def test_no_steady_turn_names_the_option_that_avoids_it():

@@ -84,8 +84,8 @@ def test_imo_scenario_is_the_imo_check():
     "edit, match",
     [
         (('kind = "turning"', 'kind = "circle"'),
-         r"t.toml: \[maneuver.kind\] Input should be 'turning', 'zigzag', 'pullout', 'spiral' or "
-         r"'imo', got 'circle'"),
+         r"t.toml: \[maneuver.kind\] Input should be 'turning', 'zigzag', 'pullout', 'spiral', "
+         r"'imo' or 'stopping', got 'circle'"),
         (("t_final = 60.0", "heading_deg = 10.0"),
          r"t.toml: \[maneuver\] `heading_deg` is not a key of a 'turning' manoeuvre; its keys: "
          r"rudder \(or rudder_deg\), sides, speed, rps, t_final, dt, record_dt"),
@@ -127,6 +127,52 @@ def test_bad_maneuver_scenarios_name_file_key_and_value(edit, match):
     assert edit[0] in TURN
     with pytest.raises(ScenarioError, match=match):
         parse_scenario(TURN.replace(*edit), source="t.toml")
+
+
+STOP = """title = "crash stop"
+[vessel]
+catalog = "kvlcc2-l7"
+[maneuver]
+kind = "stopping"
+order = [-1.0, -0.5]
+"""
+
+
+def test_stopping_scenario_equals_the_library_call(tmp_path):
+    from seahelm.analysis.maneuvers import crash_stop
+
+    job = parse_scenario(STOP, source="s.toml")
+    assert job.kind == "stopping" and job.options == {"order": [-1.0, -0.5]}
+    got = run_scenario(job).metrics
+    lib = crash_stop("kvlcc2-l7", order=[-1.0, -0.5]).metrics
+    assert got["track_reach"].values.tolist() == lib["track_reach"].values.tolist()
+    assert got.attrs["title"] == "crash stop"
+    path = tmp_path / "stop.toml"
+    path.write_text(STOP)
+    res = runner.invoke(app, ["run", str(path), "--json", "--out", str(tmp_path / "out")])
+    assert res.exit_code == 0, res.stderr
+    out = json.loads(res.stdout)
+    assert out["maneuver"] == "stopping" and len(out["runs"]) == 2
+    assert sorted(Path(p).name for p in out["files"].values()) == [
+        "stopping-metrics.nc", "stopping-runs.nc", "stopping.png"]
+
+
+@pytest.mark.parametrize("edit, match", [
+    ("order = [-1.0, -0.5]",
+     r"\[maneuver\] `order` must be an astern engine order in \[-1, 0\)"),
+    ("order = 0.5", r"\[maneuver\] `order` must be an astern engine order .* got 0.5"),
+    ("dead_fraction = 1.5", r"\[maneuver\] `dead_fraction` must be in \[0, 1\)"),
+    ("rudder_deg = 10.0", r"`rudder_deg` is not a key of a 'stopping' manoeuvre"),
+])
+def test_bad_stopping_scenarios(edit, match):
+    text = STOP.replace("order = [-1.0, -0.5]", edit)
+    if edit.startswith("order = [-1.0"):
+        text = STOP.replace("-0.5]", "0.0]")
+    with pytest.raises(ScenarioError, match=match):
+        parse_scenario(text, source="s.toml")
+    ship = STOP.replace('catalog = "kvlcc2-l7"', 'catalog = "mariner-nonlinear"')
+    with pytest.raises(ScenarioError, match=r"s.toml: .*no propeller"):
+        run_scenario(parse_scenario(ship, source="s.toml"))
 
 
 def test_a_value_the_manoeuvre_rejects_names_the_key():

@@ -6,6 +6,8 @@
   turning test with 10° rudder, to both sides (:func:`~seahelm.analysis.maneuvers.turning_circle`);
 * the 10°/10° and 20°/20° zig-zags, first execute to both sides
   (:func:`~seahelm.analysis.maneuvers.zigzag`);
+* for a ship that can stop, the full-astern stopping test with the rudder amidships
+  (:func:`~seahelm.analysis.maneuvers.crash_stop`);
 
 and compares with the criteria of the resolution (L the ship length [m], V the test speed
 [m/s]):
@@ -60,7 +62,14 @@ import numpy as np
 from .._validate import as_float_array
 from ..errors import ParameterError
 from .constant_speed import is_constant_speed
-from .maneuvers import ManeuverResult, maneuver_ship, turning_circle, zigzag
+from .maneuvers import (
+    ManeuverResult,
+    crash_stop,
+    maneuver_ship,
+    stopping_ship,
+    turning_circle,
+    zigzag,
+)
 
 __all__ = [
     "ADVANCE_LIMIT",
@@ -198,6 +207,8 @@ class ImoReport:
         The 35° turning circles and 10° initial turning runs (``rudder`` × ``side``).
     zigzag : ManeuverResult
         The 10/10 and 20/20 zig-zags (``pair`` × ``side``).
+    stopping : ManeuverResult or None
+        The full-astern stopping test (None for a ship that cannot stop).
     """
 
     ship: str
@@ -208,10 +219,12 @@ class ImoReport:
     notes: tuple[str, ...]
     turning: ManeuverResult
     zigzag: ManeuverResult
+    stopping: ManeuverResult | None = None
 
     @property
     def passed(self) -> bool:
-        """True if every evaluated criterion passes (stopping is not evaluated)."""
+        """True if every evaluated criterion passes (the stopping criterion counts where it is
+        evaluated)."""
         return all(c.status == "pass" for c in self.criteria if c.status != "not evaluated")
 
     def to_dict(self) -> dict[str, Any]:
@@ -314,8 +327,16 @@ def imo_check(ship: Any, *, speed: float | None = None, rps: float | None = None
         rows.append(_row("20/20 zig-zag", "first overshoot", _SIDES[side],
                          float(z20["overshoot"].sel(n=1)), ZIGZAG_20_FIRST_OVERSHOOT_LIMIT,
                          "rad", str(z20["message"].item())))
-    rows.append(ImoCriterion("stopping", "track reach (full astern)", "-", math.nan,
-                             STOPPING_LIMIT, math.nan, "L", "not evaluated", _stopping_note(s)))
+    stopping, stop_notes = _stopping(s, V, dt)
+    if stopping is None:
+        rows.append(ImoCriterion("stopping", "track reach (full astern)", "-", math.nan,
+                                 STOPPING_LIMIT, math.nan, "L", "not evaluated",
+                                 _stopping_note(s)))
+    else:
+        sm = stopping.metrics
+        rows.append(_row("stopping", "track reach (full astern)", "-",
+                         float(sm["track_reach"]) / L, STOPPING_LIMIT, "L",
+                         str(sm["message"].item())))
     notes = [f"test speed V = approach speed {V:.6g} m/s; MSC.137(76) asks for >= 90 % of the "
              "speed at 85 % of the maximum engine output, which the model does not know",
              f"turning with {math.degrees(hard):g} deg rudder"
@@ -325,6 +346,7 @@ def imo_check(ship: Any, *, speed: float | None = None, rps: float | None = None
              f"{math.degrees(limits.second):.4g} deg (second)",
              "distances at the midship point, from the rudder order; initial turning distance "
              "along the track"]
+    notes.extend(stop_notes)
     if is_constant_speed(s.model):
         notes.append(f"constant-speed model '{s.model.name}': the speed stays V = {V:.6g} m/s "
                      "through every manoeuvre (no speed loss in the turn), so advance and "
@@ -339,4 +361,31 @@ def imo_check(ship: Any, *, speed: float | None = None, rps: float | None = None
                      "the criteria are applied to this parameter set as given, with its own "
                      "L/V (a Froude-scaled ship has L/V larger by the square root of the scale)")
     return ImoReport(ship=s.name, length=L, speed=V, L_over_V=lv, criteria=tuple(rows),
-                     notes=tuple(notes), turning=turning, zigzag=zz)
+                     notes=tuple(notes), turning=turning, zigzag=zz, stopping=stopping)
+
+
+def _stopping(ship: Any, speed: float, dt: float | None
+              ) -> tuple[ManeuverResult | None, list[str]]:
+    """The stopping test of a ship that can stop at the test speed, and its notes (None and
+    no notes for a ship that cannot: :func:`_stopping_note` says why)."""
+    try:
+        stopper = stopping_ship(ship)
+    except ParameterError as exc:
+        if exc.field != "ship":
+            raise
+        return None, []
+    result = crash_stop(stopper, speed=speed, dt=dt)
+    m = result.metrics
+    p = stopper.params
+    L = ship.length
+    notes = [f"stopping: full astern ordered at the test speed, rudder amidships, on model "
+             f"'{stopper.model.name}'; track reach to dead in the water (surge speed <= "
+             f"{m.attrs['dead_fraction']:g} V); head reach {float(m['head_reach']) / L:.4g} "
+             f"L, lateral deviation {float(m['lateral_deviation']) / L:.3g} L, time "
+             f"{float(m['time_dead']):.4g} s"]
+    if ship.model.name != stopper.model.name:
+        notes.append(f"stopping: the engine is an estimate, not the ship's data (reversal "
+                     f"delay {p.reversal_delay:.3g} s, full astern {p.astern_rps:.3g} 1/s, MCR "
+                     f"{p.max_power / 1e6:.4g} MW; seahelm.vessels.mmg_four_quadrant.from_mmg); "
+                     "astern and at large drift the hull forces are extrapolated")
+    return result, notes

@@ -9,8 +9,10 @@ fraction that passes each criterion and the whole check with a Wilson score inte
 1927; it stays inside [0, 1] and keeps its coverage for fractions near 0 or 1, where the normal
 interval does not). A member whose manoeuvres did not complete (a diverged run, an event not
 reached within 1.5 times the first member's durations) is excluded from the fractions and
-counted. The stopping criterion needs a model that can stop and is not part of the ensemble
-check.
+counted. The stopping criterion (track reach ≤ 15 L,
+:func:`seahelm.analysis.maneuvers.crash_stop`, one batch per chunk too) is part of the check when every member can stop (an ``mmg`` ship with a
+propeller, given the engine estimate of :func:`~seahelm.analysis.maneuvers.stopping_ship`);
+otherwise it is left out and said so.
 
 References
 ----------
@@ -89,6 +91,7 @@ class ImoProbabilities:
     ci_low: float
     ci_high: float
     level: float
+    stopping_note: str = ""
 
     def as_dict(self) -> dict[str, Any]:
         """Plain data (for JSON).
@@ -100,7 +103,7 @@ class ImoProbabilities:
         return {"criteria": list(self.rows), "passed": self.passed, "total": self.total,
                 "excluded": self.excluded, "probability": self.probability,
                 "ci_low": self.ci_low, "ci_high": self.ci_high, "confidence_level": self.level,
-                "note": "stopping (track reach) not evaluated in the ensemble check"}
+                "note": self.stopping_note or "stopping (track reach) evaluated"}
 
 
 def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | None = None
@@ -197,6 +200,23 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
                 parts[(a, c, name)].append(v)
     checks = [(a, c, side, np.concatenate(parts[(a, c, side)]), limit, unit)
               for side in ("starboard", "port") for a, c, unit, limit in names]
+    stopping_note = ""
+    try:
+        from .maneuvers import crash_stop, stopping_ship
+
+        stoppers = [stopping_ship(s) for s in members]
+    except ParameterError as exc:
+        if exc.field != "ship":
+            raise
+        stopping_note = f"stopping (track reach) not evaluated: {exc.reason.lstrip(': ')}"
+    else:
+        from .imo import STOPPING_LIMIT
+
+        reach = [np.asarray(crash_stop(stoppers[i:i + CHUNK], speed=V, dt=dt)
+                            .metrics["track_reach"].values, dtype=float).reshape(-1)
+                 for i in range(0, len(stoppers), CHUNK)]
+        checks.append(("stopping", "track reach (full astern)", "-",
+                       np.concatenate(reach) / L, STOPPING_LIMIT, "L"))
     complete = np.all([np.isfinite(c[3]) for c in checks], axis=0)
     total = int(complete.sum())
     rows = []
@@ -216,12 +236,12 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
     return ImoProbabilities(rows=tuple(rows), passed=passed_all, total=total,
                             excluded=len(members) - total,
                             probability=passed_all / total if total else math.nan,
-                            ci_low=lo, ci_high=hi, level=level)
+                            ci_low=lo, ci_high=hi, level=level, stopping_note=stopping_note)
 
 
 #: The coefficients an uncertain ship's default Monte-Carlo draws (their relative standard
 #: deviation :data:`DEFAULT_UNCERTAINTY`), per model: the linear manoeuvring derivatives, whose
-#: uncertainty dominates the IMO manoeuvres (the KVLCC2 example, examples/kvlcc2_imo_uncertainty.py).
+#: uncertainty dominates the IMO manoeuvres (examples/kvlcc2_imo_uncertainty.py).
 UNCERTAIN_COEFFICIENTS: dict[str, tuple[str, ...]] = {
     "mmg": ("Y_v", "Y_r", "N_v", "N_r"),
     "mariner": ("Y_v", "Y_r", "N_v", "N_r"),

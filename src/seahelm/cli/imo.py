@@ -1,12 +1,13 @@
 """``seahelm imo SHIP``: check a ship (catalog name or ship file) against IMO Resolution MSC.137(76).
 
 Runs :func:`seahelm.analysis.imo.imo_check` (35° turning circles and 10° initial turning to
-both sides, 10/10 and 20/20 zig-zags to both sides) and prints a table of the criteria with
-value, limit, margin (limit − value) and pass/fail; stopping is reported as not evaluated.
+both sides, 10/10 and 20/20 zig-zags to both sides, the full-astern stopping test of a ship
+with a propeller) and prints a table of the criteria with value, limit, margin (limit − value)
+and pass/fail; stopping is "not evaluated" for a ship without a propeller, with the reason.
 ``--json`` prints exactly one JSON object (angles in degrees, lengths in ship lengths);
-``--out DIR`` writes the runs and metrics as NetCDF, the report as JSON and the turning and
-zig-zag figures as PNG. Exit codes: 0 the check ran (whether or not the ship passes), 2 bad
-input, 1 other failure.
+``--out DIR`` writes the runs and metrics as NetCDF, the report as JSON and the turning,
+zig-zag (and stopping) figures as PNG. Exit codes: 0 the check ran (whether or not the ship
+passes), 2 bad input, 1 other failure.
 """
 
 from __future__ import annotations
@@ -206,7 +207,7 @@ def _write(out: Path, report: Any, payload: dict[str, Any], plot: bool = True
 
 def _write_files(out: Path, report: Any, payload: dict[str, Any], plot: bool
                  ) -> dict[str, str]:
-    from ..plotting.maneuvers import plot_turning, plot_zigzag
+    from ..plotting.maneuvers import plot_stopping, plot_turning, plot_zigzag
     from ..results import atomic_write
     from .maneuver import write_outputs
 
@@ -219,6 +220,12 @@ def _write_files(out: Path, report: Any, payload: dict[str, Any], plot: bool
     if plot:
         more["plot_zigzag"] = more.pop("plot")
     files.update(more)
+    if report.stopping is not None:
+        stop = write_outputs(out, [report.stopping], (lambda: plot_stopping(report.stopping))
+                             if plot else None, "imo-stopping.png")
+        if plot:
+            stop["plot_stopping"] = stop.pop("plot")
+        files.update(stop)
     text = json.dumps(_jsonable({k: v for k, v in payload.items() if k != "files"}), indent=2,
                       allow_nan=False)
     files["report"] = str(atomic_write(out / "imo-report.json",

@@ -54,7 +54,7 @@ _GROUPS = (
     ("averaging", "seahelm.cli.averaging", "Full averaging of the CPP ship in waves."),
     ("compensate", "seahelm.cli.compensate", "Wave/wind forces and compensating rudder angle."),
     ("maneuver", "seahelm.cli.maneuver",
-     "Standard manoeuvres: turning circle, zig-zag, spiral, pull-out."),
+     "Standard manoeuvres: turning circle, zig-zag, spiral, pull-out, stopping."),
     ("ship", "seahelm.cli.ship", "Ships: the catalog, and ship files (TOML)."),
     ("autopilot", "seahelm.cli.autopilot", "Autopilot design: PID and LQ gains from the ship."),
 )
@@ -66,6 +66,9 @@ for _name, _module, _help in _GROUPS:
             raise
         continue
     app.add_typer(_sub.app, name=_name, help=_help)
+# Commands that add themselves to a group's app, in modules of their own: `maneuver stopping`.
+for _module in ("seahelm.cli.stopping",):
+    importlib.import_module(_module)
 
 # Single commands of their own modules: (name, module, function).
 _COMMANDS = (("imo", "seahelm.cli.imo", "imo"), ("inspect", "seahelm.cli.inspect", "inspect"),

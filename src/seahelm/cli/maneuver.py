@@ -1,4 +1,5 @@
-"""``seahelm maneuver``: standard manoeuvres of a catalog ship (turning, zigzag, spiral, pullout).
+"""``seahelm maneuver``: standard manoeuvres of a catalog ship (turning, zigzag, spiral, pullout,
+stopping: :mod:`seahelm.cli.stopping`).
 
 Each command runs one batch of :mod:`seahelm.analysis.maneuvers` (both sides by default) and
 prints a rich table of the metrics, or with ``--json`` exactly one JSON object on stdout; with
@@ -34,7 +35,7 @@ from ._common import (
 
 app = typer.Typer(
     cls=OneLineErrors,
-    help="Standard manoeuvres: turning circle, zig-zag, spiral, pull-out (both sides).",
+    help="Standard manoeuvres: turning circle, zig-zag, spiral, pull-out (both sides), stopping.",
     no_args_is_help=True,
 )
 
@@ -155,8 +156,10 @@ OUT_FILES: dict[str, tuple[str, ...]] = {
     "pullout": ("pull-out-metrics.nc", "pull-out-runs.nc", "pullout.png"),
     "spiral": ("direct-spiral-metrics.nc", "direct-spiral-runs.nc",
                "reverse-spiral-metrics.nc", "spiral.png"),
+    "stopping": ("stopping-metrics.nc", "stopping-runs.nc", "stopping.png"),
     "imo": ("turning-circle-metrics.nc", "turning-circle-runs.nc", "zigzag-metrics.nc",
-            "zigzag-runs.nc", "imo-turning.png", "imo-zigzag.png", "imo-report.json"),
+            "zigzag-runs.nc", "imo-turning.png", "imo-zigzag.png", "imo-report.json",
+            "stopping-metrics.nc", "stopping-runs.nc", "imo-stopping.png"),
 }
 
 
@@ -559,4 +562,3 @@ def show_spirals(title: str, direct: Any, reverse: Any, out: Path | None,
                           highlight=False)
     for kind, path in payload.get("files", {}).items():
         console.print(f"  {kind}: {escape(path)}", highlight=False)
-

@@ -31,7 +31,8 @@ def present_job(job: Any, out: Path | None, as_json: bool, *, plot: bool = True,
     """Run a ``[maneuver]`` scenario's :class:`~seahelm.scenario.ManeuverJob` and show it as
     the matching ``seahelm maneuver``/``seahelm imo`` command would (files with ``out``,
     figures unless ``plot`` is False; never over ``reads``, the files the command read)."""
-    from ..plotting.maneuvers import plot_pullout, plot_turning, plot_zigzag
+    from ..plotting.maneuvers import plot_pullout, plot_stopping, plot_turning, plot_zigzag
+    from .stopping import STOPPING_FIELDS
 
     check_out(out, job.kind, reads)
     result = job.run()
@@ -44,7 +45,7 @@ def present_job(job: Any, out: Path | None, as_json: bool, *, plot: bool = True,
         show_spirals(job.title or f"Direct spiral, {name}", *result, out, as_json, plot=plot)
         return
     rudder = _deg_text(opts.get("rudder", math.radians(
-        {"turning": 35.0, "zigzag": 10.0, "pullout": 20.0}[job.kind])))
+        {"turning": 35.0, "zigzag": 10.0, "pullout": 20.0}.get(job.kind, 0.0))))
     kinds = {
         "turning": (f"Turning circle, {name}, {rudder} deg rudder", TURNING_FIELDS,
                     plot_turning, "turning.png"),
@@ -52,6 +53,8 @@ def present_job(job: Any, out: Path | None, as_json: bool, *, plot: bool = True,
                    "zigzag.png"),
         "pullout": (f"Pull-out from {rudder} deg, {name}", PULLOUT_FIELDS, plot_pullout,
                     "pullout.png"),
+        "stopping": (f"Stopping test, {name}, rudder amidships", STOPPING_FIELDS,
+                     plot_stopping, "stopping.png"),
     }
     title, fields, draw, png = kinds[job.kind]
     payload = {"scenario": job.title or job.metadata.get("scenario_source", ""),

@@ -13,7 +13,11 @@ Each function takes a :class:`~seahelm.analysis.maneuvers.ManeuverResult` and an
     the r–δ curve: the direct spiral's steady yaw rates on the descending and ascending legs
     and the reverse spiral's equilibria, with the hysteresis loop shaded;
 :func:`plot_pullout`
-    yaw rate against time after the rudder is returned to zero, both sides.
+    yaw rate against time after the rudder is returned to zero, both sides;
+:func:`plot_stopping`
+    stopping tracks in the frame of the original course with the dead-in-the-water points
+    (dotted after them, going astern), and the surge speed, propeller rps and engine order
+    against time, up to 1.5 times the latest time to dead in the water.
 
 Angles are drawn in degrees.
 """
@@ -27,7 +31,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["plot_turning", "plot_zigzag", "plot_spiral", "plot_pullout"]
+__all__ = ["plot_turning", "plot_zigzag", "plot_spiral", "plot_pullout", "plot_stopping"]
 
 _SIDE = {1: "starboard", -1: "port"}
 
@@ -52,6 +56,8 @@ def _runs(result: Any) -> Iterator[tuple[str, Any, Any]]:
             parts.append(f"{math.degrees(float(m['rudder'])):.3g} deg")
         if "side" in m.coords:
             parts.append(_SIDE[int(m["side"])])
+        if "order" in dims:
+            parts.append(f"order {float(m['order']):.3g}")
         yield ", ".join(parts) or m["ship_name"].item(), runs, m
 
 
@@ -295,3 +301,75 @@ def plot_pullout(result: Any, *, ax: Any = None) -> Any:
     ax.grid(True, alpha=0.3)
     ax.legend(loc="best", fontsize="small")
     return ax
+
+
+def plot_stopping(result: Any, *, fig: Any = None) -> Any:
+    """Stopping tests: tracks (left) and surge speed, propeller rps, engine order (right).
+
+    The track of each run is drawn in the frame of the original course (across to starboard,
+    along ahead, from the position at the order) up to the end of the run, with the point where
+    the ship is dead in the water marked and its head reach written; the time series show the
+    reversal sequence (the windmilling shaft, the air start, the astern rps).
+
+    Parameters
+    ----------
+    result : ManeuverResult
+        A stopping result (:func:`~seahelm.analysis.maneuvers.crash_stop`).
+    fig : matplotlib Figure, optional
+        Figure to draw into (default: a new one).
+
+    Returns
+    -------
+    matplotlib Figure
+    """
+    if fig is None:
+        import matplotlib.pyplot as plt
+
+        fig = plt.figure(figsize=(12.0, 7.0), layout="constrained")
+    grid = fig.add_gridspec(3, 2, width_ratios=(1.0, 1.4))
+    track = fig.add_subplot(grid[:, 0])
+    series = [fig.add_subplot(grid[i, 1]) for i in range(3)]
+    for ax in series[1:]:
+        ax.sharex(series[0])
+    dead = result.metrics["time_dead"].values
+    shown = 1.5 * float(np.nanmax(dead)) if np.isfinite(dead).any() else math.inf
+    for k, (label, run, m) in enumerate(_runs(result)):
+        color = f"C{k % 10}"
+        t = run["time"].values
+        keep = t <= shown
+        t_dead = float(m["time_dead"])
+        ahead = t <= (t_dead if math.isfinite(t_dead) else math.inf)
+        north, east = run["north"].values, run["east"].values
+        psi0 = float(run["heading"].values[0])
+        c, s = math.cos(psi0), math.sin(psi0)
+        along = (north - north[0]) * c + (east - east[0]) * s
+        across = -(north - north[0]) * s + (east - east[0]) * c
+        head, lateral = float(m["head_reach"]), float(m["lateral_deviation"])
+        track.plot(across[ahead], along[ahead], color=color, lw=1.5, label=label)
+        track.plot(across[keep & ~ahead], along[keep & ~ahead], color=color, lw=0.7, ls=":")
+        if math.isfinite(head):
+            track.plot([lateral], [head], "o", color=color, ms=6)
+            track.text(lateral, head, f"  head reach {head:.4g} m", color=color, fontsize=8,
+                       va="center")
+        series[0].plot(t[keep], run["surge_speed"].values[keep], color=color, lw=1.2,
+                       label=label)
+        series[1].plot(t[keep], run["propeller_rps"].values[keep], color=color, lw=1.2)
+        series[2].plot(t[keep], run["engine_order"].values[keep], color=color, lw=1.2)
+        for ax in series:
+            if math.isfinite(t_dead):
+                ax.axvline(t_dead, color=color, lw=0.8, ls="--")
+    track.plot([0.0], [0.0], "k^", ms=7, label="full astern ordered")
+    track.axvline(0.0, color="0.6", lw=0.8, ls=":")
+    track.set(xlabel="across the original course (to starboard) [m]",
+              ylabel="along the original course [m]", title="track")
+    track.set_aspect("equal", adjustable="datalim")
+    track.legend(fontsize="small", loc="lower right")
+    for ax, ylabel in zip(series, ("surge speed u [m/s]", "propeller n [1/s]",
+                                   "engine order [-]")):
+        ax.axhline(0.0, color="0.6", lw=0.8, ls=":")
+        ax.set_ylabel(ylabel)
+    series[2].set_xlabel("time from the order [s] (dashed: dead in the water)")
+    frac = result.metrics.attrs.get("dead_fraction", 0.05)
+    fig.suptitle(f"Stopping test: {', '.join(s.name for s in result.ships)} "
+                 f"(rudder amidships; dead in the water at u <= {frac:g} U0)")
+    return fig

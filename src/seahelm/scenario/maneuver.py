@@ -9,7 +9,7 @@
     [actuator]
     params = { rate_limit_deg = 2.32 }   # optional: overrides of the entry's steering gear
     [maneuver]
-    kind = "turning"                # turning | zigzag | pullout | spiral | imo
+    kind = "turning"                # turning | zigzag | pullout | spiral | imo | stopping
     rudder_deg = [20, 35]           # a list gives a batch dimension
     sides = "both"                  # both | starboard | port
     speed = 1.179                   # approach speed [m/s] (or rps = ... [1/s]); may be a list
@@ -51,7 +51,7 @@ class ManeuverJob:
     Attributes
     ----------
     kind : str
-        ``turning``, ``zigzag``, ``pullout``, ``spiral`` or ``imo``.
+        ``turning``, ``zigzag``, ``pullout``, ``spiral``, ``imo`` or ``stopping``.
     ship : ManeuverShip
         The ship with its steering gear (with the scenario's overrides).
     options : mapping
@@ -170,8 +170,9 @@ class ManeuverJob:
         Returns
         -------
         ManeuverResult, (ManeuverResult, ManeuverResult) or ImoReport
-            A :class:`~seahelm.analysis.maneuvers.ManeuverResult` for ``turning``, ``zigzag``
-            and ``pullout``; the direct and reverse spirals for ``spiral``; an
+            A :class:`~seahelm.analysis.maneuvers.ManeuverResult` for ``turning``, ``zigzag``,
+            ``pullout`` and ``stopping`` (:func:`~seahelm.analysis.maneuvers.crash_stop`); the
+            direct and reverse spirals for ``spiral``; an
             :class:`~seahelm.analysis.imo.ImoReport` for ``imo``. The scenario's metadata is
             in the attributes of every metrics Dataset.
 
@@ -186,7 +187,7 @@ class ManeuverJob:
 
         functions = {"turning": maneuvers.turning_circle, "zigzag": maneuvers.zigzag,
                      "pullout": maneuvers.pull_out, "spiral": maneuvers.spirals,
-                     "imo": imo_check}
+                     "imo": imo_check, "stopping": maneuvers.crash_stop}
         ship = self.ships() if self.monte_carlo is not None else self.ship
         try:
             out = functions[self.kind](ship, **self.options)
@@ -216,7 +217,7 @@ def _results(out: Any) -> list[Any]:
     if isinstance(out, tuple):
         return list(out)
     if hasattr(out, "turning") and hasattr(out, "zigzag"):  # an ImoReport
-        return [out.turning, out.zigzag]
+        return [out.turning, out.zigzag] + ([out.stopping] if out.stopping is not None else [])
     return [out]
 
 
@@ -310,7 +311,7 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
         raise at_key(source, key, exc.reason.lstrip(": ")) from None
 
     options: dict[str, Any] = {}
-    for key in ("speed", "rps", "t_final", "dt", "record_dt", "hold"):
+    for key in ("speed", "rps", "t_final", "dt", "record_dt", "hold", "order", "dead_fraction"):
         value = getattr(man, key)
         if value is not None:
             options[key] = value

@@ -317,6 +317,7 @@ MANEUVER_KEYS: dict[str, tuple[str, ...]] = {
     "pullout": ("rudder", "sides", "speed", "rps", "t_final", "dt", "record_dt"),
     "spiral": ("max_rudder", "hold", "speed", "rps", "dt"),
     "imo": ("speed", "rps", "dt"),
+    "stopping": ("order", "dead_fraction", "speed", "t_final", "dt", "record_dt"),
 }
 _ANGLES = ("rudder", "heading", "max_rudder")
 
@@ -326,7 +327,7 @@ Values = Number | Annotated[list[Number], Field(min_length=1)]
 class ManeuverSection(_Strict):
     """``[maneuver]``: a standard manoeuvre of the vessel (see :mod:`.maneuver`)."""
 
-    kind: Literal["turning", "zigzag", "pullout", "spiral", "imo"]
+    kind: Literal["turning", "zigzag", "pullout", "spiral", "imo", "stopping"]
     rudder: Values | None = None
     rudder_deg: Values | None = None
     heading: Values | None = None
@@ -340,6 +341,8 @@ class ManeuverSection(_Strict):
     dt: Positive | None = None
     record_dt: Positive | None = None
     hold: Positive | None = None
+    order: Values | None = None
+    dead_fraction: Number | None = None
 
     @model_validator(mode="after")
     def _check(self) -> "ManeuverSection":
@@ -369,6 +372,12 @@ class ManeuverSection(_Strict):
         if self.speed is not None and self.rps is not None:
             raise ValueError("give the approach `speed` [m/s] or the propeller `rps` [1/s], "
                              "not both")
+        for v in self.order if isinstance(self.order, list) else [self.order]:
+            if v is not None and not -1.0 <= v < 0.0:
+                raise ValueError(f"`order` must be an astern engine order in [-1, 0) [-] (-1 "
+                                 f"full astern), got {v!r}")
+        if self.dead_fraction is not None and not 0.0 <= self.dead_fraction < 1.0:
+            raise ValueError(f"`dead_fraction` must be in [0, 1) [-], got {self.dead_fraction!r}")
         return self
 
 
@@ -391,8 +400,8 @@ class Scenario(_Strict):
     def _simulation_or_maneuver(self) -> "Scenario":
         if self.maneuver is None and self.simulation is None:
             raise ValueError("a scenario needs a [simulation] section (t_final, dt, ...) or a "
-                             "[maneuver] section (kind = turning, zigzag, pullout, spiral "
-                             "or imo)")
+                             "[maneuver] section (kind = turning, zigzag, pullout, spiral, "
+                             "imo or stopping)")
         if self.maneuver is not None:
             extra = [s for s in ("simulation", "controller", "batch", "guidance")
                      if s in self.model_fields_set

@@ -71,6 +71,7 @@ __all__ = ["crash_stop", "stopping_ship", "stopping_metrics", "STOPPING_ENGINE_S
 #: is taken at full scale unless ``scale`` is given.
 STOPPING_ENGINE_SCALES: dict[str, float] = {
     "kvlcc2-l7": 45.7, "kvlcc2-l7-wp0-0.35": 45.7, "kvlcc2-l7-xp-0.5": 45.7}
+_KVLCC2_L7_GEOMETRY = (7.0, 0.216)
 #: A ship shorter than this [m] without a known scale warns that full-scale engine timings are
 #: applied to it.
 MODEL_SCALE_LENGTH = 50.0
@@ -100,8 +101,9 @@ def stopping_ship(ship: Any, *, scale: float | None = None, **engine: float) -> 
         The ship.
     scale : float, optional
         Froude scale λ ≥ 1 of a model (its engine timings are full-scale ones / √λ). Default:
-        :data:`STOPPING_ENGINE_SCALES` for the catalog's model-scale KVLCC2s, else 1 (with a
-        warning for a ship shorter than :data:`MODEL_SCALE_LENGTH`).
+        :data:`STOPPING_ENGINE_SCALES` for the catalog's model-scale KVLCC2s and 45.7 for any
+        ship with the L7 model's length and propeller (7 m, 0.216 m), else 1 (with a warning
+        for a ship shorter than :data:`MODEL_SCALE_LENGTH`).
     **engine : float
         Any :class:`~seahelm.vessels.mmg_four_quadrant.MMG4QParams` field to set instead of the
         estimate (e.g. ``reversal_delay=90.0``).
@@ -138,6 +140,9 @@ def stopping_ship(ship: Any, *, scale: float | None = None, **engine: float) -> 
             field="ship", value=s.name)
     if scale is None:
         scale = STOPPING_ENGINE_SCALES.get(s.name)
+        geometry = (float(s.params.length), float(s.params.propeller_diameter))
+        if scale is None and geometry == _KVLCC2_L7_GEOMETRY:  # a variant of the L7 model
+            scale = 45.7
         if scale is None:
             scale = 1.0
             if s.length < MODEL_SCALE_LENGTH:
@@ -199,15 +204,17 @@ def _astern_thrust(p: Any, order: float) -> float:
 
 
 def _estimate_t_final(ships: list[Ship], speeds: np.ndarray, orders: np.ndarray) -> float:
-    """2 × (t_d + t_rev + M U_0 / |T_astern|) of the slowest-stopping run (momentum estimate
-    with the bollard astern thrust; the resistance, left out, only shortens the stop)."""
+    """1.2 × (t_d + t_rev + M U_0 / |T_astern|) of the slowest-stopping run (momentum
+    estimate with the bollard astern thrust: an upper bound of the time to stop, since the
+    resistance, left out, and the larger astern thrust at ahead speed only shorten it; the
+    KVLCC2 is dead in the water at about a third of it)."""
     t = 0.0
     for s in ships:
         p = s.params
         mass = p.rho * p.displacement + p.m_x * 0.5 * p.rho * p.length ** 2 * p.draft
         for order in orders:
             thrust = _astern_thrust(p, float(order))
-            t = max(t, 2.0 * (p.reversal_delay + p.reversal_time
+            t = max(t, 1.2 * (p.reversal_delay + p.reversal_time
                               + mass * float(np.max(speeds)) / thrust))
     return t
 
@@ -240,8 +247,8 @@ def crash_stop(ship: Any, *, order: Any = -1.0, speed: Any = None,
         Approach speed(s) U_0 [m/s] (default: the ship's test speed); a sequence gives an
         ``approach_speed`` dimension.
     t_final : float, optional
-        Duration [s] (default: twice the momentum estimate t_d + t_rev + M U_0/|T_astern| with
-        the bollard astern thrust, M the mass with the surge added mass).
+        Duration [s] (default: 1.2 × the momentum estimate t_d + t_rev + M U_0/|T_astern| with
+        the bollard astern thrust, M the mass with the surge added mass: an upper bound).
     dt : float, optional
         Integration step [s] (default :func:`~seahelm.analysis.maneuvers.default_time_step`).
     record_dt : float, optional
