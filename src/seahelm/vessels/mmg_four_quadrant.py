@@ -38,8 +38,9 @@ Ranges and what is not modelled
     towards 90° and the hull forces are then extrapolated; astern, the mirrored hull is an
     approximation (the KVLCC2 is not fore-aft symmetric). A published low-speed model
     (Yoshimura's cross-flow drag, the crash-stop models of Yasukawa et al.) is not
-    implemented: the stopping analysis warns (:class:`~seahelm.errors.ValidityRangeWarning`)
-    when a run leaves |β| ≤ 30° above 20 % of the approach speed, or goes astern. The
+    implemented: the stopping analysis (:mod:`seahelm.analysis.maneuvers.stopping`) warns
+    (:class:`~seahelm.errors.ValidityRangeWarning`) when a run leaves |β| ≤ 30° above 20 % of
+    the approach speed before it is dead in the water; astern motion comes after that point. The
     propeller's thrust jumps when n changes sign at u > 0 (the MMG K_T polynomial on one side,
     the B4-70 series on the other): the shaft passes zero in seconds.
 
