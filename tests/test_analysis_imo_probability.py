@@ -116,7 +116,7 @@ def test_cli_imo_monte_carlo(tmp_path):
     assert res.exit_code == 0, res.output
     data = json.loads(res.stdout)
     assert data["samples"] == 6 and data["total"] + data["excluded"] == 6
-    assert len(data["criteria"]) == 12 and 0 <= data["probability"] <= 1
+    assert len(data["criteria"]) == 13 and 0 <= data["probability"] <= 1  # with stopping
     draws = tmp_path / "d.toml"
     draws.write_text('[draws]\nN_r = {distribution = "normal", mean = -0.049, std = 0.005}\n')
     ok = runner.invoke(app, ["imo", "kvlcc2-l7", "--monte-carlo", "4", "--draws", str(draws),
