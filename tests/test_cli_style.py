@@ -102,7 +102,7 @@ PARSER_ERRORS = [
     (["plot", "r.nc", "--run", "first"], "Invalid value for '--run':"),
     (["--badflag"], "No such option: --badflag"),
     (["maneuver", "turning", "--sides", "port"], "No such option: --sides"),
-    (["run"], "Missing argument 'scenario'"),
+    (["run"], "Missing argument 'SCENARIO'"),
     (["waves", "spectrum"], "Missing option '--h3'"),
     (["waves", "spectrum", "--h3"], "Option '--h3' requires an argument"),
     (["run", "a.toml", "b.toml"], "Got unexpected extra argument(s) (b.toml)"),

@@ -131,8 +131,9 @@ def usage_error_message(exc: Exception) -> str:
 def _report_parser_error(exc: Exception) -> NoReturn:
     """Exit on a click exception: code 2 (usage errors) with one ``error:`` line, any other
     code with one ``failed:`` line."""
-    if type(exc).__name__ == "NoArgsIsHelpError":  # `seahelm` alone: the help, as typer shows it
-        raise exc
+    if type(exc).__name__ == "NoArgsIsHelpError":  # `seahelm` alone: the help on stdout, exit 2
+        sys.stdout.write(exc.ctx.get_help() + "\n")  # type: ignore[attr-defined]
+        raise typer.Exit(EXIT_BAD_INPUT)
     code = getattr(exc, "exit_code", EXIT_FAILURE)
     if code == EXIT_BAD_INPUT:
         fail_bad_input(usage_error_message(exc))
@@ -150,7 +151,16 @@ class OneLineErrors(TyperGroup):
     there (its own options) and in ``invoke`` (its subcommands'), and reports them as
     :func:`fail_bad_input` reports the commands' own checks. Use it for every app:
     ``typer.Typer(cls=OneLineErrors, ...)`` (mounted sub-apps keep their ``cls``).
+
+    Its help, and its commands', is plain text as written (:func:`~seahelm.cli._help.plain_help`:
+    no rich markup, metavars ``FLOAT``/``PATH``, none after flags).
     """
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        from ._help import plain_help
+
+        plain_help(self)
 
     def make_context(self, info_name: str | None, args: list[str], parent: Any = None,
                      **extra: Any) -> Any:

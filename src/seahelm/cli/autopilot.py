@@ -102,23 +102,23 @@ def tune(
     ship: Annotated[str, typer.Argument(metavar="SHIP", help=(
         "Ship: a catalog name (`seahelm ship list`) or the path of a ship file (*.toml)."))],
     bandwidth: Annotated[float, typer.Option(
-        "--bandwidth", help=escape("Closed-loop bandwidth ω_b [rad/s] (PID).") )] = 0.05,
+        "--bandwidth", help="Closed-loop bandwidth ω_b [rad/s] (PID).")] = 0.05,
     damping: Annotated[float, typer.Option(
-        "--damping", help=escape("Relative damping ζ [-] (PID).") )] = 0.8,
+        "--damping", help="Relative damping ζ [-] (PID).")] = 0.8,
     integral_time: Annotated[float | None, typer.Option(
-        "--integral-time", help=escape("Integral time T_i [s] (default 10/ω_n; PID)."))
+        "--integral-time", help="Integral time T_i [s] (default 10/ω_n; PID).")
     ] = None,
     design: Annotated[Literal["pid", "lq"], typer.Option(
         "--design", help="pid: pole placement from Nomoto K, T; lq: LQ-integral.")] = "pid",
     max_heading_error: Annotated[float, typer.Option(
-        "--max-heading-error", help=escape("LQ weight: allowed heading error [deg]."))] = 5.0,
+        "--max-heading-error", help="LQ weight: allowed heading error [deg].")] = 5.0,
     speed: Annotated[float | None, typer.Option(
-        "--speed", help=escape("Speed of the straight run [m/s] (default: the test speed)."))
+        "--speed", help="Speed of the straight run [m/s] (default: the test speed).")
     ] = None,
     dt: Annotated[float, typer.Option(
-        "--dt", help=escape("Controller sample period [s] in the scenario."))] = 0.5,
+        "--dt", help="Controller sample period [s] in the scenario.")] = 0.5,
     heading_step: Annotated[float, typer.Option(
-        "--heading-step", help=escape("Course change of the scenario [deg]."))] = 10.0,
+        "--heading-step", help="Course change of the scenario [deg].")] = 10.0,
     out: Annotated[Path | None, typer.Option(
         "--out", help="Write a scenario (TOML) with the [controller] table here.")] = None,
     json_out: JsonFlag = False,

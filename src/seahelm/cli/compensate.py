@@ -66,46 +66,46 @@ def compensate(
         "--ship", help="A ship with particulars and a ship model: its values are the defaults "
         "of the options below, and the model gives the model-based δ_k.")] = None,
     length: Annotated[Optional[float], typer.Option(
-        "--length", metavar="L", help="Waterline length L \\[m].")] = None,
+        "--length", metavar="L", help="Waterline length L [m].")] = None,
     beam: Annotated[Optional[float], typer.Option(
-        "--beam", metavar="B", help="Beam B \\[m].")] = None,
+        "--beam", metavar="B", help="Beam B [m].")] = None,
     draft: Annotated[Optional[float], typer.Option(
-        "--draft", metavar="T", help="Mean draft T \\[m].")] = None,
+        "--draft", metavar="T", help="Mean draft T [m].")] = None,
     draft_fore: Annotated[Optional[float], typer.Option(
-        "--draft-fore", metavar="TF", help="Draft forward \\[m] (eq. (13); default T).")] = None,
+        "--draft-fore", metavar="TF", help="Draft forward [m] (eq. (13); default T).")] = None,
     draft_aft: Annotated[Optional[float], typer.Option(
-        "--draft-aft", metavar="TA", help="Draft aft \\[m] (eq. (13); default T).")] = None,
+        "--draft-aft", metavar="TA", help="Draft aft [m] (eq. (13); default T).")] = None,
     block_coefficient: Annotated[Optional[float], typer.Option(
-        "--block-coefficient", metavar="CB", help="Block coefficient δ \\[-].")] = None,
+        "--block-coefficient", metavar="CB", help="Block coefficient δ [-].")] = None,
     speed: Annotated[Optional[float], typer.Option(
-        "--speed", metavar="V", help="Ship speed through the water \\[m/s].")] = None,
+        "--speed", metavar="V", help="Ship speed through the water [m/s].")] = None,
     wind_speed: Annotated[float, typer.Option(
-        "--wind-speed", metavar="W", help="True wind speed \\[m/s] (also sets λ by eq. (2)).")],
+        "--wind-speed", metavar="W", help="True wind speed [m/s] (also sets λ by eq. (2)).")],
     wind_angle: Annotated[float, typer.Option(
         "--wind-angle", metavar="DEG",
-        help="Bearing the true wind comes from, relative to the bow \\[deg].")],
+        help="Bearing the true wind comes from, relative to the bow [deg].")],
     wave_height: Annotated[float, typer.Option(
-        "--wave-height", metavar="H", help="Wave height h3% \\[m].")],
+        "--wave-height", metavar="H", help="Wave height h3% [m].")],
     wave_angle: Annotated[float, typer.Option(
         "--wave-angle", metavar="DEG",
-        help="Bearing the waves come from, relative to the bow, q_w \\[deg].")],
+        help="Bearing the waves come from, relative to the bow, q_w [deg].")],
     wave_length: Annotated[Optional[float], typer.Option(
         "--wave-length", metavar="LAMBDA",
-        help="Wave length λ \\[m] (default 1.55 τ², τ = 0.65·0.8·W, eq. (2)).")] = None,
+        help="Wave length λ [m] (default 1.55 τ², τ = 0.65·0.8·W, eq. (2)).")] = None,
     rudder_area: Annotated[Optional[float], typer.Option(
         "--rudder-area", metavar="SP",
-        help="Rudder area S_p \\[m²] (default 1.7 % of L·T).")] = None,
+        help="Rudder area S_p [m²] (default 1.7 % of L·T).")] = None,
     rudder_aspect_ratio: Annotated[Optional[float], typer.Option(
         "--rudder-aspect-ratio", metavar="LP",
-        help="Rudder aspect ratio λ_p \\[-] (default 1.6).")] = None,
+        help="Rudder aspect ratio λ_p [-] (default 1.6).")] = None,
     windage_area: Annotated[Optional[float], typer.Option(
         "--windage-area", metavar="SA",
-        help="Lateral windage area \\[m²] (default 0.8·L·T).")] = None,
+        help="Lateral windage area [m²] (default 0.8·L·T).")] = None,
     sail_centre: Annotated[Optional[float], typer.Option(
         "--sail-centre", metavar="M",
-        help="Centre of windage forward of midships \\[m] (default 0).")] = None,
+        help="Centre of windage forward of midships [m] (default 0).")] = None,
     a1: Annotated[float, typer.Option(
-        "--a1", metavar="A1", help="Speed coefficient A1 ∈ \\[1, 8.5] of eq. (8)-(10).")] = 1.0,
+        "--a1", metavar="A1", help="Speed coefficient A1 ∈ [1, 8.5] of eq. (8)-(10).")] = 1.0,
     strict: Annotated[bool, typer.Option(
         "--strict",
         help="Outside the published validity ranges: fail (exit 2) instead of warning.")] = False,
@@ -206,7 +206,7 @@ def compensate(
         unit = "deg" if key.endswith("_deg") else units.get(key, "-")
         table.add_row(key, f"{value:.6g}", unit)
     console.print(table)
-    dk = Table(title="compensating rudder angle δ_k \\[deg]", title_justify="left")
+    dk = Table(title="compensating rudder angle δ_k [deg]", title_justify="left")
     dk.add_column("channel")
     dk.add_column("paper, eq. (12)/(14)", justify="right")
     dk.add_column("ship model (the autopilot's)", justify="right")

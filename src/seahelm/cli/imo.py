@@ -58,7 +58,7 @@ def imo(
     dt: Dt = None,
     water_depth: Depth = None,
     monte_carlo: Annotated[int, typer.Option(
-        "--monte-carlo", metavar="N", min=0, help=escape(
+        "--monte-carlo", metavar="N", min=0, help=(
             "Check N ships with uncertain coefficients instead of one: the probability of "
             "passing each criterion (Wilson intervals). Default uncertainty: normal, "
             "--uncertainty of each linear derivative (Y_v, Y_r, N_v, N_r; Nomoto K, T).")),
@@ -68,7 +68,7 @@ def imo(
     uncertainty: Annotated[float, typer.Option(
         "--uncertainty", help="Relative standard deviation of the default draws.")] = 0.10,
     draws: Annotated[Optional[Path], typer.Option(
-        "--draws", metavar="FILE.toml", help=escape(
+        "--draws", metavar="FILE.toml", help=(
             "Your own draws: a TOML table [draws] of parameter = {distribution = \"normal\", "
             "mean = …, std = …} (normal, uniform, lognormal, truncnormal as in scenario "
             "files).")),

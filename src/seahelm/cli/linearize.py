@@ -47,13 +47,13 @@ def _matrices(lin: Any) -> dict[str, Any]:
 def linearize(
     ship: Annotated[str, typer.Argument(metavar="SHIP", help=_SHIP_HELP)],
     speed: Annotated[float | None, typer.Option(
-        "--speed", help=escape("Speed U of the straight run [m/s] (default: the ship's test "
-                               "speed)."))] = None,
+        "--speed", help="Speed U of the straight run [m/s] (default: the ship's test "
+                    "speed).")] = None,
     rudder: Annotated[float | None, typer.Option(
-        "--rudder", help=escape("Linearise at the steady turn at this rudder angle [deg] "
-                                "instead of the straight run."))] = None,
+        "--rudder", help="Linearise at the steady turn at this rudder angle [deg] "
+                     "instead of the straight run.")] = None,
     rps: Annotated[float | None, typer.Option(
-        "--rps", help=escape("Propeller rps of the turn [1/s] (default: the straight run's)."))
+        "--rps", help="Propeller rps of the turn [1/s] (default: the straight run's).")
     ] = None,
     matrices: Annotated[bool, typer.Option(
         "--matrices", help="Also print A, B, C, D (ship with steering gear).")] = False,

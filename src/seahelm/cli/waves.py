@@ -56,12 +56,12 @@ def _names(choices: Any) -> str:
     return ", ".join(typing.get_args(choices))
 
 
-_H3 = Annotated[float, typer.Option("--h3", help=escape("Height of 3 % exceedance waves h3% [m]."))]
+_H3 = Annotated[float, typer.Option("--h3", help="Height of 3 % exceedance waves h3% [m].")]
 _Table = Annotated[TableVersion, typer.Option(
     "--table", help="Table 2 version: as printed, or with its two misprints corrected.")]
 _Extrapolate = Annotated[bool, typer.Option(
-    "--extrapolate", help=escape("Beyond Table 2 (h3% outside [1, 10] m): extend μ and λ with "
-                                 "the h^(-1/2) law (with a warning) instead of refusing."))]
+    "--extrapolate", help="Beyond Table 2 (h3% outside [1, 10] m): extend μ and λ with "
+                          "the h^(-1/2) law (with a warning) instead of refusing.")]
 
 
 def _table_height(h3: float, extrapolate: bool) -> None:
@@ -183,9 +183,9 @@ def _save_spectrum_plot(spec: Any, path: Path, h3: float) -> None:
 @handle_errors
 def sample_cmd(
     h3: _H3,
-    duration: Annotated[float, typer.Option("--duration", help=escape("Length of each run [s]."))],
-    dt: Annotated[float, typer.Option("--dt", help=escape("Sample interval Δt [s]."))],
-    seed: Annotated[int, typer.Option("--seed", min=0, help=escape(
+    duration: Annotated[float, typer.Option("--duration", help="Length of each run [s].")],
+    dt: Annotated[float, typer.Option("--dt", help="Sample interval Δt [s].")],
+    seed: Annotated[int, typer.Option("--seed", min=0, help=(
         "Seed (>= 0); run i uses SeedSequence(seed).spawn(runs)[i]."))],
     runs: Annotated[int, typer.Option("--runs", help="Number of realisations.")] = 1,
     out: Annotated[Path | None, typer.Option("--out", help="Write a NetCDF file (h5netcdf).")] = None,
