@@ -32,12 +32,17 @@ from rich.text import Text
 from typer.core import TyperGroup
 
 from ..errors import ParameterError, SeahelmError
+from ._tables import FitTables
 
 F = TypeVar("F", bound=Callable[..., Any])
 
-#: Human output goes to stdout unless --json, where it goes to stderr.
+#: Human output goes to stdout unless --json, where it goes to stderr. Outside a terminal (a
+#: pipe, a file) rich takes 80 columns (or $COLUMNS); every table printed on either console
+#: is fitted to that width or printed as key/value lines (:mod:`seahelm.cli._tables`).
 console = Console()
 err_console = Console(stderr=True)
+for _console in (console, err_console):
+    _console.push_render_hook(FitTables(_console))
 
 #: OS errors that are the machine's failure, not bad input (exit 1): a full disk, a quota, an
 #: I/O error. Every file is written to a temporary file and renamed, so nothing half-written
