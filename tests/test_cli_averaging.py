@@ -61,5 +61,5 @@ def test_plot(tmp_path):
 def test_bad_input_exit_2(args, message):
     r = runner.invoke(app, ["cpp", "--json", *args])
     assert r.exit_code == 2
-    assert message in r.output
-    assert not r.stdout.lstrip().startswith("{")
+    assert message in r.stderr
+    assert json.loads(r.stdout)["exit_code"] == 2  # --json: the error as one JSON object

@@ -81,9 +81,9 @@ def test_spectrum_plot(tmp_path):
 def test_bad_input_exits_2(args, match):
     res = runner.invoke(app, [*args, "--json"])
     assert res.exit_code == 2
-    assert res.stdout == ""
     err = res.stderr.strip()
     assert "\n" not in err and match in err
+    assert json.loads(res.stdout) == {"error": err.removeprefix("error: "), "exit_code": 2}
 
 
 @pytest.mark.parametrize("command", [["spectrum"], ["sample", "--duration", "10", "--dt", "0.5",

@@ -1,7 +1,9 @@
 """Shared pieces of the ``seahelm`` command: error handling, JSON output, consoles.
 
-Exit codes: 0 success, 2 bad input (one-line reason on stderr), 1 any other failure.
-``--json`` prints exactly one JSON object on stdout and nothing else there.
+Exit codes: 0 success, 2 bad input (one-line reason on stderr), 1 any other failure, 3 runs
+diverged, 4 a compliance check that ran and did not pass (``seahelm imo --check``).
+``--json`` prints exactly one JSON object on stdout and nothing else there, also on an error:
+``{"error": "...", "exit_code": 2}`` (the one-line reason is on stderr as well).
 
 Bad input is reported the same way whether a command finds it (:func:`handle_errors`) or the
 command-line parser does (an unknown option, a missing argument, a value that is not a
@@ -55,6 +57,19 @@ EXIT_BAD_INPUT = 2
 #: Everything ran and was written, but some runs diverged (their time, state and reason are in
 #: the results and the summary).
 EXIT_DIVERGED = 3
+#: Everything ran, and the ship does not comply (``seahelm imo --check``: a criterion failed).
+#: Opt-in: a verdict is the output of a command that worked, not a failure of the command.
+EXIT_NONCOMPLIANT = 4
+
+#: Whether the running command line asked for ``--json`` and whether its one JSON object has
+#: been printed (set by the root :class:`OneLineErrors` when it parses a command line).
+_json_state = {"wanted": False, "printed": False}
+
+
+def _json_error(message: str, code: int) -> None:
+    """With ``--json``, the error as the command's one JSON object on stdout."""
+    if _json_state["wanted"] and not _json_state["printed"]:
+        print_json({"error": message, "exit_code": code})
 
 
 def exit_if_diverged(n_failed: int) -> None:
@@ -89,14 +104,18 @@ def exit_on_sigterm() -> None:
 
 
 def fail_bad_input(message: str) -> NoReturn:
-    """Print a one-line reason on stderr and exit with code 2."""
+    """Print a one-line reason on stderr (and, with ``--json``, as a JSON object on stdout)
+    and exit with code 2."""
+    _json_error(message, EXIT_BAD_INPUT)
     err_console.print(Text.assemble(("error: ", "bold red"), message), highlight=False,
                       soft_wrap=True)
     raise typer.Exit(EXIT_BAD_INPUT)
 
 
 def fail(message: str) -> NoReturn:
-    """Print a one-line reason on stderr and exit with code 1."""
+    """Print a one-line reason on stderr (and, with ``--json``, as a JSON object on stdout)
+    and exit with code 1."""
+    _json_error(message, EXIT_FAILURE)
     err_console.print(Text.assemble(("failed: ", "bold red"), message), highlight=False,
                       soft_wrap=True)
     raise typer.Exit(EXIT_FAILURE)
@@ -142,6 +161,7 @@ def _report_parser_error(exc: Exception) -> NoReturn:
     code = getattr(exc, "exit_code", EXIT_FAILURE)
     if code == EXIT_BAD_INPUT:
         fail_bad_input(usage_error_message(exc))
+    _json_error(usage_error_message(exc), code)
     err_console.print(Text.assemble(("failed: ", "bold red"), usage_error_message(exc)),
                       highlight=False, soft_wrap=True)
     raise typer.Exit(code)
@@ -169,6 +189,9 @@ class OneLineErrors(TyperGroup):
 
     def make_context(self, info_name: str | None, args: list[str], parent: Any = None,
                      **extra: Any) -> Any:
+        if parent is None:  # a new command line: does it ask for one JSON object?
+            words = args[:args.index("--")] if "--" in args else args
+            _json_state.update(wanted="--json" in words, printed=False)
         try:
             return super().make_context(info_name, args, parent=parent, **extra)
         except _ClickException as exc:
@@ -480,6 +503,7 @@ def print_json(obj: dict[str, Any]) -> None:
     """Write one JSON object to stdout (NaN/inf become null)."""
     sys.stdout.write(json.dumps(_jsonable(obj), indent=2, allow_nan=False) + "\n")
     sys.stdout.flush()
+    _json_state["printed"] = True
 
 
 class ProgressBar:

@@ -22,7 +22,14 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..errors import ParameterError
-from ._common import JsonFlag, _jsonable, console, handle_errors, print_json
+from ._common import (
+    EXIT_NONCOMPLIANT,
+    JsonFlag,
+    _jsonable,
+    console,
+    handle_errors,
+    print_json,
+)
 from .maneuver import (
     Depth,
     Dt,
@@ -75,8 +82,15 @@ def imo(
     ] = None,
     json_out: JsonFlag = False,
     out: Out = None,
+    check: Annotated[bool, typer.Option("--check", help=(
+        "Exit with code 4 when the ship fails an evaluated criterion (after printing the "
+        "report); without it the exit code is 0 whatever the verdict."))] = False,
 ) -> None:
-    """Check a ship against IMO MSC.137(76): turning, initial turning, zig-zags, stopping."""
+    """Check a ship against IMO MSC.137(76): turning, initial turning, zig-zags, stopping.
+
+    Exit codes: 0 the check ran (the verdict is in the report, "passed" in the JSON); with
+    --check, 4 when the ship fails a criterion; 2 bad input; 1 any other failure.
+    """
     from ..analysis.imo import imo_check
 
     ship = ship_of(model, water_depth)
@@ -86,10 +100,16 @@ def imo(
         if speed is not None or rps is not None or out is not None:
             raise ParameterError("`--monte-carlo` runs at the ship's test speed and writes no "
                                  "files: drop `--speed`/`--rps`/`--out`")
+        if check:
+            raise ParameterError("`--check` needs a pass or a fail; `--monte-carlo` gives "
+                                 "probabilities: drop `--check`")
         _monte_carlo(ship, monte_carlo, seed, uncertainty, draws, dt, json_out)
         return
     check_out(out, "imo", ship_reads(model))
-    show_report(imo_check(ship, speed=speed, rps=rps, dt=dt), out, json_out)
+    report = imo_check(ship, speed=speed, rps=rps, dt=dt)
+    show_report(report, out, json_out)
+    if check and not report.passed:
+        raise typer.Exit(EXIT_NONCOMPLIANT)
 
 
 def _monte_carlo(ship: Any, n: int, seed: int, uncertainty: float, draws: Path | None,
