@@ -287,7 +287,9 @@ def _invoke_clean(args: list[str]) -> None:
         lines = res.stderr.strip().splitlines()
         assert lines[-1].startswith("error: "), (args, res.stderr)
         assert all(line.startswith("warning: ") for line in lines[:-1]), (args, res.stderr)
-        assert res.stdout == "", (args, res.stdout)
+        # --json: the error is the one JSON object on stdout
+        assert json.loads(res.stdout) == {"error": lines[-1].removeprefix("error: "),
+                                          "exit_code": 2}, (args, res.stdout)
     else:
         json.loads(res.stdout)
 
