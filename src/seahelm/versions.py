@@ -14,8 +14,9 @@ __all__ = ["CORE_DEPENDENCIES", "dependency_versions", "version_report"]
 
 CORE_DEPENDENCIES: tuple[str, ...] = ("numpy", "scipy", "numba", "llvmlite", "xarray",
                                       "h5netcdf", "h5py", "zarr", "pydantic", "typer",
-                                      "matplotlib")
-"""The distributions whose versions decide seahelm's numerical results and behaviour."""
+                                      "rich", "matplotlib", "plotly")
+"""The distributions whose versions decide seahelm's numerical results and behaviour (rich
+renders the command's help and tables, plotly the HTML report's plots)."""
 
 
 def dependency_versions(names: tuple[str, ...] = CORE_DEPENDENCIES) -> dict[str, str]:
