@@ -50,6 +50,7 @@ from numba import njit
 
 from ..errors import ParameterError
 from ..vessels.mmg import _forces as _mmg_forces
+from .fit_statistics import correlation, standard_errors, unidentifiable
 from .records import ManoeuvreRecord
 
 __all__ = ["HullFit", "regress_hull", "refine_mmg", "identify_mmg", "HULL_TERMS",
@@ -110,33 +111,16 @@ class HullFit:
     @property
     def standard_errors(self) -> np.ndarray:
         """Standard errors of :attr:`values`."""
-        return np.sqrt(np.clip(np.diag(self.covariance), 0.0, None))
+        return standard_errors(self.covariance)
 
     @property
     def correlation(self) -> np.ndarray:
         """Correlation matrix of the estimates."""
-        se = self.standard_errors
-        with np.errstate(invalid="ignore", divide="ignore"):
-            return self.covariance / np.outer(se, se)
+        return correlation(self.covariance)
 
     def unidentifiable(self) -> dict[str, str]:
         """Parameters not identified, with the evidence (relative error, correlation)."""
-        from .nomoto_fit_result import UNIDENTIFIABLE_CORRELATION, UNIDENTIFIABLE_RELATIVE_SE
-
-        se, corr, out = self.standard_errors, self.correlation, {}
-        for i, name in enumerate(self.names):
-            why = []
-            if not np.isfinite(se[i]) or se[i] > UNIDENTIFIABLE_RELATIVE_SE * abs(self.values[i]):
-                why.append(f"standard error {se[i]:.3g} exceeds the value "
-                           f"{abs(self.values[i]):.3g}")
-            others = [(abs(corr[i, j]), self.names[j]) for j in range(len(self.names))
-                      if j != i and np.isfinite(corr[i, j])]
-            worst = max(others, default=(0.0, ""))
-            if worst[0] > UNIDENTIFIABLE_CORRELATION:
-                why.append(f"correlation {worst[0]:.4f} with {worst[1]}")
-            if why:
-                out[name] = "; ".join(why)
-        return out
+        return unidentifiable(self.names, self.values, self.covariance)
 
     def as_dict(self) -> dict[str, Any]:
         """Plain data (for JSON).

@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
+from .fit_statistics import correlation, standard_errors, unidentifiable
 
 __all__ = ["NomotoFit", "nomoto_ship"]
 
@@ -21,9 +22,6 @@ _UNITS = {"gain": "1/s", "time_constant": "s", "t1": "s", "t2": "s", "t3": "s",
 _SYMBOLS = {"gain": "K", "time_constant": "T", "t1": "T_1", "t2": "T_2", "t3": "T_3",
             "rudder_offset": "δ_0"}
 
-#: Evidence thresholds for "unidentifiable": relative standard error, |correlation|.
-UNIDENTIFIABLE_RELATIVE_SE = 1.0
-UNIDENTIFIABLE_CORRELATION = 0.999
 
 
 @dataclasses.dataclass(frozen=True)
@@ -81,14 +79,12 @@ class NomotoFit:
     @property
     def standard_errors(self) -> np.ndarray:
         """Standard errors of :attr:`values`."""
-        return np.sqrt(np.clip(np.diag(self.covariance), 0.0, None))
+        return standard_errors(self.covariance)
 
     @property
     def correlation(self) -> np.ndarray:
         """Correlation matrix of the estimates."""
-        se = self.standard_errors
-        with np.errstate(invalid="ignore", divide="ignore"):
-            return self.covariance / np.outer(se, se)
+        return correlation(self.covariance)
 
     def confidence_intervals(self, level: float = 0.95) -> np.ndarray:
         """Student-t intervals (Laplace), shape (parameters, 2).
@@ -127,25 +123,10 @@ class NomotoFit:
         return np.percentile(self.bootstrap, [q, 100.0 - q], axis=0).T
 
     def unidentifiable(self) -> dict[str, str]:
-        """The parameters that are not identified, each with the evidence."""
-        out: dict[str, str] = {}
-        se = self.standard_errors
-        corr = self.correlation
-        for i, name in enumerate(self.names):
-            why = []
-            value = abs(float(self.values[i]))
-            if name != "rudder_offset" and (not np.isfinite(se[i])
-                                            or se[i] > UNIDENTIFIABLE_RELATIVE_SE * value):
-                why.append(f"standard error {se[i]:.3g} {_UNITS[name]} exceeds the value "
-                           f"{value:.3g}")
-            others = [(abs(corr[i, j]), self.names[j]) for j in range(len(self.names))
-                      if j != i and np.isfinite(corr[i, j])]
-            worst = max(others, default=(0.0, ""))
-            if worst[0] > UNIDENTIFIABLE_CORRELATION:
-                why.append(f"correlation {worst[0]:.4f} with {worst[1]}")
-            if why:
-                out[name] = "; ".join(why)
-        return out
+        """The parameters that are not identified, each with the evidence (the rudder offset
+        may be near zero: only its correlations count)."""
+        return unidentifiable(self.names, self.values, self.covariance, units=_UNITS,
+                              value_test_exempt=("rudder_offset",))
 
     @property
     def residual_autocorrelation(self) -> float:

@@ -1,0 +1,88 @@
+"""What a fit's covariance says about its estimates: standard errors, correlations, and which
+parameters the data do not identify (shared by the Nomoto and the MMG identification)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+
+__all__ = ["standard_errors", "correlation", "unidentifiable", "UNIDENTIFIABLE_RELATIVE_SE",
+           "UNIDENTIFIABLE_CORRELATION"]
+
+#: Evidence thresholds for "unidentifiable": standard error over |value|, |correlation|.
+UNIDENTIFIABLE_RELATIVE_SE = 1.0
+UNIDENTIFIABLE_CORRELATION = 0.999
+
+
+def standard_errors(covariance: np.ndarray) -> np.ndarray:
+    """√diag of a covariance matrix (negative round-off clipped to 0).
+
+    Parameters
+    ----------
+    covariance : ndarray, shape (n, n)
+
+    Returns
+    -------
+    ndarray, shape (n,)
+    """
+    return np.sqrt(np.clip(np.diag(covariance), 0.0, None))
+
+
+def correlation(covariance: np.ndarray) -> np.ndarray:
+    """The correlation matrix of a covariance matrix (NaN where a variance is 0).
+
+    Parameters
+    ----------
+    covariance : ndarray, shape (n, n)
+
+    Returns
+    -------
+    ndarray, shape (n, n)
+    """
+    se = standard_errors(covariance)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return covariance / np.outer(se, se)
+
+
+def unidentifiable(names: Sequence[str], values: np.ndarray, covariance: np.ndarray, *,
+                   units: Mapping[str, str] | None = None,
+                   value_test_exempt: Sequence[str] = ()) -> dict[str, str]:
+    """The parameters the data do not identify, each with the evidence: a standard error above
+    :data:`UNIDENTIFIABLE_RELATIVE_SE` times |value|, or a correlation above
+    :data:`UNIDENTIFIABLE_CORRELATION` with another parameter.
+
+    Parameters
+    ----------
+    names : sequence of str
+    values : ndarray
+        The estimates.
+    covariance : ndarray
+        Their covariance.
+    units : mapping, optional
+        Units to name in the evidence.
+    value_test_exempt : sequence of str, optional
+        Parameters whose value may be near zero (an offset): only the correlation test.
+
+    Returns
+    -------
+    dict of str to str
+    """
+    se, corr = standard_errors(covariance), correlation(covariance)
+    units = units or {}
+    out: dict[str, str] = {}
+    for i, name in enumerate(names):
+        why = []
+        value = abs(float(values[i]))
+        if name not in value_test_exempt and (not np.isfinite(se[i])
+                                              or se[i] > UNIDENTIFIABLE_RELATIVE_SE * value):
+            unit = f" {units[name]}" if units.get(name) else ""
+            why.append(f"standard error {se[i]:.3g}{unit} exceeds the value {value:.3g}")
+        others = [(abs(corr[i, j]), names[j]) for j in range(len(names))
+                  if j != i and np.isfinite(corr[i, j])]
+        worst = max(others, default=(0.0, ""))
+        if worst[0] > UNIDENTIFIABLE_CORRELATION:
+            why.append(f"correlation {worst[0]:.4f} with {worst[1]}")
+        if why:
+            out[name] = "; ".join(why)
+    return out
