@@ -201,3 +201,11 @@ def test_very_full_ship_falls_back_to_taylor_wake_with_a_warning():
     assert "Taylor" in ship.source_of("w_P0")
     with strict_validity(), pytest.raises(ParameterError):
         estimate_ship(Design(**{**CARGO, "block_coefficient": 0.95}))
+
+
+def test_absurd_speed_and_sample_counts_are_refused():
+    res = run("ship", "estimate", "--length", "120", "--beam", "18", "--draft", "7", "--cb",
+              "0.7", "--speed", "1e300")
+    assert res.exit_code == 2 and "`--speed` gives a Froude number" in res.output
+    res = run("imo", "kvlcc2-l7", "--monte-carlo", "2000000")
+    assert res.exit_code == 2 and "--monte-carlo" in res.output

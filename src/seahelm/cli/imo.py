@@ -65,7 +65,7 @@ def imo(
     dt: Dt = None,
     water_depth: Depth = None,
     monte_carlo: Annotated[int, typer.Option(
-        "--monte-carlo", metavar="N", min=0, help=(
+        "--monte-carlo", metavar="N", min=0, max=100_000, help=(
             "Check N ships with uncertain coefficients instead of one: the probability of "
             "passing each criterion (Wilson intervals). Default uncertainty: normal, "
             "--uncertainty of each linear derivative (Y_v, Y_r, N_v, N_r; Nomoto K, T).")),

@@ -160,6 +160,11 @@ class Design:
         if self.max_rudder > math.radians(90.0):
             raise ParameterError(f"must be at most 90° (π/2 rad), got {self.max_rudder!r} [rad]",
                                  field="max_rudder", unit="rad", value=self.max_rudder)
+        if self.froude_number > 1.0:  # (the regressions are for displacement ships, Fn < 0.45)
+            raise ParameterError(
+                f"gives a Froude number {self.froude_number:.3g} > 1 (a displacement ship's "
+                f"estimates hold below 0.45) [m/s], got {self.speed!r}", field="speed",
+                unit="m/s", value=self.speed)
         draft = self.mean_draft
         if self.propeller_diameter is not None and not self.propeller_diameter < draft:
             raise ParameterError(f"must be less than the draft {draft!r} [m], got "
