@@ -541,3 +541,41 @@ def test_maneuver_ship_and_time_step():
     assert default_time_step("kvlcc2-l7") == 0.05  # min(7/117.9, 0.1) -> 0.05
     assert default_time_step("mariner-nonlinear") == 0.2  # min(0.2085, 1) -> 0.2
     assert default_time_step("kvlcc2-full") == 0.2  # min(0.401, 0.676) -> 0.2
+
+
+def _rows_one_by_one(metrics):
+    """The metrics table row by row with xarray's isel (the reference for metrics_rows)."""
+    import itertools
+
+    batch = list(metrics["complete"].dims)
+    rows = []
+    for idx in itertools.product(*(range(metrics.sizes[d]) for d in batch)):
+        sel = metrics.isel(dict(zip(batch, idx)))
+        row = {str(k): c.item() for k, c in sel.coords.items() if c.ndim == 0}
+        for name, var in sel.data_vars.items():
+            if var.ndim == 0:
+                row[str(name)] = var.item()
+            elif var.ndim == 1:
+                row.update({f"{name}_{k}": v for k, v in enumerate(var.values.tolist(), 1)})
+        rows.append(row)
+    return rows
+
+
+@pytest.mark.parametrize("kind", ["turning", "zigzag"])
+def test_metrics_rows_equal_the_rows_selected_one_by_one(kind):
+    ships = [maneuver_ship(KVLCC2_L7.replace(N_r=n_r), servo=KVLCC2_L7_SERVO, name=f"s{k}")
+             for k, n_r in enumerate((-0.049, -0.045, -0.053))]
+    if kind == "turning":
+        result = turning_circle(ships, np.array([20.0, 35.0]) * DEG, sides=(1, -1),
+                                t_final=30.0)
+    else:
+        result = zigzag(ships, 10 * DEG, 10 * DEG, sides=(1, -1), t_final=60.0)
+    got, want = metrics_rows(result.metrics), _rows_one_by_one(result.metrics)
+    assert len(got) == len(want) == 3 * (4 if kind == "turning" else 2)
+    for g, w in zip(got, want):
+        assert list(g) == list(w)
+        for key in w:
+            if isinstance(w[key], float) and math.isnan(w[key]):
+                assert math.isnan(g[key]), key
+            else:
+                assert g[key] == w[key] and type(g[key]) is type(w[key]), key

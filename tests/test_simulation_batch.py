@@ -150,3 +150,45 @@ def test_plot_of_a_grid_result_draws_every_run(mariner2):
     heading_lines = [ln for ln in fig.get_axes()[0].get_lines() if ln.get_linestyle() == "-"]
     assert len(heading_lines) == 6
     plt.close(fig)
+
+
+def test_the_cached_row_loops_equal_the_generic_loop_for_every_registered_model():
+    """VesselModel.derivative/outputs run a generated, disk-cached loop per model function
+    (vessels.base._row_loop; the generic loop taking the function as an argument compiled
+    in every process): both give the same numbers."""
+    from seahelm.registry import VESSEL_MODELS, get_model
+    from seahelm.parameters import as_records
+    from seahelm.vessels.base import (_batched_output, _batched_rhs, _generic_output,
+                                      _generic_rhs, _row_loop)
+
+    rng = np.random.default_rng(7)
+    for name in VESSEL_MODELS:
+        model = get_model(name)
+        assert _row_loop(model.rhs, "rhs") is not None, name
+        assert _row_loop(model.output, "output") is not None, name
+        n = 5
+        x = rng.normal(size=(n, model.n_states)) * 0.1
+        x[:, 0] += 1.0  # (a forward speed where the first state is one)
+        u = rng.normal(size=(n, model.n_inputs)) * 0.1
+        d = np.zeros((n, model.n_disturbances))
+        p = as_records(np.repeat(model.params_type().to_array()[None], n, axis=0),
+                       model.params_type) if _has_defaults(model) else None
+        if p is None:
+            continue
+        got, want = np.empty_like(x), np.empty_like(x)
+        _batched_rhs(model.rhs, 0.0, x, u, d, p, got)
+        _generic_rhs(model.rhs, 0.0, x, u, d, p, want)
+        np.testing.assert_array_equal(got, want, err_msg=name)
+        y1 = np.empty((n, model.n_outputs))
+        y2 = np.empty((n, model.n_outputs))
+        _batched_output(model.output, 0.0, x, u, p, y1)
+        _generic_output(model.output, 0.0, x, u, p, y2)
+        np.testing.assert_array_equal(y1, y2, err_msg=name)
+
+
+def _has_defaults(model):
+    try:
+        model.params_type()
+    except TypeError:
+        return False
+    return True

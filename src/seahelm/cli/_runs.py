@@ -149,14 +149,17 @@ def monte_carlo_statistics(result: Any, summary: list[dict[str, Any]]) -> list[d
             for entry in stats]
 
 
-def statistics_tables(stats: list[dict[str, Any]]) -> list[Table]:
-    """Tables of :func:`monte_carlo_statistics` (the first :data:`MAX_STAT_TABLES` points)."""
+def statistics_tables(stats: list[dict[str, Any]], what: str = "Monte-Carlo statistics"
+                      ) -> list[Table]:
+    """Tables of :func:`monte_carlo_statistics` (the first :data:`MAX_STAT_TABLES` points),
+    titled ``what`` and the point."""
     tables = []
     qnames = [quantile_name(q) for q in DEFAULT_QUANTILES]
     for entry in stats[:MAX_STAT_TABLES]:
         where = ", ".join(f"{k}={fmt(v)}" for k, v in entry["point"].items())
-        title = (f"Monte-Carlo statistics{' at ' + where if where else ''}: drawn values "
-                 f"over all {entry['n_runs']} samples, metrics over the {entry['n_ok']} ok")
+        title = (f"{what}{' at ' + where if where else ''}: "
+                 + (f"drawn values over all {entry['n_runs']} samples, " if entry["drawn"]
+                    else "") + f"metrics over the {entry['n_ok']} ok of {entry['n_runs']} runs")
         table = Table(title=escape(title), title_justify="left", box=box.SIMPLE_HEAD,
                       pad_edge=False)
         table.add_column("metric", no_wrap=True)

@@ -18,12 +18,19 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
+import numpy as np
 import typer
 from rich.markup import escape
 from rich.table import Table
 
 from ..errors import ParameterError
+from ..plotting.maneuver_runs import ship_names
 from ..ships.catalog import with_steering_gear
+from ._batch_summary import (
+    SUMMARY_RUNS,
+    maneuver_statistics,
+    print_statistics,
+)
 from ._common import (
     JsonFlag,
     OneLineErrors,
@@ -245,6 +252,12 @@ def display_rows(result: Any, fields: Sequence[Field]) -> list[dict[str, Any]]:
                 shown[key] = get(row)
             except KeyError:  # pragma: no cover - a field the result does not have
                 continue
+        for key, name in (("approach_speed_value", "approach_speed_mps"),
+                          ("propeller_rps", "propeller_rps")):
+            if isinstance(row.get(key), float) and math.isfinite(row[key]):
+                shown[name] = row[key]
+        if "ship" in batch:
+            shown["ship"] = int(row["ship"])
         shown["complete"] = bool(row["complete"])
         shown["message"] = str(row["message"])
         out.append(shown)
@@ -280,12 +293,13 @@ def header(result: Any) -> dict[str, Any]:
     first = {d: 0 for d in m["complete"].dims}
     sel = m.isel(first)
     out: dict[str, Any] = {"maneuver": result.maneuver,
-                           "ship": ", ".join(s.name for s in result.ships),
+                           "ship": ship_names([s.name for s in result.ships]),
                            "length_m": float(sel["length"])}
-    if "approach_speed_value" in sel:
-        out["approach_speed_mps"] = float(sel["approach_speed_value"])
-    if "propeller_rps" in sel and math.isfinite(float(sel["propeller_rps"])):
-        out["propeller_rps"] = float(sel["propeller_rps"])
+    for key, name in (("approach_speed_value", "approach_speed_mps"),
+                      ("propeller_rps", "propeller_rps")):
+        values = np.asarray(m[key].values, dtype=float) if key in m else np.array([np.nan])
+        if np.isfinite(values).all() and np.ptp(values) == 0.0:  # (else: per run, in the rows)
+            out[name] = float(values.flat[0])
     for key in ("dt", "t_final", "hold"):
         if key in m.attrs:
             out[f"{key}_s"] = float(m.attrs[key])
@@ -315,25 +329,40 @@ def write_outputs(out: Path, results: Sequence[Any], plot: Callable[[], Any] | N
 
 def finish(title: str, result: Any, payload: dict[str, Any], fields: Sequence[Field],
            plot: Callable[[Any], Any] | None, png: str, out: Path | None,
-           as_json: bool) -> None:
+           as_json: bool, drawn: dict[str, np.ndarray] | None = None) -> None:
     """Write the files (``--out``; no figure if ``plot`` is None), then print the JSON object
-    or the table."""
+    or the table (or the statistics of a big batch, with the values ``drawn`` per ship)."""
     if out is not None:
         payload["files"] = write_outputs(out, [result], None if plot is None else (
             lambda: plot(result)), png)
-    emit(title, payload, display_rows(result, fields), fields, as_json)
+    emit(title, payload, display_rows(result, fields), fields, as_json, drawn)
 
 
 def emit(title: str, payload: dict[str, Any], rows: list[dict[str, Any]],
-         fields: Sequence[Field], as_json: bool) -> None:
-    """JSON (one object) or the table and the header lines."""
+         fields: Sequence[Field], as_json: bool,
+         drawn: dict[str, np.ndarray] | None = None) -> None:
+    """JSON (one object) or the table and the header lines; a batch of more than
+    :data:`~seahelm.cli._batch_summary.SUMMARY_RUNS` runs as statistics per group of runs
+    (with those of the values ``drawn`` per ship) and its notes counted."""
     payload = {**payload, "runs": rows}
+    big = len(rows) > SUMMARY_RUNS
+    labels = {key: label for key, label, _ in fields}
+    field_keys = set(labels)
+    labels.update(approach_speed_mps="approach speed [m/s]", propeller_rps="propeller [1/s]")
+    if big:
+        keys = [k for k in labels if any(isinstance(r.get(k), float) for r in rows)
+                and (k in field_keys or len({r.get(k) for r in rows}) > 1)]
+        payload["statistics"] = maneuver_statistics(rows, keys, drawn)
     if as_json:
         print_json(payload)
         return
-    print_table(title, rows, fields)
+    if big:
+        print_statistics(title, payload["statistics"], rows, labels)
+    else:
+        print_table(title, rows, fields)
     extras = [f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}"
-              for k, v in payload.items() if k not in ("runs", "files", "maneuver")]
+              for k, v in payload.items()
+              if k not in ("runs", "files", "maneuver", "statistics")]
     console.print(escape(", ".join(extras)), highlight=False)
     for kind, path in payload.get("files", {}).items():
         console.print(f"  {kind}: {escape(path)}", highlight=False)

@@ -59,5 +59,6 @@ def present_job(job: Any, out: Path | None, as_json: bool, *, plot: bool = True,
     title, fields, draw, png = kinds[job.kind]
     payload = {"scenario": job.title or job.metadata.get("scenario_source", ""),
                **header(result)}
+    drawn = job.draws(range(job.n_samples)) if job.n_samples > 1 else None
     finish(job.title or title, result, payload, fields, draw if plot else None, png, out,
-           as_json)
+           as_json, drawn)

@@ -24,41 +24,37 @@ Angles are drawn in degrees.
 
 from __future__ import annotations
 
-import itertools
 import math
-from collections.abc import Iterator
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
+from .maneuver_runs import DrawnRun, drawn_groups, representatives_note, ship_names
+
 __all__ = ["plot_turning", "plot_zigzag", "plot_spiral", "plot_pullout", "plot_stopping"]
 
-_SIDE = {1: "starboard", -1: "port"}
 
 
-def _runs(result: Any) -> Iterator[tuple[str, Any, Any]]:
-    """(label, runs Dataset, metrics Dataset) of each run, C order over the batch dims."""
-    metrics = result.metrics
-    dims = list(metrics["complete"].dims)
-    for idx in itertools.product(*(range(metrics.sizes[d]) for d in dims)):
-        where = dict(zip(dims, idx))
-        m = metrics.isel(where)
-        runs = result.runs.isel(where) if result.runs is not None else None
-        parts = []
-        if len(result.ships) > 1:
-            parts.append(str(m["ship_name"].item()))
-        if "approach_speed" in dims:
-            parts.append(f"U0 {float(m['approach_speed']):.4g} m/s")
-        if "pair" in m.coords:
-            parts.append(f"{math.degrees(float(m['rudder'])):.3g}/"
-                         f"{math.degrees(float(m['trigger'])):.3g}")
-        elif "rudder" in m.coords and "rudder" in dims:
-            parts.append(f"{math.degrees(float(m['rudder'])):.3g} deg")
-        if "side" in m.coords:
-            parts.append(_SIDE[int(m["side"])])
-        if "order" in dims:
-            parts.append(f"order {float(m['order']):.3g}")
-        yield ", ".join(parts) or m["ship_name"].item(), runs, m
+def _style(run: DrawnRun, color: str) -> dict[str, Any]:
+    """Line style of a drawn run: bold measured, thin representative, dashed incomplete."""
+    if run.role == "quantile":
+        return dict(color=color, lw=0.7, alpha=0.6)
+    if run.role == "failed":
+        return dict(color=color, lw=0.9, ls="--", alpha=0.8)
+    return dict(color=color, lw=1.8 if run.role == "median" else 1.5)
+
+
+def _mark_end(ax: Any, run: DrawnRun, x: Any, y: Any, color: str) -> None:
+    """An x at the end of an incomplete run (a big batch's 'failed' run, or any run that did
+    not complete), where it stopped."""
+    if (run.role == "failed" or not bool(run.metrics["complete"])) and len(x):
+        ax.plot([x[-1]], [y[-1]], "x", color=color, ms=8, mew=2)
+
+
+def _note(fig: Any, text: str) -> None:
+    if text:  # (a figure-level label: the layout engine makes room for it)
+        fig.supxlabel(text, fontsize=7, color="0.3", wrap=True)
 
 
 def _new_axes(ax: Any, **kwargs: Any) -> Any:
@@ -85,39 +81,11 @@ def plot_turning(result: Any, *, ax: Any = None) -> Any:
     matplotlib Axes
     """
     ax = _new_axes(ax)
-    for k, (label, run, m) in enumerate(_runs(result)):
+    groups = drawn_groups(result, "tactical_diameter")
+    for k, group in enumerate(groups):
         color = f"C{k % 10}"
-        t = run["time"].values
-        north, east = run["north"].values, run["east"].values
-        # the original course is north (heading 0) in every manoeuvre; keep the general case
-        psi0 = float(run["heading"].values[0])
-        c, s = math.cos(psi0), math.sin(psi0)
-        along = (north - north[0]) * c + (east - east[0]) * s
-        across = -(north - north[0]) * s + (east - east[0]) * c
-        keep = np.abs(run["heading"].values - psi0) <= 2.0 * math.pi + 1e-9
-        ax.plot(across[keep], along[keep], color=color, lw=1.5, label=label)
-        side = np.sign(across[np.argmax(np.abs(across))]) or 1.0
-        adv, tr, td = (float(m[v]) for v in ("advance", "transfer", "tactical_diameter"))
-        t90, t180 = float(m["time_90"]), float(m["time_180"])
-        if math.isfinite(t90):
-            x90 = side * tr
-            ax.plot([x90], [adv], "o", color=color, ms=6)
-            ax.annotate("", xy=(x90, adv), xytext=(x90, 0.0),
-                        arrowprops=dict(arrowstyle="<->", color=color, lw=0.9))
-            ax.text(x90, 0.5 * adv, f" advance\n {adv:.4g} m", color=color, fontsize=8,
-                    ha="left" if side > 0 else "right", va="center")
-            ax.annotate("", xy=(x90, adv), xytext=(0.0, adv),
-                        arrowprops=dict(arrowstyle="<->", color=color, lw=0.9, ls="--"))
-            ax.text(0.5 * x90, adv, f"transfer {tr:.4g} m", color=color, fontsize=8,
-                    ha="center", va="bottom")
-        if math.isfinite(t180):
-            y180 = float(np.interp(t180, t, along))
-            x180 = side * td
-            ax.plot([x180], [y180], "s", color=color, ms=6)
-            ax.annotate("", xy=(x180, y180), xytext=(0.0, y180),
-                        arrowprops=dict(arrowstyle="<->", color=color, lw=0.9))
-            ax.text(0.5 * x180, y180, f"tactical diameter {td:.4g} m", color=color,
-                    fontsize=8, ha="center", va="top")
+        for drawn in group.runs:
+            _turning_run(ax, drawn, color, group.label if group.size > 1 else drawn.label)
     ax.plot([0.0], [0.0], "k^", ms=7, label="rudder order")
     ax.axvline(0.0, color="0.6", lw=0.8, ls=":")
     rudder = result.metrics["rudder"]
@@ -125,12 +93,54 @@ def plot_turning(result: Any, *, ax: Any = None) -> Any:
             else "rudder " + ", ".join(f"{math.degrees(v):.3g}" for v in rudder.values) + " deg")
     ax.set(xlabel="across the original course (to starboard) [m]",
            ylabel="along the original course [m]",
-           title=f"Turning circle: {', '.join(s.name for s in result.ships)}, {what} "
+           title=f"Turning circle: {ship_names([s.name for s in result.ships])}, {what} "
                  "(midship point)")
     ax.set_aspect("equal", adjustable="datalim")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="lower right", fontsize="small")
+    _note(ax.figure, representatives_note(groups, "tactical diameter"))
     return ax
+
+
+def _turning_run(ax: Any, drawn: DrawnRun, color: str, group_label: str) -> None:
+    """One turning circle's track; a measured run's advance, transfer and tactical diameter."""
+    run, m = drawn.runs, drawn.metrics
+    t = run["time"].values
+    north, east = run["north"].values, run["east"].values
+    # the original course is north (heading 0) in every manoeuvre; keep the general case
+    psi0 = float(run["heading"].values[0])
+    c, s = math.cos(psi0), math.sin(psi0)
+    along = (north - north[0]) * c + (east - east[0]) * s
+    across = -(north - north[0]) * s + (east - east[0]) * c
+    keep = np.abs(run["heading"].values - psi0) <= 2.0 * math.pi + 1e-9
+    label = (group_label if drawn.role in ("run", "median")
+             else None)
+    ax.plot(across[keep], along[keep], label=label, **_style(drawn, color))
+    _mark_end(ax, drawn, across[keep], along[keep], color)
+    if not drawn.measured:
+        return
+    side = np.sign(across[np.argmax(np.abs(across))]) or 1.0
+    adv, tr, td = (float(m[v]) for v in ("advance", "transfer", "tactical_diameter"))
+    t90, t180 = float(m["time_90"]), float(m["time_180"])
+    if math.isfinite(t90):
+        x90 = side * tr
+        ax.plot([x90], [adv], "o", color=color, ms=6)
+        ax.annotate("", xy=(x90, adv), xytext=(x90, 0.0),
+                    arrowprops=dict(arrowstyle="<->", color=color, lw=0.9))
+        ax.text(x90, 0.5 * adv, f" advance\n {adv:.4g} m", color=color, fontsize=8,
+                ha="left" if side > 0 else "right", va="center")
+        ax.annotate("", xy=(x90, adv), xytext=(0.0, adv),
+                    arrowprops=dict(arrowstyle="<->", color=color, lw=0.9, ls="--"))
+        ax.text(0.5 * x90, adv, f"transfer {tr:.4g} m", color=color, fontsize=8,
+                ha="center", va="bottom")
+    if math.isfinite(t180):
+        y180 = float(np.interp(t180, t, along))
+        x180 = side * td
+        ax.plot([x180], [y180], "s", color=color, ms=6)
+        ax.annotate("", xy=(x180, y180), xytext=(0.0, y180),
+                    arrowprops=dict(arrowstyle="<->", color=color, lw=0.9))
+        ax.text(0.5 * x180, y180, f"tactical diameter {td:.4g} m", color=color,
+                fontsize=8, ha="center", va="top")
 
 
 def plot_zigzag(result: Any, *, fig: Any = None) -> Any:
@@ -149,48 +159,66 @@ def plot_zigzag(result: Any, *, fig: Any = None) -> Any:
     """
     import matplotlib.pyplot as plt
 
-    runs = list(_runs(result))
-    ncols = 2 if len(runs) > 1 else 1
-    nrows = math.ceil(len(runs) / ncols)
+    groups = drawn_groups(result, "overshoot", index=0)
+    ncols = 2 if len(groups) > 1 else 1
+    nrows = math.ceil(len(groups) / ncols)
     if fig is None:
         fig = plt.figure(figsize=(6.0 * ncols, 3.6 * nrows), layout="constrained")
     axes = np.atleast_1d(fig.subplots(nrows, ncols, squeeze=False)).ravel()
-    for ax, (label, run, m) in zip(axes, runs):
-        t = run["time"].values
-        psi = np.degrees(run["heading"].values - run["heading"].values[0])
-        delta = np.degrees(run["rudder_angle"].values)
+    for ax, group in zip(axes, groups):
+        for drawn in group.runs:
+            _zigzag_run(ax, drawn)
+        m = group.runs[-1].metrics
         trig = math.degrees(float(m["trigger"])) if "trigger" in m.coords else math.nan
-        ax.plot(t, psi, color="C0", lw=1.5, label="heading change ψ − ψ0")
-        ax.plot(t, delta, color="C1", lw=1.2, label="rudder angle δ")
         for level in (trig, -trig):
             ax.axhline(level, color="0.5", lw=0.8, ls="--")
         ax.axhline(0.0, color="0.7", lw=0.6)
-        for j in range(m.sizes["n"]):
-            tj = float(m["overshoot_time"].isel(n=j))
-            if not math.isfinite(tj):
-                continue
-            yj = math.degrees(float(m["extreme_heading"].isel(n=j)))
-            oj = math.degrees(float(m["overshoot"].isel(n=j)))
-            ax.plot([tj], [yj], "v" if yj > 0 else "^", color="C3", ms=7)
-            ax.annotate(f"o{j + 1} = {oj:.3g}°", (tj, yj), textcoords="offset points",
-                        xytext=(0, 8 if yj > 0 else -14), ha="center", fontsize=8, color="C3")
-        for j in range(m.sizes["n"]):
-            te = float(m["execute_time"].isel(n=j))
-            if math.isfinite(te):
-                ax.axvline(te, color="C2", lw=0.6, alpha=0.6)
-        ax.set(xlabel="time [s]", ylabel="[deg]", title=label)
+        title = group.label if group.size == 1 else (
+            f"{group.label} ({len(group.runs)} of {group.size:,} runs)")
+        ax.set(xlabel="time [s]", ylabel="heading change, rudder angle [deg]", title=title)
         ax.margins(y=0.2)
         ax.grid(True, alpha=0.3)
-        if not math.isfinite(float(m["period"])) or not bool(m["complete"]):
+        if group.size == 1 and (not math.isfinite(float(m["period"]))
+                                or not bool(m["complete"])):
             ax.text(0.02, 0.02, str(m["message"].item()), transform=ax.transAxes, fontsize=7,
                     color="C3")
-    for ax in axes[len(runs):]:
+    for ax in axes[len(groups):]:
         ax.set_visible(False)
     handles, labels = axes[0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncols=2, fontsize="small")
-    fig.suptitle(f"Zig-zag: {', '.join(s.name for s in result.ships)} "
+    fig.suptitle(f"Zig-zag: {ship_names([s.name for s in result.ships])} "
                  "(executes: green lines; overshoots: red marks)")
+    _note(fig, representatives_note(groups, "first overshoot"))
     return fig
+
+
+def _zigzag_run(ax: Any, drawn: DrawnRun) -> None:
+    """One zig-zag run's heading change and rudder angle; a measured run's overshoots and
+    executes."""
+    run, m = drawn.runs, drawn.metrics
+    t = run["time"].values
+    psi = np.degrees(run["heading"].values - run["heading"].values[0])
+    measured = drawn.measured
+    ax.plot(t, psi, label="heading change ψ − ψ0" if measured else None,
+            **_style(drawn, "C0"))
+    _mark_end(ax, drawn, t, psi, "C0")
+    if not measured:
+        return
+    ax.plot(t, np.degrees(run["rudder_angle"].values), color="C1", lw=1.2,
+            label="rudder angle δ")
+    for j in range(m.sizes["n"]):
+        tj = float(m["overshoot_time"].isel(n=j))
+        if not math.isfinite(tj):
+            continue
+        yj = math.degrees(float(m["extreme_heading"].isel(n=j)))
+        oj = math.degrees(float(m["overshoot"].isel(n=j)))
+        ax.plot([tj], [yj], "v" if yj > 0 else "^", color="C3", ms=7)
+        ax.annotate(f"o{j + 1} = {oj:.3g}°", (tj, yj), textcoords="offset points",
+                    xytext=(0, 8 if yj > 0 else -14), ha="center", fontsize=8, color="C3")
+    for j in range(m.sizes["n"]):
+        te = float(m["execute_time"].isel(n=j))
+        if math.isfinite(te):
+            ax.axvline(te, color="C2", lw=0.6, alpha=0.6)
 
 
 def plot_spiral(direct: Any = None, reverse: Any = None, *, ax: Any = None) -> Any:
@@ -290,14 +318,23 @@ def plot_pullout(result: Any, *, ax: Any = None) -> Any:
     matplotlib Axes
     """
     ax = _new_axes(ax, figsize=(8, 5))
-    for k, (label, run, m) in enumerate(_runs(result)):
+    groups = drawn_groups(result, "residual_yaw_rate")
+    for k, group in enumerate(groups):
         color = f"C{k % 10}"
-        ax.plot(run["time"].values, np.degrees(run["yaw_rate"].values), color=color, label=label)
-        ax.axhline(math.degrees(float(m["residual_yaw_rate"])), color=color, ls=":", lw=0.9)
+        for drawn in group.runs:
+            run, m = drawn.runs, drawn.metrics
+            t, r = run["time"].values, np.degrees(run["yaw_rate"].values)
+            ax.plot(t, r, label=group.label if drawn.measured else None,
+                    **_style(drawn, color))
+            _mark_end(ax, drawn, t, r, color)
+            if drawn.measured:
+                ax.axhline(math.degrees(float(m["residual_yaw_rate"])), color=color, ls=":",
+                           lw=0.9)
     ax.axhline(0.0, color="0.6", lw=0.8)
     ax.set(xlabel="time after the rudder order [s]", ylabel="yaw rate r [deg/s]",
-           title=f"Pull-out: {', '.join(s.name for s in result.ships)} "
+           title=f"Pull-out: {ship_names([s.name for s in result.ships])} "
                  "(dotted: residual yaw rates)")
+    _note(ax.figure, representatives_note(groups, "residual yaw rate"))
     ax.grid(True, alpha=0.3)
     ax.legend(loc="best", fontsize="small")
     return ax
@@ -333,31 +370,11 @@ def plot_stopping(result: Any, *, fig: Any = None) -> Any:
         ax.sharex(series[0])
     dead = result.metrics["time_dead"].values
     shown = 1.5 * float(np.nanmax(dead)) if np.isfinite(dead).any() else math.inf
-    for k, (label, run, m) in enumerate(_runs(result)):
-        color = f"C{k % 10}"
-        t = run["time"].values
-        keep = t <= shown
-        t_dead = float(m["time_dead"])
-        ahead = t <= (t_dead if math.isfinite(t_dead) else math.inf)
-        north, east = run["north"].values, run["east"].values
-        psi0 = float(run["heading"].values[0])
-        c, s = math.cos(psi0), math.sin(psi0)
-        along = (north - north[0]) * c + (east - east[0]) * s
-        across = -(north - north[0]) * s + (east - east[0]) * c
-        head, lateral = float(m["head_reach"]), float(m["lateral_deviation"])
-        track.plot(across[ahead], along[ahead], color=color, lw=1.5, label=label)
-        track.plot(across[keep & ~ahead], along[keep & ~ahead], color=color, lw=0.7, ls=":")
-        if math.isfinite(head):
-            track.plot([lateral], [head], "o", color=color, ms=6)
-            track.text(lateral, head, f"  head reach {head:.4g} m", color=color, fontsize=8,
-                       va="center")
-        series[0].plot(t[keep], run["surge_speed"].values[keep], color=color, lw=1.2,
-                       label=label)
-        series[1].plot(t[keep], run["propeller_rps"].values[keep], color=color, lw=1.2)
-        series[2].plot(t[keep], run["engine_order"].values[keep], color=color, lw=1.2)
-        for ax in series:
-            if math.isfinite(t_dead):
-                ax.axvline(t_dead, color=color, lw=0.8, ls="--")
+    groups = drawn_groups(result, "track_reach")
+    for k, group in enumerate(groups):
+        for drawn in group.runs:
+            _stopping_run(track, series, drawn, f"C{k % 10}", shown,
+                          group.label if group.size > 1 else drawn.label)
     track.plot([0.0], [0.0], "k^", ms=7, label="full astern ordered")
     track.axvline(0.0, color="0.6", lw=0.8, ls=":")
     track.set(xlabel="across the original course (to starboard) [m]",
@@ -370,6 +387,41 @@ def plot_stopping(result: Any, *, fig: Any = None) -> Any:
         ax.set_ylabel(ylabel)
     series[2].set_xlabel("time from the order [s] (dashed: dead in the water)")
     frac = result.metrics.attrs.get("dead_fraction", 0.05)
-    fig.suptitle(f"Stopping test: {', '.join(s.name for s in result.ships)} "
+    fig.suptitle(f"Stopping test: {ship_names([s.name for s in result.ships])} "
                  f"(rudder amidships; dead in the water at u <= {frac:g} U0)")
+    _note(fig, representatives_note(groups, "track reach"))
     return fig
+
+
+def _stopping_run(track: Any, series: Sequence[Any], drawn: DrawnRun, color: str,
+                  shown: float, label: str) -> None:
+    """One stopping run: its track (dotted astern), surge speed, rps and engine order; a
+    measured run's head reach and time dead in the water."""
+    run, m = drawn.runs, drawn.metrics
+    style = _style(drawn, color)
+    t = run["time"].values
+    keep = t <= shown
+    t_dead = float(m["time_dead"])
+    ahead = t <= (t_dead if math.isfinite(t_dead) else math.inf)
+    north, east = run["north"].values, run["east"].values
+    psi0 = float(run["heading"].values[0])
+    c, s = math.cos(psi0), math.sin(psi0)
+    along = (north - north[0]) * c + (east - east[0]) * s
+    across = -(north - north[0]) * s + (east - east[0]) * c
+    head, lateral = float(m["head_reach"]), float(m["lateral_deviation"])
+    label = label if drawn.measured else None
+    track.plot(across[ahead], along[ahead], label=label, **style)
+    track.plot(across[keep & ~ahead], along[keep & ~ahead], color=color, lw=0.7, ls=":")
+    _mark_end(track, drawn, across[ahead], along[ahead], color)
+    for ax, name in zip(series, ("surge_speed", "propeller_rps", "engine_order")):
+        ax.plot(t[keep], run[name].values[keep], label=label if name == "surge_speed" else None,
+                **{**style, "lw": min(style["lw"], 1.2)})
+    if not drawn.measured:
+        return
+    if math.isfinite(head):
+        track.plot([lateral], [head], "o", color=color, ms=6)
+        track.text(lateral, head, f"  head reach {head:.4g} m", color=color, fontsize=8,
+                   va="center")
+    for ax in series:
+        if math.isfinite(t_dead):
+            ax.axvline(t_dead, color=color, lw=0.8, ls="--")

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-import itertools
 from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -117,19 +116,29 @@ def metrics_rows(metrics: "xr.Dataset") -> list[dict[str, Any]]:
     list of dict
     """
     batch = [d for d in metrics["complete"].dims] if "complete" in metrics else []
-    shape = [metrics.sizes[d] for d in batch]
-    rows = []
-    for idx in itertools.product(*(range(n) for n in shape)):
-        sel = metrics.isel(dict(zip(batch, idx)))
-        row: dict[str, Any] = {}
-        for name, coord in sel.coords.items():
-            if coord.ndim == 0:
-                row[str(name)] = coord.item()
-        for name, var in sel.data_vars.items():
-            if var.ndim == 0:
-                row[str(name)] = var.item()
-            elif var.ndim == 1:
-                for k, v in enumerate(var.values.tolist(), start=1):
-                    row[f"{name}_{k}"] = v
-        rows.append(row)
-    return rows
+    sizes = {d: metrics.sizes[d] for d in batch}
+    n = int(np.prod(list(sizes.values()), dtype=np.int64))
+    columns: dict[str, list[Any]] = {}  # (one numpy pass per variable, not one per run)
+    for name, coord in metrics.coords.items():
+        if set(coord.dims) <= set(batch):
+            columns[str(name)] = _flat(coord, sizes, n)[:, 0].tolist()
+    for name, var in metrics.data_vars.items():
+        extra = [d for d in var.dims if d not in batch]
+        if len(extra) > 1:
+            continue
+        table = _flat(var, sizes, n)
+        if not extra:
+            columns[str(name)] = table[:, 0].tolist()
+            continue
+        for k in range(table.shape[1]):
+            columns[f"{name}_{k + 1}"] = table[:, k].tolist()
+    return [{key: values[i] for key, values in columns.items()} for i in range(n)]
+
+
+def _flat(da: "xr.DataArray", sizes: dict[str, int], n: int) -> np.ndarray:
+    """``da`` broadcast over the batch dims ``sizes``, as (runs, rest) in C order over them."""
+    missing = {d: s for d, s in sizes.items() if d not in da.dims}
+    if missing:
+        da = da.expand_dims(missing)
+    rest = [d for d in da.dims if d not in sizes]
+    return np.asarray(da.transpose(*sizes, *rest).values).reshape(n, -1)
