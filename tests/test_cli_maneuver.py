@@ -87,8 +87,8 @@ def test_turning_table_and_out(tmp_path):
     (["maneuver", "zigzag", "--rudder", "10", "--heading", "60", "--t-final", "20"],
      "`--heading` trigger 60 deg is not reached within `--t-final` = 20.0 [s]"),
     # library messages name the command's options (the user typed `--t-final`, not t_final)
-    (["maneuver", "turning", "--rps", "0.001"], "GB (a peak of about 2.5x that), more than 80% of the"),
-    (["maneuver", "turning", "--rps", "0.001"],
+    (["maneuver", "zigzag", "--rps", "0.001"], "GB (a peak of about 2.5x that), more than 80% of the"),
+    (["maneuver", "pullout", "--rps", "0.001"],
      "give a faster approach (`--speed` or `--rps`) or a shorter `--t-final`"),
     (["maneuver", "pullout", "--rudder", "-5"], "`--rudder` must be in (0, 35] [deg]"),
     (["maneuver", "spiral", "--max-rudder", "36"], "`--max-rudder` must be in (0, 35] [deg]"),
