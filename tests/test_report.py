@@ -102,11 +102,16 @@ def test_imo_report_has_the_criteria_and_both_manoeuvres(report_imo_dir):
     table = table[:table.index("</table>")]
     assert table.count('<tr class="pass">') == 13  # stopping evaluated too
     assert table.count('<tr class="not-evaluated">') == 0
-    for sid in ("imo", "track-turning-circle", "track-zigzag", "timeseries-zigzag"):
+    for sid in ("imo", "track-turning-circle", "track-zigzag", "timeseries-zigzag",
+                "track-stopping", "timeseries-stopping"):
         assert f'id="{sid}"' in page
-    # either file of the check gives the same report
-    data = load_report_data(report_imo_dir / "zigzag-metrics.nc")
-    assert [s.name for s in data.sets] == ["turning-circle", "zigzag"]
+    stopping = page[page.index('id="timeseries-stopping"'):]
+    stopping = stopping[:stopping.index("</section>")]
+    assert "propeller [1" in stopping and "engine order" in stopping  # the reversal shown
+    # any file of the check gives the same report
+    for name in ("zigzag-metrics.nc", "stopping-runs.nc"):
+        data = load_report_data(report_imo_dir / name)
+        assert [s.name for s in data.sets] == ["turning-circle", "zigzag", "stopping"]
     assert data.imo is not None and data.imo.sizes["row"] == 13
 
 

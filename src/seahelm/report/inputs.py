@@ -35,7 +35,7 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = ["report_inputs", "RunSet", "ReportData", "load_report_data", "report_data_from_dataset"]
 
 #: The manoeuvres whose files ``seahelm imo --out`` writes (with ``imo-report.json``).
-IMO_MANEUVERS = ("turning-circle", "zigzag")
+IMO_MANEUVERS = ("turning-circle", "zigzag", "stopping")
 #: The criteria file ``seahelm imo --out`` writes.
 IMO_REPORT = "imo-report.json"
 #: Runs of a sweep store with time series read for the plots (the statistics use every run).

@@ -40,10 +40,13 @@ _NAMES: dict[str, tuple[str, ...]] = {
     "rudder": ("rudder_angle", "rudder", "delta"),
     "yaw_rate": ("yaw_rate", "r"),
     "speed": ("speed",),
+    "propeller": ("propeller_rps",),
+    "engine_order": ("engine_order",),
 }
 #: Time series panels: (role, label).
 TIME_SERIES = (("heading", "heading"), ("rudder", "rudder angle"), ("yaw_rate", "yaw rate"),
-               ("speed", "speed"))
+               ("speed", "speed"), ("propeller", "propeller"),
+               ("engine_order", "engine order"))
 _DEGREES = {"rad": "deg", "rad/s": "deg/s"}
 
 
@@ -68,7 +71,7 @@ class Signal:
 
 def find_signal(runs: "xr.Dataset", role: str) -> Signal | None:
     """The signal of ``role`` (``north``, ``east``, ``heading``, ``rudder``, ``yaw_rate``,
-    ``speed``) in a flat result Dataset, in display units; None if the result has none.
+    ``speed``, ``propeller``, ``engine_order``) in a flat result Dataset, in display units; None if the result has none.
 
     Parameters
     ----------
