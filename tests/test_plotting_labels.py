@@ -86,3 +86,81 @@ def test_averaging_3d_panels_have_few_enough_ticks_not_to_overlap():
             shown = [v for v in axis.get_ticklocs() if lo <= v <= hi]
             assert 3 <= len(shown) <= 5, (axis.axis_name, shown)
     plt.close(fig)
+
+
+# ------------------------------------------------------------------------------------------
+# manoeuvre figures: no text over another, none outside the figure (issue 36)
+# ------------------------------------------------------------------------------------------
+def _drawn_texts(fig):
+    """(text, window extent) of every text the saved figure shows: visible, not empty, and
+    for tick labels only those of ticks inside the view limits (matplotlib keeps labels of
+    ticks outside them, which it does not draw)."""
+    from matplotlib.text import Text
+
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    hidden = set()
+    for ax in fig.axes:
+        for axis, limits in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim())):
+            lo, hi = sorted(limits)
+            pad = 1e-9 * (hi - lo)
+            for tick in axis.get_major_ticks() + axis.get_minor_ticks():
+                if not lo - pad <= tick.get_loc() <= hi + pad:
+                    hidden.update({id(tick.label1), id(tick.label2)})
+    return [(t.get_text(), t.get_window_extent(renderer)) for t in fig.findobj(Text)
+            if t.get_visible() and t.get_text().strip() and id(t) not in hidden]
+
+
+def _text_problems(fig):
+    texts = _drawn_texts(fig)
+    box = fig.bbox
+    out = [f"outside the figure: {name!r}" for name, bb in texts
+           if bb.x0 < box.x0 - 1 or bb.y0 < box.y0 - 1 or bb.x1 > box.x1 + 1
+           or bb.y1 > box.y1 + 1]
+    for i, (a, bb_a) in enumerate(texts):
+        for b, bb_b in texts[i + 1:]:
+            w = min(bb_a.x1, bb_b.x1) - max(bb_a.x0, bb_b.x0)
+            h = min(bb_a.y1, bb_b.y1) - max(bb_a.y0, bb_b.y0)
+            if w > 1 and h > 1:  # (more than touching)
+                out.append(f"{a!r} over {b!r}")
+    return out
+
+
+@pytest.fixture(scope="module")
+def imo_l7():
+    from seahelm.analysis.imo import imo_check
+
+    return imo_check("kvlcc2-l7")
+
+
+@pytest.mark.parametrize("figure", ["turning", "zigzag", "stopping", "pullout", "one-circle"])
+def test_manoeuvre_figures_have_no_text_over_another(imo_l7, figure):
+    import math
+
+    from seahelm.analysis.maneuvers import pull_out, turning_circle
+    from seahelm.plotting import maneuvers as plots
+
+    draw = {"turning": lambda: plots.plot_turning(imo_l7.turning).figure,
+            "zigzag": lambda: plots.plot_zigzag(imo_l7.zigzag),
+            "stopping": lambda: plots.plot_stopping(imo_l7.stopping),
+            "pullout": lambda: plots.plot_pullout(pull_out("kvlcc2-l7",
+                                                           math.radians(20))).figure,
+            "one-circle": lambda: plots.plot_turning(turning_circle(
+                "kvlcc2-l7", math.radians(35), sides=1)).figure}
+    fig = draw[figure]()
+    assert _text_problems(fig) == []
+    if figure == "turning":  # four circles: the values in the legend, not beside arrows
+        labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+        assert sum("tactical diameter" in label for label in labels) == 4
+    plt.close(fig)
+
+
+def test_the_overlap_check_finds_overlapping_text():
+    fig, ax = plt.subplots()
+    ax.text(0.5, 0.5, "transfer 9.321 m")
+    ax.text(0.52, 0.5, "transfer 9.323 m")
+    ax.set_title("x" * 400)  # wider than the figure
+    problems = _text_problems(fig)
+    plt.close(fig)
+    assert any("over" in p and "transfer" in p for p in problems)
+    assert any(p.startswith("outside the figure") for p in problems)

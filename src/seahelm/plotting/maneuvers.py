@@ -82,10 +82,14 @@ def plot_turning(result: Any, *, ax: Any = None) -> Any:
     """
     ax = _new_axes(ax)
     groups = drawn_groups(result, "tactical_diameter")
+    # the values are written beside the arrows of a lone measured run; with several, in the
+    # legend (written beside each, they overlap where the circles meet)
+    measured = sum(drawn.measured for group in groups for drawn in group.runs)
     for k, group in enumerate(groups):
         color = f"C{k % 10}"
         for drawn in group.runs:
-            _turning_run(ax, drawn, color, group.label if group.size > 1 else drawn.label)
+            _turning_run(ax, drawn, color, group.label if group.size > 1 else drawn.label,
+                         written=measured == 1)
     ax.plot([0.0], [0.0], "k^", ms=7, label="rudder order")
     ax.axvline(0.0, color="0.6", lw=0.8, ls=":")
     rudder = result.metrics["rudder"]
@@ -97,14 +101,17 @@ def plot_turning(result: Any, *, ax: Any = None) -> Any:
                  "(midship point)")
     ax.set_aspect("equal", adjustable="datalim")
     ax.grid(True, alpha=0.3)
-    ax.legend(loc="lower right", fontsize="small")
+    ax.legend(loc="best", fontsize="small")
     _note(ax.figure, representatives_note(groups, "tactical diameter"))
     return ax
 
 
-def _turning_run(ax: Any, drawn: DrawnRun, color: str, group_label: str) -> None:
-    """One turning circle's track; a measured run's advance, transfer and tactical diameter."""
+def _turning_run(ax: Any, drawn: DrawnRun, color: str, group_label: str, *,
+                 written: bool) -> None:
+    """One turning circle's track; a measured run's advance, transfer and tactical diameter
+    marked by arrows, their values ``written`` beside them or else in the legend."""
     run, m = drawn.runs, drawn.metrics
+    adv, tr, td = (float(m[v]) for v in ("advance", "transfer", "tactical_diameter"))
     t = run["time"].values
     north, east = run["north"].values, run["east"].values
     # the original course is north (heading 0) in every manoeuvre; keep the general case
@@ -113,34 +120,38 @@ def _turning_run(ax: Any, drawn: DrawnRun, color: str, group_label: str) -> None
     along = (north - north[0]) * c + (east - east[0]) * s
     across = -(north - north[0]) * s + (east - east[0]) * c
     keep = np.abs(run["heading"].values - psi0) <= 2.0 * math.pi + 1e-9
-    label = (group_label if drawn.role in ("run", "median")
-             else None)
+    label = group_label if drawn.measured else None
+    if label is not None and not written:
+        label += "".join(f", {name} {v:.4g} m" for name, v in (
+            ("advance", adv), ("transfer", tr), ("tactical diameter", td)) if math.isfinite(v))
     ax.plot(across[keep], along[keep], label=label, **_style(drawn, color))
     _mark_end(ax, drawn, across[keep], along[keep], color)
     if not drawn.measured:
         return
     side = np.sign(across[np.argmax(np.abs(across))]) or 1.0
-    adv, tr, td = (float(m[v]) for v in ("advance", "transfer", "tactical_diameter"))
     t90, t180 = float(m["time_90"]), float(m["time_180"])
     if math.isfinite(t90):
         x90 = side * tr
         ax.plot([x90], [adv], "o", color=color, ms=6)
         ax.annotate("", xy=(x90, adv), xytext=(x90, 0.0),
                     arrowprops=dict(arrowstyle="<->", color=color, lw=0.9))
-        ax.text(x90, 0.5 * adv, f" advance\n {adv:.4g} m", color=color, fontsize=8,
-                ha="left" if side > 0 else "right", va="center")
+        if written:
+            ax.text(x90, 0.5 * adv, f" advance\n {adv:.4g} m", color=color, fontsize=8,
+                    ha="left" if side > 0 else "right", va="center")
         ax.annotate("", xy=(x90, adv), xytext=(0.0, adv),
                     arrowprops=dict(arrowstyle="<->", color=color, lw=0.9, ls="--"))
-        ax.text(0.5 * x90, adv, f"transfer {tr:.4g} m", color=color, fontsize=8,
-                ha="center", va="bottom")
+        if written:
+            ax.text(0.5 * x90, adv, f"transfer {tr:.4g} m", color=color, fontsize=8,
+                    ha="center", va="bottom")
     if math.isfinite(t180):
         y180 = float(np.interp(t180, t, along))
         x180 = side * td
         ax.plot([x180], [y180], "s", color=color, ms=6)
         ax.annotate("", xy=(x180, y180), xytext=(0.0, y180),
                     arrowprops=dict(arrowstyle="<->", color=color, lw=0.9))
-        ax.text(0.5 * x180, y180, f"tactical diameter {td:.4g} m", color=color,
-                fontsize=8, ha="center", va="top")
+        if written:
+            ax.text(0.5 * x180, y180, f"tactical diameter {td:.4g} m", color=color,
+                    fontsize=8, ha="center", va="top")
 
 
 def plot_zigzag(result: Any, *, fig: Any = None) -> Any:
@@ -205,7 +216,7 @@ def _zigzag_run(ax: Any, drawn: DrawnRun) -> None:
     if not measured:
         return
     ax.plot(t, np.degrees(run["rudder_angle"].values), color="C1", lw=1.2,
-            label="rudder angle δ")
+            label="rudder angle δ (positive turns to starboard)")
     for j in range(m.sizes["n"]):
         tj = float(m["overshoot_time"].isel(n=j))
         if not math.isfinite(tj):
