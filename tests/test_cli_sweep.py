@@ -109,3 +109,34 @@ def test_an_unreachable_scheduler(scenario, tmp_path):
     line = one_error(["sweep", str(scenario), "--store", str(tmp_path / "s.zarr"),
                       "--scheduler", f"tcp://127.0.0.1:{port}", "--timeout", "1"])
     assert f"cannot reach the dask scheduler at tcp://127.0.0.1:{port} within 1 s" in line
+
+
+def test_inspect_shows_a_store_complete_or_not(scenario, tmp_path):
+    """`seahelm inspect STORE.zarr` (it said "is a directory"): the store's state and the
+    statistics the sweep printed; while incomplete, those of the runs written."""
+    store = tmp_path / "study.zarr"
+    res = runner.invoke(app, ["sweep", str(scenario), "--store", str(store), "--chunk-size",
+                              "4", "--json"])
+    assert res.exit_code == 0, res.stderr
+    swept = json.loads(res.stdout)["summary"]
+    res = runner.invoke(app, ["inspect", str(store), "--json"])
+    assert res.exit_code == 0, res.stderr
+    shown = json.loads(res.stdout)
+    assert shown["state"] == "complete" and shown["summary"] == swept
+    assert (shown["n_runs"], shown["n_chunks"], shown["chunk_size"]) == (N_RUNS, 4, 4)
+    res = runner.invoke(app, ["inspect", str(store)], env={"COLUMNS": "100"})
+    assert res.exit_code == 0, res.stderr
+    text = " ".join(res.stdout.split())
+    assert "sweep store, complete" in text and f"statistics over {N_RUNS} run(s)" in text
+    assert swept["metrics"][0]["name"] in text
+    # a chunk's marker gone: the store is incomplete, its statistics those of the rest
+    (store / "sweep-chunks" / "000001").unlink()
+    res = runner.invoke(app, ["inspect", str(store), "--json"])
+    assert res.exit_code == 0, res.stderr
+    shown = json.loads(res.stdout)
+    assert shown["state"] == f"incomplete: {N_RUNS - 4} of {N_RUNS} runs written"
+    assert shown["summary"]["n_runs"] == N_RUNS - 4
+
+
+def test_inspect_refuses_a_directory_that_is_no_store(tmp_path):
+    assert "is a directory, not a file" in one_error(["inspect", str(tmp_path)])

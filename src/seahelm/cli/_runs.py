@@ -184,3 +184,44 @@ def statistics_tables(stats: list[dict[str, Any]], what: str = "Monte-Carlo stat
 
 def _num(v: float) -> str:
     return "" if isinstance(v, float) and math.isnan(v) else f"{v:.4g}"
+
+
+def sweep_summary_table(title: str, summary: dict[str, Any], max_rows: int = MAX_ROWS
+                        ) -> tuple[Table, int]:
+    """The statistics of a sweep store's metrics (its ``sweep_summary``) as ``seahelm sweep``
+    prints them: the first ``max_rows`` metrics, without empty ``where``/``units`` columns.
+
+    Parameters
+    ----------
+    title : str
+        The table's title.
+    summary : dict
+        :func:`seahelm.sweep.run.summary_statistics` of the store.
+    max_rows : int, optional
+        Metrics shown at most (default :data:`MAX_ROWS`).
+
+    Returns
+    -------
+    (rich.table.Table, int)
+        The table and the number of metrics left out.
+    """
+    table = Table(title=escape(title), title_justify="left")
+    rows = summary["metrics"][:max_rows]
+    labels = [c for c in ("where", "units") if any(r.get(c) for r in rows)]  # (no empty ones)
+    table.add_column("metric", overflow="fold")
+    for col in labels:
+        table.add_column(col, no_wrap=True)
+    for col in ("n", "mean", "std", "q05", "q50", "q95"):
+        table.add_column(col, justify="right", no_wrap=True)
+    for row in rows:
+        table.add_row(escape(row["name"]), *(escape(str(row[c])) for c in labels),
+                      str(row["n"]),
+                      *(_stat(row[k]) for k in ("mean", "std", "q05", "q50", "q95")))
+    return table, max(0, len(summary["metrics"]) - max_rows)
+
+
+def _stat(value: Any) -> str:
+    """A stored statistic (None or NaN where there is none: "–")."""
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "–"
+    return f"{value:.4g}"

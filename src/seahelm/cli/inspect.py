@@ -9,7 +9,10 @@ when the file was written -- computed again from the file (:func:`seahelm.result
 with the Monte-Carlo statistics. ``--json`` prints all of it as one JSON object, with every run.
 
 A manoeuvre's metrics file (``*-metrics.nc`` of ``seahelm maneuver``/``imo``): its metadata
-and the metrics of every run. Anything else is refused (exit 2).
+and the metrics of every run. A sweep store (the ``.zarr`` directory of ``seahelm sweep``): its
+state (complete, or how many runs are written), its chunks, the scenario's title and source, and
+the statistics of every metric (stored with the store when it completed, computed from the
+written runs while it is incomplete). Anything else is refused (exit 2).
 """
 
 from __future__ import annotations
@@ -47,12 +50,17 @@ _LONG = ("scenario_text", "state_labels", "param_types")
 
 @handle_errors
 def inspect(
-    result: Annotated[Path, typer.Argument(help="Result file written by seahelm (NetCDF).")],
+    result: Annotated[Path, typer.Argument(help=(
+        "Result file written by seahelm (NetCDF), or a sweep store (STORE.zarr)."))],
     json_out: JsonFlag = False,
 ) -> None:
     """Show a result file: run metadata, batch, per-run status and the summary table."""
     from ..results import open_result_file
+    from ..sweep.store import store_attrs
 
+    if result.is_dir() and store_attrs(result) is not None:
+        _show_store(result, json_out)
+        return
     input_file("RESULT", result)
     ds = open_result_file(result)
     if "status" in ds and "time" in ds.dims and "state_labels" in ds.attrs:
@@ -188,3 +196,51 @@ def _text(value: Any, unit: str) -> str:
     else:
         text = str(value)
     return f"{text} {unit}" if unit and text else text
+
+
+def _show_store(store: Path, json_out: bool) -> None:
+    """A sweep store: state, chunks, scenario, statistics (those stored on completion)."""
+    import json
+
+    import numpy as np
+
+    from ..sweep.run import summary_statistics
+    from ..sweep.store import open_sweep
+    from ._runs import sweep_summary_table
+
+    ds = open_sweep(store, flat=True)
+    attrs = dict(ds.attrs)
+    n_runs = int(ds.sizes["run"])
+    if "complete" in ds:
+        written = np.asarray(ds["complete"].values, dtype=bool).reshape(n_runs, -1).all(axis=1)
+        state = f"incomplete: {int(written.sum())} of {n_runs} runs written"
+    else:
+        written = np.ones(n_runs, dtype=bool)
+        state = "complete"
+    summary = (json.loads(attrs["sweep_summary"]) if "sweep_summary" in attrs
+               and state == "complete"  # (a stored summary is stale once a chunk is lost)
+               else summary_statistics(ds.isel(run=np.flatnonzero(written))))
+    payload = {"store": str(store), "state": state, "n_runs": n_runs,
+               "n_chunks": int(attrs.get("sweep_n_chunks", 0) or 0),
+               "chunk_size": int(attrs.get("sweep_chunk_size", 0) or 0),
+               "title": str(attrs.get("title", "")),
+               "scenario_source": str(attrs.get("scenario_source", "")),
+               "summary": summary}
+    if json_out:
+        print_json(json.loads(json.dumps(payload)))
+        return
+    console.print(escape(f"{store}: sweep store, {state}"), highlight=False)
+    for key in ("title", "scenario_source"):
+        if payload[key]:
+            console.print(escape(f"  {key.replace('_', ' ')}: {payload[key]}"),
+                          highlight=False)
+    console.print(f"  {n_runs:,} run(s) in {payload['n_chunks']} chunk(s) of up to "
+                  f"{payload['chunk_size']:,}", highlight=False)
+    if "n_ok" in summary:
+        console.print(f"  {summary['n_ok']:,} ok, {summary['n_failed']:,} failed",
+                      highlight=False)
+    table, more = sweep_summary_table(f"statistics over {summary['n_runs']:,} run(s)",
+                                      summary)
+    console.print(table)
+    if more:
+        console.print(f"  ... {more} more metric(s): --json", highlight=False)

@@ -12,24 +12,20 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated
 
 import typer
-from rich.table import Table
 
 from .._validate import check_positive
 from ..errors import ParameterError
 from ._common import JsonFlag, ProgressBar, _writable_directory, console, \
     exit_if_diverged, handle_errors, input_file, print_json, store_containing
+from ._runs import sweep_summary_table
 
 __all__ = ["sweep"]
 
 #: Rows of the statistics table (the JSON output and the store have them all).
 MAX_ROWS = 40
-
-
-def _fmt(value: Any) -> str:
-    return "–" if value is None else f"{value:.4g}"
 
 
 @handle_errors
@@ -97,20 +93,9 @@ def sweep(
         exit_if_diverged(report.summary.get("n_diverged", 0))
         return
     summary = report.summary
-    table = Table(title=f"{scenario}: statistics over {summary['n_runs']} run(s)",
-                  title_justify="left")
-    rows = summary["metrics"][:MAX_ROWS]
-    labels = [c for c in ("where", "units") if any(r[c] for r in rows)]  # (no empty columns)
-    table.add_column("metric", overflow="fold")
-    for col in labels:
-        table.add_column(col, no_wrap=True)
-    for col in ("n", "mean", "std", "q05", "q50", "q95"):
-        table.add_column(col, justify="right", no_wrap=True)
-    for row in rows:
-        table.add_row(row["name"], *(row[c] for c in labels), str(row["n"]),
-                      *(_fmt(row[k]) for k in ("mean", "std", "q05", "q50", "q95")))
+    table, more = sweep_summary_table(
+        f"{scenario}: statistics over {summary['n_runs']} run(s)", summary, MAX_ROWS)
     console.print(table)
-    more = len(summary["metrics"]) - MAX_ROWS
     if more > 0:
         console.print(f"  ... {more} more row(s) in the store's sweep_summary and --json",
                       highlight=False)
