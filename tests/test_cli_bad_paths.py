@@ -239,3 +239,61 @@ def test_a_write_killed_by_sigterm_leaves_no_temporary_file(tmp_path):
             assert code == 143 and left == []  # nothing half-written, no temporary file
         else:  # the contrast: Python's default leaves the temporary file behind
             assert code == -signal.SIGTERM and len(left) == 1 and left[0].endswith(".tmp")
+
+
+LONG_RUN = """title = "long"
+[vessel]
+ship = "mariner-nomoto2"
+[controller]
+model = "pid-heading"
+[controller.reference]
+heading_deg = 10.0
+[simulation]
+t_final = 60000000.0
+dt = 0.1
+record_every = 1000000
+"""
+
+
+def test_ctrl_c_exits_130_with_a_message_and_leaves_no_empty_out_directory(tmp_path):
+    """Ctrl-C during `seahelm run` (it exited 130 silently and left the empty --out
+    directory it had made): one line on stderr, exit 130, the directories it made removed."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    scenario = tmp_path / "long.toml"
+    scenario.write_text(LONG_RUN)
+    out = tmp_path / "made" / "by-run"
+    proc = subprocess.Popen([sys.executable, "-m", "seahelm", "run", str(scenario), "--out",
+                             str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    deadline = time.monotonic() + 120
+    while not out.exists() and proc.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert out.exists(), proc.communicate()
+    time.sleep(0.5)  # (into the run)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130, err
+    assert err.strip().splitlines()[-1].startswith("interrupted: Ctrl-C before the end")
+    assert not (tmp_path / "made").exists()
+
+
+def test_ctrl_c_with_json_prints_one_object(tmp_path, monkeypatch):
+    import json
+
+    import seahelm.scenario
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(seahelm.scenario, "run_scenario", interrupted)
+    scenario = tmp_path / "long.toml"
+    scenario.write_text(LONG_RUN)
+    res = CliRunner().invoke(app, ["run", str(scenario), "--out", str(tmp_path / "o"), "--json"])
+    assert res.exit_code == 130, res.output
+    payload = json.loads(res.stdout)
+    assert payload["exit_code"] == 130 and payload["error"].startswith("interrupted: Ctrl-C")
+    assert not (tmp_path / "o").exists()

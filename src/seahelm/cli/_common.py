@@ -60,6 +60,12 @@ EXIT_DIVERGED = 3
 #: Everything ran, and the ship does not comply (``seahelm imo --check``: a criterion failed).
 #: Opt-in: a verdict is the output of a command that worked, not a failure of the command.
 EXIT_NONCOMPLIANT = 4
+#: Stopped by Ctrl-C (128 + SIGINT, as a shell reports it).
+EXIT_INTERRUPTED = 130
+
+#: Output directories the running command created (removed again, if still empty, when it
+#: stops without finishing: an interrupted or failed run leaves no empty --out directory).
+_created_dirs: list[Path] = []
 
 #: Whether the running command line asked for ``--json`` and whether its one JSON object has
 #: been printed (set by the root :class:`OneLineErrors` when it parses a command line).
@@ -209,13 +215,26 @@ def handle_errors(func: F) -> F:
 
     @functools.wraps(func)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
+        _created_dirs.clear()
+        done = False
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("default")
                 warnings.showwarning = _show_warning  # one line each: warning: ...
-                return func(*args, **kwargs)
-        except typer.Exit:
+                out = func(*args, **kwargs)
+                done = True
+                return out
+        except typer.Exit as exc:
+            done = exc.exit_code == 0
             raise
+        except KeyboardInterrupt:
+            message = ("Ctrl-C before the end; what was written before it is complete and "
+                       "nothing half-written is left (a sweep resumes from its store with the "
+                       "same command)")
+            _json_error(f"interrupted: {message}", EXIT_INTERRUPTED)
+            err_console.print(Text.assemble(("interrupted: ", "bold red"), message),
+                              highlight=False, soft_wrap=True)
+            raise typer.Exit(EXIT_INTERRUPTED) from None
         except (ParameterError, ValueError, FileNotFoundError, KeyError) as exc:
             fail_bad_input(cli_message(exc))
         except OSError as exc:
@@ -230,6 +249,9 @@ def handle_errors(func: F) -> F:
             if os.environ.get("SEAHELM_DEBUG"):
                 raise
             fail(f"{type(exc).__name__}: {_one_line(exc)} (set SEAHELM_DEBUG=1 for a traceback)")
+        finally:
+            if not done:
+                remove_created_dirs()
 
     return wrapper  # type: ignore[return-value]
 
@@ -363,13 +385,26 @@ def protect_inputs(option: str, target: Path, reads: Iterable[Path] = ()) -> Non
 
 
 def _writable_directory(option: str, directory: Path) -> None:
-    """Create ``directory`` if needed and check that a file can be written in it."""
+    """Create ``directory`` if needed (remembered: :func:`remove_created_dirs`) and check that
+    a file can be written in it."""
+    missing = [p for p in (directory, *directory.parents) if not p.exists()]
     try:
         directory.mkdir(parents=True, exist_ok=True)
+        _created_dirs.extend(missing)  # (deepest first)
     except OSError as exc:
         raise ParameterError(f"`{option}`: cannot create the directory {directory} "
                              f"({exc.strerror or exc})") from None
     _check_writable(option, directory)
+
+
+def remove_created_dirs() -> None:
+    """Remove the directories this command created that are still empty (deepest first)."""
+    for path in list(_created_dirs):
+        try:
+            path.rmdir()
+        except OSError:  # (not empty, or gone: kept as it is)
+            pass
+    _created_dirs.clear()
 
 
 def _check_writable(option: str, directory: Path) -> None:
