@@ -8,11 +8,13 @@ criterion for every member with the limits of :mod:`seahelm.analysis.imo`, and g
 fraction that passes each criterion and the whole check with a Wilson score interval (Wilson
 1927; it stays inside [0, 1] and keeps its coverage for fractions near 0 or 1, where the normal
 interval does not). A member whose manoeuvres did not complete (a diverged run, an event not
-reached within 1.5 times the first member's durations) is excluded from the fractions and
-counted. The stopping criterion (track reach ≤ 15 L,
-:func:`seahelm.analysis.maneuvers.crash_stop`, one batch per chunk too) is part of the check when every member can stop (an ``mmg`` ship with a
-propeller, given the engine estimate of :func:`~seahelm.analysis.maneuvers.stopping_ship`);
-otherwise it is left out and said so.
+reached within 1.5 times the durations of the reference ship's manoeuvres, by default the
+first member's) is excluded from the fractions and counted, with the reason; so is a member
+whose steady straight approach is not found (it is not run). The stopping criterion (track
+reach ≤ 15 L, :func:`seahelm.analysis.maneuvers.crash_stop`, one batch per chunk too) is
+part of the check when every member can stop (an ``mmg`` ship with a propeller, given the
+engine estimate of :func:`~seahelm.analysis.maneuvers.stopping_ship`); otherwise it is left
+out and said so.
 
 References
 ----------
@@ -35,8 +37,12 @@ from ..errors import ParameterError
 #: Members simulated together (a bound on the memory of the recorded manoeuvres).
 CHUNK = 500
 
-__all__ = ["ImoProbabilities", "imo_probabilities", "wilson_interval", "monte_carlo_ships",
-           "UNCERTAIN_COEFFICIENTS", "DEFAULT_UNCERTAINTY"]
+__all__ = ["ImoProbabilities", "imo_probabilities", "probabilities_from_values",
+           "wilson_interval", "monte_carlo_ships", "UNCERTAIN_COEFFICIENTS",
+           "DEFAULT_UNCERTAINTY", "NO_APPROACH"]
+
+#: How the reason of a member left out for want of a steady straight approach begins.
+NO_APPROACH = "no straight approach"
 
 
 def wilson_interval(passed: int, total: int, level: float = 0.95) -> tuple[float, float]:
@@ -81,6 +87,17 @@ class ImoProbabilities:
         Of passing every criterion.
     level : float
         Confidence level of the intervals.
+    stopping_note : str
+        Why the stopping criterion was left out ("" when it was evaluated).
+    values : tuple of ndarray
+        Per row (in the order of ``rows``), the value of every member in the order of the
+        ensemble (NaN where it was not computed), in the row's unit.
+    complete : ndarray of bool or None
+        Per member, whether it was counted (every value computed).
+    reasons : tuple of str
+        Per member, why it was excluded ("" when it was counted): a reason beginning with
+        :data:`NO_APPROACH` (its steady straight approach was not found, so nothing was run)
+        or the criteria that have no value (an event not reached, a diverged run).
     """
 
     rows: tuple[dict[str, Any], ...]
@@ -92,6 +109,9 @@ class ImoProbabilities:
     ci_high: float
     level: float
     stopping_note: str = ""
+    values: tuple[np.ndarray, ...] = dataclasses.field(default=(), compare=False, repr=False)
+    complete: np.ndarray | None = dataclasses.field(default=None, compare=False, repr=False)
+    reasons: tuple[str, ...] = dataclasses.field(default=(), compare=False, repr=False)
 
     def as_dict(self) -> dict[str, Any]:
         """Plain data (for JSON).
@@ -106,9 +126,12 @@ class ImoProbabilities:
                 "note": self.stopping_note or "stopping (track reach) evaluated"}
 
 
-def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | None = None
-                      ) -> ImoProbabilities:
+def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | None = None,
+                      reference: Any = None) -> ImoProbabilities:
     """Pass fractions of every IMO criterion over ``ships`` (module docstring).
+
+    A member whose steady straight approach is not found is not run: it is excluded, with the
+    reason (:attr:`ImoProbabilities.reasons`), as a member whose manoeuvres do not complete.
 
     Parameters
     ----------
@@ -118,6 +141,10 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
         Confidence level of the Wilson intervals.
     dt : float, optional
         Integration step [s] (default: the manoeuvres').
+    reference : Ship, optional
+        The ship whose manoeuvres' durations (× 1.5) bound every member's runs, e.g. the
+        nominal ship of a Monte-Carlo ensemble, so that a member's values do not depend on
+        the ensemble it is run with (default: the first member with a straight approach).
 
     Returns
     -------
@@ -126,7 +153,8 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
     Raises
     ------
     ParameterError
-        An empty ensemble, members of different lengths or steering-gear limits.
+        An empty ensemble, members (or the reference) of different lengths, test speeds or
+        steering-gear limits; an ensemble none of whose members has a straight approach.
     """
     from .imo import (
         ADVANCE_LIMIT,
@@ -140,23 +168,28 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
     members = [maneuver_ship(s) for s in ships]
     if not members:
         raise ParameterError("no ships in the ensemble", field="ships")
-    lengths = {round(s.length, 9) for s in members}
-    gears = {round(s.max_rudder, 12) for s in members}
-    if len(lengths) > 1 or len(gears) > 1:
-        raise ParameterError("the members of an ensemble must share their length and "
-                             "steering-gear limit", field="ships")
+    given = members + ([] if reference is None else [maneuver_ship(reference)])
+    for what, key in (("length", lambda s: round(s.length, 9)),
+                      ("test speed (approach speed)", lambda s: round(s.approach_speed, 9)),
+                      ("steering-gear limit", lambda s: round(s.max_rudder, 12))):
+        if len({key(s) for s in given}) > 1:
+            raise ParameterError(f"the members of an ensemble must share their length, test "
+                                 f"speed and steering-gear limit; their {what} differ",
+                                 field="ships")
     if not 0 < level < 1:
         raise ParameterError(f"must be in (0, 1), got {level!r}", field="level")
-    hard = min(math.radians(35.0), members[0].max_rudder)
+    everyone = members
+    members, ref, no_approach = _with_approach(members, given[len(members):])
+    hard = min(math.radians(35.0), ref.max_rudder)
     rudders = np.array([hard, math.radians(10.0)])
     pairs = np.radians([10.0, 20.0])
-    # the durations of the first member's manoeuvres, with room (× 1.5), for all: estimating
+    # the durations of the reference's manoeuvres, with room (× 1.5), for all: estimating
     # them member by member (a steady turn each) would cost more than the ensemble's runs
-    first_turn = turning_circle(members[0], rudders, sides=(1, -1), dt=dt,
+    first_turn = turning_circle(ref, rudders, sides=(1, -1), dt=dt,
                                 heading_change=math.pi).metrics
     t_turn = 1.5 * first_turn.attrs["t_final"]
-    t_zz = 1.5 * zigzag(members[0], pairs, pairs, sides=(1, -1), dt=dt).metrics.attrs["t_final"]
-    L = members[0].length
+    t_zz = 1.5 * zigzag(ref, pairs, pairs, sides=(1, -1), dt=dt).metrics.attrs["t_final"]
+    L = ref.length
     V = float(np.asarray(first_turn["approach_speed_value"].values).reshape(-1)[0])
     limits = imo_overshoot_limits(L / V)
     dt = float(first_turn.attrs["dt"])
@@ -217,26 +250,114 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
                  for i in range(0, len(stoppers), CHUNK)]
         checks.append(("stopping", "track reach (full astern)", "-",
                        np.concatenate(reach) / L, STOPPING_LIMIT, "L"))
-    complete = np.all([np.isfinite(c[3]) for c in checks], axis=0)
+    kept = np.array([i for i in range(len(everyone)) if i not in no_approach], dtype=int)
+    criteria, values = [], []
+    for ability, criterion, side, vals, limit, unit in checks:
+        criteria.append({"ability": ability, "criterion": criterion, "side": side,
+                         "limit": float(limit), "unit": unit})
+        values.append(np.full(len(everyone), math.nan))
+        values[-1][kept] = vals
+    return probabilities_from_values(values, criteria, level=level, stopping_note=stopping_note,
+                                     reasons=no_approach)
+
+
+def _with_approach(members: list[Any], reference: list[Any]
+                   ) -> tuple[list[Any], Any, dict[int, str]]:
+    """The members whose steady straight approach is found (one batch, memoised for the
+    manoeuvres that follow), the reference ship (``reference``'s if it has an approach, else
+    the first such member) and why each other member has none (by index)."""
+    from .equilibrium import EquilibriumError
+    from .maneuvers.ships import steady_approaches
+
+    both = members + reference
+    found = steady_approaches(both[0].model, [s.params for s in both],
+                              [s.approach_speed for s in both])
+    failed = {i: f"{NO_APPROACH} of '{s.name}' at {s.approach_speed:.6g} m/s ({a})"
+              for i, (s, a) in enumerate(zip(members, found)) if isinstance(a, str)}
+    kept = [s for i, s in enumerate(members) if i not in failed]
+    if not kept:
+        raise EquilibriumError(f": none of the {len(members)} members has a straight approach "
+                               f"(member 0: {failed[0]})", field="ships")
+    ref = reference[0] if reference and not isinstance(found[-1], str) else kept[0]
+    return kept, ref, failed
+
+
+def probabilities_from_values(values: Sequence[Any], criteria: Sequence[dict[str, Any]], *,
+                              complete: Any = None, level: float = 0.95,
+                              stopping_note: str = "",
+                              reasons: dict[int, str] | Sequence[str] = ()
+                              ) -> ImoProbabilities:
+    """The pass fractions of an ensemble from its members' criterion values.
+
+    What :func:`imo_probabilities` gives from the values it computed; also what a file or a
+    sweep store of the values gives back (a member passes a criterion when its value is at
+    most the limit; it is counted when it has every value).
+
+    Parameters
+    ----------
+    values : sequence of array_like
+        Per criterion, the value of every member (NaN where it was not computed), in the
+        criterion's unit.
+    criteria : sequence of dict
+        Per criterion, ``ability``, ``criterion``, ``side``, ``limit`` and ``unit``.
+    complete : array_like of bool, optional
+        The members counted (default: those with every value finite).
+    level : float, optional
+        Confidence level of the Wilson intervals.
+    stopping_note : str, optional
+        Why the stopping criterion is left out ("" when it is evaluated).
+    reasons : dict of int to str, or sequence of str, optional
+        Why members were excluded: by member index, or one per member ("" when counted);
+        excluded members without one get the criteria that have no value.
+
+    Returns
+    -------
+    ImoProbabilities
+
+    Raises
+    ------
+    ParameterError
+        Values of different lengths than ``criteria`` or than each other; a bad ``level``.
+    """
+    if not 0 < level < 1:
+        raise ParameterError(f"must be in (0, 1), got {level!r}", field="level")
+    arrays = [np.asarray(v, dtype=float).reshape(-1) for v in values]
+    if len(arrays) != len(criteria) or len({a.size for a in arrays}) > 1 or not arrays:
+        raise ParameterError("one array of member values per criterion, of one length, is "
+                             "needed", field="values")
+    n = arrays[0].size
+    finite = np.all([np.isfinite(a) for a in arrays], axis=0)
+    complete = finite if complete is None else np.asarray(complete, dtype=bool).reshape(n)
+    given = dict(reasons) if isinstance(reasons, dict) else dict(enumerate(reasons))
+    why = []
+    for i in range(n):
+        missing = [f"{c['ability']}: {c['criterion']}"
+                   + (f" ({c['side']})" if c["side"] != "-" else "")
+                   for c, a in zip(criteria, arrays) if not math.isfinite(a[i])]
+        why.append("" if complete[i] else given.get(i) or (
+            "no value for " + "; ".join(missing) + " (an event not reached within the run, "
+            "or a diverged run)" if missing else "excluded"))
     total = int(complete.sum())
     rows = []
-    every = np.ones(len(members), dtype=bool)
-    for ability, criterion, side, vals, limit, unit in checks:
-        ok = vals <= limit
+    every = np.ones(n, dtype=bool)
+    for c, vals in zip(criteria, arrays):
+        ok = vals <= c["limit"]
         every &= ok
         passed = int(ok[complete].sum())
         lo, hi = wilson_interval(passed, total, level)
-        rows.append({"ability": ability, "criterion": criterion, "side": side,
+        rows.append({"ability": c["ability"], "criterion": c["criterion"], "side": c["side"],
                      "passed": passed, "total": total,
                      "probability": passed / total if total else math.nan,
-                     "ci_low": lo, "ci_high": hi, "limit": float(limit), "unit": unit,
+                     "ci_low": lo, "ci_high": hi, "limit": float(c["limit"]),
+                     "unit": c["unit"],
                      "median": float(np.median(vals[complete])) if total else math.nan})
     passed_all = int(every[complete].sum())
     lo, hi = wilson_interval(passed_all, total, level)
     return ImoProbabilities(rows=tuple(rows), passed=passed_all, total=total,
-                            excluded=len(members) - total,
+                            excluded=n - total,
                             probability=passed_all / total if total else math.nan,
-                            ci_low=lo, ci_high=hi, level=level, stopping_note=stopping_note)
+                            ci_low=lo, ci_high=hi, level=level, stopping_note=stopping_note,
+                            values=tuple(arrays), complete=complete, reasons=tuple(why))
 
 
 #: The coefficients an uncertain ship's default Monte-Carlo draws (their relative standard
