@@ -180,6 +180,7 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
         raise ParameterError(f"must be in (0, 1), got {level!r}", field="level")
     everyone = members
     members, ref, no_approach = _with_approach(members, given[len(members):])
+    kept = np.array([i for i in range(len(everyone)) if i not in no_approach], dtype=int)
     hard = min(math.radians(35.0), ref.max_rudder)
     rudders = np.array([hard, math.radians(10.0)])
     pairs = np.radians([10.0, 20.0])
@@ -250,13 +251,12 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
                  for i in range(0, len(stoppers), CHUNK)]
         checks.append(("stopping", "track reach (full astern)", "-",
                        np.concatenate(reach) / L, STOPPING_LIMIT, "L"))
-    kept = np.array([i for i in range(len(everyone)) if i not in no_approach], dtype=int)
     criteria, values = [], []
     for ability, criterion, side, vals, limit, unit in checks:
         criteria.append({"ability": ability, "criterion": criterion, "side": side,
                          "limit": float(limit), "unit": unit})
         values.append(np.full(len(everyone), math.nan))
-        values[-1][kept] = vals
+        values[-1][kept] = vals[:kept.size]  # (none kept: the reference ran as a stand-in)
     return probabilities_from_values(values, criteria, level=level, stopping_note=stopping_note,
                                      reasons=no_approach)
 
@@ -265,7 +265,8 @@ def _with_approach(members: list[Any], reference: list[Any]
                    ) -> tuple[list[Any], Any, dict[int, str]]:
     """The members whose steady straight approach is found (one batch, memoised for the
     manoeuvres that follow), the reference ship (``reference``'s if it has an approach, else
-    the first such member) and why each other member has none (by index)."""
+    the first such member) and why each other member has none (by index). With no such
+    member, the reference alone stands in (its values are not the ensemble's)."""
     from .equilibrium import EquilibriumError
     from .maneuvers.ships import steady_approaches
 
@@ -275,11 +276,11 @@ def _with_approach(members: list[Any], reference: list[Any]
     failed = {i: f"{NO_APPROACH} of '{s.name}' at {s.approach_speed:.6g} m/s ({a})"
               for i, (s, a) in enumerate(zip(members, found)) if isinstance(a, str)}
     kept = [s for i, s in enumerate(members) if i not in failed]
-    if not kept:
+    ref = reference[0] if reference and not isinstance(found[-1], str) else None
+    if ref is None and not kept:
         raise EquilibriumError(f": none of the {len(members)} members has a straight approach "
                                f"(member 0: {failed[0]})", field="ships")
-    ref = reference[0] if reference and not isinstance(found[-1], str) else kept[0]
-    return kept, ref, failed
+    return kept or [ref], ref if ref is not None else kept[0], failed
 
 
 def probabilities_from_values(values: Sequence[Any], criteria: Sequence[dict[str, Any]], *,

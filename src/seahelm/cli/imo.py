@@ -1,4 +1,5 @@
-"""``seahelm imo SHIP``: check a ship (catalog name or ship file) against IMO Resolution MSC.137(76).
+"""``seahelm imo SHIP``: check a ship (catalog name or ship file) against IMO Resolution
+MSC.137(76).
 
 Runs :func:`seahelm.analysis.imo.imo_check` (35° turning circles and 10° initial turning to
 both sides, 10/10 and 20/20 zig-zags to both sides, the full-astern stopping test of a ship
@@ -8,6 +9,13 @@ and pass/fail; stopping is "not evaluated" for a ship without a propeller, with 
 ``--out DIR`` writes the runs and metrics as NetCDF, the report as JSON and the turning,
 zig-zag (and stopping) figures as PNG. Exit codes: 0 the check ran (whether or not the ship
 passes), 2 bad input, 1 other failure.
+
+``--monte-carlo N`` checks N samples of the ship with uncertain coefficients instead
+(:func:`seahelm.analysis.imo_probability.imo_probabilities`): the probability of passing each
+criterion and the whole check with Wilson intervals, the samples that do not complete
+excluded, counted and listed with their reason; ``--out DIR`` writes ``imo-probabilities.nc``
+(:mod:`seahelm.analysis.imo_ensemble`). A ``kind = "imo"`` scenario with
+``[batch.monte_carlo]`` is shown the same way by ``seahelm run`` (:func:`present_imo_ensemble`).
 """
 
 from __future__ import annotations
@@ -21,6 +29,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
+from ..analysis.imo_ensemble import ENSEMBLE_FILE
 from ..errors import ParameterError
 from ._common import (
     EXIT_NONCOMPLIANT,
@@ -28,6 +37,7 @@ from ._common import (
     _jsonable,
     console,
     handle_errors,
+    output_dir,
     print_json,
 )
 from .maneuver import (
@@ -45,7 +55,8 @@ from .maneuver import (
     ship_of,
 )
 
-__all__ = ["imo", "show_report"]
+__all__ = ["imo", "show_report", "show_ensemble", "present_imo_ensemble",
+           "print_imo_probabilities"]
 
 
 def _display(criterion: Any) -> dict[str, Any]:
@@ -64,12 +75,14 @@ def imo(
     rps: Rps = None,
     dt: Dt = None,
     water_depth: Depth = None,
-    monte_carlo: Annotated[int, typer.Option(
-        "--monte-carlo", metavar="N", min=0, max=100_000, help=(
+    monte_carlo: Annotated[Optional[int], typer.Option(
+        "--monte-carlo", metavar="N", min=1, max=100_000, help=(
             "Check N ships with uncertain coefficients instead of one: the probability of "
-            "passing each criterion (Wilson intervals). Default uncertainty: normal, "
-            "--uncertainty of each linear derivative (Y_v, Y_r, N_v, N_r; Nomoto K, T).")),
-    ] = 0,
+            "passing each criterion (Wilson intervals), samples that do not complete excluded "
+            "and counted. Default uncertainty: normal, --uncertainty of each linear "
+            "derivative (Y_v, Y_r, N_v, N_r; Nomoto K, T). With --out, writes "
+            "imo-probabilities.nc (every sample's values, draws and reasons).")),
+    ] = None,
     seed: Annotated[int, typer.Option("--seed", min=0, help="Seed of the Monte-Carlo draws.")]
     = 0,
     uncertainty: Annotated[float, typer.Option(
@@ -96,14 +109,17 @@ def imo(
     ship = ship_of(model, water_depth)
     check_speed_rps(ship, speed, rps)
     check_positive_opt("--dt", dt, "s")
-    if monte_carlo:
-        if speed is not None or rps is not None or out is not None:
-            raise ParameterError("`--monte-carlo` runs at the ship's test speed and writes no "
-                                 "files: drop `--speed`/`--rps`/`--out`")
+    if monte_carlo is not None:
+        if speed is not None or rps is not None:
+            raise ParameterError("`--monte-carlo` runs every sample at the ship's test speed: "
+                                 "drop `--speed`/`--rps`")
         if check:
             raise ParameterError("`--check` needs a pass or a fail; `--monte-carlo` gives "
                                  "probabilities: drop `--check`")
-        _monte_carlo(ship, monte_carlo, seed, uncertainty, draws, dt, json_out)
+        reads = ship_reads(model) + (() if draws is None else (draws,))
+        if out is not None:
+            output_dir("--out", out, (ENSEMBLE_FILE,), reads=reads)
+        _monte_carlo(ship, monte_carlo, seed, uncertainty, draws, dt, json_out, out)
         return
     check_out(out, "imo", ship_reads(model))
     report = imo_check(ship, speed=speed, rps=rps, dt=dt)
@@ -113,22 +129,110 @@ def imo(
 
 
 def _monte_carlo(ship: Any, n: int, seed: int, uncertainty: float, draws: Path | None,
-                 dt: float | None, json_out: bool) -> None:
-    from ..analysis.imo_probability import imo_probabilities, monte_carlo_ships
+                 dt: float | None, json_out: bool, out: Path | None) -> None:
+    from ..analysis.imo_probability import (
+        UNCERTAIN_COEFFICIENTS,
+        imo_probabilities,
+        monte_carlo_ships,
+    )
+    from ..scenario.maneuver import SHARED_KEYS
 
     if not (math.isfinite(uncertainty) and uncertainty > 0):
         raise ParameterError(f"`--uncertainty` must be > 0, got {uncertainty!r}")
     dists = None if draws is None else _read_draws(draws)
+    for key in dists or ():
+        if f"vessel.params.{key}" in SHARED_KEYS:
+            raise ParameterError(f"`--draws` [draws.{key}]: the samples of an IMO check share "
+                                 "the ship's length, test speed and steering-gear limit (its "
+                                 "criteria are in ship lengths and L/V): draw its other "
+                                 "parameters")
     ships = monte_carlo_ships(ship, n, seed=seed, draws=dists, uncertainty=uncertainty)
-    payload = imo_probabilities(ships, dt=dt).as_dict()
-    payload.update(ship=ship.name, samples=n, seed=seed,
-                   draws="default" if draws is None else str(draws),
-                   uncertainty=uncertainty if draws is None else None)
-    if json_out:
+    probs = imo_probabilities(ships, dt=dt, reference=ship)
+    keys = list(dists) if dists else list(UNCERTAIN_COEFFICIENTS.get(ship.model.name, ()))
+    units = {i.name: i.unit for i in type(ship.params).info()}
+    kinds = ({k: "normal" for k in keys} if dists is None
+             else {k: d.name for k, d in dists.items()})
+    drawn = {f"vessel.params.{k}": ([float(getattr(s.params, k)) for s in ships],
+                                    {"distribution": kinds[k],
+                                     **({"units": units[k]} if units.get(k) else {})})
+             for k in keys}
+    meta = {"ship": ship.name, "samples": n, "seed": seed,
+            "draws": "default" if draws is None else str(draws),
+            "uncertainty": uncertainty if draws is None else None}
+    show_ensemble(probs, meta, drawn, out, json_out,
+                  f"IMO MSC.137(76): {ship.name}, {n} Monte-Carlo samples (seed {seed})")
+
+
+def present_imo_ensemble(job: Any, out: Path | None, as_json: bool, *,
+                         reads: tuple[Path, ...] = ()) -> None:
+    """Run an ``imo`` scenario with ``[batch.monte_carlo]`` and show it as ``seahelm imo
+    --monte-carlo`` does: the probabilities table (or one JSON object) and, with ``out``,
+    ``imo-probabilities.nc`` (:mod:`seahelm.analysis.imo_ensemble`).
+
+    Parameters
+    ----------
+    job : ManeuverJob
+        The scenario's manoeuvre (``kind = "imo"``, with Monte-Carlo samples).
+    out : Path or None
+        Directory of the file (None: no file).
+    as_json : bool
+        Print one JSON object instead of the table.
+    reads : tuple of Path, optional
+        The files the command read (the scenario), never written over.
+    """
+    import numpy as np
+
+    if out is not None:
+        output_dir("--out", out, (ENSEMBLE_FILE,), reads=reads)
+    probs = job.run()
+    n = job.n_samples
+    described = job.draw_attrs()
+    drawn = {k: (v, described[k]) for k, v in job.draws(np.arange(n)).items()}
+    source = str(job.metadata.get("scenario_source", ""))
+    meta = {**job.metadata, "scenario": job.title or source, "ship": job.ship.name,
+            "samples": n, "seed": int(job.monte_carlo.seed), "draws": "scenario"}
+    show_ensemble(probs, meta, drawn, out, as_json, job.title or (
+        f"IMO MSC.137(76): {job.ship.name}, {n} Monte-Carlo samples "
+        f"(seed {job.monte_carlo.seed})"))
+
+
+def show_ensemble(probs: Any, meta: dict[str, Any], drawn: dict[str, Any], out: Path | None,
+                  as_json: bool, title: str) -> None:
+    """Write (``out``) and print the IMO check of an ensemble.
+
+    Parameters
+    ----------
+    probs : ImoProbabilities
+        The check, with every member's values.
+    meta : dict
+        What was checked (ship, samples, seed, draws, the scenario), printed in the JSON
+        and stored as the file's attributes.
+    drawn : dict
+        Key path -> (values per member, attributes) of the drawn values.
+    out : Path or None
+        Directory of ``imo-probabilities.nc`` (None: no file).
+    as_json : bool
+        Print one JSON object instead of the table.
+    title : str
+        The table's title.
+    """
+    from ..analysis.imo_ensemble import ensemble_dataset
+
+    payload = probs.as_dict()
+    payload.update({k: v for k, v in meta.items() if k not in ("scenario_text", "title")})
+    payload["excluded_samples"] = [{"sample": i, "reason": why}
+                                   for i, why in enumerate(probs.reasons) if why]
+    if out is not None:
+        from ..results import write_netcdf
+
+        ds = ensemble_dataset(probs, draws=drawn, attrs={"title": title, **meta})
+        payload["files"] = {"netcdf": str(write_netcdf(ds, out / ENSEMBLE_FILE))}
+    if as_json:
         print_json(payload)
         return
-    print_imo_probabilities(payload, f"IMO MSC.137(76): {ship.name}, {n} Monte-Carlo "
-                                     f"samples (seed {seed})")
+    print_imo_probabilities(payload, title)
+    for kind, path in payload.get("files", {}).items():
+        console.print(f"  {kind}: {escape(path)}", highlight=False)
 
 
 def _read_draws(path: Path) -> dict[str, Any]:
@@ -164,20 +268,47 @@ def _read_draws(path: Path) -> dict[str, Any]:
     return out
 
 
+#: Excluded samples listed with their reason (the JSON output and the file have all).
+MAX_EXCLUDED_SHOWN = 10
+
+
 def print_imo_probabilities(p: dict[str, Any], title: str) -> None:
     """The pass probabilities of an ensemble (:func:`~seahelm.analysis.imo_probability.
-    imo_probabilities`), as a table and a line for the whole check."""
+    imo_probabilities`), as a table and a line for the whole check with the count of the
+    excluded samples, and the first of them with their reasons.
+
+    Parameters
+    ----------
+    p : dict
+        :meth:`~seahelm.analysis.imo_probability.ImoProbabilities.as_dict`, optionally with
+        ``excluded_samples`` (``{"sample", "reason"}``) or ``excluded_by_reason`` (counts).
+    title : str
+        The table's title.
+    """
     level = 100 * p["confidence_level"]
-    table = Table("criterion", "side", "median", "limit", "P(pass)", f"{level:g} % interval",
-                  title=escape(title), title_justify="left")
+    table = Table(title=escape(title), title_justify="left")
+    table.add_column("criterion", overflow="fold")
+    for col in ("side", "median", "limit", "P(pass)", f"{level:g} % interval"):
+        table.add_column(col, no_wrap=True, justify="left" if col == "side" else "right")
     for r in p["criteria"]:
         table.add_row(escape(f"{r['ability']}: {r['criterion']}"), r["side"],
                       f"{r['median']:.3g} {r['unit']}", f"{r['limit']:.4g}",
                       f"{r['probability']:.3f}", f"{r['ci_low']:.3f} .. {r['ci_high']:.3f}")
     console.print(table)
     console.print(f"all evaluated criteria: P(pass) = {p['probability']:.3f} "
-                  f"({p['ci_low']:.3f} .. {p['ci_high']:.3f}, Wilson); {p['excluded']} "
-                  f"incomplete run(s) excluded; {p['note']}", highlight=False, soft_wrap=True)
+                  f"({p['ci_low']:.3f} .. {p['ci_high']:.3f}, Wilson) over {p['total']} "
+                  f"sample(s); {p['excluded']} sample(s) excluded (manoeuvres not completed); "
+                  f"{p['note']}",
+                  highlight=False, soft_wrap=True)
+    excluded = p.get("excluded_samples") or []
+    for row in excluded[:MAX_EXCLUDED_SHOWN]:
+        console.print(escape(f"  excluded: sample {row['sample']}: {row['reason']}"),
+                      highlight=False, soft_wrap=True)
+    if len(excluded) > MAX_EXCLUDED_SHOWN:
+        console.print(f"  ... {len(excluded) - MAX_EXCLUDED_SHOWN} more excluded sample(s) "
+                      "(--json lists all)", highlight=False)
+    for why, count in (p.get("excluded_by_reason") or {}).items():
+        console.print(escape(f"  excluded: {count} sample(s): {why}"), highlight=False)
 
 
 def show_report(report: Any, out: Path | None, as_json: bool, *, plot: bool = True) -> None:

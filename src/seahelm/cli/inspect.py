@@ -9,10 +9,13 @@ when the file was written -- computed again from the file (:func:`seahelm.result
 with the Monte-Carlo statistics. ``--json`` prints all of it as one JSON object, with every run.
 
 A manoeuvre's metrics file (``*-metrics.nc`` of ``seahelm maneuver``/``imo``): its metadata
-and the metrics of every run. A sweep store (the ``.zarr`` directory of ``seahelm sweep``): its
-state (complete, or how many runs are written), its chunks, the scenario's title and source, and
-the statistics of every metric (stored with the store when it completed, computed from the
-written runs while it is incomplete). Anything else is refused (exit 2).
+and the metrics of every run. The IMO check of an ensemble (``imo-probabilities.nc`` of
+``seahelm imo --monte-carlo --out`` or an ``imo`` Monte-Carlo scenario): its metadata, the
+drawn keys and the probability of passing each criterion, as the command printed it, with the
+excluded samples and their reasons. A sweep store (the ``.zarr`` directory of ``seahelm
+sweep``): its state (complete, or how many runs are written), its chunks, the scenario's title
+and source, and the statistics of every metric (stored with the store when it completed,
+computed from the written runs while it is incomplete). Anything else is refused (exit 2).
 """
 
 from __future__ import annotations
@@ -45,7 +48,7 @@ _METADATA = (("title", ""), ("scenario_source", ""), ("model", ""), ("actuator",
 #: Runs of a manoeuvre's metrics file shown as columns (the JSON output has all).
 MAX_METRIC_RUNS = 6
 #: Attributes not shown in the human output (the JSON output has them).
-_LONG = ("scenario_text", "state_labels", "param_types")
+_LONG = ("scenario_text", "state_labels", "param_types", "imo_criteria")
 
 
 @handle_errors
@@ -55,6 +58,7 @@ def inspect(
     json_out: JsonFlag = False,
 ) -> None:
     """Show a result file: run metadata, batch, per-run status and the summary table."""
+    from ..analysis.imo_ensemble import is_ensemble_dataset
     from ..results import open_result_file
     from ..sweep.store import store_attrs
 
@@ -65,12 +69,15 @@ def inspect(
     ds = open_result_file(result)
     if "status" in ds and "time" in ds.dims and "state_labels" in ds.attrs:
         _show_runs(result, ds, json_out)
+    elif is_ensemble_dataset(ds):
+        _show_ensemble(result, ds, json_out)
     elif ds.attrs.get("maneuver") and "complete" in ds:
         _show_metrics(result, ds, json_out)
     else:
         raise ParameterError(
             f"{result}: not a seahelm result file: neither a simulation result (result.nc of "
-            "`seahelm run --out`, a manoeuvre's *-runs.nc) nor a manoeuvre's *-metrics.nc")
+            "`seahelm run --out`, a manoeuvre's *-runs.nc), a manoeuvre's *-metrics.nc nor "
+            "an imo-probabilities.nc")
 
 
 def _show_runs(result: Path, ds: Any, json_out: bool) -> None:
@@ -149,6 +156,28 @@ def _show_metrics(result: Path, ds: Any, json_out: bool) -> None:
     if len(rows) > MAX_METRIC_RUNS:
         table.caption = f"first {MAX_METRIC_RUNS} of {len(rows)} runs (--json has all)"
     console.print(table)
+
+
+def _show_ensemble(result: Path, ds: Any, json_out: bool) -> None:
+    """The IMO check of an ensemble (``imo-probabilities.nc``): metadata, the drawn keys and
+    the probabilities table as ``seahelm imo --monte-carlo`` printed it."""
+    from ..analysis.imo_ensemble import ensemble_payload
+    from .imo import print_imo_probabilities
+
+    metadata = {k: _plain(v) for k, v in ds.attrs.items()}
+    payload = ensemble_payload(ds)
+    drawn = [{"name": str(n), **{k: str(v) for k, v in var.attrs.items() if k != "kind"}}
+             for n, var in ds.data_vars.items() if var.attrs.get("kind") == "batch_values"]
+    if json_out:
+        print_json({"file": str(result), "metadata": metadata, "drawn": drawn, **payload})
+        return
+    meta = _metadata_table(result, metadata)
+    for draw in drawn:
+        what = draw.get("distribution", "")
+        meta.add_row("drawn", escape(f"{draw['name']}" + (f" ({what})" if what else "")
+                                     + (f" [{draw['units']}]" if draw.get("units") else "")))
+    console.print(meta)
+    print_imo_probabilities(payload, str(metadata.get("title") or result.name))
 
 
 def _metadata_table(result: Path, metadata: dict[str, Any]) -> Table:

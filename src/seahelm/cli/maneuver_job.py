@@ -34,6 +34,11 @@ def present_job(job: Any, out: Path | None, as_json: bool, *, plot: bool = True,
     from ..plotting.maneuvers import plot_pullout, plot_stopping, plot_turning, plot_zigzag
     from .stopping import STOPPING_FIELDS
 
+    if job.kind == "imo" and job.monte_carlo is not None:  # as `seahelm imo --monte-carlo`
+        from .imo import present_imo_ensemble
+
+        present_imo_ensemble(job, out, as_json, reads=reads)
+        return
     check_out(out, job.kind, reads)
     result = job.run()
     name = job.ship.name

@@ -99,6 +99,11 @@ def sweep(
     if more > 0:
         console.print(f"  ... {more} more row(s) in the store's sweep_summary and --json",
                       highlight=False)
+    if "imo" in summary:  # an IMO check's samples: the probabilities, as `seahelm imo` shows
+        from .imo import print_imo_probabilities
+
+        print_imo_probabilities(summary["imo"], f"IMO MSC.137(76): {scenario}, "
+                                                f"{summary['imo']['samples']} samples")
     counts = ""
     if "n_ok" in summary:
         counts = f", {summary['n_ok']} ok, {summary['n_failed']} failed"

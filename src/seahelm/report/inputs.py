@@ -6,11 +6,14 @@ A report covers one result file and the files seahelm wrote beside it for the sa
 * a manoeuvre's ``<name>-runs.nc`` or ``<name>-metrics.nc`` (``seahelm maneuver``): the runs
   and the metrics of that manoeuvre (whichever of the two files exists);
 * either file of ``seahelm imo --out``: the turning and zig-zag runs and metrics, and the IMO
-  criteria of ``imo-report.json`` (the pass/fail table the command printed).
+  criteria of ``imo-report.json`` (the pass/fail table the command printed);
+* ``imo-probabilities.nc`` of ``seahelm imo --monte-carlo --out`` (or of an ``imo``
+  Monte-Carlo scenario): the probability of passing each criterion of the IMO check.
 
 * a sweep store (``seahelm sweep``, a Zarr directory): its state (chunks written), the
   summary statistics stored with it, the distribution of every metric over the runs and,
-  when it holds time series, the first :data:`MAX_SWEEP_RUNS` runs for the plots.
+  when it holds time series, the first :data:`MAX_SWEEP_RUNS` runs for the plots; the store
+  of an ``imo`` Monte-Carlo scenario also the probability of passing each criterion.
 
 Everything is held as xarray Datasets (the runs in their flat ``run`` view), so that a section
 of the report is a function of Datasets (:mod:`seahelm.report.sections`).
@@ -101,6 +104,9 @@ class ReportData:
     sweep : xarray.Dataset or None
         A sweep store's per-run variables (no time series) in its flat ``run`` view, with the
         store's attributes (``sweep_summary`` when complete); None for other inputs.
+    imo_ensemble : xarray.Dataset or None
+        The IMO check of an ensemble (``imo-probabilities.nc``,
+        :mod:`seahelm.analysis.imo_ensemble`); None for other inputs.
     """
 
     title: str
@@ -108,6 +114,7 @@ class ReportData:
     imo: "xr.Dataset | None" = None
     sources: tuple[str, ...] = ()
     sweep: "xr.Dataset | None" = None
+    imo_ensemble: "xr.Dataset | None" = None
 
     @property
     def n_runs(self) -> int:
@@ -192,6 +199,11 @@ def load_report_data(path: str | Path) -> ReportData:
     if path.is_dir() or path.suffix == ".zarr":
         return _sweep_data(path)
     ds = open_result_file(path)
+    from ..analysis.imo_ensemble import is_ensemble_dataset
+
+    if is_ensemble_dataset(ds):
+        return ReportData(title=str(ds.attrs.get("title") or path.name), sets=(),
+                          sources=(str(path),), imo_ensemble=ds)
     if _is_runs(ds):
         _check_runs(ds, path)
         maneuver = ds.attrs.get("maneuver")

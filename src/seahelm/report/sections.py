@@ -19,6 +19,7 @@ import numpy as np
 
 from .blocks import Section, escape, fmt, paragraph, run_attrs, section_id, set_title, table
 from .figures import histogram_figure, timeseries_sections, track_sections
+from .imo_ensemble import ensemble_sections
 from .inputs import ReportData, RunSet
 from .signals import coordinate_text, run_labels
 
@@ -461,8 +462,8 @@ def sweep_sections(data: ReportData) -> list[Section]:
 
 #: The section builders, in page order.
 SECTIONS: tuple[Callable[[ReportData], list[Section]], ...] = (
-    overview_sections, sweep_sections, status_sections, imo_sections, metrics_sections,
-    statistics_sections, track_sections, timeseries_sections)
+    overview_sections, sweep_sections, status_sections, imo_sections, ensemble_sections,
+    metrics_sections, statistics_sections, track_sections, timeseries_sections)
 
 
 def build_sections(data: ReportData) -> list[Section]:

@@ -169,12 +169,15 @@ class ManeuverJob:
 
         Returns
         -------
-        ManeuverResult, (ManeuverResult, ManeuverResult) or ImoReport
+        ManeuverResult, (ManeuverResult, ManeuverResult), ImoReport or ImoProbabilities
             A :class:`~seahelm.analysis.maneuvers.ManeuverResult` for ``turning``, ``zigzag``,
             ``pullout`` and ``stopping`` (:func:`~seahelm.analysis.maneuvers.crash_stop`); the
             direct and reverse spirals for ``spiral``; an
-            :class:`~seahelm.analysis.imo.ImoReport` for ``imo``. The scenario's metadata is
-            in the attributes of every metrics Dataset.
+            :class:`~seahelm.analysis.imo.ImoReport` for ``imo``, and for ``imo`` with
+            ``[batch.monte_carlo]`` the pass probabilities of the samples' ships
+            (:func:`~seahelm.analysis.imo_probability.imo_probabilities`, the scenario's ship
+            as the reference of the manoeuvres' durations). The scenario's metadata is in the
+            attributes of every metrics Dataset.
 
         Raises
         ------
@@ -190,6 +193,8 @@ class ManeuverJob:
                      "imo": imo_check, "stopping": maneuvers.crash_stop}
         ship = self.ships() if self.monte_carlo is not None else self.ship
         try:
+            if self.kind == "imo" and self.monte_carlo is not None:
+                return self.imo_probabilities(ship)
             out = functions[self.kind](ship, **self.options)
         except ScenarioError:
             raise
@@ -198,6 +203,39 @@ class ManeuverJob:
         for result in _results(out):
             result.metrics.attrs.update(self.metadata)
         return out
+
+    def imo_probabilities(self, ships: list[Any]) -> Any:
+        """The IMO pass probabilities of ``ships`` (samples of an ``imo`` scenario's ship).
+
+        Parameters
+        ----------
+        ships : list of ManeuverShip
+            E.g. :meth:`ships` of a range of samples.
+
+        Returns
+        -------
+        ImoProbabilities
+            With every member's values (:func:`~seahelm.analysis.imo_probability.
+            imo_probabilities`, the scenario's ship as the reference).
+        """
+        from ..analysis.imo_probability import imo_probabilities
+
+        return imo_probabilities(ships, dt=self.options.get("dt"), reference=self.ship)
+
+    def draw_attrs(self) -> dict[str, dict[str, str]]:
+        """The attributes of each drawn key: its ``distribution`` and ``units`` (if any).
+
+        Returns
+        -------
+        dict of str to dict
+            Empty without ``[batch.monte_carlo]``.
+        """
+        mc = self.monte_carlo
+        if mc is None:
+            return {}
+        kinds = {key: dist.distribution for key, dist in mc.draws.items()}
+        kinds.update({key: "correlated-normal" for b in mc.correlated for key in b.keys})
+        return {key: {"distribution": kind, **_units(self, key)} for key, kind in kinds.items()}
 
     def _error(self, exc: Exception) -> ScenarioError:
         source = str(self.metadata.get("scenario_source", "<string>"))
@@ -219,6 +257,24 @@ def _results(out: Any) -> list[Any]:
     if hasattr(out, "turning") and hasattr(out, "zigzag"):  # an ImoReport
         return [out.turning, out.zigzag] + ([out.stopping] if out.stopping is not None else [])
     return [out]
+
+
+def _units(job: ManeuverJob, key: str) -> dict[str, str]:
+    """``{"units": ...}`` of a drawn key (the parameter's or the particular's, in degrees for a
+    ``_deg`` key; empty if it has none)."""
+    section, _, name = key.rpartition(".")
+    degrees = name.endswith("_deg")
+    name = name[:-4] if degrees else name
+    if section == "vessel.particulars":
+        from ..ships.estimate import DESIGN_FIELDS
+
+        unit = {n: u for n, u, _, _ in DESIGN_FIELDS}.get(name, "")
+    else:
+        params = {"vessel.params": job.ship.params, "actuator.params": job.ship.servo}.get(section)
+        unit = "" if params is None else {i.name: i.unit for i in type(params).info()}.get(name, "")
+    if degrees:
+        unit = unit.replace("rad", "deg") if unit.startswith("rad") else "deg"
+    return {"units": unit} if unit else {}
 
 
 def _angle(section: Any, name: str) -> Any:
@@ -328,12 +384,12 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
         options["conditions"] = conditions
     metadata = {"title": scn.title, "scenario_source": source, "scenario_text": text}
     if mc is not None:
-        if man.kind not in ("turning", "zigzag", "pullout"):
+        if man.kind not in ("turning", "zigzag", "pullout", "imo"):
             raise at_key(source, "batch.monte_carlo",
-                         f"Monte-Carlo samples of ships run turning, zigzag and pullout "
-                         f"manoeuvres, not '{man.kind}' (for the IMO criteria, sweep a turning "
-                         "and a zig-zag scenario with the same draws and seed: "
-                         "examples/kvlcc2_imo_uncertainty.py)")
+                         f"Monte-Carlo samples of ships run turning, zigzag, pullout and imo "
+                         f"manoeuvres, not '{man.kind}'")
+        if man.kind == "imo":
+            _check_imo_ensemble(man, drawn_keys, source)
         for key in drawn_keys:
             if not key.startswith(("vessel.params.", "actuator.params.", PREFIX)):
                 raise at_key(source, f"batch.monte_carlo.{key}",
@@ -352,6 +408,31 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
             warnings.simplefilter("ignore", ValidityRangeWarning)
             job.ships(0, 1)  # the names and ranges of the drawn parameters, checked once
     return job
+
+
+#: Keys an IMO ensemble may not draw: its members share the ship's length, test speed and
+#: steering-gear limit (the criteria are in ship lengths and L/V, at the hard-over rudder).
+SHARED_KEYS = ("vessel.params.length", "vessel.params.approach_speed",
+               "vessel.params.nominal_speed", "actuator.params.max_angle",
+               "actuator.params.max_angle_deg", "vessel.particulars.length",
+               "vessel.particulars.speed", "vessel.particulars.max_rudder",
+               "vessel.particulars.max_rudder_deg")
+
+
+def _check_imo_ensemble(man: Any, drawn_keys: list[str], source: str) -> None:
+    """An ``imo`` scenario with ``[batch.monte_carlo]``: every sample at its ship's test speed,
+    no draw of what the members share (:data:`SHARED_KEYS`)."""
+    for key in ("speed", "rps"):
+        if getattr(man, key) is not None:
+            raise at_key(source, f"maneuver.{key}",
+                         "the IMO check of Monte-Carlo samples runs every sample at the ship's "
+                         "test speed (its approach_speed): drop `speed`/`rps`")
+    for key in drawn_keys:
+        if key in SHARED_KEYS:
+            raise at_key(source, f"batch.monte_carlo.{key}",
+                         "the samples of an IMO check share the ship's length, test speed and "
+                         "steering-gear limit (its criteria are in ship lengths and L/V, at "
+                         "the hard-over rudder): draw its other parameters")
 
 
 def _conditions(scn: Scenario, model: Any, source: str) -> Any:

@@ -281,6 +281,16 @@ class CorrelatedSection(_Strict):
 
 
 class MonteCarloSection(_Strict):
+    """``[batch.monte_carlo]``: ``runs`` samples, each drawn from its own generator of
+    ``seed`` (``[batch.monte_carlo.draws]``: key path = distribution;
+    ``[[batch.monte_carlo.correlated]]``). A ``[simulation]`` draws any per-run key; a
+    ``[maneuver]`` (turning, zigzag, pullout and imo) draws the ship's parameters
+    (``vessel.params.<name>``), its steering gear's (``actuator.params.<name>``) or the
+    particulars it is estimated from (``vessel.particulars.<name>``), one ship per sample. With
+    ``kind = "imo"`` the samples give the probability of passing each IMO criterion and the
+    whole check (Wilson intervals; samples whose manoeuvres do not complete are excluded and
+    counted); they share the ship's length, test speed and steering-gear limit."""
+
     runs: Annotated[int, Strict(), Field(ge=1, le=1_000_000)]
     seed: Annotated[int, Strict(), Field(ge=0)]
     draws: dict[str, Distribution] = Field(default_factory=dict)

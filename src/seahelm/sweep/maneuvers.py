@@ -4,7 +4,8 @@ A chunk is a range of samples; its ships (the scenario's ship with each sample's
 parameters, :meth:`~seahelm.scenario.ManeuverJob.ships`) run as one batch of the manoeuvre
 (:func:`~seahelm.analysis.maneuvers.turning_circle` and friends, a ``ship`` dimension), and
 the metrics table is stored over ``run`` = sample index, with the manoeuvre's own dimensions
-(``side``, ``rudder``, ...) after it. The time series are not stored (a manoeuvre's metrics are
+(``side``, ``rudder``, ...) after it. The IMO check's samples store their criteria's values
+instead (:mod:`seahelm.sweep.imo`). The time series are not stored (a manoeuvre's metrics are
 the question; the runs of one sample are one ``seahelm run`` away).
 """
 
@@ -40,6 +41,10 @@ def maneuver_chunk(job: "ManeuverJob", start: int, stop: int, *, with_attrs: boo
     xarray.Dataset
         Numeric metrics (``kind = "metric"``) and ``complete`` over ``(run, ...)``.
     """
+    if job.kind == "imo":
+        from .imo import imo_chunk
+
+        return imo_chunk(job, start, stop, with_attrs=with_attrs)
     result = job.run_ships(job.ships(start, stop))
     metrics = result.metrics
     if "ship" in metrics.dims:
@@ -96,6 +101,7 @@ def maneuver_template(job: "ManeuverJob") -> tuple["xr.Dataset", dict[str, Any],
     tuple
         ``(template, layout_vars, coords, attrs, n_runs)``.
     """
+    _check_sweepable(job)
     template, attrs = maneuver_chunk(job, 0, 1, with_attrs=True)
     n = job.n_samples
     layout_vars: dict[str, Any] = {}
@@ -104,30 +110,26 @@ def maneuver_template(job: "ManeuverJob") -> tuple["xr.Dataset", dict[str, Any],
         layout_vars["sample"] = ("run", np.arange(n), {})
         coords = ("sample",)
         mc = job.monte_carlo
-        kinds = {key: dist.distribution for key, dist in mc.draws.items()}
-        kinds.update({key: "correlated-normal" for b in mc.correlated for key in b.keys})
+        described = job.draw_attrs()
         for key, values in job.draws(np.arange(n)).items():
             layout_vars[key] = ("run", values, {"kind": "batch_values", "key": key,
-                                                "distribution": kinds[key],
-                                                **_units(job, key)})
+                                                **described[key]})
         attrs["seed"] = int(mc.seed)
     attrs["maneuver"] = job.kind
     return template, layout_vars, coords, attrs, n
 
 
-def _units(job: "ManeuverJob", key: str) -> dict[str, str]:
-    """``{"units": ...}`` of a drawn key (the parameter's or the particular's, in degrees for a
-    ``_deg`` key; empty if it has none)."""
-    section, _, name = key.rpartition(".")
-    degrees = name.endswith("_deg")
-    name = name[:-4] if degrees else name
-    if section == "vessel.particulars":
-        from ..ships.estimate import DESIGN_FIELDS
+def _check_sweepable(job: "ManeuverJob") -> None:
+    """A sweep stores each sample's metrics: a spiral (two results, one of equilibria) and the
+    IMO check of one ship (a report, not metrics) are runs of ``seahelm run``."""
+    from ..errors import ParameterError
 
-        unit = {n: u for n, u, _, _ in DESIGN_FIELDS}.get(name, "")
-    else:
-        params = {"vessel.params": job.ship.params, "actuator.params": job.ship.servo}.get(section)
-        unit = "" if params is None else {i.name: i.unit for i in type(params).info()}.get(name, "")
-    if degrees:
-        unit = unit.replace("rad", "deg") if unit.startswith("rad") else "deg"
-    return {"units": unit} if unit else {}
+    source = job.metadata.get("scenario_source", "<string>")
+    if job.kind == "spiral":
+        raise ParameterError(f"{source}: [maneuver] a sweep stores the metrics of turning, "
+                             "zigzag, pullout, stopping and (Monte-Carlo) imo manoeuvres, not "
+                             "a spiral: run it with `seahelm run`")
+    if job.kind == "imo" and job.monte_carlo is None:
+        raise ParameterError(f"{source}: [maneuver] a sweep of the IMO check runs the samples "
+                             "of [batch.monte_carlo] (the probability of passing each "
+                             "criterion); the check of one ship is `seahelm run`")

@@ -19,6 +19,7 @@ from ..analysis.statistics import metric_statistics, quantile_name
 from ..errors import ParameterError
 from .chunks import SweepSpec, auto_chunk_size, check_chunk_memory, check_chunk_size, prepared
 from .executors import executor
+from .imo import is_imo_store, store_probabilities
 from .store import (
     check_store,
     completed_chunks,
@@ -223,7 +224,9 @@ def summary_statistics(ds: Any) -> dict[str, Any]:
         ``{"n_runs", "n_ok", "n_failed", "metrics": [{"name", "where", "n", "mean", "std",
         "min", "q05", ..., "max"}, ...]}`` (NaN written as None); simulation sweeps also
         ``n_diverged`` (= ``n_failed``: runs whose status is not ok), manoeuvre sweeps count
-        incomplete manoeuvres as failed.
+        incomplete manoeuvres as failed; an IMO check's sweep also ``imo``, the probability of
+        passing each criterion and the whole check (:func:`~seahelm.sweep.imo.
+        store_probabilities`), and counts its excluded samples as failed.
     """
     out: dict[str, Any] = {"n_runs": int(ds.sizes["run"])}
     if "status" in ds:
@@ -236,6 +239,10 @@ def summary_statistics(ds: Any) -> dict[str, Any]:
             flags = flags.all(axis=-1)
         out["n_ok"] = int(flags.sum())
         out["n_failed"] = int((~flags).sum())
+    if is_imo_store(ds):
+        out["imo"] = store_probabilities(ds)
+        out["n_ok"] = out["imo"]["total"]
+        out["n_failed"] = out["imo"]["excluded"]
     qnames = [quantile_name(q) for q in QUANTILES]
     rows = []
     for name in sorted(ds.data_vars):  # (a store lists its arrays in no particular order)
@@ -258,6 +265,9 @@ def summary_statistics(ds: Any) -> dict[str, Any]:
 
 
 def _coord(ds: Any, dim: str, i: int) -> str:
+    labels = ds[dim].attrs.get("labels") if dim in ds.coords else None
+    if labels:  # (an IMO store's criteria: their names)
+        return str(json.loads(labels)[i])
     if dim in ds.coords:
         value = ds[dim].values[i]
         return f"{value:g}" if isinstance(value, (float, np.floating)) else str(value)
