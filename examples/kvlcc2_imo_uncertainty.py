@@ -13,7 +13,9 @@ probability that a sample passes each criterion and all of them; written: the tw
     python examples/kvlcc2_imo_uncertainty.py --workers 2          # a local dask cluster
     python examples/kvlcc2_imo_uncertainty.py --samples 200 --out /tmp/imo
 
-Interrupted, the same command resumes both sweeps where they stopped.
+Interrupted, the same command resumes both sweeps where they stopped. The probabilities alone
+(stopping included) are one command: ``seahelm run examples/kvlcc2_imo_monte_carlo.toml`` or
+``seahelm sweep`` of it.
 """
 
 from __future__ import annotations

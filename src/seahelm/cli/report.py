@@ -2,7 +2,9 @@
 
 RESULT is ``result.nc`` of ``seahelm run``/``demo``, or a manoeuvre's ``*-runs.nc`` /
 ``*-metrics.nc`` (``seahelm maneuver``; with ``imo-report.json`` beside them, the files of
-``seahelm imo --out`` and the IMO criteria), or a sweep store (``seahelm sweep``). The page
+``seahelm imo --out`` and the IMO criteria), ``imo-probabilities.nc`` (``seahelm imo
+--monte-carlo --out``: the pass probabilities), or a sweep store (``seahelm sweep``; of an
+``imo`` Monte-Carlo scenario, with the pass probabilities). The page
 (:mod:`seahelm.report`) holds plotly.js and all the data, so it opens with no network. ``-o``
 is checked before anything is read; the file is written atomically.
 """
@@ -30,7 +32,8 @@ def default_report_path(result: Path) -> Path:
 def report(
     result: Annotated[Path, typer.Argument(help=(
         "Result file written by seahelm (NetCDF): result.nc of `seahelm run`/`demo`, a "
-        "manoeuvre's *-runs.nc or *-metrics.nc; or a sweep store of `seahelm sweep`."))],
+        "manoeuvre's *-runs.nc or *-metrics.nc, imo-probabilities.nc of `seahelm imo "
+        "--monte-carlo`; or a sweep store of `seahelm sweep`."))],
     out: Annotated[Path | None, typer.Option(
         "-o", "--out", help="HTML file to write (default: beside RESULT, with .html).")] = None,
     json_out: JsonFlag = False,

@@ -216,7 +216,8 @@ def load_report_data(path: str | Path) -> ReportData:
     else:
         raise ParameterError(
             f"{path}: not a seahelm result file: neither a simulation result (result.nc of "
-            "`seahelm run --out`, a manoeuvre's *-runs.nc) nor a manoeuvre's *-metrics.nc")
+            "`seahelm run --out`, a manoeuvre's *-runs.nc), a manoeuvre's *-metrics.nc nor "
+            "an imo-probabilities.nc")
     directory = path.parent
     imo_file = directory / IMO_REPORT
     names = [str(maneuver)]
