@@ -225,7 +225,7 @@ def show_ensemble(probs: Any, meta: dict[str, Any], drawn: dict[str, Any], out: 
     if out is not None:
         from ..results import write_netcdf
 
-        ds = ensemble_dataset(probs, draws=drawn, attrs={"title": title, **meta})
+        ds = ensemble_dataset(probs, draws=drawn, attrs={**meta, "title": title})
         payload["files"] = {"netcdf": str(write_netcdf(ds, out / ENSEMBLE_FILE))}
     if as_json:
         print_json(payload)
@@ -298,12 +298,11 @@ def print_imo_probabilities(p: dict[str, Any], title: str) -> None:
     console.print(f"all evaluated criteria: P(pass) = {p['probability']:.3f} "
                   f"({p['ci_low']:.3f} .. {p['ci_high']:.3f}, Wilson) over {p['total']} "
                   f"sample(s); {p['excluded']} sample(s) excluded (manoeuvres not completed); "
-                  f"{p['note']}",
-                  highlight=False, soft_wrap=True)
+                  f"{escape(p['note'])}", highlight=False)  # (wrapped between words)
     excluded = p.get("excluded_samples") or []
     for row in excluded[:MAX_EXCLUDED_SHOWN]:
         console.print(escape(f"  excluded: sample {row['sample']}: {row['reason']}"),
-                      highlight=False, soft_wrap=True)
+                      highlight=False)
     if len(excluded) > MAX_EXCLUDED_SHOWN:
         console.print(f"  ... {len(excluded) - MAX_EXCLUDED_SHOWN} more excluded sample(s) "
                       "(--json lists all)", highlight=False)
