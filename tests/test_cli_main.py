@@ -263,3 +263,23 @@ def test_engine_error_in_a_scenario_exits_2_naming_file_and_key(tmp_path):
     assert res.exit_code == 2
     assert f"{bad}: [simulation.t_final] must be a positive whole multiple" in res.stderr
     assert res.stdout == ""
+
+
+def test_the_one_run_summary_says_units_and_hides_internals(tmp_path):
+    """The demo's summary (it showed final_yaw_aux, the heading twice in radians and
+    turning_diameter_m nan): labels with units, no filter states, no repeated angle, the
+    metrics the run did not reach named under the table; --json keeps every key."""
+    res = runner.invoke(app, ["demo", "--out", str(tmp_path)], env={"COLUMNS": "100"})
+    assert res.exit_code == 0, res.output
+    out = res.stdout
+    for label in ("final north [m]", "final heading [deg]", "max abs rudder angle [deg]",
+                  "settling time [s]", "final yaw rate [rad/s]"):
+        assert label in out, label
+    for internal in ("yaw_aux", "yaw aux", "final_heading_rad", "heading rad", " nan "):
+        assert internal not in out, internal
+    assert "not reached in this run: turning_diameter_m" in " ".join(out.split())
+    res = runner.invoke(app, ["inspect", str(tmp_path / "result.nc"), "--json"])
+    assert res.exit_code == 0
+    summary = json.loads(res.stdout)
+    text = json.dumps(summary)
+    assert "final_yaw_aux" in text and "turning_diameter_m" in text

@@ -119,7 +119,7 @@ def test_batch_report_in_the_browser(browser, report_batch_dir):
 
 
 def test_imo_report_in_the_browser(browser, report_imo_dir):
-    page = check_page(browser, report_imo_dir / "report.html", 4,
+    page = check_page(browser, report_imo_dir / "report.html", 6,
                       report_imo_dir / "report.png")
     rows = page.locator("table.imo tbody tr")
     assert rows.count() == 13

@@ -280,6 +280,22 @@ class SimResult:
         names += list(self.disturbance_labels)
         return names
 
+    def units(self) -> dict[str, str]:
+        """The unit of every state, output, command and reference by name ("" where none).
+
+        Returns
+        -------
+        dict of str to str
+        """
+        out = dict(zip(self.state_labels, self.state_units))
+        for lab, unit in zip(self.output_labels, self.output_units):
+            out.setdefault(lab, unit)
+        for j, lab in enumerate(self.command_labels):
+            out[lab] = self.command_units[j] if j < len(self.command_units) else ""
+        for lab, unit in zip(self.reference_labels, self.reference_units):
+            out[f"reference_{lab}"] = unit
+        return out
+
     # -- conversions ---------------------------------------------------------------------
     def to_xarray(self, *, flat: bool = False) -> "xr.Dataset":
         """The runs as an :class:`xarray.Dataset`, dims ``(*batch_dims, time)``.

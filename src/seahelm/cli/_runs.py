@@ -53,16 +53,30 @@ def batch_columns(result: Any, summary: list[dict[str, Any]]) -> tuple[str, ...]
 
 
 def summary_table(summary: list[dict[str, Any]], title: str,
-                  batch_keys: tuple[str, ...] = ()) -> Table:
-    """One run: a metric/value table; a batch: one row per run (first :data:`MAX_ROWS`), with
-    the run's grid coordinates and drawn values (``batch_keys``) as columns."""
+                  batch_keys: tuple[str, ...] = (), units: dict[str, str] | None = None
+                  ) -> Table:
+    """One run: a metric/value table (labels with their units, :func:`metric_label`; neither
+    a filter's internal states nor an angle again in radians; the metrics the run did not
+    reach named under it); a batch: one row per run (first :data:`MAX_ROWS`), with the run's
+    grid coordinates and drawn values (``batch_keys``) as columns."""
     if len(summary) == 1:
         table = Table(title=title)
         table.add_column("metric")
         table.add_column("value", justify="right")
-        for key, value in summary[0].items():
-            if key != "run":
-                table.add_row(key, fmt(value))
+        row = summary[0]
+        unreached = []
+        for key, value in row.items():
+            if key == "run" or _repeats_or_internal(key, row):
+                continue
+            if isinstance(value, float) and math.isnan(value):
+                unreached.append(key)
+                continue
+            final = key.endswith("_deg") and f"final_{key[:-4]}" in row  # (the final value)
+            table.add_row(escape(("final " if final else "") + metric_label(key, units)),
+                          fmt(value))
+        if unreached:
+            table.caption = escape("not reached in this run: " + ", ".join(unreached)
+                                   + " (every metric: --json)")
         return table
     table = Table(title=title)
     keys = ["run", *batch_keys, "status", "final_heading_rad", "final_yaw_rate",
@@ -225,3 +239,42 @@ def _stat(value: Any) -> str:
     if value is None or (isinstance(value, float) and math.isnan(value)):
         return "–"
     return f"{value:.4g}"
+
+
+#: Units named by a metric's suffix (``settling_time_s``: s).
+_SUFFIX_UNITS = {"_deg": "deg", "_degps": "deg/s", "_s": "s", "_m": "m", "_mps": "m/s",
+                 "_rad": "rad", "_pct": "%", "_L": "L"}
+
+
+def metric_label(key: str, units: dict[str, str] | None = None) -> str:
+    """A summary metric's label with its unit: ``settling_time_s`` → ``settling time [s]``,
+    ``final_north`` → ``final north [m]`` (the unit of the state ``north`` in ``units``).
+
+    Parameters
+    ----------
+    key : str
+        The metric's key.
+    units : dict of str to str, optional
+        Units of the result's signals by name.
+
+    Returns
+    -------
+    str
+    """
+    for suffix, unit in _SUFFIX_UNITS.items():
+        if key.endswith(suffix):
+            return f"{key[:-len(suffix)].replace('_', ' ')} [{unit}]"
+    if key.startswith("final_") and units and units.get(key[len("final_"):]):
+        return f"{key.replace('_', ' ')} [{units[key[len('final_'):]]}]"
+    return key.replace("_", " ")
+
+
+def _repeats_or_internal(key: str, row: dict[str, Any]) -> bool:
+    """A filter's internal state (``final_yaw_aux``), or an angle also given in degrees
+    (``final_heading`` beside ``heading_deg``; ``final_heading_rad``)."""
+    if key.endswith("_aux") or "_aux_" in key:
+        return True
+    if key.startswith("final_"):
+        name = key[len("final_"):].removesuffix("_rad")
+        return f"{name}_deg" in row
+    return False

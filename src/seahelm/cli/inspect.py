@@ -127,7 +127,8 @@ def _show_runs(result: Path, ds: Any, json_out: bool) -> None:
                   f"{payload['n_diverged']} diverged", highlight=False)
     if diverged:
         console.print(diverged_table(diverged))
-    console.print(summary_table(summary, str(metadata.get("title") or result.name), batch_keys))
+    console.print(summary_table(summary, str(metadata.get("title") or result.name), batch_keys,
+                                units=res.units()))
     for table in statistics_tables(stats):
         console.print(table)
 

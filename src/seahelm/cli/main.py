@@ -169,7 +169,7 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
     if as_json:
         print_json(payload)
     else:
-        console.print(summary_table(summary, label, batch_keys))
+        console.print(summary_table(summary, label, batch_keys, units=result.units()))
         for table in statistics_tables(stats):
             console.print(table)
         if payload["n_diverged"]:

@@ -221,9 +221,19 @@ def track_sections(data: ReportData) -> list[Section]:
     return sections
 
 
+#: Time-series panels drawn only where the signal changes (a zig-zag's constant rps is none).
+_WHEN_VARYING = ("propeller", "engine_order")
+
+
+def _varies(values: np.ndarray) -> bool:
+    finite = values[np.isfinite(values)]
+    return finite.size > 0 and float(finite.max() - finite.min()) > 0.0
+
+
 def timeseries_sections(data: ReportData) -> list[Section]:
-    """Heading, rudder angle, yaw rate and speed over time (the signals the result has), one
-    panel each on a shared time axis; the legend toggles a run in every panel.
+    """Heading, rudder angle, yaw rate and speed over time (the signals the result has; the
+    propeller rps and engine order where they change, as in a stopping test), one panel each
+    on a shared time axis; the legend toggles a run in every panel.
 
     Parameters
     ----------
@@ -241,7 +251,8 @@ def timeseries_sections(data: ReportData) -> list[Section]:
         if runs is None:
             continue
         panels = [(label, sig) for role, label in TIME_SERIES
-                  if (sig := find_signal(runs, role)) is not None]
+                  if (sig := find_signal(runs, role)) is not None
+                  and (role not in _WHEN_VARYING or _varies(sig.values))]
         if not panels:
             continue
         time = np.asarray(runs["time"].values, dtype=float)
