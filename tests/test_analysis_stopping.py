@@ -217,3 +217,15 @@ def test_ensemble_check_includes_stopping_for_ships_that_can_stop():
     assert 5.0 < row["median"] < 9.0 and ens.stopping_note == ""
     single = crash_stop("kvlcc2-l7-xp-0.5").metrics
     assert float(single["track_reach"]) / 7.0 < 9.0
+
+
+@pytest.mark.parametrize("k_0", [0.0, -0.1])
+def test_a_propeller_without_thrust_at_zero_advance_is_refused_naming_k_0(k_0):
+    """k_0 <= 0 divided by zero (or took the root of a negative number) in the engine
+    estimate: exit 1 from the CLI instead of a bad-input error naming the coefficient."""
+    from seahelm.ships import get_ship
+
+    ship = get_ship("kvlcc2-l7").replace(params={"k_0": k_0})
+    with pytest.raises(ParameterError, match="no self-propulsion rps") as exc:
+        stopping_ship(ship)
+    assert exc.value.field == "k_0"

@@ -61,6 +61,7 @@ import numpy as np
 from numba import njit
 
 from ..constants import GRAVITY
+from ..errors import ParameterError
 from ..hydrodynamics.four_quadrant import (
     ct_cq,
     fourier_coefficients,
@@ -301,6 +302,13 @@ def self_propulsion_rps(params: MMGParams, speed: float) -> float:
     -------
     float
         n [1/s].
+
+    Raises
+    ------
+    ParameterError
+        If the K_T polynomial gives no positive rps at this speed (k_0 ≤ 0, or a thrust that
+        never equals the resistance), naming ``k_0`` (it divided by zero or took the root of
+        a negative number).
     """
     p = params
     q = 0.5 * p.rho * p.length * p.draft * speed * speed
@@ -310,7 +318,14 @@ def self_propulsion_rps(params: MMGParams, speed: float) -> float:
     a = p.k_0 * dp * dp
     b = p.k_1 * dp * u_P
     c = p.k_2 * u_P * u_P - p.R_0 * q / ((1.0 - p.t_P) * p.rho * dp * dp)
-    return float((-b + math.sqrt(b * b - 4.0 * a * c)) / (2.0 * a))
+    disc = b * b - 4.0 * a * c
+    n = (-b + math.sqrt(disc)) / (2.0 * a) if a > 0.0 and disc >= 0.0 else math.nan
+    if not (math.isfinite(n) and n > 0.0):
+        raise ParameterError(
+            f"no self-propulsion rps at {speed:.6g} m/s: the propeller's K_T(J) = k_0 + k_1 J "
+            f"+ k_2 J² (k_0={p.k_0!r}, k_1={p.k_1!r}, k_2={p.k_2!r}) never balances the "
+            f"resistance (K_T(0) = k_0 must be > 0)", field="k_0")
+    return float(n)
 
 
 def propeller_torque(params: MMGParams, speed: float, rps: float) -> float:
