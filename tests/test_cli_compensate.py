@@ -113,7 +113,8 @@ def test_model_delta_k_beside_the_papers_and_which_one_the_autopilot_uses():
     assert data["delta_k_deg"] == pytest.approx(13.31, abs=0.01)
     assert data["autopilot_delta_k"] == "model"
     human = " ".join(runner.invoke(app, args[:-1]).stdout.split())
-    assert "ship model (the autopilot's)" in human and "│ total δ_k │ 13.31 │ -9.566 │" in human
+    # the autopilot's δ_k first (the one that steers right), the paper's beside it
+    assert "ship model (the autopilot's)" in human and "│ total δ_k │ -9.566 │ 13.31 │" in human
     assert "uses the ship model's δ_k" in human
     # an explicit particular overrides the named ship's
     longer = json.loads(runner.invoke(app, args + ["--length", "170"]).stdout)
@@ -124,7 +125,9 @@ def test_without_a_ship_model_the_model_delta_k_is_not_given():
     data = json.loads(runner.invoke(app, BASE + ["--json"]).stdout)
     assert data["delta_k_model_deg"] is None and data["autopilot_delta_k"] == "model"
     human = " ".join(runner.invoke(app, BASE).stdout.split())
-    assert "needs --ship" in human and "The model's δ_k needs a ship model" in human
+    # no column of "needs --ship" cells: the paper's only, and the note says how
+    assert "needs --ship" not in human and "ship model (the autopilot's)" not in human
+    assert "The model's δ_k needs a ship model: --ship mariner" in human
     r = runner.invoke(app, BASE[2:])
     assert r.exit_code == 2
     assert "`--length` [m] is needed (or --ship mariner" in r.stderr

@@ -208,13 +208,15 @@ def compensate(
     console.print(table)
     dk = Table(title="compensating rudder angle δ_k [deg]", title_justify="left")
     dk.add_column("channel")
+    if model is not None:  # the autopilot's δ_k first: the one that steers right
+        dk.add_column("ship model (the autopilot's)", justify="right")
     dk.add_column("paper, eq. (12)/(14)", justify="right")
-    dk.add_column("ship model (the autopilot's)", justify="right")
     for label, key in (("wind (block 5)", "wind_"), ("waves (block 6)", "wave_"),
                        ("total δ_k", "")):
         paper, modelled = out[f"delta_k_{key}deg"], out[f"delta_k_model_{key}deg"]
-        dk.add_row(label, f"{paper:.4g}",
-                   "needs --ship" if modelled is None else f"{modelled:.4g}")
+        cells = [f"{paper:.4g}"] if modelled is None or model is None else [
+            f"{modelled:.4g}", f"{paper:.4g}"]
+        dk.add_row(label, *cells)
     console.print(dk)
     console.print(AUTOPILOT_NOTE if model is not None else
                   f"{AUTOPILOT_NOTE} The model's δ_k needs a ship model: --ship mariner.",
