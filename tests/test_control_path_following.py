@@ -303,3 +303,31 @@ def test_environment_current_section_sets_the_current_channels():
     with pytest.raises(ScenarioError, match=r"\[environment.current\] model 'voitkunsky' has no "
                                             r"current channels"):
         parse_scenario(voitkunsky)
+
+
+def test_on_track_starts_at_each_legs_first_crossing_of_its_line():
+    from seahelm.analysis.maneuvers.metrics import on_track
+
+    xte = np.array([[-400.0, -200.0, 50.0, 10.0, -5.0, 300.0, 100.0, 2.0, -1.0],
+                    [3.0, 2.0, 1.0, 0.02, 0.5, 0.4, 0.3, 0.2, 0.1]])
+    leg = np.array([[0, 0, 0, 0, 0, 1, 1, 1, 1], [0] * 9])
+    got = on_track(xte, leg)
+    want = np.array([[0, 0, 1, 1, 1, 0, 0, 1, 1],  # crossings; 2.0 is within 1 % of 300
+                     [0, 0, 0, 1, 1, 1, 1, 1, 1]], dtype=bool)  # 0.02 <= 1 % of 3.0
+    np.testing.assert_array_equal(got, want)
+
+
+def test_the_route_metrics_tell_the_leg_approach_from_the_track_keeping():
+    """max_abs_cross_track_error_m of the ILOS example is the distance to the new leg at a
+    waypoint switch (about the 500 m acceptance radius); on track, from each leg's first
+    crossing, it is the overshoot onto the leg, and the run ends on the line."""
+    from pathlib import Path
+
+    from seahelm.analysis.maneuvers import summarize
+    from seahelm.scenario import load_scenario, run_scenario
+
+    path = Path(__file__).parent.parent / "examples" / "mariner_route_ilos.toml"
+    row = summarize(run_scenario(load_scenario(path)))[0]
+    assert 450.0 < row["max_abs_cross_track_error_m"] <= 500.0 + 1.0
+    assert row["max_abs_cross_track_error_on_track_m"] < 0.6 * row["max_abs_cross_track_error_m"]
+    assert abs(row["final_cross_track_error_m"]) < 1.0

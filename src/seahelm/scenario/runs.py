@@ -628,7 +628,8 @@ def _summary_names(states: tuple[str, ...]) -> set[str]:
     which a batch dimension must not take (its column would be overwritten in the table)."""
     names = {"final_yaw_rate", "final_heading_rad", "turning_diameter_m", "settling_time_s",
              "heading_error_deg", "overshoot_deg", "yaw_rate_error",
-             "max_abs_cross_track_error_m", "rms_cross_track_error_m",
+             "max_abs_cross_track_error_m", "max_abs_cross_track_error_on_track_m",
+             "rms_cross_track_error_m",
              "final_cross_track_error_m", "time_to_complete_s", "mean_abs_rudder_deg",
              "rudder_reversals_per_min"}
     for lab in states:

@@ -147,10 +147,46 @@ def rudder_reversals(time: np.ndarray, rudder: np.ndarray, *, deadband: float = 
     return out
 
 
+def on_track(xte: np.ndarray, leg: np.ndarray) -> np.ndarray:
+    """Where each run is on its track: on every leg, from the first time its cross-track
+    error crosses zero (or is at 1 % of its value at the leg's start) to the leg's end.
+
+    Right after a waypoint switch the cross-track error is the distance to the new leg (about
+    the acceptance radius): the approach to the leg, not how the ship keeps it. From the first
+    crossing of the leg's line on, the error is the overshoot onto the leg and then the track
+    keeping.
+
+    Parameters
+    ----------
+    xte : numpy.ndarray, shape (runs, samples)
+        Cross-track error [m].
+    leg : numpy.ndarray, shape (runs, samples)
+        Active leg (waypoint index) at each sample.
+
+    Returns
+    -------
+    numpy.ndarray of bool, shape (runs, samples)
+    """
+    xte, leg = np.atleast_2d(xte), np.atleast_2d(leg)
+    out = np.zeros(xte.shape, dtype=bool)
+    for i in range(xte.shape[0]):
+        starts = np.flatnonzero(np.r_[True, leg[i, 1:] != leg[i, :-1]])
+        for a, b in zip(starts, np.r_[starts[1:], xte.shape[1]]):
+            x = xte[i, a:b]
+            first = x[0] if np.isfinite(x[0]) else 0.0
+            near = (np.sign(x) != np.sign(first)) | (np.abs(x) <= 0.01 * abs(first))
+            if near.any():
+                out[i, a + int(np.argmax(near)):b] = True
+    return out
+
+
 def path_following_metrics(result) -> dict[str, np.ndarray]:  # noqa: ANN001 - SimResult
     """Per-run metrics of guided runs (a :mod:`seahelm.control.guided` controller): largest
-    and RMS cross-track error [m] over the run, the error at its end, time to complete the route [s] (NaN if it was
-    not completed), rudder activity (mean |δ| [deg], reversals per minute).
+    cross-track error [m] over the run (with the approach to each leg after a waypoint switch,
+    where the error starts near the acceptance radius) and on track (:func:`on_track`: from the
+    first crossing of each leg's line), the RMS error over the run, the error at its end, time
+    to complete the route [s] (NaN if it was not completed), rudder activity (mean |δ| [deg],
+    reversals per minute).
 
     Parameters
     ----------
@@ -160,8 +196,8 @@ def path_following_metrics(result) -> dict[str, np.ndarray]:  # noqa: ANN001 - S
     Returns
     -------
     dict of str to numpy.ndarray
-        ``max_abs_cross_track_error_m``, ``rms_cross_track_error_m``,
-        ``final_cross_track_error_m``, ``time_to_complete_s`` and, with a ``rudder_angle`` state, ``mean_abs_rudder_deg`` and
+        ``max_abs_cross_track_error_m``, ``max_abs_cross_track_error_on_track_m``,
+        ``rms_cross_track_error_m``, ``final_cross_track_error_m``, ``time_to_complete_s`` and, with a ``rudder_angle`` state, ``mean_abs_rudder_deg`` and
         ``rudder_reversals_per_min``; empty for a run without guidance.
     """
     if "cross_track_error" not in result.command_labels:
@@ -172,8 +208,11 @@ def path_following_metrics(result) -> dict[str, np.ndarray]:  # noqa: ANN001 - S
     n_wp = np.broadcast_to(arr[:, cls.value_names().index("n_waypoints")], (result.n_runs,))
     done = wp >= (n_wp[:, None] - 1.0)
     t = result.time
+    settled = on_track(xte, wp)
     out = {
         "max_abs_cross_track_error_m": np.nanmax(np.abs(xte), axis=1),
+        "max_abs_cross_track_error_on_track_m": np.array([
+            np.nanmax(np.abs(x[k])) if k.any() else np.nan for x, k in zip(xte, settled)]),
         "rms_cross_track_error_m": np.sqrt(np.nanmean(xte * xte, axis=1)),
         "final_cross_track_error_m": xte[:, -1],
         "time_to_complete_s": np.where(done.any(axis=1), t[np.argmax(done, axis=1)], np.nan),
