@@ -35,6 +35,7 @@ SIGNAL_UNITS = {"time": "s", "times": "s", "period": "s", "start_time": "s", "en
 def _names() -> dict[str, list[str]]:
     """Keys whose value must be one of a registry's names."""
     from seahelm.control.path_following import GUIDANCE_LAWS
+    from seahelm.environment.blendermann import BLENDERMANN_VESSEL_TYPES
     from seahelm.registry import ACTUATORS, CONTROLLERS, VESSEL_MODELS
     from seahelm.simulation.integrators import INTEGRATORS
     from seahelm.ships import CATALOG
@@ -42,7 +43,9 @@ def _names() -> dict[str, list[str]]:
     return {"vessel.model": sorted(VESSEL_MODELS), "vessel.ship": sorted(CATALOG),
             "vessel.catalog": sorted(CATALOG),
             "actuator.model": sorted(ACTUATORS), "controller.model": sorted(CONTROLLERS),
-            "simulation.integrator": list(INTEGRATORS), "guidance.law": list(GUIDANCE_LAWS)}
+            "simulation.integrator": list(INTEGRATORS), "guidance.law": list(GUIDANCE_LAWS),
+            "environment.wind.vessel_type": list(BLENDERMANN_VESSEL_TYPES),
+            "vessel.particulars.vessel_type": list(BLENDERMANN_VESSEL_TYPES)}
 
 
 def _units() -> dict[str, str]:
