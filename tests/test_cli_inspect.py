@@ -137,7 +137,7 @@ def test_a_single_run(tmp_path):
     assert "statistics" not in got
     human = runner.invoke(app, ["inspect", str(tmp_path / "result.nc")]).stdout
     assert "none (nothing random in the runs)" in human
-    assert "settling_time_s" in human and "Mariner: 20 degree course change" in human
+    assert "settling time [s]" in human and "Mariner: 20 degree course change" in human
 
 
 def test_refuses_what_is_not_a_result(tmp_path):

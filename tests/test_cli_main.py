@@ -34,7 +34,7 @@ def test_demo_writes_results_and_plot(tmp_path):
     assert res.exit_code == 0, res.output
     assert (tmp_path / "result.nc").is_file()
     assert (tmp_path / "overview.png").stat().st_size > 10_000
-    assert "settling_time_s" in res.stdout
+    assert "settling time [s]" in res.stdout
     from seahelm.results import load_result
 
     ds = load_result(tmp_path / "result.nc")
