@@ -3,8 +3,8 @@
 :func:`approach_states` is :func:`~seahelm.analysis.equilibrium.approach_state` (with
 ``trim=True`` by default) for many parameter sets of one model at once — a Monte-Carlo
 study's ships, or one ship at many speeds. Each run has two stages, solved for all runs
-together with the model's own compiled right-hand side (one call of
-:func:`seahelm.vessels.base._batched_rhs` over the still-active runs per evaluation):
+together with the model's own compiled right-hand side (one compiled loop over the
+still-active runs per evaluation, each run's parameter record read in place):
 
 1. **self-propulsion rps** (models with a ``propeller_rps`` input): the zero of the surge
    acceleration f(n) at u = U_0, v = r = δ = 0, bracketed from n = 0 upwards by doubling (as
@@ -41,14 +41,15 @@ from __future__ import annotations
 import dataclasses
 import enum
 import math
-from collections.abc import Sequence
-from typing import Any
+from collections.abc import Callable, Sequence
+from typing import Any, NamedTuple
 
 import numpy as np
+from numba import njit
 
 from ..errors import ParameterError
 from ..parameters import Params, as_records, stack_params
-from ..vessels.base import VesselModel, _batched_output, _batched_rhs
+from ..vessels.base import VesselModel, _batched_output
 from .constant_speed import is_constant_speed
 
 __all__ = ["ApproachStatus", "BatchApproach", "approach_states"]
@@ -153,23 +154,36 @@ class _Batch:
                       else np.ones(len(params)))
 
     def accelerations(self, rows: np.ndarray, surge: np.ndarray, v: np.ndarray,
-                      rudder: np.ndarray, rps: np.ndarray | None) -> np.ndarray:
-        """(u̇, v̇, ṙ) of runs ``rows`` at r = 0: (len(rows), 3)."""
+                      rudder: np.ndarray, rps: np.ndarray | None,
+                      r: np.ndarray | None = None) -> np.ndarray:
+        """(u̇, v̇, ṙ) of runs ``rows`` (a run may repeat) at yaw rate ``r`` (default 0):
+        (len(rows), 3)."""
         m = self.model
         k = rows.size
         x = np.zeros((k, m.n_states))
         x[:, self.i_u] = surge - self.u_offset[rows]
         x[:, self.i_v] = v
+        if r is not None:
+            x[:, self.i_r] = r
         u = np.zeros((k, m.n_inputs))
         u[:, self.j_delta] = rudder
         if self.j_rps is not None and rps is not None:
             u[:, self.j_rps] = rps
         d = np.zeros((k, m.n_disturbances))
         out = np.empty_like(x)
-        recs = self.records if k == self.records.size else self.records[rows]
         with np.errstate(all="ignore"):
-            _batched_rhs(m.rhs, 0.0, x, u, d, recs, out)
+            # each run's parameter record read in place (copying the records of the rows
+            # would cost several times the right-hand side itself)
+            _rows_rhs(m.rhs, 0.0, x, u, d, self.records,
+                      np.ascontiguousarray(rows, dtype=np.int64), out)
         return out[:, [self.i_u, self.i_v, self.i_r]]
+
+
+@njit
+def _rows_rhs(rhs, t, X, U, D, P, rows, out):  # pragma: no cover - compiled
+    """ẋ of state row i with the parameter record ``P[rows[i]]`` (rows may repeat)."""
+    for i in range(X.shape[0]):
+        rhs(t, X[i], U[i], D[i], P[rows[i]], out[i])
 
 
 def approach_states(model: VesselModel, params: Params | Sequence[Params], speed: Any = None,
@@ -376,54 +390,68 @@ def _self_propulsion(b: _Batch, U0: np.ndarray, max_rps: float, max_iterations: 
     return iterations, np.abs(fx) / scale
 
 
-def _trim(b: _Batch, surge: np.ndarray, v: np.ndarray, rudder: np.ndarray,
-          rps: np.ndarray | None, max_iterations: int, status: np.ndarray,
-          reason: dict[int, str], iterations: np.ndarray, residual: np.ndarray) -> None:
-    """Stage 2: (surge, v, rudder) with u̇ = v̇ = ṙ = 0 at r = 0, in place."""
-    s = np.stack([b.u_ref, b.u_ref, np.ones_like(b.u_ref)], axis=1)
-    acc_scale = (np.stack([np.ones_like(b.length), np.ones_like(b.length), 1.0 / b.length],
-                          axis=1) * (b.u_ref ** 2 / b.length)[:, None])
-    z = np.stack([surge, v, rudder], axis=1) / s
+class _Newton(NamedTuple):
+    """Outcome of :func:`_newton` per row: the last iterate ``z`` (k, 3) and residual ``F``
+    there, the :class:`ApproachStatus` ``code`` (OK, NOT_FINITE at the start, SINGULAR,
+    LINE_SEARCH, MAX_ITERATIONS), whether a MAX_ITERATIONS row ran out of iterations
+    (``exhausted``; else it stopped above :data:`RESIDUAL_TOL`) and its ``iterations``."""
 
-    def F(rows: np.ndarray, zr: np.ndarray) -> np.ndarray:
-        y = zr * s[rows]
-        acc = b.accelerations(rows, y[:, 0], y[:, 1], y[:, 2],
-                              None if rps is None else rps[rows])
-        return acc / acc_scale[rows]
+    z: np.ndarray
+    F: np.ndarray
+    code: np.ndarray
+    exhausted: np.ndarray
+    iterations: np.ndarray
 
-    def describe(i: int) -> str:
-        return ("no equilibrium found for surge, v, rudder with r = 0"
-                + (f", rps = {rps[i]:.6g} [1/s]" if rps is not None else ""))
 
-    active = np.flatnonzero(status == ApproachStatus.OK)
-    Fz = np.full((z.shape[0], 3), np.nan)
-    if active.size:
-        Fz[active] = F(active, z[active])
-    nan = active[~np.isfinite(Fz[active]).all(axis=1)]
-    _fail(status, reason, nan, ApproachStatus.NOT_FINITE,
-          lambda i: f"{describe(i)} (the accelerations are not finite at the start)")
-    active = active[status[active] == ApproachStatus.OK]
+def _newton(F: Callable[[np.ndarray, np.ndarray], np.ndarray], rows: np.ndarray,
+            z0: np.ndarray, max_iterations: int, *, tol: float = 0.0,
+            forward: bool = False) -> _Newton:
+    """Newton's method with a backtracking (Armijo) line search on ½‖F‖², for every row at once.
+
+    ``F(rows, z)`` is the scaled residual (k, 3) of the runs ``rows`` (a run may repeat) at the
+    scaled unknowns ``z`` (k, 3). The Jacobian is by central differences (``forward``: forward
+    differences, half the evaluations, for iterates that only start a later solve), all of its
+    evaluations in one call of ``F``. A row stops when its residual is ≤ ``tol`` (0: iterate to
+    the round-off floor), a step is below 10⁻¹⁴ (1 + ‖z‖), or the line search finds no decrease
+    with the residual already ≤ :data:`RESIDUAL_TOL`; it is OK if its residual is then
+    ≤ :data:`RESIDUAL_TOL`.
+    """
+    k = rows.size
+    z = np.array(z0, dtype=float, copy=True)
+    Fz = np.full((k, 3), np.nan)
+    code = np.zeros(k, dtype=np.int64)
+    exhausted = np.zeros(k, dtype=bool)
+    iterations = np.zeros(k, dtype=np.int64)
+    if k:
+        Fz[:] = F(rows, z)
+    active = np.flatnonzero(np.isfinite(Fz).all(axis=1))
+    code[np.setdiff1d(np.arange(k), active)] = ApproachStatus.NOT_FINITE
+    n_jac = 3 if forward else 6
     for _ in range(max_iterations):
         res = np.max(np.abs(Fz[active]), axis=1)
-        active = active[res > 0.0]
+        active = active[res > tol]
         if not active.size:
             break
         iterations[active] += 1
         za, Fa = z[active], Fz[active]
-        J = np.empty((active.size, 3, 3))
+        m = active.size
+        # the Jacobian's evaluations in one call: +h for each unknown (then -h if central)
+        zs = np.repeat(za[None], n_jac, axis=0)
+        h = np.empty((3, m))
         for j in range(3):
-            h = 1e-6 * np.maximum(1.0, np.abs(za[:, j]))
-            zp, zm = za.copy(), za.copy()
-            zp[:, j] += h
-            zm[:, j] -= h
-            J[:, :, j] = (F(active, zp) - F(active, zm)) / (2.0 * h[:, None])
+            h[j] = 1e-6 * np.maximum(1.0, np.abs(za[:, j]))
+            zs[j, :, j] += h[j]
+            if not forward:
+                zs[3 + j, :, j] -= h[j]
+        Fs = F(np.tile(rows[active], n_jac), zs.reshape(n_jac * m, 3)).reshape(n_jac, m, 3)
+        J = np.empty((m, 3, 3))
+        for j in range(3):
+            J[:, :, j] = ((Fs[j] - Fa) / h[j][:, None] if forward
+                          else (Fs[j] - Fs[3 + j]) / (2.0 * h[j][:, None]))
         with np.errstate(all="ignore"):
             cond = np.linalg.cond(J)
         singular = ~(np.isfinite(cond) & (cond < 1e13))
-        _fail(status, reason, active[singular], ApproachStatus.SINGULAR,
-              lambda i: f"{describe(i)} (the Jacobian is singular at surge = "
-                        f"{z[i, 0] * s[i, 0]:.6g} [m/s], v = {z[i, 1] * s[i, 1]:.6g} [m/s], "
-                        f"rudder = {z[i, 2]:.6g} [rad])")
+        code[active[singular]] = ApproachStatus.SINGULAR
         keep = ~singular
         active, za, Fa, J = active[keep], za[keep], Fa[keep], J[keep]
         if not active.size:
@@ -438,7 +466,7 @@ def _trim(b: _Batch, surge: np.ndarray, v: np.ndarray, rudder: np.ndarray,
         pending = np.arange(active.size)
         while pending.size:  # backtracking: halve the step until ½‖F‖² decreases enough
             zt = za[pending] + t[pending, None] * dz[pending]
-            Ft = F(active[pending], zt)
+            Ft = F(rows[active[pending]], zt)
             phit = 0.5 * np.sum(Ft * Ft, axis=1)
             good = np.isfinite(phit) & ((phit <= (1.0 - 2e-4 * t[pending]) * phi[pending])
                                         | small[pending])
@@ -450,21 +478,70 @@ def _trim(b: _Batch, surge: np.ndarray, v: np.ndarray, rudder: np.ndarray,
         z[active], Fz[active] = z_new, F_new
         floor = ~accepted & (np.max(np.abs(Fa), axis=1) <= RESIDUAL_TOL)
         stuck = ~accepted & ~floor
-        _fail(status, reason, active[stuck], ApproachStatus.LINE_SEARCH,
-              lambda i: f"{describe(i)} (the line search found no decrease; residual "
-                        f"{np.max(np.abs(Fz[i])):.3g})")
+        code[active[stuck]] = ApproachStatus.LINE_SEARCH
         active = active[~(small | floor | stuck)]
     else:
-        _fail(status, reason, active, ApproachStatus.MAX_ITERATIONS,
-              lambda i: f"{describe(i)} (not converged in {max_iterations} Newton "
-                        f"iterations; residual {np.max(np.abs(Fz[i])):.3g})")
+        code[active] = ApproachStatus.MAX_ITERATIONS
+        exhausted[active] = True
+    res = np.max(np.abs(Fz), axis=1)
+    high = (code == ApproachStatus.OK) & ~(res <= RESIDUAL_TOL)
+    code[high] = ApproachStatus.MAX_ITERATIONS
+    return _Newton(z, Fz, code, exhausted, iterations)
+
+
+def _trim(b: _Batch, surge: np.ndarray, v: np.ndarray, rudder: np.ndarray,
+          rps: np.ndarray | None, max_iterations: int, status: np.ndarray,
+          reason: dict[int, str], iterations: np.ndarray, residual: np.ndarray) -> None:
+    """Stage 2: (surge, v, rudder) with u̇ = v̇ = ṙ = 0 at r = 0, in place."""
+    s = np.stack([b.u_ref, b.u_ref, np.ones_like(b.u_ref)], axis=1)
+    acc_scale = (np.stack([np.ones_like(b.length), np.ones_like(b.length), 1.0 / b.length],
+                          axis=1) * (b.u_ref ** 2 / b.length)[:, None])
+
+    def F(rows: np.ndarray, zr: np.ndarray) -> np.ndarray:
+        y = zr * s[rows]
+        acc = b.accelerations(rows, y[:, 0], y[:, 1], y[:, 2],
+                              None if rps is None else rps[rows])
+        return acc / acc_scale[rows]
+
+    active = np.flatnonzero(status == ApproachStatus.OK)
+    z = np.stack([surge, v, rudder], axis=1) / s
+    sol = _newton(F, active, z[active], max_iterations)
+    z[active] = sol.z
+    iterations[active] = sol.iterations
+    Fz = np.full(z.shape, np.nan)
+    Fz[active] = sol.F
+    code = np.zeros(z.shape[0], dtype=np.int64)
+    code[active] = sol.code
+    exhausted = np.zeros(z.shape[0], dtype=bool)
+    exhausted[active] = sol.exhausted
     res = np.max(np.abs(Fz), axis=1)
     residual[:] = res
-    high = np.flatnonzero((status == ApproachStatus.OK) & ~(res <= RESIDUAL_TOL))
-    _fail(status, reason, high, ApproachStatus.MAX_ITERATIONS,
-          lambda i: f"{describe(i)} (residual {res[i]:.3g} > {RESIDUAL_TOL:g})")
+    for i in active[sol.code != ApproachStatus.OK].tolist():
+        y = z[i] * s[i]
+        status[i] = code[i]
+        reason[i] = _newton_failure(
+            "no equilibrium found for surge, v, rudder with r = 0"
+            + (f", rps = {rps[i]:.6g} [1/s]" if rps is not None else ""), code[i], exhausted[i],
+            res[i], max_iterations,
+            f"surge = {y[0]:.6g} [m/s], v = {y[1]:.6g} [m/s], rudder = {y[2]:.6g} [rad]")
     y = z * s
     surge[:], v[:], rudder[:] = y[:, 0], y[:, 1], y[:, 2]
+
+
+def _newton_failure(what: str, code: int, exhausted: bool, res: float, max_iterations: int,
+                    at: str) -> str:
+    """``what`` and why :func:`_newton` failed (``code``; ``at``: the iterate, for a singular
+    Jacobian)."""
+    if code == ApproachStatus.NOT_FINITE:
+        return f"{what} (the accelerations are not finite at the start)"
+    if code == ApproachStatus.SINGULAR:
+        return f"{what} (the Jacobian is singular at {at})"
+    if code == ApproachStatus.LINE_SEARCH:
+        return f"{what} (the line search found no decrease; residual {res:.3g})"
+    if exhausted:
+        return (f"{what} (not converged in {max_iterations} Newton iterations; residual "
+                f"{res:.3g})")
+    return f"{what} (residual {res:.3g} > {RESIDUAL_TOL:g})"
 
 
 def _drift(b: _Batch, state: np.ndarray, rudder: np.ndarray, rps: np.ndarray,
