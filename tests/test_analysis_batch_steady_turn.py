@@ -14,8 +14,13 @@ import numpy as np
 import pytest
 
 import seahelm.analysis.batch_steady_turn as bst
-from seahelm.analysis.batch_steady_turn import TurnStatus, steady_turns
-from seahelm.analysis.equilibrium import EquilibriumError, self_propulsion_rps, steady_turn
+from seahelm.analysis.batch_steady_turn import TurnStatus, steady_turn_states, steady_turns
+from seahelm.analysis.equilibrium import (
+    EquilibriumError,
+    self_propulsion_rps,
+    steady_turn,
+    steady_turn_state,
+)
 from seahelm.analysis.imo_probability import monte_carlo_ships
 from seahelm.errors import ParameterError
 from seahelm.ships import get_ship
@@ -154,3 +159,17 @@ def test_bad_arguments_raise_for_the_batch():
         steady_turns(MMG, [KVLCC2_L7] * 3, [DEG, DEG], n)
     with pytest.raises(ParameterError, match="no runs"):
         steady_turns(MMG, [], 10 * DEG, n)
+
+
+@pytest.mark.parametrize("name", ["kvlcc2-l7", "mariner-nonlinear", "mariner-nomoto2",
+                                  "son-nomoto-container"])
+def test_the_states_of_the_turns_equal_steady_turn_state(name):
+    ship = get_ship(name)
+    rps = (self_propulsion_rps(ship.params, ship.approach_speed, model=ship.model)
+           if ship.has_propeller else None)
+    delta = np.array([20.0, -20.0, 8.0]) * DEG
+    states, turns = steady_turn_states(ship.model, ship.params, delta, rps)
+    assert turns.ok.all()
+    for i, d in enumerate(delta):
+        ref = steady_turn_state(ship.params, float(d), rps, model=ship.model).state
+        np.testing.assert_allclose(states[i], ref, rtol=TOL, atol=TOL * ship.approach_speed)

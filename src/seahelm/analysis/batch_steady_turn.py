@@ -58,7 +58,7 @@ from .batch_equilibrium import (
 from .constant_speed import is_constant_speed
 from .heel import heel_balance
 
-__all__ = ["TurnStatus", "BatchSteadyTurn", "steady_turns"]
+__all__ = ["TurnStatus", "BatchSteadyTurn", "steady_turns", "steady_turn_states"]
 
 #: Residual at which a continuation point is taken (it only starts the next solves).
 STEP_RESIDUAL = 1e-11
@@ -219,6 +219,72 @@ def steady_turns(model: VesselModel, params: Params | Sequence[Params], rudder: 
         out.reason.pop(i, None)
         out.fallback[i] = True
     return out.result()
+
+
+def steady_turn_states(model: VesselModel, params: Params | Sequence[Params], rudder: Any,
+                       rps: Any = None, *, max_rudder: Any = math.radians(35.0)
+                       ) -> tuple[np.ndarray, BatchSteadyTurn]:
+    """State vectors of the steady turns of a batch (e.g. the starts of pull-outs).
+
+    The batch form of :func:`~seahelm.analysis.equilibrium.steady_turn_state` at heading 0:
+    the turns of :func:`steady_turns`, as states at the origin; a constant-speed model or a
+    model with roll is solved one run after the other by ``steady_turn_state`` itself.
+
+    Parameters
+    ----------
+    model : VesselModel
+        The model every parameter set belongs to.
+    params : Params or sequence of Params
+        One parameter set per run, or one for all runs.
+    rudder : float or array_like
+        Rudder angle δ [rad] per run, or one for all.
+    rps : float or array_like, optional
+        Propeller rps [1/s] per run or one for all (a model with a propeller input only).
+    max_rudder : float or array_like, optional
+        Largest admissible |δ| [rad] per run or one for all (default 35°).
+
+    Returns
+    -------
+    (numpy.ndarray, BatchSteadyTurn)
+        States (runs, n_states) in the model's order (NaN where the turn failed) and the
+        turns with their status and message.
+
+    Raises
+    ------
+    ParameterError
+        As :func:`steady_turns`.
+    """
+    from .equilibrium import EquilibriumError, steady_turn_state
+
+    turns = steady_turns(model, params, rudder, rps, max_rudder=max_rudder)
+    n = turns.n_runs
+    states = np.full((n, model.n_states), np.nan)
+    if is_constant_speed(model) or heel_balance(model) is not None:
+        plist = [params] * n if isinstance(params, Params) else list(params)
+        plist = plist * n if len(plist) == 1 else plist
+        n_rps = None if rps is None else _per_run("rps", rps, n)
+        limit = _per_run("max_rudder", max_rudder, n)
+        for i in np.flatnonzero(turns.ok).tolist():
+            try:
+                states[i] = steady_turn_state(
+                    plist[i], float(turns.rudder[i]), None if n_rps is None
+                    else float(n_rps[i]), model=model, max_rudder=float(limit[i])).state
+            except EquilibriumError:  # pragma: no cover - its steady turn was found
+                continue
+        return states, turns
+    b_states = model.state_labels
+    ok = turns.ok
+    states[ok] = 0.0
+    i_u = (b_states.index("surge_speed") if "surge_speed" in b_states
+           else b_states.index("surge_perturbation"))
+    offset = 0.0
+    if "surge_speed" not in b_states:
+        plist = [params] if isinstance(params, Params) else list(params)
+        offset = np.broadcast_to(np.array([float(p.nominal_speed) for p in plist]), (n,))[ok]
+    states[ok, i_u] = turns.surge_speed[ok] - offset
+    states[ok, model.state_index("sway_speed")] = turns.sway_speed[ok]
+    states[ok, model.state_index("yaw_rate")] = turns.yaw_rate[ok]
+    return states, turns
 
 
 def _per_run(name: str, value: Any, n: int) -> np.ndarray:

@@ -25,7 +25,8 @@ from typing import Any
 
 import numpy as np
 
-from ..equilibrium import steady_turn_state
+from ..batch_steady_turn import steady_turn_states
+from ..equilibrium import EquilibriumError
 from .common import (
     Plan,
     check_rudder,
@@ -95,22 +96,36 @@ def pull_out(ship: Any, rudder: Any = math.radians(20.0), *, sides: Any = (1, -1
         t_final = max(60.0 * plan.ship(i).length / plan.approach(i).speed for i in range(n))
     t_final = final_time(float(t_final), float(dt))
     record_every = record_every_for(float(dt), record_dt)
-    x0, rudder0 = [], []
-    cache: dict[tuple[int, int, float], np.ndarray] = {}
+    # one steady turn per (ship, speed, signed rudder): its first run, and each run's turn
+    x0, rudder0, slot = [], [], []
+    groups: dict[tuple[int, int, float], int] = {}
+    first: list[int] = []
     for i in range(n):
         idx = plan.index[i]
         delta = float(plan.value(i, "side") * plan.value(i, "rudder"))
         key = (idx["ship"], idx.get("approach_speed", idx.get("approach_rps", 0)), delta)
+        rudder0.append([delta])
         if plan.run_failure(i) is not None:  # left out of the batch: any state
             x0.append(plan.approach(i).state)
-            rudder0.append([delta])
+            slot.append(-1)
             continue
-        if key not in cache:
-            s, a = plan.ship(i), plan.approach(i)
-            cache[key] = steady_turn_state(s.params, delta, a.rps, model=s.model,
-                                           max_rudder=s.max_rudder).state
-        x0.append(cache[key])
-        rudder0.append([delta])
+        if key not in groups:
+            groups[key] = len(first)
+            first.append(i)
+        x0.append(None)
+        slot.append(groups[key])
+    if first:  # the steady turns, one batch solve
+        has_rps = plan.ships[0].has_propeller
+        states, turns = steady_turn_states(
+            plan.model, [plan.ship(i).params for i in first],
+            np.array([key[2] for key in groups]),
+            np.array([plan.approach(i).rps for i in first], dtype=float) if has_rps else None,
+            max_rudder=np.array([plan.ship(i).max_rudder for i in first]))
+        if not turns.ok.all():  # the first in order, as the one-at-a-time solve raised
+            raise EquilibriumError(turns.message[int(np.argmin(turns.ok))])
+        for i in range(n):
+            if slot[i] >= 0:
+                x0[i] = states[slot[i]]
     x0_arr = np.stack(x0)
     reference: dict[str, Any] = {"rudder_command": np.zeros((n, 1, 1))}
     if plan.ships[0].has_propeller:

@@ -359,9 +359,74 @@ def steady_yaw_rate(ship: Any, rudder: Any, approach: Approach) -> np.ndarray:
         return np.abs(steady_turn(ship.params, rudder, approach.rps, model=ship.model,
                                   max_rudder=ship.max_rudder).yaw_rate)
     except EquilibriumError as exc:
-        deg = ", ".join(f"{math.degrees(d):.4g}" for d in np.atleast_1d(rudder))
-        raise EquilibriumError(
-            f": no steady turn of '{ship.name}' at rudder {deg} deg from the approach "
-            f"at {approach.speed:.6g} m/s, to estimate the manoeuvre's duration ({exc})"
-            f"{_identified_near(ship)}; give `t_final` to skip the estimate",
-            field="t_final") from None
+        raise _no_steady_turn(ship, rudder, approach, str(exc)) from None
+
+
+def _no_steady_turn(ship: Any, rudder: Any, approach: Approach, reason: str
+                    ) -> EquilibriumError:
+    deg = ", ".join(f"{math.degrees(d):.4g}" for d in np.atleast_1d(rudder))
+    return EquilibriumError(
+        f": no steady turn of '{ship.name}' at rudder {deg} deg from the approach "
+        f"at {approach.speed:.6g} m/s, to estimate the manoeuvre's duration ({reason})"
+        f"{_identified_near(ship)}; give `t_final` to skip the estimate", field="t_final")
+
+
+def steady_yaw_rates(groups: Sequence[tuple[Any, Any, Approach]]) -> list[np.ndarray]:
+    """:func:`steady_yaw_rate` of many (ship, rudder angles, approach) groups in one batch.
+
+    The steady turns of all groups are solved together
+    (:func:`~seahelm.analysis.batch_steady_turn.steady_turns`, the one-at-a-time
+    :func:`~seahelm.analysis.equilibrium.steady_turn` for a run that fails there), one batch
+    per model; the results equal :func:`steady_yaw_rate`'s to the solvers' tolerance.
+
+    Parameters
+    ----------
+    groups : sequence of (Ship, float or array_like, Approach)
+        A ship, its rudder angle(s) δ [rad] and the approach whose rps the turns hold.
+
+    Returns
+    -------
+    list of numpy.ndarray
+        |r| [rad/s] per group, of the shape of its rudder angles.
+
+    Raises
+    ------
+    EquilibriumError
+        For the first group (in order) with a rudder angle without a steady turn, worded as
+        :func:`steady_yaw_rate` words it.
+    ParameterError
+        If a rudder angle is beyond a ship's steering gear, or an rps is missing or not > 0.
+    """
+    from ..batch_steady_turn import steady_turns
+
+    shapes = [np.shape(d) for _, d, _ in groups]
+    rates: list[np.ndarray | None] = [None] * len(groups)
+    by_model: dict[int, list[int]] = {}
+    for g, (ship, _, _) in enumerate(groups):
+        by_model.setdefault(id(ship.model), []).append(g)
+    failures: dict[int, str] = {}
+    for members in by_model.values():
+        params, rudders, rps, limits, spans = [], [], [], [], []
+        for g in members:
+            ship, d, a = groups[g]
+            flat = np.ravel(np.asarray(d, dtype=float)).tolist()
+            spans.append((len(rudders), len(rudders) + len(flat)))
+            params.extend([ship.params] * len(flat))
+            rudders.extend(flat)
+            rps.extend([a.rps] * len(flat))
+            limits.extend([ship.max_rudder] * len(flat))
+        if not rudders:
+            continue
+        turns = steady_turns(groups[members[0]][0].model, params, np.array(rudders),
+                             None if rps[0] is None else np.array(rps, dtype=float),
+                             max_rudder=np.array(limits))
+        ok, yaw = turns.ok, np.abs(turns.yaw_rate)
+        for g, (lo, hi) in zip(members, spans):
+            if not ok[lo:hi].all():
+                failures[g] = turns.message[lo + int(np.argmin(ok[lo:hi]))]
+            rates[g] = yaw[lo:hi].reshape(shapes[g])
+    if failures:
+        g = min(failures)
+        ship, d, a = groups[g]
+        raise _no_steady_turn(ship, d, a, failures[g])
+    return rates  # type: ignore[return-value]

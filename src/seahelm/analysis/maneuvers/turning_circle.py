@@ -54,7 +54,7 @@ from .common import (
     side_axis,
     value_axis,
 )
-from .ships import steady_yaw_rate, yaw_lag
+from .ships import steady_yaw_rates, yaw_lag
 from .result import ManeuverResult
 
 __all__ = ["turning_circle", "track_distance", "default_record_every", "SAMPLES_PER_LENGTH"]
@@ -107,10 +107,9 @@ def _estimate_t_final(plan: Plan, signed: dict[tuple[int, int], list[float]],
                       heading_change: float) -> float:
     """Rudder travel + 1.3 × heading change / slowest steady yaw rate of the grid."""
     t = 0.0
-    for (i_ship, j_speed), rudders in signed.items():
-        ship = plan.ships[i_ship]
-        a = plan.approaches[(i_ship, j_speed)]
-        rates = steady_yaw_rate(ship, np.array(rudders), a)
+    groups = [(plan.ships[i_ship], np.array(rudders), plan.approaches[(i_ship, j_speed)])
+              for (i_ship, j_speed), rudders in signed.items()]
+    for (ship, rudders, a), rates in zip(groups, steady_yaw_rates(groups)):  # one batch
         travel = max(abs(d - a.rudder) for d in rudders) / ship.servo.max_rate
         t = max(t, travel + 1.3 * heading_change / float(np.min(rates)) + 3.0 * yaw_lag(ship))
     return t

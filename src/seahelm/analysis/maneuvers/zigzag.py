@@ -56,7 +56,7 @@ from .common import (
     record_every_for,
     side_axis,
 )
-from .ships import steady_yaw_rate, yaw_lag
+from .ships import steady_yaw_rates, yaw_lag
 from .result import ManeuverResult
 
 __all__ = ["ZigZagMetrics", "zigzag_metrics", "zigzag"]
@@ -282,16 +282,20 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
     trig = np.array([np.atleast_1d(h)[plan.index[i]["pair"]] for i in range(n)])
     first = np.array([plan.value(i, "side") for i in range(n)], dtype=float)
     # steady yaw rate at ±δ_z per (ship, speed, pair, side): reachability and default t_final
-    rates = np.full(n, np.nan)  # (NaN: a run left out, without an approach)
-    cache: dict[tuple[int, int, float], float] = {}
-    for i in np.flatnonzero(plan.run_ok).tolist():
+    # (all of them in one batch solve; NaN: a run left out, without an approach)
+    rates = np.full(n, np.nan)
+    keys: dict[tuple[int, int, float], int] = {}
+    runs, slot, groups = np.flatnonzero(plan.run_ok), [], []
+    for i in runs.tolist():
         idx = plan.index[i]
         key = (idx["ship"], idx.get("approach_speed", idx.get("approach_rps", 0)),
                float(first[i] * amp[i]))
-        if key not in cache:
-            a, s = plan.approach(i), plan.ship(i)
-            cache[key] = float(steady_yaw_rate(s, key[2], a))
-        rates[i] = cache[key]
+        if key not in keys:
+            keys[key] = len(groups)
+            groups.append((plan.ship(i), key[2], plan.approach(i)))
+        slot.append(keys[key])
+    if groups:
+        rates[runs] = np.array([float(r) for r in steady_yaw_rates(groups)])[slot]
     swing = np.array([2.0 * amp[i] / plan.ship(i).servo.max_rate for i in range(n)])
     if t_final is None:
         lags = np.array([yaw_lag(plan.ship(i)) for i in range(n)])
