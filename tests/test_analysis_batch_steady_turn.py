@@ -157,6 +157,8 @@ def test_bad_arguments_raise_for_the_batch():
         steady_turns(MARINER, MARINER_NONLINEAR, 10 * DEG, 1.0)
     with pytest.raises(ParameterError, match="one per run"):
         steady_turns(MMG, [KVLCC2_L7] * 3, [DEG, DEG], n)
+    with pytest.raises(ParameterError, match="one per run"):
+        steady_turns(MMG, [KVLCC2_L7] * 2, [DEG, DEG, DEG], n)
     with pytest.raises(ParameterError, match="no runs"):
         steady_turns(MMG, [], 10 * DEG, n)
 

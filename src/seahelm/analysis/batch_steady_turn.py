@@ -184,6 +184,9 @@ def steady_turns(model: VesselModel, params: Params | Sequence[Params], rudder: 
                              field="max_iterations", value=max_iterations)
     if len(plist) == 1:
         plist = plist * n
+    elif len(plist) != n:
+        raise ParameterError(f"must be one parameter set or one per run ({n}), got "
+                             f"{len(plist)}", field="params")
     delta = _per_run("rudder", delta, n)
     limit = _per_run("max_rudder", max_rudder, n)
     check_positive("max_rudder", limit, "rad")
