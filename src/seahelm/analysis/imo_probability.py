@@ -8,8 +8,9 @@ criterion for every member with the limits of :mod:`seahelm.analysis.imo`, and g
 fraction that passes each criterion and the whole check with a Wilson score interval (Wilson
 1927; it stays inside [0, 1] and keeps its coverage for fractions near 0 or 1, where the normal
 interval does not). A member whose manoeuvres did not complete (a diverged run, an event not
-reached within 1.5 times the durations of the reference ship's manoeuvres, by default the
-first member's) is excluded from the fractions and counted, with the reason; so is a member
+reached within 1.5 times the time the reference ship takes to it — the 180° heading change of
+the turning circles, the 10/10's second and the 20/20's first overshoot; the reference is by
+default the first member) is excluded from the fractions and counted, with the reason; so is a member
 whose steady straight approach is not found (it is not run). The stopping criterion (track
 reach ≤ 15 L, :func:`seahelm.analysis.maneuvers.crash_stop`, one batch per chunk too) is
 part of the check when every member can stop (an ``mmg`` ship with a propeller, given the
@@ -126,6 +127,13 @@ class ImoProbabilities:
                 "note": self.stopping_note or "stopping (track reach) evaluated"}
 
 
+def _last(times: Any, fallback: float) -> float:
+    """The latest of the reference's event times [s] (``fallback``, its manoeuvre's whole
+    duration, where an event was not reached)."""
+    values = np.asarray(times.values, dtype=float)
+    return float(values.max()) if np.isfinite(values).all() else float(fallback)
+
+
 def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | None = None,
                       reference: Any = None) -> ImoProbabilities:
     """Pass fractions of every IMO criterion over ``ships`` (module docstring).
@@ -184,12 +192,19 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
     hard = min(math.radians(35.0), ref.max_rudder)
     rudders = np.array([hard, math.radians(10.0)])
     pairs = np.radians([10.0, 20.0])
-    # the durations of the reference's manoeuvres, with room (× 1.5), for all: estimating
-    # them member by member (a steady turn each) would cost more than the ensemble's runs
+    # every member runs 1.5 times as long as the reference takes to the last event its
+    # criteria need (the 180 deg heading change at 35 deg, the 10 deg change at 10 deg; the
+    # 10/10's second and the 20/20's first overshoot; dead in the water): estimating the
+    # durations member by member (a steady turn each) would cost more than the runs, and the
+    # manoeuvres' own durations (a steady turn, three overshoots) ran 2-4 times longer
     first_turn = turning_circle(ref, rudders, sides=(1, -1), dt=dt,
                                 heading_change=math.pi).metrics
-    t_turn = 1.5 * first_turn.attrs["t_final"]
-    t_zz = 1.5 * zigzag(ref, pairs, pairs, sides=(1, -1), dt=dt).metrics.attrs["t_final"]
+    ref_zz = zigzag(ref, pairs, pairs, sides=(1, -1), dt=dt).metrics
+    t_turn = 1.5 * _last(first_turn["time_180"].isel(rudder=0), first_turn.attrs["t_final"])
+    t_initial = 1.5 * _last(first_turn["time_10"].isel(rudder=1), first_turn.attrs["t_final"])
+    overshoots = ref_zz["overshoot_time"]
+    t_zz = 1.5 * max(_last(overshoots.isel(pair=0, n=1), ref_zz.attrs["t_final"]),
+                     _last(overshoots.isel(pair=1, n=0), ref_zz.attrs["t_final"]))
     L = ref.length
     V = float(np.asarray(first_turn["approach_speed_value"].values).reshape(-1)[0])
     limits = imo_overshoot_limits(L / V)
@@ -215,14 +230,17 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
             return np.asarray(da.transpose("ship", ...).values if "ship" in da.dims
                               else da.values, dtype=float).reshape(n)
 
-        turning = turning_circle(chunk, rudders, sides=(1, -1), dt=dt,
+        turning = turning_circle(chunk, rudders[0], sides=(1, -1), dt=dt,
                                  heading_change=math.pi, t_final=t_turn,
+                                 record_dt=record_dt).metrics
+        initial = turning_circle(chunk, rudders[1], sides=(1, -1), dt=dt,
+                                 heading_change=math.pi, t_final=t_initial,
                                  record_dt=record_dt).metrics
         zz = zigzag(chunk, pairs, pairs, sides=(1, -1), dt=dt, t_final=t_zz,
                     record_dt=record_dt).metrics
         for side, name in sides:
-            t35 = turning.isel(rudder=0).sel(side=side)
-            t10 = turning.isel(rudder=1).sel(side=side)
+            t35 = turning.sel(side=side)
+            t10 = initial.sel(side=side)
             z10 = zz.isel(pair=0).sel(side=side)
             z20 = zz.isel(pair=1).sel(side=side)
             got = (values(t35["advance"]) / L, values(t35["tactical_diameter"]) / L,
@@ -246,7 +264,9 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
     else:
         from .imo import STOPPING_LIMIT
 
-        reach = [np.asarray(crash_stop(stoppers[i:i + CHUNK], speed=V, dt=dt)
+        ref_stop = crash_stop(stopping_ship(ref), speed=V, dt=dt).metrics
+        t_stop = 1.5 * _last(ref_stop["time_dead"], ref_stop.attrs["t_final"])
+        reach = [np.asarray(crash_stop(stoppers[i:i + CHUNK], speed=V, dt=dt, t_final=t_stop)
                             .metrics["track_reach"].values, dtype=float).reshape(-1)
                  for i in range(0, len(stoppers), CHUNK)]
         checks.append(("stopping", "track reach (full astern)", "-",
