@@ -370,6 +370,18 @@ def _simulate(params_list: list[Any], record: ManoeuvreRecord) -> np.ndarray:
     return out
 
 
+def _scaled_outputs(recs: Sequence[ManoeuvreRecord],
+                    length: float) -> tuple[np.ndarray, list[np.ndarray]]:
+    """The output-error scales of u, v, r (U_0, U_0, U_0/L; U_0 the records' mean speed) and
+    each record's measured u, v, r, shape (3, samples)."""
+    U0 = float(np.mean([np.mean(np.hypot(r.channels["surge_speed"], r.channels["sway_speed"]))
+                        for r in recs]))
+    scales = np.array([U0, U0, U0 / length])
+    measured = [np.stack([r.channels["surge_speed"], r.channels["sway_speed"], r.yaw_rate])
+                for r in recs]
+    return scales, measured
+
+
 def refine_mmg(start: HullFit | Any, records: ManoeuvreRecord | Sequence[ManoeuvreRecord], *,
                names: Sequence[str] | None = None) -> HullFit:
     """Hull derivatives by output error over all records at once (module docstring, step 2).
@@ -402,11 +414,7 @@ def refine_mmg(start: HullFit | Any, records: ManoeuvreRecord | Sequence[Manoeuv
     if unknown:
         raise ParameterError(f"not hull derivatives: {', '.join(unknown)}; valid: "
                              f"{', '.join(every)}", field="names")
-    U0 = float(np.mean([np.mean(np.hypot(r.channels["surge_speed"], r.channels["sway_speed"]))
-                        for r in recs]))
-    scales = np.array([U0, U0, U0 / params.length])
-    measured = [np.stack([r.channels["surge_speed"], r.channels["sway_speed"], r.yaw_rate])
-                for r in recs]
+    scales, measured = _scaled_outputs(recs, params.length)
     x0 = np.array([getattr(params, n) for n in names], dtype=float)
 
     def with_values(x: np.ndarray) -> Any:
