@@ -5,6 +5,7 @@ Laplace, posterior ships, bad input, and ``seahelm identify mmg --imo``."""
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 
 import numpy as np
@@ -158,3 +159,30 @@ def test_unidentified_and_singular_directions_are_refused(kvlcc2):
     singular = dataclasses.replace(base, covariance=cov)
     with pytest.raises(ParameterError, match="singular along"):
         mmg_posterior(singular)
+
+
+def test_cli_identify_mmg_imo_probabilities_given_the_identification(tmp_path, kvlcc2):
+    from typer.testing import CliRunner
+
+    from seahelm.cli.main import app
+
+    path = tmp_path / "zz20.nc"
+    zigzag(kvlcc2, math.radians(20.0), math.radians(20.0), sides=1,
+           record_dt=0.2).runs.to_netcdf(path, engine="h5netcdf")
+    runner = CliRunner()
+    args = ["identify", "mmg", str(path), "--ship", "kvlcc2-l7", "--regression-only"]
+    res = runner.invoke(app, [*args, "--imo", "3", "--seed", "1", "--json"])
+    assert res.exit_code == 0, res.output
+    imo = json.loads(res.stdout)["imo"]
+    assert imo["total"] + imo["excluded"] == 3 and imo["posterior"] == "laplace"
+    for row in imo["criteria"]:
+        assert 0.0 <= row["ci_low"] <= row["probability"] <= row["ci_high"] <= 1.0
+    assert {r["criterion"] for r in imo["criteria"]} >= {"advance", "tactical diameter"}
+    assert imo["posterior_samples"]["samples"] == 3
+    text = runner.invoke(app, [*args, "--imo", "2", "--seed", "1"])
+    assert text.exit_code == 0, text.output
+    assert "P(pass)" in text.output and "Wilson" in text.output
+    for bad, option in ((["--imo", "-1"], "--imo"), (["--posterior", "foo"], "--posterior"),
+                        (["--level", "1.5"], "--level")):
+        res = runner.invoke(app, [*args, "--imo", "2", *bad])
+        assert res.exit_code == 2 and option in res.output, res.output

@@ -252,17 +252,12 @@ def nomoto(
         return
     _print_nomoto(fit, payload, level)
     if imo:
-        from .imo import print_imo_probabilities
-
-        p = payload["imo"]
-        print_imo_probabilities(p, f"IMO MSC.137(76) given the identification: {p['total']} "
-                                   f"ships from the {p['posterior']} posterior")
+        _print_imo_given_fit(payload["imo"])
 
 
 def _imo_given_fit(fit: Any, records: Any, n: int, posterior: str, seed: int | None,
                    speed: float | None, length: float | None, max_rudder: float,
                    rudder_rate: float, level: float) -> dict[str, Any]:
-    from ..analysis.imo_probability import imo_probabilities
     from ..analysis.nomoto_posterior import posterior_samples, posterior_ships
     from ..errors import ParameterError
 
@@ -277,9 +272,25 @@ def _imo_given_fit(fit: Any, records: Any, n: int, posterior: str, seed: int | N
     ships = posterior_ships(fit, samples, name="posterior", speed=speed, length=length,
                             max_rudder=math.radians(max_rudder),
                             rudder_rate=math.radians(rudder_rate))
+    return _imo_of_ships(ships, n, posterior, seed, level)
+
+
+def _imo_of_ships(ships: list[Any], n: int, posterior: str, seed: int | None,
+                  level: float) -> dict[str, Any]:
+    """The IMO pass probabilities over posterior ships (shared by nomoto and mmg)."""
+    from ..analysis.imo_probability import imo_probabilities
+
     out = imo_probabilities(ships, level=level).as_dict()
     out.update(samples=n, posterior=posterior, seed=seed)
     return out
+
+
+def _print_imo_given_fit(p: dict[str, Any]) -> None:
+    """The table of :func:`_imo_of_ships` (shared by nomoto and mmg)."""
+    from .imo import print_imo_probabilities
+
+    print_imo_probabilities(p, f"IMO MSC.137(76) given the identification: {p['total']} "
+                               f"ships from the {p['posterior']} posterior")
 
 
 def _write_ship(fit: Any, records: Any, out: Path, speed: float | None, length: float | None,
@@ -372,6 +383,16 @@ def mmg(
         "--out", "-o", metavar="SHIP.toml", help="Write the base ship with the identified "
         "derivatives (each with its source).")] = None,
     name: Annotated[Optional[str], typer.Option("--name", help="Ship name (for --out).")] = None,
+    imo: Annotated[int, typer.Option(
+        "--imo", metavar="N", help="Draw N ships from the posterior of the hull derivatives and "
+        "give the probability of passing each IMO criterion (0: no).", min=0)] = 0,
+    posterior: Annotated[PosteriorName, typer.Option(
+        "--posterior", help="Posterior of --imo: the Laplace Gaussian or MCMC (emcee, "
+        "the extra seahelm[mcmc]).")] = "laplace",
+    seed: Annotated[Optional[int], typer.Option("--seed", help="Seed of the posterior "
+                                                "draws.")] = None,
+    level: Annotated[float, typer.Option(
+        "--level", help="Confidence level of the Wilson intervals.")] = 0.95,
     json_out: JsonFlag = False,
 ) -> None:
     """Identify the MMG hull derivatives from free-running records, the rest from a base ship."""
@@ -383,6 +404,8 @@ def mmg(
 
     for f in files:
         input_file("LOG", f)
+    if not 0.0 < level < 1.0:
+        raise ParameterError(f"`--level` must be in (0, 1), got {level!r}")
     try:
         base = get_ship(ship)
     except ValueError as exc:
@@ -397,9 +420,37 @@ def mmg(
     payload = fit.as_dict()
     if out is not None:
         payload["ship_file"] = str(write_ship(fit.ship(base, name=name), out, overwrite=True))
+    if imo:
+        from ..analysis.mmg_posterior import mmg_posterior, posterior_ships
+
+        try:
+            post = mmg_posterior(fit, records, n=imo, method=posterior, seed=seed)
+        except ParameterError as exc:
+            raise ParameterError(f"`--imo`: {exc}") from None
+        payload["imo"] = _imo_of_ships(posterior_ships(fit, post, base), imo, posterior, seed,
+                                       level)
+        payload["imo"]["posterior_samples"] = post.as_dict()
     if json_out:
         print_json(payload)
         return
+    _print_mmg(fit, base, payload)
+    if imo:
+        _print_posterior_diagnostics(payload["imo"]["posterior_samples"])
+        _print_imo_given_fit(payload["imo"])
+
+
+def _print_posterior_diagnostics(post: dict[str, Any]) -> None:
+    if post["method"] != "mcmc":
+        return
+    tau = post["autocorr_time"] or {}
+    worst = max(tau.values(), default=float("nan"))
+    console.print(f"MCMC: {post['walkers']} walkers, {post['steps']} steps ({post['burn']} "
+                  f"burn-in, thinned by {post['thin']}), acceptance fraction "
+                  f"{post['acceptance_fraction']:.2f}, autocorrelation time <= {worst:.3g} "
+                  "steps", highlight=False, soft_wrap=True)
+
+
+def _print_mmg(fit: Any, base: Any, payload: dict[str, Any]) -> None:
     from rich.markup import escape
     from rich.table import Table
 
