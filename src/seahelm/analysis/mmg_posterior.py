@@ -295,7 +295,8 @@ def _mcmc(fit: HullFit, records: Sequence[ManoeuvreRecord] | None, n: int, rng: 
     sampler.random_state = np.random.RandomState(int(rng.integers(2 ** 31))).get_state()
     sampler.run_mcmc(start, steps, progress=False)
     chain = sampler.get_chain(discard=burn, thin=thin, flat=True)
-    tau = sampler.get_autocorr_time(quiet=True, discard=burn) if steps > burn else None
+    with np.errstate(invalid="ignore", divide="ignore"):  # (a constant chain: τ is NaN)
+        tau = sampler.get_autocorr_time(quiet=True, discard=burn) if steps > burn else None
     return MMGPosterior(names=names, samples=chain[-n:], method="mcmc", fixed=dict(fit.fixed),
                         acceptance_fraction=float(np.mean(sampler.acceptance_fraction)),
                         autocorr_time=tau, walkers=walkers, steps=steps, burn=burn, thin=thin)
