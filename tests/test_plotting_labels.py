@@ -164,3 +164,64 @@ def test_the_overlap_check_finds_overlapping_text():
     plt.close(fig)
     assert any("over" in p and "transfer" in p for p in problems)
     assert any(p.startswith("outside the figure") for p in problems)
+
+
+# ------------------------------------------------------------------------------------------
+# the overview figure of a simulation batch (issue 36: a blob of 50 runs, labels cut off,
+# snake_case labels, diverged runs not marked)
+# ------------------------------------------------------------------------------------------
+def _batch_result(runs, grid=True):
+    from conftest import REPORT_BATCH_SCENARIO
+    from seahelm.scenario import parse_scenario, run_scenario
+
+    text = REPORT_BATCH_SCENARIO.replace("runs = 5", f"runs = {runs}")
+    if not grid:
+        text = text.replace('"controller.params.kp" = [1.0, 4.0]', '"controller.params.kp" = [1.0]')
+    return run_scenario(parse_scenario(text)).to_xarray()
+
+
+def test_a_big_batch_is_drawn_as_a_band_with_its_median_and_says_so():
+    from matplotlib.collections import PolyCollection
+
+    from seahelm.plotting.timeseries import BAND_RUNS, plot_result
+
+    ds = _batch_result(30, grid=False)  # 30 runs, none diverged
+    fig = plot_result(ds)
+    heading = fig.axes[0]
+    assert any(isinstance(c, PolyCollection) for c in heading.collections)  # the band
+    assert len(heading.lines) <= 2 * 5 + 1  # a few runs (and their references), the median
+    assert "30 runs: 5-95 % band and median" in fig._suptitle.get_text()
+    assert fig.axes[1].get_ylabel() == "rudder angle [deg]"
+    assert _text_problems(fig) == []
+    plt.close(fig)
+    assert BAND_RUNS < 30
+
+
+def test_diverged_runs_are_marked_where_their_record_ends():
+    from seahelm.plotting.timeseries import plot_result
+
+    ds = _batch_result(5)  # kp = 4: the 5 samples diverge, kp = 1: none
+    status = ds["status"].values.reshape(-1)
+    n_diverged = int((status != 0).sum())
+    assert n_diverged == 5
+    fig = plot_result(ds)
+    marks = [line for line in fig.axes[0].lines if line.get_marker() == "x"]
+    assert len(marks) == n_diverged
+    assert f"{n_diverged} diverged (x: where the record ends)" in fig._suptitle.get_text()
+    assert _text_problems(fig) == []
+    plt.close(fig)
+
+
+def test_small_values_keep_their_axis_labels_inside_the_figure():
+    """Heading in thousandths of a degree (an irregular sea's course keeping): the tick
+    labels were long enough to push the y label off the figure."""
+    import numpy as np
+
+    from seahelm.plotting.timeseries import plot_result
+
+    ds = _batch_result(2, grid=False)
+    for name in ("heading", "yaw_rate", "rudder_angle"):
+        ds[name] = ds[name] * 1e-4 + np.float64(1.234e-6)
+    fig = plot_result(ds)
+    assert _text_problems(fig) == []
+    plt.close(fig)
