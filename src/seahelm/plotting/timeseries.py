@@ -111,7 +111,7 @@ def plot_result(ds: Any, *, runs: Any = None, fig: Any = None) -> Any:
             if (ds[name].attrs.get("kind") == "command" and str(name).endswith("_command")
                     and "rate" not in str(name) and k == 0 and len(run_ids) == 1):
                 ax_d.plot(t, np.degrees(sel[name].values), ":", color="0.4", lw=1,
-                          label=str(name))
+                          label=str(name).replace("_", " "))
         width = 0.7 if banded else None
         if guided:
             ax_r.plot(t, sel["cross_track_error"].values, color=color, alpha=alpha, lw=width)
