@@ -107,8 +107,8 @@ def test_in_an_irregular_sea_it_cuts_rudder_activity_at_equal_lf_error(design):
     (rate0, travel0, lf0), (rate1, travel1, lf1) = stats["plain"], stats["filtered"]
     assert lf1 == pytest.approx(lf0, rel=0.15)
     assert rate1 < rate0 / 10 and travel1 < travel0 / 10
-    with pytest.raises(AssertionError):  # the design period is enforced
-        res = simulate(ship=ship, x0=start.state, t_final=10.0, dt=dt, controller=filtered,
-                       controller_params=faster.params, controller_dt=1.0,
-                       reference={"heading": 0.0})
-        assert np.all(res.status == 0)
+    assert filtered.sample_period == 0.5
+    with pytest.raises(ParameterError, match="`controller_dt` must be 0.5 s"):  # enforced
+        simulate(ship=ship, x0=start.state, t_final=10.0, dt=dt, controller=filtered,
+                 controller_params=faster.params, controller_dt=1.0,
+                 reference={"heading": 0.0})

@@ -72,6 +72,9 @@ class Controller:
         Reference = command, channels named after what they feed (open loop).
     output_labels, output_units : tuple of str
         Recorded signals it writes after its commands (they feed nothing).
+    sample_period : float or None
+        The one controller period [s] it works at (a controller designed or discretised for
+        it); None: any. A problem at another ``controller_dt`` is refused.
     """
 
     name: str
@@ -87,10 +90,14 @@ class Controller:
     passthrough: bool = False
     output_labels: tuple[str, ...] = ()
     output_units: tuple[str, ...] = ()
+    sample_period: float | None = None
 
     def __post_init__(self) -> None:
         if len(self.reference_units) != len(self.reference_labels):
             raise ValueError(f"{self.name}: reference_units has the wrong length")
+        if self.sample_period is not None and not (math.isfinite(self.sample_period)
+                                                   and self.sample_period > 0):
+            raise ValueError(f"{self.name}: sample_period must be > 0 [s] or None")
         if len(self.output_units) != len(self.output_labels):
             raise ValueError(f"{self.name}: output_units has the wrong length")
 

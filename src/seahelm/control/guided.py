@@ -134,4 +134,5 @@ def guided(law: "GuidanceLaw | str", controller: Controller) -> Controller:
         measurement_labels=measurements,
         output_labels=controller.output_labels + law.output_labels,
         output_units=controller.output_units + law.output_units,
+        sample_period=controller.sample_period,
     )

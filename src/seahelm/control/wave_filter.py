@@ -24,8 +24,8 @@ algebraic Riccati equation: P⁻ (prior), L = P⁻Cᵀ(CP⁻Cᵀ + σ_v²)⁻¹,
 with the measured heading (innovation wrapped to [−π, π)), hands the controller ψ̂_L and r̂_L
 in place of the measured ``heading`` and ``yaw_rate``, steps it, and predicts with the rudder
 command it gave. The gains are constants of the generated, compiled stage (one filter for the
-whole batch); the controller period must equal the design's Δt (otherwise the command is NaN
-and the run is reported diverged). The estimates are recorded as the controller's outputs
+whole batch); the controller period must equal the design's Δt (its ``sample_period``: a
+problem at another ``controller_dt`` is refused; the command would be NaN). The estimates are recorded as the controller's outputs
 ``heading_lf_estimate``, ``yaw_rate_lf_estimate``, ``wave_heading_estimate``.
 
 References
@@ -362,4 +362,5 @@ def _wave_filtered(controller: Controller, key: _Key) -> Controller:
         measurement_labels=meas,
         output_labels=controller.output_labels + WAVE_FILTER_OUTPUTS,
         output_units=controller.output_units + ("rad", "rad/s", "rad"),
+        sample_period=design.dt,
     )

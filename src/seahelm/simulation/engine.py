@@ -623,7 +623,8 @@ def simulate(
         ``{"force_y": ..., "moment_z": ...}``), then the environment's signals
         (``wind_gust``, ``wave_load_fluctuation``) when there is an environment.
     controller_dt : float, optional
-        Controller sample period [s], a multiple of ``dt`` (default ``dt``).
+        Controller sample period [s], a multiple of ``dt`` (default: the controller's
+        ``sample_period`` where it has one, else ``dt``).
     integrator : str or ButcherTableau
         Fixed-step method: a name in :data:`~seahelm.simulation.integrators.INTEGRATORS`
         (default "rk4") or an explicit :class:`~seahelm.simulation.integrators.ButcherTableau`.

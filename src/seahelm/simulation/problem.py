@@ -137,7 +137,9 @@ class Problem:
     environment, environment_params : Environment, Params or array, optional
         Wind and wave loads (:mod:`seahelm.environment.loads`) and their parameters.
     controller_dt : float, optional
-        Controller sample period [s], a whole multiple of ``dt`` (default ``dt``).
+        Controller sample period [s], a whole multiple of ``dt``: the controller's own
+        ``sample_period`` where it has one (a discretised controller; the default then),
+        else any (default ``dt``).
     integrator : str or ButcherTableau, optional
         Fixed-step method (default ``"rk4"``).
     record_every : int, optional
@@ -273,7 +275,9 @@ class Problem:
                                      value=value)
         dt, t_final = float(self.dt), float(self.t_final)
         n_steps = steps(t_final, dt)
-        ctrl_dt = dt if self.controller_dt is None else self.controller_dt
+        ctrl_dt = self.controller_dt
+        if ctrl_dt is None:  # the controller's own period, else every step
+            ctrl_dt = dt if controller.sample_period is None else controller.sample_period
         if isinstance(ctrl_dt, bool) or not isinstance(ctrl_dt, (int, float, np.floating,
                                                                  np.integer)) \
                 or not (math.isfinite(ctrl_dt) and ctrl_dt > 0):
@@ -284,6 +288,12 @@ class Problem:
             raise ParameterError(
                 f"= {float(ctrl_dt)!r} s exceeds `t_final` = {t_final!r} s: the controller "
                 "would act once, at t = 0", field="controller_dt", unit="s", value=ctrl_dt)
+        period = controller.sample_period
+        if period is not None and abs(ctrl_every * dt - period) > 1e-9 * period:
+            raise ParameterError(
+                f"must be {period!r} s, the period controller '{controller.name}' was designed "
+                f"or sampled at, got {float(ctrl_dt)!r}", field="controller_dt", unit="s",
+                value=ctrl_dt)
         every = self.record_every
         if isinstance(every, bool) or not isinstance(every, (int, float, np.integer)) \
                 or int(every) != every or every < 1:
