@@ -8,12 +8,19 @@ K and T = T_1 + T_2 − T_3 (:mod:`seahelm.analysis.steering_indices`) and desig
   ``--integral-time`` (:func:`seahelm.control.autopilot_design.pid_pole_placement`);
 * ``--design lq``: the ``lq-heading`` gains of the LQ-integral design on the sway–yaw block
   (:func:`seahelm.control.autopilot_design.lq_heading`, Bryson weights ``--max-heading-error``
-  and the rudder limit).
+  and the rudder limit). A loop crossing over above the steering gear's δ̇_max/δ_max is
+  refused (as a PID bandwidth is); by default the weight is the smallest of 5·2^(k/4) deg
+  whose loop the rudder rate serves and whose first command for the course change stays
+  within the rudder limit.
+
+A ship with a propeller (MMG) is linearised at its self-propelled straight run (the rps that
+holds the speed), and the design is the ``-rps`` variant of the controller (``pid-heading-rps``,
+``lq-heading-rps``), which holds that rps.
 
 It prints the gains, the designed closed-loop poles, the poles with the linearised ship and its
 steering gear, and the margins of that loop; ``--out FILE.toml`` writes a scenario whose
-``[controller]`` table holds the design (a course change of ``--heading-step`` degrees) for
-``seahelm run``. Exit 2: a bandwidth above what the rudder rate gives (``--bandwidth``), a ship
+``[controller]`` table holds the design (a course change of ``--heading-step`` degrees, from
+the straight run it was designed at) for ``seahelm run``. Exit 2: a bandwidth above what the rudder rate gives (``--bandwidth``), a ship
 the rudder does not steer, no equilibrium. A design below the minimum margins warns.
 """
 
@@ -48,7 +55,8 @@ def _poles_text(poles: Any) -> list[str]:
 
 
 def scenario_text(ship: str, controller: str, gains: dict[str, float], *, dt: float,
-                  heading_step_deg: float, t_final: float, comment: str) -> str:
+                  heading_step_deg: float, t_final: float, comment: str,
+                  initial: dict[str, float] | None = None) -> str:
     """A scenario (TOML) running ``controller`` with ``gains`` on ``ship``: a course change.
 
     Parameters
@@ -67,6 +75,9 @@ def scenario_text(ship: str, controller: str, gains: dict[str, float], *, dt: fl
         Duration [s].
     comment : str
         First lines (without ``#``).
+    initial : dict of str to float, optional
+        The ship's initial state by name (SI units; the straight run the design is for),
+        written as ``[vessel.initial]`` (default: the model's zero state).
 
     Returns
     -------
@@ -74,7 +85,10 @@ def scenario_text(ship: str, controller: str, gains: dict[str, float], *, dt: fl
     """
     lines = [f"# {c}" for c in comment.splitlines()]
     lines += [f'title = "{ship}: {heading_step_deg:g} deg course change, {controller}"', "",
-              "[vessel]", f"ship = {_toml_string(ship)}", "", "[controller]",
+              "[vessel]", f"ship = {_toml_string(ship)}", ""]
+    if initial:
+        lines += ["[vessel.initial]"] + [f"{k} = {float(v)!r}" for k, v in initial.items()] + [""]
+    lines += ["[controller]",
               f'model = "{controller}"', f"dt = {dt!r}", "", "[controller.params]"]
     for key, value in gains.items():
         if key == "max_command":
@@ -84,6 +98,45 @@ def scenario_text(ship: str, controller: str, gains: dict[str, float], *, dt: fl
     lines += ["", "[controller.reference]", f"heading_deg = {heading_step_deg!r}", "",
               "[simulation]", f"t_final = {t_final!r}", "dt = 0.1", ""]
     return "\n".join(lines)
+
+
+def _lq_design(block: Any, states: tuple[str, ...], max_heading_error: float | None,
+               max_rudder: float, max_rate: float, step_deg: float) -> tuple[Any, float]:
+    """The LQ design at ``max_heading_error`` [deg]; by default at the smallest of
+    5·2^(k/4) deg whose loop crosses over below the steering gear's δ̇_max/δ_max and whose
+    first command for the course change ``step_deg`` stays within the rudder limit
+    (k_ψ |Δψ| ≤ δ_max: an unstable ship under a deeply saturated rudder falls into a limit
+    cycle, as the KVLCC2 L7 does at 5 deg). Returns the design and the weight [deg]."""
+    from ..control.autopilot_design import lq_heading
+    from ..errors import ParameterError
+
+    if max_heading_error is not None:
+        try:
+            return lq_heading(block.A, block.B[:, 0], states,
+                              max_heading_error=math.radians(max_heading_error),
+                              max_rudder=max_rudder, max_rate=max_rate), max_heading_error
+        except ParameterError as exc:
+            if exc.field != "max_heading_error":
+                raise
+            raise ParameterError(
+                f"= {max_heading_error:g} deg {exc.reason.split(' rad ', 1)[1]}",
+                field="--max-heading-error", unit="deg", value=max_heading_error) from None
+    last: ParameterError | None = None
+    for k in range(24):  # up to 5·2^(23/4) = 271 deg
+        deg = 5.0 * 2.0 ** (k / 4)
+        try:
+            design = lq_heading(block.A, block.B[:, 0], states,
+                                max_heading_error=math.radians(deg), max_rudder=max_rudder,
+                                max_rate=max_rate)
+        except ParameterError as exc:
+            if exc.field != "max_heading_error":
+                raise
+            last = exc
+            continue
+        if design.params.k_heading * math.radians(abs(step_deg)) <= max_rudder:
+            return design, deg
+    raise ParameterError(f"no LQ weight up to 271 deg serves this steering gear ({last})",
+                         field="--max-heading-error")
 
 
 def _settling(poles: Any) -> float:
@@ -110,8 +163,11 @@ def tune(
     ] = None,
     design: Annotated[Literal["pid", "lq"], typer.Option(
         "--design", help="pid: pole placement from Nomoto K, T; lq: LQ-integral.")] = "pid",
-    max_heading_error: Annotated[float, typer.Option(
-        "--max-heading-error", help="LQ weight: allowed heading error [deg].")] = 5.0,
+    max_heading_error: Annotated[float | None, typer.Option(
+        "--max-heading-error", help=(
+            "LQ weight: allowed heading error [deg] (default: the smallest from 5 deg up, "
+            "in steps of 2^(1/4), whose loop the rudder rate serves and whose first command "
+            "for --heading-step is within the rudder limit)."))] = None,
     speed: Annotated[float | None, typer.Option(
         "--speed", help="Speed of the straight run [m/s] (default: the test speed).")
     ] = None,
@@ -127,14 +183,13 @@ def tune(
     from ..analysis.linearisation import linearize
     from ..analysis.steering_indices import steering_indices
     from ..control.autopilot_design import (AutopilotDesignWarning, heading_loop_poles,
-                                            lq_heading, pid_pole_placement,
-                                            state_space_response)
+                                            pid_pole_placement, state_space_response)
     from ..errors import ParameterError
     from ..ships import get_ship
 
     for option, value, unit in (("--bandwidth", bandwidth, "rad/s"), ("--damping", damping, "-"),
-                                ("--dt", dt, "s"), ("--max-heading-error", max_heading_error,
-                                                    "deg")):
+                                ("--dt", dt, "s"), ("--max-heading-error",
+                                                    max_heading_error or 5.0, "deg")):
         if not (math.isfinite(value) and value > 0):
             raise ParameterError(f"must be > 0 [{unit}], got {value!r}", field=option,
                                  unit=unit, value=value)
@@ -172,22 +227,19 @@ def tune(
             else:
                 states = tuple(s for s in indices.steering_states)
                 block = bare.select(states=states, inputs=["rudder_angle"])
-                result = lq_heading(block.A, block.B[:, 0], states,
-                                    max_heading_error=math.radians(max_heading_error),
-                                    max_rudder=float(servo.max_angle))
+                result, max_heading_error = _lq_design(
+                    block, states, max_heading_error, float(servo.max_angle),
+                    float(servo.max_rate), heading_step)
         except ParameterError as exc:
-            option = {"bandwidth": "--bandwidth", "gain": "SHIP", "model": "SHIP"}.get(
-                exc.field or "", exc.field)
+            option = {"bandwidth": "--bandwidth", "gain": "SHIP", "model": "SHIP",
+                      "max_heading_error": "--max-heading-error"}.get(exc.field or "",
+                                                                      exc.field)
             raise ParameterError(exc.reason, field=option, unit=exc.unit,
                                  value=exc.value) from None
     gains = dict(result.params.as_dict())
     controller = "pid-heading" if design == "pid" else "lq-heading"
-    if the_ship.has_propeller:
-        if design == "lq":
-            raise ParameterError("the lq-heading controller commands the rudder only; "
-                                 f"'{the_ship.name}' also needs its propeller rps (use "
-                                 "--design pid)", field="--design")
-        controller = "pid-heading-rps"
+    if the_ship.has_propeller:  # the rps of the self-propelled straight run, held
+        controller += "-rps"
         gains["propeller_rps"] = float(full.u0[full.input_labels.index("propeller_rps")])
     p = result.params
     if design == "pid":
@@ -211,6 +263,8 @@ def tune(
     if design == "pid":
         payload.update(natural_frequency=result.natural_frequency, damping=result.damping,
                        integral_time_s=result.integral_time, bandwidth=result.bandwidth)
+    else:
+        payload["max_heading_error_deg"] = max_heading_error
     if out is not None:
         from ..results import atomic_write
 
@@ -218,6 +272,8 @@ def tune(
         text = scenario_text(
             ship_ref, controller, gains, dt=dt, heading_step_deg=heading_step,
             t_final=float(max(300.0, 100.0 * math.ceil(0.1 * _settling(actual)))),
+            initial={k: float(v) for k, v in zip(bare.state_labels, bare.x0)
+                     if k not in ("north", "east", "heading") and v != 0.0},
             comment=(f"seahelm autopilot tune {the_ship.name} --design {design}: Nomoto K = "
                      f"{K:.4g} 1/s, T = {T:.4g} s at U = {bare.speed:.4g} m/s\n"
                      "closed-loop poles (ship + steering gear, linear): "
@@ -240,6 +296,10 @@ def tune(
                          + " [1/s]"), highlight=False)
     console.print(escape("  with the linearised ship and steering gear: "
                          + ", ".join(_poles_text(actual)) + " [1/s]"), highlight=False)
+    if design == "lq":
+        console.print(escape(f"  Bryson weights: heading error {max_heading_error:.4g} deg, "
+                             f"rudder {math.degrees(servo.max_angle):.4g} deg"),
+                      highlight=False)
     console.print(escape(f"  margins: gain {result.gain_margin:.3g}, phase "
                          f"{math.degrees(result.phase_margin):.3g} deg at "
                          f"{result.crossover:.3g} rad/s"), highlight=False)

@@ -8,7 +8,9 @@ steering model augmented with the integral of the heading error (Fossen 2021, §
     δ_c = sat(k_i ∫e dt + k_ψ e − k_r (r − r*) − k_v v, δ_max)
 
 with the gains of :func:`seahelm.control.autopilot_design.lq_heading` (k_v = 0 for a model
-without sway, e.g. Nomoto's). Anti-windup by conditional integration as in
+without sway, e.g. Nomoto's). ``lq-heading-rps`` also holds a constant propeller rps (the
+self-propulsion rps of the straight run it was designed at), for models with rudder and
+propeller inputs (MMG), as ``pid-heading-rps`` does for the PID. Anti-windup by conditional integration as in
 :mod:`seahelm.control.pid`. Sign convention of :mod:`seahelm.vessels.base`: positive rudder →
 positive yaw rate.
 
@@ -29,7 +31,7 @@ from numba import njit
 from ..parameters import Params, param, signal_indices
 from .base import Controller, wrap_pi
 
-__all__ = ["LQHeadingParams", "LQ_HEADING"]
+__all__ = ["LQHeadingParams", "LQHeadingRpsParams", "LQ_HEADING", "LQ_HEADING_RPS"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -85,5 +87,37 @@ LQ_HEADING = Controller(
     command_labels=COMMANDS,
     init=lq_heading_init,
     step=lq_heading_step,
+    measurement_labels=MEASUREMENTS,
+)
+
+
+@dataclass(frozen=True, kw_only=True)
+class LQHeadingRpsParams(LQHeadingParams):
+    """Gains of the LQ-integral heading autopilot and the propeller rps it holds."""
+
+    propeller_rps: float = param(unit="1/s", symbol="n", low=0.0, low_inclusive=False,
+                                 doc="propeller revolutions held constant")
+
+
+_C_RPS = signal_indices(COMMANDS + ("propeller_rps",))
+
+
+@njit(cache=True)
+def lq_heading_rps_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
+    lq_heading_step(t, dt, z, y, ref, p, cs, cmd)
+    cmd[_C_RPS.propeller_rps] = p.propeller_rps
+
+
+LQ_HEADING_RPS = Controller(
+    name="lq-heading-rps",
+    description="LQ-integral heading autopilot (as 'lq-heading') that also holds a constant "
+    "propeller rps, for models with rudder and propeller inputs (MMG)",
+    params_type=LQHeadingRpsParams,
+    state_labels=STATES,
+    reference_labels=REFERENCES,
+    reference_units=("rad",),
+    command_labels=COMMANDS + ("propeller_rps",),
+    init=lq_heading_init,
+    step=lq_heading_rps_step,
     measurement_labels=MEASUREMENTS,
 )
