@@ -20,8 +20,9 @@ holds the speed), and the design is the ``-rps`` variant of the controller (``pi
 It prints the gains, the designed closed-loop poles, the poles with the linearised ship and its
 steering gear, and the margins of that loop; ``--out FILE.toml`` writes a scenario whose
 ``[controller]`` table holds the design (a course change of ``--heading-step`` degrees, from
-the straight run it was designed at) for ``seahelm run``. Exit 2: a bandwidth above what the rudder rate gives (``--bandwidth``), a ship
-the rudder does not steer, no equilibrium. A design below the minimum margins warns.
+the straight run it was designed at) for ``seahelm run``. Exit 2: a bandwidth or an LQ weight
+the rudder rate cannot serve (``--bandwidth``, ``--max-heading-error``), a ship the rudder does
+not steer, no equilibrium. A design below the minimum margins warns.
 """
 
 from __future__ import annotations
