@@ -451,3 +451,23 @@ def test_engine_error_about_a_run_names_its_grid_point():
     with pytest.raises(ScenarioError, match=r"s.toml: \[vessel.initial\] the initial state of run 1 "
                                             r".*\(run 1: \{'vessel.initial.heading': 2.0\}\)"):
         run_scenario(batch)
+
+
+@pytest.mark.parametrize("ship", ["kvlcc2-l7", "mariner-nonlinear"])
+def test_a_named_ship_runs_with_its_own_steering_gear(ship):
+    """[vessel] ship: the actuator is the ship's steering gear (KVLCC2 L7: 15.8 deg/s, lag
+    0.1 s; not the default servo's 2.33 deg/s), [actuator.params] override it, and a named
+    [actuator] model replaces it."""
+    from seahelm.ships import get_ship
+
+    gear = get_ship(ship).steering_gear
+    text = f'title = "t"\n[vessel]\nship = "{ship}"\n[simulation]\nt_final = 1.0\ndt = 0.1\n'
+    batch = parse_scenario(text)
+    assert batch.actuator is gear.actuator
+    np.testing.assert_array_equal(batch.actuator_params[0], gear.params.to_array())
+    over = parse_scenario(text + "[actuator.params]\nmax_rate_deg = 1.0\n")
+    expected = gear.params.replace(max_rate=math.radians(1.0)).to_array()
+    np.testing.assert_allclose(over.actuator_params[0], expected, rtol=1e-15)
+    direct = parse_scenario(text + '[actuator]\nmodel = "direct"\n[controller]\nmodel = '
+                            '"open-loop"\n') if ship == "mariner-nonlinear" else None
+    assert direct is None or direct.actuator.name == "direct"

@@ -315,10 +315,14 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
     """
     refuse_varied_particulars(scn, source)  # (they vary in [maneuver] scenarios only)
     model = _vessel_model(scn, source)
-    try:
-        actuator = get_actuator(scn.actuator.model)
+    ship = vessel_ship(scn, source)
+    gear = ship.steering_gear if ship is not None else None
+    try:  # a ship's own steering gear unless [actuator] names another actuator
+        actuator = (gear.actuator if gear is not None and "model" not in
+                    scn.actuator.model_fields_set else get_actuator(scn.actuator.model))
     except ValueError as exc:
         raise _err(source, "actuator.model", str(exc)) from None
+    actuator_base = gear.params if gear is not None and gear.actuator is actuator else None
     try:
         controller = get_controller(scn.controller.model)
     except ValueError as exc:
@@ -334,7 +338,6 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
     except ParameterError as exc:
         raise _err(source, "controller.model", str(exc)) from None
     base_params: Params | None = None
-    ship = vessel_ship(scn, source)
     if ship is not None:
         if ship.model is not model:
             raise _err(source, ship_key(scn),
@@ -395,7 +398,7 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
         where = f" (run {i}: {over})" if over else ""
         for key, sec, cls, base, bucket in (
             ("vessel.params", scn.vessel.params, model.params_type, base_params, mp),
-            ("actuator.params", scn.actuator.params, actuator.params_type, None, ap),
+            ("actuator.params", scn.actuator.params, actuator.params_type, actuator_base, ap),
             ("controller.params", scn.controller.params, controller.params_type, None, cp),
         ):
             values = section(over, key + ".", sec)

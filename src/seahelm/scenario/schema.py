@@ -82,6 +82,10 @@ class VesselSection(_Strict):
 
 
 class ActuatorSection(_Strict):
+    """``[actuator]``: the actuator between the controller and the model: the steering gear of
+    the ship named in ``[vessel]`` (its actuator and parameters), else ``model`` (default the
+    rudder servo); ``params`` override its parameters."""
+
     model: str = "rudder-servo"
     params: dict[str, Number] = Field(default_factory=dict)
 
