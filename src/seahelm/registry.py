@@ -45,6 +45,8 @@ CONTROLLERS: dict[str, str] = {
     "pid-heading-rps": "seahelm.control.pid:PID_HEADING_RPS",
     "lq-heading": "seahelm.control.lq_heading:LQ_HEADING",
     "lq-heading-rps": "seahelm.control.lq_heading:LQ_HEADING_RPS",
+    "lq-cross-track": "seahelm.control.lq_cross_track:LQ_CROSS_TRACK",
+    "lq-cross-track-rps": "seahelm.control.lq_cross_track:LQ_CROSS_TRACK_RPS",
     "open-loop": "seahelm.control.open_loop:OPEN_LOOP",
     "compensated-pid": "seahelm.control.compensation:COMPENSATED_PID",
     "fsm-yaw-rate": "seahelm.control.final_state:FSM_YAW_RATE",

@@ -49,7 +49,7 @@ from .._validate import as_float_array
 from ..errors import ParameterError
 from ..parameters import Params, param, signal_indices
 
-__all__ = ["MAX_WAYPOINTS", "GuidanceLaw", "LOSParams", "ILOSParams", "LOS", "ILOS",
+__all__ = ["MAX_WAYPOINTS", "GuidanceLaw", "RouteParams", "LOSParams", "ILOSParams", "LOS", "ILOS",
            "GUIDANCE_LAWS", "get_guidance_law", "route_params", "cross_track"]
 
 #: Waypoints a route can hold (the route is a fixed-size vector parameter of the run).
@@ -65,8 +65,8 @@ _O = signal_indices(GUIDANCE_OUTPUTS)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
-class LOSParams(Params):
-    """A route and the proportional LOS law (module docstring)."""
+class RouteParams(Params):
+    """A route: waypoints and the acceptance circle (the fields every route follower has)."""
 
     route_north: tuple = param((0.0,) * MAX_WAYPOINTS, unit="m", symbol="N_k",
                                size=MAX_WAYPOINTS, doc="waypoint north coordinates (padded)")
@@ -76,21 +76,11 @@ class LOSParams(Params):
                                doc="number of waypoints of the route")
     acceptance_radius: float = param(100.0, unit="m", symbol="R", low=0.0,
                                      low_inclusive=False, doc="waypoint acceptance circle")
-    lookahead: float = param(500.0, unit="m", symbol="Δ", low=0.0, low_inclusive=False,
-                             doc="look-ahead distance (Δ_max if it varies)")
-    lookahead_min: float = param(0.0, unit="m", symbol="Δ_min", low=0.0,
-                                 doc="smallest look-ahead distance (0: constant Δ)")
-    lookahead_gamma: float = param(0.0, unit="1/m²", symbol="γ", low=0.0,
-                                   doc="decay of the look-ahead with y_e² (0: constant Δ)")
 
     def validate(self) -> None:
         n = self.n_waypoints
         if n != int(n):
             raise ParameterError(f"`n_waypoints` must be a whole number [-], got {n!r}")
-        if self.lookahead_min > self.lookahead:
-            raise ParameterError(
-                f"`lookahead_min` must not exceed `lookahead` [m], got {self.lookahead_min!r} > "
-                f"{self.lookahead!r}")
         pts = np.column_stack([self.route_north, self.route_east])[:int(n)]
         legs = np.hypot(*np.diff(pts, axis=0).T)
         if (legs == 0.0).any():
@@ -109,6 +99,25 @@ class LOSParams(Params):
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
+class LOSParams(RouteParams):
+    """A route and the proportional LOS law (module docstring)."""
+
+    lookahead: float = param(500.0, unit="m", symbol="Δ", low=0.0, low_inclusive=False,
+                             doc="look-ahead distance (Δ_max if it varies)")
+    lookahead_min: float = param(0.0, unit="m", symbol="Δ_min", low=0.0,
+                                 doc="smallest look-ahead distance (0: constant Δ)")
+    lookahead_gamma: float = param(0.0, unit="1/m²", symbol="γ", low=0.0,
+                                   doc="decay of the look-ahead with y_e² (0: constant Δ)")
+
+    def validate(self) -> None:
+        if self.lookahead_min > self.lookahead:
+            raise ParameterError(
+                f"`lookahead_min` must not exceed `lookahead` [m], got {self.lookahead_min!r} > "
+                f"{self.lookahead!r}")
+        super().validate()
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
 class ILOSParams(LOSParams):
     """A route and the integral LOS law (module docstring)."""
 
@@ -116,7 +125,8 @@ class ILOSParams(LOSParams):
                          doc="integral gain of ILOS (critically damped near κ = U/4)")
 
 
-def route_params(waypoints: Any, *, law: "GuidanceLaw | None" = None, **values: Any) -> Params:
+def route_params(waypoints: Any, *, law: "GuidanceLaw | None" = None,
+                 params_type: "type[RouteParams] | None" = None, **values: Any) -> Params:
     """The parameter set of a guidance law for a route given as a list of (north, east) points.
 
     Parameters
@@ -125,12 +135,16 @@ def route_params(waypoints: Any, *, law: "GuidanceLaw | None" = None, **values: 
         Waypoints (north, east) [m], 2 ≤ n ≤ :data:`MAX_WAYPOINTS`, consecutive ones distinct.
     law : GuidanceLaw, optional
         The law (default :data:`LOS`).
+    params_type : type, optional
+        A :class:`RouteParams` class to fill instead of the law's (the parameters of a
+        controller that follows the route itself, e.g. the LQ cross-track controller's).
     **values
         Its other parameters (``acceptance_radius``, ``lookahead``, ``kappa``, ...).
 
     Returns
     -------
-    LOSParams or ILOSParams
+    RouteParams
+        LOSParams or ILOSParams for a law, else ``params_type``.
 
     Raises
     ------
@@ -149,8 +163,8 @@ def route_params(waypoints: Any, *, law: "GuidanceLaw | None" = None, **values: 
     north = np.zeros(MAX_WAYPOINTS)
     east = np.zeros(MAX_WAYPOINTS)
     north[:n], east[:n] = pts[:, 0], pts[:, 1]
-    return law.params_type(route_north=tuple(north), route_east=tuple(east), n_waypoints=float(n),
-                           **values)
+    cls = law.params_type if params_type is None else params_type
+    return cls(route_north=tuple(north), route_east=tuple(east), n_waypoints=float(n), **values)
 
 
 # ------------------------------------------------------------------------------------------

@@ -27,7 +27,9 @@ Layout (see ``examples/*.toml``)::
     [batch]             grid = {"controller.params.kp" = [..]}, [batch.monte_carlo] runs, seed, draws
     [guidance]          law (los | ilos), waypoints = [[north, east], ...], acceptance_radius,
                         lookahead, lookahead_min, lookahead_gamma, kappa: the route steers the
-                        heading controller (grid keys "guidance.<name>")
+                        heading controller (grid keys "guidance.<name>"); a controller that
+                        follows routes itself (lq-cross-track) takes waypoints and
+                        acceptance_radius only
     [maneuver]          kind = turning | zigzag | pullout | spiral | imo, and its keys
                         (instead of [simulation], [controller], [environment], [batch])
 

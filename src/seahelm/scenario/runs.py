@@ -25,7 +25,7 @@ from ..simulation.batch import BatchAxis, BatchLayout, BatchValues, RunBatch, gr
 from ..simulation.composition import compose
 from ..simulation.engine import check_record_memory
 from ..control.guided import guided
-from ..control.path_following import GuidanceLaw, get_guidance_law, route_params
+from ..control.path_following import GuidanceLaw, RouteParams, get_guidance_law, route_params
 from ..simulation.signals import Constant, make_signal
 from .environment import KEY_UNITS as _ENV_UNITS, environment_runs
 from .errors import ScenarioError, at_key as _err
@@ -327,8 +327,8 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
         controller = get_controller(scn.controller.model)
     except ValueError as exc:
         raise _err(source, "controller.model", str(exc)) from None
-    guidance = _guidance(scn, source)
-    if guidance is not None:  # the route's law steers the heading controller
+    guidance = _guidance(scn, source, controller)
+    if guidance is not None and guidance[0] is not None:  # the law steers the heading controller
         try:
             controller = guided(guidance[0], controller)
         except ParameterError as exc:
@@ -545,18 +545,33 @@ def _vessel_model(scn: Scenario, source: str) -> Any:
         raise _err(source, "vessel.model", str(exc)) from None
 
 
-def _guidance(scn: Scenario, source: str) -> tuple[GuidanceLaw, dict[str, Any]] | None:
-    """The ``[guidance]`` law and its parameter values (route and gains), checked."""
+def _guidance(scn: Scenario, source: str, controller: Any
+              ) -> tuple[GuidanceLaw | None, dict[str, Any]] | None:
+    """The ``[guidance]`` law and its parameter values (route and gains), checked; the law is
+    None for a controller that follows the route itself (its parameters are a
+    :class:`~seahelm.control.path_following.RouteParams`, e.g. ``lq-cross-track``)."""
     g = scn.guidance
     if g is None:
         return None
+    gains = {k: v for k in ("acceptance_radius", "lookahead", "lookahead_min",
+                            "lookahead_gamma", "kappa")
+             if (v := getattr(g, k)) is not None}
+    if issubclass(controller.params_type, RouteParams):
+        extra = [k for k in ("law", *gains) if k in g.model_fields_set and k not in
+                 controller.params_type.field_names()]
+        if extra:
+            raise _err(source, f"guidance.{extra[0]}",
+                       f"controller '{controller.name}' follows the route itself: [guidance] "
+                       "takes its waypoints and acceptance_radius, no guidance law or its gains")
+        try:
+            values = route_params(g.waypoints, params_type=RouteParams, **gains).as_dict()
+        except ParameterError as exc:
+            raise _err(source, "guidance", str(exc)) from None
+        return None, values
     try:
         law = get_guidance_law(g.law)
     except ParameterError as exc:
         raise _err(source, "guidance.law", str(exc)) from None
-    gains = {k: v for k in ("acceptance_radius", "lookahead", "lookahead_min",
-                            "lookahead_gamma", "kappa")
-             if (v := getattr(g, k)) is not None}
     if "kappa" in gains and "kappa" not in law.params_type.field_names():
         raise _err(source, "guidance.kappa",
                    f"the '{law.name}' law has no integral gain (kappa is ILOS's), got "

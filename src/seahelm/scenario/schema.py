@@ -190,7 +190,9 @@ class EnvironmentSection(_Strict):
 
 
 class GuidanceSection(_Strict):
-    """``[guidance]``: a waypoint route followed by LOS/ILOS (:mod:`seahelm.control.guided`)."""
+    """``[guidance]``: a waypoint route followed by LOS/ILOS (:mod:`seahelm.control.guided`)
+    steering the heading controller, or by a controller that follows routes itself
+    (``lq-cross-track``: then only ``waypoints`` and ``acceptance_radius``)."""
 
     law: str = "los"
     waypoints: list[tuple[Number, Number]]
