@@ -1,7 +1,7 @@
 """LQ-integral cross-track control: the design against python-control's lqr on the linearised
 Mariner (poles = eig(A − BK)), the sampled closed loop on a linear (Nomoto) ship against
 python-control's discrete-time simulation, convergence on the nonlinear Mariner beside ILOS,
-the law, batches, scenarios, bad input."""
+the law, batches, scenarios, `seahelm autopilot tune --design lq-cross-track`, bad input."""
 
 from __future__ import annotations
 
@@ -238,6 +238,41 @@ def test_runs_from_a_scenario_with_a_route_and_refuses_a_guidance_law():
         with pytest.raises(ScenarioError, match=rf"guidance\.{key}.*follows the route itself"):
             parse_scenario(SCENARIO.replace("acceptance_radius = 500.0",
                                             f"acceptance_radius = 500.0\n{line}"))
+
+
+def test_cli_tune_cross_track_writes_a_route_scenario_that_settles(tmp_path):
+    """`seahelm autopilot tune --design lq-cross-track`: the gains are lq_cross_track's at the
+    reported weights, and the scenario (the ship L off a straight route) ends on the line;
+    KVLCC2 L7 gets the ``-rps`` variant holding the self-propulsion rps."""
+    from typer.testing import CliRunner
+
+    from seahelm.analysis.linearisation import linearize
+    from seahelm.cli.main import app
+
+    runner = CliRunner()
+    for ship, controller in (("mariner-nonlinear", "lq-cross-track"),
+                             ("kvlcc2-l7", "lq-cross-track-rps")):
+        out = tmp_path / f"{ship}.toml"
+        res = runner.invoke(app, ["autopilot", "tune", ship, "--design", "lq-cross-track",
+                                  "--out", str(out), "--json"])
+        assert res.exit_code == 0, res.output
+        payload = json.loads(res.stdout)
+        assert payload["controller"] == controller
+        lin = linearize(ship, actuator=False)
+        block = lin.select(states=["sway_speed", "yaw_rate"], inputs=["rudder_angle"])
+        d = lq_cross_track(block.A, block.B[:, 0], block.state_labels, payload["surge_speed"],
+                           max_cross_track=payload["max_cross_track_m"],
+                           max_heading_error=math.radians(payload["max_heading_error_deg"]),
+                           max_rudder=payload["gains"]["max_command"])
+        for key, value in d.gains.items():
+            assert payload["gains"][key] == pytest.approx(value, rel=1e-12)
+        assert ("propeller_rps" in payload["gains"]) == (controller.endswith("-rps"))
+        assert all(p[0] < 0 for p in payload["poles_with_ship_and_steering_gear"])
+        run = runner.invoke(app, ["run", str(out), "--json"])
+        assert run.exit_code == 0, run.output
+        summary = json.loads(run.stdout)
+        assert summary["max_abs_cross_track_error_m"] >= lin.length  # it started L off
+        assert abs(summary["final_cross_track_error_m"]) < 0.01 * lin.length
 
 
 @pytest.mark.parametrize("args, kwargs, field, match", [

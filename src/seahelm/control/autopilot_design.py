@@ -408,8 +408,8 @@ def heading_loop_poles(A: Any, b: Any, c_heading: Any, c_yaw_rate: Any, *, k_hea
 
 def lq_heading(A: Any, b: Any, states: Sequence[str], *, max_heading_error: float = 0.1,
                max_integral: float | None = None, max_yaw_rate: float | None = None,
-               max_rudder: float = math.radians(35.0), max_command: float | None = None,
-               max_rate: float | None = None) -> LQDesign:
+               max_rudder: float = math.radians(35.0), max_command: float | None = None
+               ) -> LQDesign:
     """LQ-integral heading gains for a linear steering block (module docstring).
 
     Parameters
@@ -431,10 +431,6 @@ def lq_heading(A: Any, b: Any, states: Sequence[str], *, max_heading_error: floa
         Allowed rudder angle [rad] (ρ = 1/δ²; default 35°).
     max_command : float, optional
         The controller's saturation (default ``max_rudder``).
-    max_rate : float, optional
-        Rudder rate limit δ̇_max [rad/s]: a loop whose gain crossover is above δ̇_max/δ_max
-        (:func:`max_bandwidth`, the bound the PID design keeps) is refused, naming
-        ``max_heading_error`` (a larger one gives a slower loop).
 
     Returns
     -------
@@ -444,8 +440,7 @@ def lq_heading(A: Any, b: Any, states: Sequence[str], *, max_heading_error: floa
     ------
     ParameterError
         If the augmented pair (A, b) is not stabilisable (e.g. the rudder does not act on the
-        yaw rate), a state name is not ``yaw_rate``/``sway_speed``, or the loop is faster
-        than the steering gear's rate serves (with ``max_rate``).
+        yaw rate), or a state name is not ``yaw_rate``/``sway_speed``.
     """
     from scipy.linalg import solve_continuous_are
 
@@ -493,15 +488,6 @@ def lq_heading(A: Any, b: Any, states: Sequence[str], *, max_heading_error: floa
                              max_command=max_command or max_rudder)
     # margins: loop broken at the rudder, L = k (sI − Aa)⁻¹ ba
     gm, pm, wc = loop_margins(lambda w: state_space_response(Aa, ba, k, w))
-    if max_rate is not None:
-        limit = max_bandwidth(max_rate, max_command or max_rudder)
-        if wc > limit:  # (rate saturation: a limit cycle, as KVLCC2 L7's at 5°)
-            raise ParameterError(
-                f"= {max_heading_error!r} rad gives a loop crossing over at {wc:.4g} rad/s, "
-                f"above {limit:.4g} rad/s, the steering gear's rate limit "
-                f"{math.degrees(max_rate):.3g} deg/s over the rudder limit "
-                f"{math.degrees(max_command or max_rudder):.3g} deg; allow a larger heading "
-                "error", field="max_heading_error", unit="rad", value=max_heading_error)
     _warn_margins(gm, pm, "the LQ design")
     return LQDesign(params=params, gain=k, states=("heading_error_integral", "heading_error")
                     + states, poles=poles, gain_margin=gm, phase_margin=pm, crossover=wc)
