@@ -1,4 +1,4 @@
-"""``seahelm autopilot tune SHIP``: heading-autopilot gains from the ship's linear model.
+"""``seahelm autopilot tune SHIP``: autopilot gains from the ship's linear model.
 
 Linearises the ship at its straight run (:mod:`seahelm.analysis.linearisation`), takes Nomoto's
 K and T = T_1 + T_2 − T_3 (:mod:`seahelm.analysis.steering_indices`) and designs
@@ -8,8 +8,7 @@ K and T = T_1 + T_2 − T_3 (:mod:`seahelm.analysis.steering_indices`) and desig
   ``--integral-time`` (:func:`seahelm.control.autopilot_design.pid_pole_placement`);
 * ``--design lq``: the ``lq-heading`` gains of the LQ-integral design on the sway–yaw block
   (:func:`seahelm.control.autopilot_design.lq_heading`, Bryson weights ``--max-heading-error``
-  and the rudder limit).
-
+  and the rudder limit);
 * ``--design lq-cross-track``: the ``lq-cross-track`` gains
   (:func:`seahelm.control.lq_cross_track.lq_cross_track`: state feedback on the cross-track
   error, its integral, the heading relative to the route, yaw rate and sway; Bryson weights
@@ -20,14 +19,15 @@ K and T = T_1 + T_2 − T_3 (:mod:`seahelm.analysis.steering_indices`) and desig
 
 A ship with a propeller (MMG) is linearised at its self-propelled straight run (the rps that
 holds the speed), and the design is the ``-rps`` variant of the controller (``pid-heading-rps``,
-``lq-heading-rps``), which holds that rps.
+``lq-heading-rps``, ``lq-cross-track-rps``), which holds that rps.
 
 It prints the gains, the designed closed-loop poles, the poles with the linearised ship and its
 steering gear, and the margins of that loop; ``--out FILE.toml`` writes a scenario whose
-``[controller]`` table holds the design (a course change of ``--heading-step`` degrees, from
-the straight run it was designed at) for ``seahelm run``. Exit 2: a bandwidth or an LQ weight
-the rudder rate cannot serve (``--bandwidth``, ``--max-heading-error``), a ship the rudder does
-not steer, no equilibrium. A design below the minimum margins warns.
+``[controller]`` table holds the design (a course change of ``--heading-step`` degrees, or the
+route, from the straight run it was designed at, with the ship's steering gear) for
+``seahelm run``. Exit 2: a bandwidth above what the rudder rate gives (``--bandwidth``), a ship
+the rudder does not steer, no equilibrium, no cross-track weights that settle the ship. A design
+below the minimum margins warns.
 """
 
 from __future__ import annotations
@@ -287,7 +287,7 @@ def tune(
         "--out", help="Write a scenario (TOML) with the [controller] table here.")] = None,
     json_out: JsonFlag = False,
 ) -> None:
-    """Design a heading autopilot: gains, closed-loop poles, margins, a scenario snippet."""
+    """Design a heading or cross-track autopilot: gains, closed-loop poles, margins, a scenario."""
     from ..analysis.linearisation import linearize
     from ..analysis.steering_indices import steering_indices
     from ..control.autopilot_design import (AutopilotDesignWarning, heading_loop_poles,
