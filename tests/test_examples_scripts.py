@@ -119,3 +119,29 @@ def test_own_ship_validation_example(tmp_path):
                                                        re.M)]
     assert len(tactical) == 4 and all(b > a for a, b in zip(tactical, tactical[1:])), tactical
     assert (tmp_path / "own_ship_validation.png").stat().st_size > 10_000
+
+
+def test_python_control_roundtrip_example():
+    """Designed in python-control, run batched in seahelm: in the 1° course change the
+    nonlinear Mariner follows python-control's linear prediction (to 0.05 % of the step for the
+    two gentler designs; the fastest touches the 5°/s rudder-rate limit: 1.5 %), and in the 10°
+    one the rate-limited steering gear makes every design overshoot more than predicted."""
+    pytest.importorskip("control")
+    proc = subprocess.run([sys.executable, str(EXAMPLES / "python_control_roundtrip.py")],
+                          capture_output=True, text=True, timeout=900,
+                          env={**os.environ, "MPLBACKEND": "Agg"})
+    assert proc.returncode == 0, proc.stderr
+    rows = {(float(m.group(1)), float(m.group(2))): tuple(map(float, m.group(3, 4, 5, 6, 7)))
+            for m in re.finditer(r"^ *([\d.]+) deg, LQ +([\d.]+) deg +([\d.]+) % +([\d.]+) s +"
+                                 r"([\d.]+) % +([\d.]+) s +([\d.e+-]+) % of the step$",
+                                 proc.stdout, re.M)}
+    assert len(rows) == 6, proc.stdout
+    for design in (10.0, 20.0):
+        o_lin, s_lin, o_nl, s_nl, diff = rows[(1.0, design)]
+        assert diff < 0.05 and abs(o_nl - o_lin) < 0.05 and s_nl == s_lin
+    assert rows[(1.0, 5.0)][4] < 3.0
+    for design in (5.0, 10.0, 20.0):
+        o_lin, _, o_nl, _, diff = rows[(10.0, design)]
+        assert o_nl > o_lin and diff > 1.0
+    # the linear prediction is the same per radian whatever the step
+    assert all(rows[(1.0, d)][:2] == rows[(10.0, d)][:2] for d in (5.0, 10.0, 20.0))
