@@ -18,6 +18,7 @@ import pytest
 from seahelm.actuators.servo import DIRECT, RUDDER_PROPELLER, RUDDER_SERVO
 from seahelm.control.open_loop import OPEN_LOOP
 from seahelm.control.pid import PID_HEADING
+from seahelm.control.path_following import RouteParams
 from seahelm.errors import ParameterError
 from seahelm.registry import get_actuator, get_controller, get_model
 from seahelm.scenario import ActuatorSection, ControllerSection
@@ -100,6 +101,10 @@ COMBINATIONS = {
         (), _SERVO + _HEADING + "\nmodel.north -> controller.north\nmodel.east -> controller.east"),
     ("mariner", "rudder-servo", "ilos+pid-heading"): (
         (), _SERVO + _HEADING + "\nmodel.north -> controller.north\nmodel.east -> controller.east"),
+    # examples/mariner_route_lq.toml: a controller that follows the route itself
+    ("mariner", "rudder-servo", "lq-cross-track"): (
+        (), _SERVO + "\nmodel.north -> controller.north\nmodel.east -> controller.east"
+        + _HEADING + "\nmodel.sway_speed -> controller.sway_speed"),
     # test_vessels_cpp_ship
     ("cpp-ship-waves", "direct", "open-loop"): (
         ("pitch_ratio",),
@@ -141,8 +146,11 @@ def _scenario_combo(text: str) -> tuple[str, str, str]:
         return (model, "rudder-servo", controller)
     model = scn["vessel"].get("model") or _ship_model(scn["vessel"])
     if "guidance" in scn:  # the route's law steers the heading controller
+        name = scn["controller"]["model"]
+        if issubclass(get_controller(name).params_type, RouteParams):  # it follows the route
+            return (model, scn.get("actuator", {}).get("model", ActuatorSection().model), name)
         return (model, scn.get("actuator", {}).get("model", ActuatorSection().model),
-                f"{scn['guidance'].get('law', 'los')}+{scn['controller']['model']}")
+                f"{scn['guidance'].get('law', 'los')}+{name}")
     return (model,
             scn.get("actuator", {}).get("model", ActuatorSection().model),
             scn.get("controller", {}).get("model", ControllerSection().model))
