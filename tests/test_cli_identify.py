@@ -57,6 +57,26 @@ def test_points_in_degrees_give_radian_coefficients(tmp_path):
     assert data["points"][0]["rudder_angle"] == pytest.approx(math.degrees(al[0]))
 
 
+def test_the_units_block_names_the_unit_of_every_number(tmp_path):
+    """The points were printed in degrees under a units block that said rad (issue 36): the
+    block names the unit of each field, the points' in --angles, the coefficients' in rad."""
+    w, al = _exact_points()
+    for angles, scale in (("deg", math.degrees), ("rad", float)):
+        path = _points_csv(tmp_path / f"{angles}.csv", np.array([scale(x) for x in w]),
+                           np.array([scale(x) for x in al]))
+        data = json.loads(_run(path, "--angles", angles, "--json").stdout)
+        units = data["units"]
+        assert (units["rudder_angle"], units["yaw_rate"]) == (angles, f"{angles}/s")
+        assert units["a"] == "s²/rad" and units["residual_rms"] == "rad"
+        got = sorted(p["rudder_angle"] for p in data["points"])
+        assert got == pytest.approx(sorted(scale(x) for x in al))
+        for point in data["points"]:
+            assert set(point) <= set(units)
+    data = json.loads(_run(LOG, "--angles", "deg", "--json").stdout)
+    assert all(set(s) - {"samples"} <= set(data["units"]) for s in data["segments"])
+    assert data["units"]["start_time"] == "s"
+
+
 def test_time_series_log(tmp_path):
     r = _run(LOG, "--angles", "deg", "--json")
     assert r.exit_code == 0, r.output

@@ -78,7 +78,8 @@ def steady_turn(
 ) -> None:
     """Fit a, b, c of the reduced steady-turn model to turns recorded in a CSV file.
 
-    Coefficients are reported in radian units (a [s²/rad], b [s], c [s/rad]) whatever --angles.
+    Coefficients are reported in radian units (a [s²/rad], b [s], c [s/rad]) whatever --angles;
+    the steady points in the log's units (--angles), as the JSON output's units block says.
     """
     from ..errors import ParameterError
     from ..identification.fitting import fit_steady_turns
@@ -139,8 +140,12 @@ def steady_turn(
             "sides") from None
     summary = fit.to_dict()
     out.update(summary)
+    # the unit of every number below: the coefficients and residual in radians, the points
+    # and segments in the log's own --angles
     out["units"] = {n: _UNITS[n] for n in fit.form.names}
-    out["units"]["residual_rms"] = "rad"
+    out["units"].update(residual_rms="rad", rudder_angle=angles, yaw_rate=f"{angles}/s")
+    if segments is not None:
+        out["units"].update(start_time="s", end_time="s")
     out["points"] = [
         {"rudder_angle": float(a / scale), "yaw_rate": float(w / scale)}
         for a, w in zip(fit.rudder_angle, fit.yaw_rate)
