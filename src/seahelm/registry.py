@@ -18,7 +18,7 @@ from .control.base import Controller
 from .vessels.base import VesselModel
 
 __all__ = ["VESSEL_MODELS", "ACTUATORS", "CONTROLLERS", "get_model", "get_actuator",
-           "get_controller", "lookup", "model_for_params"]
+           "get_controller", "lookup", "model_for_params", "controller_signals"]
 
 VESSEL_MODELS: dict[str, str] = {
     "nomoto1": "seahelm.vessels.nomoto:NOMOTO1",
@@ -196,3 +196,55 @@ def model_for_params(params_type: type) -> VesselModel | None:
     """
     found = [m for m in map(get_model, VESSEL_MODELS) if m.params_type is params_type]
     return found[0] if len(found) == 1 else None
+
+
+@functools.lru_cache(maxsize=None)
+def _declared_units() -> dict[tuple[str, str], frozenset[str]]:
+    """The units the registered models and actuators declare, by (role, signal name): what a
+    command may feed (``"command"``: actuator command channels, model inputs) and what a
+    measurement may read (``"output"``: model outputs)."""
+    found: dict[tuple[str, str], set[str]] = {}
+    for model in map(get_model, VESSEL_MODELS):
+        for name, unit in zip(model.input_labels, model.input_units):
+            found.setdefault(("command", name), set()).add(unit)
+        for name, unit in zip(model.output_labels, model.output_units):
+            found.setdefault(("output", name), set()).add(unit)
+    for actuator in map(get_actuator, ACTUATORS):
+        for name, unit in zip(actuator.command_labels, actuator.command_units):
+            found.setdefault(("command", name), set()).add(unit)
+    return {k: frozenset(v) for k, v in found.items()}
+
+
+def controller_signals(controller: str | Controller) -> list[tuple[str, str, str]]:
+    """A controller's declared signals (:meth:`Controller.signals`) with the units of its
+    commands and measurements filled in: a controller names them, the components it is wired
+    to declare their units. A command's unit is that of the actuator channel or model input
+    of its name (``rudder_command``: rad, the rudder servo's command; ``X_command`` also
+    feeds an input ``X``), a measurement's that of the model output it reads; left blank where
+    the registered components do not agree on one unit.
+
+    Parameters
+    ----------
+    controller : str or Controller
+        A controller or its registered name.
+
+    Returns
+    -------
+    list of tuple of str
+        ``(kind, name, unit)`` per signal.
+    """
+    ctrl = get_controller(controller)
+    declared = _declared_units()
+    rows = []
+    for kind, name, unit in ctrl.signals():
+        if not unit and kind in ("command", "measurement"):
+            if kind == "command":
+                # (the wiring's rule, seahelm.simulation.composition.COMMAND_SUFFIX)
+                names = (name, name.removesuffix("_command"))
+                units = set().union(*(declared.get(("command", n), ()) for n in names))
+            else:
+                units = set(declared.get(("output", name), ()))
+            if len(units) == 1:
+                unit = units.pop()
+        rows.append((kind, name, unit))
+    return rows

@@ -98,8 +98,10 @@ def _version(value: bool) -> None:
 
 @app.callback()
 def _root(
-    version: Annotated[bool, typer.Option("--version", callback=_version, is_eager=True,
-                                          help="Print the versions of seahelm, Python and its core dependencies, and exit.")] = False,
+    version: Annotated[bool, typer.Option(
+        "--version", callback=_version, is_eager=True,
+        help="Print the versions of seahelm, Python and its core dependencies, and exit.")
+    ] = False,
 ) -> None:
     """Batched, validated ship motion simulation and control."""
 
@@ -256,7 +258,15 @@ def models(
     json_out: JsonFlag = False,
 ) -> None:
     """List the registered vessel models, actuators and controllers with their parameters."""
-    from ..registry import ACTUATORS, CONTROLLERS, VESSEL_MODELS, get_actuator, get_controller, get_model
+    from ..registry import (
+        ACTUATORS,
+        CONTROLLERS,
+        VESSEL_MODELS,
+        controller_signals,
+        get_actuator,
+        get_controller,
+        get_model,
+    )
     from ..ships import CATALOG
 
     payload: dict[str, Any] = {}
@@ -274,8 +284,9 @@ def models(
                     for i in comp.params_type.info()
                 ],
             }
+            signals = controller_signals(comp) if kind == "controllers" else comp.signals()
             payload[kind][name]["signals"] = [
-                {"kind": k, "name": n, "unit": u} for k, n, u in comp.signals()]
+                {"kind": k, "name": n, "unit": u} for k, n, u in signals]
             if getattr(comp, "passthrough", False):
                 payload[kind][name]["passthrough"] = True
     payload["catalog"] = {n: {"model": e.model.name, "provenance": e.provenance}
@@ -320,7 +331,8 @@ def models(
 @handle_errors
 def plot(
     result: Annotated[Path, typer.Argument(help="Result file written by seahelm (NetCDF).")],
-    out: Annotated[Path | None, typer.Option(help="PNG file (default: next to the result).")] = None,
+    out: Annotated[Path | None, typer.Option(
+        help="PNG file (default: next to the result).")] = None,
     runs: Annotated[list[int] | None, typer.Option(
         "--run", help="Run(s) to draw: flat run index, C order over the batch dims.")] = None,
 ) -> None:

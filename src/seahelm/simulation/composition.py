@@ -55,6 +55,9 @@ class Composition:
         (controller command j, fed directly).
     measurement_from : tuple of int
         For each controller measurement, the index of the model output it reads.
+    command_units : tuple of str
+        The unit of each controller command: that of the actuator channel or model input it
+        feeds (a controller declares its commands' names, not their units).
     """
 
     model: VesselModel
@@ -69,6 +72,7 @@ class Composition:
     actuator_command_from: tuple[int, ...]
     input_from: tuple[tuple[str, int], ...]
     measurement_from: tuple[int, ...]
+    command_units: tuple[str, ...] = ()
 
     def describe(self) -> str:
         """The wiring as text, one connection per line (for ``seahelm models`` and errors).
@@ -205,6 +209,13 @@ def compose(model: VesselModel, actuator: Actuator, controller: Controller) -> C
                 f"(model outputs: {_names(model.output_labels)})")
         meas_from.append(model.output_labels.index(name))
 
+    command_units = [""] * len(commands)  # (the unit of what each command feeds)
+    for j, k in enumerate(act_from):
+        command_units[k] = act_cmd_units[j]
+    for i, (kind, k) in enumerate(input_from):
+        if kind == "command":
+            command_units[k] = model.input_units[i]
+
     return Composition(
         model=model, actuator=actuator, controller=controller,
         commands=tuple(commands), references=tuple(references),
@@ -212,5 +223,5 @@ def compose(model: VesselModel, actuator: Actuator, controller: Controller) -> C
         actuator_commands=tuple(act_cmd), actuator_outputs=tuple(act_out),
         actuator_output_units=tuple(act_out_units),
         actuator_command_from=tuple(act_from), input_from=tuple(input_from),
-        measurement_from=tuple(meas_from),
+        measurement_from=tuple(meas_from), command_units=tuple(command_units),
     )
