@@ -130,6 +130,8 @@ def test_a_cycle_is_detected():
 #:   the package imports them from the root (:func:`test_no_module_imports_the_root_facade`);
 #: - ``_codegen`` (where generated modules live) is a basic: the engine and the guided
 #:   controllers both generate code;
+#: - ``units`` (each output's stored and display unit) is a basic: the analyses, the sweeps,
+#:   the report and the CLI all name units by it;
 #: - the components: ``vessels`` over ``actuators`` (the Mariner and MMG models use the rudder
 #:   servo), ``control`` over ``vessels`` (the catamaran's controllers read its states);
 #: - ``registry`` over the components (it types its entries with their base classes; the
@@ -144,7 +146,7 @@ def test_a_cycle_is_detected():
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("seahelm.errors",),
     ("seahelm", "seahelm.constants", "seahelm.numerics", "seahelm.versions", "seahelm._optional",
-     "seahelm._codegen", "seahelm.resources"),
+     "seahelm._codegen", "seahelm.resources", "seahelm.units"),
     ("seahelm.parameters", "seahelm._validate"),
     ("seahelm.hydrodynamics",),
     ("seahelm.actuators",),

@@ -286,11 +286,12 @@ def simulation_chunk(batch: "RunBatch", start: int, stop: int, *, series: bool =
 
     The engine's results of the runs (:meth:`~seahelm.results.SimResult.to_xarray`, flat,
     without the status text, which ``status`` and ``failure_time`` say) and their summary
-    metrics (:func:`seahelm.analysis.maneuvers.summarize`, ``kind = "metric"``); with
+    metrics (:func:`seahelm.analysis.maneuvers.summarize`, ``kind = "metric"``, each with its
+    ``units``: :func:`~seahelm.analysis.maneuvers.summary_units`); with
     ``with_attrs`` also the attributes the result carries that are the same on every call
     (model names, integrator, scenario text, ...), as ``(dataset, attrs)``.
     """
-    from ..analysis.maneuvers import summarize
+    from ..analysis.maneuvers import summarize, summary_units
     from ..scenario import run_batch
 
     result = run_batch(select_runs(batch, start, stop))
@@ -299,10 +300,12 @@ def simulation_chunk(batch: "RunBatch", start: int, stop: int, *, series: bool =
     if not series:
         ds = ds.drop_vars([v for v in ds.data_vars if "time" in ds[v].dims] + ["time"])
     rows = summarize(result)
+    units = summary_units(result, rows[0])
     for name in rows[0]:
         if name in ("run", "status"):
             continue
-        ds[name] = ("run", np.array([r[name] for r in rows], dtype=float), {"kind": "metric"})
+        ds[name] = ("run", np.array([r[name] for r in rows], dtype=float),
+                    {"kind": "metric", "units": units[name]})
     ds = ds.assign_coords(run=np.arange(start, stop))
     attrs = {k: v for k, v in ds.attrs.items() if k not in _VOLATILE}
     attrs["sweep_bytes_per_run"] = result_bytes(result) // max(result.n_runs, 1)

@@ -17,6 +17,7 @@ import numpy as np
 
 from ..analysis.statistics import metric_statistics, quantile_name
 from ..errors import ParameterError
+from ..units import metric_unit
 from .chunks import SweepSpec, auto_chunk_size, check_chunk_memory, check_chunk_size, prepared
 from .executors import executor
 from .imo import is_imo_store, store_probabilities
@@ -221,12 +222,14 @@ def summary_statistics(ds: Any) -> dict[str, Any]:
     Returns
     -------
     dict
-        ``{"n_runs", "n_ok", "n_failed", "metrics": [{"name", "where", "n", "mean", "std",
-        "min", "q05", ..., "max"}, ...]}`` (NaN written as None); simulation sweeps also
-        ``n_diverged`` (= ``n_failed``: runs whose status is not ok), manoeuvre sweeps count
-        incomplete manoeuvres as failed; an IMO check's sweep also ``imo``, the probability of
-        passing each criterion and the whole check (:func:`~seahelm.sweep.imo.
-        store_probabilities`), and counts its excluded samples as failed.
+        ``{"n_runs", "n_ok", "n_failed", "metrics": [{"name", "where", "units", "n", "mean",
+        "std", "min", "q05", ..., "max"}, ...]}`` (NaN written as None; ``units`` the
+        metric's stored unit, :func:`seahelm.units.metric_unit` for a store without it);
+        simulation sweeps also ``n_diverged`` (= ``n_failed``: runs whose status is not
+        ok), manoeuvre sweeps count incomplete manoeuvres as failed; an IMO check's sweep
+        also ``imo``, the probability of passing each criterion and the whole check
+        (:func:`~seahelm.sweep.imo.store_probabilities`), and counts its excluded samples as
+        failed.
     """
     out: dict[str, Any] = {"n_runs": int(ds.sizes["run"])}
     if "status" in ds:
@@ -244,6 +247,8 @@ def summary_statistics(ds: Any) -> dict[str, Any]:
         out["n_ok"] = out["imo"]["total"]
         out["n_failed"] = out["imo"]["excluded"]
     qnames = [quantile_name(q) for q in QUANTILES]
+    signals = {str(n): str(v.attrs["units"]) for n, v in ds.data_vars.items()
+               if "units" in v.attrs and v.attrs.get("kind") != "metric"}
     rows = []
     for name in sorted(ds.data_vars):  # (a store lists its arrays in no particular order)
         var = ds[name]
@@ -255,8 +260,10 @@ def summary_statistics(ds: Any) -> dict[str, Any]:
             where = ", ".join(f"{d}={_coord(ds, d, i)}" for d, i in zip(rest, idx))
             s = metric_statistics({name: values[(slice(None), *idx)]}, quantiles=QUANTILES,
                                   ddof=0)[name]
+            units = var.attrs.get("units")  # (a store of an older seahelm: by its name)
             row: dict[str, Any] = {"name": name, "where": where, "n": s["n"],
-                                   "units": var.attrs.get("units", "")}
+                                   "units": str(metric_unit(name, signals) if units is None
+                                                else units)}
             row.update({k: None if math.isnan(s[k]) else s[k]
                         for k in ("mean", "std", "min", "max", *qnames)})
             rows.append(row)

@@ -23,7 +23,8 @@ The IMO MSC.137(76) check on top of these is :mod:`seahelm.analysis.imo`.
 
 Metrics of recorded runs that the scenario runner uses (:mod:`.metrics`): :func:`settling_time`,
 :func:`overshoot`, :func:`turning_diameter`, :func:`rudder_reversals`,
-:func:`path_following_metrics`, :func:`summarize`.
+:func:`path_following_metrics`, :func:`summarize` (and the metrics' units:
+:func:`summary_units`).
 """
 
 from __future__ import annotations
@@ -39,6 +40,7 @@ from .metrics import (
     rudder_reversals,
     settling_time,
     summarize,
+    summary_units,
     turning_diameter,
 )
 from .pullout import pull_out
@@ -73,5 +75,6 @@ __all__ = [
     "turning_diameter",
     "rudder_reversals",
     "summarize",
+    "summary_units",
     "path_following_metrics",
 ]

@@ -9,8 +9,10 @@ from __future__ import annotations
 import numpy as np
 
 from ...constants import wrap_angle
+from ...units import metric_units
 
-__all__ = ["settling_time", "overshoot", "turning_diameter", "rudder_reversals", "summarize"]
+__all__ = ["settling_time", "overshoot", "turning_diameter", "rudder_reversals", "summarize",
+           "summary_units"]
 
 
 def settling_time(time: np.ndarray, signal: np.ndarray, target: np.ndarray | float,
@@ -197,7 +199,8 @@ def path_following_metrics(result) -> dict[str, np.ndarray]:  # noqa: ANN001 - S
     -------
     dict of str to numpy.ndarray
         ``max_abs_cross_track_error_m``, ``max_abs_cross_track_error_on_track_m``,
-        ``rms_cross_track_error_m``, ``final_cross_track_error_m``, ``time_to_complete_s`` and, with a ``rudder_angle`` state, ``mean_abs_rudder_deg`` and
+        ``rms_cross_track_error_m``, ``final_cross_track_error_m``, ``time_to_complete_s``
+        and, with a ``rudder_angle`` state, ``mean_abs_rudder_deg`` and
         ``rudder_reversals_per_min``; empty for a run without guidance.
     """
     if "cross_track_error" not in result.command_labels:
@@ -227,7 +230,7 @@ def path_following_metrics(result) -> dict[str, np.ndarray]:  # noqa: ANN001 - S
 
 def summarize(result) -> list[dict[str, float | str]]:  # noqa: ANN001 - SimResult
     """Per-run summary metrics of a :class:`~seahelm.results.SimResult` (SI units unless
-    the key says ``_deg``).
+    the key says ``_deg``; each metric's unit: :func:`summary_units`).
 
     Parameters
     ----------
@@ -277,7 +280,8 @@ def summarize(result) -> list[dict[str, float | str]]:  # noqa: ANN001 - SimResu
             row[f"final_{lab}"] = value
             if unit == "rad":
                 row[f"{lab}_deg"] = float(np.degrees(value))
-                row[f"max_abs_{lab}_deg"] = float(np.degrees(np.nanmax(np.abs(result.state[i, :, j]))))
+                row[f"max_abs_{lab}_deg"] = float(
+                    np.degrees(np.nanmax(np.abs(result.state[i, :, j]))))
         row["final_yaw_rate"] = float(yaw_rate[i, -1])
         row["final_heading_rad"] = float(heading[i, -1])
         row["turning_diameter_m"] = float(diam[i])
@@ -286,3 +290,24 @@ def summarize(result) -> list[dict[str, float | str]]:  # noqa: ANN001 - SimResu
             row[key] = float(values[i])
         out.append(row)
     return out
+
+
+def summary_units(result, keys=None) -> dict[str, str]:  # noqa: ANN001 - SimResult
+    """The unit of each summary metric of :func:`summarize` (:func:`seahelm.units.metric_unit`:
+    the unit its name says, or that of the signal it is a value of; "" for none).
+
+    Parameters
+    ----------
+    result : SimResult
+        The result the metrics are of (its signals' units).
+    keys : iterable of str, optional
+        The metric names (default: those of :func:`summarize` of ``result``'s first run).
+
+    Returns
+    -------
+    dict of str to str
+        Unit by metric name (``run`` and ``status`` excluded).
+    """
+    if keys is None:
+        keys = summarize(result)[0]
+    return metric_units((k for k in keys if k not in ("run", "status")), result.units())
