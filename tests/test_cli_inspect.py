@@ -4,6 +4,7 @@ Monte-Carlo statistics of a result file; a file that is not a seahelm result exi
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 import pytest
@@ -165,6 +166,8 @@ def test_a_manoeuvre_metrics_file(tmp_path):
 
     ds = xr.Dataset(
         {"advance": ("side", [21.559, 21.638], {"units": "m"}),
+         "speed_loss": ("side", [0.61342, 0.5], {"units": "1"}),
+         "steady_drift_angle": ("side", [math.pi / 6, -0.1], {"units": "rad"}),
          "complete": ("side", [True, True]),
          "message": ("side", np.array(["ok", "ok"], dtype=object))},
         coords={"side": [1, -1]}, attrs={"maneuver": "turning-circle", "dt": 0.05})
@@ -176,3 +179,10 @@ def test_a_manoeuvre_metrics_file(tmp_path):
     human = runner.invoke(app, ["inspect", str(path)]).stdout
     assert "turning-circle metrics, 2 run(s)" in human
     assert "advance [m]" in human and "21.638" in human
+    # the display rule of the CLI and the report: angles in degrees, fractions in per cent
+    # (inspect showed speed_loss [1] and the drift angle in rad); --json as stored
+    lines = {line.split("│")[1].strip(): line for line in human.splitlines()
+             if line.startswith("│")}
+    assert "61.342" in lines["speed loss [%]"]
+    assert "30 " in lines["steady drift angle [deg]"]
+    assert got["runs"][0]["speed_loss"] == 0.61342

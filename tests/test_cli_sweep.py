@@ -12,6 +12,7 @@ from typer.testing import CliRunner
 from conftest import one_error
 from seahelm.cli.main import app
 from seahelm.sweep import open_sweep
+from seahelm.units import metric_label
 
 from test_sweep import N_RUNS, SCENARIO
 
@@ -128,7 +129,9 @@ def test_inspect_shows_a_store_complete_or_not(scenario, tmp_path):
     assert res.exit_code == 0, res.stderr
     text = " ".join(res.stdout.split())
     assert "sweep store, complete" in text and f"statistics over {N_RUNS} run(s)" in text
-    assert swept["metrics"][0]["name"] in text
+    first = swept["metrics"][0]
+    assert metric_label(first["name"], first["units"]) in text  # (final east [m])
+    assert first["units"] == "m"
     # a chunk's marker gone: the store is incomplete, its statistics those of the rest
     (store / "sweep-chunks" / "000001").unlink()
     res = runner.invoke(app, ["inspect", str(store), "--json"])

@@ -146,3 +146,22 @@ def test_a_sweep_store_holds_each_metric_unit(report_sweep_dir):
             var.attrs.pop("units")
     assert [r["units"] for r in summary_statistics(bare)["metrics"]] == \
         [r["units"] for r in rows]
+
+
+def test_the_cli_shows_display_units_and_json_the_stored_ones(report_batch_dir):
+    """``seahelm inspect`` of a grid × Monte-Carlo result: --json gives each column's stored
+    unit; the tables label the same columns with their display units, values in them."""
+    from seahelm.cli.main import app
+
+    path = report_batch_dir / "result.nc"
+    got = json.loads(CliRunner().invoke(app, ["inspect", str(path), "--json"]).stdout)
+    units = got["units"]
+    assert units["final_heading"] == "rad" and units["settling_time_s"] == "s"
+    assert units["vessel.params.gain"] == "1/s" and units["kp"] == "rad/rad"
+    human = CliRunner().invoke(app, ["inspect", str(path)]).stdout
+    stats = got["statistics"][0]["metrics"]
+    assert "final heading [deg]" in human  # (a table's row, or its key/value line)
+    assert f"{math.degrees(stats['final_heading']['mean']):.4g}" in human
+    assert f"{stats['final_heading']['mean']:.4g}" not in human  # (not in radians)
+    assert "vessel.params.gain [1/s]" in human and "final heading rad" not in human
+    assert "heading_deg" not in human  # (the heading once, in degrees)

@@ -21,6 +21,7 @@ from ..analysis.statistics import (
     numeric_keys,
     quantile_name,
 )
+from ..units import label, metric_label, metric_unit, shown_metrics, to_display
 
 #: Rows shown in the per-run table of a batch (the JSON output has every run).
 MAX_ROWS = 20
@@ -52,28 +53,75 @@ def batch_columns(result: Any, summary: list[dict[str, Any]]) -> tuple[str, ...]
     return tuple(a.name for a in layout.axes if a.name != "sample") + tuple(values)
 
 
+def run_units(result: Any, summary: list[dict[str, Any]]) -> dict[str, str]:
+    """The stored unit of every column of a batch's summary rows: the summary metrics'
+    (:func:`seahelm.analysis.maneuvers.summary_units`), the grid coordinates' and the drawn
+    values' (as the batch layout declares them).
+
+    Parameters
+    ----------
+    result : SimResult
+        The runs.
+    summary : list of dict
+        Their summary rows (:func:`seahelm.analysis.maneuvers.summarize`).
+
+    Returns
+    -------
+    dict of str to str
+    """
+    units = result.units()
+    out = {k: metric_unit(k, units) for k in summary[0] if k not in ("run", "status")}
+    layout = result.layout
+    if layout is not None:
+        out.update({a.name: a.units for a in layout.axes})
+        out.update({v.name: v.units for v in layout.values})
+    return out
+
+
+def _shown(value: Any, unit: str, name: str) -> str:
+    """A value in its display unit (:func:`seahelm.units.to_display`), formatted."""
+    return fmt(to_display(value, unit, name)[0]) if isinstance(value, float) else fmt(value)
+
+
 def summary_table(summary: list[dict[str, Any]], title: str,
                   batch_keys: tuple[str, ...] = (), units: dict[str, str] | None = None
                   ) -> Table:
-    """One run: a metric/value table (labels with their units, :func:`metric_label`; neither
-    a filter's internal states nor an angle again in radians; the metrics the run did not
-    reach named under it); a batch: one row per run (first :data:`MAX_ROWS`), with the run's
-    grid coordinates and drawn values (``batch_keys``) as columns."""
+    """One run: a metric/value table (labels with their display units and values in them,
+    :mod:`seahelm.units`; neither a filter's internal states nor an angle again; the metrics
+    the run did not reach named under it); a batch: one row per run (first
+    :data:`MAX_ROWS`), with the run's grid coordinates and drawn values (``batch_keys``) as
+    columns.
+
+    Parameters
+    ----------
+    summary : list of dict
+        The runs' summary rows.
+    title : str
+        The table's title.
+    batch_keys : tuple of str, optional
+        The batch coordinates and drawn values in the rows (:func:`batch_columns`).
+    units : dict of str to str, optional
+        The stored unit of each column (:func:`run_units`).
+
+    Returns
+    -------
+    rich.table.Table
+    """
+    units = units or {}
     if len(summary) == 1:
         table = Table(title=title)
         table.add_column("metric")
         table.add_column("value", justify="right")
         row = summary[0]
         unreached = []
-        for key, value in row.items():
-            if key == "run" or _repeats_or_internal(key, row):
-                continue
+        for key in shown_metrics(k for k in row if k != "run"):
+            value = row[key]
             if isinstance(value, float) and math.isnan(value):
                 unreached.append(key)
                 continue
-            final = key.endswith("_deg") and f"final_{key[:-4]}" in row  # (the final value)
-            table.add_row(escape(("final " if final else "") + metric_label(key, units)),
-                          fmt(value))
+            unit = units.get(key, metric_unit(key))
+            table.add_row(escape(metric_label(key, unit) if key != "status" else key),
+                          _shown(value, unit, key))
         if unreached:
             table.caption = escape("not reached in this run: " + ", ".join(unreached)
                                    + " (every metric: --json)")
@@ -82,11 +130,18 @@ def summary_table(summary: list[dict[str, Any]], title: str,
     keys = ["run", *batch_keys, "status", "final_heading_rad", "final_yaw_rate",
             "settling_time_s"]
     for key in keys:
-        name = key if key in batch_keys else key.replace("_", " ")
+        unit = units.get(key, metric_unit(key))
+        if key in batch_keys:
+            name = label(key, to_display(None, unit, key)[1])
+        elif key in ("run", "status"):
+            name = key
+        else:
+            name = metric_label(key, unit)
         table.add_column(escape(name), justify="left" if key == "status" else "right",
                          overflow="fold", no_wrap=key == "status")
     for row in summary[:MAX_ROWS]:
-        table.add_row(*(escape(_short_status(row[k]) if k == "status" else fmt(row.get(k, "")))
+        table.add_row(*(escape(_short_status(row[k]) if k == "status"
+                               else _shown(row.get(k, ""), units.get(k, metric_unit(k)), k))
                         for k in keys))
     if len(summary) > MAX_ROWS:
         table.caption = f"first {MAX_ROWS} of {len(summary)} runs"
@@ -163,10 +218,26 @@ def monte_carlo_statistics(result: Any, summary: list[dict[str, Any]]) -> list[d
             for entry in stats]
 
 
-def statistics_tables(stats: list[dict[str, Any]], what: str = "Monte-Carlo statistics"
-                      ) -> list[Table]:
+def statistics_tables(stats: list[dict[str, Any]], what: str = "Monte-Carlo statistics",
+                      units: dict[str, str] | None = None) -> list[Table]:
     """Tables of :func:`monte_carlo_statistics` (the first :data:`MAX_STAT_TABLES` points),
-    titled ``what`` and the point."""
+    titled ``what`` and the point.
+
+    Parameters
+    ----------
+    stats : list of dict
+        The statistics per grid point.
+    what : str, optional
+        The tables' title.
+    units : dict of str to str, optional
+        The stored unit of each metric and drawn value (:func:`run_units`): the rows are
+        labelled with their display units and the statistics shown in them; without it the
+        names are shown as given (already labels).
+
+    Returns
+    -------
+    list of rich.table.Table
+    """
     tables = []
     qnames = [quantile_name(q) for q in DEFAULT_QUANTILES]
     for entry in stats[:MAX_STAT_TABLES]:
@@ -183,11 +254,21 @@ def statistics_tables(stats: list[dict[str, Any]], what: str = "Monte-Carlo stat
             if section == "metrics" and not entry["n_ok"]:
                 table.add_row("(no ok run: no metrics)")
                 continue
-            names = list(entry[section])
-            for name, s in entry[section].items():
-                table.add_row(escape(name), str(s["n"]),
-                              *(_num(s[k]) for k in ("mean", "std", *qnames)),
-                              end_section=section == "drawn" and name == names[-1])
+            items = list(entry[section].items())
+            if section == "metrics" and units is not None:
+                items = [(k, entry[section][k]) for k in shown_metrics(entry[section])]
+            for name, s in items:
+                shown = name
+                factor = 1.0
+                if units is not None:
+                    unit = units.get(name, metric_unit(name))
+                    shown_unit = to_display(None, unit, name)[1]
+                    factor = to_display(1.0, unit, name)[0]
+                    shown = (label(name, shown_unit) if section == "drawn"
+                             else metric_label(name, unit))
+                table.add_row(escape(shown), str(s["n"]),
+                              *(_num(s[k] * factor) for k in ("mean", "std", *qnames)),
+                              end_section=section == "drawn" and name == items[-1][0])
         table.caption = "min, max and more digits: --json"
         tables.append(table)
     if len(stats) > MAX_STAT_TABLES:
@@ -203,7 +284,9 @@ def _num(v: float) -> str:
 def sweep_summary_table(title: str, summary: dict[str, Any], max_rows: int = MAX_ROWS
                         ) -> tuple[Table, int]:
     """The statistics of a sweep store's metrics (its ``sweep_summary``) as ``seahelm sweep``
-    prints them: the first ``max_rows`` metrics, without empty ``where``/``units`` columns.
+    prints them: the first ``max_rows`` metrics (:func:`seahelm.units.shown_metrics`, each
+    labelled with its display unit and its statistics in it), without an empty ``where``
+    column.
 
     Parameters
     ----------
@@ -217,64 +300,30 @@ def sweep_summary_table(title: str, summary: dict[str, Any], max_rows: int = MAX
     Returns
     -------
     (rich.table.Table, int)
-        The table and the number of metrics left out.
+        The table and the number of metrics left out (beyond ``max_rows``).
     """
     table = Table(title=escape(title), title_justify="left")
-    rows = summary["metrics"][:max_rows]
-    labels = [c for c in ("where", "units") if any(r.get(c) for r in rows)]  # (no empty ones)
+    every = shown_metrics(dict.fromkeys(r["name"] for r in summary["metrics"]))
+    rows = [r for r in summary["metrics"] if r["name"] in set(every)]
+    left = len(rows) - max_rows
+    rows = rows[:max_rows]
+    where = any(r.get("where") for r in rows)  # (no empty column)
     table.add_column("metric", overflow="fold")
-    for col in labels:
-        table.add_column(col, no_wrap=True)
+    if where:
+        table.add_column("where", no_wrap=True)
     for col in ("n", "mean", "std", "q05", "q50", "q95"):
         table.add_column(col, justify="right", no_wrap=True)
     for row in rows:
-        table.add_row(escape(row["name"]), *(escape(str(row[c])) for c in labels),
-                      str(row["n"]),
-                      *(_stat(row[k]) for k in ("mean", "std", "q05", "q50", "q95")))
-    return table, max(0, len(summary["metrics"]) - max_rows)
+        unit = row.get("units") or metric_unit(row["name"])
+        factor = to_display(1.0, unit, row["name"])[0]
+        table.add_row(escape(metric_label(row["name"], unit)),
+                      *([escape(str(row["where"]))] if where else []), str(row["n"]),
+                      *(_stat(row[k], factor) for k in ("mean", "std", "q05", "q50", "q95")))
+    return table, max(0, left)
 
 
-def _stat(value: Any) -> str:
-    """A stored statistic (None or NaN where there is none: "–")."""
+def _stat(value: Any, factor: float = 1.0) -> str:
+    """A stored statistic times ``factor`` (None or NaN where there is none: "–")."""
     if value is None or (isinstance(value, float) and math.isnan(value)):
         return "–"
-    return f"{value:.4g}"
-
-
-#: Units named by a metric's suffix (``settling_time_s``: s).
-_SUFFIX_UNITS = {"_deg": "deg", "_degps": "deg/s", "_s": "s", "_m": "m", "_mps": "m/s",
-                 "_rad": "rad", "_pct": "%", "_L": "L"}
-
-
-def metric_label(key: str, units: dict[str, str] | None = None) -> str:
-    """A summary metric's label with its unit: ``settling_time_s`` → ``settling time [s]``,
-    ``final_north`` → ``final north [m]`` (the unit of the state ``north`` in ``units``).
-
-    Parameters
-    ----------
-    key : str
-        The metric's key.
-    units : dict of str to str, optional
-        Units of the result's signals by name.
-
-    Returns
-    -------
-    str
-    """
-    for suffix, unit in _SUFFIX_UNITS.items():
-        if key.endswith(suffix):
-            return f"{key[:-len(suffix)].replace('_', ' ')} [{unit}]"
-    if key.startswith("final_") and units and units.get(key[len("final_"):]):
-        return f"{key.replace('_', ' ')} [{units[key[len('final_'):]]}]"
-    return key.replace("_", " ")
-
-
-def _repeats_or_internal(key: str, row: dict[str, Any]) -> bool:
-    """A filter's internal state (``final_yaw_aux``), or an angle also given in degrees
-    (``final_heading`` beside ``heading_deg``; ``final_heading_rad``)."""
-    if key.endswith("_aux") or "_aux_" in key:
-        return True
-    if key.startswith("final_"):
-        name = key[len("final_"):].removesuffix("_rad")
-        return f"{name}_deg" in row
-    return False
+    return f"{value * factor:.4g}"

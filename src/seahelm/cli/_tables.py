@@ -116,9 +116,10 @@ def fit_table(table: Table, console: Console, width: int | None = None) -> Conso
             return label_above(table, _share(low[1:], high[1:], rest), numeric[1:])
         return key_value_lines(table)
     widths = _share(low, high, available)
-    for column, w, number in zip(columns, widths, numeric):
+    for column, w in zip(columns, widths):
+        # (a numeric column is as wide as its widest number, so no number wraps; no_wrap
+        # would crop its header instead of wrapping it: "final heading [deg]" as "final h")
         column.width = w
-        column.no_wrap = number or column.no_wrap
         column.overflow = "fold"
     return table
 

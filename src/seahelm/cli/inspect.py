@@ -28,12 +28,14 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..errors import ParameterError
+from ..units import metric_label, to_display
 from ._common import JsonFlag, console, handle_errors, input_file, print_json
 from ._runs import (
     batch_columns,
     diverged_runs,
     diverged_table,
     monte_carlo_statistics,
+    run_units,
     statistics_tables,
     status_counts,
     summary_table,
@@ -86,6 +88,7 @@ def _show_runs(result: Path, ds: Any, json_out: bool) -> None:
 
     res = result_from_dataset(ds)
     summary = summarize(res)
+    units = run_units(res, summary)
     batch_keys = batch_columns(res, summary)
     stats = monte_carlo_statistics(res, summary)
     diverged = diverged_runs(res)
@@ -100,6 +103,7 @@ def _show_runs(result: Path, ds: Any, json_out: bool) -> None:
         **status_counts(res.status),
         "diverged": diverged,
         "runs": summary,
+        "units": units,
     }
     if stats:
         payload["statistics"] = stats
@@ -128,13 +132,14 @@ def _show_runs(result: Path, ds: Any, json_out: bool) -> None:
     if diverged:
         console.print(diverged_table(diverged))
     console.print(summary_table(summary, str(metadata.get("title") or result.name), batch_keys,
-                                units=res.units()))
-    for table in statistics_tables(stats):
+                                units=units))
+    for table in statistics_tables(stats, units=units):
         console.print(table)
 
 
 def _show_metrics(result: Path, ds: Any, json_out: bool) -> None:
-    """A manoeuvre's metrics file: metadata, then one column of metrics per run."""
+    """A manoeuvre's metrics file: metadata, then one column of metrics per run (each
+    labelled with its display unit and shown in it)."""
     from ..analysis.maneuvers import metrics_rows
 
     metadata = {k: _plain(v) for k, v in ds.attrs.items()}
@@ -150,10 +155,11 @@ def _show_metrics(result: Path, ds: Any, json_out: bool) -> None:
     table.add_column("metric", no_wrap=True)
     for i in range(len(shown)):
         table.add_column(f"run {i}", justify="right", overflow="fold")
-    for key in rows[0] if rows else ():
-        units = ds[key].attrs.get("units", "") if key in ds.variables else ""
-        label = f"{key} [{units}]" if units else key
-        table.add_row(escape(label), *(escape(_cell(row.get(key, ""))) for row in shown))
+    for key in rows[0] if rows else ():  # (angles in degrees, fractions in %: seahelm.units)
+        units = str(ds[key].attrs.get("units", "")) if key in ds.variables else ""
+        table.add_row(escape(metric_label(key, units)),
+                      *(escape(_cell(to_display(row.get(key, ""), units, key)[0]))
+                        for row in shown))
     if len(rows) > MAX_METRIC_RUNS:
         table.caption = f"first {MAX_METRIC_RUNS} of {len(rows)} runs (--json has all)"
     console.print(table)
@@ -234,7 +240,7 @@ def _show_store(store: Path, json_out: bool) -> None:
 
     import numpy as np
 
-    from ..sweep.run import summary_statistics
+    from ..sweep.run import fill_summary_units, summary_statistics
     from ..sweep.store import open_sweep
     from ._runs import sweep_summary_table
 
@@ -247,9 +253,10 @@ def _show_store(store: Path, json_out: bool) -> None:
     else:
         written = np.ones(n_runs, dtype=bool)
         state = "complete"
-    summary = (json.loads(attrs["sweep_summary"]) if "sweep_summary" in attrs
-               and state == "complete"  # (a stored summary is stale once a chunk is lost)
-               else summary_statistics(ds.isel(run=np.flatnonzero(written))))
+    summary = fill_summary_units(
+        json.loads(attrs["sweep_summary"]) if "sweep_summary" in attrs
+        and state == "complete"  # (a stored summary is stale once a chunk is lost)
+        else summary_statistics(ds.isel(run=np.flatnonzero(written))), ds)
     payload = {"store": str(store), "state": state, "n_runs": n_runs,
                "n_chunks": int(attrs.get("sweep_n_chunks", 0) or 0),
                "chunk_size": int(attrs.get("sweep_chunk_size", 0) or 0),

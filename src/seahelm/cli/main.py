@@ -33,6 +33,7 @@ from ._runs import (
     diverged_runs,
     diverged_table,
     monte_carlo_statistics,
+    run_units,
     statistics_tables,
     status_counts,
     summary_table,
@@ -146,6 +147,7 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
     finally:
         bar.close()
     summary = summarize(result)
+    units = run_units(result, summary)
     batch_keys = batch_columns(result, summary)
     stats = monte_carlo_statistics(result, summary)
     files: dict[str, str] = {}
@@ -166,13 +168,14 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
     if result.n_runs == 1:
         payload.update({k: v for k, v in summary[0].items() if k != "run"})
     payload["runs"] = summary
+    payload["units"] = units
     if stats:
         payload["statistics"] = stats
     if as_json:
         print_json(payload)
     else:
-        console.print(summary_table(summary, label, batch_keys, units=result.units()))
-        for table in statistics_tables(stats):
+        console.print(summary_table(summary, label, batch_keys, units=units))
+        for table in statistics_tables(stats, units=units):
             console.print(table)
         if payload["n_diverged"]:
             console.print(diverged_table(diverged_runs(result)))

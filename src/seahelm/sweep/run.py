@@ -31,7 +31,8 @@ from .store import (
     write_chunk,
 )
 
-__all__ = ["SweepReport", "run_sweep", "summary_statistics", "QUANTILES"]
+__all__ = ["SweepReport", "run_sweep", "summary_statistics", "store_metric_units",
+           "fill_summary_units", "QUANTILES"]
 
 #: Quantiles of the summary statistics.
 QUANTILES = (0.05, 0.25, 0.5, 0.75, 0.95)
@@ -247,8 +248,7 @@ def summary_statistics(ds: Any) -> dict[str, Any]:
         out["n_ok"] = out["imo"]["total"]
         out["n_failed"] = out["imo"]["excluded"]
     qnames = [quantile_name(q) for q in QUANTILES]
-    signals = {str(n): str(v.attrs["units"]) for n, v in ds.data_vars.items()
-               if "units" in v.attrs and v.attrs.get("kind") != "metric"}
+    units = store_metric_units(ds)
     rows = []
     for name in sorted(ds.data_vars):  # (a store lists its arrays in no particular order)
         var = ds[name]
@@ -260,15 +260,57 @@ def summary_statistics(ds: Any) -> dict[str, Any]:
             where = ", ".join(f"{d}={_coord(ds, d, i)}" for d, i in zip(rest, idx))
             s = metric_statistics({name: values[(slice(None), *idx)]}, quantiles=QUANTILES,
                                   ddof=0)[name]
-            units = var.attrs.get("units")  # (a store of an older seahelm: by its name)
             row: dict[str, Any] = {"name": name, "where": where, "n": s["n"],
-                                   "units": str(metric_unit(name, signals) if units is None
-                                                else units)}
+                                   "units": units[name]}
             row.update({k: None if math.isnan(s[k]) else s[k]
                         for k in ("mean", "std", "min", "max", *qnames)})
             rows.append(row)
     out["metrics"] = rows
     return out
+
+
+def store_metric_units(ds: Any) -> dict[str, str]:
+    """The stored unit of each metric (``kind = "metric"``) of a sweep store: its ``units``
+    attribute, or for a store written before seahelm stored them, the unit its name says
+    (:func:`seahelm.units.metric_unit`, with the units of the store's signals).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep store (:func:`~seahelm.sweep.open_sweep`).
+
+    Returns
+    -------
+    dict of str to str
+    """
+    signals = {str(n): str(v.attrs["units"]) for n, v in ds.data_vars.items()
+               if "units" in v.attrs and v.attrs.get("kind") != "metric"}
+    return {str(n): str(v.attrs["units"]) if "units" in v.attrs
+            else metric_unit(str(n), signals)
+            for n, v in ds.data_vars.items() if v.attrs.get("kind") == "metric"}
+
+
+def fill_summary_units(summary: dict[str, Any], ds: Any) -> dict[str, Any]:
+    """A stored summary (:func:`summary_statistics`) with every metric's unit: a summary
+    stored by an older seahelm has blank units, filled here from :func:`store_metric_units`.
+
+    Parameters
+    ----------
+    summary : dict
+        The summary statistics (changed in place).
+    ds : xarray.Dataset
+        Its sweep store.
+
+    Returns
+    -------
+    dict
+        ``summary``.
+    """
+    units = store_metric_units(ds)
+    for row in summary.get("metrics", ()):
+        if not row.get("units"):
+            row["units"] = units.get(row["name"], "")
+    return summary
 
 
 def _coord(ds: Any, dim: str, i: int) -> str:
