@@ -31,6 +31,7 @@ from seahelm.report.signals import (
     ship_outlines,
 )
 from seahelm.results import load_result
+from seahelm.units import metric_label
 
 runner = CliRunner()
 
@@ -91,7 +92,8 @@ def test_batch_report_lists_diverged_runs_and_statistics(report_batch_dir):
     assert "(no ok run: no metrics)" in page
     assert "dimension kp" in page and "controller.params.kp = 1, 4" in page
     assert "vessel.params.gain (normal)" in page
-    assert page.count("Plotly.newPlot(") == 3  # histograms, track, time series
+    # the drawn gain's and the metrics' histograms, track, time series
+    assert page.count("Plotly.newPlot(") == 4
 
 
 def test_imo_report_has_the_criteria_and_both_manoeuvres(report_imo_dir):
@@ -124,7 +126,7 @@ def test_a_manoeuvre_without_imo_report(report_imo_dir, tmp_path):
     summary = write_report(data, tmp_path / "z.html")
     assert summary.sections == ("overview", "status", "metrics", "track", "timeseries")
     page = (tmp_path / "z.html").read_text()
-    assert "overshoot_1 [deg]" in page and "pair 1, starboard, rudder 20°, trigger 20°" in page
+    assert "overshoot 1 [deg]" in page and "pair 1, starboard, rudder 20°, trigger 20°" in page
 
 
 # ------------------------------------------------------------------------------------------
@@ -159,6 +161,11 @@ def test_a_10000_run_batch_gives_a_file_under_10_mb(report_demo_dir, tmp_path):
     assert "10000 run(s): 9700 ok, 300 diverged" in page
     assert "first 500 of 300" not in page and page.count("state out of bounds") >= 300
     assert '<section id="statistics">' in page and "over the ok runs: 9700 ok of 10000" in page
+    # the per-run table is summarised: the runs drawn in the plots, not 10,000 rows
+    runs_table = page[page.index('class="summary"'):]
+    runs_table = runs_table[:runs_table.index("</table>")]
+    assert runs_table.count("<tr>") == 1 + MAX_RUNS_PLOTTED
+    assert f"{MAX_RUNS_PLOTTED} of {n} runs: those drawn in the plots" in page
 
 
 def test_plotted_runs_spread_and_diverged_first():
@@ -282,7 +289,7 @@ def test_run_report_of_a_maneuver_scenario(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == [
         "report.html", "turning-circle-metrics.nc", "turning-circle-runs.nc"]
     page = (tmp_path / "report.html").read_text()
-    assert "tactical_diameter [m]" in page and "rudder 20°, starboard" in page
+    assert "tactical diameter [m]" in page and "rudder 20°, starboard" in page
     assert page.count("Plotly.newPlot(") == 2
 
 
@@ -317,8 +324,8 @@ def test_metrics_along_a_dimension_of_their_own_get_a_table(tmp_path):
     summary = write_report(data, tmp_path / "s.html")
     assert summary.sections == ("overview", "metrics") and summary.n_runs == 0
     page = (tmp_path / "s.html").read_text()
-    assert "step_rudder [deg]" in page and "yaw_rate [deg/s]" in page and "per step" in page
-    assert "yaw_rate_1" not in page and "loop_width [deg]" in page
+    assert "step rudder [deg]" in page and "yaw rate [deg/s]" in page and "per step" in page
+    assert "yaw rate 1" not in page and "loop width [deg]" in page
 
 
 def test_a_sweep_store_report(report_sweep_dir):
@@ -335,11 +342,95 @@ def test_a_sweep_store_report(report_sweep_dir):
     stored = json.loads(store_attrs(report_sweep_dir / "sweep.zarr")["sweep_summary"])
     assert f"{stored['n_ok']} ok, {stored['n_failed']} failed of 10 runs" in html_text
     assert stored["n_failed"] == 5  # kp = 4 leaves the bounds in every sample
-    for m in stored["metrics"][:3]:
-        assert f"<td>{m['name']}</td>" in html_text
+    for m in stored["metrics"][:3]:  # (labelled in words, with the display unit)
+        assert f"<td>{metric_label(m['name'], m['units'])}</td>" in html_text
     assert any(isinstance(b, dict) for b in sec.blocks)  # the histograms
     assert (report_sweep_dir / "report.html").stat().st_size < 10e6
     # a directory that is not a sweep store: a clear error, exit 2, nothing written
     (report_sweep_dir / "other").mkdir(exist_ok=True)
     assert "not a sweep store" in one_error(["report", str(report_sweep_dir / "other")])
     assert not (report_sweep_dir / "other.html").exists()
+
+
+# ------------------------------------------------------------------------------------------
+# what a person sees (issue 36): counts, units, drawn inputs, no empty column
+# ------------------------------------------------------------------------------------------
+def _tables(page: str, cls: str) -> list[tuple[list[str], list[list[str]]]]:
+    """The header and body cells of every table of class ``cls`` in a page (tags removed)."""
+    out = []
+    for match in re.finditer(rf'<table class="{cls}">(.*?)</table>', page, re.S):
+        body = match.group(1)
+        head = [re.sub(r"<[^>]+>", "", h) for h in re.findall(r"<th>(.*?)</th>", body)]
+        rows = [[re.sub(r"<[^>]+>", "", c) for c in re.findall(r"<td[^>]*>(.*?)</td>", r)]
+                for r in re.findall(r"<tr[^>]*>(.*?)</tr>", body.split("<tbody>")[1])]
+        out.append((head, rows))
+    return out
+
+
+def test_the_per_run_table_shows_drawn_values_and_display_units(report_batch_dir):
+    """A grid × Monte-Carlo batch: each run's drawn gain beside its metrics, every metric
+    labelled with its display unit (angles in degrees), an angle once, no column that is
+    blank in every row."""
+    page = (report_batch_dir / "report.html").read_text()
+    ds = load_result(report_batch_dir / "result.nc")
+    gains = np.asarray(ds["vessel.params.gain"].values).reshape(-1)
+    heading = np.degrees(np.asarray(ds["heading"].values)[..., -1].reshape(-1))
+    [(head, rows)] = _tables(page, "summary")
+    assert head[:2] == ["run", "vessel.params.gain [1/s]"] and "status" in head
+    assert "final heading [deg]" in head and "final yaw rate [deg/s]" in head
+    for hidden in ("heading [deg]", "final heading rad", "final yaw aux", "final heading [rad]"):
+        assert hidden not in head, hidden
+    assert len(rows) == gains.size == 10
+    col = head.index("final heading [deg]")
+    for row in rows:
+        i = int(row[0].split()[1])
+        assert float(row[1]) == pytest.approx(gains[i], rel=1e-3)
+        if row[head.index("status")] == "ok":
+            assert float(row[col]) == pytest.approx(heading[i], rel=1e-3)
+    for k, name in enumerate(head):
+        assert any(r[k].strip() not in ("", "—") for r in rows), name  # filled, or omitted
+    assert "not reached in any run: turning_diameter_m" in page
+    # the drawn inputs: their statistics (over all runs, ok or not) and their histogram
+    [(drawn_head, drawn_rows)] = _tables(page, "statistics drawn")
+    assert drawn_head[0] == "drawn input" and drawn_rows[0][0] == "vessel.params.gain [1/s]"
+    assert drawn_rows[0][1] == "10" and float(drawn_rows[0][2]) == pytest.approx(
+        gains.mean(), rel=1e-3)
+    stats = page[page.index('<section id="statistics">'):]
+    stats = stats[:stats.index("</section>")]
+    assert stats.count("Plotly.newPlot(") == 2  # the drawn inputs' and the metrics'
+
+
+def test_a_store_report_counts_every_run_of_the_store(report_sweep_dir, monkeypatch):
+    """The runs read for the plots are not the store's runs ("Run status: 200 run(s)" was
+    shown for a 10,000-run store): the counts are the store's, the notes say what is drawn."""
+    import seahelm.report.inputs as inputs
+    from seahelm.report import report_html
+
+    monkeypatch.setattr(inputs, "MAX_SWEEP_RUNS", 4)
+    data = load_report_data(report_sweep_dir / "sweep.zarr")
+    assert data.sets[0].n_runs == 4 and data.sets[0].n_source == 10 and data.n_runs == 10
+    page, _ = report_html(data)
+    assert "10 run(s): 5 ok, 5 diverged" in page
+    assert "of the first 4 of 10 runs drawn (the runs read from the store" in page
+    diverged = _tables(page, "diverged")[0][1]
+    assert len(diverged) == 5 and all(r[0].startswith("run ") for r in diverged)
+    assert {int(r[0].split()[1]) for r in diverged} == {5, 6, 7, 8, 9}  # (the store's indices)
+
+
+def test_a_store_report_shows_units_and_drawn_inputs(report_sweep_dir):
+    """The sweep's statistics: unit in each label (the unit column was empty), values in the
+    display unit, no empty "where" column; the drawn gain's statistics and histogram."""
+    page = (report_sweep_dir / "report.html").read_text()
+    stored = json.loads(load_report_data(report_sweep_dir / "sweep.zarr").sweep
+                        .attrs["sweep_summary"])
+    tables = _tables(page, "statistics")
+    head, rows = tables[0]
+    assert head[:3] == ["metric", "n", "mean"] and "where" not in head and "unit" not in head
+    by_label = {r[0]: r for r in rows}
+    heading = next(m for m in stored["metrics"] if m["name"] == "final_heading")
+    assert heading["units"] == "rad"
+    assert float(by_label["final heading [deg]"][2]) == pytest.approx(
+        math.degrees(heading["mean"]), rel=1e-3)
+    assert not any(k.startswith(("heading [deg]", "final heading [rad]")) for k in by_label)
+    [(drawn_head, drawn_rows)] = _tables(page, "statistics drawn")
+    assert drawn_rows[0][0] == "vessel.params.gain [1/s]" and drawn_rows[0][1] == "10"

@@ -48,10 +48,12 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = ["SimResult", "atomic_write", "write_together", "write_netcdf", "netcdf_bytes",
            "open_result_file", "load_result", "flatten_runs", "batch_dims",
-           "CorruptResultError"]
+           "CorruptResultError", "STATUS_TEXT"]
 
 _STATUS_TEXT = {0: "ok", 1: "diverged: non-finite state", 2: "diverged: state out of bounds",
                 3: "not run: no initial state (its steady approach was not found)"}
+#: What each status code says (a run's message without its time; a sweep store keeps codes).
+STATUS_TEXT = _STATUS_TEXT
 
 
 _TOGETHER: "contextvars.ContextVar[list[tuple[str, Path]] | None]" = contextvars.ContextVar(

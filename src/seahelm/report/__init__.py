@@ -3,10 +3,14 @@
 ``write_report(source, target)`` reads a result file and its companions
 (:mod:`~seahelm.report.inputs`), builds the sections from their Datasets
 (:mod:`~seahelm.report.sections`: scenario and run metadata, per-run status, IMO criteria,
-metrics, batch statistics, track with hull outlines, time series) and writes them as one HTML
-page with plotly.js and all data inlined (:mod:`~seahelm.report.html`), atomically. A large
-batch is summarised (:mod:`~seahelm.report.signals`): at most 20 runs drawn, time series
-decimated to 2000 samples, the batch as a 5-95 % band and histograms.
+metrics; :mod:`~seahelm.report.batch`: a batch's per-run table, statistics and drawn inputs,
+a sweep store; track with hull outlines, time series) and writes them as one HTML page with
+plotly.js and all data inlined (:mod:`~seahelm.report.html`), atomically. Every value is
+shown by the display rule of :mod:`seahelm.units` (angles in degrees, fractions in per cent),
+labelled with its unit. A large batch is summarised (:mod:`~seahelm.report.signals`): at most
+20 runs drawn and listed in the per-run table, time series decimated to 2000 samples, the
+batch as a 5-95 % band, statistics and histograms; no table is wider than the page at
+1,280 px.
 
 plotly is imported only when a report is built.
 """
@@ -42,7 +46,7 @@ class ReportSummary:
     sections : tuple of str
         The section ids, in page order.
     n_runs : int
-        Runs covered (over all batches).
+        Runs covered (over all batches; a sweep store's runs, not only those plotted).
     sources : tuple of str
         The files read.
     """

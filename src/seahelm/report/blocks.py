@@ -13,8 +13,8 @@ import numpy as np
 
 from .inputs import ReportData, RunSet
 
-__all__ = ["Section", "escape", "fmt", "table", "paragraph", "set_title", "section_id",
-           "run_attrs"]
+__all__ = ["Section", "escape", "fmt", "table", "paragraph", "subheading", "set_title",
+           "section_id", "run_attrs"]
 
 
 @dataclasses.dataclass
@@ -55,8 +55,8 @@ def escape(value: Any) -> str:
 
 
 def fmt(value: Any, digits: int = 5) -> str:
-    """A number in ``digits`` significant digits (— for NaN), a bool as yes/no; anything else
-    as text.
+    """A number in ``digits`` significant digits (— for NaN and None), a bool as yes/no;
+    anything else as text.
 
     Parameters
     ----------
@@ -69,6 +69,8 @@ def fmt(value: Any, digits: int = 5) -> str:
     -------
     str
     """
+    if value is None:
+        return "—"
     if isinstance(value, (bool, np.bool_)):
         return "yes" if value else "no"
     if isinstance(value, (float, np.floating)):
@@ -79,8 +81,9 @@ def fmt(value: Any, digits: int = 5) -> str:
 
 
 def table(header: Sequence[str] | None, rows: Sequence[Sequence[Any]], *, cls: str = "",
-          row_classes: Sequence[str] | None = None, caption: str = "") -> str:
-    """An HTML table, every cell escaped (numbers formatted by :func:`fmt`, right-aligned).
+          row_classes: Sequence[str] | None = None, caption: str = "", digits: int = 5) -> str:
+    """An HTML table, every cell escaped (numbers formatted by :func:`fmt`, right-aligned; a
+    heading may break after a dot, so that a key path such as ``vessel.params.gain`` wraps).
 
     Parameters
     ----------
@@ -94,18 +97,21 @@ def table(header: Sequence[str] | None, rows: Sequence[Sequence[Any]], *, cls: s
         A CSS class per row.
     caption : str, optional
         A caption under the table.
+    digits : int, optional
+        Significant digits of the numbers (default 5).
 
     Returns
     -------
     str
     """
-    head = "".join(f"<th>{escape(h)}</th>" for h in header or ())
+    head = "".join(f"<th>{escape(h).replace('.', '.<wbr>')}</th>" for h in header or ())
     body = []
     for i, row in enumerate(rows):
         rc = f' class="{escape(row_classes[i])}"' if row_classes and row_classes[i] else ""
         cells = "".join(
-            f'<td class="num">{escape(fmt(v))}</td>' if isinstance(v, (int, float, np.number))
-            and not isinstance(v, (bool, np.bool_)) else f"<td>{escape(fmt(v))}</td>"
+            f'<td class="num">{escape(fmt(v, digits))}</td>'
+            if (isinstance(v, (int, float, np.number)) and not isinstance(v, (bool, np.bool_)))
+            or v is None else f"<td>{escape(fmt(v, digits))}</td>"
             for v in row)
         body.append(f"<tr{rc}>{cells}</tr>")
     cap = f"<caption>{escape(caption)}</caption>" if caption else ""
@@ -131,6 +137,21 @@ def paragraph(text: str, cls: str = "") -> str:
     """
     klass = f' class="{escape(cls)}"' if cls else ""
     return f"<p{klass}>{escape(text)}</p>"
+
+
+def subheading(text: str) -> str:
+    """A heading within a section.
+
+    Parameters
+    ----------
+    text : str
+        The heading.
+
+    Returns
+    -------
+    str
+    """
+    return f"<h3>{escape(text)}</h3>"
 
 
 def set_title(run_set: RunSet, data: ReportData) -> str:

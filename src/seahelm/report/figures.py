@@ -132,7 +132,12 @@ def typed_array(values: Any) -> dict[str, str]:
 def _note_for(run_set: RunSet, shown: np.ndarray, stride_note: str, *, band: bool) -> str:
     n = run_set.n_runs
     parts = []
-    if shown.size < n:
+    if run_set.n_source:  # (a sweep store: the runs read for the plots, not all)
+        parts.append(f"{shown.size} of the first {n} of {run_set.n_source} runs drawn (the "
+                     "runs read from the store for the plots; spread over them, diverged runs "
+                     "first)" + (f"; the band is the 5–95 % range over those {n} runs' ok ones"
+                                 if band else ""))
+    elif shown.size < n:
         parts.append(f"{shown.size} of {n} runs drawn (spread over the batch, diverged runs "
                      "first)" + ("; the band is the 5–95 % range over all ok runs"
                                  if band else ""))

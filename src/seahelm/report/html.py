@@ -23,6 +23,7 @@ body { font-family: system-ui, -apple-system, "Segoe UI", sans-serif; margin: 0 
 header { border-bottom: 2px solid #345; margin-bottom: 1em; }
 h1 { font-size: 1.5em; margin: .8em 0 .3em; }
 h2 { font-size: 1.2em; margin-top: 1.6em; border-bottom: 1px solid #ccc; }
+h3 { font-size: 1em; margin: 1.2em 0 .3em; }
 nav a { margin-right: 1em; }
 div.table { overflow-x: auto; }
 table { border-collapse: collapse; margin: .6em 0; font-size: .9em; }

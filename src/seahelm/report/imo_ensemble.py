@@ -1,6 +1,7 @@
 """The report section of an IMO check under uncertainty: the probability of passing each
 criterion and the whole check with its Wilson interval, the excluded samples with their
-reasons, and the distribution of every criterion's value against its limit.
+reasons, the distribution of every criterion's value against its limit, and the values drawn
+for the samples.
 
 From either input that holds an ensemble's check: the file ``imo-probabilities.nc``
 (:mod:`seahelm.analysis.imo_ensemble`; the probabilities as stored) or a sweep store of an
@@ -97,6 +98,12 @@ def ensemble_sections(data: ReportData) -> list[Section]:
         sec.blocks.append(paragraph("the counted samples' values of each criterion "
                                     "(the limit in the table above)"))
         sec.blocks.append(fig)
+    if data.imo_ensemble is not None:  # (a store's drawn inputs are in its sweep section)
+        from .batch import drawn_blocks, drawn_values
+
+        drawn = drawn_values(data.imo_ensemble)
+        sec.blocks.extend(drawn_blocks(drawn, f"all {len(next(iter(drawn.values()))[0])} "
+                                              "samples (counted or not)" if drawn else ""))
     return [sec]
 
 

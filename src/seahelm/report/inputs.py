@@ -61,16 +61,20 @@ class RunSet:
         A manoeuvre's metrics over its batch dims (None for a simulation).
     shaped : xarray.Dataset or None
         The runs as written (the batch's own dims), for the summary metrics.
+    n_source : int or None
+        The runs of the source when ``runs`` holds only some of them (a sweep store's first
+        :data:`MAX_SWEEP_RUNS`); None when it holds all.
     """
 
     name: str
     runs: "xr.Dataset | None"
     metrics: "xr.Dataset | None" = None
     shaped: "xr.Dataset | None" = None
+    n_source: int | None = None
 
     @property
     def n_runs(self) -> int:
-        """Number of runs (0 without time series)."""
+        """Number of runs held (0 without time series)."""
         return 0 if self.runs is None else int(self.runs.sizes["run"])
 
     @functools.cached_property
@@ -118,7 +122,10 @@ class ReportData:
 
     @property
     def n_runs(self) -> int:
-        """Runs over all sets."""
+        """Runs the report covers: a sweep store's (not only those read for the plots), else
+        those of all sets."""
+        if self.sweep is not None:
+            return int(self.sweep.sizes["run"])
         return sum(s.n_runs for s in self.sets)
 
 
@@ -321,6 +328,10 @@ def _sweep_data(path: Path) -> ReportData:
     if flat.sizes.get("run", 0) == 0:
         raise ParameterError(f"{path}: the sweep store holds no runs")
     per_run = flat[[v for v in flat.data_vars if "time" not in flat[v].dims]].load()
+    from ..sweep.run import store_metric_units
+
+    for name, unit in store_metric_units(flat).items():  # (an older store: by their names)
+        per_run[name].attrs.setdefault("units", unit)
     title = str(flat.attrs.get("title") or flat.attrs.get("sweep_title") or path.name)
     sets: tuple[RunSet, ...] = ()
     if "time" in flat.dims and "status" in flat and "state_labels" in flat.attrs:
@@ -332,7 +343,9 @@ def _sweep_data(path: Path) -> ReportData:
             done = np.arange(n)
         if done.size:
             runs = flat.isel(run=done).load()
-            sets = (RunSet("result", runs, None, None),)
+            total = int(flat.sizes["run"])
+            sets = (RunSet("result", runs, None, None,
+                           n_source=total if total > done.size else None),)
     return ReportData(title=f"Sweep: {title}", sets=sets, sources=(str(path),), sweep=per_run)
 
 

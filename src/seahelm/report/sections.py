@@ -5,37 +5,44 @@ A section (:class:`~seahelm.report.blocks.Section`) is a title and a list of blo
 (:mod:`seahelm.report.figures`). Each builder in :data:`SECTIONS` takes the report data and
 returns its sections (none when the data has nothing for it), so a new kind of result (e.g. the
 statistics of a sweep store) is one more builder. This module holds the tabular sections --
-scenario and run metadata, per-run status, IMO criteria, metrics, batch statistics -- and the
-page order.
+scenario and run metadata, per-run status, IMO criteria, a manoeuvre's metrics -- and the page
+order; a batch's per-run table and statistics and a sweep store's section are in
+:mod:`~seahelm.report.batch`.
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
-from .blocks import Section, escape, fmt, paragraph, run_attrs, section_id, set_title, table
-from .figures import histogram_figure, timeseries_sections, track_sections
+from ..units import metric_label, to_display
+from .batch import (
+    MAX_COLUMN_RUNS,
+    row_tables,
+    run_table_blocks,
+    statistics_blocks,
+    statistics_sections,
+    sweep_sections,
+)
+from .blocks import Section, escape, fmt, paragraph, run_attrs, set_title, table
+from .figures import timeseries_sections, track_sections
 from .imo_ensemble import ensemble_sections
 from .inputs import ReportData, RunSet
-from .signals import coordinate_text, run_labels
+from .signals import run_labels
 
-__all__ = ["Section", "SECTIONS", "build_sections", "MAX_STATUS_ROWS", "MAX_TABLE_RUNS"]
+__all__ = ["Section", "SECTIONS", "build_sections", "MAX_STATUS_ROWS", "MAX_TABLE_RUNS",
+           "statistics_sections", "sweep_sections"]
 
 #: Diverged runs listed one per row (the counts cover all).
 MAX_STATUS_ROWS = 500
-#: Runs of the per-run summary table.
+#: Runs of a manoeuvre's metrics table with a row per run (a spiral's steps, a batch).
 MAX_TABLE_RUNS = 200
-#: Up to this many runs, the summary and metrics tables have a column per run (else a row per
-#: run).
-MAX_COLUMN_RUNS = 6
-#: Grid points of a grid × Monte-Carlo batch whose statistics are shown.
-MAX_STAT_GROUPS = 6
-#: A batch this large (or any Monte-Carlo batch) gets the statistics section.
-STATISTICS_MIN_RUNS = 10
+#: A manoeuvre batch of more runs is listed in part (its first :data:`MAX_LISTED_OF_MANY`
+#: runs) with the statistics of all.
+MAX_LISTED = 50
+MAX_LISTED_OF_MANY = 20
 
 #: Run metadata shown first, in this order (attribute, label, unit).
 _METADATA = (("title", "title", ""), ("maneuver", "manoeuvre", ""),
@@ -84,8 +91,9 @@ def overview_sections(data: ReportData) -> list[Section]:
                                  f"{fmt(float(time[-1] - time[0]), 6)} s"])
             rows.extend(_batch_rows(run_set.shaped, dims))
         title = set_title(run_set, data)
-        sec.blocks.append(table(["", title] if title else None,
-                                [[k, str(v)] for k, v in rows], cls="meta"))
+        if rows:  # (a sweep's runs: their metadata is the store's, in its own section)
+            sec.blocks.append(table(["", title] if title else None,
+                                    [[k, str(v)] for k, v in rows], cls="meta"))
         text = attrs.get("scenario_text")
         if text:
             sec.blocks.append(f"<details><summary>scenario text ({len(str(text).splitlines())}"
@@ -108,9 +116,7 @@ def _batch_rows(ds: Any, dims: tuple[str, ...]) -> list[list[Any]]:
         if dim in ds.coords and ds[dim].ndim == 1:
             c = ds[dim]
             units = str(c.attrs.get("units", ""))
-            values = np.asarray(c.values)
-            if units == "rad":
-                values, units = np.degrees(values), "deg"
+            values, units = to_display(np.asarray(c.values), units, dim)
             key = c.attrs.get("key", "")
             text = ", ".join(fmt(v) for v in values.tolist()[:50])
             if values.size > 50:
@@ -126,16 +132,20 @@ def _batch_rows(ds: Any, dims: tuple[str, ...]) -> list[list[Any]]:
 
 
 def status_sections(data: ReportData) -> list[Section]:
-    """Per-run status: counts by status and every diverged run with its time and reason."""
+    """Per-run status: counts by status and every diverged run with its time and reason (of
+    every run written to a sweep store, not only of those read for the plots)."""
     sec = Section("status", "Run status")
-    for run_set in data.sets:
-        if run_set.runs is None:
-            continue
-        runs = run_set.runs
+    sources = [(s.name, s.runs) for s in data.sets if s.runs is not None]
+    sweep = data.sweep
+    if sweep is not None and "status" in sweep:
+        written = (np.asarray(sweep["complete"].values).reshape(sweep.sizes["run"], -1)
+                   .all(axis=1) if "complete" in sweep else np.ones(sweep.sizes["run"], bool))
+        sources = [("store", sweep.isel(run=np.flatnonzero(written)))]
+    for name, runs in sources:
         status = np.asarray(runs["status"].values).reshape(-1)
         n = status.size
         n_bad = int((status != 0).sum())
-        prefix = f"{run_set.name}: " if len(data.sets) > 1 else ""
+        prefix = f"{name}: " if len(sources) > 1 else ""
         sec.blocks.append(paragraph(f"{prefix}{n} run(s): {n - n_bad} ok, {n_bad} diverged",
                              cls="status-line " + ("bad" if n_bad else "good")))
         if not n_bad:
@@ -161,10 +171,12 @@ def status_sections(data: ReportData) -> list[Section]:
 
 
 def _reasons(runs: Any, status: np.ndarray) -> list[str]:
+    from ..results import STATUS_TEXT
+
     if "status_message" in runs:
         messages = [str(m) for m in np.asarray(runs["status_message"].values).reshape(-1)]
-    else:
-        messages = ["ok" if s == 0 else f"status {s}" for s in status]
+    else:  # (a sweep store keeps the codes)
+        messages = [STATUS_TEXT.get(int(s), f"status {s}") for s in status]
     return [m.split(" at t = ")[0].removeprefix("diverged: ") for m in messages]
 
 
@@ -186,14 +198,16 @@ def imo_sections(data: ReportData) -> list[Section]:
     for i in range(imo.sizes["row"]):
         r = {k: imo[k].values[i].item() for k in imo.data_vars}
         unit = r["unit"]
-        values = [r["value"], r["limit"], r["margin"]]
-        if unit == "rad":
-            values, unit = [math.degrees(v) for v in values], "deg"
+        shown = [to_display(r[k], unit) for k in ("value", "limit", "margin")]
+        values, unit = [v for v, _ in shown], shown[0][1]
         rows.append([r["ability"], r["criterion"], r["side"], *values, unit, r["status"],
                      r["note"]])
         classes.append({"pass": "pass", "fail": "fail"}.get(r["status"], "not-evaluated"))
-    sec.blocks.append(table(["ability", "criterion", "side", "value", "limit", "margin", "unit",
-                             "status", "note"], rows, cls="imo", row_classes=classes))
+    header = ["ability", "criterion", "side", "value", "limit", "margin", "unit", "status",
+              "note"]
+    if not any(str(r[-1]).strip() for r in rows):  # (no column of blanks)
+        header, rows = header[:-1], [r[:-1] for r in rows]
+    sec.blocks.append(table(header, rows, cls="imo", row_classes=classes))
     notes = [n for n in str(a.get("notes", "")).splitlines() if n]
     if notes:
         sec.blocks.append("<ul class='notes'>" + "".join(f"<li>{escape(n)}</li>" for n in notes)
@@ -202,17 +216,19 @@ def imo_sections(data: ReportData) -> list[Section]:
 
 
 def metrics_sections(data: ReportData) -> list[Section]:
-    """A manoeuvre's metrics (one column per run) or a simulation's per-run summary."""
+    """A manoeuvre's metrics (one column per run; a row per run in a large batch, with their
+    statistics) or a simulation's per-run summary (:func:`~seahelm.report.batch.
+    run_table_blocks`); every metric labelled with its display unit and shown in it."""
     sec = Section("metrics", "Metrics")
     for run_set in data.sets:
         if run_set.metrics is not None:
             sec.blocks.extend(_maneuver_metrics(run_set, data))
         elif run_set.shaped is not None:
-            sec.blocks.extend(_summary_metrics(run_set))
+            sec.blocks.extend(run_table_blocks(run_set))
     return [sec] if sec.blocks else []
 
 
-def _maneuver_metrics(run_set: RunSet, data: ReportData) -> list[str]:
+def _maneuver_metrics(run_set: RunSet, data: ReportData) -> list[Any]:
     from ..analysis.maneuvers import metrics_rows
 
     m = run_set.metrics
@@ -237,32 +253,29 @@ def _maneuver_metrics(run_set: RunSet, data: ReportData) -> list[str]:
         if base in long_vars:
             continue
         units = str(m[base].attrs.get("units", "")) if base in m.variables else ""
-        values = [row.get(key) for row in rows]
-        if units in ("rad", "rad/s"):
-            values = [math.degrees(v) if isinstance(v, float) else v for v in values]
-            units = {"rad": "deg", "rad/s": "deg/s"}[units]
+        values = [to_display(row.get(key), units, key)[0] for row in rows]
         if key == "complete":
             values = [bool(v) for v in values]
-        out_rows.append([f"{key} [{units}]" if units else key, *values])
+        out_rows.append([metric_label(key, units), *values])
     caption = f"{run_set.name}: {len(rows)} run(s)"
     if len(rows) <= MAX_COLUMN_RUNS:  # metrics down, runs across
         return [table(["metric", *labels], out_rows, cls="metrics", caption=caption),
                 *long_tables]
-    shown = min(len(rows), MAX_TABLE_RUNS)  # runs down (a spiral's steps, a large batch)
+    # runs down (a spiral's steps, a batch): a large batch's first runs and its statistics
+    many = len(rows) > MAX_LISTED
+    shown = min(len(rows), MAX_LISTED_OF_MANY if many else MAX_TABLE_RUNS)
     if shown < len(rows):
-        caption += f"; the first {shown} shown"
-    return [table(["run", *(r[0] for r in out_rows)],
-                  [[labels[j], *(r[j + 1] for r in out_rows)] for j in range(shown)],
-                  cls="metrics", caption=caption)]
-
-
-def _display(var: Any) -> tuple[str, np.ndarray]:
-    """A variable's values and units for a table (radians in degrees)."""
-    units = str(var.attrs.get("units", ""))
-    values = np.asarray(var.values)
-    if units in ("rad", "rad/s") and values.dtype.kind == "f":
-        return units.replace("rad", "deg"), np.degrees(values)
-    return units, values
+        caption += f"; the first {shown} shown, the statistics below cover all"
+    out: list[Any] = row_tables([("run", labels)], [(r[0], r[1:]) for r in out_rows],
+                                range(shown), caption, cls="metrics")
+    numeric = {r[0]: np.asarray(r[1:], dtype=float) for r in out_rows
+               if r[0] != "complete" and all(isinstance(v, (int, float))
+                                             and not isinstance(v, bool) for v in r[1:])}
+    if many and numeric:
+        ok = np.array([bool(row.get("complete", True)) for row in rows])
+        out.extend(statistics_blocks(numeric, ok, f"the {int(ok.sum())} complete of "
+                                                  f"{len(rows)} runs"))
+    return out
 
 
 def _long_dim_tables(m: Any, batch: list[str]) -> tuple[list[str], set[str]]:
@@ -276,9 +289,9 @@ def _long_dim_tables(m: Any, batch: list[str]) -> tuple[list[str], set[str]]:
             continue
         header, data = [dim], [np.arange(m.sizes[dim])]
         for name, var in columns:
-            units, values = _display(var)
-            header.append(f"{name} [{units}]" if units else name)
-            data.append(values)
+            units = str(var.attrs.get("units", ""))
+            header.append(metric_label(name, units))
+            data.append(to_display(np.asarray(var.values), units, name)[0])
             names.add(name)
         out.append(table(header, [[_plain(col[i]) for col in data]
                                   for i in range(m.sizes[dim])],
@@ -295,169 +308,8 @@ def _coord_label(key: str, value: Any, ds: Any) -> str:
     if key == "side" and value in (1, -1):
         return "starboard" if value == 1 else "port"
     if units == "rad" and isinstance(value, float):
-        return f"{key} {math.degrees(value):.4g}°"
+        return f"{key} {to_display(value, units)[0]:.4g}°"
     return f"{key} {fmt(value, 4)}"
-
-
-def _summary_metrics(run_set: RunSet) -> list[str]:
-    summary = run_set.summary
-    if not summary:
-        return []
-    labels = run_labels(run_set.runs)
-    keys = [k for k in summary[0] if k != "run"]
-    if len(summary) <= MAX_COLUMN_RUNS:  # metrics down, runs across
-        return [table(["metric", *labels[:len(summary)]],
-                      [[k.replace("_", " "), *(row.get(k, "") for row in summary)]
-                       for k in keys], cls="summary")]
-    shown = summary[:MAX_TABLE_RUNS]
-    caption = "" if len(summary) <= MAX_TABLE_RUNS else (
-        f"first {MAX_TABLE_RUNS} of {len(summary)} runs (the statistics below cover all)")
-    return [table(["run", *(k.replace("_", " ") for k in keys)],
-                  [[labels[i], *(row.get(k, "") for k in keys)] for i, row in enumerate(shown)],
-                  cls="summary", caption=caption)]
-
-
-def _grid_labels(shaped: Any, n_runs: int) -> list[str]:
-    """Each run's grid point label of a Monte-Carlo batch (its batch dims other than
-    ``sample``, by their coordinates); "" for every run otherwise."""
-    from ..result_layout import batch_dims
-
-    dims = batch_dims(shaped)
-    others = [k for k, d in enumerate(dims) if d != "sample"] if "sample" in dims else []
-    if not others:
-        return [""] * n_runs
-    index = np.unravel_index(np.arange(n_runs), [shaped.sizes[d] for d in dims])
-    labels = []
-    for i in range(n_runs):
-        parts = []
-        for k in others:
-            d, j = dims[k], int(index[k][i])
-            if d in shaped.coords and shaped[d].ndim == 1:
-                c = shaped[d]
-                parts.append(coordinate_text(d, c.values[j].item(), str(c.attrs.get("units", ""))))
-            else:
-                parts.append(f"{d} {j}")
-        labels.append(", ".join(parts))
-    return labels
-
-
-def statistics_sections(data: ReportData) -> list[Section]:
-    """Distribution of the summary metrics over the ok runs of a large or Monte-Carlo batch,
-    per grid point of a grid × Monte-Carlo batch (the first :data:`MAX_STAT_GROUPS`):
-    quantile tables and histograms (:func:`seahelm.analysis.statistics.batch_statistics`)."""
-    from ..analysis.statistics import (
-        DEFAULT_QUANTILES,
-        batch_statistics,
-        group_runs,
-        numeric_keys,
-        quantile_name,
-    )
-
-    sections = []
-    for run_set in data.sets:
-        if run_set.shaped is None or run_set.metrics is not None:
-            continue
-        if run_set.n_runs < STATISTICS_MIN_RUNS and "sample" not in run_set.shaped.dims:
-            continue
-        summary = run_set.summary
-        status = np.asarray(run_set.runs["status"].values).reshape(-1)
-        metrics = numeric_keys(summary[0], skip={"run"})
-        groups = group_runs(_grid_labels(run_set.shaped, status.size))
-        sec = Section(section_id("statistics", run_set, data), "Batch statistics")
-        shown = dict(list(groups.items())[:MAX_STAT_GROUPS])
-        qnames = [quantile_name(q) for q in DEFAULT_QUANTILES]
-        columns = {m: np.array([float(row[m]) for row in summary]) for m in metrics}
-        rows, values_by_group = [], {}
-        counts = []
-        for entry in batch_statistics(columns, ok=status == 0, groups=shown):
-            label, ok = entry["key"], entry["ok_runs"]
-            counts.append(f"{label + ': ' if label else ''}{entry['n_ok']} ok of "
-                          f"{entry['n_runs']}")
-            values_by_group[label] = {m: v[ok] for m, v in columns.items()}
-            if not entry["n_ok"]:
-                rows.append(([label] if label else []) + ["(no ok run: no metrics)"])
-                continue
-            for m, s in entry["metrics"].items():
-                rows.append(([label] if label else []) + [m, s["n"], s["mean"], s["std"],
-                                                          s["min"], *(s[q] for q in qnames),
-                                                          s["max"]])
-        note = "over the ok runs: " + "; ".join(counts)
-        if len(groups) > len(shown):
-            note += f" (first {len(shown)} of {len(groups)} grid points)"
-        sec.blocks.append(paragraph(note))
-        header = (["grid point"] if len(shown) > 1 or next(iter(shown)) else []) + [
-            "metric", "n", "mean", "std", "min", *qnames, "max"]
-        sec.blocks.append(table(header, rows, cls="statistics"))
-        fig = histogram_figure(values_by_group)
-        if fig is not None:
-            sec.blocks.append(fig)
-        sections.append(sec)
-    return sections
-
-
-#: Metric columns of a sweep shown as histograms (the statistics table lists them all).
-MAX_SWEEP_HISTOGRAMS = 12
-
-
-def sweep_sections(data: ReportData) -> list[Section]:
-    """A sweep store: its state (chunks written), metadata and scenario text, the summary
-    statistics of every metric over the runs (stored with a complete sweep, else computed
-    from the chunks written) and their histograms."""
-    import json
-
-    ds = data.sweep
-    if ds is None:
-        return []
-    from ..sweep.run import summary_statistics
-
-    attrs = dict(ds.attrs)
-    sec = Section("sweep", "Sweep")
-    n_runs, n_chunks = int(ds.sizes["run"]), int(attrs.get("sweep_n_chunks", 0) or 0)
-    if "complete" in ds:
-        flags = np.asarray(ds["complete"].values).reshape(n_runs, -1).all(axis=1)
-        state = f"incomplete: {int(flags.sum())} of {n_runs} runs written"
-    else:
-        flags = np.ones(n_runs, bool)
-        state = "complete"
-    rows = [["state", state], ["runs", n_runs],
-            ["chunks", f"{n_chunks} of up to {attrs.get('sweep_chunk_size')} runs each"]]
-    rows += [[k, v] for k, v in attrs.items() if not k.startswith("sweep_")
-             and k not in _HIDDEN and k != "scenario_text" and len(str(v)) < 200]
-    sec.blocks.append(table(None, [[k, str(v)] for k, v in rows], cls="meta"))
-    if attrs.get("scenario_text"):
-        text = str(attrs["scenario_text"])
-        sec.blocks.append(f"<details><summary>scenario text ({len(text.splitlines())} lines)"
-                          f"</summary><pre>{escape(text)}</pre></details>")
-    summary = (json.loads(attrs["sweep_summary"]) if "sweep_summary" in attrs
-               else summary_statistics(ds.isel(run=np.flatnonzero(flags))))
-    if "n_ok" in summary:
-        sec.blocks.append(paragraph(f"{summary['n_ok']} ok, {summary['n_failed']} failed of "
-                                    f"{summary['n_runs']} runs"))
-    qnames = sorted(k for k in (summary["metrics"][0] if summary["metrics"] else {})
-                    if k.startswith("q") and k[1:].isdigit())
-    header = ["metric", "where", "unit", "n", "mean", "std", "min", *qnames, "max"]
-    sec.blocks.append(table(header, [[m["name"], m["where"], m.get("units", ""), m["n"],
-                                      *(fmt(m[k]) for k in ("mean", "std", "min")),
-                                      *(fmt(m[q]) for q in qnames), fmt(m["max"])]
-                                     for m in summary["metrics"]], cls="statistics"))
-    columns: dict[str, np.ndarray] = {}
-    for name in sorted(ds.data_vars):
-        var = ds[name]
-        if var.attrs.get("kind") != "metric" or var.dims[:1] != ("run",):
-            continue
-        values = np.asarray(var.values, dtype=float)[flags]
-        for idx in np.ndindex(*values.shape[1:]):
-            where = ", ".join(f"{d}={_plain(ds[d].values[i]) if d in ds.coords else i}"
-                              for d, i in zip(var.dims[1:], idx))
-            columns[f"{name} ({where})" if where else name] = values[(slice(None), *idx)]
-            if len(columns) == MAX_SWEEP_HISTOGRAMS:
-                break
-        if len(columns) == MAX_SWEEP_HISTOGRAMS:
-            break
-    fig = histogram_figure({"": columns}) if columns else None
-    if fig is not None:
-        sec.blocks.append(fig)
-    return [sec]
 
 
 #: The section builders, in page order.

@@ -19,6 +19,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..units import to_display
+
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
@@ -47,7 +49,6 @@ _NAMES: dict[str, tuple[str, ...]] = {
 TIME_SERIES = (("heading", "heading"), ("rudder", "rudder angle"), ("yaw_rate", "yaw rate"),
                ("speed", "speed"), ("propeller", "propeller"),
                ("engine_order", "engine order"))
-_DEGREES = {"rad": "deg", "rad/s": "deg/s"}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -71,7 +72,8 @@ class Signal:
 
 def find_signal(runs: "xr.Dataset", role: str) -> Signal | None:
     """The signal of ``role`` (``north``, ``east``, ``heading``, ``rudder``, ``yaw_rate``,
-    ``speed``, ``propeller``, ``engine_order``) in a flat result Dataset, in display units; None if the result has none.
+    ``speed``, ``propeller``, ``engine_order``) in a flat result Dataset, in display units
+    (:func:`seahelm.units.to_display`); None if the result has none.
 
     Parameters
     ----------
@@ -87,10 +89,8 @@ def find_signal(runs: "xr.Dataset", role: str) -> Signal | None:
     for name in _NAMES[role]:
         if name in runs.data_vars and runs[name].dims == ("run", "time"):
             var = runs[name]
-            units = str(var.attrs.get("units", ""))
-            values = np.asarray(var.values, dtype=float)
-            if units in _DEGREES:
-                return Signal(name, _DEGREES[units], np.degrees(values))
+            values, units = to_display(np.asarray(var.values, dtype=float),
+                                       str(var.attrs.get("units", "")), name)
             return Signal(name, units, values)
     if role == "speed":
         for u, v in (("surge_speed", "sway_speed"), ("u", "v")):
@@ -185,16 +185,18 @@ def coordinate_text(name: str, value: object, units: str) -> str:
     str
     """
     if isinstance(value, (float, np.floating)):
-        if units == "rad":
-            return f"{name} {math.degrees(float(value)):.4g}°"
-        return f"{name} {float(value):.4g}" + (f" {units}" if units else "")
+        shown, unit = to_display(float(value), units, name)
+        if unit == "deg":
+            return f"{name} {shown:.4g}°"
+        return f"{name} {shown:.4g}" + (f" {unit}" if unit else "")
     if name == "side" and value in (1, -1):
         return "starboard" if value == 1 else "port"
     return f"{name} {value}"
 
 
 def run_labels(runs: "xr.Dataset") -> list[str]:
-    """A short label per run: ``run i`` and its batch coordinates (angles in degrees).
+    """A short label per run: ``run i`` (``i`` the run's index in its batch, the ``run``
+    coordinate: a sweep store's global index) and its batch coordinates (angles in degrees).
 
     Parameters
     ----------
@@ -208,11 +210,13 @@ def run_labels(runs: "xr.Dataset") -> list[str]:
     n = runs.sizes["run"]
     coords = [(str(name), c) for name, c in runs.coords.items()
               if c.dims == ("run",) and name != "run"]
+    index = (np.asarray(runs["run"].values).reshape(-1) if "run" in runs.coords
+             else np.arange(n))
     labels = []
     for i in range(n):
         parts = [coordinate_text(name, c.values[i].item(), str(c.attrs.get("units", "")))
                  for name, c in coords]
-        labels.append(f"run {i}" + (f" ({', '.join(parts)})" if parts else ""))
+        labels.append(f"run {index[i]}" + (f" ({', '.join(parts)})" if parts else ""))
     return labels
 
 
