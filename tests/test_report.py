@@ -434,3 +434,35 @@ def test_a_store_report_shows_units_and_drawn_inputs(report_sweep_dir):
     assert not any(k.startswith(("heading [deg]", "final heading [rad]")) for k in by_label)
     [(drawn_head, drawn_rows)] = _tables(page, "statistics drawn")
     assert drawn_rows[0][0] == "vessel.params.gain [1/s]" and drawn_rows[0][1] == "10"
+
+
+def test_a_combined_report_of_several_results(report_demo_dir, report_batch_dir, tmp_path):
+    """`seahelm report A.nc B.nc`: one page, each file's runs named by the file."""
+    from seahelm.report import combined_report_data
+
+    demo, batch = report_demo_dir / "result.nc", report_batch_dir / "result.nc"
+    data = combined_report_data([demo, batch])
+    names = [s.name for s in data.sets]
+    assert names == [f"{demo.parent.name}/result", f"{batch.parent.name}/result"]
+    assert data.n_runs == 1 + 10 and data.sources == (str(demo), str(batch))
+    target = tmp_path / "both.html"
+    res = runner.invoke(app, ["report", str(demo), str(batch), "-o", str(target), "--json"])
+    assert res.exit_code == 0, res.stderr
+    got = json.loads(res.stdout)
+    assert got["files"] == [str(demo), str(batch)] and got["n_runs"] == 11
+    ids = [re.sub(r"[^A-Za-z0-9_-]+", "-", n) for n in names]
+    for sid in (f"track-{ids[0]}", f"track-{ids[1]}", f"statistics-{ids[1]}"):
+        assert sid in got["sections"], sid
+    page = target.read_text()
+    assert f"{names[0]}: 1 run(s): 1 ok" in page and f"{names[1]}: 10 run(s): 5 ok" in page
+    # refused, exit 2, nothing written: a file twice, a sweep store with a result
+    assert "are the same result" in one_error(["report", str(demo), str(demo), "-o",
+                                               str(tmp_path / "x.html")])
+    store = tmp_path / "fake.zarr"
+    assert not (tmp_path / "x.html").exists()
+    assert "no such sweep store" in one_error(["report", str(demo), str(store)])
+
+
+def test_a_sweep_store_is_reported_alone(report_demo_dir, report_sweep_dir):
+    assert "is reported alone" in one_error(["report", str(report_demo_dir / "result.nc"),
+                                             str(report_sweep_dir / "sweep.zarr")])

@@ -1,4 +1,5 @@
-"""``seahelm report RESULT``: one self-contained HTML report of a result file.
+"""``seahelm report RESULT...``: one self-contained HTML report of a result file (or of
+several, side by side on one page).
 
 RESULT is ``result.nc`` of ``seahelm run``/``demo``, or a manoeuvre's ``*-runs.nc`` /
 ``*-metrics.nc`` (``seahelm maneuver``; with ``imo-report.json`` beside them, the files of
@@ -6,7 +7,9 @@ RESULT is ``result.nc`` of ``seahelm run``/``demo``, or a manoeuvre's ``*-runs.n
 --monte-carlo --out``: the pass probabilities), or a sweep store (``seahelm sweep``; of an
 ``imo`` Monte-Carlo scenario, with the pass probabilities). The page
 (:mod:`seahelm.report`) holds plotly.js and all the data, so it opens with no network. ``-o``
-is checked before anything is read; the file is written atomically.
+is checked before anything is read; the file is written atomically. Several result files
+(not sweep stores or ``imo-probabilities.nc``, which are reported alone) give one page with
+each file's runs named by the file (:func:`seahelm.report.combined_report_data`).
 """
 
 from __future__ import annotations
@@ -23,6 +26,10 @@ from ._common import JsonFlag, console, handle_errors, input_file, output_file, 
 __all__ = ["report", "default_report_path"]
 
 
+#: What ``seahelm report`` of several results writes without ``-o`` (beside the first).
+COMBINED_NAME = "combined-report.html"
+
+
 def default_report_path(result: Path) -> Path:
     """Where ``seahelm report RESULT`` writes without ``-o``: beside RESULT, ``.html``."""
     return result.with_suffix(".html")
@@ -30,30 +37,39 @@ def default_report_path(result: Path) -> Path:
 
 @handle_errors
 def report(
-    result: Annotated[Path, typer.Argument(help=(
-        "Result file written by seahelm (NetCDF): result.nc of `seahelm run`/`demo`, a "
-        "manoeuvre's *-runs.nc or *-metrics.nc, imo-probabilities.nc of `seahelm imo "
-        "--monte-carlo`; or a sweep store of `seahelm sweep`."))],
+    results: Annotated[list[Path], typer.Argument(
+        metavar="RESULT...", help=(
+            "Result file written by seahelm (NetCDF): result.nc of `seahelm run`/`demo`, a "
+            "manoeuvre's *-runs.nc or *-metrics.nc, imo-probabilities.nc of `seahelm imo "
+            "--monte-carlo`; or a sweep store of `seahelm sweep`. Several result files: one "
+            "page with each file's runs side by side."))],
     out: Annotated[Path | None, typer.Option(
-        "-o", "--out", help="HTML file to write (default: beside RESULT, with .html).")] = None,
+        "-o", "--out", help=f"HTML file to write (default: beside RESULT, with .html; for "
+        f"several, {COMBINED_NAME} beside the first).")] = None,
     json_out: JsonFlag = False,
 ) -> None:
-    """Write an HTML report of a result file: metadata, status, metrics, interactive plots."""
-    if result.is_dir() or result.suffix == ".zarr":  # a sweep store (a directory)
-        if not result.is_dir():
-            raise ParameterError(f"`RESULT`: no such sweep store: {result}")
-    else:
-        input_file("RESULT", result)
-    from ..report.inputs import report_inputs
+    """Write an HTML report of result files: metadata, status, metrics, interactive plots."""
+    reads = []
+    for result in results:
+        if result.is_dir() or result.suffix == ".zarr":  # a sweep store (a directory)
+            if not result.is_dir():
+                raise ParameterError(f"`RESULT`: no such sweep store: {result}")
+        else:
+            input_file("RESULT", result)
+        from ..report.inputs import report_inputs
 
-    # never over what the report reads: the result, its companion files, a store's insides
-    target = output_file("--out", out or default_report_path(result),
-                         reads=report_inputs(result), writes="an HTML report")
-    from ..report import write_report
+        reads.extend(report_inputs(result))
+    # never over what the report reads: the results, their companion files, a store's insides
+    default = (default_report_path(results[0]) if len(results) == 1
+               else results[0].parent / COMBINED_NAME)
+    target = output_file("--out", out or default, reads=reads, writes="an HTML report")
+    from ..report import combined_report_data, write_report
 
-    summary = write_report(result, target)
+    summary = write_report(results[0] if len(results) == 1 else combined_report_data(results),
+                           target)
     if json_out:
-        print_json({"file": str(result), "report": str(summary.path), "bytes": summary.bytes,
+        print_json({"file": str(results[0]), "files": [str(r) for r in results],
+                    "report": str(summary.path), "bytes": summary.bytes,
                     "title": summary.title, "n_runs": summary.n_runs,
                     "sections": list(summary.sections), "sources": list(summary.sources)})
         return

@@ -22,12 +22,18 @@ import os
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .inputs import ReportData, RunSet, load_report_data, report_data_from_dataset
+from .inputs import (
+    ReportData,
+    RunSet,
+    combined_report_data,
+    load_report_data,
+    report_data_from_dataset,
+)
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
-__all__ = ["ReportData", "RunSet", "ReportSummary", "load_report_data",
+__all__ = ["ReportData", "RunSet", "ReportSummary", "load_report_data", "combined_report_data",
            "report_data_from_dataset", "report_html", "write_report"]
 
 

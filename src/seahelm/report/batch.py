@@ -331,7 +331,8 @@ def statistics_sections(data: ReportData) -> list[Section]:
         units = signal_units(run_set.runs)
         metrics = [k for k in shown_metrics(summary[0]) if k not in ("run", "status")]
         groups = group_runs(_grid_labels(run_set.shaped, status.size))
-        sec = Section(section_id("statistics", run_set, data), "Batch statistics")
+        sec = Section(section_id("statistics", run_set, data), "Batch statistics"
+                      + (f": {run_set.name}" if len(data.sets) > 1 else ""))
         shown = dict(list(groups.items())[:MAX_STAT_GROUPS])
         qnames = [quantile_name(q) for q in DEFAULT_QUANTILES]
         columns = {m: np.array([float(row[m]) for row in summary]) for m in metrics}

@@ -6,6 +6,7 @@ from __future__ import annotations
 import dataclasses
 import html
 import math
+import re
 from collections.abc import Sequence
 from typing import Any
 
@@ -187,7 +188,9 @@ def section_id(prefix: str, run_set: RunSet, data: ReportData) -> str:
     -------
     str
     """
-    return prefix if len(data.sets) == 1 else f"{prefix}-{run_set.name}"
+    if len(data.sets) == 1:
+        return prefix
+    return f"{prefix}-" + re.sub(r"[^A-Za-z0-9_-]+", "-", run_set.name).strip("-")
 
 
 def run_attrs(run_set: RunSet) -> dict[str, Any]:

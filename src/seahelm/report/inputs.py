@@ -35,7 +35,8 @@ from ..errors import ParameterError
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
-__all__ = ["report_inputs", "RunSet", "ReportData", "load_report_data", "report_data_from_dataset"]
+__all__ = ["report_inputs", "RunSet", "ReportData", "load_report_data", "report_data_from_dataset",
+           "combined_report_data"]
 
 #: The manoeuvres whose files ``seahelm imo --out`` writes (with ``imo-report.json``).
 IMO_MANEUVERS = ("turning-circle", "zigzag", "stopping")
@@ -347,6 +348,63 @@ def _sweep_data(path: Path) -> ReportData:
             sets = (RunSet("result", runs, None, None,
                            n_source=total if total > done.size else None),)
     return ReportData(title=f"Sweep: {title}", sets=sets, sources=(str(path),), sweep=per_run)
+
+
+def combined_report_data(paths: "list[str | Path]") -> ReportData:
+    """The report data of several result files on one page (``seahelm report A.nc B.nc``):
+    each file's batches side by side, named by the file (its name, or its folder and name
+    where two names are the same).
+
+    Parameters
+    ----------
+    paths : list of str or pathlib.Path
+        Result files (as :func:`load_report_data` reads them); one gives that file's data.
+
+    Returns
+    -------
+    ReportData
+
+    Raises
+    ------
+    ParameterError
+        If one of them is a sweep store or an ``imo-probabilities.nc`` (reported alone), two
+        hold IMO checks, or two are the same result (a manoeuvre's runs and metrics files are
+        read together already), or as :func:`load_report_data`.
+    FileNotFoundError
+        If a path does not exist.
+    """
+    import dataclasses as dc
+
+    paths = [Path(p) for p in paths]
+    datas = [load_report_data(p) for p in paths]
+    if len(datas) == 1:
+        return datas[0]
+    for path, data in zip(paths, datas):
+        if data.sweep is not None or data.imo_ensemble is not None:
+            raise ParameterError(f"{path}: a sweep store or an imo-probabilities.nc is "
+                                 "reported alone, not with other results")
+    seen: dict[str, Path] = {}
+    for path, data in zip(paths, datas):
+        for source in data.sources:
+            key = str(Path(source).resolve())
+            if key in seen:
+                raise ParameterError(f"{path} and {seen[key]} are the same result (both read "
+                                     f"{source}); give it once")
+            seen[key] = path
+    imos = [d.imo for d in datas if d.imo is not None]
+    if len(imos) > 1:
+        raise ParameterError("two IMO checks: a report holds one (give their files apart)")
+    stems = [p.stem for p in paths]
+    names = [s if stems.count(s) == 1 else f"{p.parent.name}/{s}"
+             for s, p in zip(stems, paths)]
+    sets = []
+    for name, data in zip(names, datas):
+        for run_set in data.sets:
+            label = name if len(data.sets) == 1 else f"{name}: {run_set.name}"
+            sets.append(dc.replace(run_set, name=label))
+    return ReportData(title="; ".join(dict.fromkeys(d.title for d in datas)), sets=tuple(sets),
+                      imo=imos[0] if imos else None,
+                      sources=tuple(s for d in datas for s in d.sources))
 
 
 def report_inputs(path: str | Path) -> list[Path]:

@@ -26,7 +26,7 @@ from .batch import (
     statistics_sections,
     sweep_sections,
 )
-from .blocks import Section, escape, fmt, paragraph, run_attrs, set_title, table
+from .blocks import Section, escape, fmt, paragraph, run_attrs, set_title, subheading, table
 from .figures import timeseries_sections, track_sections
 from .imo_ensemble import ensemble_sections
 from .inputs import ReportData, RunSet
@@ -222,9 +222,14 @@ def metrics_sections(data: ReportData) -> list[Section]:
     sec = Section("metrics", "Metrics")
     for run_set in data.sets:
         if run_set.metrics is not None:
-            sec.blocks.extend(_maneuver_metrics(run_set, data))
+            blocks = _maneuver_metrics(run_set, data)
         elif run_set.shaped is not None:
-            sec.blocks.extend(run_table_blocks(run_set))
+            blocks = run_table_blocks(run_set)
+        else:
+            continue
+        if blocks and len(data.sets) > 1 and run_set.metrics is None:
+            sec.blocks.append(subheading(run_set.name))  # (a manoeuvre's caption names it)
+        sec.blocks.extend(blocks)
     return [sec] if sec.blocks else []
 
 
