@@ -106,6 +106,11 @@ def test_inspect_and_report_show_the_file(example, tmp_path):
     assert "imo-probabilities" in report["sections"]
     page = (tmp_path / "r.html").read_text()
     assert "pass probabilities" in page and "Wilson" in page
+    # the drawn derivatives: their statistics over the 50 samples and their histograms
+    drawn = page[page.index('class="statistics drawn"'):]
+    drawn = drawn[:drawn.index("</table>")]
+    assert drawn.count("<tr>") == 1 + 4 and "vessel.params.N_r" in drawn
+    assert page.count("Plotly.newPlot(") == 2  # the criteria's values, the drawn inputs
 
 
 def test_the_scenario_equals_the_imo_command(tmp_path):
