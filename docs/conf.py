@@ -68,6 +68,9 @@ sphinx_gallery_conf = {
 
 html_theme = "pydata_sphinx_theme"
 html_title = f"seahelm {release}"
+# pages without sub-pages get no left sidebar (pydata's "Section Navigation" was empty there)
+html_sidebars = {page: [] for page in ("index", "getting-started", "scenario-reference",
+                                       "ship-file-reference", "api")}
 html_theme_options = {
     "navigation_with_keys": False,
     "show_toc_level": 2,

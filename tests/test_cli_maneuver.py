@@ -211,3 +211,19 @@ def test_scenario_maneuver_equilibrium_failure_names_file_and_key(tmp_path):
     line = res.stderr.strip().splitlines()[-1]  # (after the validity warning)
     assert line.startswith(f"error: {path}: [maneuver] `t_final`: no steady turn")
 
+
+
+def test_spiral_table_shows_the_reverse_spirals_curve():
+    """The reverse spiral appeared only as its loop width: its r-delta points are a table
+    too, each the JSON's point (at most 15 shown)."""
+    res = runner.invoke(app, ["maneuver", "spiral", "--catalog", "kvlcc2-l7", "--max-rudder",
+                              "10"], env={"COLUMNS": "120"})
+    assert res.exit_code == 0, res.output
+    text = " ".join(res.stdout.split())
+    assert "Reverse spiral (equilibria)" in text
+    points = run_json("maneuver", "spiral", "--catalog", "kvlcc2-l7", "--max-rudder",
+                      "10")["reverse"]
+    shown = points[::max(1, math.ceil(len(points) / 15))]
+    assert f"{len(shown)} of {len(points)} points" in text
+    for row in shown:
+        assert f"{row['rudder_deg']:.4g}" in text

@@ -24,7 +24,7 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..errors import ParameterError
-from ..plotting.maneuver_runs import ship_names
+from .maneuver_output import _fmt, header, write_outputs
 from ..ships.catalog import with_steering_gear
 from ._batch_summary import (
     SUMMARY_RUNS,
@@ -264,14 +264,6 @@ def display_rows(result: Any, fields: Sequence[Field]) -> list[dict[str, Any]]:
     return out
 
 
-def _fmt(value: Any) -> str:
-    if isinstance(value, bool):
-        return "yes" if value else "no"
-    if isinstance(value, float):
-        return "—" if not math.isfinite(value) else f"{value:.4g}"
-    return escape(str(value))
-
-
 def print_table(title: str, rows: list[dict[str, Any]], fields: Sequence[Field]) -> None:
     """Metrics down, runs across; messages under the table."""
     table = Table(title=escape(title), title_justify="left")
@@ -285,46 +277,6 @@ def print_table(title: str, rows: list[dict[str, Any]], fields: Sequence[Field])
     for row in rows:
         if row["message"] != "ok":
             console.print(f"  {escape(row['run'])}: {escape(row['message'])}", highlight=False)
-
-
-def header(result: Any) -> dict[str, Any]:
-    """Ship, L, approach speed, rps, dt of a result (command-line units)."""
-    m = result.metrics
-    first = {d: 0 for d in m["complete"].dims}
-    sel = m.isel(first)
-    out: dict[str, Any] = {"maneuver": result.maneuver,
-                           "ship": ship_names([s.name for s in result.ships]),
-                           "length_m": float(sel["length"])}
-    for key, name in (("approach_speed_value", "approach_speed_mps"),
-                      ("propeller_rps", "propeller_rps")):
-        values = np.asarray(m[key].values, dtype=float) if key in m else np.array([np.nan])
-        if np.isfinite(values).all() and np.ptp(values) == 0.0:  # (else: per run, in the rows)
-            out[name] = float(values.flat[0])
-    for key in ("dt", "t_final", "hold"):
-        if key in m.attrs:
-            out[f"{key}_s"] = float(m.attrs[key])
-    return out
-
-
-def write_outputs(out: Path, results: Sequence[Any], plot: Callable[[], Any] | None,
-                  png: str) -> dict[str, str]:
-    """NetCDF of every result and one PNG (none if ``plot`` is None), atomically and together
-    (all appear, or none); returns {kind: path}."""
-    from ..results import write_together
-
-    files: dict[str, str] = {}
-    with write_together():  # all of them, or none (a full disk leaves no lone metrics file)
-        for result in results:
-            for kind, path in result.to_netcdf(out).items():
-                files[f"{result.maneuver}-{kind}"] = str(path)
-        if plot is not None:
-            import matplotlib
-
-            matplotlib.use("Agg")
-            from ..plotting.save import save_figure
-
-            files["plot"] = str(save_figure(plot(), out / png))
-    return files
 
 
 def finish(title: str, result: Any, payload: dict[str, Any], fields: Sequence[Field],
@@ -538,56 +490,6 @@ def spiral_cmd(
     check_positive_opt("--dt", dt, "s")
     check_out(out, "spiral", ship_reads(catalog))
     direct, reverse = spirals(ship, top, speed=speed, rps=rps, hold=hold, dt=dt)
+    from .spiral_output import show_spirals
+
     show_spirals(f"Direct spiral, {ship.name}", direct, reverse, out, json_out)
-
-
-def show_spirals(title: str, direct: Any, reverse: Any, out: Path | None,
-                 as_json: bool, *, plot: bool = True) -> None:
-    """Write (``out``) and print the direct and reverse spirals: a table of the direct
-    spiral's steps and the loop widths, or one JSON object."""
-    dm = direct.metrics
-    rm = reverse.metrics
-    rows = []
-    for j in range(dm.sizes["step"]):
-        rows.append({"run": f"{j}", "leg": "down" if int(dm["leg"][j]) < 0 else "up",
-                     "rudder_deg": math.degrees(float(dm["step_rudder"][j])),
-                     "yaw_rate_degps": math.degrees(float(dm["yaw_rate"][j])),
-                     "yaw_rate_nd": float(dm["yaw_rate_nd"][j]),
-                     "speed_mps": float(dm["speed"][j]), "settled": bool(dm["settled"][j])})
-    reverse_rows = [{"yaw_rate_degps": math.degrees(float(r_)),
-                     "rudder_deg": math.degrees(float(d_)), "yaw_rate_nd": float(n_)}
-                    for r_, d_, n_ in zip(rm["yaw_rate"].values, rm["rudder_angle"].values,
-                                          rm["yaw_rate_nd"].values) if math.isfinite(r_)]
-    payload = header(direct)
-    payload.update(
-        maneuver="spiral",
-        direct_loop_width_deg=math.degrees(float(dm["loop_width"])),
-        direct_zero_crossing_down_deg=math.degrees(float(dm["zero_crossing_down"])),
-        direct_zero_crossing_up_deg=math.degrees(float(dm["zero_crossing_up"])),
-        direct_message=str(dm["message"].item()),
-        reverse_loop_width_deg=math.degrees(float(rm["loop_width"])),
-        reverse_loop_rudder_low_deg=math.degrees(float(rm["loop_rudder_low"])),
-        reverse_loop_rudder_high_deg=math.degrees(float(rm["loop_rudder_high"])),
-        reverse_method=rm.attrs["method"])
-    if out is not None:
-        from ..plotting.maneuvers import plot_spiral
-
-        payload["files"] = write_outputs(
-            out, [direct, reverse], (lambda: plot_spiral(direct, reverse)) if plot else None,
-            "spiral.png")
-    if as_json:
-        print_json({**payload, "direct": rows, "reverse": reverse_rows})
-        return
-    table = Table(title=escape(title), title_justify="left")
-    for col in ("step", "leg", "rudder [deg]", "r [deg/s]", "r' = rL/U", "U [m/s]", "settled"):
-        table.add_column(escape(col), justify="right")
-    for row in rows:
-        table.add_row(row["run"], row["leg"], *(_fmt(row[k]) for k in (
-            "rudder_deg", "yaw_rate_degps", "yaw_rate_nd", "speed_mps", "settled")))
-    console.print(table)
-    for k, v in payload.items():
-        if k not in ("files",):
-            console.print(escape(f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}"),
-                          highlight=False)
-    for kind, path in payload.get("files", {}).items():
-        console.print(f"  {kind}: {escape(path)}", highlight=False)

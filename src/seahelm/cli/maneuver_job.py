@@ -15,8 +15,8 @@ from .maneuver import (
     ZIGZAG_FIELDS,
     finish,
     header,
-    show_spirals,
 )
+from .spiral_output import show_spirals
 
 __all__ = ["present_job"]
 
