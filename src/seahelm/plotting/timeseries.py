@@ -130,7 +130,8 @@ def plot_result(ds: Any, *, runs: Any = None, fig: Any = None) -> Any:
             ax_xy.plot(sel["east"].values, sel["north"].values, color="C0", alpha=0.3, lw=0.8)
     ax_h.set(xlabel="time [s]", ylabel="heading [deg]", title="Heading")
     ax_d.set(xlabel="time [s]", ylabel=f"{(act or 'actuator').replace('_', ' ')} [deg]",
-             title=(act or "actuator").replace("_", " ").capitalize())
+             title=(act or "actuator").replace("_", " ").capitalize()
+             + (" (positive turns to starboard)" if act == "rudder_angle" else ""))
     if guided:
         ax_r.set(xlabel="time [s]", ylabel="cross-track error [m]",
                  title="Cross-track error (+ starboard of the route)")
