@@ -92,7 +92,8 @@ def test_plot_draws_four_panels(result):
 
     fig = result.plot()
     axes = fig.get_axes()
-    assert [a.get_title() for a in axes] == ["Heading", "Rudder angle", "Yaw rate", "Track"]
+    assert [a.get_title() for a in axes] == ["Heading", "Rudder angle (positive turns to starboard)",
+                                             "Yaw rate", "Track"]
     assert len(axes[0].get_lines()) >= 2  # runs and reference
     plt.close(fig)
 
