@@ -127,3 +127,32 @@ def test_cli_imo_monte_carlo(tmp_path):
     assert bad.exit_code == 2 and "[draws.N_r]" in bad.output and "`std`" in bad.output
     both = runner.invoke(app, ["imo", "kvlcc2-l7", "--monte-carlo", "4", "--speed", "1.0"])
     assert both.exit_code == 2 and "--monte-carlo" in both.output
+
+
+def test_members_rerun_for_longer_get_the_values_of_one_long_run(monkeypatch):
+    """The first pass runs FIRST_PASS times the reference's durations, the members that miss
+    their events run again for LAST_PASS times them: with a first pass too short for any member
+    (all rerun) the values equal those of the default passes, which equal the manoeuvres run
+    once for the long duration (what every member did before the passes)."""
+    from seahelm.analysis import imo_probability as ip
+    from seahelm.ships import get_ship
+
+    ship = get_ship("kvlcc2-l7")
+    ships = ip.monte_carlo_ships(ship, 4, seed=2)
+    default = imo_probabilities(ships, reference=ship)
+    runs = []
+    real = ip._Passes.run
+
+    def counted(self, measure, members, t_event):
+        out = real(self, measure, members, t_event)
+        runs.append(self.rerun)
+        return out
+
+    monkeypatch.setattr(ip._Passes, "run", counted)
+    monkeypatch.setattr(ip, "FIRST_PASS", 0.3)  # nothing is reached: every member again
+    again = imo_probabilities(ships, reference=ship)
+    assert runs[-1] == 4 * 5  # 4 members x (35 deg, 10 deg turning, 10/10, 20/20, stopping)
+    assert len(default.values) == len(again.values) == 13
+    for a, b in zip(default.values, again.values):
+        assert np.isfinite(a).all()
+        np.testing.assert_allclose(a, b, rtol=1e-9)

@@ -418,6 +418,24 @@ def test_zigzag_trigger_out_of_reach_is_refused_before_running():
         zigzag("kvlcc2-l7", 10 * DEG, 60 * DEG, t_final=20.0)
 
 
+def test_zigzag_without_the_reachability_check_runs_and_says_what_was_not_reached():
+    # what an ensemble does: the trigger is not refused, the run ends without its execute
+    m = zigzag("kvlcc2-l7", 10 * DEG, 60 * DEG, sides=1, t_final=20.0,
+               check_reachable=False).metrics
+    assert not bool(m["complete"])
+    assert np.isnan(m["overshoot"].values).all()
+    # (the first execute is the order at t = 0; the trigger crossing is the second)
+    assert "second execute (heading +60 deg) not reached within t = 20 s" in str(
+        m["message"].item())
+    # and a reachable one gives the same numbers with or without the check
+    with_check = zigzag("kvlcc2-l7", 10 * DEG, sides=1, t_final=60.0).metrics
+    without = zigzag("kvlcc2-l7", 10 * DEG, sides=1, t_final=60.0,
+                     check_reachable=False).metrics
+    np.testing.assert_array_equal(with_check["overshoot"].values, without["overshoot"].values)
+    with pytest.raises(ParameterError, match="`check_reachable`.*only with a given `t_final`"):
+        zigzag("kvlcc2-l7", 10 * DEG, check_reachable=False)
+
+
 def test_zigzag_cut_short_is_flagged():
     res = zigzag("kvlcc2-l7", 10 * DEG, sides=1, t_final=30.0)
     m = res.metrics

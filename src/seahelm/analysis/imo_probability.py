@@ -3,14 +3,17 @@
 An uncertain ship — an identification's posterior, a Monte-Carlo of its coefficients — is an
 ensemble of parameter sets. :func:`imo_probabilities` runs the manoeuvres of the IMO check
 (:func:`seahelm.analysis.imo.imo_check`: 35° turning and 10° turning both sides, the 10/10 and
-20/20 zig-zags both sides) for the whole ensemble in **one batch each**, evaluates every
-criterion for every member with the limits of :mod:`seahelm.analysis.imo`, and gives the
+20/20 zig-zags both sides) for the whole ensemble in **one batch each** (per chunk of
+members), evaluates every criterion for every member with the limits of :mod:`seahelm.analysis.imo`, and gives the
 fraction that passes each criterion and the whole check with a Wilson score interval (Wilson
 1927; it stays inside [0, 1] and keeps its coverage for fractions near 0 or 1, where the normal
-interval does not). A member whose manoeuvres did not complete (a diverged run, an event not
-reached within 1.5 times the time the reference ship takes to it — the 180° heading change of
-the turning circles, the 10/10's second and the 20/20's first overshoot; the reference is by
-default the first member) is excluded from the fractions and counted, with the reason; so is a member
+interval does not). Every member's runs last :data:`FIRST_PASS` (1.15) times the time the
+reference ship takes to the last event a criterion needs — the 180° heading change of the 35°
+turning circles, the 10° heading change at 10° rudder, the 10/10's second and the 20/20's
+first overshoot (two batches), dead in the water; the reference is by default the first
+member — and the members that do not reach it run again, :data:`LAST_PASS` (1.5) times as
+long. A member whose manoeuvres did not complete (a diverged run, an event not reached in the
+second pass, a zig-zag trigger never reached) is excluded from the fractions and counted, with the reason; so is a member
 whose steady straight approach is not found (it is not run). The stopping criterion (track
 reach ≤ 15 L, :func:`seahelm.analysis.maneuvers.crash_stop`, one batch per chunk too) is
 part of the check when every member can stop (an ``mmg`` ship with a propeller, given the
@@ -192,19 +195,20 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
     hard = min(math.radians(35.0), ref.max_rudder)
     rudders = np.array([hard, math.radians(10.0)])
     pairs = np.radians([10.0, 20.0])
-    # every member runs 1.5 times as long as the reference takes to the last event its
+    # every member runs FIRST_PASS times as long as the reference takes to the last event its
     # criteria need (the 180 deg heading change at 35 deg, the 10 deg change at 10 deg; the
-    # 10/10's second and the 20/20's first overshoot; dead in the water): estimating the
-    # durations member by member (a steady turn each) would cost more than the runs, and the
+    # 10/10's second and the 20/20's first overshoot; dead in the water), and the members
+    # that do not reach it again LAST_PASS times as long (_Passes): estimating the durations
+    # member by member (a steady turn each) would cost more than the runs, and the
     # manoeuvres' own durations (a steady turn, three overshoots) ran 2-4 times longer
     first_turn = turning_circle(ref, rudders, sides=(1, -1), dt=dt,
                                 heading_change=math.pi).metrics
     ref_zz = zigzag(ref, pairs, pairs, sides=(1, -1), dt=dt).metrics
-    t_turn = 1.5 * _last(first_turn["time_180"].isel(rudder=0), first_turn.attrs["t_final"])
-    t_initial = 1.5 * _last(first_turn["time_10"].isel(rudder=1), first_turn.attrs["t_final"])
+    t_turn = _last(first_turn["time_180"].isel(rudder=0), first_turn.attrs["t_final"])
+    t_initial = _last(first_turn["time_10"].isel(rudder=1), first_turn.attrs["t_final"])
     overshoots = ref_zz["overshoot_time"]
-    t_zz = 1.5 * max(_last(overshoots.isel(pair=0, n=1), ref_zz.attrs["t_final"]),
-                     _last(overshoots.isel(pair=1, n=0), ref_zz.attrs["t_final"]))
+    t_zz10 = _last(overshoots.isel(pair=0, n=1), ref_zz.attrs["t_final"])
+    t_zz20 = _last(overshoots.isel(pair=1, n=0), ref_zz.attrs["t_final"])
     L = ref.length
     V = float(np.asarray(first_turn["approach_speed_value"].values).reshape(-1)[0])
     limits = imo_overshoot_limits(L / V)
@@ -223,31 +227,40 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
     sides = ((1, "starboard"), (-1, "port"))
     parts: dict[tuple[str, str, str], list[np.ndarray]] = {
         (a, c, side): [] for side in ("starboard", "port") for a, c, _, _ in names}
+    passes = _Passes(record_dt)
     for start in range(0, len(members), CHUNK):
         chunk = members[start:start + CHUNK]
 
-        def values(da: Any, n: int = len(chunk)) -> np.ndarray:
-            return np.asarray(da.transpose("ship", ...).values if "ship" in da.dims
-                              else da.values, dtype=float).reshape(n)
+        def turning(ships: list[Any], t_final: float, rudder: float, event: str,
+                    names: tuple[str, ...]) -> tuple[dict[str, np.ndarray], np.ndarray]:
+            m = turning_circle(ships, rudder, sides=(1, -1), dt=dt, heading_change=math.pi,
+                               t_final=t_final, record_dt=record_dt).metrics
+            got = {f"{v}/{side}": _member_values(m[v].sel(side=s), len(ships))
+                   for v in names for s, side in sides}
+            return got, passes.reached([m[event].sel(side=s) for s, _ in sides], t_final,
+                                       len(ships), local=True)
 
-        turning = turning_circle(chunk, rudders[0], sides=(1, -1), dt=dt,
-                                 heading_change=math.pi, t_final=t_turn,
-                                 record_dt=record_dt).metrics
-        initial = turning_circle(chunk, rudders[1], sides=(1, -1), dt=dt,
-                                 heading_change=math.pi, t_final=t_initial,
-                                 record_dt=record_dt).metrics
-        zz = zigzag(chunk, pairs, pairs, sides=(1, -1), dt=dt, t_final=t_zz,
-                    record_dt=record_dt).metrics
+        def zigzags(ships: list[Any], t_final: float, pair: int, n: int
+                    ) -> tuple[dict[str, np.ndarray], np.ndarray]:
+            m = zigzag(ships, pairs[pair], pairs[pair], sides=(1, -1), dt=dt, t_final=t_final,
+                       record_dt=record_dt, check_reachable=False).metrics
+            got = {f"overshoot {k}/{side}": _member_values(
+                m["overshoot"].sel(side=s, n=k), len(ships)) for k in range(1, n + 1)
+                for s, side in sides}
+            return got, passes.reached([m["overshoot"].sel(side=s, n=n) for s, _ in sides],
+                                       t_final, len(ships))
+
+        t35 = passes.run(lambda s, t: turning(s, t, rudders[0], "time_180",
+                                              ("advance", "tactical_diameter")), chunk, t_turn)
+        t10 = passes.run(lambda s, t: turning(s, t, rudders[1], "time_10", ("distance_10",)),
+                         chunk, t_initial)
+        z10 = passes.run(lambda s, t: zigzags(s, t, 0, 2), chunk, t_zz10)
+        z20 = passes.run(lambda s, t: zigzags(s, t, 1, 1), chunk, t_zz20)
         for side, name in sides:
-            t35 = turning.sel(side=side)
-            t10 = initial.sel(side=side)
-            z10 = zz.isel(pair=0).sel(side=side)
-            z20 = zz.isel(pair=1).sel(side=side)
-            got = (values(t35["advance"]) / L, values(t35["tactical_diameter"]) / L,
-                   values(t10["distance_10"]) / L,
-                   np.degrees(values(z10["overshoot"].sel(n=1))),
-                   np.degrees(values(z10["overshoot"].sel(n=2))),
-                   np.degrees(values(z20["overshoot"].sel(n=1))))
+            got = (t35[f"advance/{name}"] / L, t35[f"tactical_diameter/{name}"] / L,
+                   t10[f"distance_10/{name}"] / L,
+                   np.degrees(z10[f"overshoot 1/{name}"]), np.degrees(z10[f"overshoot 2/{name}"]),
+                   np.degrees(z20[f"overshoot 1/{name}"]))
             for (a, c, _, _), v in zip(names, got):
                 parts[(a, c, name)].append(v)
     checks = [(a, c, side, np.concatenate(parts[(a, c, side)]), limit, unit)
@@ -265,9 +278,14 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
         from .imo import STOPPING_LIMIT
 
         ref_stop = crash_stop(stopping_ship(ref), speed=V, dt=dt).metrics
-        t_stop = 1.5 * _last(ref_stop["time_dead"], ref_stop.attrs["t_final"])
-        reach = [np.asarray(crash_stop(stoppers[i:i + CHUNK], speed=V, dt=dt, t_final=t_stop)
-                            .metrics["track_reach"].values, dtype=float).reshape(-1)
+        t_stop = _last(ref_stop["time_dead"], ref_stop.attrs["t_final"])
+
+        def stops(ships: list[Any], t_final: float) -> tuple[dict[str, np.ndarray], np.ndarray]:
+            m = crash_stop(ships, speed=V, dt=dt, t_final=t_final).metrics
+            return ({"track_reach": _member_values(m["track_reach"], len(ships))},
+                    passes.reached([m["time_dead"]], t_final, len(ships)))
+
+        reach = [passes.run(stops, stoppers[i:i + CHUNK], t_stop)["track_reach"]
                  for i in range(0, len(stoppers), CHUNK)]
         checks.append(("stopping", "track reach (full astern)", "-",
                        np.concatenate(reach) / L, STOPPING_LIMIT, "L"))
@@ -279,6 +297,56 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
         values[-1][kept] = vals[:kept.size]  # (none kept: the reference ran as a stand-in)
     return probabilities_from_values(values, criteria, level=level, stopping_note=stopping_note,
                                      reasons=no_approach)
+
+
+#: The members' runs last this many times the reference's time to the last event the criteria
+#: need; the members that do not reach it (or, for an interpolated event, reach it within two
+#: recordings of the end) run again, :data:`LAST_PASS` times as long. The events are found
+#: from the samples around them, so a member's values do not depend on the pass they came
+#: from (the runs are the same step by step).
+FIRST_PASS = 1.15
+#: Of the second pass: a member whose events are not reached then is excluded.
+LAST_PASS = 1.5
+
+
+class _Passes:
+    """Runs a manoeuvre of members for :data:`FIRST_PASS` times the reference's duration, then
+    again for :data:`LAST_PASS` times it the members that did not reach their event (counted
+    in :attr:`rerun`)."""
+
+    def __init__(self, record_dt: float) -> None:
+        self.record_dt = record_dt
+        self.rerun = 0
+
+    def reached(self, times: Sequence[Any], t_final: float, n: int, *,
+                local: bool = False) -> np.ndarray:
+        """Members whose events (one DataArray per side, NaN where not reached) are reached
+        within ``t_final``; with ``local``, two recordings before the end (the cubic through
+        the four samples around an event needs them)."""
+        margin = 2.0 * self.record_dt if local else 0.0
+        ok = np.ones(n, dtype=bool)
+        for da in times:
+            v = _member_values(da, n)
+            with np.errstate(invalid="ignore"):
+                ok &= np.isfinite(v) & (v <= t_final - margin)
+        return ok
+
+    def run(self, measure: Any, ships: list[Any], t_event: float) -> dict[str, np.ndarray]:
+        """``measure(ships, t_final) -> (values by name, reached)`` in two passes."""
+        got, ok = measure(ships, FIRST_PASS * t_event)
+        again = np.flatnonzero(~ok)
+        if again.size:
+            self.rerun += int(again.size)
+            more, _ = measure([ships[i] for i in again], LAST_PASS * t_event)
+            for name, v in got.items():
+                v[again] = more[name]
+        return got
+
+
+def _member_values(da: Any, n: int) -> np.ndarray:
+    """A metric of ``n`` members as a float array (n,), in the order of the members."""
+    return np.array(da.transpose("ship", ...).values if "ship" in da.dims else da.values,
+                    dtype=float).reshape(n)
 
 
 def _with_approach(members: list[Any], reference: list[Any]

@@ -206,7 +206,8 @@ def zigzag_metrics(time: Any, heading: Any, *, trigger: Any, first_side: Any = 1
 def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
            sides: Any = (1, -1), speed: Any = None, rps: Any = None,
            t_final: float | None = None, dt: float | None = None,
-           record_dt: float | None = None, conditions: Any = None) -> ManeuverResult:
+           record_dt: float | None = None, conditions: Any = None,
+           check_reachable: bool = True) -> ManeuverResult:
     """Zig-zag tests to either first side, batched over ships, speeds and δ/ψ pairs.
 
     Parameters
@@ -242,6 +243,12 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
         Wind, waves and a uniform current (:class:`seahelm.environment.loads.Conditions`)
         acting from t = 0 on; the approach is the calm-water one, and the metrics are measured
         on the track over ground (default: calm water).
+    check_reachable : bool, optional
+        With a given ``t_final``: refuse a trigger that the steady turn at δ_z cannot reach
+        in it (default True; one batched steady-turn solve of every ship). False skips that
+        solve: such a run ends with its execute not reached (NaN, ``complete`` False, the
+        ``message`` says so) — what an ensemble wants, where one member must not stop the
+        others (:func:`~seahelm.analysis.imo_probability.imo_probabilities`).
 
     Returns
     -------
@@ -266,6 +273,9 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
             f"[rad], got shapes {d.shape} and {h.shape}", field="rudder")
     if not np.all((h > 0) & (h < math.pi)):
         raise ParameterError(f"trigger must be in (0, pi) [rad], got {heading!r}", field="heading")
+    if t_final is None and not check_reachable:
+        raise ParameterError("can be False only with a given `t_final` (the default duration "
+                             "is made from the steady turns)", field="check_reachable")
     is_pair = d.ndim == 1
     pair = Axis(name="pair", values=np.arange(max(d.size, 1)), is_dim=is_pair,
                 coords={"rudder": (np.atleast_1d(d), {"units": "rad",
@@ -294,13 +304,13 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
             keys[key] = len(groups)
             groups.append((plan.ship(i), key[2], plan.approach(i)))
         slot.append(keys[key])
-    if groups:
+    if groups and check_reachable:
         rates[runs] = np.array([float(r) for r in steady_yaw_rates(groups)])[slot]
     swing = np.array([2.0 * amp[i] / plan.ship(i).servo.max_rate for i in range(n)])
     if t_final is None:
         lags = np.array([yaw_lag(plan.ship(i)) for i in range(n)])
         t_final = float(np.nanmax(4.0 * swing + 4.0 * 6.0 * trig / rates + 6.0 * lags))
-    else:
+    elif check_reachable:
         need = 0.5 * swing + trig / rates
         bad = np.flatnonzero(need > t_final)
         if bad.size:
