@@ -69,6 +69,17 @@ def test_compiled_series_equals_numpy():
         assert cq == pytest.approx(torque_coefficient_4q(b), abs=1e-14)
 
 
+@pytest.mark.parametrize("n_terms", [1, 2, 3, 4, 5, 6, 7, 8, 30])
+def test_compiled_series_of_any_length(n_terms):
+    # the four rotation chains and the K mod 4 terms after them, against the sums written out
+    c = fourier_coefficients()[:n_terms]
+    k = np.arange(n_terms)
+    for b in np.random.default_rng(n_terms).uniform(-math.pi, math.pi, 50):
+        ct, cq = ct_cq(b, c)
+        assert ct == pytest.approx(np.cos(k * b) @ c[:, 0] + np.sin(k * b) @ c[:, 1], abs=1e-14)
+        assert cq == pytest.approx(np.cos(k * b) @ c[:, 2] + np.sin(k * b) @ c[:, 3], abs=1e-14)
+
+
 def test_advance_angle_quadrants():
     assert advance_angle(1.0, 1.0, 1.0) == pytest.approx(math.atan2(1.0, 0.7 * math.pi))
     assert advance_angle(1.0, -1.0, 1.0) > math.pi / 2

