@@ -42,6 +42,25 @@ def test_turning_json_matches_the_library():
         assert row["rudder_deg"] == pytest.approx(35.0)
 
 
+def test_turning_of_a_model_with_roll_shows_the_heel():
+    """The 4-DOF container ship's table and JSON carry the maximum and steady heel (the
+    library's metrics, in degrees); a ship without roll has no such rows."""
+    args = ("maneuver", "turning", "--catalog", "son-nomoto-container", "--rudder", "20",
+            "--side", "starboard", "--t-final", "600")
+    out = run_json(*args)
+    lib = turning_circle("son-nomoto-container", math.radians(20.0), sides=1,
+                         t_final=600.0).metrics
+    row = out["runs"][0]
+    assert row["max_heel_deg"] == pytest.approx(math.degrees(float(lib["max_heel_angle"])),
+                                                rel=1e-12)
+    assert row["steady_heel_deg"] == pytest.approx(
+        math.degrees(float(lib["steady_heel_angle"])), rel=1e-12)
+    assert row["steady_heel_deg"] < 0.0  # a turn to starboard heels to port, outward
+    table = runner.invoke(app, list(args))
+    assert table.exit_code == 0 and "maximum heel [deg]" in table.stdout
+    assert "heel" not in json.dumps(run_json("maneuver", "turning", "--t-final", "60"))
+
+
 def test_turning_not_reaching_180_is_a_result_not_an_error():
     out = run_json("maneuver", "turning", "--side", "starboard", "--t-final", "30")
     (row,) = out["runs"]

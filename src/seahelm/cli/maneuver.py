@@ -341,6 +341,16 @@ TURNING_FIELDS: tuple[Field, ...] = (
     ("yaw_rate_degps", "steady yaw rate [deg/s]", _deg("steady_yaw_rate")),
     ("steady", "steady at the end", lambda r: bool(r["steady"])),
 )
+#: Of a model with roll (:func:`seahelm.analysis.heel.heel_metrics`), after TURNING_FIELDS.
+HEEL_FIELDS: tuple[Field, ...] = (
+    ("max_heel_deg", "maximum heel [deg] (+ starboard down)", _deg("max_heel_angle")),
+    ("steady_heel_deg", "steady heel [deg] (+ starboard down)", _deg("steady_heel_angle")),
+)
+
+
+def turning_fields(result: Any) -> tuple[Field, ...]:
+    """The rows of a turning circle's table: with the heel's for a model with roll."""
+    return TURNING_FIELDS + (HEEL_FIELDS if "max_heel_angle" in result.metrics else ())
 
 
 @app.command("turning")
@@ -369,7 +379,7 @@ def turning_cmd(
     result = turning_circle(ship, delta, sides=sides, speed=speed, rps=rps, t_final=t_final,
                             dt=dt)
     finish(f"Turning circle, {ship.name}, {rudder:g} deg rudder", result, header(result),
-           TURNING_FIELDS, plot_turning, "turning.png", out, json_out)
+           turning_fields(result), plot_turning, "turning.png", out, json_out)
 
 
 def _overshoot(k: int) -> Callable[[dict[str, Any]], Any]:

@@ -10,11 +10,11 @@ from typing import Any
 from .imo import show_report
 from .maneuver import (
     PULLOUT_FIELDS,
-    check_out,
-    TURNING_FIELDS,
     ZIGZAG_FIELDS,
+    check_out,
     finish,
     header,
+    turning_fields,
 )
 from .spiral_output import show_spirals
 
@@ -52,7 +52,7 @@ def present_job(job: Any, out: Path | None, as_json: bool, *, plot: bool = True,
     rudder = _deg_text(opts.get("rudder", math.radians(
         {"turning": 35.0, "zigzag": 10.0, "pullout": 20.0}.get(job.kind, 0.0))))
     kinds = {
-        "turning": (f"Turning circle, {name}, {rudder} deg rudder", TURNING_FIELDS,
+        "turning": (f"Turning circle, {name}, {rudder} deg rudder", turning_fields(result),
                     plot_turning, "turning.png"),
         "zigzag": (f"Zig-zag, {name}, {rudder} deg rudder", ZIGZAG_FIELDS, plot_zigzag,
                    "zigzag.png"),
