@@ -98,3 +98,33 @@ def test_scalar_fast_paths_of_the_checks_agree_with_the_array_checks(value):
         else:
             with pytest.raises(ParameterError, match="`x` must be"):
                 check("x", value, "m")
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.integers(-10**6, 10**6),
+                 st.booleans(), st.floats(width=32).map(np.float32),
+                 st.floats().map(np.float64), st.integers(-5, 5).map(np.int64)))
+@example(0.0)  # the exclusive lower bound itself
+@example(1e-300)
+@example(math.pi / 2)  # the inclusive upper bound
+@example(float("nan"))
+def test_params_fast_check_accepts_and_refuses_what_the_full_check_does(value):
+    """A field's value passes the construction's quick path only where the full check
+    (_check_number: a number, not a flag, finite, in the field's range) passes it."""
+    from seahelm.control.zigzag import ZigZagParams
+    from seahelm.errors import ParameterError
+    from seahelm.parameters import _check_number
+
+    field = ZigZagParams.__dataclass_fields__["rudder_amplitude"]  # (0, pi/2], low exclusive
+    try:
+        _check_number(field, "rudder_amplitude", value)
+        full = True
+    except ParameterError:
+        full = False
+    try:
+        ZigZagParams(rudder_amplitude=value)
+        built = True
+    except ParameterError as exc:
+        built = False
+        assert exc.field == "rudder_amplitude"
+    assert built == full

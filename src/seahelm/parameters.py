@@ -118,17 +118,32 @@ class Params:
     provenance: ClassVar[str] = ""
 
     def __post_init__(self) -> None:
-        for f in dataclasses.fields(self):
-            value = getattr(self, f.name)
-            size = f.metadata.get("size", 0)
+        for f, name, size, low, high, incl in self._field_checks():
+            value = getattr(self, name)
             if size:
                 values = _vector(f, value, size)
-                object.__setattr__(self, f.name, values)  # a tuple of floats, however given
+                object.__setattr__(self, name, values)  # a tuple of floats, however given
                 for k, v in enumerate(values):
-                    _check_number(f, f"{f.name}[{k}]", v)
+                    _check_number(f, f"{name}[{k}]", v)
                 continue
-            _check_number(f, f.name, value)  # (True/False are refused: no field is a flag)
+            # a plain float or int inside the range passes at once; anything else (numpy
+            # scalars, True/False -- refused: no field is a flag --, NaN, out of range) goes
+            # through the full check, which says what is wrong
+            t = type(value)
+            if (t is float or t is int) and (low <= value if incl else low < value) \
+                    and value <= high and math.isfinite(value):
+                continue
+            _check_number(f, name, value)
         self.validate()
+
+    @classmethod
+    @functools.cache  # per class
+    def _field_checks(cls) -> tuple[tuple[Any, str, int, float, float, bool], ...]:
+        """(field, name, vector size or 0, low, high, low inclusive) of every field, read
+        from the fields' metadata once per class (what every construction checks)."""
+        return tuple((f, f.name, f.metadata.get("size", 0), f.metadata.get("low", -math.inf),
+                      f.metadata.get("high", math.inf), f.metadata.get("low_inclusive", True))
+                     for f in dataclasses.fields(cls))
 
     def validate(self) -> None:
         """Cross-field checks; override in subclasses (raise ParameterError)."""
@@ -202,10 +217,13 @@ class Params:
         return packed
 
     def _pack(self) -> np.ndarray:
+        checks = self._field_checks()
+        if not any(c[2] for c in checks):  # (no vector field: one value per field)
+            return np.array([getattr(self, c[1]) for c in checks], dtype=float)
         out: list[float] = []
-        for n, size in zip(self.field_names(), self.field_sizes()):
+        for _, n, size, _, _, _ in checks:
             value = getattr(self, n)
-            if _is_vector(type(self), n):
+            if size:
                 out.extend(float(v) for v in value)
             else:
                 out.append(float(value))
