@@ -218,7 +218,7 @@ class Params:
 
     def _pack(self) -> np.ndarray:
         checks = self._field_checks()
-        if not any(c[2] for c in checks):  # (no vector field: one value per field)
+        if len(checks) == self.n_values():  # (no vector field: one value per field)
             return np.array([getattr(self, c[1]) for c in checks], dtype=float)
         out: list[float] = []
         for _, n, size, _, _, _ in checks:
