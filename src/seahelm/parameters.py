@@ -138,6 +138,12 @@ class Params:
 
     @classmethod
     @functools.cache  # per class
+    def _has_vector_fields(cls) -> bool:
+        """Whether a field holds a vector (``param(size=N)``)."""
+        return any(c[2] for c in cls._field_checks())
+
+    @classmethod
+    @functools.cache  # per class
     def _field_checks(cls) -> tuple[tuple[Any, str, int, float, float, bool], ...]:
         """(field, name, vector size or 0, low, high, low inclusive) of every field, read
         from the fields' metadata once per class (what every construction checks)."""
@@ -218,7 +224,7 @@ class Params:
 
     def _pack(self) -> np.ndarray:
         checks = self._field_checks()
-        if len(checks) == self.n_values():  # (no vector field: one value per field)
+        if not self._has_vector_fields():  # one value per field
             return np.array([getattr(self, c[1]) for c in checks], dtype=float)
         out: list[float] = []
         for _, n, size, _, _, _ in checks:
