@@ -12,7 +12,8 @@ reference ship takes to the last event a criterion needs — the 180° heading c
 turning circles, the 10° heading change at 10° rudder, the 10/10's second and the 20/20's
 first overshoot (two batches), dead in the water; the reference is by default the first
 member — and the members that do not reach it run again, :data:`LAST_PASS` (1.5) times as
-long. A member whose manoeuvres did not complete (a diverged run, an event not reached in the
+long; from :data:`LEARN` members of a manoeuvre on, the first pass lasts what minimises the
+expected simulated time given their needs. A member whose manoeuvres did not complete (a diverged run, an event not reached in the
 second pass, a zig-zag trigger never reached) is excluded from the fractions and counted, with the reason; so is a member
 whose steady straight approach is not found (it is not run). The stopping criterion (track
 reach ≤ 15 L, :func:`seahelm.analysis.maneuvers.crash_stop`, one batch per chunk too) is
@@ -237,8 +238,7 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
                                t_final=t_final, record_dt=record_dt).metrics
             got = {f"{v}/{side}": _member_values(m[v].sel(side=s), len(ships))
                    for v in names for s, side in sides}
-            return got, passes.reached([m[event].sel(side=s) for s, _ in sides], t_final,
-                                       len(ships), local=True)
+            return got, passes.needed([m[event].sel(side=s) for s, _ in sides], len(ships))
 
         def zigzags(ships: list[Any], t_final: float, pair: int, n: int
                     ) -> tuple[dict[str, np.ndarray], np.ndarray]:
@@ -247,15 +247,15 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
             got = {f"overshoot {k}/{side}": _member_values(
                 m["overshoot"].sel(side=s, n=k), len(ships)) for k in range(1, n + 1)
                 for s, side in sides}
-            return got, passes.reached([m["overshoot"].sel(side=s, n=n) for s, _ in sides],
-                                       t_final, len(ships))
+            return got, passes.needed([m["overshoot_time"].sel(side=s, n=n) for s, _ in sides],
+                                      len(ships))
 
-        t35 = passes.run(lambda s, t: turning(s, t, rudders[0], "time_180",
-                                              ("advance", "tactical_diameter")), chunk, t_turn)
-        t10 = passes.run(lambda s, t: turning(s, t, rudders[1], "time_10", ("distance_10",)),
-                         chunk, t_initial)
-        z10 = passes.run(lambda s, t: zigzags(s, t, 0, 2), chunk, t_zz10)
-        z20 = passes.run(lambda s, t: zigzags(s, t, 1, 1), chunk, t_zz20)
+        t35 = passes.run("turning", lambda s, t: turning(
+            s, t, rudders[0], "time_180", ("advance", "tactical_diameter")), chunk, t_turn)
+        t10 = passes.run("initial turning", lambda s, t: turning(
+            s, t, rudders[1], "time_10", ("distance_10",)), chunk, t_initial)
+        z10 = passes.run("10/10", lambda s, t: zigzags(s, t, 0, 2), chunk, t_zz10)
+        z20 = passes.run("20/20", lambda s, t: zigzags(s, t, 1, 1), chunk, t_zz20)
         for side, name in sides:
             got = (t35[f"advance/{name}"] / L, t35[f"tactical_diameter/{name}"] / L,
                    t10[f"distance_10/{name}"] / L,
@@ -285,9 +285,9 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
             # for track reaches that differ by ~2e-6 relative, measured on the KVLCC2 L7)
             m = crash_stop(ships, speed=V, dt=dt, t_final=t_final, record_dt=record_dt).metrics
             return ({"track_reach": _member_values(m["track_reach"], len(ships))},
-                    passes.reached([m["time_dead"]], t_final, len(ships)))
+                    passes.needed([m["time_dead"]], len(ships)))
 
-        reach = [passes.run(stops, stoppers[i:i + CHUNK], t_stop)["track_reach"]
+        reach = [passes.run("stopping", stops, stoppers[i:i + CHUNK], t_stop)["track_reach"]
                  for i in range(0, len(stoppers), CHUNK)]
         checks.append(("stopping", "track reach (full astern)", "-",
                        np.concatenate(reach) / L, STOPPING_LIMIT, "L"))
@@ -303,45 +303,68 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
 
 #: The members' runs last this many times the reference's time to the last event the criteria
 #: need; the members that do not reach it (or, for an interpolated event, reach it within two
-#: recordings of the end) run again, :data:`LAST_PASS` times as long. The events are found
-#: from the samples around them, so a member's values do not depend on the pass they came
-#: from (the runs are the same step by step).
+#: recordings of the end) run again, :data:`LAST_PASS` times as long. Once :data:`LEARN`
+#: members of a manoeuvre have run, the first pass of the next chunk lasts what minimises the
+#: expected simulated time given their needs, f + LAST_PASS · P(need > f) (in units of the
+#: reference's time). The events are found from the samples around them, so a member's values
+#: do not depend on the pass they came from (the runs are the same step by step).
 FIRST_PASS = 1.15
 #: Of the second pass: a member whose events are not reached then is excluded.
 LAST_PASS = 1.5
+#: Members of a manoeuvre whose needs are known before the first pass adapts to them.
+LEARN = 200
 
 
 class _Passes:
-    """Runs a manoeuvre of members for :data:`FIRST_PASS` times the reference's duration, then
-    again for :data:`LAST_PASS` times it the members that did not reach their event (counted
-    in :attr:`rerun`)."""
+    """Runs a manoeuvre of members for a first pass (:data:`FIRST_PASS` times the reference's
+    duration, then what the members seen so far need), then again for :data:`LAST_PASS` times
+    it the members that did not reach their event (counted in :attr:`rerun`)."""
 
     def __init__(self, record_dt: float) -> None:
         self.record_dt = record_dt
         self.rerun = 0
+        #: per manoeuvre, the members' needs / the reference's time (inf: not within the
+        #: second pass)
+        self.needs: dict[str, list[np.ndarray]] = {}
 
-    def reached(self, times: Sequence[Any], t_final: float, n: int, *,
-                local: bool = False) -> np.ndarray:
-        """Members whose events (one DataArray per side, NaN where not reached) are reached
-        within ``t_final``; with ``local``, two recordings before the end (the cubic through
-        the four samples around an event needs them)."""
-        margin = 2.0 * self.record_dt if local else 0.0
-        ok = np.ones(n, dtype=bool)
+    def needed(self, times: Sequence[Any], n: int) -> np.ndarray:
+        """The time each member needs [s]: its latest event (one DataArray per side, NaN where
+        not reached: NaN) and two recordings more (the cubic through the four samples around
+        a heading change, the parabola through the samples around an overshoot and the line
+        to the sample after dead in the water need them)."""
+        need = np.zeros(n)
         for da in times:
-            v = _member_values(da, n)
-            with np.errstate(invalid="ignore"):
-                ok &= np.isfinite(v) & (v <= t_final - margin)
-        return ok
+            need = np.maximum(need, _member_values(da, n))  # (NaN propagates)
+        return need + 2.0 * self.record_dt
 
-    def run(self, measure: Any, ships: list[Any], t_event: float) -> dict[str, np.ndarray]:
-        """``measure(ships, t_final) -> (values by name, reached)`` in two passes."""
-        got, ok = measure(ships, FIRST_PASS * t_event)
-        again = np.flatnonzero(~ok)
+    def first_pass(self, key: str) -> float:
+        """The first pass's length for ``key`` in units of the reference's time."""
+        seen = np.concatenate(self.needs.get(key, [np.zeros(0)]))
+        if seen.size < LEARN:
+            return FIRST_PASS
+        candidates = np.unique(np.clip(seen[np.isfinite(seen)], 0.0, LAST_PASS))
+        if candidates.size == 0:
+            return FIRST_PASS
+        over = 1.0 - np.searchsorted(np.sort(seen), candidates, side="right") / seen.size
+        cost = candidates + LAST_PASS * over
+        return float(candidates[np.argmin(cost)])
+
+    def run(self, key: str, measure: Any, ships: list[Any], t_event: float
+            ) -> dict[str, np.ndarray]:
+        """``measure(ships, t_final) -> (values by name, needed time)`` in two passes."""
+        t_first = self.first_pass(key) * t_event
+        got, need = measure(ships, t_first)
+        with np.errstate(invalid="ignore"):
+            again = np.flatnonzero(~(need <= t_first))
         if again.size:
             self.rerun += int(again.size)
-            more, _ = measure([ships[i] for i in again], LAST_PASS * t_event)
+            t_last = LAST_PASS * t_event
+            more, need_more = measure([ships[i] for i in again], t_last)
             for name, v in got.items():
                 v[again] = more[name]
+            with np.errstate(invalid="ignore"):
+                need[again] = np.where(need_more <= t_last, need_more, np.inf)
+        self.needs.setdefault(key, []).append(need / t_event)
         return got
 
 
