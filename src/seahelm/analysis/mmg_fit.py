@@ -475,8 +475,8 @@ def identify_mmg(records: ManoeuvreRecord | Sequence[ManoeuvreRecord], base: Any
     :mod:`seahelm.analysis.velocity_smoother` first. After the output-error fit of every hull
     derivative, the ones the records do not identify
     (:meth:`HullFit.unidentifiable`) are set back to the base ship's values and the others
-    fitted again (parameter-subset selection); the fit lists them in :attr:`HullFit.fixed`
-    with their evidence.
+    fitted again (parameter-subset selection), until every fitted derivative is identified;
+    the fit lists the fixed ones in :attr:`HullFit.fixed` with their evidence.
 
     Parameters
     ----------
@@ -497,21 +497,25 @@ def identify_mmg(records: ManoeuvreRecord | Sequence[ManoeuvreRecord], base: Any
     fit = regress_hull(records, base, method=method)
     if output_error:
         fit = refine_mmg(fit, records)
-    bad = fit.unidentifiable()
-    if not bad:
-        return fit
-    keep = [n for n in fit.names if n not in bad]
-    if not keep:
-        raise ParameterError(
-            "the records identify none of the hull derivatives (e.g. "
-            + "; ".join(f"{k}: {v}" for k, v in list(bad.items())[:3])
-            + "): give records with more manoeuvring (zig-zags and turns to both sides), or "
-            "measured velocities", field="records")
-    start = fit.params.replace(**{n: float(getattr(base.params, n)) for n in bad})
-    if output_error:
-        sub = refine_mmg(start, records, names=keep)
-    else:
-        idx = [fit.names.index(n) for n in keep]
-        sub = dataclasses.replace(fit, names=tuple(keep), values=fit.values[idx],
-                                  covariance=fit.covariance[np.ix_(idx, idx)], params=start)
-    return dataclasses.replace(sub, fixed=dict(bad))
+    fixed: dict[str, str] = {}
+    # fixing some derivatives can leave others without support (their partners gone, the
+    # intervals of the rest wider or narrower): repeat until every fitted one is identified
+    while True:
+        bad = fit.unidentifiable()
+        if not bad:
+            return dataclasses.replace(fit, fixed=fixed) if fixed else fit
+        fixed.update(bad)
+        keep = [n for n in fit.names if n not in bad]
+        if not keep:
+            raise ParameterError(
+                "the records identify none of the hull derivatives (e.g. "
+                + "; ".join(f"{k}: {v}" for k, v in list(fixed.items())[:3])
+                + "): give records with more manoeuvring (zig-zags and turns to both sides), "
+                "or measured velocities", field="records")
+        start = fit.params.replace(**{n: float(getattr(base.params, n)) for n in bad})
+        if output_error:
+            fit = refine_mmg(start, records, names=keep)
+        else:
+            idx = [fit.names.index(n) for n in keep]
+            fit = dataclasses.replace(fit, names=tuple(keep), values=fit.values[idx],
+                                      covariance=fit.covariance[np.ix_(idx, idx)], params=start)
