@@ -344,7 +344,12 @@ def regress_hull(records: ManoeuvreRecord | Sequence[ManoeuvreRecord], base: Any
 
 def _simulate(params_list: list[Any], record: ManoeuvreRecord) -> np.ndarray:
     """u, v, r of a batch of MMG parameter sets driven by the record's δ and n, at its times:
-    shape (runs, 3, samples)."""
+    shape (runs, 3, samples).
+
+    δ and n are the record's (the angle the rudder had, not the order given to the steering
+    gear), the straight lines between its samples (:mod:`seahelm.actuators.hold`); the step
+    is the record's median sampling interval (at most a fortieth of the record)."""
+    from ..actuators.hold import hold_actuator, hold_reference
     from ..registry import get_model
     from ..simulation.engine import simulate
 
@@ -352,15 +357,20 @@ def _simulate(params_list: list[Any], record: ManoeuvreRecord) -> np.ndarray:
     dt = min(record.median_interval, 0.25 * record.duration / 10)
     n = int(math.ceil(record.duration / dt))
     t = record.time[0] + dt * np.arange(n + 1)
-    ref = np.stack([np.interp(t, record.time, record.rudder_angle),
-                    np.interp(t, record.time, record.channels["propeller_rps"])], axis=-1)
+    inputs = ("rudder_angle", "propeller_rps")
+    samples = np.stack([np.interp(t, record.time, record.rudder_angle),
+                        np.interp(t, record.time, record.channels["propeller_rps"])], axis=-1)
+    hold = hold_actuator(inputs, tuple(model.input_units[model.input_labels.index(k)]
+                                       for k in inputs))
+    u0, ref = hold_reference(samples, dt)
     x0 = np.zeros(model.n_states)
     labels = model.state_labels
     x0[labels.index("surge_speed")] = record.channels["surge_speed"][0]
     x0[labels.index("sway_speed")] = record.channels["sway_speed"][0]
     x0[labels.index("yaw_rate")] = record.yaw_rate[0]
     result = simulate(model, params=params_list, x0=np.repeat(x0[None], len(params_list), 0),
-                      t_final=n * dt, dt=dt, actuator="direct", reference=ref[None])
+                      t_final=n * dt, dt=dt, actuator=hold, actuator_x0=u0,
+                      reference=ref[None])
     out = np.full((len(params_list), 3, record.time.size), np.nan)
     for k, name in enumerate(("surge_speed", "sway_speed", "yaw_rate")):
         y = np.asarray(result[name])

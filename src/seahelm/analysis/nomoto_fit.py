@@ -161,6 +161,7 @@ def simulate_records(order: int, thetas: np.ndarray, inits: np.ndarray,
     -------
     ndarray, shape (runs, samples)
     """
+    from ..actuators.hold import hold_actuator, hold_reference
     from ..registry import get_model
     from ..simulation.engine import simulate
     from ..vessels.nomoto import Nomoto1Params, Nomoto2Params
@@ -169,6 +170,10 @@ def simulate_records(order: int, thetas: np.ndarray, inits: np.ndarray,
     dt, n = _grid(record)
     t = record.time[0] + dt * np.arange(n + 1)
     delta = np.interp(t, record.time, record.rudder_angle)
+    # the rudder between samples: the straight line (not held at each sample, which lags it
+    # by half a step while it moves; seahelm.actuators.hold)
+    hold = hold_actuator(("rudder_angle",), ("rad",))
+    delta0, rate = hold_reference(delta[:, None], dt)
     runs = thetas.shape[0]
     if order == 1:
         params = [Nomoto1Params(gain=th[0], time_constant=th[1], speed=1.0) for th in thetas]
@@ -184,8 +189,8 @@ def simulate_records(order: int, thetas: np.ndarray, inits: np.ndarray,
         x0[:, labels.index("yaw_aux")] = inits[:, 2] - a * delta[0]
     dist = np.zeros((runs, 1, len(model.disturbance_labels)))
     dist[:, 0, model.disturbance_labels.index("rudder_disturbance")] = thetas[:, -1]
-    result = simulate(model, params=params, x0=x0, t_final=n * dt, dt=dt, actuator="direct",
-                      reference=delta[None, :, None], disturbance=dist)
+    result = simulate(model, params=params, x0=x0, t_final=n * dt, dt=dt, actuator=hold,
+                      actuator_x0=delta0, reference=rate[None], disturbance=dist)
     y = np.asarray(result[output])
     ok = np.isfinite(y).all(axis=1)
     out = np.full((runs, record.time.size), np.nan)
