@@ -57,7 +57,8 @@ from ..errors import ParameterError
 from .mmg_fit import HULL_TERMS, HullFit, _scaled_outputs, _simulate
 from .records import ManoeuvreRecord
 
-__all__ = ["MMGPosterior", "mmg_posterior", "posterior_ships", "output_error_log_likelihood",
+__all__ = ["MMGPosterior", "mmg_posterior", "posterior_ships", "posterior_columns",
+           "output_error_log_likelihood",
            "admissible", "POSTERIOR_METHODS", "PRIOR_SIGNS"]
 
 POSTERIOR_METHODS = ("laplace", "mcmc")
@@ -302,10 +303,43 @@ def _mcmc(fit: HullFit, records: Sequence[ManoeuvreRecord] | None, n: int, rng: 
                         autocorr_time=tau, walkers=walkers, steps=steps, burn=burn, thin=thin)
 
 
+def posterior_columns(fit: HullFit, samples: np.ndarray | MMGPosterior
+                      ) -> dict[str, np.ndarray]:
+    """Every hull derivative of the posterior ships, by key path (``vessel.params.<name>``):
+    the sampled ones from the samples, the others at the fit's values (the fixed ones at the
+    base ship's) — the columns of a samples file (:mod:`seahelm.analysis.samples_file`) whose
+    rows, put into the base ship, are the ships of :func:`posterior_ships`.
+
+    Parameters
+    ----------
+    fit : HullFit
+        Names the sampled derivatives.
+    samples : ndarray, shape (n, len(fit.names)), or MMGPosterior
+
+    Returns
+    -------
+    dict of str to ndarray, shape (n,)
+    """
+    if isinstance(samples, MMGPosterior):
+        samples = samples.samples
+    samples = np.atleast_2d(np.asarray(samples, dtype=float))
+    if samples.shape[1] != len(fit.names):
+        raise ParameterError(f"samples have {samples.shape[1]} columns, the fit "
+                             f"{len(fit.names)} derivatives", field="samples")
+    n = samples.shape[0]
+    out = {}
+    for name in (name for terms in HULL_TERMS.values() for name, _ in terms):
+        out[f"vessel.params.{name}"] = (samples[:, fit.names.index(name)].copy()
+                                        if name in fit.names else
+                                        np.full(n, float(getattr(fit.params, name))))
+    return out
+
+
 def posterior_ships(fit: HullFit, samples: np.ndarray | MMGPosterior, base: Any, *,
                     name: str = "posterior") -> list[Any]:
     """One ship per posterior sample: ``base`` with the sample's hull derivatives (the other
-    hull derivatives at the fit's values: the fixed ones at the base ship's).
+    hull derivatives at the fit's values: the fixed ones at the base ship's;
+    :func:`posterior_columns`).
 
     Parameters
     ----------
@@ -321,15 +355,11 @@ def posterior_ships(fit: HullFit, samples: np.ndarray | MMGPosterior, base: Any,
     -------
     list of Ship
     """
-    if isinstance(samples, MMGPosterior):
-        samples = samples.samples
-    samples = np.atleast_2d(np.asarray(samples, dtype=float))
-    if samples.shape[1] != len(fit.names):
-        raise ParameterError(f"samples have {samples.shape[1]} columns, the fit "
-                             f"{len(fit.names)} derivatives", field="samples")
-    start = {n: float(getattr(fit.params, n)) for terms in HULL_TERMS.values() for n, _ in terms}
-    return [base.replace(name=f"{name} #{i}", params={**start, **dict(zip(fit.names,
-                                                                          map(float, th)))},
+    columns = posterior_columns(fit, samples)
+    prefix = len("vessel.params.")
+    n = len(next(iter(columns.values())))
+    return [base.replace(name=f"{name} #{i}",
+                         params={k[prefix:]: float(v[i]) for k, v in columns.items()},
                          provenance=f"posterior sample {i} of the hull derivatives identified "
                                     f"from {', '.join(fit.records)}; the rest of '{base.name}'")
-            for i, th in enumerate(samples)]
+            for i in range(n)]

@@ -37,6 +37,7 @@ from ..errors import ParameterError, ValidityRangeWarning
 from ..ships.water_depth import params_at_depth
 from .errors import ScenarioError, at_key
 from .particulars import PREFIX, EstimatedSamples, check_drawn_particulars
+from .samples import drawn_kinds
 from .schema import Scenario
 
 __all__ = ["ManeuverJob", "prepare_maneuver"]
@@ -233,8 +234,7 @@ class ManeuverJob:
         mc = self.monte_carlo
         if mc is None:
             return {}
-        kinds = {key: dist.distribution for key, dist in mc.draws.items()}
-        kinds.update({key: "correlated-normal" for b in mc.correlated for key in b.keys})
+        kinds = drawn_kinds(mc, str(self.metadata.get("scenario_source", "<string>")))
         return {key: {"distribution": kind, **_units(self, key)} for key, kind in kinds.items()}
 
     def _error(self, exc: Exception) -> ScenarioError:
@@ -320,7 +320,7 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
     assert man is not None
     vessel = scn.vessel
     mc = scn.batch.monte_carlo
-    drawn_keys = [] if mc is None else list(mc.draws) + [k for b in mc.correlated for k in b.keys]
+    drawn_keys = list(drawn_kinds(mc, source))
     varied = check_drawn_particulars(scn, drawn_keys, source)
     with warnings.catch_warnings():
         if varied:  # (the samples' ships are estimated and their warnings said when they run)

@@ -34,6 +34,7 @@ import numpy as np
 
 from ..errors import ParameterError, ValidityRangeWarning
 from .errors import ScenarioError, at_key
+from .samples import drawn_kinds
 from .schema import Scenario
 
 __all__ = ["PREFIX", "estimated_ship", "EstimatedSamples", "check_drawn_particulars",
@@ -196,8 +197,8 @@ def refuse_varied_particulars(scn: Scenario, source: str) -> None:
         At ``batch.grid.<key>`` or ``batch.monte_carlo.<key>``.
     """
     mc = scn.batch.monte_carlo
-    keys = [("grid", k) for k in scn.batch.grid] + ([] if mc is None else [
-        ("monte_carlo", k) for k in list(mc.draws) + [k for b in mc.correlated for k in b.keys]])
+    keys = [("grid", k) for k in scn.batch.grid] + [("monte_carlo", k)
+                                                     for k in drawn_kinds(mc, source)]
     for where, key in keys:
         if key.startswith(PREFIX):
             raise at_key(source, f"batch.{where}.{key}",

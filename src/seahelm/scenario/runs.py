@@ -31,6 +31,7 @@ from .environment import KEY_UNITS as _ENV_UNITS, environment_runs
 from .errors import ScenarioError, at_key as _err
 from ..ships.water_depth import params_at_depth
 from .particulars import refuse_varied_particulars
+from .samples import drawn_kinds, samples_draws
 from .vessel import ship_key, vessel_ship
 from .schema import Scenario
 
@@ -120,8 +121,8 @@ def _expand_batch(
     for key in grid_keys:
         if not scn.batch.grid[key]:
             raise _err(source, f"batch.grid.{key}", "needs at least one value, got []")
-    drawn_keys = [] if mc is None else list(mc.draws) + [k for b in mc.correlated for k in b.keys]
-    for key in grid_keys + drawn_keys:
+    kinds = drawn_kinds(mc, source)
+    for key in grid_keys + list(kinds):
         if not key.startswith(_OVERRIDABLE):
             raise _err(source, f"batch.{key}",
                        f"cannot vary '{key}'; keys start with one of: {', '.join(_OVERRIDABLE)}")
@@ -142,8 +143,6 @@ def _expand_batch(
             runs.append(draw)
             n += 1
     axes.append(BatchAxis(name="sample", values=np.arange(mc.runs)))
-    kinds = {key: dist.distribution for key, dist in mc.draws.items()}
-    kinds.update({key: "correlated-normal" for block in mc.correlated for key in block.keys})
     values = tuple(
         BatchValues(name=key, values=drawn[key], units=units(key),
                     attrs={"key": key, "distribution": kind})
@@ -189,7 +188,9 @@ def monte_carlo_draws(mc: Any, indices: np.ndarray, source: str = "<string>"
     blocks = [CorrelatedNormal(tuple(b.keys), b.mean, b.covariance) for b in mc.correlated]
     from ..numerics.sampling import draw_samples
 
-    return draw_samples(marginals, mc.seed, indices, blocks)
+    out = draw_samples(marginals, mc.seed, indices, blocks)
+    out.update(samples_draws(mc, indices, source))  # [batch.monte_carlo] samples = FILE
+    return out
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

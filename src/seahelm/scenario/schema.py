@@ -295,12 +295,18 @@ class MonteCarloSection(_Strict):
     particulars it is estimated from (``vessel.particulars.<name>``), one ship per sample. With
     ``kind = "imo"`` the samples give the probability of passing each IMO criterion and the
     whole check (Wilson intervals; samples whose manoeuvres do not complete are excluded and
-    counted); they share the ship's length, test speed and steering-gear limit."""
+    counted); they share the ship's length, test speed and steering-gear limit. ``samples =
+    "FILE.csv"`` gives drawn values as numbers instead, sample i the file's row i (e.g. the
+    posterior samples of ``seahelm identify mmg --save-posterior``; ``runs`` at most its
+    rows)."""
 
     runs: Annotated[int, Strict(), Field(ge=1, le=1_000_000)]
     seed: Annotated[int, Strict(), Field(ge=0)]
     draws: dict[str, Distribution] = Field(default_factory=dict)
     correlated: list[CorrelatedSection] = Field(default_factory=list)
+    #: a samples file (CSV, relative to the scenario file): sample i takes its row i
+    #: (:mod:`seahelm.scenario.samples`)
+    samples: Annotated[str, Field(min_length=1)] | None = None
 
     @model_validator(mode="after")
     def _once(self) -> "MonteCarloSection":
