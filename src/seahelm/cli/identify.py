@@ -281,11 +281,13 @@ def _imo_given_fit(fit: Any, records: Any, n: int, posterior: str, seed: int | N
 
 
 def _imo_of_ships(ships: list[Any], n: int, posterior: str, seed: int | None,
-                  level: float) -> dict[str, Any]:
-    """The IMO pass probabilities over posterior ships (shared by nomoto and mmg)."""
+                  level: float, reference: Any = None) -> dict[str, Any]:
+    """The IMO pass probabilities over posterior ships (shared by nomoto and mmg; the
+    ``reference`` bounds the runs' durations, :func:`~seahelm.analysis.imo_probability.
+    imo_probabilities`)."""
     from ..analysis.imo_probability import imo_probabilities
 
-    out = imo_probabilities(ships, level=level).as_dict()
+    out = imo_probabilities(ships, level=level, reference=reference).as_dict()
     out.update(samples=n, posterior=posterior, seed=seed)
     return out
 
@@ -398,9 +400,21 @@ def mmg(
                                                 "draws.")] = None,
     level: Annotated[float, typer.Option(
         "--level", help="Confidence level of the Wilson intervals.")] = 0.95,
+    save_posterior: Annotated[Optional[Path], typer.Option(
+        "--save-posterior", metavar="FILE.csv", help="Write the posterior samples (the --imo N "
+        "ships' hull derivatives, or --samples N of them): a samples file for `seahelm imo "
+        "SHIP.toml --draws FILE.csv` or a scenario's [batch.monte_carlo] samples.")] = None,
+    samples: Annotated[int, typer.Option(
+        "--samples", metavar="N", help="Without --imo: the number of posterior samples "
+        "--save-posterior writes.", min=0)] = 0,
     json_out: JsonFlag = False,
 ) -> None:
-    """Identify the MMG hull derivatives from free-running records, the rest from a base ship."""
+    """Identify the MMG hull derivatives from free-running records, the rest from a base ship.
+
+    With --imo N the IMO check runs on N ships drawn from the posterior, the identified ship
+    bounding their runs' durations; `--imo N -o SHIP.toml --save-posterior FILE.csv` and then
+    `seahelm imo SHIP.toml --draws FILE.csv` give the same probabilities.
+    """
     from ..analysis.mmg_fit import identify_mmg
     from ..analysis.records import read_records
     from ..errors import ParameterError
@@ -418,30 +432,90 @@ def mmg(
     if base.model.name != "mmg":
         raise ParameterError(f"`--ship` '{base.name}' uses model '{base.model.name}'; the MMG "
                              "identification needs an MMG ship (e.g. `seahelm ship estimate`)")
+    n_post = _posterior_count(imo, samples, save_posterior)
     if out is not None:
         output_file("--out", out, reads=tuple(files))
+    if save_posterior is not None:
+        output_file("--save-posterior", save_posterior, reads=tuple(files))
+        if out is not None and save_posterior.resolve() == out.resolve():
+            raise ParameterError("`--save-posterior` and `--out` are the same file")
     records = read_records(files, angles=angles)
     fit = identify_mmg(records, base, method=method, output_error=output_error)
     payload = fit.as_dict()
     if out is not None:
         payload["ship_file"] = str(write_ship(fit.ship(base, name=name), out, overwrite=True))
-    if imo:
+    if n_post:
         from ..analysis.mmg_posterior import mmg_posterior, posterior_ships
 
+        option = "--imo" if imo else "--samples"
         try:
-            post = mmg_posterior(fit, records, n=imo, method=posterior, seed=seed)
+            post = mmg_posterior(fit, records, n=n_post, method=posterior, seed=seed)
         except ParameterError as exc:
-            raise ParameterError(f"`--imo`: {exc}") from None
-        payload["imo"] = _imo_of_ships(posterior_ships(fit, post, base), imo, posterior, seed,
-                                       level)
-        payload["imo"]["posterior_samples"] = post.as_dict()
+            raise ParameterError(f"`{option}`: {exc}") from None
+        if save_posterior is not None:
+            payload["posterior_file"] = str(_save_posterior(save_posterior, fit, post, base,
+                                                            seed))
+        if imo:
+            payload["imo"] = _imo_of_ships(posterior_ships(fit, post, base), imo, posterior,
+                                           seed, level, reference=fit.ship(base, name=name))
+            payload["imo"]["posterior_samples"] = post.as_dict()
+        else:
+            payload["posterior_samples"] = post.as_dict()
     if json_out:
         print_json(payload)
         return
     _print_mmg(fit, base, payload)
+    if "posterior_file" in payload:
+        from rich.markup import escape
+
+        console.print(escape(f"wrote {n_post} posterior samples to {payload['posterior_file']}"),
+                      highlight=False, soft_wrap=True)
     if imo:
         _print_posterior_diagnostics(payload["imo"]["posterior_samples"])
         _print_imo_given_fit(payload["imo"])
+
+
+def _posterior_count(imo: int, samples: int, save: Path | None) -> int:
+    """How many posterior samples ``identify mmg`` draws (0: none), checked."""
+    from ..errors import ParameterError
+
+    if samples and imo and samples != imo:
+        raise ParameterError(f"`--samples` {samples} and `--imo` {imo}: the IMO check runs "
+                             "on the samples written; give one of them")
+    if samples and save is None:
+        raise ParameterError("`--samples` draws posterior samples for `--save-posterior "
+                             "FILE.csv`; give it (or `--imo N` to check them against IMO)")
+    n = imo or samples
+    if save is not None:
+        if not n:
+            raise ParameterError("`--save-posterior` needs the number of samples: `--imo N` "
+                                 "(draws N ships and checks them) or `--samples N` (draws "
+                                 "them only)")
+        if save.suffix.lower() != ".csv":
+            raise ParameterError(f"`--save-posterior` writes a CSV samples file (FILE.csv), "
+                                 f"got {save}")
+    return n
+
+
+def _save_posterior(path: Path, fit: Any, post: Any, base: Any, seed: int | None) -> Path:
+    """The posterior ships' hull derivatives as a samples file
+    (:mod:`seahelm.analysis.samples_file`)."""
+    from ..analysis.mmg_posterior import posterior_columns
+    from ..analysis.samples_file import write_samples
+
+    columns = posterior_columns(fit, post)
+    units = {i.name: i.unit for i in type(base.params).info()}
+    fixed = ", ".join(fit.fixed) or "none"
+    return write_samples(path, columns, units={k: units.get(k.rpartition(".")[2], "")
+                                               for k in columns}, comments=(
+        f"seahelm posterior samples of the MMG hull derivatives of '{base.name}' "
+        f"({post.method}, {post.samples.shape[0]} samples, "
+        + (f"seed {seed})" if seed is not None else "unseeded)"),
+        f"identified ({fit.method}) from {', '.join(fit.records)}",
+        f"sampled: {', '.join(fit.names)}; not identified, at the base ship's values: "
+        f"{fixed}; the others at the fit's values",
+        "one row per sample; use: seahelm imo SHIP.toml --draws FILE.csv, or a scenario's "
+        "[batch.monte_carlo] samples = \"FILE.csv\""))
 
 
 def _print_posterior_diagnostics(post: dict[str, Any]) -> None:

@@ -88,10 +88,12 @@ def imo(
     uncertainty: Annotated[float, typer.Option(
         "--uncertainty", help="Relative standard deviation of the default draws.")] = 0.10,
     draws: Annotated[Optional[Path], typer.Option(
-        "--draws", metavar="FILE.toml", help=(
+        "--draws", metavar="FILE.toml|FILE.csv", help=(
             "Your own draws: a TOML table [draws] of parameter = {distribution = \"normal\", "
             "mean = …, std = …} (normal, uniform, lognormal, truncnormal as in scenario "
-            "files).")),
+            "files); or a CSV samples file (a column per vessel.params.<name>, a row per "
+            "sample, e.g. `identify mmg --save-posterior`): sample i is row i, all rows "
+            "without --monte-carlo.")),
     ] = None,
     json_out: JsonFlag = False,
     out: Out = None,
@@ -109,7 +111,8 @@ def imo(
     ship = ship_of(model, water_depth)
     check_speed_rps(ship, speed, rps)
     check_positive_opt("--dt", dt, "s")
-    if monte_carlo is not None:
+    from_samples = draws is not None and draws.suffix.lower() == ".csv"
+    if monte_carlo is not None or from_samples:
         if speed is not None or rps is not None:
             raise ParameterError("`--monte-carlo` runs every sample at the ship's test speed: "
                                  "drop `--speed`/`--rps`")
@@ -119,7 +122,10 @@ def imo(
         reads = ship_reads(model) + (() if draws is None else (draws,))
         if out is not None:
             output_dir("--out", out, (ENSEMBLE_FILE,), reads=reads)
-        _monte_carlo(ship, monte_carlo, seed, uncertainty, draws, dt, json_out, out)
+        if from_samples:
+            _from_samples(ship, monte_carlo, draws, dt, json_out, out)
+        else:
+            _monte_carlo(ship, monte_carlo, seed, uncertainty, draws, dt, json_out, out)
         return
     check_out(out, "imo", ship_reads(model))
     report = imo_check(ship, speed=speed, rps=rps, dt=dt)
@@ -161,6 +167,57 @@ def _monte_carlo(ship: Any, n: int, seed: int, uncertainty: float, draws: Path |
             "uncertainty": uncertainty if draws is None else None}
     show_ensemble(probs, meta, drawn, out, json_out,
                   f"IMO MSC.137(76): {ship.name}, {n} Monte-Carlo samples (seed {seed})")
+
+
+def _from_samples(ship: Any, n: int | None, path: Path, dt: float | None, json_out: bool,
+                  out: Path | None) -> None:
+    """``--draws FILE.csv``: the ships of a samples file's rows
+    (:mod:`seahelm.analysis.samples_file`), checked as ``--monte-carlo`` checks its draws."""
+    from ..analysis.imo_probability import imo_probabilities
+    from ..analysis.samples_file import read_samples, samples_attrs
+    from ..scenario.maneuver import SHARED_KEYS
+    from ._common import input_file
+
+    input_file("--draws", path)
+    try:
+        table = read_samples(path)
+    except ParameterError as exc:
+        raise ParameterError(f"`--draws` {exc}") from None
+    for key in table.keys:
+        if not key.startswith("vessel.params."):
+            raise ParameterError(f"`--draws` {path}: column `{key}`: the samples of `seahelm "
+                                 "imo` vary the ship's parameters (vessel.params.<name>); a "
+                                 "scenario's [batch.monte_carlo] samples also its steering "
+                                 "gear's")
+        if key in SHARED_KEYS:
+            raise ParameterError(f"`--draws` {path}: column `{key}`: the samples of an IMO "
+                                 "check share the ship's length and test speed (its criteria "
+                                 "are in ship lengths and L/V): draw its other parameters")
+    if n is None:
+        n = table.n_samples
+    elif n > table.n_samples:
+        raise ParameterError(f"`--monte-carlo` {n}: {path} holds {table.n_samples} samples")
+    names = set(ship.params.field_names())
+    for key in table.keys:
+        if key[len("vessel.params."):] not in names:
+            raise ParameterError(f"`--draws` {path}: column `{key}`: not a parameter of model "
+                                 f"'{ship.model.name}'")
+    ships = []
+    for i in range(n):
+        values = {k[len("vessel.params."):]: float(table.values[i, j])
+                  for j, k in enumerate(table.keys)}
+        try:
+            ships.append(ship.replace(params=values, name=f"{ship.name} #{i}"))
+        except ParameterError as exc:
+            raise ParameterError(f"`--draws` {path}: sample {i} (line {i + 1} after the "
+                                 f"header): {exc}") from None
+    probs = imo_probabilities(ships, dt=dt, reference=ship)
+    attrs = samples_attrs(table)
+    drawn = {k: (table.column(k)[:n].tolist(), attrs[k]) for k in table.keys}
+    meta = {"ship": ship.name, "samples": n, "seed": None, "draws": str(path),
+            "uncertainty": None}
+    show_ensemble(probs, meta, drawn, out, json_out,
+                  f"IMO MSC.137(76): {ship.name}, {n} samples from {path.name}")
 
 
 def present_imo_ensemble(job: Any, out: Path | None, as_json: bool, *,

@@ -1,0 +1,137 @@
+"""Posterior samples as Monte-Carlo draws (issue 30, item 4): ``seahelm identify mmg --imo N
+--save-posterior FILE.csv`` writes the posterior ships' hull derivatives as a samples file, and
+``seahelm imo SHIP.toml --draws FILE.csv`` and a ``kind = "imo"`` scenario with
+``[batch.monte_carlo] samples = "FILE.csv"`` check the same ships: the same probabilities, to
+the last bit. The samples file itself: written numbers read back exactly, bad files refused by
+column and line."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from seahelm.analysis.maneuvers import zigzag
+from seahelm.analysis.samples_file import read_samples, write_samples
+from seahelm.cli.main import app
+from seahelm.errors import ParameterError
+from seahelm.results import open_result_file
+from seahelm.scenario import load_scenario
+from seahelm.scenario.errors import ScenarioError
+from seahelm.ships import get_ship
+
+runner = CliRunner()
+KEYS = ("criteria", "probability", "ci_low", "ci_high", "passed", "total", "excluded")
+
+
+def invoke(args):
+    res = runner.invoke(app, [str(a) for a in args])
+    assert res.exit_code == 0, (res.stdout, res.stderr)
+    return json.loads(res.stdout)
+
+
+@pytest.fixture(scope="module")
+def identified(tmp_path_factory):
+    """``identify mmg`` of a 20/20 zig-zag (regression, the derivatives it does not identify
+    at the KVLCC2's values), 4 posterior ships checked against IMO, the ship file and the
+    samples file written."""
+    d = tmp_path_factory.mktemp("posterior")
+    log = d / "zz20.nc"
+    zigzag(get_ship("kvlcc2-l7"), math.radians(20.0), math.radians(20.0), sides=1,
+           record_dt=0.2).runs.to_netcdf(log, engine="h5netcdf")
+    payload = invoke(["identify", "mmg", log, "--ship", "kvlcc2-l7", "--regression-only",
+                      "--imo", "4", "--seed", "3", "-o", d / "id.toml",
+                      "--save-posterior", d / "post.csv", "--json"])
+    return d, payload
+
+
+def test_the_samples_file_holds_the_posterior_ships(identified):
+    d, payload = identified
+    assert payload["posterior_file"] == str(d / "post.csv")
+    table = read_samples(d / "post.csv")
+    assert table.n_samples == 4 and len(table.keys) == 17  # every hull derivative
+    assert all(k.startswith("vessel.params.") for k in table.keys)
+    assert table.units["vessel.params.N_v"] == "-"
+    assert any("posterior samples of the MMG hull derivatives" in c for c in table.comments)
+    sampled = payload["imo"]["posterior_samples"]
+    for name, mean in sampled["mean"].items():  # the posterior's statistics of the same rows
+        assert np.mean(table.column(f"vessel.params.{name}")) == pytest.approx(mean, rel=1e-12)
+    for name in sampled["fixed_at_base"]:  # not identified: the base ship's value, every row
+        col = table.column(f"vessel.params.{name}")
+        assert np.all(col == getattr(get_ship("kvlcc2-l7").params, name))
+
+
+def test_imo_draws_file_and_scenario_give_the_probabilities_of_the_identification(identified):
+    d, payload = identified
+    direct = payload["imo"]
+    cmd = invoke(["imo", d / "id.toml", "--draws", d / "post.csv", "--out", d / "a", "--json"])
+    for key in KEYS:
+        assert cmd[key] == direct[key], key
+    scn = d / "imo.toml"
+    scn.write_text('[vessel]\nship = "id.toml"\n[maneuver]\nkind = "imo"\n'
+                   '[batch.monte_carlo]\nruns = 4\nseed = 0\nsamples = "post.csv"\n')
+    run = invoke(["run", scn, "--out", d / "b", "--json"])
+    for key in KEYS:
+        assert run[key] == direct[key], key
+    a = open_result_file(d / "a" / "imo-probabilities.nc")
+    b = open_result_file(d / "b" / "imo-probabilities.nc")
+    np.testing.assert_array_equal(a["value"].values, b["value"].values)
+    table = read_samples(d / "post.csv")
+    for key in table.keys:
+        np.testing.assert_array_equal(b[key].values, table.column(key))
+        assert b[key].attrs["distribution"] == "samples"
+    # fewer samples than the file holds: its first rows
+    two = invoke(["imo", d / "id.toml", "--draws", d / "post.csv", "--monte-carlo", "2",
+                  "--json"])
+    assert two["total"] + two["excluded"] == 2
+
+
+def test_bad_draws_files_and_scenarios(identified, tmp_path):
+    d, _ = identified
+    res = runner.invoke(app, ["imo", str(d / "id.toml"), "--draws", str(d / "post.csv"),
+                              "--monte-carlo", "5"])
+    assert res.exit_code == 2 and "holds 4 samples" in res.stderr, res.stderr
+    bad = tmp_path / "bad.csv"
+    bad.write_text("vessel.params.N_v,vessel.params.N_r\n-0.1,-0.05\n-0.1,nan\n")
+    res = runner.invoke(app, ["imo", str(d / "id.toml"), "--draws", str(bad)])
+    assert res.exit_code == 2 and "`vessel.params.N_r` line 3" in res.stderr, res.stderr
+    bad.write_text("vessel.params.length\n7.0\n")
+    res = runner.invoke(app, ["imo", str(d / "id.toml"), "--draws", str(bad)])
+    assert res.exit_code == 2 and "share the ship's length" in res.stderr, res.stderr
+    scn = tmp_path / "s.toml"
+    scn.write_text(f'[vessel]\nship = "{d / "id.toml"}"\n[maneuver]\nkind = "imo"\n'
+                   f'[batch.monte_carlo]\nruns = 9\nseed = 0\nsamples = "{d / "post.csv"}"\n')
+    with pytest.raises(ScenarioError, match=r"batch.monte_carlo.samples.*holds 4 samples"):
+        load_scenario(scn)
+    scn.write_text(f'[vessel]\nship = "kvlcc2-l7"\n[maneuver]\nkind = "imo"\n'
+                   f'[batch.monte_carlo]\nruns = 2\nseed = 0\nsamples = "{d / "post.csv"}"\n'
+                   '[batch.monte_carlo.draws]\n'
+                   '"vessel.params.N_v" = { distribution = "normal", mean = -0.1, std = 0.01 }\n')
+    with pytest.raises(ScenarioError, match="`vessel.params.N_v` is a column of the samples"):
+        load_scenario(scn)
+    res = runner.invoke(app, ["identify", "mmg", str(d / "zz20.nc"), "--ship", "kvlcc2-l7",
+                              "--save-posterior", str(tmp_path / "p.csv")])
+    assert res.exit_code == 2 and "needs the number of samples" in res.stderr, res.stderr
+
+
+def test_written_numbers_read_back_exactly(tmp_path):
+    rng = np.random.default_rng(0)
+    cols = {"vessel.params.N_v": rng.normal(-0.137, 0.01, 50),
+            "actuator.params.max_rate": rng.uniform(0.1, 0.3, 50)}
+    path = write_samples(tmp_path / "s.csv", cols, units={"actuator.params.max_rate": "rad/s"},
+                         comments=("two\nlines",))
+    table = read_samples(path)
+    assert table.keys == tuple(cols) and table.comments == ("two", "lines")
+    assert table.units == {"actuator.params.max_rate": "rad/s"}
+    for k, v in cols.items():
+        np.testing.assert_array_equal(table.column(k), v)
+    for text, match in (("", "no header"), ("N_v\n1\n", "not a key path"),
+                        ("vessel.params.a,vessel.params.a\n1,2\n", "appears twice"),
+                        ("vessel.params.a\n", "no samples"),
+                        ("vessel.params.a,vessel.params.b\n1\n", "line 2 has 1 values")):
+        (tmp_path / "b.csv").write_text(text)
+        with pytest.raises(ParameterError, match=match):
+            read_samples(tmp_path / "b.csv")
