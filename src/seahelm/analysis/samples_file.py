@@ -15,8 +15,9 @@ The format is CSV (UTF-8):
   ship's parameters, its stored units) or ``actuator.params.<name>`` (its steering gear's);
 * one row per sample, every value a finite number.
 
-:func:`write_samples` writes one (17 significant digits: the numbers read back are the
-numbers written, so a study on the file repeats the one that wrote it to the last bit);
+:func:`write_samples` writes one (each number as the shortest decimal that reads back as the
+same double, Python's ``repr``: a study on the file repeats the one that wrote it to the last
+bit);
 :func:`read_samples` reads one, with a :class:`~seahelm.errors.ParameterError` naming the file,
 the column and the row of what is wrong.
 """
