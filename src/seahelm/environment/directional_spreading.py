@@ -1,0 +1,198 @@
+"""Directional spreading of a short-crested sea: D(θ) about the mean wave direction.
+
+A short-crested sea has the directional spectrum S(ω, θ) = S(ω) D(θ), θ the direction of
+travel of a wave component relative to the mean direction, ∫ D dθ = 1 (frequency-independent
+spreading). Two families:
+
+``"cos-n"`` (:class:`CosinePowerSpreading`, the cos² spreading for n = 2, the default)
+    D(θ) = Γ(1 + n/2)/(√π Γ(1/2 + n/2)) cosⁿθ for |θ| ≤ π/2, 0 beyond
+    (DNV-RP-C205 (2010), eq. 3.5.8.4; n = 2: D = (2/π) cos²θ, ITTC's short-crested sea).
+``"cos-2s"`` (:class:`Cos2sSpreading`)
+    D(θ) = Γ(s + 1)/(2√π Γ(s + 1/2)) cos^{2s}(θ/2) for |θ| ≤ π
+    (Longuet-Higgins, Cartwright & Smith 1963; s ≈ 10–25 swell-like, 1–5 wind sea).
+
+Each gives a quadrature rule (:meth:`~CosinePowerSpreading.quadrature`): midpoint directions
+over its support with weights D(θ_j) Δθ rescaled to sum to exactly 1, so a spread sea keeps
+the variance of the long-crested one whatever the number of directions.
+
+References
+----------
+Longuet-Higgins, M. S., Cartwright, D. E., Smith, N. D. (1963). Observations of the
+directional spectrum of sea waves using the motions of a floating buoy. Ocean Wave Spectra,
+Prentice-Hall, 111–136.
+DNV-RP-C205 (2010). Environmental conditions and environmental loads, sec. 3.5.8.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+from types import MappingProxyType
+from typing import Any, ClassVar
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .._validate import as_float_array
+from ..errors import ParameterError
+
+__all__ = ["CosinePowerSpreading", "Cos2sSpreading", "SPREADING", "get_spreading"]
+
+
+def _check_count(n: Any) -> int:
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+        raise ParameterError(f"must be an integer >= 1 [-], got {n!r}", field="n_directions",
+                             unit="-", value=n)
+    return int(n)
+
+
+class _Spreading:
+    name: ClassVar[str] = "spreading"
+    #: Half-width of the support [rad]: D = 0 for |θ| beyond it.
+    half_width: ClassVar[float] = math.pi
+
+    def density(self, theta: ArrayLike) -> np.ndarray:  # pragma: no cover - overridden
+        raise NotImplementedError
+
+    def quadrature(self, n_directions: int = 36) -> tuple[np.ndarray, np.ndarray]:
+        """Directions θ_j [rad] and weights w_j (Σ w_j = 1) of a midpoint rule over the support.
+
+        Parameters
+        ----------
+        n_directions : int, optional
+            Number of directions (default 36), >= 1; one direction is the long-crested sea.
+
+        Returns
+        -------
+        theta, weights : numpy.ndarray, shape (n_directions,)
+        """
+        n = _check_count(n_directions)
+        if n == 1:
+            return np.zeros(1), np.ones(1)
+        h = self.half_width
+        theta = -h + (np.arange(n) + 0.5) * (2.0 * h / n)
+        w = self.density(theta)
+        return theta, w / w.sum()
+
+
+@dataclasses.dataclass(frozen=True)
+class CosinePowerSpreading(_Spreading):
+    """D(θ) = Γ(1 + n/2)/(√π Γ(1/2 + n/2)) cosⁿθ on |θ| ≤ π/2 (DNV-RP-C205, eq. 3.5.8.4).
+
+    Parameters
+    ----------
+    power : float
+        The exponent n [-], > 0 (default 2: the cos² spreading).
+    """
+
+    name: ClassVar[str] = "cos-n"
+    half_width: ClassVar[float] = 0.5 * math.pi
+
+    power: float = 2.0
+
+    def __post_init__(self) -> None:
+        if isinstance(self.power, bool) or not (isinstance(self.power, (int, float))
+                                                and math.isfinite(self.power)
+                                                and self.power > 0):
+            raise ParameterError(f"must be > 0 [-], got {self.power!r}", field="power",
+                                 unit="-", value=self.power)
+
+    def density(self, theta: ArrayLike) -> np.ndarray:
+        """D(θ) [1/rad], 0 for |θ| > π/2.
+
+        Parameters
+        ----------
+        theta : array_like
+            Direction relative to the mean direction θ [rad].
+
+        Returns
+        -------
+        numpy.ndarray
+        """
+        t = as_float_array("theta", theta, "rad")
+        n = float(self.power)
+        c = math.exp(math.lgamma(1 + n / 2) - math.lgamma(0.5 + n / 2)) / math.sqrt(math.pi)
+        inside = np.abs(t) <= 0.5 * math.pi
+        return np.where(inside, c * np.abs(np.cos(np.where(inside, t, 0.0))) ** n, 0.0)
+
+
+@dataclasses.dataclass(frozen=True)
+class Cos2sSpreading(_Spreading):
+    """D(θ) = Γ(s + 1)/(2√π Γ(s + 1/2)) cos^{2s}(θ/2) on |θ| ≤ π (Longuet-Higgins et al. 1963).
+
+    Parameters
+    ----------
+    s : float
+        The spreading parameter s [-], > 0 (default 10).
+    """
+
+    name: ClassVar[str] = "cos-2s"
+    half_width: ClassVar[float] = math.pi
+
+    s: float = 10.0
+
+    def __post_init__(self) -> None:
+        if isinstance(self.s, bool) or not (isinstance(self.s, (int, float))
+                                            and math.isfinite(self.s) and self.s > 0):
+            raise ParameterError(f"must be > 0 [-], got {self.s!r}", field="s", unit="-",
+                                 value=self.s)
+
+    def density(self, theta: ArrayLike) -> np.ndarray:
+        """D(θ) [1/rad], 0 for |θ| > π.
+
+        Parameters
+        ----------
+        theta : array_like
+            Direction relative to the mean direction θ [rad].
+
+        Returns
+        -------
+        numpy.ndarray
+        """
+        t = as_float_array("theta", theta, "rad")
+        s = float(self.s)
+        c = math.exp(math.lgamma(s + 1) - math.lgamma(s + 0.5)) / (2.0 * math.sqrt(math.pi))
+        inside = np.abs(t) <= math.pi
+        return np.where(inside, c * np.abs(np.cos(0.5 * np.where(inside, t, 0.0))) ** (2 * s),
+                        0.0)
+
+
+#: Spreading functions by name; :func:`get_spreading` builds one.
+SPREADING: Mapping[str, type] = MappingProxyType({"cos-n": CosinePowerSpreading,
+                                                   "cos2": CosinePowerSpreading,
+                                                   "cos-2s": Cos2sSpreading})
+
+
+def get_spreading(spreading: str | Any, **params: Any) -> Any:
+    """A spreading function from a name of :data:`SPREADING` and its parameters, or an object.
+
+    Parameters
+    ----------
+    spreading : str or spreading object
+        ``"cos2"`` (= ``"cos-n"`` with n = 2), ``"cos-n"`` (``power=``), ``"cos-2s"``
+        (``s=``), or an object (returned unchanged; ``params`` must then be empty).
+    **params
+        The class's parameters.
+
+    Returns
+    -------
+    CosinePowerSpreading or Cos2sSpreading
+
+    Raises
+    ------
+    ParameterError
+        For an unknown name (listing the valid ones) or bad parameters.
+    """
+    if isinstance(spreading, _Spreading):
+        if params:
+            raise ParameterError("parameters cannot be given together with a spreading object",
+                                 field="spreading")
+        return spreading
+    try:
+        cls = SPREADING[spreading]
+    except (KeyError, TypeError):
+        valid = ", ".join(repr(k) for k in SPREADING)
+        raise ParameterError(f"unknown spreading {spreading!r}; valid: {valid}",
+                             field="spreading", value=spreading) from None
+    return cls(**params)
