@@ -74,7 +74,8 @@ for _module in ("seahelm.cli.stopping",):
 # Single commands of their own modules: (name, module, function).
 _COMMANDS = (("imo", "seahelm.cli.imo", "imo"), ("inspect", "seahelm.cli.inspect", "inspect"),
              ("report", "seahelm.cli.report", "report"), ("sweep", "seahelm.cli.sweep", "sweep"),
-             ("linearize", "seahelm.cli.linearize", "linearize"))
+             ("linearize", "seahelm.cli.linearize", "linearize"),
+             ("seakeeping", "seahelm.cli.seakeeping", "seakeeping"))
 for _name, _module, _attr in _COMMANDS:
     try:
         _sub = importlib.import_module(_module)
