@@ -358,9 +358,14 @@ def _print(payload: dict[str, Any], unit: str) -> None:
             cols.append(f"P(>{e['level']:g} {unit} in {e['duration_s']:g} s)")
         for c in cols:
             table.add_column(escape(c), justify="right")
+        tiny = 1e-9 * max(c[rms_key] for c in cells)  # round-off (sin π = 1.2e-16): shown 0
+
+        def shown(v: float) -> str:
+            return "0" if abs(v) <= tiny else f"{v:.4g}"
+
         for c in cells:
-            row = [f"{c['speed_mps']:.3g}", f"{c['heading_deg']:.4g}", f"{c[rms_key]:.4g}",
-                   f"{c[sig_key]:.4g}", "-" if c["zero_crossing_period_s"] is None
+            row = [f"{c['speed_mps']:.3g}", f"{c['heading_deg']:.4g}", shown(c[rms_key]),
+                   shown(c[sig_key]), "-" if c["zero_crossing_period_s"] is None
                    else f"{c['zero_crossing_period_s']:.4g}"]
             if prob_col:
                 row.append(f"{c['exceedance_probability']:.3g}")
