@@ -14,8 +14,8 @@ Its short-term statistics follow from them alone:
 * Up-crossing rate of a level x (Rice 1944–45): ν_x = (1/T_z) exp(−x²/(2m0)).
 * **Probability of exceeding x at least once in a time T**, the up-crossings of a high level
   being a Poisson process (Ochi 1998; Lloyd 1989): P = 1 − exp(−(T/T_z) exp(−x²/(2m0))).
-  ``both_sides=True`` counts crossings of +x and of −x (|x(t)| > x: a roll angle to either
-  side), which doubles the rate. The same expression is the probability that the largest of
+  ``both_sides=True`` counts crossings of +x and of −x (``|x(t)| > x``: a roll angle to
+  either side), which doubles the rate. The same expression is the probability that the largest of
   N = T/T_z Rayleigh-distributed amplitudes exceeds x, 1 − (1 − e^{−x²/2m0})^N, in the limit
   of small e^{−x²/2m0} (the Poisson limit).
 * **Most probable maximum** of N amplitudes (narrow band, Rayleigh; Ochi 1998, Price & Bishop
@@ -194,7 +194,7 @@ def exceedance_probability(level: ArrayLike, duration: ArrayLike, m0: ArrayLike,
     m2 : array_like
         Second moment [unit²/s²], >= 0.
     both_sides : bool, optional
-        Count crossings of −x too (|x(t)| > x; the rate doubles). Default False: +x only.
+        Count crossings of −x too (``|x(t)| > x``; the rate doubles). Default False: +x only.
 
     Returns
     -------

@@ -3,13 +3,13 @@
 A ship at speed U in a sea of one-sided spectrum S(ω) coming at the mean heading ε relative to
 the ship (as in :mod:`seahelm.environment.rao`: 0 following, π head, π/2 waves travelling to
 starboard) responds in degree of freedom j with the encounter-frequency spectrum
-S_R(ω_e) = |H_j|² S_e(ω_e). Its moments are integrated in the **wave** frequency ω, where the
+``S_R(ω_e) = |H_j|² S_e(ω_e)``. Its moments are integrated in the **wave** frequency ω, where the
 map ω ↦ ω_e = ω − ω²U cos ε/g need not be monotonic (following seas: three wave frequencies
-meet the ship at one ω_e below g/(4U cos ε)) — S_e(ω_e) dω_e = S(ω) dω branch by branch, so
+meet the ship at one ω_e below g/(4U cos ε)) — S_e(ω_e) dω_e = S(ω) dω branch by branch, so::
 
     m_n = ∫₀^∞ ω_e(ω)ⁿ |H_j(ω, ε)|² S(ω) dω        (n = 0, 2, 4),
 
-and with directional spreading D(θ) (:mod:`seahelm.environment.directional_spreading`)
+and with directional spreading D(θ) (:mod:`seahelm.environment.directional_spreading`)::
 
     m_n = ∫∫ ω_e(ω, ε + θ)ⁿ |H_j(ω, ε + θ)|² S(ω) D(θ) dθ dω
 
@@ -31,7 +31,7 @@ References
 Lloyd, A. R. J. M. (1989). Seakeeping: Ship Behaviour in Rough Weather. Ellis Horwood.
 Price, W. G., Bishop, R. E. D. (1974). Probabilistic Theory of Ship Dynamics. Chapman & Hall.
 St. Denis, M., Pierson, W. J. (1953). On the motions of ships in confused seas. Trans.
-SNAME 61, 280–357 (the superposition principle behind S_R = |H|² S).
+SNAME 61, 280–357 (the superposition principle behind ``S_R = |H|² S``).
 """
 
 from __future__ import annotations
@@ -201,7 +201,8 @@ class ResponseMoments:
         duration : float
             Exposure time T [s], > 0.
         both_sides : bool, optional
-            |x| > level (crossings of ±level) instead of x > level.
+            Count the crossings of −level too (``|x| > level``; twice the rate) instead of
+            those of +level only.
 
         Returns
         -------

@@ -5,10 +5,10 @@ travel of a wave component relative to the mean direction, ∫ D dθ = 1 (freque
 spreading). Two families:
 
 ``"cos-n"`` (:class:`CosinePowerSpreading`, the cos² spreading for n = 2, the default)
-    D(θ) = Γ(1 + n/2)/(√π Γ(1/2 + n/2)) cosⁿθ for |θ| ≤ π/2, 0 beyond
+    D(θ) = Γ(1 + n/2)/(√π Γ(1/2 + n/2)) cosⁿθ for −π/2 ≤ θ ≤ π/2, 0 beyond
     (DNV-RP-C205 (2010), eq. 3.5.8.4; n = 2: D = (2/π) cos²θ, ITTC's short-crested sea).
 ``"cos-2s"`` (:class:`Cos2sSpreading`)
-    D(θ) = Γ(s + 1)/(2√π Γ(s + 1/2)) cos^{2s}(θ/2) for |θ| ≤ π
+    D(θ) = Γ(s + 1)/(2√π Γ(s + 1/2)) cos^{2s}(θ/2) for −π ≤ θ ≤ π
     (Longuet-Higgins, Cartwright & Smith 1963; s ≈ 10–25 swell-like, 1–5 wind sea).
 
 Each gives a quadrature rule (:meth:`~CosinePowerSpreading.quadrature`): midpoint directions
@@ -78,7 +78,7 @@ class _Spreading:
 
 @dataclasses.dataclass(frozen=True)
 class CosinePowerSpreading(_Spreading):
-    """D(θ) = Γ(1 + n/2)/(√π Γ(1/2 + n/2)) cosⁿθ on |θ| ≤ π/2 (DNV-RP-C205, eq. 3.5.8.4).
+    """D(θ) = Γ(1 + n/2)/(√π Γ(1/2 + n/2)) cosⁿθ on −π/2 ≤ θ ≤ π/2 (DNV-RP-C205, eq. 3.5.8.4).
 
     Parameters
     ----------
@@ -99,7 +99,7 @@ class CosinePowerSpreading(_Spreading):
                                  unit="-", value=self.power)
 
     def density(self, theta: ArrayLike) -> np.ndarray:
-        """D(θ) [1/rad], 0 for |θ| > π/2.
+        """D(θ) [1/rad], 0 outside −π/2 ≤ θ ≤ π/2.
 
         Parameters
         ----------
@@ -119,7 +119,8 @@ class CosinePowerSpreading(_Spreading):
 
 @dataclasses.dataclass(frozen=True)
 class Cos2sSpreading(_Spreading):
-    """D(θ) = Γ(s + 1)/(2√π Γ(s + 1/2)) cos^{2s}(θ/2) on |θ| ≤ π (Longuet-Higgins et al. 1963).
+    """D(θ) = Γ(s + 1)/(2√π Γ(s + 1/2)) cos^{2s}(θ/2) on −π ≤ θ ≤ π (Longuet-Higgins et al.
+    1963).
 
     Parameters
     ----------
@@ -139,7 +140,7 @@ class Cos2sSpreading(_Spreading):
                                  value=self.s)
 
     def density(self, theta: ArrayLike) -> np.ndarray:
-        """D(θ) [1/rad], 0 for |θ| > π.
+        """D(θ) [1/rad], 0 outside −π ≤ θ ≤ π.
 
         Parameters
         ----------
