@@ -130,3 +130,27 @@ def test_bad_input_exits_2_with_one_line(args, message):
     assert res.exit_code == 2, (res.stdout, res.stderr)
     lines = res.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("error: ") and message in lines[0], lines
+
+
+def test_report_of_a_seakeeping_file(tmp_path):
+    res = runner.invoke(app, ["seakeeping", SHIP, "--hs", "3", "--tp", "9", "--speeds", "0:6:3",
+                              "--headings", "0:330:12", "--out", str(tmp_path)])
+    assert res.exit_code == 0, res.stderr
+    nc = tmp_path / "seakeeping.nc"
+    res = runner.invoke(app, ["report", str(nc), "--json"])
+    assert res.exit_code == 0, res.stderr
+    out = json.loads(res.stdout)
+    assert out["sections"] == ["overview", "seakeeping"] and out["n_runs"] == 0
+    page = (tmp_path / "seakeeping.html").read_text()
+    for text in ('"barpolar"', "RMS roll [deg]", "RMS heave [m]", "max RMS pitch [deg]",
+                 "significant amplitude = 2√m0"):
+        assert text in page
+    # the table's largest roll per speed is the file's, in degrees
+    with xr.open_dataset(nc) as ds:
+        top = float(np.degrees(ds["rms"].sel(dof="roll").isel(speed=2).max()))
+    assert f"<td>{top:.4g}</td>" in page
+    # reported alone
+    other = tmp_path / "copy.nc"
+    other.write_bytes(nc.read_bytes())
+    res = runner.invoke(app, ["report", str(nc), str(other)])
+    assert res.exit_code == 2 and "is reported alone" in res.stderr

@@ -53,7 +53,10 @@ from ..errors import ParameterError, warn_validity
 from . import response_statistics as stats
 
 __all__ = ["ResponseMoments", "response_moments", "closed_form_moments", "response_unit",
-           "default_frequencies"]
+           "default_frequencies", "DATASET_FORMAT"]
+
+#: The ``format`` attribute of :meth:`ResponseMoments.to_dataset` (how a report knows it).
+DATASET_FORMAT = "seahelm-seakeeping-1"
 
 #: Orders of the moments kept.
 ORDERS: tuple[int, ...] = (0, 2, 4)
@@ -275,7 +278,7 @@ class ResponseMoments:
                   "heading": ("heading", self.heading, {
                       "units": "rad", "long_name": "mean wave heading relative to the ship "
                       "(0 following, pi head, pi/2 waves travelling to starboard)"})}
-        attrs = {"format": "seahelm-seakeeping-1", **{k: (v if isinstance(v, (int, float))
+        attrs = {"format": DATASET_FORMAT, **{k: (v if isinstance(v, (int, float))
                                                           else str(v))
                                                        for k, v in self.description.items()}}
         return xr.Dataset(data, coords=coords, attrs=attrs)

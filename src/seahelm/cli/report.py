@@ -4,11 +4,12 @@ several, side by side on one page).
 RESULT is ``result.nc`` of ``seahelm run``/``demo``, or a manoeuvre's ``*-runs.nc`` /
 ``*-metrics.nc`` (``seahelm maneuver``; with ``imo-report.json`` beside them, the files of
 ``seahelm imo --out`` and the IMO criteria), ``imo-probabilities.nc`` (``seahelm imo
---monte-carlo --out``: the pass probabilities), or a sweep store (``seahelm sweep``; of an
+--monte-carlo --out``: the pass probabilities), ``seakeeping.nc`` (``seahelm seakeeping
+--out``: the polar diagrams and the largest responses per speed), or a sweep store (``seahelm sweep``; of an
 ``imo`` Monte-Carlo scenario, with the pass probabilities). The page
 (:mod:`seahelm.report`) holds plotly.js and all the data, so it opens with no network. ``-o``
 is checked before anything is read; the file is written atomically. Several result files
-(not sweep stores or ``imo-probabilities.nc``, which are reported alone) give one page with
+(not sweep stores, ``imo-probabilities.nc`` or ``seakeeping.nc``, which are reported alone) give one page with
 each file's runs named by the file (:func:`seahelm.report.combined_report_data`).
 """
 
@@ -41,7 +42,8 @@ def report(
         metavar="RESULT...", help=(
             "Result file written by seahelm (NetCDF): result.nc of `seahelm run`/`demo`, a "
             "manoeuvre's *-runs.nc or *-metrics.nc, imo-probabilities.nc of `seahelm imo "
-            "--monte-carlo`; or a sweep store of `seahelm sweep`. Several result files: one "
+            "--monte-carlo`, seakeeping.nc of `seahelm seakeeping`; or a sweep store of "
+            "`seahelm sweep`. Several result files: one "
             "page with each file's runs side by side."))],
     out: Annotated[Path | None, typer.Option(
         "-o", "--out", help=f"HTML file to write (default: beside RESULT, with .html; for "

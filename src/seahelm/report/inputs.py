@@ -112,6 +112,9 @@ class ReportData:
     imo_ensemble : xarray.Dataset or None
         The IMO check of an ensemble (``imo-probabilities.nc``,
         :mod:`seahelm.analysis.imo_ensemble`); None for other inputs.
+    seakeeping : xarray.Dataset or None
+        Seakeeping statistics over (dof, speed, heading) (``seakeeping.nc``,
+        :mod:`seahelm.analysis.seakeeping`); None for other inputs.
     """
 
     title: str
@@ -120,6 +123,7 @@ class ReportData:
     sources: tuple[str, ...] = ()
     sweep: "xr.Dataset | None" = None
     imo_ensemble: "xr.Dataset | None" = None
+    seakeeping: "xr.Dataset | None" = None
 
     @property
     def n_runs(self) -> int:
@@ -212,6 +216,11 @@ def load_report_data(path: str | Path) -> ReportData:
     if is_ensemble_dataset(ds):
         return ReportData(title=str(ds.attrs.get("title") or path.name), sets=(),
                           sources=(str(path),), imo_ensemble=ds)
+    from ..analysis.seakeeping import DATASET_FORMAT
+
+    if ds.attrs.get("format") == DATASET_FORMAT:
+        return ReportData(title=str(ds.attrs.get("title") or path.name), sets=(),
+                          sources=(str(path),), seakeeping=ds)
     if _is_runs(ds):
         _check_runs(ds, path)
         maneuver = ds.attrs.get("maneuver")
@@ -224,8 +233,8 @@ def load_report_data(path: str | Path) -> ReportData:
     else:
         raise ParameterError(
             f"{path}: not a seahelm result file: neither a simulation result (result.nc of "
-            "`seahelm run --out`, a manoeuvre's *-runs.nc), a manoeuvre's *-metrics.nc nor "
-            "an imo-probabilities.nc")
+            "`seahelm run --out`, a manoeuvre's *-runs.nc), a manoeuvre's *-metrics.nc, "
+            "an imo-probabilities.nc nor a seakeeping.nc")
     directory = path.parent
     imo_file = directory / IMO_REPORT
     names = [str(maneuver)]
@@ -367,7 +376,8 @@ def combined_report_data(paths: "list[str | Path]") -> ReportData:
     Raises
     ------
     ParameterError
-        If one of them is a sweep store or an ``imo-probabilities.nc`` (reported alone), two
+        If one of them is a sweep store, an ``imo-probabilities.nc`` or a ``seakeeping.nc``
+        (reported alone), two
         hold IMO checks, or two are the same result (a manoeuvre's runs and metrics files are
         read together already), or as :func:`load_report_data`.
     FileNotFoundError
@@ -380,9 +390,10 @@ def combined_report_data(paths: "list[str | Path]") -> ReportData:
     if len(datas) == 1:
         return datas[0]
     for path, data in zip(paths, datas):
-        if data.sweep is not None or data.imo_ensemble is not None:
-            raise ParameterError(f"{path}: a sweep store or an imo-probabilities.nc is "
-                                 "reported alone, not with other results")
+        if data.sweep is not None or data.imo_ensemble is not None \
+                or data.seakeeping is not None:
+            raise ParameterError(f"{path}: a sweep store, an imo-probabilities.nc or a "
+                                 "seakeeping.nc is reported alone, not with other results")
     seen: dict[str, Path] = {}
     for path, data in zip(paths, datas):
         for source in data.sources:

@@ -29,6 +29,7 @@ from .batch import (
 from .blocks import Section, escape, fmt, paragraph, run_attrs, set_title, subheading, table
 from .figures import timeseries_sections, track_sections
 from .imo_ensemble import ensemble_sections
+from .seakeeping import seakeeping_sections
 from .inputs import ReportData, RunSet
 from .signals import run_labels
 
@@ -320,7 +321,8 @@ def _coord_label(key: str, value: Any, ds: Any) -> str:
 #: The section builders, in page order.
 SECTIONS: tuple[Callable[[ReportData], list[Section]], ...] = (
     overview_sections, sweep_sections, status_sections, imo_sections, ensemble_sections,
-    metrics_sections, statistics_sections, track_sections, timeseries_sections)
+    seakeeping_sections, metrics_sections, statistics_sections, track_sections,
+    timeseries_sections)
 
 
 def build_sections(data: ReportData) -> list[Section]:
