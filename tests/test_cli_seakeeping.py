@@ -42,6 +42,9 @@ def test_json_agrees_with_the_library():
         assert cell["rms_deg"] == pytest.approx(r, rel=1e-12)
         assert cell["significant_amplitude_deg"] == pytest.approx(2 * r, rel=1e-12)
         assert cell["exceedance_probability"] == pytest.approx(p, rel=1e-12, abs=1e-300)
+    mpm = np.degrees(m.most_probable_maximum("roll", 1800.0)).ravel()
+    assert [c["most_probable_maximum_deg"] for c in out["cells"]] == [
+        None if not np.isfinite(v) else pytest.approx(v, rel=1e-12) for v in mpm]
     assert out["cells"][2]["heading_deg"] == pytest.approx(90.0)
 
 

@@ -156,7 +156,8 @@ def seakeeping(
         "--exceed", help="Level whose exceedance probability in --duration is given [deg for "
                          "roll and pitch, m for heave].")] = None,
     duration: Annotated[float, typer.Option(
-        "--duration", help="Exposure time of --exceed [s].")] = 3600.0,
+        "--duration", help="Exposure time of --exceed and of the most probable maximum "
+                           "(--json) [s].")] = 3600.0,
     both_sides: Annotated[bool, typer.Option(
         "--both-sides", help="--exceed counts |x| > level (both sides), not x > level.")
     ] = False,
@@ -284,6 +285,7 @@ def _payload(name: str, moments: Any, spec: Any, dof: str, stat: str, factor: fl
     sig = moments.significant_amplitude(dof) * factor
     tz = moments.zero_crossing_period(dof)
     shown = rms if stat == "rms" else sig
+    mpm = moments.most_probable_maximum(dof, duration) * factor
     cells = []
     prob = None
     if exceed is not None:
@@ -296,6 +298,8 @@ def _payload(name: str, moments: Any, spec: Any, dof: str, stat: str, factor: fl
                     float(sig[i, j]),
                     "zero_crossing_period_s": None if not np.isfinite(tz[i, j])
                     else float(tz[i, j])}
+            cell[f"most_probable_maximum_{unit}"] = (None if not np.isfinite(mpm[i, j])
+                                                     else float(mpm[i, j]))
             if prob is not None:
                 cell["exceedance_probability"] = float(prob[i, j])
             cells.append(cell)
@@ -305,7 +309,9 @@ def _payload(name: str, moments: Any, spec: Any, dof: str, stat: str, factor: fl
         "spreading": moments.description.get("spreading"),
         "raos": moments.description.get("raos"),
         "conventions": "heading 0 following, 180 head, 90 waves travelling to starboard "
-                       "(from port); significant amplitude = 2 sqrt(m0); periods in encounter",
+                       "(from port); significant amplitude = 2 sqrt(m0); periods in encounter; "
+                       "most probable maximum sqrt(2 m0 ln N) of N = duration/T_z amplitudes",
+        "duration_s": duration,
         "cells": cells,
     }
     if limit is not None:
