@@ -241,7 +241,7 @@ def test_components_are_seeded_and_cover_the_band(sea):
      r"motion.u.*not finite.*t = 0.5 s"),
     (lambda r: r.update(psi=np.zeros(7)), r"motion.psi.*shape"),
     (lambda r: r.update(x=np.zeros(20)), r"motion.x.*both x and y"),
-    (lambda r: r.pop("u"), r"no `u`"),
+    (lambda r: r.pop("u"), r"no `u`.*surge_speed"),
     (lambda r: r.update(time=np.zeros(20)), r"motion.time.*increasing"),
 ])
 def test_bad_records(rao, change, match):

@@ -175,25 +175,36 @@ def draw_wave_components(spectrum: Any, wave_direction: float, *, runs: int = 1,
                           seeds)
 
 
+#: What a record's signals may be called: seahelm's channel names, then the short names.
+_ALIASES: dict[str, tuple[tuple[str, ...], str]] = {
+    "u": (("surge_speed", "u"), "m/s"), "psi": (("heading", "psi"), "rad"),
+    "x": (("north", "x"), "m"), "y": (("east", "y"), "m"), "roll": (("roll_angle",), "rad")}
+
+
 def _record(motion: Any) -> dict[str, np.ndarray]:
-    """time, u, psi (and x, y) from a SimResult, a Dataset or a mapping, runs first."""
-    get = motion.__getitem__
+    """time, u, psi (and x, y, the model's roll) from a SimResult, a Dataset or a mapping."""
     out: dict[str, np.ndarray] = {}
     time = getattr(motion, "time", None)
     if time is None or callable(time):
-        time = get("time")
-    out["time"] = as_float_array("time", np.asarray(time), "s")
-    names = {"u": ("u", "m/s"), "psi": ("psi", "rad"), "x": ("x", "m"), "y": ("y", "m")}
-    for key, (name, unit) in names.items():
         try:
-            value = np.asarray(get(name), dtype=float)
-        except (KeyError, ValueError):
+            time = motion["time"]
+        except (KeyError, TypeError):
+            raise ParameterError("the record has no `time` [s]", field="motion.time",
+                                 unit="s") from None
+    out["time"] = as_float_array("motion.time", np.asarray(time), "s")
+    for key, (names, unit) in _ALIASES.items():
+        for name in names:
+            try:
+                out[key] = np.asarray(motion[name], dtype=float)
+                break
+            except (KeyError, ValueError):
+                continue
+        else:
             if key in ("u", "psi"):
-                raise ParameterError(f"the record has no `{name}` [{unit}]: the first-order "
-                                     "motions need the speed u and the heading psi",
-                                     field=f"motion.{name}", unit=unit) from None
-            continue
-        out[key] = value
+                raise ParameterError(f"the record has no `{names[-1]}` [{unit}] (or "
+                                     f"`{names[0]}`): the first-order motions need the speed "
+                                     "and the heading", field=f"motion.{names[-1]}",
+                                     unit=unit) from None
     if ("x" in out) != ("y" in out):
         raise ParameterError("needs both x and y [m] (or neither: dead reckoning)",
                              field="motion.x")
@@ -207,7 +218,7 @@ def _check_record(rec: dict[str, np.ndarray]) -> tuple[np.ndarray, dict[str, np.
                              field="motion.time", unit="s")
     shape = None
     series = {}
-    for key, unit in (("u", "m/s"), ("psi", "rad"), ("x", "m"), ("y", "m")):
+    for key, unit in (("u", "m/s"), ("psi", "rad"), ("x", "m"), ("y", "m"), ("roll", "rad")):
         if key not in rec:
             continue
         v = rec[key].reshape(-1, rec[key].shape[-1]) if rec[key].ndim else rec[key]
@@ -313,6 +324,8 @@ class FirstOrderMotions:
         What was summed.
     attrs : dict
         Metadata (conventions, band, speed handling).
+    roll : numpy.ndarray or None
+        The model's (low-frequency) roll angle [rad], shape (runs, n), where recorded.
     """
 
     time: np.ndarray
@@ -320,6 +333,7 @@ class FirstOrderMotions:
     heading: np.ndarray
     components: WaveComponents
     attrs: dict[str, Any]
+    roll: np.ndarray | None = None
 
     def __getitem__(self, dof: str) -> np.ndarray:
         """The first-order response of ``dof`` [m or rad], shape (runs, n)."""
@@ -337,8 +351,9 @@ class FirstOrderMotions:
         Parameters
         ----------
         roll : array_like, optional
-            The model's low-frequency roll angle [rad], shape (runs, n): then ``roll`` is the
-            total (model roll + ``roll_wave``); without it ``roll`` is ``roll_wave``.
+            The model's low-frequency roll angle [rad], shape (runs, n) (default the recorded
+            one, :attr:`roll`): then ``roll`` is the total (model roll + ``roll_wave``);
+            without either ``roll`` is ``roll_wave``.
         dims : tuple of str, optional
             The batch dimensions (default one ``run`` dimension).
         shape : tuple of int, optional
@@ -360,6 +375,7 @@ class FirstOrderMotions:
             return np.asarray(a).reshape(*shape, self.time.size)
 
         data: dict[str, Any] = {}
+        roll = self.roll if roll is None else roll
         for dof, v in self.values.items():
             unit = DOF_UNITS[dof].split("/")[0]
             data[OUTPUT_NAMES[dof]] = (d, arr(v), {"units": unit, "long_name":
@@ -391,9 +407,10 @@ def first_order_motions(motion: Any, spectrum: Any, rao: RAO | Sequence[RAO], *,
     Parameters
     ----------
     motion : SimResult, xarray.Dataset or mapping
-        The low-frequency record: ``time`` [s] (n,), ``u`` [m/s] and ``psi`` [rad], and
-        optionally ``x``, ``y`` [m] (north, east; without them the track is dead-reckoned),
-        each (runs, n) or (n,).
+        The low-frequency record: ``time`` [s] (n,), the speed ``surge_speed`` (or ``u``)
+        [m/s] and ``heading`` (or ``psi``) [rad], optionally ``north``, ``east`` (or ``x``,
+        ``y``) [m] (without them the track is dead-reckoned) and ``roll_angle`` [rad], each
+        (runs, n) or (n,) (or more batch axes before time).
     spectrum : WaveSpectrum
         One-sided sea spectrum.
     rao : RAO or sequence of RAO
@@ -493,7 +510,7 @@ def first_order_motions(motion: Any, spectrum: Any, rao: RAO | Sequence[RAO], *,
              "conventions": "heave up, roll starboard down, pitch bow up; wave direction "
                             "from, clockwise from north"}
     return FirstOrderMotions(t, {d: out[:, :, j] for j, d in enumerate(dofs_t)}, psi.copy(),
-                             comp, attrs)
+                             comp, attrs, rec.get("roll"))
 
 
 def expected_variance(spectrum: Any, rao: RAO, dof: str, relative_heading: float, *,

@@ -1,0 +1,115 @@
+"""The cost of first-order wave motions on a batch of runs, against the runs' simulation.
+
+The KVLCC2 at full scale (MMG standard model) keeps its course under the PID heading autopilot
+(``pid-heading-rps``) through the rudder servo, RK4, dt = 0.1 s for one hour, every step
+recorded (10 Hz), headings spread over ±0.3 rad. Measured in the same process, in turn:
+
+* ``simulation`` — the runs without waves (:func:`seahelm.simulation.engine.simulate`);
+* ``first order`` — :func:`seahelm.environment.first_order.first_order_motions` on their
+  records: heave, roll and pitch from the closed-form RAOs of the KVLCC2 at its speed
+  (:func:`~seahelm.environment.rao.closed_form_rao`, GM 5.7 m) in a JONSWAP sea (Hs 4 m,
+  Tp 10 s, from 30° off the bow), ``--components`` per run (default 64), long-crested and,
+  on a second line, with cos-2s spreading (s = 2).
+
+Issue 34's target: the runs with first-order motions at most 1.5 × the cost of the runs
+without waves, i.e. the pass ≤ 0.5 × the simulation. The issue's size is 1,000 runs; the
+records of 1,000 one-hour runs at 10 Hz take about 6 GB (every channel of the result), so the
+default is 100 runs (both costs are linear in the number of runs: ``--runs 1000`` on a
+machine with the memory).
+
+    python benchmarks/bench_first_order.py [--runs 100] [--repeats 3] [--components 64]
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import statistics
+import time
+import warnings
+
+import numpy as np
+
+from seahelm.actuators.servo import RUDDER_SERVO
+from seahelm.analysis.equilibrium import approach_state
+from seahelm.control.pid import PID_HEADING_RPS, PIDHeadingRpsParams
+from seahelm.environment.first_order import first_order_motions
+from seahelm.environment.rao import closed_form_rao
+from seahelm.environment.spectra import get_spectrum
+from seahelm.errors import ValidityRangeWarning
+from seahelm.ships import get_ship
+from seahelm.simulation.engine import simulate
+from seahelm.vessels.mmg import KVLCC2_FULL, KVLCC2_FULL_SERVO, MMG
+
+DT, SPEED = 0.1, 7.97
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs", type=int, default=100, help="vessels in the batch (default 100)")
+    ap.add_argument("--t-final", type=float, default=3600.0, help="run length [s] (3600)")
+    ap.add_argument("--repeats", type=int, default=3, help="timed repeats (default 3)")
+    ap.add_argument("--components", type=int, default=64, help="wave components per run")
+    ap.add_argument("--quick", action="store_true",
+                    help="smoke run (the test suite's): tiny sizes, 1 repeat")
+    args = ap.parse_args()
+    if args.quick:
+        args.runs, args.repeats, args.t_final = 4, 1, 120.0
+
+    app = approach_state(KVLCC2_FULL, SPEED)
+    gains = PIDHeadingRpsParams(kp=4.0, ki=0.004, kd=120.0,
+                                propeller_rps=app.inputs["propeller_rps"])
+    n = args.runs
+    x0 = np.tile(app.state, (n, 1))
+    x0[:, MMG.state_index("heading")] = np.linspace(-0.3, 0.3, n)
+    common = dict(t_final=args.t_final, dt=DT, actuator=RUDDER_SERVO,
+                  actuator_params=KVLCC2_FULL_SERVO, actuator_x0=[app.inputs["rudder_angle"]],
+                  controller=PID_HEADING_RPS, controller_params=gains,
+                  reference=np.zeros((n, 1, 1)), record_every=1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityRangeWarning)  # C_b 0.81, a full hull
+        rao = closed_form_rao(get_ship("kvlcc2-full"), SPEED, metacentric_height=5.7)
+    sea = get_spectrum("jonswap", significant_height=4.0, peak_period=10.0)
+    wave_from = math.radians(30.0)
+
+    def sim():
+        return simulate(MMG, KVLCC2_FULL, x0, **common)
+
+    def waves(res, spreading=None):
+        return first_order_motions(res, sea, rao, wave_direction=wave_from, seed=1,
+                                   n_components=args.components, spreading=spreading)
+
+    res = sim()  # warm-up: compile or load every kernel
+    assert res.ok.all()
+    waves(res)
+    times: dict[str, list[float]] = {"simulation": [], "first order": [], "spread": []}
+    for _ in range(args.repeats):
+        t0 = time.perf_counter()
+        res = sim()
+        times["simulation"].append(time.perf_counter() - t0)
+        for name, spreading in (("first order", None), ("spread", "cos-2s")):
+            t0 = time.perf_counter()
+            m = waves(res, spreading)
+            times[name].append(time.perf_counter() - t0)
+    med = {k: statistics.median(v) for k, v in times.items()}
+    samples = n * res.time.size
+    print(f"KVLCC2 (MMG) + servo + PID, RK4 dt = {DT:g} s, {args.t_final:g} s recorded at "
+          f"{1 / DT:g} Hz, {n} runs ({samples:.3g} vessel-steps); {args.components} wave "
+          f"components per run; medians of {args.repeats}")
+    print(f"  simulation        {med['simulation']:8.3f} s  "
+          f"{samples / med['simulation']:10.3g} vessel-steps/s")
+    for name, label in (("first order", "first order"), ("spread", "  with cos-2s")):
+        total = (med["simulation"] + med[name]) / med["simulation"]
+        print(f"  {label:17s} {med[name]:8.3f} s  {samples / med[name]:10.3g} vessel-steps/s  "
+              f"(sim + waves = {total:.2f} x sim; "
+              f"{med[name] / (samples * args.components) * 1e9:.2f} ns per component-sample)")
+    ratio = (med["simulation"] + med["first order"]) / med["simulation"]
+    print(f"with first-order motions / without = {ratio:.2f} x (target <= 1.5): "
+          f"{'met' if ratio <= 1.5 else 'NOT met'}")
+    print(f"  (RMS heave {np.sqrt(np.mean(m['heave'] ** 2)):.3g} m, roll "
+          f"{math.degrees(np.sqrt(np.mean(m['roll'] ** 2))):.3g} deg, pitch "
+          f"{math.degrees(np.sqrt(np.mean(m['pitch'] ** 2))):.3g} deg, short-crested)")
+
+
+if __name__ == "__main__":
+    main()
