@@ -222,6 +222,9 @@ class SimResult:
     metadata: dict[str, Any]
     layout: BatchLayout | None = None
     command_units: tuple[str, ...] = ()  # (the controller's recorded outputs have units)
+    #: series computed from the record after the run, by name: (values (runs, time), unit,
+    #: long name), e.g. the first-order wave motions (:mod:`seahelm.scenario.first_order`)
+    extra: dict[str, tuple[np.ndarray, str, str]] = dataclasses.field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if self.layout is not None and self.layout.size != self.n_runs:
@@ -269,6 +272,8 @@ class SimResult:
             return self.reference[..., self.reference_labels.index(label[10:])]
         if label in self.disturbance_labels:
             return self.disturbance[..., self.disturbance_labels.index(label)]
+        if label in self.extra:
+            return self.extra[label][0]
         raise KeyError(
             f"no channel '{label}'; channels: "
             + ", ".join(self.channel_names())
@@ -280,6 +285,7 @@ class SimResult:
         names += list(self.command_labels)
         names += [f"reference_{n}" for n in self.reference_labels]
         names += list(self.disturbance_labels)
+        names += [n for n in self.extra if n not in names]
         return names
 
     def units(self) -> dict[str, str]:
@@ -338,6 +344,9 @@ class SimResult:
             add(f"reference_{lab}", self.reference[..., j], unit, "reference")
         for j, (lab, unit) in enumerate(zip(self.disturbance_labels, self.disturbance_units)):
             add(lab, self.disturbance[..., j], unit, "disturbance")
+        for lab, (values, unit, long_name) in self.extra.items():
+            add(lab, values, unit, "first-order")
+            data[lab][2]["long_name"] = long_name
         for comp, (cls, arr) in self.params.items():
             arr = np.broadcast_to(arr, (n_runs, arr.shape[-1]))
             i = 0

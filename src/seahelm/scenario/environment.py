@@ -98,6 +98,8 @@ class EnvironmentRuns:
     environment: Environment
     params: np.ndarray
     signals: list[dict[str, Any]]
+    #: per run, the first-order motions' settings (:mod:`.first_order`), or None
+    first_order: list[dict[str, Any]] | None = None
 
 
 def _ship(scn: Scenario, source: str) -> Particulars | None:
@@ -298,7 +300,7 @@ def environment_runs(scn: Scenario, model: Any, runs: list[dict[str, Any]], sour
     ship = _ship(scn, source)
     wind_base = env_sec.wind.model_dump(exclude_none=True) if env_sec.wind else {}
     waves_base = env_sec.waves.model_dump(exclude_none=True) if env_sec.waves else {}
-    rows, signals = [], []
+    rows, signals, first_order = [], [], []
     checked: set[tuple[float, str]] = set()
     for i, over in enumerate(runs):
         where = f" (run {i}: {over})" if over else ""
@@ -321,10 +323,15 @@ def environment_runs(scn: Scenario, model: Any, runs: list[dict[str, Any]], sour
                 _check_sea(v, h3, checked, source, where)
                 sig["wave_load_fluctuation"] = WaveLoadFluctuation(
                     h3=h3, spectrum=v["spectrum"], seed=int(v.get("seed", 0)))
+                if v.get("first_order_motions"):
+                    from .first_order import first_order_settings
+
+                    first_order.append(first_order_settings(v, h3, ship, source))
             fields.update(_wave_fields(v, ship, source)[0])
         try:
             rows.append(env.params_type(**fields).to_array())
         except ParameterError as exc:
             raise _err(source, *_in_scenario_words(exc, where)) from None
         signals.append(sig)
-    return EnvironmentRuns(env, np.array(rows), signals)
+    return EnvironmentRuns(env, np.array(rows), signals,
+                           first_order if len(first_order) == len(runs) else None)

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
+import json
 import math
 from collections.abc import Callable
 from typing import Any
@@ -456,7 +457,9 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
         record_every=sim.record_every,
         bounds=dict(sim.bounds),
         seed=seed,
-        metadata={"title": scn.title, "scenario_source": source, "scenario_text": text},
+        metadata={"title": scn.title, "scenario_source": source, "scenario_text": text,
+                  **({} if env is None or env.first_order is None else
+                     {"first_order_motions": json.dumps(env.first_order)})},
         layout=layout,
         environment=None if env is None else env.environment,
         environment_params=None if env is None else env.params,
@@ -523,7 +526,12 @@ def run_batch(
 
     source = str(batch.metadata.get("scenario_source", "<string>"))
     try:
-        return simulate_batch(batch, throw=throw, progress=progress)
+        result = simulate_batch(batch, throw=throw, progress=progress)
+        if "first_order_motions" in result.metadata:
+            from .first_order import add_first_order_motions
+
+            add_first_order_motions(result, batch.seed, source)
+        return result
     except ScenarioError:
         raise
     except ParameterError as exc:

@@ -146,7 +146,11 @@ class WavesSection(_Strict):
     **from**, clockwise from north, in [0, 360). ``irregular = true`` modulates the mean loads
     by the envelope of a seeded sea of the ``spectrum`` (each run its own realisation); the
     hull's beam, draft and block coefficient default to the catalog ship's particulars. A
-    height of 0 means no waves (zero loads, exactly)."""
+    height of 0 means no waves (zero loads, exactly). ``first_order_motions = true`` (with
+    ``irregular = true``) adds the first-order heave, roll and pitch of the same sea to the
+    result (:mod:`seahelm.scenario.first_order`): closed-form RAOs of the ship
+    (``metacentric_height`` [m] for roll), ``components`` per run, directional ``spreading``
+    (``"cos-2s"`` or ``"cos-n"`` with ``spreading_parameter``)."""
 
     model: str = "lvov"
     height: Annotated[Number, Field(ge=0)] | None = None  # 0: no waves (an irregular sea: 1-10 m)
@@ -162,6 +166,11 @@ class WavesSection(_Strict):
     beam: Positive | None = None
     draft: Positive | None = None
     block_coefficient: Annotated[Number, Field(gt=0, le=1)] | None = None
+    first_order_motions: StrictBool = False
+    metacentric_height: Positive | None = None
+    components: Count = 64
+    spreading: Literal["cos-2s", "cos-n"] | None = None
+    spreading_parameter: Positive = 2.0
 
     @model_validator(mode="after")
     def _one_each(self) -> "WavesSection":
@@ -173,6 +182,14 @@ class WavesSection(_Strict):
         if "seed" in self.model_fields_set and not self.irregular:
             raise ValueError("`seed` draws an irregular sea: set `irregular = true` (regular "
                              "waves are not random)")
+        extra = {"metacentric_height", "components", "spreading", "spreading_parameter"}
+        if self.first_order_motions and not self.irregular:
+            raise ValueError("`first_order_motions` are those of an irregular sea: set "
+                             "`irregular = true`")
+        if extra & self.model_fields_set and not self.first_order_motions:
+            key = sorted(extra & self.model_fields_set)[0]
+            raise ValueError(f"`{key}` belongs to the first-order motions: set "
+                             "`first_order_motions = true`")
         return self
 
 

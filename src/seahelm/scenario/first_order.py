@@ -1,0 +1,139 @@
+"""``[environment.waves] first_order_motions = true``: wave-frequency motions in a run's result.
+
+With an irregular sea (``irregular = true``), ``seahelm run`` adds to the result, on its run
+and time axes, the first-order motions of the same sea
+(:func:`seahelm.environment.first_order.first_order_motions`) superposed on the recorded
+manoeuvre:
+
+* ``heave`` [m] and ``pitch`` [rad] (the manoeuvring models have neither);
+* ``roll_wave`` [rad], the first-order roll, and ``roll`` [rad]: the model's ``roll_angle`` +
+  ``roll_wave`` on a model with roll (the 4-DOF ``container``), else ``roll_wave``.
+
+The RAOs are the closed-form estimates of the ship's particulars
+(:func:`~seahelm.environment.rao.closed_form_rao`: heave and pitch by Jensen et al. 2004,
+roll with the section's ``metacentric_height`` GM [m]; without it heave and pitch only),
+evaluated at four speeds spanning the surge speeds recorded by the runs that share the sea
+settings and interpolated in between (one speed when they vary by less than 0.25 m/s). The sea is the section's spectrum for its height
+(as for the load envelope, Table 2's peak frequency), mean direction ``direction_deg`` (from),
+``components`` per run (default 64), optional ``spreading``. Run i draws its components from
+the second child of run i's sea stream (``SeedSequence(seed, spawn_key=(i, 1))``; the load
+envelope draws from the first), with the batch seed as the load envelope has it.
+
+The pass runs after the simulation: the autopilot does not see the first-order yaw (the
+closed form has none; the in-loop wave-frequency heading is the shaping filter
+:data:`~seahelm.environment.wave_yaw.WAVE_YAW`).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import types
+from typing import Any
+
+import numpy as np
+
+from ..errors import ParameterError
+from .errors import at_key as _err
+
+__all__ = ["first_order_settings", "add_first_order_motions"]
+
+
+def first_order_settings(v: dict[str, Any], h3: float, ship: Any, source: str
+                         ) -> dict[str, Any]:
+    """One run's settings (plain numbers: they travel as the result's metadata).
+
+    Parameters
+    ----------
+    v : dict
+        The run's ``[environment.waves]`` values.
+    h3 : float
+        Its h3% [m].
+    ship : Particulars or None
+        The scenario ship's particulars.
+    source : str
+        Scenario name for messages.
+
+    Returns
+    -------
+    dict
+    """
+    if ship is None or any(getattr(ship, k, None) is None for k in
+                           ("length", "beam", "draft", "block_coefficient")):
+        raise _err(source, "environment.waves.first_order_motions",
+                   "needs the ship's particulars (length, beam, draft, block_coefficient) "
+                   "for its closed-form RAOs: a catalog ship or a ship file with [particulars]")
+    return {"h3": float(h3), "spectrum": v["spectrum"], "seed": int(v.get("seed", 0)),
+            "direction": math.radians(float(v["direction_deg"])),
+            "gm": v.get("metacentric_height"), "components": int(v.get("components", 64)),
+            "spreading": v.get("spreading"),
+            "spreading_parameter": float(v.get("spreading_parameter", 2.0)),
+            "hull": [float(ship.length), float(ship.beam), float(ship.draft),
+                     float(ship.block_coefficient)]}
+
+
+def _raos(spec: dict[str, Any], u: np.ndarray) -> list[Any]:
+    from ..environment.rao import closed_form_rao
+
+    L, B, T, cb = spec["hull"]
+    hull = types.SimpleNamespace(length=L, beam=B, draft=T, block_coefficient=cb)
+    lo, hi = max(float(u.min()), 0.0), max(float(u.max()), 0.0)
+    speeds = [0.5 * (lo + hi)] if hi - lo < 0.25 else list(np.linspace(lo, hi, 4))
+    return [closed_form_rao(hull, s, metacentric_height=spec["gm"]) for s in speeds]
+
+
+def add_first_order_motions(result: Any, batch_seed: int | None, source: str) -> None:
+    """Compute the motions the result's metadata asks for and add them to ``result.extra``.
+
+    Parameters
+    ----------
+    result : SimResult
+        The simulated runs; ``metadata["first_order_motions"]`` holds the runs' settings
+        (JSON) and is replaced by a description.
+    batch_seed : int or None
+        The batch's (Monte-Carlo) seed.
+    source : str
+        Scenario name for messages.
+    """
+    from ..environment.first_order import first_order_motions
+    from ..environment.spectra import spectrum_from_wave_height
+
+    specs = json.loads(result.metadata["first_order_motions"])
+    n, R = result.time.size, result.n_runs
+    groups: dict[str, list[int]] = {}
+    for i, spec in enumerate(specs):
+        groups.setdefault(json.dumps(spec, sort_keys=True), []).append(i)
+    values: dict[str, np.ndarray] = {}
+    has_roll = "roll_angle" in result.channel_names()
+    for key, rows in groups.items():
+        spec = json.loads(key)
+        ok = [i for i in rows if result.status[i] == 0]  # a diverged run has no wave motions
+        if not ok:
+            continue
+        entropy = spec["seed"] if batch_seed is None else [spec["seed"], batch_seed]
+        record = {"time": result.time,
+                  **{name: result[name][ok] for name in ("surge_speed", "heading", "north",
+                                                         "east")}}
+        try:
+            m = first_order_motions(
+                record, spectrum_from_wave_height(spec["spectrum"], spec["h3"]),
+                _raos(spec, record["surge_speed"]), wave_direction=spec["direction"],
+                seed=[np.random.SeedSequence(entropy, spawn_key=(i, 1)) for i in ok],
+                n_components=spec["components"], spreading=spec["spreading"],
+                spreading_parameter=spec["spreading_parameter"])
+        except (KeyError, ParameterError) as exc:
+            raise _err(source, "environment.waves.first_order_motions", str(exc)) from None
+        for dof, v in m.values.items():
+            values.setdefault(dof, np.full((R, n), np.nan))[ok] = v
+    units = {"heave": "m", "pitch": "rad", "roll": "rad"}
+    names = {"heave": "heave", "pitch": "pitch", "roll": "roll_wave"}
+    for dof, v in values.items():
+        result.extra[names[dof]] = (v, units[dof], f"first-order (wave-frequency) {dof}")
+    if "roll" in values:
+        total = values["roll"] + (result["roll_angle"] if has_roll else 0.0)
+        result.extra["roll"] = (total, "rad", "model roll angle + first-order roll" if has_roll
+                                else "first-order roll (the model has no roll)")
+    result.metadata["first_order_motions"] = (
+        "heave, pitch" + (", roll" if "roll" in values else "") + " from closed-form RAOs "
+        "(Jensen et al. 2004) in the irregular sea, added after the run (seahelm.environment."
+        "first_order); NaN in diverged runs")

@@ -1,0 +1,81 @@
+"""``[environment.waves] first_order_motions = true``: the wave motions in a scenario's result."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from seahelm.environment.first_order import first_order_motions
+from seahelm.environment.rao import closed_form_rao
+from seahelm.environment.spectra import spectrum_from_wave_height
+from seahelm.errors import ValidityRangeWarning
+from seahelm.scenario import ScenarioError, load_scenario, parse_scenario, run_scenario
+from seahelm.ships import get_ship
+
+EXAMPLE = Path(__file__).parents[1] / "examples" / "container_waves_motions.toml"
+#: Lvov's mean wave loads warn for the container's C_b 0.56 (< 0.6), as the example says
+pytestmark = pytest.mark.filterwarnings("ignore:Lvov:seahelm.errors.ValidityRangeWarning")
+
+
+def short(text: str, **replace: str) -> str:
+    text = text.replace("t_final = 600.0", "t_final = 60.0").replace("runs = 4", "runs = 2")
+    for old, new in replace.items():
+        text = text.replace(old, new)
+    return text
+
+
+@pytest.fixture(scope="module")
+def result():
+    return run_scenario(parse_scenario(short(EXAMPLE.read_text()), source="example"))
+
+
+def test_the_result_has_heave_pitch_and_the_total_roll(result):
+    ds = result.to_xarray()
+    for name, unit in (("heave", "m"), ("pitch", "rad"), ("roll_wave", "rad"), ("roll", "rad")):
+        assert ds[name].attrs["units"] == unit and ds[name].dims == ("sample", "time")
+        assert np.all(np.isfinite(ds[name].values))
+    np.testing.assert_array_equal(ds["roll"].values, ds["roll_angle"].values
+                                  + ds["roll_wave"].values)
+    assert 0.05 < float(ds["heave"].std()) < 1.0  # h3% 3 m: σ_ζ = 0.57 m; a 175 m ship heaves less
+    assert "closed-form RAOs" in ds.attrs["first_order_motions"]
+
+
+def test_run_i_draws_from_the_second_child_of_its_sea_stream(result):
+    """As documented: SeedSequence([seed, batch seed], spawn_key=(i, 1)), the closed-form RAOs
+    at four speeds over the range the runs sharing the sea recorded, Table 2's spectrum for
+    h3% = 3 m."""
+    ship = get_ship("son-nomoto-container")
+    i = 1
+    u = result["surge_speed"]
+    raos = [closed_form_rao(ship, s, metacentric_height=0.3)
+            for s in np.linspace(u.min(), u.max(), 4)]
+    rec = {"time": result.time, **{n: result[n][i] for n in ("surge_speed", "heading", "north",
+                                                              "east")}}
+    m = first_order_motions(rec, spectrum_from_wave_height("rakhmanin-firsov-2", 3.0), raos,
+                            wave_direction=math.radians(60.0),
+                            seed=[np.random.SeedSequence([34, 1], spawn_key=(i, 1))])
+    np.testing.assert_array_equal(m["heave"][0], result["heave"][i])
+    np.testing.assert_array_equal(m["roll"][0], result["roll_wave"][i])
+
+
+@pytest.mark.parametrize("change, key, match", [
+    ({"irregular = true": "irregular = false", "seed = 34\n": ""},
+     "environment.waves", "set `irregular = true`"),
+    ({"first_order_motions = true": "first_order_motions = false"},
+     "environment.waves", "`components` belongs to the first-order motions"),
+    ({'catalog = "son-nomoto-container"': 'model = "container"'},
+     "environment.waves.first_order_motions", "particulars"),
+])
+def test_bad_settings_name_the_key(change, key, match):
+    text = short(EXAMPLE.read_text(), **change)
+    with pytest.raises(ScenarioError, match=rf"\[{key}.*{match}"):
+        run_scenario(parse_scenario(text, source="bad"))
+
+
+def test_the_example_loads():
+    with pytest.warns(ValidityRangeWarning, match="block coefficient"):
+        batch = load_scenario(EXAMPLE)
+    assert "first_order_motions" in batch.metadata
