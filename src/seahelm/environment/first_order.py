@@ -66,7 +66,7 @@ from ..constants import GRAVITY
 from ..errors import ParameterError
 from .first_order_kernel import first_order_run
 from .rao import DOF_UNITS, RAO
-from .spreading import draw_directions, spreading_density, spreading_support
+from .directional_spreading import spreading_with_parameter
 
 __all__ = ["WaveComponents", "FirstOrderMotions", "draw_wave_components",
            "first_order_motions", "expected_variance", "OUTPUT_NAMES"]
@@ -156,8 +156,8 @@ def draw_wave_components(spectrum: Any, wave_direction: float, *, runs: int = 1,
         raise ParameterError(f"must be 0 < low < high [rad/s], got {band!r}", field="band",
                              unit="rad/s", value=band)
     direction = float(as_float_array("wave_direction", wave_direction, "rad"))
-    if spreading is not None:
-        spreading_density(spreading, spreading_parameter, 0.0)  # validates both
+    spread = (None if spreading is None
+              else spreading_with_parameter(spreading, spreading_parameter))
     n, R = int(n_components), int(runs)
     edges = np.linspace(lo, hi, n + 1)
     width = np.diff(edges)
@@ -168,8 +168,8 @@ def draw_wave_components(spectrum: Any, wave_direction: float, *, runs: int = 1,
         rng = np.random.default_rng(ss)
         w[r] = edges[:-1] + rng.random(n) * width
         ph[r] = rng.uniform(0.0, 2.0 * math.pi, n)
-        if spreading is not None:
-            dirs[r] += draw_directions(spreading, spreading_parameter, rng.random(n))
+        if spread is not None:
+            dirs[r] += spread.draw(rng.random(n))
     amp = np.sqrt(2.0 * np.asarray(spectrum.one_sided(w), float) * width)
     return WaveComponents(w, w * w / gravity, np.mod(dirs, 2.0 * math.pi), amp, ph, (lo, hi),
                           seeds)
@@ -550,8 +550,8 @@ def expected_variance(spectrum: Any, rao: RAO, dof: str, relative_heading: float
     if spreading is None:
         h2 = np.abs(rao(dof, w, relative_heading)) ** 2
         return float(simpson(h2 * s, x=w))
-    half = spreading_support(spreading)
-    th = np.linspace(-half, half, int(points))
-    dth = spreading_density(spreading, spreading_parameter, th)
+    spread = spreading_with_parameter(spreading, spreading_parameter)
+    th = np.linspace(-spread.half_width, spread.half_width, int(points))
+    dth = spread.density(th)
     h2 = np.abs(rao(dof, w[:, None], relative_heading + th[None, :])) ** 2
     return float(simpson(simpson(h2 * dth[None, :], x=th, axis=1) * s, x=w))
