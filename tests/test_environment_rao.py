@@ -148,13 +148,13 @@ def test_rao_validates_its_grid():
         RAO(np.array([0.4, 0.5]), np.array([0.0]), ("heave",), np.full((1, 2, 1), np.nan))
 
 
-def _capytaine_file(path):
+def _capytaine_file(path, beta=(0.0, math.pi / 2, math.pi)):
     """A capytaine-layout dataset (separate_complex_values) of a diagonal heave-roll-pitch body."""
     import xarray as xr
 
     dofs = ["Heave", "Roll", "Pitch"]
     w = np.array([0.3, 0.5, 0.8])
-    beta = np.array([0.0, math.pi / 2, math.pi])
+    beta = np.array(beta)
     M = np.diag([2e7, 3e9, 4e10])
     C = np.diag([4e7, 1.5e8, 5e10])
     A = np.stack([np.diag([1.5e7, 5e8, 3e10]) * (1 + 0.1 * x) for x in w])
@@ -181,18 +181,27 @@ def _capytaine_file(path):
     return w, beta, M, C, A, B, F
 
 
-def test_capytaine_netcdf(tmp_path):
-    w, beta, M, C, A, B, F = _capytaine_file(tmp_path / "capy.nc")
+@pytest.mark.parametrize("beta, eps, mirrored", [
+    # waves towards port (capytaine's usual 0..180 deg): mirrored to eps = beta, roll flips
+    ((0.0, math.pi / 2, math.pi), (0.0, math.pi / 2, math.pi), True),
+    # waves towards starboard: eps = -beta (mod 2 pi) already in [0, pi]
+    ((0.0, -math.pi / 2, -math.pi), (0.0, math.pi / 2, math.pi), False),
+    # a full circle: eps = -beta mod 2 pi, no mirror
+    ((0.0, math.pi / 2, -math.pi / 2), (0.0, 1.5 * math.pi, math.pi / 2), False)])
+def test_capytaine_netcdf(tmp_path, beta, eps, mirrored):
+    w, beta, M, C, A, B, F = _capytaine_file(tmp_path / "capy.nc", beta)
     rao = read_rao(tmp_path / "capy.nc")
     assert rao.dofs == ("heave", "roll", "pitch") and rao.speed == 0.0
-    # seahelm headings: eps = -beta mod 2 pi -> 0, pi, 3 pi / 2
-    np.testing.assert_allclose(rao.heading, [0.0, math.pi, 1.5 * math.pi])
+    assert ("mirrored" in rao.provenance) == mirrored
+    np.testing.assert_allclose(rao.heading, sorted(eps), atol=1e-12)
     for i, (name, sign) in enumerate((("heave", 1), ("roll", 1), ("pitch", -1))):
+        if mirrored and name == "roll":
+            sign = -1
         for j in range(3):
             Z = -w[j] ** 2 * (M[i, i] + A[j, i, i]) - 1j * w[j] * B[j, i, i] + C[i, i]
-            for b, eps in ((0, 0.0), (2, math.pi), (1, 1.5 * math.pi)):
+            for b, e in enumerate(eps):
                 expected = sign * np.conj(F[j, b, i] / Z)
-                got = rao.values[i, j, list(rao.heading).index(eps)]
+                got = rao.values[i, j, int(np.argmin(np.abs(rao.heading - e)))]
                 assert got == pytest.approx(expected, rel=1e-12)
 
 

@@ -35,8 +35,11 @@ capytaine's NetCDF (read as a file format; capytaine itself is not imported)
     convention x(t) = Re(X e^{−iωt}), axes x forward, y port, z up, wave direction β = 0
     travelling towards +x), converted to seahelm's: X → conj(X), ε = −β (mod 2π), and sway,
     pitch and yaw change sign (y port → starboard; pitch positive bow down → up; yaw about
-    z up → down). The RAOs hold at zero speed (capytaine's potential flow without forward
-    speed) unless the file has a ``forward_speed``.
+    z up → down). Wave directions β in [0, π] (the usual choice: waves towards port) give
+    ε in {0} ∪ [π, 2π); such a file is mirrored to ε in [0, π] (ε → 2π − ε, sway, roll and yaw
+    change sign), which holds for a hull symmetric about its centre plane, as :class:`RAO`
+    assumes of every table over [0, π]. The RAOs hold at zero speed (capytaine's potential flow
+    without forward speed) unless the file has a ``forward_speed``.
 
 Bad input raises :class:`~seahelm.errors.ParameterError` naming the file and the column or
 variable (missing dof, non-monotonic or repeated frequencies, missing grid points, NaN).
@@ -316,8 +319,18 @@ def rao_from_capytaine_dataset(ds: Any, *, source: str = "<dataset>") -> RAO:
         raise ParameterError(f"has none of the rigid-body dofs {', '.join(_CAPY_DOFS)} (file "
                              f"{source})", field="radiating_dof")
     eps = np.mod(-beta, 2.0 * math.pi)
+    signs = {n: s for _, n, s in known}
+    version = str(ds.attrs.get("capytaine_version", "")).strip()
+    text = f"capytaine {version} file {source}" if version else f"capytaine file {source}"
+    tol = 1e-9
+    if (np.all((eps > math.pi - tol) | (eps < tol)) and not np.all(eps < math.pi + tol)):
+        # directions in [0, π] (towards port): the mirror image, ε -> 2π - ε, of a hull
+        # symmetric about its centre plane, on which sway, roll and yaw change sign
+        eps = np.mod(2.0 * math.pi - eps, 2.0 * math.pi)
+        eps[eps > 2.0 * math.pi - tol] = 0.0
+        signs = {n: (-s if n in ("sway", "roll", "yaw") else s) for n, s in signs.items()}
+        text += " (wave directions 0..180 deg towards port mirrored to starboard)"
     order = np.argsort(eps)
-    values = np.stack([sign * X[:, order, i] for i, _, sign in known])
+    values = np.stack([signs[n] * X[:, order, i] for i, n, _ in known])
     speed = float(ds["forward_speed"].values) if "forward_speed" in ds else 0.0
-    return RAO(w, eps[order], tuple(n for _, n, _ in known), values, speed,
-               f"capytaine {ds.attrs.get('capytaine_version', '')} file {source}".strip())
+    return RAO(w, eps[order], tuple(n for _, n, _ in known), values, speed, text)
