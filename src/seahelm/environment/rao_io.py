@@ -39,7 +39,9 @@ capytaine's NetCDF (read as a file format; capytaine itself is not imported)
     ε in {0} ∪ [π, 2π); such a file is mirrored to ε in [0, π] (ε → 2π − ε, sway, roll and yaw
     change sign), which holds for a hull symmetric about its centre plane, as :class:`RAO`
     assumes of every table over [0, π]. The RAOs hold at zero speed (capytaine's potential flow
-    without forward speed) unless the file has a ``forward_speed``.
+    without forward speed) unless the file has a ``forward_speed``. Checked on a real
+    capytaine 3.0 file, the box barge that seahelm ships (:func:`box_barge_database`):
+    capytaine puts the ``complex`` dimension first; the reader selects it by name.
 
 Bad input raises :class:`~seahelm.errors.ParameterError` naming the file and the column or
 variable (missing dof, non-monotonic or repeated frequencies, missing grid points, NaN).
@@ -59,10 +61,34 @@ from ..errors import ParameterError
 from .rao import DOFS, RAO
 
 __all__ = ["read_rao", "read_rao_table", "read_capytaine", "write_rao_table",
-           "rao_from_capytaine_dataset"]
+           "rao_from_capytaine_dataset", "box_barge_database"]
+
+#: The capytaine database shipped with seahelm (package data, ``seahelm/data/rao/``).
+BOX_BARGE_DATABASE = "box-barge-100x20x5-capytaine.nc"
 
 _CAPY_DOFS = {"Surge": ("surge", 1.0), "Sway": ("sway", -1.0), "Heave": ("heave", 1.0),
               "Roll": ("roll", 1.0), "Pitch": ("pitch", -1.0), "Yaw": ("yaw", -1.0)}
+
+
+def box_barge_database() -> Path:
+    """The shipped capytaine NetCDF of a box barge (L 100 m, B 20 m, T 5 m) at zero speed.
+
+    capytaine 3.0.0 (potential flow, panels <= 2.5 m, a lid against irregular frequencies),
+    36 wave frequencies 0.2-1.6 rad/s, wave directions 0-180° every 15°, a homogeneous box of
+    depth 10 m (GM 4.167 m, k_xx 6.455 m, k_yy 29.01 m); made by
+    ``tools/capytaine/make_box_database.py`` (its docstring and ``seahelm/data/rao/README.md``
+    give the command, the versions and the mesh convergence). It is the hull the closed form of
+    Jensen, Mansour & Olsen (2004) models exactly (C_b = 1): ``docs/guide/waves-motions.rst``
+    compares the two.
+
+    Returns
+    -------
+    pathlib.Path
+        The file, for :func:`read_rao`.
+    """
+    from importlib import resources
+
+    return Path(str(resources.files("seahelm").joinpath("data", "rao", BOX_BARGE_DATABASE)))
 
 
 def _fail(path: Any, reason: str, field: str | None = None) -> ParameterError:
