@@ -5,8 +5,8 @@ Closed-form RAOs against a panel method: a box barge at zero speed
 The heave and pitch RAOs of Jensen, Mansour & Olsen (2004) for a box of 100 × 20 × 5 m
 (C_b = 1: the hull their closed form models exactly) beside capytaine's for the same box, read
 from the database that seahelm ships (:func:`seahelm.environment.rao_io.box_barge_database`,
-made by ``tools/capytaine/make_box_database.py``). Pitch is shown as |H|/k, the ratio to the
-wave slope, which is 1 in long head or following waves. The closed form's C_b = 1 is outside
+made by ``tools/capytaine/make_box_database.py``). Pitch is shown divided by k, the ratio to
+the wave slope, which is 1 in long head or following waves. The closed form's C_b = 1 is outside
 the range Jensen et al. checked (0.5–0.9), hence the silenced warning.
 """
 
