@@ -214,3 +214,25 @@ def test_capytaine_file_without_the_inertia_matrix(tmp_path):
     with pytest.raises(ParameterError, match="inertia_matrix") as info:
         read_rao(tmp_path / "bad.nc")
     assert info.value.field == "inertia_matrix"
+
+
+def test_the_particulars_gm_gives_the_roll_rao():
+    """A ship whose particulars know GM (the container ship's 0.3 m) gets the roll RAO without
+    an argument, equal to the one with GM given; an explicit GM or roll period wins; GM is a
+    length (scaled with the ship) and must be > 0."""
+    import dataclasses
+
+    ship = get_ship("son-nomoto-container")
+    assert ship.particulars.metacentric_height == 0.3
+    own = closed_form_rao(ship, 7.0)
+    given = closed_form_rao(dataclasses.replace(ship.particulars, metacentric_height=None), 7.0,
+                            metacentric_height=0.3)
+    assert own.dofs == given.dofs == ("heave", "roll", "pitch")
+    np.testing.assert_array_equal(own.values, given.values)
+    other = closed_form_rao(ship, 7.0, metacentric_height=1.2)
+    period = imo_roll_period(175.0, 25.4, 8.5, 1.2)
+    assert f"T_phi {period:.4g} s" in other.provenance
+    assert closed_form_rao(get_ship("kvlcc2-full"), 7.0).dofs == ("heave", "pitch")
+    assert ship.particulars.scaled(0.5).metacentric_height == pytest.approx(0.15)
+    with pytest.raises(ParameterError, match="metacentric_height"):
+        dataclasses.replace(ship.particulars, metacentric_height=-0.1)

@@ -209,3 +209,15 @@ def test_absurd_speed_and_sample_counts_are_refused():
     assert res.exit_code == 2 and "`--speed` gives a Froude number" in res.output
     res = run("imo", "kvlcc2-l7", "--monte-carlo", "2000000")
     assert res.exit_code == 2 and "--monte-carlo" in res.output
+
+
+def test_estimate_keeps_the_gm_in_the_particulars(tmp_path):
+    runner = CliRunner()
+    out = tmp_path / "gm.toml"
+    res = runner.invoke(app, ["ship", "estimate", "--length", "120", "--beam", "18", "--draft",
+                              "7", "--cb", "0.7", "--speed", "7", "--gm", "1.4", "-o", str(out)])
+    assert res.exit_code == 0, res.output
+    assert read_ship(out).particulars.metacentric_height == 1.4
+    bad = runner.invoke(app, ["ship", "estimate", "--length", "120", "--beam", "18", "--draft",
+                              "7", "--cb", "0.7", "--speed", "7", "--gm", "0"])
+    assert bad.exit_code == 2 and "`--gm` must be > 0 [m], got 0.0" in bad.output

@@ -487,7 +487,7 @@ def closed_form_moments(particulars: Any, spectrum: WaveSpectrum, speed: ArrayLi
     frequency : array_like, optional
         Wave frequencies ω of the quadrature [rad/s] (default :func:`default_frequencies`).
     metacentric_height : float, optional
-        GM [m] for the roll RAO.
+        GM [m] for the roll RAO (default: the particulars' ``metacentric_height``, if known).
     roll_period : float, optional
         Natural roll period T_φ [s] (default the IMO estimate from GM).
     roll_damping : float, optional
@@ -515,6 +515,8 @@ def closed_form_moments(particulars: Any, spectrum: WaveSpectrum, speed: ArrayLi
     if p is None:
         raise ParameterError("is not known (L, B, T, C_b): a closed-form RAO needs them",
                              field="particulars")
+    if metacentric_height is None and roll_period is None:
+        metacentric_height = getattr(p, "metacentric_height", None)  # (the particulars' GM)
     has_roll = metacentric_height is not None or roll_period is not None
     available = ("heave", "roll", "pitch") if has_roll else ("heave", "pitch")
     if dofs is not None and "roll" in ((dofs,) if isinstance(dofs, str) else tuple(dofs)) \

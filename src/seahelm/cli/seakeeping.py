@@ -242,6 +242,8 @@ def seakeeping(
             raise ParameterError(f"ship {name} has no [particulars] (length, beam, draft, "
                                  "block_coefficient): the closed-form RAOs need them; add "
                                  "them to its ship file")
+        if gm is None:  # the particulars' GM, else the model's (the 4-DOF container's)
+            gm = the_ship.particulars.metacentric_height
         if gm is None:
             gm = getattr(the_ship.params, "metacentric_height", None)
         if dof == "roll" and gm is None and roll_period is None:

@@ -267,6 +267,9 @@ def estimate(
         "Water depth h (default deep water)"))] = None,
     wetted_surface: Annotated[float | None, _opt("--wetted-surface", unit="m²", text=(
         "Wetted surface (default Holtrop's estimate)"))] = None,
+    metacentric_height: Annotated[float | None, _opt("--gm", unit="m", text=(
+        "Transverse metacentric height GM, kept in the particulars (the closed-form roll RAO; "
+        "default unknown)"))] = None,
     lcb: Annotated[float | None, typer.Option("--lcb", help=(
         "Longitudinal centre of buoyancy [% of L forward of midship] (default 0)."),
         show_default=False)] = None,
@@ -297,7 +300,8 @@ def estimate(
         block_coefficient=block_coefficient, speed=speed, displacement=displacement, x_G=x_G,
         propeller_diameter=propeller_diameter, pitch_ratio=pitch_ratio, area_ratio=area_ratio,
         blades=blades, rudder_area=rudder_area, rudder_span=rudder_span, rho=rho,
-        water_depth=water_depth, wetted_surface=wetted_surface, lcb=lcb, name=name).items()
+        water_depth=water_depth, wetted_surface=wetted_surface, lcb=lcb, name=name,
+        metacentric_height=metacentric_height).items()
         if v is not None}
     for option, value, high in (("max_rudder", max_rudder, 90.0), ("rudder_rate", rudder_rate,
                                                                     math.inf)):

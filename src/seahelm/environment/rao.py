@@ -347,7 +347,8 @@ def closed_form_rao(particulars: Any, speed: float, *, frequency: ArrayLike | No
     heading : array_like, optional
         Wave headings ε [rad] (default 0 to π in 5° steps).
     metacentric_height : float, optional
-        GM [m]; the roll RAO needs it (or ``roll_period``): without both, only heave and pitch.
+        GM [m]; the roll RAO needs it (or ``roll_period``): without both, only heave and pitch
+        (default: the particulars' ``metacentric_height``, if known).
     roll_period : float, optional
         Natural roll period T_φ [s] (default :func:`imo_roll_period` from GM).
     roll_damping : float, optional
@@ -381,6 +382,8 @@ def closed_form_rao(particulars: Any, speed: float, *, frequency: ArrayLike | No
                              "needs them", field="particulars")
     L, B, T, cb = (float(getattr(p, n)) for n in ("length", "beam", "draft",
                                                    "block_coefficient"))
+    if metacentric_height is None and roll_period is None:
+        metacentric_height = getattr(p, "metacentric_height", None)
     check_nonnegative("speed", speed, "m/s")
     U = float(speed)
     fn = U / math.sqrt(gravity * L)

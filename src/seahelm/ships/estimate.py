@@ -87,6 +87,8 @@ DESIGN_FIELDS: tuple[tuple[str, str, bool, str], ...] = (
     ("wetted_surface", "m²", False, "wetted surface S (default Holtrop's estimate)"),
     ("lcb", "%", False, "longitudinal centre of buoyancy, % of L forward of midship (default "
                         "0; Holtrop's resistance and wake use it)"),
+    ("metacentric_height", "m", False, "transverse metacentric height GM (kept in the "
+                                       "particulars: the closed-form roll RAO; default unknown)"),
 )
 
 
@@ -120,6 +122,7 @@ class Design:
     water_depth: float = math.inf
     wetted_surface: float | None = None
     lcb: float = 0.0
+    metacentric_height: float | None = None
 
     def __post_init__(self) -> None:
         units = {n: u for n, u, _, _ in DESIGN_FIELDS}
@@ -420,6 +423,7 @@ def estimate_ship(design: Design, *, strict: bool | None = None) -> Ship:
     particulars = Particulars(length=design.length, beam=design.beam, draft=design.mean_draft,
                               block_coefficient=design.block_coefficient,
                               displacement=design.displacement,
+                              metacentric_height=design.metacentric_height,
                               provenance="given (seahelm ship estimate)")
     sources = tuple((k, c.source) for k, c in coefficients.items() if c.source != "given")
     ship = Ship(

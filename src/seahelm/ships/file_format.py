@@ -47,6 +47,7 @@ FORMAT_REFERENCE: tuple[tuple[str, str, str, str], ...] = (
         "frontal_area": "frontal windage area above the water",
         "lateral_area": "lateral windage area above the water",
         "windage_centre": "centre of the lateral windage area, forward of midships",
+        "metacentric_height": "transverse metacentric height GM (the closed-form roll RAO)",
         "vessel_type": "Blendermann's vessel type (tanker-loaded, cargo-loaded, ...)"}[n])
       for n, u, req in FIELD_UNITS),
     ("provenance.params", "", "no", "where the parameter set comes from"),

@@ -41,6 +41,9 @@ class Particulars:
         Projected windage areas above the water A_F, A_L [m²].
     windage_centre : float or None
         Centre of the lateral windage area, forward of midships [m].
+    metacentric_height : float or None
+        Transverse metacentric height GM [m] of the loading condition (the closed-form roll
+        RAO's natural period, :func:`seahelm.environment.rao.closed_form_rao`).
     vessel_type : str or None
         Blendermann (1994) vessel type (:mod:`seahelm.environment.blendermann`).
     provenance : str
@@ -56,6 +59,7 @@ class Particulars:
     frontal_area: float | None = None
     lateral_area: float | None = None
     windage_centre: float | None = None
+    metacentric_height: float | None = None
     vessel_type: str | None = None
     provenance: str = ""
 
@@ -138,6 +142,7 @@ class Particulars:
             frontal_area=times(self.frontal_area, f * f),
             lateral_area=times(self.lateral_area, f * f),
             windage_centre=times(self.windage_centre, f),
+            metacentric_height=times(self.metacentric_height, f),
             provenance=provenance or self.provenance)
 
 
@@ -146,4 +151,5 @@ FIELD_UNITS: tuple[tuple[str, str, bool], ...] = (
     ("length", "m", True), ("beam", "m", True), ("draft", "m", True),
     ("block_coefficient", "-", True), ("displacement", "m³", False),
     ("length_overall", "m", False), ("frontal_area", "m²", False),
-    ("lateral_area", "m²", False), ("windage_centre", "m", False), ("vessel_type", "", False))
+    ("lateral_area", "m²", False), ("windage_centre", "m", False),
+    ("metacentric_height", "m", False), ("vessel_type", "", False))
