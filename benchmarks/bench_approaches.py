@@ -1,6 +1,7 @@
 """Monte-Carlo turning circles at scale: batched steady approaches against the one-run solve.
 
-The KVLCC2 L7 35° starboard turning circle (80 s, RK4 at the default 0.05 s) over ``--runs``
+The KVLCC2 L7 35° starboard turning circle (80 s, RK4 at the default 0.05 s, or ``--dt``; 0.5 s
+is the step at which bench_maneuvers compares with shipmmg at equal accuracy) over ``--runs``
 Monte-Carlo samples with Y'_v and N'_r drawn (normal, 10 % standard deviation) — issue 32's
 case. For each sample count, timed in one process (warm: the kernel compiled or loaded before):
 
@@ -50,16 +51,18 @@ from seahelm.sweep import run_sweep
 DERIVATIVES = ("Y_v", "N_r")
 RUDDER = math.radians(35.0)
 T_FINAL = 80.0
+#: The manoeuvres' default step for the KVLCC2 L7 [s]; ``--dt`` takes another.
+DT = 0.05
 
 
-def scenario(runs: int, seed: int = 1) -> str:
+def scenario(runs: int, seed: int = 1, dt: float = DT) -> str:
     params = get_ship("kvlcc2-l7").params
     draws = "\n".join(
         f'"vessel.params.{n}" = {{ distribution = "normal", mean = {getattr(params, n)!r}, '
         f'std = {abs(0.1 * getattr(params, n))!r} }}' for n in DERIVATIVES)
     return ('title = "bench: KVLCC2 L7 35 deg turning, Y_v and N_r drawn"\n'
             '[vessel]\ncatalog = "kvlcc2-l7"\n[maneuver]\nkind = "turning"\nrudder_deg = 35\n'
-            f'sides = "starboard"\nt_final = {T_FINAL}\n'
+            f'sides = "starboard"\nt_final = {T_FINAL}\ndt = {dt!r}\n'
             f"[batch.monte_carlo]\nruns = {runs}\nseed = {seed}\n"
             f"[batch.monte_carlo.draws]\n{draws}\n")
 
@@ -71,7 +74,7 @@ def _old(ships: list) -> float:
     return time.perf_counter() - t0
 
 
-def _bare(ships: list) -> float:
+def _bare(ships: list, dt: float) -> float:
     """The simulation of the grid alone, as turning_circle builds it (recorded every
     L/(20 U0), its default)."""
     from seahelm.analysis.maneuvers.turning_circle import default_record_every
@@ -81,16 +84,16 @@ def _bare(ships: list) -> float:
     x0 = np.stack([a.state for a in approaches])
     reference = {"rudder_command": np.full((plan.n_runs, 1, 1), RUDDER),
                  "propeller_rps": np.array([a.rps for a in approaches]).reshape(-1, 1, 1)}
-    every = default_record_every(0.05, plan.run_lengths(), [a.speed for a in approaches])
+    every = default_record_every(dt, plan.run_lengths(), [a.speed for a in approaches])
     t0 = time.perf_counter()
     plan.simulate(x0=x0, actuator_x0=np.array([[a.rudder] for a in approaches]),
-                  reference=reference, t_final=T_FINAL, dt=0.05, record_every=every)
+                  reference=reference, t_final=T_FINAL, dt=dt, record_every=every)
     return time.perf_counter() - t0
 
 
 def measure(runs: int, repeats: int, old_repeats: int, old_limit: int | None,
-            work: Path) -> dict[str, list[float]]:
-    text = scenario(runs)
+            work: Path, dt: float = DT) -> dict[str, list[float]]:
+    text = scenario(runs, dt=dt)
     path = work / f"bench-{runs}.toml"
     path.write_text(text)
     job = parse_scenario(text, source=str(path))
@@ -109,11 +112,18 @@ def measure(runs: int, repeats: int, old_repeats: int, old_limit: int | None,
         times["approaches, batched"].append(time.perf_counter() - t0)
         assert batch.ok.all(), batch.message
         clear_approaches()
-        times["bare batch"].append(_bare(ships))
+        times["bare batch"].append(_bare(ships, dt))
         clear_approaches()
         t0 = time.perf_counter()
-        turning_circle(ships, RUDDER, sides=1, t_final=T_FINAL)
+        metrics = turning_circle(ships, RUDDER, sides=1, t_final=T_FINAL, dt=dt).metrics
         times["manoeuvre"].append(time.perf_counter() - t0)
+        if rep == 0 and dt != DT:  # the accuracy of the larger step against the default's
+            clear_approaches()
+            fine = turning_circle(ships, RUDDER, sides=1, t_final=T_FINAL).metrics
+            err = max(float(np.nanmax(np.abs(metrics[k].values / fine[k].values - 1.0)))
+                      for k in ("advance", "tactical_diameter"))
+            print(f"  dt = {dt:g} s: advance and tactical diameter within {100 * err:.3g} % of "
+                  f"the default {DT:g} s step's (largest over the {runs} samples)")
         clear_approaches()
         store = work / f"here-{runs}-{rep}.zarr"
         t0 = time.perf_counter()
@@ -149,6 +159,9 @@ def main() -> None:
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--old-repeats", type=int, default=1,
                     help="timings of the one-run-at-a-time solve (0: skip it)")
+    ap.add_argument("--dt", type=float, default=DT,
+                    help="RK4 step [s] (default 0.05, the manoeuvres'; 0.5 is the step of equal "
+                         "accuracy in bench_maneuvers: advance and tactical diameter within 0.1 %%)")
     ap.add_argument("--quick", action="store_true",
                     help="smoke run: 20 samples, 1 repeat (what the test suite runs)")
     args = ap.parse_args()
@@ -158,11 +171,11 @@ def main() -> None:
 
     work = Path(tempfile.mkdtemp(prefix="seahelm-bench-approaches-"))
     try:
-        warm = parse_scenario(scenario(4, seed=99))  # compile / load the kernel
+        warm = parse_scenario(scenario(4, seed=99, dt=args.dt))  # compile / load the kernel
         warm.run_ships(warm.ships())
-        run_sweep(work / "warm.toml", work / "warm.zarr", text=scenario(4, seed=99))
+        run_sweep(work / "warm.toml", work / "warm.zarr", text=scenario(4, seed=99, dt=args.dt))
         for runs in args.runs:
-            times = measure(runs, args.repeats, args.old_repeats, old_limit, work)
+            times = measure(runs, args.repeats, args.old_repeats, old_limit, work, args.dt)
             report(runs, times, args.repeats)
     finally:
         shutil.rmtree(work, ignore_errors=True)
