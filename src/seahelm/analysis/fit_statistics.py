@@ -8,7 +8,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 __all__ = ["standard_errors", "correlation", "unidentifiable", "UNIDENTIFIABLE_RELATIVE_SE",
-           "UNIDENTIFIABLE_CORRELATION"]
+           "UNIDENTIFIABLE_CORRELATION", "CovarianceSummary"]
 
 #: Evidence thresholds for "unidentifiable": standard error over |value|, |correlation|.
 UNIDENTIFIABLE_RELATIVE_SE = 1.0
@@ -86,3 +86,31 @@ def unidentifiable(names: Sequence[str], values: np.ndarray, covariance: np.ndar
         if why:
             out[name] = "; ".join(why)
     return out
+
+
+class CovarianceSummary:
+    """What a fit result with ``names``, ``values`` and ``covariance`` says of its estimates (a
+    base of the identification results: Nomoto, MMG hull, linear sway–yaw)."""
+
+    names: tuple[str, ...]
+    values: np.ndarray
+    covariance: np.ndarray
+
+    @property
+    def standard_errors(self) -> np.ndarray:
+        """Standard errors of :attr:`values`."""
+        return standard_errors(self.covariance)
+
+    @property
+    def correlation(self) -> np.ndarray:
+        """Correlation matrix of the estimates."""
+        return correlation(self.covariance)
+
+    def unidentifiable(self) -> dict[str, str]:
+        """Parameters not identified, with the evidence (relative error, correlation).
+
+        Returns
+        -------
+        dict of str to str
+        """
+        return unidentifiable(self.names, self.values, self.covariance)

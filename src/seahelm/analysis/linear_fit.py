@@ -42,7 +42,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from .fit_statistics import correlation, standard_errors, unidentifiable
+from .fit_statistics import CovarianceSummary
 from .records import ManoeuvreRecord
 
 __all__ = ["LinearFit", "fit_linear", "LINEAR_NAMES", "LINEAR_UNITS"]
@@ -56,7 +56,7 @@ LINEAR_UNITS = {"a_vv": "1/s", "a_vr": "m/s", "b_v": "m/s²", "c_v": "m/s²",
 
 
 @dataclasses.dataclass(frozen=True)
-class LinearFit:
+class LinearFit(CovarianceSummary):
     """The identified linear sway–yaw model (module docstring).
 
     Attributes
@@ -103,20 +103,6 @@ class LinearFit:
     def b(self) -> np.ndarray:
         """The rudder's column (b_v, b_r)."""
         return np.array([self.value("b_v"), self.value("b_r")])
-
-    @property
-    def standard_errors(self) -> np.ndarray:
-        """Standard errors of :attr:`values`."""
-        return standard_errors(self.covariance)
-
-    @property
-    def correlation(self) -> np.ndarray:
-        """Correlation matrix of the estimates."""
-        return correlation(self.covariance)
-
-    def unidentifiable(self) -> dict[str, str]:
-        """Parameters not identified, with the evidence (relative error, correlation)."""
-        return unidentifiable(self.names, self.values, self.covariance)
 
     @property
     def poles(self) -> np.ndarray:

@@ -50,7 +50,7 @@ from numba import njit
 
 from ..errors import ParameterError
 from ..vessels.mmg import _forces as _mmg_forces
-from .fit_statistics import correlation, standard_errors, unidentifiable
+from .fit_statistics import CovarianceSummary
 from .records import ManoeuvreRecord
 
 __all__ = ["HullFit", "regress_hull", "refine_mmg", "identify_mmg", "HULL_TERMS",
@@ -76,7 +76,7 @@ METHODS = ("ols", "ridge", "tsvd")
 
 
 @dataclasses.dataclass(frozen=True)
-class HullFit:
+class HullFit(CovarianceSummary):
     """Identified hull derivatives (MMG names, non-dimensional as in MMGParams).
 
     Attributes
@@ -107,20 +107,6 @@ class HullFit:
     residual_std: dict[str, float]
     params: Any
     fixed: dict[str, str] = dataclasses.field(default_factory=dict)
-
-    @property
-    def standard_errors(self) -> np.ndarray:
-        """Standard errors of :attr:`values`."""
-        return standard_errors(self.covariance)
-
-    @property
-    def correlation(self) -> np.ndarray:
-        """Correlation matrix of the estimates."""
-        return correlation(self.covariance)
-
-    def unidentifiable(self) -> dict[str, str]:
-        """Parameters not identified, with the evidence (relative error, correlation)."""
-        return unidentifiable(self.names, self.values, self.covariance)
 
     def as_dict(self) -> dict[str, Any]:
         """Plain data (for JSON).

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from .fit_statistics import correlation, standard_errors, unidentifiable
+from .fit_statistics import CovarianceSummary, unidentifiable
 
 __all__ = ["NomotoFit", "nomoto_ship"]
 
@@ -25,7 +25,7 @@ _SYMBOLS = {"gain": "K", "time_constant": "T", "t1": "T_1", "t2": "T_2", "t3": "
 
 
 @dataclasses.dataclass(frozen=True)
-class NomotoFit:
+class NomotoFit(CovarianceSummary):
     """A Nomoto model identified from records (see the module docstring).
 
     Attributes
@@ -75,16 +75,6 @@ class NomotoFit:
     residuals: tuple[np.ndarray, ...]
     bootstrap: np.ndarray | None = None
     speed: float | None = None
-
-    @property
-    def standard_errors(self) -> np.ndarray:
-        """Standard errors of :attr:`values`."""
-        return standard_errors(self.covariance)
-
-    @property
-    def correlation(self) -> np.ndarray:
-        """Correlation matrix of the estimates."""
-        return correlation(self.covariance)
 
     def confidence_intervals(self, level: float = 0.95) -> np.ndarray:
         """Student-t intervals (Laplace), shape (parameters, 2).
