@@ -1,4 +1,4 @@
-"""The compiled inner loop of the first-order wave motions (:mod:`.first_order`).
+"""The compiled inner loop of the first-order wave motions (:mod:`seahelm.environment.first_order`).
 
 For one run it sums, at every sample t_k of the record and for every degree of freedom j,
 

@@ -98,7 +98,7 @@ class EnvironmentRuns:
     environment: Environment
     params: np.ndarray
     signals: list[dict[str, Any]]
-    #: per run, the first-order motions' settings (:mod:`.first_order`), or None
+    #: per run, the first-order motions' settings (:mod:`seahelm.scenario.first_order`), or None
     first_order: list[dict[str, Any]] | None = None
 
 
