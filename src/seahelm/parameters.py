@@ -24,6 +24,7 @@ import functools
 import math
 import warnings
 from collections.abc import Mapping, Sequence
+from types import MappingProxyType
 from typing import Any, ClassVar, Self
 
 import numpy as np
@@ -135,6 +136,12 @@ class Params:
                 continue
             _check_number(f, name, value)
         self.validate()
+
+    @classmethod
+    @functools.cache  # per class
+    def _fields_by_name(cls) -> Mapping[str, dataclasses.Field]:
+        """The dataclass fields by name (read once per class)."""
+        return MappingProxyType({f.name: f for f in dataclasses.fields(cls)})
 
     @classmethod
     @functools.cache  # per class
@@ -309,7 +316,7 @@ class Params:
         -------
         Params
         """
-        fields = {f.name: f for f in dataclasses.fields(cls)}
+        fields = cls._fields_by_name()
         kwargs: dict[str, Any] = base.as_dict() if base is not None else {}
         in_degrees: dict[str, str] = {}  # field -> the `_deg` key it was given by
         both = [k for k in values if k.endswith("_deg") and k[:-4] in values]

@@ -140,7 +140,8 @@ class ManeuverJob:
             try:
                 deep = base.deep_water_params or base.params
                 params = params_at_depth(base, type(deep).from_mapping(vessel, base=deep))
-                gear = type(base.servo).from_mapping(servo, base=base.servo)
+                gear = (type(base.servo).from_mapping(servo, base=base.servo) if servo
+                        else base.servo)  # (frozen: shared when nothing is drawn)
             except (ParameterError, TypeError) as exc:
                 raise ScenarioError(f"{source}: [batch.monte_carlo] sample {i}: {exc}") from None
             out.append(maneuver_ship(params, servo=gear, model=base.model,
