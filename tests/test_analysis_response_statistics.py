@@ -157,13 +157,27 @@ def test_spreading_closed_forms():
 
 
 @pytest.mark.parametrize("call, match", [
-    (lambda: CosinePowerSpreading(power=0.0), r"`power` must be > 0 \[-\]"),
-    (lambda: Cos2sSpreading(s=math.nan), r"`s` must be > 0 \[-\]"),
+    (lambda: CosinePowerSpreading(power=0.0), r"`power` must be in \(0, 2000\] \[-\]"),
+    (lambda: Cos2sSpreading(s=math.nan), r"`s` must be in \(0, 1000\] \[-\]"),
     (lambda: get_spreading("cos4"), "unknown spreading 'cos4'; valid: 'cos-n', 'cos2', 'cos-2s'"),
     (lambda: get_spreading(Cos2sSpreading(), s=2.0), "cannot be given together"),
-    (lambda: Cos2sSpreading().quadrature(0), r"`n_directions` must be an integer >= 1"),
+    (lambda: Cos2sSpreading().quadrature(0),
+     r"`n_directions` must be an integer in \[1, 10000\]"),
 ])
 def test_spreading_bad_input(call, match):
+    with pytest.raises(ParameterError, match=match):
+        call()
+
+
+@pytest.mark.parametrize("call, match", [
+    (lambda: Cos2sSpreading(s=1e6), r"`s` must be in \(0, 1000\] \[-\], got 1000000.0"),
+    (lambda: CosinePowerSpreading(power=1e300), r"`power` must be in \(0, 2000\] \[-\]"),
+    (lambda: Cos2sSpreading().quadrature(10**11), r"`n_directions` must be an integer in "
+                                                  r"\[1, 10000\]"),
+])
+def test_spreading_too_narrow_or_too_many_directions(call, match):
+    """s = 1e6 made every weight of the 36-direction quadrature 0 (the seakeeping moments NaN);
+    10^11 directions a MemoryError."""
     with pytest.raises(ParameterError, match=match):
         call()
 
@@ -199,4 +213,14 @@ def test_spreading_with_parameter():
         spreading_with_parameter("cos2", 2.0)
     with pytest.raises(ParameterError) as err:
         spreading_with_parameter("cos-2s", -1.0)
-    assert err.value.field == "spreading_parameter" and "> 0" in str(err.value)
+    assert err.value.field == "spreading_parameter" and "(0, 1000]" in str(err.value)
+
+
+@pytest.mark.parametrize("spreading", [Cos2sSpreading(s=1000.0),
+                                       CosinePowerSpreading(power=2000.0)])
+@pytest.mark.parametrize("n", [2, 36])
+def test_the_narrowest_spreading_still_has_weights(spreading, n):
+    """At the bounds the midpoint rule's weights are finite and sum to 1 (two directions: the
+    nodes at ±90 or ±45 deg, cos^2000 = 2^-1000 > 0)."""
+    _, w = spreading.quadrature(n)
+    assert np.all(np.isfinite(w)) and w.sum() == pytest.approx(1.0, abs=1e-12)

@@ -46,12 +46,21 @@ __all__ = ["CosinePowerSpreading", "Cos2sSpreading", "SPREADING", "get_spreading
 
 #: Points of the tabulated cumulative distribution that :meth:`_Spreading.draw` inverts.
 _TABLE_POINTS = 4097
+#: Most directions of a quadrature (0.036 deg apart over the full circle).
+MAX_DIRECTIONS = 10_000
+#: Largest cos-2s ``s`` and cos-n ``power``: narrower spreads are long-crested seas for any
+#: quadrature, and beyond them cos^{2s} underflows to 0 between the quadrature's directions
+#: (measured s = 1e6: every weight 0, the moments NaN). Observed swell reaches s ~ 75
+#: (Mitsuyasu et al. 1975).
+MAX_S = 1000.0
+MAX_POWER = 2.0 * MAX_S
 
 
 def _check_count(n: Any) -> int:
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-        raise ParameterError(f"must be an integer >= 1 [-], got {n!r}", field="n_directions",
-                             unit="-", value=n)
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not \
+            1 <= n <= MAX_DIRECTIONS:
+        raise ParameterError(f"must be an integer in [1, {MAX_DIRECTIONS}] [-], got {n!r}",
+                             field="n_directions", unit="-", value=n)
     return int(n)
 
 
@@ -116,7 +125,7 @@ class CosinePowerSpreading(_Spreading):
     Parameters
     ----------
     power : float
-        The exponent n [-], > 0 (default 2: the cos² spreading).
+        The exponent n [-], in (0, 2000] (default 2: the cos² spreading).
     """
 
     name: ClassVar[str] = "cos-n"
@@ -127,8 +136,9 @@ class CosinePowerSpreading(_Spreading):
     def __post_init__(self) -> None:
         if isinstance(self.power, bool) or not (isinstance(self.power, (int, float))
                                                 and math.isfinite(self.power)
-                                                and self.power > 0):
-            raise ParameterError(f"must be > 0 [-], got {self.power!r}", field="power",
+                                                and 0 < self.power <= MAX_POWER):
+            raise ParameterError(f"must be in (0, {MAX_POWER:g}] [-], got {self.power!r}",
+                                 field="power",
                                  unit="-", value=self.power)
 
     def density(self, theta: ArrayLike) -> np.ndarray:
@@ -158,7 +168,7 @@ class Cos2sSpreading(_Spreading):
     Parameters
     ----------
     s : float
-        The spreading parameter s [-], > 0 (default 10).
+        The spreading parameter s [-], in (0, 1000] (default 10).
     """
 
     name: ClassVar[str] = "cos-2s"
@@ -168,8 +178,10 @@ class Cos2sSpreading(_Spreading):
 
     def __post_init__(self) -> None:
         if isinstance(self.s, bool) or not (isinstance(self.s, (int, float))
-                                            and math.isfinite(self.s) and self.s > 0):
-            raise ParameterError(f"must be > 0 [-], got {self.s!r}", field="s", unit="-",
+                                            and math.isfinite(self.s)
+                                            and 0 < self.s <= MAX_S):
+            raise ParameterError(f"must be in (0, {MAX_S:g}] [-], got {self.s!r}", field="s",
+                                 unit="-",
                                  value=self.s)
 
     def density(self, theta: ArrayLike) -> np.ndarray:
