@@ -105,16 +105,29 @@ def test_rao_file(tmp_path):
 
 
 @pytest.mark.parametrize("args, message", [
-    ([SHIP, "--hs", "0", "--tp", "10"], "`--hs` must be > 0 [m], got 0.0"),
-    ([SHIP, "--hs", "-2", "--tp", "10"], "`--hs` must be > 0 [m]"),
-    ([SHIP, "--hs", "nan", "--tp", "10"], "`--hs` must be > 0 [m], got nan"),
+    ([SHIP, "--hs", "0", "--tp", "10"], "`--hs` must be in (0, 100] [m], got 0.0"),
+    ([SHIP, "--hs", "-2", "--tp", "10"], "`--hs` must be in (0, 100] [m]"),
+    ([SHIP, "--hs", "nan", "--tp", "10"], "`--hs` must be in (0, 100] [m], got nan"),
+    # overflowed (exit 1, OverflowError) or gave NaN moments named `values`/`m0` before
+    ([SHIP, "--hs", "1e300", "--tp", "10"], "`--hs` must be in (0, 100] [m], got 1e+300"),
+    ([SHIP, "--hs", "4", "--tp", "1e300"], "`--tp` must be in [0.1, 1000] [s], got 1e+300"),
+    ([SHIP, "--hs", "4", "--tp", "1e-300"], "`--tp` must be in [0.1, 1000] [s], got 1e-300"),
+    ([SHIP, "--hs", "4", "--tp", "10", "--gamma", "1e300"], "`--gamma` must be in [1, 20] [-]"),
+    ([SHIP, "--hs", "4", "--tp", "10", "--speeds", "1e300"], "`--speeds` must be in [0, 100] "
+                                                             "[m/s], got '1e300'"),
+    ([SHIP, "--hs", "4", "--tp", "10", "--headings", "1e300"], "`--headings` must be within "
+                                                               "±360 [deg], got '1e300'"),
+    ([SHIP, "--hs", "4", "--tp", "10", "--spreading", "cos-2s", "--spreading-s", "1e300"],
+     "`--spreading-s` must be in (0, 1000] [-], got 1e+300"),
+    ([SHIP, "--hs", "4", "--tp", "10", "--spreading", "cos2", "--directions", "100000000000"],
+     "`--directions` must be in [1, 10000] [-], got 100000000000"),
     ([SHIP, "--tp", "10"], "`--hs` is required [m]"),
-    ([SHIP, "--hs", "4", "--tp", "0"], "`--tp` must be > 0 [s]"),
+    ([SHIP, "--hs", "4", "--tp", "0"], "`--tp` must be in [0.1, 1000] [s]"),
     ([SHIP, "--hs", "4"], "`--tp` is required for jonswap [s]"),
     ([SHIP, "--hs", "4", "--tp", "8", "--spectrum", "pierson-moskowitz"], "`--tp` is not taken"),
     ([SHIP, "--hs", "4", "--tp", "10", "--speeds", ""], "`--speeds` must hold at least one value [m/s]"),
     ([SHIP, "--hs", "4", "--tp", "10", "--speeds", "0:8"], "`--speeds` must be START:STOP:N"),
-    ([SHIP, "--hs", "4", "--tp", "10", "--speeds", "-1,2"], "`--speeds` must be >= 0 [m/s]"),
+    ([SHIP, "--hs", "4", "--tp", "10", "--speeds", "-1,2"], "`--speeds` must be in [0, 100] [m/s]"),
     ([SHIP, "--hs", "4", "--tp", "10", "--headings", "0,nan"], "`--headings` must be finite [deg]"),
     ([SHIP, "--hs", "4", "--tp", "10", "--headings", "90,10"], "`--headings` must be strictly increasing [deg]"),
     ([SHIP, "--hs", "4", "--tp", "10", "--limit", "0"], "`--limit` must be > 0 [deg]"),

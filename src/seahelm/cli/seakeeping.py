@@ -24,6 +24,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
+from ..environment.directional_spreading import MAX_DIRECTIONS, MAX_S
 from ..errors import ParameterError
 from ._common import JsonFlag, console, handle_errors, input_file, output_dir, print_json
 
@@ -35,6 +36,15 @@ NETCDF_NAME = "seakeeping.nc"
 MAX_TABLE_CELLS = 40
 #: Largest speeds × headings grid computed.
 MAX_CELLS = 100_000
+#: Numerical bounds of the sea state and the grids (beyond them the spectra and the RAOs
+#: overflow: Hs or Tp of 1e300 and Tp of 1e-300 raised OverflowError, speeds of 1e300 gave NaN
+#: moments); every value inside computes finite moments (measured at each end). The closed
+#: form's own validity range (Fn <= 0.4) warns well inside them.
+HS_MAX = 100.0
+TP_RANGE = (0.1, 1000.0)
+GAMMA_MAX = 20.0
+SPEED_MAX = 100.0
+HEADING_MAX = 360.0
 
 SpectrumName = Literal["jonswap", "bretschneider", "ittc", "pierson-moskowitz"]
 SpreadingName = Literal["none", "cos2", "cos-2s"]
@@ -96,10 +106,18 @@ def _positive(option: str, value: float | None, unit: str) -> None:
                              value=value)
 
 
+def _within(option: str, value: float, unit: str, low: float, high: float,
+            low_open: bool = False) -> None:
+    if not (math.isfinite(value) and (value > low if low_open else value >= low)
+            and value <= high):
+        raise ParameterError(f"must be in {'(' if low_open else '['}{low:g}, {high:g}] "
+                             f"[{unit}], got {value!r}", field=option, unit=unit, value=value)
+
+
 def _spectrum(name: str, hs: float, tp: float | None, gamma: float) -> Any:
     from ..environment.spectra import get_spectrum
 
-    _positive("hs", hs, "m")
+    _within("hs", hs, "m", 0.0, HS_MAX, low_open=True)
     if name == "pierson-moskowitz":
         if tp is not None:
             raise ParameterError("is not taken by pierson-moskowitz (its peak follows from "
@@ -108,11 +126,9 @@ def _spectrum(name: str, hs: float, tp: float | None, gamma: float) -> Any:
         return get_spectrum(name, significant_height=hs)
     if tp is None:
         raise ParameterError(f"is required for {name} [s]", field="tp", unit="s")
-    _positive("tp", tp, "s")
+    _within("tp", tp, "s", *TP_RANGE)
     if name == "jonswap":
-        if not (math.isfinite(gamma) and gamma >= 1):
-            raise ParameterError(f"must be >= 1 [-], got {gamma!r}", field="gamma", unit="-",
-                                 value=gamma)
+        _within("gamma", gamma, "-", 1.0, GAMMA_MAX)
         return get_spectrum(name, significant_height=hs, peak_period=tp, gamma=gamma)
     return get_spectrum(name, significant_height=hs, peak_period=tp)
 
@@ -195,16 +211,20 @@ def seakeeping(
     for option, value in (("limit", limit), ("exceed", exceed)):
         _positive(option, value, unit)
     _positive("duration", duration, "s")
-    _positive("spreading_s", spreading_s, "-")
-    if directions < 1:
-        raise ParameterError(f"must be >= 1 [-], got {directions}", field="directions",
-                             unit="-", value=directions)
+    _within("spreading_s", spreading_s, "-", 0.0, MAX_S, low_open=True)
+    if not 1 <= directions <= MAX_DIRECTIONS:
+        raise ParameterError(f"must be in [1, {MAX_DIRECTIONS}] [-], got {directions}",
+                             field="directions", unit="-", value=directions)
     for option, value, u in (("gm", gm, "m"), ("roll_period", roll_period, "s")):
         _positive(option, value, u)
     if not (math.isfinite(roll_damping) and 0 < roll_damping <= 1):
         raise ParameterError(f"must be in (0, 1] [-], got {roll_damping!r}",
                              field="roll_damping", unit="-", value=roll_damping)
-    eps = np.radians(parse_grid("--headings", headings, "deg"))
+    eps = parse_grid("--headings", headings, "deg")
+    if np.any(np.abs(eps) > HEADING_MAX):
+        raise ParameterError(f"must be within ±{HEADING_MAX:g} [deg], got {headings!r}",
+                             field="headings", unit="deg", value=headings)
+    eps = np.radians(eps)
     spread: Any = None
     if spreading != "none":
         from ..environment.directional_spreading import get_spreading
@@ -256,9 +276,9 @@ def seakeeping(
                                      field="speeds", unit="m/s")
             speeds = f"0:{the_ship.test_speed:.6g}:5"
         U = parse_grid("--speeds", speeds, "m/s")
-        if np.any(U < 0):
-            raise ParameterError(f"must be >= 0 [m/s], got {speeds!r}", field="speeds",
-                                 unit="m/s", value=speeds)
+        if np.any(U < 0) or np.any(U > SPEED_MAX):
+            raise ParameterError(f"must be in [0, {SPEED_MAX:g}] [m/s], got {speeds!r}",
+                                 field="speeds", unit="m/s", value=speeds)
         _check_cells(U, eps)
         moments = closed_form_moments(the_ship, spec, U, eps, spreading=spread,
                                       n_directions=directions, metacentric_height=gm,
