@@ -79,3 +79,15 @@ def test_the_example_loads():
     with pytest.warns(ValidityRangeWarning, match="block coefficient"):
         batch = load_scenario(EXAMPLE)
     assert "first_order_motions" in batch.metadata
+
+
+def test_without_the_key_the_particulars_gm_gives_the_roll(result):
+    """The container's particulars hold GM 0.3 m, the key's value in the example: without the
+    key the same roll (before, the scenario ignored the particulars' GM: heave and pitch only,
+    where the closed form, the seakeeping command and the docs take it)."""
+    assert get_ship("son-nomoto-container").particulars.metacentric_height == 0.3
+    text = short(EXAMPLE.read_text(), **{"metacentric_height = 0.3": ""})
+    assert "\nmetacentric_height" not in text
+    other = run_scenario(parse_scenario(text, source="no key"))
+    np.testing.assert_array_equal(other["roll_wave"], result["roll_wave"])
+    np.testing.assert_array_equal(other["heave"], result["heave"])

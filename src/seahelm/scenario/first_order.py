@@ -11,7 +11,8 @@ manoeuvre:
 
 The RAOs are the closed-form estimates of the ship's particulars
 (:func:`~seahelm.environment.rao.closed_form_rao`: heave and pitch by Jensen et al. 2004,
-roll with the section's ``metacentric_height`` GM [m]; without it heave and pitch only),
+roll with the section's ``metacentric_height`` GM [m], else the particulars' — a ship file's
+``[particulars]`` or the catalog ship's; without either heave and pitch only),
 evaluated at four speeds spanning the surge speeds recorded by the runs that share the sea
 settings and interpolated in between (one speed when they vary by less than 0.25 m/s). The sea is the section's spectrum for its height
 (as for the load envelope, Table 2's peak frequency), mean direction ``direction_deg`` (from),
@@ -65,7 +66,8 @@ def first_order_settings(v: dict[str, Any], h3: float, ship: Any, source: str
                    "for its closed-form RAOs: a catalog ship or a ship file with [particulars]")
     return {"h3": float(h3), "spectrum": v["spectrum"], "seed": int(v.get("seed", 0)),
             "direction": math.radians(float(v["direction_deg"])),
-            "gm": v.get("metacentric_height"), "components": int(v.get("components", 64)),
+            "gm": v.get("metacentric_height", getattr(ship, "metacentric_height", None)),
+            "components": int(v.get("components", 64)),
             "spreading": v.get("spreading"),
             "spreading_parameter": float(v.get("spreading_parameter", 2.0)),
             "hull": [float(ship.length), float(ship.beam), float(ship.draft),

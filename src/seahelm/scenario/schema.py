@@ -149,8 +149,8 @@ class WavesSection(_Strict):
     height of 0 means no waves (zero loads, exactly). ``first_order_motions = true`` (with
     ``irregular = true``) adds the first-order heave, roll and pitch of the same sea to the
     result (:mod:`seahelm.scenario.first_order`): closed-form RAOs of the ship
-    (``metacentric_height`` [m] for roll), ``components`` per run, directional ``spreading``
-    (``"cos-2s"`` or ``"cos-n"`` with ``spreading_parameter``)."""
+    (``metacentric_height`` [m] for roll, else the particulars'), ``components`` per run,
+    directional ``spreading`` (``"cos-2s"`` or ``"cos-n"`` with ``spreading_parameter``)."""
 
     model: str = "lvov"
     height: Annotated[Number, Field(ge=0)] | None = None  # 0: no waves (an irregular sea: 1-10 m)
