@@ -273,3 +273,13 @@ def test_bad_raos_and_seas(rao, sea):
     with pytest.raises(ParameterError, match=r"spreading_parameter.*in \(0, 1000\]"):
         first_order_motions(rec, sea, rao, wave_direction=0.0, spreading="cos-2s",
                             spreading_parameter=0.0)
+
+
+@pytest.mark.parametrize("n", [0, 10**11, math.nan, True])
+def test_component_count_is_bounded(rao, sea, n):
+    """10^11 components raised a MemoryError (exit 1 from a scenario, after its runs); NaN a
+    bare ValueError from int()."""
+    rec = {"time": np.arange(20) * 0.1, "u": np.full(20, 7.0), "psi": np.zeros(20)}
+    with pytest.raises(ParameterError, match=r"`n_components` must be an integer in "
+                                             r"\[1, 100000\] \[-\]"):
+        first_order_motions(rec, sea, rao, wave_direction=0.0, n_components=n)

@@ -66,6 +66,8 @@ def test_run_i_draws_from_the_second_child_of_its_sea_stream(result):
      "environment.waves", "set `irregular = true`"),
     ({"first_order_motions = true": "first_order_motions = false"},
      "environment.waves", "`components` belongs to the first-order motions"),
+    ({"components = 64": "components = 100000000000"},
+     "environment.waves.components", "must be <= 100000, got 100000000000"),
     ({'catalog = "son-nomoto-container"': 'model = "container"'},
      "environment.waves.first_order_motions", "particulars"),
 ])

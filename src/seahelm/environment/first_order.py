@@ -71,6 +71,9 @@ from .directional_spreading import spreading_with_parameter
 __all__ = ["WaveComponents", "FirstOrderMotions", "draw_wave_components",
            "first_order_motions", "expected_variance", "OUTPUT_NAMES"]
 
+#: Most components per run (10^11 raised a MemoryError; the pass costs samples × components).
+MAX_COMPONENTS = 100_000
+
 #: Dataset names of the first-order parts (heave and pitch are all there is of them).
 OUTPUT_NAMES: dict[str, str] = {"heave": "heave", "pitch": "pitch", "roll": "roll_wave",
                                 "yaw": "yaw_wave", "surge": "surge_wave", "sway": "sway_wave"}
@@ -146,9 +149,11 @@ def draw_wave_components(spectrum: Any, wave_direction: float, *, runs: int = 1,
     -------
     WaveComponents
     """
-    if isinstance(n_components, bool) or int(n_components) != n_components or n_components < 1:
-        raise ParameterError(f"must be an integer >= 1, got {n_components!r}",
-                             field="n_components", value=n_components)
+    if isinstance(n_components, bool) or not isinstance(n_components, (int, np.integer)) \
+            or not 1 <= n_components <= MAX_COMPONENTS:
+        raise ParameterError(f"must be an integer in [1, {MAX_COMPONENTS}] [-], got "
+                             f"{n_components!r}", field="n_components", unit="-",
+                             value=n_components)
     if isinstance(runs, bool) or int(runs) != runs or runs < 1:
         raise ParameterError(f"must be an integer >= 1, got {runs!r}", field="runs", value=runs)
     lo, hi = (float(v) for v in as_float_array("band", band, "rad/s"))

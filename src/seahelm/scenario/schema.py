@@ -168,7 +168,8 @@ class WavesSection(_Strict):
     block_coefficient: Annotated[Number, Field(gt=0, le=1)] | None = None
     first_order_motions: StrictBool = False
     metacentric_height: Positive | None = None
-    components: Count = 64
+    # at most environment.first_order.MAX_COMPONENTS (10^11 was a MemoryError after the runs)
+    components: Annotated[int, Strict(), Field(ge=1, le=100_000)] = 64
     spreading: Literal["cos-2s", "cos-n"] | None = None
     spreading_parameter: Positive = 2.0
 
