@@ -135,3 +135,21 @@ def test_written_numbers_read_back_exactly(tmp_path):
         (tmp_path / "b.csv").write_text(text)
         with pytest.raises(ParameterError, match=match):
             read_samples(tmp_path / "b.csv")
+
+
+def test_a_failed_write_leaves_the_old_file(tmp_path, monkeypatch):
+    """write_samples is atomic: a disk error while writing keeps the old file whole and leaves
+    no temporary file (it wrote in place before)."""
+    from pathlib import Path
+
+    path = write_samples(tmp_path / "s.csv", {"vessel.params.N_v": [-0.1, -0.2]})
+    before = path.read_bytes()
+
+    def full_disk(self, data):
+        raise OSError(28, "No space left on device", str(self))
+
+    monkeypatch.setattr(Path, "write_bytes", full_disk)
+    with pytest.raises(OSError):
+        write_samples(path, {"vessel.params.N_v": [-0.3]})
+    monkeypatch.undo()
+    assert path.read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == ["s.csv"]

@@ -35,6 +35,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
+from ..results import atomic_write
 
 __all__ = ["SamplesFile", "read_samples", "write_samples", "samples_attrs", "KEY_PREFIXES"]
 
@@ -104,6 +105,11 @@ def write_samples(path: str | Path, columns: Mapping[str, Sequence[float]], *,
     Returns
     -------
     Path
+
+    Notes
+    -----
+    Written atomically (:func:`seahelm.results.atomic_write`): an interrupted or failed write
+    leaves no half-written file (nor a partly replaced old one).
     """
     path = Path(path)
     keys = list(columns)
@@ -125,8 +131,8 @@ def write_samples(path: str | Path, columns: Mapping[str, Sequence[float]], *,
     writer.writerow(keys)
     for row in values:
         writer.writerow([repr(float(x)) for x in row])
-    path.write_text(text.getvalue(), encoding="utf-8")
-    return path
+    data = text.getvalue().encode("utf-8")
+    return atomic_write(path, lambda tmp: Path(tmp).write_bytes(data))
 
 
 def _check_keys(keys: Sequence[str], where: str) -> None:
