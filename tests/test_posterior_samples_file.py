@@ -115,6 +115,14 @@ def test_bad_draws_files_and_scenarios(identified, tmp_path):
     res = runner.invoke(app, ["identify", "mmg", str(d / "zz20.nc"), "--ship", "kvlcc2-l7",
                               "--save-posterior", str(tmp_path / "p.csv")])
     assert res.exit_code == 2 and "needs the number of samples" in res.stderr, res.stderr
+    for option in ("--samples", "--imo"):  # 10^12 was a MemoryError (exit 1)
+        res = runner.invoke(app, ["identify", "mmg", str(d / "zz20.nc"), "--ship", "kvlcc2-l7",
+                                  option, "1000000000000", "--save-posterior",
+                                  str(tmp_path / "p.csv")])
+        lines = res.stderr.strip().splitlines()
+        assert res.exit_code == 2 and len(lines) == 1 and option in lines[0] \
+            and "100000" in lines[0], res.stderr
+    assert not (tmp_path / "p.csv").exists()
 
 
 def test_written_numbers_read_back_exactly(tmp_path):

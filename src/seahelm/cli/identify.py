@@ -33,6 +33,9 @@ app = typer.Typer(
 )
 
 _UNITS = {"a": "s²/rad", "b": "s", "c": "s/rad", "d": "1/rad"}
+#: Most posterior ships or samples drawn (as `seahelm imo --monte-carlo`; 10^12 was a
+#: MemoryError, exit 1).
+MAX_POSTERIOR = 100_000
 
 #: The keys of :data:`~seahelm.identification.fitting.FIT_METHODS` and
 #: :data:`~seahelm.identification.reduced_forms.REDUCED_FORMS`, spelled out so that the
@@ -208,7 +211,8 @@ def nomoto(
     = None,
     imo: Annotated[int, typer.Option(
         "--imo", metavar="N", help="Draw N ships from the posterior and give the probability of "
-        "passing each IMO criterion (needs --speed, --length; 0: no).", min=0)] = 0,
+        "passing each IMO criterion (needs --speed, --length; 0: no).", min=0,
+        max=MAX_POSTERIOR)] = 0,
     posterior: Annotated[PosteriorName, typer.Option(
         "--posterior", help="Posterior of --imo: the Laplace Gaussian or MCMC (emcee, "
         "the extra seahelm[mcmc]).")] = "laplace",
@@ -392,7 +396,8 @@ def mmg(
     name: Annotated[Optional[str], typer.Option("--name", help="Ship name (for --out).")] = None,
     imo: Annotated[int, typer.Option(
         "--imo", metavar="N", help="Draw N ships from the posterior of the hull derivatives and "
-        "give the probability of passing each IMO criterion (0: no).", min=0)] = 0,
+        "give the probability of passing each IMO criterion (0: no).", min=0,
+        max=MAX_POSTERIOR)] = 0,
     posterior: Annotated[PosteriorName, typer.Option(
         "--posterior", help="Posterior of --imo: the Laplace Gaussian or MCMC (emcee, "
         "the extra seahelm[mcmc]).")] = "laplace",
@@ -406,7 +411,7 @@ def mmg(
         "SHIP.toml --draws FILE.csv` or a scenario's [batch.monte_carlo] samples.")] = None,
     samples: Annotated[int, typer.Option(
         "--samples", metavar="N", help="Without --imo: the number of posterior samples "
-        "--save-posterior writes.", min=0)] = 0,
+        "--save-posterior writes.", min=0, max=MAX_POSTERIOR)] = 0,
     json_out: JsonFlag = False,
 ) -> None:
     """Identify the MMG hull derivatives from free-running records, the rest from a base ship.
