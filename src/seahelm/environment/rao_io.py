@@ -73,9 +73,9 @@ _CAPY_DOFS = {"Surge": ("surge", 1.0), "Sway": ("sway", -1.0), "Heave": ("heave"
 def box_barge_database() -> Path:
     """The shipped capytaine NetCDF of a box barge (L 100 m, B 20 m, T 5 m) at zero speed.
 
-    capytaine 3.0.0 (potential flow, panels <= 2.5 m, a lid against irregular frequencies),
-    36 wave frequencies 0.2-1.6 rad/s, wave directions 0-180° every 15°, a homogeneous box of
-    depth 10 m (GM 4.167 m, k_xx 6.455 m, k_yy 29.01 m); made by
+    capytaine 3.0.0 (potential flow, 2,048 hull panels <= 1.25 m, a lid against irregular
+    frequencies), 36 wave frequencies 0.2-1.6 rad/s, wave directions 0-180° every 15°, a
+    homogeneous box of depth 10 m (GM 4.167 m, k_xx 6.455 m, k_yy 29.01 m); made by
     ``tools/capytaine/make_box_database.py`` (its docstring and ``seahelm/data/rao/README.md``
     give the command, the versions and the mesh convergence). It is the hull the closed form of
     Jensen, Mansour & Olsen (2004) models exactly (C_b = 1): ``docs/guide/waves-motions.rst``
