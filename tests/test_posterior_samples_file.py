@@ -161,3 +161,15 @@ def test_a_failed_write_leaves_the_old_file(tmp_path, monkeypatch):
         write_samples(path, {"vessel.params.N_v": [-0.3]})
     monkeypatch.undo()
     assert path.read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == ["s.csv"]
+
+
+@pytest.mark.parametrize("extra, match", [
+    (["--speed", "1.0"], "`--draws FILE.csv` runs every sample at the ship's test speed"),
+    (["--check"], "`--check` needs a pass or a fail; `--draws FILE.csv` gives probabilities"),
+])
+def test_draws_file_alone_names_itself(identified, extra, match):
+    """Without --monte-carlo, the refusal named `--monte-carlo`, an option not given."""
+    d, _ = identified
+    res = runner.invoke(app, ["imo", str(d / "id.toml"), "--draws", str(d / "post.csv"), *extra])
+    lines = res.stderr.strip().splitlines()
+    assert res.exit_code == 2 and len(lines) == 1 and match in lines[0], res.stderr

@@ -113,11 +113,12 @@ def imo(
     check_positive_opt("--dt", dt, "s")
     from_samples = draws is not None and draws.suffix.lower() == ".csv"
     if monte_carlo is not None or from_samples:
+        given = "--monte-carlo" if monte_carlo is not None else "--draws FILE.csv"
         if speed is not None or rps is not None:
-            raise ParameterError("`--monte-carlo` runs every sample at the ship's test speed: "
+            raise ParameterError(f"`{given}` runs every sample at the ship's test speed: "
                                  "drop `--speed`/`--rps`")
         if check:
-            raise ParameterError("`--check` needs a pass or a fail; `--monte-carlo` gives "
+            raise ParameterError(f"`--check` needs a pass or a fail; `{given}` gives "
                                  "probabilities: drop `--check`")
         reads = ship_reads(model) + (() if draws is None else (draws,))
         if out is not None:
