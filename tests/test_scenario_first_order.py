@@ -68,6 +68,8 @@ def test_run_i_draws_from_the_second_child_of_its_sea_stream(result):
      "environment.waves", "`components` belongs to the first-order motions"),
     ({"components = 64": "components = 100000000000"},
      "environment.waves.components", "must be <= 100000, got 100000000000"),
+    ({"components = 64": 'components = 64\nspreading = "cos-2s"\nspreading_parameter = 1e300'},
+     "environment.waves.spreading_parameter", r"must be in \(0, 1000\] \[-\], got 1e\+300"),
     ({'catalog = "son-nomoto-container"': 'model = "container"'},
      "environment.waves.first_order_motions", "particulars"),
 ])

@@ -64,6 +64,14 @@ def first_order_settings(v: dict[str, Any], h3: float, ship: Any, source: str
         raise _err(source, "environment.waves.first_order_motions",
                    "needs the ship's particulars (length, beam, draft, block_coefficient) "
                    "for its closed-form RAOs: a catalog ship or a ship file with [particulars]")
+    if v.get("spreading") is not None:  # its bounds checked before the runs, not after
+        from ..environment.directional_spreading import spreading_with_parameter
+
+        try:
+            spreading_with_parameter(v["spreading"], float(v.get("spreading_parameter", 2.0)))
+        except ParameterError as exc:
+            raise _err(source, "environment.waves.spreading_parameter",
+                       exc.reason.lstrip(": ")) from None
     return {"h3": float(h3), "spectrum": v["spectrum"], "seed": int(v.get("seed", 0)),
             "direction": math.radians(float(v["direction_deg"])),
             "gm": v.get("metacentric_height", getattr(ship, "metacentric_height", None)),
