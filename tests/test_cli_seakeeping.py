@@ -129,6 +129,13 @@ def test_rao_file(tmp_path):
     ([SHIP, "--hs", "4", "--tp", "10", "--speeds", "0:8"], "`--speeds` must be START:STOP:N"),
     ([SHIP, "--hs", "4", "--tp", "10", "--speeds", "-1,2"], "`--speeds` must be in [0, 100] [m/s]"),
     ([SHIP, "--hs", "4", "--tp", "10", "--headings", "0,nan"], "`--headings` must be finite [deg]"),
+    # a MemoryError (exit 1); a numpy warning line before the error
+    ([SHIP, "--hs", "4", "--tp", "10", "--speeds", "0:1:100000000000"],
+     "`--speeds` needs N <= 100000 [m/s], got '0:1:100000000000'"),
+    ([SHIP, "--hs", "4", "--tp", "10", "--speeds", "0:inf:3"],
+     "`--speeds` must be finite [m/s], got '0:inf:3'"),
+    ([SHIP, "--hs", "4", "--tp", "10", "--speeds", "0:1:0"],
+     "`--speeds` needs N >= 1 (N = 1 only with START = STOP) [m/s], got '0:1:0'"),
     ([SHIP, "--hs", "4", "--tp", "10", "--headings", "90,10"], "`--headings` must be strictly increasing [deg]"),
     ([SHIP, "--hs", "4", "--tp", "10", "--limit", "0"], "`--limit` must be > 0 [deg]"),
     ([SHIP, "--hs", "4", "--tp", "10", "--dof", "heave", "--exceed", "-1"], "`--exceed` must be > 0 [m]"),

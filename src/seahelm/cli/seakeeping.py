@@ -79,18 +79,23 @@ def parse_grid(option: str, text: str, unit: str) -> np.ndarray:
                               unit=unit, value=text)
 
     parts = [p.strip() for p in text.split(":")] if ":" in text else None
-    try:
+    if parts is not None and len(parts) != 3:
+        raise bad("must be START:STOP:N or a comma-separated list")
+    try:  # (a ParameterError is a ValueError: the checks come after)
         if parts is not None:
-            if len(parts) != 3:
-                raise bad("must be START:STOP:N or a comma-separated list")
             start, stop, n = float(parts[0]), float(parts[1]), int(parts[2])
-            if n < 1 or (n == 1 and start != stop):
-                raise bad("needs N >= 1 (N = 1 only with START = STOP)")
-            values = np.linspace(start, stop, n)
         else:
             values = np.array([float(p) for p in text.split(",") if p.strip()])
     except ValueError:
         raise bad("must be START:STOP:N or a comma-separated list of numbers") from None
+    if parts is not None:
+        if n < 1 or (n == 1 and start != stop):  # (this message was the generic one before)
+            raise bad("needs N >= 1 (N = 1 only with START = STOP)")
+        if n > MAX_CELLS:  # (np.linspace of 10^11 values was a MemoryError)
+            raise bad(f"needs N <= {MAX_CELLS}")
+        if not (math.isfinite(start) and math.isfinite(stop)):
+            raise bad("must be finite")  # (np.linspace warned before the error)
+        values = np.linspace(start, stop, n)
     if values.size == 0:
         raise bad("must hold at least one value")
     if not np.all(np.isfinite(values)):
