@@ -173,3 +173,29 @@ def test_draws_file_alone_names_itself(identified, extra, match):
     res = runner.invoke(app, ["imo", str(d / "id.toml"), "--draws", str(d / "post.csv"), *extra])
     lines = res.stderr.strip().splitlines()
     assert res.exit_code == 2 and len(lines) == 1 and match in lines[0], res.stderr
+
+
+@pytest.mark.parametrize("units, ok", [
+    ("vessel.params.N_v = deg", False), ("vessel.params.N_v = rad/s, vessel.params.N_r = -",
+                                         False),
+    ("vessel.params.N_v = -, vessel.params.N_r = 1", True), ("vessel.params.N_r =", True),
+])
+def test_imo_draws_refuses_a_column_in_other_units(identified, tmp_path, units, ok):
+    """N_v and N_r are non-dimensional ('-' in the model's table); a file that says otherwise
+    was taken as stored numbers."""
+    from seahelm.analysis.samples_file import check_units
+
+    d, _ = identified
+    path = tmp_path / "u.csv"
+    path.write_text(f"# units: {units}\nvessel.params.N_v,vessel.params.N_r\n-0.1,-0.05\n")
+    stored = {"vessel.params.N_v": "-", "vessel.params.N_r": "-"}
+    if ok:
+        check_units(read_samples(path), stored)
+        return
+    with pytest.raises(ParameterError, match=r"column `vessel.params.N_v` is in '(deg|rad/s)'; "
+                                             r"its stored unit is '-'"):
+        check_units(read_samples(path), stored)
+    res = runner.invoke(app, ["imo", str(d / "id.toml"), "--draws", str(path)])
+    lines = res.stderr.strip().splitlines()
+    assert res.exit_code == 2 and len(lines) == 1 and "`--draws`" in lines[0] \
+        and "stored unit is '-'" in lines[0] and not res.stdout, res.stderr

@@ -19,7 +19,8 @@ The format is CSV (UTF-8):
 same double, Python's ``repr``: a study on the file repeats the one that wrote it to the last
 bit);
 :func:`read_samples` reads one, with a :class:`~seahelm.errors.ParameterError` naming the file,
-the column and the row of what is wrong.
+the column and the row of what is wrong; :func:`check_units` refuses a column whose unit is not its
+parameter's stored one (``seahelm imo --draws`` calls it).
 """
 
 from __future__ import annotations
@@ -37,7 +38,8 @@ import numpy as np
 from ..errors import ParameterError
 from ..results import atomic_write
 
-__all__ = ["SamplesFile", "read_samples", "write_samples", "samples_attrs", "KEY_PREFIXES"]
+__all__ = ["SamplesFile", "read_samples", "write_samples", "samples_attrs", "check_units",
+           "KEY_PREFIXES"]
 
 #: What a samples file's columns may draw.
 KEY_PREFIXES = ("vessel.params.", "actuator.params.")
@@ -227,3 +229,37 @@ def samples_attrs(samples: SamplesFile) -> dict[str, Any]:
                 **({"units": samples.units[k]} if samples.units.get(k) not in (None, "", "1")
                    else {})}
             for k in samples.keys}
+
+
+#: Ways of writing "no unit" (the writer's ``1``, a parameter table's ``-``).
+_NO_UNIT = ("", "1", "-")
+
+
+def check_units(samples: SamplesFile, units: Mapping[str, str]) -> None:
+    """Refuse a column whose ``# units:`` unit is not the stored unit of its parameter.
+
+    A samples file holds stored units (module docstring); a column in other units (degrees
+    for radians, a dimensional unit for a non-dimensional coefficient) would be taken as
+    stored numbers. Columns without a unit in the file, and keys not in ``units``, pass.
+
+    Parameters
+    ----------
+    samples : SamplesFile
+    units : mapping of key path to unit
+        The stored unit of each key (``-``, ``1`` or empty for none).
+
+    Raises
+    ------
+    ParameterError
+        Naming the file, the column, its unit and the stored one.
+    """
+    for key, unit in samples.units.items():
+        if key not in units:
+            continue
+        want = units[key] or "1"
+        have = unit or "1"
+        if (have in _NO_UNIT) != (want in _NO_UNIT) or (have not in _NO_UNIT
+                                                        and have != want):
+            raise ParameterError(f"{samples.path}: column `{key}` is in {have!r}; its stored "
+                                 f"unit is {want!r} (a samples file holds stored units)",
+                                 field=key, unit=want, value=have)

@@ -175,7 +175,7 @@ def _from_samples(ship: Any, n: int | None, path: Path, dt: float | None, json_o
     """``--draws FILE.csv``: the ships of a samples file's rows
     (:mod:`seahelm.analysis.samples_file`), checked as ``--monte-carlo`` checks its draws."""
     from ..analysis.imo_probability import imo_probabilities
-    from ..analysis.samples_file import read_samples, samples_attrs
+    from ..analysis.samples_file import check_units, read_samples, samples_attrs
     from ..scenario.maneuver import SHARED_KEYS
     from ._common import input_file
 
@@ -203,6 +203,11 @@ def _from_samples(ship: Any, n: int | None, path: Path, dt: float | None, json_o
         if key[len("vessel.params."):] not in names:
             raise ParameterError(f"`--draws` {path}: column `{key}`: not a parameter of model "
                                  f"'{ship.model.name}'")
+    try:
+        check_units(table, {f"vessel.params.{i.name}": i.unit
+                            for i in type(ship.params).info()})
+    except ParameterError as exc:
+        raise ParameterError(f"`--draws` {exc}") from None
     ships = []
     for i in range(n):
         values = {k[len("vessel.params."):]: float(table.values[i, j])
