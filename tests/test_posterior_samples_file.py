@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -199,3 +200,26 @@ def test_imo_draws_refuses_a_column_in_other_units(identified, tmp_path, units, 
     lines = res.stderr.strip().splitlines()
     assert res.exit_code == 2 and len(lines) == 1 and "`--draws`" in lines[0] \
         and "stored unit is '-'" in lines[0] and not res.stdout, res.stderr
+
+
+def test_a_scenario_refuses_a_samples_column_in_other_units(tmp_path):
+    """A samples file holds stored units: in a scenario, a column whose `# units:` say
+    otherwise (N_v in degrees, the steering gear's rate in deg/s) is refused at
+    batch.monte_carlo.samples, naming the column and both units; stored units pass."""
+    scn = tmp_path / "s.toml"
+    text = ('[vessel]\nship = "kvlcc2-l7"\n[maneuver]\nkind = "turning"\nt_final = 30\n'
+            '[batch.monte_carlo]\nruns = 2\nseed = 0\nsamples = "u.csv"\n')
+    scn.write_text(text)
+    for units, bad in (("vessel.params.N_v = deg", "'deg'; its stored unit is '-'"),
+                       ("actuator.params.max_rate = deg/s", "'deg/s'; its stored unit is "
+                                                            "'rad/s'")):
+        key = units.split(" =")[0]
+        (tmp_path / "u.csv").write_text(f"# units: {units}\n{key}\n-0.1\n-0.12\n"
+                                        if key.endswith("N_v") else
+                                        f"# units: {units}\n{key}\n2.3\n2.4\n")
+        with pytest.raises(ScenarioError, match=r"batch\.monte_carlo\.samples.*"
+                                                + re.escape(bad)):
+            load_scenario(scn)
+    (tmp_path / "u.csv").write_text("# units: vessel.params.N_v = -\nvessel.params.N_v\n"
+                                    "-0.1\n-0.12\n")
+    assert load_scenario(scn).n_samples == 2

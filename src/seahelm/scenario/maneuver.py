@@ -37,7 +37,7 @@ from ..errors import ParameterError, ValidityRangeWarning
 from ..ships.water_depth import params_at_depth
 from .errors import ScenarioError, at_key
 from .particulars import PREFIX, EstimatedSamples, check_drawn_particulars
-from .samples import drawn_kinds
+from .samples import drawn_kinds, samples_file
 from .schema import Scenario
 
 __all__ = ["ManeuverJob", "prepare_maneuver"]
@@ -398,6 +398,16 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
                              "(vessel.params.<name>), its steering gear's "
                              "(actuator.params.<name>) or the particulars it is estimated from "
                              f"(vessel.particulars.<name>), got '{key}'")
+        if mc.samples is not None:  # a samples file holds stored units: say so if it does not
+            from ..analysis.samples_file import check_units
+
+            units = {f"vessel.params.{i.name}": i.unit for i in type(ship.params).info()}
+            units.update({f"actuator.params.{i.name}": i.unit
+                          for i in type(ship.servo).info()})
+            try:
+                check_units(samples_file(mc, source), units)
+            except ParameterError as exc:
+                raise at_key(source, "batch.monte_carlo.samples", str(exc)) from None
     estimated = None if not varied else EstimatedSamples(
         particulars=dict(vessel.particulars or {}), water_depth=vessel.water_depth,
         source=source)
