@@ -114,3 +114,32 @@ class CovarianceSummary:
         dict of str to str
         """
         return unidentifiable(self.names, self.values, self.covariance)
+
+    def parameter_rows(self, units: Mapping[str, str] | None = None) -> list[dict]:
+        """One row per estimate for JSON: ``name`` (and ``unit`` from ``units``),
+        ``identified``, then ``value`` and ``standard_error``, or the ``evidence`` that the
+        data do not identify it.
+
+        Parameters
+        ----------
+        units : mapping of str to str, optional
+            The unit of each name.
+
+        Returns
+        -------
+        list of dict
+        """
+        bad = self.unidentifiable()
+        rows = []
+        for i, n in enumerate(self.names):
+            row: dict = {"name": n}
+            if units is not None:
+                row["unit"] = units[n]
+            row["identified"] = n not in bad
+            if n in bad:
+                row["evidence"] = bad[n]
+            else:
+                row.update(value=float(self.values[i]),
+                           standard_error=float(self.standard_errors[i]))
+            rows.append(row)
+        return rows

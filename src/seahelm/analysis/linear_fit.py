@@ -135,18 +135,7 @@ class LinearFit(CovarianceSummary):
         -------
         dict
         """
-        bad = self.unidentifiable()
-        rows = []
-        for i, n in enumerate(self.names):
-            row: dict[str, Any] = {"name": n, "unit": LINEAR_UNITS[n],
-                                   "identified": n not in bad}
-            if n in bad:
-                row["evidence"] = bad[n]
-            else:
-                row.update(value=float(self.values[i]),
-                           standard_error=float(self.standard_errors[i]))
-            rows.append(row)
-        return {"records": list(self.records), "parameters": rows,
+        return {"records": list(self.records), "parameters": self.parameter_rows(LINEAR_UNITS),
                 "condition_numbers": self.condition_numbers, "residual_std": self.residual_std,
                 "poles": [complex(p) if p.imag else float(p.real) for p in self.poles],
                 "nomoto": self.nomoto()}

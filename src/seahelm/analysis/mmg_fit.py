@@ -115,16 +115,7 @@ class HullFit(CovarianceSummary):
         -------
         dict
         """
-        bad = self.unidentifiable()
-        rows = []
-        for i, n in enumerate(self.names):
-            row: dict[str, Any] = {"name": n, "identified": n not in bad}
-            if n in bad:
-                row["evidence"] = bad[n]
-            else:
-                row.update(value=float(self.values[i]),
-                           standard_error=float(self.standard_errors[i]))
-            rows.append(row)
+        rows = self.parameter_rows()
         rows += [{"name": n, "identified": False, "fixed_at_base": True, "evidence": why}
                  for n, why in self.fixed.items()]
         return {"method": self.method, "records": list(self.records), "parameters": rows,
