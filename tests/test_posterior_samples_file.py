@@ -94,7 +94,7 @@ def test_bad_draws_files_and_scenarios(identified, tmp_path):
     d, _ = identified
     res = runner.invoke(app, ["imo", str(d / "id.toml"), "--draws", str(d / "post.csv"),
                               "--monte-carlo", "5"])
-    assert res.exit_code == 2 and "holds 4 samples" in res.stderr, res.stderr
+    assert res.exit_code == 2 and "holds only 4 samples" in res.stderr, res.stderr
     bad = tmp_path / "bad.csv"
     bad.write_text("vessel.params.N_v,vessel.params.N_r\n-0.1,-0.05\n-0.1,nan\n")
     res = runner.invoke(app, ["imo", str(d / "id.toml"), "--draws", str(bad)])
@@ -223,3 +223,21 @@ def test_a_scenario_refuses_a_samples_column_in_other_units(tmp_path):
     (tmp_path / "u.csv").write_text("# units: vessel.params.N_v = -\nvessel.params.N_v\n"
                                     "-0.1\n-0.12\n")
     assert load_scenario(scn).n_samples == 2
+
+
+def test_a_failed_posterior_writes_no_ship_file(identified, tmp_path, monkeypatch):
+    """``-o SHIP.toml --save-posterior F.csv``: the ship file is written after the posterior
+    (and its file), so a draw that fails leaves neither behind (it used to leave the ship)."""
+    import seahelm.analysis.mmg_posterior as mp
+
+    d, _ = identified
+
+    def refuse(*args, **kwargs):
+        raise ParameterError("the posterior could not be drawn (test)")
+
+    monkeypatch.setattr(mp, "mmg_posterior", refuse)
+    res = runner.invoke(app, ["identify", "mmg", str(d / "zz20.nc"), "--ship", "kvlcc2-l7",
+                              "--regression-only", "--imo", "4", "-o", str(tmp_path / "s.toml"),
+                              "--save-posterior", str(tmp_path / "p.csv")])
+    assert res.exit_code == 2 and "could not be drawn" in res.stderr, res.stderr
+    assert not (tmp_path / "s.toml").exists() and not (tmp_path / "p.csv").exists()

@@ -447,8 +447,6 @@ def mmg(
     records = read_records(files, angles=angles)
     fit = identify_mmg(records, base, method=method, output_error=output_error)
     payload = fit.as_dict()
-    if out is not None:
-        payload["ship_file"] = str(write_ship(fit.ship(base, name=name), out, overwrite=True))
     if n_post:
         from ..analysis.mmg_posterior import mmg_posterior, posterior_ships
 
@@ -466,6 +464,10 @@ def mmg(
             payload["imo"]["posterior_samples"] = post.as_dict()
         else:
             payload["posterior_samples"] = post.as_dict()
+    if out is not None:
+        # Written last, after the posterior (and its file): a failed draw writes neither
+        # the ship nor the samples it would be paired with.
+        payload["ship_file"] = str(write_ship(fit.ship(base, name=name), out, overwrite=True))
     if json_out:
         print_json(payload)
         return

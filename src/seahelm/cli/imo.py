@@ -197,7 +197,8 @@ def _from_samples(ship: Any, n: int | None, path: Path, dt: float | None, json_o
     if n is None:
         n = table.n_samples
     elif n > table.n_samples:
-        raise ParameterError(f"`--monte-carlo` {n}: {path} holds {table.n_samples} samples")
+        raise ParameterError(f"`--monte-carlo` {n}: {path} holds only {table.n_samples} "
+                             f"sample{'' if table.n_samples == 1 else 's'}")
     names = set(ship.params.field_names())
     for key in table.keys:
         if key[len("vessel.params."):] not in names:
