@@ -61,10 +61,12 @@ from ..errors import ParameterError
 from .rao import DOFS, RAO
 
 __all__ = ["read_rao", "read_rao_table", "read_capytaine", "write_rao_table",
-           "rao_from_capytaine_dataset", "box_barge_database"]
+           "rao_from_capytaine_dataset", "box_barge_database", "wigley_database"]
 
 #: The capytaine database shipped with seahelm (package data, ``seahelm/data/rao/``).
 BOX_BARGE_DATABASE = "box-barge-100x20x5-capytaine.nc"
+#: The shipped capytaine database of a ship hull (Wigley I, model scale).
+WIGLEY_DATABASE = "wigley-i-3m-capytaine.nc"
 
 _CAPY_DOFS = {"Surge": ("surge", 1.0), "Sway": ("sway", -1.0), "Heave": ("heave", 1.0),
               "Roll": ("roll", 1.0), "Pitch": ("pitch", -1.0), "Yaw": ("yaw", -1.0)}
@@ -89,6 +91,27 @@ def box_barge_database() -> Path:
     from importlib import resources
 
     return Path(str(resources.files("seahelm").joinpath("data", "rao", BOX_BARGE_DATABASE)))
+
+
+def wigley_database() -> Path:
+    """The shipped capytaine NetCDF of the Wigley I hull (L 3 m, B 0.3 m, T 0.1875 m), zero speed.
+
+    The analytic ship-like hull of Journée (1992, Delft report 909; C_b 0.561), capytaine
+    3.0.0 (potential flow, 2,160 hull panels: 90 along the length and 12 over the draught per
+    side, a lid against irregular frequencies), 27 wave frequencies 1.5-8.0 rad/s (λ/L 9.1 to
+    0.32), wave directions 0-180° every 15°; mass ρ∇, KG 0.10 m (GM 0.0418 m), k_xx 0.12 m,
+    k_yy 0.75 m (chosen, not Journée's). Made by ``tools/capytaine/make_wigley_database.py``
+    (its docstring and ``seahelm/data/rao/README.md`` give the command, the versions and the
+    mesh convergence); ``docs/guide/waves-motions.rst`` compares the closed form with it.
+
+    Returns
+    -------
+    pathlib.Path
+        The file, for :func:`read_rao`.
+    """
+    from importlib import resources
+
+    return Path(str(resources.files("seahelm").joinpath("data", "rao", WIGLEY_DATABASE)))
 
 
 def _fail(path: Any, reason: str, field: str | None = None) -> ParameterError:
