@@ -21,8 +21,9 @@ P = Particulars(length=175.0, beam=25.4, draft=8.5, block_coefficient=0.5617)
 G = GRAVITY
 
 
-def jensen_amplitudes(w, beta, U, L, B0, T, cb):
-    """Φ_w = ηF, Φ_θ = ηG of Jensen et al. (2004), scalar amplitude form, B = C_b B0."""
+def jensen_amplitudes(w, beta, U, L, B0, T, cb, smith="k"):
+    """Φ_w = ηF, Φ_θ = ηG of Jensen et al. (2004), scalar amplitude form, B = C_b B0; the Smith
+    factor κ = exp(−kT) (``smith="k"``) or exp(−k_e T) (``"k_e"``, MSS's transcription)."""
     B = cb * B0
     k = w * w / G
     Fn = U / math.sqrt(G * L)
@@ -30,7 +31,7 @@ def jensen_amplitudes(w, beta, U, L, B0, T, cb):
     A = 2 * math.sin(0.5 * k * B * alpha ** 2) * math.exp(-k * T * alpha ** 2)
     f = math.sqrt((1 - k * T) ** 2 + (A ** 2 / (k * B * alpha ** 3)) ** 2)
     ke = abs(k * math.cos(beta))
-    kappa = math.exp(-ke * T)
+    kappa = math.exp(-(ke if smith == "k_e" else k) * T)
     F = kappa * f * 2 / (ke * L) * math.sin(ke * L / 2)
     Gp = kappa * f * 24 / (ke ** 2 * L ** 3) * (math.sin(ke * L / 2)
                                                 - ke * L / 2 * math.cos(ke * L / 2))
@@ -38,13 +39,15 @@ def jensen_amplitudes(w, beta, U, L, B0, T, cb):
     return eta * abs(F), eta * abs(Gp)
 
 
+@pytest.mark.parametrize("smith", ["k", "k_e"])
 @pytest.mark.parametrize("U", [0.0, 5.0, 8.0])
-@pytest.mark.parametrize("beta_deg", [120.0, 150.0, 180.0])
-def test_heave_and_pitch_amplitudes_are_jensens(U, beta_deg):
+@pytest.mark.parametrize("beta_deg", [60.0, 120.0, 150.0, 180.0])
+def test_heave_and_pitch_amplitudes_are_jensens(U, beta_deg, smith):
     w = np.linspace(0.2, 1.5, 27)
-    rao = closed_form_rao(P, U, frequency=w, heading=[math.radians(beta_deg)])
+    rao = closed_form_rao(P, U, frequency=w, heading=[math.radians(beta_deg)], smith=smith)
     for i, wi in enumerate(w):
-        heave, pitch = jensen_amplitudes(wi, math.radians(beta_deg), U, 175.0, 25.4, 8.5, 0.5617)
+        heave, pitch = jensen_amplitudes(wi, math.radians(beta_deg), U, 175.0, 25.4, 8.5, 0.5617,
+                                         smith)
         assert rao.amplitude("heave")[i, 0] == pytest.approx(heave, rel=1e-12)
         assert rao.amplitude("pitch")[i, 0] == pytest.approx(pitch, rel=1e-12)
 

@@ -7,7 +7,9 @@ the file (its linear solve, against the reader's), the long-wave limits of a flo
 (it follows the surface: heave ζ, pitch the slope along, roll the slope across), the box's
 fore-aft symmetry, and the box's natural frequencies from the file's own matrices. The
 agreement of the closed form with the panel method is asserted with the measured differences
-(docs/guide/waves-motions.rst, "Validation against a panel method") plus a margin."""
+(docs/guide/waves-motions.rst, "Validation against a panel method") plus a margin. These
+tables were measured with MSS's Smith factor exp(-k_e T) (``smith="k_e"``, the default
+before exp(-kT)); test_environment_rao_wigley.py compares the default on both hulls."""
 
 from __future__ import annotations
 
@@ -43,7 +45,7 @@ def closed(bem):
     box = Particulars(length=L, beam=B, draft=T, block_coefficient=1.0)
     with pytest.warns(ValidityRangeWarning, match="C_b"):  # C_b = 1: outside 0.5-0.9
         return closed_form_rao(box, 0.0, frequency=bem.frequency, heading=bem.heading,
-                               metacentric_height=GM)
+                               metacentric_height=GM, smith="k_e")
 
 
 def column(rao, dof, heading_deg):

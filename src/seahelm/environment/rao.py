@@ -19,7 +19,7 @@ pitch positive bow up [rad/m].
 
 Heave and pitch: Jensen, Mansour & Olsen (2004)
     A homogeneous box of length L, draught T and breadth B_e = C_b B (their replacement of B
-    for the hull form), strip theory with the Smith correction κ = exp(−k_e T), k = ω²/g,
+    for the hull form), strip theory with the Smith correction κ = exp(−kT), k = ω²/g,
     effective wave number k_e = |k cos ε|, α = ω_e/ω = 1 − Fn √(kL) cos ε, the sectional
     damping's wave-amplitude ratio A = 2 sin(k B_e α²/2) exp(−k T α²) (their eqs. for the
     heave and pitch transfer functions)::
@@ -33,6 +33,14 @@ Heave and pitch: Jensen, Mansour & Olsen (2004)
     (η = 1/|D|, f = |f|); the phases follow from the same one-degree-of-freedom equations in
     complex form (the paper gives amplitudes): in long waves H_heave → 1 (the ship follows
     the surface) and H_pitch → −i k cos ε (the wave slope along the ship).
+
+    The Smith factor: the incident wave's pressure decays with depth as exp(kz) whatever its
+    direction (the potential exp(kz + i k (x cos ε + y sin ε)) satisfies Laplace's equation
+    only with the full wave number), so the section's bottom at depth T sees exp(−kT): the
+    default (``smith="k"``). The transcription in MSS's ``waveresponse345`` (Fossen) has
+    κ = exp(−k_e T), which is 1 in beam seas and leaves the short-wave beam-sea heave
+    unreduced (0.73 m/m at 1.2-1.6 rad/s on a box whose panel-method heave is 0.04-0.29):
+    ``smith="k_e"``. In head and following seas the two coincide.
 
 Roll: a one-degree-of-freedom model with wave-slope excitation
     Not Jensen et al.'s roll (whose empirical sectional roll damping needs hull-shape data);
@@ -69,12 +77,14 @@ from .._validate import as_float_array, check_nonnegative, check_positive
 from ..constants import GRAVITY
 from ..errors import ParameterError, warn_validity
 
-__all__ = ["RAO", "DOFS", "DOF_UNITS", "closed_form_rao", "imo_roll_period"]
+__all__ = ["RAO", "DOFS", "DOF_UNITS", "closed_form_rao", "imo_roll_period", "SMITH_FACTORS"]
 
 #: Degrees of freedom an RAO may hold, with the unit of their response per metre of wave.
 DOFS: tuple[str, ...] = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 DOF_UNITS: dict[str, str] = {"surge": "m/m", "sway": "m/m", "heave": "m/m", "roll": "rad/m",
                              "pitch": "rad/m", "yaw": "rad/m"}
+#: The closed form's Smith factor: exp(−kT) (``"k"``, default) or exp(−k_e T) (``"k_e"``).
+SMITH_FACTORS: tuple[str, ...] = ("k", "k_e")
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -332,7 +342,7 @@ def _pitch_shape(s: np.ndarray) -> np.ndarray:
 def closed_form_rao(particulars: Any, speed: float, *, frequency: ArrayLike | None = None,
                     heading: ArrayLike | None = None, metacentric_height: float | None = None,
                     roll_period: float | None = None, roll_damping: float = 0.1,
-                    slope_coefficient: float = 1.0, gravity: float = GRAVITY,
+                    slope_coefficient: float = 1.0, smith: str = "k", gravity: float = GRAVITY,
                     strict: bool | None = None) -> RAO:
     """Heave, pitch (Jensen et al. 2004) and roll RAOs from the main particulars and speed.
 
@@ -355,6 +365,10 @@ def closed_form_rao(particulars: Any, speed: float, *, frequency: ArrayLike | No
         Roll damping ratio ζ_φ [-], in (0, 1] (default 0.1).
     slope_coefficient : float, optional
         Effective wave-slope coefficient r [-], in (0, 1.5] (default 1).
+    smith : {"k", "k_e"}, optional
+        The Smith factor κ: ``"k"`` exp(−kT) (default, the incident pressure's decay with
+        depth) or ``"k_e"`` exp(−k_e T), k_e = |k cos ε| (MSS's transcription of Jensen et al.;
+        1 in beam seas).
     gravity : float, optional
         g [m/s²].
     strict : bool, optional
@@ -368,7 +382,8 @@ def closed_form_rao(particulars: Any, speed: float, *, frequency: ArrayLike | No
     Raises
     ------
     ParameterError
-        On a non-positive dimension, speed < 0, or a damping or slope coefficient out of range.
+        On a non-positive dimension, speed < 0, a damping or slope coefficient out of range,
+        or an unknown ``smith``.
 
     Notes
     -----
@@ -385,6 +400,9 @@ def closed_form_rao(particulars: Any, speed: float, *, frequency: ArrayLike | No
     if metacentric_height is None and roll_period is None:
         metacentric_height = getattr(p, "metacentric_height", None)
     check_nonnegative("speed", speed, "m/s")
+    if smith not in SMITH_FACTORS:
+        raise ParameterError(f"must be one of {', '.join(SMITH_FACTORS)}, got {smith!r}",
+                             field="smith", value=smith)
     U = float(speed)
     fn = U / math.sqrt(gravity * L)
     if not 0.5 <= cb <= 0.9 or fn > 0.4:
@@ -409,7 +427,7 @@ def closed_form_rao(particulars: Any, speed: float, *, frequency: ArrayLike | No
     f = (1.0 - k * T) + 1j * f_im
     D = (1.0 - 2.0 * k * T * a2) + 1j * d_im
     ke = np.abs(k * c)
-    kappa = np.exp(-ke * T)
+    kappa = np.exp(-(ke if smith == "k_e" else k) * T)
     s = 0.5 * ke * L
     F = kappa * f * _sinc(s)
     G = kappa * f * 24.0 / L ** 3 * (s ** 3 / np.where(ke > 0, ke * ke, 1.0)) * _pitch_shape(s)
@@ -434,7 +452,8 @@ def closed_form_rao(particulars: Any, speed: float, *, frequency: ArrayLike | No
         dofs.insert(1, "roll")
         values.insert(1, roll)
     text = (f"closed-form estimate from L {L:g} m, B {B:g} m, T {T:g} m, C_b {cb:g} at "
-            f"{U:g} m/s: heave and pitch Jensen, Mansour & Olsen (2004)")
+            f"{U:g} m/s: heave and pitch Jensen, Mansour & Olsen (2004), Smith factor "
+            f"exp(-{smith} T)")
     if "roll" in dofs:
         text += (f"; roll one-DOF wave-slope model, T_phi {float(roll_period):.4g} s, "
                  f"zeta {roll_damping:g}, r {slope_coefficient:g}")
