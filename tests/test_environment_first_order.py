@@ -154,10 +154,12 @@ def test_irregular_sea_variance_within_the_sampling_error(rao, sea, spread):
 
 
 def test_spreading_halves_beam_sea_roll_and_brings_it_into_head_seas(sea):
-    """At zero speed the roll RAO is H(ω) sin ε (ω_e = ω), so with cos-2s spreading, s = 1
-    (D = (1 + cos θ)/2π): beam seas keep E[cos²θ] = 1/2 of the long-crested roll variance and
-    head seas, long-crested without roll, get E[sin²θ] = 1/2 of it."""
-    rao = closed_form_rao(get_ship("son-nomoto-container"), 0.0, metacentric_height=0.3)
+    """At zero speed the full-slope roll RAO is H(ω) sin ε (ω_e = ω), so with cos-2s spreading,
+    s = 1 (D = (1 + cos θ)/2π): beam seas keep E[cos²θ] = 1/2 of the long-crested roll variance
+    and head seas, long-crested without roll, get E[sin²θ] = 1/2 of it. (The default averaged
+    slope is not separable in ε: roll_excitation="slope" keeps the premise.)"""
+    rao = closed_form_rao(get_ship("son-nomoto-container"), 0.0, metacentric_height=0.3,
+                          roll_excitation="slope")
     band = (0.1, 2.0)
     beam_long = spectrum_integral(sea, rao, "roll", math.pi / 2, band)
     for eps in (math.pi / 2, math.pi):

@@ -1,5 +1,6 @@
 """The shipped capytaine database of a ship hull (Wigley I, L 3 m, zero speed), the closed form
-of Jensen, Mansour & Olsen (2004) against it and its Smith factor.
+of Jensen, Mansour & Olsen (2004) against it, its Smith factor and the short-wave reduction of
+its roll excitation.
 
 capytaine is not imported: the file was made by tools/capytaine/make_wigley_database.py. The
 expected values come from the file (capytaine's RAOs and matrices), from the long-wave limits
@@ -16,7 +17,7 @@ import numpy as np
 import pytest
 
 from seahelm.constants import GRAVITY
-from seahelm.environment.rao import closed_form_rao
+from seahelm.environment.rao import closed_form_rao, roll_slope_factor
 from seahelm.environment.rao_io import box_barge_database, read_rao, wigley_database
 from seahelm.errors import ParameterError, ValidityRangeWarning
 from seahelm.vessels.particulars import Particulars
@@ -210,3 +211,74 @@ class _nothing:
 
     def __exit__(self, *exc):
         return False
+
+
+# --- the roll excitation --------------------------------------------------------------------
+
+def test_roll_slope_factor_is_the_froude_krylov_moment_over_the_bottom():
+    """γ against a direct quadrature of the bottom pressure's roll moment, ∫∫ y exp(i k (x cos
+    ε + y sin ε)) dx dy over the box L × B, times exp(-kT), over its long-wave value
+    i k sin ε L B³/12 (midpoint rule, 400 × 400 cells); γ → 1 as k → 0."""
+    nx = ny = 400
+    x = (np.arange(nx) + 0.5) / nx * L - L / 2
+    y = (np.arange(ny) + 0.5) / ny * B - B / 2
+    for k in (0.5, 2.0, 5.0, 9.0):
+        for deg in (15.0, 45.0, 90.0, 150.0):
+            eps = math.radians(deg)
+            phase = np.exp(1j * k * (x[:, None] * math.cos(eps) + y[None, :] * math.sin(eps)))
+            moment = np.sum(y[None, :] * phase) * (L / nx) * (B / ny) * math.exp(-k * T)
+            ref = moment / (1j * k * math.sin(eps) * L * B ** 3 / 12)
+            got = roll_slope_factor(k, eps, L, B, T)
+            assert abs(got - ref) < 2e-4, (k, deg, got, ref)
+    assert float(roll_slope_factor(1e-9, 1.0, L, B, T)) == pytest.approx(1.0, abs=1e-8)
+
+
+def test_roll_excitation_averaged_by_default_and_the_full_slope_selectable():
+    w = np.linspace(0.5, 8.0, 16)
+    eps = np.radians([30.0, 90.0, 135.0])
+    new, old = (closed_form_rao(WIGLEY, 0.5, frequency=w, heading=eps, metacentric_height=0.04,
+                                roll_excitation=r) for r in ("averaged", "slope"))
+    k = (w * w / GRAVITY)[:, None]
+    np.testing.assert_allclose(new.values[1], old.values[1] * roll_slope_factor(
+        k, eps[None, :], L, B, T), rtol=1e-12, atol=1e-15)
+    assert np.all(new.amplitude("roll") <= old.amplitude("roll") * (1 + 1e-12))
+    with pytest.raises(ParameterError, match="roll_excitation"):
+        closed_form_rao(WIGLEY, 0.0, metacentric_height=0.04, roll_excitation="full")
+
+
+def _effective_roll_excitation(dataset, deg):
+    """|X_roll (C44 − ω²(I44 + A44) − iω B44)| / (C44 k sin ε): the fraction of the wave slope
+    a one-degree-of-freedom roll equation needs to give capytaine's roll (capytaine's e^{-iωt}
+    convention; independent of the damping)."""
+    sel = dict(influenced_dof="Roll", radiating_dof="Roll")
+    c44 = float(dataset["hydrostatic_stiffness"].sel(**sel))
+    i44 = float(dataset["inertia_matrix"].sel(**sel))
+    a44 = dataset["added_mass"].sel(**sel).values
+    b44 = dataset["radiation_damping"].sel(**sel).values
+    w = dataset.omega.values
+    j = int(np.argmin(np.abs(dataset.wave_direction.values - math.radians(deg))))
+    rao = dataset["RAO"].sel(complex="re") + 1j * dataset["RAO"].sel(complex="im")
+    x = rao.sel(radiating_dof="Roll").transpose("omega", "wave_direction").values[:, j]
+    k = w * w / GRAVITY
+    return w, np.abs(x * (c44 - w * w * (i44 + a44) - 1j * w * b44)) / (
+        c44 * k * math.sin(math.radians(deg)))
+
+
+# heading [deg]: (lowest and highest γ − r below the roll resonance, ω <= 4.5 rad/s), measured
+ROLL = {30.0: (-0.243, -0.010), 45.0: (-0.161, -0.006), 60.0: (-0.081, -0.003),
+        90.0: (-0.025, 0.149)}
+
+
+@pytest.mark.parametrize("deg", sorted(ROLL))
+def test_the_averaged_roll_excitation_against_the_panel_method(dataset, deg):
+    """Below the Wigley's roll resonance (5.0 rad/s; ω <= 4.5 rad/s, λ >= 1.01 L) γ lies within
+    the measured band of capytaine's effective fraction r of the wave slope (± 0.03), where
+    the full slope (γ = 1) is up to 0.48-0.65 too high; r → 1 in long waves (within 5 %)."""
+    w, r = _effective_roll_excitation(dataset, deg)
+    lo, hi = ROLL[deg]
+    below = w <= 4.5
+    gamma = np.abs(roll_slope_factor(w * w / GRAVITY, math.radians(deg), L, B, T))
+    d = (gamma - r)[below]
+    assert lo - 0.03 <= d.min() and d.max() <= hi + 0.03, (d.min(), d.max())
+    assert np.max(1.0 - r[below]) >= 0.45
+    assert abs(r[0] - 1.0) <= 0.05

@@ -47,14 +47,34 @@ Roll: a one-degree-of-freedom model with wave-slope excitation
     the classical linear roll of a ship that in long beam waves follows the wave slope
     (Bhattacharyya 1978, *Dynamics of Marine Vehicles*, ch. 8; Lloyd 1989, *Seakeeping*)::
 
-        H_roll = i r k sin ε / (1 − (ω_e/ω_φ)² + 2i ζ_φ ω_e/ω_φ)
+        H_roll = i r γ k sin ε / (1 − (ω_e/ω_φ)² + 2i ζ_φ ω_e/ω_φ)
 
     with the effective wave-slope coefficient r (``slope_coefficient``, 1 for a small ship in
-    long waves), the natural roll frequency ω_φ = 2π/T_φ (``roll_period``; default the IMO
+    long waves), the natural roll period T_φ, ω_φ = 2π/T_φ (``roll_period``; default the IMO
     estimate T_φ = 2 C B/√GM, C = 0.373 + 0.023 B/T − 0.043 L/100, IMO Res. A.749(18),
     weather criterion, with ``metacentric_height`` GM) and the damping ratio ζ_φ
     (``roll_damping``, default 0.1, including viscous damping). Parametric roll is outside
     every linear RAO.
+
+    γ is the short-wave reduction of the wave-slope moment (``roll_excitation="averaged"``,
+    the default): the Froude–Krylov moment of the incident pressure ρga exp(kz) over the
+    bottom of a box of length L, breadth B and draught T, relative to its long-wave value
+    ρga k sin ε L B³/12 (derived here from the Froude–Krylov hypothesis; the moment of a
+    cosine pressure over the beam, as Jensen et al.'s pitch shape function is over the
+    length)::
+
+        γ = exp(−kT) · 3 (sin s − s cos s)/s³ · sinc(k cos ε L/2),   s = k sin ε B/2
+
+    — the Smith depth factor, the slope averaged over the breadth and the wave averaged over
+    the length (the same factor as the heave's). γ → 1 in long waves and |γ| <= 1. It does not
+    depend on KG (the moment of the horizontal force about G, which the sway of a free ship
+    mostly relieves, is left out). Against the fraction of the wave slope that a
+    one-degree-of-freedom roll needs to reproduce a panel method's roll (capytaine, the
+    shipped Wigley I hull, below its roll resonance) γ is 0.01-0.24 low in oblique seas and
+    −0.03 to +0.15 off in beam seas, where the full slope is up to 0.48-0.65 too high
+    (docs/guide/waves-motions.rst has the rest). ``roll_excitation="slope"`` is the earlier
+    γ = 1 (the full wave slope at every frequency and heading), which overstates short-wave and
+    quartering-sea roll.
 
 References
 ----------
@@ -77,7 +97,8 @@ from .._validate import as_float_array, check_nonnegative, check_positive
 from ..constants import GRAVITY
 from ..errors import ParameterError, warn_validity
 
-__all__ = ["RAO", "DOFS", "DOF_UNITS", "closed_form_rao", "imo_roll_period", "SMITH_FACTORS"]
+__all__ = ["RAO", "DOFS", "DOF_UNITS", "closed_form_rao", "imo_roll_period",
+           "roll_slope_factor", "SMITH_FACTORS", "ROLL_EXCITATIONS"]
 
 #: Degrees of freedom an RAO may hold, with the unit of their response per metre of wave.
 DOFS: tuple[str, ...] = ("surge", "sway", "heave", "roll", "pitch", "yaw")
@@ -85,6 +106,9 @@ DOF_UNITS: dict[str, str] = {"surge": "m/m", "sway": "m/m", "heave": "m/m", "rol
                              "pitch": "rad/m", "yaw": "rad/m"}
 #: The closed form's Smith factor: exp(−kT) (``"k"``, default) or exp(−k_e T) (``"k_e"``).
 SMITH_FACTORS: tuple[str, ...] = ("k", "k_e")
+#: The closed-form roll's excitation: the averaged wave slope γ k sin ε (``"averaged"``,
+#: default) or the full wave slope k sin ε (``"slope"``).
+ROLL_EXCITATIONS: tuple[str, ...] = ("averaged", "slope")
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -331,6 +355,42 @@ def _sinc(x: np.ndarray) -> np.ndarray:
     return np.sinc(x / math.pi)
 
 
+def _beam_shape(s: np.ndarray) -> np.ndarray:
+    """3 (sin s − s cos s)/s³ (→ 1 − s²/10 as s → 0)."""
+    return 3.0 * _pitch_shape(s)
+
+
+def roll_slope_factor(k: ArrayLike, heading: ArrayLike, length: float, beam: float,
+                      draft: float) -> np.ndarray:
+    """γ = exp(−kT) 3 (sin s − s cos s)/s³ sinc(k cos ε L/2), s = k sin ε B/2 (module docstring).
+
+    The Froude–Krylov roll moment of a regular wave over the bottom of a box L × B at depth T
+    relative to its long-wave value: the short-wave reduction of the wave-slope roll
+    excitation of :func:`closed_form_rao`.
+
+    Parameters
+    ----------
+    k : array_like
+        Wave numbers k = ω²/g [rad/m], >= 0.
+    heading : array_like
+        Wave headings ε [rad] (broadcast with ``k``).
+    length, beam, draft : float
+        L, B, T [m], > 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        γ [-], in [−1, 1], 1 at k = 0.
+    """
+    for name, value in (("length", length), ("beam", beam), ("draft", draft)):
+        check_positive(name, value, "m")
+    kk = as_float_array("k", k, "rad/m")
+    check_nonnegative("k", kk, "rad/m")
+    e = as_float_array("heading", heading, "rad")
+    s = 0.5 * kk * np.sin(e) * beam
+    return np.exp(-kk * draft) * _beam_shape(s) * _sinc(0.5 * kk * np.cos(e) * length)
+
+
 def _pitch_shape(s: np.ndarray) -> np.ndarray:
     """(sin σ − σ cos σ)/σ³ (→ 1/3 − σ²/30 as σ → 0)."""
     small = np.abs(s) < 1e-3
@@ -342,7 +402,8 @@ def _pitch_shape(s: np.ndarray) -> np.ndarray:
 def closed_form_rao(particulars: Any, speed: float, *, frequency: ArrayLike | None = None,
                     heading: ArrayLike | None = None, metacentric_height: float | None = None,
                     roll_period: float | None = None, roll_damping: float = 0.1,
-                    slope_coefficient: float = 1.0, smith: str = "k", gravity: float = GRAVITY,
+                    slope_coefficient: float = 1.0, smith: str = "k",
+                    roll_excitation: str = "averaged", gravity: float = GRAVITY,
                     strict: bool | None = None) -> RAO:
     """Heave, pitch (Jensen et al. 2004) and roll RAOs from the main particulars and speed.
 
@@ -369,6 +430,10 @@ def closed_form_rao(particulars: Any, speed: float, *, frequency: ArrayLike | No
         The Smith factor κ: ``"k"`` exp(−kT) (default, the incident pressure's decay with
         depth) or ``"k_e"`` exp(−k_e T), k_e = |k cos ε| (MSS's transcription of Jensen et al.;
         1 in beam seas).
+    roll_excitation : {"averaged", "slope"}, optional
+        ``"averaged"`` (default): the wave slope reduced by :func:`roll_slope_factor` (depth,
+        breadth and length averaging of the Froude–Krylov moment); ``"slope"``: the full wave
+        slope k sin ε at every frequency (the earlier model).
     gravity : float, optional
         g [m/s²].
     strict : bool, optional
@@ -383,7 +448,7 @@ def closed_form_rao(particulars: Any, speed: float, *, frequency: ArrayLike | No
     ------
     ParameterError
         On a non-positive dimension, speed < 0, a damping or slope coefficient out of range,
-        or an unknown ``smith``.
+        or an unknown ``smith`` or ``roll_excitation``.
 
     Notes
     -----
@@ -403,6 +468,10 @@ def closed_form_rao(particulars: Any, speed: float, *, frequency: ArrayLike | No
     if smith not in SMITH_FACTORS:
         raise ParameterError(f"must be one of {', '.join(SMITH_FACTORS)}, got {smith!r}",
                              field="smith", value=smith)
+    if roll_excitation not in ROLL_EXCITATIONS:
+        raise ParameterError(f"must be one of {', '.join(ROLL_EXCITATIONS)}, got "
+                             f"{roll_excitation!r}", field="roll_excitation",
+                             value=roll_excitation)
     U = float(speed)
     fn = U / math.sqrt(gravity * L)
     if not 0.5 <= cb <= 0.9 or fn > 0.4:
@@ -447,7 +516,9 @@ def closed_form_rao(particulars: Any, speed: float, *, frequency: ArrayLike | No
                                  field="slope_coefficient", unit="-", value=slope_coefficient)
         wr = 2.0 * math.pi / float(roll_period)
         q = (alpha * np.sqrt(k * gravity)) / wr  # ω_e/ω_φ
-        roll = 1j * slope_coefficient * k * np.sin(eps)[None, :] / (
+        gamma = (roll_slope_factor(k, eps[None, :], L, B, T) if roll_excitation == "averaged"
+                 else 1.0)
+        roll = 1j * slope_coefficient * gamma * k * np.sin(eps)[None, :] / (
             1.0 - q * q + 2j * roll_damping * q)
         dofs.insert(1, "roll")
         values.insert(1, roll)
@@ -456,6 +527,6 @@ def closed_form_rao(particulars: Any, speed: float, *, frequency: ArrayLike | No
             f"exp(-{smith} T)")
     if "roll" in dofs:
         text += (f"; roll one-DOF wave-slope model, T_phi {float(roll_period):.4g} s, "
-                 f"zeta {roll_damping:g}, r {slope_coefficient:g}")
+                 f"zeta {roll_damping:g}, r {slope_coefficient:g}, {roll_excitation} wave slope")
     return RAO(w, eps, tuple(dofs), np.stack([np.broadcast_to(v, k.shape[:1] + eps.shape)
                                               for v in values]), U, text)
