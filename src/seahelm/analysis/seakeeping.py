@@ -460,7 +460,8 @@ def closed_form_moments(particulars: Any, spectrum: WaveSpectrum, speed: ArrayLi
                         frequency: ArrayLike | None = None,
                         metacentric_height: float | None = None,
                         roll_period: float | None = None, roll_damping: float = 0.1,
-                        slope_coefficient: float = 1.0, gravity: float = GRAVITY,
+                        slope_coefficient: float = 1.0, smith: str = "k",
+                        roll_excitation: str = "averaged", gravity: float = GRAVITY,
                         strict: bool | None = None) -> ResponseMoments:
     """Response moments of a ship's closed-form RAOs over speed × mean wave heading.
 
@@ -494,6 +495,11 @@ def closed_form_moments(particulars: Any, spectrum: WaveSpectrum, speed: ArrayLi
         Roll damping ratio ζ_φ [-] (default 0.1).
     slope_coefficient : float, optional
         Effective wave-slope coefficient r [-] (default 1).
+    smith : {"k", "k_e"}, optional
+        The closed form's Smith factor exp(−kT) (default) or exp(−k_e T)
+        (:func:`~seahelm.environment.rao.closed_form_rao`).
+    roll_excitation : {"averaged", "slope"}, optional
+        The roll's wave-slope excitation averaged over the hull (default) or the full slope.
     gravity : float, optional
         g [m/s²].
     strict : bool, optional
@@ -530,7 +536,8 @@ def closed_form_moments(particulars: Any, spectrum: WaveSpectrum, speed: ArrayLi
     theta, weights, spread_text = _directions(spreading, n_directions)
     kwargs = dict(metacentric_height=metacentric_height, roll_period=roll_period,
                   roll_damping=roll_damping, slope_coefficient=slope_coefficient,
-                  gravity=gravity, strict=strict)
+                  smith=smith, roll_excitation=roll_excitation, gravity=gravity,
+                  strict=strict)
     out = np.empty((len(chosen), len(ORDERS), speeds.size, eps.size))
     provenance = ""
     for i, U in enumerate(speeds):

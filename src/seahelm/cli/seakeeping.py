@@ -50,6 +50,7 @@ SpectrumName = Literal["jonswap", "bretschneider", "ittc", "pierson-moskowitz"]
 SpreadingName = Literal["none", "cos2", "cos-2s"]
 Dof = Literal["roll", "pitch", "heave"]
 Statistic = Literal["rms", "significant"]
+RollExcitation = Literal["averaged", "slope"]
 
 
 def parse_grid(option: str, text: str, unit: str) -> np.ndarray:
@@ -197,6 +198,10 @@ def seakeeping(
     ] = None,
     roll_damping: Annotated[float, typer.Option(
         "--roll-damping", help="Roll damping ratio ζ [-].")] = 0.1,
+    roll_excitation: Annotated[RollExcitation, typer.Option(
+        "--roll-excitation", help="The closed-form roll's excitation: the wave slope averaged "
+                                  "over the hull (short waves reduced) or the full slope.")
+    ] = "averaged",
     rao: Annotated[Path | None, typer.Option(
         "--rao", help="An RAO file (CSV table, seahelm or capytaine NetCDF) instead of the "
                       "closed form; its speed is the only speed.")] = None,
@@ -287,7 +292,8 @@ def seakeeping(
         _check_cells(U, eps)
         moments = closed_form_moments(the_ship, spec, U, eps, spreading=spread,
                                       n_directions=directions, metacentric_height=gm,
-                                      roll_period=roll_period, roll_damping=roll_damping)
+                                      roll_period=roll_period, roll_damping=roll_damping,
+                                      roll_excitation=roll_excitation)
     payload = _payload(name, moments, spec, dof, stat, factor, unit, limit, exceed, duration,
                        both_sides)
     if out is not None:
