@@ -111,3 +111,68 @@ def test_reversal_delay_is_honoured_as_a_time(delay):
     clock = r["reversal_clock"][0]
     assert clock[np.searchsorted(t, astern) - 1] == pytest.approx(astern, abs=0.1)
     assert clock[-1] < 0.1 * astern
+
+
+# --- the low-speed cross-flow hull (hull_model 0, the default) against the mirror (1) -------
+
+def _hull_forces(p, u, v, r, n=-1.0):
+    from seahelm.vessels.mmg_four_quadrant import _forces4q
+    out = _forces4q(u, v, r, 0.0, n, p.to_record())
+    return np.array(out[:3])
+
+
+def test_hull_model_must_be_zero_or_one():
+    with pytest.raises(ParameterError, match="hull_model"):
+        from_mmg(KVLCC2_FULL, hull_model=0.5)
+
+
+def test_catalog_hull_is_the_cross_flow_model_with_the_matched_drag():
+    from seahelm.hydrodynamics.low_speed_hull import matching_cross_flow_drag
+    from seahelm.vessels.mmg_four_quadrant import HULL_CROSS_FLOW
+    assert KVLCC2_FULL_4Q.hull_model == HULL_CROSS_FLOW
+    assert KVLCC2_FULL_4Q.cross_flow_drag == matching_cross_flow_drag(KVLCC2_FULL.Y_v,
+                                                                      KVLCC2_FULL.Y_vvv)
+
+
+@pytest.mark.parametrize("beta_deg", [30.0, 45.0])
+@pytest.mark.parametrize("n", [1.5, -1.0])
+def test_hull_is_continuous_where_the_models_meet(beta_deg, n):
+    """Across the ends of the blend (|β| = 30° and 45°) the hull forces change by O(Δβ)."""
+    p, U = KVLCC2_FULL_4Q, 3.0
+    unit = 0.5 * p.rho * p.length * p.draft * U ** 2 * np.array([1.0, 1.0, p.length])
+    f = [_hull_forces(p, U * math.cos(b), -U * math.sin(b), 0.0, n) / unit
+         for b in np.radians(beta_deg) + np.array([-1e-7, 1e-7])]
+    assert np.all(np.abs(f[1] - f[0]) < 1e-5)
+
+
+@pytest.mark.parametrize("v, r", [(0.4, 0.0), (0.2, 0.001), (0.0, -0.002)])
+def test_hull_is_continuous_through_zero_surge_speed(v, r):
+    p = KVLCC2_FULL_4Q
+    unit = 0.5 * p.rho * p.length * p.draft * np.array([1.0, 1.0, p.length])
+    a, b = (_hull_forces(p, u, v, r) / unit for u in (-1e-7, 1e-7))
+    assert np.all(np.abs(b - a) < 1e-5)
+
+
+def test_mirror_and_cross_flow_runs_agree_bit_for_bit_while_in_the_mmg_range():
+    """Both hull models use the MMG hull while |β| ≤ 30° and |r'| ≤ 1: the crash stop of
+    the KVLCC2 is the same run up to the first sample where it leaves that range, then
+    differs; both come to rest and the cross-flow one backs without blowing up."""
+    from seahelm.vessels.mmg_four_quadrant import HULL_MIRROR
+    p = KVLCC2_FULL_4Q
+    mirror = from_mmg(KVLCC2_FULL, hull_model=HULL_MIRROR)
+    U0 = p.approach_speed
+    n = self_propulsion_rps(p, U0)
+    ref = {"rudder_command": 0.0, "engine_order": -1.0}
+    a = _run(MMG_4Q, p, [U0, 0, 0, 0, 0, 0, n, 0], ref, t_final=2400.0)
+    b = _run(MMG_4Q, mirror, [U0, 0, 0, 0, 0, 0, n, 0], ref, t_final=2400.0)
+    beta, U = np.abs(a["drift_angle"][0]), a["speed"][0]
+    rn = np.abs(a["yaw_rate"][0]) * p.length / np.maximum(U, 1e-9)
+    k = int(np.argmax((beta > math.radians(30.0)) | (rn > 1.0)))
+    assert 0 < k < beta.size - 1
+    # the samples are 10 s apart: the run before the previous sample never left the range
+    for name in ("north", "east", "heading", "surge_speed", "sway_speed"):
+        np.testing.assert_array_equal(a[name][0, :k - 1], b[name][0, :k - 1])
+    assert not np.allclose(a["east"][0, -1], b["east"][0, -1], rtol=1e-3)
+    for r in (a, b):
+        u = r["surge_speed"][0]
+        assert np.all(np.isfinite(u)) and np.any(u <= 0.0)

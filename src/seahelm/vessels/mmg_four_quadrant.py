@@ -23,8 +23,15 @@ Forces by quadrant (u surge speed, n rps)
     for n < 0 (no thrust deduction for the reversed race: an assumption, no KVLCC2 data).
     Rudder: the MMG formulas with this thrust (the slipstream term vanishes when the race is
     reversed, max(u_P² + 8T/(πρD²), 0)); for u_P < 0 the inflow is reversed (as in ``mmg``).
-    Hull for u < 0: the fore-aft mirror of the MMG hull, (X, Y, N)(u, v, r) = (−X, Y,
-    −N)_MMG(−u, v, −r), with the astern resistance coefficient R'_0,astern in place of R'_0.
+    Hull (``hull_model``): **0, the default**, the MMG polynomials while |β| ≤ 30° and |r'| ≤ 1
+    (their fitted range), the low-speed cross-flow model of Yoshimura, Nakao & Ishibashi
+    (2009) (:mod:`seahelm.hydrodynamics.low_speed_hull`: the MMG's linear derivatives, the
+    cross-flow drag of the hull's strips, R'_0,astern astern) from |β| ≥ 45° or |r'| ≥ 1.5 —
+    so astern (|β| > 90°) always — and a linear blend in between (continuous; tested).
+    **1** (:data:`HULL_MIRROR`, the earlier approximation): the MMG hull for u ≥ 0 at any drift
+    and for u < 0 its fore-aft mirror, (X, Y, N)(u, v, r) = (−X, Y, −N)_MMG(−u, v, −r), with
+    the astern resistance coefficient R'_0,astern in place of R'_0. While a run stays in the
+    MMG range both give the same forces, computed by the same code (bit for bit; tested).
 
 Side force of a backing single screw (right-handed propeller turning astern): the stern is
 pushed to port, Y_P = −c_Y |T|, N_P = x_R L_pp Y_P (the bow swings to starboard), for n < 0.
@@ -34,13 +41,16 @@ order quoted for single-screw ships, e.g. Harvald 1983, *Resistance and propulsi
 
 Ranges and what is not modelled
     The MMG hull polynomials are fits to captive tests at small to moderate drift (KVLCC2:
-    |β| up to about 20–30°) and ahead speed. At the end of a crash stop the drift angle grows
-    towards 90° and the hull forces are then extrapolated; astern, the mirrored hull is an
-    approximation (the KVLCC2 is not fore-aft symmetric). A published low-speed model
-    (Yoshimura's cross-flow drag, the crash-stop models of Yasukawa et al.) is not
-    implemented: the stopping analysis (:mod:`seahelm.analysis.maneuvers.stopping`) warns
-    (:class:`~seahelm.errors.ValidityRangeWarning`) when a run leaves |β| ≤ 30° above 20 % of
-    the approach speed before it is dead in the water; astern motion comes after that point. The
+    |β| up to about 20–30°) and ahead speed. With ``hull_model`` 0 the cross-flow model takes
+    over beyond; it is stated for Fn ≤ 0.1 (low speed, no wave-making), and the stopping
+    analysis (:mod:`seahelm.analysis.maneuvers.stopping`) warns
+    (:class:`~seahelm.errors.ValidityRangeWarning`, an error in strict mode) when a run uses it
+    faster. Its C_D is matched to the MMG sway force at 30° and C_rY = C_rN = 1 (no KVLCC2
+    values of Yoshimura's coefficients were found): a published model form with estimated
+    coefficients, not a fit to the KVLCC2. With ``hull_model`` 1 the stopping analysis warns
+    when a run leaves |β| ≤ 30° above 20 % of the approach speed before it is dead in the
+    water; astern, the mirrored hull is an approximation (the KVLCC2 is not fore-aft
+    symmetric). The crash-stop models of Yasukawa et al. are not implemented. The
     propeller's thrust jumps when n changes sign at u > 0 (the MMG K_T polynomial on one side,
     the B4-70 series on the other): the shaft passes zero in seconds.
 
@@ -48,6 +58,8 @@ References
 ----------
 Yasukawa, H., Yoshimura, Y. (2015). Introduction of MMG standard method for ship maneuvering
 predictions. J. Mar. Sci. Technol. 20, 37–52.
+Yoshimura, Y., Nakao, I. & Ishibashi, A. (2009). Unified mathematical model for ocean and
+harbour manoeuvring. Proc. MARSIM 2009, Panama City.
 Roddy, R. F., Hess, D. E. & Faller, W. E. (2006). Neural network predictions of the
 4-quadrant Wageningen propeller series. NSWCCD-50-TR-2006/004.
 """
@@ -57,7 +69,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
 from numba import njit
 
 from ..constants import GRAVITY
@@ -67,6 +78,11 @@ from ..hydrodynamics.four_quadrant import (
     fourier_coefficients,
     thrust_coefficient_4q,
     torque_coefficient_4q,
+)
+from ..hydrodynamics.low_speed_hull import (
+    low_speed_hull,
+    low_speed_weight,
+    matching_cross_flow_drag,
 )
 from ..parameters import param, signal_indices
 from .base import VesselModel
@@ -91,7 +107,7 @@ from .mmg import OUTPUTS as _MMG_OUTPUTS
 
 __all__ = ["MMG4QParams", "MMG_4Q", "STATES", "INPUTS", "OUTPUTS", "KVLCC2_FULL_4Q",
            "KVLCC2_L7_4Q", "KVLCC2_ENGINE_NOTE", "self_propulsion_rps", "propeller_torque",
-           "from_mmg"]
+           "from_mmg", "HULL_CROSS_FLOW", "HULL_MIRROR"]
 
 STATES = ("surge_speed", "sway_speed", "yaw_rate", "north", "east", "heading", "propeller_rps",
           "reversal_clock")
@@ -105,6 +121,10 @@ S = signal_indices(STATES)
 U = signal_indices(INPUTS)
 D = signal_indices(DISTURBANCES)
 Y = signal_indices(OUTPUTS)
+
+#: ``hull_model`` values: the cross-flow low-speed hull (default) and the mirrored MMG hull.
+HULL_CROSS_FLOW = 0.0
+HULL_MIRROR = 1.0
 
 #: C_T*, C_Q* coefficients of the B4-70 P/D 1.0 series (a compile-time constant).
 _COEFFS = fourier_coefficients()
@@ -122,11 +142,27 @@ class MMG4QParams(MMGParams, EngineShaftParams):
                                   "no astern resistance data)")
     backing_side_force: float = param(0.05, unit="-", symbol="c_Y", low=0.0, high=0.5,
                                       doc="side force of the backing propeller over |T|")
+    hull_model: float = param(HULL_CROSS_FLOW, unit="-", symbol="hull", low=0.0, high=1.0,
+                              doc="hull astern and at large drift: 0 the cross-flow model of "
+                                  "Yoshimura et al. 2009 (blended from the MMG's beyond 30 deg "
+                                  "or r' 1), 1 the fore-aft mirror of the MMG hull astern")
+    cross_flow_drag: float = param(0.888, unit="-", symbol="C_D", low=0.0, high=5.0,
+                                   doc="cross-flow drag coefficient of the hull (default: the "
+                                       "KVLCC2's, matched to the MMG sway force at 30 deg)")
+    C_rY: float = param(1.0, unit="-", symbol="C_rY", low=0.0, high=5.0,
+                        doc="yaw-rate factor of the cross-flow velocity in the sway force")
+    C_rN: float = param(1.0, unit="-", symbol="C_rN", low=0.0, high=5.0,
+                        doc="yaw-rate factor of the cross-flow velocity in the yaw moment")
 
     def validate(self) -> None:
-        """The MMG and engine cross-field checks."""
+        """The MMG and engine cross-field checks; ``hull_model`` is 0 or 1."""
         MMGParams.validate(self)
         check_engine(self)
+        if self.hull_model not in (HULL_CROSS_FLOW, HULL_MIRROR):
+            raise ParameterError(
+                f"`hull_model` = {self.hull_model!r} must be {HULL_CROSS_FLOW:g} (cross-flow "
+                f"low-speed hull) or {HULL_MIRROR:g} (mirrored MMG hull)", field="hull_model",
+                unit="-", value=self.hull_model)
 
 
 @njit(cache=True)
@@ -144,29 +180,46 @@ def _propeller_4q(u_P, n, p):  # pragma: no cover - compiled
 @njit(cache=True)
 def _forces4q(u, v, r, delta, n, p):  # pragma: no cover - compiled
     """(X_H, Y_H, N_H, X_P, Y_P, N_P, X_R, Y_R, N_R, T, Q, F_N, u_R, v_R, U, β, β_adv)."""
-    if u >= 0.0 and n >= 0.0:
+    L = p.length
+    mirror = p.hull_model >= 0.5
+    w = 0.0
+    if not mirror:
+        w = low_speed_weight(u, v, r, L, p.min_froude_number * math.sqrt(GRAVITY * L))
+    if u >= 0.0 and n >= 0.0 and w == 0.0:
         (X_H, Y_H, N_H, X_P, X_R, Y_R, N_R, thrust, F_N, w_P, u_R, v_R, speed,
          beta) = _forces(u, v, r, delta, n, p)
         _T, torque, b_adv = _propeller_4q(u * (1.0 - w_P), n, p)
         return (X_H, Y_H, N_H, X_P, 0.0, 0.0, X_R, Y_R, N_R, thrust, torque, F_N, u_R, v_R,
                 speed, beta, b_adv)
-    L = p.length
     rho = p.rho
     speed = math.sqrt(u * u + v * v)
     u_nd = max(speed, p.min_froude_number * math.sqrt(GRAVITY * L))
     rn = r * L / u_nd
     beta = math.atan2(-v, u)
-    if u >= 0.0:
-        hull = _forces(u, v, r, 0.0, 0.0, p)
-        X_H, Y_H, N_H = hull[0], hull[1], hull[2]
-        w_P = wake_fraction(beta - p.x_P * rn, p.w_P0, p.C_1, p.C_2_plus, p.C_2_minus)
-    else:  # the fore-aft mirror of the ahead hull, with the astern resistance
+    if mirror and u < 0.0:  # the fore-aft mirror of the ahead hull, with the astern resistance
         hull = _forces(-u, v, -r, 0.0, 0.0, p)
         q = 0.5 * rho * L * p.draft * speed * speed
         X_H = -hull[0] + (p.R_0_astern - p.R_0) * q
         Y_H = hull[1]
         N_H = -hull[2]
         w_P = 0.0
+    else:  # the MMG hull (w < 1) blended into the cross-flow model (w > 0); mirror: w = 0
+        X_H = 0.0
+        Y_H = 0.0
+        N_H = 0.0
+        if w < 1.0:  # (one code block for both hull models: the same rounding in both)
+            hull = _forces(u, v, r, 0.0, 0.0, p)
+            X_H, Y_H, N_H = hull[0], hull[1], hull[2]
+        if w > 0.0:
+            X_L, Y_L, N_L = low_speed_hull(u, v, r, L, p.draft, rho, -p.R_0, -p.R_0_astern,
+                                           p.X_vr, p.Y_v, p.Y_r, p.N_v, p.N_r,
+                                           p.cross_flow_drag, p.C_rY, p.C_rN)
+            X_H = w * X_L + (1.0 - w) * X_H
+            Y_H = w * Y_L + (1.0 - w) * Y_H
+            N_H = w * N_L + (1.0 - w) * N_H
+        w_P = 0.0
+        if u >= 0.0:
+            w_P = wake_fraction(beta - p.x_P * rn, p.w_P0, p.C_1, p.C_2_plus, p.C_2_minus)
     u_P = u * (1.0 - w_P)
     thrust, torque, b_adv = _propeller_4q(u_P, n, p)
     X_P = (1.0 - p.t_P) * thrust if n >= 0.0 else thrust
@@ -271,8 +324,8 @@ def mmg4q_motion(x, p):  # pragma: no cover - compiled
 MMG_4Q = VesselModel(
     name="mmg-4q",
     description="MMG model through zero and negative speed and rps: engine, shaft and "
-    "reversal, four-quadrant B4-70 propeller (Roddy et al. 2006), mirrored astern hull "
-    "(crash stop)",
+    "reversal, four-quadrant B4-70 propeller (Roddy et al. 2006), low-speed cross-flow hull "
+    "astern and at large drift (Yoshimura et al. 2009) (crash stop)",
     params_type=MMG4QParams,
     state_labels=STATES,
     state_units=STATE_UNITS,
@@ -402,6 +455,8 @@ def from_mmg(params: MMGParams, *, scale: float = 1.0, **engine: float) -> MMG4Q
         reversal_delay=60.0 / root,
         reversal_rps=0.25 * n_mcr, governor_time_constant=2.0 / root,
         R_0_astern=params.R_0)
+    if "cross_flow_drag" not in engine:  # (Yoshimura's C_D regression was not available)
+        values["cross_flow_drag"] = matching_cross_flow_drag(params.Y_v, params.Y_vvv)
     values.update(engine)
     fields = {f: getattr(params, f) for f in MMGParams.field_names()}
     return MMG4QParams(**{**fields, **values})

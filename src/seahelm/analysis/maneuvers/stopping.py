@@ -36,10 +36,14 @@ A run that is not dead in the water within ``t_final`` reports NaN for what depe
 ``complete`` False and a ``message`` saying so; it is not an error.
 
 Range
-    The MMG hull polynomials were fitted at small drift and ahead speed; the stopping analysis
-    warns (:func:`seahelm.errors.warn_validity`, an error in strict mode) when a run's drift
-    angle exceeds 30° while its speed is above 20 % of U_0 before it is dead in the water (the
-    ship then swings out of the range the hull model was fitted for).
+    The MMG hull polynomials were fitted at small drift and ahead speed. With the default hull
+    (``hull_model`` 0) the low-speed cross-flow model of Yoshimura et al. (2009) takes over
+    beyond |β| = 30° or |r'| = 1 (:mod:`seahelm.vessels.mmg_four_quadrant`); it is stated for
+    Fn ≤ 0.1, and the analysis warns (:func:`seahelm.errors.warn_validity`, an error in strict
+    mode) when a run uses it faster (:func:`seahelm.hydrodynamics.low_speed_hull.check_range`).
+    With the mirrored MMG hull (``hull_model`` 1) it warns when a run's drift angle exceeds 30°
+    while its speed is above 20 % of U_0 before it is dead in the water (the ship then swings
+    out of the range the hull model was fitted for).
 
 References
 ----------
@@ -57,7 +61,9 @@ from typing import Any
 
 import numpy as np
 
+from ...constants import GRAVITY
 from ...errors import ParameterError, ValidityRangeWarning, warn_validity
+from ...hydrodynamics.low_speed_hull import check_range
 from ...ships import Propulsion, Ship
 from .common import Plan, final_time, record_every_for, usual_time_step, value_axis
 from .result import ManeuverResult
@@ -82,6 +88,12 @@ SPEED_RANGE = 0.2
 _ENGINE_FIELDS = ("shaft_inertia", "rated_rps", "max_power", "astern_rps", "reversal_time",
                   "reversal_delay", "reversal_rps", "governor_time_constant", "R_0_astern",
                   "backing_side_force")
+_HULL_SOURCES = {
+    "hull_model": "the default (0: cross-flow; 1 the mirrored MMG hull)",
+    "cross_flow_drag": "C_D matched to the MMG sway force Y'_v v' + Y'_vvv v'^3 at 30 deg of "
+                       "drift (Yoshimura's regression was not available)",
+    "C_rY": "1, plain strip theory (no fitted value for this ship)",
+    "C_rN": "1, plain strip theory (no fitted value for this ship)"}
 
 
 def stopping_ship(ship: Any, *, scale: float | None = None, **engine: float) -> Ship:
@@ -161,12 +173,16 @@ def stopping_ship(ship: Any, *, scale: float | None = None, **engine: float) -> 
     sources = dict(s.coefficient_sources)
     for name in _ENGINE_FIELDS:
         sources[name] = ("given" if name in engine else note)
+    hull_note = ("low-speed cross-flow hull of Yoshimura, Nakao & Ishibashi (2009) "
+                 "(seahelm.hydrodynamics.low_speed_hull): ")
+    for name, why in _HULL_SOURCES.items():
+        sources[name] = "given" if name in engine else hull_note + why
     validity = tuple(v for v in s.validity if "ahead motion only" not in v) + (
         "engine, shaft and reversal sequence: estimates (seahelm.vessels.mmg_four_quadrant."
         "from_mmg), not the ship's engine data",
-        "astern and at large drift the hull forces are extrapolated (mirrored MMG hull "
-        "astern); the stopping test warns when a run leaves |drift| <= 30 deg above 20 % of "
-        "the approach speed")
+        "astern and at large drift (|drift| > 30 deg or |r'| > 1) the hull is the low-speed "
+        "cross-flow model of Yoshimura et al. (2009), stated for Fn <= 0.1 (the stopping test "
+        "warns above); hull_model = 1 keeps the mirrored MMG hull")
     propulsion = Propulsion(
         kind="single fixed-pitch propeller, reversible engine and shaft",
         inputs=("engine_order",),
@@ -378,9 +394,21 @@ def _metrics(plan: Plan, result: Any, dead_fraction: float) -> Any:
     t_dead = found["time_dead"]
     n = plan.n_runs
     before = t[None, :] <= np.where(np.isfinite(t_dead), t_dead, t[-1])[:, None]
+    from ...vessels.mmg_four_quadrant import HULL_MIRROR
     beta = result["drift_angle"]
-    outside = np.any(before & (np.abs(beta) > DRIFT_RANGE) & (speed > SPEED_RANGE * U0[:, None]),
-                     axis=1)
+    params = [plan.ship(i).params for i in range(n)]
+    mirror = np.array([getattr(p, "hull_model", HULL_MIRROR) == HULL_MIRROR for p in params])
+    outside = mirror & np.any(before & (np.abs(beta) > DRIFT_RANGE)
+                              & (speed > SPEED_RANGE * U0[:, None]), axis=1)
+    cross = ~mirror
+    beyond = np.zeros(n, dtype=bool)
+    if cross.any():  # the cross-flow hull: its own range (Fn <= 0.1 where it is used)
+        beyond[cross] = check_range(
+            np.asarray(speed)[cross], np.asarray(beta)[cross],
+            np.asarray(result["yaw_rate"])[cross],
+            np.array([params[i].length for i in np.flatnonzero(cross)]),
+            np.array([params[i].min_froude_number * math.sqrt(GRAVITY * params[i].length)
+                      for i in np.flatnonzero(cross)]), where="the stopping test", stacklevel=4)
     status = result.messages()
     messages, complete = [], np.zeros(n, dtype=bool)
     for i in range(n):
@@ -391,12 +419,14 @@ def _metrics(plan: Plan, result: Any, dead_fraction: float) -> Any:
         complete[i] = not text
         if outside[i]:
             text.append("drift angle beyond 30 deg above 20 % of U0: hull forces extrapolated")
+        if beyond[i]:
+            text.append("low-speed cross-flow hull used above Fn 0.1: outside its range")
         messages.append("; ".join(text) if text else "ok")
     if outside.any():
         warn_validity(
             f"{int(outside.sum())} of {n} stopping run(s) swing beyond 30 deg of drift while "
             "faster than 20 % of the approach speed: the MMG hull polynomials are extrapolated "
-            "there (fitted at small drift)", stacklevel=4)
+            "there (fitted at small drift; hull_model = 1, the mirrored hull)", stacklevel=4)
     head, track, lateral, max_lateral, heading, t_astern, u_dead = (found[k] for k in (
         "head_reach", "track_reach", "lateral_deviation", "max_lateral_deviation",
         "heading_change", "time_astern", "speed_dead"))
