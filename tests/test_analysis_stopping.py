@@ -229,3 +229,19 @@ def test_a_propeller_without_thrust_at_zero_advance_is_refused_naming_k_0(k_0):
     with pytest.raises(ParameterError, match="no self-propulsion rps") as exc:
         stopping_ship(ship)
     assert exc.value.field == "k_0"
+
+
+def test_a_run_outside_the_cross_flow_hulls_range_warns_and_raises_in_strict_mode():
+    """An L7 made directionally unstable (N'_v = −1, the backing side force 50 % of |T|)
+    swings while fast: the cross-flow hull is then used above its Fn 0.1."""
+    from seahelm.errors import strict_validity
+    match = "cross-flow hull .* Fn up to"
+    ship = stopping_ship("kvlcc2-l7", backing_side_force=0.5, N_v=-1.0, reversal_delay=0.0)
+    with pytest.warns(ValidityRangeWarning, match=match):
+        r = crash_stop(ship, speed=1.6, t_final=200.0)
+    assert "outside its range" in str(r.metrics["message"].values)
+    with strict_validity(), pytest.raises(ParameterError, match=match):
+        crash_stop(ship, speed=1.6, t_final=200.0)
+    # the catalog L7 stays inside with either hull (the suite turns the warning into an error)
+    for hull_model in (0.0, 1.0):
+        crash_stop(stopping_ship("kvlcc2-l7", hull_model=hull_model))
