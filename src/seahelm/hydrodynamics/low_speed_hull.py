@@ -83,6 +83,7 @@ __all__ = ["cross_flow_integrals", "low_speed_hull", "low_speed_weight",
 
 #: |β| [rad] up to which the MMG hull polynomials are used alone (their fitted range).
 DRIFT_MMG = math.radians(30.0)
+_TAN_DRIFT_MMG = math.tan(DRIFT_MMG)
 #: |β| [rad] from which the cross-flow model is used alone (linear blend in between).
 DRIFT_LOW_SPEED = math.radians(45.0)
 #: |r'| = |r| L / U up to which the MMG polynomials are used alone.
@@ -195,9 +196,14 @@ def low_speed_weight(u, v, r, L, u_floor):  # pragma: no cover - compiled
     -------
     float
     """
-    speed = math.sqrt(u * u + v * v)
+    s2 = u * u + v * v
+    rl = r * L
+    if (u > 0.0 and abs(v) <= _TAN_DRIFT_MMG * u
+            and rl * rl <= YAW_RATE_MMG * YAW_RATE_MMG * max(s2, u_floor * u_floor)):
+        return 0.0  # inside the MMG's range (the usual case: no square root, no atan2)
+    speed = math.sqrt(s2)
     beta = abs(math.atan2(-v, u))
-    rn = abs(r) * L / max(speed, u_floor)
+    rn = abs(rl) / max(speed, u_floor)
     wb = min(max((beta - DRIFT_MMG) / (DRIFT_LOW_SPEED - DRIFT_MMG), 0.0), 1.0)
     wr = min(max((rn - YAW_RATE_MMG) / (YAW_RATE_LOW_SPEED - YAW_RATE_MMG), 0.0), 1.0)
     return max(wb, wr)
