@@ -17,11 +17,11 @@ integrals over x' = x / L from −½ to ½ (x forward of midship), C_D the cross
 coefficient of the hull (uniform along the length here) and C_rY, C_rN the correction factors
 of the yaw rate in the cross-flow velocity of the sway force and the yaw moment. This is the
 simplified form (linear derivatives, uniform C_D) in which the model is used for berthing
-simulation by Miyauchi et al. (2022, § 2.2, the hull force model "based on Yoshimura et al.
-(2009)"; the equation numbers of the MARSIM paper could not be checked: the paper was not in
-the stored sources, and its form was taken from that restatement and from the authors'
-public simulator of the Esso Osaka model, ``NAOE-5thLab/mmg-1p1r-simulator``, read for the
-formula only). X'_0(β) interpolates the ahead and astern resistance linearly in |β|
+simulation by Miyauchi et al. (2022), whose hull force model is based on Yoshimura et al.
+(2009) (the equation numbers of the MARSIM paper could not be checked: the paper was not in
+the stored sources beyond its abstract, and its form was taken from that restatement as
+implemented in the authors' public simulator of the Esso Osaka model,
+``NAOE-5thLab/mmg-1p1r-simulator``, ``hullforce.py``, read for the formula only). X'_0(β) interpolates the ahead and astern resistance linearly in |β|
 (ibid.). The mass and added-mass terms ((m + m_y) v r, (m + m_x) u r) stay in the equations
 of motion, as in the MMG model.
 
@@ -45,12 +45,14 @@ Coefficients for a ship of the MMG model
     formulas, not available to us; :func:`matching_cross_flow_drag` takes the C_D for which
     the model's sway force in steady drift equals the MMG polynomials' at the edge of their
     range (|β| = 30°): 0.888 for the KVLCC2 (for comparison, Hoerner's two-dimensional
-    cross-flow drag of a section of the KVLCC2's B/2T = 1.39 is about 0.74, Leite et al. 1998,
-    fig. of C_D against B/2T; a 3-D hull has end effects both ways).
+    cross-flow drag of a section of the KVLCC2's B/2T = 1.39 is about 0.74, read from the curve
+    of C_D against B/2T of Leite et al. 1998 as digitized in Fossen's MSS, ``HYDRO/Hoerner.m``;
+    a 3-D hull has end effects both ways).
 
 Range
-    Yoshimura et al.'s captive tests cover the harbour regime: every drift angle (0–180°) at
-    low speed. The model neglects wave-making (the resistance coefficient is a constant), so
+    Yoshimura et al. built the model for harbour manoeuvring, large drift angles and turning
+    at low forward speed, and applied it to captive tests of several ship models over "a very
+    wide range of manoeuvring motion" (abstract). The model neglects wave-making (the resistance coefficient is a constant), so
     its stated range here is Froude number Fn = U/√(gL) ≤ :data:`FROUDE_MAX` (0.10) wherever it
     contributes (:func:`low_speed_weight` > 0); outside, :func:`check_range` warns
     (:class:`~seahelm.errors.ValidityRangeWarning`, an error in strict mode).
@@ -63,8 +65,9 @@ Miyauchi, Y., Maki, A., Umeda, N., Rachman, D. M. & Akimoto, Y. (2022). System p
 exploration of ship maneuvering model for automatic docking/berthing using CMA-ES. J. Mar.
 Sci. Technol. 27, 1065–1083.
 Hooft, J. P. (1994). The cross flow drag on a manoeuvring ship. Ocean Eng. 21(3), 329–342.
-Leite, A. J. P., Aranha, J. A. P., Umeda, C. & de Conti, M. B. (1998). Current forces in
-tankers and bifurcation of equilibrium of turret systems. Appl. Ocean Res. 20, 145–156.
+Leite, A. J. P., Aranha, J. A. P., Umeda, C. & de Conti, M. B. (1998). Current force in
+tankers and bifurcation of equilibrium of turret systems: hydrodynamic model and experiments.
+Applied Ocean Research 20.
 """
 
 from __future__ import annotations
