@@ -121,6 +121,8 @@ def test_turning_table_and_out(tmp_path):
     (["maneuver", "stopping", "--reversal-delay", "-3"],
      "`--reversal-delay` must be >= 0 [s], got -3.0"),
     (["maneuver", "stopping", "--dead-fraction", "1"], "`--dead-fraction` must be in [0, 1)"),
+    (["maneuver", "stopping", "--hull", "yoshimura"],
+     "`--hull` must be one of cross-flow, mirror, got 'yoshimura'"),
 ])
 def test_bad_input_exits_2_with_one_line(args, text):
     res = runner.invoke(app, args)
@@ -191,6 +193,7 @@ def test_stopping_json_and_out(tmp_path):
     assert out["maneuver"] == "stopping" and out["engine_order"] == -1.0
     (run,) = out["runs"]
     assert run["complete"] and run["reversal_delay_s"] == 5.0
+    assert out["hull"] == "cross-flow"
     assert 5.0 < run["time_astern_s"] < 7.0
     assert run["head_reach_L"] == pytest.approx(run["head_reach_m"] / 7.0)
     assert run["head_reach_m"] <= run["track_reach_m"]
@@ -246,3 +249,12 @@ def test_spiral_table_shows_the_reverse_spirals_curve():
     assert f"{len(shown)} of {len(points)} points" in text
     for row in shown:
         assert f"{row['rudder_deg']:.4g}" in text
+
+
+def test_stopping_hull_option_selects_the_mirrored_hull():
+    """--hull mirror: the earlier approximation; the L7's crash stop is the same to dead in the
+    water (it leaves the MMG range only at the end), the option is echoed."""
+    a = run_json("maneuver", "stopping", "--ship", "kvlcc2-l7", "--hull", "mirror")
+    b = run_json("maneuver", "stopping", "--ship", "kvlcc2-l7", "--hull", "cross-flow")
+    assert (a["hull"], b["hull"]) == ("mirror", "cross-flow")
+    assert a["runs"][0]["head_reach_m"] == pytest.approx(b["runs"][0]["head_reach_m"], rel=1e-4)

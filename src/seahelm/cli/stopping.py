@@ -55,6 +55,10 @@ STOPPING_FIELDS: tuple[Field, ...] = (
 )
 
 
+#: ``--hull`` values: the ``hull_model`` of :class:`~seahelm.vessels.mmg_four_quadrant.MMG4QParams`.
+_HULLS = {"cross-flow": 0.0, "mirror": 1.0}
+
+
 @app.command("stopping")
 @handle_errors
 def stopping_cmd(
@@ -68,6 +72,10 @@ def stopping_cmd(
         "60 s full scale, Froude-scaled for a model)."))] = None,
     dead_fraction: Annotated[float, typer.Option("--dead-fraction", help=escape(
         "Dead in the water at surge speed <= this x U0, in [0, 1)."))] = 0.05,
+    hull: Annotated[str | None, typer.Option("--hull", metavar="cross-flow|mirror", help=escape(
+        "Hull astern and at large drift: cross-flow (the low-speed model of Yoshimura et al. "
+        "2009) or mirror (the fore-aft mirrored MMG hull) (default: the ship's own, "
+        "cross-flow for an mmg ship)."))] = None,
     speed: Speed = None,
     t_final: TFinal = None,
     dt: Dt = None,
@@ -90,12 +98,18 @@ def stopping_cmd(
     if reversal_delay is not None and not (math.isfinite(reversal_delay)
                                            and reversal_delay >= 0.0):
         raise ParameterError(f"`--reversal-delay` must be >= 0 [s], got {reversal_delay!r}")
+    if hull is not None and hull not in _HULLS:
+        raise ParameterError(f"`--hull` must be one of {', '.join(_HULLS)}, got {hull!r}")
     engine = {} if reversal_delay is None else {"reversal_delay": reversal_delay}
+    if hull is not None:
+        engine["hull_model"] = _HULLS[hull]
     stopper = stopping_ship(found, **engine)
     check_out(out, "stopping", ship_reads(ship))
     result = crash_stop(stopper, order=order, speed=speed, t_final=t_final, dt=dt,
                         dead_fraction=dead_fraction)
     payload = header(result)
-    payload.update(engine_order=order, dead_fraction=dead_fraction)
+    hull_of = {v: k for k, v in _HULLS.items()}
+    payload.update(engine_order=order, dead_fraction=dead_fraction,
+                   hull=hull_of.get(stopper.params.hull_model, "cross-flow"))
     finish(f"Stopping test, {stopper.name}, engine order {order:g}, rudder amidships", result,
            payload, STOPPING_FIELDS, plot_stopping, "stopping.png", out, json_out)

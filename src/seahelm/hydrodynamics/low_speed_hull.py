@@ -21,15 +21,16 @@ simulation by Miyauchi et al. (2022), whose hull force model is based on Yoshimu
 (2009) (the equation numbers of the MARSIM paper could not be checked: the paper was not in
 the stored sources beyond its abstract, and its form was taken from that restatement as
 implemented in the authors' public simulator of the Esso Osaka model,
-``NAOE-5thLab/mmg-1p1r-simulator``, ``hullforce.py``, read for the formula only). X'_0(β) interpolates the ahead and astern resistance linearly in |β|
-(ibid.). The mass and added-mass terms ((m + m_y) v r, (m + m_x) u r) stay in the equations
-of motion, as in the MMG model.
+``NAOE-5thLab/mmg-1p1r-simulator``, ``hullforce.py``, read for the formula only).
+X'_0(β) interpolates the ahead and astern resistance linearly in |β| (ibid.). The mass and
+added-mass terms ((m + m_y) v r, (m + m_x) u r) stay in the equations of motion, as in the
+MMG model.
 
 Properties (tested)
     At β = 0 the linear terms are the MMG's: ½ρLd Y'_v v |u| = ½ρLdU² Y'_v v' with u = U,
     and the same for X'_0, X'_vr, Y'_r, N'_v, N'_r. Reversing u and r (the fore-aft mirror)
-    leaves X'_0 aside Y unchanged and N of the opposite sign, so the linear and cross-flow
-    terms agree with the mirrored hull; only the resistance differs (X'_0A). Every term is
+    changes the sign of X and N and leaves Y, as mirroring the hull does, apart from the
+    resistance (X'_0A in place of X'_0F). Every term is
     continuous through u = 0 and stays finite as U → 0 (no division by U). In pure sway
     (u = r = 0) the hull feels Y = −½ρLd C_D v |v| and no yaw moment (uniform C_D).
 
@@ -52,10 +53,11 @@ Coefficients for a ship of the MMG model
 Range
     Yoshimura et al. built the model for harbour manoeuvring, large drift angles and turning
     at low forward speed, and applied it to captive tests of several ship models over "a very
-    wide range of manoeuvring motion" (abstract). The model neglects wave-making (the resistance coefficient is a constant), so
-    its stated range here is Froude number Fn = U/√(gL) ≤ :data:`FROUDE_MAX` (0.10) wherever it
-    contributes (:func:`low_speed_weight` > 0); outside, :func:`check_range` warns
-    (:class:`~seahelm.errors.ValidityRangeWarning`, an error in strict mode).
+    wide range of manoeuvring motion" (abstract). The model neglects wave-making (the
+    resistance coefficient is a constant), so its stated range here is Froude number
+    Fn = U/√(gL) ≤ :data:`FROUDE_MAX` (0.10) wherever it contributes (:func:`low_speed_weight`
+    > 0); outside, :func:`check_range` warns (:class:`~seahelm.errors.ValidityRangeWarning`,
+    an error in strict mode).
 
 References
 ----------
