@@ -21,7 +21,7 @@ from decimal import Decimal, getcontext
 import numpy as np
 from numba import njit
 
-__all__ = ["sincos", "first_order_run"]
+__all__ = ["sincos", "first_order_sample", "first_order_run"]
 
 getcontext().prec = 60
 _HALF_PI = Decimal("1.57079632679489661923132169163975144209858469968755291048747")
@@ -87,6 +87,76 @@ def _sum_one(tr, ti, c, s, jj, ww, same, d):  # pragma: no cover - compiled
     return acc
 
 
+@njit(cache=True, nogil=True, fastmath={"reassoc", "contract"}, inline="always")
+def first_order_sample(t, xk, yk, pk, uk, omega, wavenumber, cos_beta, sin_beta, beta, phase,
+                       table_re, table_im, heading_step, speeds, same, c, s, jj, ww, out
+                       ):  # pragma: no cover - compiled
+    """η_j at one instant into ``out[0:n_dof]`` (module docstring): the one evaluation that
+    both the post-pass (:func:`first_order_run`) and the closed loop's in-loop stage
+    (:mod:`seahelm.simulation.wave_motion_stage`) call.
+
+    Parameters
+    ----------
+    t : float
+        Time [s].
+    xk, yk : float
+        Position north and east [m].
+    pk : float
+        Heading ψ [rad].
+    uk : float
+        Speed [m/s] at which the RAOs are interpolated.
+    omega, wavenumber, cos_beta, sin_beta, beta, phase : float64[m]
+        As in :func:`first_order_run`.
+    table_re, table_im : float64[n_speed, n_dof, n_head + 1, m]
+        As in :func:`first_order_run`.
+    heading_step : float
+        Heading grid step [rad].
+    speeds : float64[n_speed]
+        Speeds of the tables [m/s].
+    same : bool
+        Long-crested (one direction for all components).
+    c, s, ww : float64[m]
+        Scratch (cos θ_i, sin θ_i, heading weights).
+    jj : int64[m]
+        Scratch (heading cells).
+    out : float64[>= n_dof]
+        The responses (the first n_dof overwritten).
+    """
+    m = omega.size
+    n_speed = speeds.size
+    n_head = table_re.shape[2] - 1
+    n_dof = table_re.shape[1]
+    two_pi = 2.0 * math.pi
+    inv_step = 1.0 / heading_step
+    for i in range(m):  # vectorised: the phases and their sine and cosine
+        th = omega[i] * t - wavenumber[i] * (xk * cos_beta[i] + yk * sin_beta[i]) + phase[i]
+        s[i], c[i] = sincos(th)
+    m_head = 1 if same else m
+    for i in range(m_head):  # the relative headings on the table's grid
+        e = beta[i] - pk
+        e -= two_pi * math.floor(e / two_pi)
+        pos = e * inv_step
+        j = min(np.int64(pos), n_head - 1)
+        jj[i] = j
+        ww[i] = pos - j
+    s0 = 0
+    ws = 0.0
+    if n_speed > 1:
+        if uk >= speeds[n_speed - 1]:
+            s0 = n_speed - 2
+            ws = 1.0
+        elif uk > speeds[0]:
+            while speeds[s0 + 1] <= uk:
+                s0 += 1
+            ws = (uk - speeds[s0]) / (speeds[s0 + 1] - speeds[s0])
+    for d in range(n_dof):
+        eta = _sum_one(table_re[s0], table_im[s0], c, s, jj, ww, same, d)
+        if ws > 0.0:
+            eta = (1.0 - ws) * eta + ws * _sum_one(table_re[s0 + 1], table_im[s0 + 1], c, s,
+                                                   jj, ww, same, d)
+        out[d] = eta
+
+
 @njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
 def first_order_run(time, x, y, psi, u, omega, wavenumber, cos_beta, sin_beta, beta, phase,
                     table_re, table_im, heading_step, speeds, same, out):  # pragma: no cover
@@ -120,49 +190,14 @@ def first_order_run(time, x, y, psi, u, omega, wavenumber, cos_beta, sin_beta, b
     -----
     Compiled with reassociation (``fastmath``), so that the sums over the components
     vectorise: the order of the sum differs from a sequential one by rounding only, and is
-    the same for a run alone and in a batch.
+    the same for a run alone and in a batch. Each sample is :func:`first_order_sample`.
     """
-    n = time.size
     m = omega.size
-    n_speed = speeds.size
-    n_head = table_re.shape[2] - 1
-    n_dof = table_re.shape[1]
-    two_pi = 2.0 * math.pi
-    inv_step = 1.0 / heading_step
     c = np.empty(m)
     s = np.empty(m)
     jj = np.empty(m, np.int64)
     ww = np.empty(m)
-    m_head = 1 if same else m
-    for k in range(n):
-        t = time[k]
-        xk = x[k]
-        yk = y[k]
-        for i in range(m):  # vectorised: the phases and their sine and cosine
-            th = omega[i] * t - wavenumber[i] * (xk * cos_beta[i] + yk * sin_beta[i]) + phase[i]
-            s[i], c[i] = sincos(th)
-        pk = psi[k]
-        for i in range(m_head):  # the relative headings on the table's grid
-            e = beta[i] - pk
-            e -= two_pi * math.floor(e / two_pi)
-            pos = e * inv_step
-            j = min(np.int64(pos), n_head - 1)
-            jj[i] = j
-            ww[i] = pos - j
-        s0 = 0
-        ws = 0.0
-        if n_speed > 1:
-            uk = u[k]
-            if uk >= speeds[n_speed - 1]:
-                s0 = n_speed - 2
-                ws = 1.0
-            elif uk > speeds[0]:
-                while speeds[s0 + 1] <= uk:
-                    s0 += 1
-                ws = (uk - speeds[s0]) / (speeds[s0 + 1] - speeds[s0])
-        for d in range(n_dof):
-            eta = _sum_one(table_re[s0], table_im[s0], c, s, jj, ww, same, d)
-            if ws > 0.0:
-                eta = (1.0 - ws) * eta + ws * _sum_one(table_re[s0 + 1], table_im[s0 + 1], c, s,
-                                                       jj, ww, same, d)
-            out[k, d] = eta
+    for k in range(time.size):
+        first_order_sample(time[k], x[k], y[k], psi[k], u[k], omega, wavenumber, cos_beta,
+                           sin_beta, beta, phase, table_re, table_im, heading_step, speeds,
+                           same, c, s, jj, ww, out[k])
