@@ -38,10 +38,12 @@ and in heading on a uniform grid of the RAOs' smallest heading step (the same va
 :meth:`RAO.__call__` when the table's headings are uniform).
 
 **What this pass is not.** It runs after the simulation, on the recorded motion: an
-autopilot in the loop does not see the first-order yaw (the total heading ψ + ψ₁ is an
-output only); for a wave-frequency heading disturbance inside the loop use the shaping
-filter :data:`~seahelm.environment.wave_yaw.WAVE_YAW`. Parametric roll is outside any linear
-RAO.
+autopilot in the loop does not see its first-order yaw. For that, the same components and the
+same per-sample code are evaluated inside the closed loop at the live state
+(:mod:`seahelm.environment.first_order_in_loop`, ``Problem(first_order=...)``, with
+``autopilot_sees_first_order=True``); for a wave-frequency heading disturbance without an RAO
+use the shaping filter :data:`~seahelm.environment.wave_yaw.WAVE_YAW`. Parametric roll is
+outside any linear RAO.
 
 References
 ----------
@@ -392,8 +394,8 @@ class FirstOrderMotions:
                                else "first-order (the model has no roll)")})
         if self.heading_total is not None:
             data["heading_total"] = (d, arr(self.heading_total), {
-                "units": "rad", "long_name": "heading psi + first-order yaw (autopilot does "
-                "not see it)"})
+                "units": "rad", "long_name": "heading psi + first-order yaw (after the run: the "
+                "autopilot did not see it)"})
         attrs = {k: (v if isinstance(v, (int, float, str)) else str(v))
                  for k, v in self.attrs.items()}
         return xr.Dataset(data, coords={"time": ("time", self.time, {"units": "s"})},

@@ -59,6 +59,9 @@ from ..resources import memory_limit
 from ..vessels.base import VesselModel
 from .compiled_step import compiled_advance_source, compiled_stage_loop_source
 from .composition import compose
+from ..environment.first_order_in_loop import HEADING_TOTAL
+from ..environment.first_order_kernel import first_order_sample
+from .wave_motion_stage import wave_constants
 from .environment_stage import (
     environment_stage,
     no_apply_loads,
@@ -184,6 +187,7 @@ def compile_closed_loop(
     stage_loop: bool | None = None,
     exact_actuator: bool | None = None,
     jit: bool = True,
+    first_order: tuple[tuple[str, ...], bool] | None = None,
 ) -> ModuleType:
     """The compiled closed-loop module for one combination of components (cached).
 
@@ -217,6 +221,10 @@ def compile_closed_loop(
         Python functions (:func:`~seahelm.simulation.inlining.python_function`), so nothing is
         compiled, nothing is written to the kernel cache or numba's, and a breakpoint in a
         component's source is hit. The stages are written out or looped over as compiled.
+    first_order : (tuple of str, bool), optional
+        First-order wave motions in the loop (:mod:`seahelm.environment.first_order_in_loop`):
+        the degrees of freedom evaluated, and whether the controller's ``heading``
+        measurement is ``heading_total`` (ψ + ψ₁) instead of the model's ``heading``.
 
     Returns
     -------
@@ -255,15 +263,18 @@ def compile_closed_loop(
     # they doubled the loop's compile time (76 s against 31 s for the KVLCC2), and a call
     # costs little beside their transcendental functions
     parts += [_binding(loads, "environment_loads", inline=environment is None, jit=jit),
-              _binding(apply, "apply_loads", jit=jit)]
+              _binding(apply, "apply_loads", jit=jit),
+              _binding(first_order_sample, "first_order_sample", jit=jit)]
     n_env = 0 if environment is None else len(environment.output_labels)
+    waves = wave_constants(model, controller, wiring.measurement_from, n_env, first_order)
     header = ("" if jit else PYTHON_HEADER) + "".join(p[0] for p in parts) + (
         f"\nNX = {model.n_states}\nNA = {actuator.n_states}\nNU = {model.n_inputs}\n"
-        f"NYM = {model.n_outputs + n_env}\nNYA = {len(wiring.actuator_outputs)}\n"
+        f"NYM = {model.n_outputs + n_env + waves['NW_OUT']}\nNYA = {len(wiring.actuator_outputs)}\n"
         f"NCA = {len(wiring.actuator_commands)}\nNM = {controller.n_measurements}\n"
         f"NDM = {model.n_disturbances}\nHAS_ENV = {environment is not None}\n"
         f"HOLD_LOADS = {bool(getattr(environment, 'hold_over_step', False))}\n"
         f"EXACT_ACTUATOR = {bool(exact_actuator)}\n"
+        + "".join(f"{k} = {v}\n" for k, v in waves.items() if k != "measurement_from") +
         "FASTMATH = {\"arcp\", \"contract\", \"afn\", \"reassoc\"}\n"
     )
     header += _route_source("route_actuator_commands", "cmd, ca", [
@@ -272,7 +283,7 @@ def compile_closed_loop(
         f"u[{i}] = {'ya' if kind == 'actuator' else 'cmd'}[{j}]"
         for i, (kind, j) in enumerate(wiring.input_from)])
     header += _route_source("route_measurements", "ym, y", [
-        f"y[{i}] = ym[{j}]" for i, j in enumerate(wiring.measurement_from)])
+        f"y[{i}] = ym[{j}]" for i, j in enumerate(waves["measurement_from"])])
     if stage_loop is None:
         stage_loop = _stage_code_size(model, actuator, tableau, environment,
                                       exact_actuator, jit) > STAGE_LOOP_ABOVE
@@ -301,7 +312,8 @@ class _Slices:
     """
 
     def __init__(self, kernel: ModuleType, arrays: Sequence[np.ndarray],
-                 scratch_sizes: tuple[int, ...], threads: int | None = None) -> None:
+                 scratch_sizes: tuple[int, ...], threads: int | None = None,
+                 wave_sizes: tuple[int, int] = (1, 1)) -> None:
         import numba
 
         self.kernel = kernel
@@ -315,6 +327,7 @@ class _Slices:
         self.cuts = (np.array([0, n_runs]) if n_slices == 1 else
                      np.linspace(0, n_runs, n_slices + 1).round().astype(np.int64))
         self.scratch = [kernel.scratch(*scratch_sizes) for _ in range(n_slices)]
+        self.wave_scratch = [kernel.wave_scratch(*wave_sizes) for _ in range(n_slices)]
 
     def warm_up(self, n_steps: int, dt: float, ctrl_every: int, rec_every: int) -> None:
         """Compile or load the kernel for these argument types: a zero-step call (once
@@ -327,7 +340,7 @@ class _Slices:
         def one(s: int) -> None:
             self.kernel.run_slice(int(self.cuts[s]), int(self.cuts[s + 1]), k_start, k_stop,
                                   n_steps, dt, ctrl_every, rec_every, *self.arrays,
-                                  *self.scratch[s])
+                                  *self.scratch[s], *self.wave_scratch[s])
 
         n_slices = len(self.cuts) - 1
         if self.threads == 1 or k_stop == k_start:
@@ -588,6 +601,7 @@ def simulate(
     environment_params: Params | Sequence[Params] | np.ndarray | None = None,
     exact_actuator: bool | None = None,
     jit: bool | None = None,
+    first_order: Any = None,
 ) -> "SimResult":
     """Simulate a batch of closed-loop runs: a :class:`~seahelm.simulation.problem.Problem`.
 
@@ -670,6 +684,12 @@ def simulate(
         (to anything but empty, ``0``, ``false``, ``no`` or ``off``) or numba's JIT is
         disabled (``NUMBA_DISABLE_JIT=1``); see :func:`jit_enabled`. The result's
         ``metadata["execution"]`` says which loop ran (``"compiled"`` or ``"python"``).
+    first_order : FirstOrderInLoop, optional
+        First-order wave motions evaluated in the loop at the live state
+        (:func:`seahelm.environment.first_order_in_loop.first_order_in_loop`): recorded as
+        outputs (``heave``, ``roll_wave``, ``pitch``, ``yaw_wave``, ``heading_total``, and
+        ``roll`` on a model with roll); with ``autopilot_sees_first_order`` the controller's
+        ``heading`` is ``heading_total``. ``metadata["controller_heading"]`` says which.
 
     Returns
     -------
@@ -692,7 +712,7 @@ def simulate(
              "record_every": record_every, "bounds": bounds, "seed": seed,
              "metadata": metadata, "environment": environment,
              "environment_params": environment_params, "exact_actuator": exact_actuator,
-             "jit": jit}
+             "jit": jit, "first_order": first_order}
     given = {k: v for k, v in given.items() if v is not None}
     if model is not None and not isinstance(model, (Problem, VesselModel)):
         raise ParameterError(
@@ -759,6 +779,17 @@ def _run(problem: "Problem", *, throw: bool,
     dist_units = model.disturbance_units + env_units
     out_labels = model.output_labels + env_outputs
     out_units = model.output_units + env_output_units
+    first_order = problem.first_order
+    if first_order is None:
+        wave_arrays = (np.zeros((1, 6, 1)), np.zeros((1, 2, 1, 1, 2, 1)), np.zeros(1),
+                       np.zeros(1), np.ones(1))
+        wave_key = None
+    else:
+        wave_arrays = first_order.arrays
+        wave_key = (first_order.dofs, first_order.autopilot_sees_first_order)
+        wave_labels, wave_units = first_order.output_signals("roll_angle" in
+                                                             model.output_labels)
+        out_labels, out_units = out_labels + wave_labels, out_units + wave_units
 
     mp, m_cls = _param_rows("params", params, model.params_type)
     ap, a_cls = _param_rows("actuator_params", actuator_params, actuator.params_type)
@@ -793,7 +824,11 @@ def _run(problem: "Problem", *, throw: bool,
         ("x0", x0.shape[0]),
         ("actuator_x0", xa0.shape[0]), ("reference", ref.shape[0]),
         ("disturbance", dist.shape[0]),
+        *(() if first_order is None else (("first_order", first_order.n_runs),)),
     )
+    if first_order is not None and first_order.n_runs != n_runs:
+        raise ParameterError(f": the first-order motions were drawn for {first_order.n_runs} "
+                             f"run(s), the batch has {n_runs}", field="first_order")
 
     def rows(a: np.ndarray) -> np.ndarray:
         if a.shape[0] == n_runs and a.dtype == np.float64 and a.flags.c_contiguous:
@@ -817,7 +852,8 @@ def _run(problem: "Problem", *, throw: bool,
     if exact_actuator is None:
         exact_actuator = actuator.advance is not None
     kernel = compile_closed_loop(model, actuator, controller, tableau, environment,
-                                 exact_actuator=bool(exact_actuator), jit=use_jit)
+                                 exact_actuator=bool(exact_actuator), jit=use_jit,
+                                 first_order=wave_key)
     mr = as_records(mp, m_cls)
     ar = as_records(ap, a_cls)
     cr = as_records(cp, c_cls)
@@ -839,9 +875,10 @@ def _run(problem: "Problem", *, throw: bool,
     rec_cmd = np.full((n_runs, n_rec, ncmd), np.nan)
 
     slices = _Slices(kernel, (z, cs, cmd, ca, mr, ar, cr, er, dist, ref, lower, upper,
-                              status, t_fail, z_fail, rec_z, rec_y, rec_cmd),
+                              status, t_fail, z_fail, rec_z, rec_y, rec_cmd, *wave_arrays),
                      (ncmd, ca.shape[1], cs.shape[1], dist.shape[2], ref.shape[2]),
-                     threads=None if use_jit else 1)
+                     threads=None if use_jit else 1,
+                     wave_sizes=(wave_arrays[0].shape[2], wave_arrays[1].shape[3]))
     # compile or load the kernel before the clock starts: a zero-step call does it, so the
     # reported simulation time is the simulation's (first use of a combination compiles)
     c0 = _time.perf_counter()
@@ -852,7 +889,8 @@ def _run(problem: "Problem", *, throw: bool,
 
     with quiet():
         slices.warm_up(n_steps, float(dt), ctrl_every, record_every)
-        kernel.init_runs(*slices.arrays[:10], *slices.scratch[0])
+        kernel.init_runs(*slices.arrays[:10], *slices.scratch[0], *slices.arrays[18:],
+                         *slices.wave_scratch[0])
     compile_time = _time.perf_counter() - c0
     wall0 = _time.perf_counter()
     k = 0
@@ -911,6 +949,12 @@ def _run(problem: "Problem", *, throw: bool,
             "actuator_step": "closed-form" if exact_actuator else "integrated",
             "execution": "compiled" if use_jit else "python",
             **({} if environment is None else {"environment": environment.name}),
+            **({} if first_order is None else {
+                "first_order_motions": "in the loop: " + ", ".join(first_order.dofs)
+                + " (seahelm.environment.first_order_in_loop)",
+                "controller_heading": (f"{HEADING_TOTAL} (heading + first-order yaw)"
+                                       if first_order.autopilot_sees_first_order
+                                       else "heading")}),
             "dt": float(dt),
             "controller_dt": ctrl_dt,
             "t_final": float(t_final),

@@ -59,6 +59,7 @@ from seahelm.vessels.nomoto import nomoto1_output as _model_output
 from seahelm.vessels.nomoto import nomoto1_rhs as _model_rhs
 from seahelm.simulation.environment_stage import no_apply_loads as _apply_loads
 from seahelm.simulation.environment_stage import no_environment_loads as _environment_loads
+from seahelm.environment.first_order_kernel import first_order_sample as _first_order_sample
 
 actuator_output = inline_always(_actuator_output)
 actuator_rhs = inline_always(_actuator_rhs)
@@ -68,6 +69,7 @@ model_output = inline_always(_model_output)
 model_rhs = inline_always(_model_rhs)
 environment_loads = inline_always(_environment_loads)
 apply_loads = inline_always(_apply_loads)
+first_order_sample = inline_always(_first_order_sample)
 
 NX = 4
 NA = 1
@@ -80,6 +82,16 @@ NDM = 2
 HAS_ENV = False
 HOLD_LOADS = False
 EXACT_ACTUATOR = False
+HAS_WAVES = False
+NWD = 0
+WAVE_X = 0
+WAVE_Y = 0
+WAVE_PSI = 0
+WAVE_U = 0
+WAVE_OUT0 = 0
+WAVE_YAW = -1
+WAVE_ROLL = -1
+WAVE_ROLL_MODEL = -1
 FASTMATH = {"arcp", "contract", "afn", "reassoc"}
 
 
@@ -100,6 +112,27 @@ def route_measurements(ym, y):  # pragma: no cover - compiled
 # </header>
 
 NZ = NX + NA
+
+
+@njit(inline="always", fastmath=FASTMATH, _nrt=False)
+def wave_stage(t, i, ym, wcomp, wtab, wsame, wspeeds, wstep, wc, ws, wj, ww,
+               wout):  # pragma: no cover - compiled
+    """Run ``i``'s first-order motions at the live state into ``ym`` (after the model's and
+    the environment's outputs): η_j, then ψ + ψ₁ with a yaw RAO, then the model's roll + the
+    first-order roll on a model with roll (:mod:`seahelm.environment.first_order_in_loop`;
+    the post-pass's own per-sample code)."""
+    first_order_sample(t, ym[WAVE_X], ym[WAVE_Y], ym[WAVE_PSI], ym[WAVE_U], wcomp[i, 0],
+                       wcomp[i, 1], wcomp[i, 2], wcomp[i, 3], wcomp[i, 4], wcomp[i, 5],
+                       wtab[i, 0], wtab[i, 1], wstep[0], wspeeds, wsame[i] != 0.0, wc, ws, wj,
+                       ww, wout)
+    for j in range(NWD):
+        ym[WAVE_OUT0 + j] = wout[j]
+    o = WAVE_OUT0 + NWD
+    if WAVE_YAW >= 0:
+        ym[o] = ym[WAVE_PSI] + wout[WAVE_YAW]
+        o += 1
+    if WAVE_ROLL_MODEL >= 0:
+        ym[o] = ym[WAVE_ROLL_MODEL] + wout[WAVE_ROLL]
 
 
 @njit(inline="always", fastmath=FASTMATH, _nrt=False)
@@ -159,6 +192,20 @@ def scratch(ncmd, nca, ncs, nd, nr):
     return tuple(views)
 
 
+def wave_scratch(m, ndof):
+    """This slice's buffers of the first-order stage: cos θ_i, sin θ_i, heading cells and
+    weights over the ``m`` components (exactly ``m`` long: the sums run over their length),
+    and the ``ndof`` responses, each starting on a cache line of its own, as :func:`scratch`'s."""
+    line = 8
+    pad = -(-m // line) * line
+    block = np.zeros(3 * pad + -(-max(ndof, 1) // line) * line + 2 * line)
+    o = line + (-block.ctypes.data // 8) % line
+    c, s, w = (block[o + q * pad:o + q * pad + m] for q in range(3))
+    cells = np.zeros(pad + 2 * line, np.int64)
+    oc = line + (-cells.ctypes.data // 8) % line
+    return (c, s, cells[oc:oc + m], w, block[o + 3 * pad:o + 3 * pad + max(ndof, 1)])
+
+
 @njit(inline="always", _nrt=False)
 def load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi):  # pragma: no cover - compiled
     """Copy run ``i``'s states, commands and controller state into the thread's buffers."""
@@ -177,7 +224,8 @@ def load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi):  # pragma: no cover - c
 @njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False)
 def init_runs(z, cs, cmd, ca, mp, ap, cp, ep, dist, ref,
               xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds,
-              refk, yms, dm, lm):  # pragma: no cover - compiled
+              refk, yms, dm, lm, wcomp, wtab, wsame, wspeeds, wstep, wc, ws, wj, ww,
+              wout):  # pragma: no cover - compiled
     """Call the controller's init at t = 0 for every run (once per simulation)."""
     for i in range(z.shape[0]):
         ir = i if ref.shape[0] > 1 else 0
@@ -194,6 +242,8 @@ def init_runs(z, cs, cmd, ca, mp, ap, cp, ep, dist, ref,
             for j in range(dist.shape[2]):
                 d0[j] = dist[idist, 0, j]
             environment_loads(0.0, xv, u, mp[i], ym, d0, ep[i], lm)
+        if HAS_WAVES:
+            wave_stage(0.0, i, ym, wcomp, wtab, wsame, wspeeds, wstep, wc, ws, wj, ww, wout)
         route_measurements(ym, y)
         controller_init(zfull, y, refk, cp[i], csi)
         for j in range(cs.shape[1]):
@@ -204,16 +254,17 @@ def init_runs(z, cs, cmd, ca, mp, ap, cp, ep, dist, ref,
 def run_slice(
     i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_every,
     z, cs, cmd, ca, mp, ap, cp, ep, dist, ref, lower, upper,
-    status, t_fail, z_fail, rec_z, rec_y, rec_cmd,
+    status, t_fail, z_fail, rec_z, rec_y, rec_cmd, wcomp, wtab, wsame, wspeeds, wstep,
     xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds, refk,
-    yms, dm, lm,
+    yms, dm, lm, wc, ws, wj, ww, wout,
 ):  # pragma: no cover - compiled
     """Advance runs ``i_start`` to ``i_stop`` − 1 from step ``k_start`` to ``k_stop`` (the state
     arrays are updated in place, so a simulation goes on chunk by chunk).
 
     Runs with a non-zero status are skipped; a run that becomes invalid gets status 1 or 2,
     the time and state of the first invalid step, and stops. ``xv`` … ``refk`` are this
-    thread's scratch (:func:`scratch`).
+    thread's scratch (:func:`scratch`); ``wcomp`` … ``wstep`` the first-order motions'
+    inputs and ``wc`` … ``wout`` their scratch (:func:`wave_scratch`).
     """
     nd = dist.shape[2]
     nr = ref.shape[2]
@@ -269,6 +320,9 @@ def run_slice(
                         environment_loads(t, xv, u, mpi, ym, ds, epi, lm)
                     else:
                         environment_loads(t, xv, u, mpi, ym, d0, epi, lm)
+                if HAS_WAVES:  # the first-order motions at the live state (outputs only)
+                    wave_stage(t, i, ym, wcomp, wtab, wsame, wspeeds, wstep, wc, ws, wj, ww,
+                               wout)
             if control:
                 kr = k if ref_varies else 0
                 for j in range(nr):

@@ -156,6 +156,12 @@ class Problem:
         Take the actuator's states from its closed-form step (default: when it has one).
     jit : bool, optional
         Run the compiled loop (default) or the same loop as plain Python (``False``).
+    first_order : FirstOrderInLoop, optional
+        First-order wave motions evaluated in the loop
+        (:func:`~seahelm.environment.first_order_in_loop.first_order_in_loop`), one set of
+        components per run; the model must output ``north``, ``east``, ``heading`` and
+        ``surge_speed``, and a controller that is to see the first-order yaw must measure
+        ``heading``.
 
     Notes
     -----
@@ -189,6 +195,7 @@ class Problem:
     layout: BatchLayout | None = None
     exact_actuator: bool | None = None
     jit: bool | None = None
+    first_order: Any = None
 
     def __post_init__(self) -> None:
         def field_error(name: str, exc: Exception) -> ParameterError:
@@ -363,6 +370,7 @@ class Problem:
             use_jit = jit_enabled(self.jit)
         except ParameterError as exc:
             raise field_error("jit", exc) from None
+        _check_first_order(self.first_order, model, controller)
         if self.layout is not None and not isinstance(self.layout, BatchLayout):
             raise ParameterError(f"must be a BatchLayout, got {type(self.layout).__name__}",
                                  field="layout")
@@ -445,6 +453,35 @@ def _check_params(name: str, value: Any, cls: type) -> None:
         raise ParameterError(f"must be {cls.__name__}, a sequence of them or an array of "
                              f"rows (runs, {cls.n_values()}), got {type(value).__name__}",
                              field=name)
+
+
+def _check_first_order(first_order: Any, model: VesselModel, controller: Controller) -> None:
+    """The problem's first-order motions: the object, the model's outputs they are evaluated
+    from, and a ``heading`` measurement if the controller is to see the first-order yaw."""
+    if first_order is None:
+        return
+    from ..environment.first_order_in_loop import MOTION_INPUTS, FirstOrderInLoop
+
+    if not isinstance(first_order, FirstOrderInLoop):
+        raise ParameterError(
+            "must be a FirstOrderInLoop (seahelm.environment.first_order_in_loop."
+            f"first_order_in_loop(...)), got {type(first_order).__name__}", field="first_order")
+    missing = [f"{n} [{u}]" for n, u in MOTION_INPUTS.items() if n not in model.output_labels]
+    if missing:
+        raise ParameterError(
+            f": model '{model.name}' does not output {', '.join(missing)}, from which the "
+            f"first-order motions are evaluated (outputs: {', '.join(model.output_labels)})",
+            field="first_order")
+    clash = set(first_order.output_signals()[0]) & set(model.output_labels)
+    if clash:
+        raise ParameterError(f": model '{model.name}' already outputs "
+                             f"{', '.join(sorted(clash))}", field="first_order")
+    if first_order.autopilot_sees_first_order and "heading" not in \
+            controller.measurement_labels:
+        raise ParameterError(
+            f".autopilot_sees_first_order: controller '{controller.name}' does not measure "
+            f"`heading` (it measures {', '.join(controller.measurement_labels) or 'nothing'})",
+            field="first_order", value=True)
 
 
 def _rebuild(fields: dict[str, Any]) -> Problem:
