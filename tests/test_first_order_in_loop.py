@@ -131,7 +131,7 @@ def test_off_changes_nothing_bit_for_bit(mariner, barge, sea):
     n = off.output.shape[-1]
     np.testing.assert_array_equal(on.output[..., :n], off.output)
     assert on.output_labels[:n] == off.output_labels
-    assert "first_order_motions" not in off.metadata
+    assert "first_order_in_loop" not in off.metadata and "first_order_in_loop" in on.metadata
 
 
 def test_a_batch_equals_its_runs_one_by_one(mariner, barge, sea):

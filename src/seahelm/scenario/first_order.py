@@ -20,9 +20,18 @@ settings and interpolated in between (one speed when they vary by less than 0.25
 the second child of run i's sea stream (``SeedSequence(seed, spawn_key=(i, 1))``; the load
 envelope draws from the first), with the batch seed as the load envelope has it.
 
-The pass runs after the simulation: the autopilot does not see the first-order yaw (the
-closed form has none; the in-loop wave-frequency heading is the shaping filter
-:data:`~seahelm.environment.wave_yaw.WAVE_YAW`).
+``rao_file`` (relative to the scenario file; :func:`~seahelm.environment.rao_io.read_rao`: a
+capytaine NetCDF such as the shipped box barge, seahelm's RAO NetCDF or an RAO table) replaces
+the closed form (its one speed used at every speed).
+
+By default the pass runs after the simulation: the autopilot does not see the first-order
+yaw. ``autopilot_sees_first_order = true`` evaluates the motions inside the closed loop instead
+(:func:`first_order_in_the_loop`, :mod:`seahelm.environment.first_order_in_loop`: the same
+components, seeds and per-sample code) and feeds the autopilot's ``heading`` measurement ψ + ψ₁;
+the result then also has ``yaw_wave`` and ``heading_total`` (what the autopilot saw), and
+``roll`` only on a model with roll. It needs an RAO with yaw — a ``rao_file`` with a yaw degree
+of freedom (the closed-form RAOs have none; refused, naming the key) — the same setting in
+every run, one ``rao_file`` and one ``components`` for the batch.
 """
 
 from __future__ import annotations
@@ -37,7 +46,7 @@ import numpy as np
 from ..errors import ParameterError
 from .errors import at_key as _err
 
-__all__ = ["first_order_settings", "add_first_order_motions"]
+__all__ = ["first_order_settings", "add_first_order_motions", "first_order_in_the_loop"]
 
 
 def first_order_settings(v: dict[str, Any], h3: float, ship: Any, source: str
@@ -72,7 +81,33 @@ def first_order_settings(v: dict[str, Any], h3: float, ship: Any, source: str
         except ParameterError as exc:
             raise _err(source, "environment.waves.spreading_parameter",
                        exc.reason.lstrip(": ")) from None
+    rao_file = v.get("rao_file")
+    if rao_file is not None:
+        from pathlib import Path
+
+        from ..environment.rao_io import read_rao
+
+        path = Path(rao_file)
+        path = path if path.is_absolute() else Path(source).parent / path
+        try:
+            dofs = read_rao(path).dofs
+        except (OSError, ParameterError) as exc:
+            raise _err(source, "environment.waves.rao_file", str(exc)) from None
+        rao_file = str(path)
+    else:
+        dofs = ("heave", "pitch") + (("roll",) if v.get("metacentric_height", getattr(
+            ship, "metacentric_height", None)) is not None else ())
+    sees = bool(v.get("autopilot_sees_first_order", False))
+    if sees and "yaw" not in dofs:
+        raise _err(source, "environment.waves.autopilot_sees_first_order",
+                   "needs an RAO with a yaw degree of freedom; "
+                   + (f"`rao_file` {rao_file} has {', '.join(dofs)}" if rao_file else
+                      "the closed-form RAOs (Jensen et al. 2004, the default) have none")
+                   + ". Give `rao_file`: a capytaine NetCDF (e.g. the shipped box barge, "
+                   "seahelm.environment.rao_io.box_barge_database()) or an RAO table with a yaw "
+                   "column")
     return {"h3": float(h3), "spectrum": v["spectrum"], "seed": int(v.get("seed", 0)),
+            "rao_file": rao_file, "autopilot_sees": sees,
             "direction": math.radians(float(v["direction_deg"])),
             "gm": v.get("metacentric_height", getattr(ship, "metacentric_height", None)),
             "components": int(v.get("components", 64)),
@@ -84,6 +119,11 @@ def first_order_settings(v: dict[str, Any], h3: float, ship: Any, source: str
 
 def _raos(spec: dict[str, Any], u: np.ndarray) -> list[Any]:
     from ..environment.rao import closed_form_rao
+
+    if spec.get("rao_file"):
+        from ..environment.rao_io import read_rao
+
+        return [read_rao(spec["rao_file"])]
 
     L, B, T, cb = spec["hull"]
     hull = types.SimpleNamespace(length=L, beam=B, draft=T, block_coefficient=cb)
@@ -135,15 +175,87 @@ def add_first_order_motions(result: Any, batch_seed: int | None, source: str) ->
             raise _err(source, "environment.waves.first_order_motions", str(exc)) from None
         for dof, v in m.values.items():
             values.setdefault(dof, np.full((R, n), np.nan))[ok] = v
-    units = {"heave": "m", "pitch": "rad", "roll": "rad"}
-    names = {"heave": "heave", "pitch": "pitch", "roll": "roll_wave"}
+    from ..environment.first_order import OUTPUT_NAMES
+    from ..environment.rao import DOF_UNITS
+
     for dof, v in values.items():
-        result.extra[names[dof]] = (v, units[dof], f"first-order (wave-frequency) {dof}")
+        result.extra[OUTPUT_NAMES[dof]] = (v, DOF_UNITS[dof].split("/")[0],
+                                           f"first-order (wave-frequency) {dof}")
     if "roll" in values:
         total = values["roll"] + (result["roll_angle"] if has_roll else 0.0)
         result.extra["roll"] = (total, "rad", "model roll angle + first-order roll" if has_roll
                                 else "first-order roll (the model has no roll)")
+    if "yaw" in values:
+        result.extra["heading_total"] = (result["heading"] + values["yaw"], "rad",
+                                         "heading + first-order yaw (after the run: the "
+                                         "autopilot did not see it)")
+    files = {spec.get("rao_file") for spec in specs}
     result.metadata["first_order_motions"] = (
-        "heave, pitch" + (", roll" if "roll" in values else "") + " from closed-form RAOs "
-        "(Jensen et al. 2004) in the irregular sea, added after the run (seahelm.environment."
-        "first_order); NaN in diverged runs")
+        ", ".join(values) + " from "
+        + ("closed-form RAOs (Jensen et al. 2004)" if files == {None} else
+           "RAO file(s) " + ", ".join(str(f) for f in files if f)
+           + (" and closed-form RAOs" if None in files else ""))
+        + " in the irregular sea, added after the run (seahelm.environment.first_order); NaN "
+        "in diverged runs")
+
+
+def first_order_in_the_loop(specs: list[dict[str, Any]], batch_seed: int | None, source: str
+                            ) -> Any:
+    """The in-loop motions of a batch whose runs ask for ``autopilot_sees_first_order``.
+
+    Run i's components are drawn as the post-pass draws them (the second child of run i's sea
+    stream, over the RAO's frequency table) and stacked for the loop.
+
+    Parameters
+    ----------
+    specs : list of dict
+        The runs' settings (:func:`first_order_settings`).
+    batch_seed : int or None
+        The batch's (Monte-Carlo) seed.
+    source : str
+        Scenario name for messages.
+
+    Returns
+    -------
+    FirstOrderInLoop or None
+        None when no run asks for it (the post-pass then runs after the simulation).
+    """
+    sees = {bool(s.get("autopilot_sees")) for s in specs}
+    if sees == {False}:
+        return None
+    if len(sees) > 1:
+        raise _err(source, "environment.waves.autopilot_sees_first_order",
+                   "must be the same in every run (the motions are in the loop or after it)")
+    for key, what in (("rao_file", "one RAO file"), ("components", "one number of "
+                                                                     "components")):
+        if len({s[key] for s in specs}) > 1:
+            raise _err(source, f"environment.waves.{key}", f"must be the same in every run "
+                       f"when the autopilot sees the first-order yaw ({what} for the batch's "
+                       "tables)")
+    from ..environment.first_order import WaveComponents, draw_wave_components
+    from ..environment.first_order_in_loop import first_order_in_loop
+    from ..environment.rao_io import read_rao
+    from ..environment.spectra import spectrum_from_wave_height
+
+    rao = read_rao(specs[0]["rao_file"])
+    band = (float(rao.frequency[0]), float(rao.frequency[-1]))
+    spectra: dict[tuple[str, float], Any] = {}
+    parts = []
+    for i, spec in enumerate(specs):
+        key = (spec["spectrum"], spec["h3"])
+        if key not in spectra:
+            spectra[key] = spectrum_from_wave_height(*key)
+        entropy = spec["seed"] if batch_seed is None else [spec["seed"], batch_seed]
+        parts.append(draw_wave_components(
+            spectra[key], spec["direction"], runs=1,
+            seed=[np.random.SeedSequence(entropy, spawn_key=(i, 1))],
+            n_components=spec["components"], band=band, spreading=spec["spreading"],
+            spreading_parameter=spec["spreading_parameter"]))
+    stacked = WaveComponents(*(np.concatenate([getattr(p, f) for p in parts]) for f in (
+        "frequency", "wavenumber", "direction", "amplitude", "phase")), band,
+        [p.seeds[0] for p in parts])
+    try:
+        return first_order_in_loop(next(iter(spectra.values())), rao, wave_direction=0.0,
+                                   components=stacked, autopilot_sees_first_order=True)
+    except ParameterError as exc:
+        raise _err(source, "environment.waves.rao_file", str(exc)) from None

@@ -91,6 +91,7 @@ _ENGINE_KEYS = {
     "controller_params": "controller.params",
     "reference": "controller.reference",
     "disturbance": "environment.disturbance",
+    "first_order": "environment.waves.autopilot_sees_first_order",
 }
 
 
@@ -438,6 +439,11 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
 
     sim = scn.simulation
     assert sim is not None  # (a [maneuver] scenario goes to .maneuver)
+    in_loop = None
+    if env is not None and env.first_order is not None:
+        from .first_order import first_order_in_the_loop
+
+        in_loop = first_order_in_the_loop(env.first_order, seed, source)
     inputs = dict(
         model=model,
         params=np.array(mp),
@@ -458,12 +464,13 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
         bounds=dict(sim.bounds),
         seed=seed,
         metadata={"title": scn.title, "scenario_source": source, "scenario_text": text,
-                  **({} if env is None or env.first_order is None else
+                  **({} if env is None or env.first_order is None or in_loop is not None else
                      {"first_order_motions": json.dumps(env.first_order)})},
         layout=layout,
         environment=None if env is None else env.environment,
         environment_params=None if env is None else env.params,
         exact_actuator=sim.exact_actuator,
+        first_order=in_loop,
     )
     try:  # the problem validates itself: its errors name their field, the key comes from it
         return RunBatch(**inputs)

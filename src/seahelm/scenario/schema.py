@@ -150,7 +150,10 @@ class WavesSection(_Strict):
     ``irregular = true``) adds the first-order heave, roll and pitch of the same sea to the
     result (:mod:`seahelm.scenario.first_order`): closed-form RAOs of the ship
     (``metacentric_height`` [m] for roll, else the particulars'), ``components`` per run,
-    directional ``spreading`` (``"cos-2s"`` or ``"cos-n"`` with ``spreading_parameter``)."""
+    directional ``spreading`` (``"cos-2s"`` or ``"cos-n"`` with ``spreading_parameter``);
+    ``rao_file`` (relative to the scenario file: a capytaine NetCDF, seahelm's RAO NetCDF or an
+    RAO table) in place of the closed form; ``autopilot_sees_first_order = true`` evaluates
+    them inside the loop and feeds the autopilot ψ + ψ₁, which needs a ``rao_file`` with yaw."""
 
     model: str = "lvov"
     height: Annotated[Number, Field(ge=0)] | None = None  # 0: no waves (an irregular sea: 1-10 m)
@@ -172,6 +175,8 @@ class WavesSection(_Strict):
     components: Annotated[int, Strict(), Field(ge=1, le=100_000)] = 64
     spreading: Literal["cos-2s", "cos-n"] | None = None
     spreading_parameter: Positive = 2.0
+    rao_file: str | None = None
+    autopilot_sees_first_order: StrictBool = False
 
     @model_validator(mode="after")
     def _one_each(self) -> "WavesSection":
@@ -183,7 +188,8 @@ class WavesSection(_Strict):
         if "seed" in self.model_fields_set and not self.irregular:
             raise ValueError("`seed` draws an irregular sea: set `irregular = true` (regular "
                              "waves are not random)")
-        extra = {"metacentric_height", "components", "spreading", "spreading_parameter"}
+        extra = {"metacentric_height", "components", "spreading", "spreading_parameter",
+                 "rao_file", "autopilot_sees_first_order"}
         if self.first_order_motions and not self.irregular:
             raise ValueError("`first_order_motions` are those of an irregular sea: set "
                              "`irregular = true`")

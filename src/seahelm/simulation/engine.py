@@ -950,7 +950,7 @@ def _run(problem: "Problem", *, throw: bool,
             "execution": "compiled" if use_jit else "python",
             **({} if environment is None else {"environment": environment.name}),
             **({} if first_order is None else {
-                "first_order_motions": "in the loop: " + ", ".join(first_order.dofs)
+                "first_order_in_loop": ", ".join(first_order.dofs)
                 + " (seahelm.environment.first_order_in_loop)",
                 "controller_heading": (f"{HEADING_TOTAL} (heading + first-order yaw)"
                                        if first_order.autopilot_sees_first_order

@@ -1,0 +1,71 @@
+"""Scenario: ``[environment.waves] rao_file`` and ``autopilot_sees_first_order = true`` (the
+first-order motions in the loop, the autopilot fed ψ + ψ₁): refused without a yaw RAO, naming
+the key; in the loop, run i's motions are the post-pass's of run i's documented seed on its
+recorded track; a ``rao_file`` alone replaces the closed form in the post-pass."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from seahelm.environment import rao_io
+from seahelm.environment.first_order import first_order_motions
+from seahelm.environment.spectra import spectrum_from_wave_height
+from seahelm.scenario import ScenarioError, parse_scenario, run_scenario
+
+EXAMPLE = Path(__file__).parents[1] / "examples" / "container_waves_motions.toml"
+BARGE = rao_io.box_barge_database()
+pytestmark = pytest.mark.filterwarnings("ignore:Lvov:seahelm.errors.ValidityRangeWarning")
+
+
+def text(*extra: str, **replace: str) -> str:
+    out = EXAMPLE.read_text().replace("t_final = 600.0", "t_final = 60.0").replace(
+        "runs = 4", "runs = 2")
+    out = out.replace("components = 64", "components = 64\n" + "\n".join(extra))
+    for old, new in replace.items():
+        out = out.replace(old, new)
+    return out
+
+
+def _post_pass(result, i, dofs):
+    rec = {"time": result.time, **{n: result[n][i] for n in ("surge_speed", "heading", "north",
+                                                              "east")}}
+    return first_order_motions(rec, spectrum_from_wave_height("rakhmanin-firsov-2", 3.0),
+                               rao_io.read_rao(BARGE), wave_direction=math.radians(60.0),
+                               seed=[np.random.SeedSequence([34, 1], spawn_key=(i, 1))],
+                               dofs=dofs)
+
+
+def test_the_closed_form_has_no_yaw_the_key_is_named():
+    with pytest.raises(ScenarioError, match=r"\[environment\.waves\.autopilot_sees_first_order\]"
+                       r".*closed-form RAOs.*have none.*rao_file"):
+        run_scenario(parse_scenario(text("autopilot_sees_first_order = true"), source="bad"))
+    with pytest.raises(ScenarioError, match=r"\[environment\.waves\.rao_file\]"):
+        run_scenario(parse_scenario(text('rao_file = "no-such-file.nc"'), source="bad"))
+
+
+def test_in_the_loop_the_autopilot_sees_the_total_heading():
+    res = run_scenario(parse_scenario(text(f'rao_file = "{BARGE}"',
+                                           "autopilot_sees_first_order = true"), source="in"))
+    assert np.all(res.status == 0)
+    assert res.metadata["controller_heading"].startswith("heading_total")
+    assert "first_order_motions" not in res.metadata  # no post-pass
+    dofs = ("heave", "roll", "pitch", "yaw")
+    for i in range(2):
+        post = _post_pass(res, i, dofs)
+        for dof, name in zip(dofs, ("heave", "roll_wave", "pitch", "yaw_wave")):
+            np.testing.assert_allclose(res[name][i], post[dof][0], rtol=0, atol=1e-9)
+        np.testing.assert_allclose(res["heading_total"][i], res["heading"][i] + post["yaw"][0],
+                                   rtol=0, atol=1e-9)
+    np.testing.assert_array_equal(res["roll"], res["roll_angle"] + res["roll_wave"])
+
+
+def test_a_rao_file_alone_replaces_the_closed_form_after_the_run():
+    res = run_scenario(parse_scenario(text(f'rao_file = "{BARGE}"'), source="file"))
+    assert "controller_heading" not in res.metadata
+    post = _post_pass(res, 1, ("heave", "roll", "pitch"))
+    np.testing.assert_array_equal(res["heave"][1], post["heave"][0])
+    np.testing.assert_array_equal(res["roll_wave"][1], post["roll"][0])
