@@ -11,8 +11,9 @@ recorded (10 Hz), headings spread over ±0.3 rad. Measured in the same process, 
   Tp 10 s, from 30° off the bow), ``--components`` per run (default 64), long-crested and,
   on a second line, with cos-2s spreading (s = 2);
 * ``in loop`` — the same runs with the same motions evaluated inside the closed loop
-  (``simulate(..., first_order=first_order_in_loop(...))``, :mod:`seahelm.environment.first_order_in_loop`:
-  drawing the components and tabulating the RAOs included), recorded as outputs at every step;
+  (``simulate(..., first_order=first_order_in_loop(...))``,
+  :mod:`seahelm.environment.first_order_in_loop`: drawing the components and tabulating the
+  RAOs included), recorded as outputs at every step;
 * ``in loop, sees ψ₁`` — the same with the autopilot fed ψ + ψ₁ (``autopilot_sees_first_order``),
   which needs a yaw RAO: the shipped capytaine box barge's (heave, roll, pitch and yaw; a cost
   figure only: it is not the KVLCC2's hull).

@@ -269,7 +269,8 @@ def compile_closed_loop(
     waves = wave_constants(model, controller, wiring.measurement_from, n_env, first_order)
     header = ("" if jit else PYTHON_HEADER) + "".join(p[0] for p in parts) + (
         f"\nNX = {model.n_states}\nNA = {actuator.n_states}\nNU = {model.n_inputs}\n"
-        f"NYM = {model.n_outputs + n_env + waves['NW_OUT']}\nNYA = {len(wiring.actuator_outputs)}\n"
+        f"NYM = {model.n_outputs + n_env + waves['NW_OUT']}\n"
+        f"NYA = {len(wiring.actuator_outputs)}\n"
         f"NCA = {len(wiring.actuator_commands)}\nNM = {controller.n_measurements}\n"
         f"NDM = {model.n_disturbances}\nHAS_ENV = {environment is not None}\n"
         f"HOLD_LOADS = {bool(getattr(environment, 'hold_over_step', False))}\n"

@@ -57,11 +57,14 @@ def wave_constants(model: VesselModel, controller: Controller, measurement_from:
     Raises
     ------
     ParameterError
-        If the model lacks an output the motions are evaluated from.
+        If the model lacks an output the motions are evaluated from, or the controller that
+        is to see ψ + ψ₁ measures no ``heading``.
     """
     meas = list(measurement_from)
     if first_order is None:
-        return {"HAS_WAVES": False, "NWD": 0, "NW_OUT": 0, "measurement_from": meas}
+        return {"HAS_WAVES": False, "NWD": 0, "NW_OUT": 0, "WAVE_X": 0, "WAVE_Y": 0,
+                "WAVE_PSI": 0, "WAVE_U": 0, "WAVE_OUT0": 0, "WAVE_YAW": -1, "WAVE_ROLL": -1,
+                "WAVE_ROLL_MODEL": -1, "measurement_from": meas}
     dofs, sees = first_order
     outs = model.output_labels
     missing = [n for n in MOTION_INPUTS if n not in outs]
@@ -73,6 +76,10 @@ def wave_constants(model: VesselModel, controller: Controller, measurement_from:
     labels, _ = output_signals(dofs, "roll_angle" in outs)
     base = model.n_outputs + n_env
     if sees:
+        if "heading" not in controller.measurement_labels:
+            raise ParameterError(
+                f".autopilot_sees_first_order: controller '{controller.name}' does not measure "
+                "`heading`", field="first_order", value=True)
         meas[controller.measurement_labels.index("heading")] = base + labels.index(
             HEADING_TOTAL)
     return {"HAS_WAVES": True, "NWD": len(dofs), "NW_OUT": len(labels),
