@@ -20,7 +20,33 @@ from numpy.typing import ArrayLike
 from .._validate import as_float_array
 from ..errors import ParameterError
 
-__all__ = ["plot_polar_diagram"]
+__all__ = ["plot_polar_diagram", "contour_levels"]
+
+
+def contour_levels(low: float, high: float, levels: int = 12) -> np.ndarray:
+    """Level boundaries at round values covering [low, high] (the colour bar's ticks).
+
+    matplotlib's :class:`~matplotlib.ticker.MaxNLocator` picks at most ``levels`` intervals of
+    1, 2, 2.5 or 5 times a power of ten (``linspace(low, high)`` gave ticks such as 0.640,
+    1.281, ...). A constant field (``low == high``) gets the unit interval above it.
+
+    Parameters
+    ----------
+    low, high : float
+        The smallest and largest value drawn, in the unit shown.
+    levels : int, optional
+        Most intervals (default 12).
+
+    Returns
+    -------
+    numpy.ndarray
+        Increasing boundaries, the first <= ``low``, the last >= ``high``.
+    """
+    from matplotlib.ticker import MaxNLocator
+
+    if not high > low:
+        high = low + 1.0
+    return MaxNLocator(nbins=levels, steps=[1, 2, 2.5, 5, 10]).tick_values(low, high)
 
 
 def _closed(heading: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -105,8 +131,8 @@ def plot_polar_diagram(speed: ArrayLike, heading: ArrayLike, values: ArrayLike, 
     else:
         T, R = np.meshgrid(eps, U)
         top = float(np.max(z))
-        bounds = np.linspace(float(np.min(z)), top if top > np.min(z) else top + 1.0, levels + 1)
-        cs = ax.contourf(T, R, z, levels=bounds, cmap="viridis")
+        cs = ax.contourf(T, R, z, levels=contour_levels(float(np.min(z)), top, levels),
+                         cmap="viridis")
         ax.figure.colorbar(cs, ax=ax, pad=0.1, shrink=0.85, label=f"{label} [{unit}]")
         if limit is not None:
             reached = float(np.min(z)) <= limit <= top
