@@ -45,13 +45,14 @@ def test_the_result_has_heave_pitch_and_the_total_roll(result):
 
 def test_run_i_draws_from_the_second_child_of_its_sea_stream(result):
     """As documented: SeedSequence([seed, batch seed], spawn_key=(i, 1)), the closed-form RAOs
-    at four speeds over the range the runs sharing the sea recorded, Table 2's spectrum for
-    h3% = 3 m."""
+    at the multiples of 0.25 m/s that bracket run i's own speeds (it spans more than 0.25
+    m/s), Table 2's spectrum for h3% = 3 m."""
     ship = get_ship("son-nomoto-container")
     i = 1
-    u = result["surge_speed"]
-    raos = [closed_form_rao(ship, s, metacentric_height=0.3)
-            for s in np.linspace(u.min(), u.max(), 4)]
+    u = result["surge_speed"][i]
+    assert u.max() - u.min() > 0.25
+    nodes = np.arange(math.floor(u.min() / 0.25), math.ceil(u.max() / 0.25) + 1) * 0.25
+    raos = [closed_form_rao(ship, s, metacentric_height=0.3) for s in nodes]
     rec = {"time": result.time, **{n: result[n][i] for n in ("surge_speed", "heading", "north",
                                                               "east")}}
     m = first_order_motions(rec, spectrum_from_wave_height("rakhmanin-firsov-2", 3.0), raos,
@@ -95,3 +96,41 @@ def test_without_the_key_the_particulars_gm_gives_the_roll(result):
     other = run_scenario(parse_scenario(text, source="no key"))
     np.testing.assert_array_equal(other["roll_wave"], result["roll_wave"])
     np.testing.assert_array_equal(other["heave"], result["heave"])
+
+
+def test_a_sweep_in_chunks_has_the_motions_of_the_whole_batch(tmp_path):
+    """A sweep's chunk is a slice of the runs: its first-order settings are sliced with it and
+    its runs seeded by their index in the whole batch (a chunk of one run failed with an
+    IndexError, and chunk k's run i took run i's sea)."""
+    from seahelm.sweep import open_sweep, run_sweep
+
+    text = short(EXAMPLE.read_text(), **{"runs = 2": "runs = 3"})
+    whole = run_scenario(parse_scenario(text, source="example"))
+    path = tmp_path / "example.toml"
+    path.write_text(text)
+    run_sweep(path, tmp_path / "s.zarr", text=text, chunk_size=2)
+    with open_sweep(tmp_path / "s.zarr") as ds:
+        for name in ("heave", "pitch", "roll_wave", "roll"):
+            np.testing.assert_array_equal(ds[name].values, whole[name])
+
+
+@pytest.mark.parametrize("ranges, groups", [
+    # a constant speed: the RAO at that speed; same speeds together
+    ([(7.7175, 7.7175), (5.0, 5.0), (7.7175, 7.7175)], [((5.0,), [1]), ((7.7175,), [0, 2])]),
+    ([(5.0, 5.2)], [((5.1,), [0])]),                                  # spans < 0.25 m/s
+    # the multiples of 0.25 m/s bracketing the speeds; two grid speeds: a group each
+    ([(5.0, 5.3), (7.1, 7.4), (5.1, 5.6)], [((5.0, 5.25, 5.5, 5.75), [0, 2]),
+                                            ((7.0, 7.25, 7.5), [1])]),
+    ([(4.0, 8.0), (7.1, 7.4)], [((4.0, 4.25, 4.5, 4.75, 5.0, 5.25, 5.5, 5.75, 6.0, 6.25, 6.5,
+                                  6.75, 7.0, 7.25, 7.5, 7.75, 8.0), [0, 1])]),
+])
+def test_a_runs_raos_are_at_its_own_speeds(ranges, groups):
+    from seahelm.scenario.first_order import SPEED_STEP, _speed_groups
+
+    assert SPEED_STEP == 0.25
+    speed = np.array([np.linspace(lo, hi, 5) for lo, hi in ranges])
+    got = _speed_groups(speed, list(range(len(ranges))))
+    assert [m for _, m in got] == [m for _, m in groups]
+    for (s, _), (expected, _) in zip(got, groups):
+        np.testing.assert_allclose(s, expected, rtol=1e-15)
+    assert _speed_groups(speed, []) == []

@@ -13,8 +13,10 @@ The RAOs are the closed-form estimates of the ship's particulars
 (:func:`~seahelm.environment.rao.closed_form_rao`: heave and pitch by Jensen et al. 2004,
 roll with the section's ``metacentric_height`` GM [m], else the particulars' — a ship file's
 ``[particulars]`` or the catalog ship's; without either heave and pitch only),
-evaluated at four speeds spanning the surge speeds recorded by the runs that share the sea
-settings and interpolated in between (one speed when they vary by less than 0.25 m/s). The sea is the section's spectrum for its height
+evaluated per run: at its mid speed when its recorded surge speed spans less than 0.25 m/s,
+else at the multiples of 0.25 m/s that bracket its speeds, interpolated linearly in the
+speed. A run's motions depend on its own record only, not on the runs computed with it (a
+sweep's chunks give the whole batch's values). The sea is the section's spectrum for its height
 (as for the load envelope, Table 2's peak frequency), mean direction ``direction_deg`` (from),
 ``components`` per run (default 64), optional ``spreading``. Run i draws its components from
 the second child of run i's sea stream (``SeedSequence(seed, spawn_key=(i, 1))``; the load
@@ -117,7 +119,21 @@ def first_order_settings(v: dict[str, Any], h3: float, ship: Any, source: str
                      float(ship.block_coefficient)]}
 
 
-def _raos(spec: dict[str, Any], u: np.ndarray) -> list[Any]:
+#: The speed step of the RAOs [m/s]: a run whose recorded surge speed spans less takes the
+#: RAO at its mid speed; another takes the RAOs at the multiples of it that bracket its speeds.
+SPEED_STEP = 0.25
+
+
+def _rao_speeds(lo: float, hi: float) -> tuple[float, ...]:
+    """The RAO speeds of runs whose speeds span [lo, hi] [m/s] (:data:`SPEED_STEP`)."""
+    lo, hi = max(lo, 0.0), max(hi, 0.0)
+    if hi - lo < SPEED_STEP:
+        return (0.5 * (lo + hi),)
+    k0, k1 = math.floor(lo / SPEED_STEP), math.ceil(hi / SPEED_STEP)
+    return tuple(k * SPEED_STEP for k in range(k0, k1 + 1))
+
+
+def _raos(spec: dict[str, Any], speeds: tuple[float, ...]) -> list[Any]:
     from ..environment.rao import closed_form_rao
 
     if spec.get("rao_file"):
@@ -127,9 +143,38 @@ def _raos(spec: dict[str, Any], u: np.ndarray) -> list[Any]:
 
     L, B, T, cb = spec["hull"]
     hull = types.SimpleNamespace(length=L, beam=B, draft=T, block_coefficient=cb)
-    lo, hi = max(float(u.min()), 0.0), max(float(u.max()), 0.0)
-    speeds = [0.5 * (lo + hi)] if hi - lo < 0.25 else list(np.linspace(lo, hi, 4))
     return [closed_form_rao(hull, s, metacentric_height=spec["gm"]) for s in speeds]
+
+
+def _speed_groups(speed: np.ndarray, rows: list[int]) -> list[tuple[tuple[float, ...],
+                                                                    list[int]]]:
+    """The runs ``rows`` by the RAO speeds they are computed with.
+
+    A run whose speed spans less than :data:`SPEED_STEP` takes the RAO at its mid speed (runs
+    of the same mid speed together); the others take the multiples of the step that bracket
+    their speeds, interpolated linearly, in groups whose speed ranges lie within a step of each
+    other (a sweep's distinct speeds: a group each). Either way a run's motions depend on its
+    own record only, not on the runs computed with it (a sweep's chunks give the same values
+    as the whole batch).
+    """
+    single: dict[float, list[int]] = {}
+    spread: list[tuple[float, float, int]] = []
+    for i in rows:
+        lo, hi = float(np.min(speed[i])), float(np.max(speed[i]))
+        speeds = _rao_speeds(lo, hi)
+        if len(speeds) == 1:
+            single.setdefault(speeds[0], []).append(i)
+        else:
+            spread.append((max(lo, 0.0), max(hi, 0.0), i))
+    out = [((u,), members) for u, members in sorted(single.items())]
+    group: list[tuple[float, float, int]] = []
+    for item in sorted(spread) + [(math.inf, math.inf, -1)]:
+        if group and item[0] > max(g[1] for g in group) + SPEED_STEP:
+            out.append((_rao_speeds(min(g[0] for g in group), max(g[1] for g in group)),
+                        sorted(g[2] for g in group)))
+            group = []
+        group.append(item)
+    return out
 
 
 def add_first_order_motions(result: Any, batch_seed: int | None, source: str) -> None:
@@ -139,7 +184,9 @@ def add_first_order_motions(result: Any, batch_seed: int | None, source: str) ->
     ----------
     result : SimResult
         The simulated runs; ``metadata["first_order_motions"]`` holds the runs' settings
-        (JSON) and is replaced by a description.
+        (JSON) and is replaced by a description; ``metadata["first_order_first_run"]`` (a
+        sweep's chunk, :func:`seahelm.sweep.chunks.select_runs`; removed) is the flat index
+        of the first run, by which the runs are seeded.
     batch_seed : int or None
         The batch's (Monte-Carlo) seed.
     source : str
@@ -149,6 +196,7 @@ def add_first_order_motions(result: Any, batch_seed: int | None, source: str) ->
     from ..environment.spectra import spectrum_from_wave_height
 
     specs = json.loads(result.metadata["first_order_motions"])
+    first = int(result.metadata.pop("first_order_first_run", 0))  # (a sweep's chunk)
     n, R = result.time.size, result.n_runs
     groups: dict[str, list[int]] = {}
     for i, spec in enumerate(specs):
@@ -158,23 +206,23 @@ def add_first_order_motions(result: Any, batch_seed: int | None, source: str) ->
     for key, rows in groups.items():
         spec = json.loads(key)
         ok = [i for i in rows if result.status[i] == 0]  # a diverged run has no wave motions
-        if not ok:
-            continue
         entropy = spec["seed"] if batch_seed is None else [spec["seed"], batch_seed]
-        record = {"time": result.time,
-                  **{name: result[name][ok] for name in ("surge_speed", "heading", "north",
-                                                         "east")}}
-        try:
-            m = first_order_motions(
-                record, spectrum_from_wave_height(spec["spectrum"], spec["h3"]),
-                _raos(spec, record["surge_speed"]), wave_direction=spec["direction"],
-                seed=[np.random.SeedSequence(entropy, spawn_key=(i, 1)) for i in ok],
-                n_components=spec["components"], spreading=spec["spreading"],
-                spreading_parameter=spec["spreading_parameter"])
-        except (KeyError, ParameterError) as exc:
-            raise _err(source, "environment.waves.first_order_motions", str(exc)) from None
-        for dof, v in m.values.items():
-            values.setdefault(dof, np.full((R, n), np.nan))[ok] = v
+        for speeds, members in _speed_groups(result["surge_speed"], ok):
+            record = {"time": result.time,
+                      **{name: result[name][members] for name in ("surge_speed", "heading",
+                                                                  "north", "east")}}
+            try:
+                m = first_order_motions(
+                    record, spectrum_from_wave_height(spec["spectrum"], spec["h3"]),
+                    _raos(spec, speeds), wave_direction=spec["direction"],
+                    seed=[np.random.SeedSequence(entropy, spawn_key=(first + i, 1))
+                          for i in members],
+                    n_components=spec["components"], spreading=spec["spreading"],
+                    spreading_parameter=spec["spreading_parameter"])
+            except (KeyError, ParameterError) as exc:
+                raise _err(source, "environment.waves.first_order_motions", str(exc)) from None
+            for dof, v in m.values.items():
+                values.setdefault(dof, np.full((R, n), np.nan))[members] = v
     from ..environment.first_order import OUTPUT_NAMES
     from ..environment.rao import DOF_UNITS
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import hashlib
+import json
 import math
 import sys
 from typing import TYPE_CHECKING, Any
@@ -197,7 +198,9 @@ def select_runs(batch: "RunBatch", start: int, stop: int) -> "RunBatch":
 
     Per-run inputs (parameter rows, initial states, constant reference and disturbance rows,
     environment parameters) are sliced; time-varying signals of a scenario keep their runs'
-    realisations (their seeds are drawn by flat run index). The result has no layout (one
+    realisations (their seeds are drawn by flat run index), and so do the first-order wave
+    motions (their settings are sliced and ``first_order_first_run`` says the first run's
+    index, :mod:`seahelm.scenario.first_order`). The result has no layout (one
     ``run`` dimension, numbered from 0).
 
     Parameters
@@ -229,6 +232,12 @@ def select_runs(batch: "RunBatch", start: int, stop: int) -> "RunBatch":
         elif value is not None:
             raise ParameterError(f"cannot split the `{name}` input ({type(value).__name__}) "
                                  "into chunks")
+    if "first_order_motions" in batch.metadata:  # the runs' settings, seeded by run index
+        meta = dict(batch.metadata)
+        meta["first_order_motions"] = json.dumps(
+            json.loads(meta["first_order_motions"])[start:stop])
+        meta["first_order_first_run"] = int(meta.get("first_order_first_run", 0)) + start
+        changes["metadata"] = meta
     return batch.replace(**changes)
 
 
