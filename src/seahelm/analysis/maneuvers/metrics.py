@@ -10,6 +10,7 @@ import numpy as np
 
 from ...constants import wrap_angle
 from ...units import metric_units
+from ..wave_motion_metrics import wave_motion_metrics
 
 __all__ = ["settling_time", "overshoot", "turning_diameter", "rudder_reversals", "summarize",
            "summary_units"]
@@ -230,7 +231,9 @@ def path_following_metrics(result) -> dict[str, np.ndarray]:  # noqa: ANN001 - S
 
 def summarize(result) -> list[dict[str, float | str]]:  # noqa: ANN001 - SimResult
     """Per-run summary metrics of a :class:`~seahelm.results.SimResult` (SI units unless
-    the key says ``_deg``; each metric's unit: :func:`summary_units`).
+    the key says ``_deg``; each metric's unit: :func:`summary_units`). Runs with first-order
+    wave motions also get their RMS heave, pitch and roll, mean surge speed and mean wave
+    heading (:func:`seahelm.analysis.wave_motion_metrics.wave_motion_metrics`).
 
     Parameters
     ----------
@@ -272,6 +275,7 @@ def summarize(result) -> list[dict[str, float | str]]:  # noqa: ANN001 - SimResu
         else:
             tracking["yaw_rate_error"] = final_target[:, 0] - sig[:, -1]
     tracking.update(path_following_metrics(result))
+    tracking.update(wave_motion_metrics(result))
     messages = result.messages()
     for i in range(result.n_runs):
         row: dict[str, float | str] = {"run": i, "status": messages[i]}
