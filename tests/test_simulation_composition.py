@@ -95,7 +95,8 @@ COMBINATIONS = {
         _SERVO + "\ncontroller.propeller_rps -> model.propeller_rps"),
     ("container", "rudder-servo", "zigzag-rps"): (
         (), _SERVO + "\ncontroller.propeller_rps -> model.propeller_rps" + _HEADING),
-    # examples/container_waves_motions.toml (heading autopilot, shaft at a constant speed)
+    # examples/container_waves_motions.toml, container_seakeeping_sweep.toml (heading
+    # autopilot, shaft at a constant speed)
     ("container", "rudder-servo", "pid-heading-rps"): (
         ("heading",), _SERVO + "\ncontroller.propeller_rps -> model.propeller_rps" + _HEADING),
     # test_control_path_following, examples/mariner_route_*.toml: the guidance law feeds the

@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike
 from .._validate import as_float_array
 from ..errors import ParameterError
 
-__all__ = ["plot_polar_diagram", "contour_levels"]
+__all__ = ["plot_polar_diagram", "plot_sweep_polar", "contour_levels"]
 
 
 def contour_levels(low: float, high: float, levels: int = 12) -> np.ndarray:
@@ -63,7 +63,8 @@ def _closed(heading: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.nda
 
 def plot_polar_diagram(speed: ArrayLike, heading: ArrayLike, values: ArrayLike, *,
                        label: str, unit: str, limit: float | None = None,
-                       title: str | None = None, ax: Any = None, levels: int = 12) -> Any:
+                       title: str | None = None, ax: Any = None, levels: int = 12,
+                       value_range: tuple[float, float] | None = None) -> Any:
     """Filled contours of ``values`` over (speed, heading) on polar axes.
 
     With one speed the statistic is drawn as a curve over the heading (radius = the value).
@@ -87,7 +88,10 @@ def plot_polar_diagram(speed: ArrayLike, heading: ArrayLike, values: ArrayLike, 
     ax : matplotlib.projections.polar.PolarAxes, optional
         Polar axes to draw on (default: a new figure's).
     levels : int, optional
-        Number of filled-contour levels (default 12).
+        Most filled-contour levels (default 12; :func:`contour_levels`).
+    value_range : (float, float), optional
+        The values the colour levels span (default the values' own range; give the same
+        range to diagrams drawn side by side).
 
     Returns
     -------
@@ -131,7 +135,9 @@ def plot_polar_diagram(speed: ArrayLike, heading: ArrayLike, values: ArrayLike, 
     else:
         T, R = np.meshgrid(eps, U)
         top = float(np.max(z))
-        cs = ax.contourf(T, R, z, levels=contour_levels(float(np.min(z)), top, levels),
+        lo, hi = (float(np.min(z)), top) if value_range is None else value_range
+        cs = ax.contourf(T, R, z, levels=contour_levels(min(lo, float(np.min(z))),
+                                                        max(hi, top), levels),
                          cmap="viridis")
         ax.figure.colorbar(cs, ax=ax, pad=0.1, shrink=0.85, label=f"{label} [{unit}]")
         if limit is not None:
@@ -151,3 +157,47 @@ def plot_polar_diagram(speed: ArrayLike, heading: ArrayLike, values: ArrayLike, 
     ax.set_title(title or f"{label} [{unit}]; heading 0° following, 180° head, "
                  "90° waves from port", fontsize=9)
     return ax
+
+
+def plot_sweep_polar(polar: Any, dof: str = "roll", *, limit: float | None = None,
+                     levels: int = 12) -> Any:
+    """A time-domain sweep's RMS of ``dof`` beside the frequency-domain RMS of the same cells.
+
+    Two polar diagrams (:func:`plot_polar_diagram`) with one set of colour levels: left the
+    time domain (:class:`~seahelm.sweep.seakeeping.SweepSeakeeping`, each row at its mean
+    speed and each column at its mean heading), right its frequency-domain counterpart (when
+    the sweep has it). Roll and pitch in degrees, heave in metres.
+
+    Parameters
+    ----------
+    polar : SweepSeakeeping
+        From :func:`seahelm.sweep.seakeeping.sweep_seakeeping`.
+    dof : str, optional
+        ``"heave"``, ``"pitch"``, ``"roll"`` (first-order; default) or ``"roll_total"``.
+    limit : float, optional
+        A criterion in the unit shown (deg or m), drawn as a red contour.
+    levels : int, optional
+        Most colour levels (default 12).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    factor, unit = (1.0, "m") if dof == "heave" else (180.0 / math.pi, "deg")
+    td = polar.rms(dof) * factor
+    fd = polar.frequency_domain_rms(dof) * factor
+    panels = [("time domain (sweep)", td)]
+    if np.all(np.isfinite(fd)):
+        panels.append(("frequency domain, same cells", fd))
+    both = np.concatenate([p[1].ravel() for p in panels])
+    fig = plt.figure(figsize=(7.0 * len(panels), 6.2))
+    name = "total roll" if dof == "roll_total" else dof
+    for k, (title, values) in enumerate(panels):
+        ax = fig.add_subplot(1, len(panels), k + 1, projection="polar")
+        plot_polar_diagram(polar.row_speed, polar.column_heading, values,
+                           label=f"RMS {name}", unit=unit, limit=limit, ax=ax, levels=levels,
+                           value_range=(float(both.min()), float(both.max())),
+                           title=f"RMS {name} [{unit}]: {title}")
+    return fig

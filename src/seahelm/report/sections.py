@@ -30,6 +30,7 @@ from .blocks import Section, escape, fmt, paragraph, run_attrs, set_title, subhe
 from .figures import timeseries_sections, track_sections
 from .imo_ensemble import ensemble_sections
 from .seakeeping import seakeeping_sections
+from .seakeeping_sweep import sweep_seakeeping_sections
 from .inputs import ReportData, RunSet
 from .signals import run_labels
 
@@ -321,7 +322,7 @@ def _coord_label(key: str, value: Any, ds: Any) -> str:
 #: The section builders, in page order.
 SECTIONS: tuple[Callable[[ReportData], list[Section]], ...] = (
     overview_sections, sweep_sections, status_sections, imo_sections, ensemble_sections,
-    seakeeping_sections, metrics_sections, statistics_sections, track_sections,
+    seakeeping_sections, sweep_seakeeping_sections, metrics_sections, statistics_sections, track_sections,
     timeseries_sections)
 
 
