@@ -174,3 +174,60 @@ def test_the_example(tmp_path):
                                atol=0.5)
     assert np.all(np.isfinite(p.frequency_domain[:3]))
     assert "seakeeping-sweep" in write_report(store, tmp_path / "r.html").sections
+
+
+def test_the_command(validation, tmp_path):
+    """seahelm seakeeping --sweep STORE: the cells as the library gives them, the files."""
+    from typer.testing import CliRunner
+
+    from seahelm.cli.main import app
+
+    store, p = validation
+    res = CliRunner().invoke(app, ["seakeeping", "--sweep", str(store), "--dof", "heave",
+                                   "--out", str(tmp_path / "out"), "--json"])
+    assert res.exit_code == 0, res.stderr
+    out = json.loads(res.stdout)
+    assert [c["runs"] for c in out["cells"]] == [8] * 6
+    np.testing.assert_allclose([c["rms_m"] for c in out["cells"]], p.rms("heave").ravel(),
+                               rtol=1e-12)
+    np.testing.assert_allclose([c["z"] for c in out["cells"]], p.deviation("heave").ravel(),
+                               rtol=1e-12)
+    assert sorted(x.name for x in (tmp_path / "out").iterdir()) == [
+        "seakeeping-sweep-heave.png", "seakeeping-sweep.nc"]
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--hs", "3"], "`--sweep` takes the sea, the ship and the speeds from the sweep's "
+                    "scenario; give no --hs with it"),
+    (["--limit", "-1"], "`--limit` must be > 0 [deg], got -1.0"),
+    (["--dof", "sway"], "Invalid value for '--dof'"),
+])
+def test_the_command_refuses(validation, args, message):
+    from typer.testing import CliRunner
+
+    from seahelm.cli.main import app
+
+    res = CliRunner().invoke(app, ["seakeeping", "--sweep", str(validation[0]), *args])
+    assert res.exit_code == 2, (res.stdout, res.stderr)
+    lines = res.stderr.strip().splitlines()
+    assert message in res.stderr and (len(lines) == 1 or "Usage" in res.stderr), lines
+
+
+def test_the_command_on_a_sweep_without_motions(tmp_path):
+    from typer.testing import CliRunner
+
+    from seahelm.cli.main import app
+
+    text = (Path(__file__).parents[1] / "examples" / "mariner_pid_sweep.toml").read_text()
+    text = text.replace("t_final = 600.0", "t_final = 10.0")
+    path = tmp_path / "pid.toml"
+    path.write_text(text)
+    run_sweep(path, tmp_path / "pid.zarr", series=False)
+    res = CliRunner().invoke(app, ["seakeeping", "--sweep", str(tmp_path / "pid.zarr")])
+    assert res.exit_code == 2
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: `environment.waves.first_order_"
+                                                   "motions`") and "first_order_motions = true" \
+        in lines[0], lines
+    res = CliRunner().invoke(app, ["seakeeping", "--sweep", str(tmp_path / "none.zarr")])
+    assert res.exit_code == 2 and "no such sweep store" in res.stderr

@@ -11,6 +11,8 @@ summary per speed for grids of more than 40 cells); ``--out DIR`` writes ``seake
 Roll and pitch are shown in degrees, heave in metres; ``--limit`` and ``--exceed`` are in
 those units. Exit codes: 0, 2 bad input (one ``error:`` line naming the option and its unit; a
 ship without particulars or, for roll, without a metacentric height), 1 other failure.
+``--sweep STORE`` draws a time-domain sweep's polar diagram instead
+(:mod:`seahelm.cli.seakeeping_sweep`).
 """
 
 from __future__ import annotations
@@ -207,11 +209,28 @@ def seakeeping(
                       "closed form; its speed is the only speed.")] = None,
     out: Annotated[Path | None, typer.Option(
         "--out", help=f"Directory for {NETCDF_NAME} and the polar diagram.")] = None,
+    sweep: Annotated[Path | None, typer.Option(
+        "--sweep", help="A sweep store of first-order wave motions over wave heading x speed "
+                        "(`seahelm sweep`): its time-domain polar diagram, each cell with its "
+                        "standard error and the frequency domain beside it (the sea, ship and "
+                        "speeds are the sweep's).")] = None,
     json_out: JsonFlag = False,
 ) -> None:
     """Seakeeping in a sea state: RMS, significant amplitude, exceedance, polar diagram."""
     from ..analysis.seakeeping import closed_form_moments, response_moments
 
+    if sweep is not None:
+        given = [o for o, v in (("SHIP", ship), ("--rao", rao), ("--hs", hs), ("--tp", tp),
+                                ("--speeds", speeds)) if v is not None]
+        if given:
+            raise ParameterError(f"`--sweep` takes the sea, the ship and the speeds from the "
+                                 f"sweep's scenario; give no {', '.join(given)} with it")
+        factor, unit = _display(dof)
+        _positive("limit", limit, unit)
+        from .seakeeping_sweep import sweep_command
+
+        sweep_command(sweep, dof=dof, limit=limit, out=out, json_out=json_out)
+        return
     if (ship is None) == (rao is None):
         raise ParameterError("give a SHIP or `--rao FILE` (one of them)")
     if hs is None:

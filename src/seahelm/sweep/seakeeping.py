@@ -33,13 +33,14 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import warnings
 from pathlib import Path
 from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError
+from ..errors import ParameterError, ValidityRangeWarning
 
 __all__ = ["SweepSeakeeping", "sweep_seakeeping", "frequency_domain_moments", "DOF_METRICS",
            "HEADING_KEYS", "DATASET_FORMAT"]
@@ -408,7 +409,9 @@ def frequency_domain_moments(polar: SweepSeakeeping, text: str, source: str = "<
 
     if not text:
         raise ParameterError(f"{source}: the sweep keeps no scenario text", field="store")
-    job = prepared(text, source)
+    with warnings.catch_warnings():  # (the sweep said the scenario's range warnings)
+        warnings.simplefilter("ignore", ValidityRangeWarning)
+        job = prepared(text, source)
     meta = getattr(job, "metadata", {}) or {}
     if "first_order_motions" not in meta:
         raise ParameterError(f"{source}: the scenario has no first-order motions",
