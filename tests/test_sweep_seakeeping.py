@@ -231,3 +231,28 @@ def test_the_command_on_a_sweep_without_motions(tmp_path):
         in lines[0], lines
     res = CliRunner().invoke(app, ["seakeeping", "--sweep", str(tmp_path / "none.zarr")])
     assert res.exit_code == 2 and "no such sweep store" in res.stderr
+
+
+def test_one_speed_is_one_row(validation):
+    """A grid over the heading alone (the other key's one value here): one row, no speed key's
+    values, drawn as a curve."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from seahelm.plotting.seakeeping import plot_sweep_polar
+
+    ds = _flat(validation[0])
+    ds = ds.isel(run=ds["controller.params.propeller_rps"].values == 1.2)
+    ds = ds.drop_vars("controller.params.propeller_rps")
+    ds.attrs["sweep_dims"] = json.dumps([["direction_deg", 3], ["sample", 8]])
+    p = sweep_seakeeping(ds, frequency_domain=False)
+    full = validation[1]
+    assert p.speed_key is None and p.speed.shape == (1, 3)
+    np.testing.assert_array_equal(p.mean_square, full.mean_square[:, 1:])
+    fig = plot_sweep_polar(p, "roll")
+    try:
+        assert len([ax for ax in fig.axes if ax.name == "polar"]) == 1  # no frequency domain
+    finally:
+        plt.close(fig)
