@@ -12,7 +12,7 @@ x_r = RMS_r²::
 
 m̂0 estimates the variance m0 = ∫∫|H|²S D dθ dω of the frequency domain without bias
 (:mod:`seahelm.environment.first_order`); the runs are independent, so m̂0 is normal to within
-the central limit theorem and |m̂0 − m0| <= 3 se holds with 99.7 %. RMS = √m̂0 with
+the central limit theorem and m̂0 lies within 3 se of m0 with 99.7 %. RMS = √m̂0 with
 se(RMS) = se(m̂0)/(2√m̂0) (first order); significant amplitude 2√m̂0. A cell's speed is the
 mean of its runs' mean surge speeds, its heading the circular mean of their mean wave
 headings (ε: 0 following, 180° head, 90° waves travelling to starboard) — the sea and the
@@ -177,7 +177,7 @@ class SweepSeakeeping:
 
     def deviation(self, dof: str) -> np.ndarray:
         """(m̂0 − m0)/se(m̂0): the time domain's departure from the frequency domain in
-        standard errors (|.| <= 3 with 99.7 % when they agree).
+        standard errors (within ±3 with 99.7 % when they agree).
 
         Parameters
         ----------
