@@ -69,3 +69,19 @@ def test_a_rao_file_alone_replaces_the_closed_form_after_the_run():
     post = _post_pass(res, 1, ("heave", "roll", "pitch"))
     np.testing.assert_array_equal(res["heave"][1], post["heave"][0])
     np.testing.assert_array_equal(res["roll_wave"][1], post["roll"][0])
+
+
+def test_a_sweep_in_chunks_keeps_each_runs_sea_in_the_loop(tmp_path):
+    """A sweep's chunk of an in-loop scenario takes its runs' own components (chunk k's run i
+    would otherwise take run i's sea, or the chunk fail): chunks of 2 equal the whole batch."""
+    from seahelm.sweep import open_sweep, run_sweep
+
+    body = text(f'rao_file = "{BARGE}"', "autopilot_sees_first_order = true").replace(
+        "runs = 2", "runs = 3")
+    whole = run_scenario(parse_scenario(body, source="in"))
+    path = tmp_path / "in.toml"
+    path.write_text(body)
+    run_sweep(path, tmp_path / "s.zarr", text=body, chunk_size=2)
+    with open_sweep(tmp_path / "s.zarr") as ds:
+        for name in ("heave", "roll_wave", "yaw_wave", "heading_total", "rudder_angle"):
+            np.testing.assert_array_equal(ds[name].values, whole[name])

@@ -142,6 +142,30 @@ class FirstOrderInLoop:
         """
         return output_signals(self.dofs, model_roll)
 
+    def select_runs(self, start: int, stop: int) -> "FirstOrderInLoop":
+        """Runs ``start`` to ``stop`` − 1 alone, with their own components and tables (a
+        sweep's chunk, :func:`seahelm.sweep.chunks.select_runs`: run i keeps run i's sea).
+
+        Parameters
+        ----------
+        start, stop : int
+            Run indices, 0 <= start < stop <= :attr:`n_runs`.
+
+        Returns
+        -------
+        FirstOrderInLoop
+        """
+        if not 0 <= start < stop <= self.n_runs:
+            raise ParameterError(f"runs {start}:{stop} are not a slice of the first-order "
+                                 f"motions' {self.n_runs} runs", field="first_order")
+        c = self.components
+        comps = dataclasses.replace(c, **{f: getattr(c, f)[start:stop] for f in (
+            "frequency", "wavenumber", "direction", "amplitude", "phase")},
+            seeds=list(c.seeds[start:stop]))
+        per_run = self.arrays[:3]  # components, tables, long-crested flags: by run
+        arrays = tuple(a[start:stop] for a in per_run) + tuple(self.arrays[3:])
+        return dataclasses.replace(self, components=comps, arrays=arrays)
+
     def post_pass(self, result: Any, **kwargs: Any) -> FirstOrderMotions:
         """The post-pass on ``result``'s recorded states with these very components.
 

@@ -232,6 +232,8 @@ def select_runs(batch: "RunBatch", start: int, stop: int) -> "RunBatch":
         elif value is not None:
             raise ParameterError(f"cannot split the `{name}` input ({type(value).__name__}) "
                                  "into chunks")
+    if getattr(batch, "first_order", None) is not None:  # in the loop: its runs' own seas
+        changes["first_order"] = batch.first_order.select_runs(start, stop)
     if "first_order_motions" in batch.metadata:  # the runs' settings, seeded by run index
         meta = dict(batch.metadata)
         meta["first_order_motions"] = json.dumps(
