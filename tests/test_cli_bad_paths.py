@@ -297,3 +297,24 @@ def test_ctrl_c_with_json_prints_one_object(tmp_path, monkeypatch):
     payload = json.loads(res.stdout)
     assert payload["exit_code"] == 130 and payload["error"].startswith("interrupted: Ctrl-C")
     assert not (tmp_path / "o").exists()
+
+
+def test_the_same_warning_is_printed_once_per_command(capsys):
+    """A warning repeated in one command (a sweep's 60 runs each warned Lvov's range: 60
+    identical lines) is printed once; the next command prints it again."""
+    import warnings
+
+    from seahelm.cli._common import handle_errors
+
+    @handle_errors
+    def command():
+        for _ in range(3):  # a fresh registry each time: shown each time by "default"
+            warnings.warn_explicit("Lvov: block coefficient 0.56 outside 0.6..0.8",
+                                   UserWarning, "runs.py", 1)
+        warnings.warn_explicit("another cause", UserWarning, "runs.py", 2)
+
+    command()
+    command()
+    lines = [ln for ln in capsys.readouterr().err.splitlines() if ln.strip()]
+    assert lines == ["warning: Lvov: block coefficient 0.56 outside 0.6..0.8",
+                     "warning: another cause"] * 2

@@ -216,6 +216,7 @@ def handle_errors(func: F) -> F:
     @functools.wraps(func)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         _created_dirs.clear()
+        _shown_warnings.clear()
         done = False
         try:
             with warnings.catch_warnings():
@@ -438,11 +439,18 @@ def input_file(option: str, path: Path) -> Path:
     return path
 
 
+#: The warnings this command has printed (a sweep's 60 runs warned the same line 60 times).
+_shown_warnings: set[str] = set()
+
+
 def _show_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
                   file: Any = None, line: str | None = None) -> None:
-    err_console.print(Text.assemble(("warning: ", "yellow"),
-                                    as_option(_one_line(Exception(str(message))))),
-                      highlight=False, soft_wrap=True)
+    text = as_option(_one_line(Exception(str(message))))
+    if text in _shown_warnings:  # the same words again (another run, chunk or sample)
+        return
+    _shown_warnings.add(text)
+    err_console.print(Text.assemble(("warning: ", "yellow"), text), highlight=False,
+                      soft_wrap=True)
 
 
 def _command_options() -> dict[str, str]:
