@@ -135,6 +135,14 @@ def test_table_and_netcdf_round_trips(tmp_path):
     ("dof,frequency,heading_deg,amplitude,phase_deg\nheave,0.2,0,1,0\nheave,0.4,0,1,0\n"
      "roll,0.2,0,1,0\n", "roll has no value at frequency 0.4"),
     ("dof,frequency,heading_deg,amplitude,phase_deg\nheave,-0.2,0,1,0\n", "must be > 0"),
+    # (a speed that is no number was a bare ValueError naming neither file nor column; NaN
+    # speeds were 'several speeds [nan, nan]')
+    ("dof,frequency,heading_deg,amplitude,phase_deg,speed\nheave,0.2,0,1,0,fast\n",
+     "`speed` line 2: speed 'fast' is not a finite number >= 0"),
+    ("dof,frequency,heading_deg,amplitude,phase_deg,speed\nheave,0.2,0,1,0,nan\n"
+     "heave,0.4,0,1,0,nan\n", "`speed` line 2: speed 'nan'"),
+    ("dof,frequency,heading_deg,amplitude,phase_deg,speed\nheave,0.2,0,1,0,-1\n",
+     "speed '-1' is not"),
 ])
 def test_bad_tables_name_the_file_and_the_column(tmp_path, text, match):
     path = tmp_path / "bad.csv"
@@ -142,6 +150,17 @@ def test_bad_tables_name_the_file_and_the_column(tmp_path, text, match):
     with pytest.raises(ParameterError, match=match) as info:
         read_rao_table(path)
     assert "bad.csv" in str(info.value)
+
+
+def test_a_binary_file_or_a_directory_is_a_parameter_error_naming_it(tmp_path):
+    """(A binary file named .csv was a bare UnicodeDecodeError, naming neither the file nor
+    the key; a directory was 'no such file'.)"""
+    path = tmp_path / "binary.csv"
+    path.write_bytes(bytes(range(256)) * 4)
+    with pytest.raises(ParameterError, match=r"`path` is not a text CSV table .*binary\.csv"):
+        read_rao(path)
+    with pytest.raises(ParameterError, match=r"`path` is a directory, not an RAO file"):
+        read_rao(tmp_path)
 
 
 def test_rao_validates_its_grid():

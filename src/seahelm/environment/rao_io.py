@@ -136,6 +136,8 @@ def read_rao(path: str | os.PathLike[str]) -> RAO:
         If the file cannot be read or is invalid (naming the file and the key).
     """
     p = Path(path)
+    if p.is_dir():
+        raise _fail(p, "is a directory, not an RAO file", field="path")
     if not p.is_file():
         raise _fail(p, "no such file", field="path")
     if p.suffix.lower() == ".csv":
@@ -181,12 +183,17 @@ def read_rao_table(path: str | os.PathLike[str]) -> RAO:
     ------
     ParameterError
         Naming the file and the column: a missing column or dof, a value that is not a
-        finite number, a grid point missing, a frequency repeated for one dof and heading.
+        finite number (a speed not >= 0), a grid point missing, a frequency repeated for one
+        dof and heading, a file that is not text.
     """
     p = Path(path)
-    with open(p, newline="", encoding="utf-8") as fh:
-        rows = [r for r in csv.reader(line for line in fh if not line.lstrip().startswith("#"))
-                if r and any(c.strip() for c in r)]
+    try:
+        with open(p, newline="", encoding="utf-8") as fh:
+            rows = [r for r in csv.reader(line for line in fh
+                                          if not line.lstrip().startswith("#"))
+                    if r and any(c.strip() for c in r)]
+    except (UnicodeDecodeError, csv.Error) as exc:  # a binary file named .csv
+        raise _fail(p, f"is not a text CSV table ({exc})", field="path") from None
     if not rows:
         raise _fail(p, "is empty", field="path")
     head = [c.strip() for c in rows[0]]
@@ -233,7 +240,14 @@ def read_rao_table(path: str | os.PathLike[str]) -> RAO:
         if p_name == "phase_deg":
             ph = math.radians(ph)
         if i_s is not None:
-            speeds.add(float(row[i_s]))
+            try:
+                u = float(row[i_s])
+            except ValueError:
+                u = math.nan
+            if not (math.isfinite(u) and u >= 0.0):
+                raise _fail(p, f"line {n}: speed '{row[i_s].strip()}' is not a finite number "
+                            ">= 0 [m/s]", "speed")
+            speeds.add(u)
         key = (dof, round(f, 12), round(h, 12))
         if key in data:
             raise _fail(p, f"line {n}: {dof} at frequency {f:.6g} rad/s and heading "
