@@ -47,6 +47,22 @@ def test_the_closed_form_has_no_yaw_the_key_is_named():
         run_scenario(parse_scenario(text('rao_file = "no-such-file.nc"'), source="bad"))
 
 
+@pytest.mark.parametrize("values, loop", [("[2.5]", True), ("[2.5]", False), ("[0]", True),
+                                          ("[1000000]", True), ("[0, 32]", True)])
+def test_a_grids_components_are_checked_per_run_naming_the_key(values, loop):
+    """A grid's ``components`` is a float: 2.5 was taken as 2 without a word; 0 or 10^6 in
+    the loop failed with a bare '`n_components` must be...' naming neither the scenario nor the
+    key ([0, 32] as 'must be the same in every run'); after the run, only after the runs."""
+    extra = (f'rao_file = "{BARGE}"', "autopilot_sees_first_order = true") if loop else ()
+    body = text(*extra).replace("[batch.monte_carlo]", "[batch.grid]\n"
+                                f'"environment.waves.components" = {values}\n\n'
+                                "[batch.monte_carlo]")
+    bad = values.strip("[]").split(",")[0]
+    with pytest.raises(ScenarioError, match=r"bad: \[environment\.waves\.components\] must be "
+                       rf"an integer in \[1, 100000\] \[-\], got {bad}"):
+        run_scenario(parse_scenario(body, source="bad"))
+
+
 def test_in_the_loop_the_autopilot_sees_the_total_heading():
     res = run_scenario(parse_scenario(text(f'rao_file = "{BARGE}"',
                                            "autopilot_sees_first_order = true"), source="in"))

@@ -99,6 +99,13 @@ def first_order_settings(v: dict[str, Any], h3: float, ship: Any, source: str
     else:
         dofs = ("heave", "pitch") + (("roll",) if v.get("metacentric_height", getattr(
             ship, "metacentric_height", None)) is not None else ())
+    from ..environment.first_order import MAX_COMPONENTS
+
+    n = v.get("components", 64)  # a grid's value arrives as a float: 16.0 is 16, 2.5 is not
+    if isinstance(n, bool) or not isinstance(n, (int, float)) or not (
+            math.isfinite(n) and n == int(n) and 1 <= n <= MAX_COMPONENTS):
+        raise _err(source, "environment.waves.components",
+                   f"must be an integer in [1, {MAX_COMPONENTS}] [-], got {n!r}")
     sees = bool(v.get("autopilot_sees_first_order", False))
     if sees and "yaw" not in dofs:
         raise _err(source, "environment.waves.autopilot_sees_first_order",
@@ -112,7 +119,7 @@ def first_order_settings(v: dict[str, Any], h3: float, ship: Any, source: str
             "rao_file": rao_file, "autopilot_sees": sees,
             "direction": math.radians(float(v["direction_deg"])),
             "gm": v.get("metacentric_height", getattr(ship, "metacentric_height", None)),
-            "components": int(v.get("components", 64)),
+            "components": int(n),
             "spreading": v.get("spreading"),
             "spreading_parameter": float(v.get("spreading_parameter", 2.0)),
             "hull": [float(ship.length), float(ship.beam), float(ship.draft),
