@@ -194,3 +194,24 @@ def test_roll_excitation_full_slope_selectable():
     assert rms_slope > 20 * rms_avg
     res = runner.invoke(app, ["seakeeping", *args, "--roll-excitation", "full"])
     assert res.exit_code == 2 and "--roll-excitation" in res.stderr
+
+
+@pytest.mark.parametrize("args, named", [
+    (["--stat", "significant", "--limit", "1"], "--stat"),
+    (["--exceed", "1"], "--exceed"),
+    (["--roll-excitation", "slope"], "--roll-excitation"),
+    (["--headings", "0:90:3", "--gm", "1"], "--headings, --gm"),
+    (["kvlcc2-l7", "--hs", "2"], "SHIP, --hs"),
+])
+def test_sweep_refuses_every_option_it_would_ignore(tmp_path, args, named):
+    """``--sweep`` takes only --dof, --limit, --out and --json: ``--stat significant --limit 1``
+    counted the cells' RMS above 1 (not their significant amplitude) and --exceed, --headings,
+    --gm, --roll-excitation ... were dropped without a word. The refusal comes before the store
+    is read (here there is none)."""
+    res = runner.invoke(app, ["seakeeping", "--sweep", str(tmp_path / "none.zarr"), *args])
+    assert res.exit_code == 2, (res.stdout, res.stderr)
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(
+        f"error: `--sweep` takes the sea, the ship and the speeds from the sweep's scenario; "
+        f"give no {named} with it"), lines
+    assert res.stdout == ""

@@ -220,11 +220,12 @@ def seakeeping(
     from ..analysis.seakeeping import closed_form_moments, response_moments
 
     if sweep is not None:
-        given = [o for o, v in (("SHIP", ship), ("--rao", rao), ("--hs", hs), ("--tp", tp),
-                                ("--speeds", speeds)) if v is not None]
+        given = _given_besides(("dof", "limit", "out", "sweep", "json_out"))
         if given:
             raise ParameterError(f"`--sweep` takes the sea, the ship and the speeds from the "
-                                 f"sweep's scenario; give no {', '.join(given)} with it")
+                                 f"sweep's scenario; give no {', '.join(given)} with it (it "
+                                 "takes --dof, --limit, --out and --json; the statistic is the "
+                                 "RMS)")
         factor, unit = _display(dof)
         _positive("limit", limit, unit)
         from .seakeeping_sweep import sweep_command
@@ -322,6 +323,25 @@ def seakeeping(
         print_json(payload)
         return
     _print(payload, unit)
+
+
+def _given_besides(used: tuple[str, ...]) -> list[str]:
+    """The command's parameters given on the command line other than ``used`` (as SHIP or
+    their first option name): a ``--stat significant`` or ``--exceed`` that ``--sweep`` would
+    ignore without a word."""
+    import importlib
+
+    # the click typer runs on: click itself (typer < 0.26) or typer's vendored copy
+    core = importlib.import_module(next(
+        c.__module__ for c in typer.Context.__mro__ if c.__name__ == "Context"
+        and c.__module__.endswith(".core")))
+    ctx = importlib.import_module(core.__name__[:-len("core")] + "globals"
+                                  ).get_current_context(silent=True)
+    if ctx is None:
+        return []
+    given = (core.ParameterSource.COMMANDLINE, core.ParameterSource.ENVIRONMENT)
+    return [p.opts[0] if p.opts[0].startswith("-") else "SHIP" for p in ctx.command.params
+            if p.name not in used and ctx.get_parameter_source(p.name) in given]
 
 
 def _check_cells(U: np.ndarray, eps: np.ndarray) -> None:

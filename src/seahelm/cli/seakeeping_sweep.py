@@ -5,8 +5,10 @@ The cells of a sweep of first-order wave motions over wave heading × speed
 runs, the time-domain RMS with its standard error, the frequency-domain RMS of the same cells
 and z = (m̂0 − m0)/se. Prints a table; ``--out DIR`` writes ``seakeeping-sweep.nc`` (every
 dof, SI units) and ``seakeeping-sweep-<dof>.png`` (time domain beside frequency domain)
-together; ``--json`` prints every cell. The sea, the ship and the speeds are the sweep's: SHIP,
-``--rao``, ``--hs``, ``--tp`` and ``--speeds`` are refused with it. Exit codes as the command's.
+together; ``--json`` prints every cell. The sea, the ship and the speeds are the sweep's and the
+statistic is the RMS: SHIP and every option but ``--dof``, ``--limit``, ``--out`` and ``--json``
+(``--rao``, ``--hs``, ``--stat``, ``--exceed``, ...) are refused with it. Exit codes as the
+command's.
 """
 
 from __future__ import annotations
