@@ -223,3 +223,27 @@ def test_an_autopilot_that_sees_the_first_order_yaw_works_its_rudder(mariner, ba
     assert stats["total"][0] == pytest.approx(0.69, rel=0.05)
     assert stats["filtered"][0] < stats["total"][0] / 5
     assert stats["filtered"][1] <= 1.2 * stats["total"][1]
+
+
+@pytest.mark.parametrize("kwargs, field, match", [
+    ({"rao": None}, "rao", "must be an RAO or a sequence of RAOs at increasing speeds, got "
+                           "NoneType"),
+    ({"dofs": []}, "dofs", r"must be a non-empty sequence of degrees of freedom, got \[\]"),
+    ({"dofs": "heave"}, "dofs", "must be a non-empty sequence of degrees of freedom, got "
+                                "'heave'"),
+])
+def test_bad_rao_or_dofs_are_parameter_errors_in_the_loop_and_after_it(barge, sea, kwargs,
+                                                                       field, match):
+    """(rao=None was a bare TypeError, dofs=[] an IndexError, dofs='heave' "has no 'h'"), in
+    first_order_in_loop and in the post-pass first_order_motions, which share the check."""
+    from seahelm.environment.first_order import first_order_motions
+
+    args = {"rao": barge, **kwargs}
+    with pytest.raises(ParameterError, match=match) as info:
+        first_order_in_loop(sea, args.pop("rao"), wave_direction=0.0, runs=1, **args)
+    assert info.value.field == field
+    record = {"time": np.arange(3.0), **{k: np.zeros((1, 3)) for k in (
+        "north", "east", "heading")}, "surge_speed": np.ones((1, 3))}
+    args = {"rao": barge, **kwargs}
+    with pytest.raises(ParameterError, match=match):
+        first_order_motions(record, sea, args.pop("rao"), wave_direction=0.0, **args)

@@ -258,16 +258,22 @@ def _dead_reckoning(t: np.ndarray, u: np.ndarray, psi: np.ndarray) -> tuple[np.n
 
 
 def _raos(rao: RAO | Sequence[RAO], dofs: Sequence[str] | None) -> tuple[list[RAO], tuple]:
-    raos = [rao] if isinstance(rao, RAO) else list(rao)
+    try:
+        raos = [rao] if isinstance(rao, RAO) else [] if isinstance(rao, str) else list(rao)
+    except TypeError:  # (None was a bare TypeError)
+        raos = []
     if not raos or not all(isinstance(r, RAO) for r in raos):
-        raise ParameterError("must be an RAO or a sequence of RAOs at increasing speeds",
-                             field="rao")
+        raise ParameterError("must be an RAO or a sequence of RAOs at increasing speeds, got "
+                             f"{type(rao).__name__}", field="rao")
     speeds = np.array([r.speed for r in raos])
     if np.any(np.diff(speeds) <= 0):
         raise ParameterError(f"RAOs at several speeds must have increasing speeds [m/s], got "
                              f"{speeds.tolist()}", field="rao", unit="m/s")
     if dofs is None:
         dofs = tuple(d for d in ("heave", "roll", "pitch", "yaw") if d in raos[0].dofs)
+    if isinstance(dofs, str) or not dofs:  # ('heave' was 'has no 'h''; () an IndexError)
+        raise ParameterError(f"must be a non-empty sequence of degrees of freedom, got "
+                             f"{dofs!r}", field="dofs", value=dofs)
     for r in raos:
         for d in dofs:
             if d not in r.dofs:
