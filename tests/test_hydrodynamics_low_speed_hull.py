@@ -122,6 +122,9 @@ def test_matching_cross_flow_drag_equals_the_mmg_sway_force_at_30_deg():
     assert c_d == pytest.approx(0.888, abs=5e-4)  # the KVLCC2 (module docstring)
     with pytest.raises(ParameterError, match="Y_vvv"):
         matching_cross_flow_drag(-0.315, 1.0)
+    # (the message named the field twice: "`drift` `drift` = nan rad must be ...")
+    with pytest.raises(ParameterError, match=r"^`drift` must be in \(0, pi/2\) \[rad\], got nan"):
+        matching_cross_flow_drag(P.Y_v, P.Y_vvv, math.nan)
 
 
 def test_range_warns_above_the_froude_limit_and_raises_in_strict_mode():

@@ -122,8 +122,22 @@ def _hull_forces(p, u, v, r, n=-1.0):
 
 
 def test_hull_model_must_be_zero_or_one():
-    with pytest.raises(ParameterError, match="hull_model"):
+    # (the message named the field twice: "`hull_model` `hull_model` = 0.5 must be ...")
+    with pytest.raises(ParameterError, match=r"^`hull_model` must be 0 \(cross-flow low-speed "
+                       r"hull\) or 1 \(mirrored MMG hull\), got 0\.5"):
         from_mmg(KVLCC2_FULL, hull_model=0.5)
+
+
+@pytest.mark.parametrize("value, match", [
+    (0.0, r"^`cross_flow_drag` must be in \(0, 5\] \[-\], got 0\.0"),
+    (-0.5, r"^`cross_flow_drag` must be in \(0, 5\] \[-\], got -0\.5"),
+    (math.nan, r"^`cross_flow_drag` must be finite \[-\], got nan"),
+])
+def test_cross_flow_drag_must_be_positive(value, match):
+    """C_D = 0 was taken: a hull with no cross-flow drag, which in pure sway (u = r = 0) feels
+    no force at all (Y = -1/2 rho L d C_D v|v|); matching_cross_flow_drag refuses C_D <= 0."""
+    with pytest.raises(ParameterError, match=match):
+        from_mmg(KVLCC2_FULL, cross_flow_drag=value)
 
 
 def test_catalog_hull_is_the_cross_flow_model_with_the_matched_drag():

@@ -239,7 +239,7 @@ def matching_cross_flow_drag(Y_v: float, Y_vvv: float, drift: float = DRIFT_MMG)
         drift), naming ``Y_vvv``.
     """
     if not 0.0 < drift < 0.5 * math.pi:
-        raise ParameterError(f"`drift` = {drift!r} rad must be in (0, pi/2)", field="drift",
+        raise ParameterError(f"must be in (0, pi/2) [rad], got {drift!r}", field="drift",
                              unit="rad", value=drift)
     vn = -math.sin(drift)
     mmg = Y_v * vn + Y_vvv * vn ** 3

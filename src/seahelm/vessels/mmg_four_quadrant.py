@@ -147,8 +147,9 @@ class MMG4QParams(MMGParams, EngineShaftParams):
                                   "Yoshimura et al. 2009 (blended from the MMG's beyond 30 deg "
                                   "or r' 1), 1 the fore-aft mirror of the MMG hull astern")
     cross_flow_drag: float = param(0.888, unit="-", symbol="C_D", low=0.0, high=5.0,
-                                   doc="cross-flow drag coefficient of the hull (default: the "
-                                       "KVLCC2's, matched to the MMG sway force at 30 deg)")
+                                   low_inclusive=False,
+                                   doc="cross-flow drag coefficient of the hull, > 0 (default: "
+                                       "the KVLCC2's, matched to the MMG sway force at 30 deg)")
     C_rY: float = param(1.0, unit="-", symbol="C_rY", low=0.0, high=5.0,
                         doc="yaw-rate factor of the cross-flow velocity in the sway force")
     C_rN: float = param(1.0, unit="-", symbol="C_rN", low=0.0, high=5.0,
@@ -160,8 +161,8 @@ class MMG4QParams(MMGParams, EngineShaftParams):
         check_engine(self)
         if self.hull_model not in (HULL_CROSS_FLOW, HULL_MIRROR):
             raise ParameterError(
-                f"`hull_model` = {self.hull_model!r} must be {HULL_CROSS_FLOW:g} (cross-flow "
-                f"low-speed hull) or {HULL_MIRROR:g} (mirrored MMG hull)", field="hull_model",
+                f"must be {HULL_CROSS_FLOW:g} (cross-flow low-speed hull) or {HULL_MIRROR:g} "
+                f"(mirrored MMG hull), got {self.hull_model!r}", field="hull_model",
                 unit="-", value=self.hull_model)
 
 
