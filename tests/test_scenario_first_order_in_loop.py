@@ -101,3 +101,55 @@ def test_a_sweep_in_chunks_keeps_each_runs_sea_in_the_loop(tmp_path):
     with open_sweep(tmp_path / "s.zarr") as ds:
         for name in ("heave", "roll_wave", "yaw_wave", "heading_total", "rudder_angle"):
             np.testing.assert_array_equal(ds[name].values, whole[name])
+
+
+def test_run_metrics_of_motions_in_the_loop():
+    """The in-loop motions are the loop's outputs, not ``extra``: wave_motion_metrics found
+    none (no rms_heave_m ... in seahelm run's summary nor in a sweep's store)."""
+    from seahelm.analysis.wave_motion_metrics import wave_motion_metrics
+
+    res = run_scenario(parse_scenario(text(f'rao_file = "{BARGE}"',
+                                           "autopilot_sees_first_order = true"), source="in"))
+    m = wave_motion_metrics(res)
+    for name, metric, factor in (("heave", "rms_heave_m", 1.0),
+                                 ("pitch", "rms_pitch_deg", 180 / math.pi),
+                                 ("roll_wave", "rms_roll_wave_deg", 180 / math.pi),
+                                 ("roll", "rms_roll_deg", 180 / math.pi)):
+        np.testing.assert_allclose(m[metric], factor * np.sqrt(np.mean(res[name] ** 2, axis=1)),
+                                   rtol=1e-12)
+        assert np.all(m[metric] > 0)
+
+
+@pytest.mark.parametrize("in_loop, relative", [(True, False), (False, False), (False, True)])
+def test_the_polar_of_a_sweep_with_a_rao_file_takes_its_frequency_domain_from_the_file(
+        tmp_path, in_loop, relative):
+    """A sweep whose motions come from ``rao_file`` (after the run or in the loop): the
+    frequency-domain cells are those of the file's RAO (they were the closed form's after the
+    run, and in the loop the sweep had 'no first-order motions'); a relative ``rao_file`` is
+    the scenario file's, wherever the store is (it was looked for beside the store)."""
+    import shutil
+
+    from seahelm.analysis.seakeeping import response_moments
+    from seahelm.sweep import run_sweep
+    from seahelm.sweep.seakeeping import sweep_seakeeping
+
+    if relative:
+        shutil.copy(BARGE, tmp_path / "barge.nc")
+    extra = ('rao_file = "barge.nc"' if relative else f'rao_file = "{BARGE}"',) + (
+        ("autopilot_sees_first_order = true",) if in_loop else ())
+    body = text(*extra).replace("[batch.monte_carlo]", "[batch.grid]\n"
+                                '"environment.waves.direction_deg" = [0, 90]\n\n'
+                                "[batch.monte_carlo]")
+    path = tmp_path / "s.toml"
+    path.write_text(body)
+    run_sweep(path, tmp_path / "out" / "s.zarr", series=False)
+    p = sweep_seakeeping(tmp_path / "out" / "s.zarr")
+    rao = rao_io.read_rao(BARGE)
+    sea = spectrum_from_wave_height("rakhmanin-firsov-2", 3.0)
+    band = np.linspace(rao.frequency[0], rao.frequency[-1], 2000)
+    for j in range(2):
+        m = response_moments(rao, sea, [float(p.heading[0, j])], dofs=["heave", "roll"],
+                             frequency=band)
+        for dof in ("heave", "roll"):
+            assert p.frequency_domain[p.dofs.index(dof), 0, j] == pytest.approx(
+                m.moment(dof, 0)[0, 0], rel=1e-12)

@@ -59,7 +59,8 @@ def wave_motion_metrics(result: Any) -> dict[str, np.ndarray]:
     Parameters
     ----------
     result : SimResult
-        Runs with first-order motions in ``result.extra`` (flat ``run`` axis), the
+        Runs with first-order motions in ``result.extra`` (after the run) or in its outputs
+        (``metadata["first_order_in_loop"]``: in the loop) (flat ``run`` axis), the
         ``surge_speed`` and ``heading`` signals and the environment's ``wave_direction``.
 
     Returns
@@ -67,13 +68,17 @@ def wave_motion_metrics(result: Any) -> dict[str, np.ndarray]:
     dict of str to numpy.ndarray, shape (runs,)
         By metric name; NaN in diverged runs.
     """
-    extra = getattr(result, "extra", {}) or {}
-    if not any(name in extra for name, _, _ in METRICS):
+    series = {k: v[0] for k, v in (getattr(result, "extra", {}) or {}).items()}
+    if "first_order_in_loop" in (getattr(result, "metadata", {}) or {}):
+        # in the loop (seahelm.environment.first_order_in_loop) they are the loop's outputs
+        series.update({name: result[name] for name, _, _ in METRICS
+                       if name in result.output_labels})
+    if not any(name in series for name, _, _ in METRICS):
         return {}
     out: dict[str, np.ndarray] = {}
     for name, metric, factor in METRICS:
-        if name in extra:
-            values = np.asarray(extra[name][0], dtype=float)
+        if name in series:
+            values = np.asarray(series[name], dtype=float)
             values = values.reshape(result.n_runs, -1)
             out[metric] = np.sqrt(np.mean(values * values, axis=1)) * factor
     speed = np.asarray(result["surge_speed"], dtype=float).reshape(result.n_runs, -1)

@@ -464,8 +464,9 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
         bounds=dict(sim.bounds),
         seed=seed,
         metadata={"title": scn.title, "scenario_source": source, "scenario_text": text,
-                  **({} if env is None or env.first_order is None or in_loop is not None else
-                     {"first_order_motions": json.dumps(env.first_order)})},
+                  **({} if env is None or env.first_order is None else
+                     {"first_order_motions": json.dumps(env.first_order)} if in_loop is None
+                     else {"first_order_settings": json.dumps(env.first_order)})},
         layout=layout,
         environment=None if env is None else env.environment,
         environment_params=None if env is None else env.params,

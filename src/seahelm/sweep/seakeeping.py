@@ -18,11 +18,13 @@ mean of its runs' mean surge speeds, its heading the circular mean of their mean
 headings (ε: 0 following, 180° head, 90° waves travelling to starboard) — the sea and the
 autopilot make them differ a little from cell to cell.
 
-:func:`frequency_domain_moments` gives the frequency-domain m0 of the same cells: the
-closed-form RAO tables the time-domain pass uses (:func:`~seahelm.environment.rao.
-closed_form_rao` at the cell's speed, interpolated as :meth:`RAO.__call__
-<seahelm.environment.rao.RAO.__call__>` does), the scenario's sea and spreading, integrated
-over the pass's frequency band (:func:`seahelm.analysis.seakeeping.response_moments`).
+:func:`frequency_domain_moments` gives the frequency-domain m0 of the same cells: the RAO
+tables the time-domain pass uses (:func:`~seahelm.environment.rao.closed_form_rao` at the
+cell's speed, interpolated as :meth:`RAO.__call__ <seahelm.environment.rao.RAO.__call__>`
+does, or the scenario's ``rao_file`` at every speed), the scenario's sea and spreading,
+integrated over the pass's frequency band (:func:`seahelm.analysis.seakeeping.
+response_moments`); motions after the run or in the loop (``autopilot_sees_first_order``)
+alike.
 
 Statistics over the whole record: a run that starts away from its steady speed or heading
 puts its transient into its cell (start the runs near their steady state).
@@ -374,8 +376,11 @@ def sweep_seakeeping(source: Any, *, frequency_domain: bool = True) -> SweepSeak
                      "runs": int(np.prod(shape))})
     if not frequency_domain:
         return out
+    # parsed as the scenario file where it is found (a relative rao_file is beside it)
+    scenario = Path(str(ds.attrs.get("scenario_source", "")))
+    parse_as = str(scenario) if scenario.suffix == ".toml" and scenario.is_file() else where
     return dataclasses.replace(out, frequency_domain=frequency_domain_moments(
-        out, str(ds.attrs.get("scenario_text", "")), where))
+        out, str(ds.attrs.get("scenario_text", "")), parse_as))
 
 
 def frequency_domain_moments(polar: SweepSeakeeping, text: str, source: str = "<string>"
@@ -404,6 +409,7 @@ def frequency_domain_moments(polar: SweepSeakeeping, text: str, source: str = "<
     from ..analysis.seakeeping import response_moments
     from ..environment.directional_spreading import spreading_with_parameter
     from ..environment.rao import closed_form_rao
+    from ..environment.rao_io import read_rao
     from ..environment.spectra import spectrum_from_wave_height
     from .chunks import prepared
 
@@ -413,11 +419,12 @@ def frequency_domain_moments(polar: SweepSeakeeping, text: str, source: str = "<
         warnings.simplefilter("ignore", ValidityRangeWarning)
         job = prepared(text, source)
     meta = getattr(job, "metadata", {}) or {}
-    if "first_order_motions" not in meta:
+    settings = meta.get("first_order_motions", meta.get("first_order_settings"))  # (in the loop)
+    if settings is None:
         raise ParameterError(f"{source}: the scenario has no first-order motions",
                              field="environment.waves.first_order_motions")
     specs = {json.dumps({k: v for k, v in s.items() if k not in ("direction", "seed")},
-                        sort_keys=True) for s in json.loads(meta["first_order_motions"])}
+                        sort_keys=True) for s in json.loads(settings)}
     if len(specs) != 1:
         raise ParameterError(f"{source}: the runs' seas differ in more than their direction; "
                              "the frequency-domain cells need one sea", field="batch.grid")
@@ -429,8 +436,10 @@ def frequency_domain_moments(polar: SweepSeakeeping, text: str, source: str = "<
     hull = SimpleNamespace(length=L, beam=B, draft=T, block_coefficient=cb)
     out = np.full((len(polar.dofs), *polar.speed.shape), np.nan)
     chosen = [d for d in polar.dofs if d in ("heave", "pitch", "roll")]
+    table = read_rao(spec["rao_file"]) if spec.get("rao_file") else None  # (at every speed)
     for i, j in np.ndindex(*polar.speed.shape):
-        rao = closed_form_rao(hull, float(polar.speed[i, j]), metacentric_height=spec["gm"])
+        rao = table or closed_form_rao(hull, float(polar.speed[i, j]),
+                                       metacentric_height=spec["gm"])
         dofs = [d for d in chosen if d in rao.dofs]
         band = np.linspace(rao.frequency[0], rao.frequency[-1], 2000)
         m = response_moments(rao, sea, [float(polar.heading[i, j])], dofs=dofs,
