@@ -186,9 +186,16 @@ def _forces4q(u, v, r, delta, n, p):  # pragma: no cover - compiled
     w = 0.0
     if not mirror:
         w = low_speed_weight(u, v, r, L, p.min_froude_number * math.sqrt(GRAVITY * L))
-    if u >= 0.0 and n >= 0.0 and w == 0.0:
-        (X_H, Y_H, N_H, X_P, X_R, Y_R, N_R, thrust, F_N, w_P, u_R, v_R, speed,
-         beta) = _forces(u, v, r, delta, n, p)
+    ahead = u >= 0.0 and n >= 0.0 and w == 0.0  # the MMG model's own forces, bit for bit
+    flip = mirror and u < 0.0  # the fore-and-aft mirror of the ahead hull
+    # One call of the MMG force function for every branch: each call site is a copy of it in
+    # the compiled kernel (three of them doubled the crash stop's compile time).
+    hull = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    if ahead or flip or w < 1.0:
+        hull = _forces(-u if flip else u, v, -r if flip else r, delta if ahead else 0.0,
+                       n if ahead else 0.0, p)
+    if ahead:
+        (X_H, Y_H, N_H, X_P, X_R, Y_R, N_R, thrust, F_N, w_P, u_R, v_R, speed, beta) = hull
         _T, torque, b_adv = _propeller_4q(u * (1.0 - w_P), n, p)
         return (X_H, Y_H, N_H, X_P, 0.0, 0.0, X_R, Y_R, N_R, thrust, torque, F_N, u_R, v_R,
                 speed, beta, b_adv)
@@ -197,8 +204,7 @@ def _forces4q(u, v, r, delta, n, p):  # pragma: no cover - compiled
     u_nd = max(speed, p.min_froude_number * math.sqrt(GRAVITY * L))
     rn = r * L / u_nd
     beta = math.atan2(-v, u)
-    if mirror and u < 0.0:  # the fore-aft mirror of the ahead hull, with the astern resistance
-        hull = _forces(-u, v, -r, 0.0, 0.0, p)
+    if flip:  # the mirrored hull, with the astern resistance
         q = 0.5 * rho * L * p.draft * speed * speed
         X_H = -hull[0] + (p.R_0_astern - p.R_0) * q
         Y_H = hull[1]
@@ -209,7 +215,6 @@ def _forces4q(u, v, r, delta, n, p):  # pragma: no cover - compiled
         Y_H = 0.0
         N_H = 0.0
         if w < 1.0:  # (one code block for both hull models: the same rounding in both)
-            hull = _forces(u, v, r, 0.0, 0.0, p)
             X_H, Y_H, N_H = hull[0], hull[1], hull[2]
         if w > 0.0:
             X_L, Y_L, N_L = low_speed_hull(u, v, r, L, p.draft, rho, -p.R_0, -p.R_0_astern,
