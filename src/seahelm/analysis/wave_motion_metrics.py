@@ -84,8 +84,9 @@ def wave_motion_metrics(result: Any) -> dict[str, np.ndarray]:
     speed = np.asarray(result["surge_speed"], dtype=float).reshape(result.n_runs, -1)
     out["mean_surge_speed_mps"] = np.mean(speed, axis=1)
     heading = np.asarray(result["heading"], dtype=float).reshape(result.n_runs, -1)
-    mean_heading = np.arctan2(np.mean(np.sin(heading), axis=1),
-                              np.mean(np.cos(heading), axis=1))
+    from scipy.stats import circmean
+
+    mean_heading = circmean(heading, axis=1)
     came_from = _wave_direction(result)
     if came_from is None:
         out["mean_wave_heading_deg"] = np.full(result.n_runs, np.nan)

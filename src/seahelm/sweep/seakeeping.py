@@ -205,8 +205,9 @@ class SweepSeakeeping:
     def column_heading(self) -> np.ndarray:
         """Circular mean heading of each column [rad], increasing from the first column (in
         [0, 2π), the later ones + 2π where they pass 2π): the polar diagram's angles."""
-        h = np.mod(np.arctan2(np.mean(np.sin(self.heading), axis=0),
-                              np.mean(np.cos(self.heading), axis=0)), 2.0 * math.pi)
+        from scipy.stats import circmean
+
+        h = circmean(self.heading, axis=0)
         h = np.where(np.abs(h - 2.0 * math.pi) < 1e-9, 0.0, h)
         return h + 2.0 * math.pi * (np.cumsum(np.append(0.0, np.diff(h)) < 0) > 0)
 
@@ -347,13 +348,12 @@ def sweep_seakeeping(source: Any, *, frequency_domain: bool = True) -> SweepSeak
     mean = np.nanmean(ms, axis=-1)
     se = np.nanstd(ms, axis=-1, ddof=1) / np.sqrt(n)
     speed = np.nanmean(np.where(ok, speed_runs, np.nan), axis=-1)
-    s = np.nansum(np.where(ok, np.sin(eps_runs), 0.0), axis=-1)
-    c = np.nansum(np.where(ok, np.cos(eps_runs), 0.0), axis=-1)
-    heading = np.mod(np.arctan2(s, c), 2.0 * math.pi)
+    from scipy.stats import circmean
+
+    heading = circmean(np.where(ok, eps_runs, np.nan), axis=-1, nan_policy="omit")
     heading = np.where(np.abs(heading - 2.0 * math.pi) < 1e-9, 0.0, heading)
     rows = np.argsort(np.mean(speed, axis=1), kind="stable")
-    col_mean = np.mod(np.arctan2(np.sin(heading).mean(axis=0), np.cos(heading).mean(axis=0)),
-                      2.0 * math.pi)
+    col_mean = circmean(heading, axis=0)
     col_mean = np.where(np.abs(col_mean - 2.0 * math.pi) < 1e-9, 0.0, col_mean)
     cols = np.argsort(col_mean, kind="stable")
     # start after the largest gap round the circle: the headings a contour may join
