@@ -244,4 +244,11 @@ def watch_compiles(on_first: Any = None,
 
     listener = _Listener()
     event.register("numba:compile", listener)
-    return lambda: event.unregister("numba:compile", listener)
+
+    registered = [True]
+
+    def stop() -> None:  # once: a second unregister raises
+        if registered.pop() if registered else False:
+            event.unregister("numba:compile", listener)
+
+    return stop
