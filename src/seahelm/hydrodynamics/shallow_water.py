@@ -120,9 +120,9 @@ MIN_DEPTH_RATIO = 1.2
 SOURCE = "Taimuri et al. (2020) shallow-water set"
 
 #: The MMGParams fields the corrections change.
-CORRECTED = ("R_0", "X_vv", "X_vvvv", "X_rr", "X_vr", "Y_v", "Y_r", "Y_vvv", "Y_vvr", "Y_vrr", "Y_rrr",
-             "N_v", "N_r", "N_vvv", "N_vvr", "N_vrr", "N_rrr", "m_y", "J_z", "w_P0", "t_P",
-             "gamma_R_minus", "gamma_R_plus")
+CORRECTED = ("R_0", "X_vv", "X_vvvv", "X_rr", "X_vr", "Y_v", "Y_r", "Y_vvv", "Y_vvr", "Y_vrr",
+             "Y_rrr", "N_v", "N_r", "N_vvv", "N_vvr", "N_vrr", "N_rrr", "m_y", "J_z", "w_P0",
+             "t_P", "gamma_R_minus", "gamma_R_plus")
 
 
 def lackenby_speed_loss(hull: HullParticulars, depth: float,
