@@ -56,7 +56,7 @@ the speed at which the ship in depth h meets the resistance it meets at V_∞ in
 A_M = C_M B d with C_M of Kerlen (1970); V_∞ is the parameter set's test speed
 (``approach_speed``), the tanh term being below 0.4 % of speed at depth Froude numbers up to
 0.6.
-R'_0 × 1.06, 1.16, 1.34, 1.62 at h/d = 3, 2, 1.5, 1.2 for the 304.8 m tanker of Van Berlekom &
+R'_0 × 1.06, 1.16, 1.33, 1.62 at h/d = 3, 2, 1.5, 1.2 for the 304.8 m tanker of Van Berlekom &
 Goddard (1972), against 1.08, 1.16, 1.32, 1.81 by their model (Fossen's MSS ``tanker.m``:
 X_uu + X_uuz d/(h − d)). Warned at a depth Froude number V_∞/√(g h) > 1, where the subcritical
 argument has no meaning.
