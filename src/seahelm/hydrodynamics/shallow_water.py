@@ -42,7 +42,7 @@ Both: X'_vv, X'_vvvv, Y'_vvv, N'_vvv, Y'_vvr, Y'_vrr × f_yv; X'_rr × f_nr; X'_
 Y'_rrr, N'_rrr × g_nr; the added masses m'_y × g_v and J'_z × g_nr (Ankudinov's factors for
 the sway added mass and the yaw added inertia, which the transcription computes but does not
 apply; m'_x unchanged); the flow-straightening coefficient γ_R by the regression of the same
-set (it peaks near h/d = 1.5: × 1.67 for the KVLCC2, × 1.35 at h/d = 1.2).
+set (it peaks near h/d = 1.5: × 1.67 for the KVLCC2, × 1.29 at h/d = 1.2).
 
 Resistance (every set): R'_0 × 1/(1 − ΔV/V_∞)², with Lackenby's (1963) speed loss
 (:func:`lackenby_speed_loss`; ITTC Recommended Procedure 7.5-04-01-01.2 (2014), the
