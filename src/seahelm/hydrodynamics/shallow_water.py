@@ -33,7 +33,7 @@ N'_r, N'_vvr, N'_vrr and Ankudinov's f_nv for N'_v::
     Y'_r, N'_vvr, N'_vrr × (1 + A_1 t + A_2 t² + A_3 t³)   (A_i quadratics in C_b B/d, C_b d/B)
 
 With it N'_r barely grows at moderate depth (× 0.99 at h/d = 2 for the KVLCC2) while N'_v
-grows by 40 %, so the KVLCC2 turns *tighter* at h/d = 2 than in deep water (2.9 L against
+grows by 40 %, so the KVLCC2 turns *tighter* at h/d = 2 than in deep water (2.7 L against
 3.1 L), and Kijima's cubic multiplies N'_vrr by 5.7 at h/d = 1.43 for a C_b 0.7 cargo ship,
 which with the negative N'_vrr of Yoshimura & Masumoto's regression makes the ship spin up
 in a 35° turn: kept so the published set can be reproduced, not the default.
