@@ -30,7 +30,12 @@ def _available_cores() -> int:
 
 
 def _call(fn: Callable[..., Any], args: tuple[Any, ...], kwargs: dict[str, Any]) -> None:
+    import signal
     import warnings
+
+    # Ctrl-C reaches the whole process group: the first process ends this one (terminate,
+    # SIGTERM's default action) instead of a traceback from here
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # this process's own call warns where it matters
