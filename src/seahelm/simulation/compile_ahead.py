@@ -88,7 +88,14 @@ class CompileAhead:
         return self
 
     def wait(self, timeout: float = 900.0) -> None:
-        """Wait for the second process (if it started) to finish filling the cache."""
+        """Wait for the second process (if it started) to finish filling the cache.
+
+        Parameters
+        ----------
+        timeout : float, optional
+            Seconds to wait at most [s] (default 900); a second process still running then is
+            ended, and this process compiles the kernel itself.
+        """
         self._stop_watching()
         if self._process is not None:
             self._process.join(timeout)
