@@ -150,7 +150,8 @@ def sim_result_summary(result: object) -> tuple[str, list[tuple[str, object]]]:
 
     md = result.metadata
     n_ok = int(np.count_nonzero(result.status == 0))
-    span = (f"t = {result.time[0]:g} … {result.time[-1]:g} s" if len(result.time) else "no samples")
+    span = (f"t = {result.time[0]:g} … {result.time[-1]:g} s" if len(result.time)
+            else "no samples")
     batch = ", ".join(f"{d}: {n}" for d, n in zip(result.dims, result.shape))
     title = (f"SimResult: {result.n_runs} run(s) ({batch}), {len(result.time)} samples, {span}")
     parts = [f"{k} {md[k]}" for k in ("model", "actuator", "controller", "integrator")

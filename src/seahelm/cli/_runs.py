@@ -21,7 +21,7 @@ from ..analysis.statistics import (
     numeric_keys,
     quantile_name,
 )
-from ..units import label, metric_label, metric_unit, shown_metrics, to_display
+from ..units import label, metric_label, metric_unit, noted_unreached, shown_metrics, to_display
 
 #: Rows shown in the per-run table of a batch (the JSON output has every run).
 MAX_ROWS = 20
@@ -122,6 +122,7 @@ def summary_table(summary: list[dict[str, Any]], title: str,
             unit = units.get(key, metric_unit(key))
             table.add_row(escape(metric_label(key, unit) if key != "status" else key),
                           _shown(value, unit, key))
+        unreached = noted_unreached(unreached, row)
         if unreached:
             table.caption = escape("not reached in this run: " + ", ".join(unreached)
                                    + " (every metric: --json)")

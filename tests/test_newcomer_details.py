@@ -1,0 +1,89 @@
+"""Small things a newcomer noticed (issue 44, item 7): notes that are noise, a figure titled
+by its components, help texts that said the wrong thing."""
+
+from __future__ import annotations
+
+import math
+import re
+
+import pytest
+from typer.testing import CliRunner
+
+from seahelm.cli.main import app
+
+runner = CliRunner()
+
+
+def test_a_steered_run_does_not_note_its_turning_diameter():
+    from seahelm.units import noted_unreached
+
+    course_change = ["final_heading", "heading_error_deg", "turning_diameter_m",
+                     "settling_time_s"]
+    assert noted_unreached(["turning_diameter_m", "settling_time_s"], course_change) == [
+        "settling_time_s"]
+    route = ["final_heading", "max_abs_cross_track_error_m", "turning_diameter_m"]
+    assert noted_unreached(["turning_diameter_m"], route) == []
+    # a turn (open loop, a yaw-rate reference) that did not close its circle: still said
+    turn = ["final_heading", "final_yaw_rate", "turning_diameter_m"]
+    assert noted_unreached(["turning_diameter_m"], turn) == ["turning_diameter_m"]
+
+
+def test_the_demo_prints_no_turning_diameter_note(tmp_path):
+    res = runner.invoke(app, ["demo", "--out", str(tmp_path)])
+    assert res.exit_code == 0, res.output
+    assert "turning_diameter" not in res.stdout  # was "not reached in this run: turning_..."
+    from seahelm.report import write_report
+
+    write_report(tmp_path / "result.nc", tmp_path / "r.html")
+    assert "turning_diameter" not in (tmp_path / "r.html").read_text(encoding="utf-8")
+
+
+@pytest.fixture(scope="module")
+def turning_runs():
+    from seahelm.analysis.maneuvers import turning_circle
+
+    return turning_circle("kvlcc2-l7", rudder=math.radians(35.0)).runs
+
+
+def test_a_manoeuvre_plot_names_the_manoeuvre_ship_and_sides(turning_runs):
+    import matplotlib.pyplot as plt
+
+    from seahelm.plotting.timeseries import plot_result
+
+    fig = plot_result(turning_runs)
+    try:
+        title = fig._suptitle.get_text()
+        assert title == "Turning circle: kvlcc2-l7 (mmg)", title  # was "mmg / open-loop"
+        labels = [t.get_text() for ax in fig.axes if ax.get_legend()
+                  for t in ax.get_legend().get_texts()]
+        assert "run 0 (starboard)" in labels and "run 1 (port)" in labels, labels
+        assert not any("side=" in label for label in labels)
+    finally:
+        plt.close(fig)
+
+
+def test_legend_angles_in_degrees():
+    from seahelm.plotting.timeseries import _coordinate_text
+
+    assert _coordinate_text("rudder", math.radians(20.0), "rad") == "rudder=20°"
+    assert _coordinate_text("kp", 3.0, None) == "kp=3"
+    assert _coordinate_text("side", -1, None) == "port"
+    assert _coordinate_text("ship_name", "my-ship", None) == "my-ship"
+
+
+def _help(*args: str) -> str:
+    res = runner.invoke(app, [*args, "--help"], env={"COLUMNS": "80"})
+    assert res.exit_code == 0, res.output
+    return " ".join(res.stdout.split())
+
+
+def test_the_stopping_help_gives_its_own_duration():
+    text = _help("maneuver", "stopping")
+    assert "steady turn" not in text  # a crash stop has none
+    assert "bollard astern thrust" in text
+    assert "steady turn" in _help("maneuver", "turning")  # the turns keep theirs
+
+
+def test_the_rudder_rate_default_reads_as_a_number():
+    text = _help("identify", "nomoto")
+    assert "65/28)" not in text and re.search(r"rudder-rate FLOAT .*\[default: 2\.32\]", text)
