@@ -87,3 +87,38 @@ def test_the_stopping_help_gives_its_own_duration():
 def test_the_rudder_rate_default_reads_as_a_number():
     text = _help("identify", "nomoto")
     assert "65/28)" not in text and re.search(r"rudder-rate FLOAT .*\[default: 2\.32\]", text)
+
+
+def test_a_run_that_never_settles_says_so():
+    from rich.console import Console
+
+    from seahelm.cli._runs import summary_table
+
+    rows = [{"run": 0, "status": "ok", "final_heading_rad": 0.1, "final_yaw_rate": 0.0,
+             "settling_time_s": 93.8},
+            {"run": 1, "status": "ok", "final_heading_rad": 0.2, "final_yaw_rate": 0.0,
+             "settling_time_s": math.nan}]
+    console = Console(width=120, record=True)
+    console.print(summary_table(rows, "two runs"))
+    text = console.export_text()
+    assert "not settled" in text and "93.8" in text and "nan" not in text
+
+
+def test_the_report_of_the_imo_check_gives_the_verdict_first(report_imo_dir):
+    page = (report_imo_dir / "report.html").read_text(encoding="utf-8")
+    verdict = page.index("the evaluated criteria")
+    assert verdict < page.index('class="meta"'), "the verdict sat below the metadata tables"
+    # the metadata table in words, not attribute names
+    for raw in ("actuator_step", "seahelm_checksums", "compile_time_s"):
+        assert f"<td>{raw}</td>" not in page, raw
+    assert "<td>actuator step</td>" in page and "<td>checksums</td>" in page
+
+
+def test_the_report_of_an_imo_ensemble_counts_its_samples(tmp_path):
+    res = runner.invoke(app, ["imo", "kvlcc2-l7", "--monte-carlo", "6", "--seed", "1",
+                              "--out", str(tmp_path)])
+    assert res.exit_code == 0, res.output
+    res = runner.invoke(app, ["report", str(tmp_path / "imo-probabilities.nc"), "-o",
+                              str(tmp_path / "p.html")])
+    assert res.exit_code == 0, res.output
+    assert "6 sample(s)" in res.stdout and "0 run(s)" not in res.stdout  # it said 0 run(s)

@@ -79,7 +79,10 @@ def run_units(result: Any, summary: list[dict[str, Any]]) -> dict[str, str]:
 
 
 def _shown(value: Any, unit: str, name: str) -> str:
-    """A value in its display unit (:func:`seahelm.units.to_display`), formatted."""
+    """A value in its display unit (:func:`seahelm.units.to_display`), formatted; a run that
+    never settles says "not settled" (it printed ``nan``)."""
+    if name == "settling_time_s" and isinstance(value, float) and math.isnan(value):
+        return "not settled"
     return fmt(to_display(value, unit, name)[0]) if isinstance(value, float) else fmt(value)
 
 
