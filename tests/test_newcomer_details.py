@@ -122,3 +122,32 @@ def test_the_report_of_an_imo_ensemble_counts_its_samples(tmp_path):
                               str(tmp_path / "p.html")])
     assert res.exit_code == 0, res.output
     assert "6 sample(s)" in res.stdout and "0 run(s)" not in res.stdout  # it said 0 run(s)
+
+
+def test_autopilot_tune_writes_a_short_portable_scenario(tmp_path):
+    """It wrote t_final = 15,000 s for the Mariner's 10° course change (a hundred time
+    constants of the slowest pole) and the ship file's absolute path into title and ship."""
+    import tomllib
+
+    ship_file = tmp_path / "ships" / "m.toml"
+    ship_file.parent.mkdir()
+    res = runner.invoke(app, ["ship", "show", "mariner-nonlinear", "--toml"])
+    ship_file.write_text(res.stdout)
+    out = tmp_path / "scenarios" / "pid.toml"
+    out.parent.mkdir()
+    res = runner.invoke(app, ["autopilot", "tune", str(ship_file), "--bandwidth", "0.05",
+                              "--damping", "0.9", "--out", str(out)])
+    assert res.exit_code == 0, res.output
+    scenario = tomllib.loads(out.read_text())
+    assert scenario["vessel"]["ship"] == "../ships/m.toml"  # relative to the scenario
+    assert str(tmp_path) not in out.read_text()
+    assert scenario["title"].startswith("mariner-nonlinear: 10 deg course change")
+    # five time constants of the slowest closed-loop pole (0.0067 1/s): 800 s; the
+    # nonlinear run settles within 2 % in about 400 s
+    assert scenario["simulation"]["t_final"] == 800.0
+    run = runner.invoke(app, ["run", str(out), "--json"])
+    assert run.exit_code == 0, run.output
+    import json
+
+    settling = json.loads(run.stdout)["runs"][0]["settling_time_s"]
+    assert 100.0 < settling < 0.75 * 800.0
