@@ -151,3 +151,27 @@ def test_autopilot_tune_writes_a_short_portable_scenario(tmp_path):
 
     settling = json.loads(run.stdout)["runs"][0]["settling_time_s"]
     assert 100.0 < settling < 0.75 * 800.0
+
+
+def test_a_wind_section_names_every_missing_key_at_once():
+    """A wind scenario on an estimated ship took five failed runs, one key each, one of them
+    garbled ("[environment.wind.vessel_type] own/ap_env.toml: [environment.wind.
+    length_overall] needed")."""
+    from seahelm.scenario import ScenarioError, parse_scenario as parse
+
+    text = ('[vessel]\nmodel = "mariner"\n[environment.wind]\nspeed = 5.0\n'
+            'direction_deg = 10\n[simulation]\nt_final = 10.0\ndt = 0.1\n')
+    with pytest.raises(ScenarioError) as err:
+        parse(text)
+    message = str(err.value)
+    assert "[environment.wind.lateral_area] needed [m²]" in message
+    for key in ("`frontal_area` [m²]", "`length_overall` [m]", "`vessel_type`",
+                "tanker-loaded"):
+        assert key in message, key
+    assert message.count("[environment.wind") == 1  # one key path: not garbled
+    waves = text.replace("[environment.wind]\nspeed = 5.0\ndirection_deg = 10\n",
+                         "[environment.waves]\nheight = 2.0\nperiod = 8.0\ndirection_deg = 0\n")
+    with pytest.raises(ScenarioError) as err:
+        parse(waves)
+    for key in ("hull_length", "`beam` [m]", "`draft` [m]", "`block_coefficient`"):
+        assert key in str(err.value), key
