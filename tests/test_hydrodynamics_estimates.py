@@ -167,6 +167,9 @@ def test_deep_water_changes_nothing_and_large_depth_tends_to_it():
     deep = KVLCC2_FULL.as_dict()
     assert shallow_water_coefficients(deep, KVLCC2, math.inf) == deep
     far = shallow_water_factors(KVLCC2, 1e4 * 20.8)
+    for name in CORRECTED:  # the default keeps the deep-water wake and thrust deduction
+        assert far[name] == pytest.approx(1.0, abs=2e-3), name
+    far = shallow_water_factors(KVLCC2, 1e4 * 20.8, propulsion="taimuri")
     for name in CORRECTED:
         if name == "t_P":  # the regression's own limit, 1 + 0.004 (29.495 − 14.089 x + ...)
             x = 0.8098 * 320 / 58
@@ -195,8 +198,9 @@ def test_depth_at_or_below_the_draft_is_an_error_and_below_1_2_warns():
 
 
 def test_thrust_deduction_is_corrected_on_one_minus_t():
-    f = shallow_water_factors(KVLCC2, 1.5 * 20.8)
-    out = shallow_water_coefficients({"t_P": 0.22, "w_P0": 0.4}, KVLCC2, 1.5 * 20.8)
+    f = shallow_water_factors(KVLCC2, 1.5 * 20.8, propulsion="taimuri")
+    out = shallow_water_coefficients({"t_P": 0.22, "w_P0": 0.4}, KVLCC2, 1.5 * 20.8,
+                                     propulsion="taimuri")
     assert out["t_P"] == pytest.approx(1 - f["t_P"] * 0.78)
     assert out["w_P0"] == pytest.approx(0.4 * f["w_P0"])
 

@@ -22,8 +22,30 @@ from .errors import (  # noqa: E402
 )
 
 # The public API, imported on first use (``import seahelm`` stays light: no numba, no xarray).
-_LAZY = {
+# A user's objects first: ships, the request and the run, manoeuvres, the IMO check,
+# linearisation and identification; then the lower-level pieces.
+_USER_API = {
+    "Ship": "seahelm.ships.ship",
+    "get_ship": "seahelm.ships",
+    "read_ship": "seahelm.ships",
+    "Design": "seahelm.ships.estimate",
+    "estimate_ship": "seahelm.ships.estimate",
+    "Problem": "seahelm.simulation.problem",
     "simulate": "seahelm.simulation.engine",
+    "turning_circle": "seahelm.analysis.maneuvers",
+    "zigzag": "seahelm.analysis.maneuvers",
+    "spirals": "seahelm.analysis.maneuvers",
+    "pull_out": "seahelm.analysis.maneuvers",
+    "crash_stop": "seahelm.analysis.maneuvers",
+    "imo_check": "seahelm.analysis.imo",
+    "linearize": "seahelm.analysis.linearisation",
+    "read_records": "seahelm.analysis.records",
+    "fit_nomoto": "seahelm.analysis.nomoto_fit",
+    "regress_hull": "seahelm.analysis.mmg_fit",
+    "refine_mmg": "seahelm.analysis.mmg_fit",
+}
+_LAZY = {
+    **_USER_API,
     "RunStatus": "seahelm.simulation.engine",
     "RunBatch": "seahelm.simulation.batch",
     "BatchLayout": "seahelm.simulation.batch",
@@ -42,6 +64,7 @@ _LAZY = {
 }
 
 __all__ = [
+    *_USER_API,
     "__version__",
     "SeahelmError",
     "ParameterError",
@@ -49,7 +72,7 @@ __all__ = [
     "SimulationDiverged",
     "MissingDependencyError",
     "strict_validity",
-    *_LAZY,
+    *(name for name in _LAZY if name not in _USER_API),
 ]
 
 

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import importlib.util
 import linecache
-import marshal
 import os
 import sys
 import tempfile
@@ -27,7 +26,8 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["kernel_cache_dir", "code_fingerprint", "import_generated", "exec_generated"]
+__all__ = ["kernel_cache_dir", "code_fingerprint", "code_identity", "import_generated",
+           "exec_generated", "watch_compiles"]
 
 
 def kernel_cache_dir() -> Path:
@@ -50,6 +50,44 @@ def kernel_cache_dir() -> Path:
                       f"using {fallback}", stacklevel=2)
         fallback.mkdir(parents=True, exist_ok=True)
         return fallback
+
+
+def _constant_identity(value: Any) -> str:
+    """A constant of a code object as text that depends on its value alone (a frozenset's
+    members sorted: their order follows string hashing, which differs between processes)."""
+    if isinstance(value, frozenset):
+        return "frozenset{" + ",".join(sorted(_constant_identity(v) for v in value)) + "}"
+    if isinstance(value, tuple):
+        return "(" + ",".join(_constant_identity(v) for v in value) + ")"
+    return f"{type(value).__name__}:{value!r}"
+
+
+def code_identity(code: types.CodeType) -> bytes:
+    """Bytes that identify what ``code`` does, the same in every process.
+
+    Its bytecode, exception table, names, argument counts, flags and constants (code objects
+    among them recursively), but not its file or line numbers, which do not change what the
+    compiled code does. Not :func:`marshal.dumps`: marshal flags an object it has seen before
+    only when its reference count is above one, so the same function marshals to other bytes
+    once numba's compiler has held references to its constants. The kernels named after it
+    got another name in the process after the one that compiled them, and every
+    ``seahelm imo kvlcc2-full`` compiled its crash-stop kernel again (four minutes).
+
+    Parameters
+    ----------
+    code : types.CodeType
+
+    Returns
+    -------
+    bytes
+    """
+    consts = ",".join(code_identity(c).hex() if isinstance(c, types.CodeType)
+                      else _constant_identity(c) for c in code.co_consts)
+    header = (code.co_name, code.co_argcount, code.co_posonlyargcount, code.co_kwonlyargcount,
+              code.co_flags, code.co_names, code.co_varnames, code.co_freevars,
+              code.co_cellvars)
+    return b"\0".join([repr(header).encode(), code.co_code,
+                       getattr(code, "co_exceptiontable", b""), consts.encode()])
 
 
 def code_fingerprint(py: Any, seen: set[int] | None = None) -> bytes:
@@ -75,7 +113,7 @@ def code_fingerprint(py: Any, seen: set[int] | None = None) -> bytes:
     if id(py) in seen:
         return b""
     seen.add(id(py))
-    parts = [marshal.dumps(py.__code__)]
+    parts = [code_identity(py.__code__)]
     stack = [py.__code__]
     names: list[str] = []
     while stack:
@@ -90,7 +128,7 @@ def code_fingerprint(py: Any, seen: set[int] | None = None) -> bytes:
         elif isinstance(obj, (bool, int, float, complex, str)):
             parts.append(f"{name}={obj!r}".encode())
         elif isinstance(obj, np.ndarray):
-            parts.append(name.encode() + obj.tobytes())
+            parts.append(f"{name}:{obj.dtype.str}{obj.shape!r}".encode() + obj.tobytes())
         elif isinstance(obj, tuple) and all(
                 isinstance(v, (bool, int, float, str)) for v in obj):  # signal_indices
             parts.append(f"{name}={obj!r}{getattr(type(obj), '_fields', ())!r}".encode())
@@ -160,3 +198,57 @@ def exec_generated(name: str, text: str) -> ModuleType:
     sys.modules[name] = module
     exec(compile(text, filename, "exec"), module.__dict__)
     return module
+
+
+def watch_compiles(on_first: Any = None,
+                   log: str | os.PathLike[str] | None = None) -> Any:
+    """Listen to numba's compilations in this process (not its loads from the on-disk cache).
+
+    Parameters
+    ----------
+    on_first : callable, optional
+        Called once, with no arguments, when the first compilation starts (the command line
+        shows a "compiling … (first use)" status with it).
+    log : path, optional
+        A file that gets one line per compiled function (``module.name (argument types)``)
+        when its compilation ends; ``SEAHELM_COMPILE_LOG`` names it when not given. A
+        repeated command must leave it empty: the test of the kernel cache reads it.
+
+    Returns
+    -------
+    callable
+        Stops listening (nothing to stop when neither is set).
+    """
+    from numba.core import event
+
+    log = log if log is not None else os.environ.get("SEAHELM_COMPILE_LOG") or None
+    if on_first is None and log is None:
+        return lambda: None
+
+    class _Listener(event.Listener):  # type: ignore[misc]
+        started = False
+
+        def on_start(self, ev: Any) -> None:
+            if not self.started and on_first is not None:
+                self.started = True
+                on_first()
+
+        def on_end(self, ev: Any) -> None:
+            if log is None:
+                return
+            data = ev.data or {}
+            py = getattr(data.get("dispatcher"), "py_func", None)
+            name = f"{getattr(py, '__module__', '?')}.{getattr(py, '__qualname__', '?')}"
+            with open(log, "a", encoding="utf-8") as fh:
+                fh.write(f"{name} {data.get('args', '')}\n")
+
+    listener = _Listener()
+    event.register("numba:compile", listener)
+
+    registered = [True]
+
+    def stop() -> None:  # once: a second unregister raises
+        if registered.pop() if registered else False:
+            event.unregister("numba:compile", listener)
+
+    return stop

@@ -45,11 +45,10 @@ from collections.abc import Callable, Sequence
 from typing import Any, NamedTuple
 
 import numpy as np
-from numba import njit
 
 from ..errors import ParameterError
 from ..parameters import Params, as_records, stack_params
-from ..vessels.base import VesselModel, _batched_output
+from ..vessels.base import VesselModel, _batched_indexed_rhs, _batched_output
 from .constant_speed import is_constant_speed
 
 __all__ = ["ApproachStatus", "BatchApproach", "approach_states"]
@@ -174,16 +173,9 @@ class _Batch:
         with np.errstate(all="ignore"):
             # each run's parameter record read in place (copying the records of the rows
             # would cost several times the right-hand side itself)
-            _rows_rhs(m.rhs, 0.0, x, u, d, self.records,
-                      np.ascontiguousarray(rows, dtype=np.int64), out)
+            _batched_indexed_rhs(m.rhs, 0.0, x, u, d, self.records,
+                                 np.ascontiguousarray(rows, dtype=np.int64), out)
         return out[:, [self.i_u, self.i_v, self.i_r]]
-
-
-@njit
-def _rows_rhs(rhs, t, X, U, D, P, rows, out):  # pragma: no cover - compiled
-    """ẋ of state row i with the parameter record ``P[rows[i]]`` (rows may repeat)."""
-    for i in range(X.shape[0]):
-        rhs(t, X[i], U[i], D[i], P[rows[i]], out[i])
 
 
 def approach_states(model: VesselModel, params: Params | Sequence[Params], speed: Any = None,

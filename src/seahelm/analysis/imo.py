@@ -61,6 +61,7 @@ import numpy as np
 
 from .._validate import as_float_array
 from ..errors import ParameterError
+from ..simulation.compile_ahead import CompileAhead
 from .constant_speed import is_constant_speed
 from .maneuvers import (
     ManeuverResult,
@@ -331,10 +332,13 @@ def imo_check(ship: Any, *, speed: float | None = None, rps: float | None = None
         field="speed")
     hard = min(math.radians(35.0), s.max_rudder)
     ten = math.radians(10.0)
-    turning = turning_circle(s, np.array([hard, ten]), sides=(1, -1), speed=speed, rps=rps,
-                             dt=dt, heading_change=math.pi)
-    zz = zigzag(s, np.radians([10.0, 20.0]), np.radians([10.0, 20.0]), sides=(1, -1),
-                speed=speed, rps=rps, dt=dt)
+    # on a cold kernel cache the crash stop's kernel compiles in a second process meanwhile
+    with CompileAhead(_warm_stopping_kernel, s, dt) as ahead:
+        turning = turning_circle(s, np.array([hard, ten]), sides=(1, -1), speed=speed,
+                                 rps=rps, dt=dt, heading_change=math.pi)
+        zz = zigzag(s, np.radians([10.0, 20.0]), np.radians([10.0, 20.0]), sides=(1, -1),
+                    speed=speed, rps=rps, dt=dt)
+        ahead.wait()
     tm, zm = turning.metrics, zz.metrics
     L = s.length
     V = float(tm["approach_speed_value"].values.ravel()[0])
@@ -401,6 +405,16 @@ def imo_check(ship: Any, *, speed: float | None = None, rps: float | None = None
                      "L/V (a Froude-scaled ship has L/V larger by the square root of the scale)")
     return ImoReport(ship=s.name, length=L, speed=V, L_over_V=lv, criteria=tuple(rows),
                      notes=tuple(notes), turning=turning, zigzag=zz, stopping=stopping)
+
+
+def _warm_stopping_kernel(ship: Any, dt: float | None) -> None:
+    """A crash stop of ``ship`` at its test speed, for its compiled kernel alone (run by
+    :class:`~seahelm.simulation.compile_ahead.CompileAhead` in a second process)."""
+    try:
+        stopper = stopping_ship(ship)
+    except ParameterError:
+        return
+    crash_stop(stopper, dt=dt)
 
 
 def _stopping(ship: Any, speed: float, dt: float | None

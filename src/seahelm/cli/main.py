@@ -484,6 +484,7 @@ def main() -> None:
     import sys
 
     exit_on_sigterm()  # a killed write cleans up its temporary file
+    _show_compiling()
     try:
         _refuse_empty_values(sys.argv[1:])
         app()
@@ -496,6 +497,22 @@ def main() -> None:
     if _is_the_program():
         exit_now(code)
     raise SystemExit(code)
+
+
+def _show_compiling() -> None:
+    """One status line on a terminal when this command compiles a kernel: the first use of a
+    combination on this machine (a minute or two for a whole IMO check) looks like a hang
+    otherwise. Later runs load the kernels from the cache and print nothing.
+    ``SEAHELM_COMPILE_LOG`` names a file that gets one line per compiled function."""
+    import sys
+
+    from .._codegen import watch_compiles
+
+    def say() -> None:
+        print("compiling the simulation kernels for this command (first use on this machine; "
+              "later runs load them from the cache) ...", file=sys.stderr, flush=True)
+
+    watch_compiles(on_first=say if sys.stderr.isatty() else None)
 
 
 def _is_the_program() -> bool:

@@ -310,8 +310,9 @@ class Ship:
         """The ship in water of depth ``depth`` [m] (``inf``: deep water).
 
         The MMG coefficients are corrected from the deep-water ones by the shallow-water set of
-        :mod:`seahelm.hydrodynamics.shallow_water` (Taimuri et al. 2020; needs the MMG model and
-        the ship's particulars). Deep water gives the deep-water parameters back unchanged.
+        :mod:`seahelm.hydrodynamics.shallow_water` (hull: Taimuri et al. 2020; resistance R'_0:
+        Lackenby 1963; needs the MMG model and the ship's particulars). Deep water gives the
+        deep-water parameters back unchanged.
 
         Parameters
         ----------

@@ -2,7 +2,8 @@
 
 :func:`ship_at_depth` (also :meth:`Ship.at_depth <seahelm.ships.Ship.at_depth>`) corrects the
 deep-water MMG coefficients of a ship by the shallow-water set of
-:mod:`seahelm.hydrodynamics.shallow_water` (Taimuri et al. 2020) and keeps the deep-water ones on
+:mod:`seahelm.hydrodynamics.shallow_water` (hull: Taimuri et al. 2020; resistance: Lackenby
+1963) and keeps the deep-water ones on
 the ship, so a ship file of a ship in shallow water holds its deep-water parameters and its
 depth, and reading it makes the same ship. :func:`hull_particulars` gives the hull particulars
 the corrections (and the estimates of :mod:`seahelm.ships.estimate`) read.
@@ -128,8 +129,8 @@ def _validity(notes: tuple[str, ...], ratio: float | None) -> tuple[str, ...]:
     if ratio is None:
         note = "deep water"
     else:
-        note = (f"shallow water: h/d = {ratio:.3g} (corrections of Taimuri et al. 2020, data "
-                f"range h/d ≥ {MIN_DEPTH_RATIO:g})")
+        note = (f"shallow water: h/d = {ratio:.3g} (hull corrections of Taimuri et al. 2020, "
+                f"data range h/d ≥ {MIN_DEPTH_RATIO:g}; resistance by Lackenby 1963)")
     depth_notes = [i for i, n in enumerate(notes)
                    if n == "deep water" or n.startswith("shallow water: h/d")]
     if not depth_notes:
