@@ -99,7 +99,7 @@ def test_models_lists_the_signals_a_scenario_author_wires():
     servo = {(s["kind"], s["name"]) for s in payload["actuators"]["rudder-servo"]["signals"]}
     assert {("command", "rudder_command"), ("output", "rudder_angle")} <= servo
     assert payload["controllers"]["open-loop"]["passthrough"] is True
-    human = runner.invoke(app, ["models"]).stdout
+    human = runner.invoke(app, ["models", "mmg", "pid-heading"]).stdout
     assert "[rad/s]" in human and "propeller_rps" in human  # units survive rich markup
 
 
@@ -279,9 +279,31 @@ def test_the_one_run_summary_says_units_and_hides_internals(tmp_path):
         assert label in out, label
     for internal in ("yaw_aux", "yaw aux", "final_heading_rad", "heading rad", " nan "):
         assert internal not in out, internal
-    assert "not reached in this run: turning_diameter_m" in " ".join(out.split())
+    # a course change never turns a circle: its turning diameter is not a "not reached"
+    # note (issue 44: it was under every course change), and not a nan row either
+    assert "turning_diameter" not in out and "turning diameter" not in out
     res = runner.invoke(app, ["inspect", str(tmp_path / "result.nc"), "--json"])
     assert res.exit_code == 0
     summary = json.loads(res.stdout)
     text = json.dumps(summary)
     assert "final_yaw_aux" in text and "turning_diameter_m" in text
+
+
+def test_models_without_a_name_is_an_overview_and_a_name_filters():
+    """`seahelm models` printed 1,769 lines and `seahelm models mmg` exited 2 (issue 44)."""
+    overview = runner.invoke(app, ["models"], env={"COLUMNS": "100"})
+    assert overview.exit_code == 0
+    assert len(overview.stdout.splitlines()) < 200
+    assert "mmg" in overview.stdout and "pid-heading" in overview.stdout
+    assert "rudder_command" not in overview.stdout  # no signals in the overview
+    one = runner.invoke(app, ["models", "mmg"], env={"COLUMNS": "100"})
+    assert one.exit_code == 0, one.output
+    assert "Y_v" in one.stdout and "drift_angle" in one.stdout and "pid-heading" not in one.stdout
+    every = runner.invoke(app, ["models", "--all"], env={"COLUMNS": "100"})
+    assert every.exit_code == 0 and len(every.stdout.splitlines()) > 1000
+    assert json.loads(runner.invoke(app, ["models", "mmg", "--json"]).stdout) == {
+        "vessel_models": {"mmg": json.loads(
+            runner.invoke(app, ["models", "--json"]).stdout)["vessel_models"]["mmg"]}}
+    bad = runner.invoke(app, ["models", "nope"])
+    assert bad.exit_code == 2 and "unknown component 'nope'" in bad.stderr
+    assert "pid-heading" in bad.stderr  # the valid names

@@ -389,7 +389,9 @@ def test_the_per_run_table_shows_drawn_values_and_display_units(report_batch_dir
             assert float(row[col]) == pytest.approx(heading[i], rel=1e-3)
     for k, name in enumerate(head):
         assert any(r[k].strip() not in ("", "—") for r in rows), name  # filled, or omitted
-    assert "not reached in any run: turning_diameter_m" in page
+    # a course change never turns a circle: its turning diameter is neither a column of
+    # dashes nor a "not reached" note (issue 44: the note was under every course change)
+    assert "turning diameter" not in head and "turning_diameter" not in page
     # the drawn inputs: their statistics (over all runs, ok or not) and their histogram
     [(drawn_head, drawn_rows)] = _tables(page, "statistics drawn")
     assert drawn_head[0] == "drawn input" and drawn_rows[0][0] == "vessel.params.gain [1/s]"

@@ -120,7 +120,7 @@ def test_models_lists_controller_command_and_measurement_units():
     rps = {(s["kind"], s["name"]): s["unit"]
            for s in payload["controllers"]["pid-heading-rps"]["signals"]}
     assert rps["command", "propeller_rps"] == "1/s"
-    human = CliRunner().invoke(app, ["models"], env={"COLUMNS": "120"}).stdout
+    human = CliRunner().invoke(app, ["models", "pid-heading"], env={"COLUMNS": "120"}).stdout
     line = next(x for x in human.splitlines() if x.startswith("command")
                 and "rudder_command" in x)
     assert "[rad]" in line

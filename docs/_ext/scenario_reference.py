@@ -199,7 +199,7 @@ def render() -> str:
         "Angles: any parameter, initial state, reference or disturbance channel whose unit is",
         "radians may be written in degrees with a ``_deg`` suffix (``max_angle_deg = 35``).",
         "Keys under ``params``, ``initial``, ``reference`` and ``disturbance`` are the chosen",
-        "components' own parameters and signals: ``seahelm models`` lists them with units.",
+        "components' own parameters and signals: ``seahelm models NAME`` lists them with units.",
         "",
         "This page is generated from the schema (:mod:`seahelm.scenario.schema`) when the",
         "documentation is built.",

@@ -253,6 +253,16 @@ class SimResult:
         """Boolean mask of the runs that finished without diverging."""
         return self.status == 0
 
+    def __repr__(self) -> str:
+        from ._repr import sim_result_summary, summary_text
+
+        return summary_text(*sim_result_summary(self))
+
+    def _repr_html_(self) -> str:
+        from ._repr import sim_result_summary, summary_html
+
+        return summary_html(*sim_result_summary(self))
+
     def messages(self) -> list[str]:
         """One line per run: 'ok' or what diverged and when."""
         out = []

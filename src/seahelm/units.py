@@ -30,7 +30,8 @@ from typing import Any
 import numpy as np
 
 __all__ = ["SUFFIX_UNITS", "FRACTIONS", "ANGLE_DISPLAY", "metric_unit", "metric_units",
-           "display_unit", "to_display", "label", "metric_label", "shown_metrics"]
+           "display_unit", "to_display", "label", "metric_label", "shown_metrics",
+           "noted_unreached"]
 
 #: Units named by a metric's suffix (``settling_time_s``: s), longest suffixes first.
 SUFFIX_UNITS: dict[str, str] = {
@@ -216,3 +217,33 @@ def shown_metrics(keys: Iterable[str]) -> list[str]:
             continue
         out.append(key)
     return out
+
+
+#: Metrics only a turn reaches (:func:`seahelm.analysis.maneuvers.summarize`).
+TURN_ONLY = ("turning_diameter_m",)
+
+
+def noted_unreached(unreached: Iterable[str], keys: Iterable[str]) -> list[str]:
+    """The metrics not reached that are worth a note under a table.
+
+    A course change (a run with a heading reference: ``heading_error_deg``) or a route (a
+    cross-track error) never turns a full circle, so its turning diameter was not asked for:
+    saying "not reached: turning_diameter_m" under every such run was noise. Every other
+    unreached metric is kept.
+
+    Parameters
+    ----------
+    unreached : iterable of str
+        The metrics without a finite value.
+    keys : iterable of str
+        Every metric of the table (what tells a steered run from a turn).
+
+    Returns
+    -------
+    list of str
+        ``unreached`` in its order, without the turn-only metrics of a steered run.
+    """
+    have = set(keys)
+    steered = "heading_error_deg" in have or any(
+        k.startswith("max_abs_cross_track_error") for k in have)
+    return [k for k in unreached if not (steered and k in TURN_ONLY)]

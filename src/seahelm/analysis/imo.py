@@ -222,6 +222,45 @@ class ImoReport:
     zigzag: ManeuverResult
     stopping: ManeuverResult | None = None
 
+    def _summary(self) -> tuple[str, list[tuple[str, object]]]:
+        counts = {s: sum(c.status == s for c in self.criteria)
+                  for s in ("pass", "fail", "not evaluated")}
+        verdict = "PASSED" if self.passed else "FAILED"
+        title = (f"ImoReport: {self.ship}, {verdict} ({counts['pass']} pass, "
+                 f"{counts['fail']} fail, {counts['not evaluated']} not evaluated)")
+        rows: list[tuple[str, object]] = [
+            ("ship", f"L = {self.length:g} m, V = {self.speed:.4g} m/s, "
+                     f"L/V = {self.L_over_V:.3g} s")]
+        groups: dict[str, list[str]] = {}
+        for c in self.criteria:
+            scale, unit = (math.degrees(1.0), "°") if c.unit == "rad" else (1.0, f" {c.unit}")
+            value = ("—" if not np.isfinite(c.value) else f"{c.value * scale:.3g}{unit}")
+            side = "" if c.side in ("-", "") else f"{c.side} "
+            groups.setdefault(f"{c.ability}: {c.criterion}", []).append(
+                f"{side}{value} {c.status}")
+        limit = {f"{c.ability}: {c.criterion}": c for c in self.criteria}
+        for key, entries in groups.items():
+            c = limit[key]
+            scale, unit = (math.degrees(1.0), "°") if c.unit == "rad" else (1.0, f" {c.unit}")
+            bound = f" (limit {c.limit * scale:.3g}{unit})" if np.isfinite(c.limit) else ""
+            rows.append((key, "; ".join(entries) + bound))
+        rows.append(("runs", ", ".join(n for n in ("turning", "zigzag", "stopping")
+                                       if getattr(self, n) is not None)
+                     + " (a ManeuverResult each); to_dict() for JSON"))
+        if self.notes:
+            rows.append(("notes", f"{len(self.notes)} (.notes)"))
+        return title, rows
+
+    def __repr__(self) -> str:
+        from .._repr import summary_text
+
+        return summary_text(*self._summary())
+
+    def _repr_html_(self) -> str:
+        from .._repr import summary_html
+
+        return summary_html(*self._summary())
+
     @property
     def passed(self) -> bool:
         """True if every evaluated criterion passes (the stopping criterion counts where it is

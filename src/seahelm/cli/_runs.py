@@ -21,7 +21,7 @@ from ..analysis.statistics import (
     numeric_keys,
     quantile_name,
 )
-from ..units import label, metric_label, metric_unit, shown_metrics, to_display
+from ..units import label, metric_label, metric_unit, noted_unreached, shown_metrics, to_display
 
 #: Rows shown in the per-run table of a batch (the JSON output has every run).
 MAX_ROWS = 20
@@ -78,8 +78,15 @@ def run_units(result: Any, summary: list[dict[str, Any]]) -> dict[str, str]:
     return out
 
 
+#: A settling time that was never reached, in a table (one line: its column is this wide).
+NOT_SETTLED = "not\u00a0settled"
+
+
 def _shown(value: Any, unit: str, name: str) -> str:
-    """A value in its display unit (:func:`seahelm.units.to_display`), formatted."""
+    """A value in its display unit (:func:`seahelm.units.to_display`), formatted; a run that
+    never settles says "not settled" (it printed ``nan``)."""
+    if name == "settling_time_s" and isinstance(value, float) and math.isnan(value):
+        return NOT_SETTLED
     return fmt(to_display(value, unit, name)[0]) if isinstance(value, float) else fmt(value)
 
 
@@ -122,6 +129,7 @@ def summary_table(summary: list[dict[str, Any]], title: str,
             unit = units.get(key, metric_unit(key))
             table.add_row(escape(metric_label(key, unit) if key != "status" else key),
                           _shown(value, unit, key))
+        unreached = noted_unreached(unreached, row)
         if unreached:
             table.caption = escape("not reached in this run: " + ", ".join(unreached)
                                    + " (every metric: --json)")
@@ -138,7 +146,8 @@ def summary_table(summary: list[dict[str, Any]], title: str,
         else:
             name = metric_label(key, unit)
         table.add_column(escape(name), justify="left" if key == "status" else "right",
-                         overflow="fold", no_wrap=key == "status")
+                         overflow="fold", no_wrap=key == "status",
+                         min_width=len(NOT_SETTLED) if key == "settling_time_s" else None)
     for row in summary[:MAX_ROWS]:
         table.add_row(*(escape(_short_status(row[k]) if k == "status"
                                else _shown(row.get(k, ""), units.get(k, metric_unit(k)), k))

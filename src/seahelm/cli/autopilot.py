@@ -33,6 +33,7 @@ below the minimum margins warns.
 from __future__ import annotations
 
 import math
+import os
 import warnings
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -62,7 +63,7 @@ def _poles_text(poles: Any) -> list[str]:
 
 def scenario_text(ship: str, controller: str, gains: dict[str, float], *, dt: float,
                   heading_step_deg: float, t_final: float, comment: str,
-                  initial: dict[str, float] | None = None) -> str:
+                  initial: dict[str, float] | None = None, name: str | None = None) -> str:
     """A scenario (TOML) running ``controller`` with ``gains`` on ``ship``: a course change.
 
     Parameters
@@ -84,13 +85,16 @@ def scenario_text(ship: str, controller: str, gains: dict[str, float], *, dt: fl
     initial : dict of str to float, optional
         The ship's initial state by name (SI units; the straight run the design is for),
         written as ``[vessel.initial]`` (default: the model's zero state).
+    name : str, optional
+        The ship's name for the title (default: ``ship``; a path does not belong there).
 
     Returns
     -------
     str
     """
     lines = [f"# {c}" for c in comment.splitlines()]
-    lines += [f'title = "{ship}: {heading_step_deg:g} deg course change, {controller}"', "",
+    lines += [f'title = "{name or ship}: {heading_step_deg:g} deg course change, {controller}"',
+              "",
               "[vessel]", f"ship = {_toml_string(ship)}", ""]
     if initial:
         lines += ["[vessel.initial]"] + [f"{k} = {float(v)!r}" for k, v in initial.items()] + [""]
@@ -192,7 +196,8 @@ def _settles(ship: Any, bare: Any, full: Any, designs: list[Any], offset: float,
 
 def route_scenario_text(ship: str, controller: str, gains: dict[str, float], *, dt: float,
                         t_final: float, initial: dict[str, float], waypoints: Any,
-                        acceptance_radius: float, comment: str) -> str:
+                        acceptance_radius: float, comment: str, name: str | None = None
+                        ) -> str:
     """A scenario (TOML) running the route follower ``controller`` with ``gains`` on ``ship``
     along ``waypoints`` (``[guidance]``).
 
@@ -217,13 +222,15 @@ def route_scenario_text(ship: str, controller: str, gains: dict[str, float], *, 
         Waypoint acceptance circle [m].
     comment : str
         First lines (without ``#``).
+    name : str, optional
+        The ship's name for the title (default: ``ship``).
 
     Returns
     -------
     str
     """
     lines = [f"# {c}" for c in comment.splitlines()]
-    lines += [f'title = "{ship}: {controller} on a route"', "", "[vessel]",
+    lines += [f'title = "{name or ship}: {controller} on a route"', "", "[vessel]",
               f"ship = {_toml_string(ship)}", "", "[vessel.initial]"]
     lines += [f"{k} = {float(v)!r}" for k, v in initial.items()]
     lines += ["", "[controller]", f'model = "{controller}"', f"dt = {dt!r}", "",
@@ -238,6 +245,18 @@ def route_scenario_text(ship: str, controller: str, gains: dict[str, float], *, 
               f"acceptance_radius = {float(acceptance_radius)!r}", "", "[simulation]",
               f"t_final = {t_final!r}", "dt = 0.1", ""]
     return "\n".join(lines)
+
+
+def _scenario_duration(poles: Any) -> float:
+    """The written scenario's ``t_final`` [s]: five time constants of the slowest stable pole
+    of the linearised ship, steering gear and controller, in whole 100 s, at least 300 s.
+
+    It was a hundred (``100 ceil(0.1 · 10 τ)``): a 10° course change of the Mariner under its
+    PID ran 15,000 s, where the nonlinear run settles within 2 % in 360–400 s (10° and 30°;
+    the slowest pole, about ω_n/10 of the pole-placement PID, 0.0067 1/s, gives 800 s)."""
+    rates = [-p.real for p in np.asarray(poles) if p.real < -1e-9]
+    settle = 5.0 / min(rates) if rates else 300.0
+    return float(max(300.0, 100.0 * math.ceil(0.01 * settle)))
 
 
 def _settling(poles: Any) -> float:
@@ -399,8 +418,11 @@ def tune(
     if out is not None:
         from ..results import atomic_write
 
-        ship_ref = str(Path(ship).resolve()) if Path(ship).suffix == ".toml" else ship
-        t_final = float(max(300.0, 100.0 * math.ceil(0.1 * _settling(actual))))
+        # a ship file by its path from the scenario's folder (a scenario's paths are its
+        # own): the file stays valid where it is copied with its ship (it held /abs/paths)
+        ship_ref = (os.path.relpath(Path(ship).resolve(), Path(out).resolve().parent)
+                    if Path(ship).suffix == ".toml" else ship)
+        t_final = _scenario_duration(actual)
         initial = {k: float(v) for k, v in zip(bare.state_labels, bare.x0)
                    if k not in ("north", "east", "heading") and v != 0.0}
         comment = (f"seahelm autopilot tune {the_ship.name} --design {design}: Nomoto K = "
@@ -411,11 +433,12 @@ def tune(
             start, route, _ = _route_setup(the_ship, bare, full, offset, t_final)
             text = route_scenario_text(
                 ship_ref, controller, gains, dt=dt, t_final=t_final, initial=start,
-                waypoints=route, acceptance_radius=bare.length, comment=comment)
+                waypoints=route, acceptance_radius=bare.length, comment=comment,
+                name=the_ship.name)
         else:
             text = scenario_text(ship_ref, controller, gains, dt=dt,
                                  heading_step_deg=heading_step, t_final=t_final,
-                                 initial=initial, comment=comment)
+                                 initial=initial, comment=comment, name=the_ship.name)
         atomic_write(out, lambda tmp: Path(tmp).write_text(text))
         payload["files"] = {"scenario": str(out)}
     if json_out:

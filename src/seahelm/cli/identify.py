@@ -15,6 +15,7 @@ from typing import Annotated, Any, Literal, Optional
 
 import numpy as np
 import typer
+from rich.markup import escape
 
 from ._common import (
     JsonFlag,
@@ -201,8 +202,9 @@ def nomoto(
     max_rudder: Annotated[float, typer.Option(
         "--max-rudder", help="Steering-gear limit [deg] (for --out).")] = 35.0,
     rudder_rate: Annotated[float, typer.Option(
-        "--rudder-rate", help="Steering-gear rate [deg/s] (for --out; IMO's minimum).",
-        show_default="2.32, 65/28")] = 65.0 / 28.0,
+        "--rudder-rate", help=escape("Steering-gear rate [deg/s] (for --out; IMO's minimum, "
+                                     "65° in 28 s).  [default: 2.32]"),
+        show_default=False)] = 65.0 / 28.0,
     out: Annotated[Optional[Path], typer.Option(
         "--out", "-o", metavar="SHIP.toml", help="Write a ship file of the identified model "
         "(values, intervals, covariance in its provenance).")] = None,

@@ -76,4 +76,5 @@ def report(
                     "sections": list(summary.sections), "sources": list(summary.sources)})
         return
     console.print(f"wrote {escape(str(summary.path))} ({summary.bytes / 1e6:.1f} MB, "
-                  f"{summary.n_runs} run(s), {len(summary.sections)} sections)", highlight=False)
+                  f"{summary.n_runs} {summary.counted}(s), {len(summary.sections)} sections)",
+                  highlight=False)

@@ -24,7 +24,6 @@ from .maneuver import (
     SHIP_HELP,
     ShipName,
     Speed,
-    TFinal,
     Field,
     _per_l,
     app,
@@ -38,6 +37,12 @@ from .maneuver import (
 )
 
 __all__ = ["stopping_cmd", "STOPPING_FIELDS"]
+
+#: The stopping test's own duration: not from a steady turn (the other manoeuvres' --t-final)
+#: but the momentum bound of :func:`seahelm.analysis.maneuvers.crash_stop`.
+TFinal = Annotated[float | None, typer.Option(
+    "--t-final", help=escape("Duration [s] (default: 1.2 x the time to stop by momentum with "
+                             "the bollard astern thrust, an upper bound)."))]
 
 STOPPING_FIELDS: tuple[Field, ...] = (
     ("head_reach_m", "head reach [m]", lambda r: r["head_reach"]),

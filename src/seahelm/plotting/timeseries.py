@@ -89,7 +89,8 @@ def plot_result(ds: Any, *, runs: Any = None, fig: Any = None) -> Any:
     for k, i in enumerate(run_ids):
         sel = ds.sel(run=i)
         color = "0.35" if banded else f"C{k % 10}" if len(run_ids) <= 10 else "C0"
-        where = ", ".join(f"{c}={sel[c].item():.4g}" for c in batch_coords)
+        where = ", ".join(_coordinate_text(c, sel[c].item(), ds[c].attrs.get("units"))
+                          for c in batch_coords)
         heading = np.unwrap(sel["heading"].values)
         label = (f"run {i}" + (f" ({where})" if where else "")) if len(run_ids) <= 5 else None
         if banded:
@@ -147,8 +148,7 @@ def plot_result(ds: Any, *, runs: Any = None, fig: Any = None) -> Any:
         ax.grid(True, alpha=0.3)
     for ax in (ax_h, ax_d, ax_r):  # short tick labels (×10ⁿ above the axis) fit the margins
         ax.ticklabel_format(axis="y", style="sci", scilimits=(-2, 4), useMathText=True)
-    title = str(ds.attrs.get("title")
-                or f"{ds.attrs.get('model', '')} / {ds.attrs.get('controller', '')}")
+    title = _title(ds)
     notes = []
     if banded:
         notes.append(f"{ds.sizes['run']:,} runs: 5-95 % band and median of the "
@@ -159,6 +159,36 @@ def plot_result(ds: Any, *, runs: Any = None, fig: Any = None) -> Any:
     fig.suptitle(title + ("\n" + "; ".join(notes) if notes else ""),
                  fontsize="medium" if notes else None)
     return fig
+
+
+def _title(ds: Any) -> str:
+    """The figure's title: the scenario's; a manoeuvre and its ship ("Turning circle:
+    kvlcc2-l7 (mmg)", it was "mmg / open-loop"); else the model and the controller."""
+    if ds.attrs.get("title"):
+        return str(ds.attrs["title"])
+    model = str(ds.attrs.get("model", ""))
+    maneuver = ds.attrs.get("maneuver")
+    if maneuver:
+        what = str(maneuver).replace("-", " ").replace("zigzag", "zig-zag").capitalize()
+        ship = ds["ship_name"] if "ship_name" in ds.coords else None
+        ship_text = (str(ship.item()) if ship is not None and ship.ndim == 0 else
+                     ", ".join(dict.fromkeys(str(v) for v in np.ravel(ship.values)))
+                     if ship is not None else "")
+        return f"{what}: {ship_text} ({model})" if ship_text else f"{what} ({model})"
+    return f"{model} / {ds.attrs.get('controller', '')}"
+
+
+def _coordinate_text(name: str, value: Any, unit: str | None = None) -> str:
+    """A run's coordinate in a legend: a manoeuvre's side as "starboard"/"port" (it was
+    "side=1"/"side=-1"), a name as itself, an angle in degrees ("rudder=20°", it was
+    "rudder=0.3491"), another number as ``name=value``."""
+    if name == "side" and value in (1, -1):
+        return "starboard" if value == 1 else "port"
+    if isinstance(value, str):
+        return value
+    if unit == "rad":
+        return f"{name}={np.degrees(value):.4g}°"
+    return f"{name}={value:.4g}"
 
 
 def _band(ax: Any, t: np.ndarray, values: np.ndarray, label: str | None) -> None:

@@ -52,9 +52,13 @@ class ReportSummary:
     sections : tuple of str
         The section ids, in page order.
     n_runs : int
-        Runs covered (over all batches; a sweep store's runs, not only those plotted).
+        Runs covered (over all batches; a sweep store's runs, not only those plotted; an IMO
+        ensemble's samples).
     sources : tuple of str
         The files read.
+    counted : str
+        What ``n_runs`` counts: ``"run"``, or ``"sample"`` for an IMO ensemble (its samples
+        are ships, each with its manoeuvres).
     """
 
     path: Path
@@ -63,6 +67,7 @@ class ReportSummary:
     sections: tuple[str, ...]
     n_runs: int
     sources: tuple[str, ...]
+    counted: str = "run"
 
 
 def report_html(data: ReportData) -> tuple[str, tuple[str, ...]]:
@@ -122,4 +127,5 @@ def write_report(source: "str | os.PathLike[str] | xr.Dataset | ReportData",
     encoded = page.encode("utf-8")
     path = atomic_write(target, lambda tmp: Path(tmp).write_bytes(encoded))
     return ReportSummary(path=path, bytes=len(encoded), title=data.title, sections=ids,
-                         n_runs=data.n_runs, sources=data.sources)
+                         n_runs=data.n_runs, sources=data.sources,
+                         counted="sample" if data.imo_ensemble is not None else "run")

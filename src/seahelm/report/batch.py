@@ -18,7 +18,8 @@ from typing import Any
 
 import numpy as np
 
-from ..units import label, metric_label, metric_unit, shown_metrics, to_display
+from ..units import (label, metric_label, metric_unit, noted_unreached, shown_metrics,
+                     to_display)
 from .blocks import Section, escape, paragraph, section_id, subheading, table
 from .figures import histogram_figure
 from .inputs import ReportData, RunSet
@@ -163,7 +164,7 @@ def run_table_blocks(run_set: RunSet) -> list[str]:
     every = shown_metrics(k for k in summary[0] if k not in ("run", "status"))
     values = {k: np.array([float(row[k]) for row in summary]) for k in every}
     keys = [k for k in every if np.isfinite(values[k]).any()]
-    unreached = [k for k in every if k not in keys]
+    unreached = noted_unreached([k for k in every if k not in keys], every)
     metric_cols = []
     for key in keys:
         unit = metric_unit(key, units)
@@ -291,7 +292,7 @@ def statistics_blocks(columns: dict[str, np.ndarray], ok: np.ndarray, what: str)
     counted = {k: np.asarray(v, dtype=float)[ok] for k, v in columns.items()}
     stats = metric_statistics(counted, quantiles=DEFAULT_QUANTILES)
     rows = [[k, *_stat_cells(s, qnames, 1.0)] for k, s in stats.items() if s["n"]]
-    unreached = [k for k, s in stats.items() if not s["n"]]
+    unreached = noted_unreached([k for k, s in stats.items() if not s["n"]], stats)
     caption = f"over {what}" + ("; not reached in any: " + ", ".join(unreached)
                                 if unreached else "")
     out: list[Any] = [table(["metric", *_stat_header(qnames)], rows, cls="statistics",
@@ -357,6 +358,7 @@ def statistics_sections(data: ReportData) -> list[Section]:
         note = "over the ok runs: " + "; ".join(counts)
         if len(groups) > len(shown):
             note += f" (first {len(shown)} of {len(groups)} grid points)"
+        unreached = set(noted_unreached(unreached, metrics))
         if unreached:
             note += "; not reached in any ok run: " + ", ".join(
                 m for m in metrics if m in unreached)
@@ -433,8 +435,9 @@ def sweep_sections(data: ReportData) -> list[Section]:
     metrics = summary["metrics"]
     names = set(shown_metrics(dict.fromkeys(m["name"] for m in metrics)))
     shown = [m for m in metrics if m["name"] in names and m["n"]]
+    noted = set(noted_unreached([m["name"] for m in metrics if not m["n"]], names))
     unreached = [m["name"] + (f" ({m['where']})" if m["where"] else "") for m in metrics
-                 if m["name"] in names and not m["n"]]
+                 if m["name"] in names and not m["n"] and m["name"] in noted]
     qnames = sorted(k for k in (metrics[0] if metrics else {})
                     if k.startswith("q") and k[1:].isdigit())
     where = any(m["where"] for m in shown)

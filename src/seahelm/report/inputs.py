@@ -127,10 +127,12 @@ class ReportData:
 
     @property
     def n_runs(self) -> int:
-        """Runs the report covers: a sweep store's (not only those read for the plots), else
-        those of all sets."""
+        """Runs the report covers: a sweep store's (not only those read for the plots), an IMO
+        ensemble's samples (it said 0 runs for 500 samples), else those of all sets."""
         if self.sweep is not None:
             return int(self.sweep.sizes["run"])
+        if self.imo_ensemble is not None and "sample" in self.imo_ensemble.sizes:
+            return int(self.imo_ensemble.sizes["sample"])
         return sum(s.n_runs for s in self.sets)
 
 

@@ -54,7 +54,9 @@ _METADATA = (("title", "title", ""), ("maneuver", "manoeuvre", ""),
              ("controller_dt", "controller step", "s"), ("t_final", "duration", "s"),
              ("record_every", "recorded every", "steps"), ("seed", "seed", ""),
              ("seahelm_version", "seahelm version", ""), ("created", "created", ""),
-             ("wall_time_s", "wall time", "s"), ("compile_time_s", "compile time", "s"))
+             ("wall_time_s", "wall time", "s"), ("compile_time_s", "compile time", "s"),
+             ("actuator_step", "actuator step", ""), ("execution", "loop", ""),
+             ("seahelm_checksums", "checksums", ""))
 _HIDDEN = ("scenario_text", "state_labels", "param_types")
 
 
@@ -80,9 +82,9 @@ def overview_sections(data: ReportData) -> list[Section]:
                     value = f"{fmt(_number(value), 6)} {unit}"
                 rows.append([label, value])
                 shown.add(key)
-        for key, value in attrs.items():
+        for key, value in attrs.items():  # (words, not attribute names: "first order")
             if key not in shown and key not in _HIDDEN:
-                rows.append([key, value])
+                rows.append([str(key).replace("_", " "), value])
         if run_set.shaped is not None:
             from ..result_layout import batch_dims
 
@@ -319,11 +321,12 @@ def _coord_label(key: str, value: Any, ds: Any) -> str:
     return f"{key} {fmt(value, 4)}"
 
 
-#: The section builders, in page order.
+#: The section builders, in page order: an IMO check's verdict (and an ensemble's
+#: probabilities) first, before the metadata tables it sat below.
 SECTIONS: tuple[Callable[[ReportData], list[Section]], ...] = (
-    overview_sections, sweep_sections, status_sections, imo_sections, ensemble_sections,
-    seakeeping_sections, sweep_seakeeping_sections, metrics_sections, statistics_sections, track_sections,
-    timeseries_sections)
+    imo_sections, ensemble_sections, overview_sections, sweep_sections, status_sections,
+    seakeeping_sections, sweep_seakeeping_sections, metrics_sections, statistics_sections,
+    track_sections, timeseries_sections)
 
 
 def build_sections(data: ReportData) -> list[Section]:

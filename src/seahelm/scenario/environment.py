@@ -147,16 +147,37 @@ def _in_scenario_words(exc: ParameterError, where: str) -> tuple[str, str]:
     return path, f"`{name}`{bounds}, got {float(exc.value) * factor:g}{where}"
 
 
-def _need(values: dict[str, Any], key: str, ship: Particulars | None, attr: str,
-          path: str, source: str, unit: str) -> float:
+def _given(values: dict[str, Any], key: str, ship: Particulars | None, attr: str
+           ) -> float | None:
+    """The section's value of ``key``, else the ship's particulars' ``attr``, else None."""
     if values.get(key) is not None:
         return float(values[key])
     if ship is not None and getattr(ship, attr) is not None:
         return float(getattr(ship, attr))
+    return None
+
+
+def _missing(source: str, path: str, missing: list[tuple[str, str]],
+             ship: Particulars | None) -> Exception:
+    """One error naming every key a section needs and does not have, the first as its key
+    (they came one run at a time: lateral_area, then vessel_type, then length_overall)."""
+    def named(key: str, unit: str) -> str:
+        if key == "vessel_type":
+            from ..environment.blendermann import BLENDERMANN_VESSEL_TYPES
+
+            return ("`vessel_type` (Blendermann's coefficients; valid: "
+                    + ", ".join(sorted(BLENDERMANN_VESSEL_TYPES)) + ")")
+        return f"`{key}` [{unit}]" if unit else f"`{key}`"
+
+    (key, unit), rest = missing[0], missing[1:]
     why = ("the vessel has no catalog particulars to take it from (a ship with "
            "[particulars]: a catalog ship or a ship file)" if ship is None else
-           f"the ship's particulars do not give `{attr}`")
-    raise _err(source, f"{path}.{key}", f"needed [{unit}]: {why}")
+           f"the ship's particulars do not give `{key}`")
+    first = (named(key, unit)[len(f"`{key}` "):] if key == "vessel_type"
+             else f"[{unit}]" if unit else "")
+    also = ("; also needed: " + ", ".join(named(k, u) for k, u in rest)) if rest else ""
+    return _err(source, f"{path}.{key}", f"needed {first}: {why}{also}".replace("needed :",
+                                                                                 "needed:"))
 
 
 def _wind_fields(w: dict[str, Any], name: str, ship: Particulars | None,
@@ -166,7 +187,6 @@ def _wind_fields(w: dict[str, Any], name: str, ship: Particulars | None,
                               "wind_direction": math.radians(float(w["direction_deg"]))}
     if w.get("rho_air") is not None:
         fields["rho_air"] = float(w["rho_air"])
-    lateral = _need(w, "lateral_area", ship, "lateral_area", path, source, "m²")
     centre = float(w["centre"]) if w.get("centre") is not None else (
         ship.windage_centre if ship is not None and ship.windage_centre is not None else 0.0)
     if name == "lvov":
@@ -175,24 +195,31 @@ def _wind_fields(w: dict[str, Any], name: str, ship: Particulars | None,
             raise _err(source, f"{path}.{extra[0]}",
                        "Lvov's wind loads take no frontal area, length overall or vessel type "
                        "(keys: speed, direction_deg, gust, lateral_area, centre, length, rho_air)")
-        fields.update(windage_lateral_area=lateral, windage_centre=centre,
-                      windage_length=_need(w, "length", ship, "length", path, source, "m"))
+        needs = (("lateral_area", "lateral_area", "m²"), ("length", "length", "m"))
+    else:
+        if w.get("length") is not None:
+            raise _err(source, f"{path}.length",
+                       "Blendermann's loads take `length_overall` [m], not `length`")
+        needs = (("lateral_area", "lateral_area", "m²"), ("frontal_area", "frontal_area", "m²"),
+                 ("length_overall", "length_overall", "m"))
+    values = {key: _given(w, key, ship, attr) for key, attr, _ in needs}
+    missing = [(key, unit) for key, _, unit in needs if values[key] is None]
+    vessel_type = None
+    if name != "lvov":
+        vessel_type = w.get("vessel_type") or (ship.vessel_type if ship is not None else None)
+        if vessel_type is None:
+            missing.append(("vessel_type", ""))
+    if missing:
+        raise _missing(source, path, missing, ship)
+    if name == "lvov":
+        fields.update(windage_lateral_area=values["lateral_area"], windage_centre=centre,
+                      windage_length=values["length"])
         return fields
-    if w.get("length") is not None:
-        raise _err(source, f"{path}.length",
-                   "Blendermann's loads take `length_overall` [m], not `length`")
-    vessel_type = w.get("vessel_type") or (ship.vessel_type if ship is not None else None)
-    if vessel_type is None:
-        raise _err(source, f"{path}.vessel_type",
-                   "needed for Blendermann's coefficients (e.g. \"tanker-loaded\"): the vessel "
-                   "has no catalog particulars to take it from")
     try:
         return blendermann_wind_params(
-            vessel_type, **fields, windage_lateral_area=lateral, windage_centre=centre,
-            windage_frontal_area=_need(w, "frontal_area", ship, "frontal_area", path, source,
-                                       "m²"),
-            length_overall=_need(w, "length_overall", ship, "length_overall", path, source,
-                                 "m"))
+            vessel_type, **fields, windage_lateral_area=values["lateral_area"],
+            windage_centre=centre, windage_frontal_area=values["frontal_area"],
+            length_overall=values["length_overall"])
     except ValueError as exc:
         raise _err(source, f"{path}.vessel_type", str(exc)) from None
 
@@ -205,9 +232,12 @@ def _wave_fields(v: dict[str, Any], ship: Particulars | None, source: str
         wave_length = float(v["length"])
     else:
         wave_length = GRAVITY * float(v["period"]) ** 2 / (2.0 * math.pi)
-    hull = {k: _need(v, k, ship, attr, path, source, unit) for k, attr, unit in (
-        ("hull_length", "length", "m"), ("beam", "beam", "m"), ("draft", "draft", "m"),
-        ("block_coefficient", "block_coefficient", "-"))}
+    needs = (("hull_length", "length", "m"), ("beam", "beam", "m"), ("draft", "draft", "m"),
+             ("block_coefficient", "block_coefficient", "-"))
+    hull = {k: _given(v, k, ship, attr) for k, attr, _ in needs}
+    missing = [(k, unit) for k, _, unit in needs if hull[k] is None]
+    if missing:  # every one in one message
+        raise _missing(source, path, missing, ship)
     with warnings.catch_warnings():
         if h3 == 0.0:  # no waves: the hull's coefficients multiply zero, their range is moot
             warnings.simplefilter("ignore", ValidityRangeWarning)

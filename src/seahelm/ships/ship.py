@@ -352,6 +352,56 @@ class Ship:
 
         return scale_ship(self, length, rho=rho, name=name)
 
+    def _summary(self) -> tuple[str, list[tuple[str, object]]]:
+        from .._repr import names
+
+        title = f"Ship {self.name!r}: {self.model.name} model"
+        n_params = len(dataclasses.fields(self.params)) if dataclasses.is_dataclass(
+            self.params) else "?"
+        rows: list[tuple[str, object]] = []
+        if self.description:
+            rows.append(("description", self.description))
+        rows.append(("parameters", f"{type(self.params).__name__}, {n_params} values "
+                                   "(.params; source_of(name))"))
+        gear = self.steering_gear
+        if gear is None:
+            rows.append(("steering gear", "—"))
+        else:
+            gp, bits = gear.params, [gear.actuator.name]
+            if hasattr(gp, "max_angle"):
+                bits.append(f"±{math.degrees(gp.max_angle):.4g}°")
+            if hasattr(gp, "max_rate"):
+                bits.append(f"{math.degrees(gp.max_rate):.4g}°/s")
+            rows.append(("steering gear", ", ".join(bits)))
+        rows.append(("propulsion", self.propulsion.kind if self.propulsion else "—"))
+        p = self.particulars
+        if p is not None:
+            dims = [f"L {p.length:.4g} m", f"B {p.beam:.4g} m", f"T {p.draft:.4g} m"]
+            if p.block_coefficient is not None:
+                dims.append(f"C_b {p.block_coefficient:.4g}")
+            rows.append(("particulars", ", ".join(dims)))
+        if self.test_speed is not None:
+            rows.append(("test speed", f"{self.test_speed:.4g} m/s"))
+        rows.append(("water depth", "deep" if math.isinf(self.water_depth)
+                     else f"{self.water_depth:g} m"))
+        if self.provenance:
+            rows.append(("provenance", self.provenance))
+        if self.coefficient_sources:
+            rows.append(("own sources", names([k for k, _ in self.coefficient_sources])))
+        if self.validity:
+            rows.append(("validity", "; ".join(self.validity)))
+        return title, rows
+
+    def __repr__(self) -> str:
+        from .._repr import summary_text
+
+        return summary_text(*self._summary())
+
+    def _repr_html_(self) -> str:
+        from .._repr import summary_html
+
+        return summary_html(*self._summary())
+
     def replace(self, **changes: Any) -> "Ship":
         """A copy with some fields changed (validated again).
 

@@ -381,6 +381,49 @@ class Problem:
             "tableau": tableau, "wiring": wiring, "jit": use_jit}))
 
     # -- derived ------------------------------------------------------------------------
+    def _summary(self) -> tuple[str, list[tuple[str, object]]]:
+        from .._repr import describe
+
+        ship = getattr(self.ship, "name", None)
+        runs = "as the inputs give" if self.n_runs is None else str(self.n_runs)
+        title = f"Problem: {self.model.name}" + (f" ({ship})" if ship else "") + f", runs: {runs}"
+        timing = f"t_final {self.t_final:g} s, dt {self.dt:g} s"
+        if self.controller_dt is not None:
+            timing += f", controller every {self.controller_dt:g} s"
+        timing += f" ({self.n_steps} steps)"
+        integrator = self.integrator if isinstance(self.integrator, str) else describe(
+            self.integrator)
+        rows: list[tuple[str, object]] = [
+            ("components", f"model {self.model.name}, actuator {describe(self.actuator)}, "
+                           f"controller {describe(self.controller)}"),
+            ("timing", timing),
+            ("integrator", integrator),
+            ("initial state", describe(None if self.x0 is None else np.asarray(self.x0))),
+            ("reference", describe(self.reference)),
+        ]
+        for name in ("disturbance", "environment", "first_order"):
+            if getattr(self, name) is not None:
+                rows.append((name, describe(getattr(self, name))))
+        if self.layout is not None:
+            rows.append(("batch", ", ".join(f"{d}: {n}" for d, n in
+                                            zip(self.layout.dims, self.layout.shape))))
+        if self.seed is not None:
+            rows.append(("seed", self.seed))
+        if self.record_every != 1:
+            rows.append(("record every", f"{self.record_every} steps"))
+        rows.append(("use", "simulate(problem), problem.replace(...)"))
+        return title, rows
+
+    def __repr__(self) -> str:
+        from .._repr import summary_text
+
+        return summary_text(*self._summary())
+
+    def _repr_html_(self) -> str:
+        from .._repr import summary_html
+
+        return summary_html(*self._summary())
+
     @property
     def n_steps(self) -> int:
         """Integration steps, ``t_final / dt``."""

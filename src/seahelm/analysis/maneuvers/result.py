@@ -57,6 +57,36 @@ class ManeuverResult:
         """The runs as an :class:`xarray.Dataset` (built once, on first access)."""
         return None if self.runs_builder is None else self.runs_builder()
 
+    def _summary(self) -> tuple[str, list[tuple[str, object]]]:
+        from ..._repr import names
+
+        ship_names = list(dict.fromkeys(getattr(s, "name", str(s)) for s in self.ships))
+        title = f"ManeuverResult: {self.maneuver} of {names(ship_names, 3)}"
+        sizes = dict(self.metrics.sizes)
+        rows: list[tuple[str, object]] = [
+            ("batch", ", ".join(f"{d}: {n}" for d, n in sizes.items()) or "one run"),
+            ("metrics", names(list(self.metrics.data_vars), 5)),
+        ]
+        if "complete" in self.metrics:
+            done = np.asarray(self.metrics["complete"])
+            rows.append(("complete", f"{int(done.sum())} of {done.size} run(s)"))
+        sim = self.simulation
+        rows.append(("runs", "none (computed from equilibria)" if sim is None else
+                     f"{sim.n_runs} run(s), {len(sim.time)} samples each "
+                     "(.runs: an xarray Dataset, .simulation: the SimResult)"))
+        rows.append(("use", ".metrics, .runs, to_netcdf(directory)"))
+        return title, rows
+
+    def __repr__(self) -> str:
+        from ..._repr import summary_text
+
+        return summary_text(*self._summary())
+
+    def _repr_html_(self) -> str:
+        from ..._repr import summary_html
+
+        return summary_html(*self._summary())
+
     def to_netcdf(self, directory: str | Path, *, prefix: str | None = None
                   ) -> dict[str, Path]:
         """Write ``<prefix>-metrics.nc`` and ``<prefix>-runs.nc`` atomically (h5netcdf).
