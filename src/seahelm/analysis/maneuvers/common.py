@@ -275,6 +275,7 @@ class Plan:
         t = 0 on (the approach is the calm-water one).
         """
         from ...simulation.batch import BatchAxis, BatchLayout, RunBatch, simulate_batch
+        from ...resources import WorkTooLarge, check_work
         from ...simulation.engine import RecordingTooLarge
 
         usual = usual_time_step(self.ships, [a.speed for a in self.approaches.values()])
@@ -288,6 +289,13 @@ class Plan:
         if dims:
             layout = BatchLayout(axes=tuple(
                 BatchAxis(name=a.name, values=a.values, units=a.units) for a in dims))
+        try:  # (the engine checks it too; here the refusal names the manoeuvre's options)
+            check_work(self.n_runs, t_final / dt, field="dt", advice=(
+                f"a larger `dt` (the usual step of this ship is {usual:.3g} s), a shorter "
+                "`t_final` or fewer runs"))
+        except WorkTooLarge as exc:
+            raise ParameterError(f"= {dt:g} s{exc.reason}", field="dt", unit="s",
+                                 value=dt) from None
         runs = np.arange(self.n_runs)
         extra = _conditions_kwargs(conditions, self.model)
         if self.failed:  # only the runs with an approach (scattered back below)
