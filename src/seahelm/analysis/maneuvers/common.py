@@ -294,6 +294,16 @@ class Plan:
                 f"a larger `dt` (the usual step of this ship is {usual:.3g} s), a shorter "
                 "`t_final` or fewer runs"))
         except WorkTooLarge as exc:
+            shallow = [s for s in self.ships if math.isfinite(s.water_depth or math.inf)]
+            if shallow:  # (a ship in very shallow water barely turns or stops: say so)
+                found = shallow[0]
+                depth = float(found.water_depth)
+                draft = float(getattr(found.particulars, "draft", None) or found.params.draft)
+                raise ParameterError(
+                    f"= {depth:g} m is {depth / draft:.4g} x the draft ({draft:.4g} m): there "
+                    f"the ship's predicted motion (its steady yaw rate, its stopping) is so slow "
+                    f"that the manoeuvre would last {t_final:.3g} s{exc.reason.partition(';')[0]}"
+                    "; give deeper water", field="water_depth", unit="m", value=depth) from None
             raise ParameterError(f"= {dt:g} s{exc.reason}", field="dt", unit="s",
                                  value=dt) from None
         runs = np.arange(self.n_runs)
