@@ -192,6 +192,13 @@ def _read_csv(path: Path, angles: str) -> list[ManoeuvreRecord]:
         raise ParameterError(f"{path}: missing column `heading` or `yaw_rate` (columns: "
                              f"{', '.join(cols)})", field="heading")
     scale = math.pi / 180.0 if angles == "deg" else 1.0
+    widest = float(np.nanmax(np.abs(cols["rudder_angle"])))
+    if angles == "deg" and 0.0 < widest <= math.pi / 2:
+        import warnings
+
+        warnings.warn(f"{path}: column `rudder_angle` stays within ±{widest:.4g} read as "
+                      f"degrees (a manoeuvre's rudder is some 10-35°): are they radians? "
+                      "(give --angles rad)", UserWarning, stacklevel=2)
     for key in _ANGLES + _RATES:
         if key in cols:
             cols[key] = cols[key] * scale

@@ -472,6 +472,13 @@ def mmg(
         if out is not None and save_posterior.resolve() == out.resolve():
             raise ParameterError("`--save-posterior` and `--out` are the same file")
     records = read_records(files, angles=angles)
+    for rec in records:
+        rps = rec.channels.get("propeller_rps")
+        if rps is not None and not np.any(np.abs(rps) > 0):
+            raise ParameterError(
+                f"`LOG` {rec.name}: `propeller_rps` is 0 throughout: a free-running record "
+                "has its propeller turning (the MMG rudder's inflow and the thrust come from "
+                "it); a record without it identifies the hull against a model it never ran")
     fit = identify_mmg(records, base, method=method, output_error=output_error)
     payload = fit.as_dict()
     if n_post:

@@ -172,8 +172,8 @@ def _densities(params: Params) -> list[str]:
 
 
 #: Lengths a ship may be scaled to [m]: from the smallest free-running models (some 0.1 m)
-#: to past the longest ship built (458 m, the Seawise Giant). 1e9 m or 1 µm was a ship.
-LENGTH_RANGE = (0.1, 1000.0)
+#: to four times the longest ship built (458 m, the Seawise Giant). 1e9 m or 1 µm was a ship.
+LENGTH_RANGE = (0.1, 2000.0)
 
 
 def scale_ship(ship: "Ship", length: float, *, rho: float | None = None,
