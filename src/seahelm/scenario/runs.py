@@ -24,7 +24,7 @@ from ..parameters import Params
 from ..registry import get_actuator, get_controller, get_model
 from ..simulation.batch import BatchAxis, BatchLayout, BatchValues, RunBatch, grid_axes
 from ..simulation.composition import compose
-from ..resources import check_work
+from ..resources import WorkTooLarge, check_work
 from ..simulation.engine import check_record_memory
 from ..control.guided import guided
 from ..control.path_following import GuidanceLaw, RouteParams, get_guidance_law, route_params
@@ -624,7 +624,7 @@ def _check_size(scn: Scenario, source: str, in_memory: bool, channels: int) -> N
         return
     try:  # (one batch: all its runs at once)
         check_work(n_runs, steps, record_bytes=8.0 * n_runs * n_rec * channels)
-    except ParameterError as exc:
+    except WorkTooLarge as exc:
         raise _err(source, "simulation.t_final", exc.reason.removeprefix(": ")) from None
     try:
         check_record_memory(n_runs, n_rec, channels)
