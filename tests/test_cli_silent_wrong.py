@@ -82,6 +82,17 @@ def _zigzag_csv(tmp: Path, name: str, *, rps: float = 10.0, rudder_scale: float 
     return str(path)
 
 
+def _edit_row(path: str, line: int, column: str, value: str) -> str:
+    """The CSV file with one cell replaced (``line`` counted from 1, the header's)."""
+    rows = Path(path).read_text().splitlines()
+    j = rows[0].split(",").index(column)
+    cells = rows[line - 1].split(",")
+    cells[j] = value
+    rows[line - 1] = ",".join(cells)
+    Path(path).write_text("\n".join(rows) + "\n")
+    return path
+
+
 def _scenario(tmp: Path, name: str, t_final: float, runs: int) -> str:
     path = tmp / f"{name}.toml"
     path.write_text(NOMOTO_SCENARIO.format(t_final=t_final, runs=runs))
@@ -155,6 +166,26 @@ CASES = {
         lambda t: ["ship", "check", _particulars_70(t)],
         r"`particulars.length` = 70.0 m, but the parameters' `length` = 7.0 m \(more than 5% "
         r"apart\)"),
+    # still open from the round before
+    "record_every = 2.5": (
+        lambda t: ["run", _write(t, "re.toml", NOMOTO_SCENARIO.format(t_final=60.0, runs=2)
+                                 .replace("record_every = 10", "record_every = 2.5")),
+                   "--out", str(t / "o")],
+        r"\[simulation.record_every\] must be a whole number, got 2.5"),
+    "a manoeuvre's record_dt longer than t_final": (
+        lambda t: ["run", _write(t, "rdt.toml", '[vessel]\ncatalog = "kvlcc2-l7"\n[maneuver]\n'
+                                 'kind = "turning"\nrudder_deg = 35.0\nsides = "starboard"\n'
+                                 't_final = 100.0\nrecord_dt = 500.0\n'), "--out", str(t / "o")],
+        r"\[maneuver.record_dt\] `record_dt` = 500.0 s is longer than `t_final` = 100 s"),
+    "identify nomoto of a rudder angle of 1e300 deg": (
+        lambda t: ["identify", "nomoto", _edit_row(_zigzag_csv(t, "huge.csv"), 50,
+                                                   "rudder_angle", "1e300")],
+        r"huge.csv: column `rudder_angle` row 50 is 1.74533e\+298 rad, beyond ±1.5708 rad"),
+    "identify nomoto of a heading of 1e200 rad": (
+        lambda t: ["identify", "nomoto", _edit_row(_zigzag_csv(
+            t, "huge.csv", rudder_scale=math.pi / 180), 50, "heading", "1e200"), "--angles",
+            "rad"],
+        r"huge.csv: column `heading` row 50 is 1e\+200 rad, beyond ±6283.19 rad"),
     # item 2: refused up front, with the estimate (they ran for minutes)
     "imo --dt 1e-7": (
         lambda t: ["imo", "kvlcc2-l7", "--dt", "1e-7"],

@@ -95,12 +95,29 @@ class ManoeuvreRecord:
         return int(self.time.size)
 
 
+#: The largest magnitude a record's column may have [SI units]: beyond it a value is a unit
+#: mix-up or garbage, not a ship's motion (a rudder of 1e300 deg ran into numpy overflow
+#: warnings and an optimiser's message, a heading of 1e200 rad was fitted without a word).
+COLUMN_LIMITS = {"rudder_angle": (math.pi / 2, "rad"), "heading": (2000.0 * math.pi, "rad"),
+                 "yaw_rate": (2.0 * math.pi, "rad/s"), "surge_speed": (100.0, "m/s"),
+                 "sway_speed": (100.0, "m/s"), "propeller_rps": (1000.0, "1/s"),
+                 "x": (1e8, "m"), "y": (1e8, "m"), "time": (1e9, "s")}
+
+
 def _check_column(source: str, name: str, values: np.ndarray, first_row: int) -> None:
     bad = ~np.isfinite(values)
     if np.any(bad):
         i = int(np.flatnonzero(bad)[0])
         raise ParameterError(f"{source}: column `{name}` row {first_row + i} is not a finite "
                              f"number ({values[i]!r})", field=name)
+    limit, unit = COLUMN_LIMITS.get(name, (math.inf, ""))
+    big = np.abs(values) > limit
+    if np.any(big):
+        i = int(np.flatnonzero(big)[0])
+        raise ParameterError(f"{source}: column `{name}` row {first_row + i} is "
+                             f"{values[i]:.6g} {unit}, beyond ±{limit:.6g} {unit} (in SI units; a "
+                             "unit mix-up or a damaged value?)", field=name, unit=unit,
+                             value=float(values[i]))
 
 
 def record_from_arrays(name: str, time: Any, rudder_angle: Any, heading: Any = None,

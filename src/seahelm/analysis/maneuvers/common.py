@@ -513,11 +513,16 @@ def _conditions_kwargs(conditions: Any, model: VesselModel) -> dict[str, Any]:
             "disturbance": current or None}
 
 
-def record_every_for(dt: float, record_dt: float | None) -> int:
-    """Steps per recorded sample for a wanted recording interval (default: every step)."""
+def record_every_for(dt: float, record_dt: float | None, t_final: float | None = None) -> int:
+    """Steps per recorded sample for a wanted recording interval (default: every step); a
+    ``record_dt`` longer than ``t_final`` [s] (nothing recorded after t = 0) is refused."""
     if record_dt is None:
         return 1
     check_positive("record_dt", record_dt, "s")
+    if t_final is not None and record_dt > t_final:
+        raise ParameterError(f"= {record_dt!r} s is longer than `t_final` = {t_final:.6g} s: "
+                             "nothing after t = 0 would be recorded", field="record_dt",
+                             unit="s", value=record_dt)
     ratio = float(record_dt) / dt
     if ratio < 1.0 - 1e-9 or abs(ratio - round(ratio)) > 1e-9 * max(ratio, 1.0):
         raise ParameterError(f"must be a whole multiple of `dt` [s]: "
