@@ -190,7 +190,8 @@ CASES = {
     "imo --dt 1e-7": (
         lambda t: ["imo", "kvlcc2-l7", "--dt", "1e-7"],
         r"`--dt` = 1e-07 s: \d run\(s\) x 1.08e\+09 steps = .* steps x runs \(about .* at "
-        r"1.3e\+06 steps x runs/s per core\) is more than the work budget of 1e\+09 steps x "
+        r"1.3e\+06 steps x runs/s per core; recording 0.000315 GB\) is more than the work "
+        r"budget of 1e\+09 steps x "
         r"runs; a larger `--dt` \(the usual step of this ship is 0.05 s\).*SEAHELM_WORK_BUDGET="),
     "imo --depth just above the draft": (
         lambda t: ["imo", "kvlcc2-l7", "--depth", "0.46"],
@@ -205,7 +206,7 @@ CASES = {
                                  '[maneuver]\nkind = "turning"\nrudder_deg = [5.0, 10.0, 15.0, '
                                  '20.0, 25.0, 30.0, 35.0]\nsides = "both"\nt_final = 1e5\n'
                                  'dt = 0.001\n'), "--out", str(t / "o")],
-        r"\[maneuver.dt\] `dt` = 0.001 s: 14 run\(s\) x 1e\+08 steps = 1.4e\+09 steps x runs"),
+        r"\[maneuver.t_final\] `t_final`: 14 run\(s\) of 100000 s .* would record 347 GB"),
     "a [simulation] scenario beyond the budget": (
         lambda t: ["run", _scenario(t, "long", 6e5, 200), "--out", str(t / "o")],
         r"\[simulation.t_final\] 200 run\(s\) x 6e\+06 steps = 1.2e\+09 steps x runs"),

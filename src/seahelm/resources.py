@@ -199,17 +199,22 @@ def check_work(n_runs: int, n_steps: float, *, field: str = "t_final",
     work = float(n_runs) * float(n_steps)
     if work <= budget:
         return
+    over = (f"{work_estimate(n_runs, n_steps, record_bytes)} is more than the work budget of "
+            f"{budget:.3g} steps x runs")
+    anyway = f"(or set {WORK_BUDGET_ENV}={10 ** math.ceil(math.log10(work)):.0e} to run it anyway)"
     raise WorkTooLarge(
-        f": {work_estimate(n_runs, n_steps, record_bytes)} is more than the work budget of "
-        f"{budget:.3g} steps x runs; {advice or 'a shorter `t_final`, a larger `dt` or fewer runs'}"
-        f" (or set {WORK_BUDGET_ENV}={10 ** math.ceil(math.log10(work)):.0e} to run it anyway)",
-        field=field, work=work, budget=budget)
+        f": {over}; {advice or 'a shorter `t_final`, a larger `dt` or fewer runs'} {anyway}",
+        field=field, work=work, budget=budget, over=over, anyway=anyway)
 
 
 class WorkTooLarge(ParameterError):
     """A batch of more work (steps × runs) than the budget (:func:`check_work`): ``work`` and
     ``budget`` [steps × runs]."""
 
-    def __init__(self, message: str, *, field: str, work: float, budget: float) -> None:
+    def __init__(self, message: str, *, field: str, work: float, budget: float,
+                 over: str = "", anyway: str = "") -> None:
         super().__init__(message, field=field, value=work)
         self.work, self.budget = work, budget
+        #: "... steps x runs (about ...) is more than the work budget of ..." and
+        #: "(or set SEAHELM_WORK_BUDGET=... to run it anyway)", for a caller's own advice
+        self.over, self.anyway = over, anyway

@@ -828,9 +828,9 @@ def _run(problem: "Problem", *, throw: bool,
                       + len(wiring.commands) + len(controller.output_labels)
                       + len(wiring.references) + len(dist_labels))
     # the work too, before a reference or disturbance of the run's length is built
+    check_record_memory(n_runs_early, n_rec_early, channels_early)
     check_work(n_runs_early, n_steps,
                record_bytes=8.0 * n_runs_early * n_rec_early * channels_early)
-    check_record_memory(n_runs_early, n_rec_early, channels_early)
     t_grid = _TimeGrid(n_steps, float(dt))
     ref = _signal("reference", reference, len(wiring.references), t_grid, "",
                   wiring.references)

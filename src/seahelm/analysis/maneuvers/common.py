@@ -275,7 +275,7 @@ class Plan:
         t = 0 on (the approach is the calm-water one).
         """
         from ...simulation.batch import BatchAxis, BatchLayout, RunBatch, simulate_batch
-        from ...resources import WorkTooLarge, check_work
+        from ...resources import WorkTooLarge
         from ...simulation.engine import RecordingTooLarge
 
         usual = usual_time_step(self.ships, [a.speed for a in self.approaches.values()])
@@ -289,23 +289,6 @@ class Plan:
         if dims:
             layout = BatchLayout(axes=tuple(
                 BatchAxis(name=a.name, values=a.values, units=a.units) for a in dims))
-        try:  # (the engine checks it too; here the refusal names the manoeuvre's options)
-            check_work(self.n_runs, t_final / dt, field="dt", advice=(
-                f"a larger `dt` (the usual step of this ship is {usual:.3g} s), a shorter "
-                "`t_final` or fewer runs"))
-        except WorkTooLarge as exc:
-            shallow = [s for s in self.ships if math.isfinite(s.water_depth or math.inf)]
-            if shallow:  # (a ship in very shallow water barely turns or stops: say so)
-                found = shallow[0]
-                depth = float(found.water_depth)
-                draft = float(getattr(found.particulars, "draft", None) or found.params.draft)
-                raise ParameterError(
-                    f"= {depth:g} m is {depth / draft:.4g} x the draft ({draft:.4g} m): there "
-                    f"the ship's predicted motion (its steady yaw rate, its stopping) is so slow "
-                    f"that the manoeuvre would last {t_final:.3g} s{exc.reason.partition(';')[0]}"
-                    "; give deeper water", field="water_depth", unit="m", value=depth) from None
-            raise ParameterError(f"= {dt:g} s{exc.reason}", field="dt", unit="s",
-                                 value=dt) from None
         runs = np.arange(self.n_runs)
         extra = _conditions_kwargs(conditions, self.model)
         if self.failed:  # only the runs with an approach (scattered back below)
@@ -329,7 +312,24 @@ class Plan:
         try:
             result = simulate_batch(batch)
             return _scatter_runs(result, runs, self.n_runs, layout) if self.failed else result
-        except RecordingTooLarge as exc:  # name the manoeuvre's options, not the engine's
+        except (WorkTooLarge, RecordingTooLarge) as exc:  # in the manoeuvre's words
+            too_much = (exc.over if isinstance(exc, WorkTooLarge)
+                        else f"it would record {exc.size_text()}")
+            shallow = [s for s in self.ships if math.isfinite(s.water_depth or math.inf)]
+            if shallow:  # (a ship in very shallow water barely turns or stops: say so)
+                found = shallow[0]
+                depth = float(found.water_depth)
+                draft = float(getattr(found.particulars, "draft", None) or found.params.draft)
+                raise ParameterError(
+                    f"= {depth:g} m is {depth / draft:.4g} x the draft ({draft:.4g} m): there "
+                    f"the ship's predicted motion (its steady yaw rate, its stopping) is so slow "
+                    f"that the manoeuvre would last {t_final:.3g} s: {too_much}; give deeper "
+                    "water", field="water_depth", unit="m", value=depth) from None
+            if isinstance(exc, WorkTooLarge):
+                raise ParameterError(
+                    f"= {dt:g} s: {exc.over}; a larger `dt` (the usual step of this ship is "
+                    f"{usual:.3g} s), a shorter `t_final` or fewer runs {exc.anyway}",
+                    field="dt", unit="s", value=dt) from None
             slowest = min(a.speed for a in self.approaches.values())
             raise ParameterError(
                 f": {self.n_runs} run(s) of {t_final:.6g} s (at the slowest approach "
