@@ -210,12 +210,6 @@ def _read_csv(path: Path, angles: str) -> list[ManoeuvreRecord]:
                              f"{', '.join(cols)})", field="heading")
     scale = math.pi / 180.0 if angles == "deg" else 1.0
     widest = float(np.nanmax(np.abs(cols["rudder_angle"])))
-    if angles == "deg" and 0.0 < widest <= math.pi / 2:
-        import warnings
-
-        warnings.warn(f"{path}: column `rudder_angle` stays within ±{widest:.4g} read as "
-                      f"degrees (a manoeuvre's rudder is some 10-35°): are they radians? "
-                      "(give --angles rad)", UserWarning, stacklevel=2)
     for key in _ANGLES + _RATES:
         if key in cols:
             cols[key] = cols[key] * scale
@@ -225,9 +219,16 @@ def _read_csv(path: Path, angles: str) -> list[ManoeuvreRecord]:
             " rad (more than 90°) with angles in radians: are they degrees? (drop --angles rad)",
             field="rudder_angle")
     channels = {k: cols[k] for k in _OPTIONAL if k in cols}
-    return record_from_arrays(str(path), cols["time"], cols["rudder_angle"],
-                              cols.get("heading"), cols.get("yaw_rate"), first_row=2,
-                              **channels)
+    records = record_from_arrays(str(path), cols["time"], cols["rudder_angle"],
+                                 cols.get("heading"), cols.get("yaw_rate"), first_row=2,
+                                 **channels)
+    if angles == "deg" and 0.0 < widest <= math.pi / 2:  # (a valid record, in radians?)
+        import warnings
+
+        warnings.warn(f"{path}: column `rudder_angle` stays within ±{widest:.4g} read as "
+                      f"degrees (a manoeuvre's rudder is some 10-35°): are they radians? "
+                      "(give --angles rad)", UserWarning, stacklevel=3)
+    return records
 
 
 def _read_netcdf(path: Path) -> list[ManoeuvreRecord]:
