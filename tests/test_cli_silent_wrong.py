@@ -255,7 +255,8 @@ def test_refused_in_one_line_naming_the_option(case, tmp_path):
                                        "--dof", "heave", "--json"],
      r"warning: `--hs` = 100 m is above 20 m, more than the highest significant wave height "
      r"ever measured", id="seakeeping --hs 100"),
-    pytest.param(lambda t: ["identify", "nomoto", _zigzag_csv(t, "rad.csv", rudder_scale=math.pi / 180),
+    pytest.param(lambda t: ["identify", "nomoto",
+                            _zigzag_csv(t, "rad.csv", rudder_scale=math.pi / 180),
                 "--json"],
      r"warning: .*rad.csv: column `rudder_angle` stays within ±0.1745 read as degrees .*are "
      r"they radians\? \(give --angles rad\)", id="identify nomoto of radians as degrees"),
