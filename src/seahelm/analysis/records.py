@@ -95,12 +95,29 @@ class ManoeuvreRecord:
         return int(self.time.size)
 
 
+#: The largest magnitude a record's column may have [SI units]: beyond it a value is a unit
+#: mix-up or garbage, not a ship's motion (a rudder of 1e300 deg ran into numpy overflow
+#: warnings and an optimiser's message, a heading of 1e200 rad was fitted without a word).
+COLUMN_LIMITS = {"rudder_angle": (math.pi / 2, "rad"), "heading": (2000.0 * math.pi, "rad"),
+                 "yaw_rate": (2.0 * math.pi, "rad/s"), "surge_speed": (100.0, "m/s"),
+                 "sway_speed": (100.0, "m/s"), "propeller_rps": (1000.0, "1/s"),
+                 "x": (1e8, "m"), "y": (1e8, "m"), "time": (1e9, "s")}
+
+
 def _check_column(source: str, name: str, values: np.ndarray, first_row: int) -> None:
     bad = ~np.isfinite(values)
     if np.any(bad):
         i = int(np.flatnonzero(bad)[0])
         raise ParameterError(f"{source}: column `{name}` row {first_row + i} is not a finite "
                              f"number ({values[i]!r})", field=name)
+    limit, unit = COLUMN_LIMITS.get(name, (math.inf, ""))
+    big = np.abs(values) > limit
+    if np.any(big):
+        i = int(np.flatnonzero(big)[0])
+        raise ParameterError(f"{source}: column `{name}` row {first_row + i} is "
+                             f"{values[i]:.6g} {unit}, beyond ±{limit:.6g} {unit} (in SI units; a "
+                             "unit mix-up or a damaged value?)", field=name, unit=unit,
+                             value=float(values[i]))
 
 
 def record_from_arrays(name: str, time: Any, rudder_angle: Any, heading: Any = None,
@@ -192,6 +209,7 @@ def _read_csv(path: Path, angles: str) -> list[ManoeuvreRecord]:
         raise ParameterError(f"{path}: missing column `heading` or `yaw_rate` (columns: "
                              f"{', '.join(cols)})", field="heading")
     scale = math.pi / 180.0 if angles == "deg" else 1.0
+    widest = float(np.nanmax(np.abs(cols["rudder_angle"])))
     for key in _ANGLES + _RATES:
         if key in cols:
             cols[key] = cols[key] * scale
@@ -201,9 +219,16 @@ def _read_csv(path: Path, angles: str) -> list[ManoeuvreRecord]:
             " rad (more than 90°) with angles in radians: are they degrees? (drop --angles rad)",
             field="rudder_angle")
     channels = {k: cols[k] for k in _OPTIONAL if k in cols}
-    return record_from_arrays(str(path), cols["time"], cols["rudder_angle"],
-                              cols.get("heading"), cols.get("yaw_rate"), first_row=2,
-                              **channels)
+    records = record_from_arrays(str(path), cols["time"], cols["rudder_angle"],
+                                 cols.get("heading"), cols.get("yaw_rate"), first_row=2,
+                                 **channels)
+    if angles == "deg" and 0.0 < widest <= math.pi / 2:  # (a valid record, in radians?)
+        import warnings
+
+        warnings.warn(f"{path}: column `rudder_angle` stays within ±{widest:.4g} read as "
+                      f"degrees (a manoeuvre's rudder is some 10-35°): are they radians? "
+                      "(give --angles rad)", UserWarning, stacklevel=3)
+    return records
 
 
 def _read_netcdf(path: Path) -> list[ManoeuvreRecord]:

@@ -269,6 +269,12 @@ def _toml_string(text: str) -> str:
     return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
 
 
+#: ``--dt`` at most |T| / MAX_PERIOD_SHARE (the Nomoto time constant): a controller is sampled
+#: some 10-20 times per closed-loop time constant (Franklin, Powell & Workman 1998, ch. 11);
+#: 5 per open-loop T is the least that still steers.
+MAX_PERIOD_SHARE = 5.0
+
+
 @app.command("tune")
 @handle_errors
 def tune(
@@ -322,6 +328,18 @@ def tune(
         if not (math.isfinite(value) and value > 0):
             raise ParameterError(f"must be > 0 [{unit}], got {value!r}", field=option,
                                  unit=unit, value=value)
+    if not (math.isfinite(heading_step) and heading_step != 0 and abs(heading_step) <= 180):
+        raise ParameterError(f"must be a course change in [-180, 180] [deg], not 0, got "
+                             f"{heading_step!r}", field="--heading-step", unit="deg",
+                             value=heading_step)
+    for option, value, designs in (("--max-cross-track", max_cross_track, ("lq-cross-track",)),
+                                   ("--offset", offset, ("lq-cross-track",)),
+                                   ("--max-heading-error", max_heading_error,
+                                    ("lq", "lq-cross-track"))):
+        if value is not None and design not in designs:
+            raise ParameterError(f"= {value!r} is an option of `--design "
+                                 f"{' or '.join(designs)}`, not of `--design {design}`: drop it",
+                                 field=option, value=value)
     if integral_time is not None and not integral_time > 0:
         raise ParameterError(f"must be > 0 [s], got {integral_time!r}", field="--integral-time",
                              unit="s", value=integral_time)
@@ -337,6 +355,11 @@ def tune(
     whole = full.select(states=[s for s in full.state_labels if s != "north"])
     indices = steering_indices(bare)
     K, T = indices.nomoto.gain, indices.nomoto.time_constant
+    if dt > abs(T) / MAX_PERIOD_SHARE:  # (a sampled loop that slow cannot steer the ship)
+        raise ParameterError(
+            f"= {dt:g} s is more than 1/{MAX_PERIOD_SHARE:g} of the ship's Nomoto time "
+            f"constant |T| = {abs(T):.4g} s: an autopilot sampled that seldom cannot steer it; "
+            f"give at most {abs(T) / MAX_PERIOD_SHARE:.3g} s", field="--dt", unit="s", value=dt)
     # position does not feed back at the straight run: the loop's poles are those without it
     full = full.select(states=[s for s in full.state_labels if s not in ("north", "east")])
     i_cmd = full.input_labels.index("rudder_command")

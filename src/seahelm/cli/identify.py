@@ -242,6 +242,7 @@ def nomoto(
     if plot is not None:
         output_file("--plot", plot, reads=tuple(files), writes="a figure")
     records = read_records(files, angles=angles)
+    check_record_count(records, order)
     fit = fit_nomoto(records, order, bootstrap=bootstrap, seed=seed)
     payload = fit.as_dict(level)
     boot = fit.bootstrap_intervals(level)
@@ -264,6 +265,32 @@ def nomoto(
     _print_nomoto(fit, payload, level)
     if imo:
         _print_imo_given_fit(payload["imo"])
+
+
+#: The most records ``identify nomoto`` fits together. The output-error fit estimates the
+#: model's parameters and each record's initial state (2 or 3 unknowns a record) with one engine
+#: run per record at every evaluation, so its cost grows with the square of the records: 20
+#: records of 10 minutes took some 8 s (warm kernel), 200 runs of a Monte-Carlo result over
+#: 180 s without a word. One model fitted to many runs of different ships (a Monte-Carlo
+#: result's draws) is no identification either.
+MAX_NOMOTO_RECORDS = 20
+
+
+def check_record_count(records: Any, order: int) -> None:
+    """Refuse more than :data:`MAX_NOMOTO_RECORDS` records, naming LOG, the count and the
+    unknowns."""
+    from ..errors import ParameterError
+
+    n = len(records)
+    if n <= MAX_NOMOTO_RECORDS:
+        return
+    unknowns = (3 if order == 1 else 5) + (2 if order == 1 else 3) * n
+    raise ParameterError(
+        f"`LOG`: {n} records (a result file gives one per run) is more than the "
+        f"{MAX_NOMOTO_RECORDS} one Nomoto fit takes: {unknowns} unknowns (each record's initial "
+        "state) and one engine run per record at every step of the fit, which takes minutes; "
+        "one model fitted to the runs of a Monte-Carlo result (different ships) is no "
+        f"identification: fit the records of one ship, at most {MAX_NOMOTO_RECORDS} at a time")
 
 
 def _imo_given_fit(fit: Any, records: Any, n: int, posterior: str, seed: int | None,
@@ -447,6 +474,13 @@ def mmg(
         if out is not None and save_posterior.resolve() == out.resolve():
             raise ParameterError("`--save-posterior` and `--out` are the same file")
     records = read_records(files, angles=angles)
+    for rec in records:
+        rps = rec.channels.get("propeller_rps")
+        if rps is not None and not np.any(np.abs(rps) > 0):
+            raise ParameterError(
+                f"`LOG` {rec.name}: `propeller_rps` is 0 throughout: a free-running record "
+                "has its propeller turning (the MMG rudder's inflow and the thrust come from "
+                "it); a record without it identifies the hull against a model it never ran")
     fit = identify_mmg(records, base, method=method, output_error=output_error)
     payload = fit.as_dict()
     if n_post:

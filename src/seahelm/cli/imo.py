@@ -68,6 +68,10 @@ def _display(criterion: Any) -> dict[str, Any]:
     return row
 
 
+#: ``--uncertainty``'s default: the relative standard deviation of the default draws.
+DEFAULT_UNCERTAINTY = 0.10
+
+
 @handle_errors
 def imo(
     model: Annotated[ShipName, typer.Argument(metavar="SHIP", help=SHIP_HELP)],
@@ -85,8 +89,9 @@ def imo(
     ] = None,
     seed: Annotated[int, typer.Option("--seed", min=0, help="Seed of the Monte-Carlo draws.")]
     = 0,
-    uncertainty: Annotated[float, typer.Option(
-        "--uncertainty", help="Relative standard deviation of the default draws.")] = 0.10,
+    uncertainty: Annotated[Optional[float], typer.Option(
+        "--uncertainty", show_default="0.10", help="Relative standard deviation of the "
+        "default draws (with --monte-carlo, without --draws).")] = None,
     draws: Annotated[Optional[Path], typer.Option(
         "--draws", metavar="FILE.toml|FILE.csv", help=(
             "Your own draws: a TOML table [draws] of parameter = {distribution = \"normal\", "
@@ -112,6 +117,17 @@ def imo(
     check_speed_rps(ship, speed, rps)
     check_positive_opt("--dt", dt, "s")
     from_samples = draws is not None and draws.suffix.lower() == ".csv"
+    if draws is not None and not from_samples and monte_carlo is None:
+        raise ParameterError(f"`--draws` {draws}: draws from a TOML [draws] table need "
+                             "`--monte-carlo N` (the number of samples); only a CSV samples "
+                             "file is checked row by row without it")
+    if uncertainty is not None and (monte_carlo is None or draws is not None):
+        why = ("the draws come from `--draws`" if draws is not None
+               else "it is the spread of `--monte-carlo`'s default draws")
+        raise ParameterError(f"`--uncertainty` = {uncertainty!r} is used only with "
+                             f"`--monte-carlo` and without `--draws` ({why}): drop it")
+    if uncertainty is None:
+        uncertainty = DEFAULT_UNCERTAINTY
     if monte_carlo is not None or from_samples:
         given = "--monte-carlo" if monte_carlo is not None else "--draws FILE.csv"
         if speed is not None or rps is not None:

@@ -73,6 +73,10 @@ def linearize(
         raise ParameterError(f"must be in (-90, 90) [deg], got {rudder!r}", field="--rudder",
                              unit="deg", value=rudder)
     the_ship = get_ship(ship)
+    if rps is not None and rudder is None:  # (the straight run's rps follows from --speed)
+        raise ParameterError(f"= {rps!r} [1/s] is the propeller rps of the steady turn at "
+                             "`--rudder`; give `--rudder` too (the straight run's rps follows "
+                             "from `--speed`)", field="--rps", unit="1/s", value=rps)
     delta = None if rudder is None else math.radians(rudder)
     bare = _linearize(the_ship, speed=speed, rudder=delta, rps=rps, actuator=False)
     full = _linearize(the_ship, speed=speed, rudder=delta, rps=rps, actuator=True)

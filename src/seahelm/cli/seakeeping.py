@@ -43,6 +43,11 @@ MAX_CELLS = 100_000
 #: moments); every value inside computes finite moments (measured at each end). The closed
 #: form's own validity range (Fn <= 0.4) warns well inside them.
 HS_MAX = 100.0
+#: Above this significant wave height [m] a warning: the highest measured is 19.0 m (a North
+#: Atlantic buoy, 4 February 2013; WMO 2016).
+HS_HIGHEST = 20.0
+#: ``--spreading-s``'s default.
+DEFAULT_SPREADING_S = 10.0
 TP_RANGE = (0.1, 1000.0)
 GAMMA_MAX = 20.0
 SPEED_MAX = 100.0
@@ -126,6 +131,12 @@ def _spectrum(name: str, hs: float, tp: float | None, gamma: float) -> Any:
     from ..environment.spectra import get_spectrum
 
     _within("hs", hs, "m", 0.0, HS_MAX, low_open=True)
+    if hs > HS_HIGHEST:
+        from ..errors import warn_validity
+
+        warn_validity(f"`--hs` = {hs:g} m is above {HS_HIGHEST:g} m, more than the highest "
+                      "significant wave height ever measured (19 m, WMO 2016): a unit or a "
+                      "typing mistake?")
     if name == "pierson-moskowitz":
         if tp is not None:
             raise ParameterError("is not taken by pierson-moskowitz (its peak follows from "
@@ -188,8 +199,9 @@ def seakeeping(
     spreading: Annotated[SpreadingName, typer.Option(
         "--spreading", help="Directional spreading: none (long-crested), cos2, cos-2s.")
     ] = "none",
-    spreading_s: Annotated[float, typer.Option(
-        "--spreading-s", help="The s of cos-2s [-].")] = 10.0,
+    spreading_s: Annotated[float | None, typer.Option(
+        "--spreading-s", show_default="10", help="The s of cos-2s [-] (with --spreading "
+        "cos-2s).")] = None,
     directions: Annotated[int, typer.Option(
         "--directions", help="Directions of the spreading's quadrature [-].")] = 36,
     gm: Annotated[float | None, typer.Option(
@@ -241,6 +253,11 @@ def seakeeping(
     for option, value in (("limit", limit), ("exceed", exceed)):
         _positive(option, value, unit)
     _positive("duration", duration, "s")
+    if spreading_s is not None and spreading != "cos-2s":
+        raise ParameterError(f"= {spreading_s!r} is the s of `--spreading cos-2s`, not of "
+                             f"`--spreading {spreading}`: drop it or give `--spreading cos-2s`",
+                             field="spreading_s", value=spreading_s)
+    spreading_s = DEFAULT_SPREADING_S if spreading_s is None else spreading_s
     _within("spreading_s", spreading_s, "-", 0.0, MAX_S, low_open=True)
     if not 1 <= directions <= MAX_DIRECTIONS:
         raise ParameterError(f"must be in [1, {MAX_DIRECTIONS}] [-], got {directions}",

@@ -16,7 +16,8 @@ The RAO table (CSV)
     ``dof`` one of surge, sway, heave, roll, pitch, yaw; ``frequency`` the wave frequency ω
     [rad/s] (or ``period`` [s]); ``heading_deg`` ε [deg] (or ``heading`` [rad]);
     ``amplitude`` [m/m, rad/m] (or ``amplitude_deg`` [deg/m] for rotations); ``phase_deg``
-    [deg] (or ``phase`` [rad]). An optional ``speed`` column [m/s] must hold one value. Every
+    [deg] (or ``phase`` [rad]); an amplitude >= 0 (the sign is in the phase), a heading in
+    [-180, 360] deg. An optional ``speed`` column [m/s] must hold one value. Every
     dof must have every (frequency, heading) of the grid.
 
 seahelm's RAO NetCDF
@@ -214,7 +215,7 @@ def read_rao_table(path: str | os.PathLike[str]) -> RAO:
     data: dict[tuple[str, float, float], complex] = {}
     speeds = set()
     for n, row in enumerate(rows[1:], start=2):
-        if len(row) < len(head):
+        if len(row) != len(head):  # (an extra value shifts nothing, but is a broken line)
             raise _fail(p, f"line {n} has {len(row)} values, the header {len(head)}")
         dof = row[i_dof].strip()
         if dof not in DOFS:
@@ -231,6 +232,13 @@ def read_rao_table(path: str | os.PathLike[str]) -> RAO:
         f, h, a, ph = vals
         if f <= 0:
             raise _fail(p, f"line {n}: must be > 0, got {f!r}", f_name)
+        if a < 0:
+            raise _fail(p, f"line {n}: an amplitude must be >= 0 (the sign is the phase), got "
+                        f"{a!r}", a_name)
+        if not -180.0 <= (h if h_name == "heading_deg" else math.degrees(h)) <= 360.0:
+            unit = "deg" if h_name == "heading_deg" else "rad"
+            raise _fail(p, f"line {n}: a heading must be in [-180, 360] deg, got {h!r} {unit}",
+                        h_name)
         if f_name == "period":
             f = 2.0 * math.pi / f
         if h_name == "heading_deg":

@@ -163,6 +163,8 @@ def _message(err: Any, unit: str) -> str:
         return f"must be {bounds[kind]} {shown}{u}"
     if kind == "finite_number":
         return f"must be a finite number{u}"
+    if kind in ("int_type", "int_from_float") and isinstance(err.get("input"), float):
+        return f"must be a whole number{u}"  # (record_every = 2.5: a number, but not whole)
     if kind in ("float_type", "float_parsing", "int_type", "int_parsing"):
         return f"must be a number{u} (not a string or a boolean)"
     return err["msg"].removeprefix("Value error, ")

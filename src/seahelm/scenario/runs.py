@@ -24,6 +24,7 @@ from ..parameters import Params
 from ..registry import get_actuator, get_controller, get_model
 from ..simulation.batch import BatchAxis, BatchLayout, BatchValues, RunBatch, grid_axes
 from ..simulation.composition import compose
+from ..resources import WorkTooLarge, check_work
 from ..simulation.engine import check_record_memory
 from ..control.guided import guided
 from ..control.path_following import GuidanceLaw, RouteParams, get_guidance_law, route_params
@@ -621,10 +622,27 @@ def _check_size(scn: Scenario, source: str, in_memory: bool, channels: int) -> N
     n_rec = int(steps) // sim.record_every + 1 + (int(steps) % sim.record_every != 0)
     if not in_memory:  # (a sweep: each chunk is checked when it is made)
         return
+    try:  # (one batch: all its runs at once)
+        check_work(n_runs, steps, record_bytes=8.0 * n_runs * n_rec * channels)
+    except WorkTooLarge as exc:
+        raise _err(source, "simulation.t_final", exc.reason.removeprefix(": ")) from None
     try:
         check_record_memory(n_runs, n_rec, channels)
     except ParameterError as exc:
         raise _err(source, "simulation.record_every", str(exc)) from None
+
+
+def scenario_work(scn: Scenario) -> tuple[int, float] | None:
+    """The runs and the steps of a run of a ``[simulation]`` scenario (None for a manoeuvre:
+    its durations come from the ship), from the validated text, before anything is expanded.
+    """
+    sim = scn.simulation
+    if sim is None:
+        return None
+    grid = scn.batch.grid
+    mc = scn.batch.monte_carlo
+    n_runs = math.prod(len(v) for v in grid.values()) * (mc.runs if mc is not None else 1)
+    return n_runs, sim.t_final / sim.dt
 
 
 def _with_current(scn: Scenario, model: Any, source: str) -> dict[str, Any]:

@@ -171,6 +171,11 @@ def _densities(params: Params) -> list[str]:
     return [i.name for i in params.info() if froude_exponents(i.unit, field=i.name) == (1, -3, 0)]
 
 
+#: Lengths a ship may be scaled to [m]: from the smallest free-running models (some 0.1 m)
+#: to four times the longest ship built (458 m, the Seawise Giant). 1e9 m or 1 µm was a ship.
+LENGTH_RANGE = (0.1, 2000.0)
+
+
 def scale_ship(ship: "Ship", length: float, *, rho: float | None = None,
                name: str | None = None) -> "Ship":
     """The ship Froude-scaled to the length ``length`` (see the module docstring).
@@ -195,11 +200,17 @@ def scale_ship(ship: "Ship", length: float, *, rho: float | None = None,
     Raises
     ------
     ParameterError
-        If ``length`` or ``rho`` is not a finite number > 0, the ship has no length, ``rho``
+        If ``length`` or ``rho`` is not a finite number > 0 (``length`` in
+        :data:`LENGTH_RANGE`), the ship has no length, ``rho``
         is given for a model without a density parameter, or a parameter's unit is not one
         the rule knows.
     """
     new_length = _positive("length", length, "m")
+    low, high = LENGTH_RANGE
+    if not low <= new_length <= high:
+        raise ParameterError(f"must be in [{low:g}, {high:g}] [m] (a model basin's smallest "
+                             f"models to the longest ships), got {length!r}", field="length",
+                             unit="m", value=length)
     if ship.in_shallow_water:  # scale the deep-water ship, then put it in water λ times deeper
         deep = dataclasses.replace(ship, params=ship.deep_water_params or ship.params,
                                    water_depth=math.inf, deep_water_params=None)

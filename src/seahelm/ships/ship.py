@@ -88,6 +88,12 @@ class Propulsion:
         object.__setattr__(self, "inputs", tuple(self.inputs))
 
 
+#: How far a ship's particulars may be from its parameters' length, beam and draft (relative):
+#: 5 % takes a mean draft beside the draft amidships (the KVLCC2 L7's 0.455 and 0.46 m are 1.1 %
+#: apart) and refuses a unit or a digit wrong (a length of 70 m against 7 m).
+PARTICULARS_AGREE = 0.05
+
+
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class Ship:
     """A ship: manoeuvring model and parameters, steering gear, propulsion, particulars.
@@ -185,6 +191,17 @@ class Ship:
                     f"'{vessel_type}' is not one of Blendermann's vessel types: "
                     f"{', '.join(sorted(BLENDERMANN_VESSEL_TYPES))}",
                     field="particulars.vessel_type", value=vessel_type)
+        if self.particulars is not None:  # one ship has one length, beam and draft
+            given = set(self.params.field_names())
+            for dim in ("length", "beam", "draft"):
+                mine = getattr(self.particulars, dim, None)
+                theirs = getattr(self.params, dim, None) if dim in given else None
+                if mine and theirs and abs(mine - theirs) > PARTICULARS_AGREE * max(mine,
+                                                                                   theirs):
+                    raise ParameterError(
+                        f"= {mine!r} m, but the parameters' `{dim}` = {theirs!r} m (more than "
+                        f"{PARTICULARS_AGREE:.0%} apart): one ship has one {dim}",
+                        field=f"particulars.{dim}", unit="m", value=mine)
         if self.propulsion is not None:
             missing = [n for n in self.propulsion.inputs if n not in model.input_labels]
             if missing:

@@ -55,7 +55,7 @@ from ..actuators.base import Actuator
 from ..control.base import Controller
 from ..errors import ParameterError, SimulationDiverged
 from ..parameters import Params, as_records, stack_params
-from ..resources import memory_limit
+from ..resources import check_work, memory_limit
 from ..vessels.base import VesselModel
 from .compiled_step import compiled_advance_source, compiled_stage_loop_source
 from .composition import compose
@@ -480,6 +480,19 @@ RECORD_PEAK_FACTOR = 2.5
 #: is larger; asking the OS costs more than a short run).
 ASK_ABOVE = 1 << 26
 
+#: Wall time a slice of steps of the compiled loop aims at [s]. Between slices Python runs:
+#: a progress callback, and a signal handler (the CLI turns SIGTERM and Ctrl-C into
+#: exceptions), so a stop request ends a long run within about this time. A slice costs some
+#: 5 µs to start (100 µs on the thread pool): 0.25 s keeps that below 0.05 %.
+SLICE_SECONDS = 0.25
+
+#: Steps × runs of the first slice, before the loop's speed is known: 0.15 s of a KVLCC2 MMG
+#: ship (:data:`seahelm.resources.TYPICAL_RATE`), one slice for a short run.
+FIRST_SLICE = 200_000
+
+#: The same for the pure-Python loop (``jit=False``: some 10³ steps/s).
+FIRST_SLICE_PYTHON = 200
+
 #: Share of the memory this process may use (:func:`seahelm.resources.memory_limit`) that the
 #: engine's peak may take.
 RECORD_MEMORY_SHARE = 0.8
@@ -809,11 +822,15 @@ def _run(problem: "Problem", *, throw: bool,
     # the recordings must fit before anything of the batch's size is built (the time grid too:
     # a long run with a coarse record needs no array of all its steps)
     n_rec_early = n_steps // record_every + 1 + (n_steps % record_every != 0)
-    check_record_memory(max(mp.shape[0], ap.shape[0], cp.shape[0], ep.shape[0], x0.shape[0]),
-                        n_rec_early,
-                        model.n_states + actuator.n_states + len(out_labels)
-                        + len(wiring.commands) + len(controller.output_labels)
-                        + len(wiring.references) + len(dist_labels))
+    n_runs_early = max(mp.shape[0], ap.shape[0], cp.shape[0], ep.shape[0], x0.shape[0],
+                       1 if first_order is None else first_order.n_runs)
+    channels_early = (model.n_states + actuator.n_states + len(out_labels)
+                      + len(wiring.commands) + len(controller.output_labels)
+                      + len(wiring.references) + len(dist_labels))
+    # the work too, before a reference or disturbance of the run's length is built
+    check_record_memory(n_runs_early, n_rec_early, channels_early)
+    check_work(n_runs_early, n_steps,
+               record_bytes=8.0 * n_runs_early * n_rec_early * channels_early)
     t_grid = _TimeGrid(n_steps, float(dt))
     ref = _signal("reference", reference, len(wiring.references), t_grid, "",
                   wiring.references)
@@ -895,7 +912,11 @@ def _run(problem: "Problem", *, throw: bool,
     compile_time = _time.perf_counter() - c0
     wall0 = _time.perf_counter()
     k = 0
-    chunk = min(n_steps, max(1, 200_000 // max(n_runs, 1)))
+    # the loop runs in slices of steps of about SLICE_SECONDS each: between them Python runs,
+    # so a stop signal (Ctrl-C, SIGTERM: the CLI raises it as an exception) ends even a long
+    # compiled run within about that time, and a progress bar moves smoothly
+    chunk = min(n_steps, max(1, (FIRST_SLICE if use_jit else FIRST_SLICE_PYTHON)
+                             // max(n_runs, 1)))
     while k < n_steps:
         k_stop = min(n_steps, k + chunk)
         t0 = _time.perf_counter()
@@ -905,10 +926,7 @@ def _run(problem: "Problem", *, throw: bool,
         done, k = k_stop - k, k_stop
         if progress is not None:
             progress(k, n_steps)
-            # aim for ~0.2 s per chunk so a progress bar moves smoothly
-            chunk = int(min(max(done / max(elapsed, 1e-6) * 0.2, 1), n_steps))
-        else:
-            chunk = n_steps
+        chunk = int(min(max(done / max(elapsed, 1e-6) * SLICE_SECONDS, 1), n_steps))
         if status.all():
             break
     wall = _time.perf_counter() - wall0

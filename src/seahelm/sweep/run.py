@@ -139,8 +139,10 @@ def run_sweep(
     stored_size = check_store(store, text, chunk_size=chunk_size, overwrite=overwrite,
                               series=series)
     replace = overwrite and store_attrs(store) is not None  # (a sweep store: start afresh)
-    pool = executor(workers=workers, scheduler=scheduler, timeout=timeout, client=client)
     source = str(scenario)
+    if chunk_size is not None:  # (before the batch is expanded: drawing 1e6 samples takes 30 s)
+        _check_chunk_work(text, source, chunk_size)
+    pool = executor(workers=workers, scheduler=scheduler, timeout=timeout, client=client)
     job = prepared(text, source)
     with pool, _naming_the_store(store):
         template, layout_vars, coords, attrs, n_runs = _template(job, series)
@@ -175,6 +177,29 @@ def run_sweep(
     return SweepReport(store=store, n_runs=n_runs, n_chunks=spec.n_chunks,
                        chunk_size=chunk_size, computed=len(todo), skipped=len(done),
                        wall_time_s=time.perf_counter() - t0, summary=summary)
+
+
+def _check_chunk_work(text: str, source: str, chunk_size: int) -> None:
+    """Refuse chunks of more work than the budget (:func:`seahelm.resources.check_work`),
+    naming ``chunk_size`` and the largest chunk that fits (a manoeuvre's chunks are checked by
+    the engine when they run)."""
+    from ..resources import WorkTooLarge, check_work, work_budget
+    from ..scenario.loading import validate_scenario
+    from ..scenario.runs import scenario_work
+
+    work = scenario_work(validate_scenario(text, source=source))
+    if work is None:
+        return
+    n_runs, steps = work
+    runs = min(chunk_size, n_runs)
+    fits = int(work_budget() // max(steps, 1.0))
+    try:
+        check_work(runs, steps, field="chunk_size", advice=(
+            f"fewer runs per chunk (`chunk_size` at most {fits:,} at {steps:.3g} steps a run)"
+            if fits >= 1 else "a shorter `t_final` or a larger `dt`"))
+    except WorkTooLarge as exc:
+        raise ParameterError(f"= {chunk_size:,} runs{exc.reason}", field="chunk_size",
+                             value=chunk_size) from None
 
 
 def _dims(job: Any) -> list[tuple[str, int]]:

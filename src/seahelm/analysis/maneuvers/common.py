@@ -275,6 +275,7 @@ class Plan:
         t = 0 on (the approach is the calm-water one).
         """
         from ...simulation.batch import BatchAxis, BatchLayout, RunBatch, simulate_batch
+        from ...resources import WorkTooLarge
         from ...simulation.engine import RecordingTooLarge
 
         usual = usual_time_step(self.ships, [a.speed for a in self.approaches.values()])
@@ -311,7 +312,24 @@ class Plan:
         try:
             result = simulate_batch(batch)
             return _scatter_runs(result, runs, self.n_runs, layout) if self.failed else result
-        except RecordingTooLarge as exc:  # name the manoeuvre's options, not the engine's
+        except (WorkTooLarge, RecordingTooLarge) as exc:  # in the manoeuvre's words
+            too_much = (exc.over if isinstance(exc, WorkTooLarge)
+                        else f"it would record {exc.size_text()}")
+            shallow = [s for s in self.ships if math.isfinite(s.water_depth or math.inf)]
+            if shallow:  # (a ship in very shallow water barely turns or stops: say so)
+                found = shallow[0]
+                depth = float(found.water_depth)
+                draft = float(getattr(found.particulars, "draft", None) or found.params.draft)
+                raise ParameterError(
+                    f"= {depth:g} m is {depth / draft:.4g} x the draft ({draft:.4g} m): there "
+                    f"the ship's predicted motion (its steady yaw rate, its stopping) is so slow "
+                    f"that the manoeuvre would last {t_final:.3g} s: {too_much}; give deeper "
+                    "water", field="water_depth", unit="m", value=depth) from None
+            if isinstance(exc, WorkTooLarge):
+                raise ParameterError(
+                    f"= {dt:g} s: {exc.over}; a larger `dt` (the usual step of this ship is "
+                    f"{usual:.3g} s), a shorter `t_final` or fewer runs {exc.anyway}",
+                    field="dt", unit="s", value=dt) from None
             slowest = min(a.speed for a in self.approaches.values())
             raise ParameterError(
                 f": {self.n_runs} run(s) of {t_final:.6g} s (at the slowest approach "
@@ -495,11 +513,16 @@ def _conditions_kwargs(conditions: Any, model: VesselModel) -> dict[str, Any]:
             "disturbance": current or None}
 
 
-def record_every_for(dt: float, record_dt: float | None) -> int:
-    """Steps per recorded sample for a wanted recording interval (default: every step)."""
+def record_every_for(dt: float, record_dt: float | None, t_final: float | None = None) -> int:
+    """Steps per recorded sample for a wanted recording interval (default: every step); a
+    ``record_dt`` longer than ``t_final`` [s] (nothing recorded after t = 0) is refused."""
     if record_dt is None:
         return 1
     check_positive("record_dt", record_dt, "s")
+    if t_final is not None and record_dt > t_final:
+        raise ParameterError(f"= {record_dt!r} s is longer than `t_final` = {t_final:.6g} s: "
+                             "nothing after t = 0 would be recorded", field="record_dt",
+                             unit="s", value=record_dt)
     ratio = float(record_dt) / dt
     if ratio < 1.0 - 1e-9 or abs(ratio - round(ratio)) > 1e-9 * max(ratio, 1.0):
         raise ParameterError(f"must be a whole multiple of `dt` [s]: "

@@ -95,7 +95,7 @@ def pull_out(ship: Any, rudder: Any = math.radians(20.0), *, sides: Any = (1, -1
     if t_final is None:
         t_final = max(60.0 * plan.ship(i).length / plan.approach(i).speed for i in range(n))
     t_final = final_time(float(t_final), float(dt))
-    record_every = record_every_for(float(dt), record_dt)
+    record_every = record_every_for(float(dt), record_dt, float(t_final))
     # one steady turn per (ship, speed, signed rudder): its first run, and each run's turn
     x0, rudder0, slot = [], [], []
     groups: dict[tuple[int, int, float], int] = {}

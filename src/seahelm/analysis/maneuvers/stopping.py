@@ -310,7 +310,7 @@ def crash_stop(ship: Any, *, order: Any = -1.0, speed: Any = None,
     if record_dt is None:
         record_every = max(1, math.ceil(t_final / dt / 4000.0))
     else:
-        record_every = record_every_for(float(dt), record_dt)
+        record_every = record_every_for(float(dt), record_dt, float(t_final))
     plan.ships = ships  # the approach is the mmg ship's; the run is the engine's
     approaches = plan.run_approaches()
     x0 = np.stack([np.concatenate([a.state, [a.rps, 0.0]]) for a in approaches])

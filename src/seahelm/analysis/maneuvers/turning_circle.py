@@ -195,7 +195,8 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
         t_final = _estimate_t_final(plan, signed, heading_change)
     t_final = final_time(float(t_final), float(dt))
     approaches = plan.run_approaches()
-    record_every = (record_every_for(float(dt), record_dt) if record_dt is not None
+    record_every = (record_every_for(float(dt), record_dt, float(t_final))
+                    if record_dt is not None
                     or "roll_angle" in plan.model.output_labels
                     or "roll_angle" in plan.model.state_labels
                     else default_record_every(  # (of the runs that run)

@@ -322,7 +322,7 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
                 f"{math.degrees(rates[i]):.4g} deg/s, which needs at least {need[i]:.4g} s",
                 field="heading")
     t_final = final_time(float(t_final), float(dt))
-    record_every = record_every_for(float(dt), record_dt)
+    record_every = record_every_for(float(dt), record_dt, float(t_final))
     x0 = np.stack([plan.approach(i).state for i in range(n)])
     rudder0 = np.array([[plan.approach(i).rudder] for i in range(n)])
     if plan.ships[0].has_propeller:
