@@ -4,8 +4,9 @@ runs as written, and every row says what was measured (or "not compared yet").
 Convention of the page (``docs/guide/coming-from.rst``): every code block is a
 ``.. code-block::`` with a ``:class:`` option, ``seahelm`` for seahelm's side (run here:
 ``python`` blocks in one fresh namespace each, ``console`` blocks line by line as
-``python -m seahelm ...`` in a scratch directory) or ``theirs`` for the peer's usage lines
-(not run: MATLAB, PythonVehicleSimulator and shipmmg are not installed here).
+``python -m seahelm ...`` in a scratch directory), ``output`` for what the seahelm block just
+before it prints (compared line by line with what it prints here) or ``theirs`` for the peer's
+usage lines (not run: MATLAB, PythonVehicleSimulator and shipmmg are not installed here).
 """
 
 from __future__ import annotations
@@ -40,7 +41,9 @@ def _blocks(text: str) -> list[tuple[str, str, str, int]]:
 
 TEXT = PAGE.read_text(encoding="utf-8")
 BLOCKS = _blocks(TEXT)
-PYTHON = [(line, code) for lang, cls, code, line in BLOCKS if cls == "seahelm" and lang == "python"]
+PYTHON = [(line, code, nxt[2] if nxt and nxt[1] == "output" else None)
+          for (lang, cls, code, line), nxt in zip(BLOCKS, BLOCKS[1:] + [None])
+          if cls == "seahelm" and lang == "python"]
 CONSOLE = [(line, cmd) for lang, cls, code, line in BLOCKS if cls == "seahelm" and lang == "console"
            for cmd in code.splitlines() if cmd.startswith("$ ")]
 
@@ -51,10 +54,14 @@ def test_every_code_block_is_marked_and_the_convention_holds():
     n_directives = len(re.findall(r"^\.\. code-block::", TEXT, flags=re.MULTILINE))
     assert len(BLOCKS) == n_directives  # the parser saw every block
     for lang, cls, _, line in BLOCKS:
-        assert cls in ("seahelm", "theirs"), f"line {line}: :class: must be seahelm or theirs"
+        assert cls in ("seahelm", "theirs", "output"), f"line {line}: :class: {cls!r}"
         if cls == "seahelm":
             assert lang in ("python", "console"), f"line {line}: {lang}"
+    for before, (lang, cls, _, line) in zip(BLOCKS, BLOCKS[1:]):
+        if cls == "output":  # the output of the seahelm Python block just before it
+            assert lang == "text" and before[:2] == ("python", "seahelm"), f"line {line}"
     assert len(PYTHON) >= 15 and len(CONSOLE) >= 3
+    assert sum(expected is not None for _, _, expected in PYTHON) >= 8
 
 
 def test_the_page_is_in_the_guide_and_names_what_the_brief_asks():
@@ -92,13 +99,17 @@ def test_the_files_and_pages_it_cites_exist():
         assert (PAGE.parent / f"{doc}.rst").is_file(), doc
 
 
-@pytest.mark.parametrize("line, code", PYTHON, ids=[f"line{line}" for line, _ in PYTHON])
-def test_python_snippet_runs(line, code, tmp_path, monkeypatch, capsys):
+@pytest.mark.parametrize("line, code, expected", PYTHON,
+                         ids=[f"line{line}" for line, _, _ in PYTHON])
+def test_python_snippet_runs(line, code, expected, tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # a snippet may show a validity warning; it must run
         exec(compile(code, f"{PAGE.name}:{line}", "exec"), {"__name__": "__coming_from__"})
-    assert capsys.readouterr().out.strip(), "a snippet prints what it shows"
+    printed = capsys.readouterr().out
+    assert printed.strip(), "a snippet prints what it shows"
+    if expected is not None:  # the page shows its output: it is what the snippet prints
+        assert printed.strip().splitlines() == expected.strip().splitlines()
 
 
 @pytest.mark.parametrize("line, command", CONSOLE, ids=[f"line{line}" for line, _ in CONSOLE])
