@@ -34,6 +34,7 @@ from rich.text import Text
 from typer.core import TyperGroup
 
 from ..errors import ParameterError, SeahelmError
+from ..output_files import approved_outputs, check_output, kind_for_suffix
 from ._tables import FitTables
 
 F = TypeVar("F", bound=Callable[..., Any])
@@ -71,6 +72,15 @@ _created_dirs: list[Path] = []
 #: been printed (set by the root :class:`OneLineErrors` when it parses a command line).
 _json_state = {"wanted": False, "printed": False}
 
+#: The running command line's words as typed (an option's path loses a trailing slash when
+#: it becomes a Path: ``-o kv.toml/`` must not be taken for the file ``kv.toml``).
+_raw_args: list[str] = []
+
+#: The running command's ``--force`` (:data:`ForceFlag`; set by :func:`handle_errors` from
+#: the command's ``force`` argument), the default of :func:`output_file` and
+#: :func:`output_dir`.
+_force_state = {"on": False}
+
 
 def _json_error(message: str, code: int) -> None:
     """With ``--json``, the error as the command's one JSON object on stdout."""
@@ -92,6 +102,11 @@ def exit_if_diverged(n_failed: int) -> None:
 
 #: The one ``--json`` flag of every command (stdout then holds one JSON object, nothing else).
 JsonFlag = Annotated[bool, typer.Option("--json", help="Print one JSON object on stdout.")]
+
+#: The one ``--force`` flag of every command that writes files (:func:`output_file`).
+ForceFlag = Annotated[bool, typer.Option(
+    "--force", help="Replace an existing output file that is not this command's own output "
+    "of an earlier run (a file the command reads is never replaced).")]
 
 
 def exit_on_sigterm() -> None:
@@ -198,6 +213,7 @@ class OneLineErrors(TyperGroup):
         if parent is None:  # a new command line: does it ask for one JSON object?
             words = args[:args.index("--")] if "--" in args else args
             _json_state.update(wanted="--json" in words, printed=False)
+            _raw_args[:] = list(args)
         try:
             return super().make_context(info_name, args, parent=parent, **extra)
         except _ClickException as exc:
@@ -217,9 +233,10 @@ def handle_errors(func: F) -> F:
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         _created_dirs.clear()
         _shown_warnings.clear()
+        _force_state["on"] = bool(kwargs.get("force", False))
         done = False
         try:
-            with warnings.catch_warnings():
+            with warnings.catch_warnings(), approved_outputs():
                 warnings.simplefilter("default")
                 warnings.showwarning = _show_warning  # one line each: warning: ...
                 out = func(*args, **kwargs)
@@ -240,7 +257,8 @@ def handle_errors(func: F) -> F:
             fail_bad_input(cli_message(exc))
         except OSError as exc:
             where = f": {exc.filename}" if getattr(exc, "filename", None) else ""
-            text = f"{exc.strerror or type(exc).__name__}{where}"
+            text = (f"{exc.strerror}{where}" if exc.strerror
+                    else _one_line(exc) if str(exc) else f"{type(exc).__name__}{where}")
             if exc.errno in ENVIRONMENT_ERRNOS:  # the machine failed, not the input: exit 1
                 fail(text)
             fail_bad_input(text)  # a path the user gave: exists, not a directory, no access
@@ -258,58 +276,110 @@ def handle_errors(func: F) -> F:
 
 
 def output_dir(option: str, path: Path, names: tuple[str, ...] = (), *,
-               reads: Iterable[Path] = ()) -> Path:
+               reads: Iterable[Path] = (), force: bool | None = None) -> Path:
     """Check, before any work, that ``path`` is (or can be made) a writable directory and that
-    none of the files to be written there (``names``) is a directory, a file the command reads
-    (``reads``) or inside a store; returns ``path``.
+    each file to be written there (``names``) may be written (:func:`output_file`'s rule: not a
+    directory, a file the command reads or a place inside a store; an existing file only if it
+    is this command's own output of an earlier run, or with ``force``); returns ``path``.
 
     Raises
     ------
     ParameterError
         Naming the option and the path: an existing file, a parent that is a file, a directory
         that cannot be created or written, a target that is a directory, an input of the
-        command, a place inside a sweep store (:func:`protect_inputs`).
+        command, a place inside a sweep store (:func:`protect_inputs`), an existing file of
+        another kind or not seahelm's without ``force``
+        (:func:`seahelm.output_files.check_output`).
     """
     if path.exists() and not path.is_dir():
         raise ParameterError(f"`{option}` must be a directory, but {path} is a file")
+    force = _force_state["on"] if force is None else force
+    reads = tuple(reads)
     protect_inputs(option, path, reads)
     for name in names:
         protect_inputs(option, path / name, reads)
-    _writable_directory(option, path)
     for name in names:
         if (path / name).is_dir():
             raise ParameterError(f"`{option}`: {path / name} is a directory; it would be "
                                  "overwritten by a file")
+        kind = kind_for_suffix(name)
+        # a figure at the command's own name drawn by matplotlib is its earlier output (the
+        # figures of seahelm before the output policy carry no seahelm metadata)
+        old_own = kind == "figure" and _matplotlib_figure(path / name)
+        check_output(path / name, kind, reads=reads, force=force or old_own, option=option,
+                     force_word="--force")
+    _writable_directory(option, path)
     return path
 
 
-def output_file(option: str, path: Path, *, reads: Iterable[Path] = (),
-                writes: str | None = None) -> Path:
-    """Check, before any work, that ``path`` can be written as a file: not a directory, its
-    directory existing (or creatable) and writable, none of the files the command reads
-    (``reads``), not inside a store (:func:`protect_inputs`) and, for a command that writes
-    something else (``writes``: ``"an HTML report"``), not an existing NetCDF/HDF5 result;
-    returns ``path``."""
+def output_file(option: str, path: Path, kind: str, *, reads: Iterable[Path] = (),
+                force: bool | None = None) -> Path:
+    """Check, before any work, that ``path`` can be written as a file of ``kind`` (a key of
+    :data:`seahelm.output_files.KINDS`): not a directory (nor given with a trailing slash),
+    its directory existing (or creatable) and writable, none of the files the command reads
+    (``reads``), not inside a store (:func:`protect_inputs`), and an existing file only if it
+    is this command's own output of an earlier run or with ``force`` (default: the command's
+    ``--force``) (:func:`seahelm.output_files.check_output`); returns ``path``."""
+    force = _force_state["on"] if force is None else force
+    reads = tuple(reads)
+    raw = _raw_value(path)
+    if raw.endswith("/"):
+        check_output(raw, kind, option=option)  # (refused: names a directory)
     if path.is_dir():
         raise ParameterError(f"`{option}` must be a file name, but {path} is a directory")
     if path.parent.exists() and not path.parent.is_dir():
         raise ParameterError(f"`{option}`: {path.parent} is a file, not a directory")
     protect_inputs(option, path, reads)
-    if writes is not None and _is_hdf5(path):
-        raise ParameterError(
-            f"`{option}` {path} is a NetCDF result file; this command writes {writes}: "
-            "writing it there would destroy the result; choose another path")
+    check_output(path, kind, reads=reads, force=force, option=option, force_word="--force",
+                 command=command_path())
     _writable_directory(option, path.parent)
     return path
 
 
-def _is_hdf5(path: Path) -> bool:
-    """Whether ``path`` is an existing NetCDF-4/HDF5 file (by its signature)."""
+def command_path() -> str | None:
+    """The running command as a user types it (``"seahelm identify nomoto"``), or None."""
+    ctx = _current_context()
+    if ctx is None:
+        return None
+    names = []
+    while ctx.parent is not None:
+        names.append(ctx.info_name)
+        ctx = ctx.parent
+    return " ".join(["seahelm", *reversed(names)])
+
+
+def _matplotlib_figure(path: Path) -> bool:
     try:
         with path.open("rb") as fh:
-            return fh.read(8) == b"\x89HDF\r\n\x1a\n"
+            return b"atplotlib" in fh.read(65536)
     except OSError:
         return False
+
+
+def write_ship_file(ship: Any, out: Path, option: str = "--out") -> Path:
+    """Write a ship file a command made (``ship scale``, ``ship estimate``, ``identify``) by
+    the output policy (:func:`seahelm.output_files.write_output`: checked again as it is
+    written, so a file another program put there meanwhile is not replaced; the command's own
+    output of an earlier run -- a seahelm ship file -- is, and so is what ``--force`` approved
+    in :func:`output_file`)."""
+    from ..output_files import write_output
+    from ..ships.writing import ship_to_toml
+
+    from ..output_files import written_by_line
+
+    command = command_path()
+    text = ship_to_toml(ship) + (written_by_line(command) if command else "")
+    return write_output(out, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"), "toml",
+                        option=option, force_word="--force", command=command)
+
+
+def _raw_value(path: Path) -> str:
+    """``path`` as the command line gave it: with its trailing slash, if it had one."""
+    for word in _raw_args:
+        value = word.partition("=")[2] if word.startswith("-") and "=" in word else word
+        if value.endswith("/") and value.rstrip("/") and Path(value.rstrip("/")) == path:
+            return value
+    return str(path)
 
 
 #: Files that mark a directory as a Zarr store (a seahelm sweep store is one): nothing of a
@@ -453,15 +523,20 @@ def _show_warning(message: Warning | str, category: type[Warning], filename: str
                       soft_wrap=True)
 
 
-def _command_options() -> dict[str, str]:
-    """The running command's options by parameter name (``{"t_final": "--t-final"}``)."""
+def _current_context() -> Any:
+    """The running command's click context (None outside a command)."""
     import importlib
 
     # the click typer runs on: click itself (typer < 0.26) or typer's vendored copy
     core = next(c.__module__ for c in typer.Context.__mro__ if c.__name__ == "Context"
                 and c.__module__.endswith(".core"))
-    ctx = importlib.import_module(core[:-len("core")] + "globals").get_current_context(
+    return importlib.import_module(core[:-len("core")] + "globals").get_current_context(
         silent=True)
+
+
+def _command_options() -> dict[str, str]:
+    """The running command's options by parameter name (``{"t_final": "--t-final"}``)."""
+    ctx = _current_context()
     if ctx is None:
         return {}
     return {p.name: p.opts[0] for p in ctx.command.params

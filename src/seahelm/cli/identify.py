@@ -17,6 +17,7 @@ import numpy as np
 import typer
 
 from ._common import (
+    ForceFlag,
     JsonFlag,
     OneLineErrors,
     console,
@@ -216,6 +217,7 @@ def nomoto(
     posterior: Annotated[PosteriorName, typer.Option(
         "--posterior", help="Posterior of --imo: the Laplace Gaussian or MCMC (emcee, "
         "the extra seahelm[mcmc]).")] = "laplace",
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
 ) -> None:
     """Identify Nomoto K, T (or K, T1, T2, T3) and the rudder offset from manoeuvre records."""
@@ -236,9 +238,11 @@ def nomoto(
     if not (math.isfinite(rudder_rate) and rudder_rate > 0):
         raise ParameterError(f"`--rudder-rate` must be > 0 [deg/s], got {rudder_rate!r}")
     if out is not None:
-        output_file("--out", out, reads=tuple(files))
+        output_file("--out", out, "toml", reads=tuple(files), force=force)
     if plot is not None:
-        output_file("--plot", plot, reads=tuple(files), writes="a figure")
+        output_file("--plot", plot, "figure", reads=tuple(files), force=force)
+        if out is not None and plot.resolve() == out.resolve():
+            raise ParameterError("`--plot` and `--out` are the same file")
     records = read_records(files, angles=angles)
     fit = fit_nomoto(records, order, bootstrap=bootstrap, seed=seed)
     payload = fit.as_dict(level)
@@ -308,7 +312,7 @@ def _write_ship(fit: Any, records: Any, out: Path, speed: float | None, length: 
                 name: str | None, max_rudder: float, rudder_rate: float, level: float) -> Path:
     from ..analysis.nomoto_fit_result import nomoto_ship
     from ..errors import ParameterError
-    from ..ships import write_ship
+    from ._common import write_ship_file
 
     if speed is None:
         logged = [r.channels["surge_speed"] for r in records if "surge_speed" in r.channels]
@@ -321,7 +325,7 @@ def _write_ship(fit: Any, records: Any, out: Path, speed: float | None, length: 
     ship = nomoto_ship(fit, name=name or out.stem, speed=speed, length=length,
                        max_rudder=math.radians(max_rudder),
                        rudder_rate=math.radians(rudder_rate), level=level)
-    return write_ship(ship, out, overwrite=True)
+    return write_ship_file(ship, out)
 
 
 def _print_nomoto(fit: Any, payload: dict[str, Any], level: float) -> None:
@@ -412,6 +416,7 @@ def mmg(
     samples: Annotated[int, typer.Option(
         "--samples", metavar="N", help="Without --imo: the number of posterior samples "
         "--save-posterior writes.", min=0, max=MAX_POSTERIOR)] = 0,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
 ) -> None:
     """Identify the MMG hull derivatives from free-running records, the rest from a base ship.
@@ -423,8 +428,8 @@ def mmg(
     from ..analysis.mmg_fit import identify_mmg
     from ..analysis.records import read_records
     from ..errors import ParameterError
-    from ..ships import get_ship, write_ship
-    from ._common import output_file
+    from ..ships import get_ship
+    from ._common import output_file, write_ship_file
 
     for f in files:
         input_file("LOG", f)
@@ -438,10 +443,11 @@ def mmg(
         raise ParameterError(f"`--ship` '{base.name}' uses model '{base.model.name}'; the MMG "
                              "identification needs an MMG ship (e.g. `seahelm ship estimate`)")
     n_post = _posterior_count(imo, samples, save_posterior)
+    reads = (*files, *((Path(ship),) if Path(ship).is_file() else ()))
     if out is not None:
-        output_file("--out", out, reads=tuple(files))
+        output_file("--out", out, "toml", reads=reads, force=force)
     if save_posterior is not None:
-        output_file("--save-posterior", save_posterior, reads=tuple(files))
+        output_file("--save-posterior", save_posterior, "csv", reads=reads, force=force)
         if out is not None and save_posterior.resolve() == out.resolve():
             raise ParameterError("`--save-posterior` and `--out` are the same file")
     records = read_records(files, angles=angles)
@@ -467,7 +473,7 @@ def mmg(
     if out is not None:
         # Written last, after the posterior (and its file): a failed draw writes neither
         # the ship nor the samples it would be paired with.
-        payload["ship_file"] = str(write_ship(fit.ship(base, name=name), out, overwrite=True))
+        payload["ship_file"] = str(write_ship_file(fit.ship(base, name=name), out))
     if json_out:
         print_json(payload)
         return

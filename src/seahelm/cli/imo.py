@@ -32,6 +32,7 @@ from rich.table import Table
 from ..analysis.imo_ensemble import ENSEMBLE_FILE
 from ..errors import ParameterError
 from ._common import (
+    ForceFlag,
     EXIT_NONCOMPLIANT,
     JsonFlag,
     _jsonable,
@@ -95,6 +96,7 @@ def imo(
             "sample, e.g. `identify mmg --save-posterior`): sample i is row i, all rows "
             "without --monte-carlo.")),
     ] = None,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
     out: Out = None,
     check: Annotated[bool, typer.Option("--check", help=(

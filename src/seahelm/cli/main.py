@@ -14,6 +14,7 @@ from rich.table import Table
 from .. import __version__
 from ..errors import ParameterError
 from ._common import (
+    ForceFlag,
     JsonFlag,
     OneLineErrors,
     ProgressBar,
@@ -225,6 +226,7 @@ def _write_report(source: Any, target: Path, *, quiet: bool) -> Path:
 @handle_errors
 def demo(
     out: Annotated[Path, typer.Option(help="Output directory.")] = Path("seahelm-out"),
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
 ) -> None:
     """Run the embedded default scenario (Mariner, 20° course change, PID): plot and report."""
@@ -242,6 +244,7 @@ def run(
     out: Annotated[Path | None, typer.Option(help=(
         "Write result.nc (and overview.png) here; a [maneuver] scenario writes "
         "<kind>-metrics.nc, <kind>-runs.nc and <kind>.png."))] = None,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
     csv: Annotated[bool, typer.Option(help="Also write result.csv.")] = False,
     plot: Annotated[bool, typer.Option(help="Write the figure with --out.")] = True,
@@ -339,6 +342,7 @@ def plot(
         help="PNG file (default: next to the result).")] = None,
     runs: Annotated[list[int] | None, typer.Option(
         "--run", help="Run(s) to draw: flat run index, C order over the batch dims.")] = None,
+    force: ForceFlag = False,
 ) -> None:
     """Plot a result file: heading, actuator angle, yaw rate and track."""
     import matplotlib
@@ -349,8 +353,7 @@ def plot(
     from ..results import flatten_runs, load_result
 
     input_file("RESULT", result)
-    target = output_file("--out", out or result.with_suffix(".png"), reads=(result,),
-                         writes="a figure")
+    target = output_file("--out", out or result.with_suffix(".png"), "figure", reads=(result,))
     check_figure_suffix("--out", target)
     ds = flatten_runs(load_result(result))
     if runs:

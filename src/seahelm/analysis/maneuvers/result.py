@@ -57,8 +57,8 @@ class ManeuverResult:
         """The runs as an :class:`xarray.Dataset` (built once, on first access)."""
         return None if self.runs_builder is None else self.runs_builder()
 
-    def to_netcdf(self, directory: str | Path, *, prefix: str | None = None
-                  ) -> dict[str, Path]:
+    def to_netcdf(self, directory: str | Path, *, prefix: str | None = None,
+                  force: bool = False) -> dict[str, Path]:
         """Write ``<prefix>-metrics.nc`` and ``<prefix>-runs.nc`` atomically (h5netcdf).
 
         Parameters
@@ -67,6 +67,9 @@ class ManeuverResult:
             Output directory (created if needed).
         prefix : str, optional
             File name prefix (default: the manoeuvre name).
+        force : bool, optional
+            Replace existing files that are not seahelm NetCDF files (default False;
+            :func:`seahelm.output_files.check_output`).
 
         Returns
         -------
@@ -82,7 +85,7 @@ class ManeuverResult:
             if ds is None:
                 continue
             ds = _netcdf_ready(ds)
-            out[key] = write_netcdf(ds, directory / f"{prefix}-{key}.nc")
+            out[key] = write_netcdf(ds, directory / f"{prefix}-{key}.nc", force=force)
         return out
 
 
