@@ -139,8 +139,12 @@ FIGURE_METADATA = {"png": "Software", "pdf": "Creator", "svg": "Creator", "eps":
 
 
 def _figure(path: Path, command: str | None = None) -> bool:
-    """A figure seahelm wrote: its name in the metadata (PNG/SVG/EPS header, PDF trailer)."""
-    return b"seahelm" in _head(path, 65536) or b"seahelm" in _tail(path, 65536)
+    """A figure seahelm wrote: a PNG, PDF, SVG or PostScript file with seahelm's name in its
+    metadata (:data:`FIGURE_METADATA`: the PNG/SVG/EPS header, the PDF trailer)."""
+    head = _head(path, 65536)
+    if not head.startswith((b"\x89PNG", b"%PDF", b"%!PS", b"<?xml", b"<svg")):
+        return False
+    return b"seahelm" in head or b"seahelm" in _tail(path, 65536)
 
 
 def _seahelm_json(path: Path, command: str | None = None) -> bool:
@@ -149,9 +153,17 @@ def _seahelm_json(path: Path, command: str | None = None) -> bool:
 
 
 def _seahelm_csv(path: Path, command: str | None = None) -> bool:
-    """seahelm's CSV tables: a ``# seahelm`` comment first, or a result's long format (its
-    header starts with the run and time columns)."""
-    return _seahelm_text(path) or _head(path, 64).startswith(b"run,time")
+    """seahelm's CSV tables: a ``# seahelm`` comment first, a result's long format (its
+    header starts with the run and time columns), or a samples file (its header, after the
+    comments, names key paths: ``vessel.params.N_v,...``)."""
+    if _seahelm_text(path) or _head(path, 64).startswith(b"run,time"):
+        return True
+    import re
+
+    lines = [ln for ln in _head(path).decode("utf-8", "replace").splitlines()
+             if ln.strip() and not ln.startswith("#")]
+    key = re.compile(r"[A-Za-z_]\w*(\.[A-Za-z_]\w*|\[\d+\])+")
+    return bool(lines) and all(key.fullmatch(k.strip()) for k in lines[0].split(","))
 
 
 @dataclass(frozen=True)
@@ -199,6 +211,8 @@ def describe_file(path: str | os.PathLike[str]) -> str:
     file", "an HTML file", "a file")."""
     p = Path(path)
     head = _head(p, 256)
+    if head.startswith(_HDF5) and _seahelm_netcdf(p):
+        return "a seahelm NetCDF file"
     if head.startswith(_HDF5) or head.startswith(b"CDF"):
         return "a NetCDF/HDF5 file"
     if head.startswith(b"# seahelm ship file"):
@@ -309,7 +323,7 @@ def check_output(path: str | os.PathLike[str], kind: str, *, reads: Iterable[
     found = describe_file(target)
     if found == "a file":
         found = "a file seahelm did not write"
-    elif found.startswith("a seahelm") and command is not None:
+    elif found.startswith("a seahelm") and command is not None and kind in ("toml", "netcdf"):
         found += f" not written by `{command}`"
     raise OutputExistsError(
         f"{name} exists ({found}); this writes {spec.description} there: pass {force_word} "
