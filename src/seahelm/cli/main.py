@@ -378,11 +378,15 @@ def cache(
     from ..simulation.engine import kernel_cache_dir
 
     where = kernel_cache_dir()
-    ours = [p for p in where.rglob("*") if p.is_file()
-            and p.name.startswith(("seahelm_kernel_", "seahelm_guided_", ".seahelm_"))]
-    others = [p for p in where.rglob("*") if p.is_file() and p not in set(ours)]
-    size = sum(p.stat().st_size for p in ours)
-    kernels = len(list(where.glob("seahelm_kernel_*.py")))
+    # Another process may be clearing (or compiling into) the cache at the same time: a file
+    # or directory that vanishes between the listing and its use is simply not counted.
+    sizes = _cache_files(where)
+    ours = [p for p in sizes
+            if p.name.startswith(("seahelm_kernel_", "seahelm_guided_", ".seahelm_"))]
+    others = [p for p in sizes if p not in set(ours)]
+    size = sum(sizes[p] for p in ours)
+    kernels = sum(1 for p in ours if p.parent == where and p.name.startswith("seahelm_kernel_")
+                  and p.suffix == ".py")
     if clear:
         for path in ours:
             path.unlink(missing_ok=True)
@@ -397,6 +401,25 @@ def cache(
         if others:
             console.print(f"  {len(others)} other file(s) there are not seahelm's and were "
                           "left alone", highlight=False)
+
+
+def _cache_files(where: Path) -> dict[Path, int]:
+    """The regular files under ``where`` with their sizes [bytes]; files and directories that
+    vanish while they are listed (another ``seahelm cache --clear``) are left out."""
+    import os
+    import stat
+
+    found: dict[Path, int] = {}
+    for root, _dirs, names in os.walk(where):  # (os.walk skips a directory that vanishes)
+        for name in names:
+            path = Path(root) / name
+            try:
+                st = path.stat()
+            except FileNotFoundError:
+                continue
+            if stat.S_ISREG(st.st_mode):
+                found[path] = st.st_size
+    return found
 
 
 def _value_options() -> set[str]:

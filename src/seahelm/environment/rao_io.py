@@ -255,6 +255,9 @@ def read_rao_table(path: str | os.PathLike[str]) -> RAO:
         data[key] = a * complex(math.cos(ph), math.sin(ph))
     if len(speeds) > 1:
         raise _fail(p, f"holds several speeds {sorted(speeds)}; one table is one speed", "speed")
+    if not data:
+        raise _fail(p, "has a header but no rows of values (one row per dof, frequency and "
+                    "heading)", f_name)
     dofs = tuple(d for d in DOFS if any(k[0] == d for k in data))
     freqs = np.array(sorted({k[1] for k in data}))
     heads = np.array(sorted({k[2] for k in data}))
