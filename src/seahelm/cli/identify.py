@@ -190,7 +190,7 @@ def nomoto(
         "--angles", help="Units of the CSV angles [deg|rad] and rates [deg/s|rad/s].")] = "deg",
     bootstrap: Annotated[int, typer.Option(
         "--bootstrap", help="Moving-block bootstrap refits for percentile intervals (0: "
-        "none).", min=0)] = 0,
+        "none; at most 10000, each a whole fit).", min=0)] = 0,
     seed: Annotated[Optional[int], typer.Option("--seed", help="Seed of the bootstrap.")] = None,
     level: Annotated[float, typer.Option("--level", help="Confidence level.")] = 0.95,
     speed: Annotated[Optional[float], typer.Option(
@@ -243,6 +243,7 @@ def nomoto(
         output_file("--plot", plot, "figure", reads=tuple(files), force=force)
         if out is not None and plot.resolve() == out.resolve():
             raise ParameterError("`--plot` and `--out` are the same file")
+    _check_bootstrap(bootstrap)
     records = read_records(files, angles=angles)
     fit = fit_nomoto(records, order, bootstrap=bootstrap, seed=seed)
     payload = fit.as_dict(level)
@@ -266,6 +267,20 @@ def nomoto(
     _print_nomoto(fit, payload, level)
     if imo:
         _print_imo_given_fit(payload["imo"])
+
+
+def _check_bootstrap(bootstrap: int) -> None:
+    """``--bootstrap`` at most :data:`~seahelm.analysis.nomoto_fit.MAX_BOOTSTRAP`, refused
+    before any work with the time it would take."""
+    from ..analysis.nomoto_fit import MAX_BOOTSTRAP
+    from ..errors import ParameterError
+
+    if bootstrap > MAX_BOOTSTRAP:
+        raise ParameterError(
+            f"`--bootstrap` must be in [0, {MAX_BOOTSTRAP}], got {bootstrap}: each refit is a "
+            f"whole output-error fit (about 0.5 s for a 600-sample record), so {bootstrap} "
+            f"would take about {bootstrap * 0.5 / 3600:.3g} h; percentile intervals need about "
+            "1000-2000 (Efron & Tibshirani 1993)")
 
 
 def _imo_given_fit(fit: Any, records: Any, n: int, posterior: str, seed: int | None,
