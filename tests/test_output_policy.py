@@ -37,6 +37,7 @@ from seahelm.output_files import (
 from seahelm.ships import get_ship, write_ship
 
 runner = CliRunner()
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 #: The options through which a command writes files (or a store).
 OUTPUT_OPTIONS = {"--out", "-o", "--plot", "--save-posterior", "--store"}
@@ -178,7 +179,7 @@ def files(tmp_path_factory) -> Files:
     records.write_text("# units: time s, rudder_angle deg, heading deg\n"
                        "time,rudder_angle,heading\n"
                        + "".join(f"{a},{b},{c}\n" for a, b, c in zip(t, rudder, heading)))
-    scenario = Path(__file__).resolve().parents[1] / "examples" / "mariner_pid_sweep.toml"
+    scenario = EXAMPLES / "mariner_pid_sweep.toml"
     own_scenario = root / "scenario.toml"
     own_scenario.write_text(scenario.read_text())
     particulars = root / "particulars.toml"

@@ -119,14 +119,14 @@ class DaskCluster:
         return self
 
     def __exit__(self, *exc: Any) -> None:
-        if exc and isinstance(exc[1], (KeyboardInterrupt, SystemExit)):
-            self.quiet.start()  # (the scheduler's "lost tasks" as the workers stop)
-        try:
-            if self.client is not None and self.own_client:
-                self.client.close()
-            if self.cluster is not None:
-                self.cluster.close()
-        finally:
+        stopped = bool(exc) and isinstance(exc[1], (KeyboardInterrupt, SystemExit))
+        if stopped:  # (the scheduler's "lost tasks" as the workers stop)
+            self.quiet.start()
+        if self.client is not None and self.own_client:
+            self.client.close()
+        if self.cluster is not None:
+            self.cluster.close()
+        if not stopped:  # (on a stop they stay silent: dask's threads log as the process ends)
             self.quiet.stop()
 
     def run(self, spec: SweepSpec, chunks: Iterable[int], on_done: OnDone) -> None:
