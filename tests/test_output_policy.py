@@ -4,7 +4,8 @@
 - an output is never a file the command reads (also through a symbolic or hard link, or
   named with a trailing slash): exit 2, the input unchanged byte for byte and in its mtime;
 - an existing file that is not the command's own earlier output (a user's file, a file of
-  another kind) is replaced only with ``--force``: exit 2 and unchanged without it;
+  another kind) is replaced only with ``--force``: exit 2 and unchanged without it; a TOML
+  file (a ship file, a scenario: made to be edited) always needs ``--force``;
 - with ``--force`` it is replaced atomically (no temporary file left) and keeps its mode; a new
   file gets the umask's mode (ship files were written 0600).
 """
@@ -267,9 +268,15 @@ def test_force_replaces_atomically_and_keeps_the_mode(files, tmp_path, key):
     assert mine.read_bytes() != b"a user's file\n"
     assert stat.S_IMODE(mine.stat().st_mode) == 0o640
     assert not [p for p in mine.parent.iterdir() if p.name.endswith(".tmp")]
-    # and again without --force: the command's own output of an earlier run is replaced
+    # and again without --force: the command's own output of an earlier run is replaced,
+    # unless it is a ship file or scenario (TOML), which may have been edited since
+    before = mine.read_bytes()
     res = runner.invoke(app, case.args(files) + [case.option, str(out)])
-    assert res.exit_code == 0, (res.stdout, res.stderr)
+    if case.kind == "file" and not case.directory:  # (a TOML file)
+        assert res.exit_code == 2 and "perhaps edited since" in res.stderr, res.stderr
+        assert mine.read_bytes() == before
+    else:
+        assert res.exit_code == 0, (res.stdout, res.stderr)
 
 
 # -- the cases of the issue, as they were reported ------------------------------------------
@@ -299,7 +306,7 @@ def test_the_reported_cases(files, tmp_path):
         ["ship", "scale", "kvlcc2-l7", "--length", "320", "--out", str(mine)], [mine])
     assert "a file seahelm did not write" in _refused(
         ["autopilot", "tune", "mariner-nonlinear", "--out", str(pid)], [pid])
-    assert "not written by `seahelm identify nomoto`" in _refused(
+    assert "exists (a seahelm ship file, perhaps edited since)" in _refused(
         ["identify", "nomoto", str(files.records), "--speed", "7.7", "--length", "160", "-o",
          str(mar)], [mar])
     assert "this writes an HTML report there: pass --force" in _refused(
@@ -320,10 +327,11 @@ def test_links_to_an_input_are_the_input(files, tmp_path):
                   "--force"], [kv])
 
 
-def test_concurrent_writers_to_one_file_the_last_wins(files, tmp_path, monkeypatch):
+def test_concurrent_writers_to_one_file(files, tmp_path, monkeypatch):
     """Two `ship estimate -o c.toml` at once: the second finds the first's ship file when it
-    writes (after its check found none) and replaces it, as a second `cp` would; it said
-    "error: FileExistsError" before. A user's file appearing meanwhile is not replaced."""
+    writes (after its check found none) and says so as it would had it run second -- exit 2
+    naming the path and --force, the first's file whole (it said only "error:
+    FileExistsError" before). A user's file appearing meanwhile is not replaced either."""
     import seahelm.ships.estimate as estimate
 
     target = tmp_path / "c.toml"
@@ -337,8 +345,9 @@ def test_concurrent_writers_to_one_file_the_last_wins(files, tmp_path, monkeypat
 
     monkeypatch.setattr(estimate, "estimate_ship", meanwhile)
     res = runner.invoke(app, _estimate(files) + ["-o", str(target), "--name", "second"])
-    assert res.exit_code == 0, res.stderr
-    assert 'name = "second"' in target.read_text()
+    assert res.exit_code == 2, res.stderr
+    assert f"`--out` {target} exists" in res.stderr and "pass --force" in res.stderr
+    assert 'name = "estimated-ship"' in target.read_text()
 
     def user_meanwhile(design, **kwargs):
         target.write_text("a user's file\n")
@@ -421,10 +430,21 @@ def test_a_failed_write_names_the_path_and_leaves_the_old_file(tmp_path):
 
 
 def test_own_output_is_the_same_commands(tmp_path):
-    path = tmp_path / "s.toml"
+    import xarray as xr
+
+    from seahelm.output_files import WRITTEN_BY_ATTR
+    from seahelm.results import write_netcdf
+
+    nc = write_netcdf(xr.Dataset({"a": ("x", [1.0])},
+                                 attrs={WRITTEN_BY_ATTR: "seahelm waves sample"}),
+                      tmp_path / "w.nc")
+    assert check_output(nc, "netcdf", command="seahelm waves sample") == nc
+    assert check_output(nc, "netcdf") == nc  # (the library: any seahelm NetCDF file)
+    with pytest.raises(OutputExistsError, match="not written by `seahelm plot`"):
+        check_output(nc, "netcdf", command="seahelm plot")
+    path = tmp_path / "s.toml"  # a ship file its own command wrote: edited since, perhaps
     path.write_text("# seahelm ship file\n" + written_by_line("seahelm ship scale"))
-    assert check_output(path, "toml", command="seahelm ship scale") == path
-    with pytest.raises(OutputExistsError, match="not written by `seahelm identify nomoto`"):
-        check_output(path, "toml", command="seahelm identify nomoto")
+    with pytest.raises(OutputExistsError, match="perhaps edited since"):
+        check_output(path, "toml", command="seahelm ship scale")
     atomic_write(path, _text("x"))  # (the bare atomic write checks nothing)
     assert path.read_text() == "x"

@@ -7,11 +7,13 @@ written by :func:`write_output`, which applies :func:`check_output` and then
 - an output is never a file the command reads: not the same path, not a symbolic link to it,
   not a hard link to it (the same file under another name);
 - a path given with a trailing slash (``-o kv.toml/``) names a directory, never a file;
-- an existing file is replaced without ``force`` only when it is what this writer writes and
-  seahelm wrote it (the output of an earlier run: a ship file over a ship file, a result over a
-  result, :data:`KINDS`); anything else -- a user's own file, a file of another kind (a TOML
-  over a NetCDF result, HTML over a ship file) -- needs ``force`` (``--force``), and even then
-  a file the command reads is never replaced;
+- an existing file is replaced without ``force`` only when it is a generated output of this
+  kind that seahelm wrote (the output of an earlier run: a result over a result, a figure over
+  its figure, a report over a report, :data:`KINDS`); anything else needs ``force``
+  (``--force``): a user's own file, a file of another kind (a TOML over a NetCDF result, HTML
+  over a ship file), and any TOML file -- ship files and scenarios are made to be edited, so
+  one seahelm wrote may hold a user's changes since. Even with ``force`` a file the command
+  reads is never replaced;
 - the file is written to a temporary file in its directory and renamed onto its name
   (nothing half-written is left, also on a full disk or a signal); a new file gets the
   permissions the umask gives (``0666 & ~umask``), a replaced one keeps its mode; an
@@ -179,17 +181,21 @@ class FileKind:
     written_by_seahelm : callable(pathlib.Path, str or None) -> bool
         Whether an existing file is one seahelm wrote of this kind (given a command, one that
         command wrote, where the kind records it: TOML and NetCDF).
+    edited : bool
+        Files of this kind are made to be edited (ship files, scenarios): one seahelm wrote is
+        still replaced only with ``force``.
     """
 
     name: str
     description: str
     written_by_seahelm: Callable[[Path, str | None], bool]
+    edited: bool = False
 
 
 #: The kinds of file seahelm writes (the registry of :func:`check_output`'s ``kind``).
 KINDS: dict[str, FileKind] = {k.name: k for k in (
     FileKind("netcdf", "a NetCDF file", _seahelm_netcdf),
-    FileKind("toml", "a TOML file", _seahelm_text),
+    FileKind("toml", "a TOML file", _seahelm_text, edited=True),
     FileKind("html", "an HTML report", _seahelm_html),
     FileKind("figure", "a figure", _figure),
     FileKind("json", "a JSON file", _seahelm_json),
@@ -318,12 +324,14 @@ def check_output(path: str | os.PathLike[str], kind: str, *, reads: Iterable[
     if approved is not None and resolved in approved:
         return target
     spec = KINDS[kind]
-    if replace_own and spec.written_by_seahelm(target, command):
+    if replace_own and not spec.edited and spec.written_by_seahelm(target, command):
         return target  # seahelm's own output of an earlier run
     found = describe_file(target)
     if found == "a file":
         found = "a file seahelm did not write"
-    elif found.startswith("a seahelm") and command is not None and kind in ("toml", "netcdf"):
+    elif spec.edited and found.startswith("a seahelm"):
+        found += ", perhaps edited since"
+    elif found.startswith("a seahelm") and command is not None and kind == "netcdf":
         found += f" not written by `{command}`"
     raise OutputExistsError(
         f"{name} exists ({found}); this writes {spec.description} there: pass {force_word} "
