@@ -329,7 +329,7 @@ def check_output(path: str | os.PathLike[str], kind: str, *, reads: Iterable[
     found = describe_file(target)
     if found == "a file":
         found = "a file seahelm did not write"
-    elif spec.edited and found.startswith("a seahelm"):
+    elif spec.edited and spec.written_by_seahelm(target, None):  # (its own kind: TOML)
         found += ", perhaps edited since"
     elif found.startswith("a seahelm") and command is not None and kind == "netcdf":
         found += f" not written by `{command}`"
