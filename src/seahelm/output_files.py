@@ -94,7 +94,17 @@ WRITTEN_BY_ATTR = "seahelm_written_by"
 
 
 def written_by_line(command: str) -> str:
-    """The comment line that marks a TOML file as ``command``'s output."""
+    """The comment line that marks a TOML file as ``command``'s output.
+
+    Parameters
+    ----------
+    command : str
+        As a user types it (``"seahelm ship scale"``).
+
+    Returns
+    -------
+    str
+    """
     return f"# written by {command}\n"
 
 
@@ -208,13 +218,32 @@ _SUFFIX_KINDS = {".nc": "netcdf", ".h5": "netcdf", ".toml": "toml", ".html": "ht
 
 def kind_for_suffix(path: str | os.PathLike[str]) -> str:
     """The kind of a file seahelm writes at a name of its own choosing, by its suffix (any
-    suffix not listed is a figure: ``.png``, ``.pdf``, ``.svg``)."""
+    suffix not listed is a figure: ``.png``, ``.pdf``, ``.svg``).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+
+    Returns
+    -------
+    str
+        A key of :data:`KINDS`.
+    """
     return _SUFFIX_KINDS.get(Path(path).suffix.lower(), "figure")
 
 
 def describe_file(path: str | os.PathLike[str]) -> str:
     """What an existing file looks like, for a message ("a NetCDF/HDF5 file", "a seahelm ship
-    file", "an HTML file", "a file")."""
+    file", "an HTML file", "a file").
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+
+    Returns
+    -------
+    str
+    """
     p = Path(path)
     head = _head(p, 256)
     if head.startswith(_HDF5) and _seahelm_netcdf(p):
@@ -447,7 +476,7 @@ def write_output(path: str | os.PathLike[str], writer: Callable[[str], None], ki
 
     Parameters
     ----------
-    path, kind, reads, force, option, force_word, replace_own, command
+    path, kind, reads, force, option, force_word, replace_own, command : see check_output
         As for :func:`check_output`.
     writer : callable(str)
         Writes the content to the temporary path it is given.
