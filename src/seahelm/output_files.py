@@ -160,8 +160,11 @@ def _figure(path: Path, command: str | None = None) -> bool:
 
 
 def _seahelm_json(path: Path, command: str | None = None) -> bool:
+    """A JSON object seahelm wrote: a key naming seahelm, or ``seahelm imo``'s report (its
+    ship and criteria)."""
     head = _head(path, 65536)
-    return head.lstrip().startswith(b"{") and b'"seahelm' in head
+    return head.lstrip().startswith(b"{") and (
+        b'"seahelm' in head or (b'"ship":' in head and b'"criteria":' in head))
 
 
 def _seahelm_csv(path: Path, command: str | None = None) -> bool:
