@@ -344,6 +344,7 @@ def test_a_report_or_figure_never_replaces_another_result(tmp_path):
     a = result.to_netcdf(tmp_path / "a" / "result.nc")
     b = result.to_netcdf(tmp_path / "b" / "result.nc")
     _refused(["report", str(a), "-o", str(b)], keep=[a, b],
-             match="is a NetCDF result file; this command writes an HTML report")
+             match="exists (a seahelm NetCDF file); this writes an HTML report there: pass "
+                   "--force")
     _refused(["plot", str(a), "--out", str(b)], keep=[a, b],
-             match="is a NetCDF result file; this command writes a figure")
+             match="exists (a seahelm NetCDF file); this writes a figure there: pass --force")

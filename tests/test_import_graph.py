@@ -146,7 +146,8 @@ def test_a_cycle_is_detected():
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("seahelm.errors",),
     ("seahelm", "seahelm.constants", "seahelm.numerics", "seahelm.versions", "seahelm._optional",
-     "seahelm._codegen", "seahelm.resources", "seahelm.units", "seahelm._repr"),
+     "seahelm._codegen", "seahelm.resources", "seahelm.units", "seahelm._repr",
+     "seahelm.output_files"),
     ("seahelm.parameters", "seahelm._validate"),
     ("seahelm.hydrodynamics",),
     ("seahelm.actuators",),

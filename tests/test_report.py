@@ -267,7 +267,9 @@ def test_a_failure_while_writing_leaves_no_partial_html(report_demo_dir, tmp_pat
         raise RuntimeError("disk full")
 
     monkeypatch.setattr("plotly.offline.get_plotlyjs", broken)
-    res = runner.invoke(app, ["report", str(report_demo_dir / "result.nc"), "-o", str(target)])
+    # (--force: the file is not a seahelm report, which the output policy keeps without it)
+    res = runner.invoke(app, ["report", str(report_demo_dir / "result.nc"), "-o", str(target),
+                              "--force"])
     assert res.exit_code == 1 and "disk full" in res.stderr
     assert target.read_text() == "the previous report"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r.html"]

@@ -26,13 +26,9 @@ directory, then rename), so a crash never leaves a half-written result.
 
 from __future__ import annotations
 
-import contextlib
-import contextvars
 import dataclasses
 import datetime as _dt
 import os
-import tempfile
-from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -41,6 +37,7 @@ import numpy as np
 from . import __version__
 from .parameters import Params
 from .errors import ParameterError
+from .output_files import atomic_write, write_output, write_together
 from .result_layout import BatchLayout, batch_dims, flatten_runs
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -56,41 +53,6 @@ _STATUS_TEXT = {0: "ok", 1: "diverged: non-finite state", 2: "diverged: state ou
 STATUS_TEXT = _STATUS_TEXT
 
 
-_TOGETHER: "contextvars.ContextVar[list[tuple[str, Path]] | None]" = contextvars.ContextVar(
-    "seahelm_write_together", default=None)
-
-
-@contextlib.contextmanager
-def write_together() -> Iterator[None]:
-    """Files written inside the block (:func:`atomic_write`) appear together or not at all.
-
-    Each is written to its temporary file as usual; they are renamed onto their names only
-    when the block ends without an error. On an error (a full disk at the third file) every
-    temporary file is removed and none of the files appears: a manoeuvre's metrics never
-    stand without its runs.
-
-    Yields
-    ------
-    None
-    """
-    if _TOGETHER.get() is not None:  # (nested: the outer set decides)
-        yield
-        return
-    pending: list[tuple[str, Path]] = []
-    token = _TOGETHER.set(pending)
-    try:
-        yield
-    except BaseException:
-        for tmp, _ in pending:
-            with contextlib.suppress(OSError):
-                os.unlink(tmp)
-        raise
-    finally:
-        _TOGETHER.reset(token)
-    for tmp, path in pending:
-        os.replace(tmp, path)
-
-
 class CorruptResultError(ParameterError):
     """A result file's data do not match their checksums (or cannot be read): the file was
     damaged after it was written. ``field`` names the variable; the message names the file."""
@@ -99,7 +61,8 @@ class CorruptResultError(ParameterError):
         return self.reason
 
 
-def write_netcdf(ds: "xr.Dataset", path: str | os.PathLike[str]) -> Path:
+def write_netcdf(ds: "xr.Dataset", path: str | os.PathLike[str], *, force: bool = False
+                 ) -> Path:
     """Write a Dataset to NetCDF-4 (h5netcdf) atomically, each numeric variable with an HDF5
     Fletcher-32 checksum, so that reading it finds damage (:func:`open_result_file`).
 
@@ -108,13 +71,16 @@ def write_netcdf(ds: "xr.Dataset", path: str | os.PathLike[str]) -> Path:
     ds : xarray.Dataset
     path : str or os.PathLike
         Destination file.
+    force : bool, optional
+        Replace an existing file that is not a seahelm NetCDF file (default False; the output
+        policy, :func:`seahelm.output_files.check_output`).
 
     Returns
     -------
     pathlib.Path
     """
     data = netcdf_bytes(ds)
-    return atomic_write(path, lambda tmp: Path(tmp).write_bytes(data))
+    return write_output(path, lambda tmp: Path(tmp).write_bytes(data), "netcdf", force=force)
 
 
 def netcdf_bytes(ds: "xr.Dataset") -> memoryview:
@@ -144,50 +110,6 @@ def netcdf_bytes(ds: "xr.Dataset") -> memoryview:
     buffer = io.BytesIO()
     out.to_netcdf(buffer, engine="h5netcdf", encoding=encoding)
     return buffer.getbuffer()
-
-
-def atomic_write(path: str | os.PathLike[str], writer: Callable[[str], None]) -> Path:
-    """Call ``writer(tmp_path)`` then rename the temporary file onto ``path``.
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        Destination file (parent directories are created).
-    writer : callable(str)
-        Writes the content to the temporary path it is given.
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
-    """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    os.close(fd)
-    together = _TOGETHER.get()
-    try:
-        writer(tmp)
-        # mkstemp creates the file private (0600); give it the permissions a plain open() would
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
-        if together is not None:  # renamed with the others of its set (write_together)
-            together.append((tmp, path))
-            return path
-        os.replace(tmp, path)
-    except OSError as exc:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        if exc.errno is None:
-            raise
-        # said about the file the user asked for, not the temporary one
-        raise OSError(exc.errno, exc.strerror or os.strerror(exc.errno), str(path)) from exc
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-    return path
 
 
 @dataclasses.dataclass
@@ -408,13 +330,16 @@ class SimResult:
             return ds
         return _shape_runs(ds, layout)
 
-    def to_netcdf(self, path: str | os.PathLike[str]) -> Path:
+    def to_netcdf(self, path: str | os.PathLike[str], *, force: bool = False) -> Path:
         """Write the (shaped) Dataset to NetCDF-4 (h5netcdf) atomically; returns the path.
 
         Parameters
         ----------
         path : str or os.PathLike
             Destination file.
+        force : bool, optional
+            Replace an existing file that is not a seahelm NetCDF file (default False;
+            :func:`seahelm.output_files.check_output`).
 
         Returns
         -------
@@ -422,9 +347,9 @@ class SimResult:
         """
         ds = self.to_xarray()
         ds["status_message"] = ds["status_message"].astype(str)
-        return write_netcdf(ds, path)
+        return write_netcdf(ds, path, force=force)
 
-    def to_csv(self, path: str | os.PathLike[str]) -> Path:
+    def to_csv(self, path: str | os.PathLike[str], *, force: bool = False) -> Path:
         """Write a long-format CSV of the flat view atomically; returns the path.
 
         One row per run and time; the batch coordinates (e.g. ``kp``, ``kd``) are columns.
@@ -433,6 +358,9 @@ class SimResult:
         ----------
         path : str or os.PathLike
             Destination file.
+        force : bool, optional
+            Replace an existing file that is not a seahelm CSV table (default False;
+            :func:`seahelm.output_files.check_output`).
 
         Returns
         -------
@@ -441,7 +369,8 @@ class SimResult:
         ds = self.to_xarray(flat=True)
         series = [v for v in ds.data_vars if ds[v].dims == ("run", "time")]
         frame = ds[series].to_dataframe().reset_index()
-        return atomic_write(path, lambda tmp: frame.to_csv(tmp, index=False, float_format="%.10g"))
+        return write_output(path, lambda tmp: frame.to_csv(tmp, index=False, float_format="%.10g"),
+                            "csv", force=force)
 
     def plot(self, *, runs: Any = None, fig: Any = None) -> Any:
         """Heading, rudder, yaw rate and the xy track (see :func:`seahelm.plotting.timeseries`).

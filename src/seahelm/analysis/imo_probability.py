@@ -486,6 +486,11 @@ UNCERTAIN_COEFFICIENTS: dict[str, tuple[str, ...]] = {
 
 #: Default relative standard deviation of :data:`UNCERTAIN_COEFFICIENTS` (10 %).
 DEFAULT_UNCERTAINTY = 0.10
+#: The largest relative standard deviation of the default draws: at 1 (100 %) a normal draw
+#: changes a coefficient's sign in Φ(−1) = 16 % of the samples -- beyond it the ensemble is
+#: of other ships (a straight-line unstable hull, a cross-flow drag that is negative) rather
+#: than an uncertainty of this one.
+MAX_UNCERTAINTY = 1.0
 
 
 def monte_carlo_ships(ship: Any, n: int, *, seed: int = 0, draws: Any = None,
@@ -505,7 +510,7 @@ def monte_carlo_ships(ship: Any, n: int, *, seed: int = 0, draws: Any = None,
         distribution of relative standard deviation ``uncertainty`` around each of the
         model's :data:`UNCERTAIN_COEFFICIENTS`.
     uncertainty : float, optional
-        Relative standard deviation of the default draws.
+        Relative standard deviation of the default draws, in (0, :data:`MAX_UNCERTAINTY`].
 
     Returns
     -------
@@ -522,8 +527,9 @@ def monte_carlo_ships(ship: Any, n: int, *, seed: int = 0, draws: Any = None,
 
     if isinstance(n, bool) or not isinstance(n, int) or n < 1:
         raise ParameterError(f"must be a whole number >= 1, got {n!r}", field="n", value=n)
-    if not (math.isfinite(uncertainty) and uncertainty > 0):
-        raise ParameterError(f"must be > 0, got {uncertainty!r}", field="uncertainty",
+    if not (math.isfinite(uncertainty) and 0 < uncertainty <= MAX_UNCERTAINTY):
+        raise ParameterError(f"must be in (0, {MAX_UNCERTAINTY:g}] (a relative standard "
+                             f"deviation), got {uncertainty!r}", field="uncertainty",
                              value=uncertainty)
     names = ship.params.field_names()
     if draws is None:

@@ -198,9 +198,9 @@ def record_from_arrays(name: str, time: Any, rudder_angle: Any, heading: Any = N
 
 
 def _read_csv(path: Path, angles: str) -> list[ManoeuvreRecord]:
-    from ..identification.turn_log import read_turn_log
+    from ..identification.turn_log import read_turn_log_lines
 
-    cols = read_turn_log(path)
+    cols, first_row = read_turn_log_lines(path)
     for required in ("time", "rudder_angle"):
         if required not in cols:
             raise ParameterError(f"{path}: missing column `{required}` (columns: "
@@ -220,7 +220,7 @@ def _read_csv(path: Path, angles: str) -> list[ManoeuvreRecord]:
             field="rudder_angle")
     channels = {k: cols[k] for k in _OPTIONAL if k in cols}
     records = record_from_arrays(str(path), cols["time"], cols["rudder_angle"],
-                                 cols.get("heading"), cols.get("yaw_rate"), first_row=2,
+                                 cols.get("heading"), cols.get("yaw_rate"), first_row=first_row,
                                  **channels)
     if angles == "deg" and 0.0 < widest <= math.pi / 2:  # (a valid record, in radians?)
         import warnings

@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from ..results import atomic_write
+from ..output_files import write_output
 
 __all__ = ["SamplesFile", "read_samples", "write_samples", "samples_attrs", "check_units",
            "KEY_PREFIXES"]
@@ -90,7 +90,7 @@ class SamplesFile:
 
 def write_samples(path: str | Path, columns: Mapping[str, Sequence[float]], *,
                   units: Mapping[str, str] | None = None,
-                  comments: Sequence[str] = ()) -> Path:
+                  comments: Sequence[str] = (), force: bool = False) -> Path:
     """Write a samples file (module docstring).
 
     Parameters
@@ -103,6 +103,9 @@ def write_samples(path: str | Path, columns: Mapping[str, Sequence[float]], *,
         Written in the ``# units:`` comment.
     comments : sequence of str, optional
         Comment lines written first (one line each).
+    force : bool, optional
+        Replace an existing file that is not a seahelm table (default False; the output
+        policy, :func:`seahelm.output_files.check_output`).
 
     Returns
     -------
@@ -134,7 +137,7 @@ def write_samples(path: str | Path, columns: Mapping[str, Sequence[float]], *,
     for row in values:
         writer.writerow([repr(float(x)) for x in row])
     data = text.getvalue().encode("utf-8")
-    return atomic_write(path, lambda tmp: Path(tmp).write_bytes(data))
+    return write_output(path, lambda tmp: Path(tmp).write_bytes(data), "csv", force=force)
 
 
 def _check_keys(keys: Sequence[str], where: str) -> None:

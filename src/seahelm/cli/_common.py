@@ -20,10 +20,9 @@ import json
 import math
 import os
 import sys
-import tempfile
 import time
 import warnings
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 from pathlib import Path
 from typing import Annotated, Any, NoReturn, TypeVar
 
@@ -34,6 +33,24 @@ from rich.text import Text
 from typer.core import TyperGroup
 
 from ..errors import ParameterError, SeahelmError
+from ..output_files import approved_outputs
+from ._outputs import (  # noqa: F401 - the commands import the output checks from here
+    STORE_MARKERS,
+    _created_dirs,
+    _current_context,
+    _force_state,
+    _raw_args,
+    _writable_directory,
+    check_figure_suffix,
+    command_path,
+    input_file,
+    output_dir,
+    output_file,
+    protect_inputs,
+    remove_created_dirs,
+    store_containing,
+    write_ship_file,
+)
 from ._tables import FitTables
 
 F = TypeVar("F", bound=Callable[..., Any])
@@ -63,13 +80,10 @@ EXIT_NONCOMPLIANT = 4
 #: Stopped by Ctrl-C (128 + SIGINT, as a shell reports it).
 EXIT_INTERRUPTED = 130
 
-#: Output directories the running command created (removed again, if still empty, when it
-#: stops without finishing: an interrupted or failed run leaves no empty --out directory).
-_created_dirs: list[Path] = []
-
 #: Whether the running command line asked for ``--json`` and whether its one JSON object has
 #: been printed (set by the root :class:`OneLineErrors` when it parses a command line).
 _json_state = {"wanted": False, "printed": False}
+
 
 
 def _json_error(message: str, code: int) -> None:
@@ -92,6 +106,11 @@ def exit_if_diverged(n_failed: int) -> None:
 
 #: The one ``--json`` flag of every command (stdout then holds one JSON object, nothing else).
 JsonFlag = Annotated[bool, typer.Option("--json", help="Print one JSON object on stdout.")]
+
+#: The one ``--force`` flag of every command that writes files (:func:`output_file`).
+ForceFlag = Annotated[bool, typer.Option(
+    "--force", help="Replace an existing output file that is not this command's own output "
+    "of an earlier run (a file the command reads is never replaced).")]
 
 
 def exit_on_sigterm() -> None:
@@ -198,6 +217,7 @@ class OneLineErrors(TyperGroup):
         if parent is None:  # a new command line: does it ask for one JSON object?
             words = args[:args.index("--")] if "--" in args else args
             _json_state.update(wanted="--json" in words, printed=False)
+            _raw_args[:] = list(args)
         try:
             return super().make_context(info_name, args, parent=parent, **extra)
         except _ClickException as exc:
@@ -217,9 +237,10 @@ def handle_errors(func: F) -> F:
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         _created_dirs.clear()
         _shown_warnings.clear()
+        _force_state["on"] = bool(kwargs.get("force", False))
         done = False
         try:
-            with warnings.catch_warnings():
+            with warnings.catch_warnings(), approved_outputs():
                 warnings.simplefilter("default")
                 warnings.showwarning = _show_warning  # one line each: warning: ...
                 out = func(*args, **kwargs)
@@ -240,7 +261,8 @@ def handle_errors(func: F) -> F:
             fail_bad_input(cli_message(exc))
         except OSError as exc:
             where = f": {exc.filename}" if getattr(exc, "filename", None) else ""
-            text = f"{exc.strerror or type(exc).__name__}{where}"
+            text = (f"{exc.strerror}{where}" if exc.strerror
+                    else _one_line(exc) if str(exc) else f"{type(exc).__name__}{where}")
             if exc.errno in ENVIRONMENT_ERRNOS:  # the machine failed, not the input: exit 1
                 fail(text)
             fail_bad_input(text)  # a path the user gave: exists, not a directory, no access
@@ -255,188 +277,6 @@ def handle_errors(func: F) -> F:
                 remove_created_dirs()
 
     return wrapper  # type: ignore[return-value]
-
-
-def output_dir(option: str, path: Path, names: tuple[str, ...] = (), *,
-               reads: Iterable[Path] = ()) -> Path:
-    """Check, before any work, that ``path`` is (or can be made) a writable directory and that
-    none of the files to be written there (``names``) is a directory, a file the command reads
-    (``reads``) or inside a store; returns ``path``.
-
-    Raises
-    ------
-    ParameterError
-        Naming the option and the path: an existing file, a parent that is a file, a directory
-        that cannot be created or written, a target that is a directory, an input of the
-        command, a place inside a sweep store (:func:`protect_inputs`).
-    """
-    if path.exists() and not path.is_dir():
-        raise ParameterError(f"`{option}` must be a directory, but {path} is a file")
-    protect_inputs(option, path, reads)
-    for name in names:
-        protect_inputs(option, path / name, reads)
-    _writable_directory(option, path)
-    for name in names:
-        if (path / name).is_dir():
-            raise ParameterError(f"`{option}`: {path / name} is a directory; it would be "
-                                 "overwritten by a file")
-    return path
-
-
-def output_file(option: str, path: Path, *, reads: Iterable[Path] = (),
-                writes: str | None = None) -> Path:
-    """Check, before any work, that ``path`` can be written as a file: not a directory, its
-    directory existing (or creatable) and writable, none of the files the command reads
-    (``reads``), not inside a store (:func:`protect_inputs`) and, for a command that writes
-    something else (``writes``: ``"an HTML report"``), not an existing NetCDF/HDF5 result;
-    returns ``path``."""
-    if path.is_dir():
-        raise ParameterError(f"`{option}` must be a file name, but {path} is a directory")
-    if path.parent.exists() and not path.parent.is_dir():
-        raise ParameterError(f"`{option}`: {path.parent} is a file, not a directory")
-    protect_inputs(option, path, reads)
-    if writes is not None and _is_hdf5(path):
-        raise ParameterError(
-            f"`{option}` {path} is a NetCDF result file; this command writes {writes}: "
-            "writing it there would destroy the result; choose another path")
-    _writable_directory(option, path.parent)
-    return path
-
-
-def _is_hdf5(path: Path) -> bool:
-    """Whether ``path`` is an existing NetCDF-4/HDF5 file (by its signature)."""
-    try:
-        with path.open("rb") as fh:
-            return fh.read(8) == b"\x89HDF\r\n\x1a\n"
-    except OSError:
-        return False
-
-
-#: Files that mark a directory as a Zarr store (a seahelm sweep store is one): nothing of a
-#: command's output may be written inside one.
-STORE_MARKERS = ("zarr.json", ".zgroup", ".zarray")
-
-
-def store_containing(path: Path) -> Path | None:
-    """The Zarr store (a sweep store) that ``path`` is, or lies inside; None if there is none.
-
-    Parameters
-    ----------
-    path : pathlib.Path
-        A file or directory (need not exist).
-
-    Returns
-    -------
-    pathlib.Path or None
-    """
-    resolved = path.resolve()
-    found = None  # the outermost: an array inside a store is part of the store
-    for candidate in (resolved, *resolved.parents):
-        if candidate.is_dir() and any((candidate / m).is_file() for m in STORE_MARKERS):
-            found = candidate
-    return found
-
-
-def protect_inputs(option: str, target: Path, reads: Iterable[Path] = ()) -> None:
-    """Refuse an output that would destroy what the user has: one of the files the command
-    reads, a place inside a store the command reads, or a place inside any store.
-
-    Parameters
-    ----------
-    option : str
-        The output option, for the message (``--out``).
-    target : pathlib.Path
-        What would be written (symbolic links are followed: a link to an input is the input).
-    reads : iterable of pathlib.Path
-        The files and stores the command reads.
-
-    Raises
-    ------
-    ParameterError
-        Naming the option, the target and what it would destroy.
-    """
-    try:
-        t = target.resolve()
-    except RuntimeError:  # (Python's word for a symbolic-link loop)
-        raise ParameterError(f"`{option}` {target} is a loop of symbolic links") from None
-    for read in reads:
-        r = Path(read).resolve()
-        if t == r:
-            same = "" if Path(read) == target else f" ({read})"
-            raise ParameterError(
-                f"`{option}` {target} is a file this command reads{same}: writing it would "
-                "destroy it; choose another path")
-        if r.is_dir() and r in t.parents:
-            raise ParameterError(
-                f"`{option}` {target} is inside {read}, which this command reads: writing "
-                "there would corrupt it; choose a path outside it")
-    if target.is_symlink() and not target.is_dir():  # (a linked directory is written into)
-        raise ParameterError(
-            f"`{option}` {target} is a symbolic link (to {os.readlink(target)}): the file "
-            "written would replace the link; give the path of the file itself")
-    if target.exists() and not target.is_file() and not target.is_dir():
-        raise ParameterError(
-            f"`{option}` {target} is not a regular file (a device, a FIFO or a socket): "
-            "writing it would replace it; choose a file path")
-    store = store_containing(t)
-    if store is not None:
-        raise ParameterError(
-            f"`{option}` {target} is inside the store {store}: writing there would corrupt "
-            "it; choose a path outside it")
-
-
-def _writable_directory(option: str, directory: Path) -> None:
-    """Create ``directory`` if needed (remembered: :func:`remove_created_dirs`) and check that
-    a file can be written in it."""
-    missing = [p for p in (directory, *directory.parents) if not p.exists()]
-    try:
-        directory.mkdir(parents=True, exist_ok=True)
-        _created_dirs.extend(missing)  # (deepest first)
-    except OSError as exc:
-        raise ParameterError(f"`{option}`: cannot create the directory {directory} "
-                             f"({exc.strerror or exc})") from None
-    _check_writable(option, directory)
-
-
-def remove_created_dirs() -> None:
-    """Remove the directories this command created that are still empty (deepest first)."""
-    for path in list(_created_dirs):
-        try:
-            path.rmdir()
-        except OSError:  # (not empty, or gone: kept as it is)
-            pass
-    _created_dirs.clear()
-
-
-def _check_writable(option: str, directory: Path) -> None:
-    try:  # (os.access is True for root everywhere; a real file tells)
-        fd, probe = tempfile.mkstemp(dir=directory, prefix=".seahelm-probe-")
-        os.close(fd)
-        os.unlink(probe)
-    except OSError as exc:
-        raise ParameterError(f"`{option}`: cannot write in {directory} "
-                             f"({exc.strerror or exc})") from None
-
-
-def check_figure_suffix(option: str, path: Path) -> None:
-    """A figure file name whose suffix matplotlib can write (checked before any work)."""
-    from ..plotting.save import check_figure_path
-
-    try:
-        check_figure_path(path)
-    except ParameterError as exc:
-        raise ParameterError(f"`{option}`: {exc}") from None
-
-
-def input_file(option: str, path: Path) -> Path:
-    """Check that ``path`` is an existing regular file (not a directory, FIFO or device)."""
-    if not path.exists():
-        raise ParameterError(f"`{option}`: no such file: {path}")
-    if path.is_dir():
-        raise ParameterError(f"`{option}`: {path} is a directory, not a file")
-    if not path.is_file():
-        raise ParameterError(f"`{option}`: {path} is not a regular file")
-    return path
 
 
 #: The warnings this command has printed (a sweep's 60 runs warned the same line 60 times).
@@ -455,13 +295,7 @@ def _show_warning(message: Warning | str, category: type[Warning], filename: str
 
 def _command_options() -> dict[str, str]:
     """The running command's options by parameter name (``{"t_final": "--t-final"}``)."""
-    import importlib
-
-    # the click typer runs on: click itself (typer < 0.26) or typer's vendored copy
-    core = next(c.__module__ for c in typer.Context.__mro__ if c.__name__ == "Context"
-                and c.__module__.endswith(".core"))
-    ctx = importlib.import_module(core[:-len("core")] + "globals").get_current_context(
-        silent=True)
+    ctx = _current_context()
     if ctx is None:
         return {}
     return {p.name: p.opts[0] for p in ctx.command.params

@@ -43,7 +43,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ._common import JsonFlag, OneLineErrors, console, handle_errors, output_file, print_json
+from ._common import ForceFlag, JsonFlag, OneLineErrors, console, handle_errors, output_file, print_json
 
 __all__ = ["app", "tune", "scenario_text", "route_scenario_text"]
 
@@ -310,6 +310,7 @@ def tune(
         "--heading-step", help="Course change of the scenario [deg].")] = 10.0,
     out: Annotated[Path | None, typer.Option(
         "--out", help="Write a scenario (TOML) with the [controller] table here.")] = None,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
 ) -> None:
     """Design a heading or cross-track autopilot: gains, closed-loop poles, margins, a scenario."""
@@ -344,7 +345,8 @@ def tune(
         raise ParameterError(f"must be > 0 [s], got {integral_time!r}", field="--integral-time",
                              unit="s", value=integral_time)
     if out is not None:
-        output_file("--out", out)
+        output_file("--out", out, "toml", force=force,
+                    reads=(Path(ship),) if Path(ship).is_file() else ())
     the_ship = get_ship(ship)
     if the_ship.steering_gear is None:
         raise ParameterError(f"'{the_ship.name}' has no steering gear to design for",
@@ -439,7 +441,9 @@ def tune(
     if design == "lq-cross-track":
         payload.update(max_cross_track_m=max_cross_track, surge_speed=result.speed)
     if out is not None:
-        from ..results import atomic_write
+        from ..output_files import write_output, written_by_line
+
+        from ._common import command_path
 
         # a ship file by its path from the scenario's folder (a scenario's paths are its
         # own): the file stays valid where it is copied with its ship (it held /abs/paths)
@@ -462,7 +466,10 @@ def tune(
             text = scenario_text(ship_ref, controller, gains, dt=dt,
                                  heading_step_deg=heading_step, t_final=t_final,
                                  initial=initial, comment=comment, name=the_ship.name)
-        atomic_write(out, lambda tmp: Path(tmp).write_text(text))
+        command = command_path()
+        text += written_by_line(command) if command else ""
+        write_output(out, lambda tmp: Path(tmp).write_text(text), "toml", option="--out",
+                     force_word="--force", command=command)
         payload["files"] = {"scenario": str(out)}
     if json_out:
         print_json(payload)

@@ -12,6 +12,7 @@ from typing import Annotated, Optional
 import typer
 
 from ._common import (
+    ForceFlag,
     JsonFlag,
     OneLineErrors,
     check_figure_suffix,
@@ -52,6 +53,7 @@ def cpp(
         help="Directions: N azimuths × N/2 elevations on the unit sphere (eq. (17)).")] = 200,
     plot: Annotated[Optional[Path], typer.Option(
         "--plot", metavar="FILE.png", help="Draw V and Y (Figs. 1 and 2) to this file.")] = None,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
 ) -> None:
     """β1, β2, β3, the boundary of V and the Hausdorff distances of the flat sets Y to V.
@@ -64,7 +66,7 @@ def cpp(
     if not 6 <= grid <= MAX_GRID:
         raise ParameterError(f"`--grid` must be in [6, {MAX_GRID}] [directions], got {grid}")
     if plot is not None:  # checked before any work
-        output_file("--plot", plot)
+        output_file("--plot", plot, "figure", force=force)
         check_figure_suffix("--plot", plot)
     result = cpp_admissible_set(immersion, amplitude, n_azimuth=grid, n_elevation=grid // 2)
     summary = result.summary()

@@ -18,6 +18,7 @@ import typer
 from rich.markup import escape
 
 from ._common import (
+    ForceFlag,
     JsonFlag,
     OneLineErrors,
     console,
@@ -190,7 +191,7 @@ def nomoto(
         "--angles", help="Units of the CSV angles [deg|rad] and rates [deg/s|rad/s].")] = "deg",
     bootstrap: Annotated[int, typer.Option(
         "--bootstrap", help="Moving-block bootstrap refits for percentile intervals (0: "
-        "none).", min=0)] = 0,
+        "none; at most 10000, each a whole fit).", min=0)] = 0,
     seed: Annotated[Optional[int], typer.Option("--seed", help="Seed of the bootstrap.")] = None,
     level: Annotated[float, typer.Option("--level", help="Confidence level.")] = 0.95,
     speed: Annotated[Optional[float], typer.Option(
@@ -218,6 +219,7 @@ def nomoto(
     posterior: Annotated[PosteriorName, typer.Option(
         "--posterior", help="Posterior of --imo: the Laplace Gaussian or MCMC (emcee, "
         "the extra seahelm[mcmc]).")] = "laplace",
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
 ) -> None:
     """Identify Nomoto K, T (or K, T1, T2, T3) and the rudder offset from manoeuvre records."""
@@ -238,9 +240,12 @@ def nomoto(
     if not (math.isfinite(rudder_rate) and rudder_rate > 0):
         raise ParameterError(f"`--rudder-rate` must be > 0 [deg/s], got {rudder_rate!r}")
     if out is not None:
-        output_file("--out", out, reads=tuple(files))
+        output_file("--out", out, "toml", reads=tuple(files), force=force)
     if plot is not None:
-        output_file("--plot", plot, reads=tuple(files), writes="a figure")
+        output_file("--plot", plot, "figure", reads=tuple(files), force=force)
+        if out is not None and plot.resolve() == out.resolve():
+            raise ParameterError("`--plot` and `--out` are the same file")
+    _check_bootstrap(bootstrap)
     records = read_records(files, angles=angles)
     check_record_count(records, order)
     fit = fit_nomoto(records, order, bootstrap=bootstrap, seed=seed)
@@ -293,6 +298,20 @@ def check_record_count(records: Any, order: int) -> None:
         f"identification: fit the records of one ship, at most {MAX_NOMOTO_RECORDS} at a time")
 
 
+def _check_bootstrap(bootstrap: int) -> None:
+    """``--bootstrap`` at most :data:`~seahelm.analysis.nomoto_fit.MAX_BOOTSTRAP`, refused
+    before any work with the time it would take."""
+    from ..analysis.nomoto_fit import MAX_BOOTSTRAP
+    from ..errors import ParameterError
+
+    if bootstrap > MAX_BOOTSTRAP:
+        raise ParameterError(
+            f"`--bootstrap` must be in [0, {MAX_BOOTSTRAP}], got {bootstrap}: each refit is a "
+            f"whole output-error fit (about 0.5 s for a 600-sample record), so {bootstrap} "
+            f"would take about {bootstrap * 0.5 / 3600:.3g} h; percentile intervals need about "
+            "1000-2000 (Efron & Tibshirani 1993)")
+
+
 def _imo_given_fit(fit: Any, records: Any, n: int, posterior: str, seed: int | None,
                    speed: float | None, length: float | None, max_rudder: float,
                    rudder_rate: float, level: float) -> dict[str, Any]:
@@ -337,7 +356,7 @@ def _write_ship(fit: Any, records: Any, out: Path, speed: float | None, length: 
                 name: str | None, max_rudder: float, rudder_rate: float, level: float) -> Path:
     from ..analysis.nomoto_fit_result import nomoto_ship
     from ..errors import ParameterError
-    from ..ships import write_ship
+    from ._common import write_ship_file
 
     if speed is None:
         logged = [r.channels["surge_speed"] for r in records if "surge_speed" in r.channels]
@@ -350,7 +369,7 @@ def _write_ship(fit: Any, records: Any, out: Path, speed: float | None, length: 
     ship = nomoto_ship(fit, name=name or out.stem, speed=speed, length=length,
                        max_rudder=math.radians(max_rudder),
                        rudder_rate=math.radians(rudder_rate), level=level)
-    return write_ship(ship, out, overwrite=True)
+    return write_ship_file(ship, out)
 
 
 def _print_nomoto(fit: Any, payload: dict[str, Any], level: float) -> None:
@@ -441,6 +460,7 @@ def mmg(
     samples: Annotated[int, typer.Option(
         "--samples", metavar="N", help="Without --imo: the number of posterior samples "
         "--save-posterior writes.", min=0, max=MAX_POSTERIOR)] = 0,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
 ) -> None:
     """Identify the MMG hull derivatives from free-running records, the rest from a base ship.
@@ -452,8 +472,8 @@ def mmg(
     from ..analysis.mmg_fit import identify_mmg
     from ..analysis.records import read_records
     from ..errors import ParameterError
-    from ..ships import get_ship, write_ship
-    from ._common import output_file
+    from ..ships import get_ship
+    from ._common import output_file, write_ship_file
 
     for f in files:
         input_file("LOG", f)
@@ -467,10 +487,11 @@ def mmg(
         raise ParameterError(f"`--ship` '{base.name}' uses model '{base.model.name}'; the MMG "
                              "identification needs an MMG ship (e.g. `seahelm ship estimate`)")
     n_post = _posterior_count(imo, samples, save_posterior)
+    reads = (*files, *((Path(ship),) if Path(ship).is_file() else ()))
     if out is not None:
-        output_file("--out", out, reads=tuple(files))
+        output_file("--out", out, "toml", reads=reads, force=force)
     if save_posterior is not None:
-        output_file("--save-posterior", save_posterior, reads=tuple(files))
+        output_file("--save-posterior", save_posterior, "csv", reads=reads, force=force)
         if out is not None and save_posterior.resolve() == out.resolve():
             raise ParameterError("`--save-posterior` and `--out` are the same file")
     records = read_records(files, angles=angles)
@@ -503,7 +524,7 @@ def mmg(
     if out is not None:
         # Written last, after the posterior (and its file): a failed draw writes neither
         # the ship nor the samples it would be paired with.
-        payload["ship_file"] = str(write_ship(fit.ship(base, name=name), out, overwrite=True))
+        payload["ship_file"] = str(write_ship_file(fit.ship(base, name=name), out))
     if json_out:
         print_json(payload)
         return

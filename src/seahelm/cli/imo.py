@@ -32,6 +32,7 @@ from rich.table import Table
 from ..analysis.imo_ensemble import ENSEMBLE_FILE
 from ..errors import ParameterError
 from ._common import (
+    ForceFlag,
     EXIT_NONCOMPLIANT,
     JsonFlag,
     _jsonable,
@@ -100,6 +101,7 @@ def imo(
             "sample, e.g. `identify mmg --save-posterior`): sample i is row i, all rows "
             "without --monte-carlo.")),
     ] = None,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
     out: Out = None,
     check: Annotated[bool, typer.Option("--check", help=(
@@ -154,14 +156,17 @@ def imo(
 def _monte_carlo(ship: Any, n: int, seed: int, uncertainty: float, draws: Path | None,
                  dt: float | None, json_out: bool, out: Path | None) -> None:
     from ..analysis.imo_probability import (
+        MAX_UNCERTAINTY,
         UNCERTAIN_COEFFICIENTS,
         imo_probabilities,
         monte_carlo_ships,
     )
     from ..scenario.maneuver import SHARED_KEYS
 
-    if not (math.isfinite(uncertainty) and uncertainty > 0):
-        raise ParameterError(f"`--uncertainty` must be > 0, got {uncertainty!r}")
+    if not (math.isfinite(uncertainty) and 0 < uncertainty <= MAX_UNCERTAINTY):
+        raise ParameterError(f"`--uncertainty` must be in (0, {MAX_UNCERTAINTY:g}] (the "
+                             "relative standard deviation of the default draws), got "
+                             f"{uncertainty!r}")
     dists = None if draws is None else _read_draws(draws)
     for key in dists or ():
         if f"vessel.params.{key}" in SHARED_KEYS:
@@ -170,7 +175,14 @@ def _monte_carlo(ship: Any, n: int, seed: int, uncertainty: float, draws: Path |
                                  "criteria are in ship lengths and L/V): draw its other "
                                  "parameters")
     ships = monte_carlo_ships(ship, n, seed=seed, draws=dists, uncertainty=uncertainty)
-    probs = imo_probabilities(ships, dt=dt, reference=ship)
+    try:
+        probs = imo_probabilities(ships, dt=dt, reference=ship)
+    except ParameterError as exc:
+        if dists is not None:
+            raise
+        raise ParameterError(  # (a drawn coefficient the model cannot take)
+            f"`--uncertainty` {uncertainty:g} drew a ship the model cannot take ({exc}); give "
+            f"a smaller one (in (0, {MAX_UNCERTAINTY:g}]) or the draws (`--draws`)") from None
     keys = list(dists) if dists else list(UNCERTAIN_COEFFICIENTS.get(ship.model.name, ()))
     units = {i.name: i.unit for i in type(ship.params).info()}
     kinds = ({k: "normal" for k in keys} if dists is None
@@ -340,12 +352,37 @@ def _read_draws(path: Path) -> dict[str, Any]:
         try:
             d = Distribution.model_validate(spec)
         except ValidationError as exc:
-            why = "; ".join(e["msg"] for e in exc.errors())
-            raise ParameterError(f"`--draws` {path}: [draws.{key}] {why}") from None
+            raise ParameterError(f"`--draws` {path}: {_draws_error(key, exc)}") from None
         params = {k: getattr(d, k) for k in ("mean", "std", "low", "high")
                   if getattr(d, k) is not None}
         out[key] = get_distribution(d.distribution, **params)
     return out
+
+
+def _draws_error(key: str, exc: Any) -> str:
+    """The first error of a ``[draws.KEY]`` table in the file's words: the key path, what it
+    must be, the value (not pydantic's "Input should be a valid number")."""
+    from ..scenario.loading import _message
+    from ..scenario.schema import Distribution
+
+    err = exc.errors()[0]
+    loc = [str(p) for p in err["loc"]]
+    where = ".".join(["draws", key, *loc])
+    value = err.get("input")
+    got = "" if isinstance(value, dict) else f", got {value!r}"
+    kind = err["type"]
+    if kind == "extra_forbidden":
+        return (f"[{where}] is an unknown key; valid in [draws.{key}]: "
+                f"{', '.join(Distribution.model_fields)}")
+    if kind == "literal_error":
+        return (f"[{where}] must be one of {err.get('ctx', {}).get('expected', '')}"
+                .replace("'", "") + got)
+    if kind in ("model_type", "model_attributes_type", "dict_type"):
+        return (f"[{where}] must be a table {{distribution = ..., mean = ..., std = ...}}"
+                f"{got}")
+    if kind == "missing":
+        return f"[{where}] is missing (a draw needs `distribution`)"
+    return f"[{where}] {_message(err, '')}{got if kind != 'value_error' else ''}"
 
 
 #: Excluded samples listed with their reason (the JSON output and the file have all).

@@ -80,7 +80,19 @@ def linearize(
     delta = None if rudder is None else math.radians(rudder)
     bare = _linearize(the_ship, speed=speed, rudder=delta, rps=rps, actuator=False)
     full = _linearize(the_ship, speed=speed, rudder=delta, rps=rps, actuator=True)
-    indices = steering_indices(bare)
+    try:
+        indices = steering_indices(bare)
+    except ParameterError as exc:
+        if exc.field != "model":
+            raise
+        # said about what the user chose: the straight run at --speed (and --rudder, --rps)
+        at = (f"`--speed` {bare.speed:.4g} m/s" + (f", `--rudder` {rudder:g} deg"
+                                                   if rudder is not None else ""))
+        test = getattr(the_ship, "test_speed", None)
+        hint = f" (its test speed is {test:.4g} m/s)" if test else ""
+        raise ParameterError(
+            f"{at}: the ship's linear model there has no Nomoto form ({exc.reason}); give a "
+            f"speed at which the ship moves and is straight-line stable{hint}") from None
     payload: dict[str, Any] = {
         "ship": the_ship.name, "operating_point": bare.name, "speed_mps": bare.speed,
         "length_m": bare.length, "rudder_deg": math.degrees(

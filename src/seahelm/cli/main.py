@@ -14,6 +14,7 @@ from rich.table import Table
 from .. import __version__
 from ..errors import ParameterError
 from ._common import (
+    ForceFlag,
     JsonFlag,
     OneLineErrors,
     ProgressBar,
@@ -225,6 +226,7 @@ def _write_report(source: Any, target: Path, *, quiet: bool) -> Path:
 @handle_errors
 def demo(
     out: Annotated[Path, typer.Option(help="Output directory.")] = Path("seahelm-out"),
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
 ) -> None:
     """Run the embedded default scenario (Mariner, 20° course change, PID): plot and report."""
@@ -242,6 +244,7 @@ def run(
     out: Annotated[Path | None, typer.Option(help=(
         "Write result.nc (and overview.png) here; a [maneuver] scenario writes "
         "<kind>-metrics.nc, <kind>-runs.nc and <kind>.png."))] = None,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
     csv: Annotated[bool, typer.Option(help="Also write result.csv.")] = False,
     plot: Annotated[bool, typer.Option(help="Write the figure with --out.")] = True,
@@ -386,6 +389,7 @@ def plot(
         help="PNG file (default: next to the result).")] = None,
     runs: Annotated[list[int] | None, typer.Option(
         "--run", help="Run(s) to draw: flat run index, C order over the batch dims.")] = None,
+    force: ForceFlag = False,
 ) -> None:
     """Plot a result file: heading, actuator angle, yaw rate and track."""
     import matplotlib
@@ -396,8 +400,7 @@ def plot(
     from ..results import flatten_runs, load_result
 
     input_file("RESULT", result)
-    target = output_file("--out", out or result.with_suffix(".png"), reads=(result,),
-                         writes="a figure")
+    target = output_file("--out", out or result.with_suffix(".png"), "figure", reads=(result,))
     check_figure_suffix("--out", target)
     ds = flatten_runs(load_result(result))
     if runs:
@@ -422,11 +425,15 @@ def cache(
     from ..simulation.engine import kernel_cache_dir
 
     where = kernel_cache_dir()
-    ours = [p for p in where.rglob("*") if p.is_file()
-            and p.name.startswith(("seahelm_kernel_", "seahelm_guided_", ".seahelm_"))]
-    others = [p for p in where.rglob("*") if p.is_file() and p not in set(ours)]
-    size = sum(p.stat().st_size for p in ours)
-    kernels = len(list(where.glob("seahelm_kernel_*.py")))
+    # Another process may be clearing (or compiling into) the cache at the same time: a file
+    # or directory that vanishes between the listing and its use is simply not counted.
+    sizes = _cache_files(where)
+    ours = [p for p in sizes
+            if p.name.startswith(("seahelm_kernel_", "seahelm_guided_", ".seahelm_"))]
+    others = [p for p in sizes if p not in set(ours)]
+    size = sum(sizes[p] for p in ours)
+    kernels = sum(1 for p in ours if p.parent == where and p.name.startswith("seahelm_kernel_")
+                  and p.suffix == ".py")
     if clear:
         for path in ours:
             path.unlink(missing_ok=True)
@@ -441,6 +448,25 @@ def cache(
         if others:
             console.print(f"  {len(others)} other file(s) there are not seahelm's and were "
                           "left alone", highlight=False)
+
+
+def _cache_files(where: Path) -> dict[Path, int]:
+    """The regular files under ``where`` with their sizes [bytes]; files and directories that
+    vanish while they are listed (another ``seahelm cache --clear``) are left out."""
+    import os
+    import stat
+
+    found: dict[Path, int] = {}
+    for root, _dirs, names in os.walk(where):  # (os.walk skips a directory that vanishes)
+        for name in names:
+            path = Path(root) / name
+            try:
+                st = path.stat()
+            except FileNotFoundError:
+                continue
+            if stat.S_ISREG(st.st_mode):
+                found[path] = st.st_size
+    return found
 
 
 def _value_options() -> set[str]:

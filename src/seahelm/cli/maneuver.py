@@ -32,6 +32,7 @@ from ._batch_summary import (
     print_statistics,
 )
 from ._common import (
+    ForceFlag,
     JsonFlag,
     OneLineErrors,
     console,
@@ -365,6 +366,7 @@ def turning_cmd(
     t_final: TFinal = None,
     dt: Dt = None,
     water_depth: Depth = None,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
     out: Out = None,
 ) -> None:
@@ -412,6 +414,7 @@ def zigzag_cmd(
     t_final: TFinal = None,
     dt: Dt = None,
     water_depth: Depth = None,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
     out: Out = None,
 ) -> None:
@@ -454,6 +457,7 @@ def pullout_cmd(
     t_final: TFinal = None,
     dt: Dt = None,
     water_depth: Depth = None,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
     out: Out = None,
 ) -> None:
@@ -487,6 +491,7 @@ def spiral_cmd(
     rps: Rps = None,
     dt: Dt = None,
     water_depth: Depth = None,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
     out: Out = None,
 ) -> None:

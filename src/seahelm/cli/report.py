@@ -22,7 +22,7 @@ import typer
 from rich.markup import escape
 
 from ..errors import ParameterError
-from ._common import JsonFlag, console, handle_errors, input_file, output_file, print_json
+from ._common import ForceFlag, JsonFlag, console, handle_errors, input_file, output_file, print_json
 
 __all__ = ["report", "default_report_path"]
 
@@ -48,6 +48,7 @@ def report(
     out: Annotated[Path | None, typer.Option(
         "-o", "--out", help=f"HTML file to write (default: beside RESULT, with .html; for "
         f"several, {COMBINED_NAME} beside the first).")] = None,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
 ) -> None:
     """Write an HTML report of result files: metadata, status, metrics, interactive plots."""
@@ -64,7 +65,7 @@ def report(
     # never over what the report reads: the results, their companion files, a store's insides
     default = (default_report_path(results[0]) if len(results) == 1
                else results[0].parent / COMBINED_NAME)
-    target = output_file("--out", out or default, reads=reads, writes="an HTML report")
+    target = output_file("--out", out or default, "html", reads=reads, force=force)
     from ..report import combined_report_data, write_report
 
     summary = write_report(results[0] if len(results) == 1 else combined_report_data(results),

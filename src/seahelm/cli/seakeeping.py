@@ -28,7 +28,7 @@ from rich.table import Table
 
 from ..environment.directional_spreading import MAX_DIRECTIONS, MAX_S
 from ..errors import ParameterError
-from ._common import JsonFlag, console, handle_errors, input_file, output_dir, print_json
+from ._common import ForceFlag, JsonFlag, console, handle_errors, input_file, output_dir, print_json
 
 __all__ = ["seakeeping"]
 
@@ -226,6 +226,7 @@ def seakeeping(
                         "(`seahelm sweep`): its time-domain polar diagram, each cell with its "
                         "standard error and the frequency domain beside it (the sea, ship and "
                         "speeds are the sweep's).")] = None,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
 ) -> None:
     """Seakeeping in a sea state: RMS, significant amplitude, exceedance, polar diagram."""

@@ -22,7 +22,7 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..errors import ParameterError
-from ._common import JsonFlag, OneLineErrors, console, handle_errors, print_json
+from ._common import ForceFlag, JsonFlag, OneLineErrors, console, handle_errors, print_json
 
 __all__ = ["app"]
 
@@ -135,6 +135,7 @@ def scale(
         "--name", help="Name of the scaled ship (default: NAME-L<length>).")] = None,
     out: Annotated[Optional[Path], typer.Option(
         "--out", help="Write the ship file here (atomically) instead of printing it.")] = None,
+    force: ForceFlag = False,
 ) -> None:
     """Froude-scale a ship to another length and print (or write) its ship file.
 
@@ -142,18 +143,19 @@ def scale(
     speeds x sqrt(lambda), rates (K, rudder rate, rps) / sqrt(lambda), masses and forces
     x lambda³; angles and non-dimensional coefficients unchanged; the steering gear too.
     """
-    from ..ships import get_ship, ship_to_toml, write_ship
-    from ._common import output_file
+    from ..ships import get_ship, ship_to_toml
+    from ._common import output_file, write_ship_file
 
     source = get_ship(ship)
     if out is not None:
-        output_file("--out", out, reads=(Path(ship),) if Path(ship).is_file() else ())
+        output_file("--out", out, "toml", force=force,
+                    reads=(Path(ship),) if Path(ship).is_file() else ())
     scaled = source.scaled(length, rho=rho, name=name)
     if out is None:
         sys.stdout.write(ship_to_toml(scaled))
         sys.stdout.flush()
         return
-    write_ship(scaled, out, overwrite=True)
+    write_ship_file(scaled, out)
     console.print(f"wrote {escape(str(out))}: ship '{escape(scaled.name)}', L = {length:g} m "
                   f"(lambda = {length / source.length:.6g})", highlight=False, soft_wrap=True)
 
@@ -280,8 +282,7 @@ def estimate(
         "estimated rudder)."))] = "mmg",
     out: Annotated[str | None, typer.Option("--out", "-o", metavar="FILE", help=(
         "Write the ship file here (default: print it)."), show_default=False)] = None,
-    force: Annotated[bool, typer.Option("--force", help="Replace an existing --out file.")]
-    = False,
+    force: ForceFlag = False,
     strict: Annotated[bool, typer.Option("--strict", help=(
         "A regression used outside its data is an error, not a warning."))] = False,
 ) -> None:
@@ -290,8 +291,8 @@ def estimate(
 
     from ..errors import strict_validity
     from ..ships.estimate import Design, estimate_nomoto, estimate_ship
-    from ..ships.writing import ship_to_toml, write_ship
-    from ._common import output_file
+    from ..ships.writing import ship_to_toml
+    from ._common import output_file, write_ship_file
 
     if model not in ("mmg", "nomoto1", "nomoto2"):
         raise ParameterError(f"must be mmg, nomoto2 or nomoto1, got '{model}'", field="model")
@@ -317,9 +318,8 @@ def estimate(
     if particulars is not None:
         values = _particulars_file(particulars)
         reads = (Path(particulars),)
-    target = None if out is None else output_file("--out", Path(out), reads=reads)
-    if target is not None and target.exists() and not force:
-        raise ParameterError(f"`--out` {target} exists; pass --force to replace it")
+    target = None if out is None else output_file("--out", Path(out), "toml", reads=reads,
+                                                  force=force)
     merged = {**values, **given}
     try:
         design = Design.from_mapping(merged)
@@ -335,7 +335,7 @@ def estimate(
         sys.stdout.write(ship_to_toml(ship))
         sys.stdout.flush()
         return
-    write_ship(ship, target, overwrite=force)
+    write_ship_file(ship, target)
     console.print(f"wrote {escape(str(target))}: ship '{escape(ship.name)}' (model "
                   f"{ship.model.name}); `seahelm imo {escape(str(target))}` checks it",
                   highlight=False, soft_wrap=True)

@@ -16,7 +16,7 @@ import typer
 from rich.markup import escape
 
 from ..errors import ParameterError
-from ._common import JsonFlag, handle_errors
+from ._common import ForceFlag, JsonFlag, handle_errors
 from .maneuver import (
     Depth,
     Dt,
@@ -85,6 +85,7 @@ def stopping_cmd(
     t_final: TFinal = None,
     dt: Dt = None,
     water_depth: Depth = None,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
     out: Out = None,
 ) -> None:

@@ -18,11 +18,14 @@ import typer
 from rich.markup import escape
 
 from ..errors import ParameterError
+from ..output_files import WRITTEN_BY_ATTR
 from ..results import write_netcdf
 from ._common import (
+    ForceFlag,
     JsonFlag,
     OneLineErrors,
     check_figure_suffix,
+    command_path,
     console,
     handle_errors,
     output_file,
@@ -119,6 +122,7 @@ def spectrum_cmd(
         "--model", metavar="NAME", help=f"Spectrum: {_names(SpectrumName)}.")
     ] = "rakhmanin-firsov-2",
     plot: Annotated[Path | None, typer.Option("--plot", help="Write a PNG of the spectrum.")] = None,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
     table: _Table = "corrected",
     extrapolate: _Extrapolate = False,
@@ -129,7 +133,7 @@ def spectrum_cmd(
     from ..studies.sushchenko2010 import get_table2, spectrum_from_wave_height
 
     if plot is not None:  # checked before any work
-        output_file("--plot", plot)
+        output_file("--plot", plot, "figure")
         check_figure_suffix("--plot", plot)
     _table_height(h3, extrapolate)
     params = sea_state_parameters(h3, table=get_table2(table), extrapolate=extrapolate)
@@ -189,6 +193,7 @@ def sample_cmd(
         "Seed (>= 0); run i uses SeedSequence(seed).spawn(runs)[i]."))],
     runs: Annotated[int, typer.Option("--runs", help="Number of realisations.")] = 1,
     out: Annotated[Path | None, typer.Option("--out", help="Write a NetCDF file (h5netcdf).")] = None,
+    force: ForceFlag = False,
     json_out: JsonFlag = False,
     model: Annotated[RationalSpectrumName, typer.Option(
         "--model", metavar="NAME",
@@ -205,7 +210,7 @@ def sample_cmd(
     if runs < 1:
         raise ParameterError(f"`runs` must be >= 1, got {runs}")
     if out is not None:
-        output_file("--out", out)
+        output_file("--out", out, "netcdf")
     _table_height(h3, extrapolate)
     spec = spectrum_from_wave_height(model, h3, table=table, extrapolate=extrapolate)
     filt = shaping_filter(spec, ("ordinate",))
@@ -243,7 +248,8 @@ def sample_cmd(
         result["slope_variance_sample"] = float(np.mean(res["slope"] ** 2))
     if out is not None:
         ds = res.to_xarray()
-        ds.attrs.update({"model": spec.name, "h3": float(h3), "table": table, "seed": seed})
+        ds.attrs.update({"model": spec.name, "h3": float(h3), "table": table, "seed": seed,
+                         WRITTEN_BY_ATTR: command_path() or "seahelm waves sample"})
         write_netcdf(ds, out)
         result["out"] = str(out)
     if json_out:
@@ -260,6 +266,7 @@ def figure_cmd(
     seed: Annotated[int, typer.Option("--seed", min=0,
                                       help="Seed (>= 0) of the sample realisations.")] = 0,
     duration: Annotated[float, typer.Option("--duration", help="Realisation length [s].")] = 200.0,
+    force: ForceFlag = False,
 ) -> None:
     """The paper's figure: spectra for sea states 3, 6, 9, slope spectra, realisations."""
     import matplotlib
@@ -271,7 +278,7 @@ def figure_cmd(
     if not (math.isfinite(duration) and 0 < duration <= MAX_FIGURE_DURATION):
         raise ParameterError(f"`--duration` must be in (0, {MAX_FIGURE_DURATION:g}] [s], got "
                              f"{duration!r}")
-    output_file("--out", out)
+    output_file("--out", out, "figure")
     check_figure_suffix("--out", out)
     save_figure(plot_paper_figure(seed=seed, duration=duration), out, dpi=100)
     console.print(f"wrote {escape(str(out))}")

@@ -263,6 +263,9 @@ def read_rao_table(path: str | os.PathLike[str]) -> RAO:
         data[key] = a * complex(math.cos(ph), math.sin(ph))
     if len(speeds) > 1:
         raise _fail(p, f"holds several speeds {sorted(speeds)}; one table is one speed", "speed")
+    if not data:
+        raise _fail(p, "has a header but no rows of values (one row per dof, frequency and "
+                    "heading)", f_name)
     dofs = tuple(d for d in DOFS if any(k[0] == d for k in data))
     freqs = np.array(sorted({k[1] for k in data}))
     heads = np.array(sorted({k[2] for k in data}))
@@ -280,7 +283,7 @@ def read_rao_table(path: str | os.PathLike[str]) -> RAO:
                f"RAO table {p.name}")
 
 
-def write_rao_table(rao: RAO, path: str | os.PathLike[str]) -> Path:
+def write_rao_table(rao: RAO, path: str | os.PathLike[str], *, force: bool = False) -> Path:
     """Write an RAO as the documented CSV table (degrees for headings and phases).
 
     Parameters
@@ -288,25 +291,33 @@ def write_rao_table(rao: RAO, path: str | os.PathLike[str]) -> Path:
     rao : RAO
         The RAOs.
     path : str or path-like
-        The CSV file (overwritten).
+        The CSV file (written atomically; an existing file that is not a seahelm table is
+        replaced only with ``force``: :func:`seahelm.output_files.check_output`).
+    force : bool, optional
+        Replace an existing file that is not seahelm's (default False).
 
     Returns
     -------
     pathlib.Path
     """
-    p = Path(path)
-    with open(p, "w", newline="", encoding="utf-8") as fh:
-        fh.write(f"# seahelm RAO table: {rao.provenance}\n# speed {rao.speed:g} m/s; "
-                 "heading 0 following, 180 head; heave up, roll starboard down, pitch bow up\n")
-        w = csv.writer(fh)
-        w.writerow(["dof", "frequency", "heading_deg", "amplitude", "phase_deg", "speed"])
-        for i, d in enumerate(rao.dofs):
-            for j, f in enumerate(rao.frequency):
-                for m, h in enumerate(rao.heading):
-                    v = rao.values[i, j, m]
-                    w.writerow([d, repr(float(f)), repr(math.degrees(h)), repr(float(abs(v))),
-                                repr(math.degrees(float(np.angle(v)))), repr(rao.speed)])
-    return p
+    from ..output_files import write_output
+
+    def write(tmp: str) -> None:
+        with open(tmp, "w", newline="", encoding="utf-8") as fh:
+            fh.write(f"# seahelm RAO table: {rao.provenance}\n# speed {rao.speed:g} m/s; "
+                     "heading 0 following, 180 head; heave up, roll starboard down, pitch bow "
+                     "up\n")
+            w = csv.writer(fh)
+            w.writerow(["dof", "frequency", "heading_deg", "amplitude", "phase_deg", "speed"])
+            for i, d in enumerate(rao.dofs):
+                for j, f in enumerate(rao.frequency):
+                    for m, h in enumerate(rao.heading):
+                        v = rao.values[i, j, m]
+                        w.writerow([d, repr(float(f)), repr(math.degrees(h)),
+                                    repr(float(abs(v))), repr(math.degrees(float(np.angle(v)))),
+                                    repr(rao.speed)])
+
+    return write_output(path, write, "csv", force=force)
 
 
 def _complex(ds: Any, name: str, source: str) -> Any:

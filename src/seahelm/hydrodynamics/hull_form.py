@@ -155,10 +155,29 @@ class HullForm:
             raise ParameterError(f"gives C_P = C_B/C_M = {self.prismatic_coefficient:.4g} >= 1 "
                                  "[-]", field="midship_coefficient", unit="-",
                                  value=self.midship_coefficient)
+        self._check_lcb()
         if self.bulb_area > 0 and not self.bulb_centre < self.fore_draft:
             raise ParameterError(f"must be below the fore draught T_F = {self.fore_draft:g} [m], "
                                  f"got {self.bulb_centre!r}", field="bulb_centre", unit="m",
                                  value=self.bulb_centre)
+
+    def _check_lcb(self) -> None:
+        """lcb within what Holtrop & Mennen (1982)'s regressions can take for this C_P: their
+        terms (1 − C_P + 0.0225 lcb) (form factor, thrust deduction) and, where the entrance
+        angle is estimated, (1 − C_P − 0.0225 lcb) are raised to fractional powers, and the run
+        length L_R must be > 0; outside, the powers are complex (``TypeError`` before)."""
+        cp = self.prismatic_coefficient
+        limit = (1.0 - cp) / 0.0225
+        low, high = -limit, (limit if self.half_entrance_angle is None else 50.0)
+        # L_R = L (1 − C_P + 0.06 C_P lcb/(4 C_P − 1)) > 0 bounds lcb below too
+        if 4.0 * cp - 1.0 > 0:
+            low = max(low, -(1.0 - cp) * (4.0 * cp - 1.0) / (0.06 * cp))
+        if not low < self.lcb < high:
+            raise ParameterError(
+                f"must be in ({low:.3g}, {high:.3g}) [% of L] for the prismatic coefficient "
+                f"C_P = {cp:.3g} (Holtrop & Mennen 1982's terms 1 − C_P ± 0.0225 lcb and the run "
+                f"length must be > 0), got {self.lcb!r}", field="lcb", unit="% of L",
+                value=self.lcb)
 
     # -- derived particulars (definitions and the documented estimates) -------------------
     @property

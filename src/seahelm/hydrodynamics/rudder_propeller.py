@@ -37,6 +37,8 @@ DNV Rules for Classification of Ships, Pt. 3 Ch. 3 Sec. 2 (rudder area).
 
 from __future__ import annotations
 
+import math
+
 from ..errors import ParameterError
 from .hull import Coefficient, HullParticulars, check_ranges
 
@@ -97,6 +99,7 @@ def interaction_coefficients(hull: HullParticulars, *, strict: bool | None = Non
     cbl = hull.cb_b_over_l
     check_ranges("Kijima et al. (1990) interaction coefficients",
                  {"C_b": (cb, 0.48, 0.85), "C_b B/L": (cbl, 0.06, 0.16)}, strict=strict)
+    _check_epsilon(hull)
     gamma = Coefficient(2.06 * cbl + 0.14, f"{KIJIMA}: γ_R = 2.06 C_b B/L + 0.14 (both signs "
                                            "of β_R)")
     kvlcc2 = "the KVLCC2's value (Yasukawa & Yoshimura 2015)"
@@ -118,6 +121,27 @@ def interaction_coefficients(hull: HullParticulars, *, strict: bool | None = Non
         "C_2_plus": Coefficient(1.6, f"{ASSUMED}: C_2 = 1.6 for β_P > 0, {kvlcc2}"),
         "C_2_minus": Coefficient(1.1, f"{ASSUMED}: C_2 = 1.1 for β_P < 0, {kvlcc2}"),
     }
+
+
+#: The roots of Kijima et al. (1990)'s ε = −156.5 x² + 41.6 x − 1.76 (x = C_b B/L): ε > 0
+#: only between them.
+_EPSILON_ROOTS = tuple(sorted((41.6 + s * math.sqrt(41.6 ** 2 - 4 * 156.5 * 1.76)) / 313.0
+                              for s in (-1.0, 1.0)))
+
+
+def _check_epsilon(hull: HullParticulars) -> None:
+    """Refuse a hull whose C_b B/L gives Kijima's ε <= 0, in the particulars' words."""
+    cb, cbl = hull.block_coefficient, hull.cb_b_over_l
+    eps = -156.5 * cbl ** 2 + 41.6 * cbl - 1.76
+    if eps > 0:
+        return
+    lo, hi = _EPSILON_ROOTS
+    raise ParameterError(
+        f"the hull's C_b B/L = {cbl:.4g} (`block_coefficient` {cb:.4g}, `length`/`beam` "
+        f"L/B = {hull.length / hull.beam:.4g}) gives the rudder's inflow ratio ε = {eps:.4g} "
+        f"<= 0 (ε = −156.5 (C_b B/L)² + 41.6 C_b B/L − 1.76, {KIJIMA}): the formula needs "
+        f"{lo:.4g} < C_b B/L < {hi:.4g}, for this C_b an L/B in ({cb / hi:.3g}, "
+        f"{cb / lo:.3g})", field=None, unit="-", value=cbl)
 
 
 def wake_fraction_taylor(hull: HullParticulars, *, strict: bool | None = None) -> Coefficient:

@@ -16,12 +16,13 @@ from __future__ import annotations
 import csv
 import os
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from ..errors import ParameterError
 
-__all__ = ["read_turn_log"]
+__all__ = ["read_turn_log", "read_turn_log_lines"]
 
 
 def read_turn_log(path: str | os.PathLike[str]) -> dict[str, np.ndarray]:
@@ -30,7 +31,8 @@ def read_turn_log(path: str | os.PathLike[str]) -> dict[str, np.ndarray]:
     Parameters
     ----------
     path : str or os.PathLike
-        A CSV file: a header row, then one row of numbers per sample (blank rows skipped).
+        A CSV file: a header row, then one row of numbers per sample (blank rows and comment
+        lines, starting with ``#``, skipped: ``# units: ...`` above the header is a comment).
 
     Returns
     -------
@@ -43,24 +45,47 @@ def read_turn_log(path: str | os.PathLike[str]) -> dict[str, np.ndarray]:
         If the file is missing, not a regular file, empty, not UTF-8 text, has a row with
         another number of fields than the header, or a cell that is not a number.
     """
+    return read_turn_log_lines(path)[0]
+
+
+def read_turn_log_lines(path: str | os.PathLike[str]) -> tuple[dict[str, np.ndarray], int]:
+    """:func:`read_turn_log`, and the line number of the first row of values (comments and
+    blank lines before it counted).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+
+    Returns
+    -------
+    (dict of str to numpy.ndarray, int)
+    """
     path = Path(path)
     if not path.exists():
         raise ParameterError(f"no such file: {path}")
     if not path.is_file():
         raise ParameterError(f"{path} is not a regular file")
+
+    def content(reader: Any) -> Any:
+        for row in reader:  # (blank rows and comment lines are not rows of the table)
+            if any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#"):
+                yield reader.line_num, row
+
     try:
         with path.open(newline="", encoding="utf-8-sig") as fh:
             reader = csv.reader(fh)
+            rows = content(reader)
             try:
-                header = [h.strip() for h in next(reader)]
+                _, header = next(rows)
             except StopIteration:
                 raise ParameterError(f"{path}: empty file (a header row is needed)") from None
-            rows = [r for r in reader if any(cell.strip() for cell in r)]
+            header = [h.strip() for h in header]
+            rows = list(rows)
     except UnicodeDecodeError as exc:
         raise ParameterError(f"{path}: not UTF-8 text (byte {exc.start}); a CSV file with a "
                              "header row is needed") from None
     cols: dict[str, list[float]] = {h: [] for h in header}
-    for i, row in enumerate(rows, start=2):
+    for i, row in rows:
         if len(row) != len(header):
             raise ParameterError(
                 f"{path}, line {i}: {len(row)} fields, the header has {len(header)}"
@@ -72,4 +97,5 @@ def read_turn_log(path: str | os.PathLike[str]) -> dict[str, np.ndarray]:
                 raise ParameterError(
                     f"{path}, line {i}: column `{h}` is not a number: {cell!r}"
                 ) from None
-    return {h: np.asarray(v, dtype=float) for h, v in cols.items()}
+    first = rows[0][0] if rows else 2
+    return {h: np.asarray(v, dtype=float) for h, v in cols.items()}, first

@@ -49,7 +49,7 @@ def check_figure_path(path: str | os.PathLike[str]) -> Path:
 
 
 def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float = 110.0,
-                close: bool = True) -> Path:
+                close: bool = True, force: bool = False) -> Path:
     """Write ``fig`` to ``path`` atomically in the format of the path's suffix.
 
     Parameters
@@ -62,6 +62,9 @@ def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float = 110.0,
         Resolution of raster formats [dots per inch] (default 110).
     close : bool, optional
         Close the figure afterwards, also when writing fails (default True).
+    force : bool, optional
+        Replace an existing file that is not a figure seahelm wrote (default False; the
+        output policy, :func:`seahelm.output_files.check_output`).
 
     Returns
     -------
@@ -75,7 +78,8 @@ def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float = 110.0,
     """
     import matplotlib.pyplot as plt
 
-    from ..results import atomic_write
+    from .. import __version__
+    from ..output_files import FIGURE_METADATA, write_output
 
     fig = getattr(fig, "figure", fig)
     path = Path(path)
@@ -88,7 +92,11 @@ def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float = 110.0,
             raise ParameterError(
                 f"cannot write a figure as '{path.suffix}' ({path}); supported: "
                 + ", ".join(f".{k}" for k in sorted(supported)))
-        return atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=dpi, format=fmt))
+        # seahelm's name in the file's metadata: its own figure, replaced again without force
+        meta = ({FIGURE_METADATA[fmt]: f"seahelm {__version__}"} if fmt in FIGURE_METADATA
+                else None)
+        return write_output(path, lambda tmp: fig.savefig(tmp, dpi=dpi, format=fmt,
+                                                          metadata=meta), "figure", force=force)
     finally:
         if close:
             plt.close(fig)

@@ -91,7 +91,7 @@ def report_html(data: ReportData) -> tuple[str, tuple[str, ...]]:
 
 
 def write_report(source: "str | os.PathLike[str] | xr.Dataset | ReportData",
-                 target: str | os.PathLike[str]) -> ReportSummary:
+                 target: str | os.PathLike[str], *, force: bool = False) -> ReportSummary:
     """Write the HTML report of a result to ``target`` (atomically: a failure leaves no
     partial file under that name).
 
@@ -102,6 +102,9 @@ def write_report(source: "str | os.PathLike[str] | xr.Dataset | ReportData",
         result Dataset, or report data already read.
     target : str or os.PathLike
         The HTML file to write.
+    force : bool, optional
+        Replace an existing file that is not a seahelm report (default False; the output
+        policy, :func:`seahelm.output_files.check_output`).
 
     Returns
     -------
@@ -115,8 +118,9 @@ def write_report(source: "str | os.PathLike[str] | xr.Dataset | ReportData",
         If ``source`` is not a seahelm result file or sweep store, or holds no
         runs.
     """
-    from ..results import atomic_write
+    from ..output_files import check_output, write_output
 
+    check_output(target, "html", force=force)  # (before the work; again when written)
     if isinstance(source, ReportData):
         data = source
     elif isinstance(source, (str, os.PathLike)):
@@ -125,7 +129,7 @@ def write_report(source: "str | os.PathLike[str] | xr.Dataset | ReportData",
         data = report_data_from_dataset(source)
     page, ids = report_html(data)
     encoded = page.encode("utf-8")
-    path = atomic_write(target, lambda tmp: Path(tmp).write_bytes(encoded))
+    path = write_output(target, lambda tmp: Path(tmp).write_bytes(encoded), "html", force=force)
     return ReportSummary(path=path, bytes=len(encoded), title=data.title, sections=ids,
                          n_runs=data.n_runs, sources=data.sources,
                          counted="sample" if data.imo_ensemble is not None else "run")

@@ -88,6 +88,7 @@ def render_html(title: str, sections: Sequence[Section], *, version: str = "") -
     created = _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0).isoformat()
     return (
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+        f"<meta name=\"generator\" content=\"seahelm {esc(version)}\">\n"
         f"<title>{esc(title)}</title>\n<style>{_CSS}</style>\n"
         f"<script type=\"text/javascript\">{get_plotlyjs()}</script>\n</head>\n<body>\n"
         f"<header><h1>{esc(title)}</h1><nav>{nav}</nav></header>\n"

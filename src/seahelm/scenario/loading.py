@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import re
 import tomllib
 from importlib import resources
@@ -44,7 +45,14 @@ def validate_scenario(text: str, *, source: str = "<string>") -> Scenario:
     ------
     ScenarioError
         If the text is not valid TOML or fails validation (one line per error).
+    TypeError
+        If ``text`` is not a str (a path: :func:`load_scenario` reads a file).
     """
+    if not isinstance(text, str):
+        hint = (" (a file is read by seahelm.load_scenario(path))"
+                if isinstance(text, (os.PathLike, bytes)) else "")
+        raise TypeError(f"`text` must be the scenario's TOML text (a str), got "
+                        f"{type(text).__name__} {text!r:.60}{hint}")
     try:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -199,6 +207,8 @@ def parse_scenario(text: str, *, source: str = "<string>", in_memory: bool = Tru
     ------
     ScenarioError
         If the text is not valid TOML or fails validation (one line per error).
+    TypeError
+        If ``text`` is not a str (:func:`validate_scenario`).
     """
     scn = validate_scenario(text, source=source)
     if scn.maneuver is not None:

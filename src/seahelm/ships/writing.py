@@ -4,9 +4,9 @@ bit (every float is written as its shortest exact decimal)."""
 
 from __future__ import annotations
 
+import errno
 import math
 import os
-import tempfile
 from pathlib import Path
 from typing import Any
 
@@ -161,18 +161,21 @@ def write_ship(ship: Ship, path: str | os.PathLike[str], *, overwrite: bool = Fa
     ------
     FileExistsError
         If ``path`` exists and ``overwrite`` is False.
+    ParameterError
+        If ``path`` is a directory, a symbolic link or ends with a slash (the output policy,
+        :func:`seahelm.output_files.check_output`).
+
+    Notes
+    -----
+    Written atomically (a temporary file in the same folder, then a rename); a new file gets
+    the umask's permissions, a replaced one keeps its mode.
     """
-    target = Path(path)
-    if target.exists() and not overwrite:
-        raise FileExistsError(f"{target} exists; pass overwrite=True to replace it")
+    from ..output_files import OutputExistsError, write_output
+
     text = ship_to_toml(ship)
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp",
-                               dir=target.parent if str(target.parent) else ".")
     try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(tmp, target)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return target
+        return write_output(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"),
+                            "toml", force=overwrite, replace_own=False)
+    except OutputExistsError:
+        raise FileExistsError(errno.EEXIST, "exists; pass overwrite=True to replace it",
+                              os.fspath(path)) from None

@@ -9,8 +9,10 @@ again elsewhere, and a chunk's results arrive once per chunk whatever happened.
 
 from __future__ import annotations
 
+import logging
 import math
 import os
+import threading
 from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING, Any
 
@@ -83,6 +85,7 @@ class DaskCluster:
         self.client: Any = client
         self.cluster: Any = None
         self.own_client = client is None
+        self.quiet = _QuietDistributed()
 
     @property
     def workers(self) -> int:
@@ -98,17 +101,33 @@ class DaskCluster:
         if self.scheduler is not None:
             self.client = _connect(distributed, self.scheduler, self.timeout)
         else:
-            self.cluster = distributed.LocalCluster(
-                n_workers=self.n_workers, threads_per_worker=1, processes=True,
-                host="127.0.0.1", dashboard_address=None)
+            import signal
+
+            # The workers are started with Ctrl-C ignored (they inherit it): a Ctrl-C at the
+            # terminal reaches the whole process group, and workers that took it each logged
+            # a traceback (45 lines before the command's one); this process stops them.
+            main_thread = threading.current_thread() is threading.main_thread()
+            old = signal.signal(signal.SIGINT, signal.SIG_IGN) if main_thread else None
+            try:
+                self.cluster = distributed.LocalCluster(
+                    n_workers=self.n_workers, threads_per_worker=1, processes=True,
+                    host="127.0.0.1", dashboard_address=None)
+            finally:
+                if main_thread:
+                    signal.signal(signal.SIGINT, old)
             self.client = distributed.Client(self.cluster, set_as_default=False)
         return self
 
     def __exit__(self, *exc: Any) -> None:
+        stopped = bool(exc) and isinstance(exc[1], (KeyboardInterrupt, SystemExit))
+        if stopped:  # (the scheduler's "lost tasks" as the workers stop)
+            self.quiet.start()
         if self.client is not None and self.own_client:
             self.client.close()
         if self.cluster is not None:
             self.cluster.close()
+        if not stopped:  # (on a stop they stay silent: dask's threads log as the process ends)
+            self.quiet.stop()
 
     def run(self, spec: SweepSpec, chunks: Iterable[int], on_done: OnDone) -> None:
         """Compute the chunks and hand each one's results to ``on_done`` in this process.
@@ -135,9 +154,37 @@ class DaskCluster:
                 index, _ = futures.pop(fut.key)
                 on_done(index, ds)
                 fut.release()
+        except (KeyboardInterrupt, SystemExit):
+            self.quiet.start()  # until the cluster is closed (__exit__)
+            if self.cluster is None:  # (a cluster of our own stops with its work)
+                self.client.cancel([f for _, f in futures.values()])
+            futures.clear()
+            raise
         finally:
             if futures:
                 self.client.cancel([f for _, f in futures.values()])
+
+
+class _QuietDistributed:
+    """dask's loggers silenced from :meth:`start` to :meth:`stop`: on a stop (Ctrl-C, SIGTERM)
+    the cluster's warnings about lost or cancelled work, and tornado's about a callback the
+    interrupt broke, are not the user's concern -- the store resumes."""
+
+    NAMES = ("distributed", "tornado", "asyncio")
+
+    def __init__(self) -> None:
+        self.saved: list[tuple[logging.Logger, int]] | None = None
+
+    def start(self) -> None:
+        if self.saved is None:
+            self.saved = [(lg, lg.level) for lg in map(logging.getLogger, self.NAMES)]
+            for lg, _ in self.saved:
+                lg.setLevel(logging.CRITICAL + 1)
+
+    def stop(self) -> None:
+        for lg, level in self.saved or ():
+            lg.setLevel(level)
+        self.saved = None
 
 
 def _connect(distributed: Any, address: str, timeout: float) -> Any:

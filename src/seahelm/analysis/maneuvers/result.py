@@ -87,8 +87,8 @@ class ManeuverResult:
 
         return summary_html(*self._summary())
 
-    def to_netcdf(self, directory: str | Path, *, prefix: str | None = None
-                  ) -> dict[str, Path]:
+    def to_netcdf(self, directory: str | Path, *, prefix: str | None = None,
+                  force: bool = False) -> dict[str, Path]:
         """Write ``<prefix>-metrics.nc`` and ``<prefix>-runs.nc`` atomically (h5netcdf).
 
         Parameters
@@ -97,6 +97,9 @@ class ManeuverResult:
             Output directory (created if needed).
         prefix : str, optional
             File name prefix (default: the manoeuvre name).
+        force : bool, optional
+            Replace existing files that are not seahelm NetCDF files (default False;
+            :func:`seahelm.output_files.check_output`).
 
         Returns
         -------
@@ -112,7 +115,7 @@ class ManeuverResult:
             if ds is None:
                 continue
             ds = _netcdf_ready(ds)
-            out[key] = write_netcdf(ds, directory / f"{prefix}-{key}.nc")
+            out[key] = write_netcdf(ds, directory / f"{prefix}-{key}.nc", force=force)
         return out
 
 
