@@ -4,7 +4,9 @@ Linearises the ship (catalog name or ship file) at its trimmed straight run at `
 (or at the steady turn at ``--rudder`` degrees) with :func:`seahelm.analysis.linearisation.
 linearize`, and prints Nomoto's K, T_1, T_2, T_3, the first-order T, the course-stability
 index and lever (:mod:`seahelm.analysis.steering_indices`), the poles, and with ``--matrices``
-the A, B, C, D of the ship with its steering gear (input ``rudder_command``). ``--json`` prints
+the A, B, C, D of the ship with its steering gear (input ``rudder_command``). A model with roll
+(Son & Nomoto's container ship) gets Nomoto's indices of its sway–yaw block with roll held
+quasi-static, the poles of the whole block, and the size of the roll coupling. ``--json`` prints
 one JSON object (the matrices always, with their row and column names and units). Exit codes:
 0 done, 2 bad input (no equilibrium at that speed or rudder, a speed the model does not admit),
 1 other failure.
@@ -61,7 +63,7 @@ def linearize(
 ) -> None:
     """Linearise a ship at an equilibrium: Nomoto K, T1, T2, T3, T and course stability."""
     from ..analysis.linearisation import linearize as _linearize
-    from ..analysis.steering_indices import steering_indices
+    from ..analysis.steering_indices import ROLL_STATES, steering_indices
     from ..errors import ParameterError
     from ..ships import get_ship
 
@@ -98,6 +100,8 @@ def linearize(
             ("stability index sigma1' = -L/(U T1)", indices.stability_index, "-"),
             ("stability lever sigma1' sigma2'", indices.stability_lever, "-"),
             ("surge coupling (dropped)", indices.surge_coupling, "-")]
+    if set(ROLL_STATES) & set(indices.steering_states):  # Nomoto's form of the heeled ship
+        rows.append(("roll coupling (roll quasi-static)", indices.roll_coupling, "-"))
     for name, value, unit in rows:
         table.add_row(escape(name), f"{value:.5g}", unit)
     console.print(table)
