@@ -103,20 +103,22 @@ class SteeringIndices:
     roll_coupling: float = 0.0
 
     def as_dict(self) -> dict[str, Any]:
-        """The indices as plain numbers (for JSON).
+        """The indices as plain numbers (for JSON; ``roll_coupling`` for a model with roll).
 
         Returns
         -------
         dict
         """
         n = self.nomoto
+        roll = ({"roll_coupling": self.roll_coupling}
+                if set(ROLL_STATES) & set(self.steering_states) else {})
         return {"K_per_s": n.gain, "T1_s": n.t1, "T2_s": n.t2, "T3_s": n.t3,
                 "T_s": n.time_constant, "stability_index": self.stability_index,
                 "stability_lever": self.stability_lever, "course_stable": self.course_stable,
                 "surge_coupling": self.surge_coupling,
                 "poles_per_s": [[float(p.real), float(p.imag)] for p in self.poles],
                 "steering_states": list(self.steering_states), "speed_mps": self.speed,
-                "length_m": self.length, "roll_coupling": self.roll_coupling}
+                "length_m": self.length, **roll}
 
 
 def steering_indices(linear: LinearModel) -> SteeringIndices:
