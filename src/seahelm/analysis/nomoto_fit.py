@@ -379,9 +379,9 @@ def _start_state(record: ManoeuvreRecord, order: int) -> tuple[np.ndarray, np.nd
     ψ(t_0), r(t_0), ṙ(t_0) from the Savitzky–Golay fit of the start (:func:`_derivatives`);
     the spread from the measurement noise σ_n (1.4826 × the median absolute deviation of the
     heading, or yaw rate, about its Savitzky–Golay smoothing): σ_n for the measured signal,
-    σ_n √12 / w per derivative taken (w the filter window [s]), floored at 10⁻⁶ (rad, rad/s,
-    rad/s²) so that a noise-free record still has a finite weight; ṙ(t_0) of the second order
-    σ_n 12 / w².
+    floored at 10⁻⁶ so that a noise-free record still has a finite weight (the heading, or the
+    yaw rate of a record without one); infinite (no anchor, a start value only) for the states
+    not measured but differentiated (r, ṙ of a heading record) and for a heading not recorded.
     """
     from scipy.signal import savgol_filter
 
@@ -393,11 +393,10 @@ def _start_state(record: ManoeuvreRecord, order: int) -> tuple[np.ndarray, np.nd
               else np.interp(t, record.time, record.yaw_rate))
     smooth = savgol_filter(signal, window, 3)
     noise = 1.4826 * float(np.median(np.abs(signal - smooth)))
-    slope = math.sqrt(12.0) / (window * dt)
     if record.heading is not None:
         psi0, spread = float(smooth[0]), [noise, math.inf]
     else:  # no heading: the heading is not observed, its start is the record's zero
-        psi0, spread = 0.0, [1.0, noise]
+        psi0, spread = 0.0, [math.inf, noise]
     state = [psi0, float(r[0])]
     if order == 2:
         state.append(float(rdot[0]))
