@@ -108,3 +108,14 @@ def test_the_kvlcc2_captive_test_derivatives_are_plausible():
     fit = types.SimpleNamespace(names=names, standard_errors=np.zeros(len(names)),
                                 values=np.array([getattr(ship.params, n) for n in names]))
     assert check_hull_fit(fit, ship).implausible == {}
+
+
+def test_held_out_prediction_separates_the_wrong_rudder_from_the_right(cargo):
+    truth, wrong, recs, _ = cargo
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SuspectBaseShipWarning)
+        bad, good = identify_mmg(recs, wrong).check, identify_mmg(recs, truth).check
+    assert bad.heldout[0] == good.heldout[0] == recs[-1].name
+    assert bad.heldout[2] > 10 * bad.heldout[1] and bad.heldout[2] > 0.02  # 4.5 %, 55x
+    assert good.heldout[2] < 0.005  # 0.13 %
+    assert bad.poor_fit and not good.poor_fit and "held out" in bad.warning

@@ -513,7 +513,14 @@ def _checked(fit: HullFit, records: Any, base: Any) -> HullFit:
         every = max(1, int(round(1.0 / rec.median_interval)))  # about one sample a second
         for k, name in enumerate(("u", "v", "r")):
             residuals[f"{rec.name} {name}"] = ((m[k] - sim[k]) / scales[k])[::every]
-    check = check_hull_fit(fit, base, residuals)
+    heldout = None
+    if len(recs) >= 2 and fit.method == "output-error":  # predict the last record unseen
+        train = refine_mmg(fit, recs[:-1], names=list(fit.names))
+        sim = _simulate([train.params], recs[-1])[0]
+        err = (measured[-1] - sim) / scales[:, None]
+        heldout = (recs[-1].name, float(next(iter(train.residual_std.values()))),
+                   float(np.sqrt(np.nanmean(err ** 2))))
+    check = check_hull_fit(fit, base, residuals, heldout)
     if check.warning:
         warnings.warn(check.warning, SuspectBaseShipWarning, stacklevel=3)
     return dataclasses.replace(fit, check=check)
