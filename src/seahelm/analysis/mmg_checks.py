@@ -73,8 +73,8 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["HELDOUT_FACTOR", "HELDOUT_FLOOR", "SIGN_RULES", "RANGE_FACTOR", "RANGE_CHECKED", "RESOLUTION", "HullCheck", "check_hull_fit", "ljung_box",
-           "SuspectBaseShipWarning"]
+__all__ = ["HELDOUT_FACTOR", "HELDOUT_FLOOR", "SIGN_RULES", "RANGE_FACTOR", "RANGE_CHECKED",
+           "RESOLUTION", "HullCheck", "check_hull_fit", "ljung_box", "SuspectBaseShipWarning"]
 
 #: The sign each hull derivative must have (module docstring, with sources).
 SIGN_RULES: dict[str, int] = {"R_0": 1, "Y_v": -1, "N_v": -1, "N_r": -1, "Y_vvv": -1,
@@ -203,7 +203,7 @@ def check_hull_fit(fit: Any, base: Any, residuals: dict[str, np.ndarray] | None 
         sign = SIGN_RULES.get(name)
         if sign is not None and sign * value < -2.0 * s:
             bad[name] = (f"{value:+.4g} ± {s:.2g}: must be {'> 0' if sign > 0 else '< 0'} "
-                         "(module docstring)")
+                         "(the hull damps: seahelm.analysis.mmg_checks.SIGN_RULES)")
             continue
         r = ref.get(name) if name in RANGE_CHECKED else None
         if r is not None and abs(value - r) > RANGE_FACTOR * abs(r) + 2.0 * s:

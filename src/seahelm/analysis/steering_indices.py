@@ -138,8 +138,8 @@ def steering_indices(linear: LinearModel) -> SteeringIndices:
     ------
     ParameterError
         Without a ``rudder_angle`` input or a ``yaw_rate`` state, with more than two steering
-        states besides roll, when the steering block depends on position or heading (an environment in the
-        loop), or when its poles are complex (no Nomoto form).
+        states besides roll, when the steering block depends on position or heading (an
+        environment in the loop), or when its poles are complex (no Nomoto form).
     """
     if "rudder_angle" not in linear.input_labels:
         raise ParameterError(
