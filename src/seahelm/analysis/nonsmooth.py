@@ -208,6 +208,15 @@ def side_jacobians(forward: np.ndarray, forward_error: np.ndarray, backward: np.
                    kink: Kink) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
     """The Jacobians (and error estimates) of the two sides of a kink (module docstring).
 
+    Parameters
+    ----------
+    forward, forward_error, backward, backward_error : numpy.ndarray, shape (m, n)
+        From :func:`one_sided_jacobians`.
+    central, central_error : numpy.ndarray, shape (m, n)
+        The central-difference Jacobian and its error (kept where nothing jumps).
+    kink : Kink
+        From :func:`kinked_columns`.
+
     Returns
     -------
     tuple
