@@ -39,10 +39,23 @@ def test_table_shape_and_scaling():
 
 @pytest.mark.parametrize("J", [0.0, 0.2, 0.4, 0.6, 0.8, 1.0])
 def test_first_quadrant_matches_the_b_series_polynomials(J):
-    """Same propeller (Z 4, A_E/A_0 0.70, P/D 1.0): |ΔK_T| < 0.012, |ΔK_Q| < 0.003."""
+    """Same propeller (Z 4, A_E/A_0 0.70, P/D 1.0): |ΔK_T| < 0.0116, |ΔK_Q| < 0.0037."""
     kt, kq = four_quadrant_kt_kq(J)
-    assert abs(kt - ps.thrust_coefficient(J, 1.0, 0.70, 4)) < 0.012
-    assert abs(kq - ps.torque_coefficient(J, 1.0, 0.70, 4)) < 0.003
+    assert abs(kt - ps.thrust_coefficient(J, 1.0, 0.70, 4)) < 0.0116
+    assert abs(kq - ps.torque_coefficient(J, 1.0, 0.70, 4)) < 0.0037
+
+
+def test_first_quadrant_differences_are_the_stated_maxima_on_a_fine_grid():
+    """The module docstring's statement: max |ΔK_T| = 0.01150 (J = 1.0), max |ΔK_Q| = 0.00362
+    (J = 0.30) over J = 0, 0.0001, ..., 1.0 (issue 45, item 7: 0.003 was claimed)."""
+    J = np.linspace(0.0, 1.0, 10001)
+    kt, kq = four_quadrant_kt_kq(J)
+    dkt = np.abs(kt - ps.thrust_coefficient(J, 1.0, 0.70, 4))
+    dkq = np.abs(kq - ps.torque_coefficient(J, 1.0, 0.70, 4))
+    assert dkt.max() == pytest.approx(0.01150, abs=5e-6) and J[dkt.argmax()] == 1.0
+    assert dkq.max() == pytest.approx(0.00362, abs=5e-6)
+    assert J[dkq.argmax()] == pytest.approx(0.30, abs=0.005)
+    assert dkt.max() < 0.0116 and dkq.max() < 0.0037
 
 
 def test_bollard_and_quadrant_signs():

@@ -59,7 +59,7 @@ def test_default_scenario_is_valid_and_converts_degrees():
         (_with(replace=('catalog = "mariner-nomoto2"', 'catalog = "mariner-nomoto1"')),
          r"\[vessel.catalog\] 'mariner-nomoto1' is a ship of model 'nomoto1', not 'nomoto2'"),
         (_with("[vessel.params]\ngain = -0.1\n"),
-         r"\[vessel.params\] `gain` must be in \(0, inf\] \[1/s\], got -0.1"),
+         r"\[vessel.params\] `gain` must be nonzero and of the sign of t1 .*got -0.1"),
         (_with("[vessel.params]\ngian = 0.1\n"),
          r"\[vessel.params\] unknown parameter `gian` for Nomoto2Params; valid: gain, t1"),
         (_with("[vessel.params]\nspeed_deg = 3.0\n"),
@@ -99,7 +99,7 @@ def test_default_scenario_is_valid_and_converts_degrees():
         (_with("[batch.grid]\n\"vessel.colour\" = [1.0]\n"),
          r"\[batch.vessel.colour\] cannot vary 'vessel.colour'"),
         (_with("[batch.grid]\n\"vessel.params.gain\" = [0.1, -0.2]\n"),
-         r"\[vessel.params\] `gain` must be in .* got -0.2 \(run 1: \{'vessel.params.gain': -0.2\}\)"),
+         r"\[vessel.params\] `gain` must be nonzero .* got -0.2 \(run 1: \{'vessel.params.gain': -0.2\}\)"),
         (_with("[batch.monte_carlo]\nruns = 3\nseed = 1\n[batch.monte_carlo.draws]\n"
                "\"vessel.params.gain\" = { distribution = \"normal\", mean = 0.2 }\n"),
          r"\[batch.monte_carlo.draws.vessel.params.gain\] a normal draw needs `mean` and `std`"),

@@ -82,8 +82,10 @@ def test_derivative_is_batched(mariner2):
 @pytest.mark.parametrize(
     ("kwargs", "match"),
     [
-        ({"gain": -0.1}, r"`gain` must be in \(0, inf\] \[1/s\], got -0.1"),
-        ({"time_constant": 0.0}, r"`time_constant` must be in \(0, inf\] \[s\], got 0.0"),
+        # K < 0 only with T < 0 (a course-unstable ship, issue 45 item 4); T = 0 never
+        ({"gain": -0.1}, r"`gain` must be nonzero and of the sign of time_constant \(50 s\).*"
+                         r"got -0.1"),
+        ({"time_constant": 0.0}, r"`time_constant` must not be 0 \[s\].*got 0.0"),
         ({"speed": float("nan")}, r"`speed` must be finite \[m/s\], got nan"),
         ({"norrbin_n3": -1.0}, r"`norrbin_n3` must be in \[0, inf\] \[s²\], got -1.0"),
     ],

@@ -31,6 +31,17 @@ Derivatives: Richardson-extrapolated central differences
     the central difference is already exact and only rounding remains (10⁻¹³ relative).
     Every perturbed point of the tableau is evaluated in one batched call of the model.
 
+Non-smooth points
+    A model with a switch (the MMG rudder's γ_R, which changes with the sign of β_R, zero in a
+    straight run) has no Jacobian on the switch, and the central difference there is the mean
+    of the two one-sided derivatives: a model of neither side (the KVLCC2's straight run gave
+    T_1 = −2400 s, between +91 s on one side and −82 s on the other). :func:`linearize_at`
+    therefore also takes the one-sided quotients of every column and compares them
+    (:mod:`seahelm.analysis.nonsmooth`); where they differ, :attr:`LinearModel.kinks` names
+    the variables, :attr:`LinearModel.sides` holds the linear model of each side and
+    :attr:`LinearModel.note` says why. At a smooth point the result is the central
+    difference, unchanged.
+
 The operating point is an equilibrium of the model's own states: position and heading move
 freely (ẋ_N = U, ψ̇ = r in a turn), so they are not zero there; only the velocities (and the
 actuator) are at rest. A linear model is exact about any point in its linear states.
@@ -62,6 +73,7 @@ from .._validate import check_positive
 from ..errors import ParameterError
 from ..parameters import Params, as_records
 from ..vessels.base import VesselModel, _param_array
+from .nonsmooth import kinked_columns, one_sided_jacobians, side_jacobians
 
 __all__ = ["LinearModel", "richardson_jacobian", "linearize_at", "linearize"]
 
@@ -89,6 +101,18 @@ class LinearModel:
         The speed U [m/s] at the operating point (nan if unknown).
     length : float
         The ship's length L [m] (nan if unknown), for non-dimensional indices.
+    kinks : tuple of str
+        The states and inputs whose Jacobian column jumps at the point (empty: smooth). Where
+        not empty, ``A``, ``B``, ``C``, ``D`` are the central difference, the *mean* of the
+        two sides, which is a model of neither: use ``sides``.
+    sides : tuple of LinearModel
+        At a kink, the one-sided linear models (side "+" and side "−", module docstring of
+        :mod:`seahelm.analysis.nonsmooth`); empty at a smooth point.
+    side : str
+        For a one-sided model, its side: ``"sway_speed +, yaw_rate −"`` is the side reached by
+        increasing the sway speed or decreasing the yaw rate.
+    note : str
+        Why the point is not smooth (empty at a smooth point).
     """
 
     A: np.ndarray
@@ -108,6 +132,10 @@ class LinearModel:
     name: str = ""
     speed: float = math.nan
     length: float = math.nan
+    kinks: tuple[str, ...] = ()
+    sides: tuple["LinearModel", ...] = ()
+    side: str = ""
+    note: str = ""
 
     def __post_init__(self) -> None:
         n, m, p = len(self.state_labels), len(self.input_labels), len(self.output_labels)
@@ -119,6 +147,11 @@ class LinearModel:
         for key, ref in (("state_units", n), ("input_units", m), ("output_units", p)):
             if len(getattr(self, key)) != ref:
                 raise ParameterError(f"must have {ref} entries", field=key)
+
+    @property
+    def smooth(self) -> bool:
+        """Whether the model is differentiable at the point (no kinks)."""
+        return not self.kinks
 
     @property
     def poles(self) -> np.ndarray:
@@ -156,8 +189,12 @@ class LinearModel:
                    (("state", states), ("input", inputs), ("output", outputs)))
         err = {key: value[np.ix_(*idx)] for key, value in self.error.items()
                for idx in [{"A": (i, i), "B": (i, j), "C": (k, i), "D": (k, j)}[key]]}
+        kept = {self.state_labels[a] for a in i} | {self.input_labels[b] for b in j}
         return dataclasses.replace(
-            self, A=self.A[np.ix_(i, i)], B=self.B[np.ix_(i, j)], C=self.C[np.ix_(k, i)],
+            self, kinks=tuple(x for x in self.kinks if x in kept),
+            sides=tuple(m.select(states=states, inputs=inputs, outputs=outputs)
+                        for m in self.sides),
+            A=self.A[np.ix_(i, i)], B=self.B[np.ix_(i, j)], C=self.C[np.ix_(k, i)],
             D=self.D[np.ix_(k, j)], state_labels=tuple(self.state_labels[a] for a in i),
             state_units=tuple(self.state_units[a] for a in i),
             input_labels=tuple(self.input_labels[a] for a in j),
@@ -404,13 +441,35 @@ def linearize_at(model: VesselModel, params: Params | Any, x0: Any, u0: Any, *,
     sizes = np.array([_natural_size(u, speed, length, w) for u, w in zip(units, w0)])
     J, E = richardson_jacobian(f, w0, step * sizes, levels=levels)
     nz = n + na
-    return LinearModel(
-        A=J[:nz, :nz], B=J[:nz, nz:], C=J[nz:, :nz], D=J[nz:, nz:],
-        state_labels=model.state_labels + act_states, state_units=model.state_units + act_units,
-        input_labels=in_labels, input_units=in_units, output_labels=model.output_labels,
-        output_units=model.output_units, x0=z0, u0=v0, y0=f0[nz:],
-        error={"A": E[:nz, :nz], "B": E[:nz, nz:], "C": E[nz:, :nz], "D": E[nz:, nz:]},
-        name=name or model.name, speed=float(speed), length=float(length))
+    labels = model.state_labels + act_states + in_labels
+
+    def build(J: np.ndarray, E: np.ndarray, **extra: Any) -> LinearModel:
+        return LinearModel(
+            A=J[:nz, :nz], B=J[:nz, nz:], C=J[nz:, :nz], D=J[nz:, nz:],
+            state_labels=model.state_labels + act_states,
+            state_units=model.state_units + act_units, input_labels=in_labels,
+            input_units=in_units, output_labels=model.output_labels,
+            output_units=model.output_units, x0=z0, u0=v0, y0=f0[nz:],
+            error={"A": E[:nz, :nz], "B": E[:nz, nz:], "C": E[nz:, :nz], "D": E[nz:, nz:]},
+            speed=float(speed), length=float(length), **extra)
+
+    title = name or model.name
+    one_sided = one_sided_jacobians(f, w0, step * sizes, levels=levels)
+    kink = kinked_columns(*one_sided, step * sizes, f=f, x0=w0, levels=levels)
+    if not kink.columns:
+        return build(J, E, name=title)
+    names = tuple(labels[j] for j in kink.columns)
+    refs = sorted({r for r in kink.reference if r >= 0})
+    sides = []
+    for (Js, Es), sign in zip(side_jacobians(*one_sided, J, E, kink), "+−"):
+        side = ", ".join(f"{labels[r]} {sign}" for r in refs)
+        sides.append(build(Js, Es, name=f"{title}, side {side}", side=side))
+    note = (f"the model has no derivative here: the one-sided derivatives in "
+            f"{', '.join(names)} differ (by up to "
+            f"{', '.join(f'{100 * x:.3g} %' for x in kink.jump)} of the row scale)")
+    if kink.switches > 1:
+        note += f"; {kink.switches} switches meet here"
+    return build(J, E, name=title, kinks=names, sides=tuple(sides), note=note)
 
 
 def linearize(ship: Any, *, speed: float | None = None, rudder: float | None = None,
@@ -483,8 +542,29 @@ def linearize(ship: Any, *, speed: float | None = None, rudder: float | None = N
         point = steady_turn_state(base, rudder, rps, model=model)
         where = f"steady turn at rudder {math.degrees(rudder):.4g} deg"
     use_gear = actuator and gear is not None
-    return linearize_at(
+    linear = linearize_at(
         model, params, point.state, dict(point.inputs),
         actuator=gear.actuator if use_gear else None,
         actuator_params=gear.params if use_gear else None, disturbances=disturbances,
         step=step, levels=levels, name=f"{ship_name}, {where}")
+    return _with_reason(linear, params)
+
+
+def _with_reason(linear: LinearModel, params: Any) -> LinearModel:
+    """Name the switch of an MMG model's rudder inflow where the point is not smooth."""
+    minus, plus = (getattr(params, k, None) for k in ("gamma_R_minus", "gamma_R_plus"))
+    if linear.smooth or minus is None or minus == plus:
+        return linear
+    why = (f"; the rudder's flow-straightening coefficient γ_R switches between {minus:.4g} "
+           f"(β_R < 0) and {plus:.4g} (β_R > 0), β_R = β − l'_R r', which is zero in a "
+           "straight run (Yasukawa & Yoshimura 2015)")
+    # β = atan2(−v, u): more sway speed is less β_R (mmg.py), more yaw rate more if l'_R < 0
+    which = {"sway_speed +": "β_R < 0", "sway_speed −": "β_R > 0"}
+    sides = []
+    for m in linear.sides:
+        where = which.get(m.side)
+        side = m.side if where is None else (
+            f"{m.side} ({where}: γ_R = {minus if where == 'β_R < 0' else plus:.4g})")
+        sides.append(dataclasses.replace(m, note=linear.note + why, side=side,
+                                         name=m.name.replace(m.side, side)))
+    return dataclasses.replace(linear, note=linear.note + why, sides=tuple(sides))

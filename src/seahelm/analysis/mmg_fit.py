@@ -96,6 +96,9 @@ class HullFit(CovarianceSummary):
     fixed : dict of str to str
         Derivatives the records do not identify, kept at the base ship's values, each with the
         evidence (:func:`identify_mmg`).
+    check : HullCheck or None
+        Signs, plausible ranges and residual whiteness (:mod:`seahelm.analysis.mmg_checks`;
+        set by :func:`identify_mmg`).
     """
 
     names: tuple[str, ...]
@@ -107,6 +110,7 @@ class HullFit(CovarianceSummary):
     residual_std: dict[str, float]
     params: Any
     fixed: dict[str, str] = dataclasses.field(default_factory=dict)
+    check: Any = None
 
     def as_dict(self) -> dict[str, Any]:
         """Plain data (for JSON).
@@ -118,10 +122,13 @@ class HullFit(CovarianceSummary):
         rows = self.parameter_rows()
         rows += [{"name": n, "identified": False, "fixed_at_base": True, "evidence": why}
                  for n, why in self.fixed.items()]
-        return {"method": self.method, "records": list(self.records), "parameters": rows,
-                "condition_numbers": self.condition_numbers,
-                "residual_std": self.residual_std,
-                "correlation": np.round(self.correlation, 6).tolist()}
+        out = {"method": self.method, "records": list(self.records), "parameters": rows,
+               "condition_numbers": self.condition_numbers,
+               "residual_std": self.residual_std,
+               "correlation": np.round(self.correlation, 6).tolist()}
+        if self.check is not None:
+            out["checks"] = self.check.as_dict()
+        return out
 
     def ship(self, base: Any, *, name: str | None = None) -> Any:
         """``base`` with the identified derivatives, each with its source (the fit, value and
@@ -479,7 +486,47 @@ def identify_mmg(records: ManoeuvreRecord | Sequence[ManoeuvreRecord], base: Any
     Returns
     -------
     HullFit
+        With :attr:`HullFit.check` (signs, plausible ranges, residual whiteness:
+        :func:`seahelm.analysis.mmg_checks.check_hull_fit`).
+
+    Warns
+    -----
+    SuspectBaseShipWarning
+        When an identified derivative is implausible or the residuals are not white, naming
+        the base ship's inputs to check (rudder, propeller, masses).
     """
+    fit = _identify(records, base, method=method, output_error=output_error)
+    return _checked(fit, records, base)
+
+
+def _checked(fit: HullFit, records: Any, base: Any) -> HullFit:
+    """The fit with its checks (and their warning), the residuals of its own simulation."""
+    import warnings
+
+    from .mmg_checks import SuspectBaseShipWarning, check_hull_fit
+
+    recs = _with_velocities(records, float(getattr(base, "params", base).length))
+    scales, measured = _scaled_outputs(recs, float(fit.params.length))
+    residuals = {}
+    for rec, m in zip(recs, measured):
+        sim = _simulate([fit.params], rec)[0]
+        every = max(1, int(round(1.0 / rec.median_interval)))  # about one sample a second
+        for k, name in enumerate(("u", "v", "r")):
+            residuals[f"{rec.name} {name}"] = ((m[k] - sim[k]) / scales[k])[::every]
+    heldout = None
+    if len(recs) >= 2 and fit.method == "output-error":  # predict the last record unseen
+        train = refine_mmg(fit, recs[:-1], names=list(fit.names))
+        sim = _simulate([train.params], recs[-1])[0]
+        err = (measured[-1] - sim) / scales[:, None]
+        heldout = (recs[-1].name, float(next(iter(train.residual_std.values()))),
+                   float(np.sqrt(np.nanmean(err ** 2))))
+    check = check_hull_fit(fit, base, residuals, heldout)
+    if check.warning:
+        warnings.warn(check.warning, SuspectBaseShipWarning, stacklevel=3)
+    return dataclasses.replace(fit, check=check)
+
+
+def _identify(records: Any, base: Any, *, method: str, output_error: bool) -> HullFit:
     records = _with_velocities(records, float(getattr(base, "params", base).length))
     fit = regress_hull(records, base, method=method)
     if output_error:

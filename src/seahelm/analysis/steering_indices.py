@@ -12,6 +12,19 @@ small but not zero for the Mariner's single-screw bias (Y_0, N_0) and in a turn,
 :attr:`SteeringIndices.surge_coupling` reports its size: the largest
 |A_{s,u} A_{u,s'}| / |A_{s,s'}| over the steering states s, s' (0 when decoupled).
 
+Roll (a 4-DOF model such as Son & Nomoto's container ship)
+    Nomoto's form is a sway–yaw theory. With roll states (roll rate p, roll angle φ) in the
+    steering block, the roll mode is *residualised*: held quasi-static (ṗ = φ̇ = 0), the
+    singular-perturbation reduction of Kokotović, Khalil & O'Reilly (1986, §1.2),
+    A_r = A_ss − A_sf A_ff⁻¹ A_fs, b_r = b_s − A_sf A_ff⁻¹ b_f (s: sway and yaw, f: roll).
+    The reduced model keeps the steady-state gain of the full model exactly (K is the steady
+    r/δ with the ship heeled), and its poles approximate the full model's non-oscillatory
+    ones. :attr:`SteeringIndices.poles` and :attr:`SteeringIndices.course_stable` are those
+    of the full block (roll included); :attr:`SteeringIndices.roll_coupling` is
+    max |A_r − A_ss| / |A_ss| over the sway–yaw entries (0 without roll), the size of the
+    heel's effect on steering. Freezing roll instead (φ = 0) would be wrong: for the container
+    ship it turns a course-stable ship (T_1 = 107 s) into an unstable one (T_1 = −1007 s).
+
 Course stability
     The ship is straight-line (course) stable when both poles of the sway–yaw block are
     negative (Clarke, Gedling & Hine 1983). The *stability index* is the non-dimensional
@@ -28,6 +41,8 @@ Clarke, D., Gedling, P., Hine, G. (1983). The application of manoeuvring criteri
 design using linear theory. Trans. RINA 125, 45–68.
 Fossen, T. I. (2021). Handbook of Marine Craft Hydrodynamics and Motion Control, 2nd ed.,
 §7.1 and §7.2 (course stability).
+Kokotović, P., Khalil, H. K., O'Reilly, J. (1986). Singular Perturbation Methods in Control:
+Analysis and Design. Academic Press.
 """
 
 from __future__ import annotations
@@ -42,10 +57,12 @@ from ..errors import ParameterError
 from ..hydrodynamics.linear_model import NomotoConstants, nomoto_from_state_space
 from .linearisation import LinearModel
 
-__all__ = ["SteeringIndices", "steering_indices", "NON_STEERING_STATES"]
+__all__ = ["SteeringIndices", "steering_indices", "NON_STEERING_STATES", "ROLL_STATES"]
 
 #: States that are not steering states: position, heading and surge.
 NON_STEERING_STATES = ("north", "east", "heading", "surge_speed", "surge_perturbation")
+#: Roll states, residualised (held quasi-static) for Nomoto's form (module docstring).
+ROLL_STATES = ("roll_rate", "roll_angle")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -57,7 +74,7 @@ class SteeringIndices:
     nomoto : NomotoConstants
         K [1/s], T_1, T_2, T_3 [s]; ``nomoto.time_constant`` the first-order T [s].
     poles : numpy.ndarray
-        Poles of the steering block [1/s].
+        Poles of the steering block [1/s] (roll included).
     stability_index : float
         σ'_1 = −L/(U T_1) [-]: negative for a course-stable ship (nan without L).
     stability_lever : float
@@ -67,9 +84,11 @@ class SteeringIndices:
     surge_coupling : float
         Size of the dropped surge coupling relative to the block's own entries [-].
     steering_states : tuple of str
-        The states of the block.
+        The states of the block (roll included).
     speed, length : float
         U [m/s] and L [m].
+    roll_coupling : float
+        Size of the residualised roll's effect on the sway–yaw block [-] (0 without roll).
     """
 
     nomoto: NomotoConstants
@@ -81,22 +100,25 @@ class SteeringIndices:
     steering_states: tuple[str, ...]
     speed: float
     length: float
+    roll_coupling: float = 0.0
 
     def as_dict(self) -> dict[str, Any]:
-        """The indices as plain numbers (for JSON).
+        """The indices as plain numbers (for JSON; ``roll_coupling`` for a model with roll).
 
         Returns
         -------
         dict
         """
         n = self.nomoto
+        roll = ({"roll_coupling": self.roll_coupling}
+                if set(ROLL_STATES) & set(self.steering_states) else {})
         return {"K_per_s": n.gain, "T1_s": n.t1, "T2_s": n.t2, "T3_s": n.t3,
                 "T_s": n.time_constant, "stability_index": self.stability_index,
                 "stability_lever": self.stability_lever, "course_stable": self.course_stable,
                 "surge_coupling": self.surge_coupling,
                 "poles_per_s": [[float(p.real), float(p.imag)] for p in self.poles],
                 "steering_states": list(self.steering_states), "speed_mps": self.speed,
-                "length_m": self.length}
+                "length_m": self.length, **roll}
 
 
 def steering_indices(linear: LinearModel) -> SteeringIndices:
@@ -116,8 +138,8 @@ def steering_indices(linear: LinearModel) -> SteeringIndices:
     ------
     ParameterError
         Without a ``rudder_angle`` input or a ``yaw_rate`` state, with more than two steering
-        states, when the steering block depends on position or heading (an environment in the
-        loop), or when its poles are complex (no Nomoto form).
+        states besides roll, when the steering block depends on position or heading (an
+        environment in the loop), or when its poles are complex (no Nomoto form).
     """
     if "rudder_angle" not in linear.input_labels:
         raise ParameterError(
@@ -126,17 +148,19 @@ def steering_indices(linear: LinearModel) -> SteeringIndices:
     if "yaw_rate" not in linear.state_labels:
         raise ParameterError(f"needs a state yaw_rate; states: {', '.join(linear.state_labels)}",
                              field="linear")
-    states = tuple(s for s in linear.state_labels if s not in NON_STEERING_STATES)
+    block = tuple(s for s in linear.state_labels if s not in NON_STEERING_STATES)
+    states = tuple(s for s in block if s not in ROLL_STATES)
     if len(states) > 2:
         raise ParameterError(
-            f"has {len(states)} steering states ({', '.join(states)}); Nomoto's form takes a "
-            "one- or two-state block", field="linear")
+            f"has {len(states)} steering states besides roll ({', '.join(states)}); Nomoto's "
+            "form takes a one- or two-state block", field="linear")
     idx = [linear.state_labels.index(s) for s in states]
+    roll = [linear.state_labels.index(s) for s in block if s in ROLL_STATES]
     others = [i for i, s in enumerate(linear.state_labels) if s in NON_STEERING_STATES
               and s not in ("surge_speed", "surge_perturbation")]
     A = linear.A
     scale = np.abs(A[np.ix_(idx, idx)]).max()
-    if others and np.abs(A[np.ix_(idx, others)]).max() > 1e-9 * scale:
+    if others and np.abs(A[np.ix_(idx + roll, others)]).max() > 1e-9 * scale:
         raise ParameterError("the steering block depends on position or heading (an "
                              "environment in the model?): no Nomoto form", field="linear")
     coupling = 0.0
@@ -147,16 +171,24 @@ def steering_indices(linear: LinearModel) -> SteeringIndices:
             coupling = float((through / np.maximum(np.abs(A[np.ix_(idx, idx)]),
                                                    1e-300)).max())
     sub = A[np.ix_(idx, idx)]
-    b = linear.B[idx, linear.input_labels.index("rudder_angle")]
+    column = linear.B[:, linear.input_labels.index("rudder_angle")]
+    b = column[idx]
+    poles = np.linalg.eigvals(A[np.ix_(idx + roll, idx + roll)])
+    roll_coupling = 0.0
+    if roll:  # residualise roll (Kokotović et al. 1986): A_r = A_ss − A_sf A_ff⁻¹ A_fs
+        a_sf, a_ff = A[np.ix_(idx, roll)], A[np.ix_(roll, roll)]
+        reduced = sub - a_sf @ np.linalg.solve(a_ff, A[np.ix_(roll, idx)])
+        b = b - a_sf @ np.linalg.solve(a_ff, column[roll])
+        roll_coupling = float((np.abs(reduced - sub) / np.maximum(np.abs(sub), 1e-300)).max())
+        sub = reduced
     nomoto = nomoto_from_state_space(sub, b, speed=linear.speed,
                                      yaw_rate_index=states.index("yaw_rate"),
                                      require_stable=False)
-    poles = np.linalg.eigvals(sub)
     L, U = linear.length, linear.speed
     time_scale = L / U if (L > 0 and U > 0) else math.nan
     index = -time_scale / nomoto.t1
     lever = float(np.linalg.det(sub) * time_scale ** 2) if len(idx) == 2 else math.nan
     return SteeringIndices(nomoto=nomoto, poles=poles, stability_index=float(index),
                            stability_lever=lever, course_stable=bool(np.all(poles.real < 0)),
-                           surge_coupling=coupling, steering_states=states, speed=float(U),
-                           length=float(L))
+                           surge_coupling=coupling, steering_states=block, speed=float(U),
+                           length=float(L), roll_coupling=roll_coupling)

@@ -4,7 +4,12 @@ Linearises the ship (catalog name or ship file) at its trimmed straight run at `
 (or at the steady turn at ``--rudder`` degrees) with :func:`seahelm.analysis.linearisation.
 linearize`, and prints Nomoto's K, T_1, T_2, T_3, the first-order T, the course-stability
 index and lever (:mod:`seahelm.analysis.steering_indices`), the poles, and with ``--matrices``
-the A, B, C, D of the ship with its steering gear (input ``rudder_command``). ``--json`` prints
+the A, B, C, D of the ship with its steering gear (input ``rudder_command``). A model with roll
+(Son & Nomoto's container ship) gets Nomoto's indices of its sway–yaw block with roll held
+quasi-static, the poles of the whole block, and the size of the roll coupling. At a point
+where the model has no derivative (the MMG ships' straight run: γ_R switches with the sign of
+β_R) it prints both one-sided linearisations, which of them is course stable and why, never
+their mean (``--json``: ``smooth: false``, ``kinks``, ``why``, ``one_sided``). ``--json`` prints
 one JSON object (the matrices always, with their row and column names and units). Exit codes:
 0 done, 2 bad input (no equilibrium at that speed or rudder, a speed the model does not admit),
 1 other failure.
@@ -80,6 +85,9 @@ def linearize(
     delta = None if rudder is None else math.radians(rudder)
     bare = _linearize(the_ship, speed=speed, rudder=delta, rps=rps, actuator=False)
     full = _linearize(the_ship, speed=speed, rudder=delta, rps=rps, actuator=True)
+    if not bare.smooth:
+        _kinked(the_ship.name, bare, full, json_out, matrices)
+        return
     try:
         indices = steering_indices(bare)
     except ParameterError as exc:
@@ -95,18 +103,33 @@ def linearize(
             f"speed at which the ship moves and is straight-line stable{hint}") from None
     payload: dict[str, Any] = {
         "ship": the_ship.name, "operating_point": bare.name, "speed_mps": bare.speed,
-        "length_m": bare.length, "rudder_deg": math.degrees(
-            float(bare.u0[bare.input_labels.index("rudder_angle")])),
+        "length_m": bare.length, "rudder_deg": _rudder_deg(bare),
         "indices": indices.as_dict(),
         "linear_model": _matrices(full),
-        "max_error": {k: float(np.max(v, initial=0.0)) for k, v in full.error.items()},
+        "max_error": _max_error(full),
     }
     if json_out:
         print_json(payload)
         return
+    _print_indices(f"{bare.name}: U = {bare.speed:.4g} m/s, rudder "
+                   f"{payload['rudder_deg']:.3g} deg", indices)
+    if matrices:
+        _print_matrices(full, payload["max_error"])
+
+
+def _rudder_deg(lin: Any) -> float:
+    return math.degrees(float(lin.u0[lin.input_labels.index("rudder_angle")]))
+
+
+def _max_error(lin: Any) -> dict[str, float]:
+    return {k: float(np.max(v, initial=0.0)) for k, v in lin.error.items()}
+
+
+def _print_indices(title: str, indices: Any) -> None:
+    from ..analysis.steering_indices import ROLL_STATES
+
     n = indices.nomoto
-    table = Table(title=escape(f"{bare.name}: U = {bare.speed:.4g} m/s, rudder "
-                               f"{payload['rudder_deg']:.3g} deg"), title_justify="left")
+    table = Table(title=escape(title), title_justify="left")
     for col in ("index", "value", "unit"):
         table.add_column(col, justify="right" if col == "value" else "left")
     rows = [("Nomoto K", n.gain, "1/s"), ("T1", n.t1, "s"), ("T2", n.t2, "s"),
@@ -114,6 +137,8 @@ def linearize(
             ("stability index sigma1' = -L/(U T1)", indices.stability_index, "-"),
             ("stability lever sigma1' sigma2'", indices.stability_lever, "-"),
             ("surge coupling (dropped)", indices.surge_coupling, "-")]
+    if set(ROLL_STATES) & set(indices.steering_states):  # Nomoto's form of the heeled ship
+        rows.append(("roll coupling (roll quasi-static)", indices.roll_coupling, "-"))
     for name, value, unit in rows:
         table.add_row(escape(name), f"{value:.5g}", unit)
     console.print(table)
@@ -121,11 +146,48 @@ def linearize(
     console.print(escape(f"  {verdict}; poles of {', '.join(indices.steering_states)}: "
                          + ", ".join(f"{p.real:.4g}" + (f"{p.imag:+.4g}j" if p.imag else "")
                                      for p in indices.poles) + " [1/s]"), highlight=False)
-    if matrices:
-        for key, rows_, cols in (("A", full.state_labels, full.state_labels),
-                                 ("B", full.state_labels, full.input_labels),
-                                 ("C", full.output_labels, full.state_labels),
-                                 ("D", full.output_labels, full.input_labels)):
-            console.print(_matrix_table(f"{key} (max. est. error "
-                                        f"{payload['max_error'][key]:.2g})",
-                                        getattr(full, key), rows_, cols))
+
+
+def _print_matrices(full: Any, max_error: dict[str, float]) -> None:
+    for key, rows_, cols in (("A", full.state_labels, full.state_labels),
+                             ("B", full.state_labels, full.input_labels),
+                             ("C", full.output_labels, full.state_labels),
+                             ("D", full.output_labels, full.input_labels)):
+        console.print(_matrix_table(f"{key} (max. est. error {max_error[key]:.2g})",
+                                    getattr(full, key), rows_, cols))
+
+
+def _kinked(ship: str, bare: Any, full: Any, json_out: bool, matrices: bool) -> None:
+    """A non-smooth point: both one-sided linearisations, which is stable, and why; never the
+    central difference (their mean)."""
+    from ..analysis.steering_indices import steering_indices
+
+    sides = []
+    for b, f in zip(bare.sides, full.sides):
+        ind = steering_indices(b)
+        sides.append({"side": b.side, "indices": ind.as_dict(), "linear_model": _matrices(f),
+                      "max_error": _max_error(f), "_ind": ind, "_full": f})
+    stable = [s["side"] for s in sides if s["indices"]["course_stable"]]
+    payload: dict[str, Any] = {
+        "ship": ship, "operating_point": bare.name, "speed_mps": bare.speed,
+        "length_m": bare.length, "rudder_deg": _rudder_deg(bare), "smooth": False,
+        "kinks": list(bare.kinks), "why": bare.note, "indices": None, "linear_model": None,
+        "one_sided": [{k: v for k, v in s.items() if not k.startswith("_")} for s in sides],
+        "course_stable_sides": stable,
+    }
+    if json_out:
+        print_json(payload)
+        return
+    console.print(escape(f"{bare.name}: no single linear model here; {bare.note}. The two "
+                         "one-sided linearisations follow (their mean, which a central "
+                         "difference gives, is a model of neither side)."),
+                  highlight=False, soft_wrap=True)
+    for s in sides:
+        _print_indices(f"side {s['side']}: U = {bare.speed:.4g} m/s, rudder "
+                       f"{payload['rudder_deg']:.3g} deg", s["_ind"])
+        if matrices:
+            _print_matrices(s["_full"], s["max_error"])
+    verdict = ("course stable on side " + " and ".join(stable) + " only" if len(stable) == 1
+               else "course stable on both sides" if stable else "course unstable on both sides")
+    console.print(escape(f"  {verdict}: small motions about this point switch between the two "
+                         "linear models."), highlight=False, soft_wrap=True)

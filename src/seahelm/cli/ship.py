@@ -331,13 +331,20 @@ def estimate(
         if particulars is not None and key in values and key not in given:
             raise ParameterError(f"{particulars}: `{exc.field}` {exc.reason}") from None
         raise
+    unstable = [v for v in ship.validity if v.startswith("course-unstable")]
     if target is None:
         sys.stdout.write(ship_to_toml(ship))
         sys.stdout.flush()
+        if unstable:  # the ship file says so in `validity`; say it where a person reads it
+            from ._common import err_console
+
+            err_console.print(f"note: {escape(unstable[0])}", highlight=False, soft_wrap=True)
         return
     write_ship_file(ship, target)
     console.print(f"wrote {escape(str(target))}: ship '{escape(ship.name)}' (model "
-                  f"{ship.model.name}); `seahelm imo {escape(str(target))}` checks it",
+                  f"{ship.model.name}"
+                  + (f", {escape(unstable[0])}" if unstable else "")
+                  + f"); `seahelm imo {escape(str(target))}` checks it",
                   highlight=False, soft_wrap=True)
 
 

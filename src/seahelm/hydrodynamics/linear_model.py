@@ -114,7 +114,8 @@ class NomotoConstants:
 
 
 def nomoto_constants(mass: np.ndarray, damping: np.ndarray, rudder: np.ndarray, *,
-                     length: float, speed: float) -> NomotoConstants:
+                     length: float, speed: float, require_stable: bool = True
+                     ) -> NomotoConstants:
     """Nomoto K, T_1, T_2, T_3 of a linear sway–yaw model M ẋ' + N x' = b δ (prime units).
 
     Parameters
@@ -130,6 +131,9 @@ def nomoto_constants(mass: np.ndarray, damping: np.ndarray, rudder: np.ndarray, 
         L [m].
     speed : float
         U [m/s] (> 0).
+    require_stable : bool, optional
+        Refuse a course-unstable model (default True); with False its T_1 < 0 and K < 0 are
+        returned (Fossen 2021, §7.1).
 
     Returns
     -------
@@ -138,8 +142,8 @@ def nomoto_constants(mass: np.ndarray, damping: np.ndarray, rudder: np.ndarray, 
     Raises
     ------
     ParameterError
-        When the model is not straight-line stable with two real poles (Nomoto's form needs
-        them) or the speed or length is not positive.
+        When the model has no two real poles (Nomoto's form needs them), is not straight-line
+        stable with ``require_stable``, or the speed or length is not positive.
     """
     if not (speed > 0 and math.isfinite(speed)):
         raise ParameterError(f"must be > 0 [m/s], got {speed!r}", field="speed", unit="m/s",
@@ -151,7 +155,8 @@ def nomoto_constants(mass: np.ndarray, damping: np.ndarray, rudder: np.ndarray, 
     N = np.asarray(damping, dtype=float)
     b = np.asarray(rudder, dtype=float)
     # time in units of L/U, r' = r L/U: K [1/s] = K' U/L, T_i [s] = T'_i L/U
-    prime = nomoto_from_state_space(-np.linalg.solve(M, N), np.linalg.solve(M, b), unit="-")
+    prime = nomoto_from_state_space(-np.linalg.solve(M, N), np.linalg.solve(M, b), unit="-",
+                                    require_stable=require_stable)
     scale = length / speed
     return NomotoConstants(gain=prime.gain / scale, t1=prime.t1 * scale, t2=prime.t2 * scale,
                            t3=prime.t3 * scale, speed=float(speed))

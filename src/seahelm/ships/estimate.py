@@ -490,7 +490,15 @@ def estimate_nomoto(design: Design, *, order: int = 2, strict: bool | None = Non
     Returns
     -------
     Ship
-        Of model ``nomoto1`` or ``nomoto2`` at the design speed.
+        Of model ``nomoto1`` or ``nomoto2`` at the design speed. A course-unstable hull (a
+        positive pole: T_1 < 0, K < 0, valid in Nomoto's form, Fossen 2021, §7.1) is returned
+        as such, flagged in its description and ``validity`` (``course-unstable: ...``).
+
+    Raises
+    ------
+    ParameterError
+        For shallow water, a bad ``order``, complex poles, or a first-order T = T_1 + T_2 − T_3
+        of the other sign than K.
     """
     if order not in (1, 2):
         raise ParameterError(f"must be 1 or 2, got {order!r}", field="order", value=order)
@@ -499,6 +507,7 @@ def estimate_nomoto(design: Design, *, order: int = 2, strict: bool | None = Non
                              "the MMG estimate", field="water_depth", unit="m",
                              value=design.water_depth)
     constants, sources = nomoto_of(design, strict=strict)
+    unstable = constants.t1 < 0
     mmg = estimate_ship(design, strict=strict)
     if order == 2:
         from ..vessels.nomoto import Nomoto2Params as P
@@ -510,14 +519,19 @@ def estimate_nomoto(design: Design, *, order: int = 2, strict: bool | None = Non
 
         params = P(gain=constants.gain, time_constant=constants.time_constant,
                    speed=design.speed, length=design.length)
+    flag = (f"course-unstable: T1 = {constants.t1:.4g} s < 0 (a positive pole "
+            f"{-1.0 / constants.t1:.3g} 1/s), K = {constants.gain:.4g} 1/s < 0",) if unstable \
+        else ()
     return Ship(
         name=design.name, model=f"nomoto{order}", params=params,
         description=f"Nomoto {order} from Clarke et al. (1983) and the estimated rudder "
-                    f"(L {design.length:g} m, U {design.speed:g} m/s)",
+                    f"(L {design.length:g} m, U {design.speed:g} m/s)"
+                    + (", course-unstable (T1 < 0)" if unstable else ""),
         steering_gear=mmg.steering_gear, particulars=mmg.particulars,
         provenance="Clarke, Gedling & Hine (1983) linear derivatives with the MMG rudder of "
                    "seahelm ship estimate, at the design speed: " + sources,
-        validity=("linear: small rudder angles and yaw rates; constant speed U", "deep water"))
+        validity=("linear: small rudder angles and yaw rates; constant speed U", "deep water")
+        + flag)
 
 
 def nomoto_of(design: Design, *, strict: bool | None = None) -> tuple[NomotoConstants, str]:
@@ -541,7 +555,7 @@ def nomoto_of(design: Design, *, strict: bool | None = None) -> tuple[NomotoCons
     # the damping is added from the estimated rudder
     damping -= np.array([[rudder["Y_v"], rudder["Y_r"]], [rudder["N_v"], rudder["N_r"]]])
     constants = nomoto_constants(mass, damping, np.array([rudder["Y_delta"], rudder["N_delta"]]),
-                                 length=design.length, speed=design.speed)
+                                 length=design.length, speed=design.speed, require_stable=False)
     return constants, ("; ".join(f"{k}' {v:.4g}" for k, v in rudder.items())
                        + " (rudder, on L·d); Clarke's derivatives on L²: "
                        + ", ".join(f"{k} {v:.4g}" for k, v in c.items()))

@@ -17,6 +17,14 @@ realised without the rudder rate δ̇ through the auxiliary state ξ = ṙ − a
 
 so that any rudder signal, also a discontinuous one, can drive it.
 
+Course-unstable ships have a positive real pole: T1 < 0 and K < 0 (Nomoto's form holds, with
+K/T1 > 0 so that a positive rudder still gives a positive yaw acceleration; Fossen 2021, §7.1,
+"a negative T1 implies that the ship is course unstable"). The parameters admit them: K and T1
+(T of the first-order model) may be negative, but not zero, and of the same sign. Norrbin's
+term as written (H_N = r + n3 r³) is the stable ship's; for T1 < 0 it would destabilise the
+turn instead of saturating it, so n3 > 0 with T1 < 0 is refused (the unstable ship's
+characteristic, n1 = −1 in Fossen's H_N = n3 r³ + n1 r, is not implemented).
+
 Kinematics at constant forward speed U with a sway velocity v_d (e.g. a wind or current drift)::
 
     ẋ_N = U cos ψ − v_d sin ψ,   ẏ_E = U sin ψ + v_d cos ψ,   ψ̇ = r
@@ -43,34 +51,63 @@ from dataclasses import dataclass
 
 from numba import njit
 
+from ..errors import ParameterError
 from ..parameters import Params, param, signal_indices
 from .base import NAV_OUTPUT_UNITS, NAV_OUTPUTS, VesselModel
 
 __all__ = ["Nomoto1Params", "Nomoto2Params", "NOMOTO1", "NOMOTO2"]
 
 
+def _check_signs(p: Params, time: str) -> None:
+    """Course-unstable (T < 0, K < 0) is admitted; zero, or K and T of opposite sign, not."""
+    t, k = getattr(p, time), p.gain
+    if t == 0.0:
+        raise ParameterError(f"must not be 0 [s] (< 0 for a course-unstable ship), got {t!r}",
+                             field=time, unit="s", value=t)
+    if k == 0.0 or (k > 0) != (t > 0):
+        raise ParameterError(
+            f"must be nonzero and of the sign of {time} ({t:.6g} s): K/T > 0 (a positive rudder "
+            f"gives a positive yaw acceleration; K < 0 with T < 0 for a course-unstable ship), "
+            f"got {k!r}", field="gain", unit="1/s", value=k)
+    if t < 0 and p.norrbin_n3 > 0:
+        raise ParameterError(
+            f"must be 0 for a course-unstable ship ({time} = {t:.6g} s < 0): the term r + n3 r³ "
+            "is the stable ship's", field="norrbin_n3", unit="s²", value=p.norrbin_n3)
+
+
 @dataclass(frozen=True, kw_only=True)
 class Nomoto1Params(Params):
     """First-order Nomoto model with Norrbin term (SI units)."""
 
-    gain: float = param(unit="1/s", symbol="K", low=0.0, low_inclusive=False,
-                        doc="Nomoto gain: steady yaw rate per rudder angle")
-    time_constant: float = param(unit="s", symbol="T", low=0.0, low_inclusive=False,
-                                 doc="Nomoto time constant")
+    gain: float = param(unit="1/s", symbol="K",
+                        doc="Nomoto gain: steady yaw rate per rudder angle (< 0 with T < 0: "
+                            "course-unstable)")
+    time_constant: float = param(unit="s", symbol="T",
+                                 doc="Nomoto time constant (< 0: course-unstable)")
     speed: float = param(unit="m/s", symbol="U", low=0.0, doc="forward speed")
     length: float = param(100.0, unit="m", symbol="L", low=0.0, low_inclusive=False,
                           doc="length between perpendiculars (for plots and scaling)")
     norrbin_n3: float = param(0.0, unit="s²", symbol="n3", low=0.0,
                               doc="Norrbin cubic coefficient in H_N(r) = r + n3 r³")
 
+    def validate(self) -> None:
+        """K and T nonzero and of one sign; Norrbin's n3 only for T > 0 (module docstring)."""
+        _check_signs(self, "time_constant")
+
+    @property
+    def course_unstable(self) -> bool:
+        """T < 0: a positive real pole (Fossen 2021, §7.1)."""
+        return self.time_constant < 0
+
 
 @dataclass(frozen=True, kw_only=True)
 class Nomoto2Params(Params):
     """Second-order Nomoto model with Norrbin term (SI units)."""
 
-    gain: float = param(unit="1/s", symbol="K", low=0.0, low_inclusive=False,
-                        doc="Nomoto gain: steady yaw rate per rudder angle")
-    t1: float = param(unit="s", symbol="T1", low=0.0, low_inclusive=False, doc="time constant T1")
+    gain: float = param(unit="1/s", symbol="K",
+                        doc="Nomoto gain: steady yaw rate per rudder angle (< 0 with T1 < 0: "
+                            "course-unstable)")
+    t1: float = param(unit="s", symbol="T1", doc="time constant T1 (< 0: course-unstable)")
     t2: float = param(unit="s", symbol="T2", low=0.0, low_inclusive=False, doc="time constant T2")
     t3: float = param(unit="s", symbol="T3", low=0.0, doc="zero time constant T3")
     speed: float = param(unit="m/s", symbol="U", low=0.0, doc="forward speed")
@@ -78,6 +115,15 @@ class Nomoto2Params(Params):
                           doc="length between perpendiculars (for plots and scaling)")
     norrbin_n3: float = param(0.0, unit="s²", symbol="n3", low=0.0,
                               doc="Norrbin cubic coefficient in H_N(r) = r + n3 r³")
+
+    def validate(self) -> None:
+        """K and T1 nonzero and of one sign; Norrbin's n3 only for T1 > 0 (module docstring)."""
+        _check_signs(self, "t1")
+
+    @property
+    def course_unstable(self) -> bool:
+        """T1 < 0: a positive real pole (Fossen 2021, §7.1)."""
+        return self.t1 < 0
 
     def equivalent_first_order(self) -> Nomoto1Params:
         """The first-order model with T = T1 + T2 − T3 (Nomoto's approximation)."""
