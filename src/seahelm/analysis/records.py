@@ -20,6 +20,14 @@ with its own initial state). NaN in a column, a time that does not increase, a m
 a rudder that does not move (no rudder activity: nothing to identify), a record shorter than
 10 samples: :class:`~seahelm.errors.ParameterError` naming the file, the column and the row.
 The heading is unwrapped (continuous through ±180°).
+
+Other headers are read through a **column mapping** (``columns={"t [s]": "time", ...}``,
+header -> channel). A file whose header holds every column of a known format in
+:data:`RECORD_FORMATS` is read with that format's mapping and angle units without being told:
+the free-running model tests of the Esso Osaka (the ``FRT-DS-ESSO`` data set of Osaka
+University, Wakita et al. 2022, Miyauchi et al. 2022: ``t [s]``, ``x_position_mid [m]``,
+``u_velo [m/s]``, ..., ``delta_rudder [rad]``, angles in radians) are read as they are. A
+header that holds most of a format's columns but not all is an error naming the missing ones.
 """
 
 from __future__ import annotations
@@ -35,7 +43,7 @@ import numpy as np
 from ..errors import ParameterError
 
 __all__ = ["ManoeuvreRecord", "read_records", "record_from_arrays", "GAP_FACTOR",
-           "MIN_RUDDER_ACTIVITY"]
+           "MIN_RUDDER_ACTIVITY", "RECORD_FORMATS"]
 
 #: An interval longer than this many times the median sampling interval is a gap.
 GAP_FACTOR = 5.0
@@ -47,8 +55,22 @@ MIN_RUDDER_ACTIVITY = math.radians(0.1)
 #: The fewest samples of a record (each part after splitting at gaps).
 MIN_SAMPLES = 10
 
-_OPTIONAL = ("surge_speed", "sway_speed", "x", "y", "propeller_rps")
-_ANGLES = ("rudder_angle", "heading")
+_OPTIONAL = ("surge_speed", "sway_speed", "x", "y", "propeller_rps", "true_wind_speed",
+             "true_wind_direction")
+_ANGLES = ("rudder_angle", "heading", "true_wind_direction")
+
+#: Known CSV record formats: name -> (header -> channel, angle units). ``FRT-DS-ESSO``: the
+#: columns of the free-running tests of the Esso Osaka 3 m model (Osaka University, data set
+#: ``NAOE-5thLab/FRT-DS-ESSO``; midship position and velocities, 10 Hz); its relative-wind
+#: columns are not read. The true wind direction is the direction it comes from [rad].
+RECORD_FORMATS: dict[str, tuple[dict[str, str], str]] = {
+    "FRT-DS-ESSO": ({
+        "t [s]": "time", "x_position_mid [m]": "x", "u_velo [m/s]": "surge_speed",
+        "y_position_mid [m]": "y", "vm_velo [m/s]": "sway_speed", "psi_hat [rad]": "heading",
+        "r_angvelo [rad/s]": "yaw_rate", "n_prop [rps]": "propeller_rps",
+        "delta_rudder [rad]": "rudder_angle", "wind_velo_true [m/s]": "true_wind_speed",
+        "wind_dir_true [rad]": "true_wind_direction"}, "rad"),
+}
 _RATES = ("yaw_rate",)
 
 
@@ -180,10 +202,41 @@ def record_from_arrays(name: str, time: Any, rudder_angle: Any, heading: Any = N
     return parts
 
 
-def _read_csv(path: Path, angles: str) -> list[ManoeuvreRecord]:
+def _known_format(path: Path, header: list[str]) -> tuple[dict[str, str], str] | None:
+    """The mapping and angle units of the known format the header is (None if none)."""
+    for name, (mapping, angles) in RECORD_FORMATS.items():
+        present = [h for h in mapping if h in header]
+        if len(present) == len(mapping):
+            return mapping, angles
+        if 2 * len(present) > len(mapping):
+            missing = [h for h in mapping if h not in header]
+            raise ParameterError(f"{path}: a {name} record without column(s) "
+                                 f"{', '.join(f'`{m}`' for m in missing)} (row 1, the header)",
+                                 field=mapping[missing[0]])
+    return None
+
+
+def _mapped(path: Path, cols: dict[str, np.ndarray], mapping: dict[str, str]
+            ) -> dict[str, np.ndarray]:
+    out = {}
+    for header, channel in mapping.items():
+        if header not in cols:
+            raise ParameterError(f"{path}: no column `{header}` (mapped to {channel}; columns: "
+                                 f"{', '.join(cols)})", field=channel)
+        out[channel] = cols[header]
+    return out
+
+
+def _read_csv(path: Path, angles: str, columns: dict[str, str] | None
+              ) -> list[ManoeuvreRecord]:
     from ..identification.turn_log import read_turn_log
 
     cols = read_turn_log(path)
+    known = None if columns is not None else _known_format(path, list(cols))
+    if known is not None:
+        columns, angles = known
+    if columns is not None:
+        cols = _mapped(path, cols, columns)
     for required in ("time", "rudder_angle"):
         if required not in cols:
             raise ParameterError(f"{path}: missing column `{required}` (columns: "
@@ -196,10 +249,11 @@ def _read_csv(path: Path, angles: str) -> list[ManoeuvreRecord]:
         if key in cols:
             cols[key] = cols[key] * scale
     if angles == "rad" and np.nanmax(np.abs(cols["rudder_angle"])) > math.pi / 2:
+        row = int(np.flatnonzero(np.abs(cols["rudder_angle"]) > math.pi / 2)[0]) + 2
         raise ParameterError(
-            f"{path}: column `rudder_angle` reaches {np.nanmax(np.abs(cols['rudder_angle'])):.4g}"
-            " rad (more than 90°) with angles in radians: are they degrees? (drop --angles rad)",
-            field="rudder_angle")
+            f"{path}: column `rudder_angle` row {row} is "
+            f"{cols['rudder_angle'][row - 2]:.4g} rad (more than 90°) with angles in radians: "
+            "are they degrees? (drop --angles rad)", field="rudder_angle")
     channels = {k: cols[k] for k in _OPTIONAL if k in cols}
     return record_from_arrays(str(path), cols["time"], cols["rudder_angle"],
                               cols.get("heading"), cols.get("yaw_rate"), first_row=2,
@@ -234,8 +288,8 @@ def _read_netcdf(path: Path) -> list[ManoeuvreRecord]:
     return out
 
 
-def read_records(paths: Any, *, angles: Literal["deg", "rad"] = "deg"
-                 ) -> list[ManoeuvreRecord]:
+def read_records(paths: Any, *, angles: Literal["deg", "rad"] = "deg",
+                 columns: dict[str, str] | None = None) -> list[ManoeuvreRecord]:
     """Records from CSV and NetCDF files (module docstring), split at gaps.
 
     Parameters
@@ -243,7 +297,12 @@ def read_records(paths: Any, *, angles: Literal["deg", "rad"] = "deg"
     paths : path-like or sequence of path-like
         CSV files (``*.csv``) and seahelm NetCDF result files (``*.nc``).
     angles : {"deg", "rad"}
-        Units of the CSV files' angles and angular rates (NetCDF files are always SI).
+        Units of the CSV files' angles and angular rates (NetCDF files are always SI; a file of
+        a known format, :data:`RECORD_FORMATS`, in that format's units).
+    columns : dict of str to str, optional
+        CSV header -> channel (``time``, ``rudder_angle``, ``heading``, ``yaw_rate`` and the
+        optional channels); only the mapped columns are read (default: the header names are
+        the channels, or a known format's mapping).
 
     Returns
     -------
@@ -267,7 +326,7 @@ def read_records(paths: Any, *, angles: Literal["deg", "rad"] = "deg"
         if path.suffix.lower() in (".nc", ".nc4", ".h5", ".netcdf"):
             out += _read_netcdf(path)
         else:
-            out += _read_csv(path, angles)
+            out += _read_csv(path, angles, columns)
     if not out:
         raise ParameterError("no records (every run of the files diverged)")
     return out
