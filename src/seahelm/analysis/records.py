@@ -218,12 +218,24 @@ def _known_format(path: Path, header: list[str]) -> tuple[dict[str, str], str] |
 
 def _mapped(path: Path, cols: dict[str, np.ndarray], mapping: dict[str, str]
             ) -> dict[str, np.ndarray]:
+    """The mapped columns by channel, checked under their own header names (NaN, a time
+    that does not increase: the file's column and row)."""
     out = {}
     for header, channel in mapping.items():
         if header not in cols:
             raise ParameterError(f"{path}: no column `{header}` (mapped to {channel}; columns: "
                                  f"{', '.join(cols)})", field=channel)
+        _check_column(str(path), header, cols[header], 2)
         out[channel] = cols[header]
+    if "time" in out:
+        step = np.diff(out["time"])
+        if np.any(step <= 0):
+            i = int(np.flatnonzero(step <= 0)[0]) + 1
+            header = next(h for h, c in mapping.items() if c == "time")
+            raise ParameterError(f"{path}: column `{header}` row {i + 2} does not increase "
+                                 f"({float(out['time'][i - 1])!r} then "
+                                 f"{float(out['time'][i])!r})",
+                                 field="time")
     return out
 
 
@@ -235,8 +247,10 @@ def _read_csv(path: Path, angles: str, columns: dict[str, str] | None
     known = None if columns is not None else _known_format(path, list(cols))
     if known is not None:
         columns, angles = known
+    names = {"rudder_angle": "rudder_angle"}
     if columns is not None:
         cols = _mapped(path, cols, columns)
+        names.update({c: h for h, c in columns.items()})
     for required in ("time", "rudder_angle"):
         if required not in cols:
             raise ParameterError(f"{path}: missing column `{required}` (columns: "
@@ -251,7 +265,7 @@ def _read_csv(path: Path, angles: str, columns: dict[str, str] | None
     if angles == "rad" and np.nanmax(np.abs(cols["rudder_angle"])) > math.pi / 2:
         row = int(np.flatnonzero(np.abs(cols["rudder_angle"]) > math.pi / 2)[0]) + 2
         raise ParameterError(
-            f"{path}: column `rudder_angle` row {row} is "
+            f"{path}: column `{names['rudder_angle']}` row {row} is "
             f"{cols['rudder_angle'][row - 2]:.4g} rad (more than 90°) with angles in radians: "
             "are they degrees? (drop --angles rad)", field="rudder_angle")
     channels = {k: cols[k] for k in _OPTIONAL if k in cols}

@@ -22,11 +22,11 @@ measured and the simulated position at the record's times, over the first 60 s a
 whole record, in ship lengths.
 
 What kind of manoeuvre a record is (``kind="auto"``) is read from the measured rudder after the
-order (the first sample where |δ| exceeds 10 % of its largest value): held on one side — a
-turning circle; switched between two sides at a nearly constant angle (the held angles' spread
-< 10 % of their mean) at least twice — a zig-zag, whose check angle is the median heading
-deviation at which the rudder left its held angle, rounded to a whole degree; anything else
-(random or berthing inputs) — only the position error is reported.
+order (the start of the rudder's first move beyond 10 % of its largest |δ|): held on one side —
+a turning circle; switched between two sides at a nearly constant angle (the held angles'
+spread < 10 % of their mean) at least twice — a zig-zag, whose check angle is the median
+heading deviation at which the rudder left its held angle, rounded to a whole degree; anything
+else (random or berthing inputs) — only the position error is reported.
 
 Wind and current are not replayed (the record's measured wind is read, but is not an input
 of the simulation yet): the simulated ship is in still air and water.
@@ -126,9 +126,13 @@ class ReplayResult:
 
 
 def _order_index(rudder: np.ndarray) -> int:
-    """Sample just before |δ| first exceeds 10 % of its largest value (0 if at once)."""
+    """The sample the rudder starts its first move from: back from the first sample beyond
+    10 % of the largest |δ| while |δ| falls (the start of that monotone ramp)."""
     big = np.abs(rudder) > _ORDER_FRACTION * np.max(np.abs(rudder))
-    return max(int(np.argmax(big)) - 1, 0)
+    k = int(np.argmax(big))
+    while k > 0 and abs(rudder[k - 1]) < abs(rudder[k]):
+        k -= 1
+    return k
 
 
 def _held(rudder: np.ndarray, k0: int) -> tuple[np.ndarray, np.ndarray]:
@@ -170,9 +174,9 @@ def _check_angle(record: ManoeuvreRecord, k0: int, signs: np.ndarray, idx: np.nd
     amp = float(np.median(np.abs(delta[idx])))
     devs = []
     for j in switches:
-        s, k = signs[j], int(idx[j])
-        while k + 1 < delta.size and s * delta[k + 1] >= 0.95 * amp:
-            k += 1  # the last sample at the held angle: the rudder leaves it after this one
+        s, k = signs[j], int(idx[j])  # the last sample past half the angle before the switch
+        while k > k0 and s * delta[k] < 0.95 * amp:
+            k -= 1  # back to the last sample at the held angle: the rudder leaves it after it
         devs.append(abs(psi[k] - psi[k0]))
     return math.radians(round(math.degrees(float(np.median(devs)))))
 
