@@ -204,3 +204,24 @@ def test_a_column_mapping_reads_another_header(tmp_path, turn_csv):
     line = one_error(["replay", str(other), "--ship", SHIP, "--angles", "rad",
                       "--column", "time=time", "--column", "DELTA=rudder_angle"])
     assert "missing column `heading` or `yaw_rate`" in line and str(other) in line, line
+
+
+def test_closed_loop_zigzag_reproduces_the_manoeuvre(zigzag_csv):
+    """seahelm's zig-zag replayed closed loop with the same ship: the same controller, servo and
+    step from the same state, so the same run (the open-loop replay differs by the servo's
+    motion within steps, test above)."""
+    path, z = zigzag_csv
+    rec, = read_records(path)
+    res = replay(rec, SHIP, closed_loop=True)
+    assert res.closed_loop and res.rms_error < 1e-6
+    for name, (measured, simulated) in res.metrics.items():
+        assert simulated == pytest.approx(measured, abs=1e-6), name
+    worse = get_ship(SHIP).replace(params={"N_r": 1.3 * get_ship(SHIP).params.N_r})
+    res = replay(rec, worse, closed_loop=True)
+    m, s = res.metrics["overshoot_1"]
+    assert s < m - math.radians(0.2)  # more yaw damping: a smaller first overshoot
+
+
+def test_closed_loop_is_for_a_zigzag(turn_csv):
+    line = one_error(["replay", str(turn_csv), "--ship", SHIP, "--closed-loop"])
+    assert "a closed-loop replay is for a zig-zag; this record is 'turning'" in line

@@ -28,6 +28,12 @@ spread < 10 % of their mean) at least twice — a zig-zag, whose check angle is 
 heading deviation at which the rudder left its held angle, rounded to a whole degree; anything
 else (random or berthing inputs) — only the position error is reported.
 
+A zig-zag can also be replayed **closed loop** (``closed_loop=True``): from the first sample,
+the rudder is switched by the *simulated* heading at the check angle (the zig-zag controller of
+:mod:`seahelm.control.zigzag`, the rudder angle δ_z the median of the measured held angles, the
+first side the measured rudder's, the base heading the measured one at the order) through the
+ship's steering gear, the propeller held at its measured rps at the order.
+
 Wind and current are not replayed (the record's measured wind is read, but is not an input
 of the simulation yet): the simulated ship is in still air and water.
 """
@@ -88,6 +94,9 @@ class ReplayResult:
         The integration step [s].
     check_angle : float or None
         A zig-zag's check angle ψ_z [rad].
+    closed_loop : bool
+        Whether the rudder was switched by the simulated heading (a zig-zag) rather than
+        replayed.
     """
 
     record: ManoeuvreRecord
@@ -102,6 +111,7 @@ class ReplayResult:
     length: float
     dt: float
     check_angle: float | None = None
+    closed_loop: bool = False
 
     def to_xarray(self) -> Any:
         """Both tracks as one :class:`xarray.Dataset` with a ``track`` dimension (measured,
@@ -115,7 +125,8 @@ class ReplayResult:
                     {"units": units[k]}) for k in self.measured}
         attrs = {"record": self.record.name, "ship": self.ship, "kind": self.kind,
                  "rms_error_60s_L": self.rms_error_window, "rms_error_L": self.rms_error,
-                 "length_m": self.length, "dt_s": self.dt}
+                 "length_m": self.length, "dt_s": self.dt,
+                 "rudder": "closed loop" if self.closed_loop else "measured"}
         if self.check_angle is not None:
             attrs["check_angle_rad"] = self.check_angle
         for name, (m, s) in self.metrics.items():
@@ -276,7 +287,8 @@ def _time_step(record: ManoeuvreRecord, length: float, speed: np.ndarray,
 
 def replay(record: ManoeuvreRecord, ship: Any, *,
            kind: Literal["auto", "turning", "zigzag", "none"] = "auto",
-           check_angle: float | None = None, dt: float | None = None) -> ReplayResult:
+           check_angle: float | None = None, dt: float | None = None,
+           closed_loop: bool = False) -> ReplayResult:
     """Simulate a measured record from its first sample with its measured inputs.
 
     Parameters
@@ -295,6 +307,10 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
     dt : float, optional
         Integration step [s] (default: the record's median sampling interval, at most L/(100
         U_max)); rounded down so that the record's duration is a whole number of steps.
+    closed_loop : bool, optional
+        A zig-zag only: switch the rudder by the simulated heading at the check angle
+        through the ship's steering gear (module docstring) instead of replaying the measured
+        rudder (default False).
 
     Returns
     -------
@@ -326,15 +342,26 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
                                  "replay needs column propeller_rps", field="propeller_rps")
         inputs["propeller_rps"] = measured["propeller_rps"]
     t0 = float(t[0])
-    reference = {k: Samples(tuple((t - t0).tolist()), tuple(v.tolist()))
-                 for k, v in inputs.items()}
+    chosen, angle = (classify(record) if kind == "auto" else (kind, None))
+    if check_angle is not None:
+        angle = float(check_angle)
+    elif chosen == "zigzag" and angle is None:
+        angle = classify(record)[1]
+    if closed_loop and chosen != "zigzag":
+        raise ParameterError(f"{record.name}: a closed-loop replay is for a zig-zag; this "
+                             f"record is {chosen!r}", field="closed_loop")
     first = {"surge_speed": measured["surge_speed"][0], "sway_speed": measured["sway_speed"][0],
              "yaw_rate": measured["yaw_rate"][0], "north": measured["north"][0],
              "east": measured["east"][0], "heading": measured["heading"][0]}
     x0 = model.initial_state(**{k: v for k, v in first.items() if k in model.state_labels})
-    problem = Problem(t_final=step * n_steps, dt=step, ship=found, actuator="direct", x0=x0,
-                      reference=reference,
-                      metadata={"replay_of": record.name})
+    timing = {"t_final": step * n_steps, "dt": step, "ship": found, "x0": x0,
+              "metadata": {"replay_of": record.name}}
+    if closed_loop:
+        problem = _closed_loop(record, found, measured, float(angle), timing)  # type: ignore
+    else:
+        reference = {k: Samples(tuple((t - t0).tolist()), tuple(v.tolist()))
+                     for k, v in inputs.items()}
+        problem = Problem(actuator="direct", reference=reference, **timing)
     result = simulate(problem)
     status = result.messages()[0]
     if status != "ok":
@@ -348,11 +375,6 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
         if key == "heading":
             values = np.unwrap(values)
         simulated[key] = np.interp(t, grid, values)
-    chosen, angle = (classify(record) if kind == "auto" else (kind, None))
-    if check_angle is not None:
-        angle = float(check_angle)
-    elif chosen == "zigzag" and angle is None:
-        angle = classify(record)[1]
     side = _first_side(measured["heading"], _order_index(record.rudder_angle))
     metrics_m, metrics_s = (manoeuvre_metrics(chosen, t, track, record.rudder_angle,
                                               check_angle=angle, first_side=side)
@@ -363,7 +385,28 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
         simulated=simulated, metrics={k: (metrics_m[k], metrics_s[k]) for k in metrics_m},
         rms_error_window=_rms(t, measured, simulated, found.length, RMS_WINDOW),
         rms_error=_rms(t, measured, simulated, found.length, math.inf),
-        length=found.length, dt=step, check_angle=angle)
+        length=found.length, dt=step, check_angle=angle, closed_loop=closed_loop)
+
+
+def _closed_loop(record: ManoeuvreRecord, ship: Any, measured: dict[str, np.ndarray],
+                 trigger: float, timing: dict[str, Any]) -> Any:
+    """The zig-zag controller through the ship's steering gear (module docstring)."""
+    from ..control.zigzag import ZIGZAG, ZIGZAG_RPS, ZigZagParams, ZigZagRpsParams
+    from ..simulation.problem import Problem
+
+    delta = record.rudder_angle
+    k0 = _order_index(delta)
+    signs, idx = _held(delta, k0)
+    common = {"rudder_amplitude": float(np.median(np.abs(delta[idx]))),
+              "heading_trigger": trigger, "first_side": float(signs[0]),
+              "base_heading": float(measured["heading"][k0])}
+    if "propeller_rps" in ship.model.input_labels:
+        controller, params = ZIGZAG_RPS, ZigZagRpsParams(
+            propeller_rps=float(measured["propeller_rps"][k0]), **common)
+    else:
+        controller, params = ZIGZAG, ZigZagParams(**common)
+    return Problem(controller=controller, controller_params=params,
+                   actuator_x0=[float(delta[0])], **timing)
 
 
 def _first_side(heading: np.ndarray, k0: int) -> float:

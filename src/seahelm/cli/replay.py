@@ -7,7 +7,8 @@ known format such as the FRT-DS-ESSO free-running tests read as it is, other hea
 rps as first-order hold inputs) and prints the measured and simulated metrics side by side and
 the RMS position error over the first 60 s and the whole record in ship lengths. ``--json``
 prints one JSON object; ``--out DIR`` writes ``replay.nc`` (both tracks) and ``replay.png``
-(the overlay). Exit codes: 0 done, 2 bad input (a missing or misnamed column, a NaN, a time
+(the overlay). ``--closed-loop`` replays a zig-zag with its rudder switched by the simulated
+heading at the check angle. Exit codes: 0 done, 2 bad input (a missing or misnamed column, a NaN, a time
 that goes backwards, degrees where radians are expected, a record shorter than its manoeuvre
 needs: one line naming the file, column and row), 1 other failure.
 """
@@ -65,6 +66,7 @@ def _payload(res: Any) -> dict[str, Any]:
     return {"record": res.record.name, "ship": res.ship, "kind": res.kind,
             "check_angle_deg": None if res.check_angle is None else math.degrees(res.check_angle),
             "dt_s": res.dt, "length_m": res.length,
+            "rudder": "closed loop" if res.closed_loop else "measured",
             "rms_position_error_60s_L": res.rms_error_window,
             "rms_position_error_L": res.rms_error,
             "metrics": {k: {"measured": m * _SHOWN[k][2], "simulated": s * _SHOWN[k][2],
@@ -74,8 +76,10 @@ def _payload(res: Any) -> dict[str, Any]:
 def _show(res: Any) -> None:
     angle = ("" if res.check_angle is None
              else f", check angle {math.degrees(res.check_angle):.0f} deg")
+    rudder = "rudder closed loop" if res.closed_loop else "measured rudder"
     table = Table(title=escape(f"Replay of {res.record.name} with {res.ship} ({res.kind}"
-                               f"{angle}; dt {res.dt:.4g} s)"), title_justify="left")
+                               f"{angle}, {rudder}; dt {res.dt:.4g} s)"),
+                  title_justify="left")
     for name, justify in (("metric", "left"), ("measured", "right"), ("simulated", "right")):
         table.add_column(name, justify=justify)  # type: ignore[arg-type]
     for key, (m, s) in res.metrics.items():
@@ -107,6 +111,9 @@ def replay(
                                                      help=escape(
         "Map a CSV header to a channel (time, rudder_angle, heading, yaw_rate, surge_speed, "
         "sway_speed, x, y, propeller_rps); repeat for each column read."))] = None,
+    closed_loop: Annotated[bool, typer.Option("--closed-loop", help=escape(
+        "A zig-zag: switch the rudder by the simulated heading at the check angle (through "
+        "the ship's steering gear) instead of replaying the measured rudder."))] = False,
     json_out: JsonFlag = False,
     out: Annotated[Path | None, typer.Option("--out", help=escape(
         "Directory for replay.nc (both tracks) and replay.png (the overlay)."))] = None,
@@ -128,6 +135,7 @@ def replay(
         output_dir("--out", out, _FILES, reads=(record,))
     records = read_records(record, angles=angles, columns=mapping)  # type: ignore[arg-type]
     results = [run_replay(r, ship, kind=kind, dt=dt,  # type: ignore[arg-type]
+                          closed_loop=closed_loop,
                           check_angle=None if check_angle is None
                           else math.radians(check_angle)) for r in records]
     payload: dict[str, Any] = {"replays": [_payload(r) for r in results]}

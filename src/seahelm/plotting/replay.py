@@ -54,15 +54,23 @@ def plot_replay(result: Any, *, fig: Any = None) -> Any:
     series[1].plot(t, s["surge_speed"], "C0:", lw=0.9, label="simulated u")
     series[1].set(ylabel="speed [m/s]")
     series[1].legend(fontsize="small", loc="best", ncols=2)
-    series[2].plot(t, np.degrees(m["rudder_angle"]), "C3-", label="rudder δ [deg]")
+    series[2].plot(t, np.degrees(m["rudder_angle"]), "C3-", label="measured rudder δ")
+    if result.closed_loop:
+        series[2].plot(t, np.degrees(s["rudder_angle"]), "C0--",
+                       label="simulated rudder δ (closed loop)")
     series[2].set(ylabel="rudder δ [deg]", xlabel="time from the first sample [s]")
+    handles, labels = series[2].get_legend_handles_labels()
     if "propeller_rps" in m:
         rps = series[2].twinx()
-        rps.plot(t, m["propeller_rps"], "C2-", label="propeller n [1/s]")
+        rps.plot(t, m["propeller_rps"], "C2-", label="measured propeller n")
         rps.set(ylabel="propeller n [1/s]")
-        rps.legend(fontsize="small", loc="lower right")
-    series[2].legend(fontsize="small", loc="upper right")
-    series[0].set_title(f"{result.record.name}: {result.kind} replay, measured inputs"
+        rps.ticklabel_format(axis="y", useOffset=False)
+        more = rps.get_legend_handles_labels()
+        handles, labels = handles + more[0], labels + more[1]
+    series[2].legend(handles, labels, fontsize="small", loc="lower center", ncols=3,
+                     bbox_to_anchor=(0.5, 1.0), frameon=False)
+    inputs = "rudder closed loop" if result.closed_loop else "measured inputs"
+    series[0].set_title(f"{result.record.name}: {result.kind} replay, {inputs}"
                         + (f", check angle {math.degrees(result.check_angle):.0f} deg"
                            if result.check_angle is not None else ""), fontsize="medium")
     return fig
