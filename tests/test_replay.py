@@ -225,3 +225,42 @@ def test_closed_loop_zigzag_reproduces_the_manoeuvre(zigzag_csv):
 def test_closed_loop_is_for_a_zigzag(turn_csv):
     line = one_error(["replay", str(turn_csv), "--ship", SHIP, "--closed-loop"])
     assert "a closed-loop replay is for a zig-zag; this record is 'turning'" in line
+
+
+def test_measured_wind_is_replayed(tmp_path):
+    """A turn simulated in a steady 4 m/s wind from 60 deg (the wind a parameter), written
+    with that wind in the record's true-wind columns: replayed with the measured wind (the
+    speed then comes in as a time series) it is the same run; in still air it is not."""
+    from seahelm.environment.loads import environment, ship_load_params
+
+    ship = get_ship(SHIP)
+    env = environment(wind="blendermann")
+    direction = math.radians(60.0)
+    params = ship_load_params(ship, env, wind_speed=4.0, wind_direction=direction)
+    t_final = 60.0
+    knots = np.arange(0.0, t_final + DT / 2, DT)
+    delta = np.clip((knots - 1.0) * math.radians(15.8), 0.0, math.radians(35.0))
+    x0 = ship.model.initial_state(surge_speed=1.179)
+    res = simulate(Problem(t_final=t_final, dt=DT, ship=ship, actuator="direct", x0=x0,
+                           environment=env, environment_params=params,
+                           reference={"rudder_angle": Samples(tuple(knots), tuple(delta)),
+                                      "propeller_rps": 10.4}))
+    track = {k: res[k][0] for k in ("north", "east", "heading", "surge_speed", "sway_speed",
+                                    "yaw_rate")}
+    path = _write(tmp_path / "windy.csv", res.time, track, res["rudder_angle"][0],
+                  res["propeller_rps"][0])
+    header, *rows = _rows(path)
+    rows = [",".join([*r.split(",")[:-2], "4.0", repr(direction)]) for r in rows]
+    path.write_text("\n".join([header, *rows]) + "\n")
+    rec, = read_records(path)
+    windy = replay(rec, SHIP, kind="none", wind="measured")
+    assert windy.rms_error < 1e-6
+    assert windy.wind["direction"] == pytest.approx(direction)
+    assert windy.wind["mean_speed"] == pytest.approx(4.0)
+    still = replay(rec, SHIP, kind="none")
+    assert still.rms_error > 1e-3
+    rows = [",".join([*r.split(",")[:-2], "-1.0", "0.0"]) if k == 9 else r
+            for k, r in enumerate(rows)]
+    path.write_text("\n".join([header, *rows]) + "\n")
+    line = one_error(["replay", str(path), "--ship", SHIP, "--wind", "measured"])
+    assert "column `true_wind_speed` row 11 is -1.0 [m/s] (< 0)" in line, line

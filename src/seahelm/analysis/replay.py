@@ -34,8 +34,14 @@ the rudder is switched by the *simulated* heading at the check angle (the zig-za
 first side the measured rudder's, the base heading the measured one at the order) through the
 ship's steering gear, the propeller held at its measured rps at the order.
 
-Wind and current are not replayed (the record's measured wind is read, but is not an input
-of the simulation yet): the simulated ship is in still air and water.
+The wind (``wind="measured"``): the record's true wind speed (``true_wind_speed``) is a
+time-varying input (first-order hold, the environment's ``wind_gust`` channel over a zero mean
+speed) and its direction (``true_wind_direction``, where it comes from, clockwise from north)
+is held at its circular mean — the engine's wind direction is a parameter, not a signal; the
+result gives the direction's circular standard deviation so that a record whose wind veered
+shows it. The loads are the ship's wind-load model from its windage particulars
+(:func:`~seahelm.environment.loads.ship_load_params`; Blendermann 1994 by default). With
+``wind="none"`` (the default) the simulated ship is in still air. Currents are not replayed.
 """
 
 from __future__ import annotations
@@ -50,7 +56,7 @@ from ..errors import ParameterError
 from .records import ManoeuvreRecord
 
 __all__ = ["ReplayResult", "replay", "manoeuvre_metrics", "classify", "REPLAY_CHANNELS",
-           "RMS_WINDOW", "KINDS"]
+           "RMS_WINDOW", "KINDS", "WIND"]
 
 #: Record channels the replay needs: the initial state (the heading is the record's own).
 REPLAY_CHANNELS = ("surge_speed", "sway_speed", "x", "y")
@@ -60,6 +66,9 @@ RMS_WINDOW = 60.0
 
 #: Manoeuvre kinds :func:`replay` computes metrics for (``"auto"``: read from the rudder).
 KINDS = ("auto", "turning", "zigzag", "none")
+
+#: The wind a replay can be given: none (still air) or the record's measured true wind.
+WIND = ("none", "measured")
 
 #: Fraction of the largest |δ| beyond which the rudder counts as ordered.
 _ORDER_FRACTION = 0.1
@@ -97,6 +106,10 @@ class ReplayResult:
     closed_loop : bool
         Whether the rudder was switched by the simulated heading (a zig-zag) rather than
         replayed.
+    wind : dict
+        ``{"kind": "none"}``, or for the measured wind its ``load_model``, the mean speed
+        [m/s], the ``direction`` held [rad] and its circular standard deviation
+        ``direction_spread`` [rad].
     """
 
     record: ManoeuvreRecord
@@ -112,6 +125,7 @@ class ReplayResult:
     dt: float
     check_angle: float | None = None
     closed_loop: bool = False
+    wind: dict[str, Any] = dataclasses.field(default_factory=lambda: {"kind": "none"})
 
     def to_xarray(self) -> Any:
         """Both tracks as one :class:`xarray.Dataset` with a ``track`` dimension (measured,
@@ -126,7 +140,8 @@ class ReplayResult:
         attrs = {"record": self.record.name, "ship": self.ship, "kind": self.kind,
                  "rms_error_60s_L": self.rms_error_window, "rms_error_L": self.rms_error,
                  "length_m": self.length, "dt_s": self.dt,
-                 "rudder": "closed loop" if self.closed_loop else "measured"}
+                 "rudder": "closed loop" if self.closed_loop else "measured",
+                 **{f"wind_{k}": v for k, v in self.wind.items()}}
         if self.check_angle is not None:
             attrs["check_angle_rad"] = self.check_angle
         for name, (m, s) in self.metrics.items():
@@ -288,7 +303,8 @@ def _time_step(record: ManoeuvreRecord, length: float, speed: np.ndarray,
 def replay(record: ManoeuvreRecord, ship: Any, *,
            kind: Literal["auto", "turning", "zigzag", "none"] = "auto",
            check_angle: float | None = None, dt: float | None = None,
-           closed_loop: bool = False) -> ReplayResult:
+           closed_loop: bool = False, wind: Literal["none", "measured"] = "none",
+           wind_loads: str = "blendermann") -> ReplayResult:
     """Simulate a measured record from its first sample with its measured inputs.
 
     Parameters
@@ -311,6 +327,11 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
         A zig-zag only: switch the rudder by the simulated heading at the check angle
         through the ship's steering gear (module docstring) instead of replaying the measured
         rudder (default False).
+    wind : {"none", "measured"}, optional
+        Still air (default) or the record's measured true wind (module docstring).
+    wind_loads : str, optional
+        The wind-load model with the measured wind (a name in
+        :data:`~seahelm.environment.loads.WIND_LOADS`, default ``"blendermann"``).
 
     Returns
     -------
@@ -330,6 +351,8 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
 
     if kind not in KINDS:
         raise ParameterError(f"must be one of {', '.join(KINDS)}, got {kind!r}", field="kind")
+    if wind not in WIND:
+        raise ParameterError(f"must be one of {', '.join(WIND)}, got {wind!r}", field="wind")
     found = get_ship(ship)
     measured = _measured(record)
     model = found.model
@@ -356,6 +379,10 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
     x0 = model.initial_state(**{k: v for k, v in first.items() if k in model.state_labels})
     timing = {"t_final": step * n_steps, "dt": step, "ship": found, "x0": x0,
               "metadata": {"replay_of": record.name}}
+    air: dict[str, Any] = {"kind": "none"}
+    if wind == "measured":
+        air, loads = _measured_wind(record, found, wind_loads)
+        timing.update(loads)
     if closed_loop:
         problem = _closed_loop(record, found, measured, float(angle), timing)  # type: ignore
     else:
@@ -385,7 +412,36 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
         simulated=simulated, metrics={k: (metrics_m[k], metrics_s[k]) for k in metrics_m},
         rms_error_window=_rms(t, measured, simulated, found.length, RMS_WINDOW),
         rms_error=_rms(t, measured, simulated, found.length, math.inf),
-        length=found.length, dt=step, check_angle=angle, closed_loop=closed_loop)
+        length=found.length, dt=step, check_angle=angle, closed_loop=closed_loop, wind=air)
+
+
+def _measured_wind(record: ManoeuvreRecord, ship: Any, load_model: str
+                   ) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The record's true wind as the Problem's environment fields (module docstring)."""
+    from ..environment.loads import environment, ship_load_params
+    from ..simulation.signals import Samples
+
+    missing = [c for c in ("true_wind_speed", "true_wind_direction") if c not in record.channels]
+    if missing:
+        raise ParameterError(f"{record.name}: the measured wind needs column(s) "
+                             f"{', '.join(missing)}", field=missing[0])
+    speed = record.channels["true_wind_speed"]
+    if np.any(speed < 0):
+        row = int(np.flatnonzero(speed < 0)[0]) + 2
+        raise ParameterError(f"{record.name}: column `true_wind_speed` row {row} is "
+                             f"{float(speed[row - 2])!r} [m/s] (< 0)", field="true_wind_speed")
+    theta = record.channels["true_wind_direction"]
+    c, s = float(np.mean(np.cos(theta))), float(np.mean(np.sin(theta)))
+    direction = math.atan2(s, c)
+    spread = math.sqrt(-2.0 * math.log(min(max(math.hypot(c, s), 1e-300), 1.0)))
+    env = environment(wind=load_model)
+    params = ship_load_params(ship, env, wind_speed=0.0, wind_direction=direction)
+    t = record.time - record.time[0]
+    gust = Samples(tuple(t.tolist()), tuple(speed.tolist()))
+    air = {"kind": "measured", "load_model": env.wind.name, "mean_speed": float(np.mean(speed)),
+           "direction": direction, "direction_spread": spread}
+    return air, {"environment": env, "environment_params": params,
+                 "disturbance": {"wind_gust": gust}}
 
 
 def _closed_loop(record: ManoeuvreRecord, ship: Any, measured: dict[str, np.ndarray],

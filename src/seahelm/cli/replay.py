@@ -4,7 +4,7 @@ Reads the record (:func:`seahelm.analysis.records.read_records`: a CSV file with
 known format such as the FRT-DS-ESSO free-running tests read as it is, other headers through
 ``--column HEADER=CHANNEL``; or a seahelm NetCDF result), replays every record in it
 (:func:`seahelm.analysis.replay.replay`: from its first sample, with its measured rudder and
-rps as first-order hold inputs) and prints the measured and simulated metrics side by side and
+rps as first-order hold inputs; ``--wind measured``: its measured true wind) and prints the measured and simulated metrics side by side and
 the RMS position error over the first 60 s and the whole record in ship lengths. ``--json``
 prints one JSON object; ``--out DIR`` writes ``replay.nc`` (both tracks) and ``replay.png``
 (the overlay). ``--closed-loop`` replays a zig-zag with its rudder switched by the simulated
@@ -67,6 +67,8 @@ def _payload(res: Any) -> dict[str, Any]:
             "check_angle_deg": None if res.check_angle is None else math.degrees(res.check_angle),
             "dt_s": res.dt, "length_m": res.length,
             "rudder": "closed loop" if res.closed_loop else "measured",
+            "wind": {k: (math.degrees(v) if k.startswith("direction") else v)
+                     for k, v in res.wind.items()},
             "rms_position_error_60s_L": res.rms_error_window,
             "rms_position_error_L": res.rms_error,
             "metrics": {k: {"measured": m * _SHOWN[k][2], "simulated": s * _SHOWN[k][2],
@@ -77,6 +79,12 @@ def _show(res: Any) -> None:
     angle = ("" if res.check_angle is None
              else f", check angle {math.degrees(res.check_angle):.0f} deg")
     rudder = "rudder closed loop" if res.closed_loop else "measured rudder"
+    if res.wind["kind"] == "measured":
+        rudder += (f", measured wind {res.wind['mean_speed']:.3g} m/s mean from "
+                   f"{math.degrees(res.wind['direction']):.0f} deg (spread "
+                   f"{math.degrees(res.wind['direction_spread']):.0f} deg)")
+    else:
+        rudder += ", still air"
     table = Table(title=escape(f"Replay of {res.record.name} with {res.ship} ({res.kind}"
                                f"{angle}, {rudder}; dt {res.dt:.4g} s)"),
                   title_justify="left")
@@ -114,19 +122,25 @@ def replay(
     closed_loop: Annotated[bool, typer.Option("--closed-loop", help=escape(
         "A zig-zag: switch the rudder by the simulated heading at the check angle (through "
         "the ship's steering gear) instead of replaying the measured rudder."))] = False,
+    wind: Annotated[str, typer.Option("--wind", metavar="none|measured", help=escape(
+        "Still air, or the record's measured true wind (its speed as a time series, its "
+        "direction held at the circular mean) on the ship's windage (Blendermann 1994)."))
+    ] = "none",
     json_out: JsonFlag = False,
     out: Annotated[Path | None, typer.Option("--out", help=escape(
         "Directory for replay.nc (both tracks) and replay.png (the overlay)."))] = None,
 ) -> None:
     """Replay a measured record: simulated vs measured metrics and position error."""
     from ..analysis.records import read_records
-    from ..analysis.replay import KINDS
+    from ..analysis.replay import KINDS, WIND
     from ..analysis.replay import replay as run_replay
 
     if kind not in KINDS:
         raise ParameterError(f"`--kind` must be one of {', '.join(KINDS)}, got {kind!r}")
     if check_angle is not None and not (math.isfinite(check_angle) and 0 < check_angle < 90):
         raise ParameterError(f"`--check-angle` must be in (0, 90) [deg], got {check_angle!r}")
+    if wind not in WIND:
+        raise ParameterError(f"`--wind` must be one of {', '.join(WIND)}, got {wind!r}")
     if angles not in ("deg", "rad"):
         raise ParameterError(f"`--angles` must be deg or rad, got {angles!r}")
     input_file("RECORD", record)
@@ -135,7 +149,7 @@ def replay(
         output_dir("--out", out, _FILES, reads=(record,))
     records = read_records(record, angles=angles, columns=mapping)  # type: ignore[arg-type]
     results = [run_replay(r, ship, kind=kind, dt=dt,  # type: ignore[arg-type]
-                          closed_loop=closed_loop,
+                          closed_loop=closed_loop, wind=wind,  # type: ignore[arg-type]
                           check_angle=None if check_angle is None
                           else math.radians(check_angle)) for r in records]
     payload: dict[str, Any] = {"replays": [_payload(r) for r in results]}
