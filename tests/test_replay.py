@@ -264,3 +264,26 @@ def test_measured_wind_is_replayed(tmp_path):
     path.write_text("\n".join([header, *rows]) + "\n")
     line = one_error(["replay", str(path), "--ship", SHIP, "--wind", "measured"])
     assert "column `true_wind_speed` row 11 is -1.0 [m/s] (< 0)" in line, line
+
+
+def test_a_turn_that_ends_with_the_rudder_eased_counts_until_then(tmp_path, turn_csv):
+    """Speed loss and steady diameter are taken while the rudder is held: the record's last
+    20 s with the rudder amidships (the ship straightening up) change neither."""
+    header, *rows = _rows(turn_csv)
+    rec, = read_records(turn_csv)
+    held = replay(rec, SHIP)
+    eased = [",".join([*r.split(",")[:8], "0.0", *r.split(",")[9:]]) if k >= len(rows) - 400
+             else r for k, r in enumerate(rows)]
+    path = tmp_path / "eased.csv"
+    path.write_text("\n".join([header, *eased]) + "\n")
+    rec, = read_records(path)
+    res = replay(rec, SHIP)
+    # (the measured track is the held turn's, so only the simulated one straightens up)
+    assert res.rms_error_window < 1e-6 < 1e-3 < res.rms_error
+    end = len(rows) - 401
+    u, v = rec.channels["surge_speed"], rec.channels["sway_speed"]
+    k0 = int(np.flatnonzero(rec.rudder_angle > 0)[0]) - 1
+    expected = 1.0 - math.hypot(u[end], v[end]) / math.hypot(u[k0], v[k0])
+    assert res.metrics["speed_loss"][0] == pytest.approx(expected, rel=1e-12)
+    assert res.metrics["speed_loss"][0] != pytest.approx(held.metrics["speed_loss"][0],
+                                                          rel=1e-6)

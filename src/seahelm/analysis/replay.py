@@ -231,7 +231,9 @@ def manoeuvre_metrics(kind: str, time: np.ndarray, track: dict[str, np.ndarray],
     -------
     dict of str to float
         Turning: ``advance``, ``transfer``, ``tactical_diameter`` [m], ``steady_diameter``
-        [m] (of the last full circle; NaN below 360°), ``speed_loss`` [-] (1 − U_end/U_0).
+        [m] (of the last full circle while the rudder is held; NaN below 360°),
+        ``speed_loss`` [-] (1 − U_end/U_0, U_end at the last sample the rudder is held: a
+        record that ends by stopping the propeller or easing the rudder is not counted).
         Zig-zag: ``overshoot_1..3`` [rad], ``execute_time_2..4`` [s] (from the first execute),
         ``time_to_check_yaw`` [s] and ``period`` [s]. None: empty.
     """
@@ -244,10 +246,13 @@ def manoeuvre_metrics(kind: str, time: np.ndarray, track: dict[str, np.ndarray],
     if kind == "turning":
         m = turning_metrics(time, north, east, psi, order_time=float(time[k0]))
         speed = track["speed"]
+        held = _held(rudder, k0)[1]
+        end = int(held[-1]) + 1 if held.size else time.size  # the turn ends with the rudder
         return {"advance": float(m.advance[0]), "transfer": float(m.transfer[0]),
                 "tactical_diameter": float(m.tactical_diameter[0]),
-                "steady_diameter": float(turning_diameter(north[k0:], east[k0:], psi[k0:])[0]),
-                "speed_loss": float(1.0 - speed[-1] / speed[k0])}
+                "steady_diameter": float(turning_diameter(north[k0:end], east[k0:end],
+                                                          psi[k0:end])[0]),
+                "speed_loss": float(1.0 - speed[end - 1] / speed[k0])}
     if kind == "zigzag":
         if check_angle is None:
             raise ParameterError("a zig-zag needs its check angle [rad] (a record with a "
