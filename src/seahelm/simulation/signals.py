@@ -33,7 +33,8 @@ import numpy as np
 from .._validate import as_float_array, check_finite, check_positive, uniform_time_step
 from ..errors import ParameterError
 
-__all__ = ["Constant", "Step", "Steps", "Samples", "Sine", "Ramp", "Sea", "Gust", "SIGNALS", "make_signal"]
+__all__ = ["Constant", "Step", "Steps", "Samples", "Sine", "Ramp", "Sea", "Gust", "SIGNALS",
+           "make_signal"]
 
 
 @dataclasses.dataclass(frozen=True)
