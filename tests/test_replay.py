@@ -152,12 +152,13 @@ def _rows(path):
     (lambda h, r: (h.replace("psi_hat [rad]", "psi [rad]"), r),
      "without column(s) `psi_hat [rad]`"),
     (lambda h, r: (h, r[:40] + [r[40].replace(r[40].split(",")[5], "nan", 1)] + r[41:]),
-     "column `psi_hat [rad]` row 42 is not a finite number"),
+     "column `psi_hat [rad]` row 42 is not a finite number (nan)"),
     (lambda h, r: (h, r[:30] + [r[31], r[30]] + r[32:]),
      "column `t [s]` row 33 does not increase (1.55 then 1.5)"),
     (lambda h, r: (h, [",".join(c if k != 8 else repr(math.degrees(float(c)))
                                 for k, c in enumerate(x.split(","))) for x in r]),
-     "column `delta_rudder [rad]` row"),
+     "column `delta_rudder [rad]` row 24 is 1.58 rad (more than 90°) with angles in radians: "
+     "are they degrees? (this file's format is in radians)"),
     (lambda h, r: (h, r[:600]), "a turning circle needs 180 deg (shorter than the manoeuvre"),
 ])
 def test_bad_records_exit_2_with_one_line(tmp_path, turn_csv, edit, message):

@@ -122,7 +122,7 @@ def _check_column(source: str, name: str, values: np.ndarray, first_row: int) ->
     if np.any(bad):
         i = int(np.flatnonzero(bad)[0])
         raise ParameterError(f"{source}: column `{name}` row {first_row + i} is not a finite "
-                             f"number ({values[i]!r})", field=name)
+                             f"number ({float(values[i])!r})", field=name)
 
 
 def record_from_arrays(name: str, time: Any, rudder_angle: Any, heading: Any = None,
@@ -245,8 +245,10 @@ def _read_csv(path: Path, angles: str, columns: dict[str, str] | None
 
     cols = read_turn_log(path)
     known = None if columns is not None else _known_format(path, list(cols))
+    hint = "drop --angles rad"
     if known is not None:
         columns, angles = known
+        hint = "this file's format is in radians"
     names = {"rudder_angle": "rudder_angle"}
     if columns is not None:
         cols = _mapped(path, cols, columns)
@@ -267,7 +269,7 @@ def _read_csv(path: Path, angles: str, columns: dict[str, str] | None
         raise ParameterError(
             f"{path}: column `{names['rudder_angle']}` row {row} is "
             f"{cols['rudder_angle'][row - 2]:.4g} rad (more than 90°) with angles in radians: "
-            "are they degrees? (drop --angles rad)", field="rudder_angle")
+            f"are they degrees? ({hint})", field="rudder_angle")
     channels = {k: cols[k] for k in _OPTIONAL if k in cols}
     return record_from_arrays(str(path), cols["time"], cols["rudder_angle"],
                               cols.get("heading"), cols.get("yaw_rate"), first_row=2,
