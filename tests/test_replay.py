@@ -159,7 +159,8 @@ def _rows(path):
                                 for k, c in enumerate(x.split(","))) for x in r]),
      "column `delta_rudder [rad]` row 24 is 1.58 rad (more than 90°) with angles in radians: "
      "are they degrees? (this file's format is in radians)"),
-    (lambda h, r: (h, r[:600]), "a turning circle needs 180 deg (shorter than the manoeuvre"),
+    (lambda h, r: (h, r[:600]), "column `psi_hat [rad]` row 601: the record ends at a heading "
+     "change of 93.08 deg; a turning circle needs 180 deg (shorter than the manoeuvre needs)"),
 ])
 def test_bad_records_exit_2_with_one_line(tmp_path, turn_csv, edit, message):
     header, *rows = _rows(turn_csv)
@@ -264,7 +265,7 @@ def test_measured_wind_is_replayed(tmp_path):
             for k, r in enumerate(rows)]
     path.write_text("\n".join([header, *rows]) + "\n")
     line = one_error(["replay", str(path), "--ship", SHIP, "--wind", "measured"])
-    assert "column `true_wind_speed` row 11 is -1.0 [m/s] (< 0)" in line, line
+    assert "column `wind_velo_true [m/s]` row 11 is -1.0 [m/s] (< 0)" in line, line
 
 
 def test_a_turn_that_ends_with_the_rudder_eased_counts_until_then(tmp_path, turn_csv):
@@ -288,3 +289,14 @@ def test_a_turn_that_ends_with_the_rudder_eased_counts_until_then(tmp_path, turn
     assert res.metrics["speed_loss"][0] == pytest.approx(expected, rel=1e-12)
     assert res.metrics["speed_loss"][0] != pytest.approx(held.metrics["speed_loss"][0],
                                                           rel=1e-6)
+
+
+def test_a_zigzag_cut_before_its_third_execute_is_too_short(tmp_path, zigzag_csv):
+    path, _ = zigzag_csv
+    header, *rows = _rows(path)
+    short = tmp_path / "short.csv"
+    short.write_text("\n".join([header, *rows[:700]]) + "\n")  # 35 s: past the 2nd execute
+    line = one_error(["replay", str(short), "--ship", SHIP, "--kind", "zigzag",
+                      "--check-angle", "20"])
+    assert ("column `psi_hat [rad]` row 701: the record ends before the zig-zag's third "
+            "execute (shorter than the manoeuvre needs)") in line, line

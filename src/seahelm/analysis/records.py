@@ -93,7 +93,10 @@ class ManoeuvreRecord:
         r [rad/s].
     channels : dict of str to ndarray
         The optional channels that were logged (surge_speed, sway_speed, x, y,
-        propeller_rps).
+        propeller_rps, true_wind_speed, true_wind_direction).
+    columns : dict of str to str
+        Channel -> the file's own column name, where it differs (a mapped or known-format CSV
+        header), for messages.
     """
 
     name: str
@@ -102,6 +105,11 @@ class ManoeuvreRecord:
     heading: np.ndarray | None = None
     yaw_rate: np.ndarray | None = None
     channels: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
+    columns: dict[str, str] = dataclasses.field(default_factory=dict)
+
+    def column(self, channel: str) -> str:
+        """The file's name of a channel's column (the channel's own name if not mapped)."""
+        return self.columns.get(channel, channel)
 
     @property
     def duration(self) -> float:
@@ -271,9 +279,13 @@ def _read_csv(path: Path, angles: str, columns: dict[str, str] | None
             f"{cols['rudder_angle'][row - 2]:.4g} rad (more than 90°) with angles in radians: "
             f"are they degrees? ({hint})", field="rudder_angle")
     channels = {k: cols[k] for k in _OPTIONAL if k in cols}
-    return record_from_arrays(str(path), cols["time"], cols["rudder_angle"],
-                              cols.get("heading"), cols.get("yaw_rate"), first_row=2,
-                              **channels)
+    parts = record_from_arrays(str(path), cols["time"], cols["rudder_angle"],
+                               cols.get("heading"), cols.get("yaw_rate"), first_row=2,
+                               **channels)
+    if columns is None:
+        return parts
+    renamed = {c: h for h, c in columns.items() if c != h}
+    return [dataclasses.replace(p, columns=renamed) for p in parts]
 
 
 def _read_netcdf(path: Path) -> list[ManoeuvreRecord]:

@@ -433,7 +433,8 @@ def _measured_wind(record: ManoeuvreRecord, ship: Any, load_model: str
     speed = record.channels["true_wind_speed"]
     if np.any(speed < 0):
         row = int(np.flatnonzero(speed < 0)[0]) + 2
-        raise ParameterError(f"{record.name}: column `true_wind_speed` row {row} is "
+        raise ParameterError(f"{record.name}: column `{record.column('true_wind_speed')}` "
+                             f"row {row} is "
                              f"{float(speed[row - 2])!r} [m/s] (< 0)", field="true_wind_speed")
     theta = record.channels["true_wind_direction"]
     c, s = float(np.mean(np.cos(theta))), float(np.mean(np.sin(theta)))
@@ -483,10 +484,12 @@ def _check_long_enough(record: ManoeuvreRecord, kind: str, metrics: dict[str, fl
     if kind == "turning" and not math.isfinite(metrics["tactical_diameter"]):
         change = float(np.max(np.abs(record.heading - record.heading[0])))
         raise ParameterError(
-            f"{record.name}: column `heading` row {last}: the record ends at a heading change "
+            f"{record.name}: column `{record.column('heading')}` row {last}: the record ends "
+            "at a heading change "
             f"of {math.degrees(change):.4g} deg; a turning circle needs 180 deg (shorter than "
             "the manoeuvre needs)", field="heading")
     if kind == "zigzag" and not math.isfinite(metrics["execute_time_3"]):
         raise ParameterError(
-            f"{record.name}: column `heading` row {last}: the record ends before the zig-zag's "
-            "third execute (shorter than the manoeuvre needs)", field="heading")
+            f"{record.name}: column `{record.column('heading')}` row {last}: the record ends "
+            "before the zig-zag's third execute (shorter than the manoeuvre needs)",
+            field="heading")
