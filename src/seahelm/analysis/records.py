@@ -20,6 +20,14 @@ with its own initial state). NaN in a column, a time that does not increase, a m
 a rudder that does not move (no rudder activity: nothing to identify), a record shorter than
 10 samples: :class:`~seahelm.errors.ParameterError` naming the file, the column and the row.
 The heading is unwrapped (continuous through ±180°).
+
+Other headers are read through a **column mapping** (``columns={"t [s]": "time", ...}``,
+header -> channel). A file whose header holds every column of a known format in
+:data:`RECORD_FORMATS` is read with that format's mapping and angle units without being told:
+the free-running model tests of the Esso Osaka (the ``FRT-DS-ESSO`` data set of Osaka
+University, Wakita et al. 2022, Miyauchi et al. 2022: ``t [s]``, ``x_position_mid [m]``,
+``u_velo [m/s]``, ..., ``delta_rudder [rad]``, angles in radians) are read as they are. A
+header that holds most of a format's columns but not all is an error naming the missing ones.
 """
 
 from __future__ import annotations
@@ -35,7 +43,7 @@ import numpy as np
 from ..errors import ParameterError
 
 __all__ = ["ManoeuvreRecord", "read_records", "record_from_arrays", "GAP_FACTOR",
-           "MIN_RUDDER_ACTIVITY"]
+           "MIN_RUDDER_ACTIVITY", "RECORD_FORMATS"]
 
 #: An interval longer than this many times the median sampling interval is a gap.
 GAP_FACTOR = 5.0
@@ -47,8 +55,22 @@ MIN_RUDDER_ACTIVITY = math.radians(0.1)
 #: The fewest samples of a record (each part after splitting at gaps).
 MIN_SAMPLES = 10
 
-_OPTIONAL = ("surge_speed", "sway_speed", "x", "y", "propeller_rps")
-_ANGLES = ("rudder_angle", "heading")
+_OPTIONAL = ("surge_speed", "sway_speed", "x", "y", "propeller_rps", "true_wind_speed",
+             "true_wind_direction")
+_ANGLES = ("rudder_angle", "heading", "true_wind_direction")
+
+#: Known CSV record formats: name -> (header -> channel, angle units). ``FRT-DS-ESSO``: the
+#: columns of the free-running tests of the Esso Osaka 3 m model (Osaka University, data set
+#: ``NAOE-5thLab/FRT-DS-ESSO``; midship position and velocities, 10 Hz); its relative-wind
+#: columns are not read. The true wind direction is the direction it comes from [rad].
+RECORD_FORMATS: dict[str, tuple[dict[str, str], str]] = {
+    "FRT-DS-ESSO": ({
+        "t [s]": "time", "x_position_mid [m]": "x", "u_velo [m/s]": "surge_speed",
+        "y_position_mid [m]": "y", "vm_velo [m/s]": "sway_speed", "psi_hat [rad]": "heading",
+        "r_angvelo [rad/s]": "yaw_rate", "n_prop [rps]": "propeller_rps",
+        "delta_rudder [rad]": "rudder_angle", "wind_velo_true [m/s]": "true_wind_speed",
+        "wind_dir_true [rad]": "true_wind_direction"}, "rad"),
+}
 _RATES = ("yaw_rate",)
 
 
@@ -71,7 +93,10 @@ class ManoeuvreRecord:
         r [rad/s].
     channels : dict of str to ndarray
         The optional channels that were logged (surge_speed, sway_speed, x, y,
-        propeller_rps).
+        propeller_rps, true_wind_speed, true_wind_direction).
+    columns : dict of str to str
+        Channel -> the file's own column name, where it differs (a mapped or known-format CSV
+        header), for messages.
     """
 
     name: str
@@ -80,6 +105,11 @@ class ManoeuvreRecord:
     heading: np.ndarray | None = None
     yaw_rate: np.ndarray | None = None
     channels: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
+    columns: dict[str, str] = dataclasses.field(default_factory=dict)
+
+    def column(self, channel: str) -> str:
+        """The file's name of a channel's column (the channel's own name if not mapped)."""
+        return self.columns.get(channel, channel)
 
     @property
     def duration(self) -> float:
@@ -109,7 +139,7 @@ def _check_column(source: str, name: str, values: np.ndarray, first_row: int) ->
     if np.any(bad):
         i = int(np.flatnonzero(bad)[0])
         raise ParameterError(f"{source}: column `{name}` row {first_row + i} is not a finite "
-                             f"number ({values[i]!r})", field=name)
+                             f"number ({float(values[i])!r})", field=name)
     limit, unit = COLUMN_LIMITS.get(name, (math.inf, ""))
     big = np.abs(values) > limit
     if np.any(big):
@@ -197,10 +227,57 @@ def record_from_arrays(name: str, time: Any, rudder_angle: Any, heading: Any = N
     return parts
 
 
-def _read_csv(path: Path, angles: str) -> list[ManoeuvreRecord]:
+def _known_format(path: Path, header: list[str]) -> tuple[dict[str, str], str] | None:
+    """The mapping and angle units of the known format the header is (None if none)."""
+    for name, (mapping, angles) in RECORD_FORMATS.items():
+        present = [h for h in mapping if h in header]
+        if len(present) == len(mapping):
+            return mapping, angles
+        if 2 * len(present) > len(mapping):
+            missing = [h for h in mapping if h not in header]
+            raise ParameterError(f"{path}: a {name} record without column(s) "
+                                 f"{', '.join(f'`{m}`' for m in missing)} (row 1, the header)",
+                                 field=mapping[missing[0]])
+    return None
+
+
+def _mapped(path: Path, cols: dict[str, np.ndarray], mapping: dict[str, str],
+            first_row: int = 2) -> dict[str, np.ndarray]:
+    """The mapped columns by channel, checked under their own header names (NaN, a time
+    that does not increase: the file's column and row)."""
+    out = {}
+    for header, channel in mapping.items():
+        if header not in cols:
+            raise ParameterError(f"{path}: no column `{header}` (mapped to {channel}; columns: "
+                                 f"{', '.join(cols)})", field=channel)
+        _check_column(str(path), header, cols[header], first_row)
+        out[channel] = cols[header]
+    if "time" in out:
+        step = np.diff(out["time"])
+        if np.any(step <= 0):
+            i = int(np.flatnonzero(step <= 0)[0]) + 1
+            header = next(h for h, c in mapping.items() if c == "time")
+            raise ParameterError(f"{path}: column `{header}` row {i + first_row} does not increase "
+                                 f"({float(out['time'][i - 1])!r} then "
+                                 f"{float(out['time'][i])!r})",
+                                 field="time")
+    return out
+
+
+def _read_csv(path: Path, angles: str, columns: dict[str, str] | None
+              ) -> list[ManoeuvreRecord]:
     from ..identification.turn_log import read_turn_log_lines
 
     cols, first_row = read_turn_log_lines(path)
+    known = None if columns is not None else _known_format(path, list(cols))
+    hint = "drop --angles rad"
+    if known is not None:
+        columns, angles = known
+        hint = "this file's format is in radians"
+    names = {"rudder_angle": "rudder_angle"}
+    if columns is not None:
+        cols = _mapped(path, cols, columns, first_row)
+        names.update({c: h for h, c in columns.items()})
     for required in ("time", "rudder_angle"):
         if required not in cols:
             raise ParameterError(f"{path}: missing column `{required}` (columns: "
@@ -214,21 +291,25 @@ def _read_csv(path: Path, angles: str) -> list[ManoeuvreRecord]:
         if key in cols:
             cols[key] = cols[key] * scale
     if angles == "rad" and np.nanmax(np.abs(cols["rudder_angle"])) > math.pi / 2:
+        row = int(np.flatnonzero(np.abs(cols["rudder_angle"]) > math.pi / 2)[0]) + first_row
         raise ParameterError(
-            f"{path}: column `rudder_angle` reaches {np.nanmax(np.abs(cols['rudder_angle'])):.4g}"
-            " rad (more than 90°) with angles in radians: are they degrees? (drop --angles rad)",
-            field="rudder_angle")
+            f"{path}: column `{names['rudder_angle']}` row {row} is "
+            f"{cols['rudder_angle'][row - first_row]:.4g} rad (more than 90°) with angles in radians: "
+            f"are they degrees? ({hint})", field="rudder_angle")
     channels = {k: cols[k] for k in _OPTIONAL if k in cols}
-    records = record_from_arrays(str(path), cols["time"], cols["rudder_angle"],
-                                 cols.get("heading"), cols.get("yaw_rate"), first_row=first_row,
-                                 **channels)
+    parts = record_from_arrays(str(path), cols["time"], cols["rudder_angle"],
+                               cols.get("heading"), cols.get("yaw_rate"), first_row=first_row,
+                               **channels)
     if angles == "deg" and 0.0 < widest <= math.pi / 2:  # (a valid record, in radians?)
         import warnings
 
         warnings.warn(f"{path}: column `rudder_angle` stays within ±{widest:.4g} read as "
                       f"degrees (a manoeuvre's rudder is some 10-35°): are they radians? "
                       "(give --angles rad)", UserWarning, stacklevel=3)
-    return records
+    if columns is None:
+        return parts
+    renamed = {c: h for h, c in columns.items() if c != h}
+    return [dataclasses.replace(p, columns=renamed) for p in parts]
 
 
 def _read_netcdf(path: Path) -> list[ManoeuvreRecord]:
@@ -259,8 +340,8 @@ def _read_netcdf(path: Path) -> list[ManoeuvreRecord]:
     return out
 
 
-def read_records(paths: Any, *, angles: Literal["deg", "rad"] = "deg"
-                 ) -> list[ManoeuvreRecord]:
+def read_records(paths: Any, *, angles: Literal["deg", "rad"] = "deg",
+                 columns: dict[str, str] | None = None) -> list[ManoeuvreRecord]:
     """Records from CSV and NetCDF files (module docstring), split at gaps.
 
     Parameters
@@ -268,7 +349,12 @@ def read_records(paths: Any, *, angles: Literal["deg", "rad"] = "deg"
     paths : path-like or sequence of path-like
         CSV files (``*.csv``) and seahelm NetCDF result files (``*.nc``).
     angles : {"deg", "rad"}
-        Units of the CSV files' angles and angular rates (NetCDF files are always SI).
+        Units of the CSV files' angles and angular rates (NetCDF files are always SI; a file of
+        a known format, :data:`RECORD_FORMATS`, in that format's units).
+    columns : dict of str to str, optional
+        CSV header -> channel (``time``, ``rudder_angle``, ``heading``, ``yaw_rate`` and the
+        optional channels); only the mapped columns are read (default: the header names are
+        the channels, or a known format's mapping).
 
     Returns
     -------
@@ -292,7 +378,7 @@ def read_records(paths: Any, *, angles: Literal["deg", "rad"] = "deg"
         if path.suffix.lower() in (".nc", ".nc4", ".h5", ".netcdf"):
             out += _read_netcdf(path)
         else:
-            out += _read_csv(path, angles)
+            out += _read_csv(path, angles, columns)
     if not out:
         raise ParameterError("no records (every run of the files diverged)")
     return out

@@ -76,7 +76,8 @@ for _module in ("seahelm.cli.stopping",):
 _COMMANDS = (("imo", "seahelm.cli.imo", "imo"), ("inspect", "seahelm.cli.inspect", "inspect"),
              ("report", "seahelm.cli.report", "report"), ("sweep", "seahelm.cli.sweep", "sweep"),
              ("linearize", "seahelm.cli.linearize", "linearize"),
-             ("seakeeping", "seahelm.cli.seakeeping", "seakeeping"))
+             ("seakeeping", "seahelm.cli.seakeeping", "seakeeping"),
+             ("replay", "seahelm.cli.replay", "replay"))
 for _name, _module, _attr in _COMMANDS:
     try:
         _sub = importlib.import_module(_module)

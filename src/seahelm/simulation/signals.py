@@ -6,6 +6,7 @@ from a number or a table (as written in scenario files) through the registry :da
     20.0                                                  constant
     {kind = "step", time = 10.0, before = 0.0, after = 1.0}
     {kind = "steps", times = [0, 300, 600], values = [5, 10, 15]}   piecewise constant
+    {kind = "samples", times = [0, 0.1, 0.2], values = [0, 1, 3]}   piecewise linear
     {kind = "sine", amplitude = 0.0072, period = 250.0, offset = 0.0, phase = 0.0}
     {kind = "ramp", start_time = 0.0, end_time = 60.0, start = 0.0, end = 0.8}
     {kind = "sea", h3 = 3.0, gain = 0.01, quantity = "ordinate", seed = 7}   irregular sea
@@ -32,7 +33,8 @@ import numpy as np
 from .._validate import as_float_array, check_finite, check_positive, uniform_time_step
 from ..errors import ParameterError
 
-__all__ = ["Constant", "Step", "Steps", "Sine", "Ramp", "Sea", "Gust", "SIGNALS", "make_signal"]
+__all__ = ["Constant", "Step", "Steps", "Samples", "Sine", "Ramp", "Sea", "Gust", "SIGNALS",
+           "make_signal"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -76,6 +78,35 @@ class Steps:
     def __call__(self, t: Any) -> np.ndarray:
         idx = np.searchsorted(np.asarray(self.times), np.asarray(t), side="right") - 1
         return np.asarray(self.values, dtype=float)[np.clip(idx, 0, None)]
+
+
+@dataclasses.dataclass(frozen=True)
+class Samples:
+    """A sampled time series, linearly interpolated (first-order hold): ``values[i]`` at
+    ``times[i]`` [s], straight lines between samples, the first and last value held before and
+    after them. The measured inputs of a replayed record (:mod:`seahelm.analysis.replay`).
+    """
+
+    times: tuple[float, ...]
+    values: tuple[float, ...]
+
+    def __post_init__(self) -> None:
+        if len(self.times) != len(self.values) or not self.times:
+            raise ParameterError(
+                f"`times` and `values` must be non-empty and of equal length, got "
+                f"{len(self.times)} and {len(self.values)}"
+            )
+        if not (np.all(np.isfinite(self.times)) and np.all(np.isfinite(self.values))):
+            raise ParameterError("`times` and `values` must be finite numbers")
+        step = np.diff(self.times)
+        if np.any(step <= 0):
+            i = int(np.flatnonzero(step <= 0)[0]) + 1
+            raise ParameterError(f"`times` must increase [s], got {self.times[i - 1]!r} then "
+                                 f"{self.times[i]!r} at index {i}")
+
+    def __call__(self, t: Any) -> np.ndarray:
+        return np.interp(np.asarray(t, dtype=float), np.asarray(self.times, dtype=float),
+                         np.asarray(self.values, dtype=float))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -215,8 +246,9 @@ class Gust:
                                             spectrum=self.spectrum, height=self.height)
 
 
-SIGNALS: dict[str, type] = {"constant": Constant, "step": Step, "steps": Steps, "sine": Sine,
-                            "ramp": Ramp, "sea": Sea, "gust": Gust}
+SIGNALS: dict[str, type] = {"constant": Constant, "step": Step, "steps": Steps,
+                            "samples": Samples, "sine": Sine, "ramp": Ramp, "sea": Sea,
+                            "gust": Gust}
 """Registry of signal kinds by name."""
 
 _SCALED = {"value", "before", "after", "values", "amplitude", "offset", "start", "end",
