@@ -171,6 +171,11 @@ def _held(rudder: np.ndarray, k0: int) -> tuple[np.ndarray, np.ndarray]:
 def classify(record: ManoeuvreRecord) -> tuple[str, float | None]:
     """The kind of manoeuvre a record is, read from its rudder (module docstring).
 
+    Parameters
+    ----------
+    record : ManoeuvreRecord
+        The record (its rudder angle [rad] and time [s]).
+
     Returns
     -------
     kind : str

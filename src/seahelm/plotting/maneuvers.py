@@ -351,6 +351,37 @@ def plot_pullout(result: Any, *, ax: Any = None) -> Any:
     return ax
 
 
+
+def track_and_series_axes(fig: Any, figsize: tuple[float, float], series_width: float
+                          ) -> tuple[Any, Any, list[Any]]:
+    """A figure with the track on the left (all rows) and three time series on the right
+    sharing their time axis (the stopping and replay figures).
+
+    Parameters
+    ----------
+    fig : matplotlib Figure or None
+        Figure to draw into (None: a new one of ``figsize``, constrained layout).
+    figsize : (float, float)
+        Size of a new figure [in].
+    series_width : float
+        Width of the series column relative to the track's.
+
+    Returns
+    -------
+    (Figure, Axes, list of Axes)
+        The figure, the track's axes and the three series' axes, top to bottom.
+    """
+    if fig is None:
+        import matplotlib.pyplot as plt
+
+        fig = plt.figure(figsize=figsize, layout="constrained")
+    grid = fig.add_gridspec(3, 2, width_ratios=(1.0, series_width))
+    track = fig.add_subplot(grid[:, 0])
+    series = [fig.add_subplot(grid[i, 1]) for i in range(3)]
+    for ax in series[1:]:
+        ax.sharex(series[0])
+    return fig, track, series
+
 def plot_stopping(result: Any, *, fig: Any = None) -> Any:
     """Stopping tests: tracks (left) and surge speed, propeller rps, engine order (right).
 
@@ -370,15 +401,7 @@ def plot_stopping(result: Any, *, fig: Any = None) -> Any:
     -------
     matplotlib Figure
     """
-    if fig is None:
-        import matplotlib.pyplot as plt
-
-        fig = plt.figure(figsize=(12.0, 7.0), layout="constrained")
-    grid = fig.add_gridspec(3, 2, width_ratios=(1.0, 1.4))
-    track = fig.add_subplot(grid[:, 0])
-    series = [fig.add_subplot(grid[i, 1]) for i in range(3)]
-    for ax in series[1:]:
-        ax.sharex(series[0])
+    fig, track, series = track_and_series_axes(fig, (12.0, 7.0), 1.4)
     dead = result.metrics["time_dead"].values
     shown = 1.5 * float(np.nanmax(dead)) if np.isfinite(dead).any() else math.inf
     groups = drawn_groups(result, "track_reach")

@@ -24,15 +24,9 @@ def plot_replay(result: Any, *, fig: Any = None) -> Any:
     -------
     matplotlib Figure
     """
-    if fig is None:
-        import matplotlib.pyplot as plt
+    from .maneuvers import track_and_series_axes
 
-        fig = plt.figure(figsize=(12.0, 7.5), layout="constrained")
-    grid = fig.add_gridspec(3, 2, width_ratios=(1.0, 1.3))
-    track = fig.add_subplot(grid[:, 0])
-    series = [fig.add_subplot(grid[i, 1]) for i in range(3)]
-    for ax in series[1:]:
-        ax.sharex(series[0])
+    fig, track, series = track_and_series_axes(fig, (12.0, 7.5), 1.3)
     t = result.time - result.time[0]
     m, s = result.measured, result.simulated
     sim = f"simulated ({result.ship})"

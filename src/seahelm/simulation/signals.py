@@ -59,6 +59,24 @@ class Step:
         return np.where(np.asarray(t) < self.time, self.before, self.after).astype(float)
 
 
+def _check_times_values(times: tuple[float, ...], values: tuple[float, ...], *,
+                        finite: bool) -> None:
+    """A time series' ``times`` and ``values``: non-empty, of one length, times increasing
+    (and every number finite, for an interpolated series)."""
+    if len(times) != len(values) or not times:
+        raise ParameterError(
+            f"`times` and `values` must be non-empty and of equal length, got "
+            f"{len(times)} and {len(values)}"
+        )
+    if finite and not (np.all(np.isfinite(times)) and np.all(np.isfinite(values))):
+        raise ParameterError("`times` and `values` must be finite numbers")
+    step = np.diff(times)
+    if np.any(step <= 0):
+        i = int(np.flatnonzero(step <= 0)[0]) + 1
+        raise ParameterError(f"`times` must increase [s], got {times[i - 1]!r} then "
+                             f"{times[i]!r} at index {i}")
+
+
 @dataclasses.dataclass(frozen=True)
 class Steps:
     """Piecewise constant: ``values[i]`` from ``times[i]`` [s] on (``values[0]`` before)."""
@@ -67,13 +85,7 @@ class Steps:
     values: tuple[float, ...]
 
     def __post_init__(self) -> None:
-        if len(self.times) != len(self.values) or not self.times:
-            raise ParameterError(
-                f"`times` and `values` must be non-empty and of equal length, got "
-                f"{len(self.times)} and {len(self.values)}"
-            )
-        if np.any(np.diff(self.times) <= 0):
-            raise ParameterError(f"`times` must increase [s], got {list(self.times)}")
+        _check_times_values(self.times, self.values, finite=False)
 
     def __call__(self, t: Any) -> np.ndarray:
         idx = np.searchsorted(np.asarray(self.times), np.asarray(t), side="right") - 1
@@ -91,18 +103,7 @@ class Samples:
     values: tuple[float, ...]
 
     def __post_init__(self) -> None:
-        if len(self.times) != len(self.values) or not self.times:
-            raise ParameterError(
-                f"`times` and `values` must be non-empty and of equal length, got "
-                f"{len(self.times)} and {len(self.values)}"
-            )
-        if not (np.all(np.isfinite(self.times)) and np.all(np.isfinite(self.values))):
-            raise ParameterError("`times` and `values` must be finite numbers")
-        step = np.diff(self.times)
-        if np.any(step <= 0):
-            i = int(np.flatnonzero(step <= 0)[0]) + 1
-            raise ParameterError(f"`times` must increase [s], got {self.times[i - 1]!r} then "
-                                 f"{self.times[i]!r} at index {i}")
+        _check_times_values(self.times, self.values, finite=True)
 
     def __call__(self, t: Any) -> np.ndarray:
         return np.interp(np.asarray(t, dtype=float), np.asarray(self.times, dtype=float),
