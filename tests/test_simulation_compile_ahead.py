@@ -60,3 +60,22 @@ def test_an_exception_ends_the_second_process(tmp_path: Path,
     assert process is not None
     process.join(10)
     assert not process.is_alive()
+
+
+def test_the_compile_log_gets_each_compilation_once(tmp_path: Path,
+                                                    monkeypatch: pytest.MonkeyPatch) -> None:
+    """CompileAhead's own listener does not log: with the command's, every compilation was
+    listed twice."""
+    from seahelm._codegen import watch_compiles
+
+    log = tmp_path / "log.txt"
+    monkeypatch.setenv("SEAHELM_COMPILE_LOG", str(log))
+    monkeypatch.setattr("seahelm.simulation.compile_ahead._available_cores", lambda: 2)
+    stop = watch_compiles()
+    try:
+        with CompileAhead(_touch, str(tmp_path / "m")) as ahead:
+            numba.njit(lambda x: x * 13)(2)
+            ahead.wait()
+    finally:
+        stop()
+    assert len(log.read_text().splitlines()) == 1

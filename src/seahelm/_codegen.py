@@ -211,8 +211,9 @@ def watch_compiles(on_first: Any = None,
         shows a "compiling … (first use)" status with it).
     log : path, optional
         A file that gets one line per compiled function (``module.name (argument types)``)
-        when its compilation ends; ``SEAHELM_COMPILE_LOG`` names it when not given. A
-        repeated command must leave it empty: the test of the kernel cache reads it.
+        when its compilation ends; ``SEAHELM_COMPILE_LOG`` names it when not given (``""``:
+        none, whatever the environment says). A repeated command must leave it empty: the test
+        of the kernel cache reads it.
 
     Returns
     -------
@@ -221,7 +222,7 @@ def watch_compiles(on_first: Any = None,
     """
     from numba.core import event
 
-    log = log if log is not None else os.environ.get("SEAHELM_COMPILE_LOG") or None
+    log = os.environ.get("SEAHELM_COMPILE_LOG") or None if log is None else (log or None)
     if on_first is None and log is None:
         return lambda: None
 

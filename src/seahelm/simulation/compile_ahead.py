@@ -84,7 +84,8 @@ class CompileAhead:
         if os.environ.get("SEAHELM_COMPILE_AHEAD", "1") != "0" and _available_cores() > 1:
             from .._codegen import watch_compiles
 
-            self._stop_watching = watch_compiles(on_first=self._start)
+            # (log="": the command's own listener logs the compilations, once)
+            self._stop_watching = watch_compiles(on_first=self._start, log="")
         return self
 
     def wait(self, timeout: float = 900.0) -> None:
