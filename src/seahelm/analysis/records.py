@@ -245,8 +245,16 @@ def _mapped(path: Path, cols: dict[str, np.ndarray], mapping: dict[str, str],
             first_row: int = 2) -> dict[str, np.ndarray]:
     """The mapped columns by channel, checked under their own header names (NaN, a time
     that does not increase: the file's column and row)."""
+    known = ("time", "rudder_angle", "heading", "yaw_rate", *_OPTIONAL)
     out = {}
     for header, channel in mapping.items():
+        if channel not in known:
+            raise ParameterError(f"{path}: column `{header}` mapped to an unknown channel "
+                                 f"`{channel}`; valid: {', '.join(known)}", field="column")
+        if channel in out:
+            other = next(h for h, c in mapping.items() if c == channel)
+            raise ParameterError(f"{path}: columns `{other}` and `{header}` both mapped to "
+                                 f"`{channel}` (one column per channel)", field="column")
         if header not in cols:
             raise ParameterError(f"{path}: no column `{header}` (mapped to {channel}; columns: "
                                  f"{', '.join(cols)})", field=channel)

@@ -252,7 +252,8 @@ def manoeuvre_metrics(kind: str, time: np.ndarray, track: dict[str, np.ndarray],
                 "tactical_diameter": float(m.tactical_diameter[0]),
                 "steady_diameter": float(turning_diameter(north[k0:end], east[k0:end],
                                                           psi[k0:end])[0]),
-                "speed_loss": float(1.0 - speed[end - 1] / speed[k0])}
+                "speed_loss": (float(1.0 - speed[end - 1] / speed[k0]) if speed[k0] > 0
+                               else math.nan)}  # (no approach speed: not defined)
     if kind == "zigzag":
         if check_angle is None:
             raise ParameterError("a zig-zag needs its check angle [rad] (a record with a "
@@ -375,6 +376,13 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
         angle = float(check_angle)
     elif chosen == "zigzag" and angle is None:
         angle = classify(record)[1]
+    if check_angle is not None and chosen != "zigzag":
+        raise ParameterError(f"{record.name}: a check angle is a zig-zag's; this record is "
+                             f"{chosen!r} (drop it, or give kind 'zigzag')", field="check_angle")
+    if chosen == "zigzag" and angle is None:
+        raise ParameterError(f"{record.name}: the rudder does not switch between two sides "
+                             "at a constant angle, so the check angle cannot be read from the "
+                             "record; give it explicitly", field="check_angle")
     if closed_loop and chosen != "zigzag":
         raise ParameterError(f"{record.name}: a closed-loop replay is for a zig-zag; this "
                              f"record is {chosen!r}", field="closed_loop")

@@ -55,6 +55,9 @@ def _columns(items: list[str] | None) -> dict[str, str] | None:
         header, sep, channel = item.rpartition("=")
         if not sep or not header.strip() or not channel.strip():
             raise ParameterError(f"`--column` must be HEADER=CHANNEL, got {item!r}")
+        if header.strip() in out:
+            raise ParameterError(f"`--column` maps header {header.strip()!r} twice "
+                                 f"({out[header.strip()]} and {channel.strip()})")
         out[header.strip()] = channel.strip()
     return out
 

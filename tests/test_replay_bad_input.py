@@ -1,0 +1,113 @@
+"""Bad input to ``seahelm replay`` found by this round's campaign (issue 43): each was an exit 2
+with a misleading line, an option silently dropped, or a numpy warning, before.
+
+The records are the synthetic FRT-DS-ESSO-header records of ``tests/test_replay.py``.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from seahelm.analysis.records import read_records
+from seahelm.analysis.replay import manoeuvre_metrics
+from seahelm.errors import ParameterError
+
+from conftest import one_error
+from test_replay import SHIP, _simulated_turn, _write
+
+
+@pytest.fixture(scope="module")
+def turn_csv(tmp_path_factory):
+    path = tmp_path_factory.mktemp("rec") / "turn.csv"
+    return _write(path, *_simulated_turn())
+
+
+def _lines(path):
+    header, *rows = path.read_text().splitlines()
+    return header, rows
+
+
+def test_a_header_without_data_rows_is_named(tmp_path, turn_csv):
+    # was: 'error: zero-size array to reduction operation fmax which has no identity'
+    header, _ = _lines(turn_csv)
+    bad = tmp_path / "header-only.csv"
+    bad.write_text(header + "\n")
+    line = one_error(["replay", str(bad), "--ship", SHIP])
+    assert line == f"error: {bad}: a header and no data rows (a record needs its samples)"
+
+
+def test_a_column_twice_in_the_header_is_named(tmp_path, turn_csv):
+    # was: "column `heading` has shape (6002,), time (3001,)" (the two columns read as one)
+    header, rows = _lines(turn_csv)
+    bad = tmp_path / "twice.csv"
+    bad.write_text("\n".join([header + ",psi_hat [rad]", *(r + ",0.0" for r in rows)]) + "\n")
+    line = one_error(["replay", str(bad), "--ship", SHIP])
+    assert line == (f"error: {bad}: column `psi_hat [rad]` appears twice in the header "
+                    "(columns 6 and 12; row 1)")
+
+
+def _generic(tmp_path, turn_csv):
+    header, rows = _lines(turn_csv)
+    names = ["time", "N", "U", "E", "V", "PSI", "R", "RPS", "DELTA", "W", "WD"]
+    other = tmp_path / "other.csv"
+    other.write_text("\n".join([",".join(names), *rows]) + "\n")
+    return other
+
+
+def test_a_column_mapped_to_an_unknown_channel_is_refused(tmp_path, turn_csv):
+    # was: the column dropped without a word ('a replay needs column(s) x')
+    other = _generic(tmp_path, turn_csv)
+    line = one_error(["replay", str(other), "--ship", SHIP, "--angles", "rad",
+                      "--column", "time=time", "--column", "DELTA=rudder_angle",
+                      "--column", "PSI=heading", "--column", "N=north"])
+    assert line.startswith(f"error: `--column` {other}: column `N` mapped to an unknown "
+                           "channel `north`; valid: time, rudder_angle, heading"), line
+
+
+def test_two_columns_mapped_to_one_channel_are_refused(tmp_path, turn_csv):
+    # was: the last one read, the first dropped without a word
+    other = _generic(tmp_path, turn_csv)
+    with pytest.raises(ParameterError, match="columns `PSI` and `R` both mapped to `heading`"):
+        read_records(other, angles="rad", columns={"time": "time", "DELTA": "rudder_angle",
+                                                   "PSI": "heading", "R": "heading"})
+
+
+def test_a_header_mapped_twice_is_refused(tmp_path, turn_csv):
+    # was: the second mapping replaced the first ('missing column `time`')
+    other = _generic(tmp_path, turn_csv)
+    line = one_error(["replay", str(other), "--ship", SHIP, "--angles", "rad",
+                      "--column", "time=time", "--column", "time=rudder_angle"])
+    assert line == "error: `--column` maps header 'time' twice (time and rudder_angle)"
+
+
+def test_a_check_angle_for_a_turn_is_refused(turn_csv):
+    # was: accepted, ignored, and shown in the title ('turning, check angle 10 deg')
+    line = one_error(["replay", str(turn_csv), "--ship", SHIP, "--check-angle", "10"])
+    assert line == (f"error: `--check-angle` {turn_csv}: a check angle is a zig-zag's; this "
+                    "record is 'turning' (drop it, or give kind 'zigzag')")
+
+
+def test_a_turn_replayed_as_a_zigzag_says_the_check_angle_is_not_in_the_record(turn_csv):
+    # was: 'a zig-zag needs its check angle [rad] (a record with a heading)' of a record that
+    # has a heading
+    line = one_error(["replay", str(turn_csv), "--ship", SHIP, "--kind", "zigzag"])
+    assert line == (f"error: `--check-angle` {turn_csv}: the rudder does not switch between "
+                    "two sides at a constant angle, so the check angle cannot be read from "
+                    "the record; give it explicitly")
+
+
+def test_a_turn_from_rest_has_no_speed_loss_and_no_warning():
+    # was: 'RuntimeWarning: invalid value encountered in scalar divide' on the terminal
+    t = np.linspace(0.0, 100.0, 1001)
+    rudder = np.where(t > 1.0, math.radians(35.0), 0.0)
+    psi = np.where(t > 1.0, 0.05 * (t - 1.0), 0.0)
+    track = {"north": 10.0 * np.sin(psi), "east": 10.0 * (1.0 - np.cos(psi)), "heading": psi,
+             "speed": np.zeros_like(t)}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        m = manoeuvre_metrics("turning", t, track, rudder)
+    assert math.isnan(m["speed_loss"])
