@@ -111,3 +111,27 @@ def test_a_turn_from_rest_has_no_speed_loss_and_no_warning():
         warnings.simplefilter("error")
         m = manoeuvre_metrics("turning", t, track, rudder)
     assert math.isnan(m["speed_loss"])
+
+
+def test_the_files_of_a_record_in_parts_are_checked_before_the_work(tmp_path, turn_csv):
+    # a file of two records writes replay-1.* and replay-2.*; a user's replay-1.nc was found
+    # only after the work, in the library's words ("`path` ... pass force=True"), and
+    # --force did not exist
+    header, rows = _lines(turn_csv)
+    later = [",".join([repr(float(r.split(",")[0]) + 1000.0), *r.split(",")[1:]]) for r in rows]
+    two = tmp_path / "two.csv"
+    two.write_text("\n".join([header, *rows, *later]) + "\n")
+    out = tmp_path / "out"
+    out.mkdir()
+    mine = out / "replay-1.nc"
+    mine.write_text("a user's file\n")
+    line = one_error(["replay", str(two), "--ship", SHIP, "--out", str(out)])
+    assert line == (f"error: `--out` {mine} exists (a file seahelm did not write); this writes "
+                    "a NetCDF file there: pass --force to replace it, or choose another path")
+    assert mine.read_text() == "a user's file\n"
+    from test_replay import run_cli
+
+    res = run_cli(["replay", str(two), "--ship", SHIP, "--out", str(out), "--force"])
+    assert res.exit_code == 0, res.stderr
+    assert sorted(p.name for p in out.iterdir()) == ["replay-1.nc", "replay-1.png",
+                                                     "replay-2.nc", "replay-2.png"]
