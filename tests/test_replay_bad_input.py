@@ -135,3 +135,23 @@ def test_the_files_of_a_record_in_parts_are_checked_before_the_work(tmp_path, tu
     assert res.exit_code == 0, res.stderr
     assert sorted(p.name for p in out.iterdir()) == ["replay-1.nc", "replay-1.png",
                                                      "replay-2.nc", "replay-2.png"]
+
+
+def test_too_much_work_is_said_in_the_replays_words(turn_csv, monkeypatch):
+    # was: "`t_final`: 1 run(s) x 3e+03 steps ... a shorter `t_final`, a larger `--dt` or
+    # fewer runs" (replay has no t_final: the record's duration is the run's)
+    monkeypatch.setenv("SEAHELM_WORK_BUDGET", "5")
+    line = one_error(["replay", str(turn_csv), "--ship", SHIP])
+    assert line.startswith(f"error: `--dt` = 0.05 s: the replay of {turn_csv} (150 s) takes "
+                           "3,000 steps: 1 run(s) x 3e+03 steps"), line
+    assert line.endswith("a larger step (the record's interval is 0.05 s) (or set "
+                         "SEAHELM_WORK_BUDGET=1e+04 to run it anyway)"), line
+    assert "t_final" not in line
+
+
+def test_a_recording_too_large_names_the_step(turn_csv):
+    # was: "`record_every`: the recorded time series would need 312 GB ..." (no such option)
+    line = one_error(["replay", str(turn_csv), "--ship", SHIP, "--dt", "1e-7"])
+    assert line.startswith(f"error: `--dt` = 1e-07 s: the replay of {turn_csv} (150 s) takes "
+                           "1,500,000,000 steps: it would record 312 GB"), line
+    assert "record_every" not in line

@@ -402,7 +402,7 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
         reference = {k: Samples(tuple((t - t0).tolist()), tuple(v.tolist()))
                      for k, v in inputs.items()}
         problem = Problem(actuator="direct", reference=reference, **timing)
-    result = simulate(problem)
+    result = _simulate(simulate, problem, record, step, n_steps)
     status = result.messages()[0]
     if status != "ok":
         raise ParameterError(f"{record.name}: the replay with ship {found.name} failed: "
@@ -426,6 +426,25 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
         rms_error_window=_rms(t, measured, simulated, found.length, RMS_WINDOW),
         rms_error=_rms(t, measured, simulated, found.length, math.inf),
         length=found.length, dt=step, check_angle=angle, closed_loop=closed_loop, wind=air)
+
+
+def _simulate(simulate: Any, problem: Any, record: ManoeuvreRecord, step: float,
+              n_steps: int) -> Any:
+    """``simulate(problem)``; too much work or recording said in the replay's words (the
+    step, the record's duration), not the engine's (``t_final``, ``record_every``)."""
+    from ..resources import WorkTooLarge
+    from ..simulation.engine import RecordingTooLarge
+
+    try:
+        return simulate(problem)
+    except WorkTooLarge as exc:
+        too_much, anyway = exc.over, f" {exc.anyway}" if exc.anyway else ""
+    except RecordingTooLarge as exc:
+        too_much, anyway = f"it would record {exc.size_text()}", ""
+    raise ParameterError(
+        f"= {step:g} s: the replay of {record.name} ({record.duration:.6g} s) takes "
+        f"{n_steps:,} steps: {too_much}; a larger step (the record's interval is "
+        f"{record.median_interval:.3g} s){anyway}", field="dt", unit="s", value=step)
 
 
 def _measured_wind(record: ManoeuvreRecord, ship: Any, load_model: str
