@@ -108,7 +108,17 @@ class ManoeuvreRecord:
     columns: dict[str, str] = dataclasses.field(default_factory=dict)
 
     def column(self, channel: str) -> str:
-        """The file's name of a channel's column (the channel's own name if not mapped)."""
+        """The file's name of a channel's column (the channel's own name if not mapped).
+
+        Parameters
+        ----------
+        channel : str
+            A channel (``heading``, ``true_wind_speed``, ...).
+
+        Returns
+        -------
+        str
+        """
         return self.columns.get(channel, channel)
 
     @property

@@ -171,6 +171,11 @@ def _held(rudder: np.ndarray, k0: int) -> tuple[np.ndarray, np.ndarray]:
 def classify(record: ManoeuvreRecord) -> tuple[str, float | None]:
     """The kind of manoeuvre a record is, read from its rudder (module docstring).
 
+    Parameters
+    ----------
+    record : ManoeuvreRecord
+        The measured record (its rudder angle and heading are read).
+
     Returns
     -------
     kind : str
