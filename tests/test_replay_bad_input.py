@@ -155,3 +155,17 @@ def test_a_recording_too_large_names_the_step(turn_csv):
     assert line.startswith(f"error: `--dt` = 1e-07 s: the replay of {turn_csv} (150 s) takes "
                            "1,500,000,000 steps: it would record 312 GB"), line
     assert "record_every" not in line
+
+
+def test_a_replay_result_shows_a_summary_not_its_arrays(turn_csv):
+    # was the dataclass's repr: 4.3 kB of the record's and both tracks' arrays
+    from seahelm.analysis.replay import replay
+
+    rec, = read_records(turn_csv)
+    text = repr(replay(rec, SHIP))
+    lines = text.splitlines()
+    assert lines[0] == f"ReplayResult: {turn_csv} with {SHIP}"
+    assert lines[1].split(None, 1) == ["kind", "turning (measured rudder; wind none)"]
+    assert lines[2].split(None, 1) == ["record", "3001 samples, t = 0 … 150 s; dt 0.05 s"]
+    assert lines[4].startswith("  metrics    advance, transfer, tactical_diameter")
+    assert len(lines) == 5 and "array(" not in text

@@ -127,6 +127,28 @@ class ReplayResult:
     closed_loop: bool = False
     wind: dict[str, Any] = dataclasses.field(default_factory=lambda: {"kind": "none"})
 
+    def _summary(self) -> tuple[str, list[tuple[str, object]]]:
+        how = "closed loop" if self.closed_loop else "measured rudder"
+        if self.check_angle is not None:
+            how += f", check angle {math.degrees(self.check_angle):.3g} deg"
+        return (f"ReplayResult: {self.record.name} with {self.ship}", [
+            ("kind", f"{self.kind} ({how}; wind {self.wind['kind']})"),
+            ("record", f"{len(self.time)} samples, t = {self.time[0]:.6g} … "
+                       f"{self.time[-1]:.6g} s; dt {self.dt:.3g} s"),
+            ("rms error", f"{self.rms_error_window:.4g} L (first {RMS_WINDOW:g} s), "
+                          f"{self.rms_error:.4g} L (whole record)"),
+            ("metrics", ", ".join(self.metrics) or "none")])
+
+    def __repr__(self) -> str:
+        from .._repr import summary_text
+
+        return summary_text(*self._summary())
+
+    def _repr_html_(self) -> str:
+        from .._repr import summary_html
+
+        return summary_html(*self._summary())
+
     def to_xarray(self) -> Any:
         """Both tracks as one :class:`xarray.Dataset` with a ``track`` dimension (measured,
         simulated) and the record's ``time``; the metrics and errors as attributes."""
