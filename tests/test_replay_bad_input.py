@@ -169,3 +169,18 @@ def test_a_replay_result_shows_a_summary_not_its_arrays(turn_csv):
     assert lines[2].split(None, 1) == ["record", "3001 samples, t = 0 … 150 s; dt 0.05 s"]
     assert lines[4].startswith("  metrics    advance, transfer, tactical_diameter")
     assert len(lines) == 5 and "array(" not in text
+
+
+def test_replays_own_netcdf_is_named_when_given_as_a_record(tmp_path, turn_csv):
+    # was: "not a seahelm simulation result ...; `seahelm plot` draws a result.nc ..." (said by
+    # replay and identify nomoto too, of seahelm replay's own output)
+    from test_replay import run_cli
+
+    out = tmp_path / "out"
+    assert run_cli(["replay", str(turn_csv), "--ship", SHIP, "--out", str(out)]).exit_code == 0
+    nc = out / "replay.nc"
+    for args in (["replay", str(nc), "--ship", SHIP], ["plot", str(nc)]):
+        assert one_error(args) == (
+            f"error: {nc}: a `seahelm replay` file (a measured and a simulated track, not runs) "
+            "(no `status` over runs and `time`); a simulation result is a result.nc of "
+            "`seahelm run --out` or a manoeuvre's *-runs.nc"), args
