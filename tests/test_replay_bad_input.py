@@ -184,3 +184,35 @@ def test_replays_own_netcdf_is_named_when_given_as_a_record(tmp_path, turn_csv):
             f"error: {nc}: a `seahelm replay` file (a measured and a simulated track, not runs) "
             "(no `status` over runs and `time`); a simulation result is a result.nc of "
             "`seahelm run --out` or a manoeuvre's *-runs.nc"), args
+
+
+@pytest.mark.parametrize("column, value, message", [
+    # was: "the replay with ship kvlcc2-l7 failed: diverged: non-finite state", blaming --ship
+    (9, "1e300", "column `wind_velo_true [m/s]` row 42 is 1e+300 m/s, beyond ±150 m/s"),
+    # was: exit 0, a wind from the direction of cos/sin(1e300)
+    (10, "1e300", "column `true_wind_direction` row 42 is 1e+300 rad, beyond ±6283.19 rad"),
+    # was: "column `x` row 42" in a file whose column is x_position_mid [m]
+    (1, "1e300", "column `x_position_mid [m]` row 42 is 1e+300 m, beyond ±1e+08 m"),
+])
+def test_a_damaged_value_is_named_under_its_column(tmp_path, turn_csv, column, value, message):
+    header, rows = _lines(turn_csv)
+    cells = rows[40].split(",")
+    cells[column] = value
+    bad = tmp_path / "bad.csv"
+    bad.write_text("\n".join([header, *rows[:40], ",".join(cells), *rows[41:]]) + "\n")
+    line = one_error(["replay", str(bad), "--ship", SHIP, "--wind", "measured"])
+    assert message in line and str(bad) in line, line
+
+
+def test_angles_in_degrees_under_channel_names_are_limited_in_radians(tmp_path, turn_csv):
+    # a header named as its channel, mapped, in degrees: its 35 deg rudder is not a
+    # "1.5708 rad" limit's breach (the limits apply after --angles)
+    header, rows = _lines(turn_csv)
+    names = ["time", "x", "surge_speed", "y", "sway_speed", "heading", "yaw_rate",
+             "propeller_rps", "rudder_angle", "W", "WD"]
+    deg = [",".join(repr(math.degrees(float(c))) if k in (5, 6, 8) else c
+                    for k, c in enumerate(r.split(","))) for r in rows]
+    other = tmp_path / "deg.csv"
+    other.write_text("\n".join([",".join(names), *deg]) + "\n")
+    rec, = read_records(other, columns={n: n for n in names[:9]})
+    assert max(abs(rec.rudder_angle)) == pytest.approx(math.radians(35.0))
