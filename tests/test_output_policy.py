@@ -95,6 +95,16 @@ def _estimate(f: Files) -> list[str]:
             "--cb", "0.81", "--speed", "7.97"]
 
 
+def _replay_record(f: Files) -> Path:
+    """A 60 s turn of the KVLCC2 L7 model in the FRT-DS-ESSO header (tests/test_replay.py)."""
+    path = f.root / "turn.csv"
+    if not path.exists():
+        from test_replay import _simulated_turn, _write
+
+        _write(path, *_simulated_turn(t_final=60.0))
+    return path
+
+
 #: Every writing command and output option (test_every_writing_command_is_listed keeps it
 #: complete).
 CASES: dict[tuple[tuple[str, ...], str], Case] = {
@@ -145,6 +155,9 @@ CASES: dict[tuple[tuple[str, ...], str], Case] = {
     (("imo",), "--out"): Case(
         lambda f: ["imo", str(f.kv)], "--out", directory=("imo-report.json",),
         own_input=lambda f: f.kv),
+    (("replay",), "--out"): Case(
+        lambda f: ["replay", str(_replay_record(f)), "--ship", "kvlcc2-l7", "--kind", "none"],
+        "--out", directory=("replay.nc", "replay.png"), own_input=_replay_record, cheap=True),
     (("sweep",), "--store"): Case(
         lambda f: ["sweep", str(f.scenario)], "--store", own_input=lambda f: f.scenario,
         kind="store"),

@@ -213,7 +213,8 @@ def watch_compiles(on_first: Any = None,
         A file that gets one line per compiled function (``module.name (argument types)``)
         when its compilation ends; ``SEAHELM_COMPILE_LOG`` names it when not given (``""``:
         none, whatever the environment says). A repeated command must leave it empty: the test
-        of the kernel cache reads it.
+        of the kernel cache reads it. A log that cannot be appended to (a directory, a missing
+        folder) is said once in a ``UserWarning`` and the command goes on.
 
     Returns
     -------
@@ -222,6 +223,7 @@ def watch_compiles(on_first: Any = None,
     """
     from numba.core import event
 
+    source = "log" if log is not None else "SEAHELM_COMPILE_LOG"
     log = os.environ.get("SEAHELM_COMPILE_LOG") or None if log is None else (log or None)
     if on_first is None and log is None:
         return lambda: None
@@ -234,14 +236,24 @@ def watch_compiles(on_first: Any = None,
                 self.started = True
                 on_first()
 
+        failed = False
+
         def on_end(self, ev: Any) -> None:
-            if log is None:
+            if log is None or self.failed:
                 return
             data = ev.data or {}
             py = getattr(data.get("dispatcher"), "py_func", None)
             name = f"{getattr(py, '__module__', '?')}.{getattr(py, '__qualname__', '?')}"
-            with open(log, "a", encoding="utf-8") as fh:
-                fh.write(f"{name} {data.get('args', '')}\n")
+            try:
+                with open(log, "a", encoding="utf-8") as fh:
+                    fh.write(f"{name} {data.get('args', '')}\n")
+            except OSError as exc:  # (a log must not stop the command: said once)
+                import warnings
+
+                self.failed = True
+                warnings.warn(f"{source} = {os.fspath(log)!r} cannot be appended to "
+                              f"({exc.strerror or exc}); compilations are not logged",
+                              UserWarning, stacklevel=2)
 
     listener = _Listener()
     event.register("numba:compile", listener)

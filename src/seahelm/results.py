@@ -497,8 +497,11 @@ def load_result(path: str | os.PathLike[str]) -> "xr.Dataset":
     ds = open_result_file(path)
     if "status" not in ds or "time" not in ds.dims:
         kind = ds.attrs.get("maneuver")
-        what = f"a '{kind}' manoeuvre file" if kind else "not a seahelm simulation result"
-        raise ParameterError(f"{path}: {what} (no `status` over runs and `time`); `seahelm "
-                             "plot` draws a result.nc of `seahelm run --out` or a manoeuvre's "
-                             "*-runs.nc")
+        what = (f"a '{kind}' manoeuvre file" if kind else
+                "a `seahelm replay` file (a measured and a simulated track, not runs)"
+                if "track" in ds.dims and "record" in ds.attrs else
+                "not a seahelm simulation result")
+        raise ParameterError(f"{path}: {what} (no `status` over runs and `time`); a "
+                             "simulation result is a result.nc of `seahelm run --out` or a "
+                             "manoeuvre's *-runs.nc")
     return ds

@@ -108,7 +108,17 @@ class ManoeuvreRecord:
     columns: dict[str, str] = dataclasses.field(default_factory=dict)
 
     def column(self, channel: str) -> str:
-        """The file's name of a channel's column (the channel's own name if not mapped)."""
+        """The file's name of a channel's column (the channel's own name if not mapped).
+
+        Parameters
+        ----------
+        channel : str
+            A channel (``heading``, ``true_wind_speed``, ...).
+
+        Returns
+        -------
+        str
+        """
         return self.columns.get(channel, channel)
 
     @property
@@ -131,16 +141,22 @@ class ManoeuvreRecord:
 COLUMN_LIMITS = {"rudder_angle": (math.pi / 2, "rad"), "heading": (2000.0 * math.pi, "rad"),
                  "yaw_rate": (2.0 * math.pi, "rad/s"), "surge_speed": (100.0, "m/s"),
                  "sway_speed": (100.0, "m/s"), "propeller_rps": (1000.0, "1/s"),
-                 "x": (1e8, "m"), "y": (1e8, "m"), "time": (1e9, "s")}
+                 "x": (1e8, "m"), "y": (1e8, "m"), "time": (1e9, "s"),
+                 # (the highest gust measured: 113 m/s, Barrow Island 1996, WMO)
+                 "true_wind_speed": (150.0, "m/s"),
+                 "true_wind_direction": (2000.0 * math.pi, "rad")}
 
 
-def _check_column(source: str, name: str, values: np.ndarray, first_row: int) -> None:
+def _check_column(source: str, name: str, values: np.ndarray, first_row: int,
+                  channel: str | None = None) -> None:
+    """Refuse a non-finite value and one beyond its channel's :data:`COLUMN_LIMITS` (named
+    ``name``, the file's header; ``channel`` the channel it is read as, default ``name``)."""
     bad = ~np.isfinite(values)
     if np.any(bad):
         i = int(np.flatnonzero(bad)[0])
         raise ParameterError(f"{source}: column `{name}` row {first_row + i} is not a finite "
                              f"number ({float(values[i])!r})", field=name)
-    limit, unit = COLUMN_LIMITS.get(name, (math.inf, ""))
+    limit, unit = COLUMN_LIMITS.get(name if channel is None else channel, (math.inf, ""))
     big = np.abs(values) > limit
     if np.any(big):
         i = int(np.flatnonzero(big)[0])
@@ -245,12 +261,22 @@ def _mapped(path: Path, cols: dict[str, np.ndarray], mapping: dict[str, str],
             first_row: int = 2) -> dict[str, np.ndarray]:
     """The mapped columns by channel, checked under their own header names (NaN, a time
     that does not increase: the file's column and row)."""
+    known = ("time", "rudder_angle", "heading", "yaw_rate", *_OPTIONAL)
     out = {}
     for header, channel in mapping.items():
+        if channel not in known:
+            raise ParameterError(f"{path}: column `{header}` mapped to an unknown channel "
+                                 f"`{channel}`; valid: {', '.join(known)}", field="column")
+        if channel in out:
+            other = next(h for h, c in mapping.items() if c == channel)
+            raise ParameterError(f"{path}: columns `{other}` and `{header}` both mapped to "
+                                 f"`{channel}` (one column per channel)", field="column")
         if header not in cols:
             raise ParameterError(f"{path}: no column `{header}` (mapped to {channel}; columns: "
                                  f"{', '.join(cols)})", field=channel)
-        _check_column(str(path), header, cols[header], first_row)
+        # (angles are limited once in radians, after --angles: record_from_arrays)
+        _check_column(str(path), header, cols[header], first_row,
+                      "" if channel in _ANGLES + _RATES else channel)
         out[channel] = cols[header]
     if "time" in out:
         step = np.diff(out["time"])

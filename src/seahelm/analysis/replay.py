@@ -127,6 +127,28 @@ class ReplayResult:
     closed_loop: bool = False
     wind: dict[str, Any] = dataclasses.field(default_factory=lambda: {"kind": "none"})
 
+    def _summary(self) -> tuple[str, list[tuple[str, object]]]:
+        how = "closed loop" if self.closed_loop else "measured rudder"
+        if self.check_angle is not None:
+            how += f", check angle {math.degrees(self.check_angle):.3g} deg"
+        return (f"ReplayResult: {self.record.name} with {self.ship}", [
+            ("kind", f"{self.kind} ({how}; wind {self.wind['kind']})"),
+            ("record", f"{len(self.time)} samples, t = {self.time[0]:.6g} … "
+                       f"{self.time[-1]:.6g} s; dt {self.dt:.3g} s"),
+            ("rms error", f"{self.rms_error_window:.4g} L (first {RMS_WINDOW:g} s), "
+                          f"{self.rms_error:.4g} L (whole record)"),
+            ("metrics", ", ".join(self.metrics) or "none")])
+
+    def __repr__(self) -> str:
+        from .._repr import summary_text
+
+        return summary_text(*self._summary())
+
+    def _repr_html_(self) -> str:
+        from .._repr import summary_html
+
+        return summary_html(*self._summary())
+
     def to_xarray(self) -> Any:
         """Both tracks as one :class:`xarray.Dataset` with a ``track`` dimension (measured,
         simulated) and the record's ``time``; the metrics and errors as attributes."""
@@ -174,7 +196,7 @@ def classify(record: ManoeuvreRecord) -> tuple[str, float | None]:
     Parameters
     ----------
     record : ManoeuvreRecord
-        The record (its rudder angle [rad] and time [s]).
+        The measured record (its rudder angle and heading are read).
 
     Returns
     -------
@@ -257,7 +279,8 @@ def manoeuvre_metrics(kind: str, time: np.ndarray, track: dict[str, np.ndarray],
                 "tactical_diameter": float(m.tactical_diameter[0]),
                 "steady_diameter": float(turning_diameter(north[k0:end], east[k0:end],
                                                           psi[k0:end])[0]),
-                "speed_loss": float(1.0 - speed[end - 1] / speed[k0])}
+                "speed_loss": (float(1.0 - speed[end - 1] / speed[k0]) if speed[k0] > 0
+                               else math.nan)}  # (no approach speed: not defined)
     if kind == "zigzag":
         if check_angle is None:
             raise ParameterError("a zig-zag needs its check angle [rad] (a record with a "
@@ -380,6 +403,13 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
         angle = float(check_angle)
     elif chosen == "zigzag" and angle is None:
         angle = classify(record)[1]
+    if check_angle is not None and chosen != "zigzag":
+        raise ParameterError(f"{record.name}: a check angle is a zig-zag's; this record is "
+                             f"{chosen!r} (drop it, or give kind 'zigzag')", field="check_angle")
+    if chosen == "zigzag" and angle is None:
+        raise ParameterError(f"{record.name}: the rudder does not switch between two sides "
+                             "at a constant angle, so the check angle cannot be read from the "
+                             "record; give it explicitly", field="check_angle")
     if closed_loop and chosen != "zigzag":
         raise ParameterError(f"{record.name}: a closed-loop replay is for a zig-zag; this "
                              f"record is {chosen!r}", field="closed_loop")
@@ -399,7 +429,7 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
         reference = {k: Samples(tuple((t - t0).tolist()), tuple(v.tolist()))
                      for k, v in inputs.items()}
         problem = Problem(actuator="direct", reference=reference, **timing)
-    result = simulate(problem)
+    result = _simulate(simulate, problem, record, step, n_steps)
     status = result.messages()[0]
     if status != "ok":
         raise ParameterError(f"{record.name}: the replay with ship {found.name} failed: "
@@ -423,6 +453,25 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
         rms_error_window=_rms(t, measured, simulated, found.length, RMS_WINDOW),
         rms_error=_rms(t, measured, simulated, found.length, math.inf),
         length=found.length, dt=step, check_angle=angle, closed_loop=closed_loop, wind=air)
+
+
+def _simulate(simulate: Any, problem: Any, record: ManoeuvreRecord, step: float,
+              n_steps: int) -> Any:
+    """``simulate(problem)``; too much work or recording said in the replay's words (the
+    step, the record's duration), not the engine's (``t_final``, ``record_every``)."""
+    from ..resources import WorkTooLarge
+    from ..simulation.engine import RecordingTooLarge
+
+    try:
+        return simulate(problem)
+    except WorkTooLarge as exc:
+        too_much, anyway = exc.over, f" {exc.anyway}" if exc.anyway else ""
+    except RecordingTooLarge as exc:
+        too_much, anyway = f"it would record {exc.size_text()}", ""
+    raise ParameterError(
+        f"= {step:g} s: the replay of {record.name} ({record.duration:.6g} s) takes "
+        f"{n_steps:,} steps: {too_much}; a larger step (the record's interval is "
+        f"{record.median_interval:.3g} s){anyway}", field="dt", unit="s", value=step)
 
 
 def _measured_wind(record: ManoeuvreRecord, ship: Any, load_model: str

@@ -72,7 +72,8 @@ def linearize(
 
     for option, value, unit in (("--speed", speed, "m/s"), ("--rps", rps, "1/s")):
         if value is not None and not (math.isfinite(value) and value > 0):
-            raise ParameterError(f"must be > 0 [{unit}], got {value!r}", field=option,
+            what = "> 0" if math.isfinite(value) else "a finite number > 0"
+            raise ParameterError(f"must be {what} [{unit}], got {value!r}", field=option,
                                  unit=unit, value=value)
     if rudder is not None and not (math.isfinite(rudder) and abs(rudder) < 90):
         raise ParameterError(f"must be in (-90, 90) [deg], got {rudder!r}", field="--rudder",
@@ -85,12 +86,12 @@ def linearize(
     delta = None if rudder is None else math.radians(rudder)
     bare = _linearize(the_ship, speed=speed, rudder=delta, rps=rps, actuator=False)
     full = _linearize(the_ship, speed=speed, rudder=delta, rps=rps, actuator=True)
-    if not bare.smooth:
-        _kinked(the_ship.name, bare, full, json_out, matrices)
-        return
     try:
+        if not bare.smooth:
+            _kinked(the_ship.name, bare, full, json_out, matrices)
+            return
         indices = steering_indices(bare)
-    except ParameterError as exc:
+    except ParameterError as exc:  # (either side of a kink too: the same words)
         if exc.field != "model":
             raise
         # said about what the user chose: the straight run at --speed (and --rudder, --rps)

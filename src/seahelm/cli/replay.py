@@ -25,7 +25,15 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..errors import ParameterError
-from ._common import JsonFlag, console, handle_errors, input_file, output_dir, print_json
+from ._common import (
+    ForceFlag,
+    JsonFlag,
+    console,
+    handle_errors,
+    input_file,
+    output_dir,
+    print_json,
+)
 
 __all__ = ["replay"]
 
@@ -55,6 +63,9 @@ def _columns(items: list[str] | None) -> dict[str, str] | None:
         header, sep, channel = item.rpartition("=")
         if not sep or not header.strip() or not channel.strip():
             raise ParameterError(f"`--column` must be HEADER=CHANNEL, got {item!r}")
+        if header.strip() in out:
+            raise ParameterError(f"`--column` maps header {header.strip()!r} twice "
+                                 f"({out[header.strip()]} and {channel.strip()})")
         out[header.strip()] = channel.strip()
     return out
 
@@ -130,6 +141,7 @@ def replay(
     json_out: JsonFlag = False,
     out: Annotated[Path | None, typer.Option("--out", help=escape(
         "Directory for replay.nc (both tracks) and replay.png (the overlay)."))] = None,
+    force: ForceFlag = False,
 ) -> None:
     """Replay a measured record: simulated vs measured metrics and position error."""
     from ..analysis.records import read_records
@@ -146,9 +158,9 @@ def replay(
         raise ParameterError(f"`--angles` must be deg or rad, got {angles!r}")
     input_file("RECORD", record)
     mapping = _columns(column)
-    if out is not None:
-        output_dir("--out", out, _FILES, reads=(record,))
     records = read_records(record, angles=angles, columns=mapping)  # type: ignore[arg-type]
+    if out is not None:  # (the names by the number of records, before the work)
+        output_dir("--out", out, _names(len(records)), reads=(record,))
     results = [run_replay(r, ship, kind=kind, dt=dt,  # type: ignore[arg-type]
                           closed_loop=closed_loop, wind=wind,  # type: ignore[arg-type]
                           check_angle=None if check_angle is None
@@ -165,6 +177,15 @@ def replay(
         console.print(f"{kind_}: {escape(path)}", highlight=False)
 
 
+def _stem(k: int, n: int) -> str:
+    return "replay" if n == 1 else f"replay-{k + 1}"
+
+
+def _names(n: int) -> tuple[str, ...]:
+    """The files ``--out`` receives for ``n`` records."""
+    return tuple(_stem(k, n) + name[len("replay"):] for k in range(n) for name in _FILES)
+
+
 def _write(out: Path, results: list[Any]) -> dict[str, str]:
     import matplotlib
 
@@ -176,7 +197,7 @@ def _write(out: Path, results: list[Any]) -> dict[str, str]:
     files: dict[str, str] = {}
     with write_together():
         for k, res in enumerate(results):
-            stem = "replay" if len(results) == 1 else f"replay-{k + 1}"
+            stem = _stem(k, len(results))
             files[f"{stem}.nc"] = str(write_netcdf(res.to_xarray(), out / f"{stem}.nc"))
             files[f"{stem}.png"] = str(save_figure(plot_replay(res), out / f"{stem}.png"))
     return files

@@ -164,7 +164,8 @@ def lackenby_speed_loss(hull: HullParticulars, depth: float,
 def _check_depth(hull: HullParticulars, depth: float, strict: bool | None) -> float:
     h = float(depth)
     if math.isnan(h) or not h > hull.draft:
-        raise ParameterError(f"must be greater than the draft {hull.draft!r} [m], got {depth!r}",
+        raise ParameterError(f"must be greater than the draft {round(hull.draft, 12)!r} [m], "
+                             f"got {depth!r}",
                              field="water_depth", unit="m", value=depth)
     check_ranges(f"{SOURCE} (Kijima, Ankudinov)", {"h/d": (h / hull.draft, MIN_DEPTH_RATIO,
                                                            math.inf)},

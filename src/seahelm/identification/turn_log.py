@@ -42,8 +42,9 @@ def read_turn_log(path: str | os.PathLike[str]) -> dict[str, np.ndarray]:
     Raises
     ------
     ParameterError
-        If the file is missing, not a regular file, empty, not UTF-8 text, has a row with
-        another number of fields than the header, or a cell that is not a number.
+        If the file is missing, not a regular file, empty, not UTF-8 text, has a header name
+        twice or no data rows, a row with another number of fields than the header, or a cell
+        that is not a number.
     """
     return read_turn_log_lines(path)[0]
 
@@ -84,6 +85,13 @@ def read_turn_log_lines(path: str | os.PathLike[str]) -> tuple[dict[str, np.ndar
     except UnicodeDecodeError as exc:
         raise ParameterError(f"{path}: not UTF-8 text (byte {exc.start}); a CSV file with a "
                              "header row is needed") from None
+    twice = [h for k, h in enumerate(header) if h in header[:k]]
+    if twice:
+        first, again = [k + 1 for k, h in enumerate(header) if h == twice[0]][:2]
+        raise ParameterError(f"{path}: column `{twice[0]}` appears twice in the header "
+                             f"(columns {first} and {again}; row 1)")
+    if not rows:
+        raise ParameterError(f"{path}: a header and no data rows (a record needs its samples)")
     cols: dict[str, list[float]] = {h: [] for h in header}
     for i, row in rows:
         if len(row) != len(header):

@@ -174,7 +174,7 @@ class Design:
                                  f"{self.propeller_diameter!r}", field="propeller_diameter",
                                  unit="m", value=self.propeller_diameter)
         if not self.water_depth > draft:
-            raise ParameterError(f"must be greater than the draft {draft!r} [m], got "
+            raise ParameterError(f"must be greater than the draft {round(draft, 12)!r} [m], got "
                                  f"{self.water_depth!r}", field="water_depth", unit="m",
                                  value=self.water_depth)
         self.hull  # (validates L, B, C_b, trim, ∇, x_G)

@@ -248,7 +248,8 @@ class Ship:
         object.__setattr__(self, "water_depth", float(depth))
         draft = None if self.particulars is None else self.particulars.draft
         if draft is not None and not depth > draft:
-            raise ParameterError(f"must be greater than the draft {draft!r} [m], got {depth!r}",
+            raise ParameterError(f"must be greater than the draft {round(draft, 12)!r} [m], "
+                                 f"got {depth!r}",
                                  field="water_depth", unit="m", value=depth)
         deep = self.deep_water_params
         if math.isinf(depth) and deep is not None:

@@ -190,6 +190,13 @@ class Plan:
             why = f"no straight approach of '{s.name}' at {U:.6g} m/s ({a})"
             if not ship_dim or len(self.failed) + 1 == len(keys):
                 every = "" if not ship_dim else f"none of the {len(keys)} approaches: "
+                depth = float(s.water_depth or math.inf)
+                if not ship_dim and math.isfinite(depth):  # (barely above the keel: say so)
+                    draft = float(getattr(s.particulars, "draft", None) or s.params.draft)
+                    raise EquilibriumError(
+                        f"= {depth:g} m is {depth / draft:.4g} x the draft ({draft:.4g} m): "
+                        f"{why}; give deeper water", field="water_depth", unit="m",
+                        value=depth)
                 raise EquilibriumError(f": {every}{why}{_identified_near(s)}",
                                        field="speed")
             self.failed[(i, j)] = why
