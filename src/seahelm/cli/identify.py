@@ -26,6 +26,7 @@ from ._common import (
     input_file,
     print_json,
 )
+from .identify_limits import check_bootstrap, check_record_count
 
 app = typer.Typer(
     cls=OneLineErrors,
@@ -245,7 +246,7 @@ def nomoto(
         output_file("--plot", plot, "figure", reads=tuple(files), force=force)
         if out is not None and plot.resolve() == out.resolve():
             raise ParameterError("`--plot` and `--out` are the same file")
-    _check_bootstrap(bootstrap)
+    check_bootstrap(bootstrap)
     records = read_records(files, angles=angles)
     check_record_count(records, order)
     fit = fit_nomoto(records, order, bootstrap=bootstrap, seed=seed)
@@ -270,46 +271,6 @@ def nomoto(
     _print_nomoto(fit, payload, level)
     if imo:
         _print_imo_given_fit(payload["imo"])
-
-
-#: The most records ``identify nomoto`` fits together. The output-error fit estimates the
-#: model's parameters and each record's initial state (2 or 3 unknowns a record) with one engine
-#: run per record at every evaluation, so its cost grows with the square of the records: 20
-#: records of 10 minutes took some 8 s (warm kernel), 200 runs of a Monte-Carlo result over
-#: 180 s without a word. One model fitted to many runs of different ships (a Monte-Carlo
-#: result's draws) is no identification either.
-MAX_NOMOTO_RECORDS = 20
-
-
-def check_record_count(records: Any, order: int) -> None:
-    """Refuse more than :data:`MAX_NOMOTO_RECORDS` records, naming LOG, the count and the
-    unknowns."""
-    from ..errors import ParameterError
-
-    n = len(records)
-    if n <= MAX_NOMOTO_RECORDS:
-        return
-    unknowns = (3 if order == 1 else 5) + (2 if order == 1 else 3) * n
-    raise ParameterError(
-        f"`LOG`: {n} records (a result file gives one per run) is more than the "
-        f"{MAX_NOMOTO_RECORDS} one Nomoto fit takes: {unknowns} unknowns (each record's initial "
-        "state) and one engine run per record at every step of the fit, which takes minutes; "
-        "one model fitted to the runs of a Monte-Carlo result (different ships) is no "
-        f"identification: fit the records of one ship, at most {MAX_NOMOTO_RECORDS} at a time")
-
-
-def _check_bootstrap(bootstrap: int) -> None:
-    """``--bootstrap`` at most :data:`~seahelm.analysis.nomoto_fit.MAX_BOOTSTRAP`, refused
-    before any work with the time it would take."""
-    from ..analysis.nomoto_fit import MAX_BOOTSTRAP
-    from ..errors import ParameterError
-
-    if bootstrap > MAX_BOOTSTRAP:
-        raise ParameterError(
-            f"`--bootstrap` must be in [0, {MAX_BOOTSTRAP}], got {bootstrap}: each refit is a "
-            f"whole output-error fit (about 0.5 s for a 600-sample record), so {bootstrap} "
-            f"would take about {bootstrap * 0.5 / 3600:.3g} h; percentile intervals need about "
-            "1000-2000 (Efron & Tibshirani 1993)")
 
 
 def _imo_given_fit(fit: Any, records: Any, n: int, posterior: str, seed: int | None,
