@@ -116,7 +116,12 @@ def test_human_output_shows_the_batch_and_the_statistics(batch_file):
     assert "diverged at" in out  # the per-run table's status of a diverged run
 
 
-def test_run_prints_drawn_values_and_statistics(tmp_path):
+def test_run_prints_drawn_values_and_statistics(tmp_path, monkeypatch):
+    from seahelm.cli._common import console
+
+    # rich fixes the console's width from $COLUMNS when the CLI is first imported in this
+    # process (by whichever test came first): the table at 160 columns, whatever that was
+    monkeypatch.setattr(console, "_width", 160)
     scenario = tmp_path / "s.toml"
     scenario.write_text(SCENARIO.replace('[batch.grid]\n"controller.params.kp" = [1.0, 4.0]\n',
                                          ""))
