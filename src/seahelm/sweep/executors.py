@@ -177,7 +177,12 @@ class _QuietDistributed:
 
     def start(self) -> None:
         if self.saved is None:
-            self.saved = [(lg, lg.level) for lg in map(logging.getLogger, self.NAMES)]
+            # the children too: distributed's logging config sets levels of its own on some
+            # (``tornado.application``: ERROR), which a parent's level does not override
+            names = set(self.NAMES) | {
+                name for name in list(logging.root.manager.loggerDict)
+                if any(name.startswith(root + ".") for root in self.NAMES)}
+            self.saved = [(lg, lg.level) for lg in map(logging.getLogger, sorted(names))]
             for lg, _ in self.saved:
                 lg.setLevel(logging.CRITICAL + 1)
 
