@@ -78,7 +78,8 @@ html_theme_options = {
     "footer_start": ["copyright"],
     "footer_end": [],
 }
-html_static_path: list[str] = []
+html_static_path = ["_static"]
+html_css_files = ["seahelm.css"]  # long literals may break inside table cells
 html_show_sourcelink = False
 # no intersphinx: the build needs no network
 
