@@ -154,3 +154,28 @@ def test_compiling_status_on_a_terminal(tmp_path: Path) -> None:
     os.close(master)
     assert proc.returncode == 0
     assert text.count("compiling") == 1 and "first use" in text
+
+
+def test_the_actuator_row_loops_are_generated_and_equal_the_generic_loop() -> None:
+    """The linearisation's actuator rows run through loops generated per function (cached on
+    disk; the loop that took the functions as arguments compiled in every process: 1.4 s of
+    every `seahelm linearize`), with the generic loop's numbers."""
+    import numpy as np
+
+    from seahelm.actuators.servo import RUDDER_SERVO
+    from seahelm.parameters import as_records
+    from seahelm.vessels import base
+
+    act = RUDDER_SERVO
+    assert base._row_loop(act.rhs, "output") is not None
+    assert base._row_loop(act.output, "output_untimed") is not None
+    k = 5
+    X = np.linspace(-0.3, 0.3, k * act.n_states).reshape(k, act.n_states)
+    C = np.linspace(0.5, -0.5, k * act.n_commands).reshape(k, act.n_commands)
+    P = as_records(np.repeat(base._param_array(act.params_type(), act.params_type)[None], k, 0),
+                   act.params_type)
+    dx, y = np.zeros((k, act.n_states)), np.zeros((k, act.n_outputs))
+    dx0, y0 = np.zeros_like(dx), np.zeros_like(y)
+    base._batched_actuator(act.rhs, act.output, 0.0, X, C, P, dx, y)
+    base._generic_actuator(act.rhs, act.output, 0.0, X, C, P, dx0, y0)
+    assert np.array_equal(dx, dx0) and np.array_equal(y, y0) and np.abs(dx).max() > 0

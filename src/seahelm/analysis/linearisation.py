@@ -66,13 +66,12 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
-from numba import njit
 
 from .._optional import optional_import
 from .._validate import check_positive
 from ..errors import ParameterError
 from ..parameters import Params, as_records
-from ..vessels.base import VesselModel, _param_array
+from ..vessels.base import VesselModel, _batched_actuator, _param_array
 from .nonsmooth import kinked_columns, one_sided_jacobians, side_jacobians
 
 __all__ = ["LinearModel", "richardson_jacobian", "linearize_at", "linearize"]
@@ -297,13 +296,6 @@ def richardson_jacobian(f: Callable[[np.ndarray], np.ndarray], x0: Any, step: An
 # ------------------------------------------------------------------------------------------
 # model + actuator as one function of (z, v)
 # ------------------------------------------------------------------------------------------
-@njit
-def _batched_actuator(rhs, output, t, XA, CA, P, dxa, ya):  # pragma: no cover - compiled
-    for i in range(XA.shape[0]):
-        rhs(t, XA[i], CA[i], P[i], dxa[i])
-        output(XA[i], CA[i], P[i], ya[i])
-
-
 def _natural_size(unit: str, speed: float, length: float, value: float) -> float:
     """The size a perturbation of a signal of ``unit`` is relative to (module docstring)."""
     rate = speed / length if speed > 0 and length > 0 else 1.0

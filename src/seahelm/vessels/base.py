@@ -307,6 +307,8 @@ _ROW_LOOPS = {
     "rhs": ("t, X, U, D, P, out", "fn(t, X[i], U[i], D[i], P[i], out[i])"),
     "output": ("t, X, U, P, out", "fn(t, X[i], U[i], P[i], out[i])"),
     "rhs_indexed": ("t, X, U, D, P, rows, out", "fn(t, X[i], U[i], D[i], P[rows[i]], out[i])"),
+    # an actuator's output(x, command, p, out): no time argument
+    "output_untimed": ("X, U, P, out", "fn(X[i], U[i], P[i], out[i])"),
 }
 
 
@@ -356,6 +358,26 @@ def _batched_indexed_rhs(rhs: Any, t: float, X: np.ndarray, U: np.ndarray, D: np
         _generic_indexed_rhs(rhs, t, X, U, D, P, rows, out)
     else:
         loop(t, X, U, D, P, rows, out)
+
+
+def _batched_actuator(rhs: Any, output: Any, t: float, X: np.ndarray, C: np.ndarray,
+                      P: np.ndarray, dx: np.ndarray, y: np.ndarray) -> None:
+    """``dx[i] = rhs(t, X[i], C[i], P[i])`` and ``y[i] = output(X[i], C[i], P[i])`` of an
+    actuator for every row i, by loops generated per function and cached on disk (a loop
+    taking the functions as arguments compiled again in every process)."""
+    rhs_loop, out_loop = _row_loop(rhs, "output"), _row_loop(output, "output_untimed")
+    if rhs_loop is None or out_loop is None:
+        _generic_actuator(rhs, output, t, X, C, P, dx, y)
+    else:
+        rhs_loop(t, X, C, P, dx)
+        out_loop(X, C, P, y)
+
+
+@njit
+def _generic_actuator(rhs, output, t, X, C, P, dx, y):  # pragma: no cover - compiled
+    for i in range(X.shape[0]):
+        rhs(t, X[i], C[i], P[i], dx[i])
+        output(X[i], C[i], P[i], y[i])
 
 
 def _batched_output(output: Any, t: float, X: np.ndarray, U: np.ndarray, P: Any,
