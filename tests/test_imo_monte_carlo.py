@@ -84,7 +84,8 @@ def test_the_example_scenario(example):
     assert payload["total"] + payload["excluded"] == 50 and len(payload["criteria"]) == 13
     assert 0 < payload["probability"] <= 1 and payload["ci_low"] < payload["ci_high"]
     path = out / "imo-probabilities.nc"
-    assert payload["files"] == {"netcdf": str(path)}
+    assert payload["files"] == {"netcdf": str(path),
+                                "plot": str(out / "imo-probabilities.png")}
     check_file(path, payload)
     ds = open_result_file(path)
     job = load_scenario(EXAMPLE)

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -139,7 +139,8 @@ def _last(times: Any, fallback: float) -> float:
 
 
 def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | None = None,
-                      reference: Any = None) -> ImoProbabilities:
+                      reference: Any = None,
+                      progress: Callable[[int, int], None] | None = None) -> ImoProbabilities:
     """Pass fractions of every IMO criterion over ``ships`` (module docstring).
 
     A member whose steady straight approach is not found is not run: it is excluded, with the
@@ -157,6 +158,10 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
         The ship whose manoeuvres' durations (× 1.5) bound every member's runs, e.g. the
         nominal ship of a Monte-Carlo ensemble, so that a member's values do not depend on
         the ensemble it is run with (default: the first member with a straight approach).
+    progress : callable(done, total), optional
+        Called with the manoeuvres run so far and their number: the reference's, then each
+        manoeuvre (turning, initial turning, the two zig-zags, stopping) of each chunk of
+        :data:`CHUNK` members (a progress bar; the values do not depend on it).
 
     Returns
     -------
@@ -229,6 +234,27 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
     parts: dict[tuple[str, str, str], list[np.ndarray]] = {
         (a, c, side): [] for side in ("starboard", "port") for a, c, _, _ in names}
     passes = _Passes(record_dt)
+    stopping_note, stoppers = "", None
+    try:
+        from .maneuvers import crash_stop, stopping_ship
+
+        stoppers = [stopping_ship(s) for s in members]
+    except ParameterError as exc:
+        if exc.field != "ship":
+            raise
+        stopping_note = f"stopping (track reach) not evaluated: {exc.reason.lstrip(': ')}"
+    n_chunks = -(-len(members) // CHUNK)
+    done, total = 1, 1 + n_chunks * (4 + (stoppers is not None))
+
+    def advanced(result: Any) -> Any:
+        nonlocal done
+        done += 1
+        if progress is not None:
+            progress(done, total)
+        return result
+
+    if progress is not None:
+        progress(done, total)
     for start in range(0, len(members), CHUNK):
         chunk = members[start:start + CHUNK]
 
@@ -250,12 +276,12 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
             return got, passes.needed([m["overshoot_time"].sel(side=s, n=n) for s, _ in sides],
                                       len(ships))
 
-        t35 = passes.run("turning", lambda s, t: turning(
-            s, t, rudders[0], "time_180", ("advance", "tactical_diameter")), chunk, t_turn)
-        t10 = passes.run("initial turning", lambda s, t: turning(
-            s, t, rudders[1], "time_10", ("distance_10",)), chunk, t_initial)
-        z10 = passes.run("10/10", lambda s, t: zigzags(s, t, 0, 2), chunk, t_zz10)
-        z20 = passes.run("20/20", lambda s, t: zigzags(s, t, 1, 1), chunk, t_zz20)
+        t35 = advanced(passes.run("turning", lambda s, t: turning(
+            s, t, rudders[0], "time_180", ("advance", "tactical_diameter")), chunk, t_turn))
+        t10 = advanced(passes.run("initial turning", lambda s, t: turning(
+            s, t, rudders[1], "time_10", ("distance_10",)), chunk, t_initial))
+        z10 = advanced(passes.run("10/10", lambda s, t: zigzags(s, t, 0, 2), chunk, t_zz10))
+        z20 = advanced(passes.run("20/20", lambda s, t: zigzags(s, t, 1, 1), chunk, t_zz20))
         for side, name in sides:
             got = (t35[f"advance/{name}"] / L, t35[f"tactical_diameter/{name}"] / L,
                    t10[f"distance_10/{name}"] / L,
@@ -265,16 +291,7 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
                 parts[(a, c, name)].append(v)
     checks = [(a, c, side, np.concatenate(parts[(a, c, side)]), limit, unit)
               for side in ("starboard", "port") for a, c, unit, limit in names]
-    stopping_note = ""
-    try:
-        from .maneuvers import crash_stop, stopping_ship
-
-        stoppers = [stopping_ship(s) for s in members]
-    except ParameterError as exc:
-        if exc.field != "ship":
-            raise
-        stopping_note = f"stopping (track reach) not evaluated: {exc.reason.lstrip(': ')}"
-    else:
+    if stoppers is not None:
         from .imo import STOPPING_LIMIT
 
         ref_stop = crash_stop(stopping_ship(ref), speed=V, dt=dt).metrics
@@ -287,8 +304,8 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
             return ({"track_reach": _member_values(m["track_reach"], len(ships))},
                     passes.needed([m["time_dead"]], len(ships)))
 
-        reach = [passes.run("stopping", stops, stoppers[i:i + CHUNK], t_stop)["track_reach"]
-                 for i in range(0, len(stoppers), CHUNK)]
+        reach = [advanced(passes.run("stopping", stops, stoppers[i:i + CHUNK], t_stop)
+                          )["track_reach"] for i in range(0, len(stoppers), CHUNK)]
         checks.append(("stopping", "track reach (full astern)", "-",
                        np.concatenate(reach) / L, STOPPING_LIMIT, "L"))
     criteria, values = [], []

@@ -13,8 +13,10 @@ passes), 2 bad input, 1 other failure.
 ``--monte-carlo N`` checks N samples of the ship with uncertain coefficients instead
 (:func:`seahelm.analysis.imo_probability.imo_probabilities`): the probability of passing each
 criterion and the whole check with Wilson intervals, the samples that do not complete
-excluded, counted and listed with their reason; ``--out DIR`` writes ``imo-probabilities.nc``
-(:mod:`seahelm.analysis.imo_ensemble`). A ``kind = "imo"`` scenario with
+excluded, counted and listed with their reason, and a table of the drawn parameters (name,
+distribution, unit, mean, standard deviation, range); ``--out DIR`` writes
+``imo-probabilities.nc`` (:mod:`seahelm.analysis.imo_ensemble`) and ``imo-probabilities.png``
+(:func:`seahelm.plotting.imo_ensemble.plot_imo_ensemble`). A progress bar shows on a terminal. A ``kind = "imo"`` scenario with
 ``[batch.monte_carlo]`` is shown the same way by ``seahelm run`` (:func:`present_imo_ensemble`).
 """
 
@@ -86,7 +88,8 @@ def imo(
             "passing each criterion (Wilson intervals), samples that do not complete excluded "
             "and counted. Default uncertainty: normal, --uncertainty of each linear "
             "derivative (Y_v, Y_r, N_v, N_r; Nomoto K, T). With --out, writes "
-            "imo-probabilities.nc (every sample's values, draws and reasons).")),
+            "imo-probabilities.nc (every sample's values, draws and reasons) and "
+            "imo-probabilities.png (each criterion's distribution and limit).")),
     ] = None,
     seed: Annotated[int, typer.Option("--seed", min=0, help="Seed of the Monte-Carlo draws.")]
     = 0,
@@ -140,7 +143,7 @@ def imo(
                                  "probabilities: drop `--check`")
         reads = ship_reads(model) + (() if draws is None else (draws,))
         if out is not None:
-            output_dir("--out", out, (ENSEMBLE_FILE,), reads=reads)
+            output_dir("--out", out, (ENSEMBLE_FILE, ENSEMBLE_FIGURE), reads=reads)
         if from_samples:
             _from_samples(ship, monte_carlo, draws, dt, json_out, out)
         else:
@@ -155,13 +158,9 @@ def imo(
 
 def _monte_carlo(ship: Any, n: int, seed: int, uncertainty: float, draws: Path | None,
                  dt: float | None, json_out: bool, out: Path | None) -> None:
-    from ..analysis.imo_probability import (
-        MAX_UNCERTAINTY,
-        UNCERTAIN_COEFFICIENTS,
-        imo_probabilities,
-        monte_carlo_ships,
-    )
-    from ..scenario.maneuver import SHARED_KEYS
+    from ..analysis.imo_monte_carlo import imo_monte_carlo
+    from ..analysis.imo_probability import MAX_UNCERTAINTY
+    from ..analysis.imo_monte_carlo import SHARED_KEYS
 
     if not (math.isfinite(uncertainty) and 0 < uncertainty <= MAX_UNCERTAINTY):
         raise ParameterError(f"`--uncertainty` must be in (0, {MAX_UNCERTAINTY:g}] (the "
@@ -174,37 +173,37 @@ def _monte_carlo(ship: Any, n: int, seed: int, uncertainty: float, draws: Path |
                                  "the ship's length, test speed and steering-gear limit (its "
                                  "criteria are in ship lengths and L/V): draw its other "
                                  "parameters")
-    ships = monte_carlo_ships(ship, n, seed=seed, draws=dists, uncertainty=uncertainty)
+    bar = _bar(n, json_out)
     try:
-        probs = imo_probabilities(ships, dt=dt, reference=ship)
+        ensemble = imo_monte_carlo(ship, n, seed=seed, draws=dists, uncertainty=uncertainty,
+                                   dt=dt, progress=bar, source=str(draws))
     except ParameterError as exc:
-        if dists is not None:
+        if dists is not None or exc.field in ("n", "uncertainty", "draws"):
             raise
         raise ParameterError(  # (a drawn coefficient the model cannot take)
             f"`--uncertainty` {uncertainty:g} drew a ship the model cannot take ({exc}); give "
             f"a smaller one (in (0, {MAX_UNCERTAINTY:g}]) or the draws (`--draws`)") from None
-    keys = list(dists) if dists else list(UNCERTAIN_COEFFICIENTS.get(ship.model.name, ()))
-    units = {i.name: i.unit for i in type(ship.params).info()}
-    kinds = ({k: "normal" for k in keys} if dists is None
-             else {k: d.name for k, d in dists.items()})
-    drawn = {f"vessel.params.{k}": ([float(getattr(s.params, k)) for s in ships],
-                                    {"distribution": kinds[k],
-                                     **({"units": units[k]} if units.get(k) else {})})
-             for k in keys}
-    meta = {"ship": ship.name, "samples": n, "seed": seed,
-            "draws": "default" if draws is None else str(draws),
-            "uncertainty": uncertainty if draws is None else None}
-    show_ensemble(probs, meta, drawn, out, json_out,
-                  f"IMO MSC.137(76): {ship.name}, {n} Monte-Carlo samples (seed {seed})")
+    finally:
+        bar.close()
+    show_ensemble(ensemble.probabilities, ensemble.metadata, ensemble.drawn, out, json_out,
+                  ensemble.title)
+
+
+def _bar(n: int | None, json_out: bool) -> Any:
+    """The progress bar of an ensemble's check (on a terminal, after a second)."""
+    from ._common import ProgressBar
+
+    return ProgressBar(f"checking {n} sample(s)" if n else "checking the samples",
+                       enabled=not json_out)
 
 
 def _from_samples(ship: Any, n: int | None, path: Path, dt: float | None, json_out: bool,
                   out: Path | None) -> None:
     """``--draws FILE.csv``: the ships of a samples file's rows
-    (:mod:`seahelm.analysis.samples_file`), checked as ``--monte-carlo`` checks its draws."""
-    from ..analysis.imo_probability import imo_probabilities
-    from ..analysis.samples_file import check_units, read_samples, samples_attrs
-    from ..scenario.maneuver import SHARED_KEYS
+    (:func:`seahelm.analysis.imo_monte_carlo.imo_of_samples`), checked as ``--monte-carlo``
+    checks its draws."""
+    from ..analysis.imo_monte_carlo import imo_of_samples
+    from ..analysis.samples_file import read_samples
     from ._common import input_file
 
     input_file("--draws", path)
@@ -212,47 +211,22 @@ def _from_samples(ship: Any, n: int | None, path: Path, dt: float | None, json_o
         table = read_samples(path)
     except ParameterError as exc:
         raise ParameterError(f"`--draws` {exc}") from None
-    for key in table.keys:
-        if not key.startswith("vessel.params."):
-            raise ParameterError(f"`--draws` {path}: column `{key}`: the samples of `seahelm "
-                                 "imo` vary the ship's parameters (vessel.params.<name>); a "
-                                 "scenario's [batch.monte_carlo] samples also its steering "
-                                 "gear's")
-        if key in SHARED_KEYS:
-            raise ParameterError(f"`--draws` {path}: column `{key}`: the samples of an IMO "
-                                 "check share the ship's length and test speed (its criteria "
-                                 "are in ship lengths and L/V): draw its other parameters")
-    if n is None:
-        n = table.n_samples
-    elif n > table.n_samples:
+    if n is not None and n > table.n_samples:
         raise ParameterError(f"`--monte-carlo` {n}: {path} holds only {table.n_samples} "
                              f"sample{'' if table.n_samples == 1 else 's'}")
-    names = set(ship.params.field_names())
-    for key in table.keys:
-        if key[len("vessel.params."):] not in names:
-            raise ParameterError(f"`--draws` {path}: column `{key}`: not a parameter of model "
-                                 f"'{ship.model.name}'")
+    bar = _bar(n or table.n_samples, json_out)
     try:
-        check_units(table, {f"vessel.params.{i.name}": i.unit
-                            for i in type(ship.params).info()})
+        ensemble = imo_of_samples(ship, table, n=n, dt=dt, progress=bar, source=str(path))
     except ParameterError as exc:
-        raise ParameterError(f"`--draws` {exc}") from None
-    ships = []
-    for i in range(n):
-        values = {k[len("vessel.params."):]: float(table.values[i, j])
-                  for j, k in enumerate(table.keys)}
-        try:
-            ships.append(ship.replace(params=values, name=f"{ship.name} #{i}"))
-        except ParameterError as exc:
-            raise ParameterError(f"`--draws` {path}: sample {i} (line {i + 1} after the "
-                                 f"header): {exc}") from None
-    probs = imo_probabilities(ships, dt=dt, reference=ship)
-    attrs = samples_attrs(table)
-    drawn = {k: (table.column(k)[:n].tolist(), attrs[k]) for k in table.keys}
-    meta = {"ship": ship.name, "samples": n, "seed": None, "draws": str(path),
-            "uncertainty": None}
-    show_ensemble(probs, meta, drawn, out, json_out,
-                  f"IMO MSC.137(76): {ship.name}, {n} samples from {path.name}")
+        if exc.field == "draws":  # (a column or a row of the file)
+            raise ParameterError(f"`--draws` {path}: {exc.reason}") from None
+        if exc.field and exc.field.startswith("vessel."):  # (its units)
+            raise ParameterError(f"`--draws` {exc}") from None
+        raise
+    finally:
+        bar.close()
+    show_ensemble(ensemble.probabilities, ensemble.metadata, ensemble.drawn, out, json_out,
+                  ensemble.title)
 
 
 def present_imo_ensemble(job: Any, out: Path | None, as_json: bool, *,
@@ -275,7 +249,7 @@ def present_imo_ensemble(job: Any, out: Path | None, as_json: bool, *,
     import numpy as np
 
     if out is not None:
-        output_dir("--out", out, (ENSEMBLE_FILE,), reads=reads)
+        output_dir("--out", out, (ENSEMBLE_FILE, ENSEMBLE_FIGURE), reads=reads)
     probs = job.run()
     n = job.n_samples
     described = job.draw_attrs()
@@ -314,11 +288,17 @@ def show_ensemble(probs: Any, meta: dict[str, Any], drawn: dict[str, Any], out: 
     payload.update({k: v for k, v in meta.items() if k not in ("scenario_text", "title")})
     payload["excluded_samples"] = [{"sample": i, "reason": why}
                                    for i, why in enumerate(probs.reasons) if why]
+    payload["drawn_parameters"] = drawn_statistics(drawn)
     if out is not None:
-        from ..results import write_netcdf
+        from ..plotting.imo_ensemble import plot_imo_ensemble
+        from ..plotting.save import save_figure
+        from ..results import write_netcdf, write_together
 
         ds = ensemble_dataset(probs, draws=drawn, attrs={**meta, "title": title})
-        payload["files"] = {"netcdf": str(write_netcdf(ds, out / ENSEMBLE_FILE))}
+        with write_together():  # the file and its figure appear together or not
+            payload["files"] = {"netcdf": str(write_netcdf(ds, out / ENSEMBLE_FILE)),
+                                "plot": str(save_figure(plot_imo_ensemble(ds),
+                                                        out / ENSEMBLE_FIGURE))}
     if as_json:
         print_json(payload)
         return
@@ -385,6 +365,37 @@ def _draws_error(key: str, exc: Any) -> str:
     return f"[{where}] {_message(err, '')}{got if kind != 'value_error' else ''}"
 
 
+#: The figure of ``--monte-carlo --out DIR``: every criterion's distribution over the samples.
+ENSEMBLE_FIGURE = "imo-probabilities.png"
+
+
+def drawn_statistics(drawn: dict[str, Any]) -> list[dict[str, Any]]:
+    """Per drawn parameter (key path -> (values, attributes)): its name, distribution, unit
+    and the mean, standard deviation, least and greatest of the values drawn.
+
+    Parameters
+    ----------
+    drawn : dict
+        :attr:`seahelm.analysis.imo_monte_carlo.ImoEnsemble.drawn`.
+
+    Returns
+    -------
+    list of dict
+    """
+    import numpy as np
+
+    rows = []
+    for key, (values, attrs) in drawn.items():
+        v = np.asarray(values, dtype=float)
+        v = v[np.isfinite(v)]
+        rows.append({"parameter": key, "distribution": str(attrs.get("distribution", "")),
+                     "units": str(attrs.get("units", "") or "-"),
+                     **{name: (float(f(v)) if v.size else math.nan) for name, f in (
+                         ("mean", np.mean), ("std", lambda x: np.std(x, ddof=1) if x.size > 1
+                                             else 0.0), ("min", np.min), ("max", np.max))}})
+    return rows
+
+
 #: Excluded samples listed with their reason (the JSON output and the file have all).
 MAX_EXCLUDED_SHOWN = 10
 
@@ -398,7 +409,8 @@ def print_imo_probabilities(p: dict[str, Any], title: str) -> None:
     ----------
     p : dict
         :meth:`~seahelm.analysis.imo_probability.ImoProbabilities.as_dict`, optionally with
-        ``excluded_samples`` (``{"sample", "reason"}``) or ``excluded_by_reason`` (counts).
+        ``excluded_samples`` (``{"sample", "reason"}``) or ``excluded_by_reason`` (counts),
+        and ``drawn_parameters`` (:func:`drawn_statistics`: printed as a second table).
     title : str
         The table's title.
     """
@@ -412,6 +424,15 @@ def print_imo_probabilities(p: dict[str, Any], title: str) -> None:
                       f"{r['median']:.3g} {r['unit']}", f"{r['limit']:.4g}",
                       f"{r['probability']:.3f}", f"{r['ci_low']:.3f} .. {r['ci_high']:.3f}")
     console.print(table)
+    if p.get("drawn_parameters"):
+        drawn = Table(title="drawn parameters (over the samples)", title_justify="left")
+        for col in ("parameter", "distribution", "unit", "mean", "std", "min", "max"):
+            drawn.add_column(col, no_wrap=True,
+                             justify="right" if col in ("mean", "std", "min", "max") else "left")
+        for r in p["drawn_parameters"]:
+            drawn.add_row(escape(r["parameter"]), escape(r["distribution"]), escape(r["units"]),
+                          *(f"{r[k]:.4g}" for k in ("mean", "std", "min", "max")))
+        console.print(drawn)
     console.print(f"all evaluated criteria: P(pass) = {p['probability']:.3f} "
                   f"({p['ci_low']:.3f} .. {p['ci_high']:.3f}, Wilson) over {p['total']} "
                   f"sample(s); {p['excluded']} sample(s) excluded (manoeuvres not completed); "

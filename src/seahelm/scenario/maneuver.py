@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError, ValidityRangeWarning
+from ..analysis.imo_monte_carlo import SHARED_KEYS
 from ..ships.water_depth import params_at_depth
 from .errors import ScenarioError, at_key
 from .particulars import PREFIX, EstimatedSamples, check_drawn_particulars
@@ -53,7 +54,7 @@ class ManeuverJob:
     ----------
     kind : str
         ``turning``, ``zigzag``, ``pullout``, ``spiral``, ``imo`` or ``stopping``.
-    ship : ManeuverShip
+    ship : Ship
         The ship with its steering gear (with the scenario's overrides).
     options : mapping
         Keyword arguments of the manoeuvre's function (SI units, radians).
@@ -113,7 +114,7 @@ class ManeuverJob:
 
         Returns
         -------
-        list of ManeuverShip
+        list of Ship
 
         Raises
         ------
@@ -153,7 +154,7 @@ class ManeuverJob:
 
         Parameters
         ----------
-        ships : list of ManeuverShip
+        ships : list of Ship
             E.g. :meth:`ships` of a range of samples.
 
         Returns
@@ -211,7 +212,7 @@ class ManeuverJob:
 
         Parameters
         ----------
-        ships : list of ManeuverShip
+        ships : list of Ship
             E.g. :meth:`ships` of a range of samples.
 
         Returns
@@ -419,15 +420,6 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
             warnings.simplefilter("ignore", ValidityRangeWarning)
             job.ships(0, 1)  # the names and ranges of the drawn parameters, checked once
     return job
-
-
-#: Keys an IMO ensemble may not draw: its members share the ship's length, test speed and
-#: steering-gear limit (the criteria are in ship lengths and L/V, at the hard-over rudder).
-SHARED_KEYS = ("vessel.params.length", "vessel.params.approach_speed",
-               "vessel.params.nominal_speed", "actuator.params.max_angle",
-               "actuator.params.max_angle_deg", "vessel.particulars.length",
-               "vessel.particulars.speed", "vessel.particulars.max_rudder",
-               "vessel.particulars.max_rudder_deg")
 
 
 def _check_imo_ensemble(man: Any, drawn_keys: list[str], source: str) -> None:
