@@ -17,7 +17,6 @@ import pytest
 from seahelm.actuators.servo import RUDDER_SERVO
 from seahelm.analysis.equilibrium import rudder_for_yaw_rate, self_propulsion_rps, steady_turn
 from seahelm.analysis.maneuvers import (
-    ManeuverShip,
     default_time_step,
     direct_spiral,
     maneuver_ship,
@@ -31,6 +30,7 @@ from seahelm.analysis.maneuvers import (
 from seahelm.control.zigzag import ZIGZAG, ZIGZAG_RPS, ZigZagParams, ZigZagRpsParams
 from seahelm.errors import ParameterError
 from seahelm.registry import get_controller
+from seahelm.ships import Ship
 from seahelm.simulation.composition import compose
 from seahelm.vessels.mariner import MARINER, MARINER_NONLINEAR, MARINER_SERVO
 from seahelm.vessels.mmg import KVLCC2_L7, KVLCC2_L7_SERVO, MMG
@@ -576,7 +576,7 @@ def test_unknown_catalog_entry_lists_the_valid_ones():
 
 def test_maneuver_ship_and_time_step():
     s = maneuver_ship(KVLCC2_L7)  # equal to the catalog entry: its steering gear
-    assert isinstance(s, ManeuverShip) and s.name == "kvlcc2-l7" and s.servo == KVLCC2_L7_SERVO
+    assert isinstance(s, Ship) and s.name == "kvlcc2-l7" and s.servo == KVLCC2_L7_SERVO
     assert maneuver_ship("mariner-nonlinear").servo == MARINER_SERVO
     assert default_time_step("kvlcc2-l7") == 0.05  # min(7/117.9, 0.1) -> 0.05
     assert default_time_step("mariner-nonlinear") == 0.2  # min(0.2085, 1) -> 0.2

@@ -165,7 +165,7 @@ def test_a_table_at_its_nodes_equals_the_closed_form():
 def test_dataset_and_statistics():
     m = closed_form_moments(SHIP, SEA, [0.0, 5.0], np.radians([90.0, 180.0]),
                             metacentric_height=0.8)
-    ds = m.to_dataset()
+    ds = m.to_xarray()
     assert dict(ds.sizes) == {"dof": 3, "speed": 2, "heading": 2}
     assert list(ds["dof"].values) == ["heave", "roll", "pitch"]
     assert "roll: rad" in ds["rms"].attrs["units"] and "heave: m^2" in ds["m0"].attrs["units"]

@@ -121,7 +121,7 @@ def test_table_and_netcdf_round_trips(tmp_path):
     back = read_rao(write_rao_table(rao, tmp_path / "r.csv"))
     assert back.dofs == rao.dofs and back.speed == 6.0
     np.testing.assert_allclose(back.values, rao.values, rtol=1e-12, atol=1e-15)
-    rao.to_dataset().to_netcdf(tmp_path / "r.nc")
+    rao.to_xarray().to_netcdf(tmp_path / "r.nc")
     back = read_rao(tmp_path / "r.nc")
     np.testing.assert_allclose(back.values, rao.values, rtol=1e-12, atol=1e-15)
 

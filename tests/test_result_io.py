@@ -11,7 +11,8 @@ from seahelm.analysis.maneuvers import summarize
 from seahelm.control.pid import PID_HEADING, PIDHeadingParams
 from seahelm.errors import ParameterError
 from seahelm.result_io import read_result, result_from_dataset
-from seahelm.simulation.batch import BatchAxis, BatchLayout, BatchValues, RunBatch, simulate_batch
+from seahelm.simulation.batch import BatchAxis, BatchLayout, BatchValues, simulate_batch
+from seahelm.simulation.problem import Problem
 from seahelm.vessels.nomoto import NOMOTO2
 
 
@@ -27,7 +28,7 @@ def result():
               BatchAxis(name="sample", values=np.arange(3))),
         values=(BatchValues(name="vessel.params.gain", values=np.linspace(0.15, 0.2, 6),
                             units="1/s", attrs={"distribution": "normal"}),))
-    batch = RunBatch(model=NOMOTO2, params=mariner, x0=np.zeros(5), t_final=60.0, dt=0.1,
+    batch = Problem(model=NOMOTO2, params=mariner, x0=np.zeros(5), t_final=60.0, dt=0.1,
                      controller=PID_HEADING, controller_params=gains, controller_dt=0.5,
                      reference=[np.radians(20.0)], bounds={"yaw_rate": (-0.006, 0.006)},
                      layout=layout, metadata={"title": "round trip"})

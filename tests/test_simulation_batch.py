@@ -1,4 +1,4 @@
-"""RunBatch, BatchLayout and simulate_batch: one typed description from inputs to shaped results."""
+"""Problem (a batch), BatchLayout and simulate_batch: one typed description from inputs to shaped results."""
 
 from __future__ import annotations
 
@@ -17,10 +17,10 @@ from seahelm.simulation.batch import (
     BatchAxis,
     BatchLayout,
     BatchValues,
-    RunBatch,
     grid_axes,
     simulate_batch,
 )
+from seahelm.simulation.problem import Problem
 from seahelm.simulation.engine import simulate
 from seahelm.vessels.nomoto import NOMOTO2
 
@@ -35,7 +35,7 @@ def _gain_grid(mariner2, **changes):
               controller=PID_HEADING, controller_params=gains, reference=[math.radians(15.0)],
               record_every=5, seed=3, metadata={"title": "grid"}, layout=layout)
     kw.update(changes)
-    return RunBatch(**kw)
+    return Problem(**kw)
 
 
 def test_simulate_batch_keeps_the_layout_and_equals_single_runs(mariner2):

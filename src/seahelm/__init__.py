@@ -47,7 +47,6 @@ _USER_API = {
 _LAZY = {
     **_USER_API,
     "RunStatus": "seahelm.simulation.engine",
-    "RunBatch": "seahelm.simulation.batch",
     "BatchLayout": "seahelm.simulation.batch",
     "simulate_batch": "seahelm.simulation.batch",
     "SimResult": "seahelm.results",
@@ -76,9 +75,17 @@ __all__ = [
 ]
 
 
+#: Old names, deprecated: a DeprecationWarning naming the replacement on access.
+_DEPRECATED = {"RunBatch": ("seahelm.simulation.problem", "Problem", "seahelm.Problem")}
+
+
 def __getattr__(name: str):  # PEP 562: lazy public API
     module = _LAZY.get(name)
     if module is None:
+        if name in _DEPRECATED:
+            from .errors import deprecated_names
+
+            return deprecated_names("seahelm", _DEPRECATED)(name)
         raise AttributeError(f"module 'seahelm' has no attribute {name!r}")
     import importlib
 

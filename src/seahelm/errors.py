@@ -20,6 +20,7 @@ __all__ = [
     "MissingDependencyError",
     "strict_validity",
     "warn_validity",
+    "deprecated_names",
 ]
 
 
@@ -175,3 +176,33 @@ def warn_validity(message: str, *, strict: bool | None = None, stacklevel: int =
     if strict:
         raise ParameterError(message)
     warnings.warn(message, ValidityRangeWarning, stacklevel=stacklevel)
+
+
+def deprecated_names(module: str, aliases: dict[str, tuple[str, str, str]]) -> Any:
+    """A module ``__getattr__`` (PEP 562) for names kept for old code: each access warns
+    (:class:`DeprecationWarning`, naming the replacement) and returns the object it now is.
+
+    Parameters
+    ----------
+    module : str
+        The module's name (``__name__``), for the messages.
+    aliases : dict of str to (str, str, str)
+        Old name -> (module of the replacement, its name there, how users reach it, e.g.
+        ``"seahelm.Problem"``).
+
+    Returns
+    -------
+    callable
+        ``__getattr__(name)``: the replacement for an old name; ``AttributeError`` otherwise.
+    """
+    def __getattr__(name: str) -> Any:
+        if name not in aliases:
+            raise AttributeError(f"module {module!r} has no attribute {name!r}")
+        import importlib
+
+        home, new, public = aliases[name]
+        warnings.warn(f"{module}.{name} is deprecated: use {public} (the same object); the old "
+                      "name will be removed", DeprecationWarning, stacklevel=2)
+        return getattr(importlib.import_module(home), new)
+
+    return __getattr__

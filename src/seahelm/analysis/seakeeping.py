@@ -55,7 +55,7 @@ from . import response_statistics as stats
 __all__ = ["ResponseMoments", "response_moments", "closed_form_moments", "response_unit",
            "default_frequencies", "DATASET_FORMAT"]
 
-#: The ``format`` attribute of :meth:`ResponseMoments.to_dataset` (how a report knows it).
+#: The ``format`` attribute of :meth:`ResponseMoments.to_xarray` (how a report knows it).
 DATASET_FORMAT = "seahelm-seakeeping-1"
 
 #: Orders of the moments kept.
@@ -240,6 +240,20 @@ class ResponseMoments:
         return out
 
     def to_dataset(self) -> Any:
+        """Deprecated name of :meth:`to_xarray` (a :class:`DeprecationWarning`).
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        import warnings
+
+        warnings.warn(f"{type(self).__name__}.to_dataset() is deprecated: use .to_xarray() "
+                      "(the same Dataset; one name for it across seahelm)", DeprecationWarning,
+                      stacklevel=2)
+        return self.to_xarray()
+
+    def to_xarray(self) -> Any:
         """The moments and statistics as an :class:`xarray.Dataset` over (dof, speed, heading).
 
         Returns

@@ -423,7 +423,7 @@ def _write(out: Path, names: tuple[str, ...], moments: Any, payload: dict[str, A
     from ..plotting.seakeeping import plot_polar_diagram
     from ..results import write_netcdf, write_together
 
-    ds = moments.to_dataset()
+    ds = moments.to_xarray()
     ds.attrs.update({"ship": name, "title": f"seakeeping of {name}"})
     values = (moments.rms(dof) if stat == "rms" else moments.significant_amplitude(dof)) * factor
     label = f"{'RMS' if stat == 'rms' else 'significant'} {dof}"

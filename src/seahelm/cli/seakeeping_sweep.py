@@ -99,7 +99,7 @@ def sweep_command(store: Path, *, dof: str, limit: float | None, out: Path | Non
 
         fig = plot_sweep_polar(polar, dof, limit=limit)
         with write_together():
-            write_netcdf(polar.to_dataset(), out / names[0])
+            write_netcdf(polar.to_xarray(), out / names[0])
             save_figure(fig, out / names[1], dpi=100)
         payload["files"] = [str(out / n) for n in names]
     if json_out:

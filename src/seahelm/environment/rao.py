@@ -301,6 +301,20 @@ class RAO:
         return np.real(amplitude * H * np.exp(1j * (we * t + phase)))
 
     def to_dataset(self) -> Any:
+        """Deprecated name of :meth:`to_xarray` (a :class:`DeprecationWarning`).
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        import warnings
+
+        warnings.warn(f"{type(self).__name__}.to_dataset() is deprecated: use .to_xarray() "
+                      "(the same Dataset; one name for it across seahelm)", DeprecationWarning,
+                      stacklevel=2)
+        return self.to_xarray()
+
+    def to_xarray(self) -> Any:
         """The RAOs as an :class:`xarray.Dataset` (seahelm's RAO NetCDF layout, :mod:`.rao_io`).
 
         Returns

@@ -21,7 +21,7 @@ The RAO table (CSV)
     dof must have every (frequency, heading) of the grid.
 
 seahelm's RAO NetCDF
-    :meth:`RAO.to_dataset` written with ``to_netcdf``: ``amplitude`` and ``phase`` over
+    :meth:`RAO.to_xarray` written with ``to_netcdf``: ``amplitude`` and ``phase`` over
     (dof, frequency, heading), attribute ``format = "seahelm-rao-1"``.
 
 capytaine's NetCDF (read as a file format; capytaine itself is not imported)

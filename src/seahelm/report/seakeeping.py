@@ -1,5 +1,5 @@
 """The report section of a seakeeping result (``seakeeping.nc`` of ``seahelm seakeeping
---out``, :meth:`seahelm.analysis.seakeeping.ResponseMoments.to_dataset`): what was computed,
+--out``, :meth:`seahelm.analysis.seakeeping.ResponseMoments.to_xarray`): what was computed,
 a polar diagram of each degree of freedom's RMS over wave heading × speed (plotly
 ``barpolar``: head seas up, following seas down, waves from port on the left, as the PNG of
 :mod:`seahelm.plotting.seakeeping`), and per speed the largest RMS and significant amplitude

@@ -1,6 +1,6 @@
 """Scenario files (TOML): schema, validation and the runs or manoeuvre they describe.
 
-A ``[simulation]`` scenario becomes one :class:`~seahelm.simulation.batch.RunBatch`: the
+A ``[simulation]`` scenario becomes one :class:`~seahelm.simulation.problem.Problem`: the
 engine's inputs and the batch's layout (:mod:`.runs`). A ``[maneuver]`` scenario becomes a
 :class:`~seahelm.scenario.maneuver.ManeuverJob`: a standard manoeuvre or the IMO check of a
 catalog ship (:mod:`.maneuver`). :func:`run_scenario` runs either.
@@ -74,7 +74,7 @@ def run_scenario(job: Any, *, progress: Callable[[int, int], None] | None = None
 
     Parameters
     ----------
-    job : RunBatch or ManeuverJob
+    job : Problem or ManeuverJob
         Result of :func:`load_scenario` or :func:`parse_scenario`.
     progress : callable(done_steps, total_steps), optional
         Called between chunks of the simulation loop (a ``[simulation]`` scenario).

@@ -11,7 +11,7 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from ..simulation.batch import RunBatch
+from ..simulation.problem import Problem
 from .environment import KEY_UNITS as _ENV_UNITS
 from .errors import ScenarioError
 from .maneuver import ManeuverJob, prepare_maneuver
@@ -179,10 +179,10 @@ def _message(err: Any, unit: str) -> str:
 
 
 def parse_scenario(text: str, *, source: str = "<string>", in_memory: bool = True
-                   ) -> RunBatch | ManeuverJob:
+                   ) -> Problem | ManeuverJob:
     """Parse and validate scenario text into what it describes; nothing runs.
 
-    A ``[simulation]`` scenario gives the :class:`~seahelm.simulation.batch.RunBatch` of its
+    A ``[simulation]`` scenario gives the :class:`~seahelm.simulation.problem.Problem` of its
     runs (what the engine runs -- timing, command counts, bounds labels -- is validated by the
     engine when the batch runs, before any step is integrated); a ``[maneuver]`` scenario gives
     a :class:`~seahelm.scenario.maneuver.ManeuverJob`. :func:`~seahelm.scenario.run_scenario`
@@ -201,7 +201,7 @@ def parse_scenario(text: str, *, source: str = "<string>", in_memory: bool = Tru
 
     Returns
     -------
-    RunBatch or ManeuverJob
+    Problem or ManeuverJob
 
     Raises
     ------
@@ -226,7 +226,7 @@ def load_scenario(path: str | Path) -> Any:
 
     Returns
     -------
-    RunBatch or ManeuverJob
+    Problem or ManeuverJob
         See :func:`parse_scenario`.
 
     Raises

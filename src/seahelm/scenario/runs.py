@@ -1,4 +1,4 @@
-"""A ``[simulation]`` scenario: the :class:`~seahelm.simulation.batch.RunBatch` it describes.
+"""A ``[simulation]`` scenario: the :class:`~seahelm.simulation.problem.Problem` it describes.
 
 Resolves and checks what only the scenario knows: names (models, catalog entries, parameters,
 state and signal channels), parameter ranges (through the components' parameter dataclasses),
@@ -22,7 +22,8 @@ import numpy as np
 from ..errors import ParameterError
 from ..parameters import Params
 from ..registry import get_actuator, get_controller, get_model
-from ..simulation.batch import BatchAxis, BatchLayout, BatchValues, RunBatch, grid_axes
+from ..simulation.batch import BatchAxis, BatchLayout, BatchValues, grid_axes
+from ..simulation.problem import Problem
 from ..simulation.composition import compose
 from ..resources import WorkTooLarge, check_work
 from ..simulation.engine import check_record_memory
@@ -283,7 +284,7 @@ def _signal_input(
 
 
 def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
-                 in_memory: bool = True) -> RunBatch:
+                 in_memory: bool = True) -> Problem:
     """The batch a validated scenario describes: components, per-run inputs and the layout.
 
     Resolves and validates names, parameters (through the components' parameter
@@ -306,7 +307,7 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
 
     Returns
     -------
-    RunBatch
+    Problem
         Components, parameter arrays (runs, n_params), initial states (SI units, radians),
         reference and disturbance inputs, and the layout: the grid's dimensions (named by the
         last component of each key path, or the full path where that is ambiguous), plus
@@ -475,7 +476,7 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
         first_order=in_loop,
     )
     try:  # the problem validates itself: its errors name their field, the key comes from it
-        return RunBatch(**inputs)
+        return Problem(**inputs)
     except ParameterError as exc:
         raise _engine_error(source, exc, layout) from exc
 
@@ -500,7 +501,7 @@ def _engine_error(source: str, exc: ParameterError, layout: BatchLayout | None) 
 
 
 def run_batch(
-    batch: RunBatch,
+    batch: Problem,
     *,
     progress: Callable[[int, int], None] | None = None,
     throw: bool = False,
@@ -514,7 +515,7 @@ def run_batch(
 
     Parameters
     ----------
-    batch : RunBatch
+    batch : Problem
         Result of :func:`load_scenario`, :func:`parse_scenario` or :func:`prepare_runs`.
     progress : callable(done_steps, total_steps), optional
         Called between chunks of the simulation loop.

@@ -1,7 +1,7 @@
 """A batch of closed-loop runs described once: what the engine runs, and the shape of the question.
 
-:class:`RunBatch` is the :class:`~seahelm.simulation.problem.Problem` (the one typed request of
-a run: components, per-run parameter rows, initial states, signals, timing, bounds, seed,
+A batch is a :class:`~seahelm.simulation.problem.Problem` (the one typed request of a run
+(its old name here, ``RunBatch``, is deprecated): components, per-run parameter rows, initial states, signals, timing, bounds, seed,
 metadata, options), whose :class:`BatchLayout` gives the dimensions the runs span. A 3 × 4 grid over ``controller.params.kp`` and
 ``controller.params.kd`` has the layout ``kp × kd`` (runs in C order: ``kd`` varies fastest);
 Monte-Carlo adds a ``sample`` dimension (its drawn values are :class:`BatchValues`); a plain
@@ -21,11 +21,11 @@ result is built.
 
 Example::
 
-    batch = RunBatch(model=NOMOTO2, params=mariner, x0=np.zeros(5), t_final=600.0, dt=0.1,
-                     controller=PID_HEADING, controller_params=gains,       # 12 rows
-                     reference=[math.radians(20.0)],
-                     layout=BatchLayout(axes=(BatchAxis(name="kp", values=kps, key="kp"),
-                                              BatchAxis(name="kd", values=kds, key="kd"))))
+    batch = Problem(model=NOMOTO2, params=mariner, x0=np.zeros(5), t_final=600.0, dt=0.1,
+                    controller=PID_HEADING, controller_params=gains,       # 12 rows
+                    reference=[math.radians(20.0)],
+                    layout=BatchLayout(axes=(BatchAxis(name="kp", values=kps, key="kp"),
+                                             BatchAxis(name="kd", values=kds, key="kd"))))
     ds = simulate_batch(batch).to_xarray()     # dims (kp, kd, time)
 """
 
@@ -34,13 +34,14 @@ from __future__ import annotations
 from collections.abc import Callable, Collection, Mapping, Sequence
 from typing import TYPE_CHECKING
 
+from ..errors import deprecated_names
 from ..result_layout import RESERVED_DIMS, BatchAxis, BatchLayout, BatchValues
 from .problem import Problem
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..results import SimResult
 
-__all__ = ["BatchAxis", "BatchValues", "BatchLayout", "RunBatch", "simulate_batch", "grid_axes"]
+__all__ = ["BatchAxis", "BatchValues", "BatchLayout", "simulate_batch", "grid_axes"]
 
 
 def grid_axes(
@@ -79,13 +80,13 @@ def grid_axes(
     return tuple(axes)
 
 
-#: The batch of runs a scenario or a manoeuvre describes is a :class:`Problem` (the name stays
-#: for code written against it).
-RunBatch = Problem
+#: ``RunBatch``, the old name of :class:`Problem`: deprecated (a warning on access).
+__getattr__ = deprecated_names(__name__, {
+    "RunBatch": ("seahelm.simulation.problem", "Problem", "seahelm.Problem")})
 
 
 def simulate_batch(
-    batch: RunBatch,
+    batch: Problem,
     *,
     throw: bool = False,
     progress: Callable[[int, int], None] | None = None,
@@ -94,7 +95,7 @@ def simulate_batch(
 
     Parameters
     ----------
-    batch : RunBatch
+    batch : Problem
         The runs and their layout.
     throw : bool, optional
         Raise :class:`~seahelm.errors.SimulationDiverged` on the first diverged run (flat run

@@ -29,7 +29,7 @@ from ..errors import ParameterError
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
-    from ..simulation.batch import RunBatch
+    from ..simulation.problem import Problem
 
 __all__ = ["SweepSpec", "prepared", "select_runs", "compute_chunk", "chunk_bounds",
            "auto_chunk_size", "check_chunk_memory", "MAX_CHUNK_BYTES"]
@@ -178,7 +178,7 @@ def check_chunk_memory(chunk_size: int, bytes_per_run: float, *, workers: int = 
 
 @functools.lru_cache(maxsize=2)
 def prepared(text: str, source: str) -> Any:
-    """The scenario's job (a :class:`~seahelm.simulation.batch.RunBatch` or a
+    """The scenario's job (a :class:`~seahelm.simulation.problem.Problem` or a
     :class:`~seahelm.scenario.ManeuverJob`), prepared once per process and text."""
     from ..scenario import parse_scenario
 
@@ -193,7 +193,7 @@ def _rows(value: Any, n: int, start: int, stop: int, ndim: int) -> Any:
     return value
 
 
-def select_runs(batch: "RunBatch", start: int, stop: int) -> "RunBatch":
+def select_runs(batch: "Problem", start: int, stop: int) -> "Problem":
     """The runs ``start:stop`` of a batch (flat run order) as a batch of their own.
 
     Per-run inputs (parameter rows, initial states, constant reference and disturbance rows,
@@ -205,14 +205,14 @@ def select_runs(batch: "RunBatch", start: int, stop: int) -> "RunBatch":
 
     Parameters
     ----------
-    batch : RunBatch
+    batch : Problem
         A batch with a layout (e.g. from :func:`seahelm.scenario.prepare_runs`).
     start, stop : int
         Flat run indices, 0 <= start < stop <= runs.
 
     Returns
     -------
-    RunBatch
+    Problem
     """
     n = batch.n_runs
     if n is None or not 0 <= start < stop <= n:
@@ -291,7 +291,7 @@ def compute_chunk(spec: SweepSpec, index: int) -> "xr.Dataset":
 _VOLATILE = ("created", "wall_time_s", "compile_time_s")
 
 
-def simulation_chunk(batch: "RunBatch", start: int, stop: int, *, series: bool = True,
+def simulation_chunk(batch: "Problem", start: int, stop: int, *, series: bool = True,
                      with_attrs: bool = False) -> Any:
     """Runs ``start:stop`` of a ``[simulation]`` batch as a Dataset over the global ``run``.
 

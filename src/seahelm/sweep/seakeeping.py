@@ -47,7 +47,7 @@ from ..errors import ParameterError, ValidityRangeWarning
 __all__ = ["SweepSeakeeping", "sweep_seakeeping", "frequency_domain_moments", "DOF_METRICS",
            "HEADING_KEYS", "DATASET_FORMAT"]
 
-#: The ``format`` attribute of :meth:`SweepSeakeeping.to_dataset`.
+#: The ``format`` attribute of :meth:`SweepSeakeeping.to_xarray`.
 DATASET_FORMAT = "seahelm-seakeeping-sweep-1"
 
 #: Degree of freedom -> (the per-run metric, its factor to SI, the SI unit, description).
@@ -212,6 +212,20 @@ class SweepSeakeeping:
         return h + 2.0 * math.pi * (np.cumsum(np.append(0.0, np.diff(h)) < 0) > 0)
 
     def to_dataset(self) -> Any:
+        """Deprecated name of :meth:`to_xarray` (a :class:`DeprecationWarning`).
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        import warnings
+
+        warnings.warn(f"{type(self).__name__}.to_dataset() is deprecated: use .to_xarray() "
+                      "(the same Dataset; one name for it across seahelm)", DeprecationWarning,
+                      stacklevel=2)
+        return self.to_xarray()
+
+    def to_xarray(self) -> Any:
         """The cells as an :class:`xarray.Dataset` over (dof, speed_index, heading_index).
 
         Returns

@@ -29,8 +29,8 @@ Metrics of recorded runs that the scenario runner uses (:mod:`.metrics`): :func:
 
 from __future__ import annotations
 
+from ...errors import deprecated_names
 from .common import (
-    ManeuverShip,
     default_time_step,
     maneuver_ship,
 )
@@ -52,7 +52,6 @@ from .zigzag import ZigZagMetrics, zigzag, zigzag_metrics
 
 __all__ = [
     "ManeuverResult",
-    "ManeuverShip",
     "default_time_step",
     "maneuver_ship",
     "metrics_rows",
@@ -78,3 +77,8 @@ __all__ = [
     "summary_units",
     "path_following_metrics",
 ]
+
+#: ``ManeuverShip``, the old name of :class:`~seahelm.ships.Ship`: deprecated (a warning on
+#: access).
+__getattr__ = deprecated_names(__name__, {"ManeuverShip": ("seahelm.ships", "Ship",
+                                                          "seahelm.Ship")})

@@ -44,13 +44,12 @@ import numpy as np
 from ..._validate import as_float_array, check_positive
 from ...actuators.servo import RUDDER_SERVO
 from ...control.open_loop import OPEN_LOOP
-from ...errors import ParameterError, ValidityRangeWarning
+from ...errors import ParameterError, ValidityRangeWarning, deprecated_names
 from ...vessels.base import VesselModel
 from ..equilibrium import EquilibriumError
 from .ships import (  # re-exported: the manoeuvres and tests import them from here
     SPEED_VALIDITY,
     STEP_VALIDITY,
-    ManeuverShip,
     maneuver_ship,
     _ships,
     default_time_step,
@@ -66,9 +65,13 @@ if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
     from ...results import SimResult
+    from ...ships import Ship
+
+#: ``ManeuverShip``, the old name of :class:`~seahelm.ships.Ship`: deprecated.
+__getattr__ = deprecated_names(__name__, {"ManeuverShip": ("seahelm.ships", "Ship",
+                                                          "seahelm.Ship")})
 
 __all__ = [
-    "ManeuverShip",
     "maneuver_ship",
     "default_time_step",
 ]
@@ -229,7 +232,7 @@ class Plan:
     def model(self) -> VesselModel:
         return self.ships[0].model
 
-    def ship(self, run: int) -> ManeuverShip:
+    def ship(self, run: int) -> "Ship":
         return self.ships[self.index[run]["ship"]]
 
     def approach(self, run: int) -> Approach:
@@ -281,7 +284,8 @@ class Plan:
         (:class:`~seahelm.environment.loads.Conditions`): wind, waves and current acting from
         t = 0 on (the approach is the calm-water one).
         """
-        from ...simulation.batch import BatchAxis, BatchLayout, RunBatch, simulate_batch
+        from ...simulation.batch import BatchAxis, BatchLayout, simulate_batch
+        from ...simulation.problem import Problem
         from ...resources import WorkTooLarge
         from ...simulation.engine import RecordingTooLarge
 
@@ -304,7 +308,7 @@ class Plan:
                 _select_runs(v, runs, self.n_runs)
                 for v in (x0, actuator_x0, reference, controller_params, extra))
         # (the engine uses no more threads than runs, so a small batch wakes no idle thread)
-        batch = RunBatch(
+        batch = Problem(
             model=self.model,
             params=(self.ships[0].params if len(self.ships) == 1
                     else [self.ship(i).params for i in runs.tolist()]),
@@ -546,7 +550,7 @@ def final_time(t_final: float, dt: float, name: str = "t_final") -> float:
     return math.ceil(t_final / dt - 1e-9) * dt
 
 
-def check_rudder(ships: Sequence[ManeuverShip], name: str, values: np.ndarray, *,
+def check_rudder(ships: Sequence["Ship"], name: str, values: np.ndarray, *,
                  allow_zero: bool = False) -> None:
     """|δ| within the steering gear's limit of every ship (ParameterError naming it)."""
     for s in ships:

@@ -19,7 +19,7 @@ if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
     from ...results import SimResult
-    from .common import ManeuverShip
+    from ...ships import Ship
 
 __all__ = ["ManeuverResult", "metrics_rows"]
 
@@ -35,7 +35,7 @@ class ManeuverResult:
         ``"pull-out"``.
     metrics : xarray.Dataset
         The metrics over the batch dims (see the module docstring).
-    ships : tuple of ManeuverShip
+    ships : tuple of Ship
         The ships of the batch (``ship`` index order).
     simulation : SimResult or None
         The engine's result (flat run order); None for a manoeuvre computed from equilibria
@@ -47,7 +47,7 @@ class ManeuverResult:
 
     maneuver: str
     metrics: "xr.Dataset"
-    ships: tuple[ManeuverShip, ...]
+    ships: tuple["Ship", ...]
     simulation: "SimResult | None" = None
     runs_builder: Callable[[], "xr.Dataset"] | None = dataclasses.field(default=None,
                                                                          repr=False)

@@ -14,7 +14,7 @@ import numpy as np
 
 from ..._validate import check_positive
 from ...actuators.servo import ServoParams
-from ...errors import ParameterError
+from ...errors import ParameterError, deprecated_names
 from ...parameters import Params
 from ...registry import model_for_params
 from ...vessels.base import VesselModel
@@ -25,7 +25,7 @@ from ..equilibrium import (
     straight_run_speed,
 )
 
-__all__ = ["ManeuverShip", "maneuver_ship", "default_time_step"]
+__all__ = ["maneuver_ship", "default_time_step"]
 
 STARBOARD, PORT = 1, -1
 
@@ -34,9 +34,9 @@ STARBOARD, PORT = 1, -1
 SPEED_VALIDITY = 1.5
 STEP_VALIDITY = 10.0
 
-#: A ship ready for manoeuvres is a :class:`~seahelm.ships.Ship` with a steering gear (the
-#: name stays for code written against it).
-ManeuverShip = Ship
+#: ``ManeuverShip``, the old name of :class:`~seahelm.ships.Ship` (a ship ready for manoeuvres
+#: is a ship with a steering gear): deprecated (a warning on access).
+__getattr__ = deprecated_names(__name__, {"ManeuverShip": ("seahelm.ships", "Ship", "seahelm.Ship")})
 
 
 def maneuver_ship(ship: Any, *, servo: ServoParams | None = None,
@@ -146,7 +146,7 @@ def _gear(servo: ServoParams) -> Any:
                         provenance="given as a parameter set (ServoParams)")
 
 
-def _ships(ship: Any) -> tuple[list[ManeuverShip], bool]:
+def _ships(ship: Any) -> tuple[list[Ship], bool]:
     """One ship or a sequence of them (a ``ship`` dimension); all on one model."""
     if isinstance(ship, (list, tuple)):
         if not ship:
@@ -198,7 +198,7 @@ def default_time_step(ship: Any, speed: float | None = None) -> float:
     return float(f"{10.0 ** exponent:.12g}")  # pragma: no cover - mantissa 1 always fits
 
 
-def usual_time_step(ships: Sequence["ManeuverShip"], speeds: Any) -> float:
+def usual_time_step(ships: Sequence[Ship], speeds: Any) -> float:
     """The smallest :func:`default_time_step` of the ships at any of the approach speeds.
 
     The step shrinks as the speed grows (dt ∝ L/U before rounding down), so it is each distinct
