@@ -264,7 +264,7 @@ def nomoto(
         payload["plot"] = str(plot_nomoto_fit(fit, records, plot))
     if imo:
         payload["imo"] = _imo_given_fit(fit, records, imo, posterior, seed, speed, length,
-                                        max_rudder, rudder_rate, level)
+                                        max_rudder, rudder_rate, level, json_out)
     if json_out:
         print_json(payload)
         return
@@ -275,38 +275,39 @@ def nomoto(
 
 def _imo_given_fit(fit: Any, records: Any, n: int, posterior: str, seed: int | None,
                    speed: float | None, length: float | None, max_rudder: float,
-                   rudder_rate: float, level: float) -> dict[str, Any]:
-    from ..analysis.nomoto_posterior import posterior_samples, posterior_ships
+                   rudder_rate: float, level: float, json_out: bool) -> dict[str, Any]:
+    """``identify nomoto --imo N``: :func:`seahelm.analysis.imo_given_fit.
+    imo_given_nomoto_fit`, its errors in the command's words."""
+    from ..analysis.imo_given_fit import imo_given_nomoto_fit
     from ..errors import ParameterError
 
     if speed is None or length is None:
         raise ParameterError("`--imo` needs `--speed` and `--length` (the ship's U [m/s] and "
                              "L [m]: the IMO limits are in ship lengths and L/V)")
-    bad = {k for k in fit.unidentifiable() if k != "rudder_offset"}
-    if bad:
-        raise ParameterError(f"`--imo`: the records do not identify {', '.join(sorted(bad))}; "
-                             "no posterior to draw ships from (fit the other --order)")
-    samples = posterior_samples(fit, records, n=n, method=posterior, seed=seed)
-    ships = posterior_ships(fit, samples, name="posterior", speed=speed, length=length,
-                            max_rudder=math.radians(max_rudder),
-                            rudder_rate=math.radians(rudder_rate))
-    return _imo_of_ships(ships, n, posterior, seed, level)
+    bar = _bar(n, json_out)
+    try:
+        return imo_given_nomoto_fit(fit, records, n, speed=speed, length=length,
+                                    method=posterior, seed=seed,
+                                    max_rudder=math.radians(max_rudder),
+                                    rudder_rate=math.radians(rudder_rate), level=level,
+                                    progress=bar)
+    except ParameterError as exc:
+        if exc.field != "fit":
+            raise
+        raise ParameterError(f"`--imo`: {exc.reason} (fit the other --order)") from None
+    finally:
+        bar.close()
 
 
-def _imo_of_ships(ships: list[Any], n: int, posterior: str, seed: int | None,
-                  level: float, reference: Any = None) -> dict[str, Any]:
-    """The IMO pass probabilities over posterior ships (shared by nomoto and mmg; the
-    ``reference`` bounds the runs' durations, :func:`~seahelm.analysis.imo_probability.
-    imo_probabilities`)."""
-    from ..analysis.imo_probability import imo_probabilities
+def _bar(n: int, json_out: bool) -> Any:
+    """The progress bar of the IMO check of the posterior ships (on a terminal)."""
+    from ._common import ProgressBar
 
-    out = imo_probabilities(ships, level=level, reference=reference).as_dict()
-    out.update(samples=n, posterior=posterior, seed=seed)
-    return out
+    return ProgressBar(f"checking {n} posterior ship(s)", enabled=not json_out)
 
 
 def _print_imo_given_fit(p: dict[str, Any]) -> None:
-    """The table of :func:`_imo_of_ships` (shared by nomoto and mmg)."""
+    """The table of the IMO check given the identification (shared by nomoto and mmg)."""
     from .imo import print_imo_probabilities
 
     print_imo_probabilities(p, f"IMO MSC.137(76) given the identification: {p['total']} "
@@ -466,7 +467,7 @@ def mmg(
     fit = identify_mmg(records, base, method=method, output_error=output_error)
     payload = fit.as_dict()
     if n_post:
-        from ..analysis.mmg_posterior import mmg_posterior, posterior_ships
+        from ..analysis.mmg_posterior import mmg_posterior
 
         option = "--imo" if imo else "--samples"
         try:
@@ -474,12 +475,20 @@ def mmg(
         except ParameterError as exc:
             raise ParameterError(f"`{option}`: {exc}") from None
         if save_posterior is not None:
-            payload["posterior_file"] = str(_save_posterior(save_posterior, fit, post, base,
-                                                            seed))
+            from ..analysis.imo_given_fit import write_posterior_samples
+
+            payload["posterior_file"] = str(write_posterior_samples(save_posterior, fit, post,
+                                                                    base, seed))
         if imo:
-            payload["imo"] = _imo_of_ships(posterior_ships(fit, post, base), imo, posterior,
-                                           seed, level, reference=fit.ship(base, name=name))
-            payload["imo"]["posterior_samples"] = post.as_dict()
+            from ..analysis.imo_given_fit import imo_given_mmg_fit
+
+            bar = _bar(imo, json_out)
+            try:
+                payload["imo"] = imo_given_mmg_fit(fit, records, base, imo, method=posterior,
+                                                   seed=seed, level=level, name=name,
+                                                   posterior=post, progress=bar)
+            finally:
+                bar.close()
         else:
             payload["posterior_samples"] = post.as_dict()
     if out is not None:
@@ -520,27 +529,6 @@ def _posterior_count(imo: int, samples: int, save: Path | None) -> int:
             raise ParameterError(f"`--save-posterior` writes a CSV samples file (FILE.csv), "
                                  f"got {save}")
     return n
-
-
-def _save_posterior(path: Path, fit: Any, post: Any, base: Any, seed: int | None) -> Path:
-    """The posterior ships' hull derivatives as a samples file
-    (:mod:`seahelm.analysis.samples_file`)."""
-    from ..analysis.mmg_posterior import posterior_columns
-    from ..analysis.samples_file import write_samples
-
-    columns = posterior_columns(fit, post)
-    units = {i.name: i.unit for i in type(base.params).info()}
-    fixed = ", ".join(fit.fixed) or "none"
-    return write_samples(path, columns, units={k: units.get(k.rpartition(".")[2], "")
-                                               for k in columns}, comments=(
-        f"seahelm posterior samples of the MMG hull derivatives of '{base.name}' "
-        f"({post.method}, {post.samples.shape[0]} samples, "
-        + (f"seed {seed})" if seed is not None else "unseeded)"),
-        f"identified ({fit.method}) from {', '.join(fit.records)}",
-        f"sampled: {', '.join(fit.names)}; not identified, at the base ship's values: "
-        f"{fixed}; the others at the fit's values",
-        "one row per sample; use: seahelm imo SHIP.toml --draws FILE.csv, or a scenario's "
-        "[batch.monte_carlo] samples = \"FILE.csv\""))
 
 
 def _print_posterior_diagnostics(post: dict[str, Any]) -> None:
