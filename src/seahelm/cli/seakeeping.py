@@ -38,18 +38,15 @@ NETCDF_NAME = "seakeeping.nc"
 MAX_TABLE_CELLS = 40
 #: Largest speeds × headings grid computed.
 MAX_CELLS = 100_000
-#: Numerical bounds of the sea state and the grids (beyond them the spectra and the RAOs
-#: overflow: Hs or Tp of 1e300 and Tp of 1e-300 raised OverflowError, speeds of 1e300 gave NaN
-#: moments); every value inside computes finite moments (measured at each end). The closed
-#: form's own validity range (Fn <= 0.4) warns well inside them.
-HS_MAX = 100.0
+#: Numerical bounds of the grids (beyond them the RAOs overflow: speeds of 1e300 gave NaN
+#: moments; those of the sea state are :data:`seahelm.environment.spectra.SEA_BOUNDS`); every
+#: value inside computes finite moments (measured at each end). The closed form's own
+#: validity range (Fn <= 0.4) warns well inside them.
 #: Above this significant wave height [m] a warning: the highest measured is 19.0 m (a North
 #: Atlantic buoy, 4 February 2013; WMO 2016).
 HS_HIGHEST = 20.0
 #: ``--spreading-s``'s default.
 DEFAULT_SPREADING_S = 10.0
-TP_RANGE = (0.1, 1000.0)
-GAMMA_MAX = 20.0
 SPEED_MAX = 100.0
 HEADING_MAX = 360.0
 
@@ -127,29 +124,27 @@ def _within(option: str, value: float, unit: str, low: float, high: float,
                              f"[{unit}], got {value!r}", field=option, unit=unit, value=value)
 
 
-def _spectrum(name: str, hs: float, tp: float | None, gamma: float) -> Any:
-    from ..environment.spectra import get_spectrum
+#: The library's spectrum parameter -> this command's option.
+_SEA_OPTIONS = {"significant_height": "hs", "peak_period": "tp", "gamma": "gamma"}
 
-    _within("hs", hs, "m", 0.0, HS_MAX, low_open=True)
+
+def _spectrum(name: str, hs: float, tp: float | None, gamma: float | None) -> Any:
+    """:func:`seahelm.environment.spectra.sea_spectrum` (which parameters each spectrum
+    takes, their bounds), its errors naming the options; Hs above the highest measured warns."""
+    from ..environment.spectra import sea_spectrum
+
+    try:
+        spec = sea_spectrum(name, significant_height=hs, peak_period=tp, gamma=gamma)
+    except ParameterError as exc:
+        raise ParameterError(exc.reason, field=_SEA_OPTIONS.get(exc.field or "", exc.field),
+                             unit=exc.unit, value=exc.value) from None
     if hs > HS_HIGHEST:
         from ..errors import warn_validity
 
         warn_validity(f"`--hs` = {hs:g} m is above {HS_HIGHEST:g} m, more than the highest "
                       "significant wave height ever measured (19 m, WMO 2016): a unit or a "
                       "typing mistake?")
-    if name == "pierson-moskowitz":
-        if tp is not None:
-            raise ParameterError("is not taken by pierson-moskowitz (its peak follows from "
-                                 "`hs`); drop it or choose jonswap/bretschneider", field="tp",
-                                 unit="s", value=tp)
-        return get_spectrum(name, significant_height=hs)
-    if tp is None:
-        raise ParameterError(f"is required for {name} [s]", field="tp", unit="s")
-    _within("tp", tp, "s", *TP_RANGE)
-    if name == "jonswap":
-        _within("gamma", gamma, "-", 1.0, GAMMA_MAX)
-        return get_spectrum(name, significant_height=hs, peak_period=tp, gamma=gamma)
-    return get_spectrum(name, significant_height=hs, peak_period=tp)
+    return spec
 
 
 def _display(dof: str) -> tuple[float, str]:
@@ -169,8 +164,9 @@ def seakeeping(
     spectrum: Annotated[SpectrumName, typer.Option(
         "--spectrum", help="Wave spectrum: jonswap, bretschneider (= ittc), "
                            "pierson-moskowitz.")] = "jonswap",
-    gamma: Annotated[float, typer.Option("--gamma", help="JONSWAP peak enhancement γ [-].")
-                     ] = 3.3,
+    gamma: Annotated[float | None, typer.Option(
+        "--gamma", help="JONSWAP peak enhancement γ [-] (jonswap only).", show_default="3.3")
+    ] = None,
     speeds: Annotated[str | None, typer.Option(
         "--speeds", help="Ship speeds [m/s]: START:STOP:N or a list (default 0 to the ship's "
                          "test speed, 5 values).")] = None,

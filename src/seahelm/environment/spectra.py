@@ -69,6 +69,8 @@ __all__ = [
     "PRINTED_SPECTRA",
     "spectrum_names",
     "get_spectrum",
+    "sea_spectrum",
+    "SEA_BOUNDS",
     "spectrum_from_wave_height",
 ]
 
@@ -433,6 +435,73 @@ def get_spectrum(spectrum: str | WaveSpectrum, **params: Any) -> WaveSpectrum:
             raise ParameterError("parameters cannot be given together with a spectrum object")
         return spectrum
     return _spectrum_class(spectrum)(**params)
+
+
+#: Bounds of a sea by Hs [m], Tp [s] and γ [-] (:func:`sea_spectrum`): (low, high, low open).
+#: Beyond them the spectra and the RAOs overflow (Hs or Tp of 1e300 and Tp of 1e-300 raised
+#: OverflowError); every value inside computes finite response moments (measured at each end).
+SEA_BOUNDS: Mapping[str, tuple[float, float, bool]] = MappingProxyType({
+    "significant_height": (0.0, 100.0, True),
+    "peak_period": (0.1, 1000.0, False),
+    "gamma": (1.0, 20.0, False),
+})
+_SEA_UNITS = {"significant_height": "m", "peak_period": "s", "gamma": "-"}
+_SEA_SYMBOLS = {"significant_height": "Hs", "peak_period": "Tp", "gamma": "γ"}
+
+
+def sea_spectrum(name: str, *, significant_height: float, peak_period: float | None = None,
+                 gamma: float | None = None) -> WaveSpectrum:
+    """A spectrum of the sea given by Hs, Tp and γ, each parameter taken by the spectra that
+    declare it (a field of the spectrum's class): Tp by ``jonswap`` and ``bretschneider``
+    (``ittc``), required there; γ by ``jonswap`` (default 3.3); Pierson–Moskowitz by Hs
+    alone (its peak follows from it).
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`SPECTRA` (or of :data:`PRINTED_SPECTRA`).
+    significant_height : float
+        Hs [m], in (0, 100].
+    peak_period : float, optional
+        Tp [s], in [0.1, 1000], for the spectra that take it.
+    gamma : float, optional
+        JONSWAP's peak enhancement γ [-], in [1, 20].
+
+    Returns
+    -------
+    WaveSpectrum
+
+    Raises
+    ------
+    ParameterError
+        Naming the parameter (``field``): a value outside :data:`SEA_BOUNDS`, a parameter the
+        spectrum does not take, a required one missing; an unknown name (listing the valid
+        ones).
+    """
+    cls = _spectrum_class(name)
+    takes = {f.name: f for f in dataclasses.fields(cls) if f.init}
+    given = {"significant_height": significant_height, "peak_period": peak_period,
+             "gamma": gamma}
+    for key, value in given.items():
+        if value is None:
+            field = takes.get(key)
+            if field is not None and field.default is dataclasses.MISSING:
+                raise ParameterError(f"is required for {name} [{_SEA_UNITS[key]}]", field=key,
+                                     unit=_SEA_UNITS[key])
+            continue
+        if key not in takes:
+            raise ParameterError(
+                f"is not taken by {name} (of Hs, Tp, γ it takes "
+                f"{', '.join(_SEA_SYMBOLS[k] for k in given if k in takes) or 'none'}); drop it "
+                "or choose a spectrum that takes it", field=key,
+                unit=_SEA_UNITS[key], value=value)
+        low, high, low_open = SEA_BOUNDS[key]
+        if not (math.isfinite(value) and (value > low if low_open else value >= low)
+                and value <= high):
+            raise ParameterError(f"must be in {'(' if low_open else '['}{low:g}, {high:g}] "
+                                 f"[{_SEA_UNITS[key]}], got {value!r}", field=key,
+                                 unit=_SEA_UNITS[key], value=value)
+    return cls(**{k: v for k, v in given.items() if v is not None})
 
 
 def spectrum_from_wave_height(spectrum: str | type[WaveSpectrum] | WaveSpectrum, h3: float,
