@@ -72,6 +72,10 @@ class Controller:
         Reference = command, channels named after what they feed (open loop).
     output_labels, output_units : tuple of str
         Recorded signals it writes after its commands (they feed nothing).
+    command_units, state_units : tuple of str
+        The units of its commands and states, in their order (``""`` or ``"-"``: none; the
+        whole tuple empty: not declared, as for a pass-through controller, whose commands are
+        what it is wired to).
     sample_period : float or None
         The one controller period [s] it works at (a controller designed or discretised for
         it); None: any. A problem at another ``controller_dt`` is refused.
@@ -91,6 +95,8 @@ class Controller:
     output_labels: tuple[str, ...] = ()
     output_units: tuple[str, ...] = ()
     sample_period: float | None = None
+    command_units: tuple[str, ...] = ()
+    state_units: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if len(self.reference_units) != len(self.reference_labels):
@@ -100,6 +106,11 @@ class Controller:
             raise ValueError(f"{self.name}: sample_period must be > 0 [s] or None")
         if len(self.output_units) != len(self.output_labels):
             raise ValueError(f"{self.name}: output_units has the wrong length")
+        for kind, units, labels in (("command", self.command_units, self.command_labels),
+                                    ("state", self.state_units, self.state_labels)):
+            if units and len(units) != len(labels):
+                raise ValueError(f"{self.name}: {kind}_units has the wrong length "
+                                 f"({len(units)} for {len(labels)} {kind}s)")
 
     @property
     def n_measurements(self) -> int:
@@ -114,13 +125,15 @@ class Controller:
         -------
         list of tuple of str
         """
-        rows = [("state", n, "") for n in self.state_labels]
+        states = self.state_units or ("",) * len(self.state_labels)
+        rows = [("state", n, u) for n, u in zip(self.state_labels, states)]
         if not self.passthrough:
             rows += [("reference", n, u) for n, u in zip(self.reference_labels,
                                                           self.reference_units)]
         rows += [("measurement", n, "") for n in self.measurement_labels]
         if not self.passthrough:
-            rows += [("command", n, "") for n in self.command_labels]
+            commands = self.command_units or ("",) * len(self.command_labels)
+            rows += [("command", n, u) for n, u in zip(self.command_labels, commands)]
         rows += [("output", n, u) for n, u in zip(self.output_labels, self.output_units)]
         return rows
 

@@ -428,6 +428,8 @@ FSM_YAW_RATE = Controller(
     reference_labels=_YR_REFERENCES,
     reference_units=("rad/s",),
     command_labels=_CMD,
+    command_units=("rad/s",),
+    state_units=(),
     init=fsm_yaw_rate_init,
     step=fsm_yaw_rate_step,
 )
@@ -441,6 +443,8 @@ FSM_YAW_RATE_SIMPLE = Controller(
     reference_labels=_YR_REFERENCES,
     reference_units=("rad/s",),
     command_labels=_CMD,
+    command_units=("rad/s",),
+    state_units=(),
     init=fsm_yaw_rate_init,
     step=fsm_yaw_rate_simple_step,
 )
@@ -454,16 +458,21 @@ FSM_HEADING = Controller(
     reference_labels=_H_REFERENCES,
     reference_units=("rad",),
     command_labels=_CMD,
+    command_units=("rad/s",),
+    state_units=("rad", "s", "rad", "rad/s"),
     init=fsm_heading_init,
     step=fsm_heading_step,
 )
 
 FSM_YAW_RATE_DRIVE = dataclasses.replace(
     FSM_YAW_RATE, name="fsm-yaw-rate-drive", command_labels=_CMD_DRIVE,
+    command_units=("rad",),
     description=FSM_YAW_RATE.description + ", commanding the thruster drive eq. (22)-(23)")
 FSM_YAW_RATE_SIMPLE_DRIVE = dataclasses.replace(
     FSM_YAW_RATE_SIMPLE, name="fsm-yaw-rate-simple-drive", command_labels=_CMD_DRIVE,
+    command_units=("rad",),
     description=FSM_YAW_RATE_SIMPLE.description + ", commanding the thruster drive eq. (22)-(23)")
 FSM_HEADING_DRIVE = dataclasses.replace(
     FSM_HEADING, name="fsm-heading-drive", command_labels=_CMD_DRIVE,
+    command_units=("rad",),
     description=FSM_HEADING.description + ", commanding the thruster drive eq. (22)-(23)")

@@ -52,6 +52,7 @@ from ..errors import ParameterError
 from ..parameters import param, signal_indices
 from .autopilot_design import _warn_margins, loop_margins, state_space_response
 from .base import Controller, wrap_pi
+from .held_rps import with_held_rps
 from .path_following import (GUIDANCE_OUTPUT_UNITS, GUIDANCE_OUTPUTS, GUIDANCE_STATES,
                              RouteParams, _advance_waypoints, cross_track, route_params)
 
@@ -77,14 +78,6 @@ class LQCrossTrackParams(RouteParams):
                                       doc="largest approach angle to the path")
 
 
-@dataclasses.dataclass(frozen=True, kw_only=True)
-class LQCrossTrackRpsParams(LQCrossTrackParams):
-    """As :class:`LQCrossTrackParams`, and the propeller rps it holds."""
-
-    propeller_rps: float = param(unit="1/s", symbol="n", low=0.0, low_inclusive=False,
-                                 doc="propeller revolutions held constant")
-
-
 MEASUREMENTS: tuple[str, ...] = ("north", "east", "heading", "yaw_rate", "sway_speed")
 COMMANDS: tuple[str, ...] = ("rudder_command",)
 
@@ -93,7 +86,6 @@ _C = signal_indices(COMMANDS + ("propeller_rps",))
 _S = signal_indices(GUIDANCE_STATES)
 _G = signal_indices(GUIDANCE_OUTPUTS)
 _FIRST_OUTPUT = len(COMMANDS)  # the records follow the commands in ``cmd``
-_FIRST_OUTPUT_RPS = len(COMMANDS) + 1
 
 
 @njit(cache=True)
@@ -138,12 +130,6 @@ def lq_cross_track_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - com
     cmd[_C.rudder_command] = lq_cross_track_law(dt, y, p, cs, cmd[_FIRST_OUTPUT:])
 
 
-@njit(cache=True)
-def lq_cross_track_rps_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
-    cmd[_C.rudder_command] = lq_cross_track_law(dt, y, p, cs, cmd[_FIRST_OUTPUT_RPS:])
-    cmd[_C.propeller_rps] = p.propeller_rps
-
-
 LQ_CROSS_TRACK = Controller(
     name="lq-cross-track",
     description="LQ-integral cross-track controller: state feedback on the cross-track error, "
@@ -153,6 +139,8 @@ LQ_CROSS_TRACK = Controller(
     reference_labels=(),
     reference_units=(),
     command_labels=COMMANDS,
+    command_units=("rad",),
+    state_units=("-", "m·s", "-"),
     init=lq_cross_track_init,
     step=lq_cross_track_step,
     measurement_labels=MEASUREMENTS,
@@ -160,12 +148,14 @@ LQ_CROSS_TRACK = Controller(
     output_units=GUIDANCE_OUTPUT_UNITS,
 )
 
-LQ_CROSS_TRACK_RPS = dataclasses.replace(
-    LQ_CROSS_TRACK, name="lq-cross-track-rps",
-    description="LQ-integral cross-track controller (as 'lq-cross-track') that also holds a "
-    "constant propeller rps, for models with rudder and propeller inputs (MMG)",
-    params_type=LQCrossTrackRpsParams, command_labels=COMMANDS + ("propeller_rps",),
-    step=lq_cross_track_rps_step)
+#: ``lq-cross-track`` holding a constant propeller rps (:func:`~seahelm.control.held_rps.
+#: with_held_rps`; its recorded outputs follow the rps), for models with rudder and propeller
+#: inputs (MMG).
+LQ_CROSS_TRACK_RPS = with_held_rps(LQ_CROSS_TRACK, description=(
+    "LQ-integral cross-track controller (as 'lq-cross-track') that also holds a constant "
+    "propeller rps, for models with rudder and propeller inputs (MMG)"))
+#: As :class:`LQCrossTrackParams`, and the propeller rps it holds.
+LQCrossTrackRpsParams = LQ_CROSS_TRACK_RPS.params_type
 
 
 # ------------------------------------------------------------------------------------------

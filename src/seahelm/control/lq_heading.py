@@ -30,6 +30,7 @@ from numba import njit
 
 from ..parameters import Params, param, signal_indices
 from .base import Controller, wrap_pi
+from .held_rps import with_held_rps
 
 __all__ = ["LQHeadingParams", "LQHeadingRpsParams", "LQ_HEADING", "LQ_HEADING_RPS"]
 
@@ -85,39 +86,18 @@ LQ_HEADING = Controller(
     reference_labels=REFERENCES,
     reference_units=("rad",),
     command_labels=COMMANDS,
+    command_units=("rad",),
+    state_units=("rad·s",),
     init=lq_heading_init,
     step=lq_heading_step,
     measurement_labels=MEASUREMENTS,
 )
 
 
-@dataclass(frozen=True, kw_only=True)
-class LQHeadingRpsParams(LQHeadingParams):
-    """Gains of the LQ-integral heading autopilot and the propeller rps it holds."""
-
-    propeller_rps: float = param(unit="1/s", symbol="n", low=0.0, low_inclusive=False,
-                                 doc="propeller revolutions held constant")
-
-
-_C_RPS = signal_indices(COMMANDS + ("propeller_rps",))
-
-
-@njit(cache=True)
-def lq_heading_rps_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
-    lq_heading_step(t, dt, z, y, ref, p, cs, cmd)
-    cmd[_C_RPS.propeller_rps] = p.propeller_rps
-
-
-LQ_HEADING_RPS = Controller(
-    name="lq-heading-rps",
-    description="LQ-integral heading autopilot (as 'lq-heading') that also holds a constant "
-    "propeller rps, for models with rudder and propeller inputs (MMG)",
-    params_type=LQHeadingRpsParams,
-    state_labels=STATES,
-    reference_labels=REFERENCES,
-    reference_units=("rad",),
-    command_labels=COMMANDS + ("propeller_rps",),
-    init=lq_heading_init,
-    step=lq_heading_rps_step,
-    measurement_labels=MEASUREMENTS,
-)
+#: ``lq-heading`` holding a constant propeller rps (:func:`~seahelm.control.held_rps.
+#: with_held_rps`), for models with rudder and propeller inputs (MMG).
+LQ_HEADING_RPS = with_held_rps(LQ_HEADING, description=(
+    "LQ-integral heading autopilot (as 'lq-heading') that also holds a constant propeller "
+    "rps, for models with rudder and propeller inputs (MMG)"))
+#: Gains of the LQ-integral heading autopilot and the propeller rps it holds.
+LQHeadingRpsParams = LQ_HEADING_RPS.params_type

@@ -29,6 +29,7 @@ from numba import njit
 from .._validate import check_positive
 from ..parameters import Params, param, signal_indices
 from .base import Controller, wrap_pi
+from .held_rps import with_held_rps
 
 __all__ = ["PIDHeadingParams", "PIDHeadingRpsParams", "PID_HEADING", "PID_HEADING_RPS",
            "pid_gains_from_nomoto"]
@@ -87,42 +88,22 @@ PID_HEADING = Controller(
     reference_labels=REFERENCES,
     reference_units=("rad",),
     command_labels=COMMANDS,
+    command_units=("rad",),
+    state_units=("rad·s",),
     init=pid_heading_init,
     step=pid_heading_step,
     measurement_labels=MEASUREMENTS,
 )
 
 
-@dataclass(frozen=True, kw_only=True)
-class PIDHeadingRpsParams(PIDHeadingParams):
-    """Gains of the PID heading autopilot and the propeller rps it holds."""
-
-    propeller_rps: float = param(unit="1/s", symbol="n", low=0.0, low_inclusive=False,
-                                 doc="propeller revolutions held constant")
-
-
-_C_RPS = signal_indices(COMMANDS + ("propeller_rps",))
-
-
-@njit(cache=True)
-def pid_heading_rps_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
-    pid_heading_step(t, dt, z, y, ref, p, cs, cmd)
-    cmd[_C_RPS.propeller_rps] = p.propeller_rps
-
-
-PID_HEADING_RPS = Controller(
-    name="pid-heading-rps",
-    description="PID heading autopilot (as 'pid-heading') that also holds a constant propeller "
-    "rps, for models with rudder and propeller inputs (MMG)",
-    params_type=PIDHeadingRpsParams,
-    state_labels=STATES,
-    reference_labels=REFERENCES,
-    reference_units=("rad",),
-    command_labels=COMMANDS + ("propeller_rps",),
-    init=pid_heading_init,
-    step=pid_heading_rps_step,
-    measurement_labels=MEASUREMENTS,
-)
+#: ``pid-heading`` holding a constant propeller rps (:func:`~seahelm.control.held_rps.
+#: with_held_rps`), for models with rudder and propeller inputs (MMG).
+PID_HEADING_RPS = with_held_rps(PID_HEADING, description=(
+    "PID heading autopilot (as 'pid-heading') that also holds a constant propeller rps, for "
+    "models with rudder and propeller inputs (MMG)"))
+#: Gains of the PID heading autopilot and the propeller rps it holds (``propeller_rps``
+#: [1/s]).
+PIDHeadingRpsParams = PID_HEADING_RPS.params_type
 
 
 def pid_gains_from_nomoto(

@@ -52,6 +52,7 @@ from numba import njit
 from ..errors import ParameterError
 from ..parameters import Params, param, signal_indices
 from .base import Controller
+from .held_rps import with_held_rps
 
 __all__ = ["ZigZagParams", "ZigZagRpsParams", "ZIGZAG", "ZIGZAG_RPS"]
 
@@ -77,14 +78,6 @@ class ZigZagParams(Params):
         if self.first_side not in (-1.0, 1.0):
             raise ParameterError(
                 f"`first_side` must be +1 (starboard) or -1 (port) [-], got {self.first_side!r}")
-
-
-@dataclass(frozen=True, kw_only=True)
-class ZigZagRpsParams(ZigZagParams):
-    """Zig-zag parameters plus the constant propeller rps commanded throughout."""
-
-    propeller_rps: float = param(unit="1/s", symbol="n", low=0.0, low_inclusive=False,
-                                 doc="propeller revolutions per second (held constant)")
 
 
 MEASUREMENTS: tuple[str, ...] = ("heading", "yaw_rate")
@@ -123,13 +116,6 @@ def zigzag_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
     cmd[_C.rudder_command] = zigzag_rudder(dt, y, p, cs)
 
 
-@njit(cache=True)
-def zigzag_rps_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
-    """Rudder order and the constant propeller rps (rudder-and-propeller models)."""
-    cmd[_C.rudder_command] = zigzag_rudder(dt, y, p, cs)
-    cmd[_C.propeller_rps] = p.propeller_rps
-
-
 ZIGZAG = Controller(
     name="zigzag",
     description="zig-zag manoeuvre: rudder ±δ_z reversed when the heading passes ±ψ_z "
@@ -139,21 +125,17 @@ ZIGZAG = Controller(
     reference_labels=(),
     reference_units=(),
     command_labels=COMMANDS,
+    command_units=("rad",),
+    state_units=("-",),
     init=zigzag_init,
     step=zigzag_step,
     measurement_labels=MEASUREMENTS,
 )
 
-ZIGZAG_RPS = Controller(
-    name="zigzag-rps",
-    description="zig-zag manoeuvre (as 'zigzag') that also commands a constant propeller rps, "
-    "for models with rudder and propeller inputs (MMG)",
-    params_type=ZigZagRpsParams,
-    state_labels=STATES,
-    reference_labels=(),
-    reference_units=(),
-    command_labels=COMMANDS_RPS,
-    init=zigzag_init,
-    step=zigzag_rps_step,
-    measurement_labels=MEASUREMENTS,
-)
+#: ``zigzag`` commanding a constant propeller rps throughout (:func:`~seahelm.control.held_rps.
+#: with_held_rps`), for models with rudder and propeller inputs (MMG).
+ZIGZAG_RPS = with_held_rps(ZIGZAG, description=(
+    "zig-zag manoeuvre (as 'zigzag') that also commands a constant propeller rps, for models "
+    "with rudder and propeller inputs (MMG)"))
+#: Zig-zag parameters plus the constant propeller rps commanded throughout.
+ZigZagRpsParams = ZIGZAG_RPS.params_type
