@@ -67,3 +67,24 @@ def test_the_command_names_the_option():
                                    "--spectrum", "bretschneider", "--gamma", "2"])
     assert res.exit_code == 2
     assert "`--gamma` is not taken by bretschneider" in res.stderr
+
+
+def test_the_commands_choices_come_from_the_registry():
+    """`seahelm seakeeping --spectrum` offers the registry's spectra given by Hs (it was a
+    copied list); importing the spectra costs no scipy."""
+    import subprocess
+    import sys
+    import typing
+
+    from seahelm.cli import seakeeping
+    from seahelm.environment.spectra import SPECTRA, sea_spectrum_names
+
+    assert typing.get_args(seakeeping.SpectrumName) == sea_spectrum_names()
+    assert set(sea_spectrum_names()) == {"jonswap", "bretschneider", "ittc",
+                                         "pierson-moskowitz"}
+    assert set(sea_spectrum_names()) < set(SPECTRA)
+    code = ("import sys, seahelm.environment.spectra; "
+            "print(','.join(m for m in ('scipy', 'numba') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True)
+    assert out.stdout.strip() == ""

@@ -17,6 +17,7 @@ import numpy as np
 import typer
 from rich.markup import escape
 
+from ..identification.reduced_forms import REDUCED_FORMS
 from ._common import (
     ForceFlag,
     JsonFlag,
@@ -40,12 +41,12 @@ _UNITS = {"a": "s²/rad", "b": "s", "c": "s/rad", "d": "1/rad"}
 #: MemoryError, exit 1).
 MAX_POSTERIOR = 100_000
 
-#: The keys of :data:`~seahelm.identification.fitting.FIT_METHODS` and
-#: :data:`~seahelm.identification.reduced_forms.REDUCED_FORMS`, spelled out so that the
-#: command line does not import the fitting code (tests/test_cli_style.py checks that they
-#: agree).
+#: The keys of :data:`~seahelm.identification.fitting.FIT_METHODS`, spelled out so that the
+#: command line does not import the fitting code (numba, scipy; tests/test_cli_style.py checks
+#: that they agree); those of :data:`~seahelm.identification.reduced_forms.REDUCED_FORMS` from
+#: the registry (a light module).
 FitMethod = Literal["lsq", "robust", "brute"]
-FormName = Literal["paper", "exact", "paper-odd", "exact-odd"]
+FormName = Literal[tuple(REDUCED_FORMS)]  # type: ignore[valid-type]
 AngleUnit = Literal["deg", "rad"]
 PosteriorName = Literal["laplace", "mcmc"]
 

@@ -27,6 +27,7 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..environment.directional_spreading import MAX_DIRECTIONS, MAX_S
+from ..environment.spectra import sea_spectrum_names
 from ..errors import ParameterError
 from ._common import ForceFlag, JsonFlag, console, handle_errors, input_file, output_dir, print_json
 
@@ -50,7 +51,9 @@ DEFAULT_SPREADING_S = 10.0
 SPEED_MAX = 100.0
 HEADING_MAX = 360.0
 
-SpectrumName = Literal["jonswap", "bretschneider", "ittc", "pierson-moskowitz"]
+#: The spectra of a sea by Hs (and Tp, γ): those of the registry that take a significant
+#: height (:func:`seahelm.environment.spectra.sea_spectrum`), from the registry.
+SpectrumName = Literal[sea_spectrum_names()]  # type: ignore[valid-type]
 SpreadingName = Literal["none", "cos2", "cos-2s"]
 Dof = Literal["roll", "pitch", "heave"]
 Statistic = Literal["rms", "significant"]

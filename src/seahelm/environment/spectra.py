@@ -70,6 +70,7 @@ __all__ = [
     "spectrum_names",
     "get_spectrum",
     "sea_spectrum",
+    "sea_spectrum_names",
     "SEA_BOUNDS",
     "spectrum_from_wave_height",
 ]
@@ -447,6 +448,19 @@ SEA_BOUNDS: Mapping[str, tuple[float, float, bool]] = MappingProxyType({
 })
 _SEA_UNITS = {"significant_height": "m", "peak_period": "s", "gamma": "-"}
 _SEA_SYMBOLS = {"significant_height": "Hs", "peak_period": "Tp", "gamma": "γ"}
+
+
+def sea_spectrum_names() -> tuple[str, ...]:
+    """The names of :data:`SPECTRA` whose spectrum is given by a significant height Hs (and,
+    as it declares, Tp and γ): what :func:`sea_spectrum` builds.
+
+    Returns
+    -------
+    tuple of str
+    """
+    return tuple(n for n, cls in SPECTRA.items()
+                 if any(f.name == "significant_height" and f.init
+                        for f in dataclasses.fields(cls)))
 
 
 def sea_spectrum(name: str, *, significant_height: float, peak_period: float | None = None,

@@ -34,7 +34,6 @@ from typing import ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy import integrate, optimize
 
 from .._validate import as_float_array, check_nonnegative
 from ..errors import ParameterError
@@ -123,6 +122,8 @@ class WaveSpectrum(abc.ABC):
         vals = self.one_sided(grid)
         i = int(np.argmax(vals))
         lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
+        from scipy import optimize  # (here: importing the spectra costs no scipy)
+
         res = optimize.minimize_scalar(
             lambda w: -float(self.one_sided(np.array([w]))[0]),
             bounds=(lo, hi),
@@ -165,6 +166,8 @@ def spectral_moment(spectrum: WaveSpectrum, n: int) -> float:
 
     def f(w: float) -> float:
         return w**n * float(spectrum.one_sided(np.array([w]))[0])
+
+    from scipy import integrate  # (here: importing the spectra costs no scipy)
 
     edges = [0.0, 0.5 * wp, 0.9 * wp, 1.1 * wp, 2.0 * wp, 10.0 * wp]
     total = 0.0
