@@ -28,7 +28,7 @@ if TYPE_CHECKING:
 
     from .imo_probability import ImoProbabilities
 
-__all__ = ["SHARED_KEYS", "ImoEnsemble", "imo_monte_carlo", "imo_of_samples", "drawn_values",
+__all__ = ["SHARED_KEYS", "ImoEnsemble", "drawn_statistics", "imo_monte_carlo", "imo_of_samples", "drawn_values",
            "ships_of_samples"]
 
 #: The key path of a drawn ship parameter.
@@ -254,3 +254,32 @@ def imo_of_samples(ship: Any, table: Any, *, n: int | None = None, dt: float | N
 
     return ImoEnsemble(probs, drawn, meta,
                        f"IMO MSC.137(76): {ship.name}, {n} samples from {Path(source).name}")
+
+
+def drawn_statistics(drawn: dict[str, Any]) -> list[dict[str, Any]]:
+    """Per drawn parameter (key path -> (values, attributes)): its name, distribution, unit
+    and the mean, standard deviation, least and greatest of the values drawn.
+
+    Parameters
+    ----------
+    drawn : dict
+        :attr:`seahelm.analysis.imo_monte_carlo.ImoEnsemble.drawn`.
+
+    Returns
+    -------
+    list of dict
+    """
+    import math
+
+    import numpy as np
+
+    rows = []
+    for key, (values, attrs) in drawn.items():
+        v = np.asarray(values, dtype=float)
+        v = v[np.isfinite(v)]
+        rows.append({"parameter": key, "distribution": str(attrs.get("distribution", "")),
+                     "units": str(attrs.get("units", "") or "-"),
+                     **{name: (float(f(v)) if v.size else math.nan) for name, f in (
+                         ("mean", np.mean), ("std", lambda x: np.std(x, ddof=1) if x.size > 1
+                                             else 0.0), ("min", np.min), ("max", np.max))}})
+    return rows

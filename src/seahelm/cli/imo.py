@@ -288,6 +288,8 @@ def show_ensemble(probs: Any, meta: dict[str, Any], drawn: dict[str, Any], out: 
     payload.update({k: v for k, v in meta.items() if k not in ("scenario_text", "title")})
     payload["excluded_samples"] = [{"sample": i, "reason": why}
                                    for i, why in enumerate(probs.reasons) if why]
+    from ..analysis.imo_monte_carlo import drawn_statistics
+
     payload["drawn_parameters"] = drawn_statistics(drawn)
     if out is not None:
         from ..plotting.imo_ensemble import plot_imo_ensemble
@@ -308,92 +310,20 @@ def show_ensemble(probs: Any, meta: dict[str, Any], drawn: dict[str, Any], out: 
 
 
 def _read_draws(path: Path) -> dict[str, Any]:
-    """The ``[draws]`` of a TOML file as sampling distributions (names, units checked later
-    against the ship's parameters)."""
-    import tomllib
-
-    from pydantic import ValidationError
-
-    from ..numerics.sampling import get_distribution
-    from ..scenario.schema import Distribution
+    """``--draws FILE.toml``: :func:`seahelm.scenario.draws.read_draws`, its errors naming the
+    option."""
+    from ..scenario.draws import read_draws
     from ._common import input_file
 
     input_file("--draws", path)
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8-sig"))
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-        raise ParameterError(f"`--draws` {path}: not a TOML file ({exc})") from None
-    table = data.get("draws")
-    if not isinstance(table, dict) or not table:
-        raise ParameterError(f"`--draws` {path}: needs a table [draws] of parameter = "
-                             "{distribution = ..., ...}")
-    out = {}
-    for key, spec in table.items():
-        try:
-            d = Distribution.model_validate(spec)
-        except ValidationError as exc:
-            raise ParameterError(f"`--draws` {path}: {_draws_error(key, exc)}") from None
-        params = {k: getattr(d, k) for k in ("mean", "std", "low", "high")
-                  if getattr(d, k) is not None}
-        out[key] = get_distribution(d.distribution, **params)
-    return out
-
-
-def _draws_error(key: str, exc: Any) -> str:
-    """The first error of a ``[draws.KEY]`` table in the file's words: the key path, what it
-    must be, the value (not pydantic's "Input should be a valid number")."""
-    from ..scenario.loading import _message
-    from ..scenario.schema import Distribution
-
-    err = exc.errors()[0]
-    loc = [str(p) for p in err["loc"]]
-    where = ".".join(["draws", key, *loc])
-    value = err.get("input")
-    got = "" if isinstance(value, dict) else f", got {value!r}"
-    kind = err["type"]
-    if kind == "extra_forbidden":
-        return (f"[{where}] is an unknown key; valid in [draws.{key}]: "
-                f"{', '.join(Distribution.model_fields)}")
-    if kind == "literal_error":
-        return (f"[{where}] must be one of {err.get('ctx', {}).get('expected', '')}"
-                .replace("'", "") + got)
-    if kind in ("model_type", "model_attributes_type", "dict_type"):
-        return (f"[{where}] must be a table {{distribution = ..., mean = ..., std = ...}}"
-                f"{got}")
-    if kind == "missing":
-        return f"[{where}] is missing (a draw needs `distribution`)"
-    return f"[{where}] {_message(err, '')}{got if kind != 'value_error' else ''}"
+        return read_draws(path)
+    except ParameterError as exc:
+        raise ParameterError(f"`--draws` {path}: {exc.reason}") from None
 
 
 #: The figure of ``--monte-carlo --out DIR``: every criterion's distribution over the samples.
 ENSEMBLE_FIGURE = "imo-probabilities.png"
-
-
-def drawn_statistics(drawn: dict[str, Any]) -> list[dict[str, Any]]:
-    """Per drawn parameter (key path -> (values, attributes)): its name, distribution, unit
-    and the mean, standard deviation, least and greatest of the values drawn.
-
-    Parameters
-    ----------
-    drawn : dict
-        :attr:`seahelm.analysis.imo_monte_carlo.ImoEnsemble.drawn`.
-
-    Returns
-    -------
-    list of dict
-    """
-    import numpy as np
-
-    rows = []
-    for key, (values, attrs) in drawn.items():
-        v = np.asarray(values, dtype=float)
-        v = v[np.isfinite(v)]
-        rows.append({"parameter": key, "distribution": str(attrs.get("distribution", "")),
-                     "units": str(attrs.get("units", "") or "-"),
-                     **{name: (float(f(v)) if v.size else math.nan) for name, f in (
-                         ("mean", np.mean), ("std", lambda x: np.std(x, ddof=1) if x.size > 1
-                                             else 0.0), ("min", np.min), ("max", np.max))}})
-    return rows
 
 
 #: Excluded samples listed with their reason (the JSON output and the file have all).
@@ -410,7 +340,8 @@ def print_imo_probabilities(p: dict[str, Any], title: str) -> None:
     p : dict
         :meth:`~seahelm.analysis.imo_probability.ImoProbabilities.as_dict`, optionally with
         ``excluded_samples`` (``{"sample", "reason"}``) or ``excluded_by_reason`` (counts),
-        and ``drawn_parameters`` (:func:`drawn_statistics`: printed as a second table).
+        and ``drawn_parameters`` (:func:`~seahelm.analysis.imo_monte_carlo.
+        drawn_statistics`: printed as a second table).
     title : str
         The table's title.
     """
