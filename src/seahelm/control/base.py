@@ -75,7 +75,8 @@ class Controller:
     command_units, state_units : tuple of str
         The units of its commands and states, in their order (``""`` or ``"-"``: none; the
         whole tuple empty: not declared, as for a pass-through controller, whose commands are
-        what it is wired to).
+        what it is wired to, or a copy that relabels its commands or states without giving
+        their units).
     sample_period : float or None
         The one controller period [s] it works at (a controller designed or discretised for
         it); None: any. A problem at another ``controller_dt`` is refused.
@@ -109,8 +110,9 @@ class Controller:
         for kind, units, labels in (("command", self.command_units, self.command_labels),
                                     ("state", self.state_units, self.state_labels)):
             if units and len(units) != len(labels):
-                raise ValueError(f"{self.name}: {kind}_units has the wrong length "
-                                 f"({len(units)} for {len(labels)} {kind}s)")
+                # a copy relabelling its commands or states (dataclasses.replace) without
+                # their units: undeclared, not wrong
+                object.__setattr__(self, f"{kind}_units", ())
 
     @property
     def n_measurements(self) -> int:
