@@ -85,7 +85,7 @@ def __getattr__(name: str):  # PEP 562: lazy public API
         if name in _DEPRECATED:
             from .errors import deprecated_names
 
-            return deprecated_names("seahelm", _DEPRECATED)(name)
+            return deprecated_names("seahelm", _DEPRECATED, stacklevel=3)(name)
         raise AttributeError(f"module 'seahelm' has no attribute {name!r}")
     import importlib
 

@@ -178,7 +178,8 @@ def warn_validity(message: str, *, strict: bool | None = None, stacklevel: int =
     warnings.warn(message, ValidityRangeWarning, stacklevel=stacklevel)
 
 
-def deprecated_names(module: str, aliases: dict[str, tuple[str, str, str]]) -> Any:
+def deprecated_names(module: str, aliases: dict[str, tuple[str, str, str]], *,
+                     stacklevel: int = 2) -> Any:
     """A module ``__getattr__`` (PEP 562) for names kept for old code: each access warns
     (:class:`DeprecationWarning`, naming the replacement) and returns the object it now is.
 
@@ -189,6 +190,8 @@ def deprecated_names(module: str, aliases: dict[str, tuple[str, str, str]]) -> A
     aliases : dict of str to (str, str, str)
         Old name -> (module of the replacement, its name there, how users reach it, e.g.
         ``"seahelm.Problem"``).
+    stacklevel : int, optional
+        Of the warning (2: the code that reads the name from the module).
 
     Returns
     -------
@@ -202,7 +205,7 @@ def deprecated_names(module: str, aliases: dict[str, tuple[str, str, str]]) -> A
 
         home, new, public = aliases[name]
         warnings.warn(f"{module}.{name} is deprecated: use {public} (the same object); the old "
-                      "name will be removed", DeprecationWarning, stacklevel=2)
+                      "name will be removed", DeprecationWarning, stacklevel=stacklevel)
         return getattr(importlib.import_module(home), new)
 
     return __getattr__
