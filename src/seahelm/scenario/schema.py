@@ -459,4 +459,11 @@ class Scenario(_Strict):
                     "speeds and sides as lists in [maneuver]; uncertain ship or steering-gear "
                     "parameters, or particulars, as [batch.monte_carlo]); [environment] may "
                     "give wind, waves and a current")
+        if self.guidance is not None and self.controller.reference:
+            keys = ", ".join(f"controller.reference.{k}" for k in self.controller.reference)
+            raise ValueError(
+                f"[{keys}] and [guidance] both steer the ship: along a route the guidance law "
+                f"'{self.guidance.law}' makes the controller's reference (the heading to "
+                "steer) from the waypoints, and the controller takes no other; drop "
+                "[controller.reference], or [guidance] for a fixed reference")
         return self
