@@ -66,6 +66,15 @@ def test_given_windage_is_kept_and_only_the_rest_estimated():
     ({"vessel_type": "tanker-loaded", "lateral_area": -1.0}, "lateral_area", "must be > 0"),
     ({"vessel_type": "tanker-loaded", "length_overall": 200.0}, "length_overall",
      "must be at least L_pp"),
+    # beyond a ship's proportions (the campaign on this: 1e6 m was accepted, A_L 3e8 m²)
+    ({"vessel_type": "tanker-loaded", "hull_depth": 1e6}, "hull_depth",
+     r"must be at most 0.5 L_pp = 115 \[m\]"),
+    ({"vessel_type": "tanker-loaded", "length_overall": 1e6}, "length_overall",
+     r"must be at most 1.5 L_pp = 345 \[m\]"),
+    ({"vessel_type": "car-carrier", "lateral_area": 1e6, "frontal_area": 900.0},
+     "lateral_area", "must be at most 0.5 L_oa²"),
+    ({"vessel_type": "car-carrier", "lateral_area": 9000.0, "frontal_area": 1e5},
+     "frontal_area", "must be at most 4 B²"),
 ])
 def test_bad_windage_is_refused_by_its_field(kwargs, field, match):
     with pytest.raises(ParameterError, match=match) as exc:

@@ -150,6 +150,7 @@ def estimate_windage(*, length: float, beam: float, draft: float, vessel_type: s
         raise ParameterError(f"must lie within the ship, |s_L| < L = {length:g} [m], got "
                              f"{windage_centre!r}", field="windage_centre", unit="m",
                              value=windage_centre)
+    _check_proportions(length, beam, hull_depth, length_overall, lateral_area, frontal_area)
     estimated = []
     if length_overall is None:
         length_overall = _LOA_TO_LPP * length
@@ -200,6 +201,29 @@ def estimate_windage(*, length: float, beam: float, draft: float, vessel_type: s
               "(seahelm.ships.windage; no published regression was available)")
     return _done(Windage(vessel_type, length_overall, a_l, a_f, centre, tuple(estimated),
                          source), warn)
+
+
+#: Bounds of a ship's proportions beyond which a windage value is a unit mix-up, not a ship
+#: (L_oa/L_pp of merchant ships is about 1.0-1.1, D < B, A_L/L_oa² about 0.05-0.2 from tankers
+#: to car carriers, A_F/B² about 0.3-1.5).
+_MAX_LOA = 1.5        # L_oa / L_pp
+_MAX_DEPTH = 0.5      # D / L_pp
+_MAX_LATERAL = 0.5    # A_L / L_oa²
+_MAX_FRONTAL = 4.0    # A_F / B²
+
+
+def _check_proportions(length: float, beam: float, depth: float | None, loa: float | None,
+                       lateral: float | None, frontal: float | None) -> None:
+    span = loa if loa is not None else length
+    for name, value, limit, unit, what in (
+            ("length_overall", loa, _MAX_LOA * length, "m", f"{_MAX_LOA:g} L_pp"),
+            ("hull_depth", depth, _MAX_DEPTH * length, "m", f"{_MAX_DEPTH:g} L_pp"),
+            ("lateral_area", lateral, _MAX_LATERAL * span ** 2, "m²", f"{_MAX_LATERAL:g} L_oa²"),
+            ("frontal_area", frontal, _MAX_FRONTAL * beam ** 2, "m²", f"{_MAX_FRONTAL:g} B²")):
+        if value is not None and value > limit:
+            raise ParameterError(f"must be at most {what} = {limit:.4g} [{unit}] (beyond a "
+                                 f"ship's proportions: a unit mix-up?), got {value!r}",
+                                 field=name, unit=unit, value=value)
 
 
 def _done(windage: Windage, warn: bool) -> Windage:
