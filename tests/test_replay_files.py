@@ -107,3 +107,36 @@ def test_a_replay_file_written_before_the_format_attribute_is_read(replay_out, t
     res = run_cli(["inspect", str(tmp_path / "old-replay.nc"), "--json"])
     assert res.exit_code == 0, res.stderr
     assert json.loads(res.stdout)["metrics"]["advance"]["unit"] == "m"
+
+
+@pytest.mark.parametrize("damage, message", [
+    (lambda ds: ds.assign_attrs(measured_advance="abc"),
+     "attribute `measured_advance` must be a number, got 'abc'"),
+    (lambda ds: ds.isel(time=slice(0, 0)), "the replay holds no time samples"),
+])
+def test_a_damaged_replay_file_is_named(replay_out, tmp_path, damage, message):
+    # was: "error: could not convert string to float: 'abc'" (no file), and for a file without
+    # samples 'failed: IndexError: index -1 is out of bounds' with exit 1 from report
+    import xarray as xr
+
+    out, _ = replay_out
+    with xr.open_dataset(out / "replay.nc") as ds:
+        bad = damage(ds.load())
+    path = tmp_path / "damaged.nc"
+    bad.to_netcdf(path)
+    for args in (["inspect", str(path)], ["report", str(path), "-o", str(tmp_path / "r.html")]):
+        assert one_error(args) == f"error: {path}: {message}", args
+
+
+def test_a_metric_not_reached_shows_a_dash(replay_out, tmp_path):
+    import xarray as xr
+
+    out, _ = replay_out
+    with xr.open_dataset(out / "replay.nc") as ds:
+        bad = ds.load().assign_attrs(simulated_transfer=float("nan"))
+    path = tmp_path / "nan.nc"
+    bad.to_netcdf(path)
+    res = run_cli(["inspect", str(path)])
+    assert res.exit_code == 0
+    row = next(line for line in res.stdout.splitlines() if "transfer [m]" in line)
+    assert row.split("│")[3].strip() == "-" and "nan" not in row, row

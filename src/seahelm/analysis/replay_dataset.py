@@ -13,7 +13,10 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["REPLAY_FORMAT", "METRIC_UNITS", "is_replay_dataset", "replay_metrics"]
+from ..errors import ParameterError
+
+__all__ = ["REPLAY_FORMAT", "METRIC_UNITS", "check_replay_dataset", "is_replay_dataset",
+           "replay_metrics"]
 
 #: The ``format`` attribute of a replay's Dataset.
 REPLAY_FORMAT = "seahelm-replay/1"
@@ -43,7 +46,29 @@ def is_replay_dataset(ds: Any) -> bool:
     return "track" in ds.dims and "rms_error_L" in ds.attrs and "record" in ds.attrs
 
 
-def replay_metrics(ds: Any) -> dict[str, tuple[float, float, str]]:
+def check_replay_dataset(ds: Any, path: Any) -> None:
+    """Refuse a replay's Dataset that cannot be shown: no time samples, not both tracks, a
+    metric that is not a number (a damaged or hand-edited file).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+    path : str or pathlib.Path
+        The file, for the message.
+
+    Raises
+    ------
+    ParameterError
+    """
+    if int(ds.sizes.get("time", 0)) == 0:
+        raise ParameterError(f"{path}: the replay holds no time samples")
+    if int(ds.sizes.get("track", 0)) != 2:
+        raise ParameterError(f"{path}: a replay holds two tracks (measured, simulated), this "
+                             f"one {int(ds.sizes.get('track', 0))}")
+    replay_metrics(ds, path)
+
+
+def replay_metrics(ds: Any, path: Any = None) -> dict[str, tuple[float, float, str]]:
     """The metrics of a replay's Dataset, in the order computed.
 
     Parameters
@@ -60,6 +85,13 @@ def replay_metrics(ds: Any) -> dict[str, tuple[float, float, str]]:
     for key in ds.attrs:
         if key.startswith("measured_") and f"simulated_{key[9:]}" in ds.attrs:
             name = key[9:]
-            out[name] = (float(ds.attrs[key]), float(ds.attrs[f"simulated_{name}"]),
-                         METRIC_UNITS.get(name, ""))
+            pair = []
+            for attr in (key, f"simulated_{name}"):
+                try:
+                    pair.append(float(ds.attrs[attr]))
+                except (TypeError, ValueError):
+                    raise ParameterError(
+                        f"{path or 'the replay'}: attribute `{attr}` must be a number, got "
+                        f"{ds.attrs[attr]!r}") from None
+            out[name] = (pair[0], pair[1], METRIC_UNITS.get(name, ""))
     return out

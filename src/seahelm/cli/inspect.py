@@ -22,6 +22,7 @@ errors, as the command printed them. Anything else is refused (exit 2).
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -195,8 +196,9 @@ def _show_ensemble(result: Path, ds: Any, json_out: bool) -> None:
 def _show_replay(result: Path, ds: Any, json_out: bool) -> None:
     """A replay (``replay.nc`` of ``seahelm replay --out``): its settings, then the measured
     and simulated metrics and the RMS position errors, as ``seahelm replay`` printed them."""
-    from ..analysis.replay_dataset import replay_metrics
+    from ..analysis.replay_dataset import check_replay_dataset, replay_metrics
 
+    check_replay_dataset(ds, result)
     metadata = {k: _plain(v) for k, v in ds.attrs.items()
                 if not k.startswith(("measured_", "simulated_"))}
     metrics = replay_metrics(ds)
@@ -220,7 +222,8 @@ def _show_replay(result: Path, ds: Any, json_out: bool) -> None:
         table.add_column(name, justify=justify)  # type: ignore[arg-type]
     for key, (m, s, unit) in metrics.items():
         (m_shown, shown_unit), (s_shown, _) = (to_display(v, unit, key) for v in (m, s))
-        table.add_row(escape(metric_label(key, shown_unit)), _cell(m_shown), _cell(s_shown))
+        table.add_row(escape(metric_label(key, shown_unit)),
+                      *(_cell(v) if math.isfinite(v) else "-" for v in (m_shown, s_shown)))
     for key, label in (("rms_error_60s_L", "RMS position error, first 60 s [L]"),
                        ("rms_error_L", "RMS position error, whole record [L]")):
         if key in metadata:

@@ -231,9 +231,10 @@ def load_report_data(path: str | Path) -> ReportData:
     if ds.attrs.get("format") == DATASET_FORMAT:
         return ReportData(title=str(ds.attrs.get("title") or path.name), sets=(),
                           sources=(str(path),), seakeeping=ds)
-    from ..analysis.replay_dataset import is_replay_dataset
+    from ..analysis.replay_dataset import check_replay_dataset, is_replay_dataset
 
     if is_replay_dataset(ds):
+        check_replay_dataset(ds, path)
         return ReportData(title=f"Replay of {ds.attrs.get('record', path.name)} with "
                                 f"{ds.attrs.get('ship', '?')}", sets=(),
                           sources=(str(path),), replay=ds)
