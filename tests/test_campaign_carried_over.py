@@ -152,3 +152,20 @@ def test_a_grid_of_waypoints_is_refused_by_its_key(tmp_path, waypoints, radius, 
     line = one_error(["run", str(path)])
     assert line.startswith(f"error: {path}: [guidance] "), line
     assert message in line, line
+
+
+# -- mixed-sign rudder angles in one manoeuvre batch ----------------------------------------
+@pytest.mark.parametrize("call", [
+    lambda f: f.turning_circle("kvlcc2-l7", np.radians([35.0, -35.0, 20.0]), sides=(1,)),
+    lambda f: f.zigzag("kvlcc2-l7", np.radians([-20.0]), np.radians([20.0])),
+    lambda f: f.pull_out("kvlcc2-l7", np.radians([20.0, -20.0])),
+])
+def test_a_negative_rudder_angle_in_a_manoeuvre_batch_is_refused(call):
+    # was: run, the -35 deg turn to port labelled side = 1 (starboard) in the metrics, exit 0
+    # through the library (the CLI and scenarios refuse it: "the side is `sides`")
+    import seahelm.analysis.maneuvers as maneuvers
+
+    with pytest.raises(ParameterError, match=r"must be > 0 \[rad\]: the side of the turn is "
+                                             r"`sides`") as exc:
+        call(maneuvers)
+    assert exc.value.field == "rudder" and exc.value.value < 0
