@@ -134,7 +134,18 @@ def test_a_route_with_a_heading_reference_is_refused(tmp_path):
     assert line.startswith(f"error: {path}: [controller.reference.heading_deg] and [guidance] "
                            "both steer the ship: along a route the guidance law 'los' makes "
                            "the controller's reference"), line
-    assert "drop [controller.reference], or [guidance]" in line and "(none)" not in line
+    assert "drop [controller.reference] (and its [batch] keys), or [guidance]" in line
+    assert "(none)" not in line
+
+
+def test_a_route_with_a_heading_reference_in_the_batch_is_refused(tmp_path):
+    # was, too: "[controller.reference.heading_deg] unknown channel 'heading_deg'; valid: (none)"
+    path = _route(tmp_path, "grid-ref")
+    path.write_text(path.read_text() + '[batch.grid]\n"controller.reference.heading_deg" = '
+                                       '[10.0, 20.0]\n')
+    line = one_error(["run", str(path)])
+    assert line.startswith(f"error: {path}: [controller.reference.heading_deg] and [guidance] "
+                           "both steer the ship"), line
 
 
 @pytest.mark.parametrize("waypoints, radius, message", [
