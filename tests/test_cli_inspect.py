@@ -153,8 +153,8 @@ def test_refuses_what_is_not_a_result(tmp_path):
     xr.Dataset({"x": ("t", np.arange(3.0))}).to_netcdf(foreign, engine="h5netcdf")
     assert one_error(["inspect", str(foreign)]) == (
         f"error: {foreign}: not a seahelm result file: neither a simulation result (result.nc "
-        "of `seahelm run --out`, a manoeuvre's *-runs.nc), a manoeuvre's *-metrics.nc nor an "
-        "imo-probabilities.nc")
+        "of `seahelm run --out`, a manoeuvre's *-runs.nc), a manoeuvre's *-metrics.nc, an "
+        "imo-probabilities.nc nor a replay.nc")
     text = tmp_path / "notes.nc"
     text.write_text("not netcdf\n")
     assert "not a NetCDF-4/HDF5 file written by seahelm" in one_error(["inspect", str(text)])

@@ -137,8 +137,10 @@ def test_exact_form_recovers_closed_form_from_model_steady_turns():
     al = np.array([t.rudder_angle for t in turns])
     fit = fit_lsq(w, al, form="exact-odd")
     np.testing.assert_allclose(fit.coef, [rc.a, rc.b, rc.c, rc.d], rtol=1e-7)
-    # the plain paper form cannot describe both sides: large residual
-    assert fit_lsq(w, al, form="paper").residual_rms > 1e3 * fit.residual_rms
+    # the plain paper form cannot describe both sides (its fit had a residual 1e3 times the
+    # odd form's, with exit 0): refused, naming the odd form (issue 43)
+    with pytest.raises(ParameterError, match="turns are to both sides .*'paper-odd'"):
+        fit_lsq(w, al, form="paper")
 
 
 def test_noise_unbiased_and_stderr_match_spread():

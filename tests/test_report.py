@@ -70,13 +70,13 @@ def test_report_command_default_path_and_json(report_demo_dir, tmp_path):
     res = runner.invoke(app, ["report", str(src), "--json"])
     assert res.exit_code == 0, res.stderr
     got = json.loads(res.stdout)
-    assert got["report"] == str(tmp_path / "result.html") and got["n_runs"] == 1
+    assert got["report"] == str(tmp_path / "report.html") and got["n_runs"] == 1
     assert got["sections"] == ["overview", "status", "metrics", "track", "timeseries"]
-    assert (tmp_path / "result.html").stat().st_size == got["bytes"]
+    assert (tmp_path / "report.html").stat().st_size == got["bytes"]
     res = runner.invoke(app, ["report", str(src), "-o", str(tmp_path / "sub" / "r.html")])
     assert res.exit_code == 0 and "wrote" in res.stdout
     assert (tmp_path / "sub" / "r.html").is_file()
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["result.html", "result.nc", "sub"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["report.html", "result.nc", "sub"]
 
 
 def test_batch_report_lists_diverged_runs_and_statistics(report_batch_dir):

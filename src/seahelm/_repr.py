@@ -12,8 +12,8 @@ from __future__ import annotations
 import html
 from collections.abc import Iterable, Sequence
 
-__all__ = ["describe", "names", "shorten", "sim_result_summary", "summary_html",
-           "summary_text"]
+__all__ = ["describe", "linear_model_summary", "names", "shorten", "sim_result_summary",
+           "summary_html", "summary_text"]
 
 #: Longest value shown on one row (characters); longer ones end in "…".
 MAX_VALUE = 90
@@ -177,4 +177,45 @@ def sim_result_summary(result: object) -> tuple[str, list[tuple[str, object]]]:
                         if md.get("compile_time_s") else "")))
     rows.append(("metadata", names(sorted(md), 5)))
     rows.append(("use", "to_xarray(), to_netcdf(path), plot(), result['heading']"))
+    return title, rows
+
+
+def linear_model_summary(model: object) -> tuple[str, list[tuple[str, object]]]:
+    """Title and rows of a :class:`~seahelm.analysis.linearisation.LinearModel`'s summary.
+
+    Its matrices are not printed (``to_numpy()`` gives them): at a kink the model holds two
+    one-sided models besides the mean, and its dataclass repr ran to 22 kB.
+
+    Parameters
+    ----------
+    model : LinearModel
+        The model (read by attribute).
+
+    Returns
+    -------
+    tuple of (str, list of (str, object))
+    """
+    import numpy as np
+
+    n, m, p = (len(getattr(model, f"{k}_labels")) for k in ("state", "input", "output"))
+    where = f" ({model.side})" if model.side and model.side not in model.name else ""
+    title = f"LinearModel{where}: {model.name or 'unnamed'}, {n} states, {m} inputs, {p} outputs"
+    poles = np.linalg.eigvals(model.A) if n else np.zeros(0)
+    at = [f"U {model.speed:.4g} m/s"] if np.isfinite(model.speed) else []
+    rows: list[tuple[str, object]] = [
+        ("states", names([f"{s} [{u}]" for s, u in zip(model.state_labels, model.state_units)],
+                         8)),
+        ("inputs", names([f"{s} [{u}]" for s, u in zip(model.input_labels, model.input_units)])),
+        ("outputs", names(model.output_labels, 8)),
+        ("point", ", ".join(at + [f"{s} {v:.4g}" for s, v in
+                                  zip(model.input_labels, np.asarray(model.u0))]) or "—"),
+        ("poles", ", ".join(f"{z:.3g}" for z in poles[:8])
+         + (f" (+{poles.size - 8} more)" if poles.size > 8 else "") + " [1/s]" if n else "—"),
+    ]
+    if model.kinks:
+        rows.append(("kink", f"{names(model.kinks)}: A…D the mean of {len(model.sides)} "
+                             "one-sided models (.sides)"))
+        if model.note:
+            rows.append(("why", model.note))
+    rows.append(("use", "A, B, C, D, poles, sides, select(...), to_numpy(), to_control()"))
     return title, rows

@@ -202,6 +202,16 @@ class LinearModel:
             output_units=tuple(self.output_units[a] for a in k),
             x0=self.x0[i], u0=self.u0[j], y0=self.y0[k], error=err)
 
+    def __repr__(self) -> str:
+        from .._repr import linear_model_summary, summary_text
+
+        return summary_text(*linear_model_summary(self))
+
+    def _repr_html_(self) -> str:
+        from .._repr import linear_model_summary, summary_html
+
+        return summary_html(*linear_model_summary(self))
+
     def to_numpy(self) -> dict[str, Any]:
         """The matrices and the names and units, as plain numpy arrays and tuples.
 

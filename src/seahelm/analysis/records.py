@@ -134,6 +134,29 @@ class ManoeuvreRecord:
     def __len__(self) -> int:
         return int(self.time.size)
 
+    def _summary(self) -> tuple[str, list[tuple[str, object]]]:
+        from .._repr import names
+
+        span = (f"{len(self)} samples, t = {self.time[0]:.6g} … {self.time[-1]:.6g} s, "
+                f"every {self.median_interval:.3g} s" if len(self) > 1
+                else f"{len(self)} sample(s)")
+        logged = ["rudder_angle"] + [k for k in ("heading", "yaw_rate")
+                                     if getattr(self, k) is not None] + list(self.channels)
+        mapped = [f"{k} = {v!r}" for k, v in self.columns.items() if v != k]
+        return f"ManoeuvreRecord: {self.name}", [
+            ("record", span), ("channels", names(logged, 10)),
+            ("columns", names(mapped, 4) if mapped else "the channels' own names")]
+
+    def __repr__(self) -> str:
+        from .._repr import summary_text
+
+        return summary_text(*self._summary())
+
+    def _repr_html_(self) -> str:
+        from .._repr import summary_html
+
+        return summary_html(*self._summary())
+
 
 #: The largest magnitude a record's column may have [SI units]: beyond it a value is a unit
 #: mix-up or garbage, not a ship's motion (a rudder of 1e300 deg ran into numpy overflow

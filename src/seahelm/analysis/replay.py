@@ -159,7 +159,10 @@ class ReplayResult:
                  "rudder_angle": "rad", "propeller_rps": "1/s"}
         data = {k: (("track", "time"), np.stack([self.measured[k], self.simulated[k]]),
                     {"units": units[k]}) for k in self.measured}
-        attrs = {"record": self.record.name, "ship": self.ship, "kind": self.kind,
+        from .replay_dataset import REPLAY_FORMAT
+
+        attrs = {"format": REPLAY_FORMAT, "record": self.record.name, "ship": self.ship,
+                 "kind": self.kind,
                  "rms_error_60s_L": self.rms_error_window, "rms_error_L": self.rms_error,
                  "length_m": self.length, "dt_s": self.dt,
                  "rudder": "closed loop" if self.closed_loop else "measured",
@@ -325,12 +328,18 @@ def _time_step(record: ManoeuvreRecord, length: float, speed: np.ndarray,
                dt: float | None) -> tuple[float, int]:
     duration = record.duration
     if dt is None:
-        u_max = max(float(np.max(speed)), 1e-6)
-        dt = min(record.median_interval, length / (100.0 * u_max))
+        dt = default_step(record, length, speed)
     elif not (math.isfinite(dt) and dt > 0):
         raise ParameterError(f"must be > 0 [s], got {dt!r}", field="dt")
     n = max(int(math.ceil(duration / dt - 1e-9)), 1)
     return duration / n, n
+
+
+def default_step(record: ManoeuvreRecord, length: float, speed: np.ndarray) -> float:
+    """The replay's default integration step [s]: the record's median sampling interval, at
+    most L/(100 U_max) (a hundred steps per ship length at the record's top speed)."""
+    u_max = max(float(np.max(speed)), 1e-6)
+    return min(record.median_interval, length / (100.0 * u_max))
 
 
 def replay(record: ManoeuvreRecord, ship: Any, *,
@@ -432,6 +441,13 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
     result = _simulate(simulate, problem, record, step, n_steps)
     status = result.messages()[0]
     if status != "ok":
+        usual = default_step(record, found.length, measured["speed"])
+        if dt is not None and step > usual * (1.0 + 1e-9):  # (the step given, not the ship)
+            raise ParameterError(
+                f"= {dt:g} s: the replay of {record.name} with ship {found.name} {status}; "
+                f"the step is coarser than the default {usual:.3g} s (the record's interval "
+                f"{record.median_interval:.3g} s, at most L/(100 U_max)): give a smaller "
+                "step, or leave the default", field="dt", unit="s", value=dt)
         raise ParameterError(f"{record.name}: the replay with ship {found.name} failed: "
                              f"{status}", field="ship")
     grid = result.time + t0

@@ -19,6 +19,11 @@ import typer
 from ..errors import ParameterError
 from ..output_files import check_output, kind_for_suffix
 
+#: The name of a result's HTML report: ``seahelm run --report`` and ``seahelm demo`` write it
+#: beside ``result.nc``, ``seahelm report RESULT`` beside RESULT (the same page had two names:
+#: ``report.html`` from ``run``, ``result.html`` from ``report``).
+REPORT_NAME = "report.html"
+
 #: Output directories the running command created (removed again, if still empty, when it
 #: stops without finishing: an interrupted or failed run leaves no empty --out directory).
 _created_dirs: list[Path] = []

@@ -15,11 +15,14 @@ drawn keys and the probability of passing each criterion, as the command printed
 excluded samples and their reasons. A sweep store (the ``.zarr`` directory of ``seahelm
 sweep``): its state (complete, or how many runs are written), its chunks, the scenario's title
 and source, and the statistics of every metric (stored with the store when it completed,
-computed from the written runs while it is incomplete). Anything else is refused (exit 2).
+computed from the written runs while it is incomplete). A replay (``replay.nc`` of ``seahelm
+replay --out``): its settings and the measured and simulated metrics with the RMS position
+errors, as the command printed them. Anything else is refused (exit 2).
 """
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -61,6 +64,7 @@ def inspect(
 ) -> None:
     """Show a result file: run metadata, batch, per-run status and the summary table."""
     from ..analysis.imo_ensemble import is_ensemble_dataset
+    from ..analysis.replay_dataset import is_replay_dataset
     from ..results import open_result_file
     from ..sweep.store import store_attrs
 
@@ -75,11 +79,13 @@ def inspect(
         _show_ensemble(result, ds, json_out)
     elif ds.attrs.get("maneuver") and "complete" in ds:
         _show_metrics(result, ds, json_out)
+    elif is_replay_dataset(ds):
+        _show_replay(result, ds, json_out)
     else:
         raise ParameterError(
             f"{result}: not a seahelm result file: neither a simulation result (result.nc of "
-            "`seahelm run --out`, a manoeuvre's *-runs.nc), a manoeuvre's *-metrics.nc nor "
-            "an imo-probabilities.nc")
+            "`seahelm run --out`, a manoeuvre's *-runs.nc), a manoeuvre's *-metrics.nc, "
+            "an imo-probabilities.nc nor a replay.nc")
 
 
 def _show_runs(result: Path, ds: Any, json_out: bool) -> None:
@@ -185,6 +191,44 @@ def _show_ensemble(result: Path, ds: Any, json_out: bool) -> None:
                                      + (f" [{draw['units']}]" if draw.get("units") else "")))
     console.print(meta)
     print_imo_probabilities(payload, str(metadata.get("title") or result.name))
+
+
+def _show_replay(result: Path, ds: Any, json_out: bool) -> None:
+    """A replay (``replay.nc`` of ``seahelm replay --out``): its settings, then the measured
+    and simulated metrics and the RMS position errors, as ``seahelm replay`` printed them."""
+    from ..analysis.replay_dataset import check_replay_dataset, replay_metrics
+
+    check_replay_dataset(ds, result)
+    metadata = {k: _plain(v) for k, v in ds.attrs.items()
+                if not k.startswith(("measured_", "simulated_"))}
+    metrics = replay_metrics(ds)
+    n_time = int(ds.sizes.get("time", 0))
+    if json_out:
+        print_json({"file": str(result), "metadata": metadata, "time_samples": n_time,
+                    "tracks": [str(t) for t in ds["track"].values],
+                    "metrics": {k: {"measured": m, "simulated": s, "unit": u}
+                                for k, (m, s, u) in metrics.items()}})
+        return
+    meta = _metadata_table(result, metadata)
+    if n_time:
+        time = ds["time"].values
+        meta.add_row("tracks", escape(f"{', '.join(str(t) for t in ds['track'].values)}: "
+                                      f"{n_time} samples over {time[-1] - time[0]:.6g} s"))
+    console.print(meta)
+    table = Table(title=escape(f"Replay of {metadata.get('record', result.name)} with "
+                               f"{metadata.get('ship', '?')} ({metadata.get('kind', '?')})"),
+                  title_justify="left")
+    for name, justify in (("metric", "left"), ("measured", "right"), ("simulated", "right")):
+        table.add_column(name, justify=justify)  # type: ignore[arg-type]
+    for key, (m, s, unit) in metrics.items():
+        (m_shown, shown_unit), (s_shown, _) = (to_display(v, unit, key) for v in (m, s))
+        table.add_row(escape(metric_label(key, shown_unit)),
+                      *(_cell(v) if math.isfinite(v) else "-" for v in (m_shown, s_shown)))
+    for key, label in (("rms_error_60s_L", "RMS position error, first 60 s [L]"),
+                       ("rms_error_L", "RMS position error, whole record [L]")):
+        if key in metadata:
+            table.add_row(label, "", _cell(float(metadata[key])))
+    console.print(table)
 
 
 def _metadata_table(result: Path, metadata: dict[str, Any]) -> Table:

@@ -27,6 +27,7 @@ from ._common import (
     output_file,
     print_json,
 )
+from ._outputs import REPORT_NAME  # (run --report, demo: the name seahelm report gives too)
 from ._runs import (
     batch_columns,
     diverged_runs,
@@ -106,10 +107,6 @@ def _root(
     ] = False,
 ) -> None:
     """Batched, validated ship motion simulation and control."""
-
-
-#: The report ``seahelm run --report`` and ``seahelm demo`` write beside the NetCDF.
-REPORT_NAME = "report.html"
 
 
 def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bool,

@@ -66,8 +66,19 @@ Speed = Annotated[float | None, typer.Option(
 Rps = Annotated[float | None, typer.Option(
     "--rps", help=escape("Instead of --speed: propeller rps of the approach [1/s] (MMG)."))]
 Side = Annotated[SideName, typer.Option("--side", help="Turn to both sides or one.")]
-TFinal = Annotated[float | None, typer.Option(
-    "--t-final", help=escape("Duration [s] (default: estimated from the steady turn)."))]
+#: Each manoeuvre's --t-final, its default said as the code makes it (analysis.maneuvers):
+#: "estimated from the steady turn" was said of all three, and the pull-out's is 60 L/U0.
+TurningTFinal = Annotated[float | None, typer.Option("--t-final", help=escape(
+    "Duration [s] (default: the rudder's travel time + 1.3 x 360 deg / the slowest yaw rate "
+    "of the batch's steady turns, solved before the runs; for a constant-speed model plus 3 "
+    "x its yaw time constant T)."))]
+ZigzagTFinal = Annotated[float | None, typer.Option("--t-final", help=escape(
+    "Duration [s] (default: 4 rudder swings + 24 x the trigger angle / the slowest yaw rate "
+    "of the steady turns at the rudder angle, solved before the runs; for a constant-speed "
+    "model plus 6 x its yaw time constant T). A given one is checked: each trigger must be "
+    "reachable in it at that yaw rate."))]
+PullOutTFinal = Annotated[float | None, typer.Option("--t-final", help=escape(
+    "Duration after the rudder order [s] (default: 60 L/U0, the longest of the batch)."))]
 Dt = Annotated[float | None, typer.Option(
     "--dt", help=escape("Integration step [s] (default: min(L/(100 U0), servo lag), "
                         "rounded down to 1-2-5)."))]
@@ -363,7 +374,7 @@ def turning_cmd(
     side: Side = "both",
     speed: Speed = None,
     rps: Rps = None,
-    t_final: TFinal = None,
+    t_final: TurningTFinal = None,
     dt: Dt = None,
     water_depth: Depth = None,
     force: ForceFlag = False,
@@ -411,7 +422,7 @@ def zigzag_cmd(
         "--side", help="First execute: to both sides or one.")] = "both",
     speed: Speed = None,
     rps: Rps = None,
-    t_final: TFinal = None,
+    t_final: ZigzagTFinal = None,
     dt: Dt = None,
     water_depth: Depth = None,
     force: ForceFlag = False,
@@ -454,7 +465,7 @@ def pullout_cmd(
     side: Side = "both",
     speed: Speed = None,
     rps: Rps = None,
-    t_final: TFinal = None,
+    t_final: PullOutTFinal = None,
     dt: Dt = None,
     water_depth: Depth = None,
     force: ForceFlag = False,

@@ -5,11 +5,14 @@ RESULT is ``result.nc`` of ``seahelm run``/``demo``, or a manoeuvre's ``*-runs.n
 ``*-metrics.nc`` (``seahelm maneuver``; with ``imo-report.json`` beside them, the files of
 ``seahelm imo --out`` and the IMO criteria), ``imo-probabilities.nc`` (``seahelm imo
 --monte-carlo --out``: the pass probabilities), ``seakeeping.nc`` (``seahelm seakeeping
---out``: the polar diagrams and the largest responses per speed), or a sweep store (``seahelm sweep``; of an
-``imo`` Monte-Carlo scenario, with the pass probabilities). The page
+--out``: the polar diagrams and the largest responses per speed), ``replay.nc`` (``seahelm
+replay --out``: the measured and simulated metrics and tracks), or a sweep store (``seahelm
+sweep``; of an ``imo`` Monte-Carlo scenario, with the pass probabilities). The page
 (:mod:`seahelm.report`) holds plotly.js and all the data, so it opens with no network. ``-o``
-is checked before anything is read; the file is written atomically. Several result files
-(not sweep stores, ``imo-probabilities.nc`` or ``seakeeping.nc``, which are reported alone) give one page with
+is checked before anything is read; the file is written atomically; without it the page is
+``report.html`` beside RESULT (the name ``seahelm run --report`` and ``demo`` give it). Several result files
+(not sweep stores, ``imo-probabilities.nc``, ``seakeeping.nc`` or ``replay.nc``, which are
+reported alone) give one page with
 each file's runs named by the file (:func:`seahelm.report.combined_report_data`).
 """
 
@@ -23,8 +26,9 @@ from rich.markup import escape
 
 from ..errors import ParameterError
 from ._common import ForceFlag, JsonFlag, console, handle_errors, input_file, output_file, print_json
+from ._outputs import REPORT_NAME
 
-__all__ = ["report", "default_report_path"]
+__all__ = ["report", "default_report_path", "REPORT_NAME"]
 
 
 #: What ``seahelm report`` of several results writes without ``-o`` (beside the first).
@@ -32,8 +36,9 @@ COMBINED_NAME = "combined-report.html"
 
 
 def default_report_path(result: Path) -> Path:
-    """Where ``seahelm report RESULT`` writes without ``-o``: beside RESULT, ``.html``."""
-    return result.with_suffix(".html")
+    """Where ``seahelm report RESULT`` writes without ``-o``: :data:`REPORT_NAME` beside
+    RESULT (a sweep store: beside the store)."""
+    return result.parent / REPORT_NAME
 
 
 @handle_errors
@@ -42,12 +47,14 @@ def report(
         metavar="RESULT...", help=(
             "Result file written by seahelm (NetCDF): result.nc of `seahelm run`/`demo`, a "
             "manoeuvre's *-runs.nc or *-metrics.nc, imo-probabilities.nc of `seahelm imo "
-            "--monte-carlo`, seakeeping.nc of `seahelm seakeeping`; or a sweep store of "
+            "--monte-carlo`, seakeeping.nc of `seahelm seakeeping`, replay.nc of `seahelm "
+            "replay`; or a sweep store of "
             "`seahelm sweep`. Several result files: one "
             "page with each file's runs side by side."))],
     out: Annotated[Path | None, typer.Option(
-        "-o", "--out", help=f"HTML file to write (default: beside RESULT, with .html; for "
-        f"several, {COMBINED_NAME} beside the first).")] = None,
+        "-o", "--out", help=f"HTML file to write (default: {REPORT_NAME} beside RESULT, the "
+        f"name `seahelm run --report` gives it; for several, {COMBINED_NAME} beside the "
+        "first).")] = None,
     force: ForceFlag = False,
     json_out: JsonFlag = False,
 ) -> None:

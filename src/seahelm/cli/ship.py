@@ -272,6 +272,23 @@ def estimate(
     metacentric_height: Annotated[float | None, _opt("--gm", unit="m", text=(
         "Transverse metacentric height GM, kept in the particulars (the closed-form roll RAO; "
         "default unknown)"))] = None,
+    vessel_type: Annotated[str | None, typer.Option("--vessel-type", help=(
+        "Blendermann's (1994) vessel type (tanker-loaded, container-loaded, ...): with it the "
+        "ship file gets its windage for the wind loads, what is not given of it estimated "
+        "(tanker types only; the ship file says which) (default: no windage)."),
+        show_default=False)] = None,
+    hull_depth: Annotated[float | None, _opt("--hull-depth", unit="m", text=(
+        "Moulded depth D, for the windage's freeboard D - T (default T/0.693, a loaded "
+        "tanker's)"))] = None,
+    length_overall: Annotated[float | None, _opt("--length-overall", unit="m", text=(
+        "Length overall L_oa (windage; default 1.0156 L_pp)"))] = None,
+    lateral_area: Annotated[float | None, _opt("--lateral-area", unit="m²", text=(
+        "Lateral windage area A_L (default estimated for a tanker)"))] = None,
+    frontal_area: Annotated[float | None, _opt("--frontal-area", unit="m²", text=(
+        "Frontal windage area A_F (default estimated for a tanker)"))] = None,
+    windage_centre: Annotated[float | None, _opt("--windage-centre", unit="m", text=(
+        "Centre of A_L forward of midships s_L (default estimated; midships with both areas "
+        "given)"))] = None,
     lcb: Annotated[float | None, typer.Option("--lcb", help=(
         "Longitudinal centre of buoyancy [% of L forward of midship] (default 0)."),
         show_default=False)] = None,
@@ -302,7 +319,9 @@ def estimate(
         propeller_diameter=propeller_diameter, pitch_ratio=pitch_ratio, area_ratio=area_ratio,
         blades=blades, rudder_area=rudder_area, rudder_span=rudder_span, rho=rho,
         water_depth=water_depth, wetted_surface=wetted_surface, lcb=lcb, name=name,
-        metacentric_height=metacentric_height).items()
+        metacentric_height=metacentric_height, vessel_type=vessel_type, hull_depth=hull_depth,
+        length_overall=length_overall, lateral_area=lateral_area, frontal_area=frontal_area,
+        windage_centre=windage_centre).items()
         if v is not None}
     for option, value, high in (("max_rudder", max_rudder, 90.0), ("rudder_rate", rudder_rate,
                                                                     math.inf)):

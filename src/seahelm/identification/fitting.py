@@ -55,7 +55,28 @@ __all__ = [
 # --------------------------------------------------------------------------------------------
 # Fitting
 # --------------------------------------------------------------------------------------------
-def _check_points(yaw_rate: Any, rudder_angle: Any, n_coef: int) -> tuple[np.ndarray, np.ndarray]:
+#: Turns count as being to both sides when each side has one whose |ω| is at least this
+#: fraction of the largest (a slightly negative ω near zero rudder is one side's asymmetry).
+BOTH_SIDES_FRACTION = 0.25
+
+
+def _check_one_sided(w: np.ndarray, form: ReducedForm) -> None:
+    """A form that is not odd describes turns to one side (its a ω² term keeps its sign):
+    fitted to turns to both sides it gave a ≈ 0, c ≈ 0 and exit 0 (issue 43)."""
+    if form.odd or w.size == 0:
+        return
+    big = np.abs(w) >= BOTH_SIDES_FRACTION * float(np.max(np.abs(w)))
+    n_pos, n_neg = int(np.count_nonzero(big & (w > 0))), int(np.count_nonzero(big & (w < 0)))
+    if n_pos and n_neg:
+        raise ParameterError(
+            f"'{form.name}' is the steady-turn equation of turns to one side (its a ω² and "
+            f"c ω α terms do not change sign with the side), but the turns are to both sides "
+            f"({n_pos} with ω > 0, {n_neg} with ω < 0): give form '{form.name}-odd', or the "
+            "turns of one side", field="form", value=form.name)
+
+
+def _check_points(yaw_rate: Any, rudder_angle: Any, n_coef: int,
+                  form: ReducedForm | None = None) -> tuple[np.ndarray, np.ndarray]:
     arrs = []
     for name, v, unit in (("yaw_rate", yaw_rate, "rad/s"), ("rudder_angle", rudder_angle, "rad")):
         arrs.append(as_finite_series(name, v, unit, what="point(s)"))
@@ -75,6 +96,8 @@ def _check_points(yaw_rate: Any, rudder_angle: Any, n_coef: int) -> tuple[np.nda
             f"degenerate design: all points at the same rudder angle ({al[0]!r} rad); "
             "steady turns at different rudder angles are needed"
         )
+    if form is not None:
+        _check_one_sided(w, form)
     return w, al
 
 
@@ -185,7 +208,7 @@ def fit_lsq(
     """
     t0 = _time.perf_counter()
     f = get_form(form)
-    w, al = _check_points(yaw_rate, rudder_angle, f.n_coef)
+    w, al = _check_points(yaw_rate, rudder_angle, f.n_coef, f)
     x, y = f.design(w, al)
     absolute = sigma_yaw_rate is not None or sigma_rudder_angle is not None
     if absolute:
@@ -263,7 +286,7 @@ def fit_robust(
 
     t0 = _time.perf_counter()
     f = get_form(form)
-    w, al = _check_points(yaw_rate, rudder_angle, f.n_coef)
+    w, al = _check_points(yaw_rate, rudder_angle, f.n_coef, f)
     wt = _check_weights(weights, w.size)
     x, y = f.design(w, al)
     coef0, _, cond, cond_s = _solve_weighted(x, y, wt)
@@ -370,7 +393,7 @@ def fit_brute_force(
     """
     t0 = _time.perf_counter()
     f = get_form(form)
-    w, al = _check_points(yaw_rate, rudder_angle, f.n_coef)
+    w, al = _check_points(yaw_rate, rudder_angle, f.n_coef, f)
     crit_of = lookup("criterion", CRITERIA, criterion, Criterion)
     if int(n_grid) < 2:
         raise ParameterError(f"`n_grid` must be >= 2, got {n_grid!r}")

@@ -57,8 +57,8 @@ class ReportSummary:
     sources : tuple of str
         The files read.
     counted : str
-        What ``n_runs`` counts: ``"run"``, or ``"sample"`` for an IMO ensemble (its samples
-        are ships, each with its manoeuvres).
+        What ``n_runs`` counts: ``"run"``, ``"sample"`` for an IMO ensemble (its samples
+        are ships, each with its manoeuvres), or ``"replay"`` for a replay (one).
     """
 
     path: Path
@@ -132,4 +132,5 @@ def write_report(source: "str | os.PathLike[str] | xr.Dataset | ReportData",
     path = write_output(target, lambda tmp: Path(tmp).write_bytes(encoded), "html", force=force)
     return ReportSummary(path=path, bytes=len(encoded), title=data.title, sections=ids,
                          n_runs=data.n_runs, sources=data.sources,
-                         counted="sample" if data.imo_ensemble is not None else "run")
+                         counted="sample" if data.imo_ensemble is not None else
+                         "replay" if data.replay is not None else "run")

@@ -8,7 +8,9 @@ A report covers one result file and the files seahelm wrote beside it for the sa
 * either file of ``seahelm imo --out``: the turning and zig-zag runs and metrics, and the IMO
   criteria of ``imo-report.json`` (the pass/fail table the command printed);
 * ``imo-probabilities.nc`` of ``seahelm imo --monte-carlo --out`` (or of an ``imo``
-  Monte-Carlo scenario): the probability of passing each criterion of the IMO check.
+  Monte-Carlo scenario): the probability of passing each criterion of the IMO check;
+* ``replay.nc`` of ``seahelm replay --out``: the measured and the simulated track and their
+  metrics.
 
 * a sweep store (``seahelm sweep``, a Zarr directory): its state (chunks written), the
   summary statistics stored with it, the distribution of every metric over the runs and,
@@ -115,6 +117,9 @@ class ReportData:
     seakeeping : xarray.Dataset or None
         Seakeeping statistics over (dof, speed, heading) (``seakeeping.nc``,
         :mod:`seahelm.analysis.seakeeping`); None for other inputs.
+    replay : xarray.Dataset or None
+        A replay's measured and simulated tracks and metrics (``replay.nc`` of ``seahelm
+        replay --out``, :mod:`seahelm.analysis.replay_dataset`); None for other inputs.
     """
 
     title: str
@@ -124,6 +129,7 @@ class ReportData:
     sweep: "xr.Dataset | None" = None
     imo_ensemble: "xr.Dataset | None" = None
     seakeeping: "xr.Dataset | None" = None
+    replay: "xr.Dataset | None" = None
 
     @property
     def n_runs(self) -> int:
@@ -131,6 +137,8 @@ class ReportData:
         ensemble's samples (it said 0 runs for 500 samples), else those of all sets."""
         if self.sweep is not None:
             return int(self.sweep.sizes["run"])
+        if self.replay is not None:  # (one replay: a measured and a simulated track)
+            return 1
         if self.imo_ensemble is not None and "sample" in self.imo_ensemble.sizes:
             return int(self.imo_ensemble.sizes["sample"])
         return sum(s.n_runs for s in self.sets)
@@ -223,6 +231,13 @@ def load_report_data(path: str | Path) -> ReportData:
     if ds.attrs.get("format") == DATASET_FORMAT:
         return ReportData(title=str(ds.attrs.get("title") or path.name), sets=(),
                           sources=(str(path),), seakeeping=ds)
+    from ..analysis.replay_dataset import check_replay_dataset, is_replay_dataset
+
+    if is_replay_dataset(ds):
+        check_replay_dataset(ds, path)
+        return ReportData(title=f"Replay of {ds.attrs.get('record', path.name)} with "
+                                f"{ds.attrs.get('ship', '?')}", sets=(),
+                          sources=(str(path),), replay=ds)
     if _is_runs(ds):
         _check_runs(ds, path)
         maneuver = ds.attrs.get("maneuver")
@@ -236,7 +251,7 @@ def load_report_data(path: str | Path) -> ReportData:
         raise ParameterError(
             f"{path}: not a seahelm result file: neither a simulation result (result.nc of "
             "`seahelm run --out`, a manoeuvre's *-runs.nc), a manoeuvre's *-metrics.nc, "
-            "an imo-probabilities.nc nor a seakeeping.nc")
+            "an imo-probabilities.nc, a seakeeping.nc nor a replay.nc")
     directory = path.parent
     imo_file = directory / IMO_REPORT
     names = [str(maneuver)]
@@ -393,9 +408,10 @@ def combined_report_data(paths: "list[str | Path]") -> ReportData:
         return datas[0]
     for path, data in zip(paths, datas):
         if data.sweep is not None or data.imo_ensemble is not None \
-                or data.seakeeping is not None:
-            raise ParameterError(f"{path}: a sweep store, an imo-probabilities.nc or a "
-                                 "seakeeping.nc is reported alone, not with other results")
+                or data.seakeeping is not None or data.replay is not None:
+            raise ParameterError(f"{path}: a sweep store, an imo-probabilities.nc, a "
+                                 "seakeeping.nc or a replay.nc is reported alone, not with "
+                                 "other results")
     seen: dict[str, Path] = {}
     for path, data in zip(paths, datas):
         for source in data.sources:

@@ -459,4 +459,17 @@ class Scenario(_Strict):
                     "speeds and sides as lists in [maneuver]; uncertain ship or steering-gear "
                     "parameters, or particulars, as [batch.monte_carlo]); [environment] may "
                     "give wind, waves and a current")
+        varied = list(self.batch.grid) + ([] if self.batch.monte_carlo is None else [
+            *self.batch.monte_carlo.draws,
+            *(k for block in self.batch.monte_carlo.correlated for k in block.keys)])
+        referred = [f"controller.reference.{k}" for k in self.controller.reference] + [
+            k for k in varied if k.startswith("controller.reference.")]
+        if self.guidance is not None and referred:
+            keys = ", ".join(dict.fromkeys(referred))
+            raise ValueError(
+                f"[{keys}] and [guidance] both steer the ship: along a route the guidance law "
+                f"'{self.guidance.law}' makes the controller's reference (the heading to "
+                "steer) from the waypoints, and the controller takes no other; drop "
+                "[controller.reference] (and its [batch] keys), or [guidance] for a fixed "
+                "reference")
         return self

@@ -89,6 +89,14 @@ DESIGN_FIELDS: tuple[tuple[str, str, bool, str], ...] = (
                         "0; Holtrop's resistance and wake use it)"),
     ("metacentric_height", "m", False, "transverse metacentric height GM (kept in the "
                                        "particulars: the closed-form roll RAO; default unknown)"),
+    # the windage (seahelm.ships.windage): estimated with vessel_type, what is missing of it
+    ("vessel_type", "", False, "Blendermann's vessel type: with it the windage is written "
+                               "(what is not given of it estimated; default none)"),
+    ("hull_depth", "m", False, "moulded depth D (the windage's freeboard D - T)"),
+    ("length_overall", "m", False, "length overall L_oa (windage)"),
+    ("lateral_area", "m²", False, "lateral windage area A_L"),
+    ("frontal_area", "m²", False, "frontal windage area A_F"),
+    ("windage_centre", "m", False, "centre of A_L forward of midships s_L"),
 )
 
 
@@ -123,6 +131,12 @@ class Design:
     wetted_surface: float | None = None
     lcb: float = 0.0
     metacentric_height: float | None = None
+    vessel_type: str | None = None
+    hull_depth: float | None = None
+    length_overall: float | None = None
+    lateral_area: float | None = None
+    frontal_area: float | None = None
+    windage_centre: float | None = None
 
     def __post_init__(self) -> None:
         units = {n: u for n, u, _, _ in DESIGN_FIELDS}
@@ -130,7 +144,7 @@ class Design:
             raise ParameterError(f"must be a non-empty text, got {self.name!r}", field="name")
         for name, unit in units.items():
             value = getattr(self, name)
-            if name == "name" or value is None:
+            if name in ("name", "vessel_type") or value is None:
                 continue
             if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
                 raise ParameterError(f"must be a number [{unit}], got {value!r}", field=name,
@@ -139,7 +153,7 @@ class Design:
             if math.isnan(value) or (math.isinf(value) and name != "water_depth"):
                 raise ParameterError(f"must be finite [{unit}], got {value!r}", field=name,
                                      unit=unit, value=value)
-            if name not in ("x_G", "lcb") and not value > 0:
+            if name not in ("x_G", "lcb", "windage_centre") and not value > 0:
                 raise ParameterError(f"must be > 0 [{unit}], got {value!r}", field=name,
                                      unit=unit, value=value)
             object.__setattr__(self, name, int(value) if name == "blades" else value)
@@ -178,6 +192,14 @@ class Design:
                                  f"{self.water_depth!r}", field="water_depth", unit="m",
                                  value=self.water_depth)
         self.hull  # (validates L, B, C_b, trim, ∇, x_G)
+        self.windage(warn=False)  # (validates the windage's fields)
+
+    def windage(self, *, warn: bool = True) -> Any:
+        """The windage (:func:`seahelm.ships.windage.design_windage`; None without
+        ``vessel_type``)."""
+        from .windage import design_windage
+
+        return design_windage(self, warn=warn)
 
     @property
     def mean_draft(self) -> float:
@@ -420,11 +442,14 @@ def estimate_ship(design: Design, *, strict: bool | None = None) -> Ship:
         provenance="given" if design.rudder_rate != IMO_RUDDER_RATE else
         "IMO's minimum rate (SOLAS II-1/29: 35° to 30° the other side in 28 s, 2.32°/s); "
         "lag 1 s (assumed)")
+    from .windage import windage_particulars
+
+    wind, said, noted = windage_particulars(design.windage())
     particulars = Particulars(length=design.length, beam=design.beam, draft=design.mean_draft,
                               block_coefficient=design.block_coefficient,
                               displacement=design.displacement,
                               metacentric_height=design.metacentric_height,
-                              provenance="given (seahelm ship estimate)")
+                              provenance="given (seahelm ship estimate)" + said, **wind)
     sources = tuple((k, c.source) for k, c in coefficients.items() if c.source != "given")
     ship = Ship(
         name=design.name, model="mmg", params=params,
@@ -441,7 +466,7 @@ def estimate_ship(design: Design, *, strict: bool | None = None) -> Ship:
         coefficient_sources=sources,
         validity=("deep water", "estimated from main particulars by regressions: expect tens of "
                   "per cent on some derivatives (see the docs' validation)",
-                  "ahead motion only (u > 0)"))
+                  "ahead motion only (u > 0)") + noted)
     if not math.isinf(design.water_depth):
         ship = ship.at_depth(design.water_depth, strict=strict)
     return ship

@@ -209,6 +209,13 @@ class Ship:
                     f"model '{model.name}' has no input {', '.join(map(repr, missing))}; its "
                     f"inputs: {', '.join(model.input_labels)}", field="propulsion.inputs")
         design = self.design_speed
+        if design is not None and not (math.isfinite(design) and design > 0):
+            # (a Nomoto ship at U = 0: its K and T hold at U only, and at rest the rudder
+            # steers nothing; every manoeuvre then refused it as '`--speed` must be > 0')
+            raise ParameterError(
+                f"must be > 0 [m/s]: the ship's steering coefficients hold at this speed, "
+                f"and at rest the rudder turns nothing, got {design!r}",
+                field=f"params.{self._speed_field}", unit="m/s", value=design)
         if self.test_speed is None:
             object.__setattr__(self, "test_speed", design)
         else:

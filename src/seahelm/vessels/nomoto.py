@@ -84,7 +84,9 @@ class Nomoto1Params(Params):
                             "course-unstable)")
     time_constant: float = param(unit="s", symbol="T",
                                  doc="Nomoto time constant (< 0: course-unstable)")
-    speed: float = param(unit="m/s", symbol="U", low=0.0, doc="forward speed")
+    speed: float = param(unit="m/s", symbol="U", low=0.0, low_inclusive=False,
+                         doc="forward speed (> 0: K and T hold at this U; at rest the rudder "
+                             "turns nothing)")
     length: float = param(100.0, unit="m", symbol="L", low=0.0, low_inclusive=False,
                           doc="length between perpendiculars (for plots and scaling)")
     norrbin_n3: float = param(0.0, unit="s²", symbol="n3", low=0.0,
@@ -110,7 +112,9 @@ class Nomoto2Params(Params):
     t1: float = param(unit="s", symbol="T1", doc="time constant T1 (< 0: course-unstable)")
     t2: float = param(unit="s", symbol="T2", low=0.0, low_inclusive=False, doc="time constant T2")
     t3: float = param(unit="s", symbol="T3", low=0.0, doc="zero time constant T3")
-    speed: float = param(unit="m/s", symbol="U", low=0.0, doc="forward speed")
+    speed: float = param(unit="m/s", symbol="U", low=0.0, low_inclusive=False,
+                         doc="forward speed (> 0: K and T hold at this U; at rest the rudder "
+                             "turns nothing)")
     length: float = param(100.0, unit="m", symbol="L", low=0.0, low_inclusive=False,
                           doc="length between perpendiculars (for plots and scaling)")
     norrbin_n3: float = param(0.0, unit="s²", symbol="n3", low=0.0,

@@ -551,8 +551,14 @@ def final_time(t_final: float, dt: float, name: str = "t_final") -> float:
 
 
 def check_rudder(ships: Sequence["Ship"], name: str, values: np.ndarray, *,
-                 allow_zero: bool = False) -> None:
-    """|δ| within the steering gear's limit of every ship (ParameterError naming it)."""
+                 allow_zero: bool = False, positive: bool = False) -> None:
+    """|δ| within the steering gear's limit of every ship (ParameterError naming it); with
+    ``positive``, δ > 0 (a manoeuvre whose side is its ``sides``: a negative angle on side +1
+    turned to port labelled starboard, issue 43's mixed-sign turns)."""
+    if positive and np.any(np.asarray(values) < 0):
+        v = float(np.asarray(values).ravel()[np.flatnonzero(np.asarray(values).ravel() < 0)[0]])
+        raise ParameterError(f"must be > 0 [rad]: the side of the turn is `sides` (+1 "
+                             f"starboard, -1 port), got {v!r}", field=name, unit="rad", value=v)
     for s in ships:
         limit = s.max_rudder
         bad = ~((np.abs(values) <= limit * (1 + 1e-12)) & ((np.abs(values) > 0) | allow_zero))

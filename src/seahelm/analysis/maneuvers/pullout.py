@@ -88,7 +88,7 @@ def pull_out(ship: Any, rudder: Any = math.radians(20.0), *, sides: Any = (1, -1
     rudder_axis = value_axis("rudder", rudder, "rad")
     side = side_axis(sides)
     plan = Plan(ship, speed, rps, [rudder_axis, side])
-    check_rudder(plan.ships, "rudder", rudder_axis.values)
+    check_rudder(plan.ships, "rudder", rudder_axis.values, positive=True)
     n = plan.n_runs
     if dt is None:
         dt = usual_time_step(plan.ships, [a.speed for a in plan.approaches.values()])

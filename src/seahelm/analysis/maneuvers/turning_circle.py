@@ -181,7 +181,7 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
     rudder_axis = value_axis("rudder", rudder, "rad")
     side = side_axis(sides)
     plan = Plan(ship, speed, rps, [rudder_axis, side])
-    check_rudder(plan.ships, "rudder", rudder_axis.values)
+    check_rudder(plan.ships, "rudder", rudder_axis.values, positive=True)
     check_positive_change(heading_change)
     if dt is None:
         dt = usual_time_step(plan.ships, [a.speed for a in plan.approaches.values()])

@@ -284,7 +284,7 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
                                                        "long_name": "heading trigger psi_z"})})
     side = side_axis(sides)
     plan = Plan(ship, speed, rps, [pair, side])
-    check_rudder(plan.ships, "rudder", np.atleast_1d(d))
+    check_rudder(plan.ships, "rudder", np.atleast_1d(d), positive=True)
     if dt is None:
         dt = 0.5 * usual_time_step(plan.ships, [a.speed for a in plan.approaches.values()])
     n = plan.n_runs
