@@ -29,7 +29,7 @@ samples around the heading change (the time where it reaches the level, then eve
 there), not rounded to a sample; the error is of order h⁴ in the recording interval h, so the
 default recording every L/(20 U_0) measures the events to ~10⁻⁷ m on the KVLCC2 L7 (linear
 interpolation between samples at every step, as before, was good to ~10⁻⁵ m). The distance
-along the track is the sum of the chords between samples.
+along the track is the arc of the cubic spline through the positions (:func:`track_distance`).
 
 A run that does not reach a heading change reports NaN for what depends on it, ``complete``
 False and a ``message`` saying what was not reached; it is not an error.
@@ -41,6 +41,7 @@ import math
 from typing import Any
 
 import numpy as np
+from numba import njit
 
 from ...errors import ParameterError
 from ..constant_speed import is_constant_speed
@@ -56,6 +57,7 @@ from .common import (
 )
 from .ships import steady_yaw_rates, yaw_lag
 from .result import ManeuverResult
+from .track import track_distance
 
 __all__ = ["turning_circle", "track_distance", "default_record_every", "SAMPLES_PER_LENGTH"]
 
@@ -63,44 +65,6 @@ _DEG10 = math.radians(10.0)
 #: What the metrics of a constant-speed model (:mod:`seahelm.analysis.constant_speed`) say.
 CONSTANT_SPEED_NOTE = ("constant-speed model: the speed does not change in the turn, the "
                        "speed loss is not modelled")
-
-
-def track_distance(north: Any, east: Any, time: Any = None) -> np.ndarray:
-    """Distance travelled along a recorded track [m].
-
-    Without ``time``: the cumulative sum of the chords between samples (it falls short of the
-    arc by ~ L κ² h² U²/24 for a recording interval h at curvature κ). With ``time`` (and at
-    least four samples): the arc length of the cubic spline through the positions
-    (``scipy.interpolate.CubicSpline``, not-a-knot), by three-point Gauss–Legendre quadrature
-    of the speed along it in each interval — an error of order h⁴.
-
-    Parameters
-    ----------
-    north, east : array_like, shape (steps,) or (runs, steps)
-        Positions [m].
-    time : array_like, shape (steps,), optional
-        Sample times [s], increasing.
-
-    Returns
-    -------
-    numpy.ndarray, shape (runs, steps)
-        Distance from the first sample [m].
-    """
-    n = np.atleast_2d(np.asarray(north, dtype=float))
-    e = np.atleast_2d(np.asarray(east, dtype=float))
-    pieces = np.hypot(np.diff(n, axis=1), np.diff(e, axis=1))
-    rows = np.isfinite(n).all(axis=1) & np.isfinite(e).all(axis=1)  # (a run not run: NaN)
-    if time is not None and n.shape[1] >= 4 and rows.any():
-        from scipy.interpolate import CubicSpline
-
-        t = np.asarray(time, dtype=float)
-        h = np.diff(t)
-        nodes, weights = np.polynomial.legendre.leggauss(3)
-        at = t[:-1, None] + 0.5 * h[:, None] * (nodes + 1.0)  # (intervals, 3)
-        dn = CubicSpline(t, n[rows], axis=1)(at, 1)  # (runs, intervals, 3)
-        de = CubicSpline(t, e[rows], axis=1)(at, 1)
-        pieces[rows] = 0.5 * h * (np.hypot(dn, de) @ weights)
-    return np.concatenate([np.zeros((n.shape[0], 1)), np.cumsum(pieces, axis=1)], axis=1)
 
 
 def _estimate_t_final(plan: Plan, signed: dict[tuple[int, int], list[float]],
@@ -309,16 +273,34 @@ def _cubic_crossings(times: np.ndarray, change: np.ndarray, levels: np.ndarray,
     good = (k > 0) & (steps >= 4)
     vander[~good] = np.eye(4)  # (placeholders: never used)
     coef = np.linalg.solve(vander, c_nodes[..., None])[..., 0]  # power coefficients
-    target = levels[:, None]
     s = np.where(good, np.nan_to_num(w), 0.0)
-    for _ in range(8):
-        value = coef[..., 0] + s * (coef[..., 1] + s * (coef[..., 2] + s * coef[..., 3]))
-        slope = coef[..., 1] + s * (2.0 * coef[..., 2] + s * 3.0 * coef[..., 3])
-        step = np.where(slope > 0, (value - target) / np.where(slope > 0, slope, 1.0), 0.0)
-        s = np.clip(s - step, 0.0, 1.0)
+    _newton(np.ascontiguousarray(coef), levels, s)
     powers = s[..., None] ** np.arange(4)
     weights = np.linalg.solve(np.swapaxes(vander, -1, -2), powers[..., None])[..., 0]
     return j0, np.where(good[..., None], weights, np.nan)
+
+
+@njit(cache=True, nogil=True)
+def _newton(coef: np.ndarray, levels: np.ndarray, s: np.ndarray) -> None:  # pragma: no cover
+    """Eight Newton steps on c0 + c1 s + c2 s² + c3 s³ = level for every (level, run), in
+    place from ``s`` and kept in [0, 1] (a step where the slope is not > 0 is none; NaN stays
+    NaN): the loop of :func:`_cubic_crossings` over all crossings at once, each operation
+    as the array form did it (the same numbers), without its array temporaries."""
+    for a in range(s.shape[0]):
+        target = levels[a]
+        for b in range(s.shape[1]):
+            c0, c1, c2, c3 = coef[a, b, 0], coef[a, b, 1], coef[a, b, 2], coef[a, b, 3]
+            x = s[a, b]
+            for _ in range(8):
+                value = c0 + x * (c1 + x * (c2 + x * c3))
+                slope = c1 + x * (2.0 * c2 + x * 3.0 * c3)
+                step = (value - target) / slope if slope > 0 else 0.0
+                x = x - step
+                if x < 0.0:  # (np.clip: NaN stays NaN)
+                    x = 0.0
+                elif x > 1.0:
+                    x = 1.0
+            s[a, b] = x
 
 
 def _at_cubic(values: np.ndarray, k: np.ndarray, w: np.ndarray, j0: np.ndarray,
