@@ -159,7 +159,13 @@ class Plan:
         if len(set(names)) != len(names):  # pragma: no cover - internal
             raise ValueError(f"duplicate axis names {names}")
         self.shape = tuple(a.size for a in self.axes)
-        self.index = [dict(zip(names, idx)) for idx in itertools.product(
+
+    @functools.cached_property
+    def index(self) -> list[dict[str, int]]:
+        """Each run's position along every axis by name, in C order (built when first asked:
+        a batch of many ships reads :meth:`run_values` instead)."""
+        names = [a.name for a in self.axes]
+        return [dict(zip(names, idx)) for idx in itertools.product(
             *(range(n) for n in self.shape))]
 
     def _solve_approaches(self, speeds: np.ndarray, ship_dim: bool) -> None:
@@ -223,7 +229,7 @@ class Plan:
 
     @property
     def n_runs(self) -> int:
-        return len(self.index)
+        return math.prod(self.shape)
 
     @property
     def model(self) -> VesselModel:
@@ -549,8 +555,12 @@ def final_time(t_final: float, dt: float, name: str = "t_final") -> float:
 def check_rudder(ships: Sequence[ManeuverShip], name: str, values: np.ndarray, *,
                  allow_zero: bool = False) -> None:
     """|δ| within the steering gear's limit of every ship (ParameterError naming it)."""
+    seen: set[float] = set()
     for s in ships:
         limit = s.max_rudder
+        if limit in seen:  # (the samples of a study mostly share their steering gear's)
+            continue
+        seen.add(limit)
         bad = ~((np.abs(values) <= limit * (1 + 1e-12)) & ((np.abs(values) > 0) | allow_zero))
         if np.any(bad):
             v = float(np.asarray(values).ravel()[np.flatnonzero(np.asarray(bad).ravel())[0]])
