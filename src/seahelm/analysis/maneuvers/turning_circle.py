@@ -315,8 +315,10 @@ def _at_cubic(values: np.ndarray, k: np.ndarray, w: np.ndarray, j0: np.ndarray,
     rows = np.arange(values.shape[1])[None, :, None]
     nodes = values[:, rows, idx]  # (signals, levels, runs, 4)
     out = np.einsum("slrj,lrj->slr", nodes, np.nan_to_num(weights))
-    return np.where((k >= 0) & np.isfinite(weights[..., 0]), out,
-                    _at_crossings(values, k, w))
+    cubic = (k >= 0) & np.isfinite(weights[..., 0])
+    if cubic.all():  # (every event reached inside the record: no linear fallback to take)
+        return out
+    return np.where(cubic, out, _at_crossings(values, k, w))
 
 
 #: Heading changes of the events: 90 deg (advance, transfer), 180 deg (tactical diameter),
