@@ -223,17 +223,30 @@ def _crossings(change: np.ndarray, levels: np.ndarray) -> tuple[np.ndarray, np.n
 
     ``change`` has the shape (runs, steps), ``levels`` (levels,); k and w (levels, runs).
     """
-    hit = change >= levels[:, None, None]
-    k = np.argmax(hit, axis=2)  # (0 where never reached, told apart below)
-    rows = np.arange(change.shape[0])
-    prev = change[rows, np.maximum(k - 1, 0)]
-    cur = change[rows, k]
-    # k > 0: cur >= level > prev, so cur - prev > 0 (no division by zero to guard)
-    w = (levels[:, None] - prev) / np.where(k > 0, cur - prev, 1.0)
-    w[k == 0] = 1.0
-    k[~hit.any(axis=2)] = -1
-    w[k < 0] = np.nan
+    levels = np.ascontiguousarray(levels, dtype=float)
+    k = np.empty((levels.size, change.shape[0]), dtype=np.int64)
+    w = np.empty(k.shape)
+    _first_crossings(np.ascontiguousarray(change, dtype=float), levels, k, w)
     return k, w
+
+
+@njit(cache=True, nogil=True)
+def _first_crossings(change: np.ndarray, levels: np.ndarray, k: np.ndarray,
+                     w: np.ndarray) -> None:  # pragma: no cover - compiled
+    """:func:`_crossings` into ``k`` and ``w``: one pass along each run per level (a NaN
+    sample reaches no level), w = (level − c[k−1]) / (c[k] − c[k−1])."""
+    for a in range(levels.size):
+        level = levels[a]
+        for r in range(change.shape[0]):
+            k[a, r] = -1
+            w[a, r] = np.nan
+            for j in range(change.shape[1]):
+                if change[r, j] >= level:
+                    k[a, r] = j
+                    # j > 0: c[j] >= level > c[j-1], so the difference is > 0
+                    w[a, r] = ((level - change[r, j - 1]) / (change[r, j] - change[r, j - 1])
+                               if j > 0 else 1.0)
+                    break
 
 
 def _at_crossings(values: np.ndarray, k: np.ndarray, w: np.ndarray) -> np.ndarray:
@@ -258,26 +271,56 @@ def _cubic_crossings(times: np.ndarray, change: np.ndarray, levels: np.ndarray,
     order h⁴ in the recording interval h (linear interpolation: h²), so a turning circle
     recorded every L/(20 U) measures its events to far below the integration error.
     """
-    n_runs = k.shape[1]
     steps = change.shape[1]
-    j0 = np.clip(k - 2, 0, max(steps - 4, 0))
-    idx = j0[..., None] + np.arange(4)  # (levels, runs, 4)
-    rows = np.arange(n_runs)[None, :, None]
-    t_nodes = times[rows, np.minimum(idx, steps - 1)]
-    c_nodes = change[rows, np.minimum(idx, steps - 1)]
-    lo = times[np.arange(n_runs)[None, :], np.maximum(k - 1, 0)]
-    hi = times[np.arange(n_runs)[None, :], np.maximum(k, 0)]
-    scale = np.where(hi > lo, hi - lo, 1.0)
-    s_nodes = (t_nodes - lo[..., None]) / scale[..., None]  # (the interval is [0, 1])
+    j0 = np.empty(k.shape, dtype=np.int64)
+    s_nodes = np.empty(k.shape + (4,))
+    c_nodes = np.empty(k.shape + (4,))
+    good = np.empty(k.shape, dtype=np.bool_)
+    s = np.empty(k.shape)
+    _bracket(times, np.ascontiguousarray(change, dtype=float), k, w, j0, s_nodes, c_nodes,
+             good, s)
     vander = s_nodes[..., None] ** np.arange(4)  # (levels, runs, 4 nodes, 4 powers)
-    good = (k > 0) & (steps >= 4)
     vander[~good] = np.eye(4)  # (placeholders: never used)
     coef = np.linalg.solve(vander, c_nodes[..., None])[..., 0]  # power coefficients
-    s = np.where(good, np.nan_to_num(w), 0.0)
     _newton(np.ascontiguousarray(coef), levels, s)
     powers = s[..., None] ** np.arange(4)
     weights = np.linalg.solve(np.swapaxes(vander, -1, -2), powers[..., None])[..., 0]
     return j0, np.where(good[..., None], weights, np.nan)
+
+
+@njit(cache=True, nogil=True)
+def _bracket(times: np.ndarray, change: np.ndarray, k: np.ndarray, w: np.ndarray,
+             j0: np.ndarray, s_nodes: np.ndarray, c_nodes: np.ndarray, good: np.ndarray,
+             s: np.ndarray) -> None:  # pragma: no cover - compiled
+    """The four samples around each crossing (levels, runs) for :func:`_cubic_crossings`:
+    the first of them ``j0`` (k − 2 moved inside the record), their times scaled to the
+    bracketing interval [t_{k−1}, t_k] → [0, 1] (``s_nodes``) and heading changes
+    (``c_nodes``), whether the cubic applies (``good``: k > 0 and four samples) and Newton's
+    start ``s`` (the linear estimate, NaN as 0; 0 where not good)."""
+    steps = change.shape[1]
+    big = np.finfo(np.float64).max
+    for a in range(k.shape[0]):
+        for r in range(k.shape[1]):
+            kk = k[a, r]
+            first = min(max(kk - 2, 0), max(steps - 4, 0))
+            j0[a, r] = first
+            lo = times[r, max(kk - 1, 0)]
+            hi = times[r, max(kk, 0)]
+            scale = hi - lo if hi > lo else 1.0
+            for m in range(4):
+                j = min(first + m, steps - 1)
+                s_nodes[a, r, m] = (times[r, j] - lo) / scale
+                c_nodes[a, r, m] = change[r, j]
+            ok = kk > 0 and steps >= 4
+            good[a, r] = ok
+            x = w[a, r]
+            if x != x:  # (np.nan_to_num)
+                x = 0.0
+            elif x > big:
+                x = big
+            elif x < -big:
+                x = -big
+            s[a, r] = x if ok else 0.0
 
 
 @njit(cache=True, nogil=True)
