@@ -125,3 +125,19 @@ def test_cubic_crossings_solve_the_lagrange_cubic():
             assert got[a, r] == pytest.approx(min(real), rel=1e-10, abs=1e-10)
             checked += 1
     assert checked >= 12
+
+
+@pytest.mark.parametrize("seed, runs, steps", [(9, 1, 181), (10, 6, 50), (11, 3, 5)])
+def test_distance_until_equals_the_whole_track_where_wanted(seed, runs, steps):
+    """The metrics read the distance at the 10 deg event only: the speeds of the later
+    intervals are not evaluated, the distances up to the wanted sample are unchanged."""
+    from seahelm.analysis.maneuvers.track import distance_until
+
+    t, north, east = _tracks(seed, runs, steps, seed % 2 == 0)
+    if runs > 1:
+        north[1, steps // 2:] = np.nan  # (a run without a spline: the chord sum)
+    until = np.random.default_rng(seed).integers(0, steps, runs)
+    whole = track_distance(north, east, t)
+    part = distance_until(north, east, t, until=until)
+    for r in range(runs):
+        np.testing.assert_array_equal(part[r, :until[r] + 1], whole[r, :until[r] + 1])

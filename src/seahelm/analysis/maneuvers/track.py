@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
-__all__ = ["track_distance"]
+__all__ = ["track_distance", "distance_until"]
 
 
 @functools.cache
@@ -114,10 +114,10 @@ def _solve(t: np.ndarray, slope: np.ndarray, lower: np.ndarray, diag: np.ndarray
 
 @njit(cache=True, nogil=True)
 def _gauss_speeds(t: np.ndarray, north: np.ndarray, east: np.ndarray, nodes: np.ndarray,
-                  out: np.ndarray) -> int:  # pragma: no cover - compiled
+                  until: np.ndarray, out: np.ndarray) -> int:  # pragma: no cover - compiled
     """The speed |(dN/dt, dE/dt)| along the splines through each run's track (rows of
-    ``north``, ``east``) at the Gauss points ``nodes`` of every interval, into ``out``
-    (intervals, nodes, runs). The Hermite coefficients and the derivative c2 + 2 c1 x + 3 c0 x²
+    ``north``, ``east``) at the Gauss points ``nodes`` of its first ``until[run]`` intervals,
+    into ``out`` (intervals, nodes, runs; 0 in the later intervals). The Hermite coefficients and the derivative c2 + 2 c1 x + 3 c0 x²
     are formed as ``CubicHermiteSpline`` and ``PPoly`` form them, term by term, at x from the
     interval's start. 0, or the 1-based row of a zero pivot."""
     n = t.size
@@ -152,6 +152,10 @@ def _gauss_speeds(t: np.ndarray, north: np.ndarray, east: np.ndarray, nodes: np.
                 tt_e = (se[jj, i] + se[jj, i + 1] - 2 * me[jj, i]) / h[i]
                 c0_e = tt_e / h[i]
                 c1_e = (me[jj, i] - se[jj, i]) / h[i] - tt_e
+                if i >= until[j0 + jj]:
+                    for q in range(nodes.size):
+                        out[i, q, j0 + jj] = 0.0
+                    continue
                 for q in range(nodes.size):
                     xq = x[i, q]
                     rate_n = sn[jj, i] + c1_n * xq * 2.0 + c0_n * (xq * xq) * 3.0
@@ -187,6 +191,14 @@ def track_distance(north: Any, east: Any, time: Any = None) -> np.ndarray:
     ValueError
         If ``time`` is not a finite, strictly increasing 1-D array of the track's length.
     """
+    return distance_until(north, east, time)
+
+
+def distance_until(north: Any, east: Any, time: Any = None, until: Any = None) -> np.ndarray:
+    """:func:`track_distance` where only the first ``until[run]`` samples of each run are
+    wanted (default: all): the same values there (the quadrature of the later intervals, whose
+    speeds are not evaluated, is 0, so the distances beyond are not the track's). A metric read
+    early in a long record (the initial turning's distance at 10°) costs a fraction."""
     n = np.atleast_2d(np.asarray(north, dtype=float))
     e = np.atleast_2d(np.asarray(east, dtype=float))
     rows = np.isfinite(n).all(axis=1) & np.isfinite(e).all(axis=1)  # (a run not run: NaN)
@@ -203,12 +215,17 @@ def track_distance(north: Any, east: Any, time: Any = None) -> np.ndarray:
         every = bool(rows.all())
         nodes, weights = _gauss3()
         north_rows = n if every else n[rows]
+        intervals = np.full(n.shape[0], n.shape[1] - 1, dtype=np.int64) if until is None \
+            else np.asarray(until, dtype=np.int64)
         speed = np.empty((t.size - 1, nodes.size, north_rows.shape[0]))
         if _gauss_speeds(t, np.ascontiguousarray(north_rows),
-                         np.ascontiguousarray(e if every else e[rows]), nodes, speed):
+                         np.ascontiguousarray(e if every else e[rows]), nodes,
+                         np.ascontiguousarray(intervals if every else intervals[rows]),
+                         speed):
             raise np.linalg.LinAlgError("singular matrix")  # pragma: no cover - h > 0
         # (the quadrature sum over this memory layout, (intervals, 3, runs) seen as
-        # (runs, intervals, 3), as before: numpy's matmul sums in an order of its layout's)
+        # (runs, intervals, 3), as before: numpy's matmul sums in an order of its layout's
+        # and size's)
         arc = 0.5 * h * (speed.transpose(2, 0, 1) @ weights)
         if every:
             pieces = arc

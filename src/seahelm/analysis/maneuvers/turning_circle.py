@@ -57,7 +57,7 @@ from .common import (
 )
 from .ships import steady_yaw_rates, yaw_lag
 from .result import ManeuverResult
-from .track import track_distance
+from .track import distance_until, track_distance
 
 __all__ = ["turning_circle", "track_distance", "default_record_every", "SAMPLES_PER_LENGTH"]
 
@@ -382,7 +382,8 @@ def _metrics(plan: Plan, result: Any) -> Any:
     times = np.broadcast_to(t, psi.shape)
     k, w = _crossings(change, _LEVELS)
     j0, weights = _cubic_crossings(np.ascontiguousarray(times), change, _LEVELS, k, w)
-    dist = track_distance(north, east, t)
+    # the distance along the track is read at the 10 deg event only (its four samples j0..)
+    dist = distance_until(north, east, t, until=j0[2] + 3)
     # every signal at every event (one gather: a few are not needed, all cost one numpy call)
     (along_at, across_at, time_at, dist_at) = _at_cubic(
         np.stack([along, across, times, dist]), k, w, j0, weights)
