@@ -345,7 +345,7 @@ class Params:
         for key, arr in values.items():
             rows[:, names.index(key)] = arr
         rows.setflags(write=False)
-        base = {k: v for k, v in self.__dict__.items() if k != "_packed_values"}
+        base = {name: self.__dict__[name] for name in names}  # (the fields only, no cache)
         lists = {key: arr.tolist() for key, arr in values.items()}  # (Python floats)
         out = []
         for i in range(n):

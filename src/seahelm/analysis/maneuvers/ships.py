@@ -170,7 +170,7 @@ def sample_ships(base: Ship, params: Sequence[Params], servos: Sequence[ServoPar
     out = [first]
     cls = type(params[0])
     speed_field = first._speed_field
-    fields = dict(first.__dict__)
+    fields = {f.name: first.__dict__[f.name] for f in dataclasses.fields(Ship)}
     for k in range(1, len(params)):
         p = params[k]
         if type(p) is not cls or (servos is not None and type(servos[k]) is not ServoParams):
