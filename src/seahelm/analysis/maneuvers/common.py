@@ -396,7 +396,11 @@ class Plan:
         all_coords.update(coords or {})
         if not any(np.ndim(c[1]) for c in all_coords.values()):
             # a single run: scalar coordinates need no index
-            coord_vars = {k: xr.Variable(*c) for k, c in all_coords.items()}
+            coord_vars = {}
+            for k, (cdims, cvalues, cattrs) in all_coords.items():
+                carr = np.asarray(cvalues)  # (what xarray makes of a scalar: skip its checks)
+                coord_vars[k] = xr.Variable(cdims, carr, cattrs, fastpath=type(carr) is np.ndarray
+                                            and carr.dtype.kind in "biufU")
             fast = _indexless_dataset(data, coord_vars, dict(attrs or {}))
             if fast is not None:
                 return fast
