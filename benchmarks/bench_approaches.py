@@ -96,11 +96,12 @@ def measure(runs: int, repeats: int, old_repeats: int, old_limit: int | None,
     text = scenario(runs, dt=dt)
     path = work / f"bench-{runs}.toml"
     path.write_text(text)
-    job = parse_scenario(text, source=str(path))
     times: dict[str, list[float]] = {k: [] for k in (
         "ships", "approaches, one run at a time", "approaches, batched", "bare batch",
         "manoeuvre", "end to end")}
     for rep in range(repeats):
+        # (parsed again: a job keeps its samples' draws once drawn, a repeat would not draw)
+        job = parse_scenario(text, source=str(path))
         t0 = time.perf_counter()
         ships = job.ships()
         times["ships"].append(time.perf_counter() - t0)

@@ -291,6 +291,73 @@ class Params:
             )
         return out
 
+    def replace_many(self, columns: Mapping[str, Any]) -> "list[Self] | None":
+        """Copies of this set with some scalar fields changed, one per row of ``columns``.
+
+        The batched form of ``type(self).from_mapping(row, base=self)`` for many rows (a
+        Monte-Carlo study's samples): the ranges of the changed fields are checked for all rows
+        at once, the other fields are this set's (already valid), each copy runs the class's
+        cross-field :meth:`validate` and gets its packed row (:meth:`to_array`) from one
+        array. The copies equal what ``from_mapping`` builds.
+
+        Parameters
+        ----------
+        columns : mapping of str to array_like, shape (n,)
+            Values of scalar fields (SI units, radians), one array per field.
+
+        Returns
+        -------
+        list of Params, or None
+            None when a row would not pass the fields' checks, or a key is not a scalar field
+            of this class (a ``_deg`` key, a vector field, an unknown name): then
+            ``from_mapping`` per row builds the copies or says what is wrong, as before.
+
+        Raises
+        ------
+        ParameterError
+            From a copy's :meth:`validate` (as ``from_mapping`` would raise it).
+        """
+        cls = type(self)
+        fields = cls._fields_by_name()
+        checks = {c[1]: c for c in cls._field_checks()}
+        names = list(fields)
+        packed = self._packed()
+        if cls._has_vector_fields() or not columns or cls.__post_init__ is not \
+                Params.__post_init__:  # (a class that derives fields on construction)
+            return None
+        values = {}
+        n = None
+        for key, column in columns.items():
+            if key not in fields:
+                return None
+            arr = np.asarray(column)
+            if arr.ndim != 1 or arr.dtype.kind != "f" or (n is not None and arr.size != n):
+                return None
+            n = arr.size
+            _, _, _, low, high, incl = checks[key]
+            with np.errstate(invalid="ignore"):
+                ok = np.isfinite(arr) & ((arr >= low) if incl else (arr > low)) & (arr <= high)
+            if not ok.all():
+                return None
+            values[key] = arr.astype(float)
+        assert n is not None
+        rows = np.repeat(packed[None, :], n, axis=0)
+        for key, arr in values.items():
+            rows[:, names.index(key)] = arr
+        rows.setflags(write=False)
+        base = {name: self.__dict__[name] for name in names}  # (the fields only, no cache)
+        lists = {key: arr.tolist() for key, arr in values.items()}  # (Python floats)
+        out = []
+        for i in range(n):
+            p = object.__new__(cls)
+            p.__dict__.update(base)
+            for key, column in lists.items():
+                p.__dict__[key] = column[i]
+            p.__dict__["_packed_values"] = rows[i]
+            p.validate()
+            out.append(p)
+        return out
+
     def replace(self, **changes: Any) -> Self:
         """A copy with some fields changed (validated again)."""
         return dataclasses.replace(self, **changes)

@@ -99,7 +99,16 @@ class ManeuverJob:
         from .runs import monte_carlo_draws
 
         source = str(self.metadata.get("scenario_source", "<string>"))
-        return monte_carlo_draws(self.monte_carlo, np.asarray(indices, dtype=np.int64), source)
+        idx = np.asarray(indices, dtype=np.int64)
+        # every sample's draws, once drawn (a sweep's template draws them all, then each
+        # chunk its range): a range of them is a slice, the same values
+        every = self.__dict__.get("_every_draw")
+        if every is not None and idx.size and idx.min() >= 0 and idx.max() < self.n_samples:
+            return {k: v[idx] for k, v in every.items()}
+        drawn = monte_carlo_draws(self.monte_carlo, idx, source)
+        if idx.size == self.n_samples and (idx == np.arange(idx.size)).all():
+            object.__setattr__(self, "_every_draw", {k: v.copy() for k, v in drawn.items()})
+        return drawn
 
     def ships(self, start: int = 0, stop: int | None = None) -> list[Any]:
         """The ships of samples ``start:stop``: the scenario's ship with each sample's drawn
@@ -130,6 +139,10 @@ class ManeuverJob:
         source = str(self.metadata.get("scenario_source", "<string>"))
         estimated = (None if self.estimated is None
                      else self.estimated.ships(drawn, range(start, stop)))
+        if estimated is None and stop > start:
+            fast = self._sample_ships(drawn, start, stop)
+            if fast is not None:
+                return fast
         out = []
         for n, i in enumerate(range(start, stop)):
             base = self.ship if estimated is None else estimated[n]
@@ -148,6 +161,32 @@ class ManeuverJob:
             out.append(maneuver_ship(params, servo=gear, model=base.model,
                                      name=f"{self.ship.name} #{i}"))
         return out
+
+    def _sample_ships(self, drawn: Mapping[str, np.ndarray], start: int,
+                      stop: int) -> list[Any] | None:
+        """:meth:`ships` of the scenario's own ship in deep water, built in one batch
+        (:meth:`~seahelm.parameters.Params.replace_many`,
+        :func:`~seahelm.analysis.maneuvers.ships.sample_ships`): the same ships. None when
+        the batch does not apply (a ship in shallow water, a ``_deg`` or vector key, a value
+        out of range: the sample-by-sample path then builds them or names the bad sample)."""
+        from ..analysis.maneuvers.ships import sample_ships
+
+        base = self.ship
+        if base.in_shallow_water:
+            return None
+        vessel = {k[len("vessel.params."):]: v for k, v in drawn.items()
+                  if k.startswith("vessel.params.")}
+        servo = {k[len("actuator.params."):]: v for k, v in drawn.items()
+                 if k.startswith("actuator.params.")}
+        if len(vessel) + len(servo) != len(drawn):  # pragma: no cover - keys checked before
+            return None
+        deep = base.deep_water_params or base.params
+        params = deep.replace_many(vessel) if vessel else [deep] * (stop - start)
+        servos = base.servo.replace_many(servo) if servo else None
+        if params is None or (servo and servos is None):
+            return None
+        names = [f"{self.ship.name} #{i}" for i in range(start, stop)]
+        return sample_ships(base, params, servos, names)
 
     def run_ships(self, ships: list[Any]) -> Any:
         """Run the manoeuvre for the given ships (one batch, a ``ship`` dimension).

@@ -162,7 +162,13 @@ class Plan:
         if len(set(names)) != len(names):  # pragma: no cover - internal
             raise ValueError(f"duplicate axis names {names}")
         self.shape = tuple(a.size for a in self.axes)
-        self.index = [dict(zip(names, idx)) for idx in itertools.product(
+
+    @functools.cached_property
+    def index(self) -> list[dict[str, int]]:
+        """Each run's position along every axis by name, in C order (built when first asked:
+        a batch of many ships reads :meth:`run_values` instead)."""
+        names = [a.name for a in self.axes]
+        return [dict(zip(names, idx)) for idx in itertools.product(
             *(range(n) for n in self.shape))]
 
     def _solve_approaches(self, speeds: np.ndarray, ship_dim: bool) -> None:
@@ -226,7 +232,7 @@ class Plan:
 
     @property
     def n_runs(self) -> int:
-        return len(self.index)
+        return math.prod(self.shape)
 
     @property
     def model(self) -> VesselModel:
@@ -394,7 +400,11 @@ class Plan:
         all_coords.update(coords or {})
         if not any(np.ndim(c[1]) for c in all_coords.values()):
             # a single run: scalar coordinates need no index
-            coord_vars = {k: xr.Variable(*c) for k, c in all_coords.items()}
+            coord_vars = {}
+            for k, (cdims, cvalues, cattrs) in all_coords.items():
+                carr = np.asarray(cvalues)  # (what xarray makes of a scalar: skip its checks)
+                coord_vars[k] = xr.Variable(cdims, carr, cattrs, fastpath=type(carr) is np.ndarray
+                                            and carr.dtype.kind in "biufU")
             fast = _indexless_dataset(data, coord_vars, dict(attrs or {}))
             if fast is not None:
                 return fast
@@ -559,8 +569,12 @@ def check_rudder(ships: Sequence["Ship"], name: str, values: np.ndarray, *,
         v = float(np.asarray(values).ravel()[np.flatnonzero(np.asarray(values).ravel() < 0)[0]])
         raise ParameterError(f"must be > 0 [rad]: the side of the turn is `sides` (+1 "
                              f"starboard, -1 port), got {v!r}", field=name, unit="rad", value=v)
+    seen: set[float] = set()
     for s in ships:
         limit = s.max_rudder
+        if limit in seen:  # (the samples of a study mostly share their steering gear's)
+            continue
+        seen.add(limit)
         bad = ~((np.abs(values) <= limit * (1 + 1e-12)) & ((np.abs(values) > 0) | allow_zero))
         if np.any(bad):
             v = float(np.asarray(values).ravel()[np.flatnonzero(np.asarray(bad).ravel())[0]])

@@ -137,6 +137,58 @@ def maneuver_ship(ship: Any, *, servo: ServoParams | None = None,
     return ship
 
 
+def sample_ships(base: Ship, params: Sequence[Params], servos: Sequence[ServoParams] | None,
+                 names: Sequence[str]) -> list[Ship]:
+    """The ships of Monte-Carlo samples of ``base``: its model, sample k's parameter set
+    ``params[k]``, steering gear of ``servos[k]`` (default: the base's) and name ``names[k]``.
+
+    Each equals ``maneuver_ship(params[k], servo=..., model=base.model, name=names[k])``. The
+    first is built so (every check of :class:`~seahelm.ships.Ship` runs); the others are
+    copies of it with their own parameter set, steering gear, name and test speed (the
+    parameter set's design speed), which is all a check of that construction could find
+    different between samples: same model and parameter type, no particulars, deep water.
+    A study of 10,000 samples builds them in milliseconds instead of a second.
+
+    Parameters
+    ----------
+    base : Ship
+        The scenario's ship (with a steering gear).
+    params : sequence of Params
+        Each sample's parameter set (validated), of the base's parameter type.
+    servos : sequence of ServoParams, optional
+        Each sample's steering-gear parameters.
+    names : sequence of str
+        Each sample's name.
+
+    Returns
+    -------
+    list of Ship
+    """
+    gear = base.servo if servos is None else None
+    first = maneuver_ship(params[0], servo=gear if servos is None else servos[0],
+                          model=base.model, name=names[0])
+    out = [first]
+    cls = type(params[0])
+    speed_field = first._speed_field
+    fields = {f.name: first.__dict__[f.name] for f in dataclasses.fields(Ship)}
+    for k in range(1, len(params)):
+        p = params[k]
+        if type(p) is not cls or (servos is not None and type(servos[k]) is not ServoParams):
+            out.append(maneuver_ship(p, servo=gear if servos is None else servos[k],
+                                     model=base.model, name=names[k]))
+            continue
+        ship = object.__new__(Ship)  # (a copy of the first, frozen fields set in place)
+        ship.__dict__.update(fields)
+        ship.__dict__["params"] = p
+        ship.__dict__["name"] = names[k]
+        if servos is not None:
+            ship.__dict__["steering_gear"] = _gear(servos[k])
+        ship.__dict__["test_speed"] = (None if speed_field is None
+                                       else float(getattr(p, speed_field)))
+        out.append(ship)
+    return out
+
+
 @functools.lru_cache(maxsize=64)
 def _gear(servo: ServoParams) -> Any:
     """The rudder-servo steering gear of ``servo`` (one object per parameter set)."""
@@ -151,7 +203,16 @@ def _ships(ship: Any) -> tuple[list[Ship], bool]:
     if isinstance(ship, (list, tuple)):
         if not ship:
             raise ParameterError(": an empty sequence of ships", field="ship")
-        ships = [maneuver_ship(s) for s in ship]
+        if all(type(s) is Ship and s.steering_gear is not None for s in ship):
+            # ready already (a Monte-Carlo study's samples): maneuver_ship would return each
+            # unchanged after its model's check, which is one per model
+            checked: dict[int, Ship] = {}
+            for s in ship:
+                if id(s.model) not in checked:
+                    checked[id(s.model)] = maneuver_ship(s)
+            ships = list(ship)
+        else:
+            ships = [maneuver_ship(s) for s in ship]
         models = {s.model.name for s in ships}
         if len(models) > 1:
             raise ParameterError(

@@ -29,7 +29,7 @@ samples around the heading change (the time where it reaches the level, then eve
 there), not rounded to a sample; the error is of order h⁴ in the recording interval h, so the
 default recording every L/(20 U_0) measures the events to ~10⁻⁷ m on the KVLCC2 L7 (linear
 interpolation between samples at every step, as before, was good to ~10⁻⁵ m). The distance
-along the track is the sum of the chords between samples.
+along the track is the arc of the cubic spline through the positions (:func:`track_distance`).
 
 A run that does not reach a heading change reports NaN for what depends on it, ``complete``
 False and a ``message`` saying what was not reached; it is not an error.
@@ -41,6 +41,7 @@ import math
 from typing import Any
 
 import numpy as np
+from numba import njit
 
 from ...errors import ParameterError
 from ..constant_speed import is_constant_speed
@@ -56,6 +57,7 @@ from .common import (
 )
 from .ships import steady_yaw_rates, yaw_lag
 from .result import ManeuverResult
+from .track import distance_until, track_distance
 
 __all__ = ["turning_circle", "track_distance", "default_record_every", "SAMPLES_PER_LENGTH"]
 
@@ -63,44 +65,6 @@ _DEG10 = math.radians(10.0)
 #: What the metrics of a constant-speed model (:mod:`seahelm.analysis.constant_speed`) say.
 CONSTANT_SPEED_NOTE = ("constant-speed model: the speed does not change in the turn, the "
                        "speed loss is not modelled")
-
-
-def track_distance(north: Any, east: Any, time: Any = None) -> np.ndarray:
-    """Distance travelled along a recorded track [m].
-
-    Without ``time``: the cumulative sum of the chords between samples (it falls short of the
-    arc by ~ L κ² h² U²/24 for a recording interval h at curvature κ). With ``time`` (and at
-    least four samples): the arc length of the cubic spline through the positions
-    (``scipy.interpolate.CubicSpline``, not-a-knot), by three-point Gauss–Legendre quadrature
-    of the speed along it in each interval — an error of order h⁴.
-
-    Parameters
-    ----------
-    north, east : array_like, shape (steps,) or (runs, steps)
-        Positions [m].
-    time : array_like, shape (steps,), optional
-        Sample times [s], increasing.
-
-    Returns
-    -------
-    numpy.ndarray, shape (runs, steps)
-        Distance from the first sample [m].
-    """
-    n = np.atleast_2d(np.asarray(north, dtype=float))
-    e = np.atleast_2d(np.asarray(east, dtype=float))
-    pieces = np.hypot(np.diff(n, axis=1), np.diff(e, axis=1))
-    rows = np.isfinite(n).all(axis=1) & np.isfinite(e).all(axis=1)  # (a run not run: NaN)
-    if time is not None and n.shape[1] >= 4 and rows.any():
-        from scipy.interpolate import CubicSpline
-
-        t = np.asarray(time, dtype=float)
-        h = np.diff(t)
-        nodes, weights = np.polynomial.legendre.leggauss(3)
-        at = t[:-1, None] + 0.5 * h[:, None] * (nodes + 1.0)  # (intervals, 3)
-        dn = CubicSpline(t, n[rows], axis=1)(at, 1)  # (runs, intervals, 3)
-        de = CubicSpline(t, e[rows], axis=1)(at, 1)
-        pieces[rows] = 0.5 * h * (np.hypot(dn, de) @ weights)
-    return np.concatenate([np.zeros((n.shape[0], 1)), np.cumsum(pieces, axis=1)], axis=1)
 
 
 def _estimate_t_final(plan: Plan, signed: dict[tuple[int, int], list[float]],
@@ -259,17 +223,30 @@ def _crossings(change: np.ndarray, levels: np.ndarray) -> tuple[np.ndarray, np.n
 
     ``change`` has the shape (runs, steps), ``levels`` (levels,); k and w (levels, runs).
     """
-    hit = change >= levels[:, None, None]
-    k = np.argmax(hit, axis=2)  # (0 where never reached, told apart below)
-    rows = np.arange(change.shape[0])
-    prev = change[rows, np.maximum(k - 1, 0)]
-    cur = change[rows, k]
-    # k > 0: cur >= level > prev, so cur - prev > 0 (no division by zero to guard)
-    w = (levels[:, None] - prev) / np.where(k > 0, cur - prev, 1.0)
-    w[k == 0] = 1.0
-    k[~hit.any(axis=2)] = -1
-    w[k < 0] = np.nan
+    levels = np.ascontiguousarray(levels, dtype=float)
+    k = np.empty((levels.size, change.shape[0]), dtype=np.int64)
+    w = np.empty(k.shape)
+    _first_crossings(np.ascontiguousarray(change, dtype=float), levels, k, w)
     return k, w
+
+
+@njit(cache=True, nogil=True)
+def _first_crossings(change: np.ndarray, levels: np.ndarray, k: np.ndarray,
+                     w: np.ndarray) -> None:  # pragma: no cover - compiled
+    """:func:`_crossings` into ``k`` and ``w``: one pass along each run per level (a NaN
+    sample reaches no level), w = (level − c[k−1]) / (c[k] − c[k−1])."""
+    for a in range(levels.size):
+        level = levels[a]
+        for r in range(change.shape[0]):
+            k[a, r] = -1
+            w[a, r] = np.nan
+            for j in range(change.shape[1]):
+                if change[r, j] >= level:
+                    k[a, r] = j
+                    # j > 0: c[j] >= level > c[j-1], so the difference is > 0
+                    w[a, r] = ((level - change[r, j - 1]) / (change[r, j] - change[r, j - 1])
+                               if j > 0 else 1.0)
+                    break
 
 
 def _at_crossings(values: np.ndarray, k: np.ndarray, w: np.ndarray) -> np.ndarray:
@@ -294,31 +271,79 @@ def _cubic_crossings(times: np.ndarray, change: np.ndarray, levels: np.ndarray,
     order h⁴ in the recording interval h (linear interpolation: h²), so a turning circle
     recorded every L/(20 U) measures its events to far below the integration error.
     """
-    n_runs = k.shape[1]
     steps = change.shape[1]
-    j0 = np.clip(k - 2, 0, max(steps - 4, 0))
-    idx = j0[..., None] + np.arange(4)  # (levels, runs, 4)
-    rows = np.arange(n_runs)[None, :, None]
-    t_nodes = times[rows, np.minimum(idx, steps - 1)]
-    c_nodes = change[rows, np.minimum(idx, steps - 1)]
-    lo = times[np.arange(n_runs)[None, :], np.maximum(k - 1, 0)]
-    hi = times[np.arange(n_runs)[None, :], np.maximum(k, 0)]
-    scale = np.where(hi > lo, hi - lo, 1.0)
-    s_nodes = (t_nodes - lo[..., None]) / scale[..., None]  # (the interval is [0, 1])
+    j0 = np.empty(k.shape, dtype=np.int64)
+    s_nodes = np.empty(k.shape + (4,))
+    c_nodes = np.empty(k.shape + (4,))
+    good = np.empty(k.shape, dtype=np.bool_)
+    s = np.empty(k.shape)
+    _bracket(times, np.ascontiguousarray(change, dtype=float), k, w, j0, s_nodes, c_nodes,
+             good, s)
     vander = s_nodes[..., None] ** np.arange(4)  # (levels, runs, 4 nodes, 4 powers)
-    good = (k > 0) & (steps >= 4)
     vander[~good] = np.eye(4)  # (placeholders: never used)
     coef = np.linalg.solve(vander, c_nodes[..., None])[..., 0]  # power coefficients
-    target = levels[:, None]
-    s = np.where(good, np.nan_to_num(w), 0.0)
-    for _ in range(8):
-        value = coef[..., 0] + s * (coef[..., 1] + s * (coef[..., 2] + s * coef[..., 3]))
-        slope = coef[..., 1] + s * (2.0 * coef[..., 2] + s * 3.0 * coef[..., 3])
-        step = np.where(slope > 0, (value - target) / np.where(slope > 0, slope, 1.0), 0.0)
-        s = np.clip(s - step, 0.0, 1.0)
+    _newton(np.ascontiguousarray(coef), levels, s)
     powers = s[..., None] ** np.arange(4)
     weights = np.linalg.solve(np.swapaxes(vander, -1, -2), powers[..., None])[..., 0]
     return j0, np.where(good[..., None], weights, np.nan)
+
+
+@njit(cache=True, nogil=True)
+def _bracket(times: np.ndarray, change: np.ndarray, k: np.ndarray, w: np.ndarray,
+             j0: np.ndarray, s_nodes: np.ndarray, c_nodes: np.ndarray, good: np.ndarray,
+             s: np.ndarray) -> None:  # pragma: no cover - compiled
+    """The four samples around each crossing (levels, runs) for :func:`_cubic_crossings`:
+    the first of them ``j0`` (k − 2 moved inside the record), their times scaled to the
+    bracketing interval [t_{k−1}, t_k] → [0, 1] (``s_nodes``) and heading changes
+    (``c_nodes``), whether the cubic applies (``good``: k > 0 and four samples) and Newton's
+    start ``s`` (the linear estimate, NaN as 0; 0 where not good)."""
+    steps = change.shape[1]
+    big = np.finfo(np.float64).max
+    for a in range(k.shape[0]):
+        for r in range(k.shape[1]):
+            kk = k[a, r]
+            first = min(max(kk - 2, 0), max(steps - 4, 0))
+            j0[a, r] = first
+            lo = times[r, max(kk - 1, 0)]
+            hi = times[r, max(kk, 0)]
+            scale = hi - lo if hi > lo else 1.0
+            for m in range(4):
+                j = min(first + m, steps - 1)
+                s_nodes[a, r, m] = (times[r, j] - lo) / scale
+                c_nodes[a, r, m] = change[r, j]
+            ok = kk > 0 and steps >= 4
+            good[a, r] = ok
+            x = w[a, r]
+            if x != x:  # (np.nan_to_num)
+                x = 0.0
+            elif x > big:
+                x = big
+            elif x < -big:
+                x = -big
+            s[a, r] = x if ok else 0.0
+
+
+@njit(cache=True, nogil=True)
+def _newton(coef: np.ndarray, levels: np.ndarray, s: np.ndarray) -> None:  # pragma: no cover
+    """Eight Newton steps on c0 + c1 s + c2 s² + c3 s³ = level for every (level, run), in
+    place from ``s`` and kept in [0, 1] (a step where the slope is not > 0 is none; NaN stays
+    NaN): the loop of :func:`_cubic_crossings` over all crossings at once, each operation
+    as the array form did it (the same numbers), without its array temporaries."""
+    for a in range(s.shape[0]):
+        target = levels[a]
+        for b in range(s.shape[1]):
+            c0, c1, c2, c3 = coef[a, b, 0], coef[a, b, 1], coef[a, b, 2], coef[a, b, 3]
+            x = s[a, b]
+            for _ in range(8):
+                value = c0 + x * (c1 + x * (c2 + x * c3))
+                slope = c1 + x * (2.0 * c2 + x * 3.0 * c3)
+                step = (value - target) / slope if slope > 0 else 0.0
+                x = x - step
+                if x < 0.0:  # (np.clip: NaN stays NaN)
+                    x = 0.0
+                elif x > 1.0:
+                    x = 1.0
+            s[a, b] = x
 
 
 def _at_cubic(values: np.ndarray, k: np.ndarray, w: np.ndarray, j0: np.ndarray,
@@ -333,8 +358,10 @@ def _at_cubic(values: np.ndarray, k: np.ndarray, w: np.ndarray, j0: np.ndarray,
     rows = np.arange(values.shape[1])[None, :, None]
     nodes = values[:, rows, idx]  # (signals, levels, runs, 4)
     out = np.einsum("slrj,lrj->slr", nodes, np.nan_to_num(weights))
-    return np.where((k >= 0) & np.isfinite(weights[..., 0]), out,
-                    _at_crossings(values, k, w))
+    cubic = (k >= 0) & np.isfinite(weights[..., 0])
+    if cubic.all():  # (every event reached inside the record: no linear fallback to take)
+        return out
+    return np.where(cubic, out, _at_crossings(values, k, w))
 
 
 #: Heading changes of the events: 90 deg (advance, transfer), 180 deg (tactical diameter),
@@ -355,7 +382,8 @@ def _metrics(plan: Plan, result: Any) -> Any:
     times = np.broadcast_to(t, psi.shape)
     k, w = _crossings(change, _LEVELS)
     j0, weights = _cubic_crossings(np.ascontiguousarray(times), change, _LEVELS, k, w)
-    dist = track_distance(north, east, t)
+    # the distance along the track is read at the 10 deg event only (its four samples j0..)
+    dist = distance_until(north, east, t, until=j0[2] + 3)
     # every signal at every event (one gather: a few are not needed, all cost one numpy call)
     (along_at, across_at, time_at, dist_at) = _at_cubic(
         np.stack([along, across, times, dist]), k, w, j0, weights)
