@@ -4,15 +4,17 @@ The manoeuvring model of Miyauchi, Maki, Umeda, Rachman & Akimoto (2022) for ber
 3-DOF MMG equations of motion about midship with
 
 * **hull** (``hull_model``, :data:`HULL_MODELS`): ``"cross-flow"`` — Yoshimura's low-speed
-  model (Yoshimura, Nakao & Ishibashi 2009; :func:`~seahelm.hydrodynamics.low_speed_hull.
-  low_speed_hull`): X_H = ½ρLd (X'_0(β) u U + X'_vr v r L), X'_0 = X'_0F + (X'_0A − X'_0F)|β|/π;
+  model (Yoshimura, Nakao & Ishibashi 2009;
+  :func:`~seahelm.hydrodynamics.low_speed_hull.low_speed_hull`):
+  X_H = ½ρLd (X'_0(β) u U + X'_vr v r L), X'_0 = X'_0F + (X'_0A − X'_0F)|β|/π;
   Y_H = ½ρLd (Y'_v v |u| + Y'_r u r L − C_D ∫ |v + C_rY r x|(v + C_rY r x) dx/L);
   N_H = ½ρL²d (N'_v u v + N'_r |u| r L − C_D ∫ |v + C_rN r x|(v + C_rN r x) x dx/L²), the
   integrals over the hull x ∈ [−L/2, L/2] evaluated exactly;
-* **propeller** (``propeller_model``, :data:`~seahelm.hydrodynamics.low_speed_propulsion.
-  PROPELLER_MODELS`): ``"hachii"`` — Hachii's four-quadrant thrust (C_3, C_6, C_7, C_10) and
-  side force and yaw moment (A_1 … A_8, B_1 … B_8) — or ``"wageningen"`` (the B4-70
-  four-quadrant series scaled to k_0, no side force beyond Hachii's);
+* **propeller** (``propeller_model``,
+  :data:`~seahelm.hydrodynamics.low_speed_propulsion.PROPELLER_MODELS`): ``"hachii"`` —
+  Hachii's four-quadrant thrust (C_3, C_6, C_7, C_10) and side force and yaw moment
+  (A_1 … A_8, B_1 … B_8) — or ``"wageningen"`` (the B4-70 four-quadrant series scaled to
+  k_0, with Hachii's side force);
 * **rudder** (``rudder_inflow_model``): ``"kitagawa"`` — the low-speed MMG inflow ahead and
   Kitagawa's reversed race for n < 0, u_R = u astern with the propeller astern; Fujii's normal
   force;
