@@ -143,3 +143,17 @@ def test_slice_and_rule_text(crash_stop):
     assert part.time[0] == record.time[10] and len(part.time) == 20
     assert part.channels["x"][0] == record.channels["x"][10]
     assert "n[k-1] > 0 and n[k] <= 0" in REVERSAL_RULE
+
+
+def test_the_measured_wind_uses_the_ships_own_wind_model(crash_stop):
+    """esso-osaka-3m has Fujiwara's windage data: the replay's default loads are Fujiwara's;
+    a ship without them keeps Blendermann's."""
+    from seahelm.analysis.replay import _default_wind_loads
+
+    assert _default_wind_loads(get_ship(SHIP)) == "fujiwara"
+    assert _default_wind_loads(get_ship("kvlcc2-l7")) == "blendermann"
+    from seahelm.analysis.replay import replay
+
+    _res, record = crash_stop
+    got = replay(slice_record(record, 0, 100), SHIP, kind="none", wind="measured")
+    assert got.wind["load_model"] == "fujiwara"
