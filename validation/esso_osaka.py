@@ -250,7 +250,7 @@ def main(argv: list[str] | None = None) -> int:
               flush=True)
         (args.out / "timing-stops.inc").write_text(
             f"The {len(stops)} stop replays took {t_stops:.0f} s on the machine that made this "
-            "page (2 cores shared with other work; including any compilation).\n")
+            "page (warm kernel cache; 2 cores shared with other work).\n")
         _figures(args.out, stops)
     if args.part in ("all", "replays"):
         rows, t_all = replay_all(files)
@@ -261,8 +261,8 @@ def main(argv: list[str] | None = None) -> int:
         (args.out / "timing-replays.inc").write_text(
             f"The {len(rows)} replays (41 records with and without wind; the zig-zags also "
             f"closed loop) took {t_all:.0f} s "
-            "on the machine that made this page (2 cores shared with other work; including "
-            "any compilation).\n")
+            "on the machine that made this page (warm kernel cache; 2 cores shared with "
+            "other work).\n")
     return 0
 
 
