@@ -35,6 +35,10 @@ Rudder inflow, ``"kitagawa"`` (the published model's, its switch ``switch_ur = 1
     otherwise, u ≥ 0 (Kitagawa's reversed race): u_R² = η sgn(a) a² + (1 − η) b² + C_PR u²
     (signed), a = u ε (1 − w_P) + n D k_x,rev √(8 |K_T|/π), b = u ε (1 − w_P);
     u < 0 with n < 0 or K_T ≤ 0: u_R = u.
+Rudder inflow, ``"yasukawa-astern"`` (the published simulator's switch ``switch_ur = 2``)
+    As ``"kitagawa"``, but astern with the propeller ahead (u < 0, n ≥ 0, K_T > 0) Yasukawa's
+    form: u_R = min(u_R*, u_R**), u_R* = u_P ε (η κ (sgn(u) √(1 + 8 K_T/(π J²)) − 1) + 1)
+    (= ε (u + η κ (√(u² + 8 K_T n² D²/π) − u)) for u < 0, written so), u_R** = 0.7 π n D C_uR0.
     v_R = −γ (v + l_R r), γ = γ_P where v + x_R r ≥ 0, γ_N otherwise (x_R the rudder's
     position, l_R = l'_R L); U_R² = u_R² + v_R², α_R = δ − atan2(v_R, u_R).
 Rudder force (Fujii's normal force)
@@ -67,6 +71,7 @@ from numba import njit
 from .four_quadrant import ct_cq, fourier_coefficients, thrust_coefficient_4q
 
 __all__ = ["PROPELLER_MODELS", "RUDDER_INFLOW_MODELS", "HACHII", "WAGENINGEN", "KITAGAWA",
+           "YASUKAWA_ASTERN",
            "wake_factor", "propeller_forces", "rudder_forces", "fujii_normal_coefficient"]
 
 #: Propeller models by name: the value of the parameter ``propeller_model``.
@@ -76,7 +81,9 @@ PROPELLER_MODELS: dict[str, float] = {"hachii": HACHII, "wageningen": WAGENINGEN
 
 #: Rudder inflow models by name: the value of the parameter ``rudder_inflow_model``.
 KITAGAWA = 0.0
-RUDDER_INFLOW_MODELS: dict[str, float] = {"kitagawa": KITAGAWA}
+YASUKAWA_ASTERN = 1.0
+RUDDER_INFLOW_MODELS: dict[str, float] = {"kitagawa": KITAGAWA,
+                                          "yasukawa-astern": YASUKAWA_ASTERN}
 
 _COEFFS = fourier_coefficients()
 #: K_T at J = 0 of the B4-70 series: C_T*(0) (π/8)(0.7π)².
@@ -176,8 +183,13 @@ def rudder_forces(u, v, r, delta, n, one_w, K_T, p):  # pragma: no cover - compi
     u_P = u * one_w
     if n >= 0.0 and K_T > 0.0:
         kappa = p.k_x / eps
-        jet = u_P + kappa * (math.sqrt(u_P * u_P + 8.0 * K_T * n * n * D * D / math.pi) - u_P)
-        u_R = eps * math.sqrt(eta * jet * jet + (1.0 - eta) * u_P * u_P)
+        race = math.sqrt(u_P * u_P + 8.0 * K_T * n * n * D * D / math.pi)
+        if u < 0.0 and p.rudder_inflow_model >= 0.5:  # Yasukawa's astern inflow
+            u_star = eps * (u + eta * kappa * (race - u))
+            u_R = min(u_star, 0.7 * math.pi * n * D * p.C_uR0)
+        else:
+            jet = u_P + kappa * (race - u_P)
+            u_R = eps * math.sqrt(eta * jet * jet + (1.0 - eta) * u_P * u_P)
     elif u >= 0.0:
         a = u * eps * one_w + n * D * p.k_x_reverse * math.sqrt(8.0 * abs(K_T) / math.pi)
         b = u * eps * one_w

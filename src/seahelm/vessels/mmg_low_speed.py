@@ -16,7 +16,8 @@ The manoeuvring model of Miyauchi, Maki, Umeda, Rachman & Akimoto (2022) for ber
   (A_1 … A_8, B_1 … B_8) — or ``"wageningen"`` (the B4-70 four-quadrant series scaled to
   k_0, with Hachii's side force);
 * **rudder** (``rudder_inflow_model``): ``"kitagawa"`` — the low-speed MMG inflow ahead and
-  Kitagawa's reversed race for n < 0, u_R = u astern with the propeller astern; Fujii's normal
+  Kitagawa's reversed race for n < 0, u_R = u astern with the propeller astern — or
+  ``"yasukawa-astern"`` (Yasukawa's inflow astern with the propeller ahead); Fujii's normal
   force;
 
 (:mod:`seahelm.hydrodynamics.low_speed_propulsion` for the propeller and rudder equations.)
@@ -182,6 +183,8 @@ class MMGLowSpeedParams(Params):
     epsilon: float = param(1.42, unit="-", symbol="ε", **_POS,
                            doc="(1 − w_R)/(1 − w_P)")
     C_PR: float = param(-0.176, unit="-", symbol="C_PR", doc="reversed race: per u²")
+    C_uR0: float = param(0.14, unit="-", symbol="C_uR0",
+                         doc="Yasukawa's astern inflow (rudder_inflow_model 1): u_R** factor")
     gamma_N: float = param(0.4406, unit="-", symbol="γ_N", low=0.0,
                            doc="flow straightening where v + x_R r < 0")
     gamma_P: float = param(0.3506, unit="-", symbol="γ_P", low=0.0,
