@@ -213,7 +213,7 @@ def test_the_wave_kernel_with_its_per_run_constants_equals_the_paper_functions()
 
 
 def test_registries_and_the_component():
-    assert set(WIND_LOADS) == {"blendermann", "lvov"} and set(WAVE_LOADS) == {"lvov"}
+    assert set(WIND_LOADS) == {"blendermann", "lvov", "fujiwara"} and set(WAVE_LOADS) == {"lvov"}
     assert environment("lvov", "lvov") is environment("lvov", "lvov")
     with pytest.raises(ValueError, match="unknown wind load model 'isherwood'; valid: "
                                          "blendermann, lvov"):

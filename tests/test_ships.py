@@ -31,12 +31,18 @@ from seahelm.ships import catalog as catalog_module
 from seahelm.ships.files import ship_from_mapping
 from seahelm.ships.writing import ship_to_mapping
 from seahelm.vessels import catamaran, container, mariner, mmg, voitkunsky
+from seahelm.vessels.mmg_low_speed import ESSO_OSAKA_3M
 from seahelm.vessels.nomoto import Nomoto1Params, Nomoto2Params
 from seahelm.vessels.particulars import Particulars
 
 # ------------------------------------------------------------------------------------------
 # the catalog: ship files that give the vessel modules' published sets, bit for bit
 # ------------------------------------------------------------------------------------------
+# the Esso Osaka 3 m model's steering gear: its ship file (assumed from the records, no
+# published value)
+ESSO_SERVO = ServoParams(max_angle=math.radians(35.0), max_rate=math.radians(40.0),
+                         time_constant=0.05)
+
 PRESETS = {
     "kvlcc2-full": (mmg.KVLCC2_FULL, mmg.KVLCC2_FULL_SERVO),
     "kvlcc2-l7": (mmg.KVLCC2_L7, mmg.KVLCC2_L7_SERVO),
@@ -51,6 +57,7 @@ PRESETS = {
     "shushlyapin2017-listing": (catamaran.paper_params(), None),
     "shushlyapin2017-consistent": (catamaran.consistent_params(), None),
     "son-nomoto-container": (container.CONTAINER_SHIP, container.CONTAINER_SERVO),
+    "esso-osaka-3m": (ESSO_OSAKA_3M, ESSO_SERVO),
 }
 
 
@@ -58,7 +65,7 @@ def test_the_catalog_is_its_ship_files():
     assert ship_names() == tuple(sorted(PRESETS))
     assert sorted(p.stem for p in catalog_module.DATA_DIR.glob("*.toml")) == sorted(PRESETS)
     assert set(CATALOG) == set(PRESETS) and len(CATALOG) == len(PRESETS)
-    assert with_steering_gear() == ("kvlcc2-full", "kvlcc2-l7", "kvlcc2-l7-wp0-0.35",
+    assert with_steering_gear() == ("esso-osaka-3m", "kvlcc2-full", "kvlcc2-l7", "kvlcc2-l7-wp0-0.35",
                                     "kvlcc2-l7-xp-0.5", "mariner-nonlinear",
                                     "son-nomoto-container")
 
@@ -135,7 +142,7 @@ def test_get_ship_takes_a_ship_a_name_or_a_path(tmp_path):
     assert get_ship(ship) is ship
     path = write_ship(ship, tmp_path / "m.toml")
     assert get_ship(path) == ship and get_ship(str(path)) == ship
-    with pytest.raises(ValueError, match=r"unknown catalog ship 'titanic'; valid: kvlcc2-full, "
+    with pytest.raises(ValueError, match=r"unknown catalog ship 'titanic'; valid: esso-osaka-3m, kvlcc2-full, "
                                          r".* \(or the path of a ship file, \*.toml\)"):
         get_ship("titanic")
     with pytest.raises(ParameterError, match="`ship` must be a Ship, a catalog name or a ship "

@@ -30,6 +30,7 @@ VESSEL_MODELS: dict[str, str] = {
     "cpp-ship-waves": "seahelm.vessels.cpp_ship:CPP_SHIP_WAVES",
     "mmg": "seahelm.vessels.mmg:MMG",
     "mmg-4q": "seahelm.vessels.mmg_four_quadrant:MMG_4Q",
+    "mmg-ls": "seahelm.vessels.mmg_low_speed:MMG_LS",
     "mariner": "seahelm.vessels.mariner:MARINER",
     "container": "seahelm.vessels.container:CONTAINER",
 }

@@ -40,7 +40,9 @@ speed) and its direction (``true_wind_direction``, where it comes from, clockwis
 is held at its circular mean — the engine's wind direction is a parameter, not a signal; the
 result gives the direction's circular standard deviation so that a record whose wind veered
 shows it. The loads are the ship's wind-load model from its windage particulars
-(:func:`~seahelm.environment.loads.ship_load_params`; Blendermann 1994 by default). With
+(:func:`~seahelm.environment.loads.ship_load_params`): Fujiwara et al. (1998) for a ship whose
+particulars give their windage data (the Esso Osaka's published wind model), else Blendermann
+(1994). With
 ``wind="none"`` (the default) the simulated ship is in still air. Currents are not replayed.
 """
 
@@ -346,7 +348,7 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
            kind: Literal["auto", "turning", "zigzag", "none"] = "auto",
            check_angle: float | None = None, dt: float | None = None,
            closed_loop: bool = False, wind: Literal["none", "measured"] = "none",
-           wind_loads: str = "blendermann") -> ReplayResult:
+           wind_loads: str | None = None) -> ReplayResult:
     """Simulate a measured record from its first sample with its measured inputs.
 
     Parameters
@@ -373,7 +375,9 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
         Still air (default) or the record's measured true wind (module docstring).
     wind_loads : str, optional
         The wind-load model with the measured wind (a name in
-        :data:`~seahelm.environment.loads.WIND_LOADS`, default ``"blendermann"``).
+        :data:`~seahelm.environment.loads.WIND_LOADS`); default: ``"fujiwara"`` for a ship
+        whose particulars give Fujiwara's windage data (``superstructure_lateral_area``, ...:
+        ``esso-osaka-3m``), else ``"blendermann"``.
 
     Returns
     -------
@@ -430,7 +434,7 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
               "metadata": {"replay_of": record.name}}
     air: dict[str, Any] = {"kind": "none"}
     if wind == "measured":
-        air, loads = _measured_wind(record, found, wind_loads)
+        air, loads = _measured_wind(record, found, wind_loads or _default_wind_loads(found))
         timing.update(loads)
     if closed_loop:
         problem = _closed_loop(record, found, measured, float(angle), timing)  # type: ignore
@@ -488,6 +492,16 @@ def _simulate(simulate: Any, problem: Any, record: ManoeuvreRecord, step: float,
         f"= {step:g} s: the replay of {record.name} ({record.duration:.6g} s) takes "
         f"{n_steps:,} steps: {too_much}; a larger step (the record's interval is "
         f"{record.median_interval:.3g} s){anyway}", field="dt", unit="s", value=step)
+
+
+def _default_wind_loads(ship: Any) -> str:
+    """Fujiwara's loads for a ship with their windage data, else Blendermann's."""
+    part = ship.particulars
+    fujiwara = ("superstructure_lateral_area", "superstructure_centre", "superstructure_height",
+                "windage_height")
+    if part is not None and all(getattr(part, n) is not None for n in fujiwara):
+        return "fujiwara"
+    return "blendermann"
 
 
 def _measured_wind(record: ManoeuvreRecord, ship: Any, load_model: str

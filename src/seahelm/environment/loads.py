@@ -15,6 +15,8 @@ Load models come from registries, by name or as objects (house style rule 4):
 * :data:`WIND_LOADS` — ``"lvov"``: Lvov (2014) eq. (12) (lateral force and yaw moment only, no
   longitudinal force); ``"blendermann"``: Blendermann (1994), the coefficient model of
   :mod:`seahelm.environment.blendermann` (surge, sway, yaw) with the vessel-type tables;
+  ``"fujiwara"``: Fujiwara, Ueno & Nimura (1998), the regression on the windage geometry of
+  :mod:`seahelm.environment.fujiwara` (surge, sway, yaw);
 * :data:`WAVE_LOADS` — ``"lvov"``: the mean (second-order) wave loads of Lvov (2014)
   eq. (8)-(10) with the coefficients of eq. (5)-(7).
 
@@ -58,12 +60,14 @@ from ..constants import GRAVITY, RHO_AIR, RHO_SEAWATER
 from ..errors import ParameterError
 from ..parameters import Params, as_records, param
 from .blendermann import blendermann_loads_folded, get_blendermann_type
+from .fujiwara import fujiwara_constants, fujiwara_wind_loads
 
 __all__ = [
     "WindParams",
     "WaveParams",
     "LvovWindParams",
     "BlendermannWindParams",
+    "FujiwaraWindParams",
     "LvovWaveParams",
     "LoadModel",
     "WIND_LOADS",
@@ -83,6 +87,9 @@ __all__ = [
 # ------------------------------------------------------------------------------------------
 # parameters: the weather, then each load model's ship data
 # ------------------------------------------------------------------------------------------
+_POSITIVE = dict(low=0.0, low_inclusive=False)
+
+
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class WindParams(Params):
     """The true wind: speed and the direction it comes from."""
@@ -154,6 +161,33 @@ class BlendermannWindParams(WindParams):
 
     def validate(self) -> None:
         check_on_hull("windage_centre", self.windage_centre, self.length_overall)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class FujiwaraWindParams(WindParams):
+    """Windage geometry of Fujiwara et al.'s (1998) wind loads
+    (:mod:`seahelm.environment.fujiwara`)."""
+
+    windage_length: float = param(unit="m", symbol="L", **_POSITIVE, doc="L_pp")
+    windage_breadth: float = param(unit="m", symbol="B", **_POSITIVE, doc="breadth")
+    windage_frontal_area: float = param(unit="m²", symbol="A_T", **_POSITIVE,
+                                        doc="transverse (frontal) projected windage area")
+    windage_lateral_area: float = param(unit="m²", symbol="A_L", **_POSITIVE,
+                                        doc="lateral projected windage area")
+    superstructure_lateral_area: float = param(unit="m²", symbol="A_OD", **_POSITIVE,
+                                               doc="lateral area of the superstructure")
+    windage_centre: float = param(0.0, unit="m", symbol="C",
+                                  doc="centre of A_L, forward of midships")
+    superstructure_centre: float = param(0.0, unit="m", symbol="C_BR",
+                                         doc="centre of A_OD, forward of midships")
+    superstructure_height: float = param(unit="m", symbol="H_BR", **_POSITIVE,
+                                         doc="top of the superstructure above the waterline")
+    windage_height: float = param(unit="m", symbol="H_C", **_POSITIVE,
+                                  doc="centre of A_L above the waterline")
+
+    def validate(self) -> None:
+        check_on_hull("windage_centre", self.windage_centre, self.windage_length)
+        check_on_hull("superstructure_centre", self.superstructure_centre, self.windage_length)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -271,12 +305,17 @@ BLENDERMANN_WIND = LoadModel(
     "blendermann", "Blendermann (1994): surge, sway and yaw coefficients of the relative-wind "
     "angle per vessel type (Fossen 2021, §10.1.2)", BlendermannWindParams,
     blendermann_wind_loads_compiled, _blendermann_constants)
+FUJIWARA_WIND = LoadModel(
+    "fujiwara", "Fujiwara, Ueno & Nimura (1998): surge, sway and yaw coefficients regressed on "
+    "the windage geometry (A_T, A_L, A_OD, C, C_BR, H_BR, H_C)", FujiwaraWindParams,
+    fujiwara_wind_loads, fujiwara_constants)
 LVOV_WAVES = LoadModel(
     "lvov", "Lvov (2014) eq. (8)-(10): mean wave surge, sway and yaw loads, coefficients of "
     "eq. (5)-(7) (Yurkansky 2005)", LvovWaveParams, lvov_wave_loads, _lvov_wave_constants)
 
 #: Wind load models by name.
-WIND_LOADS: dict[str, LoadModel] = {"blendermann": BLENDERMANN_WIND, "lvov": LVOV_WIND}
+WIND_LOADS: dict[str, LoadModel] = {"blendermann": BLENDERMANN_WIND, "lvov": LVOV_WIND,
+                                    "fujiwara": FUJIWARA_WIND}
 #: Wave load models by name.
 WAVE_LOADS: dict[str, LoadModel] = {"lvov": LVOV_WAVES}
 
@@ -592,6 +631,16 @@ def ship_load_params(ship: Any, environment: Environment, **values: Any) -> Para
             windage_lateral_area=ship.require("lateral_area", need),
             windage_centre=ship.require("windage_centre", need),
             length_overall=ship.require("length_overall", need)))
+    elif environment.wind is FUJIWARA_WIND:
+        fields.update(
+            windage_length=ship.length, windage_breadth=ship.beam,
+            windage_frontal_area=ship.require("frontal_area", need),
+            windage_lateral_area=ship.require("lateral_area", need),
+            superstructure_lateral_area=ship.require("superstructure_lateral_area", need),
+            windage_centre=ship.require("windage_centre", need),
+            superstructure_centre=ship.require("superstructure_centre", need),
+            superstructure_height=ship.require("superstructure_height", need),
+            windage_height=ship.require("windage_height", need))
     if environment.waves is LVOV_WAVES:
         fields.update(lvov_wave_params(length=ship.length, beam=ship.beam, draft=ship.draft,
                                        block_coefficient=ship.block_coefficient))

@@ -48,6 +48,11 @@ FORMAT_REFERENCE: tuple[tuple[str, str, str, str], ...] = (
         "lateral_area": "lateral windage area above the water",
         "windage_centre": "centre of the lateral windage area, forward of midships",
         "metacentric_height": "transverse metacentric height GM (the closed-form roll RAO)",
+        "superstructure_lateral_area": "lateral area of the superstructure A_OD (Fujiwara's "
+                                       "wind loads)",
+        "superstructure_centre": "centre of A_OD, forward of midships C_BR (Fujiwara)",
+        "superstructure_height": "top of the superstructure above the water H_BR (Fujiwara)",
+        "windage_height": "centre of the lateral windage area above the water H_C (Fujiwara)",
         "vessel_type": "Blendermann's vessel type (tanker-loaded, cargo-loaded, ...)"}[n])
       for n, u, req in FIELD_UNITS),
     ("provenance.params", "", "no", "where the parameter set comes from"),

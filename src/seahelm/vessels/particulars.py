@@ -44,6 +44,13 @@ class Particulars:
     metacentric_height : float or None
         Transverse metacentric height GM [m] of the loading condition (the closed-form roll
         RAO's natural period, :func:`seahelm.environment.rao.closed_form_rao`).
+    superstructure_lateral_area, superstructure_centre, superstructure_height : float or None
+        Fujiwara et al. (1998) wind data: lateral projected area of the superstructure and the
+        deck structures A_OD [m²], the longitudinal position of its centre, forward of midships
+        C_BR [m], and the height of the top of the superstructure above the waterline H_BR [m].
+    windage_height : float or None
+        Height of the centre of the lateral windage area above the waterline H_C [m]
+        (Fujiwara et al. 1998).
     vessel_type : str or None
         Blendermann (1994) vessel type (:mod:`seahelm.environment.blendermann`).
     provenance : str
@@ -60,6 +67,10 @@ class Particulars:
     lateral_area: float | None = None
     windage_centre: float | None = None
     metacentric_height: float | None = None
+    superstructure_lateral_area: float | None = None
+    superstructure_centre: float | None = None
+    superstructure_height: float | None = None
+    windage_height: float | None = None
     vessel_type: str | None = None
     provenance: str = ""
 
@@ -78,7 +89,7 @@ class Particulars:
                     or not math.isfinite(value):
                 raise ParameterError(f"must be a finite number [{unit}], got {value!r}",
                                      field=name, unit=unit, value=value)
-            if name != "windage_centre" and not value > 0:
+            if name not in _SIGNED and not value > 0:
                 raise ParameterError(f"must be > 0 [{unit}], got {value!r}", field=name,
                                      unit=unit, value=value)
         if self.block_coefficient > 1:
@@ -143,6 +154,10 @@ class Particulars:
             lateral_area=times(self.lateral_area, f * f),
             windage_centre=times(self.windage_centre, f),
             metacentric_height=times(self.metacentric_height, f),
+            superstructure_lateral_area=times(self.superstructure_lateral_area, f * f),
+            superstructure_centre=times(self.superstructure_centre, f),
+            superstructure_height=times(self.superstructure_height, f),
+            windage_height=times(self.windage_height, f),
             provenance=provenance or self.provenance)
 
 
@@ -152,4 +167,9 @@ FIELD_UNITS: tuple[tuple[str, str, bool], ...] = (
     ("block_coefficient", "-", True), ("displacement", "m³", False),
     ("length_overall", "m", False), ("frontal_area", "m²", False),
     ("lateral_area", "m²", False), ("windage_centre", "m", False),
-    ("metacentric_height", "m", False), ("vessel_type", "", False))
+    ("metacentric_height", "m", False), ("superstructure_lateral_area", "m²", False),
+    ("superstructure_centre", "m", False), ("superstructure_height", "m", False),
+    ("windage_height", "m", False), ("vessel_type", "", False))
+
+#: Fields that may be negative or zero (positions along the ship).
+_SIGNED = ("windage_centre", "superstructure_centre")
