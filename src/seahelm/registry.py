@@ -32,6 +32,8 @@ VESSEL_MODELS: dict[str, str] = {
     "mmg-4q": "seahelm.vessels.mmg_four_quadrant:MMG_4Q",
     "mariner": "seahelm.vessels.mariner:MARINER",
     "container": "seahelm.vessels.container:CONTAINER",
+    "otter": "seahelm.vessels.six_dof.otter:OTTER",
+    "otter-quaternion": "seahelm.vessels.six_dof.otter:OTTER_QUATERNION",
 }
 
 ACTUATORS: dict[str, str] = {
