@@ -62,6 +62,7 @@ CONTROLLERS: dict[str, str] = {
     "pid-yaw-rate": "seahelm.control.baselines:PID_YAW_RATE",
     "zigzag": "seahelm.control.zigzag:ZIGZAG",
     "zigzag-rps": "seahelm.control.zigzag:ZIGZAG_RPS",
+    "thrust-heading": "seahelm.control.thrust_heading:THRUST_HEADING",
 }
 
 

@@ -392,7 +392,7 @@ def six_dof_model(name: str, description: str, params_type: type[SixDofParams], 
     if unknown:
         raise ValueError(f"azimuthing thrusters {unknown} are not among {list(thrusters)}")
     layout = (len(thrusters), tuple(int(t in azimuthing) for t in thrusters), len(fins))
-    if params_type.layout != layout:
+    if params_type.layout is not None and params_type.layout != layout:
         raise ValueError(f"{params_type.__name__}.layout is {params_type.layout}, the model "
                          f"names {layout}")
     az = [t for t in thrusters if t in azimuthing]
