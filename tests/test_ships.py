@@ -37,6 +37,8 @@ from seahelm.vessels.particulars import Particulars
 # ------------------------------------------------------------------------------------------
 # the catalog: ship files that give the vessel modules' published sets, bit for bit
 # ------------------------------------------------------------------------------------------
+from seahelm.vessels.six_dof.otter import otter_params  # noqa: E402
+
 PRESETS = {
     "kvlcc2-full": (mmg.KVLCC2_FULL, mmg.KVLCC2_FULL_SERVO),
     "kvlcc2-l7": (mmg.KVLCC2_L7, mmg.KVLCC2_L7_SERVO),
@@ -51,6 +53,7 @@ PRESETS = {
     "shushlyapin2017-listing": (catamaran.paper_params(), None),
     "shushlyapin2017-consistent": (catamaran.consistent_params(), None),
     "son-nomoto-container": (container.CONTAINER_SHIP, container.CONTAINER_SERVO),
+    "otter": (otter_params(), None),
 }
 
 

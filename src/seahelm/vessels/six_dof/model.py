@@ -385,9 +385,9 @@ def six_dof_model(name: str, description: str, params_type: type[SixDofParams], 
     -------
     VesselModel
     """
-    from ...registry import lookup
-
-    states, units, rhs, output, motion = lookup("kinematics", _KINEMATICS, kinematics, tuple)
+    if kinematics not in _KINEMATICS:
+        raise ValueError(f"unknown kinematics {kinematics!r}; valid: {', '.join(_KINEMATICS)}")
+    states, units, rhs, output, motion = _KINEMATICS[kinematics]
     unknown = [a for a in azimuthing if a not in thrusters]
     if unknown:
         raise ValueError(f"azimuthing thrusters {unknown} are not among {list(thrusters)}")
