@@ -40,8 +40,10 @@ from __future__ import annotations
 import math
 from typing import Any
 
+import numpy as np
 from numba import njit
 
+from ...errors import ParameterError
 from ...parameters import signal_indices
 from ..base import VesselModel
 from .params import FIN_STERN_PLANE, SixDofParams
@@ -351,6 +353,19 @@ def six_dof_quaternion_motion(x, p):  # pragma: no cover - compiled
     return x[_Q.surge_speed], x[_Q.sway_speed], psi
 
 
+def _check_unit_quaternion(x0: Any) -> None:
+    """x0 of a quaternion model: the quaternion (η, ε₁, ε₂, ε₃) of every run of unit length."""
+    q = np.asarray(x0, dtype=float)[:, _Q.quaternion_w:_Q.quaternion_z + 1]
+    norm = np.sqrt((q * q).sum(axis=1))
+    bad = np.flatnonzero(np.abs(norm - 1.0) > 1e-9)
+    if bad.size:
+        i = int(bad[0])
+        raise ParameterError(
+            f"must hold a unit quaternion (quaternion_w, quaternion_x, quaternion_y, "
+            f"quaternion_z), got length {float(norm[i])!r} [-] in run {i}", field="x0", unit="-",
+            value=float(norm[i]), run=i)
+
+
 _KINEMATICS = {
     "euler": (EULER_STATES, _EULER_UNITS, six_dof_euler_rhs, six_dof_euler_output,
               six_dof_euler_motion),
@@ -410,5 +425,6 @@ def six_dof_model(name: str, description: str, params_type: type[SixDofParams], 
         output_labels=RIGID_OUTPUTS + tuple(f"{t}_thrust" for t in thrusters),
         output_units=_RIGID_OUTPUT_UNITS + ("N",) * len(thrusters),
         motion=motion,
+        check_initial_state=_check_unit_quaternion if kinematics == "quaternion" else None,
     )
 
