@@ -38,6 +38,7 @@ from seahelm.vessels.particulars import Particulars
 # the catalog: ship files that give the vessel modules' published sets, bit for bit
 # ------------------------------------------------------------------------------------------
 from seahelm.vessels.six_dof.otter import otter_params  # noqa: E402
+from seahelm.vessels.six_dof.remus100 import remus100_params  # noqa: E402
 
 PRESETS = {
     "kvlcc2-full": (mmg.KVLCC2_FULL, mmg.KVLCC2_FULL_SERVO),
@@ -54,6 +55,7 @@ PRESETS = {
     "shushlyapin2017-consistent": (catamaran.consistent_params(), None),
     "son-nomoto-container": (container.CONTAINER_SHIP, container.CONTAINER_SERVO),
     "otter": (otter_params(), None),
+    "remus100": (remus100_params(), None),
 }
 
 

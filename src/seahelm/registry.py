@@ -34,6 +34,7 @@ VESSEL_MODELS: dict[str, str] = {
     "container": "seahelm.vessels.container:CONTAINER",
     "otter": "seahelm.vessels.six_dof.otter:OTTER",
     "otter-quaternion": "seahelm.vessels.six_dof.otter:OTTER_QUATERNION",
+    "remus100": "seahelm.vessels.six_dof.remus100:REMUS100",
 }
 
 ACTUATORS: dict[str, str] = {
