@@ -64,6 +64,7 @@ CONTROLLERS: dict[str, str] = {
     "zigzag": "seahelm.control.zigzag:ZIGZAG",
     "zigzag-rps": "seahelm.control.zigzag:ZIGZAG_RPS",
     "thrust-heading": "seahelm.control.thrust_heading:THRUST_HEADING",
+    "auv-depth-heading": "seahelm.control.auv_depth_heading:AUV_DEPTH_HEADING",
 }
 
 

@@ -366,6 +366,29 @@ def _check_unit_quaternion(x0: Any) -> None:
             value=float(norm[i]), run=i)
 
 
+def _check_submerged(x0: Any) -> None:
+    """x0 of an underwater vehicle: the depth of every run at or below the surface (≥ 0)."""
+    depth = np.asarray(x0, dtype=float)[:, _E.depth]
+    bad = np.flatnonzero(~(depth >= 0.0))
+    if bad.size:
+        i = int(bad[0])
+        raise ParameterError(
+            f"`depth` must be >= 0 [m] (positive down; an underwater vehicle starts at or below "
+            f"the surface), got {float(depth[i])!r} in run {i}", field="x0", unit="m",
+            value=float(depth[i]), run=i)
+
+
+def _checks(*checks: Any) -> Any:
+    checks = tuple(c for c in checks if c is not None)
+    if not checks:
+        return None
+
+    def check(x0: Any) -> None:
+        for c in checks:
+            c(x0)
+    return check
+
+
 _KINEMATICS = {
     "euler": (EULER_STATES, _EULER_UNITS, six_dof_euler_rhs, six_dof_euler_output,
               six_dof_euler_motion),
@@ -376,7 +399,8 @@ _KINEMATICS = {
 
 def six_dof_model(name: str, description: str, params_type: type[SixDofParams], *,
                   thrusters: tuple[str, ...], azimuthing: tuple[str, ...] = (),
-                  fins: tuple[str, ...] = (), kinematics: str = "euler") -> VesselModel:
+                  fins: tuple[str, ...] = (), kinematics: str = "euler",
+                  submerged: bool = False) -> VesselModel:
     """A 6-DOF craft as a :class:`~seahelm.vessels.base.VesselModel`.
 
     Parameters
@@ -395,6 +419,8 @@ def six_dof_model(name: str, description: str, params_type: type[SixDofParams], 
         Fin names in parameter order (states ``<name>_angle``, inputs ``<name>_command``).
     kinematics : {"euler", "quaternion"}
         Attitude states: zyx Euler angles (12 rigid-body states) or a unit quaternion (13).
+    submerged : bool, optional
+        An underwater vehicle: an initial depth above the surface (< 0) is refused.
 
     Returns
     -------
@@ -425,6 +451,8 @@ def six_dof_model(name: str, description: str, params_type: type[SixDofParams], 
         output_labels=RIGID_OUTPUTS + tuple(f"{t}_thrust" for t in thrusters),
         output_units=_RIGID_OUTPUT_UNITS + ("N",) * len(thrusters),
         motion=motion,
-        check_initial_state=_check_unit_quaternion if kinematics == "quaternion" else None,
+        check_initial_state=_checks(
+            _check_unit_quaternion if kinematics == "quaternion" else None,
+            _check_submerged if submerged else None),
     )
 

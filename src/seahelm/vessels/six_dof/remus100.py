@@ -158,4 +158,4 @@ def remus100_params(**changes: Any) -> Remus100Params:
 REMUS100 = six_dof_model(
     "remus100", "REMUS 100 AUV, 6 DOF with Euler angles: propeller, tail rudder, stern planes "
     "(Fossen 2021 after Prestero 2001; MSS/PVS remus100)", Remus100Params,
-    thrusters=("propeller",), fins=("rudder", "stern_plane"))
+    thrusters=("propeller",), fins=("rudder", "stern_plane"), submerged=True)
