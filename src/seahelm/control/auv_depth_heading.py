@@ -20,7 +20,7 @@ third-order reference model (ψ_d, r_d, a_d) (Fossen 2021, eq. 16.479 as cited b
     ẽ = wrap(ψ − ψ_d), ė = r − r_d
     σ = ė + 2λ ẽ + λ² e_I,  r_r = r_d − 2λ ẽ − λ² e_I,  ṙ_r = a_d − 2λ ė − λ² ẽ
     δ_r = (T ṙ_r + r_r − K_d σ − K_σ sat(σ/φ_b)) / K
-    e_I ← e_I + h ẽ; reference model as in :mod:`seahelm.control.thrust_heading`
+    e_I ← e_I + h ẽ; reference model as in :mod:`seahelm.control.thrust_heading` (wrapped)
 
 The propeller command is the reference ``propeller_speed`` [rad/s]. The fin commands are not
 limited here (the fins saturate in the model). z_d and ψ_d start at the measured depth and
@@ -132,7 +132,7 @@ def auv_depth_heading_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - 
     cs[_S.heading_error_integral] = ei + dt * e
     wd = p.reference_frequency
     c = 2.0 * p.reference_damping + 1.0
-    jerk = wd * wd * wd * (ref[_R.heading] - psi_d) - c * wd * wd * r_d - c * wd * a_d
+    jerk = wd * wd * wd * wrap_pi(ref[_R.heading] - psi_d) - c * wd * wd * r_d - c * wd * a_d
     cs[_S.desired_heading] = psi_d + dt * r_d
     rmax = p.max_yaw_rate
     r_new = r_d + dt * a_d

@@ -9,7 +9,7 @@ example of Fossen's MSS/PythonVehicleSimulator)::
     K_p = m ω_n² − k,  K_d = 2 ζ ω_n m − d,  K_i = (ω_n/10) K_p
     τ_N = −K_p e − K_d ė − K_i z
     z ← z + h e
-    j_d = ω_d³ (ψ_ref − ψ_d) − (2ζ_d + 1) ω_d² r_d − (2ζ_d + 1) ω_d a_d
+    j_d = ω_d³ wrap(ψ_ref − ψ_d) − (2ζ_d + 1) ω_d² r_d − (2ζ_d + 1) ω_d a_d
     ψ_d ← ψ_d + h r_d,  r_d ← sat(r_d + h a_d, ±r_max),  a_d ← a_d + h j_d
 
 for the yaw model m ṙ + d r + k ψ = τ_N (Otter: m = 41.4 kg·m² with added inertia, d = m/T,
@@ -19,8 +19,10 @@ u_i = n_i|n_i|, so u = B⁻¹ τ and n_i = sign(u_i) √|u_i| (the square, non-r
 weighted pseudo-inverse, :func:`seahelm.vessels.six_dof.thrusters.allocate`), then limited to
 [n_min, n_max].
 
-The heading error is wrapped to [−π, π) (the published autopilot takes ψ − ψ_d as it is; the
-two agree for errors below 180°). ψ_d starts at the measured heading.
+The heading error and the reference model's input ψ_ref − ψ_d are wrapped to [−π, π) (the
+published autopilot takes both as they are; the two agree while they stay below 180°, and
+with LOS guidance, whose ψ_ref jumps by 360° where it wraps, the unwrapped reference model
+would turn the craft a full circle). ψ_d starts at the measured heading.
 """
 
 from __future__ import annotations
@@ -112,7 +114,7 @@ def thrust_heading_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - com
     # third-order reference model, forward Euler, yaw-rate limit
     wd = p.reference_frequency
     c = 2.0 * p.reference_damping + 1.0
-    jerk = wd * wd * wd * (ref[_R.heading] - psi_d) - c * wd * wd * r_d - c * wd * a_d
+    jerk = wd * wd * wd * wrap_pi(ref[_R.heading] - psi_d) - c * wd * wd * r_d - c * wd * a_d
     cs[_S.desired_heading] = psi_d + dt * r_d
     rmax = p.max_yaw_rate
     r_new = r_d + dt * a_d
