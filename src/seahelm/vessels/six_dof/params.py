@@ -238,7 +238,16 @@ class SixDofParams(Params):
 
 
 def mass_matrix(p: SixDofParams) -> np.ndarray:
-    """M = M_RB + M_A (6 × 6) of a parameter set."""
+    """M = M_RB + M_A (6 × 6) of a parameter set.
+
+    Parameters
+    ----------
+    p : SixDofParams
+
+    Returns
+    -------
+    numpy.ndarray, shape (6, 6)
+    """
     return p.rigid_body_mass_matrix + np.asarray(p.added_mass).reshape(6, 6)
 
 

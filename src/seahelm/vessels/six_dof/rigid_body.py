@@ -52,13 +52,32 @@ __all__ = [
 # numpy helpers (parameters, tests)
 # ------------------------------------------------------------------------------------------
 def skew(a: np.ndarray) -> np.ndarray:
-    """S(a), the 3 × 3 skew-symmetric matrix with S(a) b = a × b (Fossen 2021, §2.1)."""
+    """S(a), the 3 × 3 skew-symmetric matrix with S(a) b = a × b (Fossen 2021, §2.1).
+
+    Parameters
+    ----------
+    a : array_like, shape (3,)
+
+    Returns
+    -------
+    numpy.ndarray, shape (3, 3)
+    """
     a = np.asarray(a, dtype=float)
     return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
 
 
 def system_transformation(r: np.ndarray) -> np.ndarray:
-    """H(r) = [[I, S(r)ᵀ], [0, I]]: M_CO = H(r_g)ᵀ M_CG H(r_g) (Fossen 2021, §3.3)."""
+    """H(r) = [[I, S(r)ᵀ], [0, I]]: M_CO = H(r_g)ᵀ M_CG H(r_g) (Fossen 2021, §3.3).
+
+    Parameters
+    ----------
+    r : array_like, shape (3,)
+        The point (e.g. the CG) from the body origin CO [m].
+
+    Returns
+    -------
+    numpy.ndarray, shape (6, 6)
+    """
     h = np.eye(6)
     h[0:3, 3:6] = skew(r).T
     return h
@@ -70,6 +89,19 @@ def rigid_body_mass_matrix(mass: float, center_of_gravity: np.ndarray,
 
     M_RB = H(r_g)ᵀ diag(m I₃, I_g) H(r_g) = [[m I₃, −m S(r_g)], [m S(r_g), I_g − m S²(r_g)]]
     (Fossen 2021, §3.3).
+
+    Parameters
+    ----------
+    mass : float
+        m [kg].
+    center_of_gravity : array_like, shape (3,)
+        r_g from CO [m].
+    inertia_cg : array_like, shape (9,) or (3, 3)
+        I_g about the CG [kg·m²].
+
+    Returns
+    -------
+    numpy.ndarray, shape (6, 6)
     """
     m_cg = np.zeros((6, 6))
     m_cg[0:3, 0:3] = mass * np.eye(3)

@@ -106,7 +106,17 @@ class Allocation:
         self._hi = np.asarray(params.thruster_max_speed[:n], dtype=float)
 
     def thrusts(self, tau: Any) -> np.ndarray:
-        """Thrusts f [N] for the generalized forces ``tau`` (len(dofs) values, or (..., len))."""
+        """Thrusts f [N] for the generalized forces ``tau``: f = B_W⁺ τ.
+
+        Parameters
+        ----------
+        tau : array_like, shape (..., len(dofs))
+            Generalized forces [N, N·m] in the order of ``dofs``.
+
+        Returns
+        -------
+        numpy.ndarray, shape (..., n_thrusters)
+        """
         return np.asarray(tau, dtype=float) @ self.pseudo_inverse.T
 
     def __call__(self, tau: Any) -> np.ndarray:
