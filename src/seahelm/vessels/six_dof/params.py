@@ -95,8 +95,8 @@ class SixDofParams(Params):
                                          doc="parasitic drag coefficient at zero lift")
     hull_lift_efficiency: float = param(0.7, unit="-", symbol="e", low=0.0, low_inclusive=False,
                                         doc="Oswald efficiency in the induced drag")
-    quaternion_gain: float = param(100.0, unit="1/s", symbol="γ", low=0.0,
-                                   doc="quaternion normalisation gain (quaternion models)")
+    quaternion_gain: float = param(1.0, unit="1/s", symbol="γ", low=0.0,
+                                   doc="quaternion normalisation gain (RK4 needs γ h < 2.7)")
     # -- thrusters -------------------------------------------------------------------------
     thruster_count: float = param(0.0, unit="-", low=0.0, high=MAX_THRUSTERS,
                                   doc="thrusters used (the first of the thruster vectors)")
