@@ -75,3 +75,32 @@ def test_fewer_effective_thrusters_than_dof_is_refused():
 def test_bad_allocation_input(kw, match):
     with pytest.raises(ParameterError, match=match):
         Allocation(OTTER, **kw)
+
+
+def azimuth_craft():
+    return SixDofParams(mass=100.0, thruster_count=1.0, thruster_x=(-0.4, 0.0, 0.0, 0.0),
+                        thruster_azimuthing=(1.0, 0.0, 0.0, 0.0),
+                        thruster_k_pos=(0.01, 0.0, 0.0, 0.0), thruster_k_neg=(0.01, 0.0, 0.0, 0.0),
+                        thruster_max_turn_rate=(0.5, 1e9, 1e9, 1e9),
+                        thruster_turn_time_constant=(0.2, 1.0, 1.0, 1.0),
+                        thruster_max_acceleration=(30.0, 1e9, 1e9, 1e9))
+
+
+def test_an_azimuth_thruster_pushes_along_its_angle_state_with_limited_turn_rate():
+    from seahelm.vessels.six_dof.model import six_dof_model
+
+    p = azimuth_craft()
+    model = six_dof_model("azimuth-test", "one azimuth thruster", SixDofParams,
+                          thrusters=("pod",), azimuthing=("pod",))
+    assert model.state_labels[12:] == ("pod_speed", "pod_angle")
+    assert model.input_labels == ("pod_speed_command", "pod_angle_command")
+    x = model.initial_state(pod_speed=50.0, pod_angle=math.pi / 2)
+    dx = model.derivative(0.0, x, [50.0, math.pi / 2], p)
+    thrust = 0.01 * 50.0**2
+    # pointing to starboard at x = −0.4 m: sway force T, yaw moment −0.4 T
+    tau = np.array([0.0, thrust, 0.0, 0.0, 0.0, -0.4 * thrust])
+    np.testing.assert_allclose(dx[6:12], np.linalg.solve(p.mass_matrix, tau), atol=1e-12)
+    # the angle follows its command at most at 0.5 rad/s, the shaft at most 30 rad/s²
+    dx = model.derivative(0.0, x, [100.0, -math.pi / 2], p)
+    assert dx[13] == pytest.approx(-0.5)
+    assert dx[12] == pytest.approx(30.0)
