@@ -15,7 +15,7 @@ import pytest
 
 from seahelm.errors import ParameterError
 from seahelm.vessels.six_dof import rigid_body as rb
-from seahelm.vessels.six_dof.otter import OTTER, OTTER_QUATERNION, OtterParams, otter_params
+from seahelm.vessels.six_dof.otter import OTTER, OTTER_QUATERNION, otter_params
 from seahelm.vessels.six_dof.params import SixDofParams
 
 

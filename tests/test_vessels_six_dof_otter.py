@@ -74,6 +74,7 @@ def test_turning_circle_equals_pvs():
 def test_a_quaternion_that_is_not_normalised_is_refused():
     x0 = np.zeros(15)
     x0[3] = 0.9  # |q| = 0.9
-    with pytest.raises(ParameterError, match=r"`x0` must hold a unit quaternion .*got length 0\.9 \[-\]") as exc:
+    with pytest.raises(ParameterError,
+                       match=r"`x0` must hold a unit quaternion .*got length 0\.9 \[-\]") as exc:
         Problem(model=OTTER_QUATERNION, params=P, x0=x0, t_final=1.0, dt=DT, actuator="direct")
     assert exc.value.field == "x0"

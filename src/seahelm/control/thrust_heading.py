@@ -64,9 +64,11 @@ class ThrustHeadingParams(Params):
                               doc="y of the port propeller (≤ 0)")
     starboard_lever: float = param(0.395, unit="m", symbol="y₂", low=0.0, low_inclusive=False,
                                    doc="y of the starboard propeller (> 0)")
-    max_speed: float = param(math.sqrt(0.5 * 24.4 * 9.81 / (0.02216 / 2.0)), unit="rad/s", symbol="n_max", low=0.0, low_inclusive=False,
+    max_speed: float = param(math.sqrt(0.5 * 24.4 * 9.81 / (0.02216 / 2.0)), unit="rad/s",
+                             symbol="n_max", low=0.0, low_inclusive=False,
                              doc="shaft-speed command limit ahead")
-    min_speed: float = param(-math.sqrt(0.5 * 13.6 * 9.81 / (0.01289 / 2.0)), unit="rad/s", symbol="n_min", high=0.0,
+    min_speed: float = param(-math.sqrt(0.5 * 13.6 * 9.81 / (0.01289 / 2.0)), unit="rad/s",
+                             symbol="n_min", high=0.0,
                              doc="shaft-speed command limit astern")
 
 

@@ -33,7 +33,8 @@ def is_six_dof(ds: Any) -> bool:
     return all(n in ds and ds[n].attrs.get("kind") == "state" for n in ("depth", "roll", "pitch"))
 
 
-def plot_six_dof(ds: Any, *, runs: Any = None, fig: Any = None) -> Any:
+def plot_six_dof(ds: Any, *, runs: Any = None, fig: Any = None, title: str = "",
+                 draw_route: Any = None) -> Any:
     """Draw track, depth and pitch, attitude, shaft speeds and fin angles; returns the figure.
 
     Parameters
@@ -44,14 +45,16 @@ def plot_six_dof(ds: Any, *, runs: Any = None, fig: Any = None) -> Any:
         Runs to draw (default: the first 10).
     fig : matplotlib.figure.Figure, optional
         Figure to draw into (a new one by default).
+    title : str, optional
+        The figure's title.
+    draw_route : callable, optional
+        ``draw_route(ax, run_dataset)`` draws a guided run's route under the track.
 
     Returns
     -------
     matplotlib.figure.Figure
     """
     import matplotlib.pyplot as plt
-
-    from .timeseries import _draw_route, _title
 
     if fig is None:
         fig = plt.figure(figsize=(13, 7.5))
@@ -93,8 +96,8 @@ def plot_six_dof(ds: Any, *, runs: Any = None, fig: Any = None) -> Any:
                 ax_f.plot(t, np.degrees(sel[cmd].values), ":", color=f"C{j}", lw=1,
                           label="command")
     guided = "cross_track_error" in ds
-    if guided:
-        _draw_route(ax_xy, ds.sel(run=run_ids[0]))
+    if guided and draw_route is not None:
+        draw_route(ax_xy, ds.sel(run=run_ids[0]))
     if not fins:  # a craft without fins: the panel shows the cross-track error, if any
         if guided:
             for k, i in enumerate(run_ids):
@@ -122,5 +125,5 @@ def plot_six_dof(ds: Any, *, runs: Any = None, fig: Any = None) -> Any:
         ax.grid(True, alpha=0.3)
         if ax.get_legend_handles_labels()[0]:
             ax.legend(loc="best", fontsize="small")
-    fig.suptitle(_title(ds))
+    fig.suptitle(title)
     return fig

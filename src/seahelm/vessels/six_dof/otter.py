@@ -44,7 +44,8 @@ from .model import six_dof_model
 from .params import SixDofParams, hoerner_cross_flow_coefficient
 from .rigid_body import skew, system_transformation
 
-__all__ = ["OTTER", "OTTER_QUATERNION", "OtterParams", "otter_params", "OTTER_PROVENANCE", "OTTER_THRUSTERS",
+__all__ = ["OTTER", "OTTER_QUATERNION", "OtterParams", "otter_params", "OTTER_PROVENANCE",
+           "OTTER_THRUSTERS",
            "OTTER_YAW_INERTIA"]
 
 OTTER_THRUSTERS = ("propeller_port", "propeller_starboard")

@@ -74,7 +74,7 @@ class SixDofParams(Params):
     center_of_buoyancy: tuple = param((0.0, 0.0, 0.0), unit="m", symbol="r_b", size=3,
                                       doc="CB from CO")
     payload_weight: float = param(0.0, unit="N", symbol="W_p", low=0.0,
-                                  doc="point weight not in G (Otter: the payload), force Rᵀ(0,0,W_p)")
+                                  doc="point weight not in G (the Otter's payload)")
     payload_position: tuple = param((0.0, 0.0, 0.0), unit="m", symbol="r_p", size=3,
                                     doc="where the point weight acts, from CO")
     water_density: float = param(1026.0, unit="kg/m³", symbol="ρ", low=0.0, low_inclusive=False,

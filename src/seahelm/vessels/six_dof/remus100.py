@@ -95,7 +95,8 @@ def remus100_params(**changes: Any) -> Remus100Params:
     beta0 = 1.0 / e**2 - (1.0 - e * e) / (2.0 * e**3) * log
     k1 = alpha0 / (2.0 - alpha0)
     k2 = beta0 / (2.0 - beta0)
-    kp = e**4 * (beta0 - alpha0) / ((2.0 - e * e) * (2.0 * e * e - (2.0 - e * e) * (beta0 - alpha0)))
+    kp = e**4 * (beta0 - alpha0) / ((2.0 - e * e)
+                                    * (2.0 * e * e - (2.0 - e * e) * (beta0 - alpha0)))
     added = np.diag([m * k1, m * k2, m * k2, 0.3 * ix, kp * iy, kp * iy])
     # M = M_RB + M_A about CO (M_RB of the spheroid moved by r_g)
     p0 = Remus100Params(mass=m, center_of_gravity=(0.0, 0.0, zg),
