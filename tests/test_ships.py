@@ -42,6 +42,8 @@ from seahelm.vessels.particulars import Particulars
 # published value)
 ESSO_SERVO = ServoParams(max_angle=math.radians(35.0), max_rate=math.radians(40.0),
                          time_constant=0.05)
+from seahelm.vessels.six_dof.otter import otter_params  # noqa: E402
+from seahelm.vessels.six_dof.remus100 import remus100_params  # noqa: E402
 
 PRESETS = {
     "kvlcc2-full": (mmg.KVLCC2_FULL, mmg.KVLCC2_FULL_SERVO),
@@ -58,6 +60,8 @@ PRESETS = {
     "shushlyapin2017-consistent": (catamaran.consistent_params(), None),
     "son-nomoto-container": (container.CONTAINER_SHIP, container.CONTAINER_SERVO),
     "esso-osaka-3m": (ESSO_OSAKA_3M, ESSO_SERVO),
+    "otter": (otter_params(), None),
+    "remus100": (remus100_params(), None),
 }
 
 

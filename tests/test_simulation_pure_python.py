@@ -116,7 +116,35 @@ CASES = {
         dt=0.1, actuator=RUDDER_SERVO, actuator_params=CONTAINER_MSS_SERVO, controller=OPEN_LOOP,
         reference={"rudder_command": np.radians([10.0, -5.0]).reshape(2, 1, 1),
                    "propeller_rps": 80.0 / 60.0}),
+    "otter": lambda: dict(
+        params=_otter(), x0=np.zeros(14), t_final=1.0, dt=0.05, actuator=DIRECT,
+        controller=OPEN_LOOP,
+        reference={"propeller_port_speed_command": np.array([90.0, 40.0]).reshape(2, 1, 1),
+                   "propeller_starboard_speed_command": 60.0}),
+    "otter-quaternion": lambda: dict(
+        params=_otter(), x0=np.eye(15)[3], t_final=1.0, dt=0.05, actuator=DIRECT,
+        controller=OPEN_LOOP,
+        reference={"propeller_port_speed_command": np.array([90.0, 40.0]).reshape(2, 1, 1),
+                   "propeller_starboard_speed_command": 60.0}),
+    "remus100": lambda: dict(
+        params=_remus(), x0=np.array([0, 0, 1.0, 0, 0, 0, 1.5] + [0.0] * 8), t_final=1.0,
+        dt=0.05, actuator=DIRECT, controller=OPEN_LOOP,
+        reference={"propeller_speed_command": 150.0,
+                   "rudder_command": np.radians([10.0, -5.0]).reshape(2, 1, 1),
+                   "stern_plane_command": np.radians(5.0)}),
 }
+
+
+def _otter():
+    from seahelm.vessels.six_dof.otter import otter_params
+
+    return otter_params()
+
+
+def _remus():
+    from seahelm.vessels.six_dof.remus100 import remus100_params
+
+    return remus100_params()
 
 
 def _run(name: str, **kw):

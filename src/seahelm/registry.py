@@ -33,6 +33,9 @@ VESSEL_MODELS: dict[str, str] = {
     "mmg-ls": "seahelm.vessels.mmg_low_speed:MMG_LS",
     "mariner": "seahelm.vessels.mariner:MARINER",
     "container": "seahelm.vessels.container:CONTAINER",
+    "otter": "seahelm.vessels.six_dof.otter:OTTER",
+    "otter-quaternion": "seahelm.vessels.six_dof.otter:OTTER_QUATERNION",
+    "remus100": "seahelm.vessels.six_dof.remus100:REMUS100",
 }
 
 ACTUATORS: dict[str, str] = {
@@ -61,6 +64,8 @@ CONTROLLERS: dict[str, str] = {
     "pid-yaw-rate": "seahelm.control.baselines:PID_YAW_RATE",
     "zigzag": "seahelm.control.zigzag:ZIGZAG",
     "zigzag-rps": "seahelm.control.zigzag:ZIGZAG_RPS",
+    "thrust-heading": "seahelm.control.thrust_heading:THRUST_HEADING",
+    "auv-depth-heading": "seahelm.control.auv_depth_heading:AUV_DEPTH_HEADING",
 }
 
 

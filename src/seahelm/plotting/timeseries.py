@@ -55,6 +55,10 @@ def plot_result(ds: Any, *, runs: Any = None, fig: Any = None) -> Any:
     from ..result_layout import flatten_runs
 
     ds = flatten_runs(ds)
+    from .six_dof import is_six_dof, plot_six_dof
+
+    if is_six_dof(ds):  # a USV or AUV: track, depth, attitude, propellers, fins
+        return plot_six_dof(ds, runs=runs, fig=fig, title=_title(ds), draw_route=_draw_route)
     batch_coords = [str(c) for c in ds.coords if c != "run" and ds[c].dims == ("run",)]
     if fig is None:
         # fixed margins: constrained layout measured every tick label twice and took half of

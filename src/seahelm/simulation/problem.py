@@ -241,6 +241,10 @@ class Problem:
         if self.x0 is None:
             raise ParameterError(f"is required: the initial state ({', '.join(model.state_labels)})",
                                  field="x0")
+        if model.check_initial_state is not None:  # e.g. a unit quaternion in x0
+            x0 = np.asarray(self.x0, dtype=float)
+            if x0.shape[-1:] == (model.n_states,):
+                model.check_initial_state(x0.reshape(-1, model.n_states))
         # the actuator: given, the ship's steering gear, or the rudder servo
         gear = None if ship is None else ship.steering_gear
         actuator = self.actuator

@@ -77,6 +77,10 @@ class VesselModel:
         Parameters the model's load channels (``force_x``, ``force_y``, ``moment_z``) need, which
         must be > 0 when an environment puts loads on them (e.g. the masses that normalise a
         force in a model written in normalised units).
+    check_initial_state : callable, optional
+        ``check_initial_state(x0)`` with ``x0`` of shape (runs, n_states): raises
+        :class:`~seahelm.errors.ParameterError` (field ``x0``) for an initial state the model
+        cannot start from (a quaternion that is not of unit length).
     """
 
     name: str
@@ -96,6 +100,7 @@ class VesselModel:
     state_upper: tuple[float, ...] | None = None
     load_params: tuple[str, ...] = ()
     motion: Any = None
+    check_initial_state: Any = None
 
     def __post_init__(self) -> None:
         n = len(self.state_labels)
