@@ -92,7 +92,7 @@ def test_turning_table_and_out(tmp_path):
     (["maneuver", "turning", "--catalog", "mariner-nonlinear", "--rps", "2"],
      "`--rps`: 'mariner-nonlinear' (model mariner) has no propeller input, got 2.0 [1/s]"),
     (["maneuver", "turning", "--catalog", "kvlcc9"],
-     "unknown ship 'kvlcc9'; catalog ships with a steering gear: kvlcc2-full, kvlcc2-l7, "
+     "unknown ship 'kvlcc9'; catalog ships with a steering gear: esso-osaka-3m, kvlcc2-full, kvlcc2-l7, "
      "kvlcc2-l7-wp0-0.35, kvlcc2-l7-xp-0.5, mariner-nonlinear, son-nomoto-container (or the "
      "path of a ship file"),
     (["maneuver", "turning", "--catalog", "mariner-nomoto2"],  # in the catalog, no steering gear
@@ -112,7 +112,7 @@ def test_turning_table_and_out(tmp_path):
     (["maneuver", "pullout", "--rudder", "-5"], "`--rudder` must be in (0, 35] [deg]"),
     (["maneuver", "spiral", "--max-rudder", "36"], "`--max-rudder` must be in (0, 35] [deg]"),
     (["maneuver", "spiral", "--hold", "0"], "`--hold` must be > 0 [s], got 0.0"),
-    (["imo", "nope"], "unknown ship 'nope'; catalog ships with a steering gear: kvlcc2-full, "),
+    (["imo", "nope"], "unknown ship 'nope'; catalog ships with a steering gear: esso-osaka-3m, kvlcc2-full, "),
     (["imo", "mariner-nomoto2"], "ship 'mariner-nomoto2' has no steering gear"),
     (["imo", "kvlcc2-l7", "--speed", "0"], "`--speed` must be > 0 [m/s], got 0.0"),
     (["maneuver", "stopping", "--ship", "mariner-nonlinear"],

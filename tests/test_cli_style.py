@@ -73,11 +73,11 @@ PARSER_ERRORS = [
     (["maneuver", "turning", "--side", "left"],
      "Invalid value for '--side': 'left' is not one of 'both', 'starboard', 'port'"),
     (["maneuver", "zigzag", "--catalog", "kvlcc9"],
-     "unknown ship 'kvlcc9'; catalog ships with a steering gear: kvlcc2-full, kvlcc2-l7, "
+     "unknown ship 'kvlcc9'; catalog ships with a steering gear: esso-osaka-3m, kvlcc2-full, kvlcc2-l7, "
      "kvlcc2-l7-wp0-0.35, kvlcc2-l7-xp-0.5, mariner-nonlinear, son-nomoto-container (or the "
      "path of a ship file"),
     (["maneuver", "zigzag", "--ship", "kvlcc9"], "unknown ship 'kvlcc9'; catalog ships with"),
-    (["imo", "kvlcc9"], "unknown ship 'kvlcc9'; catalog ships with a steering gear: kvlcc2-full"),
+    (["imo", "kvlcc9"], "unknown ship 'kvlcc9'; catalog ships with a steering gear: esso-osaka-3m, kvlcc2-full"),
     (["imo", "missing.toml"], "missing.toml: no such ship file"),
     (["identify", "steady-turn", "x.csv", "--method", "ols"],
      "Invalid value for '--method': 'ols' is not one of 'lsq', 'robust', 'brute'"),
@@ -196,8 +196,8 @@ def test_choices_agree_with_the_library():
 
 
 @pytest.mark.parametrize(("args", "choices"), [
-    (["maneuver", "turning"], ["both|starboard|port", "kvlcc2-full, kvlcc2-l7, "
-                               "kvlcc2-l7-wp0-0.35, kvlcc2-l7-xp-0.5, mariner-nonlinear"]),
+    (["maneuver", "turning"], ["both|starboard|port", "osaka-3m, kvlcc2-full, "
+                               "kvlcc2-l7, kvlcc2-l7-wp0-0.35, kvlcc2-l7-xp-0.5,"]),
     (["maneuver", "zigzag"], ["both|starboard|port"]),
     (["identify", "steady-turn"], ["deg|rad", "lsq|robust|brute"]),
     (["waves", "spectrum"], ["corrected|printed", "pierson-moskowitz, jonswap, bretschneider"]),

@@ -75,6 +75,8 @@ def replay_metrics(ds: Any, path: Any = None) -> dict[str, tuple[float, float, s
     ----------
     ds : xarray.Dataset
         A replay's Dataset (:func:`is_replay_dataset`).
+    path : str or path-like, optional
+        The file it was read from, named in the error of a damaged attribute.
 
     Returns
     -------

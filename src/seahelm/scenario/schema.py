@@ -462,14 +462,18 @@ class Scenario(_Strict):
         varied = list(self.batch.grid) + ([] if self.batch.monte_carlo is None else [
             *self.batch.monte_carlo.draws,
             *(k for block in self.batch.monte_carlo.correlated for k in block.keys)])
+        # the guidance law writes the controller's `heading` reference only; its other
+        # reference channels (e.g. a thrust-heading controller's surge force) stay the user's
         referred = [f"controller.reference.{k}" for k in self.controller.reference] + [
             k for k in varied if k.startswith("controller.reference.")]
+        referred = [k for k in referred
+                    if k.removeprefix("controller.reference.").removesuffix("_deg") == "heading"]
         if self.guidance is not None and referred:
             keys = ", ".join(dict.fromkeys(referred))
             raise ValueError(
                 f"[{keys}] and [guidance] both steer the ship: along a route the guidance law "
                 f"'{self.guidance.law}' makes the controller's reference (the heading to "
-                "steer) from the waypoints, and the controller takes no other; drop "
+                "steer) from the waypoints; drop "
                 "[controller.reference] (and its [batch] keys), or [guidance] for a fixed "
                 "reference")
         return self

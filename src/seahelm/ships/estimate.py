@@ -196,7 +196,18 @@ class Design:
 
     def windage(self, *, warn: bool = True) -> Any:
         """The windage (:func:`seahelm.ships.windage.design_windage`; None without
-        ``vessel_type``)."""
+        ``vessel_type``).
+
+        Parameters
+        ----------
+        warn : bool, default True
+            Warn once when areas are estimated rather than given.
+
+        Returns
+        -------
+        object or None
+            The windage particulars, or None without ``vessel_type``.
+        """
         from .windage import design_windage
 
         return design_windage(self, warn=warn)

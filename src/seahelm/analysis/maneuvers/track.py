@@ -198,7 +198,22 @@ def distance_until(north: Any, east: Any, time: Any = None, until: Any = None) -
     """:func:`track_distance` where only the first ``until[run]`` samples of each run are
     wanted (default: all): the same values there (the quadrature of the later intervals, whose
     speeds are not evaluated, is 0, so the distances beyond are not the track's). A metric read
-    early in a long record (the initial turning's distance at 10°) costs a fraction."""
+    early in a long record (the initial turning's distance at 10°) costs a fraction.
+
+    Parameters
+    ----------
+    north, east : array_like
+        Positions [m], shape (runs, samples) or (samples,); a run with a NaN is not run.
+    time : array_like, optional
+        Sample times [s], strictly increasing, shape (samples,); without it, the chords.
+    until : array_like of int, optional
+        Per run, the number of intervals whose distance is wanted (default: all).
+
+    Returns
+    -------
+    numpy.ndarray
+        Distance along the track [m] at each sample, shape (runs, samples).
+    """
     n = np.atleast_2d(np.asarray(north, dtype=float))
     e = np.atleast_2d(np.asarray(east, dtype=float))
     rows = np.isfinite(n).all(axis=1) & np.isfinite(e).all(axis=1)  # (a run not run: NaN)
