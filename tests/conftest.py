@@ -1,4 +1,13 @@
-"""Shared fixtures: a non-interactive matplotlib backend and the Mariner parameters."""
+"""Shared fixtures and helpers, the order of a parallel run and the unit tier.
+
+- a non-interactive matplotlib backend; the catalog ships the suite uses most, once per session;
+- the result files of the HTML report's tests, once per session;
+- under xdist (``make test``: ``-n 2 --dist worksteal``) the modules known to take longest go
+  first, a share at the head of each worker's queue (:func:`order_for_workers`), so that no long
+  test starts last and serialises the end of the run;
+- the ``slow`` marker on every test outside the unit tier (:data:`UNIT_MODULES`):
+  ``make test-fast`` runs ``-m "not slow"``.
+"""
 
 from __future__ import annotations
 
@@ -23,6 +32,38 @@ def mariner1():
     from seahelm.ships import get_ship
 
     return get_ship("mariner-nomoto1").params
+
+
+@pytest.fixture(scope="session")
+def kvlcc2_l7():
+    """The model-scale KVLCC2 (L = 7 m) of the catalog, MMG standard model (a frozen Ship)."""
+    from seahelm.ships import get_ship
+
+    return get_ship("kvlcc2-l7")
+
+
+@pytest.fixture(scope="session")
+def kvlcc2_full():
+    """The full-scale KVLCC2 (L = 320 m) of the catalog (a frozen Ship)."""
+    from seahelm.ships import get_ship
+
+    return get_ship("kvlcc2-full")
+
+
+@pytest.fixture(scope="session")
+def mariner_linear():
+    """``linearize("mariner-nonlinear", actuator=False)``: the Mariner's straight run."""
+    from seahelm.analysis.linearisation import linearize
+
+    return linearize("mariner-nonlinear", actuator=False)
+
+
+@pytest.fixture(scope="session")
+def kvlcc2_l7_linear():
+    """``linearize("kvlcc2-l7", actuator=False)``: the KVLCC2's straight run (a kink)."""
+    from seahelm.analysis.linearisation import linearize
+
+    return linearize("kvlcc2-l7", actuator=False)
 
 
 def pytest_report_header(config):
@@ -87,6 +128,33 @@ seed = 3
 [batch.monte_carlo.draws]
 "vessel.params.gain" = {distribution = "normal", mean = 0.185, std = 0.04}
 """
+
+
+#: The demo's ship (Nomoto, 2nd order) under the PID heading autopilot, a seeded Monte-Carlo
+#: batch over ``t1``: the CLI's reliability tests (tests/test_cli_silent_wrong.py,
+#: tests/test_cli_stop_signals.py). Fill in with :func:`nomoto_monte_carlo`.
+NOMOTO_MONTE_CARLO = """[vessel]
+catalog = "mariner-nomoto2"
+[controller]
+model = "pid-heading"
+[controller.reference]
+heading_deg = 20.0
+[simulation]
+t_final = {t_final}
+dt = 0.1
+record_every = {record_every}
+[batch.monte_carlo]
+runs = {runs}
+seed = 1
+[batch.monte_carlo.draws]
+"vessel.params.t1" = {{ distribution = "uniform", low = 90.0, high = 150.0 }}
+"""
+
+
+def nomoto_monte_carlo(t_final: float, runs: int = 1, record_every: int = 10) -> str:
+    """:data:`NOMOTO_MONTE_CARLO` for ``t_final`` [s] (dt 0.1 s), ``runs`` runs, recorded every
+    ``record_every`` steps."""
+    return NOMOTO_MONTE_CARLO.format(t_final=t_final, runs=runs, record_every=record_every)
 
 
 def one_error(args: list[str]) -> str:
@@ -156,3 +224,79 @@ def report_sweep_dir(tmp_path_factory):
             exit_code=3)  # (some runs diverge)
     _invoke(["report", str(where / "sweep.zarr"), "-o", str(where / "report.html")])
     return where
+
+
+# ------------------------------------------------------------------------------------------
+# the order of a parallel run: the long modules first, a share at the head of each worker
+# ------------------------------------------------------------------------------------------
+#: Seconds the slowest modules took in a fresh clone's `make test` (empty kernel cache, 2 cores,
+#: the 60 slowest durations of that run summed per module; most of it is compiling kernels).
+#: Only the order of the run depends on them: a wrong or missing figure costs time, not a test.
+LONG_MODULES: dict[str, float] = {
+    "tests/test_docs_commands.py": 182.0,
+    "tests/test_analysis_imo.py": 72.7,
+    "tests/test_simulation_integrators.py": 65.2,
+    "tests/test_benchmarks_quick.py": 61.3,
+    "tests/test_first_order_in_loop.py": 60.6,
+    "tests/test_studies_lvov2014.py": 39.2,
+    "tests/test_analysis_maneuvers_constant_speed.py": 38.8,
+    "tests/test_docs_coming_from.py": 28.1,
+    "tests/test_control_final_state.py": 26.5,
+    "tests/test_control_lq_cross_track.py": 24.9,
+    "tests/test_simulation_pure_python.py": 22.8,
+    "tests/test_environment_first_order.py": 22.5,
+    "tests/test_control_path_following.py": 22.1,
+    "tests/test_cli_stop_signals.py": 20.4,
+    "tests/test_control_state_space.py": 18.4,
+    "tests/test_scenario.py": 16.8,
+    "tests/test_sweep_dask.py": 16.0,
+    "tests/test_vessels_cpp_ship.py": 15.1,
+    "tests/test_cli_main.py": 14.5,
+}
+
+
+def worksteal_shares(n_items: int, n_workers: int) -> list[int]:
+    """How many of ``n_items`` tests xdist's ``worksteal`` scheduler first sends to each of
+    ``n_workers`` idle workers: consecutive slices, worker ``i`` ``remaining // (n - i)``
+    (``xdist.scheduler.worksteal.WorkStealingScheduling.check_schedule``). Later it steals
+    from the tail of the longest queue, so the head of each slice runs on that worker."""
+    shares, remaining = [], n_items
+    for i in range(n_workers):
+        shares.append(remaining // (n_workers - i))
+        remaining -= shares[-1]
+    return shares
+
+
+def order_for_workers(items: list, n_workers: int, seconds: dict[str, float]) -> list:
+    """``items`` reordered for ``n_workers``: the modules in ``seconds`` (by file path), longest
+    first, each to the worker with the fewest seconds so far, at the head of that worker's
+    slice (see :func:`worksteal_shares`); every other test after them in its own order. The
+    tests of a module keep their order and stay together (its module fixtures are made once)."""
+    def module(item):
+        return item.nodeid.split("::", 1)[0]
+
+    by_module: dict[str, list] = {}
+    rest = []
+    for item in items:
+        if module(item) in seconds:
+            by_module.setdefault(module(item), []).append(item)
+        else:
+            rest.append(item)
+    heads: list[list] = [[] for _ in range(n_workers)]
+    load = [0.0] * n_workers
+    for name in sorted(by_module, key=lambda m: (-seconds[m], m)):
+        worker = min(range(n_workers), key=lambda w: (load[w], w))
+        heads[worker].extend(by_module[name])
+        load[worker] += seconds[name]
+    ordered, start = [], 0
+    for head, share in zip(heads, worksteal_shares(len(items), n_workers)):
+        fill = max(0, share - len(head))
+        ordered += head + rest[start:start + fill]
+        start += fill
+    return ordered + rest[start:]
+
+
+def pytest_collection_modifyitems(config, items):
+    workers = getattr(config, "workerinput", {}).get("workercount", 0)
+    if workers >= 2:  # (every worker computes the same order: xdist checks that they agree)
+        items[:] = order_for_workers(items, workers, LONG_MODULES)

@@ -1,0 +1,53 @@
+"""The order of a parallel run (tests/conftest.py): the long modules at the head of each
+worker's first slice, nothing lost or repeated, every other test in its own order."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from conftest import LONG_MODULES, order_for_workers, worksteal_shares
+
+
+@dataclass(frozen=True)
+class Item:
+    nodeid: str
+
+
+def _items(spec: dict[str, int]) -> list[Item]:
+    return [Item(f"tests/{m}.py::t{i}") for m, n in spec.items() for i in range(n)]
+
+
+def test_the_shares_are_the_slices_worksteal_sends():
+    # xdist: worker i gets len(pending) // (workers - i) of what is left
+    assert worksteal_shares(10, 2) == [5, 5]
+    assert worksteal_shares(11, 2) == [5, 6]
+    assert worksteal_shares(10, 3) == [3, 3, 4]
+    assert sum(worksteal_shares(4611, 2)) == 4611
+
+
+def test_each_worker_starts_with_a_share_of_the_long_modules():
+    items = _items({"a": 30, "long1": 3, "b": 30, "long2": 2, "c": 30, "long3": 1})
+    seconds = {"tests/long1.py": 100.0, "tests/long2.py": 60.0, "tests/long3.py": 50.0}
+    ordered = order_for_workers(items, 2, seconds)
+    assert sorted(ordered, key=items.index) == items  # a permutation
+    first, second = ordered[:48], ordered[48:]  # worksteal_shares(96, 2) == [48, 48]
+    # the longest to worker 0; the next two (110 s) to worker 1
+    assert [i.nodeid for i in first[:3]] == [f"tests/long1.py::t{i}" for i in range(3)]
+    assert [i.nodeid for i in second[:3]] == (["tests/long2.py::t0", "tests/long2.py::t1",
+                                               "tests/long3.py::t0"])
+    rest = [i for i in ordered if "long" not in i.nodeid]
+    assert rest == [i for i in items if "long" not in i.nodeid]
+
+
+def test_a_selection_smaller_than_the_long_modules_is_still_all_there():
+    items = _items({"long1": 5, "a": 1})
+    ordered = order_for_workers(items, 2, {"tests/long1.py": 10.0})
+    assert sorted(ordered, key=items.index) == items
+
+
+def test_the_long_modules_exist():
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    missing = [m for m in LONG_MODULES if not (root / m).is_file()]
+    assert not missing, missing
