@@ -66,6 +66,16 @@ def kvlcc2_l7_linear():
     return linearize("kvlcc2-l7", actuator=False)
 
 
+@pytest.fixture(scope="session")
+def kvlcc2_l7_imo():
+    """``imo_check("kvlcc2-l7")``: the IMO MSC.137(76) check of the model-scale KVLCC2
+    (turning circles, zig-zags, stopping), run once for the suite: its tests read it
+    (tests/test_analysis_imo.py, the figures of tests/test_plotting_labels.py)."""
+    from seahelm.analysis.imo import imo_check
+
+    return imo_check("kvlcc2-l7")
+
+
 def pytest_report_header(config):
     from seahelm.versions import version_report
 
@@ -78,7 +88,10 @@ def pytest_configure(config):
     A test that passes only because a kernel compiled by other code is still on disk is how a
     fresh-machine failure hid before; CI must start from nothing. Checked once, in the
     controlling process (not in xdist workers, which start after it).
+
+    Registers the order of a parallel run (:class:`_OrderForWorkers`).
     """
+    config.pluginmanager.register(_OrderForWorkers(), "seahelm-order-for-workers")
     if not os.environ.get("SEAHELM_REQUIRE_EMPTY_CACHE") or hasattr(config, "workerinput"):
         return
     from pathlib import Path
@@ -296,7 +309,36 @@ def order_for_workers(items: list, n_workers: int, seconds: dict[str, float]) ->
     return ordered + rest[start:]
 
 
+# ------------------------------------------------------------------------------------------
+# the unit tier (`make test-fast`: -m "not slow")
+# ------------------------------------------------------------------------------------------
+#: The modules of the unit tier: none compiles a closed-loop kernel or starts seahelm in a
+#: process, and together they take under 3 minutes in a fresh clone (empty kernel and numba
+#: caches, `make test-fast` on 2 cores). Every test of every other module is marked ``slow``
+#: (as are the tests marked so by hand): ``make test`` runs them all. A new module joins the
+#: tier here once it is measured cheap in a fresh clone.
+UNIT_MODULES: frozenset[str] = frozenset({
+})
+
+
+def mark_outside_the_unit_tier(items: list, unit: frozenset[str] = UNIT_MODULES) -> None:
+    """Add the ``slow`` marker to every item whose module is not in ``unit``."""
+    for item in items:
+        if item.nodeid.split("::", 1)[0] not in unit:
+            item.add_marker(pytest.mark.slow)
+
+
+@pytest.hookimpl(tryfirst=True)  # (before -m deselects)
 def pytest_collection_modifyitems(config, items):
-    workers = getattr(config, "workerinput", {}).get("workercount", 0)
-    if workers >= 2:  # (every worker computes the same order: xdist checks that they agree)
-        items[:] = order_for_workers(items, workers, LONG_MODULES)
+    mark_outside_the_unit_tier(items)
+
+
+class _OrderForWorkers:
+    """Registered by :func:`pytest_configure`: reorders after every deselection (-m, -k), so
+    the slices are those of the tests that run."""
+
+    @pytest.hookimpl(trylast=True)
+    def pytest_collection_modifyitems(self, config, items):
+        workers = getattr(config, "workerinput", {}).get("workercount", 0)
+        if workers >= 2:  # (every worker computes the same order: xdist checks they agree)
+            items[:] = order_for_workers(items, workers, LONG_MODULES)
