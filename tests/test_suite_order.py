@@ -51,3 +51,36 @@ def test_the_long_modules_exist():
     root = Path(__file__).resolve().parents[1]
     missing = [m for m in LONG_MODULES if not (root / m).is_file()]
     assert not missing, missing
+
+
+# ------------------------------------------------------------------------------------------
+# the unit tier
+# ------------------------------------------------------------------------------------------
+class MarkedItem:
+    def __init__(self, nodeid):
+        self.nodeid, self.marks = nodeid, []
+
+    def add_marker(self, mark):
+        self.marks.append(mark.name)
+
+
+def test_every_test_outside_the_unit_modules_is_marked_slow():
+    from conftest import mark_outside_the_unit_tier
+
+    items = [MarkedItem("tests/test_a.py::t"), MarkedItem("tests/test_b.py::t[x]"),
+             MarkedItem("tests/test_a.py::C::t")]
+    mark_outside_the_unit_tier(items, frozenset({"tests/test_a.py"}))
+    assert [i.marks for i in items] == [[], ["slow"], []]
+
+
+def test_the_unit_modules_exist_and_are_in_the_tier(request):
+    from pathlib import Path
+
+    from conftest import UNIT_MODULES
+
+    root = Path(__file__).resolve().parents[1]
+    assert len(UNIT_MODULES) >= 20
+    assert not [m for m in UNIT_MODULES if not (root / m).is_file()]
+    # this module is one of them, so this test runs in `make test-fast`
+    assert request.node.get_closest_marker("slow") is None
+    assert not UNIT_MODULES & set(LONG_MODULES)
