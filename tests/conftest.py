@@ -247,7 +247,6 @@ def report_sweep_dir(tmp_path_factory):
 #: Only the order of the run depends on them: a wrong or missing figure costs time, not a test.
 LONG_MODULES: dict[str, float] = {
     "tests/test_docs_commands.py": 182.0,
-    "tests/test_analysis_imo.py": 72.7,
     "tests/test_simulation_integrators.py": 65.2,
     "tests/test_benchmarks_quick.py": 61.3,
     "tests/test_first_order_in_loop.py": 60.6,
@@ -267,6 +266,14 @@ LONG_MODULES: dict[str, float] = {
     "tests/test_cli_main.py": 14.5,
 }
 
+#: Modules run right after a long module, on its worker, because they need the kernels it
+#: compiles: the README's ``seahelm imo cargo.toml`` and the page's ``seahelm imo kvlcc2-l7``
+#: compile the MMG's IMO kernels that ``imo_check("kvlcc2-l7")`` (73 s of setup in a fresh
+#: clone) would compile again at the same time on the other worker.
+FOLLOWERS: dict[str, tuple[str, ...]] = {
+    "tests/test_docs_commands.py": ("tests/test_analysis_imo.py", "tests/test_plotting_labels.py"),
+}
+
 
 def worksteal_shares(n_items: int, n_workers: int) -> list[int]:
     """How many of ``n_items`` tests xdist's ``worksteal`` scheduler first sends to each of
@@ -280,26 +287,34 @@ def worksteal_shares(n_items: int, n_workers: int) -> list[int]:
     return shares
 
 
-def order_for_workers(items: list, n_workers: int, seconds: dict[str, float]) -> list:
+def order_for_workers(items: list, n_workers: int, seconds: dict[str, float],
+                      followers: dict[str, tuple[str, ...]] | None = None) -> list:
     """``items`` reordered for ``n_workers``: the modules in ``seconds`` (by file path), longest
     first, each to the worker with the fewest seconds so far, at the head of that worker's
-    slice (see :func:`worksteal_shares`); every other test after them in its own order. The
-    tests of a module keep their order and stay together (its module fixtures are made once)."""
+    slice (see :func:`worksteal_shares`), each followed by its ``followers`` (modules that
+    reuse its kernels); every other test after them in its own order. The tests of a module
+    keep their order and stay together (its module fixtures are made once)."""
+    followers = followers or {}
+
     def module(item):
         return item.nodeid.split("::", 1)[0]
 
+    present = {module(item) for item in items}
+    placed = {m for m in seconds if m in present}
+    placed |= {f for m in placed for f in followers.get(m, ())}
     by_module: dict[str, list] = {}
     rest = []
     for item in items:
-        if module(item) in seconds:
+        if module(item) in placed:
             by_module.setdefault(module(item), []).append(item)
         else:
             rest.append(item)
     heads: list[list] = [[] for _ in range(n_workers)]
     load = [0.0] * n_workers
-    for name in sorted(by_module, key=lambda m: (-seconds[m], m)):
+    for name in sorted((m for m in seconds if m in by_module), key=lambda m: (-seconds[m], m)):
         worker = min(range(n_workers), key=lambda w: (load[w], w))
-        heads[worker].extend(by_module[name])
+        for each in (name, *followers.get(name, ())):
+            heads[worker].extend(by_module.pop(each, []))
         load[worker] += seconds[name]
     ordered, start = [], 0
     for head, share in zip(heads, worksteal_shares(len(items), n_workers)):
@@ -402,4 +417,4 @@ class _OrderForWorkers:
     def pytest_collection_modifyitems(self, config, items):
         workers = getattr(config, "workerinput", {}).get("workercount", 0)
         if workers >= 2:  # (every worker computes the same order: xdist checks they agree)
-            items[:] = order_for_workers(items, workers, LONG_MODULES)
+            items[:] = order_for_workers(items, workers, LONG_MODULES, FOLLOWERS)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from conftest import LONG_MODULES, order_for_workers, worksteal_shares
+from conftest import FOLLOWERS, LONG_MODULES, order_for_workers, worksteal_shares
 
 
 @dataclass(frozen=True)
@@ -39,6 +39,21 @@ def test_each_worker_starts_with_a_share_of_the_long_modules():
     assert rest == [i for i in items if "long" not in i.nodeid]
 
 
+def test_a_follower_runs_right_after_its_long_module_on_its_worker():
+    items = _items({"a": 20, "long1": 2, "b": 20, "f": 2, "long2": 2, "c": 20})
+    seconds = {"tests/long1.py": 100.0, "tests/long2.py": 60.0}
+    ordered = order_for_workers(items, 2, seconds, {"tests/long1.py": ("tests/f.py",)})
+    assert sorted(ordered, key=items.index) == items
+    assert [i.nodeid for i in ordered[:4]] == ["tests/long1.py::t0", "tests/long1.py::t1",
+                                               "tests/f.py::t0", "tests/f.py::t1"]
+    assert [i.nodeid for i in ordered[33:35]] == ["tests/long2.py::t0", "tests/long2.py::t1"]
+    # without its leader a follower stays where it was
+    alone = [i for i in items if "long1" not in i.nodeid]
+    kept = order_for_workers(alone, 2, seconds, {"tests/long1.py": ("tests/f.py",)})
+    assert [i for i in kept if "long" not in i.nodeid] == [i for i in alone
+                                                           if "long" not in i.nodeid]
+
+
 def test_a_selection_smaller_than_the_long_modules_is_still_all_there():
     items = _items({"long1": 5, "a": 1})
     ordered = order_for_workers(items, 2, {"tests/long1.py": 10.0})
@@ -49,7 +64,8 @@ def test_the_long_modules_exist():
     from pathlib import Path
 
     root = Path(__file__).resolve().parents[1]
-    missing = [m for m in LONG_MODULES if not (root / m).is_file()]
+    named = [*LONG_MODULES, *(f for fs in FOLLOWERS.values() for f in fs)]
+    missing = [m for m in named if not (root / m).is_file()]
     assert not missing, missing
 
 
