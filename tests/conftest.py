@@ -89,9 +89,16 @@ def pytest_configure(config):
     fresh-machine failure hid before; CI must start from nothing. Checked once, in the
     controlling process (not in xdist workers, which start after it).
 
-    Registers the order of a parallel run (:class:`_OrderForWorkers`).
+    Registers the order of a parallel run (:class:`_OrderForWorkers`) and, with
+    ``SEAHELM_TEST_COMPILE_TIMES`` set, the compile log of every test (:class:`CompileTimes`).
     """
     config.pluginmanager.register(_OrderForWorkers(), "seahelm-order-for-workers")
+    if os.environ.get("SEAHELM_TEST_COMPILE_TIMES"):  # (xdist's controller runs no test)
+        from numba.core import event
+
+        times = CompileTimes(os.environ["SEAHELM_TEST_COMPILE_TIMES"])
+        event.register("numba:compile", times.listener())
+        config.pluginmanager.register(times, "seahelm-compile-times")
     if not os.environ.get("SEAHELM_REQUIRE_EMPTY_CACHE") or hasattr(config, "workerinput"):
         return
     from pathlib import Path
@@ -322,6 +329,77 @@ def order_for_workers(items: list, n_workers: int, seconds: dict[str, float],
         ordered += head + rest[start:start + fill]
         start += fill
     return ordered + rest[start:]
+
+
+# ------------------------------------------------------------------------------------------
+# where a fresh clone's time goes: SEAHELM_TEST_COMPILE_TIMES=FILE
+# ------------------------------------------------------------------------------------------
+class CompileTimes:
+    """Per test, the seconds numba spent compiling in this process and what it compiled.
+
+    With ``SEAHELM_TEST_COMPILE_TIMES=FILE`` (an empty kernel cache and numba cache make it
+    tell a fresh clone's story) every test appends one JSON line to FILE: ``test`` (its node
+    id), ``seconds`` (wall, setup to teardown), ``cpu`` (this process and its finished
+    children), ``compile`` (seconds of the outermost compilations) and ``compiled``
+    (``[function, seconds]``; a kernel is ``seahelm_kernel_<hash>.run_slice``, one hash per
+    combination of components). A kernel only one test compiles is a combination only it needs.
+    Subprocesses (``seahelm`` commands) are not followed: their compilations are in their
+    ``cpu``. xdist workers append to the same file.
+    """
+
+    def __init__(self, path: str):
+        self.path, self.depth, self.start, self.compiled = path, 0, 0.0, []
+
+    def on_start(self, ev) -> None:
+        import time
+
+        if self.depth == 0:
+            self.start = time.perf_counter()
+        self.depth += 1
+
+    def on_end(self, ev) -> None:
+        import time
+
+        self.depth -= 1
+        if self.depth == 0:
+            py = getattr((ev.data or {}).get("dispatcher"), "py_func", None)
+            name = f"{getattr(py, '__module__', '?')}.{getattr(py, '__qualname__', '?')}"
+            self.compiled.append([name, round(time.perf_counter() - self.start, 3)])
+
+    def listener(self):
+        from numba.core import event
+
+        times = self
+
+        class _Listener(event.Listener):  # type: ignore[misc]
+            def on_start(self, ev):
+                times.on_start(ev)
+
+            def on_end(self, ev):
+                times.on_end(ev)
+
+        return _Listener()
+
+    @staticmethod
+    def _cpu() -> float:
+        import resource
+
+        own, children = (resource.getrusage(w) for w in (resource.RUSAGE_SELF,
+                                                          resource.RUSAGE_CHILDREN))
+        return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
+
+    @pytest.hookimpl(hookwrapper=True)
+    def pytest_runtest_protocol(self, item, nextitem):
+        import json
+        import time
+
+        self.compiled, start, cpu = [], time.perf_counter(), self._cpu()
+        yield
+        row = {"test": item.nodeid, "seconds": round(time.perf_counter() - start, 3),
+               "cpu": round(self._cpu() - cpu, 3),
+               "compile": round(sum(s for _, s in self.compiled), 3), "compiled": self.compiled}
+        with open(self.path, "a", encoding="utf-8") as fh:
+            fh.write(json.dumps(row) + "\n")
 
 
 # ------------------------------------------------------------------------------------------

@@ -100,3 +100,41 @@ def test_the_unit_modules_exist_and_are_in_the_tier(request):
     # this module is one of them, so this test runs in `make test-fast`
     assert request.node.get_closest_marker("slow") is None
     assert not UNIT_MODULES & set(LONG_MODULES)
+
+
+# ------------------------------------------------------------------------------------------
+# SEAHELM_TEST_COMPILE_TIMES
+# ------------------------------------------------------------------------------------------
+def test_the_compile_times_name_what_compiled_and_for_how_long(tmp_path):
+    import json
+
+    import numba
+    from numba.core import event
+
+    from conftest import CompileTimes
+
+    times = CompileTimes(str(tmp_path / "times.jsonl"))
+    listener = times.listener()
+    event.register("numba:compile", listener)
+    try:
+        def triple(x):
+            return 3 * x
+
+        assert numba.njit(triple)(2) == 6
+    finally:
+        event.unregister("numba:compile", listener)
+    assert [name for name, _ in times.compiled] == [f"{__name__}.{triple.__qualname__}"]
+    assert 0 < times.compiled[0][1] < 60
+
+    class Item:
+        nodeid = "tests/x.py::t"
+
+    hook = times.pytest_runtest_protocol(Item(), None)
+    next(hook)  # (the test runs here: nothing compiled)
+    try:
+        next(hook)
+    except StopIteration:
+        pass
+    row = json.loads((tmp_path / "times.jsonl").read_text())
+    assert row["test"] == "tests/x.py::t" and row["compiled"] == [] and row["compile"] == 0
+    assert row["seconds"] >= 0 and row["cpu"] >= 0
