@@ -475,10 +475,24 @@ UNIT_MODULES: frozenset[str] = frozenset({
 })
 
 
-def mark_outside_the_unit_tier(items: list, unit: frozenset[str] = UNIT_MODULES) -> None:
-    """Add the ``slow`` marker to every item whose module is not in ``unit``."""
+#: The tests of the unit modules that compile a closed-loop kernel all the same (10 to 20 s
+#: each in a fresh clone): ``slow`` too.
+SLOW_UNIT_TESTS: frozenset[str] = frozenset({
+    "tests/test_replay_bad_input.py::test_a_header_without_data_rows_is_named",
+    "tests/test_reprs.py::test_maneuver_result_repr",
+    "tests/test_reprs.py::test_simresult_repr",
+    "tests/test_ships.py::test_a_new_vessel_model_is_one_module_and_one_registry_line",
+    "tests/test_ships_estimate.py::test_cli_estimate_then_imo",
+    "tests/test_ships_scaling.py::test_froude_similarity_of_the_turning_circle",
+})
+
+
+def mark_outside_the_unit_tier(items: list, unit: frozenset[str] = UNIT_MODULES,
+                               slow: frozenset[str] = SLOW_UNIT_TESTS) -> None:
+    """Add the ``slow`` marker to every item whose module is not in ``unit`` and to the
+    items named in ``slow`` (node ids without the parameters)."""
     for item in items:
-        if item.nodeid.split("::", 1)[0] not in unit:
+        if item.nodeid.split("::", 1)[0] not in unit or item.nodeid.split("[", 1)[0] in slow:
             item.add_marker(pytest.mark.slow)
 
 

@@ -85,8 +85,12 @@ def test_every_test_outside_the_unit_modules_is_marked_slow():
 
     items = [MarkedItem("tests/test_a.py::t"), MarkedItem("tests/test_b.py::t[x]"),
              MarkedItem("tests/test_a.py::C::t")]
-    mark_outside_the_unit_tier(items, frozenset({"tests/test_a.py"}))
+    mark_outside_the_unit_tier(items, frozenset({"tests/test_a.py"}), frozenset())
     assert [i.marks for i in items] == [[], ["slow"], []]
+    items = [MarkedItem("tests/test_a.py::t[1]"), MarkedItem("tests/test_a.py::u")]
+    mark_outside_the_unit_tier(items, frozenset({"tests/test_a.py"}),
+                               frozenset({"tests/test_a.py::t"}))
+    assert [i.marks for i in items] == [["slow"], []]
 
 
 def test_the_unit_modules_exist_and_are_in_the_tier(request):
@@ -100,6 +104,16 @@ def test_the_unit_modules_exist_and_are_in_the_tier(request):
     # this module is one of them, so this test runs in `make test-fast`
     assert request.node.get_closest_marker("slow") is None
     assert not UNIT_MODULES & set(LONG_MODULES)
+
+
+def test_the_slow_tests_of_the_unit_modules_exist(request):
+    from conftest import SLOW_UNIT_TESTS, UNIT_MODULES
+
+    ids = {i.nodeid.split("[", 1)[0] for i in request.session.items}
+    for test in SLOW_UNIT_TESTS:
+        assert test.split("::", 1)[0] in UNIT_MODULES, test
+        if test.split("::", 1)[0] in {i.split("::", 1)[0] for i in ids}:  # (when collected)
+            assert test in ids, test
 
 
 # ------------------------------------------------------------------------------------------
