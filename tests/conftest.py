@@ -452,10 +452,7 @@ UNIT_MODULES: frozenset[str] = frozenset({
     "tests/test_plotting_save.py",
     "tests/test_plotting_seakeeping.py",
     "tests/test_properties.py",
-    "tests/test_replay_bad_input.py",
-    "tests/test_reprs.py",
     "tests/test_resources.py",
-    "tests/test_result_io.py",
     "tests/test_scenario_limits.py",
     "tests/test_scenario_particulars.py",
     "tests/test_shallow_water_bad_input.py",
@@ -470,17 +467,13 @@ UNIT_MODULES: frozenset[str] = frozenset({
     "tests/test_studies_sushchenko2010.py",
     "tests/test_suite_order.py",
     "tests/test_top_level_api.py",
-    "tests/test_units.py",
     "tests/test_vessels_engine_shaft.py",
 })
 
 
-#: The tests of the unit modules that compile a closed-loop kernel all the same (10 to 20 s
-#: each in a fresh clone): ``slow`` too.
+#: The tests of the unit modules that compile a closed-loop kernel all the same (12 to 20 s
+#: each in a fresh clone), the other tests of their modules none: ``slow`` too.
 SLOW_UNIT_TESTS: frozenset[str] = frozenset({
-    "tests/test_replay_bad_input.py::test_a_header_without_data_rows_is_named",
-    "tests/test_reprs.py::test_maneuver_result_repr",
-    "tests/test_reprs.py::test_simresult_repr",
     "tests/test_ships.py::test_a_new_vessel_model_is_one_module_and_one_registry_line",
     "tests/test_ships_estimate.py::test_cli_estimate_then_imo",
     "tests/test_ships_scaling.py::test_froude_similarity_of_the_turning_circle",
