@@ -1,4 +1,4 @@
-# seahelm — the two commands: `make demo` and `make test`.
+# seahelm — the two commands: `make demo` and `make test` (and `make test-fast`, the unit tier).
 #
 # Dependencies resolve to the newest versions pyproject.toml allows (so new-version breakage is
 # caught). For the exact versions the suite was last tested with, opt in to the lock file:
@@ -12,7 +12,7 @@ STAMP_RUN  := $(VENV)/.installed-run$(if $(CONSTRAINTS),-locked,)
 STAMP_TEST := $(VENV)/.installed-test$(if $(CONSTRAINTS),-locked,)
 STAMP_DOCS := $(VENV)/.installed-docs$(if $(CONSTRAINTS),-locked,)
 
-.PHONY: demo test docs bench lock versions clean
+.PHONY: demo test test-fast docs bench lock versions clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -40,6 +40,12 @@ test: $(STAMP_TEST)
 	@echo "tested with: $$($(BIN)/python -m seahelm.versions)"
 	@echo "kernel cache: $${SEAHELM_CACHE_DIR:-default (~/.cache/seahelm/kernels)}"
 	MPLBACKEND=Agg $(BIN)/python -m pytest -n 2 --dist worksteal -q
+
+# The unit tier, for the inner loop (a few minutes on a fresh clone): every test not marked
+# `slow`, i.e. the modules in tests/conftest.py's UNIT_MODULES (no kernel compiles, no seahelm
+# subprocesses). `make test` runs everything.
+test-fast: $(STAMP_TEST)
+	MPLBACKEND=Agg $(BIN)/python -m pytest -n 2 --dist worksteal -q -m "not slow"
 
 # The documentation site (Sphinx): examples run, scenario reference generated from the schema,
 # warnings are errors. Open docs/_build/html/index.html.

@@ -1,4 +1,13 @@
-"""Shared fixtures: a non-interactive matplotlib backend and the Mariner parameters."""
+"""Shared fixtures and helpers, the order of a parallel run and the unit tier.
+
+- a non-interactive matplotlib backend; the catalog ships the suite uses most, once per session;
+- the result files of the HTML report's tests, once per session;
+- under xdist (``make test``: ``-n 2 --dist worksteal``) the modules known to take longest go
+  first, a share at the head of each worker's queue (:func:`order_for_workers`), so that no long
+  test starts last and serialises the end of the run;
+- the ``slow`` marker on every test outside the unit tier (:data:`UNIT_MODULES`):
+  ``make test-fast`` runs ``-m "not slow"``.
+"""
 
 from __future__ import annotations
 
@@ -25,6 +34,48 @@ def mariner1():
     return get_ship("mariner-nomoto1").params
 
 
+@pytest.fixture(scope="session")
+def kvlcc2_l7():
+    """The model-scale KVLCC2 (L = 7 m) of the catalog, MMG standard model (a frozen Ship)."""
+    from seahelm.ships import get_ship
+
+    return get_ship("kvlcc2-l7")
+
+
+@pytest.fixture(scope="session")
+def kvlcc2_full():
+    """The full-scale KVLCC2 (L = 320 m) of the catalog (a frozen Ship)."""
+    from seahelm.ships import get_ship
+
+    return get_ship("kvlcc2-full")
+
+
+@pytest.fixture(scope="session")
+def mariner_linear():
+    """``linearize("mariner-nonlinear", actuator=False)``: the Mariner's straight run."""
+    from seahelm.analysis.linearisation import linearize
+
+    return linearize("mariner-nonlinear", actuator=False)
+
+
+@pytest.fixture(scope="session")
+def kvlcc2_l7_linear():
+    """``linearize("kvlcc2-l7", actuator=False)``: the KVLCC2's straight run (a kink)."""
+    from seahelm.analysis.linearisation import linearize
+
+    return linearize("kvlcc2-l7", actuator=False)
+
+
+@pytest.fixture(scope="session")
+def kvlcc2_l7_imo():
+    """``imo_check("kvlcc2-l7")``: the IMO MSC.137(76) check of the model-scale KVLCC2
+    (turning circles, zig-zags, stopping), run once for the suite: its tests read it
+    (tests/test_analysis_imo.py, the figures of tests/test_plotting_labels.py)."""
+    from seahelm.analysis.imo import imo_check
+
+    return imo_check("kvlcc2-l7")
+
+
 def pytest_report_header(config):
     from seahelm.versions import version_report
 
@@ -37,7 +88,17 @@ def pytest_configure(config):
     A test that passes only because a kernel compiled by other code is still on disk is how a
     fresh-machine failure hid before; CI must start from nothing. Checked once, in the
     controlling process (not in xdist workers, which start after it).
+
+    Registers the order of a parallel run (:class:`_OrderForWorkers`) and, with
+    ``SEAHELM_TEST_COMPILE_TIMES`` set, the compile log of every test (:class:`CompileTimes`).
     """
+    config.pluginmanager.register(_OrderForWorkers(), "seahelm-order-for-workers")
+    if os.environ.get("SEAHELM_TEST_COMPILE_TIMES"):  # (xdist's controller runs no test)
+        from numba.core import event
+
+        times = CompileTimes(os.environ["SEAHELM_TEST_COMPILE_TIMES"])
+        event.register("numba:compile", times.listener())
+        config.pluginmanager.register(times, "seahelm-compile-times")
     if not os.environ.get("SEAHELM_REQUIRE_EMPTY_CACHE") or hasattr(config, "workerinput"):
         return
     from pathlib import Path
@@ -87,6 +148,33 @@ seed = 3
 [batch.monte_carlo.draws]
 "vessel.params.gain" = {distribution = "normal", mean = 0.185, std = 0.04}
 """
+
+
+#: The demo's ship (Nomoto, 2nd order) under the PID heading autopilot, a seeded Monte-Carlo
+#: batch over ``t1``: the CLI's reliability tests (tests/test_cli_silent_wrong.py,
+#: tests/test_cli_stop_signals.py). Fill in with :func:`nomoto_monte_carlo`.
+NOMOTO_MONTE_CARLO = """[vessel]
+catalog = "mariner-nomoto2"
+[controller]
+model = "pid-heading"
+[controller.reference]
+heading_deg = 20.0
+[simulation]
+t_final = {t_final}
+dt = 0.1
+record_every = {record_every}
+[batch.monte_carlo]
+runs = {runs}
+seed = 1
+[batch.monte_carlo.draws]
+"vessel.params.t1" = {{ distribution = "uniform", low = 90.0, high = 150.0 }}
+"""
+
+
+def nomoto_monte_carlo(t_final: float, runs: int = 1, record_every: int = 10) -> str:
+    """:data:`NOMOTO_MONTE_CARLO` for ``t_final`` [s] (dt 0.1 s), ``runs`` runs, recorded every
+    ``record_every`` steps."""
+    return NOMOTO_MONTE_CARLO.format(t_final=t_final, runs=runs, record_every=record_every)
 
 
 def one_error(args: list[str]) -> str:
@@ -156,3 +244,262 @@ def report_sweep_dir(tmp_path_factory):
             exit_code=3)  # (some runs diverge)
     _invoke(["report", str(where / "sweep.zarr"), "-o", str(where / "report.html")])
     return where
+
+
+# ------------------------------------------------------------------------------------------
+# the order of a parallel run: the long modules first, a share at the head of each worker
+# ------------------------------------------------------------------------------------------
+#: Seconds the slowest modules took in a fresh clone's `make test` (empty kernel cache, 2 cores,
+#: the 60 slowest durations of that run summed per module; most of it is compiling kernels).
+#: Only the order of the run depends on them: a wrong or missing figure costs time, not a test.
+LONG_MODULES: dict[str, float] = {
+    "tests/test_docs_commands.py": 182.0,
+    "tests/test_simulation_integrators.py": 65.2,
+    "tests/test_benchmarks_quick.py": 61.3,
+    "tests/test_first_order_in_loop.py": 60.6,
+    "tests/test_studies_lvov2014.py": 39.2,
+    "tests/test_analysis_maneuvers_constant_speed.py": 38.8,
+    "tests/test_docs_coming_from.py": 28.1,
+    "tests/test_control_final_state.py": 26.5,
+    "tests/test_control_lq_cross_track.py": 24.9,
+    "tests/test_simulation_pure_python.py": 22.8,
+    "tests/test_environment_first_order.py": 22.5,
+    "tests/test_control_path_following.py": 22.1,
+    "tests/test_cli_stop_signals.py": 20.4,
+    "tests/test_control_state_space.py": 18.4,
+    "tests/test_scenario.py": 16.8,
+    "tests/test_sweep_dask.py": 16.0,
+    "tests/test_vessels_cpp_ship.py": 15.1,
+    "tests/test_cli_main.py": 14.5,
+}
+
+#: Modules run right after a long module, on its worker, because they need the kernels it
+#: compiles: the README's ``seahelm imo cargo.toml`` and the page's ``seahelm imo kvlcc2-l7``
+#: compile the MMG's IMO kernels that ``imo_check("kvlcc2-l7")`` (73 s of setup in a fresh
+#: clone) would compile again at the same time on the other worker.
+FOLLOWERS: dict[str, tuple[str, ...]] = {
+    "tests/test_docs_commands.py": ("tests/test_analysis_imo.py", "tests/test_plotting_labels.py"),
+}
+
+
+def worksteal_shares(n_items: int, n_workers: int) -> list[int]:
+    """How many of ``n_items`` tests xdist's ``worksteal`` scheduler first sends to each of
+    ``n_workers`` idle workers: consecutive slices, worker ``i`` ``remaining // (n - i)``
+    (``xdist.scheduler.worksteal.WorkStealingScheduling.check_schedule``). Later it steals
+    from the tail of the longest queue, so the head of each slice runs on that worker."""
+    shares, remaining = [], n_items
+    for i in range(n_workers):
+        shares.append(remaining // (n_workers - i))
+        remaining -= shares[-1]
+    return shares
+
+
+def order_for_workers(items: list, n_workers: int, seconds: dict[str, float],
+                      followers: dict[str, tuple[str, ...]] | None = None) -> list:
+    """``items`` reordered for ``n_workers``: the modules in ``seconds`` (by file path), longest
+    first, each to the worker with the fewest seconds so far, at the head of that worker's
+    slice (see :func:`worksteal_shares`), each followed by its ``followers`` (modules that
+    reuse its kernels); every other test after them in its own order. The tests of a module
+    keep their order and stay together (its module fixtures are made once)."""
+    followers = followers or {}
+
+    def module(item):
+        return item.nodeid.split("::", 1)[0]
+
+    present = {module(item) for item in items}
+    placed = {m for m in seconds if m in present}
+    placed |= {f for m in placed for f in followers.get(m, ())}
+    by_module: dict[str, list] = {}
+    rest = []
+    for item in items:
+        if module(item) in placed:
+            by_module.setdefault(module(item), []).append(item)
+        else:
+            rest.append(item)
+    heads: list[list] = [[] for _ in range(n_workers)]
+    load = [0.0] * n_workers
+    for name in sorted((m for m in seconds if m in by_module), key=lambda m: (-seconds[m], m)):
+        worker = min(range(n_workers), key=lambda w: (load[w], w))
+        for each in (name, *followers.get(name, ())):
+            heads[worker].extend(by_module.pop(each, []))
+        load[worker] += seconds[name]
+    ordered, start = [], 0
+    for head, share in zip(heads, worksteal_shares(len(items), n_workers)):
+        fill = max(0, share - len(head))
+        ordered += head + rest[start:start + fill]
+        start += fill
+    return ordered + rest[start:]
+
+
+# ------------------------------------------------------------------------------------------
+# where a fresh clone's time goes: SEAHELM_TEST_COMPILE_TIMES=FILE
+# ------------------------------------------------------------------------------------------
+class CompileTimes:
+    """Per test, the seconds numba spent compiling in this process and what it compiled.
+
+    With ``SEAHELM_TEST_COMPILE_TIMES=FILE`` (an empty kernel cache and numba cache make it
+    tell a fresh clone's story) every test appends one JSON line to FILE: ``test`` (its node
+    id), ``seconds`` (wall, setup to teardown), ``cpu`` (this process and its finished
+    children), ``compile`` (seconds of the outermost compilations) and ``compiled``
+    (``[function, seconds]``; a kernel is ``seahelm_kernel_<hash>.run_slice``, one hash per
+    combination of components). A kernel only one test compiles is a combination only it needs.
+    Subprocesses (``seahelm`` commands) are not followed: their compilations are in their
+    ``cpu``. xdist workers append to the same file.
+    """
+
+    def __init__(self, path: str):
+        self.path, self.depth, self.start, self.compiled = path, 0, 0.0, []
+
+    def on_start(self, ev) -> None:
+        import time
+
+        if self.depth == 0:
+            self.start = time.perf_counter()
+        self.depth += 1
+
+    def on_end(self, ev) -> None:
+        import time
+
+        self.depth -= 1
+        if self.depth == 0:
+            py = getattr((ev.data or {}).get("dispatcher"), "py_func", None)
+            name = f"{getattr(py, '__module__', '?')}.{getattr(py, '__qualname__', '?')}"
+            self.compiled.append([name, round(time.perf_counter() - self.start, 3)])
+
+    def listener(self):
+        from numba.core import event
+
+        times = self
+
+        class _Listener(event.Listener):  # type: ignore[misc]
+            def on_start(self, ev):
+                times.on_start(ev)
+
+            def on_end(self, ev):
+                times.on_end(ev)
+
+        return _Listener()
+
+    @staticmethod
+    def _cpu() -> float:
+        import resource
+
+        own, children = (resource.getrusage(w) for w in (resource.RUSAGE_SELF,
+                                                          resource.RUSAGE_CHILDREN))
+        return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
+
+    @pytest.hookimpl(hookwrapper=True)
+    def pytest_runtest_protocol(self, item, nextitem):
+        import json
+        import time
+
+        self.compiled, start, cpu = [], time.perf_counter(), self._cpu()
+        yield
+        row = {"test": item.nodeid, "seconds": round(time.perf_counter() - start, 3),
+               "cpu": round(self._cpu() - cpu, 3),
+               "compile": round(sum(s for _, s in self.compiled), 3), "compiled": self.compiled}
+        with open(self.path, "a", encoding="utf-8") as fh:
+            fh.write(json.dumps(row) + "\n")
+
+
+# ------------------------------------------------------------------------------------------
+# the unit tier (`make test-fast`: -m "not slow")
+# ------------------------------------------------------------------------------------------
+#: The modules of the unit tier: none compiles a closed-loop kernel or starts seahelm in a
+#: process, and together they take under 3 minutes in a fresh clone (empty kernel and numba
+#: caches, `make test-fast` on 2 cores). Every test of every other module is marked ``slow``
+#: (as are the tests marked so by hand): ``make test`` runs them all. A new module joins the
+#: tier here once it is measured cheap in a fresh clone.
+UNIT_MODULES: frozenset[str] = frozenset({
+    "tests/test_actuators_servo.py",
+    "tests/test_analysis_averaging.py",
+    "tests/test_analysis_course_keeping.py",
+    "tests/test_analysis_response_statistics.py",
+    "tests/test_analysis_seakeeping.py",
+    "tests/test_analysis_statistics.py",
+    "tests/test_cli_averaging.py",
+    "tests/test_cli_compensate.py",
+    "tests/test_cli_help.py",
+    "tests/test_cli_identify.py",
+    "tests/test_cli_seakeeping.py",
+    "tests/test_cli_style.py",
+    "tests/test_cli_waves.py",
+    "tests/test_components_contract.py",
+    "tests/test_control_autopilot_design_pvs.py",
+    "tests/test_control_compensation.py",
+    "tests/test_control_guidance.py",
+    "tests/test_docs.py",
+    "tests/test_environment_blendermann.py",
+    "tests/test_environment_encounter_motion.py",
+    "tests/test_environment_rao.py",
+    "tests/test_environment_rao_capytaine.py",
+    "tests/test_environment_rao_wigley.py",
+    "tests/test_environment_sea_state.py",
+    "tests/test_environment_shaping.py",
+    "tests/test_environment_spectra.py",
+    "tests/test_environment_spectra_mss.py",
+    "tests/test_environment_wave_forces.py",
+    "tests/test_environment_wind_gust.py",
+    "tests/test_hydrodynamics_estimates.py",
+    "tests/test_hydrodynamics_four_quadrant.py",
+    "tests/test_hydrodynamics_low_speed_hull.py",
+    "tests/test_hydrodynamics_propeller_series.py",
+    "tests/test_hydrodynamics_resistance.py",
+    "tests/test_identification_turn_log.py",
+    "tests/test_import_graph.py",
+    "tests/test_linearize_bad_input.py",
+    "tests/test_package.py",
+    "tests/test_plotting_save.py",
+    "tests/test_plotting_seakeeping.py",
+    "tests/test_properties.py",
+    "tests/test_resources.py",
+    "tests/test_scenario_limits.py",
+    "tests/test_scenario_particulars.py",
+    "tests/test_shallow_water_bad_input.py",
+    "tests/test_ships.py",
+    "tests/test_ships_estimate.py",
+    "tests/test_ships_estimate_course_unstable.py",
+    "tests/test_ships_scaling.py",
+    "tests/test_simulation_reference.py",
+    "tests/test_studies_platonov.py",
+    "tests/test_studies_romanov_chirkova.py",
+    "tests/test_studies_shushlyapin2017.py",
+    "tests/test_studies_sushchenko2010.py",
+    "tests/test_suite_order.py",
+    "tests/test_top_level_api.py",
+    "tests/test_vessels_engine_shaft.py",
+})
+
+
+#: The tests of the unit modules that compile a closed-loop kernel all the same (12 to 20 s
+#: each in a fresh clone), the other tests of their modules none: ``slow`` too.
+SLOW_UNIT_TESTS: frozenset[str] = frozenset({
+    "tests/test_ships.py::test_a_new_vessel_model_is_one_module_and_one_registry_line",
+    "tests/test_ships_estimate.py::test_cli_estimate_then_imo",
+    "tests/test_ships_scaling.py::test_froude_similarity_of_the_turning_circle",
+})
+
+
+def mark_outside_the_unit_tier(items: list, unit: frozenset[str] = UNIT_MODULES,
+                               slow: frozenset[str] = SLOW_UNIT_TESTS) -> None:
+    """Add the ``slow`` marker to every item whose module is not in ``unit`` and to the
+    items named in ``slow`` (node ids without the parameters)."""
+    for item in items:
+        if item.nodeid.split("::", 1)[0] not in unit or item.nodeid.split("[", 1)[0] in slow:
+            item.add_marker(pytest.mark.slow)
+
+
+@pytest.hookimpl(tryfirst=True)  # (before -m deselects)
+def pytest_collection_modifyitems(config, items):
+    mark_outside_the_unit_tier(items)
+
+
+class _OrderForWorkers:
+    """Registered by :func:`pytest_configure`: reorders after every deselection (-m, -k), so
+    the slices are those of the tests that run."""
+
+    @pytest.hookimpl(trylast=True)
+    def pytest_collection_modifyitems(self, config, items):
+        workers = getattr(config, "workerinput", {}).get("workercount", 0)
+        if workers >= 2:  # (every worker computes the same order: xdist checks they agree)
+            items[:] = order_for_workers(items, workers, LONG_MODULES, FOLLOWERS)

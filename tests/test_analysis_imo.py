@@ -52,13 +52,8 @@ def test_overshoot_limits_validation(bad):
         imo_overshoot_limits(bad)
 
 
-@pytest.fixture(scope="module")
-def l7_report():
-    return imo_check("kvlcc2-l7")
-
-
-def test_kvlcc2_l7_report(l7_report):
-    r = l7_report
+def test_kvlcc2_l7_report(kvlcc2_l7_imo):
+    r = kvlcc2_l7_imo
     assert isinstance(r, ImoReport)
     assert r.ship == "kvlcc2-l7" and r.length == 7.0 and r.speed == 1.179
     assert r.L_over_V == pytest.approx(7.0 / 1.179)

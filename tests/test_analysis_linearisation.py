@@ -92,15 +92,10 @@ def test_the_steering_gear_and_disturbances_join_the_model():
         pytest.approx(1.0, rel=1e-10)
 
 
-@pytest.fixture(scope="module")
-def mariner():
-    return linearize("mariner-nonlinear", actuator=False)
-
-
-def test_mariner_gives_the_published_nomoto_constants(mariner):
+def test_mariner_gives_the_published_nomoto_constants(mariner_linear):
     """K, T1, T2, T3 within 1 % of 0.185 1/s, 118 s, 7.8 s, 18.5 s (Chislett & Strøm-Tejsen
     1965, as in MSS), at the trimmed straight run at U0 = 7.7175 m/s."""
-    si = steering_indices(mariner)
+    si = steering_indices(mariner_linear)
     n = si.nomoto
     assert n.gain == pytest.approx(0.185, rel=0.01)
     assert n.t1 == pytest.approx(118.0, rel=0.01)
@@ -109,14 +104,14 @@ def test_mariner_gives_the_published_nomoto_constants(mariner):
     assert n.time_constant == pytest.approx(118 + 7.8 - 18.5, rel=0.01)
     assert si.course_stable and si.stability_index < 0 and si.stability_lever > 0
     assert si.surge_coupling < 1e-5
-    assert np.max(mariner.error["A"]) < 1e-7
+    assert np.max(mariner_linear.error["A"]) < 1e-7
 
 
-def test_mariner_with_its_steering_gear(mariner):
+def test_mariner_with_its_steering_gear(mariner_linear):
     lin = linearize("mariner-nonlinear")
     assert lin.input_labels == ("rudder_command",)
     assert lin.state_labels[-1] == "rudder_angle"
-    np.testing.assert_allclose(lin.A[:6, :6], mariner.A, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(lin.A[:6, :6], mariner_linear.A, rtol=0, atol=1e-9)
     assert lin.A[-1, -1] == pytest.approx(-1.0, rel=1e-9)  # MARINER_SERVO: lag 1 s
     with pytest.raises(ParameterError, match="without its steering gear"):
         steering_indices(lin)
@@ -135,24 +130,25 @@ def test_constant_speed_models_return_their_constants():
     assert (n.gain, n.t1, n.t2, n.t3) == pytest.approx((0.185, 118.0, 7.8, 18.5), rel=1e-10)
 
 
-def test_export_to_python_control_keeps_the_names(mariner):
+def test_export_to_python_control_keeps_the_names(mariner_linear):
     ct = pytest.importorskip("control")
-    sys = mariner.to_control()
-    assert list(sys.state_labels) == list(mariner.state_labels)
+    sys = mariner_linear.to_control()
+    assert list(sys.state_labels) == list(mariner_linear.state_labels)
     assert list(sys.input_labels) == ["rudder_angle"]
     assert "yaw_rate" in sys.output_labels
-    np.testing.assert_array_equal(sys.A, mariner.A)
-    block = mariner.select(states=["sway_speed", "yaw_rate"], outputs=["yaw_rate"])
+    np.testing.assert_array_equal(sys.A, mariner_linear.A)
+    block = mariner_linear.select(states=["sway_speed", "yaw_rate"], outputs=["yaw_rate"])
     assert float(ct.dcgain(block.to_control())) == pytest.approx(0.185, rel=0.01)
-    arrays = mariner.to_numpy()
-    assert arrays["A"] is not mariner.A and arrays["state_labels"] == mariner.state_labels
+    arrays = mariner_linear.to_numpy()
+    assert arrays["A"] is not mariner_linear.A
+    assert arrays["state_labels"] == mariner_linear.state_labels
 
 
-def test_select_and_its_validation(mariner):
-    sub = mariner.select(states=["yaw_rate", "sway_speed"], outputs=["heading"])
-    assert sub.A.shape == (2, 2) and sub.A[0, 0] == mariner.A[2, 2]
+def test_select_and_its_validation(mariner_linear):
+    sub = mariner_linear.select(states=["yaw_rate", "sway_speed"], outputs=["heading"])
+    assert sub.A.shape == (2, 2) and sub.A[0, 0] == mariner_linear.A[2, 2]
     with pytest.raises(ParameterError, match="no state spam"):
-        mariner.select(states=["spam"])
+        mariner_linear.select(states=["spam"])
     with pytest.raises(ParameterError, match=r"must have shape \(1, 1\)"):
         LinearModel(A=np.zeros((2, 2)), B=np.zeros((1, 1)), C=np.zeros((1, 1)),
                     D=np.zeros((1, 1)), state_labels=("a",), state_units=("-",),

@@ -72,11 +72,6 @@ def test_smooth_ships_are_unchanged():
     assert linearize("kvlcc2-l7", rudder=np.radians(10.0), actuator=False).smooth
 
 
-@pytest.fixture(scope="module")
-def kvlcc2():
-    return linearize("kvlcc2-l7", actuator=False)
-
-
 def _uniform_gamma(gamma):
     """The ship with one γ_R and no wake change with β_P (C_1 = 0): smooth, and at β = r = 0
     its sway and yaw rows are those of the γ_R piece (the wake's |β_P| acts on the surge row
@@ -89,9 +84,9 @@ def _uniform_gamma(gamma):
     return steering_indices(lin)
 
 
-def test_kvlcc2_straight_run_sides_are_the_two_gamma_pieces(kvlcc2):
-    assert kvlcc2.kinks == ("sway_speed", "yaw_rate") and "γ_R" in kvlcc2.note
-    plus, minus = (steering_indices(s) for s in kvlcc2.sides)
+def test_kvlcc2_straight_run_sides_are_the_two_gamma_pieces(kvlcc2_l7_linear):
+    assert kvlcc2_l7_linear.kinks == ("sway_speed", "yaw_rate") and "γ_R" in kvlcc2_l7_linear.note
+    plus, minus = (steering_indices(s) for s in kvlcc2_l7_linear.sides)
     # beta = atan2(-v, u): more sway speed is beta_R < 0, gamma_R_minus = 0.395
     for side, gamma in ((plus, 0.395), (minus, 0.640)):
         ref = _uniform_gamma(gamma)  # the same ship with one gamma_R: that side's own model
@@ -101,8 +96,8 @@ def test_kvlcc2_straight_run_sides_are_the_two_gamma_pieces(kvlcc2):
     assert minus.nomoto.t1 == pytest.approx(91.1, abs=0.1) and minus.course_stable
 
 
-def test_cli_prints_both_sides_never_the_mean(kvlcc2):
-    mean = steering_indices(kvlcc2)  # the central difference: T1 about -2400 s
+def test_cli_prints_both_sides_never_the_mean(kvlcc2_l7_linear):
+    mean = steering_indices(kvlcc2_l7_linear)  # the central difference: T1 about -2400 s
     res = runner.invoke(app, ["linearize", "kvlcc2-l7"], terminal_width=200)
     assert res.exit_code == 0, res.output
     assert f"{mean.nomoto.t1:.5g}" not in res.stdout and f"{mean.nomoto.gain:.5g}" not in res.stdout

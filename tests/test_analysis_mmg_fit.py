@@ -41,24 +41,19 @@ def records_of(result, name, noise=0.0, seed=0):
 
 
 @pytest.fixture(scope="module")
-def kvlcc2():
-    return get_ship("kvlcc2-l7")
-
-
-@pytest.fixture(scope="module")
-def manoeuvres(kvlcc2):
-    zz10 = zigzag(kvlcc2, math.radians(10.0), math.radians(10.0), sides=1, record_dt=0.1)
-    zz20 = zigzag(kvlcc2, math.radians(20.0), math.radians(20.0), sides=1, record_dt=0.1)
-    tc = turning_circle(kvlcc2, math.radians(35.0), sides=1, record_dt=0.1)
+def manoeuvres(kvlcc2_l7):
+    zz10 = zigzag(kvlcc2_l7, math.radians(10.0), math.radians(10.0), sides=1, record_dt=0.1)
+    zz20 = zigzag(kvlcc2_l7, math.radians(20.0), math.radians(20.0), sides=1, record_dt=0.1)
+    tc = turning_circle(kvlcc2_l7, math.radians(35.0), sides=1, record_dt=0.1)
     return zz10, zz20, tc
 
 
-def test_regression_on_clean_records_recovers_the_linear_derivatives(kvlcc2, manoeuvres):
+def test_regression_on_clean_records_recovers_the_linear_derivatives(kvlcc2_l7, manoeuvres):
     recs = [r for res, n in zip(manoeuvres, ("zz10", "zz20", "tc")) for r in records_of(res, n)]
-    fit = regress_hull(recs, kvlcc2, method="ols")
+    fit = regress_hull(recs, kvlcc2_l7, method="ols")
     got = dict(zip(fit.names, fit.values))
     for name in ("R_0", "Y_v", "Y_r", "N_v", "N_r", "X_vvvv"):
-        assert got[name] == pytest.approx(getattr(kvlcc2.params, name), rel=0.01), name
+        assert got[name] == pytest.approx(getattr(kvlcc2_l7.params, name), rel=0.01), name
     assert set(fit.condition_numbers) == {"X", "Y", "N"}
     assert fit.condition_numbers["Y"] > 100  # v' and r' move together in manoeuvres
 
@@ -69,7 +64,7 @@ LINEAR = ("R_0", "Y_v", "Y_r", "N_v", "N_r")
 
 
 @pytest.mark.parametrize("record_dt, tol", [(0.1, 1e-3), (0.025, 1e-4)])
-def test_output_error_recovers_the_truth_from_noiseless_manoeuvre_records(kvlcc2, manoeuvres,
+def test_output_error_recovers_the_truth_from_noiseless_manoeuvre_records(kvlcc2_l7, manoeuvres,
                                                                           record_dt, tol):
     """Records of the ordinary manoeuvre simulation (the steering gear moving the rudder, the
     zig-zag controller reversing it, the step 0.025 s), not of the fit's own simulation:
@@ -83,32 +78,32 @@ def test_output_error_recovers_the_truth_from_noiseless_manoeuvre_records(kvlcc2
     if record_dt == 0.1:
         runs = manoeuvres
     else:
-        runs = (zigzag(kvlcc2, math.radians(10.0), math.radians(10.0), sides=1,
+        runs = (zigzag(kvlcc2_l7, math.radians(10.0), math.radians(10.0), sides=1,
                        record_dt=record_dt),
-                zigzag(kvlcc2, math.radians(20.0), math.radians(20.0), sides=1,
+                zigzag(kvlcc2_l7, math.radians(20.0), math.radians(20.0), sides=1,
                        record_dt=record_dt),
-                turning_circle(kvlcc2, math.radians(35.0), sides=1, dt=record_dt))
+                turning_circle(kvlcc2_l7, math.radians(35.0), sides=1, dt=record_dt))
     recs = [r for res, n in zip(runs, ("zz10", "zz20", "tc")) for r in records_of(res, n)]
     assert recs[0].median_interval == pytest.approx(record_dt)
-    fit = refine_mmg(regress_hull(recs, kvlcc2, method="ols"), recs)
+    fit = refine_mmg(regress_hull(recs, kvlcc2_l7, method="ols"), recs)
     got = dict(zip(fit.names, fit.values))
     for name in LINEAR:
-        assert got[name] == pytest.approx(getattr(kvlcc2.params, name), rel=tol), name
+        assert got[name] == pytest.approx(getattr(kvlcc2_l7.params, name), rel=tol), name
 
 
-def test_identified_model_predicts_a_manoeuvre_not_used_in_the_fit(kvlcc2, manoeuvres):
+def test_identified_model_predicts_a_manoeuvre_not_used_in_the_fit(kvlcc2_l7, manoeuvres):
     """Noisy records (σ 0.5 % of U0 on u, v; 0.5 % U0/L on r) of a 10/10 and a 20/20 zig-zag
     and a 35° starboard turn; regression then output error; the 20° port turning circle and
     the 15/15 zig-zag predicted within 2 % of the true model's. Derivatives the noisy records
     do not identify are kept at the base ship's values (here the truth's) and said so."""
     recs = [r for res, n, s in zip(manoeuvres, ("zz10", "zz20", "tc"), (1, 2, 3))
             for r in records_of(res, n, noise=0.005, seed=s)]
-    fit = identify_mmg(recs, kvlcc2)
-    identified = fit.ship(kvlcc2)
+    fit = identify_mmg(recs, kvlcc2_l7)
+    identified = fit.ship(kvlcc2_l7)
     for name, why in fit.fixed.items():
         assert "not identified" in identified.source_of(name) and why
     truth = {}
-    for label, ship in (("truth", kvlcc2), ("identified", identified)):
+    for label, ship in (("truth", kvlcc2_l7), ("identified", identified)):
         turn = turning_circle(ship, math.radians(20.0), sides=-1).metrics
         zz = zigzag(ship, math.radians(15.0), math.radians(15.0), sides=1).metrics
         truth[label] = np.array([float(turn["advance"]), float(turn["tactical_diameter"]),
@@ -117,30 +112,30 @@ def test_identified_model_predicts_a_manoeuvre_not_used_in_the_fit(kvlcc2, manoe
     assert "output-error fit" in identified.source_of("Y_v")
 
 
-def test_missing_channels_and_a_non_mmg_base(kvlcc2, manoeuvres):
+def test_missing_channels_and_a_non_mmg_base(kvlcc2_l7, manoeuvres):
     rec = records_of(manoeuvres[0], "zz10")[0]
     bare = record_from_arrays("bare", rec.time, rec.rudder_angle, rec.heading, rec.yaw_rate)
     with pytest.raises(ParameterError, match="missing column.*surge_speed") as info:
-        regress_hull(bare, kvlcc2)
+        regress_hull(bare, kvlcc2_l7)
     assert info.value.field == "surge_speed"
     with pytest.raises(ParameterError, match="MMG ship"):
         regress_hull(rec, get_ship("mariner-nonlinear"))
     with pytest.raises(ParameterError, match="one of ols, ridge, tsvd"):
-        regress_hull(rec, kvlcc2, method="lasso")
+        regress_hull(rec, kvlcc2_l7, method="lasso")
 
 
-def test_unidentifiable_derivatives_are_reported_not_written(kvlcc2):
+def test_unidentifiable_derivatives_are_reported_not_written(kvlcc2_l7):
     cov = np.diag([1e-8, 4.0, 1e-6])
     cov[1, 2] = cov[2, 1] = 0.9999 * math.sqrt(4.0 * 1e-6)
     fit = HullFit(names=("Y_v", "Y_vvr", "N_vvr"), values=np.array([-0.3, 0.5, -0.3]),
                   covariance=cov, method="ols", condition_numbers={"Y": 1e6}, records=("a",),
-                  residual_std={}, params=kvlcc2.params)
+                  residual_std={}, params=kvlcc2_l7.params)
     bad = fit.unidentifiable()
     assert set(bad) == {"Y_vvr", "N_vvr"}
     assert "standard error 2 exceeds the value 0.5" in bad["Y_vvr"]
     assert "correlation 0.9999 with Y_vvr" in bad["N_vvr"]
     with pytest.raises(ParameterError, match="do not identify Y_vvr"):
-        fit.ship(kvlcc2)
+        fit.ship(kvlcc2_l7)
     row = {r["name"]: r for r in fit.as_dict()["parameters"]}["Y_vvr"]
     assert not row["identified"] and "value" not in row
 

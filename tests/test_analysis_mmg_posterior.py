@@ -16,28 +16,22 @@ from seahelm.analysis.mmg_fit import HullFit, _scaled_outputs, _simulate, refine
 from seahelm.analysis.mmg_posterior import admissible, mmg_posterior, posterior_ships
 from seahelm.analysis.records import record_from_arrays
 from seahelm.errors import ParameterError
-from seahelm.ships import get_ship
 
 NAMES = ("Y_v", "Y_r", "N_v", "N_r")
 NOISE = 0.005  # of U0 on u, v; of U0/L on r
 
 
 @pytest.fixture(scope="module")
-def kvlcc2():
-    return get_ship("kvlcc2-l7")
-
-
-@pytest.fixture(scope="module")
-def template(kvlcc2):
+def template(kvlcc2_l7):
     """A 20/20 zig-zag's rudder and rps; u, v, r simulated by the output-error model itself
     (so that the likelihood is exact and the posterior can be checked against the truth)."""
-    ds = zigzag(kvlcc2, math.radians(20.0), math.radians(20.0), sides=1, record_dt=0.2).runs
+    ds = zigzag(kvlcc2_l7, math.radians(20.0), math.radians(20.0), sides=1, record_dt=0.2).runs
     t = ds["time"].values
     rec = record_from_arrays("zz20", t, ds["rudder_angle"].values, ds["heading"].values,
                              ds["yaw_rate"].values, surge_speed=ds["surge_speed"].values,
                              sway_speed=ds["sway_speed"].values,
                              propeller_rps=ds["propeller_rps"].values)[0]
-    return rec, _simulate([kvlcc2.params], rec)[0]
+    return rec, _simulate([kvlcc2_l7.params], rec)[0]
 
 
 def noisy(template, seed):
@@ -52,9 +46,9 @@ def noisy(template, seed):
 
 
 @pytest.fixture(scope="module")
-def fit_and_record(kvlcc2, template):
+def fit_and_record(kvlcc2_l7, template):
     rec = noisy(template, 1)
-    return refine_mmg(kvlcc2, [rec], names=NAMES), rec
+    return refine_mmg(kvlcc2_l7, [rec], names=NAMES), rec
 
 
 def test_laplace_covariance_is_the_inverse_finite_difference_hessian(fit_and_record):
@@ -83,12 +77,12 @@ def test_laplace_covariance_is_the_inverse_finite_difference_hessian(fit_and_rec
 
 
 @pytest.mark.parametrize("seed", [2, 3, 4])
-def test_posterior_covers_the_truth(kvlcc2, template, seed):
+def test_posterior_covers_the_truth(kvlcc2_l7, template, seed):
     """Records with noise of three seeds: the truth lies within the posterior's 99.9 % region
     (Mahalanobis distance of the Laplace posterior), and the mean of the Laplace samples is
     the estimate."""
-    fit = refine_mmg(kvlcc2, [noisy(template, seed)], names=NAMES)
-    truth = np.array([getattr(kvlcc2.params, n) for n in NAMES])
+    fit = refine_mmg(kvlcc2_l7, [noisy(template, seed)], names=NAMES)
+    truth = np.array([getattr(kvlcc2_l7.params, n) for n in NAMES])
     d = fit.values - truth
     assert d @ np.linalg.solve(fit.covariance, d) < 18.47  # chi² (4 dof), 0.999
     post = mmg_posterior(fit, n=4000, seed=seed)
@@ -112,15 +106,15 @@ def test_mcmc_agrees_with_laplace_on_a_well_identified_fit(fit_and_record):
     assert data["method"] == "mcmc" and set(data["autocorr_time"]) == set(NAMES)
 
 
-def test_posterior_ships_run_a_turning_circle(kvlcc2, fit_and_record):
+def test_posterior_ships_run_a_turning_circle(kvlcc2_l7, fit_and_record):
     fit, _ = fit_and_record
     post = mmg_posterior(fit, n=2, seed=0)
-    ships = posterior_ships(fit, post, kvlcc2)
+    ships = posterior_ships(fit, post, kvlcc2_l7)
     assert [s.name for s in ships] == ["posterior #0", "posterior #1"]
     assert ships[1].params.N_r == post.samples[1, 3]
-    assert ships[0].params.X_vv == kvlcc2.params.X_vv  # not sampled: the fit's value
+    assert ships[0].params.X_vv == kvlcc2_l7.params.X_vv  # not sampled: the fit's value
     tc = turning_circle(ships[0], math.radians(35.0), sides=1).metrics
-    truth = turning_circle(kvlcc2, math.radians(35.0), sides=1).metrics
+    truth = turning_circle(kvlcc2_l7, math.radians(35.0), sides=1).metrics
     assert float(tc["tactical_diameter"]) == pytest.approx(float(truth["tactical_diameter"]),
                                                            rel=0.05)
 
@@ -147,10 +141,10 @@ def test_bad_arguments(fit_and_record, kwargs, field):
     assert info.value.field == field
 
 
-def test_unidentified_and_singular_directions_are_refused(kvlcc2):
+def test_unidentified_and_singular_directions_are_refused(kvlcc2_l7):
     base = HullFit(names=("Y_v", "Y_r", "N_v"), values=np.array([-0.3, 0.08, -0.13]),
                    covariance=np.diag([1e-6, 1.0, 1e-6]), method="output-error",
-                   condition_numbers={}, records=("a",), residual_std={}, params=kvlcc2.params)
+                   condition_numbers={}, records=("a",), residual_std={}, params=kvlcc2_l7.params)
     with pytest.raises(ParameterError, match="do not identify Y_r"):
         mmg_posterior(base)
     # three parameters, no pair correlated beyond 0.999, but Y_v + Y_r + N_v singular
@@ -161,13 +155,13 @@ def test_unidentified_and_singular_directions_are_refused(kvlcc2):
         mmg_posterior(singular)
 
 
-def test_cli_identify_mmg_imo_probabilities_given_the_identification(tmp_path, kvlcc2):
+def test_cli_identify_mmg_imo_probabilities_given_the_identification(tmp_path, kvlcc2_l7):
     from typer.testing import CliRunner
 
     from seahelm.cli.main import app
 
     path = tmp_path / "zz20.nc"
-    zigzag(kvlcc2, math.radians(20.0), math.radians(20.0), sides=1,
+    zigzag(kvlcc2_l7, math.radians(20.0), math.radians(20.0), sides=1,
            record_dt=0.2).runs.to_netcdf(path, engine="h5netcdf")
     runner = CliRunner()
     args = ["identify", "mmg", str(path), "--ship", "kvlcc2-l7", "--regression-only"]

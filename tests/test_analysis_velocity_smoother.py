@@ -13,7 +13,6 @@ from seahelm.analysis.mmg_fit import identify_mmg
 from seahelm.analysis.records import record_from_arrays
 from seahelm.analysis.velocity_smoother import reconstruct_velocities
 from seahelm.errors import ParameterError
-from seahelm.ships import get_ship
 
 
 def positions_only(result, rng, sigma_pos=0.5, sigma_psi=math.radians(0.1)):
@@ -27,16 +26,11 @@ def positions_only(result, rng, sigma_pos=0.5, sigma_psi=math.radians(0.1)):
         propeller_rps=ds["propeller_rps"].values)[0], ds
 
 
-@pytest.fixture(scope="module")
-def kvlcc2():
-    return get_ship("kvlcc2-full")
-
-
-def test_smoothed_velocities_and_their_uncertainty(kvlcc2):
+def test_smoothed_velocities_and_their_uncertainty(kvlcc2_full):
     """A 20/20 zig-zag of the full-scale KVLCC2 logged as GNSS positions (σ 0.5 m) and a gyro
     heading (σ 0.1°) at 1 Hz: u within 0.5 %, v and r within 2 % of their range (RMS), the
     smoother's standard deviations conservative (RMS z-score in 0.2..1.2)."""
-    res = zigzag(kvlcc2, math.radians(20.0), math.radians(20.0), sides=1, record_dt=1.0)
+    res = zigzag(kvlcc2_full, math.radians(20.0), math.radians(20.0), sides=1, record_dt=1.0)
     rec, ds = positions_only(res, np.random.default_rng(0))
     sm = reconstruct_velocities(rec, length=320.0)
     inner = slice(20, -20)
@@ -53,30 +47,30 @@ def test_smoothed_velocities_and_their_uncertainty(kvlcc2):
         assert 0.2 < z < 1.2, z
 
 
-def test_bad_input(kvlcc2):
+def test_bad_input(kvlcc2_full):
     t = np.arange(20.0)
     rec = record_from_arrays("r", t, np.radians((-1.0) ** t), np.zeros(20))[0]
     with pytest.raises(ParameterError, match="x, y and heading are needed"):
         reconstruct_velocities(rec)
-    res = zigzag(kvlcc2, math.radians(10.0), math.radians(10.0), sides=1, record_dt=1.0)
+    res = zigzag(kvlcc2_full, math.radians(10.0), math.radians(10.0), sides=1, record_dt=1.0)
     rec, _ = positions_only(res, np.random.default_rng(1))
     with pytest.raises(ParameterError) as info:
         reconstruct_velocities(rec, position_noise=-1.0)
     assert info.value.field == "position_noise"
 
 
-def test_mmg_identification_from_positions_only(kvlcc2):
+def test_mmg_identification_from_positions_only(kvlcc2_full):
     """Positions and heading only (no log, no velocities): the smoother, then the MMG fit;
     the 20° port turn predicted within 3 %, the 15/15 overshoot within 8 % (with smoothed
     velocities as data the Laplace errors are optimistic: the docs say so)."""
     rng = np.random.default_rng(0)
     recs = [positions_only(res, rng)[0] for res in (
-        zigzag(kvlcc2, math.radians(10.0), math.radians(10.0), sides=1, record_dt=1.0),
-        zigzag(kvlcc2, math.radians(20.0), math.radians(20.0), sides=1, record_dt=1.0),
-        turning_circle(kvlcc2, math.radians(35.0), sides=1, record_dt=1.0))]
-    ship = identify_mmg(recs, kvlcc2).ship(kvlcc2)
+        zigzag(kvlcc2_full, math.radians(10.0), math.radians(10.0), sides=1, record_dt=1.0),
+        zigzag(kvlcc2_full, math.radians(20.0), math.radians(20.0), sides=1, record_dt=1.0),
+        turning_circle(kvlcc2_full, math.radians(35.0), sides=1, record_dt=1.0))]
+    ship = identify_mmg(recs, kvlcc2_full).ship(kvlcc2_full)
     got = {}
-    for label, s in (("truth", kvlcc2), ("identified", ship)):
+    for label, s in (("truth", kvlcc2_full), ("identified", ship)):
         turn = turning_circle(s, math.radians(20.0), sides=-1).metrics
         zz = zigzag(s, math.radians(15.0), math.radians(15.0), sides=1).metrics
         got[label] = (float(turn["advance"]), float(turn["tactical_diameter"]),

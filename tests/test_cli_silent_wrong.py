@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from conftest import one_error
+from conftest import nomoto_monte_carlo, one_error
 from seahelm.cli.main import app
 
 DATA = Path(__file__).resolve().parents[1] / "src" / "seahelm" / "ships" / "data"
@@ -23,24 +23,6 @@ DATA = Path(__file__).resolve().parents[1] / "src" / "seahelm" / "ships" / "data
 RAO_HEAD = "dof,frequency,heading_deg,amplitude,phase_deg\n"
 RAO_ROWS = ["heave,0.4,0,0.9,0", "heave,0.4,180,0.9,0", "heave,0.8,0,0.5,-30",
             "heave,0.8,180,0.5,-30"]
-
-NOMOTO_SCENARIO = """[vessel]
-catalog = "mariner-nomoto2"
-[controller]
-model = "pid-heading"
-[controller.reference]
-heading_deg = 20.0
-[simulation]
-t_final = {t_final}
-dt = 0.1
-record_every = 10
-[batch.monte_carlo]
-runs = {runs}
-seed = 1
-[batch.monte_carlo.draws]
-"vessel.params.t1" = {{ distribution = "uniform", low = 90.0, high = 150.0 }}
-"""
-
 
 def _rao(tmp: Path, rows: list[str]) -> str:
     path = tmp / "rao.csv"
@@ -95,7 +77,7 @@ def _edit_row(path: str, line: int, column: str, value: str) -> str:
 
 def _scenario(tmp: Path, name: str, t_final: float, runs: int) -> str:
     path = tmp / f"{name}.toml"
-    path.write_text(NOMOTO_SCENARIO.format(t_final=t_final, runs=runs))
+    path.write_text(nomoto_monte_carlo(t_final, runs))
     return str(path)
 
 
@@ -168,7 +150,7 @@ CASES = {
         r"apart\)"),
     # still open from the round before
     "record_every = 2.5": (
-        lambda t: ["run", _write(t, "re.toml", NOMOTO_SCENARIO.format(t_final=60.0, runs=2)
+        lambda t: ["run", _write(t, "re.toml", nomoto_monte_carlo(60.0, 2)
                                  .replace("record_every = 10", "record_every = 2.5")),
                    "--out", str(t / "o")],
         r"\[simulation.record_every\] must be a whole number, got 2.5"),

@@ -20,6 +20,8 @@ from pathlib import Path
 
 import pytest
 
+from conftest import nomoto_monte_carlo
+
 #: Seconds from the signal to the end of the process (a slice is ~0.25 s; the rest is the exit
 #: on a loaded 2-core machine).
 WITHIN = 3.5
@@ -27,28 +29,10 @@ WITHIN = 3.5
 #: Seconds into the long run's loop when the signal is sent.
 INTO_THE_LOOP = 2.0
 
-NOMOTO_RUN = """[vessel]
-catalog = "mariner-nomoto2"
-[controller]
-model = "pid-heading"
-[controller.reference]
-heading_deg = 20.0
-[simulation]
-t_final = {t_final}
-dt = 0.1
-record_every = {every}
-[batch.monte_carlo]
-runs = {runs}
-seed = 1
-[batch.monte_carlo.draws]
-"vessel.params.t1" = {{ distribution = "uniform", low = 90.0, high = 150.0 }}
-"""
-
-
 def _scenario(tmp: Path, name: str, t_final: float, runs: int = 1) -> str:
     path = tmp / f"{name}.toml"
     every = max(1, int(t_final / 0.1) // 100)
-    path.write_text(NOMOTO_RUN.format(t_final=t_final, every=every, runs=runs))
+    path.write_text(nomoto_monte_carlo(t_final, runs, every))
     return str(path)
 
 

@@ -87,11 +87,8 @@ def test_loop_margins_against_python_control():
 
 
 @pytest.fixture(scope="module")
-def mariner_block():
-    from seahelm.analysis.linearisation import linearize
-
-    lin = linearize("mariner-nonlinear", actuator=False)
-    return lin.select(states=["sway_speed", "yaw_rate"], inputs=["rudder_angle"])
+def mariner_block(mariner_linear):
+    return mariner_linear.select(states=["sway_speed", "yaw_rate"], inputs=["rudder_angle"])
 
 
 def test_lq_gains_equal_python_controls_lqr(mariner_block):

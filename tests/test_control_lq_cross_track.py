@@ -25,23 +25,21 @@ def sorted_roots(r):
 
 
 @pytest.fixture(scope="module")
-def mariner():
-    from seahelm.analysis.linearisation import linearize
-
-    lin = linearize("mariner-nonlinear", actuator=False)
+def mariner_route_block(mariner_linear):
+    lin = mariner_linear
     assert lin.x0[lin.state_labels.index("heading")] == 0.0  # the route is due north
     return lin.select(states=["sway_speed", "yaw_rate", "heading", "east"],
                       inputs=["rudder_angle"])
 
 
-def test_the_design_is_python_controls_lqr_of_the_linearised_ship(mariner):
+def test_the_design_is_python_controls_lqr_of_the_linearised_ship(mariner_route_block):
     """The augmented model assembled from the linearised Mariner's own sway, yaw, heading and
     east rows (east = y_e on a route due north) plus ∫east: python-control's lqr gives the
     design's gains (1e-8) and its closed-loop eigenvalues are the design's poles (1e-9)."""
     ct = pytest.importorskip("control")
-    idx = {s: i for i, s in enumerate(mariner.state_labels)}
-    speed = mariner.A[idx["east"], idx["heading"]]
-    block = mariner.select(states=["sway_speed", "yaw_rate"])
+    idx = {s: i for i, s in enumerate(mariner_route_block.state_labels)}
+    speed = mariner_route_block.A[idx["east"], idx["heading"]]
+    block = mariner_route_block.select(states=["sway_speed", "yaw_rate"])
     d = lq_cross_track(block.A, block.B[:, 0], block.state_labels, speed, max_cross_track=50.0,
                        max_heading_error=math.radians(20.0), max_rudder=math.radians(40.0))
     assert d.states == ("cross_track_error_integral", "cross_track_error", "heading_error",
@@ -49,8 +47,8 @@ def test_the_design_is_python_controls_lqr_of_the_linearised_ship(mariner):
     order = [idx[s] for s in ("east", "heading", "sway_speed", "yaw_rate")]
     A = np.zeros((5, 5))
     A[0, 1] = 1.0
-    A[1:, 1:] = mariner.A[np.ix_(order, order)]
-    B = np.concatenate([[0.0], mariner.B[order, 0]])[:, None]
+    A[1:, 1:] = mariner_route_block.A[np.ix_(order, order)]
+    B = np.concatenate([[0.0], mariner_route_block.B[order, 0]])[:, None]
     Q = np.diag([1 / 5000.0 ** 2, 1 / 50.0 ** 2, 1 / math.radians(20.0) ** 2, 0.0, 0.0])
     R = np.array([[1 / math.radians(40.0) ** 2]])
     k_ref, _, poles_ref = ct.lqr(A, B, Q, R)

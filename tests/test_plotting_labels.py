@@ -126,23 +126,16 @@ def _text_problems(fig):
     return out
 
 
-@pytest.fixture(scope="module")
-def imo_l7():
-    from seahelm.analysis.imo import imo_check
-
-    return imo_check("kvlcc2-l7")
-
-
 @pytest.mark.parametrize("figure", ["turning", "zigzag", "stopping", "pullout", "one-circle"])
-def test_manoeuvre_figures_have_no_text_over_another(imo_l7, figure):
+def test_manoeuvre_figures_have_no_text_over_another(kvlcc2_l7_imo, figure):
     import math
 
     from seahelm.analysis.maneuvers import pull_out, turning_circle
     from seahelm.plotting import maneuvers as plots
 
-    draw = {"turning": lambda: plots.plot_turning(imo_l7.turning).figure,
-            "zigzag": lambda: plots.plot_zigzag(imo_l7.zigzag),
-            "stopping": lambda: plots.plot_stopping(imo_l7.stopping),
+    draw = {"turning": lambda: plots.plot_turning(kvlcc2_l7_imo.turning).figure,
+            "zigzag": lambda: plots.plot_zigzag(kvlcc2_l7_imo.zigzag),
+            "stopping": lambda: plots.plot_stopping(kvlcc2_l7_imo.stopping),
             "pullout": lambda: plots.plot_pullout(pull_out("kvlcc2-l7",
                                                            math.radians(20))).figure,
             "one-circle": lambda: plots.plot_turning(turning_circle(

@@ -21,44 +21,39 @@ def run_cli(*args: str):
     return CliRunner().invoke(app, list(args), terminal_width=200)
 
 
-@pytest.fixture(scope="module")
-def kvlcc2():
-    return get_ship("kvlcc2-full")
+def test_deep_water_is_the_identity(kvlcc2_full):
+    assert kvlcc2_full.water_depth == math.inf and not kvlcc2_full.in_shallow_water
+    assert kvlcc2_full.at_depth(math.inf) is kvlcc2_full
+    shallow = kvlcc2_full.at_depth(31.2)
+    assert shallow.at_depth(math.inf) == kvlcc2_full
 
 
-def test_deep_water_is_the_identity(kvlcc2):
-    assert kvlcc2.water_depth == math.inf and not kvlcc2.in_shallow_water
-    assert kvlcc2.at_depth(math.inf) is kvlcc2
-    shallow = kvlcc2.at_depth(31.2)
-    assert shallow.at_depth(math.inf) == kvlcc2
-
-
-def test_at_depth_applies_the_factors_and_keeps_the_deep_parameters(kvlcc2):
-    shallow = kvlcc2.at_depth(31.2)
-    f = shallow_water_factors(hull_particulars(kvlcc2), 31.2)
-    assert shallow.params.Y_v == pytest.approx(kvlcc2.params.Y_v * f["Y_v"], rel=1e-14)
-    assert shallow.params.m_y == pytest.approx(kvlcc2.params.m_y * f["m_y"], rel=1e-14)
-    assert shallow.params.m_x == kvlcc2.params.m_x
-    assert shallow.deep_water_params == kvlcc2.params
+def test_at_depth_applies_the_factors_and_keeps_the_deep_parameters(kvlcc2_full):
+    shallow = kvlcc2_full.at_depth(31.2)
+    f = shallow_water_factors(hull_particulars(kvlcc2_full), 31.2)
+    assert shallow.params.Y_v == pytest.approx(kvlcc2_full.params.Y_v * f["Y_v"], rel=1e-14)
+    assert shallow.params.m_y == pytest.approx(kvlcc2_full.params.m_y * f["m_y"], rel=1e-14)
+    assert shallow.params.m_x == kvlcc2_full.params.m_x
+    assert shallow.deep_water_params == kvlcc2_full.params
     assert any(v.startswith("shallow water: h/d = 1.5") for v in shallow.validity)
     # a second depth starts from the deep-water parameters, not the corrected ones
-    assert shallow.at_depth(41.6).params == kvlcc2.at_depth(41.6).params
+    assert shallow.at_depth(41.6).params == kvlcc2_full.at_depth(41.6).params
 
 
-def test_a_parameter_change_in_shallow_water_changes_the_deep_value(kvlcc2):
-    shallow = kvlcc2.at_depth(31.2)
+def test_a_parameter_change_in_shallow_water_changes_the_deep_value(kvlcc2_full):
+    shallow = kvlcc2_full.at_depth(31.2)
     changed = shallow.replace(params={"Y_v": -0.3})
     assert changed.deep_water_params.Y_v == -0.3
-    assert changed.params.Y_v == pytest.approx(-0.3 * shallow.params.Y_v / kvlcc2.params.Y_v)
+    assert changed.params.Y_v == pytest.approx(-0.3 * shallow.params.Y_v / kvlcc2_full.params.Y_v)
     assert changed.water_depth == 31.2
 
 
 @pytest.mark.parametrize("depth, match", [
     (20.8, "greater than the draft"), (-5.0, "> 0"), (float("nan"), "> 0"), (True, "> 0"),
 ])
-def test_bad_depths_are_errors_naming_water_depth(kvlcc2, depth, match):
+def test_bad_depths_are_errors_naming_water_depth(kvlcc2_full, depth, match):
     with pytest.raises(ParameterError, match=match) as info:
-        kvlcc2.at_depth(depth)
+        kvlcc2_full.at_depth(depth)
     assert info.value.field == "water_depth"
 
 
@@ -67,12 +62,12 @@ def test_shallow_water_needs_the_mmg_model():
         get_ship("mariner-nonlinear").at_depth(20.0)
 
 
-def test_ship_file_round_trip_in_shallow_water(kvlcc2, tmp_path):
-    shallow = kvlcc2.at_depth(31.2)
+def test_ship_file_round_trip_in_shallow_water(kvlcc2_full, tmp_path):
+    shallow = kvlcc2_full.at_depth(31.2)
     text = ship_to_toml(shallow)
     data = tomllib.loads(text)
     assert data["water_depth"] == 31.2
-    assert data["params"]["Y_v"] == kvlcc2.params.Y_v  # the file holds the deep-water values
+    assert data["params"]["Y_v"] == kvlcc2_full.params.Y_v  # the file holds the deep-water values
     assert ship_from_mapping(data) == shallow
     path = write_ship(shallow, tmp_path / "shallow.toml")
     assert read_ship(path) == shallow
@@ -111,7 +106,7 @@ def test_scenario_water_depth(tmp_path):
     assert "[vessel.water_depth] must be greater than the draft" in result.output
 
 
-def test_froude_scaling_in_shallow_water_keeps_h_over_t(kvlcc2):
+def test_froude_scaling_in_shallow_water_keeps_h_over_t(kvlcc2_full):
     l7 = get_ship("kvlcc2-l7")
     l7 = l7.at_depth(1.5 * l7.particulars.draft)
     big = l7.scaled(320.0)
@@ -133,8 +128,8 @@ def test_scenario_params_in_shallow_water_change_the_deep_value(tmp_path):
     assert job.ship.params == expected
 
 
-def test_ship_show_says_the_depth(kvlcc2, tmp_path):
-    path = write_ship(kvlcc2.at_depth(31.2), tmp_path / "s.toml")
+def test_ship_show_says_the_depth(kvlcc2_full, tmp_path):
+    path = write_ship(kvlcc2_full.at_depth(31.2), tmp_path / "s.toml")
     res = run_cli("ship", "show", str(path))
     assert res.exit_code == 0 and "water depth" in res.output and "31.2 [m]" in res.output
     assert "│ deep" in run_cli("ship", "show", "kvlcc2-full").output
