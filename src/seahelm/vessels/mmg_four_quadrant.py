@@ -194,40 +194,46 @@ def _forces4q(u, v, r, delta, n, p):  # pragma: no cover - compiled
     if ahead or flip or w < 1.0:
         hull = _forces(-u if flip else u, v, -r if flip else r, delta if ahead else 0.0,
                        n if ahead else 0.0, p)
-    if ahead:
-        (X_H, Y_H, N_H, X_P, X_R, Y_R, N_R, thrust, F_N, w_P, u_R, v_R, speed, beta) = hull
-        _T, torque, b_adv = _propeller_4q(u * (1.0 - w_P), n, p)
-        return (X_H, Y_H, N_H, X_P, 0.0, 0.0, X_R, Y_R, N_R, thrust, torque, F_N, u_R, v_R,
-                speed, beta, b_adv)
     rho = p.rho
-    speed = math.sqrt(u * u + v * v)
-    u_nd = max(speed, p.min_froude_number * math.sqrt(GRAVITY * L))
-    rn = r * L / u_nd
-    beta = math.atan2(-v, u)
-    if flip:  # the mirrored hull, with the astern resistance
-        q = 0.5 * rho * L * p.draft * speed * speed
-        X_H = -hull[0] + (p.R_0_astern - p.R_0) * q
-        Y_H = hull[1]
-        N_H = -hull[2]
-        w_P = 0.0
-    else:  # the MMG hull (w < 1) blended into the cross-flow model (w > 0); mirror: w = 0
-        X_H = 0.0
-        Y_H = 0.0
-        N_H = 0.0
-        if w < 1.0:  # (one code block for both hull models: the same rounding in both)
-            X_H, Y_H, N_H = hull[0], hull[1], hull[2]
-        if w > 0.0:
-            X_L, Y_L, N_L = low_speed_hull(u, v, r, L, p.draft, rho, -p.R_0, -p.R_0_astern,
-                                           p.X_vr, p.Y_v, p.Y_r, p.N_v, p.N_r,
-                                           p.cross_flow_drag, p.C_rY, p.C_rN)
-            X_H = w * X_L + (1.0 - w) * X_H
-            Y_H = w * Y_L + (1.0 - w) * Y_H
-            N_H = w * N_L + (1.0 - w) * N_H
-        w_P = 0.0
-        if u >= 0.0:
-            w_P = wake_fraction(beta - p.x_P * rn, p.w_P0, p.C_1, p.C_2_plus, p.C_2_minus)
+    speed = 0.0
+    rn = 0.0
+    beta = 0.0
+    X_H = 0.0
+    Y_H = 0.0
+    N_H = 0.0
+    w_P = 0.0
+    if ahead:
+        w_P = hull[9]
+    else:
+        speed = math.sqrt(u * u + v * v)
+        u_nd = max(speed, p.min_froude_number * math.sqrt(GRAVITY * L))
+        rn = r * L / u_nd
+        beta = math.atan2(-v, u)
+        if flip:  # the mirrored hull, with the astern resistance
+            q = 0.5 * rho * L * p.draft * speed * speed
+            X_H = -hull[0] + (p.R_0_astern - p.R_0) * q
+            Y_H = hull[1]
+            N_H = -hull[2]
+        else:  # the MMG hull (w < 1) blended into the cross-flow model (w > 0); mirror: w = 0
+            if w < 1.0:  # (one code block for both hull models: the same rounding in both)
+                X_H, Y_H, N_H = hull[0], hull[1], hull[2]
+            if w > 0.0:
+                X_L, Y_L, N_L = low_speed_hull(u, v, r, L, p.draft, rho, -p.R_0,
+                                               -p.R_0_astern, p.X_vr, p.Y_v, p.Y_r, p.N_v,
+                                               p.N_r, p.cross_flow_drag, p.C_rY, p.C_rN)
+                X_H = w * X_L + (1.0 - w) * X_H
+                Y_H = w * Y_L + (1.0 - w) * Y_H
+                N_H = w * N_L + (1.0 - w) * N_H
+            if u >= 0.0:
+                w_P = wake_fraction(beta - p.x_P * rn, p.w_P0, p.C_1, p.C_2_plus, p.C_2_minus)
+    # One call of the four-quadrant propeller for both branches (each call site is a copy of
+    # its Fourier series in the compiled kernel)
     u_P = u * (1.0 - w_P)
     thrust, torque, b_adv = _propeller_4q(u_P, n, p)
+    if ahead:
+        (X_H, Y_H, N_H, X_P, X_R, Y_R, N_R, thrust, F_N, w_P, u_R, v_R, speed, beta) = hull
+        return (X_H, Y_H, N_H, X_P, 0.0, 0.0, X_R, Y_R, N_R, thrust, torque, F_N, u_R, v_R,
+                speed, beta, b_adv)
     X_P = (1.0 - p.t_P) * thrust if n >= 0.0 else thrust
     Y_P = 0.0
     N_P = 0.0
