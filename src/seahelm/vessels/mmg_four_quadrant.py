@@ -99,11 +99,13 @@ from .mmg import (
     KVLCC2_L7,
     MMGParams,
     _forces,
+    mmg_accelerations,
     rudder_inflow_angle,
     wake_fraction,
 )
 from .mmg import OUTPUT_UNITS as _MMG_OUTPUT_UNITS
 from .mmg import OUTPUTS as _MMG_OUTPUTS
+from .rigid_body import horizontal_velocity
 
 __all__ = ["MMG4QParams", "MMG_4Q", "STATES", "INPUTS", "OUTPUTS", "KVLCC2_FULL_4Q",
            "KVLCC2_L7_4Q", "KVLCC2_ENGINE_NOTE", "self_propulsion_rps", "propeller_torque",
@@ -276,28 +278,13 @@ def mmg4q_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     X = X_H + X_P + X_R + d[D.force_x]
     Yf = Y_H + Y_R + Y_P + d[D.force_y]
     N = N_H + N_R + N_P + d[D.moment_z]
-    L = p.length
-    m = p.rho * p.displacement
-    scale = 0.5 * p.rho * L * L * p.draft
-    m_x = p.m_x * scale
-    m_y = p.m_y * scale
-    J_z = p.J_z * scale * L * L
-    k = p.gyration_radius * L
-    I_zG = m * k * k
-    xg = p.x_G
-    dx[S.surge_speed] = (X + (m + m_y) * v * r + xg * m * r * r) / (m + m_x)
-    a11 = m + m_y
-    a12 = xg * m
-    a22 = I_zG + xg * xg * m + J_z
-    b1 = Yf - (m + m_x) * uu * r
-    b2 = N - xg * m * uu * r
-    det = a11 * a22 - a12 * a12
-    dx[S.sway_speed] = (a22 * b1 - a12 * b2) / det
-    dx[S.yaw_rate] = (a11 * b2 - a12 * b1) / det
-    c = math.cos(psi)
-    s = math.sin(psi)
-    dx[S.north] = uu * c - v * s + d[D.current_north]
-    dx[S.east] = uu * s + v * c + d[D.current_east]
+    du, dv, dr = mmg_accelerations(X, Yf, N, uu, v, r, p)
+    dx[S.surge_speed] = du
+    dx[S.sway_speed] = dv
+    dx[S.yaw_rate] = dr
+    north, east = horizontal_velocity(uu, v, psi, d[D.current_north], d[D.current_east])
+    dx[S.north] = north
+    dx[S.east] = east
     dx[S.heading] = r
     clock = x[S.reversal_clock]
     dx[S.propeller_rps] = shaft_acceleration(n, u[U.engine_order], torque, clock, p)
