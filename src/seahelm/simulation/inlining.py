@@ -36,6 +36,12 @@ from numba.core.dispatcher import Dispatcher
 from numba.core.imputils import impl_ret_borrowed
 from numba.extending import intrinsic
 
+from .inline_copy import install as _install_inline_copy
+
+# numba's inliner copies an IR in (blocks x variables): without this, the crash stop's kernel
+# spent most of its compile copying (seahelm.simulation.inline_copy)
+_install_inline_copy()
+
 __all__ = ["inline_always", "inlined_size", "local_record", "python_function", "no_jit",
            "record_in_place", "is_numba_function", "py_func_of"]
 

@@ -86,6 +86,7 @@ from ..constants import GRAVITY
 from ..errors import ParameterError
 from ..parameters import Params, param, signal_indices
 from .base import VesselModel
+from .rigid_body import horizontal_velocity
 
 __all__ = ["ContainerParams", "CONTAINER", "CONTAINER_SHIP", "CONTAINER_SERVO",
            "CONTAINER_MSS_SERVO", "CONTAINER_PROVENANCE", "STATES", "INPUTS", "DISTURBANCES", "OUTPUTS"]
@@ -320,11 +321,11 @@ def container_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
         / (det * L * L)
     dx[S.yaw_rate] = (-m42 * m33 * Yf + m32 * m42 * K + (m22 * m33 - m32 * m32) * N) \
         / (det * L * L)
-    c = math.cos(psi)
-    s = math.sin(psi)
-    vc = v * math.cos(phi)
-    dx[S.north] = uu * c - vc * s + d[D.current_north]
-    dx[S.east] = uu * s + vc * c + d[D.current_east]
+    # the sway velocity projected on the horizontal plane (roll φ)
+    north, east = horizontal_velocity(uu, v * math.cos(phi), psi, d[D.current_north],
+                                      d[D.current_east])
+    dx[S.north] = north
+    dx[S.east] = east
     dx[S.heading] = r * math.cos(phi)
     dx[S.roll_angle] = pr
 

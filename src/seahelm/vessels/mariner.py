@@ -78,6 +78,7 @@ from ..constants import GRAVITY
 from ..errors import ParameterError
 from ..parameters import Params, param, signal_indices
 from .base import VesselModel
+from .rigid_body import cramer_2x2, horizontal_velocity
 
 __all__ = [
     "MarinerParams",
@@ -240,15 +241,15 @@ def mariner_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     m23 = p.mass * p.x_G - p.Y_rdot
     m32 = p.mass * p.x_G - p.N_vdot
     m33 = p.inertia - p.N_rdot
-    det = m22 * m33 - m23 * m32
+    # [[m22, m23], [m32, m33]] [L v̇, L² ṙ] = [fy, mz]
+    d1, d2, det = cramer_2x2(m22, m23, m32, m33, fy, mz)
     dx[S.surge_perturbation] = fx / (m11 * L)
-    dx[S.sway_speed] = (m33 * fy - m23 * mz) / (det * L)
-    dx[S.yaw_rate] = (-m32 * fy + m22 * mz) / (det * L * L)
-    c = math.cos(psi)
-    s = math.sin(psi)
+    dx[S.sway_speed] = d1 / (det * L)
+    dx[S.yaw_rate] = d2 / (det * L * L)
     # velocities through the water; the position moves with the current as well
-    dx[S.north] = surge * c - v * s + d[D.current_north]
-    dx[S.east] = surge * s + v * c + d[D.current_east]
+    north, east = horizontal_velocity(surge, v, psi, d[D.current_north], d[D.current_east])
+    dx[S.north] = north
+    dx[S.east] = east
     dx[S.heading] = r
 
 

@@ -12,7 +12,8 @@ equations")::
     (I_zG + x_G² m + J_z) ṙ + x_G m (v̇_m + u r)        = N = N_H + N_R + N_ext
 
 solved exactly for (u̇, v̇_m, ṙ): the surge equation directly, the 2×2 sway–yaw mass coupling
-by its determinant. Kinematics of the midship point in north-east-down axes, heading ψ
+by its determinant (:func:`~seahelm.vessels.rigid_body.midship_accelerations`, the rigid-body
+code the 3-DOF models share). Kinematics of the midship point in north-east-down axes, heading ψ
 clockwise from north: ẋ_N = u cos ψ − v_m sin ψ, ẏ_E = u sin ψ + v_m cos ψ, ψ̇ = r. The
 heading state and output are the integrated yaw angle (continuous, not wrapped to ±π), so a
 turning circle's 90° and 180° heading changes can be read off directly.
@@ -88,11 +89,13 @@ from ..constants import GRAVITY, KNOT
 from ..errors import ParameterError
 from ..parameters import Params, param, signal_indices
 from .base import VesselModel
+from .rigid_body import horizontal_velocity, midship_accelerations
 
 __all__ = [
     "MMGParams",
     "MMG",
     "MMGForces",
+    "mmg_accelerations",
     "wake_fraction",
     "force_components",
     "KVLCC2_FULL",
@@ -321,6 +324,20 @@ def rudder_inflow_angle(delta, u_R, v_R):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
+def mmg_accelerations(X, Y, N, u, v, r, p):  # pragma: no cover - compiled
+    """(u̇, v̇_m, ṙ) of the motion equations (module docstring) under the forces (X, Y, N)
+    [N, N, N·m]: :func:`~seahelm.vessels.rigid_body.midship_accelerations` with the mass
+    m = ρ∇, the added masses m_x = m'_x ½ρL²d, m_y = m'_y ½ρL²d, J_z = J'_z ½ρL⁴d and
+    I_zG = m (k_zz L)² of the parameters ``p``."""
+    L = p.length
+    m = p.rho * p.displacement
+    scale = 0.5 * p.rho * L * L * p.draft
+    k = p.gyration_radius * L
+    return midship_accelerations(X, Y, N, u, v, r, m, p.m_x * scale, p.m_y * scale, m * k * k,
+                                 p.J_z * scale * L * L, p.x_G)
+
+
+@njit(cache=True)
 def mmg_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     """ẋ of the MMG standard model for one run (module docstring)."""
     uu = x[S.surge_speed]
@@ -332,30 +349,14 @@ def mmg_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     X = X_H + X_P + X_R + d[D.force_x]
     Yf = Y_H + Y_R + d[D.force_y]
     N = N_H + N_R + d[D.moment_z]
-    L = p.length
-    m = p.rho * p.displacement
-    scale = 0.5 * p.rho * L * L * p.draft
-    m_x = p.m_x * scale
-    m_y = p.m_y * scale
-    J_z = p.J_z * scale * L * L
-    k = p.gyration_radius * L
-    I_zG = m * k * k
-    xg = p.x_G
-    dx[S.surge_speed] = (X + (m + m_y) * v * r + xg * m * r * r) / (m + m_x)
-    # [[m + m_y, x_G m], [x_G m, I_zG + x_G² m + J_z]] [v̇, ṙ] = [b1, b2]
-    a11 = m + m_y
-    a12 = xg * m
-    a22 = I_zG + xg * xg * m + J_z
-    b1 = Yf - (m + m_x) * uu * r
-    b2 = N - xg * m * uu * r
-    det = a11 * a22 - a12 * a12
-    dx[S.sway_speed] = (a22 * b1 - a12 * b2) / det
-    dx[S.yaw_rate] = (a11 * b2 - a12 * b1) / det
-    c = math.cos(psi)
-    s = math.sin(psi)
+    du, dv, dr = mmg_accelerations(X, Yf, N, uu, v, r, p)
+    dx[S.surge_speed] = du
+    dx[S.sway_speed] = dv
+    dx[S.yaw_rate] = dr
     # velocities through the water; the position moves with the current as well
-    dx[S.north] = uu * c - v * s + d[D.current_north]
-    dx[S.east] = uu * s + v * c + d[D.current_east]
+    north, east = horizontal_velocity(uu, v, psi, d[D.current_north], d[D.current_east])
+    dx[S.north] = north
+    dx[S.east] = east
     dx[S.heading] = r
 
 

@@ -99,11 +99,13 @@ from .mmg import (
     KVLCC2_L7,
     MMGParams,
     _forces,
+    mmg_accelerations,
     rudder_inflow_angle,
     wake_fraction,
 )
 from .mmg import OUTPUT_UNITS as _MMG_OUTPUT_UNITS
 from .mmg import OUTPUTS as _MMG_OUTPUTS
+from .rigid_body import horizontal_velocity
 
 __all__ = ["MMG4QParams", "MMG_4Q", "STATES", "INPUTS", "OUTPUTS", "KVLCC2_FULL_4Q",
            "KVLCC2_L7_4Q", "KVLCC2_ENGINE_NOTE", "self_propulsion_rps", "propeller_torque",
@@ -194,40 +196,46 @@ def _forces4q(u, v, r, delta, n, p):  # pragma: no cover - compiled
     if ahead or flip or w < 1.0:
         hull = _forces(-u if flip else u, v, -r if flip else r, delta if ahead else 0.0,
                        n if ahead else 0.0, p)
-    if ahead:
-        (X_H, Y_H, N_H, X_P, X_R, Y_R, N_R, thrust, F_N, w_P, u_R, v_R, speed, beta) = hull
-        _T, torque, b_adv = _propeller_4q(u * (1.0 - w_P), n, p)
-        return (X_H, Y_H, N_H, X_P, 0.0, 0.0, X_R, Y_R, N_R, thrust, torque, F_N, u_R, v_R,
-                speed, beta, b_adv)
     rho = p.rho
-    speed = math.sqrt(u * u + v * v)
-    u_nd = max(speed, p.min_froude_number * math.sqrt(GRAVITY * L))
-    rn = r * L / u_nd
-    beta = math.atan2(-v, u)
-    if flip:  # the mirrored hull, with the astern resistance
-        q = 0.5 * rho * L * p.draft * speed * speed
-        X_H = -hull[0] + (p.R_0_astern - p.R_0) * q
-        Y_H = hull[1]
-        N_H = -hull[2]
-        w_P = 0.0
-    else:  # the MMG hull (w < 1) blended into the cross-flow model (w > 0); mirror: w = 0
-        X_H = 0.0
-        Y_H = 0.0
-        N_H = 0.0
-        if w < 1.0:  # (one code block for both hull models: the same rounding in both)
-            X_H, Y_H, N_H = hull[0], hull[1], hull[2]
-        if w > 0.0:
-            X_L, Y_L, N_L = low_speed_hull(u, v, r, L, p.draft, rho, -p.R_0, -p.R_0_astern,
-                                           p.X_vr, p.Y_v, p.Y_r, p.N_v, p.N_r,
-                                           p.cross_flow_drag, p.C_rY, p.C_rN)
-            X_H = w * X_L + (1.0 - w) * X_H
-            Y_H = w * Y_L + (1.0 - w) * Y_H
-            N_H = w * N_L + (1.0 - w) * N_H
-        w_P = 0.0
-        if u >= 0.0:
-            w_P = wake_fraction(beta - p.x_P * rn, p.w_P0, p.C_1, p.C_2_plus, p.C_2_minus)
+    speed = 0.0
+    rn = 0.0
+    beta = 0.0
+    X_H = 0.0
+    Y_H = 0.0
+    N_H = 0.0
+    w_P = 0.0
+    if ahead:
+        w_P = hull[9]
+    else:
+        speed = math.sqrt(u * u + v * v)
+        u_nd = max(speed, p.min_froude_number * math.sqrt(GRAVITY * L))
+        rn = r * L / u_nd
+        beta = math.atan2(-v, u)
+        if flip:  # the mirrored hull, with the astern resistance
+            q = 0.5 * rho * L * p.draft * speed * speed
+            X_H = -hull[0] + (p.R_0_astern - p.R_0) * q
+            Y_H = hull[1]
+            N_H = -hull[2]
+        else:  # the MMG hull (w < 1) blended into the cross-flow model (w > 0); mirror: w = 0
+            if w < 1.0:  # (one code block for both hull models: the same rounding in both)
+                X_H, Y_H, N_H = hull[0], hull[1], hull[2]
+            if w > 0.0:
+                X_L, Y_L, N_L = low_speed_hull(u, v, r, L, p.draft, rho, -p.R_0,
+                                               -p.R_0_astern, p.X_vr, p.Y_v, p.Y_r, p.N_v,
+                                               p.N_r, p.cross_flow_drag, p.C_rY, p.C_rN)
+                X_H = w * X_L + (1.0 - w) * X_H
+                Y_H = w * Y_L + (1.0 - w) * Y_H
+                N_H = w * N_L + (1.0 - w) * N_H
+            if u >= 0.0:
+                w_P = wake_fraction(beta - p.x_P * rn, p.w_P0, p.C_1, p.C_2_plus, p.C_2_minus)
+    # One call of the four-quadrant propeller for both branches (each call site is a copy of
+    # its Fourier series in the compiled kernel)
     u_P = u * (1.0 - w_P)
     thrust, torque, b_adv = _propeller_4q(u_P, n, p)
+    if ahead:
+        (X_H, Y_H, N_H, X_P, X_R, Y_R, N_R, thrust, F_N, w_P, u_R, v_R, speed, beta) = hull
+        return (X_H, Y_H, N_H, X_P, 0.0, 0.0, X_R, Y_R, N_R, thrust, torque, F_N, u_R, v_R,
+                speed, beta, b_adv)
     X_P = (1.0 - p.t_P) * thrust if n >= 0.0 else thrust
     Y_P = 0.0
     N_P = 0.0
@@ -270,28 +278,13 @@ def mmg4q_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     X = X_H + X_P + X_R + d[D.force_x]
     Yf = Y_H + Y_R + Y_P + d[D.force_y]
     N = N_H + N_R + N_P + d[D.moment_z]
-    L = p.length
-    m = p.rho * p.displacement
-    scale = 0.5 * p.rho * L * L * p.draft
-    m_x = p.m_x * scale
-    m_y = p.m_y * scale
-    J_z = p.J_z * scale * L * L
-    k = p.gyration_radius * L
-    I_zG = m * k * k
-    xg = p.x_G
-    dx[S.surge_speed] = (X + (m + m_y) * v * r + xg * m * r * r) / (m + m_x)
-    a11 = m + m_y
-    a12 = xg * m
-    a22 = I_zG + xg * xg * m + J_z
-    b1 = Yf - (m + m_x) * uu * r
-    b2 = N - xg * m * uu * r
-    det = a11 * a22 - a12 * a12
-    dx[S.sway_speed] = (a22 * b1 - a12 * b2) / det
-    dx[S.yaw_rate] = (a11 * b2 - a12 * b1) / det
-    c = math.cos(psi)
-    s = math.sin(psi)
-    dx[S.north] = uu * c - v * s + d[D.current_north]
-    dx[S.east] = uu * s + v * c + d[D.current_east]
+    du, dv, dr = mmg_accelerations(X, Yf, N, uu, v, r, p)
+    dx[S.surge_speed] = du
+    dx[S.sway_speed] = dv
+    dx[S.yaw_rate] = dr
+    north, east = horizontal_velocity(uu, v, psi, d[D.current_north], d[D.current_east])
+    dx[S.north] = north
+    dx[S.east] = east
     dx[S.heading] = r
     clock = x[S.reversal_clock]
     dx[S.propeller_rps] = shaft_acceleration(n, u[U.engine_order], torque, clock, p)

@@ -54,6 +54,7 @@ from numba import njit
 from ..errors import ParameterError
 from ..parameters import Params, param, signal_indices
 from .base import NAV_OUTPUT_UNITS, NAV_OUTPUTS, VesselModel
+from .rigid_body import horizontal_velocity
 
 __all__ = ["Nomoto1Params", "Nomoto2Params", "NOMOTO1", "NOMOTO2"]
 
@@ -167,10 +168,9 @@ def nomoto1_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     v = d[_D.sway_velocity] if d.shape[0] > _D.sway_velocity else 0.0
     cn = d[_D.current_north] if d.shape[0] > _D.current_north else 0.0
     ce = d[_D.current_east] if d.shape[0] > _D.current_east else 0.0
-    c = math.cos(psi)
-    s = math.sin(psi)
-    dx[_X1.north] = speed * c - v * s + cn
-    dx[_X1.east] = speed * s + v * c + ce
+    north, east = horizontal_velocity(speed, v, psi, cn, ce)
+    dx[_X1.north] = north
+    dx[_X1.east] = east
     dx[_X1.heading] = r
     dx[_X1.yaw_rate] = (gain * (u[_U.rudder_angle] + delta_d) - (r + n3 * r * r * r)) / tc
 
@@ -197,12 +197,11 @@ def nomoto2_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     v = d[_D.sway_velocity] if d.shape[0] > _D.sway_velocity else 0.0
     cn = d[_D.current_north] if d.shape[0] > _D.current_north else 0.0
     ce = d[_D.current_east] if d.shape[0] > _D.current_east else 0.0
-    c = math.cos(psi)
-    s = math.sin(psi)
     t12 = t1 * t2
     rdot = xi + gain * t3 / t12 * delta
-    dx[_X2.north] = speed * c - v * s + cn
-    dx[_X2.east] = speed * s + v * c + ce
+    north, east = horizontal_velocity(speed, v, psi, cn, ce)
+    dx[_X2.north] = north
+    dx[_X2.east] = east
     dx[_X2.heading] = r
     dx[_X2.yaw_rate] = rdot
     dx[_X2.yaw_aux] = (gain * (delta + delta_d) - (t1 + t2) * rdot - (r + n3 * r * r * r)) / t12
