@@ -62,6 +62,7 @@ from ..hydrodynamics.low_speed_propulsion import (
 )
 from ..parameters import Params, param, signal_indices
 from .base import VesselModel
+from .rigid_body import horizontal_velocity, midship_accelerations
 from .mmg import DISTURBANCE_UNITS, DISTURBANCES, OUTPUT_UNITS, OUTPUTS, STATE_UNITS, STATES
 
 __all__ = ["MMGLowSpeedParams", "MMG_LS", "HULL_MODELS", "LowSpeedForces", "force_components",
@@ -275,22 +276,16 @@ def mmg_ls_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     L = p.length
     scale = 0.5 * p.rho * L * L * p.draft
     m = p.mass * scale
-    m_x = p.m_x * scale
-    m_y = p.m_y * scale
-    xg = p.x_G
-    dx[S.surge_speed] = (X + (m + m_y) * v * r + xg * m * r * r) / (m + m_x)
-    a11 = m + m_y
-    a12 = xg * m
-    a22 = p.I_zz_J_zz * scale * L * L + xg * xg * m
-    b1 = Yf - (m + m_x) * uu * r
-    b2 = N - xg * m * uu * r
-    det = a11 * a22 - a12 * a12
-    dx[S.sway_speed] = (a22 * b1 - a12 * b2) / det
-    dx[S.yaw_rate] = (a11 * b2 - a12 * b1) / det
-    c = math.cos(psi)
-    s = math.sin(psi)
-    dx[S.north] = uu * c - v * s + d[D.current_north]
-    dx[S.east] = uu * s + v * c + d[D.current_east]
+    # the midship equations of motion with I_zG + J_z given as one coefficient (I_zz_J_zz)
+    du, dv, dr = midship_accelerations(X, Yf, N, uu, v, r, m, p.m_x * scale, p.m_y * scale,
+                                       0.0, p.I_zz_J_zz * scale * L * L, p.x_G)
+    dx[S.surge_speed] = du
+    dx[S.sway_speed] = dv
+    dx[S.yaw_rate] = dr
+    # velocities through the water; the position moves with the current as well
+    north, east = horizontal_velocity(uu, v, psi, d[D.current_north], d[D.current_east])
+    dx[S.north] = north
+    dx[S.east] = east
     dx[S.heading] = r
 
 
