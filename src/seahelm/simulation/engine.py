@@ -232,15 +232,11 @@ def simulate(
     """
     from .problem import Problem
 
-    given = {"params": params, "x0": x0, "t_final": t_final, "dt": dt, "ship": ship,
-             "controller": controller, "controller_params": controller_params,
-             "actuator": actuator, "actuator_params": actuator_params,
-             "actuator_x0": actuator_x0, "reference": reference, "disturbance": disturbance,
-             "controller_dt": controller_dt, "integrator": integrator,
-             "record_every": record_every, "bounds": bounds, "seed": seed,
-             "metadata": metadata, "environment": environment,
-             "environment_params": environment_params, "exact_actuator": exact_actuator,
-             "jit": jit, "first_order": first_order}
+    # the keyword form's arguments are Problem's fields, by name (no copy of the list: a
+    # field added to Problem and to this signature is passed on; a test checks the two agree)
+    arguments = locals()
+    given = {f.name: arguments[f.name] for f in dataclasses.fields(Problem)
+             if f.name in arguments and f.name != "model"}
     given = {k: v for k, v in given.items() if v is not None}
     if model is not None and not isinstance(model, (Problem, VesselModel)):
         raise ParameterError(
