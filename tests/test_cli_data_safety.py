@@ -201,13 +201,13 @@ def test_a_sweep_is_bounded_by_its_chunk_not_by_the_study(tmp_path, monkeypatch)
     # 80 runs of 1,201 records: 14.6 MB of series, a 36 MB peak in memory at once; with 20 MB
     # to use, `run` refuses the study, `sweep` streams it in chunks that fit
     import seahelm.resources as resources
-    import seahelm.simulation.engine as engine
+    import seahelm.simulation.memory as memory
     from seahelm.resources import MemoryLimit
 
     limit = MemoryLimit(20_000_000, "the cgroup's memory limit")
-    monkeypatch.setattr(engine, "memory_limit", lambda: limit)
+    monkeypatch.setattr(memory, "memory_limit", lambda: limit)
     monkeypatch.setattr(resources, "memory_limit", lambda: limit)
-    monkeypatch.setattr(engine, "ASK_ABOVE", 0)
+    monkeypatch.setattr(memory, "ASK_ABOVE", 0)
     scenario = _sweep_scenario(tmp_path)
     _refused(["run", str(scenario)], keep=[scenario], match="more than 80% of the 0.02 GB")
     _refused(["sweep", str(scenario), "--store", str(tmp_path / "a.zarr"), "--chunk-size", "80"],

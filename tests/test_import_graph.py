@@ -316,7 +316,6 @@ KNOWN_LONG = frozenset({
     "seahelm.analysis.equilibrium",
     "seahelm.environment.loads",
     "seahelm.scenario.runs",
-    "seahelm.simulation.engine",
     "seahelm.vessels.catamaran",
 })
 _REASON = re.compile(r"longer than 600 lines because", re.IGNORECASE)

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import seahelm.simulation.engine as engine
+import seahelm.simulation.memory as memory
 from seahelm.errors import ParameterError
 from seahelm.scenario import ScenarioError, parse_scenario
 from seahelm.ships import catalog
@@ -38,8 +39,8 @@ def test_more_runs_than_a_batch_holds():
 def _limit(monkeypatch, nbytes, source="this machine's memory"):
     from seahelm.resources import MemoryLimit
 
-    monkeypatch.setattr(engine, "memory_limit", lambda: MemoryLimit(nbytes, source))
-    monkeypatch.setattr(engine, "ASK_ABOVE", 0)
+    monkeypatch.setattr(memory, "memory_limit", lambda: MemoryLimit(nbytes, source))
+    monkeypatch.setattr(memory, "ASK_ABOVE", 0)
 
 
 def test_recordings_beyond_memory_are_refused_before_expansion(monkeypatch):

@@ -288,7 +288,7 @@ def test_engine_takes_a_tableau_and_keys_its_kernel_on_the_coefficients():
 @pytest.fixture
 def stage_loop_everywhere(monkeypatch):
     """Every kernel built in the test loops over its stages (threshold below any model)."""
-    from seahelm.simulation import engine
+    from seahelm.simulation import closed_loop as engine  # (where the threshold is read)
 
     monkeypatch.setattr(engine, "STAGE_LOOP_ABOVE", -1)
     engine.compile_closed_loop.cache_clear()

@@ -7,7 +7,8 @@ import sys
 import seahelm
 
 USER_OBJECTS = ["Ship", "get_ship", "read_ship", "Design", "estimate_ship", "Problem",
-                "simulate", "turning_circle", "zigzag", "spirals", "pull_out", "crash_stop",
+                "simulate", "Simulator", "turning_circle", "zigzag", "spirals", "pull_out",
+                "crash_stop",
                 "imo_check", "linearize", "read_records", "fit_nomoto", "regress_hull",
                 "refine_mmg"]
 

@@ -32,6 +32,7 @@ _USER_API = {
     "estimate_ship": "seahelm.ships.estimate",
     "Problem": "seahelm.simulation.problem",
     "simulate": "seahelm.simulation.engine",
+    "Simulator": "seahelm.simulation.stepping",
     "turning_circle": "seahelm.analysis.maneuvers",
     "zigzag": "seahelm.analysis.maneuvers",
     "spirals": "seahelm.analysis.maneuvers",

@@ -33,45 +33,51 @@ components' Python functions bound in (:data:`PYTHON_HEADER`): a breakpoint in a
 
 from __future__ import annotations
 
-import contextlib
+import dataclasses
 import enum
-import functools
-import hashlib
-import math
-import re
-import sys
 import time as _time
 from collections.abc import Callable, Mapping, Sequence
-from concurrent.futures import ThreadPoolExecutor
-from pathlib import Path
-from types import FunctionType, ModuleType
+from types import ModuleType
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .. import __version__
 from .._validate import as_float_array
 from ..actuators.base import Actuator
 from ..control.base import Controller
-from ..errors import ParameterError, SimulationDiverged
-from ..parameters import Params, as_records, stack_params
-from ..resources import check_work, memory_limit
-from ..vessels.base import VesselModel
-from .compiled_step import compiled_advance_source, compiled_stage_loop_source
-from .composition import compose
 from ..environment.first_order_in_loop import HEADING_TOTAL
-from ..environment.first_order_kernel import first_order_sample
-from .wave_motion_stage import wave_constants
-from .environment_stage import (
-    environment_stage,
-    no_apply_loads,
-    no_environment_loads,
-    python_environment_stage,
+from ..errors import ParameterError, SimulationDiverged
+from ..parameters import Params, as_records
+from ..resources import check_work
+from ..vessels.base import VesselModel
+from .closed_loop import (  # noqa: F401 (the engine's names, as before the split)
+    PYTHON_HEADER,
+    STAGE_LOOP_ABOVE,
+    _stage_code_size,
+    compile_closed_loop,
 )
-from .generated import code_fingerprint, exec_generated, import_generated, kernel_cache_dir
-from .inlining import inlined_size
-from .problem import Problem, _numba_jit_disabled, jit_enabled
-from .integrators import ButcherTableau, get_integrator
+from .environment_stage import environment_stage, python_environment_stage
+from .generated import code_fingerprint, import_generated, kernel_cache_dir
+from .inputs import (  # noqa: F401
+    MAX_ANGLE,
+    _check_angles,
+    _param_rows,
+    _runs,
+    _signal,
+    _TimeGrid,
+)
+from .integrators import ButcherTableau
+from .kernel_args import KernelArrays
+from .memory import (  # noqa: F401
+    ASK_ABOVE,
+    RECORD_MEMORY_SHARE,
+    RECORD_PEAK_FACTOR,
+    RecordingTooLarge,
+    check_record_memory,
+    physical_memory,
+)
+from .problem import Problem, jit_enabled
+from .slicing import FIRST_SLICE, FIRST_SLICE_PYTHON, SLICE_SECONDS, _Slices, drive, quiet  # noqa: F401
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..results import SimResult
@@ -91,498 +97,6 @@ class RunStatus(enum.IntEnum):
     NOT_RUN = 3
     """Left out of the batch: its initial state could not be found (a manoeuvre whose steady
     approach failed; the engine itself never sets it)."""
-
-
-# ------------------------------------------------------------------------------------------
-# kernel generation
-# ------------------------------------------------------------------------------------------
-def _binding(func: Any, alias: str, inline: bool = True, jit: bool = True) -> tuple[str, bytes]:
-    py = getattr(func, "py_func", None)
-    if py is None and not jit and isinstance(func, FunctionType):
-        py = func  # the pure-Python loop (numba's JIT disabled: njit returned the function)
-    if py is None:
-        raise TypeError(f"{alias} must be a numba @njit function, got {func!r}")
-    module, name = py.__module__, py.__name__
-    mod = sys.modules.get(module)
-    if mod is None or getattr(mod, name, None) is not func:
-        raise TypeError(
-            f"{alias} '{module}.{name}' must be importable as a module-level name"
-        )
-    if not inline and jit:  # called, not inlined (compiled once, with _nrt=False, by its module)
-        return f"from {module} import {name} as {alias}\n", code_fingerprint(py)
-    # re-jit the component, and every numba function it calls, with inline="always": numba
-    # then inlines them at IR level into the loop, which lets LLVM optimise across the
-    # component boundaries (a helper left as a call cost the catamaran loop 25 %)
-    line = (f"from {module} import {name} as _{alias}\n"
-            f"{alias} = inline_always(_{alias})\n")
-    return line, code_fingerprint(py)
-
-
-_TEMPLATE_TEXT = (Path(__file__).with_name("kernel_template.py")).read_text()
-
-#: The first lines of the header of a pure-Python loop (``compile_closed_loop(jit=False)``):
-#: after the template's imports, they rebind ``njit``, ``inline_always`` and ``local_record``
-#: to their plain-Python stand-ins, so the rest of the module is the compiled loop's text.
-PYTHON_HEADER = (
-    "# the pure-Python loop (simulate(jit=False)): njit leaves the functions below as they\n"
-    "# are, the components are their Python functions, a parameter record is read in place\n"
-    "from seahelm.simulation.inlining import no_jit as njit\n"
-    "from seahelm.simulation.inlining import python_function as inline_always\n"
-    "from seahelm.simulation.inlining import record_in_place as local_record\n\n"
-)
-
-_BLOCK = re.compile(r"# <(header|footer)>\n.*?# </\1>\n", re.S)
-
-#: Step code size (bytecode instructions of the model's and the actuator's right-hand sides and
-#: what they call, times the number of stages, plus the environment's loads) above which the
-#: integrator's stages are looped over rather than written out. Written out, each stage inlines
-#: its own copy of the right-hand side: light models run faster that way, heavy ones compile
-#: much longer for no speed. Measured with empty caches (2 cores, RK4), written out → looped:
-#: KVLCC2 MMG (4 × 837) compile 9.4 → 4.6 s, 1,000 turning circles 0.86 → 0.87 s;
-#: nonlinear Mariner (4 × 596) 5.8 → 3.3 s, 0.50 → 0.40 s; Nomoto-2 + PID (4 × 253)
-#: 5.9 → 3.7 s but 1.67e7 → 1.44e7 vessel-steps/s; catamaran (4 × 368) 5.7 → 3.7 s but
-#: 97 % → 70 % of the hand-fused kernel (2026-11-26); Voitkunsky + compensated PID + Lvov's
-#: loads (4 × 421 + 450) 7.8–8.6 → 5.1–5.5 s at the same speed (a single run 5.7 ms). A third
-#: form, the stage inputs written out but one right-hand side in a loop (a switch on the
-#: stage), compiled like the loop (catamaran 5.4 s, Voitkunsky 5.8 s) but ran Nomoto-2 16–30 %
-#: and the catamaran 4–10 % slower than written out; it is not used. Bytecode counts differ a
-#: little between Python versions (4-9 % from 3.11 to 3.13), so the threshold sits between
-#: the nearest combinations with room both ways: written out, the catamaran (1,552 on 3.11, at
-#: most ~1,690 elsewhere) and the CPP ship in waves (1,664, ~1,810); looped, the Voitkunsky
-#: model with Lvov's loads (2,134, at least ~1,940).
-#: The choice is made when a combination is first compiled in a process: to change it, set
-#: this and call ``compile_closed_loop.cache_clear()``, or pass ``stage_loop=`` to
-#: :func:`compile_closed_loop`.
-STAGE_LOOP_ABOVE = 1850
-
-def _stage_code_size(model: VesselModel, actuator: Actuator, tableau: ButcherTableau,
-                     environment: Any, exact_actuator: bool = False, jit: bool = True) -> int:
-    """The code a written-out step makes numba compile (see :data:`STAGE_LOOP_ABOVE`): what
-    each stage inlines, times the stages, plus the environment's loads (compiled once, as a
-    function of their own, but in the same compile the user waits for)."""
-    per_stage = (inlined_size(model.rhs) + inlined_size(actuator.output)
-                 + inlined_size(actuator.advance if exact_actuator else actuator.rhs))
-    once = 0
-    if environment is not None:
-        loads, apply = (environment_stage if jit else python_environment_stage)(environment,
-                                                                                  model)
-        per_stage += inlined_size(apply)
-        once = inlined_size(loads)
-    return tableau.stages * per_stage + once
-
-
-def _route_source(name: str, args: str, assignments: list[str]) -> str:
-    body = "".join(f"    {line}\n" for line in assignments) or "    pass\n"
-    return (f"\n\n@njit(inline=\"always\")\ndef {name}({args}):  # pragma: no cover\n"
-            + body)
-
-
-@functools.lru_cache(maxsize=None)
-def compile_closed_loop(
-    model: VesselModel,
-    actuator: Actuator,
-    controller: Controller,
-    integrator: str | ButcherTableau = "rk4",
-    environment: Any = None,
-    stage_loop: bool | None = None,
-    exact_actuator: bool | None = None,
-    jit: bool = True,
-    first_order: tuple[tuple[str, ...], bool] | None = None,
-) -> ModuleType:
-    """The compiled closed-loop module for one combination of components (cached).
-
-    Parameters
-    ----------
-    model, actuator, controller
-        The components; they are wired by signal name
-        (:func:`~seahelm.simulation.composition.compose`).
-    integrator : str or ButcherTableau
-        A name in :data:`~seahelm.simulation.integrators.INTEGRATORS` (default "rk4") or a
-        tableau; its step is generated into the module, so the module's name (a hash of its
-        text) differs between tableaus.
-    environment : Environment, optional
-        Wind and wave loads (:mod:`seahelm.environment.loads`), evaluated at every stage
-        from the live state (:mod:`seahelm.simulation.environment_stage`).
-    stage_loop : bool, optional
-        Write the integrator's step as a loop over its stages
-        (:func:`~seahelm.simulation.compiled_step.compiled_stage_loop_source`: the stage
-        right-hand side inlined once) instead of the stages written out
-        (:func:`~seahelm.simulation.compiled_step.compiled_advance_source`: inlined once per
-        stage). Default: a loop when the code inlined per stage is larger than
-        :data:`STAGE_LOOP_ABOVE` (see there).
-    exact_actuator : bool, optional
-        Take the actuator states at every stage from its closed-form step
-        (``actuator.advance``: exact under the held command, and no stability bound on the
-        step from a fast servo) instead of integrating ``actuator.rhs`` with the tableau.
-        Default: whenever the actuator has one.
-    jit : bool
-        ``False``: the same generated module as plain Python (:data:`PYTHON_HEADER`), run in
-        memory: ``njit`` leaves its functions as they are and the components are bound as their
-        Python functions (:func:`~seahelm.simulation.inlining.python_function`), so nothing is
-        compiled, nothing is written to the kernel cache or numba's, and a breakpoint in a
-        component's source is hit. The stages are written out or looped over as compiled.
-    first_order : (tuple of str, bool), optional
-        First-order wave motions in the loop (:mod:`seahelm.environment.first_order_in_loop`):
-        the degrees of freedom evaluated, and whether the controller's ``heading``
-        measurement is ``heading_total`` (ψ + ψ₁) instead of the model's ``heading``.
-
-    Returns
-    -------
-    module
-        The imported kernel module (``init_runs``, ``run_slice``, ``scratch``).
-
-    Raises
-    ------
-    ValueError
-        If ``exact_actuator`` asks for a closed-form step the actuator lacks, or ``jit`` is
-        True while numba's JIT is disabled (``NUMBA_DISABLE_JIT=1``).
-    """
-    if jit and _numba_jit_disabled():
-        raise ValueError("jit: numba's JIT is disabled (NUMBA_DISABLE_JIT=1); pass jit=False")
-    tableau = get_integrator(integrator)
-    wiring = compose(model, actuator, controller)
-    if exact_actuator is None:
-        exact_actuator = actuator.advance is not None
-    elif exact_actuator and actuator.advance is None:
-        raise ValueError(f"exact_actuator: the actuator {actuator.name!r} has no closed-form "
-                         "step (advance)")
-    parts = [
-        _binding(model.rhs, "model_rhs", jit=jit),
-        _binding(model.output, "model_output", jit=jit),
-        _binding(actuator.rhs, "actuator_rhs", jit=jit),
-        _binding(actuator.output, "actuator_output", jit=jit),
-        _binding(controller.init, "controller_init", jit=jit),
-        _binding(controller.step, "controller_step", jit=jit),
-    ]
-    if exact_actuator:
-        parts.append(_binding(actuator.advance, "actuator_advance", jit=jit))
-    loads, apply = ((no_environment_loads, no_apply_loads) if environment is None
-                    else (environment_stage if jit else python_environment_stage)(environment,
-                                                                                  model))
-    # the environment's loads are called, not inlined: inlined at every stage and record site
-    # they doubled the loop's compile time (76 s against 31 s for the KVLCC2), and a call
-    # costs little beside their transcendental functions
-    parts += [_binding(loads, "environment_loads", inline=environment is None, jit=jit),
-              _binding(apply, "apply_loads", jit=jit),
-              _binding(first_order_sample, "first_order_sample", jit=jit)]
-    n_env = 0 if environment is None else len(environment.output_labels)
-    waves = wave_constants(model, controller, wiring.measurement_from, n_env, first_order)
-    header = ("" if jit else PYTHON_HEADER) + "".join(p[0] for p in parts) + (
-        f"\nNX = {model.n_states}\nNA = {actuator.n_states}\nNU = {model.n_inputs}\n"
-        f"NYM = {model.n_outputs + n_env + waves['NW_OUT']}\n"
-        f"NYA = {len(wiring.actuator_outputs)}\n"
-        f"NCA = {len(wiring.actuator_commands)}\nNM = {controller.n_measurements}\n"
-        f"NDM = {model.n_disturbances}\nHAS_ENV = {environment is not None}\n"
-        f"HOLD_LOADS = {bool(getattr(environment, 'hold_over_step', False))}\n"
-        f"EXACT_ACTUATOR = {bool(exact_actuator)}\n"
-        + "".join(f"{k} = {v}\n" for k, v in waves.items() if k != "measurement_from") +
-        "FASTMATH = {\"arcp\", \"contract\", \"afn\", \"reassoc\"}\n"
-    )
-    header += _route_source("route_actuator_commands", "cmd, ca", [
-        f"ca[{j}] = cmd[{k}]" for j, k in enumerate(wiring.actuator_command_from)])
-    header += _route_source("route_inputs", "ya, cmd, u", [
-        f"u[{i}] = {'ya' if kind == 'actuator' else 'cmd'}[{j}]"
-        for i, (kind, j) in enumerate(wiring.input_from)])
-    header += _route_source("route_measurements", "ym, y", [
-        f"y[{i}] = ym[{j}]" for i, j in enumerate(waves["measurement_from"])])
-    if stage_loop is None:
-        stage_loop = _stage_code_size(model, actuator, tableau, environment,
-                                      exact_actuator, jit) > STAGE_LOOP_ABOVE
-    footer = (compiled_stage_loop_source if stage_loop else compiled_advance_source)(
-        tableau, exact_actuator)
-    blocks = iter([header, footer])
-    text = _BLOCK.sub(lambda m: next(blocks), _TEMPLATE_TEXT)
-    digest = hashlib.sha1(
-        b"\0".join([text.encode(), __version__.encode(), *(p[1] for p in parts)])
-    ).hexdigest()[:16]
-    if not jit:
-        return exec_generated(f"seahelm_python_loop_{digest}", text)
-    return import_generated(f"seahelm_kernel_{digest}", text)
-
-
-class _Slices:
-    """The batch cut into slices of runs, run by the kernel's ``run_slice`` on a thread pool.
-
-    The compiled loop releases the GIL, so threads run slices in parallel; there are up to four
-    slices per thread (a slice of runs that stop early does not leave a thread idle) and never
-    more threads than runs (a single run stays in the calling thread). ``numba.set_num_threads``
-    and ``NUMBA_NUM_THREADS`` set the number of threads, as for any numba parallel code.
-
-    Every slice has its own scratch buffers (the kernel allocates nothing). ``threads`` caps
-    the threads (the pure-Python loop runs in the calling thread: ``threads=1``).
-    """
-
-    def __init__(self, kernel: ModuleType, arrays: Sequence[np.ndarray],
-                 scratch_sizes: tuple[int, ...], threads: int | None = None,
-                 wave_sizes: tuple[int, int] = (1, 1)) -> None:
-        import numba
-
-        self.kernel = kernel
-        n_runs = arrays[0].shape[0]
-        # numba types a read-only array apart from a writable one: a kernel called with both
-        # (a broadcast view of one run, say) would compile twice, each 15-80 s
-        self.arrays = tuple(a if a.flags.writeable else a.copy() for a in arrays)
-        self.threads = max(1, min(numba.get_num_threads() if threads is None else threads,
-                                  n_runs))
-        n_slices = 1 if self.threads == 1 else min(n_runs, 4 * self.threads)
-        self.cuts = (np.array([0, n_runs]) if n_slices == 1 else
-                     np.linspace(0, n_runs, n_slices + 1).round().astype(np.int64))
-        self.scratch = [kernel.scratch(*scratch_sizes) for _ in range(n_slices)]
-        self.wave_scratch = [kernel.wave_scratch(*wave_sizes) for _ in range(n_slices)]
-
-    def warm_up(self, n_steps: int, dt: float, ctrl_every: int, rec_every: int) -> None:
-        """Compile or load the kernel for these argument types: a zero-step call (once
-        compiled, a call costs about 4 µs of argument checks; asking whether these types were
-        seen before, from the arrays' flags, cost five times that)."""
-        self.run(0, 0, n_steps, dt, ctrl_every, rec_every)
-
-    def run(self, k_start: int, k_stop: int, n_steps: int, dt: float, ctrl_every: int,
-            rec_every: int) -> None:
-        def one(s: int) -> None:
-            self.kernel.run_slice(int(self.cuts[s]), int(self.cuts[s + 1]), k_start, k_stop,
-                                  n_steps, dt, ctrl_every, rec_every, *self.arrays,
-                                  *self.scratch[s], *self.wave_scratch[s])
-
-        n_slices = len(self.cuts) - 1
-        if self.threads == 1 or k_stop == k_start:
-            for s in range(n_slices):
-                one(s)
-            return
-        with ThreadPoolExecutor(self.threads, thread_name_prefix="seahelm") as pool:
-            # list() re-raises an exception of any slice here
-            list(pool.map(one, range(n_slices)))
-
-
-# ------------------------------------------------------------------------------------------
-# input conversion
-# ------------------------------------------------------------------------------------------
-@functools.lru_cache(maxsize=None)
-def _default_params(cls: type[Params]) -> Params:
-    """The default parameter set of a class (frozen, so one instance serves every run)."""
-    return cls()
-
-
-def _param_rows(name: str, params: Any, cls: type[Params]) -> tuple[np.ndarray, type[Params]]:
-    """Parameter rows (runs, n_fields) and the class they were given as (a subclass of
-    ``cls`` carries more fields; compiled code finds its fields by name)."""
-    if params is None:
-        try:
-            params = _default_params(cls)
-        except TypeError:
-            raise ParameterError(f"is required for {cls.__name__}", field=name) from None
-    if isinstance(params, Params) or (
-        isinstance(params, Sequence) and len(params) > 0 and isinstance(params[0], Params)
-    ):
-        first = params if isinstance(params, Params) else params[0]
-        return stack_params(params, cls), type(first)
-    # a copy: the kernel and the result's ``params`` get rows of their own, never the caller's
-    arr = np.array(np.atleast_2d(as_float_array(name, params)), dtype=float, order="C")
-    if arr.ndim != 2 or arr.shape[1] != cls.n_values():
-        raise ParameterError(
-            f"as an array must have shape (runs, {cls.n_values()}) "
-            f"({', '.join(cls.value_names())}), got {arr.shape}", field=name)
-    for row in arr:  # validate every row through the dataclass
-        cls.from_array(row)
-    return arr, cls
-
-
-class _TimeGrid:
-    """The grid t_k = k dt, k = 0 … n_steps, built only if a signal is a function of time."""
-
-    def __init__(self, n_steps: int, dt: float) -> None:
-        self.size = n_steps + 1
-        self.dt = dt
-        self._array: np.ndarray | None = None
-
-    def array(self) -> np.ndarray:
-        if self._array is None:
-            self._array = np.arange(self.size) * self.dt
-        return self._array
-
-
-def _by_name(name: str, value: Mapping[str, Any], labels: tuple[str, ...],
-             t_grid: "_TimeGrid", unit: str) -> np.ndarray:
-    """A mapping channel name -> specification, assembled into (runs|1, steps+1|1, channels)."""
-    unknown = [k for k in value if k not in labels]
-    if unknown:
-        raise ParameterError(
-            f": unknown channel(s) {', '.join(map(repr, unknown))}; channels: "
-            f"{', '.join(labels) if labels else 'none'}", field=name)
-    cols = [_signal(f"{name}['{lab}']", value.get(lab, 0.0), 1, t_grid, unit) for lab in labels]
-    if not cols:
-        return np.zeros((1, 1, 1))
-    runs = _runs(*((f"{name}['{lab}']", c.shape[0]) for lab, c in zip(labels, cols)))
-    steps = max(c.shape[1] for c in cols)
-    return np.ascontiguousarray(np.concatenate(
-        [np.broadcast_to(c, (runs, steps, 1)) for c in cols], axis=2))
-
-
-def _signal(
-    name: str, value: Any, n_channels: int, t_grid: "_TimeGrid", unit: str,
-    labels: tuple[str, ...] = (),
-) -> np.ndarray:
-    """Convert a reference/disturbance specification to shape (runs|1, steps+1|1, channels)."""
-    width = max(n_channels, 1)
-    if value is None:
-        return np.zeros((1, 1, width))
-    if isinstance(value, Mapping):
-        return _by_name(name, value, labels, t_grid, unit)
-    if callable(value):
-        value = value(t_grid.array())
-        arr = as_float_array(name, value, unit)
-        if arr.ndim == 1 and arr.shape[0] == t_grid.size:
-            arr = arr[:, None]
-        if arr.ndim == 2:
-            arr = arr[None]
-        if arr.ndim != 3 or arr.shape[1] != t_grid.size:
-            raise ParameterError(
-                f"callable must return shape (steps+1,), (steps+1, channels) or "
-                f"(runs, steps+1, channels) for {t_grid.size} grid times, got {np.shape(value)}",
-                field=name)
-    else:
-        arr = as_float_array(name, value, unit)
-        if arr.ndim == 0:
-            arr = arr.reshape(1, 1, 1)
-        elif arr.ndim == 1:
-            arr = arr.reshape(1, 1, -1)
-        elif arr.ndim == 2:
-            if arr.shape[0] != t_grid.size:
-                raise ParameterError(
-                    f"as a 2-D array is a time series on the grid and needs "
-                    f"{t_grid.size} rows (steps+1), got {arr.shape}; per-run constants have "
-                    "shape (runs, 1, channels)", field=name)
-            arr = arr[None]
-        elif arr.ndim != 3:
-            raise ParameterError(f"must have at most 3 dimensions, got {arr.shape}", field=name)
-        if arr.shape[1] not in (1, t_grid.size):
-            raise ParameterError(
-                f"time axis must have 1 or {t_grid.size} samples, got {arr.shape[1]}", field=name)
-    if n_channels == 0:
-        if arr.shape[-1] not in (0, 1) or np.any(arr != 0):
-            raise ParameterError("given, but the component takes none", field=name)
-        return np.zeros(arr.shape[:2] + (1,))
-    if arr.shape[-1] != n_channels:
-        named = f" ({', '.join(labels)})" if labels else ""
-        raise ParameterError(
-            f"must have {n_channels} channel(s){named}, got {arr.shape[-1]}", field=name)
-    return np.ascontiguousarray(arr, dtype=float)
-
-
-#: The engine's peak memory per byte of recorded time series: the recordings themselves, the
-#: results Dataset made from them and the NetCDF file built in memory before it is written
-#: (:func:`seahelm.results.netcdf_bytes`). Measured (tracemalloc, 2,000 and 500 runs of
-#: Nomoto-2 + PID, 0.3 GB of recordings, 2026-11-27): simulate 0.74x the estimate below (it
-#: counts every channel at 8 B), to_xarray 1.47-1.63x, simulate then to_netcdf 2.33x in all;
-#: 2.5 leaves room for HDF5's own buffers.
-RECORD_PEAK_FACTOR = 2.5
-
-#: A peak below this [bytes] is not checked against the memory limit (every limit that matters
-#: is larger; asking the OS costs more than a short run).
-ASK_ABOVE = 1 << 26
-
-#: Wall time a slice of steps of the compiled loop aims at [s]. Between slices Python runs:
-#: a progress callback, and a signal handler (the CLI turns SIGTERM and Ctrl-C into
-#: exceptions), so a stop request ends a long run within about this time. A slice costs some
-#: 5 µs to start (100 µs on the thread pool): 0.25 s keeps that below 0.05 %.
-SLICE_SECONDS = 0.25
-
-#: Steps × runs of the first slice, before the loop's speed is known: 0.15 s of a KVLCC2 MMG
-#: ship (:data:`seahelm.resources.TYPICAL_RATE`), one slice for a short run.
-FIRST_SLICE = 200_000
-
-#: The same for the pure-Python loop (``jit=False``: some 10³ steps/s).
-FIRST_SLICE_PYTHON = 200
-
-#: Share of the memory this process may use (:func:`seahelm.resources.memory_limit`) that the
-#: engine's peak may take.
-RECORD_MEMORY_SHARE = 0.8
-
-
-def physical_memory() -> int | None:
-    """The memory this process may use [bytes]: the smallest of the machine's memory, its
-    cgroup's room and its address-space room (:func:`seahelm.resources.memory_limit`; None
-    where the OS does not say)."""
-    limit = memory_limit()
-    return None if limit is None else limit.bytes
-
-
-class RecordingTooLarge(ParameterError):
-    """The recorded time series would not fit in memory (raised before anything is allocated).
-
-    ``need`` and ``total`` [B] are the recording's size and the memory this process may use,
-    ``source`` what limits it, so a caller can name its own options in the advice (a
-    manoeuvre's approach speed, say).
-    """
-
-    def __init__(self, message: str, *, need: int, total: int, source: str = "") -> None:
-        super().__init__(message, field="record_every", unit="B", value=need)
-        self.need, self.total, self.source = need, total, source
-
-    def size_text(self) -> str:
-        """"62.3 GB (a peak of about 2.5x that), more than 80% of the 25.3 GB this process
-        may use (this machine's memory)"."""
-        return (f"{self.need / 1e9:.3g} GB (a peak of about {RECORD_PEAK_FACTOR:g}x that), "
-                f"more than {RECORD_MEMORY_SHARE:.0%} of the {self.total / 1e9:.3g} GB this "
-                f"process may use ({self.source})")
-
-
-def check_record_memory(n_runs: int, n_rec: int, channels: int) -> None:
-    """Refuse, before anything is allocated, recordings that cannot fit in memory.
-
-    Parameters
-    ----------
-    n_runs, n_rec, channels : int
-        Runs, records per run and recorded channels (states, outputs, commands, references,
-        disturbances).
-
-    Raises
-    ------
-    RecordingTooLarge
-        A :class:`~seahelm.errors.ParameterError`: the engine's peak (:data:`RECORD_PEAK_FACTOR`
-        × the recorded arrays at 8 B a value) would take more than :data:`RECORD_MEMORY_SHARE`
-        of the memory this process may use — the smallest of the machine's memory, its cgroup's
-        limit and its address-space limit (:func:`seahelm.resources.memory_limit`).
-    """
-    need = 8 * n_runs * n_rec * channels
-    if RECORD_PEAK_FACTOR * need <= ASK_ABOVE:  # (asking the OS takes ~60 us)
-        return
-    limit = memory_limit()
-    if limit is None or RECORD_PEAK_FACTOR * need <= RECORD_MEMORY_SHARE * limit.bytes:
-        return
-    err = RecordingTooLarge("", need=need, total=limit.bytes, source=limit.source)
-    raise RecordingTooLarge(
-        f": the recorded time series would need {err.size_text()} ({n_runs:,} run(s) x "
-        f"{n_rec:,} records x {channels} channels x 8 B); record fewer samples (a larger "
-        "record_every), fewer runs or a shorter t_final", need=need, total=limit.bytes,
-        source=limit.source)
-
-
-#: Largest magnitude of an angle signal [rad]: a thousand turns. A heading reference of 1e300
-#: (a unit mix-up, a garbage file) is no course: wrapped, it is noise of float precision.
-MAX_ANGLE = 2000.0 * math.pi
-
-
-def _check_angles(name: str, values: np.ndarray, labels: tuple[str, ...],
-                  units: tuple[str, ...]) -> None:
-    """Angle channels ([rad]) of a signal within ±:data:`MAX_ANGLE`."""
-    for j, (label, unit) in enumerate(zip(labels, units)):
-        if unit == "rad" and j < values.shape[-1]:
-            worst = float(np.max(np.abs(values[..., j])))
-            if worst > MAX_ANGLE:
-                raise ParameterError(
-                    f": channel '{label}' reaches {worst:.6g} rad, more than a thousand turns "
-                    f"(±{MAX_ANGLE:.6g} rad); an angle is given in radians here (degrees in a "
-                    "scenario as <name>_deg)", field=name, unit="rad", value=worst)
-
-
-def _runs(*sizes: tuple[str, int]) -> int:
-    n = max(s for _, s in sizes)
-    for name, s in sizes:
-        if s not in (1, n):
-            others = ", ".join(f"{k}={v}" for k, v in sizes)
-            raise ParameterError(f": batch sizes do not broadcast: `{name}` has {s} runs "
-                                 f"({others})", field=name)
-    return n
 
 
 # ------------------------------------------------------------------------------------------
@@ -718,15 +232,11 @@ def simulate(
     """
     from .problem import Problem
 
-    given = {"params": params, "x0": x0, "t_final": t_final, "dt": dt, "ship": ship,
-             "controller": controller, "controller_params": controller_params,
-             "actuator": actuator, "actuator_params": actuator_params,
-             "actuator_x0": actuator_x0, "reference": reference, "disturbance": disturbance,
-             "controller_dt": controller_dt, "integrator": integrator,
-             "record_every": record_every, "bounds": bounds, "seed": seed,
-             "metadata": metadata, "environment": environment,
-             "environment_params": environment_params, "exact_actuator": exact_actuator,
-             "jit": jit, "first_order": first_order}
+    # the keyword form's arguments are Problem's fields, by name (no copy of the list: a
+    # field added to Problem and to this signature is passed on; a test checks the two agree)
+    arguments = locals()
+    given = {f.name: arguments[f.name] for f in dataclasses.fields(Problem)
+             if f.name in arguments and f.name != "model"}
     given = {k: v for k, v in given.items() if v is not None}
     if model is not None and not isinstance(model, (Problem, VesselModel)):
         raise ParameterError(
@@ -754,8 +264,66 @@ def simulate(
 def _run(problem: "Problem", *, throw: bool,
          progress: Callable[[int, int], None] | None) -> "SimResult":
     """Run a validated problem (:func:`simulate`)."""
-    from ..results import SimResult
+    batch = prepare(problem)
+    # compile or load the kernel before the clock starts: a zero-step call does it, so the
+    # reported simulation time is the simulation's (first use of a combination compiles)
+    c0 = _time.perf_counter()
+    batch.start()
+    compile_time = _time.perf_counter() - c0
+    wall = drive(batch.slices, batch.n_steps, batch.dt, batch.ctrl_every, batch.record_every,
+                 jit=batch.jit, progress=progress)
+    return batch.result(wall=wall, compile_time=compile_time, throw=throw)
 
+
+@dataclasses.dataclass
+class Batch:
+    """A problem's batch made ready for the compiled loop (:func:`prepare`): the kernel, its
+    arrays in slices of runs, and what the result is made of. :func:`simulate` runs it over
+    the whole horizon; :class:`~seahelm.simulation.stepping.Simulator` interval by interval."""
+
+    problem: Problem
+    kernel: ModuleType
+    slices: _Slices
+    n_steps: int
+    dt: float
+    ctrl_every: int
+    record_every: int
+    jit: bool
+    labels: tuple[str, ...]
+    out_labels: tuple[str, ...]
+    out_units: tuple[str, ...]
+    dist_labels: tuple[str, ...]
+    dist_units: tuple[str, ...]
+    z0: np.ndarray
+    info: dict[str, Any]
+
+    @property
+    def n_runs(self) -> int:
+        """Runs in the batch."""
+        return self.slices.arrays.n_runs
+
+    def start(self) -> None:
+        """Compile or load the kernel (a zero-step call), then the controllers' init."""
+        with quiet(self.jit):
+            self.slices.warm_up(self.n_steps, self.dt, self.ctrl_every, self.record_every)
+            self.slices.init_runs()
+
+    def result(self, *, wall: float, compile_time: float, throw: bool,
+               metadata: Mapping[str, Any] | None = None) -> "SimResult":
+        """The :class:`~seahelm.results.SimResult` of the recordings as they are."""
+        return _result(self, wall=wall, compile_time=compile_time, throw=throw,
+                       metadata=metadata)
+
+
+def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
+    """Check a problem's arrays against each other and build the kernel's (:class:`Batch`).
+
+    Raises
+    ------
+    ParameterError
+        On shapes that do not broadcast, an initial state outside the bounds, parameters a
+        model's loads need, recordings that would not fit in memory.
+    """
     model, actuator, controller = problem.model, problem.actuator, problem.controller
     params, x0, actuator_x0 = problem.params, problem.x0, problem.actuator_x0
     actuator_params, controller_params = problem.actuator_params, problem.controller_params
@@ -892,45 +460,43 @@ def _run(problem: "Problem", *, throw: bool,
     rec_y = np.full((n_runs, n_rec, len(out_labels)), np.nan)
     rec_cmd = np.full((n_runs, n_rec, ncmd), np.nan)
 
-    slices = _Slices(kernel, (z, cs, cmd, ca, mr, ar, cr, er, dist, ref, lower, upper,
-                              status, t_fail, z_fail, rec_z, rec_y, rec_cmd, *wave_arrays),
+    arrays = KernelArrays(
+        state=(z, cs, cmd, ca), params=(mr, ar, cr, er, lower, upper), signals=(dist, ref),
+        outcome=(status, t_fail, z_fail), record=(rec_z, rec_y, rec_cmd), waves=wave_arrays)
+    slices = _Slices(kernel, arrays,
                      (ncmd, ca.shape[1], cs.shape[1], dist.shape[2], ref.shape[2]),
                      threads=None if use_jit else 1,
-                     wave_sizes=(wave_arrays[0].shape[2], wave_arrays[1].shape[3]))
-    # compile or load the kernel before the clock starts: a zero-step call does it, so the
-    # reported simulation time is the simulation's (first use of a combination compiles)
-    c0 = _time.perf_counter()
-    # the pure-Python loop's numpy scalars warn where the compiled loop silently makes inf/NaN
-    # (then recorded as the run's divergence, as compiled)
-    def quiet() -> Any:
-        return contextlib.nullcontext() if use_jit else np.errstate(all="ignore")
+                     wave_sizes=(wave_arrays[0].shape[2], wave_arrays[1].shape[3]),
+                     keep_pool=keep_pool)
+    return Batch(problem=problem, kernel=kernel, slices=slices, n_steps=n_steps, dt=float(dt),
+                 ctrl_every=ctrl_every, record_every=record_every, jit=use_jit, labels=labels,
+                 out_labels=out_labels, out_units=out_units, dist_labels=dist_labels,
+                 dist_units=dist_units, z0=slices.arrays.state[0].copy(),
+                 info={"mp": mp, "ap": ap, "cp": cp, "ep": ep, "m_cls": m_cls, "a_cls": a_cls,
+                       "c_cls": c_cls, "e_cls": e_cls, "n_rec": n_rec, "exact_actuator": exact_actuator,
+                       "ctrl_dt": ctrl_dt})
 
-    with quiet():
-        slices.warm_up(n_steps, float(dt), ctrl_every, record_every)
-        kernel.init_runs(*slices.arrays[:10], *slices.scratch[0], *slices.arrays[18:],
-                         *slices.wave_scratch[0])
-    compile_time = _time.perf_counter() - c0
-    wall0 = _time.perf_counter()
-    k = 0
-    # the loop runs in slices of steps of about SLICE_SECONDS each: between them Python runs,
-    # so a stop signal (Ctrl-C, SIGTERM: the CLI raises it as an exception) ends even a long
-    # compiled run within about that time, and a progress bar moves smoothly
-    chunk = min(n_steps, max(1, (FIRST_SLICE if use_jit else FIRST_SLICE_PYTHON)
-                             // max(n_runs, 1)))
-    while k < n_steps:
-        k_stop = min(n_steps, k + chunk)
-        t0 = _time.perf_counter()
-        with quiet():
-            slices.run(k, k_stop, n_steps, float(dt), ctrl_every, record_every)
-        elapsed = _time.perf_counter() - t0
-        done, k = k_stop - k, k_stop
-        if progress is not None:
-            progress(k, n_steps)
-        chunk = int(min(max(done / max(elapsed, 1e-6) * SLICE_SECONDS, 1), n_steps))
-        if status.all():
-            break
-    wall = _time.perf_counter() - wall0
 
+def _result(batch: Batch, *, wall: float, compile_time: float, throw: bool,
+            metadata: Mapping[str, Any] | None = None) -> "SimResult":
+    """The result of a batch's recordings (:meth:`Batch.result`)."""
+    from ..results import SimResult
+
+    problem, info = batch.problem, batch.info
+    model, actuator, controller = problem.model, problem.actuator, problem.controller
+    environment, first_order, seed = problem.environment, problem.first_order, problem.seed
+    tableau, wiring = problem.tableau, problem.wiring
+    n_steps, record_every, n_rec = batch.n_steps, batch.record_every, info["n_rec"]
+    dt, t_final, ctrl_dt = batch.dt, problem.t_final, info["ctrl_dt"]
+    exact_actuator, use_jit = info["exact_actuator"], batch.jit
+    (dist, ref), labels = batch.slices.arrays.signals, batch.labels
+    m_cls, a_cls, c_cls, e_cls = info["m_cls"], info["a_cls"], info["c_cls"], info["e_cls"]
+    mp, ap, cp, ep = info["mp"], info["ap"], info["cp"], info["ep"]
+    rec_z, rec_y, rec_cmd = batch.slices.arrays.record
+    status, t_fail, z_fail = batch.slices.arrays.outcome
+    out_labels, out_units = batch.out_labels, batch.out_units
+    dist_labels, dist_units = batch.dist_labels, batch.dist_units
+    metadata = problem.metadata if metadata is None else metadata
     ref_idx = np.minimum(np.arange(n_rec) * record_every, n_steps)
     rec_t = ref_idx * float(dt)
     result = SimResult(
@@ -987,11 +553,18 @@ def _run(problem: "Problem", *, throw: bool,
     if throw and status.any():
         i = int(np.argmax(status != 0))
         raise SimulationDiverged(
-            f"run {i} diverged at t = {t_fail[i]:.6g} s "
-            f"({RunStatus(int(status[i])).name.lower().replace('_', ' ')}): "
-            + ", ".join(f"{lab}={v:.6g}" for lab, v in zip(labels, z_fail[i])),
+            failure_text(i, int(status[i]), float(t_fail[i]), labels, z_fail[i]),
             time=t_fail[i],
             state=z_fail[i],
             run=i,
         )
     return result
+
+
+
+def failure_text(i: int, status: int, t_fail: float, labels: tuple[str, ...],
+                 z_fail: np.ndarray) -> str:
+    """How run ``i`` diverged, in the words of :class:`~seahelm.errors.SimulationDiverged`."""
+    return (f"run {i} diverged at t = {t_fail:.6g} s "
+            f"({RunStatus(status).name.lower().replace('_', ' ')}): "
+            + ", ".join(f"{lab}={v:.6g}" for lab, v in zip(labels, z_fail)))

@@ -170,8 +170,8 @@ def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ep, ya, u, yms, dm, lm, k
 
 
 def scratch(ncmd, nca, ncs, nd, nr):
-    """Fresh per-run buffers, in the order of :func:`run_slice`'s ``xv`` … ``refk`` (one set
-    per slice of runs).
+    """Fresh per-run buffers, the ``scratch`` group of :func:`run_slice` (one set per slice of
+    runs).
 
     Views of one block, each starting on its own 64-byte cache line and the block padded by a
     line at both ends: buffers of different threads never share a cache line (tiny arrays
@@ -222,12 +222,18 @@ def load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi):  # pragma: no cover - c
 
 
 @njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False)
-def init_runs(z, cs, cmd, ca, mp, ap, cp, ep, dist, ref,
-              xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds,
-              refk, yms, dm, lm, wcomp, wtab, wsame, wspeeds, wstep, wc, ws, wj, ww,
-              wout):  # pragma: no cover - compiled
-    """Call the controller's init at t = 0 for every run (once per simulation)."""
-    for i in range(z.shape[0]):
+def init_runs(i_start, i_stop, state, params, signals, waves, scratch,
+              wscratch):  # pragma: no cover - compiled
+    """Call the controller's init at t = 0 for runs ``i_start`` to ``i_stop`` − 1 (once per
+    simulation). The arguments are the kernel's groups (:mod:`seahelm.simulation.kernel_args`)."""
+    z, cs, cmd, ca = state
+    mp, ap, cp, ep, lower, upper = params
+    dist, ref = signals
+    wcomp, wtab, wsame, wspeeds, wstep = waves
+    (xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds, refk, yms,
+     dm, lm) = scratch
+    wc, ws, wj, ww, wout = wscratch
+    for i in range(i_start, i_stop):
         ir = i if ref.shape[0] > 1 else 0
         load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi)
         for j in range(NZ):
@@ -251,21 +257,64 @@ def init_runs(z, cs, cmd, ca, mp, ap, cp, ep, dist, ref,
 
 
 @njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False)
-def run_slice(
-    i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_every,
-    z, cs, cmd, ca, mp, ap, cp, ep, dist, ref, lower, upper,
-    status, t_fail, z_fail, rec_z, rec_y, rec_cmd, wcomp, wtab, wsame, wspeeds, wstep,
-    xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds, refk,
-    yms, dm, lm, wc, ws, wj, ww, wout,
-):  # pragma: no cover - compiled
+def observe_runs(i_start, i_stop, k, dt, state, params, signals, waves, scratch, wscratch,
+                 out):  # pragma: no cover - compiled
+    """The outputs (model's, environment's, first-order motions') of runs ``i_start`` to
+    ``i_stop`` − 1 at their state of step ``k`` into ``out[i]``: the code the loop runs before
+    it records or measures, so the values are those it records (:mod:`seahelm.simulation.stepping`)."""
+    z, cs, cmd, ca = state
+    mp, ap, cp, ep, lower, upper = params
+    dist, ref = signals
+    wcomp, wtab, wsame, wspeeds, wstep = waves
+    (xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds, refk, yms,
+     dm, lm) = scratch
+    wc, ws, wj, ww, wout = wscratch
+    nd = dist.shape[2]
+    t = k * dt
+    for i in range(i_start, i_stop):
+        load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi)
+        mpi = local_record(mp[i])
+        api = local_record(ap[i])
+        epi = local_record(ep[i])
+        actuator_output(xa, cai, api, ya)
+        route_inputs(ya, cmdi, u)
+        model_output(t, xv, u, mpi, ym)
+        if HAS_ENV:
+            idist = i if dist.shape[0] > 1 else 0
+            kd = k if dist.shape[1] > 1 else 0
+            for j in range(nd):
+                ds[j] = dist[idist, kd, j]
+            environment_loads(t, xv, u, mpi, ym, ds, epi, lm)
+        if HAS_WAVES:
+            wave_stage(t, i, ym, wcomp, wtab, wsame, wspeeds, wstep, wc, ws, wj, ww, wout)
+        for j in range(NYM):
+            out[i, j] = ym[j]
+
+
+@njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False)
+def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_every, external,
+              state, params, signals, outcome, record, waves, scratch,
+              wscratch):  # pragma: no cover - compiled
     """Advance runs ``i_start`` to ``i_stop`` − 1 from step ``k_start`` to ``k_stop`` (the state
     arrays are updated in place, so a simulation goes on chunk by chunk).
 
     Runs with a non-zero status are skipped; a run that becomes invalid gets status 1 or 2,
-    the time and state of the first invalid step, and stops. ``xv`` … ``refk`` are this
-    thread's scratch (:func:`scratch`); ``wcomp`` … ``wstep`` the first-order motions'
-    inputs and ``wc`` … ``wout`` their scratch (:func:`wave_scratch`).
+    the time and state of the first invalid step, and stops. The arrays come in the kernel's
+    groups (:mod:`seahelm.simulation.kernel_args`): ``state``, ``params``, ``signals``,
+    ``outcome``, ``record``, the first-order motions' inputs ``waves``, and this thread's
+    ``scratch`` (:func:`scratch`) and ``wscratch`` (:func:`wave_scratch`). With ``external``
+    the controller is not stepped: the commands held in ``state``'s ``cmd`` are applied as
+    they are (an external controller, :class:`seahelm.simulation.stepping.Simulator`).
     """
+    z, cs, cmd, ca = state
+    mp, ap, cp, ep, lower, upper = params
+    dist, ref = signals
+    status, t_fail, z_fail = outcome
+    rec_z, rec_y, rec_cmd = record
+    wcomp, wtab, wsame, wspeeds, wstep = waves
+    (xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds, refk, yms,
+     dm, lm) = scratch
+    wc, ws, wj, ww, wout = wscratch
     nd = dist.shape[2]
     nr = ref.shape[2]
     ncmd = cmd.shape[1]
@@ -332,7 +381,8 @@ def run_slice(
                 for j in range(NA):
                     zfull[NX + j] = xa[j]
                 route_measurements(ym, y)
-                controller_step(t, dt_ctrl, zfull, y, refk, cpi, csi, cmdi)
+                if external == 0:
+                    controller_step(t, dt_ctrl, zfull, y, refk, cpi, csi, cmdi)
                 route_actuator_commands(cmdi, cai)
             if record:
                 m = k // rec_every if on_grid else k // rec_every + 1  # (the final record)

@@ -1,0 +1,164 @@
+"""The engine's inputs converted to the kernel's arrays: parameter rows, signals on the grid.
+
+:func:`_param_rows` turns parameter sets (records or arrays) into rows, :func:`_signal` a
+reference or disturbance specification (a number, an array, a callable of time or a mapping by
+channel name) into an array of shape (runs|1, steps+1|1, channels); :func:`_runs` checks that
+batch sizes broadcast and :func:`_check_angles` that angle channels are angles.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+from .._validate import as_float_array
+from ..errors import ParameterError
+from ..parameters import Params, stack_params
+
+__all__ = ["MAX_ANGLE"]
+
+
+@functools.lru_cache(maxsize=None)
+def _default_params(cls: type[Params]) -> Params:
+    """The default parameter set of a class (frozen, so one instance serves every run)."""
+    return cls()
+
+
+def _param_rows(name: str, params: Any, cls: type[Params]) -> tuple[np.ndarray, type[Params]]:
+    """Parameter rows (runs, n_fields) and the class they were given as (a subclass of
+    ``cls`` carries more fields; compiled code finds its fields by name)."""
+    if params is None:
+        try:
+            params = _default_params(cls)
+        except TypeError:
+            raise ParameterError(f"is required for {cls.__name__}", field=name) from None
+    if isinstance(params, Params) or (
+        isinstance(params, Sequence) and len(params) > 0 and isinstance(params[0], Params)
+    ):
+        first = params if isinstance(params, Params) else params[0]
+        return stack_params(params, cls), type(first)
+    # a copy: the kernel and the result's ``params`` get rows of their own, never the caller's
+    arr = np.array(np.atleast_2d(as_float_array(name, params)), dtype=float, order="C")
+    if arr.ndim != 2 or arr.shape[1] != cls.n_values():
+        raise ParameterError(
+            f"as an array must have shape (runs, {cls.n_values()}) "
+            f"({', '.join(cls.value_names())}), got {arr.shape}", field=name)
+    for row in arr:  # validate every row through the dataclass
+        cls.from_array(row)
+    return arr, cls
+
+
+class _TimeGrid:
+    """The grid t_k = k dt, k = 0 … n_steps, built only if a signal is a function of time."""
+
+    def __init__(self, n_steps: int, dt: float) -> None:
+        self.size = n_steps + 1
+        self.dt = dt
+        self._array: np.ndarray | None = None
+
+    def array(self) -> np.ndarray:
+        if self._array is None:
+            self._array = np.arange(self.size) * self.dt
+        return self._array
+
+
+def _by_name(name: str, value: Mapping[str, Any], labels: tuple[str, ...],
+             t_grid: "_TimeGrid", unit: str) -> np.ndarray:
+    """A mapping channel name -> specification, assembled into (runs|1, steps+1|1, channels)."""
+    unknown = [k for k in value if k not in labels]
+    if unknown:
+        raise ParameterError(
+            f": unknown channel(s) {', '.join(map(repr, unknown))}; channels: "
+            f"{', '.join(labels) if labels else 'none'}", field=name)
+    cols = [_signal(f"{name}['{lab}']", value.get(lab, 0.0), 1, t_grid, unit) for lab in labels]
+    if not cols:
+        return np.zeros((1, 1, 1))
+    runs = _runs(*((f"{name}['{lab}']", c.shape[0]) for lab, c in zip(labels, cols)))
+    steps = max(c.shape[1] for c in cols)
+    return np.ascontiguousarray(np.concatenate(
+        [np.broadcast_to(c, (runs, steps, 1)) for c in cols], axis=2))
+
+
+def _signal(
+    name: str, value: Any, n_channels: int, t_grid: "_TimeGrid", unit: str,
+    labels: tuple[str, ...] = (),
+) -> np.ndarray:
+    """Convert a reference/disturbance specification to shape (runs|1, steps+1|1, channels)."""
+    width = max(n_channels, 1)
+    if value is None:
+        return np.zeros((1, 1, width))
+    if isinstance(value, Mapping):
+        return _by_name(name, value, labels, t_grid, unit)
+    if callable(value):
+        value = value(t_grid.array())
+        arr = as_float_array(name, value, unit)
+        if arr.ndim == 1 and arr.shape[0] == t_grid.size:
+            arr = arr[:, None]
+        if arr.ndim == 2:
+            arr = arr[None]
+        if arr.ndim != 3 or arr.shape[1] != t_grid.size:
+            raise ParameterError(
+                f"callable must return shape (steps+1,), (steps+1, channels) or "
+                f"(runs, steps+1, channels) for {t_grid.size} grid times, got {np.shape(value)}",
+                field=name)
+    else:
+        arr = as_float_array(name, value, unit)
+        if arr.ndim == 0:
+            arr = arr.reshape(1, 1, 1)
+        elif arr.ndim == 1:
+            arr = arr.reshape(1, 1, -1)
+        elif arr.ndim == 2:
+            if arr.shape[0] != t_grid.size:
+                raise ParameterError(
+                    f"as a 2-D array is a time series on the grid and needs "
+                    f"{t_grid.size} rows (steps+1), got {arr.shape}; per-run constants have "
+                    "shape (runs, 1, channels)", field=name)
+            arr = arr[None]
+        elif arr.ndim != 3:
+            raise ParameterError(f"must have at most 3 dimensions, got {arr.shape}", field=name)
+        if arr.shape[1] not in (1, t_grid.size):
+            raise ParameterError(
+                f"time axis must have 1 or {t_grid.size} samples, got {arr.shape[1]}", field=name)
+    if n_channels == 0:
+        if arr.shape[-1] not in (0, 1) or np.any(arr != 0):
+            raise ParameterError("given, but the component takes none", field=name)
+        return np.zeros(arr.shape[:2] + (1,))
+    if arr.shape[-1] != n_channels:
+        named = f" ({', '.join(labels)})" if labels else ""
+        raise ParameterError(
+            f"must have {n_channels} channel(s){named}, got {arr.shape[-1]}", field=name)
+    return np.ascontiguousarray(arr, dtype=float)
+
+
+
+#: Largest magnitude of an angle signal [rad]: a thousand turns. A heading reference of 1e300
+#: (a unit mix-up, a garbage file) is no course: wrapped, it is noise of float precision.
+MAX_ANGLE = 2000.0 * math.pi
+
+
+def _check_angles(name: str, values: np.ndarray, labels: tuple[str, ...],
+                  units: tuple[str, ...]) -> None:
+    """Angle channels ([rad]) of a signal within ±:data:`MAX_ANGLE`."""
+    for j, (label, unit) in enumerate(zip(labels, units)):
+        if unit == "rad" and j < values.shape[-1]:
+            worst = float(np.max(np.abs(values[..., j])))
+            if worst > MAX_ANGLE:
+                raise ParameterError(
+                    f": channel '{label}' reaches {worst:.6g} rad, more than a thousand turns "
+                    f"(±{MAX_ANGLE:.6g} rad); an angle is given in radians here (degrees in a "
+                    "scenario as <name>_deg)", field=name, unit="rad", value=worst)
+
+
+def _runs(*sizes: tuple[str, int]) -> int:
+    n = max(s for _, s in sizes)
+    for name, s in sizes:
+        if s not in (1, n):
+            others = ", ".join(f"{k}={v}" for k, v in sizes)
+            raise ParameterError(f": batch sizes do not broadcast: `{name}` has {s} runs "
+                                 f"({others})", field=name)
+    return n
+

@@ -1,0 +1,185 @@
+"""The batch cut into slices of runs and of steps, run by the compiled loop.
+
+:class:`_Slices` holds the kernel's argument groups (:mod:`seahelm.simulation.kernel_args`)
+and runs ``run_slice`` on slices of runs, on a thread pool; :func:`drive` advances the whole
+batch between two steps in slices of about :data:`SLICE_SECONDS` of wall time, so a stop
+signal or a progress bar gets Python between them.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import time as _time
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+from types import ModuleType
+from typing import Any
+
+import numpy as np
+
+from .kernel_args import KernelArrays
+
+__all__ = ["SLICE_SECONDS", "FIRST_SLICE", "FIRST_SLICE_PYTHON", "drive"]
+
+#: Wall time a slice of steps of the compiled loop aims at [s]. Between slices Python runs:
+#: a progress callback, and a signal handler (the CLI turns SIGTERM and Ctrl-C into
+#: exceptions), so a stop request ends a long run within about this time. A slice costs some
+#: 5 µs to start (100 µs on the thread pool): 0.25 s keeps that below 0.05 %.
+SLICE_SECONDS = 0.25
+
+#: Steps × runs of the first slice, before the loop's speed is known: 0.15 s of a KVLCC2 MMG
+#: ship (:data:`seahelm.resources.TYPICAL_RATE`), one slice for a short run.
+FIRST_SLICE = 200_000
+
+#: The same for the pure-Python loop (``jit=False``: some 10³ steps/s).
+FIRST_SLICE_PYTHON = 200
+
+
+class _Slices:
+    """The batch cut into slices of runs, run by the kernel's ``run_slice`` on a thread pool.
+
+    The compiled loop releases the GIL, so threads run slices in parallel; there are up to four
+    slices per thread (a slice of runs that stop early does not leave a thread idle) and never
+    more threads than runs (a single run stays in the calling thread). ``numba.set_num_threads``
+    and ``NUMBA_NUM_THREADS`` set the number of threads, as for any numba parallel code.
+
+    Every slice has its own scratch buffers (the kernel allocates nothing). ``threads`` caps
+    the threads (the pure-Python loop runs in the calling thread: ``threads=1``). With
+    ``keep_pool`` the thread pool lives as long as this object (:meth:`close`): a stepped
+    batch calls the loop once per controller interval, and a pool costs some 100 µs to start.
+    """
+
+    def __init__(self, kernel: ModuleType, arrays: KernelArrays,
+                 scratch_sizes: tuple[int, ...], threads: int | None = None,
+                 wave_sizes: tuple[int, int] = (1, 1), keep_pool: bool = False) -> None:
+        import numba
+
+        self.kernel = kernel
+        n_runs = arrays.n_runs
+        # numba types a read-only array apart from a writable one: a kernel called with both
+        # (a broadcast view of one run, say) would compile twice, each 15-80 s
+        self.arrays = arrays.writable()
+        self.threads = max(1, min(numba.get_num_threads() if threads is None else threads,
+                                  n_runs))
+        n_slices = 1 if self.threads == 1 else min(n_runs, 4 * self.threads)
+        self.cuts = (np.array([0, n_runs]) if n_slices == 1 else
+                     np.linspace(0, n_runs, n_slices + 1).round().astype(np.int64))
+        self.bounds = [(int(self.cuts[s]), int(self.cuts[s + 1])) for s in range(n_slices)]
+        self.scratch = [kernel.scratch(*scratch_sizes) for _ in range(n_slices)]
+        self.wave_scratch = [kernel.wave_scratch(*wave_sizes) for _ in range(n_slices)]
+        self._keep_pool = keep_pool
+        self._pool: ThreadPoolExecutor | None = None
+
+    def warm_up(self, n_steps: int, dt: float, ctrl_every: int, rec_every: int) -> None:
+        """Compile or load the kernel for these argument types: a zero-step call (once
+        compiled, a call costs about 4 µs of argument checks; asking whether these types were
+        seen before, from the arrays' flags, cost five times that)."""
+        self.run(0, 0, n_steps, dt, ctrl_every, rec_every)
+
+    def init_runs(self) -> None:
+        """The controllers' init at t = 0, for every run."""
+        a = self.arrays
+        for (i0, i1), sc, wsc in zip(self.bounds, self.scratch, self.wave_scratch):
+            self.kernel.init_runs(i0, i1, a.state, a.params, a.signals, a.waves, sc, wsc)
+
+    def observe(self, k: int, dt: float, out: np.ndarray) -> None:
+        """Every run's outputs at its state of step ``k`` into ``out`` (runs, outputs)."""
+        a = self.arrays
+        for (i0, i1), sc, wsc in zip(self.bounds, self.scratch, self.wave_scratch):
+            self.kernel.observe_runs(i0, i1, k, dt, a.state, a.params, a.signals, a.waves, sc,
+                                     wsc, out)
+
+    def run(self, k_start: int, k_stop: int, n_steps: int, dt: float, ctrl_every: int,
+            rec_every: int, external: int = 0) -> None:
+        """Advance every run from step ``k_start`` to ``k_stop`` (``external``: the commands
+        held in the state group are applied, the controller is not stepped)."""
+        a = self.arrays
+        run_slice = self.kernel.run_slice
+
+        def one(s: int) -> None:
+            i0, i1 = self.bounds[s]
+            run_slice(i0, i1, k_start, k_stop, n_steps, dt, ctrl_every, rec_every, external,
+                      a.state, a.params, a.signals, a.outcome, a.record, a.waves,
+                      self.scratch[s], self.wave_scratch[s])
+
+        n_slices = len(self.bounds)
+        if self.threads == 1 or k_stop == k_start:
+            for s in range(n_slices):
+                one(s)
+            return
+        if self._keep_pool:
+            if self._pool is None:
+                self._pool = ThreadPoolExecutor(self.threads, thread_name_prefix="seahelm")
+            list(self._pool.map(one, range(n_slices)))
+            return
+        with ThreadPoolExecutor(self.threads, thread_name_prefix="seahelm") as pool:
+            # list() re-raises an exception of any slice here
+            list(pool.map(one, range(n_slices)))
+
+    def close(self) -> None:
+        """End the kept thread pool (if any)."""
+        if self._pool is not None:
+            self._pool.shutdown(wait=False)
+            self._pool = None
+
+
+def drive(slices: _Slices, n_steps: int, dt: float, ctrl_every: int, record_every: int, *,
+          jit: bool, progress: Callable[[int, int], None] | None = None,
+          k_start: int = 0, k_stop: int | None = None, external: int = 0) -> float:
+    """Advance the batch from step ``k_start`` to ``k_stop`` in slices of about
+    :data:`SLICE_SECONDS` each.
+
+    Between slices Python runs, so a stop signal (Ctrl-C, SIGTERM: the CLI raises it as an
+    exception) ends even a long compiled run within about that time, and a progress bar
+    moves smoothly. The loop stops early once every run has stopped.
+
+    Parameters
+    ----------
+    slices : _Slices
+        The batch's kernel and arrays.
+    n_steps : int
+        Steps of the horizon.
+    dt : float
+        Integration step [s].
+    ctrl_every, record_every : int
+        Steps per controller interval and per record.
+    jit : bool
+        Whether the loop is compiled (the pure-Python loop starts with smaller slices).
+    progress : callable(done_steps, total_steps), optional
+        Called after every slice.
+    k_start, k_stop : int
+        The steps to go from and to (default: the whole horizon).
+    external : int
+        1: the commands held in the state group are applied, the controller is not stepped.
+
+    Returns
+    -------
+    float
+        The wall time [s].
+    """
+    k_stop = n_steps if k_stop is None else k_stop
+    status = slices.arrays.outcome[0]
+    n_runs = status.shape[0]
+    wall0 = _time.perf_counter()
+    k = k_start
+    span = k_stop - k_start
+    chunk = min(span, max(1, (FIRST_SLICE if jit else FIRST_SLICE_PYTHON) // max(n_runs, 1)))
+    while k < k_stop:
+        k_next = min(k_stop, k + chunk)
+        t0 = _time.perf_counter()
+        with quiet(jit):
+            slices.run(k, k_next, n_steps, dt, ctrl_every, record_every, external)
+        elapsed = _time.perf_counter() - t0
+        done, k = k_next - k, k_next
+        if progress is not None:
+            progress(k, n_steps)
+        chunk = int(min(max(done / max(elapsed, 1e-6) * SLICE_SECONDS, 1), n_steps))
+        if status.all():
+            break
+    return _time.perf_counter() - wall0
+
+
+def quiet(jit: bool) -> Any:
+    """The pure-Python loop's numpy scalars warn where the compiled loop silently makes
+    inf/NaN (then recorded as the run's divergence, as compiled): silenced."""
+    return contextlib.nullcontext() if jit else np.errstate(all="ignore")

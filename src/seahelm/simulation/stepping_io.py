@@ -1,0 +1,125 @@
+"""What a :class:`~seahelm.simulation.stepping.Simulator` takes and gives by name: the
+commands of a step, checked (:func:`check_commands`), and the outputs after it
+(:class:`Observation`)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping
+from typing import Any
+
+import numpy as np
+
+from ..errors import ParameterError
+
+__all__ = ["Observation", "check_commands"]
+
+
+class Observation(Mapping):
+    """The outputs of every run after a step, by name: ``obs["heading"]`` is an array (runs,).
+
+    Attributes
+    ----------
+    time : ndarray (runs,)
+        Each run's time [s].
+    values : ndarray (runs, outputs)
+        The outputs, in the order of ``labels`` (the model's, the environment's, the
+        first-order motions'; as recorded in :class:`~seahelm.results.SimResult`'s ``output``).
+    labels, units : tuple of str
+    status : ndarray of int (runs,)
+        Each run's :class:`~seahelm.simulation.engine.RunStatus` (a diverged run stays
+        diverged: stepping it is refused).
+    """
+
+    __slots__ = ("time", "values", "labels", "units", "status", "_index")
+
+    def __init__(self, time: np.ndarray, values: np.ndarray, labels: tuple[str, ...],
+                 units: tuple[str, ...], status: np.ndarray, index: dict[str, int]) -> None:
+        self.time, self.values, self.labels, self.units = time, values, labels, units
+        self.status, self._index = status, index
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        j = self._index.get(name)
+        if j is None:
+            raise KeyError(f"no output {name!r}; outputs: {', '.join(self.labels)}")
+        return self.values[:, j]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.labels)
+
+    def __len__(self) -> int:
+        return len(self.labels)
+
+    def __repr__(self) -> str:
+        return (f"Observation(runs={self.values.shape[0]}, t={self.time[:3]}, "
+                f"outputs={', '.join(self.labels)})")
+
+
+def check_commands(commands: Any, sel: np.ndarray, held: np.ndarray, labels: tuple[str, ...],
+                   units: tuple[str, ...]) -> np.ndarray:
+    """Commands given to :meth:`Simulator.step`, checked: (selected runs, commands).
+
+    Parameters
+    ----------
+    commands : array_like or mapping
+        (runs, commands) or (commands,) by ``labels``, or a mapping name -> value(s).
+    sel : ndarray of int
+        The runs stepped (one row of commands each).
+    held : ndarray
+        Their commands now (the commands a mapping does not name keep these).
+    labels, units : tuple of str
+        The command names and units.
+
+    Returns
+    -------
+    ndarray (runs, commands)
+
+    Raises
+    ------
+    ParameterError
+        On a wrong shape, an unknown name or a value that is not finite.
+    """
+    nc = len(labels)
+    index = {name: j for j, name in enumerate(labels)}
+    units_text = ", ".join(f"{name} [{u}]" if u else name for name, u in zip(labels, units))
+    if isinstance(commands, Mapping):
+        values = held.copy()
+        for name, v in commands.items():
+            if name not in index:
+                raise ParameterError(f": unknown command {name!r}; commands: {units_text}",
+                                     field="commands", value=name)
+            col = np.asarray(v, dtype=float)
+            if col.ndim > 1 or (col.ndim == 1 and col.shape[0] != sel.size):
+                raise ParameterError(f"[{name!r}] must be a number or have shape "
+                                     f"({sel.size},) (one per stepped run), got "
+                                     f"{col.shape}", field="commands", value=col.shape)
+            values[:, index[name]] = col
+    else:
+        try:
+            values = np.asarray(commands, dtype=float)
+        except (TypeError, ValueError):
+            raise ParameterError(f"must be numbers (runs, {nc}) by {units_text}, got "
+                                 f"{commands!r}", field="commands") from None
+        if values.shape == (nc,):
+            values = np.broadcast_to(values, (sel.size, nc))
+        if values.shape != (sel.size, nc):
+            raise ParameterError(f"must have shape ({sel.size}, {nc}) (stepped runs, "
+                                 f"commands: {units_text}) or ({nc},), got {values.shape}",
+                                 field="commands", value=values.shape)
+    if not np.isfinite(values).all():
+        r, j = np.argwhere(~np.isfinite(values))[0]
+        raise ParameterError(f": command {labels[j]!r} of run {int(sel[r])} "
+                             f"is {float(values[r, j])!r}; commands must be finite "
+                             f"({units_text})",
+                             field="commands", value=float(values[r, j]),
+                             run=int(sel[r]))
+    return values
+
+
+def _spans(sel: np.ndarray) -> list[tuple[int, int]]:
+    """Sorted unique indices as contiguous spans [i0, i1)."""
+    if sel.size == 0:
+        return []
+    cut = np.flatnonzero(np.diff(sel) != 1) + 1
+    starts = np.concatenate([[0], cut])
+    stops = np.concatenate([cut, [sel.size]])
+    return [(int(sel[s]), int(sel[e - 1]) + 1) for s, e in zip(starts, stops)]
