@@ -385,6 +385,40 @@ class ConstrainedAllocation:
         a = -self.slack_weight * (tau * self.demand_scale[None, :]) @ self._bs
         return np.ascontiguousarray(g), a, np.ascontiguousarray(c), np.ascontiguousarray(b)
 
+    def _polish(self, tau, u, mult, status, c, b):
+        """Meet a demand the QP found feasible exactly: on the QP's active rows, solve
+        min Σ w u² s.t. B_s u = S τ and the active rows as equalities (the KKT system); keep
+        it where it satisfies every row (to 1e-9) — then the unmet demand is zero to
+        round-off instead of O(1/ρ)."""
+        nv = u.shape[1]
+        ts = tau * self.demand_scale[None, :]
+        w = np.diag(self._w)
+        out = u.copy()
+        for k in range(u.shape[0]):
+            if status[k] != STATUS_SOLVED:
+                continue
+            rest = ts[k] - self._bs @ u[k]
+            if np.max(np.abs(rest)) > 1e-3:          # a demand beyond the thrusters: keep
+                continue
+            act = np.flatnonzero(mult[k] > 0.0)
+            eq = np.vstack([self._bs, c[k][act]])
+            rhs = np.concatenate([ts[k], b[k][act]])
+            ne = eq.shape[0]
+            if ne > nv:
+                continue
+            kkt = np.zeros((nv + ne, nv + ne))
+            kkt[:nv, :nv] = w
+            kkt[:nv, nv:] = eq.T
+            kkt[nv:, :nv] = eq
+            try:
+                sol = np.linalg.solve(kkt, np.concatenate([np.zeros(nv), rhs]))
+            except np.linalg.LinAlgError:
+                continue
+            x = sol[:nv]
+            if np.all(c[k] @ x - b[k] >= -1e-9) and np.all(np.isfinite(x)):
+                out[k] = x
+        return out
+
     def _result(self, tau, u, status, g, a, prev_azimuth=None) -> AllocationResult:
         lay = self.layout
         nb = tau.shape[0]
@@ -414,7 +448,7 @@ class ConstrainedAllocation:
 
     def allocate(self, tau: Any, *, previous_thrust: Any = None, previous_azimuth: Any = None,
                  dt: float | None = None, thrust_rate: Any = None,
-                 azimuth_rate: Any = None) -> AllocationResult:
+                 azimuth_rate: Any = None, polish: bool = True) -> AllocationResult:
         """Allocate a batch of demands, one QP each (rate limits when the previous state is given).
 
         Parameters
@@ -430,6 +464,9 @@ class ConstrainedAllocation:
             Largest thrust rate Ṫ [N/s] per thruster (default: none).
         azimuth_rate : array_like, shape (n,), optional
             Largest azimuth rate α̇ [rad/s] per thruster (default: none).
+        polish : bool, optional
+            Meet a feasible demand exactly on the QP's active set (default True; see
+            :meth:`_polish`); False gives the QP's own answer (unmet ~ 1/ρ of the demand).
 
         Returns
         -------
@@ -481,16 +518,20 @@ class ConstrainedAllocation:
                 wedges[k, i] = (lo, hi, centre)
         g, a, c, b = self.problem(tau, wedges=wedges, previous_force=prev_force,
                                   thrust_step=step)
-        u, _, status = solve_qp_batch(g, a, c, b)
+        u, mult, status = solve_qp_batch(g, a, c, b)
+        if polish:
+            u = self._polish(tau, u, mult, status, c, b)
         return self._result(tau, u, status, g, a, pa)
 
-    def capacity(self, tau: Any) -> AllocationResult:
+    def capacity(self, tau: Any, *, polish: bool = True) -> AllocationResult:
         """Static allocation (no previous state, no rates): the best over the convex pieces of
         the azimuths' allowed arcs (every combination), for each demand.
 
         Parameters
         ----------
         tau : array_like, shape (batch, 3)
+        polish : bool, optional
+            As for :meth:`allocate`.
 
         Returns
         -------
@@ -510,7 +551,9 @@ class ConstrainedAllocation:
         tt = np.repeat(tau, nc, axis=0)
         ww = np.tile(wedges, (nb, 1, 1))
         g, a, c, b = self.problem(tt, wedges=ww)
-        u, _, status = solve_qp_batch(g, a, c, b)
+        u, mult, status = solve_qp_batch(g, a, c, b)
+        if polish:
+            u = self._polish(tt, u, mult, status, c, b)
         res = self._result(tt, u, status, g, a)
         obj = np.where(status == STATUS_SOLVED, res.objective, np.inf).reshape(nb, nc)
         best = np.argmin(obj, axis=1) + np.arange(nb) * nc
