@@ -96,27 +96,27 @@ class ThrusterLayout:
         n = len(self.names)
         for key in ("x", "y", "direction", "azimuthing", "max_thrust"):
             if len(getattr(self, key)) != n:
-                raise ParameterError(f"`thrusters.{key}` must have {n} entries (one per "
+                raise ParameterError(f"must have {n} entries (one per "
                                      f"thruster), got {len(getattr(self, key))}",
                                      field=f"thrusters.{key}")
         if n == 0:
-            raise ParameterError("`thrusters` must list at least one thruster, got none",
+            raise ParameterError("must list at least one thruster, got none",
                                  field="thrusters")
         tmax = np.asarray(self.max_thrust, dtype=float)
         if not np.all(np.isfinite(tmax) & (tmax > 0)):
-            raise ParameterError(f"`thrusters.max_thrust` must be > 0 [N], got "
+            raise ParameterError(f"must be > 0 [N], got "
                                  f"{list(self.max_thrust)}", field="thrusters.max_thrust",
                                  unit="N")
         if self.min_thrust is None:
             object.__setattr__(self, "min_thrust", tuple(-float(t) for t in self.max_thrust))
         tmin = np.asarray(self.min_thrust, dtype=float)
         if tmin.shape != (n,) or np.any(tmin > tmax):
-            raise ParameterError(f"`thrusters.min_thrust` must be {n} values ≤ max_thrust [N], "
+            raise ParameterError(f"must be {n} values ≤ max_thrust [N], "
                                  f"got {list(self.min_thrust)}", field="thrusters.min_thrust",
                                  unit="N")
         sectors = self.forbidden if self.forbidden is not None else ((),) * n
         if len(sectors) != n:
-            raise ParameterError(f"`thrusters.forbidden` must have {n} entries, got "
+            raise ParameterError(f"must have {n} entries, got "
                                  f"{len(sectors)}", field="thrusters.forbidden")
         clean = []
         for i, secs in enumerate(sectors):
@@ -124,11 +124,11 @@ class ThrusterLayout:
             covered = sum(b - a for a, b in _merge(secs))
             if secs and covered >= _TWO_PI - 1e-9:
                 raise ParameterError(
-                    f"`thrusters.forbidden` of thruster {self.names[i]!r} cover 360 [deg] "
+                    f"of thruster {self.names[i]!r} cover 360 [deg] "
                     f"(sectors {[(round(math.degrees(a), 3), round(math.degrees(b), 3)) for a, b in secs]} deg)",
                     field="thrusters.forbidden", unit="deg", value=360.0)
             if secs and not self.azimuthing[i]:
-                raise ParameterError(f"`thrusters.forbidden` of thruster {self.names[i]!r}: "
+                raise ParameterError(f"of thruster {self.names[i]!r}: "
                                      "only an azimuth thruster has forbidden sectors",
                                      field="thrusters.forbidden")
             clean.append(secs)
@@ -140,13 +140,38 @@ class ThrusterLayout:
         return len(self.names)
 
     def allowed_arcs(self, i: int) -> list[tuple[float, float]]:
-        """Allowed azimuth arcs (start, end) [rad], end > start (end may exceed 2π)."""
+        """Allowed azimuth arcs (start, end) [rad], end > start (end may exceed 2π).
+
+        Parameters
+        ----------
+        i : int
+            Thruster index.
+
+        Returns
+        -------
+        list of (float, float)
+        """
         return _allowed(self.forbidden[i])
 
     def without(self, name: str) -> "ThrusterLayout":
-        """The layout with thruster ``name`` lost (a single failure)."""
+        """The layout with thruster ``name`` lost (a single failure).
+
+        Parameters
+        ----------
+        name : str
+            The thruster lost.
+
+        Returns
+        -------
+        ThrusterLayout
+
+        Raises
+        ------
+        ParameterError
+            For a name that is not one of the layout's thrusters.
+        """
         if name not in self.names:
-            raise ParameterError(f"`failure` names no thruster of the layout: {name!r} (the "
+            raise ParameterError(f"names no thruster of the layout: {name!r} (the "
                                  f"thrusters: {', '.join(self.names)})", field="failure",
                                  value=name)
         keep = [k for k, nm in enumerate(self.names) if nm != name]
@@ -235,13 +260,13 @@ class ConstrainedAllocation:
         n = layout.count
         w = np.ones(n) if weights is None else np.asarray(weights, dtype=float).reshape(-1)
         if w.shape != (n,) or not np.all(np.isfinite(w) & (w > 0)):
-            raise ParameterError(f"`weights` must be {n} numbers > 0 [-], got {weights!r}",
+            raise ParameterError(f"must be {n} numbers > 0 [-], got {weights!r}",
                                  field="weights", unit="-")
         if not (slack_weight > 0 and math.isfinite(slack_weight)):
-            raise ParameterError(f"`slack_weight` must be > 0 [-], got {slack_weight!r}",
+            raise ParameterError(f"must be > 0 [-], got {slack_weight!r}",
                                  field="slack_weight", unit="-", value=slack_weight)
         if int(polygon_sides) < 8:
-            raise ParameterError(f"`polygon_sides` must be ≥ 8 [-], got {polygon_sides!r}",
+            raise ParameterError(f"must be ≥ 8 [-], got {polygon_sides!r}",
                                  field="polygon_sides", unit="-", value=polygon_sides)
         self.layout = layout
         self.polygon_sides = int(polygon_sides)
@@ -266,7 +291,7 @@ class ConstrainedAllocation:
         rank = int(np.linalg.matrix_rank(self.matrix))
         if rank < 3:
             raise ParameterError(
-                f"the thruster layout's configuration matrix has rank {rank} [-], below the 3 "
+                f": the configuration matrix of the layout has rank {rank} [-], below the 3 "
                 "controlled DOF (surge, sway, yaw): some demand cannot be produced",
                 field="thrusters", unit="-", value=rank)
         f_ref = float(tmax.sum())
@@ -318,7 +343,7 @@ class ConstrainedAllocation:
         """
         tau = np.atleast_2d(np.asarray(tau, dtype=float))
         if tau.shape[-1] != 3:
-            raise ParameterError(f"`tau` must hold (surge, sway, yaw) demands, got shape "
+            raise ParameterError(f"must hold (surge, sway, yaw) demands, got shape "
                                  f"{tau.shape}", field="tau")
         nb = tau.shape[0]
         lay = self.layout
@@ -477,7 +502,7 @@ class ConstrainedAllocation:
         lay = self.layout
         n = lay.count
         if dt is not None and not (dt > 0 and math.isfinite(dt)):
-            raise ParameterError(f"`dt` must be > 0 [s], got {dt!r}", field="dt", unit="s",
+            raise ParameterError(f"must be > 0 [s], got {dt!r}", field="dt", unit="s",
                                  value=dt)
         pt = np.zeros((nb, n)) if previous_thrust is None else \
             np.broadcast_to(np.asarray(previous_thrust, dtype=float), (nb, n))
@@ -489,19 +514,19 @@ class ConstrainedAllocation:
         step = None
         if thrust_rate is not None:
             if dt is None:
-                raise ParameterError("`thrust_rate` needs `dt` [s]", field="dt", unit="s")
+                raise ParameterError("needs `dt` [s]", field="thrust_rate", unit="N/s")
             rate = np.broadcast_to(np.asarray(thrust_rate, dtype=float), (n,))
             if np.any(rate <= 0):
-                raise ParameterError(f"`thrust_rate` must be > 0 [N/s], got {list(rate)}",
+                raise ParameterError(f"must be > 0 [N/s], got {list(rate)}",
                                      field="thrust_rate", unit="N/s")
             step = rate * dt
         az_step = np.full(n, np.inf)
         if azimuth_rate is not None:
             if dt is None:
-                raise ParameterError("`azimuth_rate` needs `dt` [s]", field="dt", unit="s")
+                raise ParameterError("needs `dt` [s]", field="azimuth_rate", unit="rad/s")
             ar = np.broadcast_to(np.asarray(azimuth_rate, dtype=float), (n,))
             if np.any(ar <= 0):
-                raise ParameterError(f"`azimuth_rate` must be > 0 [rad/s], got {list(ar)}",
+                raise ParameterError(f"must be > 0 [rad/s], got {list(ar)}",
                                      field="azimuth_rate", unit="rad/s")
             az_step = ar * dt
         wedges = np.zeros((nb, n, 3))
