@@ -28,8 +28,8 @@ Loads (stated models):
   regular waves (Faltinsen 1990, *Sea loads on ships and offshore structures*, ch. 5), with
   the irregular-sea mean ζ_a² = Hs²/8: X = −(ρ g Hs²/16) B cos θ, Y = −(ρ g Hs²/16) L sin θ,
   no yaw moment (an upper bound on the drift force; a vessel's drift coefficients replace it);
-* current: quadratic cross-flow drag, X = −½ ρ v² B T C_x cos θ |cos θ|,
-  Y = −½ ρ v² L T C_y sin θ |sin θ|, no moment, C_x = 0.1 and C_y = 1.0 (stated defaults).
+* current: quadratic cross-flow drag, X = −½ ρ v² B T C_x cos θ abs(cos θ),
+  Y = −½ ρ v² L T C_y sin θ abs(sin θ), no moment, C_x = 0.1 and C_y = 1.0 (stated defaults).
 """
 
 from __future__ import annotations

@@ -12,12 +12,12 @@ quadratic-programming formulation with slack)::
   its force components (f_x, f_y) in the body frame — the "extended thrust" form that makes
   the configuration matrix B constant (Johansen & Fossen 2013, §2.2.2).
 * **minimum power**: the quadratic Σ w_j (f_j/T_max)² — the usual convex stand-in for the
-  power Σ |f|^{3/2} (Johansen & Fossen 2013, §2.2.1); ``weights`` w (default 1) penalise a
+  power Σ abs(f)^{3/2} (Johansen & Fossen 2013, §2.2.1); ``weights`` w (default 1) penalise a
   thruster's use.
 * **thrust bounds**: min_thrust ≤ f_i ≤ max_thrust for a fixed thruster; for an azimuth the
   disc |f| ≤ max_thrust as the inscribed regular polygon of ``polygon_sides`` sides
   (cos(π/M) of the rating on the flats: 0.995 for M = 32), thrust ahead only.
-* **rate limits** (given the previous thrusts, azimuths and the step dt): |f − f_prev| ≤ Ṫ dt
+* **rate limits** (given the previous thrusts, azimuths and the step dt): abs(f − f_prev) ≤ Ṫ dt
   for a fixed thruster; each force component of an azimuth within Ṫ dt/√2 of its previous
   value (a box inside the disc of radius Ṫ dt); the azimuth within α_prev ± α̇ dt.
 * **forbidden sectors** (the fixed-azimuth linearisation): the azimuth's admissible directions
