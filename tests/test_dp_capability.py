@@ -123,3 +123,24 @@ def test_cli_bad_input_exits_2_with_one_line(args, words):
     assert len(lines) == 1, res.stderr
     for w in words:
         assert w in lines[0]
+
+
+def test_supply_vessel_layout_and_capability():
+    """Fossen's supply vessel: six thrusters; head-on wind alone is held by the two main
+    propellers up to U* = √(2 · 31.2 · 160² / |X(U = 1)|) (no side force or moment head-on);
+    losing a thruster never holds more wind, in any direction."""
+    from seahelm.analysis.dp_capability import dp_vessel
+
+    ship = dp_vessel("supply")
+    assert ship.layout.count == 6
+    assert ship.layout.max_thrust[0] == pytest.approx(200e3) and \
+        ship.layout.max_thrust[4] == pytest.approx(798.72e3)
+    res = level1_capability(ship, headings=4, failures="none", current_speed=0.0,
+                            waves=False)
+    x1 = blendermann_wind_loads(1.0, 0.0, "offshore-supply-vessel", frontal_area=300.0,
+                                lateral_area=900.0, length_overall=76.2)[0]
+    hand = min(math.sqrt(2 * 31.2 * 160.0**2 / abs(float(x1))), BEAUFORT_WIND[-1])
+    assert res.wind_speed[0, 0] == pytest.approx(hand, rel=1e-9)
+    full = level1_capability(ship, headings=36)
+    assert np.all(full.wind_speed[1:] <= full.wind_speed[0] + 1e-9)
+    assert np.all(full.wind_speed[0] > 10.0)

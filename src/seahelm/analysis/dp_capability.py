@@ -259,8 +259,34 @@ def _catamaran() -> DpVessel:
                     wind_type="research-vessel")
 
 
+def _supply() -> DpVessel:
+    """Fossen's offshore supply vessel (L = 76.2 m, 6000 t) with its six thrusters.
+
+    Thruster layout from Fossen, Sagatun & Sørensen (1996), "Identification of dynamically
+    positioned ships", *Control Engineering Practice* 4(3), 369–376, and Fossen (2021), §11.2 /
+    App. D, as given in PVS ``vehicles/supply.py`` (read, not copied): two bow tunnel
+    thrusters at x = 30 and 22 m, two stern ones at −22 and −30 m, each T_max = 3.2 · 250² =
+    200 kN (K n·abs(n) with n in rpm, reversible); two main propellers at y = ±8 m (their x
+    does not enter: they give no side force; −30 m here), each
+    T_max = 31.2 · 160² = 798.72 kN, reversible. The sources give no beam, draft or windage:
+    B = 18 m, T = 6 m, A_F = 300 m², A_L = 900 m² (Blendermann's offshore supply vessel) are
+    assumed here.
+    """
+    tunnel = 3.2 * 250.0**2
+    main = 31.2 * 160.0**2
+    half_pi = 0.5 * math.pi
+    layout = ThrusterLayout(
+        ("bow-tunnel-1", "bow-tunnel-2", "stern-tunnel-3", "stern-tunnel-4",
+         "main-starboard", "main-port"),
+        (30.0, 22.0, -22.0, -30.0, -30.0, -30.0), (0.0, 0.0, 0.0, 0.0, 8.0, -8.0),
+        (half_pi, half_pi, half_pi, half_pi, 0.0, 0.0), (False,) * 6,
+        (tunnel, tunnel, tunnel, tunnel, main, main))
+    return DpVessel("supply", layout, 76.2, 18.0, 6.0, frontal_area=300.0, lateral_area=900.0,
+                    lateral_centre=0.0, wind_type="offshore-supply-vessel")
+
+
 #: DP vessels by name: a function building each (the thruster layout and what the loads need).
-DP_VESSELS: dict = {"catamaran": _catamaran}
+DP_VESSELS: dict = {"catamaran": _catamaran, "supply": _supply}
 
 
 def dp_vessel(name: str) -> DpVessel:

@@ -82,13 +82,12 @@ def _plot(res: Any, path: Path) -> None:
         ax.set_theta_zero_location("N")          # bow up
         ax.set_theta_direction(-1)               # starboard to the right (clockwise)
         th = np.append(res.directions, res.directions[:1])
-        worst = np.argmin(res.wind_speed[1:].min(axis=1)) + 1 if len(res.cases) > 1 else None
-        for k, case in enumerate(res.cases):
-            if k and k != worst:
-                continue
-            r = np.append(res.wind_speed[k], res.wind_speed[k, :1])
-            ax.plot(th, r, lw=2 if k == 0 else 1.5, ls="-" if k == 0 else "--",
-                    label=case if k == 0 else f"worst failure: {case}")
+        r = np.append(res.wind_speed[0], res.wind_speed[0, :1])
+        ax.plot(th, r, lw=2, label="intact")
+        if len(res.cases) > 1:             # the worst single failure, direction by direction
+            worst = res.wind_speed[1:].min(axis=0)
+            ax.plot(th, np.append(worst, worst[:1]), lw=1.5, ls="--",
+                    label=f"worst single failure (of {len(res.cases) - 1}, per direction)")
         ax.set_rlim(0, max(1.0, float(res.wind_speed.max()) * 1.1))
         ax.set_title(f"DP capability level 1 — {res.vessel}\nwind speed held [m/s], "
                      f"current {res.current_speed:g} m/s", fontsize=10)
