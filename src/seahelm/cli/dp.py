@@ -101,7 +101,7 @@ def _plot(res: Any, path: Path) -> None:
 @app.command("capability")
 @handle_errors
 def capability(
-    ship: Annotated[str, typer.Argument(metavar="SHIP", help="A DP vessel (catamaran).")],
+    ship: Annotated[str, typer.Argument(metavar="SHIP", help="A DP vessel: catamaran or supply.")],
     headings: Annotated[int, typer.Option("--headings", help="Directions over 360°.")] = 36,
     failures: Annotated[str, typer.Option(
         "--failures", help="each (every thruster lost in turn), none, or names (a,b).")
