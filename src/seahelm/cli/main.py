@@ -58,6 +58,7 @@ _GROUPS = (
      "Standard manoeuvres: turning circle, zig-zag, spiral, pull-out, stopping."),
     ("ship", "seahelm.cli.ship", "Ships: the catalog, and ship files (TOML)."),
     ("autopilot", "seahelm.cli.autopilot", "Autopilot design: PID and LQ gains from the ship."),
+    ("dp", "seahelm.cli.dp", "Dynamic positioning: thrust allocation, capability (level 1)."),
 )
 for _name, _module, _help in _GROUPS:
     try:

@@ -1,0 +1,162 @@
+"""``seahelm dp``: dynamic positioning — the level-1 station-keeping capability rose.
+
+Exit codes: 0 success, 2 bad input (one-line reason on stderr), 1 other failure.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Annotated, Any
+
+import numpy as np
+import typer
+
+from ..errors import ParameterError
+from ..output_files import WRITTEN_BY_ATTR
+from ._common import ForceFlag, JsonFlag, OneLineErrors, command_path, console, handle_errors, \
+    output_file, print_json
+
+app = typer.Typer(cls=OneLineErrors, no_args_is_help=True,
+                  help="Dynamic positioning: thrust allocation and station-keeping capability.")
+
+
+#: the library's parameter names and the options that set them
+_OPTIONS = {"failure": "--failures", "current_speed": "--current", "headings": "--headings"}
+
+
+def _failures(text: str) -> Any:
+    if text in ("each", "none"):
+        return text
+    names = [t.strip() for t in text.split(",") if t.strip()]
+    if not names:
+        raise ParameterError(f"must be each, none or thruster names, got {text!r}",
+                             field="--failures", value=text)
+    return names
+
+
+def _payload(res: Any) -> dict:
+    return {
+        "seahelm_command": command_path() or "seahelm dp capability",
+        "vessel": res.vessel,
+        "level": 1,
+        "directions_deg": [round(math.degrees(t), 9) for t in res.directions],
+        "cases": list(res.cases),
+        "wind_speed_m_s": {c: [float(v) for v in row] for c, row in
+                           zip(res.cases, res.wind_speed)},
+        "beaufort": {c: [int(v) for v in row] for c, row in zip(res.cases, res.beaufort)},
+        "current_speed_m_s": res.current_speed,
+        "assumptions": list(res.assumptions),
+    }
+
+
+def _dataset(res: Any) -> Any:
+    import xarray as xr
+
+    ds = xr.Dataset(
+        {"wind_speed": (("case", "direction"), res.wind_speed,
+                        {"units": "m/s", "long_name": "largest wind speed held (10 m)"}),
+         "beaufort": (("case", "direction"), res.beaufort.astype(np.int64),
+                      {"units": "1", "long_name": "Beaufort number of that wind"})},
+        coords={"case": list(res.cases),
+                "direction": ("direction", res.directions,
+                              {"units": "rad", "long_name": "environment from, rel. to bow"})})
+    ds.attrs.update({"vessel": res.vessel, "level": 1, "current_speed": res.current_speed,
+                     "assumptions": "; ".join(res.assumptions),
+                     WRITTEN_BY_ATTR: command_path() or "seahelm dp capability"})
+    return ds
+
+
+def _plot(res: Any, path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    from ..plotting.save import save_figure
+
+    fig = plt.figure(figsize=(6.4, 6.4))
+    try:
+        ax = fig.add_subplot(projection="polar")
+        ax.set_theta_zero_location("N")          # bow up
+        ax.set_theta_direction(-1)               # starboard to the right (clockwise)
+        th = np.append(res.directions, res.directions[:1])
+        r = np.append(res.wind_speed[0], res.wind_speed[0, :1])
+        ax.plot(th, r, lw=2, label="intact")
+        if len(res.cases) > 1:             # the worst single failure, direction by direction
+            worst = res.wind_speed[1:].min(axis=0)
+            ax.plot(th, np.append(worst, worst[:1]), lw=1.5, ls="--",
+                    label=f"worst single failure (of {len(res.cases) - 1}, per direction)")
+        ax.set_rlim(0, max(1.0, float(res.wind_speed.max()) * 1.1))
+        ax.set_title(f"DP capability level 1 — {res.vessel}\nwind speed held [m/s], "
+                     f"current {res.current_speed:g} m/s", fontsize=10)
+        ax.legend(loc="lower left", bbox_to_anchor=(-0.1, -0.12), fontsize=8)
+    except BaseException:
+        plt.close(fig)
+        raise
+    save_figure(fig, path, dpi=100)
+
+
+@app.command("capability")
+@handle_errors
+def capability(
+    ship: Annotated[str, typer.Argument(metavar="SHIP", help="A DP vessel: catamaran or supply.")],
+    headings: Annotated[int, typer.Option("--headings", help="Directions over 360°.")] = 36,
+    failures: Annotated[str, typer.Option(
+        "--failures", help="each (every thruster lost in turn), none, or names (a,b).")
+    ] = "each",
+    current: Annotated[float, typer.Option("--current", help="Current speed [m/s].")] = 0.5,
+    no_waves: Annotated[bool, typer.Option("--no-waves", help="Without the wave drift.")] = False,
+    out: Annotated[Path | None, typer.Option("--out", help="Write a NetCDF file.")] = None,
+    json_file: Annotated[Path | None, typer.Option("--json-out", help="Write a JSON file.")] = None,
+    plot: Annotated[Path | None, typer.Option("--plot", help="Polar capability plot.")] = None,
+    force: ForceFlag = False,
+    json_out: JsonFlag = False,
+) -> None:
+    """Level-1 (quasi-static) DP capability: the largest wind held per direction, intact and
+    with each single thruster failure (DNV-ST-0111's method; environment as stated)."""
+    from ..analysis.dp_capability import dp_vessel, level1_capability
+
+    if headings < 1:
+        raise ParameterError(f"must be ≥ 1 [-], got {headings}",
+                             field="--headings", unit="-", value=headings)
+    if out is not None:
+        output_file("--out", out, "netcdf")
+    if json_file is not None:
+        output_file("--json-out", json_file, "json")
+    if plot is not None:
+        output_file("--plot", plot, "figure")
+    vessel = dp_vessel(ship)
+    try:
+        res = level1_capability(vessel, headings=headings, failures=_failures(failures),
+                                current_speed=current, waves=not no_waves)
+    except ParameterError as exc:      # the library's names → the options
+        option = _OPTIONS.get(exc.field or "")
+        if option is None:
+            raise
+        raise ParameterError(exc.reason, field=option, unit=exc.unit, value=exc.value) from exc
+    payload = _payload(res)
+    if out is not None:
+        from ..results import write_netcdf
+
+        write_netcdf(_dataset(res), out, force=force)
+    if json_file is not None:
+        from ..output_files import write_output
+
+        text = json.dumps(payload, indent=1)
+        write_output(json_file, lambda tmp: Path(tmp).write_text(text), "json", force=force)
+    if plot is not None:
+        _plot(res, plot)
+    if json_out:
+        print_json(payload)
+        return
+    console.print(f"DP capability level 1 — {res.vessel} (current {res.current_speed:g} m/s)",
+                  highlight=False, markup=False)
+    for note in res.assumptions:
+        console.print(f"  * {note}", highlight=False, markup=False)
+    console.print("  largest wind speed held [m/s]: min / max over directions", highlight=False,
+                  markup=False)
+    for case, row in zip(res.cases, res.wind_speed):
+        console.print(f"  {case:>28}: {row.min():6.2f} / {row.max():6.2f}", highlight=False,
+                      markup=False)
