@@ -164,7 +164,7 @@ def test_report_of_a_seakeeping_file(tmp_path):
     assert res.exit_code == 0, res.stderr
     out = json.loads(res.stdout)
     assert out["sections"] == ["overview", "seakeeping"] and out["n_runs"] == 0
-    page = (tmp_path / "seakeeping.html").read_text()
+    page = (tmp_path / "report.html").read_text()
     for text in ('"barpolar"', "RMS roll [deg]", "RMS heave [m]", "max RMS pitch [deg]",
                  "significant amplitude = 2√m0"):
         assert text in page

@@ -103,7 +103,8 @@ def test_imo_scenario_is_the_imo_check():
          r"\[maneuver.sides\] Input should be 'both', 'starboard' or 'port', got 'left'"),
         (('catalog = "kvlcc2-l7"', 'catalog = "mariner-nomoto2"'),
          r"\[vessel.catalog\] a manoeuvre needs a ship with a steering gear: a catalog ship "
-         r"\(kvlcc2-full, .*\) or a ship file with a \[steering_gear\], got 'mariner-nomoto2' "
+         r"\(esso-osaka-3m, kvlcc2-full, .*\) or a ship file with a \[steering_gear\], "
+         r"got 'mariner-nomoto2' "
          r"\(it has no \[steering_gear\]\)"),
         (('catalog = "kvlcc2-l7"', 'model = "mmg"'),
          r"\[vessel.ship\] a manoeuvre needs a ship with a steering gear: .* got none"),

@@ -125,6 +125,10 @@ def test_nomoto_k_and_t_scale_and_kt_stays():
 @pytest.mark.parametrize("name", [n for n in CATALOG])
 def test_there_and_back_is_the_identity(name):
     ship = get_ship(name)
+    if math.isnan(ship.length):  # a 6-DOF craft's file gives no length: refused by name
+        with pytest.raises(ParameterError, match="has no length to scale from"):
+            ship.scaled(4.0)
+        return
     back = ship.scaled(ship.length * 3.7).scaled(ship.length)
     for info in ship.params.info():
         np.testing.assert_allclose(getattr(back.params, info.name),

@@ -114,6 +114,28 @@ COMBINATIONS = {
         ("pitch_ratio",),
         "controller.pitch_ratio -> actuator.pitch_ratio\n"
         "actuator.pitch_ratio -> model.pitch_ratio"),
+    # examples/otter_route_current.toml: LOS feeds the heading, the surge force is the user's;
+    # the shaft-speed commands pass the direct actuator to the model's two propellers
+    ("otter", "direct", "los+thrust-heading"): (
+        ("surge_force",),
+        "controller.propeller_port_speed_command -> actuator.propeller_port_speed_command\n"
+        "controller.propeller_starboard_speed_command -> "
+        "actuator.propeller_starboard_speed_command\n"
+        "actuator.propeller_port_speed_command -> model.propeller_port_speed_command\n"
+        "actuator.propeller_starboard_speed_command -> model.propeller_starboard_speed_command"
+        + _HEADING + "\nmodel.north -> controller.north\nmodel.east -> controller.east"),
+    # examples/remus100_dive_turn.toml: depth (stern planes), heading (rudder), shaft speed
+    ("remus100", "direct", "auv-depth-heading"): (
+        ("depth", "heading", "propeller_speed"),
+        "controller.propeller_speed_command -> actuator.propeller_speed_command\n"
+        "controller.rudder_command -> actuator.rudder_command\n"
+        "controller.stern_plane_command -> actuator.stern_plane_command\n"
+        "actuator.propeller_speed_command -> model.propeller_speed_command\n"
+        "actuator.rudder_command -> model.rudder_command\n"
+        "actuator.stern_plane_command -> model.stern_plane_command\n"
+        "model.depth -> controller.depth\nmodel.pitch -> controller.pitch\n"
+        "model.heading -> controller.heading\nmodel.heave_speed -> controller.heave_speed\n"
+        "model.pitch_rate -> controller.pitch_rate\nmodel.yaw_rate -> controller.yaw_rate"),
 }
 
 

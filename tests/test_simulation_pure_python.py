@@ -41,6 +41,7 @@ from seahelm.vessels.cpp_ship import CPPShipParams
 from seahelm.vessels.mariner import MARINER_NONLINEAR, MARINER_SERVO
 from seahelm.vessels.mmg import KVLCC2_L7, KVLCC2_L7_SERVO, KVLCC2_L7_WP0_035
 from seahelm.vessels.mmg_four_quadrant import KVLCC2_L7_4Q
+from seahelm.vessels.mmg_low_speed import ESSO_OSAKA_3M
 from seahelm.vessels.nomoto import Nomoto1Params, Nomoto2Params
 from seahelm.vessels.voitkunsky import MARINER_VOITKUNSKY
 
@@ -107,6 +108,13 @@ CASES = {
         actuator=RUDDER_SERVO, actuator_params=KVLCC2_L7_SERVO, controller=OPEN_LOOP,
         reference={"rudder_command": np.radians([0.0, 10.0]).reshape(2, 1, 1),
                    "engine_order": -1.0}),
+    "mmg-ls": lambda: dict(  # ahead with 35 deg rudder, and a propeller reversed (astern)
+        params=ESSO_OSAKA_3M, x0=np.array([0.3, 0, 0, 0, 0, 0]), t_final=2.0, dt=0.1,
+        actuator=RUDDER_SERVO, actuator_params=ServoParams(
+            max_angle=math.radians(35.0), max_rate=math.radians(40.0), time_constant=0.05),
+        controller=OPEN_LOOP,
+        reference={"rudder_command": np.radians([35.0, -20.0]).reshape(2, 1, 1),
+                   "propeller_rps": np.array([10.0, -10.0]).reshape(2, 1, 1)}),
     "mariner": lambda: dict(
         params=MARINER_NONLINEAR, x0=np.zeros(6), t_final=2.0, dt=0.1, actuator=RUDDER_SERVO,
         actuator_params=MARINER_SERVO, controller=OPEN_LOOP,

@@ -8,8 +8,9 @@ is; a model with rudder *and* propeller inputs (MMG) needs the rps as a command 
 parameters are the controller's and ``propeller_rps``; its states, references, measurements
 and outputs are the controller's.
 
-The compiled ``step`` is generated as a small module (as :func:`seahelm.control.guided.guided`
-is; in :func:`~seahelm._codegen.kernel_cache_dir`) that calls the controller's step, moves its
+The compiled ``step`` is generated as a small module, in memory
+(:func:`~seahelm._codegen.exec_generated`: nothing is written when a control module is
+imported), that calls the controller's step, moves its
 outputs one slot up and writes the rps: the same numbers as the controller's, and the rps.
 """
 
@@ -29,8 +30,10 @@ HELD_RPS_COMMAND = "propeller_rps"
 
 
 def _module_name(func: object) -> tuple[str, str]:
-    py = getattr(func, "py_func", None)
-    if py is None:
+    # a numba dispatcher's function, or the function itself while numba's JIT is disabled
+    # (NUMBA_DISABLE_JIT=1: njit returns plain functions)
+    py = getattr(func, "py_func", func)
+    if not callable(py) or not hasattr(py, "__module__"):
         raise TypeError(f"{func!r} is not a numba function")
     return py.__module__, py.__name__
 
@@ -63,7 +66,7 @@ def with_held_rps(controller: Controller, *, params_name: str | None = None,
     ValueError
         If the controller commands or takes ``propeller_rps`` already, or is a pass-through.
     """
-    from .._codegen import code_fingerprint, import_generated
+    from .._codegen import code_fingerprint, exec_generated
 
     base = controller.params_type
     if (controller.passthrough or HELD_RPS_COMMAND in controller.command_labels
@@ -86,15 +89,19 @@ def with_held_rps(controller: Controller, *, params_name: str | None = None,
         "from numba import njit\n\n"
         f"from {step_module} import {step_name} as controller_step\n\n"
         f"NC = {nc}\nNO = {no}\n\n\n"
-        "@njit(cache=True)\n"
+        "@njit\n"
         "def held_rps_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled\n"
         "    controller_step(t, dt, z, y, ref, p, cs, cmd)\n"
         "    for k in range(NO - 1, -1, -1):  # its outputs one slot up, after the rps\n"
         "        cmd[NC + 1 + k] = cmd[NC + k]\n"
         "    cmd[NC] = p.propeller_rps\n")
     digest = hashlib.sha1(source.encode() + b"\0" + code_fingerprint(
-        controller.step.py_func)).hexdigest()[:16]
-    generated = import_generated(f"seahelm_held_rps_{digest}", source)
+        getattr(controller.step, "py_func", controller.step))).hexdigest()[:16]
+    # in memory, not in the kernel cache: importing the control modules (which build the
+    # '-rps' controllers) writes nothing, so a read-only cache, ``jit=False`` and
+    # NUMBA_DISABLE_JIT=1 work; the loop inlines a copy of the step (its own numba cache is
+    # not needed), and a cached kernel imports it by name from sys.modules
+    generated = exec_generated(f"seahelm_held_rps_{digest}", source)
     return dataclasses.replace(
         controller, name=f"{controller.name}-rps",
         description=description or (
