@@ -7,14 +7,14 @@ rudder as inputs, first-order hold) and compares the time and the head reach to 
 
 The rule (:data:`REVERSAL_RULE`), on the record's samples k:
 
-1. **the reversal** is a sample k with n_{k−1} > 0 and n_k ≤ 0 (the rps leaves ahead);
-2. **clean**: from k on, n ≤ 0 at every sample until the first sample j > k with u_j ≤ 0
-   (the ship is stopped with the propeller never ahead again), and the record reaches j;
-3. **astern**: min n over [k, j] ≤ −``min_astern_rps`` (a reversal, not a stopped propeller:
-   the stops with n = 0 throughout are *coasting* stops, found with ``coasting=True``);
-4. **moving**: u_{k−1} ≥ ``min_speed`` (a stop from a speed worth measuring);
-5. the replay starts at sample s = k − 1 (the last sample ahead), so the measured fall of the
-   rps through zero is in its input.
+- **the reversal**: a sample k with n(k−1) > 0 and n(k) ≤ 0 (the rps leaves ahead);
+- **clean**: from k on, n ≤ 0 at every sample until the first sample j > k with u(j) ≤ 0
+  (the ship is stopped with the propeller never ahead again), and the record reaches j;
+- **astern**: min n over [k, j] ≤ −``min_astern_rps`` (a reversal, not a stopped propeller:
+  the stops with n = 0 throughout are *coasting* stops, found with ``coasting=True``);
+- **moving**: u(k−1) ≥ ``min_speed`` (a stop from a speed worth measuring);
+- the replay starts at sample s = k − 1 (the last sample ahead), so the measured fall of the
+  rps through zero is in its input.
 
 Time to stop: t(u = 0) − t_s, with t(u = 0) the first zero of the surge speed u, linearly
 interpolated between samples (the measured u from the record, the simulated u from the replay
