@@ -50,6 +50,16 @@ def test_the_display_rule():
     assert metric_label("speed_loss", "1") == "speed loss [%]"
     assert metric_label("time_90", "s") == "time 90 [s]"
     assert metric_label("final_yaw_aux", "") == "final yaw aux"
+    # a shaft's rotation speed (rad/s of a ..._speed) in rpm, an angle's rate in deg/s: the
+    # Otter's propellers at 73.6 rad/s were shown as "4216 deg/s"
+    assert display_unit("rad/s", "final_propeller_port_speed") == ("rpm", pytest.approx(
+        60 / (2 * math.pi)))
+    assert to_display(2 * math.pi, "rad/s", "propeller_speed_command") == (
+        pytest.approx(60.0), "rpm")
+    assert metric_label("final_propeller_port_speed", "rad/s") == (
+        "final propeller port speed [rpm]")
+    assert metric_label("final_yaw_rate", "rad/s") == "final yaw rate [deg/s]"
+    assert display_unit("m/s", "final_surge_speed") == ("m/s", 1.0)
 
 
 def test_an_angle_is_shown_once_and_no_filter_state():

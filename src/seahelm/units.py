@@ -11,7 +11,9 @@ unit, e.g. ``final_heading`` [rad]).
 
 **Display units.** What a person reads -- the CLI's tables, ``seahelm inspect``, the HTML
 report -- shows every value by the same rule (:func:`display_unit`): angles in degrees
-(rad → deg, rad/s → deg/s, rad/s² → deg/s²), fractions (unit ``1`` of a quantity named in
+(rad → deg, rad/s → deg/s, rad/s² → deg/s²), a shaft's rotation speed (unit rad/s of a
+quantity named ``..._speed``, such as a thruster's ``propeller_port_speed``; the rate of an
+angle is named ``..._rate``) in rpm, fractions (unit ``1`` of a quantity named in
 :data:`FRACTIONS`, such as the speed loss of a turn) in per cent, every other unit as stored.
 A label names the quantity in words with its display unit, ``final heading [deg]``
 (:func:`metric_label`).
@@ -99,6 +101,12 @@ def _words(name: str, unit: str) -> str:
     return name
 
 
+def _is_shaft_speed(name: str) -> bool:
+    """Whether a quantity of unit rad/s is a shaft's rotation speed (``propeller_speed``,
+    ``final_propeller_port_speed``, ``max_abs_propeller_speed``) rather than an angle's rate."""
+    return name.removesuffix("_command").endswith("_speed")
+
+
 def display_unit(unit: str, name: str = "") -> tuple[str, float]:
     """The unit a value of ``unit`` is shown in, and the factor that converts it.
 
@@ -108,7 +116,7 @@ def display_unit(unit: str, name: str = "") -> tuple[str, float]:
         The stored unit.
     name : str, optional
         The quantity's name (a unit ``1`` is shown in per cent for the names in
-        :data:`FRACTIONS`).
+        :data:`FRACTIONS`; rad/s of a ``..._speed`` in rpm).
 
     Returns
     -------
@@ -116,6 +124,8 @@ def display_unit(unit: str, name: str = "") -> tuple[str, float]:
         Display unit and factor (display value = factor × stored value).
     """
     unit = str(unit or "")
+    if unit == "rad/s" and _is_shaft_speed(name):
+        return "rpm", 60.0 / (2.0 * math.pi)
     if unit in ANGLE_DISPLAY:
         return ANGLE_DISPLAY[unit], 180.0 / math.pi
     if unit in ("1", "-") and name.removeprefix("final_") in FRACTIONS:
