@@ -43,3 +43,28 @@ def test_the_help_names_the_default():
     res = runner.invoke(app, ["report", "--help"], env={"COLUMNS": "80"})
     text = " ".join(res.stdout.replace("│", " ").split())
     assert "default: report.html beside RESULT" in text, text
+
+
+def test_a_report_of_other_results_is_not_replaced_without_force(tmp_path):
+    """``seahelm report b.nc`` beside ``a.nc``'s report.html replaced it silently (the policy
+    took any seahelm page for the command's own output); the page now names the files it is
+    the report of, and a report of other files needs ``--force``."""
+    out = tmp_path / "out"
+    assert runner.invoke(app, ["demo", "--out", str(out)]).exit_code == 0
+    (out / "result.nc").rename(out / "a.nc")
+    import shutil
+
+    shutil.copy(out / "a.nc", out / "b.nc")
+    (out / "report.html").unlink()
+    assert _json(["report", str(out / "a.nc")])["report"] == str(out / "report.html")
+    page = (out / "report.html").read_bytes()
+    assert b'<meta name="seahelm-report-of" content="a.nc">' in page
+    res = runner.invoke(app, ["report", str(out / "b.nc")])
+    assert res.exit_code == 2
+    assert "a seahelm report of other files, not the report of b.nc" in res.output
+    assert "pass --force" in res.output
+    assert (out / "report.html").read_bytes() == page  # untouched
+    # its own report again, and the other one with --force
+    assert _json(["report", str(out / "a.nc")])["report"] == str(out / "report.html")
+    assert _json(["report", str(out / "b.nc"), "--force"])["report"] == str(out / "report.html")
+    assert b'content="b.nc"' in (out / "report.html").read_bytes()

@@ -28,6 +28,7 @@ from __future__ import annotations
 import contextlib
 import contextvars
 import os
+import re
 import stat
 import tempfile
 from collections.abc import Callable, Iterable, Iterator
@@ -36,9 +37,10 @@ from pathlib import Path
 
 from .errors import ParameterError
 
-__all__ = ["FIGURE_METADATA", "KINDS", "WRITTEN_BY_ATTR", "FileKind", "OutputExistsError",
-           "approved_outputs", "atomic_write", "check_output", "describe_file",
-           "kind_for_suffix", "write_output", "write_together", "written_by_line"]
+__all__ = ["FIGURE_METADATA", "KINDS", "REPORT_OF_META", "WRITTEN_BY_ATTR", "FileKind",
+           "OutputExistsError", "approved_outputs", "atomic_write", "check_output",
+           "describe_file", "kind_for_suffix", "report_owner", "write_output", "write_together",
+           "written_by_line"]
 
 #: Inside :func:`approved_outputs`: the existing files a check with ``force`` approved, so that
 #: the writer called later (``SimResult.to_netcdf(path)``, without ``force``) replaces them.
@@ -137,11 +139,48 @@ def _seahelm_text(path: Path, command: str | None = None) -> bool:
         return False
 
 
+#: The meta element of a seahelm report naming the result files it is the report of
+#: (:func:`report_owner`): ``seahelm report b.nc`` does not replace the report of ``a.nc``.
+REPORT_OF_META = "seahelm-report-of"
+
+
+_REPORT_OF = "report of "
+
+
+def report_owner(sources: Iterable[str | os.PathLike[str]]) -> str:
+    """What a report is the report of, as its :data:`REPORT_OF_META` element records it: the
+    names of the result files read, sorted (``"report of a-runs.nc b-metrics.nc"``); given
+    to :func:`check_output` as the ``command`` of an HTML report.
+
+    Parameters
+    ----------
+    sources : iterable of path
+        The files the report was made from.
+
+    Returns
+    -------
+    str
+    """
+    return _REPORT_OF + " ".join(sorted(Path(s).name for s in sources))
+
+
 def _seahelm_html(path: Path, command: str | None = None) -> bool:
+    """A seahelm report; with ``command`` a :func:`report_owner`, the report of those same
+    files (a report from before the page named its files is a report of any; any other
+    ``command``, the CLI's name, says nothing of an HTML report)."""
     head = _head(path).lower()
-    return head.lstrip().startswith(b"<!doctype html") and (
-        b'name="generator" content="seahelm' in head
-        or b"<footer>written by seahelm" in _tail(path))
+    if not (head.lstrip().startswith(b"<!doctype html") and (
+            b'name="generator" content="seahelm' in head
+            or b"<footer>written by seahelm" in _tail(path))):
+        return False
+    if command is None or not command.startswith(_REPORT_OF):
+        return True
+    import html as _html
+
+    found = re.search(rb'<meta name="' + REPORT_OF_META.encode() + rb'" content="([^"]*)"',
+                      _head(path))
+    return found is None or _REPORT_OF + _html.unescape(
+        found.group(1).decode("utf-8", "replace")) == command
 
 
 #: The metadata :func:`seahelm.plotting.save.save_figure` writes into a figure, by format
@@ -365,6 +404,8 @@ def check_output(path: str | os.PathLike[str], kind: str, *, reads: Iterable[
         found += ", perhaps edited since"
     elif found.startswith("a seahelm") and command is not None and kind == "netcdf":
         found += f" not written by `{command}`"
+    elif kind == "html" and command is not None and command.startswith(_REPORT_OF):
+        found = f"a seahelm report of other files, not the {command}"
     raise OutputExistsError(
         f"{name} exists ({found}); this writes {spec.description} there: pass {force_word} "
         "to replace it, or choose another path")

@@ -213,7 +213,7 @@ def _write_report(source: Any, target: Path, *, quiet: bool) -> Path:
     data, beside the result files."""
     from ..report import write_report
 
-    summary = write_report(source, target)
+    summary = write_report(source, target, option="--out", force_word="--force")
     if not quiet:
         console.print(f"  report: {summary.path}", highlight=False)
     return summary.path

@@ -76,7 +76,7 @@ def report(
     from ..report import combined_report_data, write_report
 
     summary = write_report(results[0] if len(results) == 1 else combined_report_data(results),
-                           target)
+                           target, option="--out", force_word="--force")
     if json_out:
         print_json({"file": str(results[0]), "files": [str(r) for r in results],
                     "report": str(summary.path), "bytes": summary.bytes,

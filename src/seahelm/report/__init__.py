@@ -83,15 +83,19 @@ def report_html(data: ReportData) -> tuple[str, tuple[str, ...]]:
     (str, tuple of str)
     """
     from .. import __version__
+    from ..output_files import report_owner
     from .html import render_html
     from .sections import build_sections
 
     sections = build_sections(data)
-    return render_html(data.title, sections, version=__version__), tuple(s.id for s in sections)
+    return (render_html(data.title, sections, version=__version__,
+                        report_of=report_owner(data.sources).removeprefix("report of ")),
+            tuple(s.id for s in sections))
 
 
 def write_report(source: "str | os.PathLike[str] | xr.Dataset | ReportData",
-                 target: str | os.PathLike[str], *, force: bool = False) -> ReportSummary:
+                 target: str | os.PathLike[str], *, force: bool = False,
+                 option: str = "target", force_word: str = "force=True") -> ReportSummary:
     """Write the HTML report of a result to ``target`` (atomically: a failure leaves no
     partial file under that name).
 
@@ -104,7 +108,11 @@ def write_report(source: "str | os.PathLike[str] | xr.Dataset | ReportData",
         The HTML file to write.
     force : bool, optional
         Replace an existing file that is not a seahelm report (default False; the output
-        policy, :func:`seahelm.output_files.check_output`).
+        policy, :func:`seahelm.output_files.check_output`), or the report of other result
+        files.
+    option, force_word : str, optional
+        How a refusal names the target and the way to force it (the CLI: ``--out``,
+        ``--force``).
 
     Returns
     -------
@@ -118,18 +126,23 @@ def write_report(source: "str | os.PathLike[str] | xr.Dataset | ReportData",
         If ``source`` is not a seahelm result file or sweep store, or holds no
         runs.
     """
-    from ..output_files import check_output, write_output
+    from ..output_files import check_output, report_owner, write_output
 
-    check_output(target, "html", force=force)  # (before the work; again when written)
+    named = {"option": option, "force_word": force_word}
+    check_output(target, "html", force=force, **named)  # (before the work; again when written)
     if isinstance(source, ReportData):
         data = source
     elif isinstance(source, (str, os.PathLike)):
         data = load_report_data(source)
     else:
         data = report_data_from_dataset(source)
+    # a report of other files is not this report's earlier output (before the page is built)
+    owner = report_owner(data.sources) if data.sources else None
+    check_output(target, "html", force=force, command=owner, **named)
     page, ids = report_html(data)
     encoded = page.encode("utf-8")
-    path = write_output(target, lambda tmp: Path(tmp).write_bytes(encoded), "html", force=force)
+    path = write_output(target, lambda tmp: Path(tmp).write_bytes(encoded), "html", force=force,
+                        command=owner, **named)
     return ReportSummary(path=path, bytes=len(encoded), title=data.title, sections=ids,
                          n_runs=data.n_runs, sources=data.sources,
                          counted="sample" if data.imo_ensemble is not None else

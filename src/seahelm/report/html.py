@@ -13,6 +13,7 @@ import html
 from collections.abc import Sequence
 from typing import Any
 
+from ..output_files import REPORT_OF_META
 from .sections import Section
 
 __all__ = ["render_html"]
@@ -52,7 +53,8 @@ def _figure_html(fig: dict[str, Any], div_id: str) -> str:
                        config={"displaylogo": False, "responsive": True})
 
 
-def render_html(title: str, sections: Sequence[Section], *, version: str = "") -> str:
+def render_html(title: str, sections: Sequence[Section], *, version: str = "",
+                report_of: str = "") -> str:
     """The page of ``sections``.
 
     Parameters
@@ -63,6 +65,10 @@ def render_html(title: str, sections: Sequence[Section], *, version: str = "") -
         In page order.
     version : str, optional
         The seahelm version named in the footer.
+    report_of : str, optional
+        The result files the page is the report of
+        (:func:`seahelm.output_files.report_owner`), recorded in a meta element so that a
+        report of other files is not replaced without ``--force``.
 
     Returns
     -------
@@ -89,7 +95,9 @@ def render_html(title: str, sections: Sequence[Section], *, version: str = "") -
     return (
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
         f"<meta name=\"generator\" content=\"seahelm {esc(version)}\">\n"
-        f"<title>{esc(title)}</title>\n<style>{_CSS}</style>\n"
+        + (f"<meta name=\"{REPORT_OF_META}\" content=\"{esc(report_of)}\">\n" if report_of
+           else "")
+        + f"<title>{esc(title)}</title>\n<style>{_CSS}</style>\n"
         f"<script type=\"text/javascript\">{get_plotlyjs()}</script>\n</head>\n<body>\n"
         f"<header><h1>{esc(title)}</h1><nav>{nav}</nav></header>\n"
         + "\n".join(body)
