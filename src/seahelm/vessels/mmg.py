@@ -367,6 +367,15 @@ def mmg_output(t, x, u, p, y):  # pragma: no cover - compiled
     (_X_H, _Y_H, _N_H, _X_P, _X_R, _Y_R, _N_R, thrust, F_N, _w_P, u_R, v_R, speed,
      beta) = _forces(x[S.surge_speed], x[S.sway_speed], x[S.yaw_rate], delta,
                      u[U.propeller_rps], p)
+    write_mmg_outputs(x, y, speed, beta, thrust, F_N, rudder_inflow_angle(delta, u_R, v_R))
+
+
+@njit(cache=True)
+def write_mmg_outputs(x, y, speed, beta, thrust, F_N, inflow_angle):  # pragma: no cover
+    """The outputs every model of the MMG family has (:data:`OUTPUTS`, the first entries of
+    ``mmg-4q``'s and ``mmg-ls``'s; their states begin with :data:`STATES`): the state's
+    position, heading, rates and speeds, then ``speed``, ``drift_angle``, ``thrust``,
+    ``rudder_normal_force`` and ``rudder_inflow_angle`` as the model computed them."""
     y[Y.north] = x[S.north]
     y[Y.east] = x[S.east]
     y[Y.heading] = x[S.heading]
@@ -377,12 +386,13 @@ def mmg_output(t, x, u, p, y):  # pragma: no cover - compiled
     y[Y.drift_angle] = beta
     y[Y.thrust] = thrust
     y[Y.rudder_normal_force] = F_N
-    y[Y.rudder_inflow_angle] = rudder_inflow_angle(delta, u_R, v_R)
+    y[Y.rudder_inflow_angle] = inflow_angle
 
 
 @njit(cache=True)
 def mmg_motion(x, p):  # pragma: no cover - compiled
-    """Surge and sway speed through the water [m/s] and heading [rad] (for the loads)."""
+    """Surge and sway speed through the water [m/s] and heading [rad] (for the loads), of
+    every model of the MMG family (their states begin with :data:`STATES`)."""
     return x[S.surge_speed], x[S.sway_speed], x[S.heading]
 
 

@@ -100,8 +100,10 @@ from .mmg import (
     MMGParams,
     _forces,
     mmg_accelerations,
+    mmg_motion,
     rudder_inflow_angle,
     wake_fraction,
+    write_mmg_outputs,
 )
 from .mmg import OUTPUT_UNITS as _MMG_OUTPUT_UNITS
 from .mmg import OUTPUTS as _MMG_OUTPUTS
@@ -298,26 +300,10 @@ def mmg4q_output(t, x, u, p, y):  # pragma: no cover - compiled
     (_X_H, _Y_H, _N_H, _X_P, _Y_P, _N_P, _X_R, _Y_R, _N_R, thrust, torque, F_N, u_R, v_R,
      speed, beta, b_adv) = _forces4q(x[S.surge_speed], x[S.sway_speed], x[S.yaw_rate], delta,
                                      x[S.propeller_rps], p)
-    y[Y.north] = x[S.north]
-    y[Y.east] = x[S.east]
-    y[Y.heading] = x[S.heading]
-    y[Y.yaw_rate] = x[S.yaw_rate]
-    y[Y.surge_speed] = x[S.surge_speed]
-    y[Y.sway_speed] = x[S.sway_speed]
-    y[Y.speed] = speed
-    y[Y.drift_angle] = beta
-    y[Y.thrust] = thrust
-    y[Y.rudder_normal_force] = F_N
-    y[Y.rudder_inflow_angle] = rudder_inflow_angle(delta, u_R, v_R)
+    write_mmg_outputs(x, y, speed, beta, thrust, F_N, rudder_inflow_angle(delta, u_R, v_R))
     y[Y.propeller_rps] = x[S.propeller_rps]
     y[Y.propeller_torque] = torque
     y[Y.advance_angle] = b_adv
-
-
-@njit(cache=True)
-def mmg4q_motion(x, p):  # pragma: no cover - compiled
-    """Surge and sway speed through the water [m/s] and heading [rad] (for the loads)."""
-    return x[S.surge_speed], x[S.sway_speed], x[S.heading]
 
 
 MMG_4Q = VesselModel(
@@ -336,7 +322,7 @@ MMG_4Q = VesselModel(
     output=mmg4q_output,
     output_labels=OUTPUTS,
     output_units=OUTPUT_UNITS,
-    motion=mmg4q_motion,
+    motion=mmg_motion,
 )
 
 

@@ -63,7 +63,8 @@ from ..hydrodynamics.low_speed_propulsion import (
 from ..parameters import Params, param, signal_indices
 from .base import VesselModel
 from .rigid_body import horizontal_velocity, midship_accelerations
-from .mmg import DISTURBANCE_UNITS, DISTURBANCES, OUTPUT_UNITS, OUTPUTS, STATE_UNITS, STATES
+from .mmg import (DISTURBANCE_UNITS, DISTURBANCES, OUTPUT_UNITS, OUTPUTS, STATE_UNITS, STATES,
+                  mmg_motion, write_mmg_outputs)
 
 __all__ = ["MMGLowSpeedParams", "MMG_LS", "HULL_MODELS", "LowSpeedForces", "force_components",
            "ESSO_OSAKA_3M", "component_code"]
@@ -297,23 +298,7 @@ def mmg_ls_output(t, x, u, p, y):  # pragma: no cover - compiled
     (_X_H, _Y_H, _N_H, X_P, _Y_P, _N_P, _X_R, _Y_R, _N_R, F_N, u_R, v_R, speed, beta,
      _w) = _forces_ls(x[S.surge_speed], x[S.sway_speed], x[S.yaw_rate], delta,
                       u[U.propeller_rps], p)
-    y[Y.north] = x[S.north]
-    y[Y.east] = x[S.east]
-    y[Y.heading] = x[S.heading]
-    y[Y.yaw_rate] = x[S.yaw_rate]
-    y[Y.surge_speed] = x[S.surge_speed]
-    y[Y.sway_speed] = x[S.sway_speed]
-    y[Y.speed] = speed
-    y[Y.drift_angle] = beta
-    y[Y.thrust] = X_P
-    y[Y.rudder_normal_force] = F_N
-    y[Y.rudder_inflow_angle] = delta - math.atan2(v_R, u_R)
-
-
-@njit(cache=True)
-def mmg_ls_motion(x, p):  # pragma: no cover - compiled
-    """Surge and sway speed through the water [m/s] and heading [rad] (for the loads)."""
-    return x[S.surge_speed], x[S.sway_speed], x[S.heading]
+    write_mmg_outputs(x, y, speed, beta, X_P, F_N, delta - math.atan2(v_R, u_R))
 
 
 MMG_LS = VesselModel(
@@ -331,7 +316,7 @@ MMG_LS = VesselModel(
     output=mmg_ls_output,
     output_labels=OUTPUTS,
     output_units=OUTPUT_UNITS,
-    motion=mmg_ls_motion,
+    motion=mmg_motion,
 )
 
 
