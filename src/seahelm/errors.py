@@ -21,6 +21,7 @@ __all__ = [
     "strict_validity",
     "warn_validity",
     "deprecated_names",
+    "deprecated_method",
 ]
 
 
@@ -209,3 +210,42 @@ def deprecated_names(module: str, aliases: dict[str, tuple[str, str, str]], *,
         return getattr(importlib.import_module(home), new)
 
     return __getattr__
+
+
+def deprecated_method(new: str, why: str = "") -> Any:
+    """A method kept for old code under its old name: each call warns
+    (:class:`DeprecationWarning`, naming ``new``) and returns what ``self.new()`` returns.
+
+    Parameters
+    ----------
+    new : str
+        The method's name now (``"to_xarray"``).
+    why : str, optional
+        Said after the replacement (``"one name for it across seahelm"``).
+
+    Returns
+    -------
+    function
+        To assign in the class body: ``to_dataset = deprecated_method("to_xarray")``.
+    """
+    def old(self: Any, *args: Any, **kwargs: Any) -> Any:
+        warnings.warn(f"{type(self).__name__}.{old.__name__}() is deprecated: use .{new}() "
+                      f"({'the same result' + ('; ' + why if why else '')})",
+                      DeprecationWarning, stacklevel=2)
+        return getattr(self, new)(*args, **kwargs)
+
+    old.__doc__ = f"Deprecated name of :meth:`{new}` (a :class:`DeprecationWarning`)."
+    return _Named(old)
+
+
+class _Named:
+    """A function that takes the name it is assigned to in a class body."""
+
+    def __init__(self, func: Any) -> None:
+        self.func = func
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.func.__name__ = self.func.__qualname__ = name
+
+    def __get__(self, obj: Any, owner: type | None = None) -> Any:
+        return self.func if obj is None else self.func.__get__(obj, owner)

@@ -49,7 +49,7 @@ from ..constants import GRAVITY
 from ..environment.directional_spreading import get_spreading
 from ..environment.rao import DOF_UNITS, RAO, closed_form_rao
 from ..environment.spectrum_base import WaveSpectrum
-from ..errors import ParameterError, warn_validity
+from ..errors import ParameterError, deprecated_method, warn_validity
 from . import response_statistics as stats
 
 __all__ = ["ResponseMoments", "response_moments", "closed_form_moments", "response_unit",
@@ -239,19 +239,7 @@ class ResponseMoments:
         out[ok] = stats.most_probable_maximum(self.moment(dof, 0)[ok], n[ok])
         return out
 
-    def to_dataset(self) -> Any:
-        """Deprecated name of :meth:`to_xarray` (a :class:`DeprecationWarning`).
-
-        Returns
-        -------
-        xarray.Dataset
-        """
-        import warnings
-
-        warnings.warn(f"{type(self).__name__}.to_dataset() is deprecated: use .to_xarray() "
-                      "(the same Dataset; one name for it across seahelm)", DeprecationWarning,
-                      stacklevel=2)
-        return self.to_xarray()
+    to_dataset = deprecated_method("to_xarray", "one name for it across seahelm")
 
     def to_xarray(self) -> Any:
         """The moments and statistics as an :class:`xarray.Dataset` over (dof, speed, heading).

@@ -95,7 +95,7 @@ from numpy.typing import ArrayLike
 
 from .._validate import as_float_array, check_nonnegative, check_positive
 from ..constants import GRAVITY
-from ..errors import ParameterError, warn_validity
+from ..errors import ParameterError, deprecated_method, warn_validity
 
 __all__ = ["RAO", "DOFS", "DOF_UNITS", "closed_form_rao", "imo_roll_period",
            "roll_slope_factor", "SMITH_FACTORS", "ROLL_EXCITATIONS"]
@@ -300,19 +300,7 @@ class RAO:
         H = complex(self(dof, frequency, heading))
         return np.real(amplitude * H * np.exp(1j * (we * t + phase)))
 
-    def to_dataset(self) -> Any:
-        """Deprecated name of :meth:`to_xarray` (a :class:`DeprecationWarning`).
-
-        Returns
-        -------
-        xarray.Dataset
-        """
-        import warnings
-
-        warnings.warn(f"{type(self).__name__}.to_dataset() is deprecated: use .to_xarray() "
-                      "(the same Dataset; one name for it across seahelm)", DeprecationWarning,
-                      stacklevel=2)
-        return self.to_xarray()
+    to_dataset = deprecated_method("to_xarray", "one name for it across seahelm")
 
     def to_xarray(self) -> Any:
         """The RAOs as an :class:`xarray.Dataset` (seahelm's RAO NetCDF layout, :mod:`.rao_io`).

@@ -42,7 +42,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError, ValidityRangeWarning
+from ..errors import ParameterError, ValidityRangeWarning, deprecated_method
 
 __all__ = ["SweepSeakeeping", "sweep_seakeeping", "frequency_domain_moments", "DOF_METRICS",
            "HEADING_KEYS", "DATASET_FORMAT"]
@@ -211,19 +211,7 @@ class SweepSeakeeping:
         h = np.where(np.abs(h - 2.0 * math.pi) < 1e-9, 0.0, h)
         return h + 2.0 * math.pi * (np.cumsum(np.append(0.0, np.diff(h)) < 0) > 0)
 
-    def to_dataset(self) -> Any:
-        """Deprecated name of :meth:`to_xarray` (a :class:`DeprecationWarning`).
-
-        Returns
-        -------
-        xarray.Dataset
-        """
-        import warnings
-
-        warnings.warn(f"{type(self).__name__}.to_dataset() is deprecated: use .to_xarray() "
-                      "(the same Dataset; one name for it across seahelm)", DeprecationWarning,
-                      stacklevel=2)
-        return self.to_xarray()
+    to_dataset = deprecated_method("to_xarray", "one name for it across seahelm")
 
     def to_xarray(self) -> Any:
         """The cells as an :class:`xarray.Dataset` over (dof, speed_index, heading_index).
