@@ -36,6 +36,7 @@ from numba import njit
 
 from ..parameters import Params, param, signal_indices
 from .base import Controller, wrap_pi
+from .heading_reference import heading_reference_step
 
 __all__ = ["AuvDepthHeadingParams", "AUV_DEPTH_HEADING"]
 
@@ -130,14 +131,9 @@ def auv_depth_heading_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - 
     rudder = (p.nomoto_time_constant * rr_dot + rr - p.smc_kd * sigma
               - p.smc_switching_gain * s) / p.nomoto_gain
     cs[_S.heading_error_integral] = ei + dt * e
-    wd = p.reference_frequency
-    c = 2.0 * p.reference_damping + 1.0
-    jerk = wd * wd * wd * wrap_pi(ref[_R.heading] - psi_d) - c * wd * wd * r_d - c * wd * a_d
-    cs[_S.desired_heading] = psi_d + dt * r_d
-    rmax = p.max_yaw_rate
-    r_new = r_d + dt * a_d
-    cs[_S.desired_yaw_rate] = -rmax if r_new < -rmax else (rmax if r_new > rmax else r_new)
-    cs[_S.desired_yaw_acceleration] = a_d + dt * jerk
+    heading_reference_step(cs, _S.desired_heading, _S.desired_yaw_rate,
+                           _S.desired_yaw_acceleration, ref[_R.heading], p.reference_frequency,
+                           p.reference_damping, p.max_yaw_rate, dt)
     cmd[_C.propeller_speed_command] = ref[_R.propeller_speed]
     cmd[_C.rudder_command] = rudder
     cmd[_C.stern_plane_command] = stern

@@ -34,6 +34,7 @@ from numba import njit
 
 from ..parameters import Params, param, signal_indices
 from .base import Controller, wrap_pi
+from .heading_reference import heading_reference_step
 
 __all__ = ["ThrustHeadingParams", "THRUST_HEADING"]
 
@@ -114,14 +115,9 @@ def thrust_heading_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - com
     tau_n = -kp * e - kd * (y[_M.yaw_rate] - r_d) - ki * cs[_S.heading_error_integral]
     cs[_S.heading_error_integral] += dt * e
     # third-order reference model, forward Euler, yaw-rate limit
-    wd = p.reference_frequency
-    c = 2.0 * p.reference_damping + 1.0
-    jerk = wd * wd * wd * wrap_pi(ref[_R.heading] - psi_d) - c * wd * wd * r_d - c * wd * a_d
-    cs[_S.desired_heading] = psi_d + dt * r_d
-    rmax = p.max_yaw_rate
-    r_new = r_d + dt * a_d
-    cs[_S.desired_yaw_rate] = -rmax if r_new < -rmax else (rmax if r_new > rmax else r_new)
-    cs[_S.desired_yaw_acceleration] = a_d + dt * jerk
+    heading_reference_step(cs, _S.desired_heading, _S.desired_yaw_rate,
+                           _S.desired_yaw_acceleration, ref[_R.heading], p.reference_frequency,
+                           p.reference_damping, p.max_yaw_rate, dt)
     # allocation: [τ_X, τ_N] = k [[1, 1], [−y₁, −y₂]] (n₁|n₁|, n₂|n₂|)
     k = p.thrust_coefficient
     y1, y2 = p.port_lever, p.starboard_lever
