@@ -267,7 +267,12 @@ class Plan:
 
     def run_lengths(self) -> np.ndarray:
         """Ship length L of every run [m], (runs,)."""
-        return np.array([s.length for s in self.ships])[self._positions[0]]
+        return self._lengths[self._positions[0]]
+
+    @functools.cached_property
+    def _lengths(self) -> np.ndarray:
+        """Each ship's length L [m] (asked for three times by a manoeuvre)."""
+        return np.array([s.length for s in self.ships])
 
     @property
     def dims(self) -> tuple[str, ...]:
