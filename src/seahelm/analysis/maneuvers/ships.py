@@ -312,9 +312,30 @@ class _MemoKey:
                                  and self.key == other.key)
 
 
+#: The memo's keys by the identity of their model and parameter set (and the speed): a
+#: manoeuvre of a ship it ran before finds its key without hashing the parameter set again.
+#: Each key holds its model and parameter set, so their ids stay theirs while it is here.
+_KEYS: "collections.OrderedDict[tuple[int, int, float], _MemoKey]" = collections.OrderedDict()
+
+
+def _memo_key(model: Any, params: Any, speed: float) -> _MemoKey:
+    """The memo key of (model, parameter set, speed), the one made before for these very
+    objects if there is one."""
+    ident = (id(model), id(params), speed)
+    key = _KEYS.get(ident)
+    if key is not None and key.key[0] is model and key.key[1] is params:
+        return key
+    key = _MemoKey((model, params, speed))
+    _KEYS[ident] = key
+    if len(_KEYS) > 4 * MEMO_SIZE:
+        _KEYS.popitem(last=False)
+    return key
+
+
 def clear_approaches() -> None:
     """Forget the memoised steady approaches (a benchmark times their computation)."""
     _MEMO.clear()
+    _KEYS.clear()
 
 
 def steady_approaches(model: VesselModel, params: Sequence[Params],
@@ -348,7 +369,7 @@ def steady_approaches(model: VesselModel, params: Sequence[Params],
     from ..batch_equilibrium import approach_states
 
     out: list[Approach | str | None] = [None] * len(params)
-    keys = [_MemoKey((model, p, float(U))) for p, U in zip(params, speeds)]
+    keys = [_memo_key(model, p, float(U)) for p, U in zip(params, speeds)]
     missing = []
     for k, key in enumerate(keys):
         hit = _MEMO.get(key)
