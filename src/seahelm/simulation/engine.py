@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import dataclasses
 import enum
+import functools
 import time as _time
 from collections.abc import Callable, Mapping, Sequence
 from types import ModuleType
@@ -235,9 +236,8 @@ def simulate(
     # the keyword form's arguments are Problem's fields, by name (no copy of the list: a
     # field added to Problem and to this signature is passed on; a test checks the two agree)
     arguments = locals()
-    given = {f.name: arguments[f.name] for f in dataclasses.fields(Problem)
-             if f.name in arguments and f.name != "model"}
-    given = {k: v for k, v in given.items() if v is not None}
+    given = {name: arguments[name] for name in _keyword_fields()
+             if arguments[name] is not None}
     if model is not None and not isinstance(model, (Problem, VesselModel)):
         raise ParameterError(
             f"must be a VesselModel or a Problem, got {type(model).__name__} (a ship is given "
@@ -261,6 +261,17 @@ def simulate(
     return _run(problem, throw=throw, progress=progress)
 
 
+@functools.cache
+def _keyword_fields() -> tuple[str, ...]:
+    """The fields of :class:`Problem` that :func:`simulate` takes as keywords (all but
+    ``model``), in the fields' order."""
+    import inspect
+
+    taken = inspect.signature(simulate).parameters
+    return tuple(f.name for f in dataclasses.fields(Problem)
+                 if f.name in taken and f.name != "model")
+
+
 def _run(problem: "Problem", *, throw: bool,
          progress: Callable[[int, int], None] | None) -> "SimResult":
     """Run a validated problem (:func:`simulate`)."""
@@ -272,6 +283,7 @@ def _run(problem: "Problem", *, throw: bool,
     compile_time = _time.perf_counter() - c0
     wall = drive(batch.slices, batch.n_steps, batch.dt, batch.ctrl_every, batch.record_every,
                  jit=batch.jit, progress=progress)
+    batch.slices.release()  # (run once: its scratch serves the next batch of this kernel)
     return batch.result(wall=wall, compile_time=compile_time, throw=throw)
 
 

@@ -35,6 +35,22 @@ FIRST_SLICE = 200_000
 FIRST_SLICE_PYTHON = 200
 
 
+#: Scratch buffer sets kept for reuse per (kernel, scratch sizes, wave sizes)
+#: (:meth:`_Slices.release`): as many as a batch has slices, four per thread.
+SCRATCH_KEPT = 16
+_SCRATCH: dict[tuple[Any, ...], list[tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...],
+                                           list[np.ndarray]]]] = {}
+
+
+def _blocks(views: tuple[np.ndarray, ...]) -> list[np.ndarray]:
+    """The arrays whose views a scratch set is (one or two blocks)."""
+    out: dict[int, np.ndarray] = {}
+    for v in views:
+        base = v if v.base is None else v.base
+        out.setdefault(id(base), base)
+    return list(out.values())
+
+
 class _Slices:
     """The batch cut into slices of runs, run by the kernel's ``run_slice`` on a thread pool.
 
@@ -65,8 +81,23 @@ class _Slices:
         self.cuts = (np.array([0, n_runs]) if n_slices == 1 else
                      np.linspace(0, n_runs, n_slices + 1).round().astype(np.int64))
         self.bounds = [(int(self.cuts[s]), int(self.cuts[s + 1])) for s in range(n_slices)]
-        self.scratch = [kernel.scratch(*scratch_sizes) for _ in range(n_slices)]
-        self.wave_scratch = [kernel.wave_scratch(*wave_sizes) for _ in range(n_slices)]
+        # (the buffers of a finished batch of the same kernel and sizes, zeroed, or fresh:
+        # making the two dozen views costs some 20 µs, a tenth of a short run)
+        self._scratch_key = (kernel, tuple(scratch_sizes), tuple(wave_sizes))
+        free = _SCRATCH.get(self._scratch_key, [])
+        self.scratch, self.wave_scratch, self._blocks = [], [], []
+        for _ in range(n_slices):
+            try:
+                sc, wsc, blocks = free.pop()
+            except IndexError:
+                sc, wsc = kernel.scratch(*scratch_sizes), kernel.wave_scratch(*wave_sizes)
+                blocks = _blocks(sc + wsc)
+            else:
+                for block in blocks:
+                    block.fill(0)
+            self.scratch.append(sc)
+            self.wave_scratch.append(wsc)
+            self._blocks.append(blocks)
         self._keep_pool = keep_pool
         self._pool: ThreadPoolExecutor | None = None
 
@@ -115,6 +146,14 @@ class _Slices:
         with ThreadPoolExecutor(self.threads, thread_name_prefix="seahelm") as pool:
             # list() re-raises an exception of any slice here
             list(pool.map(one, range(n_slices)))
+
+    def release(self) -> None:
+        """Hand this batch's scratch buffers to the next batch of the same kernel and sizes
+        (the batch is not run again; at most :data:`SCRATCH_KEPT` sets are kept per key)."""
+        free = _SCRATCH.setdefault(self._scratch_key, [])
+        while self.scratch and len(free) < SCRATCH_KEPT:
+            free.append((self.scratch.pop(), self.wave_scratch.pop(), self._blocks.pop()))
+        self.scratch, self.wave_scratch, self._blocks = [], [], []
 
     def close(self) -> None:
         """End the kept thread pool (if any)."""

@@ -31,9 +31,18 @@ OnDone = Callable[[int, "xr.Dataset"], None]
 
 class InProcess:
     """Chunks one after the other in this process, each on the compiled parallel engine (all
-    cores)."""
+    cores).
+
+    With ``overlap`` (:func:`seahelm.sweep.run.run_sweep` sets it where two chunks' results
+    fit in memory), chunk k's results are handed to ``on_done`` (the store's write: Zarr
+    encoding and compression) on one writer thread while chunk k + 1 is computed, so the
+    write takes the core the single-threaded parts of a chunk (approaches, metrics) leave
+    idle. The chunks are written in order, one at a time, the same bytes; an exception of
+    ``on_done`` is raised before the next chunk is handed on.
+    """
 
     workers = 1
+    overlap = False
 
     def __enter__(self) -> "InProcess":
         return self
@@ -53,8 +62,22 @@ class InProcess:
         on_done : callable(int, xarray.Dataset)
             Called with each chunk's index and results, once per chunk, as they complete.
         """
-        for index in chunks:
-            on_done(index, compute_chunk(spec, index))
+        todo = list(chunks)
+        if not self.overlap or len(todo) < 2:
+            for index in todo:
+                on_done(index, compute_chunk(spec, index))
+            return
+        from concurrent.futures import ThreadPoolExecutor
+
+        with ThreadPoolExecutor(1, thread_name_prefix="seahelm-sweep-write") as writer:
+            pending = None
+            for index in todo:
+                ds = compute_chunk(spec, index)
+                if pending is not None:
+                    pending.result()  # (the previous write's exception, if any, here)
+                pending = writer.submit(on_done, index, ds)
+                del ds
+            pending.result()
 
 
 class DaskCluster:

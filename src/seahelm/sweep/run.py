@@ -19,7 +19,7 @@ from ..analysis.statistics import metric_statistics, quantile_name
 from ..errors import ParameterError
 from ..units import metric_unit
 from .chunks import SweepSpec, auto_chunk_size, check_chunk_memory, check_chunk_size, prepared
-from .executors import executor
+from .executors import InProcess, executor
 from .imo import is_imo_store, store_probabilities
 from .store import (
     check_store,
@@ -153,6 +153,8 @@ def run_sweep(
                                                          workers=pool.workers)
         local = pool.workers if workers is not None else 1  # (a remote cluster: its own)
         check_chunk_memory(chunk_size, bytes_per_run, workers=local)
+        if isinstance(pool, InProcess):  # (a chunk written while the next is computed)
+            pool.overlap = _two_chunks_fit(chunk_size, bytes_per_run)
         spec = SweepSpec(text=text, source=source, chunk_size=chunk_size, n_runs=n_runs,
                          series=series)
         attrs["sweep_dims"] = json.dumps(_dims(job))
@@ -177,6 +179,18 @@ def run_sweep(
     return SweepReport(store=store, n_runs=n_runs, n_chunks=spec.n_chunks,
                        chunk_size=chunk_size, computed=len(todo), skipped=len(done),
                        wall_time_s=time.perf_counter() - t0, summary=summary)
+
+
+def _two_chunks_fit(chunk_size: int, bytes_per_run: float) -> bool:
+    """Whether a chunk's results can be held while the next chunk is computed (the engine's
+    peak, :data:`~seahelm.simulation.engine.RECORD_PEAK_FACTOR`, plus one chunk's results)
+    within the memory share :func:`~seahelm.sweep.chunks.check_chunk_memory` allows."""
+    from ..resources import memory_limit
+    from ..simulation.engine import RECORD_MEMORY_SHARE, RECORD_PEAK_FACTOR
+
+    limit = memory_limit()
+    need = (RECORD_PEAK_FACTOR + 1) * chunk_size * bytes_per_run
+    return limit is None or need <= RECORD_MEMORY_SHARE * limit.bytes
 
 
 def _check_chunk_work(text: str, source: str, chunk_size: int) -> None:
