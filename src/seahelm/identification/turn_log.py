@@ -1,7 +1,7 @@
 """Recorded turns from a CSV file: the numeric columns of a log with a header row.
 
 A turn log is either a time series (columns ``time``, ``rudder_angle``, ``yaw_rate``, which
-:func:`~seahelm.identification.segments.extract_steady_segments` cuts into steady turns) or
+:func:`~seahelm.identification.reduced.segments.extract_steady_segments` cuts into steady turns) or
 already-steady points (``rudder_angle``, ``yaw_rate``); other columns are read too and left to
 the caller. ``seahelm identify steady-turn FILE.csv`` reads its file with :func:`read_turn_log`.
 

@@ -315,7 +315,7 @@ def _mapped(path: Path, cols: dict[str, np.ndarray], mapping: dict[str, str],
 
 def _read_csv(path: Path, angles: str, columns: dict[str, str] | None
               ) -> list[ManoeuvreRecord]:
-    from ..identification.turn_log import read_turn_log_lines
+    from .turn_log import read_turn_log_lines
 
     cols, first_row = read_turn_log_lines(path)
     known = None if columns is not None else _known_format(path, list(cols))

@@ -3,8 +3,8 @@
 A :class:`ReducedForm` is one linear-in-coefficients form of the reduced equation — the paper's
 eq. (4) (``"paper"``), the exact elimination with a free α² coefficient (``"exact"``) and their
 odd extensions to both sides (``"paper-odd"``, ``"exact-odd"``), registry
-:data:`REDUCED_FORMS` (:mod:`seahelm.identification.steady_turns` derives them).
-:class:`SteadyTurnFit` is what a fit returns (:mod:`seahelm.identification.fitting`), with
+:data:`REDUCED_FORMS` (:mod:`seahelm.identification.reduced.turns` derives them).
+:class:`SteadyTurnFit` is what a fit returns (:mod:`seahelm.identification.reduced.fitting`), with
 prediction both ways (yaw rate for a rudder angle, rudder angle for a wanted yaw rate) and their
 standard errors from the covariance (delta method).
 

@@ -1,4 +1,4 @@
-"""The result of a Nomoto identification (:func:`seahelm.analysis.nomoto_fit.fit_nomoto`): the
+"""The result of a Nomoto identification (:func:`seahelm.identification.nomoto_fit.fit_nomoto`): the
 estimates with their Laplace covariance, intervals, the evidence for what is not identified, and
 the ship of the identified model (:func:`nomoto_ship`)."""
 
@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from .fit_statistics import CovarianceSummary, unidentifiable
+from .fit_result import CovarianceSummary, unidentifiable
 
 __all__ = ["NomotoFit", "nomoto_ship"]
 
