@@ -149,7 +149,7 @@ def test_comment_lines_of_a_record_csv_are_skipped(tmp_path):
         assert res.exit_code == 0, res.stderr  # (the `# units:` line was read as the header)
         fits.append([(p["name"], p["value"]) for p in json.loads(res.stdout)["parameters"]])
     assert fits[0] == fits[1]
-    from seahelm.identification.turn_log import read_turn_log_lines
+    from seahelm.identification.records import read_turn_log_lines
 
     bad = commented.read_text().replace("\n0.5,", "\n0.5,x", 1)
     commented.write_text(bad)

@@ -30,6 +30,7 @@ MOVED = {
     "seahelm.identification.reduced_forms": "seahelm.identification.reduced.forms",
     "seahelm.identification.segments": "seahelm.identification.reduced.segments",
     "seahelm.identification.steady_turns": "seahelm.identification.reduced.turns",
+    "seahelm.identification.turn_log": "seahelm.identification.records",
 }
 
 
@@ -97,6 +98,17 @@ def test_the_renamed_steady_turns_of_the_reduced_model():
     with pytest.warns(DeprecationWarning, match="voitkunsky_turns"):
         old = turns.steady_turns
     assert old is turns.voitkunsky_turns
+
+
+def test_one_reader_module_for_every_record_format():
+    # the turn log's reader was identification/turn_log.py, which analysis/records.py imported
+    from seahelm.identification import records
+
+    assert records._read_csv.__module__ == records.read_turn_log.__module__ == records.__name__
+    _forget("seahelm.identification.turn_log")
+    with pytest.warns(DeprecationWarning, match="seahelm.identification.records"):
+        from seahelm.identification.turn_log import read_turn_log
+    assert read_turn_log is records.read_turn_log
 
 
 def test_unknown_names_are_still_attribute_errors():

@@ -91,7 +91,7 @@ def steady_turn(
     from ..errors import ParameterError
     from ..identification.reduced.fitting import fit_steady_turns
     from ..identification.reduced.segments import extract_steady_segments
-    from ..identification.turn_log import read_turn_log
+    from ..identification.records import read_turn_log
 
     scale = math.pi / 180.0 if angles == "deg" else 1.0
     input_file("FILE", file)

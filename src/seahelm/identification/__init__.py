@@ -18,10 +18,12 @@
 
 from ..errors import deprecated_modules
 
-#: Modules of the reduced steady-turn model, moved into :mod:`.reduced` (issue 47): the old
-#: paths warn and give the module itself.
-_MOVED = {old: f"seahelm.identification.reduced.{new}" for old, new in {
+#: Modules of the reduced steady-turn model, moved into :mod:`.reduced`, and the turn log's
+#: reader, now in :mod:`.records` with every record reader (issue 47): the old paths warn and
+#: give the module itself.
+_MOVED = {**{old: f"seahelm.identification.reduced.{new}" for old, new in {
     "criteria": "criteria", "fitting": "fitting", "reduced_forms": "forms",
-    "segments": "segments", "steady_turns": "turns"}.items()}
+    "segments": "segments", "steady_turns": "turns"}.items()},
+          "turn_log": "seahelm.identification.records"}
 
 __getattr__ = deprecated_modules(__name__, _MOVED)
