@@ -42,7 +42,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from .fit_result import CovarianceSummary
+from .fit_result import FitResult
 from .records import ManoeuvreRecord
 
 __all__ = ["LinearFit", "fit_linear", "LINEAR_NAMES", "LINEAR_UNITS"]
@@ -56,7 +56,7 @@ LINEAR_UNITS = {"a_vv": "1/s", "a_vr": "m/s", "b_v": "m/s²", "c_v": "m/s²",
 
 
 @dataclasses.dataclass(frozen=True)
-class LinearFit(CovarianceSummary):
+class LinearFit(FitResult):
     """The identified linear sway–yaw model (module docstring).
 
     Attributes

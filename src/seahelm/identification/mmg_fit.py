@@ -50,7 +50,7 @@ from numba import njit
 
 from ..errors import ParameterError
 from ..vessels.mmg import _forces as _mmg_forces
-from .fit_result import CovarianceSummary
+from .fit_result import FitResult
 from .records import ManoeuvreRecord
 
 __all__ = ["HullFit", "regress_hull", "refine_mmg", "identify_mmg", "HULL_TERMS",
@@ -76,7 +76,7 @@ METHODS = ("ols", "ridge", "tsvd")
 
 
 @dataclasses.dataclass(frozen=True)
-class HullFit(CovarianceSummary):
+class HullFit(FitResult):
     """Identified hull derivatives (MMG names, non-dimensional as in MMGParams).
 
     Attributes
