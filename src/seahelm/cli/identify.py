@@ -446,7 +446,7 @@ def mmg(
         base = get_ship(ship)
     except ValueError as exc:
         raise ParameterError(f"`--ship`: {exc}") from None
-    if base.model.name != "mmg":
+    if not base.model.supports("hull-identification"):
         raise ParameterError(f"`--ship` '{base.name}' uses model '{base.model.name}'; the MMG "
                              "identification needs an MMG ship (e.g. `seahelm ship estimate`)")
     n_post = _posterior_count(imo, samples, save_posterior)
