@@ -21,7 +21,7 @@ import time
 
 import numpy as np
 
-from seahelm.identification.fitting import fit_brute_force, fit_lsq
+from seahelm.identification.reduced.fitting import fit_brute_force, fit_lsq
 
 TRUTH = np.array([-320.0, -5.5, 17.0])
 

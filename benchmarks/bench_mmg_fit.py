@@ -3,7 +3,7 @@
 The records: the catalog KVLCC2 L7's 10/10 and 20/20 zig-zags (starboard first), its 20/20
 zig-zag to port and its 35° starboard turning circle (:func:`seahelm.analysis.maneuvers`, 10 Hz),
 with white noise of 0.5 % of U_0 on u, v and 0.5 % of U_0/L on r. The fit:
-:func:`seahelm.analysis.mmg_fit.identify_mmg` (regression on accelerations, the output-error
+:func:`seahelm.identification.mmg_fit.identify_mmg` (regression on accelerations, the output-error
 refinement over the four records at once, and the identifiable subset), timed end to end, median
 of ``--repeats``; every residual and Jacobian of the refinement simulates its parameter sets as
 one batch of the compiled engine (``mmg_fit._simulate``).
@@ -31,9 +31,9 @@ import time
 
 import numpy as np
 
-from seahelm.analysis import mmg_fit
+from seahelm.identification import mmg_fit
 from seahelm.analysis.maneuvers import turning_circle, zigzag
-from seahelm.analysis.records import record_from_arrays
+from seahelm.identification.records import record_from_arrays
 from seahelm.ships import get_ship
 
 NOISE = 0.005

@@ -1,9 +1,9 @@
 """MCMC of the MMG posterior (issue 30: 10,000 samples <= 5 minutes) against a scipy baseline.
 
 The record: the catalog KVLCC2 L7 in a 20/20 zig-zag (one side, 10 Hz), white noise of 0.5 %
-of U_0 on u, v and 0.5 % of U_0/L on r. The fit: :func:`seahelm.analysis.mmg_fit.identify_mmg`
+of U_0 on u, v and 0.5 % of U_0/L on r. The fit: :func:`seahelm.identification.mmg_fit.identify_mmg`
 (regression, output error, the identifiable subset). The MCMC:
-:func:`seahelm.analysis.mmg_posterior.mmg_posterior` (``emcee``, the default walkers, 300 steps
+:func:`seahelm.identification.mmg_posterior.mmg_posterior` (``emcee``, the default walkers, 300 steps
 of burn-in, thinned by 5) drawing 10,000 retained samples; every likelihood evaluation of a
 half-ensemble is one batched run of the compiled engine. The baseline is the same likelihood
 evaluated per walker, the record simulated by :func:`scipy.integrate.solve_ivp` (RK45, rtol
@@ -24,9 +24,9 @@ import time
 import numpy as np
 
 from seahelm.analysis.maneuvers import zigzag
-from seahelm.analysis.mmg_fit import _scaled_outputs, identify_mmg, refine_mmg
-from seahelm.analysis.mmg_posterior import mmg_posterior, output_error_log_likelihood
-from seahelm.analysis.records import record_from_arrays
+from seahelm.identification.mmg_fit import _scaled_outputs, identify_mmg, refine_mmg
+from seahelm.identification.mmg_posterior import mmg_posterior, output_error_log_likelihood
+from seahelm.identification.records import record_from_arrays
 from seahelm.ships import get_ship
 
 NOISE = 0.005

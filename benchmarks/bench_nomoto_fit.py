@@ -2,7 +2,7 @@
 
 The record: a first-order Nomoto ship (K 0.05 1/s, T 30 s, δ_0 0.5°) in 10° zig-zags with a
 150 s period for one hour, sampled at 10 Hz (36,000 samples), heading noise σ 0.2°. seahelm's
-:func:`seahelm.analysis.nomoto_fit.fit_nomoto` (equation-error start, output error on the
+:func:`seahelm.identification.nomoto_fit.fit_nomoto` (equation-error start, output error on the
 compiled engine, the Jacobian as one batched run) against the baseline a user would write:
 :func:`scipy.optimize.least_squares` from the same start with its own finite-difference
 Jacobian and the heading simulated by :func:`scipy.integrate.solve_ivp` (RK45, rtol 1e-8) with
@@ -22,8 +22,8 @@ import time
 
 import numpy as np
 
-from seahelm.analysis.nomoto_fit import equation_error_start, fit_nomoto, simulate_records
-from seahelm.analysis.records import record_from_arrays
+from seahelm.identification.nomoto_fit import equation_error_start, fit_nomoto, simulate_records
+from seahelm.identification.records import record_from_arrays
 
 TRUTH = np.array([0.05, 30.0, math.radians(0.5)])
 

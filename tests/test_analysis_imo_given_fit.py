@@ -14,8 +14,8 @@ import pytest
 from typer.testing import CliRunner
 
 from seahelm.analysis.imo_given_fit import imo_given_nomoto_fit
-from seahelm.analysis.nomoto_fit import fit_nomoto
-from seahelm.analysis.records import read_records
+from seahelm.identification.nomoto_fit import fit_nomoto
+from seahelm.identification.records import read_records
 from seahelm.errors import ParameterError
 
 

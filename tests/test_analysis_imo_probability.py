@@ -9,8 +9,8 @@ import pytest
 
 from seahelm.analysis.imo import imo_check
 from seahelm.analysis.imo_probability import imo_probabilities, wilson_interval
-from seahelm.analysis.nomoto_fit import fit_nomoto
-from seahelm.analysis.nomoto_posterior import posterior_samples, posterior_ships
+from seahelm.identification.nomoto_fit import fit_nomoto
+from seahelm.identification.nomoto_posterior import posterior_samples, posterior_ships
 from seahelm.errors import ParameterError
 
 from test_analysis_nomoto_fit import synthetic

@@ -11,9 +11,9 @@ import pytest
 from scipy.signal import lsim
 
 from seahelm.actuators.hold import hold_actuator, hold_reference
-from seahelm.analysis.linear_fit import LINEAR_NAMES, fit_linear
+from seahelm.identification.linear_fit import LINEAR_NAMES, fit_linear
 from seahelm.analysis.linearisation import linearize
-from seahelm.analysis.records import record_from_arrays
+from seahelm.identification.records import record_from_arrays
 from seahelm.errors import ParameterError
 from seahelm.registry import get_model
 from seahelm.ships import get_ship

@@ -14,8 +14,8 @@ import pytest
 from typer.testing import CliRunner
 
 from seahelm.analysis.maneuvers import turning_circle, zigzag
-from seahelm.analysis.mmg_checks import (SuspectBaseShipWarning, check_hull_fit, ljung_box)
-from seahelm.analysis.mmg_fit import identify_mmg
+from seahelm.identification.mmg_checks import (SuspectBaseShipWarning, check_hull_fit, ljung_box)
+from seahelm.identification.mmg_fit import identify_mmg
 from seahelm.cli.main import app
 from seahelm.ships.estimate import Design, estimate_ship
 from test_analysis_mmg_fit import records_of

@@ -11,8 +11,8 @@ import pytest
 from typer.testing import CliRunner
 
 from seahelm.analysis.maneuvers import turning_circle, zigzag
-from seahelm.analysis.mmg_fit import HullFit, identify_mmg, refine_mmg, regress_hull
-from seahelm.analysis.records import record_from_arrays
+from seahelm.identification.mmg_fit import HullFit, identify_mmg, refine_mmg, regress_hull
+from seahelm.identification.records import record_from_arrays
 from seahelm.cli.main import app
 from seahelm.errors import ParameterError
 from seahelm.ships import get_ship

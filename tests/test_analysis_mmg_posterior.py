@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 from seahelm.analysis.maneuvers import turning_circle, zigzag
-from seahelm.analysis.mmg_fit import HullFit, _scaled_outputs, _simulate, refine_mmg
-from seahelm.analysis.mmg_posterior import admissible, mmg_posterior, posterior_ships
-from seahelm.analysis.records import record_from_arrays
+from seahelm.identification.mmg_fit import HullFit, _scaled_outputs, _simulate, refine_mmg
+from seahelm.identification.mmg_posterior import admissible, mmg_posterior, posterior_ships
+from seahelm.identification.records import record_from_arrays
 from seahelm.errors import ParameterError
 
 NAMES = ("Y_v", "Y_r", "N_v", "N_r")

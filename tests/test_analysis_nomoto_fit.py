@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from seahelm.analysis.nomoto_fit import fit_nomoto, simulate_records
-from seahelm.analysis.nomoto_fit_result import nomoto_ship
-from seahelm.analysis.records import read_records, record_from_arrays
+from seahelm.identification.nomoto_fit import fit_nomoto, simulate_records
+from seahelm.identification.nomoto_fit_result import nomoto_ship
+from seahelm.identification.records import read_records, record_from_arrays
 from seahelm.cli.main import app
 from seahelm.errors import ParameterError
 

@@ -1,5 +1,6 @@
 """The stopping test (seahelm.analysis.maneuvers.stopping): conversion, metrics, validation."""
 
+import dataclasses
 import math
 import warnings
 
@@ -65,7 +66,9 @@ def test_a_model_size_ship_of_unknown_scale_warns():
     l7 = maneuver_ship("kvlcc2-l7")
     assert stopping_ship(l7.replace(name="variant")).params.reversal_delay == pytest.approx(
         60.0 / math.sqrt(45.7))  # the L7's geometry: its scale
-    own = l7.replace(name="my-model", params={"propeller_diameter": 0.2})
+    # (a copy keeps the scale its particulars declare, 45.7: tests/test_model_capabilities.py)
+    own = dataclasses.replace(l7.replace(name="my-model", params={"propeller_diameter": 0.2}),
+                              particulars=dataclasses.replace(l7.particulars, model_scale=None))
     with pytest.warns(ValidityRangeWarning, match="scale"):
         ship = stopping_ship(own)
     assert ship.params.reversal_delay == 60.0

@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from seahelm.analysis.maneuvers import turning_circle, zigzag
-from seahelm.analysis.mmg_fit import identify_mmg
-from seahelm.analysis.records import record_from_arrays
-from seahelm.analysis.velocity_smoother import reconstruct_velocities
+from seahelm.identification.mmg_fit import identify_mmg
+from seahelm.identification.records import record_from_arrays
+from seahelm.identification.velocity_smoother import reconstruct_velocities
 from seahelm.errors import ParameterError
 
 

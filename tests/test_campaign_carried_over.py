@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 
 from seahelm.errors import ParameterError
-from seahelm.identification.fitting import fit_steady_turns
+from seahelm.identification.reduced.fitting import fit_steady_turns
 from seahelm.ships import get_ship
 
 from conftest import one_error

@@ -11,7 +11,7 @@ import pytest
 from typer.testing import CliRunner
 
 from seahelm.cli.identify import app
-from seahelm.identification.steady_turns import stable_steady_turn
+from seahelm.identification.reduced.turns import stable_steady_turn
 from seahelm.vessels.voitkunsky import MARINER_VOITKUNSKY
 
 runner = CliRunner()

@@ -110,7 +110,7 @@ def test_one_library_call_gives_the_commands_numbers(checked):
 
 def test_ships_of_samples_names_the_column(tmp_path):
     from seahelm.analysis.imo_monte_carlo import ships_of_samples
-    from seahelm.analysis.samples_file import read_samples
+    from seahelm.identification.samples_file import read_samples
     from seahelm.errors import ParameterError
     from seahelm.ships import get_ship
 

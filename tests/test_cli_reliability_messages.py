@@ -149,7 +149,7 @@ def test_comment_lines_of_a_record_csv_are_skipped(tmp_path):
         assert res.exit_code == 0, res.stderr  # (the `# units:` line was read as the header)
         fits.append([(p["name"], p["value"]) for p in json.loads(res.stdout)["parameters"]])
     assert fits[0] == fits[1]
-    from seahelm.identification.turn_log import read_turn_log_lines
+    from seahelm.identification.records import read_turn_log_lines
 
     bad = commented.read_text().replace("\n0.5,", "\n0.5,x", 1)
     commented.write_text(bad)
@@ -210,7 +210,7 @@ def test_an_interrupted_sweep_on_workers_says_one_line(tmp_path):
 
 # -- item 6: a bound on the bootstrap ------------------------------------------------------
 def test_bootstrap_refits_are_bounded(tmp_path, monkeypatch):
-    import seahelm.analysis.nomoto_fit as nomoto_fit
+    import seahelm.identification.nomoto_fit as nomoto_fit
 
     def refits(*args, **kwargs):  # 10^6 refits ran for days, with no bound
         raise AssertionError("the refits started")
@@ -220,7 +220,7 @@ def test_bootstrap_refits_are_bounded(tmp_path, monkeypatch):
     line = _error(["identify", "nomoto", str(path), "--bootstrap", "1000000"])
     assert "`--bootstrap` must be in [0, 10000], got 1000000" in line
     assert "would take about 139 h" in line
-    from seahelm.analysis.records import read_records
+    from seahelm.identification.records import read_records
 
     with pytest.raises(ParameterError, match=r"in \[0, 10000\]") as info:
         nomoto_fit.fit_nomoto(read_records([path]), bootstrap=10_001)

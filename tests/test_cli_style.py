@@ -178,8 +178,8 @@ def test_choices_agree_with_the_library():
     from seahelm.ships import CATALOG, with_steering_gear
     from seahelm.environment.rational_spectra import RationalSpectrum
     from seahelm.studies.sushchenko2010 import SPECTRA, TABLE2_VERSIONS
-    from seahelm.identification.fitting import FIT_METHODS
-    from seahelm.identification.reduced_forms import REDUCED_FORMS
+    from seahelm.identification.reduced.fitting import FIT_METHODS
+    from seahelm.identification.reduced.forms import REDUCED_FORMS
 
     args = typing.get_args
     # ships are a catalog name or a file: the help lists the catalog's, from the catalog

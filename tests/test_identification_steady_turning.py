@@ -11,19 +11,19 @@ import pytest
 from scipy.optimize import fsolve
 
 from seahelm.errors import ParameterError
-from seahelm.identification.fitting import (
+from seahelm.identification.reduced.fitting import (
     fit_brute_force,
     fit_lsq,
     fit_robust,
     fit_steady_turns,
     identify_from_time_series,
 )
-from seahelm.identification.reduced_forms import REDUCED_FORMS, get_form
-from seahelm.identification.segments import extract_steady_segments
-from seahelm.identification.steady_turns import (
+from seahelm.identification.reduced.forms import REDUCED_FORMS, get_form
+from seahelm.identification.reduced.segments import extract_steady_segments
+from seahelm.identification.reduced.turns import (
     reduced_coefficients,
     stable_steady_turn,
-    steady_turns,
+    voitkunsky_turns,
 )
 from seahelm.vessels.voitkunsky import MARINER_VOITKUNSKY, VOITKUNSKY
 
@@ -43,7 +43,7 @@ def _eq4_points(omega, a=A, b=B, c=C):
 @pytest.mark.parametrize("deg", [-30.0, -12.0, -1.0, 0.0, 0.5, 7.0, 20.0, 35.0])
 def test_steady_turns_are_equilibria_with_correct_stability(deg):
     alpha = math.radians(deg)
-    turns = steady_turns(P, alpha)
+    turns = voitkunsky_turns(P, alpha)
     assert len(turns) == 1 and turns[0].stable
     for s in turns:
         x = VOITKUNSKY.initial_state(yaw_rate=s.yaw_rate, drift_angle=s.drift_angle)
@@ -65,7 +65,7 @@ def test_steady_turns_are_equilibria_with_correct_stability(deg):
 
 def test_unstable_ship_branches_at_small_rudder():
     p = P.replace(q31=-0.015)  # course-unstable
-    turns = steady_turns(p, math.radians(0.5))
+    turns = voitkunsky_turns(p, math.radians(0.5))
     assert len(turns) == 3
     assert {t.branch for t in turns} == {-1, 1}
     assert sum(t.stable for t in turns) == 2

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from seahelm.errors import ParameterError
-from seahelm.identification.turn_log import read_turn_log
+from seahelm.identification.records import read_turn_log
 
 
 def test_columns_by_header_name_with_blank_rows_and_a_byte_order_mark(tmp_path):

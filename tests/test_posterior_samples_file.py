@@ -16,7 +16,7 @@ import pytest
 from typer.testing import CliRunner
 
 from seahelm.analysis.maneuvers import zigzag
-from seahelm.analysis.samples_file import read_samples, write_samples
+from seahelm.identification.samples_file import read_samples, write_samples
 from seahelm.cli.main import app
 from seahelm.errors import ParameterError
 from seahelm.results import open_result_file
@@ -184,7 +184,7 @@ def test_draws_file_alone_names_itself(identified, extra, match):
 def test_imo_draws_refuses_a_column_in_other_units(identified, tmp_path, units, ok):
     """N_v and N_r are non-dimensional ('-' in the model's table); a file that says otherwise
     was taken as stored numbers."""
-    from seahelm.analysis.samples_file import check_units
+    from seahelm.identification.samples_file import check_units
 
     d, _ = identified
     path = tmp_path / "u.csv"
@@ -228,7 +228,7 @@ def test_a_scenario_refuses_a_samples_column_in_other_units(tmp_path):
 def test_a_failed_posterior_writes_no_ship_file(identified, tmp_path, monkeypatch):
     """``-o SHIP.toml --save-posterior F.csv``: the ship file is written after the posterior
     (and its file), so a draw that fails leaves neither behind (it used to leave the ship)."""
-    import seahelm.analysis.mmg_posterior as mp
+    import seahelm.identification.mmg_posterior as mp
 
     d, _ = identified
 

@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from seahelm.analysis.records import RECORD_FORMATS, read_records
+from seahelm.identification.records import RECORD_FORMATS, read_records
 from seahelm.analysis.replay import classify, replay
 from seahelm.errors import ParameterError
 from seahelm.ships import get_ship

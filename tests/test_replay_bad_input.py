@@ -12,7 +12,7 @@ import warnings
 import numpy as np
 import pytest
 
-from seahelm.analysis.records import read_records
+from seahelm.identification.records import read_records
 from seahelm.analysis.replay import manoeuvre_metrics
 from seahelm.errors import ParameterError
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from seahelm.analysis.linearisation import linearize
-from seahelm.analysis.records import ManoeuvreRecord
+from seahelm.identification.records import ManoeuvreRecord
 
 MAX_LINES = 15
 

@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from seahelm.analysis.records import RECORD_FORMATS, read_records, record_from_arrays
+from seahelm.identification.records import RECORD_FORMATS, read_records, record_from_arrays
 from seahelm.analysis.reversals import (
     REVERSAL_RULE,
     find_reversals,

@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 from seahelm.errors import ParameterError
-from seahelm.identification.fitting import fit_lsq
-from seahelm.identification.steady_turns import stable_steady_turn
+from seahelm.identification.reduced.fitting import fit_lsq
+from seahelm.identification.reduced.turns import stable_steady_turn
 from seahelm.studies import romanov_chirkova as rc
 from seahelm.vessels.voitkunsky import MARINER_VOITKUNSKY
 
@@ -72,8 +72,8 @@ def test_three_turn_study_needs_three_turns_on_one_branch():
 
 
 def test_brute_force_search_takes_the_criteria_as_objects():
-    from seahelm.identification.criteria import CRITERIA, SQUARED
-    from seahelm.identification.fitting import fit_brute_force
+    from seahelm.identification.reduced.criteria import CRITERIA, SQUARED
+    from seahelm.identification.reduced.fitting import fit_brute_force
 
     assert rc.SQUARED is SQUARED and set(CRITERIA) == {"squared", "absolute"}
     bounds = [(-400.0, -200.0), (-8.0, -3.0), (9.0, 25.0)]  # the truth on the grid

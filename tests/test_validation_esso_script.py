@@ -34,7 +34,7 @@ def test_a_wrong_header_names_the_file_and_the_column(script, tmp_path, capsys):
         (tmp_path / "data" / kind).mkdir(parents=True)
         (tmp_path / "data" / kind / f"{kind}_1.csv").write_text("t [s],u_velo [m/s]\n0,0\n")
     assert script.main(["--data", str(tmp_path)]) == 2
-    from seahelm.analysis.records import RECORD_FORMATS
+    from seahelm.identification.records import RECORD_FORMATS
 
     first_missing = next(h for h in RECORD_FORMATS["FRT-DS-ESSO"][0]
                          if h not in ("t [s]", "u_velo [m/s]"))

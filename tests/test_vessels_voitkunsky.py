@@ -10,7 +10,7 @@ import pytest
 from seahelm.actuators.servo import DIRECT, RUDDER_SERVO, ServoParams
 from seahelm.control.open_loop import OPEN_LOOP
 from seahelm.errors import ParameterError
-from seahelm.identification.steady_turns import stable_steady_turn, steady_turns
+from seahelm.identification.reduced.turns import stable_steady_turn, voitkunsky_turns
 from seahelm.registry import get_model
 from seahelm.simulation.engine import simulate
 from seahelm.ships import get_ship
@@ -161,7 +161,7 @@ def test_batched_equals_one_by_one():
 def test_unstable_ship_has_three_equilibria_at_zero_rudder():
     # q21 r31 − r21 q31 < 0: course-unstable; β|β| gives the classical loop (pitchfork)
     p = P.replace(q31=-0.015)
-    turns = steady_turns(p, 0.0)
+    turns = voitkunsky_turns(p, 0.0)
     assert len(turns) == 3
     assert [t.stable for t in turns] == [True, False, True]
     assert turns[0].yaw_rate == pytest.approx(-turns[2].yaw_rate)

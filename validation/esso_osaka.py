@@ -54,7 +54,7 @@ def _files(data: Path) -> dict[str, list[Path]]:
         missing = [k for k, v in found.items() if not v]
         raise SystemExit(f"esso_osaka.py: error: --data {data}: not a clone of FRT-DS-ESSO "
                          f"(no data/{missing[0] if missing else ''}/*.csv)")
-    from seahelm.analysis.records import RECORD_FORMATS
+    from seahelm.identification.records import RECORD_FORMATS
 
     header = open(found["turning"][0]).readline().strip().split(",")
     need = list(RECORD_FORMATS["FRT-DS-ESSO"][0])
@@ -81,7 +81,7 @@ def _rst_table(title: str, head: list[str], rows: list[list[str]]) -> str:
 
 
 def replay_all(files: dict[str, list[Path]]) -> tuple[list[dict], float]:
-    from seahelm.analysis.records import read_records
+    from seahelm.identification.records import read_records
     from seahelm.analysis.replay import replay
 
     from seahelm.analysis.replay import classify
@@ -113,7 +113,7 @@ def replay_all(files: dict[str, list[Path]]) -> tuple[list[dict], float]:
 
 
 def stops_all(files: dict[str, list[Path]]) -> tuple[list, list, float]:
-    from seahelm.analysis.records import read_records
+    from seahelm.identification.records import read_records
     from seahelm.analysis.reversals import find_reversals, replay_stop
 
     found, out, t0 = [], [], time.perf_counter()

@@ -40,10 +40,10 @@ _USER_API = {
     "crash_stop": "seahelm.analysis.maneuvers",
     "imo_check": "seahelm.analysis.imo",
     "linearize": "seahelm.analysis.linearisation",
-    "read_records": "seahelm.analysis.records",
-    "fit_nomoto": "seahelm.analysis.nomoto_fit",
-    "regress_hull": "seahelm.analysis.mmg_fit",
-    "refine_mmg": "seahelm.analysis.mmg_fit",
+    "read_records": "seahelm.identification.records",
+    "fit_nomoto": "seahelm.identification.nomoto_fit",
+    "regress_hull": "seahelm.identification.mmg_fit",
+    "refine_mmg": "seahelm.identification.mmg_fit",
 }
 _LAZY = {
     **_USER_API,

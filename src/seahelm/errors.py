@@ -22,6 +22,7 @@ __all__ = [
     "warn_validity",
     "deprecated_names",
     "deprecated_method",
+    "deprecated_modules",
 ]
 
 
@@ -249,3 +250,73 @@ class _Named:
 
     def __get__(self, obj: Any, owner: type | None = None) -> Any:
         return self.func if obj is None else self.func.__get__(obj, owner)
+
+
+def deprecated_modules(package: str, moved: dict[str, str], *, stacklevel: int = 2) -> Any:
+    """Old module paths of ``package`` kept for old code, with no second home: importing
+    ``package.old`` (``import``, ``from package.old import x``, ``from package import old``)
+    or reading the attribute warns (:class:`DeprecationWarning`, naming the new module) and
+    gives the new module itself (the same object, registered in :data:`sys.modules` under the
+    old name too).
+
+    Installs one finder on :data:`sys.meta_path` for ``package`` (once; called from the
+    package's ``__init__``, which Python imports before any of its submodules).
+
+    Parameters
+    ----------
+    package : str
+        The package that held the modules (``__name__`` of its ``__init__``).
+    moved : dict of str to str
+        Old submodule name -> the module's full name now.
+    stacklevel : int, optional
+        Of the warning (2: the code that imports or reads the old name).
+
+    Returns
+    -------
+    callable
+        ``__getattr__(name)`` for the package (PEP 562): the new module for an old name;
+        ``AttributeError`` otherwise.
+    """
+    import importlib
+    import importlib.abc
+    import importlib.util
+    import sys
+
+    def warn(old: str) -> None:
+        warnings.warn(f"{package}.{old} is deprecated: use {moved[old]} (the same module); the "
+                      "old name will be removed", DeprecationWarning, stacklevel=stacklevel + 1)
+
+    class _Finder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
+        """Finds ``package.old`` and loads it as the module it now is."""
+
+        key = ("seahelm.deprecated_modules", package)
+        specs: dict[str, Any] = {}
+
+        def find_spec(self, fullname: str, path: Any = None, target: Any = None) -> Any:
+            parent, _, leaf = fullname.rpartition(".")
+            if parent != package or leaf not in moved:
+                return None
+            return importlib.util.spec_from_loader(fullname, self)
+
+        def create_module(self, spec: Any) -> Any:
+            leaf = spec.name.rpartition(".")[2]
+            warn(leaf)
+            module = importlib.import_module(moved[leaf])
+            self.specs[spec.name] = module.__spec__
+            return module
+
+        def exec_module(self, module: Any) -> None:
+            # the import system set the old name's spec on the module it was given: give it
+            # back its own (reload and pickling read it)
+            module.__spec__ = self.specs.pop(module.__spec__.name, module.__spec__)
+
+    if not any(getattr(f, "key", None) == _Finder.key for f in sys.meta_path):
+        sys.meta_path.insert(0, _Finder())
+
+    def __getattr__(name: str) -> Any:
+        if name not in moved:
+            raise AttributeError(f"module {package!r} has no attribute {name!r}")
+        warn(name)
+        return importlib.import_module(moved[name])
+
+    return __getattr__

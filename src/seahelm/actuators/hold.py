@@ -2,7 +2,7 @@
 
 A manoeuvre record logs the inputs the ship saw — the rudder angle, the propeller rps — at its
 samples. To drive a model with them (the output-error fits of
-:mod:`seahelm.analysis.nomoto_fit` and :mod:`seahelm.analysis.mmg_fit`) the signal between two
+:mod:`seahelm.identification.nomoto_fit` and :mod:`seahelm.identification.mmg_fit`) the signal between two
 samples is taken as the straight line through them (a first-order hold, Franklin, Powell &
 Workman, *Digital Control of Dynamic Systems*, 3rd ed., 1998, §6.3.2 "triangle hold").
 

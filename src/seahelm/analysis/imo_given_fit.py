@@ -4,12 +4,12 @@ An identified model is uncertain; the probability that the ship passes IMO MSC.1
 the records is the fraction of ships drawn from the fit's posterior that pass
 (:func:`~seahelm.analysis.imo_probability.imo_probabilities`, Wilson intervals).
 :func:`imo_given_nomoto_fit` draws the posterior of a Nomoto fit
-(:func:`~seahelm.analysis.nomoto_posterior.posterior_samples`) and builds its ships with the
-given speed, length and steering gear (:func:`~seahelm.analysis.nomoto_posterior.
+(:func:`~seahelm.identification.nomoto_posterior.posterior_samples`) and builds its ships with the
+given speed, length and steering gear (:func:`~seahelm.identification.nomoto_posterior.
 posterior_ships`); :func:`imo_given_mmg_fit` draws the hull derivatives of an MMG fit
-(:func:`~seahelm.analysis.mmg_posterior.mmg_posterior`) into the base ship, the identified
+(:func:`~seahelm.identification.mmg_posterior.mmg_posterior`) into the base ship, the identified
 ship bounding the members' runs. :func:`write_posterior_samples` writes an MMG posterior as a
-samples file (:mod:`seahelm.analysis.samples_file`) that ``seahelm imo SHIP --draws`` and a
+samples file (:mod:`seahelm.identification.samples_file`) that ``seahelm imo SHIP --draws`` and a
 scenario's ``[batch.monte_carlo] samples`` read. ``seahelm identify nomoto|mmg --imo N`` is
 these calls and a rendering.
 """
@@ -37,7 +37,7 @@ def imo_given_nomoto_fit(fit: Any, records: Sequence[Any], n: int, *, speed: flo
     Parameters
     ----------
     fit : NomotoFit
-        :func:`~seahelm.analysis.nomoto_fit.fit_nomoto`.
+        :func:`~seahelm.identification.nomoto_fit.fit_nomoto`.
     records : sequence of ManoeuvreRecord
         The records it was fitted to.
     n : int
@@ -68,7 +68,7 @@ def imo_given_nomoto_fit(fit: Any, records: Sequence[Any], n: int, *, speed: flo
         No speed or length (``field="speed"``/``"length"``); a fit that does not identify
         its parameters (``field="fit"``): no posterior to draw from.
     """
-    from .nomoto_posterior import posterior_samples, posterior_ships
+    from ..identification.nomoto_posterior import posterior_samples, posterior_ships
 
     for field, value in (("speed", speed), ("length", length)):
         if value is None:
@@ -93,7 +93,7 @@ def imo_given_mmg_fit(fit: Any, records: Sequence[Any], base: Any, n: int, *,
     Parameters
     ----------
     fit : HullFit
-        :func:`~seahelm.analysis.mmg_fit.identify_mmg`.
+        :func:`~seahelm.identification.mmg_fit.identify_mmg`.
     records : sequence of ManoeuvreRecord
     base : Ship
         The base ship the fit's derivatives go into.
@@ -105,7 +105,7 @@ def imo_given_mmg_fit(fit: Any, records: Sequence[Any], base: Any, n: int, *,
     name : str, optional
         The identified ship's name (the reference bounding the runs).
     posterior : MMGPosterior, optional
-        Already drawn (:func:`~seahelm.analysis.mmg_posterior.mmg_posterior`; e.g. also
+        Already drawn (:func:`~seahelm.identification.mmg_posterior.mmg_posterior`; e.g. also
         written with :func:`write_posterior_samples`); default: drawn here.
     progress : callable(done, total), optional
 
@@ -115,7 +115,7 @@ def imo_given_mmg_fit(fit: Any, records: Sequence[Any], base: Any, n: int, *,
         As :func:`imo_given_nomoto_fit`'s, with ``posterior_samples`` (the posterior's
         diagnostics).
     """
-    from .mmg_posterior import mmg_posterior, posterior_ships
+    from ..identification.mmg_posterior import mmg_posterior, posterior_ships
 
     post = posterior if posterior is not None else mmg_posterior(fit, records, n=n,
                                                                  method=method, seed=seed)
@@ -154,8 +154,8 @@ def write_posterior_samples(path: str | os.PathLike[str], fit: Any, post: Any, b
     -------
     pathlib.Path
     """
-    from .mmg_posterior import posterior_columns
-    from .samples_file import write_samples
+    from ..identification.mmg_posterior import posterior_columns
+    from ..identification.samples_file import write_samples
 
     columns = posterior_columns(fit, post)
     units = {i.name: i.unit for i in type(base.params).info()}

@@ -8,7 +8,7 @@ distribution of relative standard deviation ``uncertainty`` around the model's
 :class:`ImoEnsemble`: the probabilities, every sample's drawn values by key path
 (``vessel.params.<name>``) with their distribution and unit, and what was checked.
 :func:`imo_of_samples` does the same for the rows of a samples file
-(:mod:`seahelm.analysis.samples_file`, e.g. an identification's posterior). ``seahelm imo
+(:mod:`seahelm.identification.samples_file`, e.g. an identification's posterior). ``seahelm imo
 SHIP --monte-carlo N`` (and ``--draws FILE.csv``) is these two calls; its ``--out`` writes
 :meth:`ImoEnsemble.dataset` and the figure of :func:`seahelm.plotting.imo_ensemble.
 plot_imo_ensemble`.
@@ -161,7 +161,7 @@ def ships_of_samples(ship: Any, table: Any, n: int | None = None) -> list[Any]:
     ----------
     ship : Ship
     table : SamplesTable
-        :func:`~seahelm.analysis.samples_file.read_samples`; every column a
+        :func:`~seahelm.identification.samples_file.read_samples`; every column a
         ``vessel.params.<name>`` of the ship's model, in its stored unit.
     n : int, optional
         Rows (default: all).
@@ -177,7 +177,7 @@ def ships_of_samples(ship: Any, table: Any, n: int | None = None) -> list[Any]:
         of an IMO check share), more rows asked for than the table holds, units other than
         the stored ones, a row the ship cannot take (with ``run`` the row).
     """
-    from .samples_file import check_units
+    from ..identification.samples_file import check_units
 
     names = set(ship.params.field_names())
     for key in table.keys:
@@ -221,7 +221,7 @@ def imo_of_samples(ship: Any, table: Any, *, n: int | None = None, dt: float | N
     ship : Ship
         The nominal ship (the reference of the members' durations).
     table : SamplesTable
-        :func:`~seahelm.analysis.samples_file.read_samples`.
+        :func:`~seahelm.identification.samples_file.read_samples`.
     n : int, optional
         The first ``n`` rows (default: all).
     dt : float, optional
@@ -241,7 +241,7 @@ def imo_of_samples(ship: Any, table: Any, *, n: int | None = None, dt: float | N
         As :func:`ships_of_samples`.
     """
     from .imo_probability import imo_probabilities
-    from .samples_file import samples_attrs
+    from ..identification.samples_file import samples_attrs
 
     ships = ships_of_samples(ship, table, n)
     n = len(ships)

@@ -1,7 +1,7 @@
 """Replay a measured record: simulate it from its initial state with its measured inputs.
 
-:func:`replay` takes one :class:`~seahelm.analysis.records.ManoeuvreRecord` (a sea trial or a
-free-running model test, :func:`~seahelm.analysis.records.read_records`) and a ship, and
+:func:`replay` takes one :class:`~seahelm.identification.records.ManoeuvreRecord` (a sea trial or a
+free-running model test, :func:`~seahelm.identification.records.read_records`) and a ship, and
 simulates the ship
 
 * from the record's **first sample** (surge and sway speed, yaw rate, position, heading: the
@@ -55,7 +55,7 @@ from typing import Any, Literal
 import numpy as np
 
 from ..errors import ParameterError
-from .records import ManoeuvreRecord
+from ..identification.records import ManoeuvreRecord
 
 __all__ = ["ReplayResult", "replay", "manoeuvre_metrics", "classify", "REPLAY_CHANNELS",
            "RMS_WINDOW", "KINDS", "WIND"]
@@ -354,7 +354,7 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
     Parameters
     ----------
     record : ManoeuvreRecord
-        The record (:func:`~seahelm.analysis.records.read_records`); it needs ``heading``,
+        The record (:func:`~seahelm.identification.records.read_records`); it needs ``heading``,
         ``surge_speed``, ``sway_speed``, ``x``, ``y`` and, for a ship with a propeller,
         ``propeller_rps``.
     ship : Ship or str

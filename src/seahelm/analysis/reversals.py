@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from .records import ManoeuvreRecord
+from ..identification.records import ManoeuvreRecord
 
 __all__ = ["Reversal", "StopComparison", "find_reversals", "replay_stop", "slice_record",
            "REVERSAL_RULE", "MIN_SPEED", "MIN_ASTERN_RPS"]

@@ -17,7 +17,7 @@ import numpy as np
 import typer
 from rich.markup import escape
 
-from ..identification.reduced_forms import REDUCED_FORMS
+from ..identification.reduced.forms import REDUCED_FORMS
 from ._common import (
     ForceFlag,
     JsonFlag,
@@ -41,9 +41,9 @@ _UNITS = {"a": "s²/rad", "b": "s", "c": "s/rad", "d": "1/rad"}
 #: MemoryError, exit 1).
 MAX_POSTERIOR = 100_000
 
-#: The keys of :data:`~seahelm.identification.fitting.FIT_METHODS`, spelled out so that the
+#: The keys of :data:`~seahelm.identification.reduced.fitting.FIT_METHODS`, spelled out so that the
 #: command line does not import the fitting code (numba, scipy; tests/test_cli_style.py checks
-#: that they agree); those of :data:`~seahelm.identification.reduced_forms.REDUCED_FORMS` from
+#: that they agree); those of :data:`~seahelm.identification.reduced.forms.REDUCED_FORMS` from
 #: the registry (a light module).
 FitMethod = Literal["lsq", "robust", "brute"]
 FormName = Literal[tuple(REDUCED_FORMS)]  # type: ignore[valid-type]
@@ -89,9 +89,9 @@ def steady_turn(
     the steady points in the log's units (--angles), as the JSON output's units block says.
     """
     from ..errors import ParameterError
-    from ..identification.fitting import fit_steady_turns
-    from ..identification.segments import extract_steady_segments
-    from ..identification.turn_log import read_turn_log
+    from ..identification.reduced.fitting import fit_steady_turns
+    from ..identification.reduced.segments import extract_steady_segments
+    from ..identification.records import read_turn_log
 
     scale = math.pi / 180.0 if angles == "deg" else 1.0
     input_file("FILE", file)
@@ -225,8 +225,8 @@ def nomoto(
     json_out: JsonFlag = False,
 ) -> None:
     """Identify Nomoto K, T (or K, T1, T2, T3) and the rudder offset from manoeuvre records."""
-    from ..analysis.nomoto_fit import fit_nomoto
-    from ..analysis.records import read_records
+    from ..identification.nomoto_fit import fit_nomoto
+    from ..identification.records import read_records
     from ..errors import ParameterError
     from ._common import output_file
 
@@ -317,7 +317,7 @@ def _print_imo_given_fit(p: dict[str, Any]) -> None:
 
 def _write_ship(fit: Any, records: Any, out: Path, speed: float | None, length: float | None,
                 name: str | None, max_rudder: float, rudder_rate: float, level: float) -> Path:
-    from ..analysis.nomoto_fit_result import nomoto_ship
+    from ..identification.nomoto_fit_result import nomoto_ship
     from ..errors import ParameterError
     from ._common import write_ship_file
 
@@ -432,8 +432,8 @@ def mmg(
     bounding their runs' durations; `--imo N -o SHIP.toml --save-posterior FILE.csv` and then
     `seahelm imo SHIP.toml --draws FILE.csv` give the same probabilities.
     """
-    from ..analysis.mmg_fit import identify_mmg
-    from ..analysis.records import read_records
+    from ..identification.mmg_fit import identify_mmg
+    from ..identification.records import read_records
     from ..errors import ParameterError
     from ..ships import get_ship
     from ._common import output_file, write_ship_file
@@ -446,7 +446,7 @@ def mmg(
         base = get_ship(ship)
     except ValueError as exc:
         raise ParameterError(f"`--ship`: {exc}") from None
-    if base.model.name != "mmg":
+    if not base.model.supports("hull-identification"):
         raise ParameterError(f"`--ship` '{base.name}' uses model '{base.model.name}'; the MMG "
                              "identification needs an MMG ship (e.g. `seahelm ship estimate`)")
     n_post = _posterior_count(imo, samples, save_posterior)
@@ -468,7 +468,7 @@ def mmg(
     fit = identify_mmg(records, base, method=method, output_error=output_error)
     payload = fit.as_dict()
     if n_post:
-        from ..analysis.mmg_posterior import mmg_posterior
+        from ..identification.mmg_posterior import mmg_posterior
 
         option = "--imo" if imo else "--samples"
         try:

@@ -42,7 +42,7 @@ def check_record_count(records: Any, order: int) -> None:
 
 
 def check_bootstrap(bootstrap: int) -> None:
-    """``--bootstrap`` at most :data:`~seahelm.analysis.nomoto_fit.MAX_BOOTSTRAP`, refused
+    """``--bootstrap`` at most :data:`~seahelm.identification.nomoto_fit.MAX_BOOTSTRAP`, refused
     before any work with the time it would take.
 
     Parameters
@@ -50,7 +50,7 @@ def check_bootstrap(bootstrap: int) -> None:
     bootstrap : int
         ``--bootstrap``: the number of refits.
     """
-    from ..analysis.nomoto_fit import MAX_BOOTSTRAP
+    from ..identification.nomoto_fit import MAX_BOOTSTRAP
     from ..errors import ParameterError
 
     if bootstrap > MAX_BOOTSTRAP:

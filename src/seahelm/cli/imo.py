@@ -203,7 +203,7 @@ def _from_samples(ship: Any, n: int | None, path: Path, dt: float | None, json_o
     (:func:`seahelm.analysis.imo_monte_carlo.imo_of_samples`), checked as ``--monte-carlo``
     checks its draws."""
     from ..analysis.imo_monte_carlo import imo_of_samples
-    from ..analysis.samples_file import read_samples
+    from ..identification.samples_file import read_samples
     from ._common import input_file
 
     input_file("--draws", path)

@@ -1,6 +1,6 @@
 """``seahelm replay RECORD --ship SHIP``: simulate a measured record with its measured inputs.
 
-Reads the record (:func:`seahelm.analysis.records.read_records`: a CSV file with a header, a
+Reads the record (:func:`seahelm.identification.records.read_records`: a CSV file with a header, a
 known format such as the FRT-DS-ESSO free-running tests read as it is, other headers through
 ``--column HEADER=CHANNEL``; or a seahelm NetCDF result), replays every record in it
 (:func:`seahelm.analysis.replay.replay`: from its first sample, with its measured rudder and
@@ -144,7 +144,7 @@ def replay(
     force: ForceFlag = False,
 ) -> None:
     """Replay a measured record: simulated vs measured metrics and position error."""
-    from ..analysis.records import read_records
+    from ..identification.records import read_records
     from ..analysis.replay import KINDS, WIND
     from ..analysis.replay import replay as run_replay
 

@@ -20,7 +20,7 @@ def plot_nomoto_fit(fit: Any, records: Any, path: str | os.PathLike[str]) -> Pat
     Parameters
     ----------
     fit : NomotoFit
-        The fit (:func:`seahelm.analysis.nomoto_fit.fit_nomoto`).
+        The fit (:func:`seahelm.identification.nomoto_fit.fit_nomoto`).
     records : sequence of ManoeuvreRecord
         The records it was fitted to.
     path : str or os.PathLike

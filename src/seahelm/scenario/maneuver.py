@@ -439,7 +439,7 @@ def prepare_maneuver(scn: Scenario, *, source: str = "<string>", text: str = "")
                              "(actuator.params.<name>) or the particulars it is estimated from "
                              f"(vessel.particulars.<name>), got '{key}'")
         if mc.samples is not None:  # a samples file holds stored units: say so if it does not
-            from ..analysis.samples_file import check_units
+            from ..identification.samples_file import check_units
 
             units = {f"vessel.params.{i.name}": i.unit for i in type(ship.params).info()}
             units.update({f"actuator.params.{i.name}": i.unit

@@ -1,6 +1,6 @@
 """``[batch.monte_carlo] samples = "FILE.csv"``: Monte-Carlo draws given as a samples file.
 
-A samples file (:mod:`seahelm.analysis.samples_file`; e.g. the posterior of an identification,
+A samples file (:mod:`seahelm.identification.samples_file`; e.g. the posterior of an identification,
 ``seahelm identify mmg --imo N --save-posterior FILE.csv``) holds one row per sample and one
 column per drawn key (``vessel.params.<name>``, ``actuator.params.<name>``). In a scenario,
 sample *i* takes row *i* of the file — in a grid, every grid point takes the same ``runs``
@@ -31,7 +31,7 @@ _KEY = "batch.monte_carlo.samples"
 
 @functools.lru_cache(maxsize=8)
 def _read(path: str, mtime_ns: int, size: int) -> Any:
-    from ..analysis.samples_file import read_samples
+    from ..identification.samples_file import read_samples
 
     return read_samples(path)
 

@@ -53,6 +53,8 @@ FORMAT_REFERENCE: tuple[tuple[str, str, str, str], ...] = (
         "superstructure_centre": "centre of A_OD, forward of midships C_BR (Fujiwara)",
         "superstructure_height": "top of the superstructure above the water H_BR (Fujiwara)",
         "windage_height": "centre of the lateral windage area above the water H_C (Fujiwara)",
+        "model_scale": "Froude scale λ >= 1 of a model ship (the stopping test's engine "
+                       "timings: full-scale / √λ)",
         "vessel_type": "Blendermann's vessel type (tanker-loaded, cargo-loaded, ...)"}[n])
       for n, u, req in FIELD_UNITS),
     ("provenance.params", "", "no", "where the parameter set comes from"),

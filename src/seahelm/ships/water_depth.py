@@ -89,7 +89,7 @@ def ship_at_depth(ship: "Ship", depth: float, *, strict: bool | None = None) -> 
         return dataclasses.replace(ship, params=deep, water_depth=math.inf,
                                    deep_water_params=None,
                                    validity=_validity(ship.validity, None))
-    if ship.model.name != "mmg":
+    if not ship.model.supports("shallow-water"):
         raise ParameterError(
             f": ship '{ship.name}' uses model '{ship.model.name}'; the shallow-water corrections "
             "are for the MMG model's coefficients", field="water_depth", unit="m", value=depth)

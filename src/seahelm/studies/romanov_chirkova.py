@@ -4,18 +4,18 @@ reproduction.
 The reusable parts are components: Voitkunsky's steering model (eq. (1)) in
 :mod:`seahelm.vessels.voitkunsky`, its exact steady turns and the reduced coefficients a, b, c
 (and the α² coefficient d the paper drops) in closed form in
-:mod:`seahelm.identification.steady_turns`, the forms of the reduced equation (eq. (4) is the
-form ``"paper"``) in :mod:`seahelm.identification.reduced_forms`, the least-squares, robust and
-brute-force fits (eq. (5) with a proper criterion) in :mod:`seahelm.identification.fitting`, the
-steady segments of a log in :mod:`seahelm.identification.segments`. The paper gives no
+:mod:`seahelm.identification.reduced.turns`, the forms of the reduced equation (eq. (4) is the
+form ``"paper"``) in :mod:`seahelm.identification.reduced.forms`, the least-squares, robust and
+brute-force fits (eq. (5) with a proper criterion) in :mod:`seahelm.identification.reduced.fitting`, the
+steady segments of a log in :mod:`seahelm.identification.reduced.segments`. The paper gives no
 coefficient values (no year is printed on it either, hence the module name). This module holds
 the paper's procedure on a model ship:
 
 * the criterion of eq. (5) as printed next to the proper ones of
-  :mod:`seahelm.identification.criteria`, as objects: registry :data:`CRITERIA` with
+  :mod:`seahelm.identification.reduced.criteria`, as objects: registry :data:`CRITERIA` with
   :data:`PRINTED_EQ5` (``"printed"``, the plain sum Σ N_i), ``"squared"`` (Σ N_i², the default
   of the fits) and ``"absolute"`` (Σ|N_i|); :func:`eq5_criterion` evaluates one, and
-  :func:`~seahelm.identification.fitting.fit_brute_force` takes any of them (with the printed
+  :func:`~seahelm.identification.reduced.fitting.fit_brute_force` takes any of them (with the printed
   one it ends on the search box's boundary);
 * :func:`three_turn_study` — three steady turns of a Voitkunsky ship, eq. (4) fitted to them,
   the closed-form coefficients of the branch and the prediction of held-out turns.
@@ -42,10 +42,10 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from ..errors import ParameterError
-from ..identification.criteria import ABSOLUTE, SQUARED, Criterion
-from ..identification.fitting import fit_lsq
-from ..identification.reduced_forms import SteadyTurnFit
-from ..identification.steady_turns import (
+from ..identification.reduced.criteria import ABSOLUTE, SQUARED, Criterion
+from ..identification.reduced.fitting import fit_lsq
+from ..identification.reduced.forms import SteadyTurnFit
+from ..identification.reduced.turns import (
     ReducedCoefficients,
     reduced_coefficients,
     stable_steady_turn,

@@ -34,15 +34,29 @@ from typing import Any
 import numpy as np
 from numba import njit
 
+from .._validate import lookup_name
 from ..errors import ParameterError
 from ..parameters import Params, as_records, stack_params
 
-__all__ = ["NAV_OUTPUTS", "NAV_OUTPUT_UNITS", "VesselModel"]
+__all__ = ["NAV_OUTPUTS", "NAV_OUTPUT_UNITS", "CAPABILITIES", "VesselModel"]
 
 NAV_OUTPUTS: tuple[str, ...] = ("north", "east", "heading", "yaw_rate", "surge_speed", "sway_speed")
 """The usual output names of a ship model (north, east position; heading; yaw rate; surge and
 sway speed). Not a fixed set: each model declares its own ``output_labels``."""
 NAV_OUTPUT_UNITS: tuple[str, ...] = ("m", "m", "rad", "rad/s", "m/s", "m/s")
+
+#: What a model may declare it supports (:attr:`VesselModel.capabilities`), beyond running in
+#: the engine: the knowledge an analysis needs about a model, declared by the model instead of
+#: checked by its name.
+CAPABILITIES: dict[str, str] = {
+    "shallow-water": "its parameters take the shallow-water corrections of "
+                     "seahelm.hydrodynamics.shallow_water (Ship.at_depth, --depth)",
+    "hull-identification": "its hull derivatives are what seahelm.identification.mmg_fit "
+                           "identifies from records (the base ship of `seahelm identify mmg`)",
+    "engine-estimate": "a ship on it with a propeller gets an engine, shaft and reversal "
+                       "estimate for the stopping test (seahelm.vessels.mmg_four_quadrant."
+                       "from_mmg: the ship on model 'mmg-4q')",
+}
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -81,6 +95,9 @@ class VesselModel:
         ``check_initial_state(x0)`` with ``x0`` of shape (runs, n_states): raises
         :class:`~seahelm.errors.ParameterError` (field ``x0``) for an initial state the model
         cannot start from (a quaternion that is not of unit length).
+    capabilities : frozenset of str, optional
+        What the model supports beyond the engine, names of :data:`CAPABILITIES`
+        (:meth:`supports`).
     """
 
     name: str
@@ -101,9 +118,15 @@ class VesselModel:
     load_params: tuple[str, ...] = ()
     motion: Any = None
     check_initial_state: Any = None
+    capabilities: frozenset[str] = frozenset()
 
     def __post_init__(self) -> None:
         n = len(self.state_labels)
+        object.__setattr__(self, "capabilities", frozenset(self.capabilities))
+        unknown = sorted(self.capabilities - set(CAPABILITIES))
+        if unknown:
+            raise ValueError(f"{self.name}: unknown capabilities {unknown}; valid: "
+                             f"{', '.join(CAPABILITIES)}")
         for attr, ref in (
             ("state_units", n),
             ("input_units", len(self.input_labels)),
@@ -126,6 +149,25 @@ class VesselModel:
     @property
     def n_states(self) -> int:
         return len(self.state_labels)
+
+    def supports(self, capability: str) -> bool:
+        """Whether the model declares ``capability`` (a name of :data:`CAPABILITIES`).
+
+        Parameters
+        ----------
+        capability : str
+
+        Returns
+        -------
+        bool
+
+        Raises
+        ------
+        ValueError
+            For a name that is not a capability (a misspelt check would be False for ever).
+        """
+        lookup_name("capability", CAPABILITIES, capability)
+        return capability in self.capabilities
 
     @property
     def n_inputs(self) -> int:

@@ -414,6 +414,7 @@ MMG = VesselModel(
     # the MMG standard method covers ahead motion: going astern marks the run diverged
     state_lower=(0.0, -np.inf, -np.inf, -np.inf, -np.inf, -np.inf),
     motion=mmg_motion,
+    capabilities=frozenset({"shallow-water", "hull-identification", "engine-estimate"}),
 )
 
 

@@ -51,6 +51,10 @@ class Particulars:
     windage_height : float or None
         Height of the centre of the lateral windage area above the waterline H_C [m]
         (Fujiwara et al. 1998).
+    model_scale : float or None
+        Froude scale λ ≥ 1 [-] of a model: the ship is 1/λ of the full-scale ship it models
+        (the stopping test's engine timings are the full-scale ones / √λ); None for a
+        full-scale ship or where not known.
     vessel_type : str or None
         Blendermann (1994) vessel type (:mod:`seahelm.environment.blendermann`).
     provenance : str
@@ -71,6 +75,7 @@ class Particulars:
     superstructure_centre: float | None = None
     superstructure_height: float | None = None
     windage_height: float | None = None
+    model_scale: float | None = None
     vessel_type: str | None = None
     provenance: str = ""
 
@@ -92,6 +97,9 @@ class Particulars:
             if name not in _SIGNED and not value > 0:
                 raise ParameterError(f"must be > 0 [{unit}], got {value!r}", field=name,
                                      unit=unit, value=value)
+        if self.model_scale is not None and not self.model_scale >= 1:
+            raise ParameterError(f"must be a Froude scale >= 1 [-], got {self.model_scale!r}",
+                                 field="model_scale", unit="-", value=self.model_scale)
         if self.block_coefficient > 1:
             raise ParameterError(f"must be in (0, 1] [-], got {self.block_coefficient!r}",
                                  field="block_coefficient", unit="-",
@@ -158,7 +166,16 @@ class Particulars:
             superstructure_centre=times(self.superstructure_centre, f),
             superstructure_height=times(self.superstructure_height, f),
             windage_height=times(self.windage_height, f),
+            model_scale=_model_scale(self.model_scale, f),
             provenance=provenance or self.provenance)
+
+
+def _model_scale(scale: float | None, factor: float) -> float | None:
+    """The Froude scale of a model ``factor`` times the size: λ / factor (None at or past the
+    full-scale ship's size, or where λ is not known)."""
+    if scale is None or not scale / factor > 1.0:
+        return None
+    return scale / factor
 
 
 #: The fields of :class:`Particulars` with their units and whether they are required.
@@ -169,7 +186,7 @@ FIELD_UNITS: tuple[tuple[str, str, bool], ...] = (
     ("lateral_area", "m²", False), ("windage_centre", "m", False),
     ("metacentric_height", "m", False), ("superstructure_lateral_area", "m²", False),
     ("superstructure_centre", "m", False), ("superstructure_height", "m", False),
-    ("windage_height", "m", False), ("vessel_type", "", False))
+    ("windage_height", "m", False), ("model_scale", "-", False), ("vessel_type", "", False))
 
 #: Fields that may be negative or zero (positions along the ship).
 _SIGNED = ("windage_centre", "superstructure_centre")

@@ -39,7 +39,7 @@ units so that issue 7's wind and wave loads add directly):
     takes no surge load.
 
 The static (steady-turn) regime, its branches and the reduced model eq. (4) live in
-:mod:`seahelm.identification.steady_turns`.
+:mod:`seahelm.identification.reduced.turns`.
 
 References
 ----------

@@ -69,14 +69,12 @@ from .common import Plan, final_time, record_every_for, usual_time_step, value_a
 from .result import ManeuverResult
 from .turning_circle import _at_crossings, _crossings, track_distance
 
-__all__ = ["crash_stop", "stopping_ship", "stopping_metrics", "STOPPING_ENGINE_SCALES",
-           "MODEL_SCALE_LENGTH"]
+__all__ = ["crash_stop", "stopping_ship", "stopping_metrics", "MODEL_SCALE_LENGTH"]
 
-#: Froude scale λ of the engine timings of catalog ships that are models (the reversal delay,
-#: brake time and governor time constant are full-scale values divided by √λ); any other ship
-#: is taken at full scale unless ``scale`` is given.
-STOPPING_ENGINE_SCALES: dict[str, float] = {
-    "kvlcc2-l7": 45.7, "kvlcc2-l7-wp0-0.35": 45.7, "kvlcc2-l7-xp-0.5": 45.7}
+# The Froude scale λ of a model's engine timings (the reversal delay, brake time and governor
+# time constant are full-scale values divided by √λ) is what its ship declares
+# (Particulars.model_scale: the catalog's L7 KVLCC2s, 45.7); a ship that declares none is
+# taken at full scale unless ``scale`` is given.
 _KVLCC2_L7_GEOMETRY = (7.0, 0.216)
 #: A ship shorter than this [m] without a known scale warns that full-scale engine timings are
 #: applied to it.
@@ -113,7 +111,8 @@ def stopping_ship(ship: Any, *, scale: float | None = None, **engine: float) -> 
         The ship.
     scale : float, optional
         Froude scale λ ≥ 1 of a model (its engine timings are full-scale ones / √λ). Default:
-        :data:`STOPPING_ENGINE_SCALES` for the catalog's model-scale KVLCC2s and 45.7 for any
+        the scale the ship declares (:attr:`~seahelm.vessels.particulars.Particulars.
+        model_scale`: 45.7 for the catalog's model-scale KVLCC2s) and 45.7 for any
         ship with the L7 model's length and propeller (7 m, 0.216 m), else 1 (with a warning
         for a ship shorter than :data:`MODEL_SCALE_LENGTH`).
     **engine : float
@@ -143,7 +142,8 @@ def stopping_ship(ship: Any, *, scale: float | None = None, **engine: float) -> 
                              unit="-", value=scale)
     if isinstance(s.params, MMG4QParams):
         return s.replace(params=engine) if engine else s
-    if s.model.name != "mmg" or not isinstance(s.params, MMGParams) or not s.has_propeller:
+    if (not s.model.supports("engine-estimate") or not isinstance(s.params, MMGParams)
+            or not s.has_propeller):
         what = ("has no propeller" if not s.has_propeller else
                 f"is on model '{s.model.name}', not 'mmg'")
         raise ParameterError(
@@ -151,7 +151,7 @@ def stopping_ship(ship: Any, *, scale: float | None = None, **engine: float) -> 
             "(model 'mmg', converted to 'mmg-4q' with an engine estimate) or an 'mmg-4q' ship",
             field="ship", value=s.name)
     if scale is None:
-        scale = STOPPING_ENGINE_SCALES.get(s.name)
+        scale = None if s.particulars is None else s.particulars.model_scale
         geometry = (float(s.params.length), float(s.params.propeller_diameter))
         if scale is None and geometry == _KVLCC2_L7_GEOMETRY:  # a variant of the L7 model
             scale = 45.7

@@ -1,6 +1,6 @@
 """Samples files: Monte-Carlo draws given as numbers, one row per sample.
 
-A posterior of identified coefficients (:mod:`seahelm.analysis.mmg_posterior`,
+A posterior of identified coefficients (:mod:`seahelm.identification.mmg_posterior`,
 ``seahelm identify mmg --imo N --save-posterior FILE.csv``) is a set of samples, not a
 distribution with a formula. A samples file holds them so that they can be used as the draws of
 a Monte-Carlo study: ``seahelm imo SHIP --draws FILE.csv`` and a scenario's

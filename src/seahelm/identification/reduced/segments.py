@@ -2,7 +2,7 @@
 
 :func:`extract_steady_segments` finds the stretches of a log where the rudder angle and the yaw
 rate are steady and returns one point (ω_i, α_i) per stretch, :class:`SteadySegments`; the fits
-are in :mod:`seahelm.identification.fitting`.
+are in :mod:`seahelm.identification.reduced.fitting`.
 
 References
 ----------
@@ -18,8 +18,8 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_finite_series, check_positive
-from ..errors import ParameterError
+from ..._validate import as_finite_series, check_positive
+from ...errors import ParameterError
 
 __all__ = [
     "SteadySegments",

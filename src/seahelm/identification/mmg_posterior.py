@@ -1,11 +1,11 @@
 """The posterior of identified MMG hull derivatives, and the ships it stands for.
 
-:func:`mmg_posterior` draws the hull derivatives of an :class:`~seahelm.analysis.mmg_fit.HullFit`
+:func:`mmg_posterior` draws the hull derivatives of an :class:`~seahelm.identification.mmg_fit.HullFit`
 given the records:
 
 ``"laplace"`` (default)
     The Gaussian of the fit: mean the estimate, covariance its Laplace covariance — for an
-    output-error fit (:func:`~seahelm.analysis.mmg_fit.refine_mmg`) σ² (JᵀJ)⁻¹, the inverse of
+    output-error fit (:func:`~seahelm.identification.mmg_fit.refine_mmg`) σ² (JᵀJ)⁻¹, the inverse of
     the Gauss–Newton Hessian JᵀJ/σ² of the scaled u, v, r residuals with σ² their mean square
     over the degrees of freedom; for a regression-only fit the regression's covariance. The
     draws are truncated to the prior's support (below) by rejection.
@@ -13,7 +13,7 @@ given the records:
     An affine-invariant ensemble sampler (Goodman & Weare 2010; ``emcee``, the optional extra
     ``seahelm[mcmc]``). The likelihood is that of the output-error fit: the records simulated
     from their recorded δ and n and initial u, v, r, the residuals of u, v, r scaled by U_0,
-    U_0 and U_0/L (the residual of :func:`~seahelm.analysis.mmg_fit.refine_mmg`) white Gaussian
+    U_0 and U_0/L (the residual of :func:`~seahelm.identification.mmg_fit.refine_mmg`) white Gaussian
     with the σ of the residuals at the estimate. ``vectorize=True``: each half of the ensemble
     that the stretch move updates is **one batched engine run** per record (emcee moves the
     walkers in two halves, so a step is two runs of walkers/2 ships). The walkers start from
@@ -26,7 +26,7 @@ given the records:
 damping derivatives Y'_v < 0, N'_r < 0 — and zero outside; every other derivative is free.
 
 **What the records do not identify is not sampled.** The derivatives a fit holds at the base
-ship's values (:attr:`HullFit.fixed`, from :func:`~seahelm.analysis.mmg_fit.identify_mmg`) stay
+ship's values (:attr:`HullFit.fixed`, from :func:`~seahelm.identification.mmg_fit.identify_mmg`) stay
 at them in every sample and are listed in :attr:`MMGPosterior.fixed`. A fit whose covariance
 still has an unidentified parameter or a (numerically) singular direction — the smallest
 eigenvalue of the correlation matrix below 1e-10 — is refused with that direction named, rather
@@ -228,7 +228,7 @@ def mmg_posterior(fit: HullFit, records: Sequence[ManoeuvreRecord] | None = None
     Parameters
     ----------
     fit : HullFit
-        An MMG identification (:func:`~seahelm.analysis.mmg_fit.identify_mmg`).
+        An MMG identification (:func:`~seahelm.identification.mmg_fit.identify_mmg`).
     records : sequence of ManoeuvreRecord, optional
         The records fitted (needed for ``"mcmc"``).
     n : int
@@ -307,7 +307,7 @@ def posterior_columns(fit: HullFit, samples: np.ndarray | MMGPosterior
                       ) -> dict[str, np.ndarray]:
     """Every hull derivative of the posterior ships, by key path (``vessel.params.<name>``):
     the sampled ones from the samples, the others at the fit's values (the fixed ones at the
-    base ship's) — the columns of a samples file (:mod:`seahelm.analysis.samples_file`) whose
+    base ship's) — the columns of a samples file (:mod:`seahelm.identification.samples_file`) whose
     rows, put into the base ship, are the ships of :func:`posterior_ships`.
 
     Parameters

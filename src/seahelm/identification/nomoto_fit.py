@@ -282,7 +282,7 @@ def fit_nomoto(records: ManoeuvreRecord | Sequence[ManoeuvreRecord], order: int 
     Parameters
     ----------
     records : ManoeuvreRecord or sequence of them
-        Records of the same ship at the same speed (:func:`~seahelm.analysis.records.
+        Records of the same ship at the same speed (:func:`~seahelm.identification.records.
         read_records`).
     order : {1, 2}
         Nomoto's first or second order.

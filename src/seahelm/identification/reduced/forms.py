@@ -3,10 +3,13 @@
 A :class:`ReducedForm` is one linear-in-coefficients form of the reduced equation — the paper's
 eq. (4) (``"paper"``), the exact elimination with a free α² coefficient (``"exact"``) and their
 odd extensions to both sides (``"paper-odd"``, ``"exact-odd"``), registry
-:data:`REDUCED_FORMS` (:mod:`seahelm.identification.steady_turns` derives them).
-:class:`SteadyTurnFit` is what a fit returns (:mod:`seahelm.identification.fitting`), with
+:data:`REDUCED_FORMS` (:mod:`seahelm.identification.reduced.turns` derives them).
+:class:`SteadyTurnFit` is what a fit returns (:mod:`seahelm.identification.reduced.fitting`), with
 prediction both ways (yaw rate for a rudder angle, rudder angle for a wanted yaw rate) and their
-standard errors from the covariance (delta method).
+standard errors from the covariance (delta method); as every identification result it is a
+:class:`~seahelm.identification.fit_result.FitResult` (standard errors, correlations,
+intervals, what the points do not identify) on ``names`` = the form's coefficient names and
+``values`` = :attr:`SteadyTurnFit.coef`.
 
 References
 ----------
@@ -20,6 +23,9 @@ import dataclasses
 from typing import Any
 
 import numpy as np
+
+from ..._validate import lookup_name
+from ..fit_result import FitResult
 
 __all__ = [
     "ReducedForm",
@@ -150,17 +156,20 @@ def get_form(form: "str | ReducedForm") -> ReducedForm:
     """
     if isinstance(form, ReducedForm):
         return form
-    if form not in REDUCED_FORMS:
-        raise ValueError(f"unknown reduced form '{form}'; valid: {', '.join(REDUCED_FORMS)}")
-    return REDUCED_FORMS[form]
+    return lookup_name("reduced form", REDUCED_FORMS, form)
 
 
 # --------------------------------------------------------------------------------------------
 # Fit result and prediction
 # --------------------------------------------------------------------------------------------
 @dataclasses.dataclass(frozen=True)
-class SteadyTurnFit:
+class SteadyTurnFit(FitResult):
     """Coefficients of the reduced steady-turn model fitted to steady turns.
+
+    A :class:`~seahelm.identification.fit_result.FitResult` on :attr:`names` and
+    :attr:`values` (= ``coef``); its intervals are Student-t with the points' degrees of
+    freedom where the covariance is scaled by the residual variance, normal where it uses
+    known noise (``absolute_sigma``).
 
     Attributes
     ----------
@@ -206,6 +215,22 @@ class SteadyTurnFit:
     form: ReducedForm
     absolute_sigma: bool
     elapsed: float = 0.0
+
+    @property
+    def names(self) -> tuple[str, ...]:  # type: ignore[override]
+        """The coefficients' names (the form's: ``a``, ``b``, ``c`` and ``d``)."""
+        return self.form.names
+
+    @property
+    def values(self) -> np.ndarray:  # type: ignore[override]
+        """The coefficients (:attr:`coef`)."""
+        return self.coef
+
+    @property
+    def interval_dof(self) -> int | None:
+        """None (normal intervals) for a covariance from known noise, else the points less
+        the coefficients (at least 1)."""
+        return None if self.absolute_sigma else max(self.points_used - self.form.n_coef, 1)
 
     @property
     def a(self) -> float:

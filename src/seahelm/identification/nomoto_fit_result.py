@@ -1,4 +1,4 @@
-"""The result of a Nomoto identification (:func:`seahelm.analysis.nomoto_fit.fit_nomoto`): the
+"""The result of a Nomoto identification (:func:`seahelm.identification.nomoto_fit.fit_nomoto`): the
 estimates with their Laplace covariance, intervals, the evidence for what is not identified, and
 the ship of the identified model (:func:`nomoto_ship`)."""
 
@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from .fit_statistics import CovarianceSummary, unidentifiable
+from .fit_result import FitResult, unidentifiable
 
 __all__ = ["NomotoFit", "nomoto_ship"]
 
@@ -25,7 +25,7 @@ _SYMBOLS = {"gain": "K", "time_constant": "T", "t1": "T_1", "t2": "T_2", "t3": "
 
 
 @dataclasses.dataclass(frozen=True)
-class NomotoFit(CovarianceSummary):
+class NomotoFit(FitResult):
     """A Nomoto model identified from records (see the module docstring).
 
     Attributes
@@ -76,24 +76,11 @@ class NomotoFit(CovarianceSummary):
     bootstrap: np.ndarray | None = None
     speed: float | None = None
 
-    def confidence_intervals(self, level: float = 0.95) -> np.ndarray:
-        """Student-t intervals (Laplace), shape (parameters, 2).
-
-        Parameters
-        ----------
-        level : float
-            Confidence level in (0, 1).
-
-        Returns
-        -------
-        ndarray
-        """
-        from scipy.stats import t as student
-
-        if not 0.0 < level < 1.0:
-            raise ParameterError(f"must be in (0, 1), got {level!r}", field="level")
-        half = student.ppf(0.5 + level / 2, max(self.dof, 1)) * self.standard_errors
-        return np.column_stack([self.values - half, self.values + half])
+    @property
+    def interval_dof(self) -> int:
+        """Student-t intervals (Laplace) with the residuals' degrees of freedom (at least 1):
+        :meth:`~seahelm.identification.fit_result.FitResult.confidence_intervals`."""
+        return max(self.dof, 1)
 
     def bootstrap_intervals(self, level: float = 0.95) -> np.ndarray | None:
         """Percentile intervals of the bootstrap refits (None without a bootstrap).

@@ -1,5 +1,10 @@
-"""What a fit's covariance says about its estimates: standard errors, correlations, and which
-parameters the data do not identify (shared by the Nomoto and the MMG identification)."""
+"""The base of every identification result (:class:`FitResult`): what a fit's covariance says
+about its estimates -- standard errors, correlations, confidence intervals, and which
+parameters the data do not identify. Shared by the Nomoto fit
+(:class:`~seahelm.identification.nomoto_fit_result.NomotoFit`), the MMG hull
+(:class:`~seahelm.identification.mmg_fit.HullFit`), the linear sway–yaw model
+(:class:`~seahelm.identification.linear_fit.LinearFit`) and Romanov & Chirkova's reduced
+steady-turn model (:class:`~seahelm.identification.reduced.forms.SteadyTurnFit`)."""
 
 from __future__ import annotations
 
@@ -7,8 +12,10 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from ..errors import ParameterError, deprecated_names
+
 __all__ = ["standard_errors", "correlation", "unidentifiable", "UNIDENTIFIABLE_RELATIVE_SE",
-           "UNIDENTIFIABLE_CORRELATION", "CovarianceSummary"]
+           "UNIDENTIFIABLE_CORRELATION", "FitResult"]
 
 #: Evidence thresholds for "unidentifiable": standard error over |value|, |correlation|.
 UNIDENTIFIABLE_RELATIVE_SE = 1.0
@@ -88,13 +95,52 @@ def unidentifiable(names: Sequence[str], values: np.ndarray, covariance: np.ndar
     return out
 
 
-class CovarianceSummary:
-    """What a fit result with ``names``, ``values`` and ``covariance`` says of its estimates (a
-    base of the identification results: Nomoto, MMG hull, linear sway–yaw)."""
+class FitResult:
+    """What a fit result with ``names``, ``values`` and ``covariance`` says of its estimates (the
+    base of the identification results: Nomoto, MMG hull, linear sway–yaw, reduced steady
+    turn).
+
+    A subclass holds (or computes) ``names``, ``values`` and ``covariance``, and says in
+    :attr:`interval_dof` which distribution its intervals take.
+    """
 
     names: tuple[str, ...]
     values: np.ndarray
     covariance: np.ndarray
+
+    @property
+    def interval_dof(self) -> int | None:
+        """Degrees of freedom of the Student-t intervals (a covariance scaled by the residual
+        variance), or None for normal intervals (a covariance taken as known)."""
+        return None
+
+    def confidence_intervals(self, level: float = 0.95) -> np.ndarray:
+        """Intervals of the estimates from their standard errors, shape (parameters, 2):
+        Student-t with :attr:`interval_dof` degrees of freedom, normal where that is None.
+
+        Parameters
+        ----------
+        level : float
+            Confidence level in (0, 1).
+
+        Returns
+        -------
+        ndarray
+        """
+        if not 0.0 < level < 1.0:
+            raise ParameterError(f"must be in (0, 1), got {level!r}", field="level")
+        dof = self.interval_dof
+        if dof is None:
+            from scipy.stats import norm
+
+            quantile = norm.ppf(0.5 + level / 2)
+        else:
+            from scipy.stats import t as student
+
+            quantile = student.ppf(0.5 + level / 2, dof)
+        half = quantile * self.standard_errors
+        values = np.asarray(self.values, dtype=float)
+        return np.column_stack([values - half, values + half])
 
     @property
     def standard_errors(self) -> np.ndarray:
@@ -143,3 +189,8 @@ class CovarianceSummary:
                            standard_error=float(self.standard_errors[i]))
             rows.append(row)
         return rows
+
+
+#: Old names (issue 47: the base of the fit results, named for what it is).
+__getattr__ = deprecated_names(__name__, {"CovarianceSummary": (
+    __name__, "FitResult", "seahelm.identification.fit_result.FitResult")})

@@ -4,9 +4,9 @@
 condition number), :func:`fit_robust` (soft-L1 loss) and :func:`fit_brute_force` (the paper's
 eq. (5), with a squared criterion) — registry :data:`FIT_METHODS`, :func:`fit_steady_turns` by
 name; :func:`identify_from_time_series` extracts the steady segments of a log
-(:mod:`seahelm.identification.segments`) and fits them. Each fit takes any form of
-:data:`~seahelm.identification.reduced_forms.REDUCED_FORMS` and returns a
-:class:`~seahelm.identification.reduced_forms.SteadyTurnFit`.
+(:mod:`seahelm.identification.reduced.segments`) and fits them. Each fit takes any form of
+:data:`~seahelm.identification.reduced.forms.REDUCED_FORMS` and returns a
+:class:`~seahelm.identification.reduced.forms.SteadyTurnFit`.
 
 Notes
 -----
@@ -35,11 +35,11 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_finite_series, check_positive
-from ..errors import ParameterError
-from ..registry import lookup
+from ..._validate import as_finite_series, check_positive, lookup_name
+from ...errors import ParameterError
+from ...registry import lookup
 from .criteria import CRITERIA, Criterion
-from .reduced_forms import ReducedForm, SteadyTurnFit, get_form
+from .forms import ReducedForm, SteadyTurnFit, get_form
 from .segments import SteadySegments, extract_steady_segments
 
 __all__ = [
@@ -382,7 +382,7 @@ def fit_brute_force(
     n_grid : int, optional
         Grid values per coefficient (>= 2, default 41).
     criterion : str or Criterion, optional
-        A name of :data:`~seahelm.identification.criteria.CRITERIA` (``"squared"``, Σ N_i²,
+        A name of :data:`~seahelm.identification.reduced.criteria.CRITERIA` (``"squared"``, Σ N_i²,
         the default; ``"absolute"``, Σ|N_i|) or a criterion object.
     chunk : int, optional
         Grid points evaluated at once (memory bound; default 200 000).
@@ -461,9 +461,7 @@ def fit_steady_turns(yaw_rate: Any, rudder_angle: Any, *, method: str = "lsq",
     -------
     SteadyTurnFit
     """
-    if method not in FIT_METHODS:
-        raise ValueError(f"unknown fit method '{method}'; valid: {', '.join(FIT_METHODS)}")
-    return FIT_METHODS[method](yaw_rate, rudder_angle, **kwargs)
+    return lookup_name("fit method", FIT_METHODS, method)(yaw_rate, rudder_angle, **kwargs)
 
 
 def identify_from_time_series(

@@ -6,7 +6,7 @@ to have a minimum: Σ N_i² (:data:`SQUARED`, what least squares minimises) and 
 (:data:`ABSOLUTE`, robust to one bad turn) are; the plain sum Σ N_i printed in the paper is not
 (it is linear in the coefficients) and lives with the paper's reproduction,
 :data:`seahelm.studies.romanov_chirkova.PRINTED_EQ5`. Any :class:`Criterion` can be passed to
-:func:`seahelm.identification.fitting.fit_brute_force`.
+:func:`seahelm.identification.reduced.fitting.fit_brute_force`.
 """
 
 from __future__ import annotations

@@ -15,11 +15,11 @@ response (Fossen 2021, eq. (7.23)–(7.26))::
     K = −(A⁻¹ b)_r,  T_1, T_2 = −1/λ(A),  T_3 = b_r / (a_rv b_v − a_vv b_r)
 
 **Equation error.** v̇ and ṙ by Savitzky–Golay differentiation (cubic, 2 s windows, on the
-records resampled at their median interval — as :func:`seahelm.analysis.mmg_fit.regress_hull`),
+records resampled at their median interval — as :func:`seahelm.identification.mmg_fit.regress_hull`),
 then two linear least-squares problems with the regressors v, r, δ, 1 over all records; the
 covariance σ² (XᵀX)⁻¹ of each row, the column-scaled condition number, and the parameters the
 records do not determine reported as unidentifiable with the evidence
-(:func:`seahelm.analysis.fit_statistics.unidentifiable`). The model is linear: records of small
+(:func:`seahelm.identification.fit_result.unidentifiable`). The model is linear: records of small
 rudder angles (a 5/5 zig-zag or less, a small random-rudder run) at a steady speed; in larger
 manoeuvres the nonlinear terms and the speed loss enter the residuals (and the estimates).
 
@@ -42,7 +42,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from .fit_statistics import CovarianceSummary
+from .fit_result import FitResult
 from .records import ManoeuvreRecord
 
 __all__ = ["LinearFit", "fit_linear", "LINEAR_NAMES", "LINEAR_UNITS"]
@@ -56,7 +56,7 @@ LINEAR_UNITS = {"a_vv": "1/s", "a_vr": "m/s", "b_v": "m/s²", "c_v": "m/s²",
 
 
 @dataclasses.dataclass(frozen=True)
-class LinearFit(CovarianceSummary):
+class LinearFit(FitResult):
     """The identified linear sway–yaw model (module docstring).
 
     Attributes

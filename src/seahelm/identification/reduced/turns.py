@@ -8,14 +8,14 @@ measure, yaw rate ω and rudder angle α, eq. (4)::
 
 This module gives the exact steady turns of the full model and the reduced coefficients:
 
-* :func:`steady_turns` — every real steady turn for a rudder angle, on both branches of β|β|,
+* :func:`voitkunsky_turns` — every real steady turn for a rudder angle, on both branches of β|β|,
   with the Jacobian eigenvalues and stability; :func:`stable_steady_turn` — the stable one;
 * :func:`reduced_coefficients` — a, b, c (and the α² coefficient d, see below) in closed form
   from the seven coefficients.
 
-The reduced forms are in :mod:`seahelm.identification.reduced_forms`, the fits in
-:mod:`seahelm.identification.fitting`, the steady segments of a log in
-:mod:`seahelm.identification.segments`.
+The reduced forms are in :mod:`seahelm.identification.reduced.forms`, the fits in
+:mod:`seahelm.identification.reduced.fitting`, the steady segments of a log in
+:mod:`seahelm.identification.reduced.segments`.
 
 Notes
 -----
@@ -55,16 +55,16 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..vessels.voitkunsky import VoitkunskyParams
-from .reduced_forms import get_form
+from ...errors import ParameterError, deprecated_names
+from ...vessels.voitkunsky import VoitkunskyParams
+from .forms import get_form
 
 if TYPE_CHECKING:
-    from .reduced_forms import ReducedForm
+    from .forms import ReducedForm
 
 __all__ = [
     "SteadyTurn",
-    "steady_turns",
+    "voitkunsky_turns",
     "stable_steady_turn",
     "ReducedCoefficients",
     "reduced_coefficients",
@@ -111,7 +111,7 @@ def _jacobian(params: VoitkunskyParams, beta: float) -> np.ndarray:
     return np.array([[-r31, -q31], [-r21, -q21 - 2.0 * h2 * abs(beta)]])
 
 
-def steady_turns(
+def voitkunsky_turns(
     params: VoitkunskyParams,
     rudder_angle: float,
     *,
@@ -203,13 +203,13 @@ def stable_steady_turn(params: VoitkunskyParams, rudder_angle: float, **disturba
     rudder_angle : float
         Rudder angle δ [rad].
     **disturbances : float
-        Constant disturbances, as :func:`steady_turns`.
+        Constant disturbances, as :func:`voitkunsky_turns`.
 
     Returns
     -------
     SteadyTurn
     """
-    turns = [s for s in steady_turns(params, rudder_angle, **disturbances) if s.stable]
+    turns = [s for s in voitkunsky_turns(params, rudder_angle, **disturbances) if s.stable]
     if len(turns) != 1:
         raise ParameterError(
             f"expected one stable steady turn at rudder_angle = {rudder_angle!r} [rad], "
@@ -311,3 +311,9 @@ def reduced_coefficients(params: VoitkunskyParams, branch: int = 1) -> ReducedCo
     )
 
 
+
+
+#: Old names (issue 47: ``steady_turns`` was also :func:`seahelm.analysis.batch_steady_turn.
+#: steady_turns`, the batched equilibria of any model).
+__getattr__ = deprecated_names(__name__, {"steady_turns": (
+    __name__, "voitkunsky_turns", "seahelm.identification.reduced.turns.voitkunsky_turns")})

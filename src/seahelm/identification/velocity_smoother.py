@@ -1,7 +1,7 @@
 """Velocities from measured position and heading: an extended Kalman filter and RTS smoother.
 
 Sea trials log position (GNSS) and heading (gyro), rarely the surge and sway speed through the
-water. For the MMG identification (:mod:`seahelm.analysis.mmg_fit`) the body velocities u, v
+water. For the MMG identification (:mod:`seahelm.identification.mmg_fit`) the body velocities u, v
 and the yaw rate r are reconstructed from x (north), y (east) and ψ by a kinematic model with
 random-walk velocities (the "nearly constant velocity" model of tracking, in body axes)::
 
@@ -181,7 +181,7 @@ def reconstruct_velocities(record: ManoeuvreRecord, *, position_noise: float = 1
     ManoeuvreRecord
         The same times, rudder and heading (smoothed), with ``surge_speed``, ``sway_speed``,
         ``yaw_rate`` estimated, and their standard deviations as ``surge_speed_std`` … in
-        :attr:`~seahelm.analysis.records.ManoeuvreRecord.channels` alongside the others.
+        :attr:`~seahelm.identification.records.ManoeuvreRecord.channels` alongside the others.
 
     Raises
     ------

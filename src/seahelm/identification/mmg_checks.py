@@ -1,6 +1,6 @@
 """The checks a careful analyst makes on identified MMG hull derivatives (issue 45, item 5).
 
-:func:`seahelm.analysis.mmg_fit.identify_mmg` takes the base ship's masses, propeller and rudder
+:func:`seahelm.identification.mmg_fit.identify_mmg` takes the base ship's masses, propeller and rudder
 as given. If one of them is wrong — a rudder area of 13.1 m² where the ship has 16 m² — the
 fit does not fail: the hull derivatives absorb the error, with small standard errors (an
 estimated 120 m cargo ship: Y'_vvv = +2.3 ± 0.17 where the truth is −0.75). Standard errors
@@ -203,7 +203,7 @@ def check_hull_fit(fit: Any, base: Any, residuals: dict[str, np.ndarray] | None 
         sign = SIGN_RULES.get(name)
         if sign is not None and sign * value < -2.0 * s:
             bad[name] = (f"{value:+.4g} ± {s:.2g}: must be {'> 0' if sign > 0 else '< 0'} "
-                         "(the hull damps: seahelm.analysis.mmg_checks.SIGN_RULES)")
+                         "(the hull damps: seahelm.identification.mmg_checks.SIGN_RULES)")
             continue
         r = ref.get(name) if name in RANGE_CHECKED else None
         if r is not None and abs(value - r) > RANGE_FACTOR * abs(r) + 2.0 * s:

@@ -50,7 +50,7 @@ from numba import njit
 
 from ..errors import ParameterError
 from ..vessels.mmg import _forces as _mmg_forces
-from .fit_statistics import CovarianceSummary
+from .fit_result import FitResult
 from .records import ManoeuvreRecord
 
 __all__ = ["HullFit", "regress_hull", "refine_mmg", "identify_mmg", "HULL_TERMS",
@@ -76,7 +76,7 @@ METHODS = ("ols", "ridge", "tsvd")
 
 
 @dataclasses.dataclass(frozen=True)
-class HullFit(CovarianceSummary):
+class HullFit(FitResult):
     """Identified hull derivatives (MMG names, non-dimensional as in MMGParams).
 
     Attributes
@@ -97,7 +97,7 @@ class HullFit(CovarianceSummary):
         Derivatives the records do not identify, kept at the base ship's values, each with the
         evidence (:func:`identify_mmg`).
     check : HullCheck or None
-        Signs, plausible ranges and residual whiteness (:mod:`seahelm.analysis.mmg_checks`;
+        Signs, plausible ranges and residual whiteness (:mod:`seahelm.identification.mmg_checks`;
         set by :func:`identify_mmg`).
     """
 
@@ -447,7 +447,7 @@ def refine_mmg(start: HullFit | Any, records: ManoeuvreRecord | Sequence[Manoeuv
 def _with_velocities(records: ManoeuvreRecord | Sequence[ManoeuvreRecord],
                      length: float) -> list[ManoeuvreRecord]:
     """Records without u and v but with x, y and heading get them from the EKF/RTS smoother
-    (:func:`~seahelm.analysis.velocity_smoother.reconstruct_velocities`, default noise
+    (:func:`~seahelm.identification.velocity_smoother.reconstruct_velocities`, default noise
     levels); the others are returned as they are."""
     from .velocity_smoother import reconstruct_velocities
 
@@ -466,7 +466,7 @@ def identify_mmg(records: ManoeuvreRecord | Sequence[ManoeuvreRecord], base: Any
     """Regression, output error, and the identifiable subset (module docstring).
 
     Records that log position and heading but not u and v get them from the smoother of
-    :mod:`seahelm.analysis.velocity_smoother` first. After the output-error fit of every hull
+    :mod:`seahelm.identification.velocity_smoother` first. After the output-error fit of every hull
     derivative, the ones the records do not identify
     (:meth:`HullFit.unidentifiable`) are set back to the base ship's values and the others
     fitted again (parameter-subset selection), until every fitted derivative is identified;
@@ -487,7 +487,7 @@ def identify_mmg(records: ManoeuvreRecord | Sequence[ManoeuvreRecord], base: Any
     -------
     HullFit
         With :attr:`HullFit.check` (signs, plausible ranges, residual whiteness:
-        :func:`seahelm.analysis.mmg_checks.check_hull_fit`).
+        :func:`seahelm.identification.mmg_checks.check_hull_fit`).
 
     Warns
     -----
