@@ -36,6 +36,7 @@ VESSEL_MODELS: dict[str, str] = {
     "otter": "seahelm.vessels.six_dof.otter:OTTER",
     "otter-quaternion": "seahelm.vessels.six_dof.otter:OTTER_QUATERNION",
     "remus100": "seahelm.vessels.six_dof.remus100:REMUS100",
+    "dp-3dof": "seahelm.vessels.dp_three_dof:DP_3DOF",
 }
 
 ACTUATORS: dict[str, str] = {
