@@ -67,6 +67,7 @@ CONTROLLERS: dict[str, str] = {
     "zigzag-rps": "seahelm.control.zigzag:ZIGZAG_RPS",
     "thrust-heading": "seahelm.control.thrust_heading:THRUST_HEADING",
     "auv-depth-heading": "seahelm.control.auv_depth_heading:AUV_DEPTH_HEADING",
+    "dp-pid": "seahelm.control.dp_pid:DP_PID",
 }
 
 
