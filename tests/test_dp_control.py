@@ -113,13 +113,13 @@ def test_in_loop_allocation_equals_constrained_allocation(which):
 
 
 def test_dp_pid_params_from_a_ship_and_refusals():
-    p = dp_pid_params("supply")
     ship = get_ship("supply")
+    p = dp_pid_params(ship)
     assert p.mass_surge == ship.params.m11 and p.damping_yaw == ship.params.d33
     assert p.thruster_count == 6 and p.thruster_max_thrust[:6] == ship.thrusters.max_thrust
     assert p == DpPidParams()                   # the defaults are the supply vessel's
     with pytest.raises(ParameterError, match="declares no thrusters"):
-        dp_pid_params("kvlcc2-l7")
+        dp_pid_params(get_ship("kvlcc2-l7"))
     two = _azimuth_layout()
     two = ThrusterLayout(two.names, two.x, two.y, two.direction, two.azimuthing,
                          two.max_thrust, forbidden=(((0.1, 0.2), (1.0, 1.2)), (), ()))

@@ -162,8 +162,8 @@ def dp_pid_params(ship: Any, **changes: Any) -> DpPidParams:
 
     Parameters
     ----------
-    ship : Ship, str or path-like
-        A ship with ``thrusters`` (≤ 8; at most one forbidden sector per azimuth) whose
+    ship : Ship
+        A ship (:func:`seahelm.ships.get_ship`) with ``thrusters`` (≤ 8; at most one forbidden sector per azimuth) whose
         parameters have the diagonal of M and D (``m11`` … ``d33``).
     **changes
         Other :class:`DpPidParams` fields (gains: ``frequency_surge``, …).
@@ -178,10 +178,8 @@ def dp_pid_params(ship: Any, **changes: Any) -> DpPidParams:
         More than 8 thrusters, more than one forbidden sector on a thruster, a model without
         the M and D diagonal.
     """
-    from ..ships.catalog import get
-
-    sh = get(ship)
-    lay = sh.thrusters
+    sh = ship
+    lay = getattr(sh, "thrusters", None)
     if lay is None:
         raise ParameterError(f"ship {sh.name!r} declares no thrusters", field="ship",
                              value=sh.name)
