@@ -95,7 +95,7 @@ def test_cli_capability_writes_json_netcdf_and_plot(tmp_path):
     import xarray as xr
 
     nc, js, png = tmp_path / "cap.nc", tmp_path / "cap.json", tmp_path / "cap.png"
-    res = runner.invoke(app, ["dp", "capability", "catamaran", "--headings", "12", "--out",
+    res = runner.invoke(app, ["dp", "capability", "shushlyapin2017-dp", "--headings", "12", "--out",
                               str(nc), "--json-out", str(js), "--plot", str(png), "--json"])
     assert res.exit_code == 0, res.stderr
     out = json.loads(res.stdout)
@@ -112,9 +112,9 @@ def test_cli_capability_writes_json_netcdf_and_plot(tmp_path):
 
 @pytest.mark.parametrize("args, words", [
     (["otter"], ["SHIP", "otter"]),
-    (["catamaran", "--headings", "0"], ["--headings", "[-]", "0"]),
-    (["catamaran", "--failures", "bow"], ["--failures", "bow"]),
-    (["catamaran", "--current", "5"], ["--current", "m/s", "5"]),
+    (["shushlyapin2017-dp", "--headings", "0"], ["--headings", "[-]", "0"]),
+    (["shushlyapin2017-dp", "--failures", "bow"], ["--failures", "bow"]),
+    (["shushlyapin2017-dp", "--current", "5"], ["--current", "m/s", "5"]),
 ])
 def test_cli_bad_input_exits_2_with_one_line(args, words):
     res = runner.invoke(app, ["dp", "capability", *args])

@@ -143,10 +143,10 @@ CASES: dict[tuple[tuple[str, ...], str], Case] = {
     (("waves", "spectrum"), "--plot"): Case(
         lambda f: ["waves", "spectrum", "--h3", "3"], "--plot", cheap=True, kind="png"),
     (("dp", "capability"), "--out"): Case(
-        lambda f: ["dp", "capability", "catamaran", "--headings", "4"], "--out", cheap=True,
+        lambda f: ["dp", "capability", "shushlyapin2017-dp", "--headings", "4"], "--out", cheap=True,
         kind="nc"),
     (("dp", "capability"), "--plot"): Case(
-        lambda f: ["dp", "capability", "catamaran", "--headings", "4"], "--plot", cheap=True,
+        lambda f: ["dp", "capability", "shushlyapin2017-dp", "--headings", "4"], "--plot", cheap=True,
         kind="png"),
     (("averaging", "cpp"), "--plot"): Case(
         lambda f: ["averaging", "cpp", "--grid", "8"], "--plot", cheap=True, kind="png"),

@@ -45,6 +45,22 @@ ESSO_SERVO = ServoParams(max_angle=math.radians(35.0), max_rate=math.radians(40.
 from seahelm.vessels.six_dof.otter import otter_params  # noqa: E402
 from seahelm.vessels.six_dof.remus100 import remus100_params  # noqa: E402
 
+def _supply_params():
+    """Fossen's supply vessel: m = 6000e3 kg, L = 76.2 m, the bis-scaled M'' and D'' of Fossen
+    (2021) App. D (as PVS supply.py gives them), M = m T⁻¹M''T⁻¹, D = m √(g/L) T⁻¹D''T⁻¹."""
+    from seahelm.vessels.dp_three_dof import DpThreeDofParams
+
+    m, length, g = 6000.0e3, 76.2, 9.81
+    tinv = np.diag([1.0, 1.0, length])
+    mbis = np.array([[1.1274, 0, 0], [0, 1.8902, -0.0744], [0, -0.0744, 0.1278]])
+    dbis = np.array([[0.0358, 0, 0], [0, 0.1183, -0.0124], [0, -0.0041, 0.0308]])
+    mm = m * tinv @ mbis @ tinv
+    dd = m * math.sqrt(g / length) * tinv @ dbis @ tinv
+    return DpThreeDofParams(**{f"{k}{i + 1}{j + 1}": float(a[i, j]) for k, a in (("m", mm),
+                                                                                ("d", dd))
+                               for i in range(3) for j in range(3)})
+
+
 PRESETS = {
     "kvlcc2-full": (mmg.KVLCC2_FULL, mmg.KVLCC2_FULL_SERVO),
     "kvlcc2-l7": (mmg.KVLCC2_L7, mmg.KVLCC2_L7_SERVO),
@@ -62,6 +78,8 @@ PRESETS = {
     "esso-osaka-3m": (ESSO_OSAKA_3M, ESSO_SERVO),
     "otter": (otter_params(), None),
     "remus100": (remus100_params(), None),
+    "shushlyapin2017-dp": (catamaran.consistent_params(), None),
+    "supply": (_supply_params(), None),
 }
 
 

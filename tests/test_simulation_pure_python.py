@@ -134,6 +134,11 @@ CASES = {
         controller=OPEN_LOOP,
         reference={"propeller_port_speed_command": np.array([90.0, 40.0]).reshape(2, 1, 1),
                    "propeller_starboard_speed_command": 60.0}),
+    "dp-3dof": lambda: dict(  # Fossen's supply vessel, thrusters' forces held
+        params=_supply(), x0=np.array([0, 0, 0.1, 0.5, 0.0, 0.0]), t_final=2.0, dt=0.1,
+        actuator=DIRECT, controller=OPEN_LOOP,
+        reference={"thrust_surge": np.array([2e5, -1e5]).reshape(2, 1, 1),
+                   "thrust_sway": 1e5, "thrust_yaw": 3e6}),
     "remus100": lambda: dict(
         params=_remus(), x0=np.array([0, 0, 1.0, 0, 0, 0, 1.5] + [0.0] * 8), t_final=1.0,
         dt=0.05, actuator=DIRECT, controller=OPEN_LOOP,
@@ -175,6 +180,12 @@ def assert_agree(python, compiled) -> None:
             scale = np.nanmax(np.abs(b[..., j]), initial=0.0)
             np.testing.assert_allclose(a[..., j], b[..., j], rtol=1e-12, atol=1e-12 * scale,
                                        err_msg=f"{what} {label}")
+
+
+def _supply():
+    from seahelm.ships import get_ship
+
+    return get_ship("supply").params
 
 
 def test_every_registered_model_has_a_case():

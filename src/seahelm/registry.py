@@ -37,6 +37,7 @@ VESSEL_MODELS: dict[str, str] = {
     "otter": "seahelm.vessels.six_dof.otter:OTTER",
     "otter-quaternion": "seahelm.vessels.six_dof.otter:OTTER_QUATERNION",
     "remus100": "seahelm.vessels.six_dof.remus100:REMUS100",
+    "dp-3dof": "seahelm.vessels.dp_three_dof:DP_3DOF",
 }
 
 ACTUATORS: dict[str, str] = {
@@ -67,6 +68,8 @@ CONTROLLERS: dict[str, str] = {
     "zigzag-rps": "seahelm.control.zigzag:ZIGZAG_RPS",
     "thrust-heading": "seahelm.control.thrust_heading:THRUST_HEADING",
     "auv-depth-heading": "seahelm.control.auv_depth_heading:AUV_DEPTH_HEADING",
+    "dp-pid": "seahelm.control.dp_pid:DP_PID",
+    "dp-pid-observer": "seahelm.control.dp_observer:DP_PID_OBSERVER",
 }
 
 

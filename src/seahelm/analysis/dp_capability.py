@@ -45,7 +45,7 @@ from ..control.dp_allocation import ConstrainedAllocation, ThrusterLayout
 from ..environment.blendermann import blendermann_wind_loads
 from ..errors import ParameterError
 
-__all__ = ["BEAUFORT_WIND", "DpVessel", "DP_VESSELS", "dp_vessel", "CapabilityResult", "level1_capability",
+__all__ = ["BEAUFORT_WIND", "DpVessel", "dp_vessel", "CapabilityResult", "level1_capability",
            "environment_loads", "sea_from_wind"]
 
 #: WMO Beaufort scale: upper wind speed [m/s] (10 m) of Beaufort 0 … 11.
@@ -244,58 +244,16 @@ def level1_capability(vessel: DpVessel, *, headings: int = 36, failures: Any = "
                             _beaufort(out), float(current_speed), assumptions)
 
 
-def _catamaran() -> DpVessel:
-    """The seed paper's catamaran "Pioneer-M" (vessels/catamaran.py) as a DP vessel."""
-    from ..vessels.catamaran import CatamaranParams
+def dp_vessel(ship: Any) -> DpVessel:
+    """The DP vessel of a ship with thrusters: a catalog name, a ship file or a :class:`Ship`.
 
-    p = CatamaranParams()
-    half = 0.5 * float(p.length)
-    layout = ThrusterLayout(("azimuth-port", "azimuth-starboard"), (-half, -half),
-                            (-3.0, 3.0), (0.0, 0.0), (True, True),
-                            (float(p.thrust), float(p.thrust)))
-    # the paper gives no windage nor beam: A_L, A_F and B below are assumed (stated in docs)
-    return DpVessel("catamaran", layout, float(p.length), 9.0, float(p.mean_draft),
-                    frontal_area=45.0, lateral_area=90.0, lateral_centre=0.0,
-                    wind_type="research-vessel")
-
-
-def _supply() -> DpVessel:
-    """Fossen's offshore supply vessel (L = 76.2 m, 6000 t) with its six thrusters.
-
-    Thruster layout from Fossen, Sagatun & Sørensen (1996), "Identification of dynamically
-    positioned ships", *Control Engineering Practice* 4(3), 369–376, and Fossen (2021), §11.2 /
-    App. D, as given in PVS ``vehicles/supply.py`` (read, not copied): two bow tunnel
-    thrusters at x = 30 and 22 m, two stern ones at −22 and −30 m, each T_max = 3.2 · 250² =
-    200 kN (K n·abs(n) with n in rpm, reversible); two main propellers at y = ±8 m (their x
-    does not enter: they give no side force; −30 m here), each
-    T_max = 31.2 · 160² = 798.72 kN, reversible. The sources give no beam, draft or windage:
-    B = 18 m, T = 6 m, A_F = 300 m², A_L = 900 m² (Blendermann's offshore supply vessel) are
-    assumed here.
-    """
-    tunnel = 3.2 * 250.0**2
-    main = 31.2 * 160.0**2
-    half_pi = 0.5 * math.pi
-    layout = ThrusterLayout(
-        ("bow-tunnel-1", "bow-tunnel-2", "stern-tunnel-3", "stern-tunnel-4",
-         "main-starboard", "main-port"),
-        (30.0, 22.0, -22.0, -30.0, -30.0, -30.0), (0.0, 0.0, 0.0, 0.0, 8.0, -8.0),
-        (half_pi, half_pi, half_pi, half_pi, 0.0, 0.0), (False,) * 6,
-        (tunnel, tunnel, tunnel, tunnel, main, main))
-    return DpVessel("supply", layout, 76.2, 18.0, 6.0, frontal_area=300.0, lateral_area=900.0,
-                    lateral_centre=0.0, wind_type="offshore-supply-vessel")
-
-
-#: DP vessels by name: a function building each (the thruster layout and what the loads need).
-DP_VESSELS: dict = {"catamaran": _catamaran, "supply": _supply}
-
-
-def dp_vessel(name: str) -> DpVessel:
-    """The DP vessel ``name`` of :data:`DP_VESSELS`.
+    The ship must declare its thrusters (a ship file's ``[[thrusters]]``) and its particulars
+    (L, B, T and the windage areas, for the environment's loads). The catalog's DP vessels:
+    ``supply`` (Fossen's supply vessel) and ``shushlyapin2017-dp`` (the seed paper's catamaran).
 
     Parameters
     ----------
-    name : str
-        A key of :data:`DP_VESSELS`.
+    ship : str, path-like or Ship
 
     Returns
     -------
@@ -304,9 +262,48 @@ def dp_vessel(name: str) -> DpVessel:
     Raises
     ------
     ParameterError
-        For a name that is not there.
+        A ship without thrusters, or without the particulars the loads need (naming what is
+        missing); an unknown name (listing the catalog).
     """
-    if name not in DP_VESSELS:
-        raise ParameterError(f"has no thruster layout for DP: {name!r} (DP vessels: "
-                             f"{', '.join(DP_VESSELS)})", field="SHIP", value=name)
-    return DP_VESSELS[name]()
+    from ..ships.catalog import get
+
+    try:
+        sh = get(ship)
+    except ParameterError:
+        raise
+    except ValueError as exc:
+        raise ParameterError(str(exc), field="SHIP", value=ship) from None
+    if sh.thrusters is None:
+        with_thrusters = _catalog_dp_ships()
+        raise ParameterError(f"ship {sh.name!r} declares no thrusters ([[thrusters]] in its "
+                             f"ship file); ships with thrusters: {', '.join(with_thrusters)}",
+                             field="SHIP", value=sh.name)
+    part = sh.particulars
+    need = ("frontal_area", "lateral_area")
+    missing = ["particulars"] if part is None else \
+        [f"particulars.{n}" for n in need if getattr(part, n, None) is None]
+    if missing:
+        raise ParameterError(f"ship {sh.name!r} lacks {', '.join(missing)} (length, beam, "
+                             "draft and windage areas [m, m²]: the environment's loads need "
+                             "them)", field="SHIP", value=sh.name)
+    return DpVessel(sh.name, sh.thrusters, float(part.length), float(part.beam),
+                    float(part.draft), frontal_area=float(part.frontal_area),
+                    lateral_area=float(part.lateral_area),
+                    lateral_centre=float(part.windage_centre or 0.0),
+                    wind_type=part.vessel_type or "offshore-supply-vessel")
+
+
+def _catalog_dp_ships() -> tuple[str, ...]:
+    """The catalog ships whose files declare thrusters (their TOML tables only)."""
+    import tomllib
+
+    from ..ships.catalog import DATA_DIR, names
+
+    out = []
+    for name in names():
+        path = DATA_DIR / f"{name}.toml"
+        if path.exists():
+            with open(path, "rb") as fh:
+                if "thrusters" in tomllib.load(fh):
+                    out.append(name)
+    return tuple(out)

@@ -101,7 +101,7 @@ def _plot(res: Any, path: Path) -> None:
 @app.command("capability")
 @handle_errors
 def capability(
-    ship: Annotated[str, typer.Argument(metavar="SHIP", help="A DP vessel: catamaran or supply.")],
+    ship: Annotated[str, typer.Argument(metavar="SHIP", help="A ship with thrusters: a catalog ship (supply, shushlyapin2017-dp) or a ship file with [[thrusters]] and [particulars].")],
     headings: Annotated[int, typer.Option("--headings", help="Directions over 360°.")] = 36,
     failures: Annotated[str, typer.Option(
         "--failures", help="each (every thruster lost in turn), none, or names (a,b).")

@@ -14,9 +14,13 @@ import numpy as np
 
 from ..errors import ParameterError
 
-__all__ = ["ThrusterLayout"]
+__all__ = ["ThrusterLayout", "THRUSTER_KINDS"]
 
 _TWO_PI = 2.0 * math.pi
+
+#: The kinds of thruster: a tunnel thruster (fixed, sideways, reversible), an azimuth thruster
+#: (its direction free, thrust ahead only), a main propeller (fixed, along its shaft).
+THRUSTER_KINDS: tuple[str, ...] = ("tunnel", "azimuth", "main")
 
 
 @dataclass(frozen=True)
@@ -42,6 +46,15 @@ class ThrusterLayout:
     forbidden : tuple of tuple of (float, float), optional
         Per thruster, forbidden azimuth sectors (start, end) [rad], counter-clockwise from
         start to end.
+    kinds : tuple of str, optional
+        Per thruster, one of :data:`THRUSTER_KINDS` (``tunnel``, ``azimuth``, ``main``);
+        default ``azimuth`` for an azimuthing thruster, else ``tunnel`` when its direction is
+        sideways and ``main`` otherwise.
+    max_thrust_rate : tuple of float, optional
+        Largest thrust rate Ṫ [N/s] per thruster (> 0; default inf: none).
+    max_azimuth_rate : tuple of float, optional
+        Largest azimuth turning rate α̇ [rad/s] per thruster (> 0; default inf: none; ignored
+        for a fixed thruster).
     """
 
     names: tuple
@@ -52,6 +65,9 @@ class ThrusterLayout:
     max_thrust: tuple
     min_thrust: tuple = None
     forbidden: tuple = field(default=None)
+    kinds: tuple = None
+    max_thrust_rate: tuple = None
+    max_azimuth_rate: tuple = None
 
     def __post_init__(self) -> None:
         n = len(self.names)
@@ -63,6 +79,36 @@ class ThrusterLayout:
         if n == 0:
             raise ParameterError("must list at least one thruster, got none",
                                  field="thrusters")
+        if len(set(self.names)) != n:
+            dup = sorted({nm for nm in self.names if list(self.names).count(nm) > 1})
+            raise ParameterError(f"must be unique, got {', '.join(map(repr, dup))} more "
+                                 "than once", field="thrusters.name", value=dup[0])
+        if self.kinds is None:
+            object.__setattr__(self, "kinds", tuple(
+                "azimuth" if az else ("tunnel" if abs(math.sin(d)) > 0.5 else "main")
+                for az, d in zip(self.azimuthing, self.direction)))
+        if len(self.kinds) != n:
+            raise ParameterError(f"must have {n} entries, got {len(self.kinds)}",
+                                 field="thrusters.kind")
+        for i, kind in enumerate(self.kinds):
+            if kind not in THRUSTER_KINDS:
+                raise ParameterError(f"of thruster {self.names[i]!r} must be one of "
+                                     f"{', '.join(THRUSTER_KINDS)}, got {kind!r}",
+                                     field="thrusters.kind", value=kind)
+            if (kind == "azimuth") != bool(self.azimuthing[i]):
+                raise ParameterError(f"of thruster {self.names[i]!r}: {kind!r} does not agree "
+                                     f"with azimuthing={bool(self.azimuthing[i])}",
+                                     field="thrusters.kind", value=kind)
+        for key, unit in (("max_thrust_rate", "N/s"), ("max_azimuth_rate", "rad/s")):
+            val = getattr(self, key)
+            if val is None:
+                object.__setattr__(self, key, (math.inf,) * n)
+                continue
+            arr = np.asarray(val, dtype=float)
+            if arr.shape != (n,) or np.any(np.isnan(arr)) or np.any(arr <= 0):
+                raise ParameterError(f"must be {n} values > 0 [{unit}], got {list(val)}",
+                                     field=f"thrusters.{key}", unit=unit)
+            object.__setattr__(self, key, tuple(float(v) for v in arr))
         tmax = np.asarray(self.max_thrust, dtype=float)
         if not np.all(np.isfinite(tmax) & (tmax > 0)):
             raise ParameterError(f"must be > 0 [N], got "
@@ -140,7 +186,8 @@ class ThrusterLayout:
         return ThrusterLayout(pick(self.names), pick(self.x), pick(self.y),
                               pick(self.direction), pick(self.azimuthing),
                               pick(self.max_thrust), pick(self.min_thrust),
-                              pick(self.forbidden))
+                              pick(self.forbidden), pick(self.kinds),
+                              pick(self.max_thrust_rate), pick(self.max_azimuth_rate))
 
 
 def _merge(secs):

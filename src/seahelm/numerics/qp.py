@@ -32,7 +32,7 @@ STATUS_MAX_ITER = 2
 
 
 @njit(cache=True, nogil=True)
-def _directions(linv, c, active, q, n_plus):  # pragma: no cover - compiled
+def _directions(linv, lt, c, active, q, n_plus):  # pragma: no cover - compiled
     """z = H n⁺, r = N* n⁺ and ‖(I − Q₁Q₁ᵀ) L⁻¹n⁺‖² / ‖L⁻¹n⁺‖² for the active rows
     ``active[:q]`` of ``c``, in the Cholesky frame G = LLᵀ (G–I §4: with L⁻¹N = Q₁R,
     z = L⁻ᵀ(I − Q₁Q₁ᵀ)L⁻¹n⁺ and r = R⁻¹Q₁ᵀL⁻¹n⁺)."""
@@ -40,15 +40,15 @@ def _directions(linv, c, active, q, n_plus):  # pragma: no cover - compiled
     d = linv @ n_plus
     dd = d @ d
     if q == 0:
-        return linv.T @ d, np.zeros(0), 1.0
+        return lt @ d, np.zeros(0), 1.0
     nt = np.empty((nv, q))
     for j in range(q):
         nt[:, j] = linv @ c[active[j]]
     q1, rr = np.linalg.qr(nt)
-    d1 = q1.T @ d
-    d2 = d - q1 @ d1
+    d1 = np.ascontiguousarray(q1.T) @ d
+    d2 = d - np.ascontiguousarray(q1) @ d1
     r = np.linalg.solve(rr, d1)
-    return linv.T @ d2, r, (d2 @ d2) / dd
+    return lt @ d2, r, (d2 @ d2) / dd
 
 
 @njit(cache=True, nogil=True)
@@ -57,7 +57,8 @@ def _solve_one(g, a, c, b, x, u, active_out, tol, max_iter):  # pragma: no cover
     nv = g.shape[0]
     m = c.shape[0]
     linv = np.linalg.inv(np.linalg.cholesky(g))
-    x[:] = -(linv.T @ (linv @ a))
+    lt = np.ascontiguousarray(linv.T)      # (contiguous: '@' on a transposed view is slow)
+    x[:] = -(lt @ (linv @ a))
     u[:] = 0.0
     active = np.empty(nv + 1, dtype=np.int64)
     is_active = np.zeros(m, dtype=np.bool_)
@@ -87,7 +88,7 @@ def _solve_one(g, a, c, b, x, u, active_out, tol, max_iter):  # pragma: no cover
                 active_out[:q] = active[:q]
                 return STATUS_MAX_ITER
             n_plus = c[p]
-            z, r, free = _directions(linv, c, active, q, n_plus)
+            z, r, free = _directions(linv, lt, c, active, q, n_plus)
             # partial step length t1: the first active multiplier reaching zero
             t1 = np.inf
             k = -1

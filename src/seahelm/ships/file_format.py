@@ -11,6 +11,7 @@ from typing import Any
 
 from ..errors import ParameterError
 from ..vessels.particulars import FIELD_UNITS
+from .thrusters_file import THRUSTER_KEYS as _THRUSTER_KEYS
 
 __all__ = ["FORMAT", "FORMAT_REFERENCE", "ShipFileError", "is_ship_path"]
 
@@ -57,10 +58,13 @@ FORMAT_REFERENCE: tuple[tuple[str, str, str, str], ...] = (
                        "timings: full-scale / √λ)",
         "vessel_type": "Blendermann's vessel type (tanker-loaded, cargo-loaded, ...)"}[n])
       for n, u, req in FIELD_UNITS),
+    *((f"thrusters[].{k}", u, "with [[thrusters]]" if req == "yes" else "no", what)
+      for k, u, req, what in _THRUSTER_KEYS),
     ("provenance.params", "", "no", "where the parameter set comes from"),
     ("provenance.steering_gear", "", "no", "where the steering gear comes from"),
     ("provenance.propulsion", "", "no", "where the propulsion description comes from"),
     ("provenance.particulars", "", "no", "where the particulars come from"),
+    ("provenance.thrusters", "", "no", "where the thruster layout comes from"),
     ("provenance.coefficients.<name>", "", "no", "the source of one coefficient, where it "
                                                  "differs from provenance.params"),
 )

@@ -62,11 +62,11 @@ from .writing import ship_to_mapping
 
 #: The keys of a ship file, and of each of its tables (other than the parameter tables).
 TOP_KEYS = {"format", "name", "description", "model", "base", "test_speed", "validity", "params",
-            "steering_gear", "propulsion", "particulars", "provenance", "water_depth"}
+            "steering_gear", "propulsion", "particulars", "provenance", "water_depth", "thrusters"}
 SECTION_KEYS = {"steering_gear": {"actuator", "params"}, "propulsion": {"kind", "inputs"},
                 "particulars": {n for n, _, _ in FIELD_UNITS},
                 "provenance": {"params", "steering_gear", "propulsion", "particulars",
-                               "coefficients"}}
+                               "coefficients", "thrusters"}}
 
 #: Largest ship file read [bytes] (a ship file is a few kB; anything this large is not one).
 MAX_FILE_BYTES = 10_000_000
@@ -225,6 +225,14 @@ def ship_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>",
         particulars = _build(Particulars, "particulars", fail, **sec,
                              provenance=_opt_text(prov, "provenance.particulars", "particulars",
                                                   fail))
+    thrusters = None
+    if "thrusters" in data:
+        from .thrusters_file import layout_from_tables
+
+        try:
+            thrusters = layout_from_tables(data["thrusters"])
+        except ParameterError as exc:
+            raise fail(exc.field, exc.reason, unit=exc.unit, value=exc.value) from None
     validity = data.get("validity", ())
     if isinstance(validity, str):
         validity = (validity,)
@@ -249,7 +257,9 @@ def ship_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>",
         steering_gear=steering, propulsion=propulsion, particulars=particulars,
         test_speed=test_speed,
         provenance=_opt_text(prov, "provenance.params", "params", fail),
-        coefficient_sources=tuple(sources.items()), validity=tuple(validity))
+        coefficient_sources=tuple(sources.items()), validity=tuple(validity),
+        thrusters=thrusters,
+        thruster_provenance=_opt_text(prov, "provenance.thrusters", "thrusters", fail))
     if "water_depth" in data:  # [params] are the deep-water ones, corrected for the depth
         depth = data["water_depth"]
         if not (isinstance(depth, str) and depth.strip().lower() in ("inf", "infinity")):

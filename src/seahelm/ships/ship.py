@@ -15,6 +15,7 @@ import math
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
+from ..control.thruster_layout import ThrusterLayout
 from ..errors import ParameterError
 from ..parameters import Params
 from ..vessels.particulars import Particulars
@@ -136,6 +137,11 @@ class Ship:
     deep_water_params : Params or None
         The deep-water parameters a shallow-water ship was corrected from (``None`` in deep
         water).
+    thrusters : ThrusterLayout or None
+        The thrusters in the horizontal plane (a ship file's ``[[thrusters]]``), for dynamic
+        positioning (:mod:`seahelm.control.thruster_layout`); None: none declared.
+    thruster_provenance : str
+        Where the thruster layout comes from.
     """
 
     name: str
@@ -151,6 +157,8 @@ class Ship:
     validity: tuple[str, ...] = ()
     water_depth: float = math.inf
     deep_water_params: Params | None = None
+    thrusters: ThrusterLayout | None = None
+    thruster_provenance: str = ""
 
     def __post_init__(self) -> None:
         from ..registry import get_model
@@ -170,7 +178,7 @@ class Ship:
                 f"model '{model.name}' takes {model.params_type.__name__}, got "
                 f"{type(self.params).__name__}", field="params")
         for attr, cls in (("steering_gear", SteeringGear), ("propulsion", Propulsion),
-                          ("particulars", Particulars)):
+                          ("particulars", Particulars), ("thrusters", ThrusterLayout)):
             value = getattr(self, attr)
             if value is not None and not isinstance(value, cls):
                 raise ParameterError(f"must be {cls.__name__} or None, got "

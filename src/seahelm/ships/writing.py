@@ -53,6 +53,11 @@ def ship_to_mapping(ship: Ship) -> dict[str, Any]:
         out["particulars"] = {n: getattr(ship.particulars, n) for n, _, _ in FIELD_UNITS
                               if getattr(ship.particulars, n) is not None}
         prov["particulars"] = ship.particulars.provenance
+    if ship.thrusters is not None:
+        from .thrusters_file import layout_to_tables
+
+        out["thrusters"] = layout_to_tables(ship.thrusters)
+        prov["thrusters"] = ship.thruster_provenance
     if ship.coefficient_sources:
         prov["coefficients"] = dict(ship.coefficient_sources)
     out["provenance"] = {k: v for k, v in prov.items() if v}
@@ -118,6 +123,19 @@ def ship_to_toml(ship: Ship) -> str:
                 if unit:
                     part[n].comment(f"[{unit}]")
         doc.add("particulars", part)
+    if "thrusters" in data:
+        from .thrusters_file import THRUSTER_KEYS
+
+        units = {k: u for k, u, *_ in THRUSTER_KEYS}
+        aot = tomlkit.aot()
+        for tab in data["thrusters"]:
+            t = tomlkit.table()
+            for key, value in tab.items():
+                t.add(key, value)
+                if units.get(key):
+                    t[key].comment(f"[{units[key]}]")
+            aot.append(t)
+        doc.add("thrusters", aot)
     doc.add("provenance", data["provenance"])
     return tomlkit.dumps(doc)
 

@@ -81,13 +81,13 @@ class Allocation:
         dofs = tuple(dofs)
         unknown = [d for d in dofs if d not in DOF_NAMES]
         if unknown or not dofs:
-            raise ParameterError(f"`dofs` must name some of {', '.join(DOF_NAMES)}, got "
+            raise ParameterError(f"must name some of {', '.join(DOF_NAMES)}, got "
                                  f"{list(dofs)}", field="dofs")
         n = int(params.thruster_count)
         w = np.ones(n) if weights is None else np.asarray(weights, dtype=float).reshape(-1)
         if w.shape != (n,) or not np.all(w > 0.0) or not np.all(np.isfinite(w)):
-            raise ParameterError(f"`weights` must be {n} numbers > 0 [-], got {weights!r}",
-                                 field="weights")
+            raise ParameterError(f"must be {n} numbers > 0 [-], got {weights!r}",
+                                 field="weights", unit="-")
         b = configuration_matrix(params)[[DOF_NAMES.index(d) for d in dofs], :]
         rank = np.linalg.matrix_rank(b) if n else 0
         if rank < len(dofs):
