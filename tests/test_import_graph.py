@@ -161,6 +161,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("seahelm.result_io",),
     ("seahelm.simulation",),
     ("seahelm.analysis",),
+    ("seahelm.encounters",),
     ("seahelm.scenario",),
     ("seahelm.sweep", "seahelm.plotting"),
     ("seahelm.report",),
