@@ -85,7 +85,13 @@ STAND_ON = (Situation.CROSSING_STAND_ON, Situation.OVERTAKEN)
 
 
 def wrap_pi(angle: Any) -> np.ndarray:
-    """Angles wrapped to [-π, π) [rad]."""
+    """Angles wrapped to [-π, π) [rad].
+
+    Parameters
+    ----------
+    angle : array_like
+        Angles [rad].
+    """
     return (np.asarray(angle, dtype=float) + math.pi) % _TWO_PI - math.pi
 
 
@@ -94,7 +100,19 @@ def _wrap_2pi(angle: Any) -> np.ndarray:
 
 
 def velocity(course: Any, speed: Any) -> np.ndarray:
-    """The (north, east) velocity [m/s] of a course over ground [rad] and speed [m/s]."""
+    """The (north, east) velocity [m/s] of a course over ground and a speed.
+
+    Parameters
+    ----------
+    course : array_like
+        Course over ground [rad] (clockwise from north).
+    speed : array_like
+        Speed over ground [m/s].
+
+    Returns
+    -------
+    ndarray (..., 2)
+    """
     course = np.asarray(course, dtype=float)
     speed = np.asarray(speed, dtype=float)
     return np.stack([speed * np.cos(course), speed * np.sin(course)], axis=-1)
@@ -258,6 +276,15 @@ class FujiiDomain:
 
         ``sqrt((x/a)² + (y/b)²)`` with ``(x, y)`` the target's position in the own body axes
         (forward, starboard) and ``a = along·L``, ``b = across·L``.
+
+        Parameters
+        ----------
+        own_position, target_position : array_like (..., 2)
+            (north, east) [m].
+        own_heading : array_like (...)
+            Own heading [rad].
+        length : array_like
+            Own ship's length L [m].
         """
         r = np.asarray(target_position, dtype=float) - np.asarray(own_position, dtype=float)
         psi = np.asarray(own_heading, dtype=float)
@@ -269,5 +296,15 @@ class FujiiDomain:
 
     def intruded(self, own_position: Any, own_heading: Any, length: Any,
                  target_position: Any) -> np.ndarray:
-        """Whether the target is inside the own ship's domain (bool, ...)."""
+        """Whether the target is inside the own ship's domain (bool, ...).
+
+        Parameters
+        ----------
+        own_position, target_position : array_like (..., 2)
+            (north, east) [m].
+        own_heading : array_like (...)
+            Own heading [rad].
+        length : array_like
+            Own ship's length L [m].
+        """
         return self.distance(own_position, own_heading, length, target_position) < 1.0
