@@ -36,22 +36,23 @@ def _positive(obj: Any, *names_units: tuple[str, str]) -> None:
                                  unit=unit, value=v)
 
 
-def _pairs(truth: np.ndarray, view: np.ndarray, avoid: np.ndarray):
-    """Own true position/velocity (e, i, 1, 2), others' reported (e, 1, j, 2), and the pairs
-    that count (e, i, j): i avoids, j is another vessel that has been heard from."""
-    ne, nv = truth.shape[:2]
-    p_o = truth[:, :, None, 0:2]
-    v_o = velocity(truth[:, :, 2], truth[:, :, 3])[:, :, None, :]
+def _pairs(own: np.ndarray, av: np.ndarray, view: np.ndarray):
+    """The avoiding vessels' true position/velocity (e, a, 1, 2), every vessel's reported
+    (e, 1, j, 2), and the pairs that count (e, a, j): j is another vessel that has been heard
+    from. ``own`` is ``truth[:, av]``."""
+    nv = view.shape[1]
+    p_o = own[:, :, None, 0:2]
+    v_o = velocity(own[:, :, 2], own[:, :, 3])[:, :, None, :]
     p_t = view[:, None, :, 0:2]
     v_t = velocity(view[:, :, 2], view[:, :, 3])[:, None, :, :]
-    valid = (np.isfinite(view).all(-1)[:, None, :] & ~np.eye(nv, dtype=bool)[None]
-             & avoid[None, :, None])
-    return p_o, v_o, p_t, v_t, np.broadcast_to(valid, (ne, nv, nv))
+    other = av[:, None] != np.arange(nv)[None, :]
+    valid = np.isfinite(view).all(-1)[:, None, :] & other[None]
+    return p_o, v_o, p_t, v_t, valid
 
 
-def _situations(truth: np.ndarray, view: np.ndarray, sectors: ColregSectors) -> np.ndarray:
+def _situations(own: np.ndarray, view: np.ndarray, sectors: ColregSectors) -> np.ndarray:
     v = np.nan_to_num(view)
-    return classify(truth[:, :, None, 0:2], truth[:, :, None, 4], v[:, None, :, 0:2],
+    return classify(own[:, :, None, 0:2], own[:, :, None, 4], v[:, None, :, 0:2],
                     v[:, None, :, 4], sectors)
 
 
@@ -99,7 +100,8 @@ class RuleBased:
         encounter : Encounter
             The encounter (its ``sectors`` are the default).
         """
-        return {"active": np.zeros((n_encounters, n_vessels), dtype=bool), "avoid": avoid,
+        av = np.flatnonzero(avoid)
+        return {"active": np.zeros((n_encounters, av.size), dtype=bool), "av": av,
                 "sectors": self.sectors or encounter.sectors}
 
     def desired(self, time: float, truth: np.ndarray, view: np.ndarray,
@@ -125,18 +127,22 @@ class RuleBased:
         ndarray (encounters, vessels)
             Desired heading [rad].
         """
-        p_o, v_o, p_t, v_t, valid = _pairs(truth, view, state["avoid"])
+        av = state["av"]
+        own, route = truth[:, av], route_heading[:, av]
+        p_o, v_o, p_t, v_t, valid = _pairs(own, av, view)
         with np.errstate(invalid="ignore"):
             dcpa, tcpa = cpa_tcpa(p_o, v_o, p_t, v_t)
-            sit = _situations(truth, view, state["sectors"])
+            sit = _situations(own, view, state["sectors"])
             threat = valid & np.isin(sit, GIVE_WAY) & (tcpa > 0) & (tcpa < self.tcpa) & (
                 dcpa < self.dcpa)
-            v_route = velocity(route_heading, truth[:, :, 3])[:, :, None, :]
+            v_route = velocity(route, own[:, :, 3])[:, :, None, :]
             d_r, t_r = cpa_tcpa(p_o, v_route, p_t, v_t)
             unsafe = valid & (t_r > 0) & (t_r < self.tcpa) & (d_r < self.dcpa)
         active = (state["active"] | threat.any(-1)) & unsafe.any(-1)
         state["active"] = active
-        return np.where(active, route_heading + self.turn, route_heading)
+        out = route_heading.copy()
+        out[:, av] = np.where(active, route + self.turn, route)
+        return out
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -216,9 +222,10 @@ class VelocityObstacles:
         encounter : Encounter
             The encounter (its ``sectors`` are the default).
         """
-        return {"offset": np.zeros((n_encounters, n_vessels)), "next": 0.0, "avoid": avoid,
+        av = np.flatnonzero(avoid)
+        return {"offset": np.zeros((n_encounters, n_vessels)), "next": 0.0, "av": av,
                 "sectors": self.sectors or encounter.sectors,
-                "latched": np.zeros((n_encounters, n_vessels, n_vessels), dtype=np.int8)}
+                "latched": np.zeros((n_encounters, av.size, n_vessels), dtype=np.int8)}
 
     def desired(self, time: float, truth: np.ndarray, view: np.ndarray,
                 route_heading: np.ndarray, state: dict[str, Any]) -> np.ndarray:
@@ -245,19 +252,22 @@ class VelocityObstacles:
         """
         if time + 1e-9 >= state["next"]:
             state["next"] = time + self.every
-            state["offset"] = self._choose(truth, view, route_heading, state)
+            av = state["av"]
+            state["offset"][:, av] = self._choose(truth[:, av], view, route_heading[:, av],
+                                                  state)
         return route_heading + state["offset"]
 
-    def _choose(self, truth: np.ndarray, view: np.ndarray, route_heading: np.ndarray,
+    def _choose(self, own: np.ndarray, view: np.ndarray, route_heading: np.ndarray,
                 state: dict[str, Any]) -> np.ndarray:
-        avoid = state["avoid"]
-        p_o, _, p_t, v_t, valid = _pairs(truth, view, avoid)
+        """The offsets (e, a) of the avoiding vessels (``own = truth[:, av]``)."""
+        av = state["av"]
+        p_o, _, p_t, v_t, valid = _pairs(own, av, view)
         off = np.asarray(self.offsets, dtype=float)
         i0 = int(np.flatnonzero(off == 0)[0])
         heading = route_heading[:, :, None] + off  # (e, i, c)
-        v_c = velocity(heading, truth[:, :, 3, None])[:, :, :, None, :]  # (e, i, c, 1, 2)
+        v_c = velocity(heading, own[:, :, 3, None])[:, :, :, None, :]  # (e, i, c, 1, 2)
         p_o, p_t, v_t = p_o[:, :, None], p_t[:, :, None], v_t[:, :, None]  # (e, i|1, 1, j|1, 2)
-        radius = np.where(state["offset"] != 0.0, self.radius * (1.0 + self.hysteresis),
+        radius = np.where(state["offset"][:, av] != 0.0, self.radius * (1.0 + self.hysteresis),
                           self.radius)[:, :, None, None]  # (e, i, 1, 1)
         with np.errstate(invalid="ignore"):
             dcpa, tcpa = cpa_tcpa(p_o, v_c, p_t, v_t)  # (e, i, c, j)
@@ -266,13 +276,13 @@ class VelocityObstacles:
                 (np.hypot(r[..., 0], r[..., 1]) < radius) & (tcpa > 0))
             risk = in_vo[:, :, i0, :] & valid
             # the situation, latched from the first risk until the pair has passed
-            v_now = velocity(truth[:, :, 2], truth[:, :, 3])[:, :, None, None, :]
+            v_now = velocity(own[:, :, 2], own[:, :, 3])[:, :, None, None, :]
             _, t_now = cpa_tcpa(p_o, v_now, p_t, v_t)
+            now = _situations(own, view, state["sectors"])
             latched = np.where(valid & (t_now[:, :, 0, :] > 0), state["latched"], 0)
-            latched = np.where(risk & (latched == 0),
-                               _situations(truth, view, state["sectors"]), latched)
+            latched = np.where(risk & (latched == 0), now, latched)
             state["latched"] = latched.astype(np.int8)
-            sit = np.where(latched == 0, _situations(truth, view, state["sectors"]), latched)
+            sit = np.where(latched == 0, now, latched)
             give_way = risk & np.isin(sit, GIVE_WAY)
             calm_stand_on = valid & np.isin(sit, STAND_ON) & ~(risk & (tcpa[:, :, i0, :]
                                                                        < self.emergency))
@@ -287,8 +297,7 @@ class VelocityObstacles:
         if stuck.any():
             clear = np.where(counted, dcpa, np.inf).min(-1)  # (e, i, c)
             pick = np.where(stuck, np.argmax(clear, axis=-1), pick)
-        chosen = off[pick]
-        return np.where(avoid[None, :], chosen, 0.0)
+        return off[pick]
 
 
 #: Avoidance methods by name.
