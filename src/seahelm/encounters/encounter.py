@@ -86,7 +86,8 @@ class Vessel:
         solve per distinct speed).
     route : array (waypoints, 2) or (n_encounters, waypoints, 2), optional
         Waypoints (north, east) [m] steered for in turn (switched within ``acceptance``); the
-        start heading points at the first unless ``course`` is given.
+        start heading points at the first unless ``course`` is given; after the last, the
+        course it was reached on is kept.
     acceptance : float
         Radius of a waypoint [ship lengths] (default 2).
     avoid : bool
@@ -307,6 +308,32 @@ class Encounter:
                           metadata={"encounter": "seahelm.encounters"})
         return problem, rps
 
+    @property
+    def problems(self) -> list[Problem]:
+        """One :class:`~seahelm.simulation.problem.Problem` per distinct ship: its vessels'
+        runs, from their starts (what is stepped; ``simulate`` of one runs those vessels
+        uncoupled over the whole horizon with the rudder held at zero)."""
+        return [p for p, _ in self._problems]
+
+    def uncoupled_problems(self) -> list[Problem]:
+        """:attr:`problems` with their commands as an open-loop reference: the rudder held at
+        zero, the propeller at its self-propulsion rate -- the same ships run uncoupled over
+        the whole horizon by ``simulate`` (what the benchmark compares with)."""
+        out = []
+        for (problem, rps), g in zip(self._problems, self._groups):
+            labels = problem.wiring.commands
+            ref = np.zeros((g.index.size, 1, len(labels)))
+            if "propeller_rps" in labels:
+                ref[:, 0, labels.index("propeller_rps")] = rps
+            out.append(dataclasses.replace(problem, reference=ref))
+        return out
+
+    @property
+    def run_index(self) -> list[np.ndarray]:
+        """For each of :attr:`problems`, its runs' flat index ``encounter * n_vessels +
+        vessel``."""
+        return [g.index for g in self._groups]
+
     # ------------------------------------------------------------------------------------
     def run(self) -> EncounterResult:
         """Run every encounter to ``t_final``.
@@ -366,24 +393,32 @@ class Encounter:
         return truth
 
     def _guidance(self, truth: np.ndarray, wp: np.ndarray) -> np.ndarray:
-        """The route's desired heading (encounters, vessels) [rad]; ``wp`` (the active
-        waypoint of each vessel) is advanced in place."""
+        """The route's desired heading (encounters, vessels) [rad]: towards the active
+        waypoint, and after the last the course it was reached on. ``wp`` (each vessel's
+        active waypoint; ``len(route)`` once done) is advanced in place, and so is
+        :attr:`_leg` (the course after the route)."""
         ne, nv = self.n_encounters, self.n_vessels
         t = truth.reshape(ne, nv, 6)
         desired = self.course0.copy()
+        rows = np.arange(ne)
         for i, route in enumerate(self.routes):
             if route is None:
                 continue
-            rows = np.arange(ne)
-            for _ in range(route.shape[1]):
-                target = route[rows, np.minimum(wp[:, i], route.shape[1] - 1)]
-                close = (np.hypot(target[:, 0] - t[:, i, 0], target[:, 1] - t[:, i, 1])
-                         < self.acceptance[i]) & (wp[:, i] < route.shape[1] - 1)
+            n_wp = route.shape[1]
+            for _ in range(n_wp):
+                going = wp[:, i] < n_wp
+                target = route[rows, np.minimum(wp[:, i], n_wp - 1)]
+                bearing = np.arctan2(target[:, 1] - t[:, i, 1], target[:, 0] - t[:, i, 0])
+                close = going & (np.hypot(target[:, 0] - t[:, i, 0], target[:, 1] - t[:, i, 1])
+                                 < self.acceptance[i])
                 if not close.any():
                     break
+                last = close & (wp[:, i] == n_wp - 1)
+                self._leg[last, i] = bearing[last]
                 wp[close, i] += 1
-            target = route[rows, wp[:, i]]
-            desired[:, i] = np.arctan2(target[:, 1] - t[:, i, 1], target[:, 0] - t[:, i, 0])
+            target = route[rows, np.minimum(wp[:, i], n_wp - 1)]
+            bearing = np.arctan2(target[:, 1] - t[:, i, 1], target[:, 0] - t[:, i, 0])
+            desired[:, i] = np.where(wp[:, i] < n_wp, bearing, self._leg[:, i])
         return desired
 
     def _loop(self, sims: list[Simulator], cmds: list[np.ndarray], rudder_j: list[int],
@@ -392,6 +427,7 @@ class Encounter:
         n_int = sims[0].n_intervals
         view_state = self.sensor.start(ne * nv, self.controller_dt, self.t_final)
         wp = np.zeros((ne, nv), dtype=np.int64)
+        self._leg = np.zeros((ne, nv))
         avoid_state = (self.avoidance.start(ne, nv, self.avoid, self)
                        if self.avoidance is not None and self.avoid.any() else None)
         rec = Recorder(self, n_int)

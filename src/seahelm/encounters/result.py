@@ -190,11 +190,15 @@ class EncounterResult:
         [m], ``acted``, ``substantial``, ``early`` (give-way), ``kept_course`` (stand-on).
     status : ndarray (encounters, vessels)
         Each run's :class:`~seahelm.simulation.engine.RunStatus`.
+    names, lengths : the vessels' labels and lengths [m]
+    domain_axes : (along, across)
+        The own ship's domain semi-axes [ship lengths].
     """
 
     def __init__(self, rec: Recorder, status: np.ndarray) -> None:
         enc = rec.enc
         self.names, self.lengths = enc.names, enc.lengths
+        self.domain_axes = (enc.domain.along, enc.domain.across)
         self.time = rec.time
         self.tracks = {name: rec.tracks[j] for j, name in enumerate(Recorder.TRACK)}
         self.pair = rec.pair
