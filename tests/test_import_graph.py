@@ -165,6 +165,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("seahelm.simulation",),
     ("seahelm.identification",),
     ("seahelm.analysis",),
+    ("seahelm.encounters",),
     ("seahelm.scenario",),
     ("seahelm.sweep", "seahelm.plotting"),
     ("seahelm.report",),

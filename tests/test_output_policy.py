@@ -158,6 +158,10 @@ CASES: dict[tuple[tuple[str, ...], str], Case] = {
         lambda f: ["run", str(f.scenario)], "--out", directory=("result.nc",),
         own_input=lambda f: f.scenario),
     (("demo",), "--out"): Case(lambda f: ["demo"], "--out", directory=("result.nc",)),
+    (("encounter",), "--out"): Case(
+        lambda f: ["encounter", "--monte-carlo", "1", "--t-final", "300", "--detection", "2500",
+                   "--avoidance", "none"], "--out",
+        directory=("encounters.nc", "tracks.png", "cpa.png", "rose.png")),
     (("imo",), "--out"): Case(
         lambda f: ["imo", str(f.kv)], "--out", directory=("imo-report.json",),
         own_input=lambda f: f.kv),

@@ -77,7 +77,8 @@ _COMMANDS = (("imo", "seahelm.cli.imo", "imo"), ("inspect", "seahelm.cli.inspect
              ("report", "seahelm.cli.report", "report"), ("sweep", "seahelm.cli.sweep", "sweep"),
              ("linearize", "seahelm.cli.linearize", "linearize"),
              ("seakeeping", "seahelm.cli.seakeeping", "seakeeping"),
-             ("replay", "seahelm.cli.replay", "replay"), ("models", "seahelm.cli.models", "models"))
+             ("replay", "seahelm.cli.replay", "replay"), ("models", "seahelm.cli.models", "models"),
+             ("encounter", "seahelm.cli.encounter", "encounter"))
 for _name, _module, _attr in _COMMANDS:
     try:
         _sub = importlib.import_module(_module)
@@ -251,6 +252,18 @@ def run(
     """Validate and run a scenario file: a simulation or a standard manoeuvre."""
     from ..scenario import load_scenario
 
+    if scenario.suffix.lower() == ".toml" and scenario.is_file():
+        import tomllib
+
+        from ..encounters.files import is_encounter_scenario
+        try:
+            several = is_encounter_scenario(tomllib.loads(scenario.read_text()))
+        except (tomllib.TOMLDecodeError, UnicodeDecodeError):
+            several = False  # (load_scenario says what is wrong)
+        if several:  # a [[vessel]] array of tables: ships meeting ships
+            from .encounter import encounter
+
+            return encounter([scenario], out=out, force=force, json_out=json_out)
     batch = load_scenario(scenario)
     _execute(batch, out, as_json=json_out, plot=plot, csv=csv,
              label=batch.metadata["title"] or str(scenario), report=report, reads=(scenario,))

@@ -1,0 +1,183 @@
+"""``seahelm encounter``: ships meeting ships — an encounter scenario (TOML with ``[[vessel]]``
+tables), maritime-schema traffic situations (JSON, e.g. from ``trafficgen``), or a Monte-Carlo
+of encounter geometry; outcome table by COLREG situation, result file and plots.
+
+Exit codes: 0 success, 2 bad input (one-line reason on stderr), 1 other failure.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from ..errors import ParameterError
+from ._common import ForceFlag, JsonFlag, command_path, console, handle_errors, output_dir, \
+    print_json
+
+_METHODS = ("none", "rule-based", "velocity-obstacles")
+_FILES = ("encounters.nc", "tracks.png", "cpa.png", "rose.png")
+
+
+def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, own_ship: str,
+           target_ship: str, t_final: float | None, seed: int, detection: float) -> Any:
+    from ..encounters import Encounter
+    from ..encounters.files import (is_encounter_scenario, parse_encounter_scenario,
+                                    read_traffic_situations)
+    from ..encounters.monte_carlo import monte_carlo_vessels
+
+    method = None if avoidance in (None, "none") else avoidance
+    if monte_carlo is not None:
+        if files:
+            raise ParameterError(": give files or --monte-carlo, not both",
+                                 field="--monte-carlo", value=monte_carlo)
+        if monte_carlo < 1:
+            raise ParameterError(f"must be >= 1 [encounters], got {monte_carlo}",
+                                 field="--monte-carlo", value=monte_carlo)
+        tf = 1200.0 if t_final is None else t_final
+        vessels, _ = monte_carlo_vessels(monte_carlo, own_ship=own_ship,
+                                         target_ship=target_ship, seed=seed,
+                                         detection_range=(0.75 * detection, detection),
+                                         tcpa=(0.1 * tf, 0.6 * tf), target_speed=(3.0, 8.0))
+        return lambda m: Encounter(vessels, t_final=tf, avoidance=m, record_every=10), method
+    if not files:
+        raise ParameterError(": give an encounter scenario (TOML), traffic situations (JSON) "
+                             "or --monte-carlo N", field="FILES")
+    if all(f.suffix.lower() == ".json" for f in files):
+        tf = 1200.0 if t_final is None else t_final
+        return (lambda m: read_traffic_situations(files, own_ship=own_ship,
+                                                  target_ship=target_ship, t_final=tf,
+                                                  avoidance=m),
+                method or "velocity-obstacles")
+    if len(files) != 1 or files[0].suffix.lower() != ".toml":
+        raise ParameterError(f": one scenario (.toml) or traffic situations (.json), got "
+                             f"{', '.join(f.name for f in files)}", field="FILES")
+    data = tomllib.loads(files[0].read_text())
+    if not is_encounter_scenario(data):
+        raise ParameterError(": not an encounter scenario (no [[vessel]] array of tables); "
+                             "run a single-vessel scenario with `seahelm run`",
+                             field=str(files[0]))
+    base = files[0].parent
+    if t_final is not None:
+        data = {**data, "encounter": {**data.get("encounter", {}), "t_final": t_final}}
+
+    def make(m: Any) -> Any:
+        d = data if m == "scenario" else {**data, "encounter": {
+            **{k: v for k, v in data.get("encounter", {}).items() if k != "avoidance"},
+            **({} if m is None else {"avoidance": m})}}
+        return parse_encounter_scenario(d, base=base)
+    return make, ("scenario" if avoidance is None else method)
+
+
+def _name(method: Any) -> str:
+    from ..encounters.avoidance import AVOIDANCE
+
+    if method is None:
+        return "none"
+    return next((k for k, v in AVOIDANCE.items() if type(method) is v), type(method).__name__)
+
+
+def _rows(result: Any) -> list[dict[str, Any]]:
+    return result.summary()
+
+
+def _print(label: str, rows: list[dict[str, Any]]) -> None:
+    console.print(f"{label}", highlight=False, markup=False, soft_wrap=True)
+    console.print(f"  {'situation':18s} {'n':>6s} {'collision [95% CI]':>24s} "
+                  f"{'domain intruded [95% CI]':>26s} {'give-way acted':>14s} "
+                  f"{'substantial':>11s} {'stand-on kept':>13s} {'min range':>10s}",
+                  highlight=False, markup=False, soft_wrap=True)
+
+    def pct(v: Any) -> str:
+        return "-" if v is None else f"{100 * v:.1f} %"
+
+    for r in rows:
+        c, n = r["collision_ci"], r["near_miss_ci"]
+        console.print(
+            f"  {r['situation']:18s} {r['encounters']:6d} "
+            f"{pct(r['collision']):>8s} [{100 * c[0]:4.1f}, {100 * c[1]:4.1f}] % "
+            f"{pct(r['near_miss']):>10s} [{100 * n[0]:4.1f}, {100 * n[1]:4.1f}] % "
+            f"{pct(r['own_acted']):>14s} {pct(r['own_substantial']):>11s} "
+            f"{pct(r['own_kept_course']):>13s} {r['min_range_median']:8.0f} m",
+            highlight=False, markup=False, soft_wrap=True)
+
+
+def _write(result: Any, out: Path, force: bool) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    from ..plotting.encounters import plot_cpa, plot_encounter_tracks, plot_outcome_rose
+    from ..plotting.save import save_figure
+    from ..results import write_netcdf
+
+    ds = result.to_xarray()
+    ds.attrs["seahelm_command"] = command_path() or "seahelm encounter"
+    write_netcdf(ds, out / "encounters.nc", force=force)
+    if result.lengths.size > 1:
+        worst = int(result.min_range[:, 0].argmin())
+        save_figure(plot_encounter_tracks(result, worst), out / "tracks.png", force=force)
+        save_figure(plot_cpa(result), out / "cpa.png", force=force)
+        save_figure(plot_outcome_rose(result), out / "rose.png", force=force)
+
+
+@handle_errors
+def encounter(
+    files: Annotated[list[Path] | None, typer.Argument(
+        help="An encounter scenario (TOML, [[vessel]] tables) or maritime-schema traffic "
+             "situations (JSON, one encounter each).")] = None,
+    monte_carlo: Annotated[int | None, typer.Option(
+        "--monte-carlo", help="Draw N two-ship encounters (bearing all round, CPA within "
+                              "±0.5 nmi at detection) instead of reading files.")] = None,
+    avoidance: Annotated[str | None, typer.Option(
+        help=f"Own ship's avoidance: {', '.join(_METHODS)} (default: the scenario's; "
+             "velocity-obstacles for situations and --monte-carlo).")] = None,
+    compare: Annotated[bool, typer.Option(
+        "--compare", help="Run every method (none, rule-based, velocity-obstacles) side "
+                          "by side.")] = False,
+    own_ship: Annotated[str, typer.Option(help="Own ship of situations / --monte-carlo.")
+                        ] = "kvlcc2-full",
+    target_ship: Annotated[str, typer.Option(help="Target ship of situations / "
+                                                  "--monte-carlo.")] = "kvlcc2-full",
+    t_final: Annotated[float | None, typer.Option(
+        "--t-final", help="Duration [s] (default the scenario's; 1200).")] = None,
+    detection: Annotated[float, typer.Option(
+        help="--monte-carlo: range at detection [m] (drawn in 0.75 ... 1 times it).")
+    ] = 9000.0,
+    seed: Annotated[int, typer.Option(help="--monte-carlo seed.")] = 0,
+    out: Annotated[Path | None, typer.Option(
+        help=f"Write {', '.join(_FILES)} here (the last method's with --compare).")] = None,
+    force: ForceFlag = False,
+    json_out: JsonFlag = False,
+) -> None:
+    """Ships meeting ships: run encounters, print outcomes by COLREG situation (collisions,
+    ship-domain intrusions with 95 % intervals, Rule 8/16/17 verdicts)."""
+    if avoidance is not None and avoidance not in _METHODS:
+        raise ParameterError(f"must be one of {', '.join(_METHODS)}, got {avoidance!r}",
+                             field="--avoidance", value=avoidance)
+    if t_final is not None and not (math.isfinite(t_final) and t_final > 0):
+        raise ParameterError(f"must be > 0 [s], got {t_final!r}", field="--t-final", unit="s",
+                             value=t_final)
+    if out is not None:
+        output_dir("--out", out, _FILES, reads=tuple(files or ()), force=force)
+    make, method = _build(list(files or []), monte_carlo, avoidance, own_ship, target_ship,
+                          t_final, seed, detection)
+    methods = ([None, "rule-based", "velocity-obstacles"] if compare else [method])
+    encounters = [make(m) for m in methods]  # (all validated before any runs)
+    payload: dict[str, Any] = {"seahelm_command": command_path() or "seahelm encounter",
+                               "methods": {}}
+    result = None
+    for m, enc in zip(methods, encounters):
+        result = enc.run()
+        label = m if m not in (None, "scenario") else _name(enc.avoidance)
+        rows = _rows(result)
+        payload["methods"][label] = rows
+        if not json_out:
+            _print(f"{enc.n_encounters} encounter(s) of {enc.n_vessels} vessels, "
+                   f"{enc.t_final:g} s — own ship's avoidance: {label}", rows)
+    if out is not None and result is not None:
+        _write(result, out, force)
+    if json_out:
+        print_json(payload)

@@ -1,0 +1,331 @@
+"""Collision avoidance between controller intervals: a rule-based baseline and velocity
+obstacles with COLREG constraints (Kuwata et al. 2014), vectorised over the batch.
+
+A method is an object with ``start(n_encounters, n_vessels, avoid, encounter) -> state`` and
+``desired(time, truth, view, route_heading, state) -> heading``: from each vessel's own true
+state (encounters, vessels, 6: north, east, course, speed, heading, yaw rate), the AIS view of
+every vessel (encounters, vessels, 5: north, east, course, speed, heading; NaN before the
+first report), and the heading its route asks for (encounters, vessels) [rad], it gives the
+heading to steer; only the vessels with ``avoid`` True are changed. Adding a method is a class
+with these two methods and a line in :data:`AVOIDANCE`.
+
+Both work on the pairs (encounters, own vessel i, other vessel j) at once, with the COLREG
+situation of :func:`~seahelm.encounters.geometry.classify` of i's true state and j's reported
+one.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+import numpy as np
+
+from ..errors import ParameterError
+from .geometry import GIVE_WAY, STAND_ON, ColregSectors, classify, cpa_tcpa, velocity
+
+__all__ = ["RuleBased", "VelocityObstacles", "AVOIDANCE", "resolve_avoidance"]
+
+
+def _positive(obj: Any, *names_units: tuple[str, str]) -> None:
+    for name, unit in names_units:
+        v = getattr(obj, name)
+        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+            raise ParameterError(f"must be > 0 [{unit}], got {v!r}", field=f"avoidance.{name}",
+                                 unit=unit, value=v)
+
+
+def _pairs(own: np.ndarray, av: np.ndarray, view: np.ndarray):
+    """The avoiding vessels' true position/velocity (e, a, 1, 2), every vessel's reported
+    (e, 1, j, 2), and the pairs that count (e, a, j): j is another vessel that has been heard
+    from. ``own`` is ``truth[:, av]``."""
+    nv = view.shape[1]
+    p_o = own[:, :, None, 0:2]
+    v_o = velocity(own[:, :, 2], own[:, :, 3])[:, :, None, :]
+    p_t = view[:, None, :, 0:2]
+    v_t = velocity(view[:, :, 2], view[:, :, 3])[:, None, :, :]
+    other = av[:, None] != np.arange(nv)[None, :]
+    valid = np.isfinite(view).all(-1)[:, None, :] & other[None]
+    return p_o, v_o, p_t, v_t, valid
+
+
+def _situations(own: np.ndarray, view: np.ndarray, sectors: ColregSectors) -> np.ndarray:
+    v = np.nan_to_num(view)
+    return classify(own[:, :, None, 0:2], own[:, :, None, 4], v[:, None, :, 0:2],
+                    v[:, None, :, 4], sectors)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class RuleBased:
+    """The baseline: turn to starboard by ``turn`` when give-way with a close CPA; resume.
+
+    A vessel that is give-way to another (head-on, crossing from starboard, overtaking: Rules
+    13-15) whose CPA (at the present velocities) is closer than ``dcpa`` within ``tcpa`` turns
+    ``turn`` to starboard of its route's heading, and keeps that offset while steering its
+    route would bring any vessel within ``dcpa`` again (a CPA at the route's velocity closer
+    than ``dcpa`` and ahead in time); then it resumes the route.
+
+    Attributes
+    ----------
+    turn : float
+        Course alteration to starboard [rad] (default 30°: large enough to be readily apparent,
+        Rule 8(b)).
+    dcpa : float
+        CPA distance below which the give-way vessel acts [m] (default 1852 m, 1 nmi).
+    tcpa : float
+        Look-ahead [s] (default 1200 s).
+    sectors : ColregSectors, optional
+        The situation thresholds (default: those of the encounter).
+    """
+
+    turn: float = math.radians(30.0)
+    dcpa: float = 1852.0
+    tcpa: float = 1200.0
+    sectors: ColregSectors | None = None
+
+    def __post_init__(self) -> None:
+        _positive(self, ("turn", "rad"), ("dcpa", "m"), ("tcpa", "s"))
+
+    def start(self, n_encounters: int, n_vessels: int, avoid: np.ndarray,
+              encounter: Any) -> dict[str, Any]:
+        """The method's state for a batch.
+
+        Parameters
+        ----------
+        n_encounters, n_vessels : int
+            The batch's shape.
+        avoid : ndarray of bool (vessels,)
+            The vessels that avoid.
+        encounter : Encounter
+            The encounter (its ``sectors`` are the default).
+        """
+        av = np.flatnonzero(avoid)
+        return {"active": np.zeros((n_encounters, av.size), dtype=bool), "av": av,
+                "sectors": self.sectors or encounter.sectors}
+
+    def desired(self, time: float, truth: np.ndarray, view: np.ndarray,
+                route_heading: np.ndarray, state: dict[str, Any]) -> np.ndarray:
+        """The heading each vessel steers next (the others keep ``route_heading``).
+
+        Parameters
+        ----------
+        time : float
+            Time [s].
+        truth : ndarray (encounters, vessels, 6)
+            Own true north, east [m], course [rad], speed [m/s], heading [rad], yaw rate
+            [rad/s].
+        view : ndarray (encounters, vessels, 5)
+            The AIS view of every vessel (north, east, course, speed, heading; NaN unheard).
+        route_heading : ndarray (encounters, vessels)
+            The heading the route asks for [rad].
+        state : dict
+            From :meth:`start`, updated in place.
+
+        Returns
+        -------
+        ndarray (encounters, vessels)
+            Desired heading [rad].
+        """
+        av = state["av"]
+        own, route = truth[:, av], route_heading[:, av]
+        p_o, v_o, p_t, v_t, valid = _pairs(own, av, view)
+        with np.errstate(invalid="ignore"):
+            dcpa, tcpa = cpa_tcpa(p_o, v_o, p_t, v_t)
+            sit = _situations(own, view, state["sectors"])
+            threat = valid & np.isin(sit, GIVE_WAY) & (tcpa > 0) & (tcpa < self.tcpa) & (
+                dcpa < self.dcpa)
+            v_route = velocity(route, own[:, :, 3])[:, :, None, :]
+            d_r, t_r = cpa_tcpa(p_o, v_route, p_t, v_t)
+            unsafe = valid & (t_r > 0) & (t_r < self.tcpa) & (d_r < self.dcpa)
+        active = (state["active"] | threat.any(-1)) & unsafe.any(-1)
+        state["active"] = active
+        out = route_heading.copy()
+        out[:, av] = np.where(active, route + self.turn, route)
+        return out
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class VelocityObstacles:
+    """Velocity obstacles with COLREG constraints, after Kuwata et al. (2014).
+
+    Every ``every`` seconds each avoiding vessel picks, from headings ``offsets`` about its
+    route's heading at its present speed, the one closest to the route's that is
+
+    - outside the velocity obstacle of every other vessel: not (``0 < TCPA < horizon`` and
+      ``DCPA < radius``) for the relative motion at that velocity (the collision cone of
+      Kuwata et al. 2014, truncated at the time horizon);
+    - for a vessel to which it is give-way (head-on, crossing from starboard, overtaking) and
+      whose velocity obstacle holds the route's velocity: on the COLREG side, passing with that
+      vessel on its port side -- ``r × (v_own - v_other) ≥ 0`` with ``r`` the line of sight
+      (north-east cross product): the COLREG constraint of Kuwata et al. (2014), which
+      excludes the half plane of passing on the wrong side;
+    - a stand-on vessel keeps its route (Rule 17(a)) unless a velocity obstacle's TCPA is
+      shorter than ``emergency`` (Rule 17(b): action when the give-way vessel alone cannot
+      avoid collision).
+
+    When every heading is excluded, the one with the largest least DCPA is taken. Ties go to
+    starboard. Against chattering (Kuwata et al. 2014 use hysteresis too): a pair's situation
+    is latched when its risk first appears and kept until the pair has passed (TCPA at the
+    present velocities < 0), and while a vessel is off its route the obstacles' radius is
+    ``1 + hysteresis`` times larger (it returns to the route only with that margin).
+
+    Attributes
+    ----------
+    horizon : float
+        Time horizon of the obstacles [s] (default 1200 s).
+    radius : float
+        Combined safety radius [m] (default 1852 m, 1 nmi).
+    offsets : tuple of float
+        Candidate headings about the route's [rad] (default -60° ... 90° every 5°).
+    every : float
+        Time between decisions [s] (default 5 s); the heading is held in between.
+    emergency : float
+        TCPA below which a stand-on vessel acts too [s] (default 300 s).
+    hysteresis : float
+        Relative margin on ``radius`` while off the route [-] (default 0.2).
+    sectors : ColregSectors, optional
+
+    References
+    ----------
+    Kuwata, Y., Wolf, M. T., Zarzhitsky, D., Huntsberger, T. L. (2014). Safe maritime
+    autonomous navigation with COLREGS, using velocity obstacles. IEEE Journal of Oceanic
+    Engineering 39(1), 110-119.
+    """
+
+    horizon: float = 1200.0
+    radius: float = 1852.0
+    offsets: tuple[float, ...] = tuple(np.radians(np.arange(-60.0, 91.0, 5.0)).tolist())
+    every: float = 5.0
+    emergency: float = 300.0
+    hysteresis: float = 0.2
+    sectors: ColregSectors | None = None
+
+    def __post_init__(self) -> None:
+        _positive(self, ("horizon", "s"), ("radius", "m"), ("every", "s"),
+                  ("emergency", "s"), ("hysteresis", "-"))
+        off = np.asarray(self.offsets, dtype=float)
+        if off.ndim != 1 or off.size == 0 or not np.isfinite(off).all() or not (off == 0).any():
+            raise ParameterError(f"must be finite headings [rad] including 0, got "
+                                 f"{self.offsets!r}", field="avoidance.offsets", unit="rad")
+
+    def start(self, n_encounters: int, n_vessels: int, avoid: np.ndarray,
+              encounter: Any) -> dict[str, Any]:
+        """The method's state for a batch.
+
+        Parameters
+        ----------
+        n_encounters, n_vessels : int
+            The batch's shape.
+        avoid : ndarray of bool (vessels,)
+            The vessels that avoid.
+        encounter : Encounter
+            The encounter (its ``sectors`` are the default).
+        """
+        av = np.flatnonzero(avoid)
+        return {"offset": np.zeros((n_encounters, n_vessels)), "next": 0.0, "av": av,
+                "sectors": self.sectors or encounter.sectors,
+                "latched": np.zeros((n_encounters, av.size, n_vessels), dtype=np.int8)}
+
+    def desired(self, time: float, truth: np.ndarray, view: np.ndarray,
+                route_heading: np.ndarray, state: dict[str, Any]) -> np.ndarray:
+        """The heading each vessel steers next (the others keep ``route_heading``).
+
+        Parameters
+        ----------
+        time : float
+            Time [s].
+        truth : ndarray (encounters, vessels, 6)
+            Own true north, east [m], course [rad], speed [m/s], heading [rad], yaw rate
+            [rad/s].
+        view : ndarray (encounters, vessels, 5)
+            The AIS view of every vessel (north, east, course, speed, heading; NaN unheard).
+        route_heading : ndarray (encounters, vessels)
+            The heading the route asks for [rad].
+        state : dict
+            From :meth:`start`, updated in place.
+
+        Returns
+        -------
+        ndarray (encounters, vessels)
+            Desired heading [rad].
+        """
+        if time + 1e-9 >= state["next"]:
+            state["next"] = time + self.every
+            av = state["av"]
+            state["offset"][:, av] = self._choose(truth[:, av], view, route_heading[:, av],
+                                                  state)
+        return route_heading + state["offset"]
+
+    def _choose(self, own: np.ndarray, view: np.ndarray, route_heading: np.ndarray,
+                state: dict[str, Any]) -> np.ndarray:
+        """The offsets (e, a) of the avoiding vessels (``own = truth[:, av]``)."""
+        av = state["av"]
+        p_o, _, p_t, v_t, valid = _pairs(own, av, view)
+        off = np.asarray(self.offsets, dtype=float)
+        i0 = int(np.flatnonzero(off == 0)[0])
+        heading = route_heading[:, :, None] + off  # (e, i, c)
+        v_c = velocity(heading, own[:, :, 3, None])[:, :, :, None, :]  # (e, i, c, 1, 2)
+        p_o, p_t, v_t = p_o[:, :, None], p_t[:, :, None], v_t[:, :, None]  # (e, i|1, 1, j|1, 2)
+        radius = np.where(state["offset"][:, av] != 0.0, self.radius * (1.0 + self.hysteresis),
+                          self.radius)[:, :, None, None]  # (e, i, 1, 1)
+        with np.errstate(invalid="ignore"):
+            dcpa, tcpa = cpa_tcpa(p_o, v_c, p_t, v_t)  # (e, i, c, j)
+            r = p_t - p_o  # (e, i, 1, j, 2)
+            in_vo = ((tcpa > 0) & (tcpa < self.horizon) & (dcpa < radius)) | (
+                (np.hypot(r[..., 0], r[..., 1]) < radius) & (tcpa > 0))
+            risk = in_vo[:, :, i0, :] & valid
+            # the situation, latched from the first risk until the pair has passed
+            v_now = velocity(own[:, :, 2], own[:, :, 3])[:, :, None, None, :]
+            _, t_now = cpa_tcpa(p_o, v_now, p_t, v_t)
+            now = _situations(own, view, state["sectors"])
+            latched = np.where(valid & (t_now[:, :, 0, :] > 0), state["latched"], 0)
+            latched = np.where(risk & (latched == 0), now, latched)
+            state["latched"] = latched.astype(np.int8)
+            sit = np.where(latched == 0, now, latched)
+            give_way = risk & np.isin(sit, GIVE_WAY)
+            calm_stand_on = valid & np.isin(sit, STAND_ON) & ~(risk & (tcpa[:, :, i0, :]
+                                                                       < self.emergency))
+            w = v_c - v_t
+            wrong_side = (r[..., 0] * w[..., 1] - r[..., 1] * w[..., 0]) < 0  # (e, i, c, j)
+        counted = (valid & ~calm_stand_on)[:, :, None, :]
+        bad = ((in_vo & counted) | (wrong_side & give_way[:, :, None, :])).any(-1)
+        cost = np.abs(off) + 1e-6 * (off < 0)
+        cost = np.where(bad, np.inf, cost[None, None, :])
+        pick = np.argmin(cost, axis=-1)
+        stuck = ~np.isfinite(cost.min(-1))
+        if stuck.any():
+            clear = np.where(counted, dcpa, np.inf).min(-1)  # (e, i, c)
+            pick = np.where(stuck, np.argmax(clear, axis=-1), pick)
+        return off[pick]
+
+
+#: Avoidance methods by name.
+AVOIDANCE: dict[str, type] = {"rule-based": RuleBased, "velocity-obstacles": VelocityObstacles}
+
+
+def resolve_avoidance(method: Any) -> Any:
+    """An avoidance method: by name (default settings), an object, or None.
+
+    Parameters
+    ----------
+    method : str, object or None
+        A name of :data:`AVOIDANCE` or an object with ``start`` and ``desired``.
+
+    Returns
+    -------
+    object or None
+    """
+    if method is None:
+        return None
+    if isinstance(method, str):
+        if method not in AVOIDANCE:
+            raise ParameterError(f": unknown avoidance method {method!r}; valid: "
+                                 f"{', '.join(AVOIDANCE)}", field="avoidance", value=method)
+        return AVOIDANCE[method]()
+    if not (callable(getattr(method, "start", None)) and callable(getattr(method, "desired",
+                                                                          None))):
+        raise ParameterError(f"must be a name ({', '.join(AVOIDANCE)}) or an object with "
+                             f"start() and desired(), got {type(method).__name__}",
+                             field="avoidance", value=method)
+    return method
