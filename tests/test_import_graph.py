@@ -162,6 +162,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("seahelm.simulation",),
     ("seahelm.analysis",),
     ("seahelm.scenario",),
+    ("seahelm.gym", "seahelm.fmu"),
     ("seahelm.sweep", "seahelm.plotting"),
     ("seahelm.report",),
     ("seahelm.studies",),
