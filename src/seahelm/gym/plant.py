@@ -95,7 +95,8 @@ def _weather(ship: Any, weather: Mapping[str, float]) -> dict[str, Any]:
 
 
 def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
-                action_period: float, weather: Mapping[str, float] | None = None) -> Plant:
+                action_period: float, weather: Mapping[str, float] | None = None,
+                integrator: Any = "rk4") -> Plant:
     """The :class:`Plant` of ``num_envs`` runs of ``ship``.
 
     Parameters
@@ -112,6 +113,9 @@ def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
         Time between two actions [s] (the controller interval), a whole multiple of ``dt``.
     weather : mapping, optional
         :data:`WEATHER_KEYS` (default calm water).
+    integrator : str or ButcherTableau
+        The fixed-step method (default ``"rk4"``; ``"euler"`` is the explicit Euler method of
+        most Python ship environments).
 
     Raises
     ------
@@ -144,7 +148,8 @@ def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
     problem = Problem(ship=ship, x0=np.repeat(start.state[None], int(num_envs), axis=0),
                       actuator_x0=[rudder0], t_final=float(episode_seconds), dt=float(dt),
                       controller_dt=float(action_period),
-                      record_every=max(1, int(round(episode_seconds / dt))), **env_kw)
+                      record_every=max(1, int(round(episode_seconds / dt))),
+                      integrator=integrator, **env_kw)
     sim = Simulator(problem)
     labels = sim.command_labels
     inputs = {"rudder_command": rudder0, **start.inputs}

@@ -66,6 +66,8 @@ class ShipVectorEnv(VectorEnv):
     episode_seconds : float, optional
         Episode length [s] (default: the task's, 120 s heading keeping, 400 s path following);
         an episode is truncated there.
+    integrator : str or ButcherTableau
+        Fixed-step method (default ``"rk4"``; ``"euler"``: explicit Euler).
     reward : mapping term -> weight, optional
         Reward weights (:mod:`seahelm.gym.tasks`).
     autoreset_mode : str or AutoresetMode
@@ -91,7 +93,7 @@ class ShipVectorEnv(VectorEnv):
                  ship: Any = "kvlcc2-l7", actions: Any = ("rudder_command",),
                  action_bounds: Mapping[str, tuple[float, float]] | None = None,
                  dt: float = 0.1, action_period: float = 1.0,
-                 episode_seconds: float | None = None,
+                 episode_seconds: float | None = None, integrator: Any = "rk4",
                  reward: Mapping[str, float] | None = None,
                  autoreset_mode: Any = AutoresetMode.NEXT_STEP,
                  render_mode: str | None = None, **options: Any) -> None:
@@ -120,7 +122,8 @@ class ShipVectorEnv(VectorEnv):
         seconds = task_cls.default_episode_seconds if episode_seconds is None \
             else episode_seconds
         self.plant: Plant = build_plant(ship, num_envs=num_envs, episode_seconds=seconds,
-                                        dt=dt, action_period=action_period, weather=weather)
+                                        dt=dt, action_period=action_period, weather=weather,
+                                        integrator=integrator)
         p = self.plant
         self.task: Task = task_cls(int(num_envs), length=p.length, speed=p.speed,
                                    max_rudder=p.max_rudder, reward=reward, **options)
