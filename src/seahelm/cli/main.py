@@ -77,7 +77,8 @@ _COMMANDS = (("imo", "seahelm.cli.imo", "imo"), ("inspect", "seahelm.cli.inspect
              ("report", "seahelm.cli.report", "report"), ("sweep", "seahelm.cli.sweep", "sweep"),
              ("linearize", "seahelm.cli.linearize", "linearize"),
              ("seakeeping", "seahelm.cli.seakeeping", "seakeeping"),
-             ("replay", "seahelm.cli.replay", "replay"), ("models", "seahelm.cli.models", "models"))
+             ("replay", "seahelm.cli.replay", "replay"), ("models", "seahelm.cli.models", "models"),
+             ("fmu", "seahelm.cli.fmu", "fmu"))
 for _name, _module, _attr in _COMMANDS:
     try:
         _sub = importlib.import_module(_module)
