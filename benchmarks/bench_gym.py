@@ -19,6 +19,9 @@ Prints medians of several repetitions and the ratios (targets of issue 52: the v
 
     python benchmarks/bench_gym.py [--repeats 3] [--envs 1024] [--quick]
 
+And an FMU of the same ship (``seahelm fmu``) run by fmpy: one ``doStep`` of 1 s against the
+same interval through the Python stepping API (target of issue 52: ≤ 2 ×).
+
 ``--quick`` (the test suite's smoke run): 16 sub-environments, a few steps, one repeat.
 """
 
@@ -164,6 +167,70 @@ def _vector(envs: ShipVectorEnv, steps: int) -> float:
     return steps * envs.num_envs / (time.perf_counter() - t0)
 
 
+def _fmu_step_cost(steps: int) -> tuple[float, float, float]:
+    """Seconds per 1 s interval: an FMU doStep through fmpy (set the two inputs, doStep, get
+    the eight outputs: a master's round), the bare doStep, and the same interval through the
+    Python stepping API (:meth:`seahelm.Simulator.step` of one 1 s controller interval)."""
+    import tempfile
+    from pathlib import Path
+
+    import fmpy
+    import fmpy.fmi2
+
+    from seahelm import Problem, Simulator
+    from seahelm.analysis.equilibrium import approach_state
+    from seahelm.fmu import build_fmu
+
+    ship = get_ship("kvlcc2-l7")
+    start = approach_state(ship, trim=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        path = build_fmu(ship, Path(tmp) / "kv.fmu")
+        md = fmpy.read_model_description(str(path))
+        vr = {v.name: v.valueReference for v in md.modelVariables}
+        fmu = fmpy.fmi2.FMU2Slave(guid=md.guid, unzipDirectory=fmpy.extract(str(path)),
+                                  modelIdentifier=md.coSimulation.modelIdentifier,
+                                  instanceName="bench")
+        fmu.instantiate()
+        fmu.setupExperiment(startTime=0.0, stopTime=float(3 * steps + 10))
+        fmu.enterInitializationMode()
+        fmu.exitInitializationMode()
+        inputs = [vr["rudder_command"], vr["propeller_rps"]]
+        outputs = [vr[n] for n in ("north", "east", "heading", "surge_speed", "sway_speed",
+                                   "speed", "yaw_rate", "rudder_angle")]
+        n0 = start.inputs["propeller_rps"]
+        t = 0.0
+        fmu.doStep(currentCommunicationPoint=t, communicationStepSize=1.0)
+        t += 1.0
+        t0 = time.perf_counter()
+        for k in range(steps):
+            fmu.setReal(inputs, [0.1 * math.sin(0.1 * k), n0])
+            fmu.doStep(currentCommunicationPoint=t, communicationStepSize=1.0)
+            fmu.getReal(outputs)
+            t += 1.0
+        round_trip = (time.perf_counter() - t0) / steps
+        t0 = time.perf_counter()
+        for k in range(steps):
+            fmu.doStep(currentCommunicationPoint=t, communicationStepSize=1.0)
+            t += 1.0
+        bare = (time.perf_counter() - t0) / steps
+        fmu.terminate()
+        fmu.freeInstance()
+    problem = Problem(ship=ship, x0=start.state, actuator_x0=[start.inputs["rudder_angle"]],
+                      t_final=float(steps + 10), dt=DT, controller_dt=1.0,
+                      record_every=int(round((steps + 10) / DT)))
+    with Simulator(problem) as sim:
+        sim.reset()
+        cmd = np.array([0.0, n0])
+        sim.step(cmd)
+        t0 = time.perf_counter()
+        for k in range(steps):
+            cmd[0] = 0.1 * math.sin(0.1 * k)
+            obs = sim.step(cmd)
+            obs.values[0]
+        stepping = (time.perf_counter() - t0) / steps
+    return round_trip, bare, stepping
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--repeats", type=int, default=3)
@@ -205,6 +272,14 @@ def main() -> None:
           f"single env / baseline: {med['single'] / med['baseline']:.1f} x")
     for e in (env, envs, euler):
         e.close()
+    fmu_steps = 20 if args.quick else 1000
+    costs = [_fmu_step_cost(fmu_steps) for _ in range(repeats)]
+    round_trip, bare, stepping = (statistics.median(c[i] for c in costs) for i in range(3))
+    print(f"FMU (seahelm fmu kvlcc2-l7, run by fmpy), one 1 s interval (dt {DT} s): "
+          f"set inputs + doStep + get outputs {round_trip * 1e6:.0f} us, doStep alone "
+          f"{bare * 1e6:.0f} us; Simulator.step of 1 s {stepping * 1e6:.0f} us; "
+          f"doStep / stepping: {bare / stepping:.2f} x (target <= 2 x), with the master's "
+          f"gets and sets {round_trip / stepping:.2f} x")
 
 
 if __name__ == "__main__":
