@@ -173,11 +173,11 @@ class Task:
         -------
         ndarray (envs,)
         """
-        total = np.zeros(self.n)
+        total = 0.0
         for key, w in self.weights.items():
             if w:
-                total += w * terms[key]
-        return total
+                total = total + w * terms[key]
+        return np.broadcast_to(total, (self.n,)).astype(float)
 
     def _common_terms(self, out: Mapping[str, np.ndarray], rudder: np.ndarray,
                       previous_rudder: np.ndarray) -> dict[str, np.ndarray]:
