@@ -167,6 +167,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("seahelm.analysis",),
     ("seahelm.encounters",),
     ("seahelm.scenario",),
+    ("seahelm.gym", "seahelm.fmu"),
     ("seahelm.sweep", "seahelm.plotting"),
     ("seahelm.report",),
     ("seahelm.studies",),

@@ -168,6 +168,9 @@ CASES: dict[tuple[tuple[str, ...], str], Case] = {
     (("replay",), "--out"): Case(
         lambda f: ["replay", str(_replay_record(f)), "--ship", "kvlcc2-l7", "--kind", "none"],
         "--out", directory=("replay.nc", "replay.png"), own_input=_replay_record, cheap=True),
+    (("fmu",), "--out"): Case(
+        lambda f: ["fmu", str(f.kv)], "--out", own_input=lambda f: f.kv, cheap=True,
+        kind="fmu"),
     (("sweep",), "--store"): Case(
         lambda f: ["sweep", str(f.scenario)], "--store", own_input=lambda f: f.scenario,
         kind="store"),
@@ -266,7 +269,7 @@ def _unrelated(tmp_path: Path, case: Case) -> tuple[Path, Path]:
         (out / case.directory[0]).write_text("a user's file\n")
         return out, out / case.directory[0]
     suffix = {"file": ".toml", "png": ".png", "csv": ".csv", "html": ".html",
-              "nc": ".nc"}[case.kind]
+              "nc": ".nc", "fmu": ".fmu"}[case.kind]
     target = tmp_path / f"mine{suffix}"
     target.write_text("a user's file\n")
     return target, target

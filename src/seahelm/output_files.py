@@ -220,6 +220,19 @@ def _seahelm_csv(path: Path, command: str | None = None) -> bool:
     return bool(lines) and all(key.fullmatch(k.strip()) for k in lines[0].split(","))
 
 
+def _seahelm_fmu(path: Path, command: str | None = None) -> bool:
+    """An FMU seahelm wrote (``seahelm fmu``): a zip archive whose model description names
+    seahelm as its author."""
+    import zipfile
+
+    try:
+        with zipfile.ZipFile(path) as fmu:
+            head = fmu.read("modelDescription.xml")[:4096]
+    except (OSError, KeyError, zipfile.BadZipFile):
+        return False
+    return b'author="seahelm"' in head
+
+
 @dataclass(frozen=True)
 class FileKind:
     """What a writer writes, and how to tell that an existing file is seahelm's of that kind.
@@ -252,10 +265,11 @@ KINDS: dict[str, FileKind] = {k.name: k for k in (
     FileKind("figure", "a figure", _figure),
     FileKind("json", "a JSON file", _seahelm_json),
     FileKind("csv", "a CSV table", _seahelm_csv),
+    FileKind("fmu", "an FMU", _seahelm_fmu),
 )}
 
 _SUFFIX_KINDS = {".nc": "netcdf", ".h5": "netcdf", ".toml": "toml", ".html": "html",
-                 ".htm": "html", ".json": "json", ".csv": "csv"}
+                 ".htm": "html", ".json": "json", ".csv": "csv", ".fmu": "fmu"}
 
 
 def kind_for_suffix(path: str | os.PathLike[str]) -> str:

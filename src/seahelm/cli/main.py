@@ -78,7 +78,8 @@ _COMMANDS = (("imo", "seahelm.cli.imo", "imo"), ("inspect", "seahelm.cli.inspect
              ("linearize", "seahelm.cli.linearize", "linearize"),
              ("seakeeping", "seahelm.cli.seakeeping", "seakeeping"),
              ("replay", "seahelm.cli.replay", "replay"), ("models", "seahelm.cli.models", "models"),
-             ("encounter", "seahelm.cli.encounter", "encounter"))
+             ("encounter", "seahelm.cli.encounter", "encounter"),
+             ("fmu", "seahelm.cli.fmu", "fmu"))
 for _name, _module, _attr in _COMMANDS:
     try:
         _sub = importlib.import_module(_module)

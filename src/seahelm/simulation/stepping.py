@@ -276,6 +276,10 @@ class Simulator:
         self._k.fill(k1)
         return self._finish(None)
 
+    def observe(self) -> Observation:
+        """Every run's outputs now, not stepped (after :meth:`set_state`: the state set's)."""
+        return self._observe() if self._k is not None else self._require_reset()  # (raises)
+
     def state(self, run: int) -> dict[str, float]:
         """A run's state (vessel then actuator states) by :attr:`state_labels` [SI].
 

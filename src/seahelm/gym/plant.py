@@ -1,0 +1,174 @@
+"""The ship an environment of :mod:`seahelm.gym` steers: its :class:`~seahelm.Problem` (N runs
+of one ship, in calm water or in wind and waves), its commands and their bounds.
+
+A :class:`Plant` is built once per environment; every episode of every sub-environment is a run
+of the same :class:`~seahelm.Simulator` (the compiled loop of ``simulate``), reset by run.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..errors import ParameterError, ValidityRangeWarning
+from ..ships import get_ship
+from ..simulation.problem import Problem
+from ..simulation.stepping import Simulator
+
+__all__ = ["Plant", "build_plant", "WEATHER_KEYS"]
+
+#: Weather keywords an environment takes [SI units, radians; directions the waves and wind come
+#: from, clockwise from north]: any non-zero ``wind_speed`` adds Blendermann's wind loads, any
+#: non-zero ``wave_height`` Lvov's mean wave loads (:mod:`seahelm.environment.loads`).
+WEATHER_KEYS = ("wind_speed", "wind_direction", "wave_height", "wave_length", "wave_direction")
+
+
+@dataclass(frozen=True)
+class Plant:
+    """A ship's batch, ready to step, and what its commands are.
+
+    Attributes
+    ----------
+    ship : Ship
+    simulator : Simulator
+        N runs, horizon = one episode.
+    command_labels, command_units : tuple of str
+        The simulator's commands (the actuator's).
+    command_start : ndarray (commands,)
+        The commands of the straight approach (rudder trim, self-propulsion rps) [SI]: the
+        commands an action does not set.
+    state_start : ndarray (states,)
+        The approach state (vessel then actuator states) [SI].
+    speed : float
+        Approach speed U_0 [m/s].
+    length : float
+        Ship length L [m].
+    max_rudder : float
+        Largest rudder command [rad] (the steering gear's, else 35°).
+    """
+
+    ship: Any
+    simulator: Simulator
+    command_labels: tuple[str, ...]
+    command_units: tuple[str, ...]
+    command_start: np.ndarray
+    state_start: np.ndarray
+    speed: float
+    length: float
+    max_rudder: float
+
+
+def _weather(ship: Any, weather: Mapping[str, float]) -> dict[str, Any]:
+    """Problem keywords of the environment's loads for ``weather`` (none in calm water)."""
+    unknown = sorted(set(weather) - set(WEATHER_KEYS))
+    if unknown:
+        raise ParameterError(f": unknown weather keyword {unknown[0]!r}; valid: "
+                             f"{', '.join(WEATHER_KEYS)}", field=unknown[0])
+    values = {k: float(v) for k, v in weather.items() if v is not None}
+    for key, v in values.items():
+        if not math.isfinite(v) or (key in ("wind_speed", "wave_height", "wave_length")
+                                    and v < 0):
+            unit = "rad" if key.endswith("direction") else "m/s" if key == "wind_speed" else "m"
+            raise ParameterError(f"must be finite{' and >= 0' if unit != 'rad' else ''} "
+                                 f"[{unit}], got {v!r}", field=key, unit=unit, value=v)
+    wind = values.get("wind_speed", 0.0) > 0
+    waves = values.get("wave_height", 0.0) > 0
+    if not (wind or waves):
+        return {}
+    from ..environment.loads import environment, ship_load_params
+
+    env = environment(wind="blendermann" if wind else None, waves="lvov" if waves else None)
+    kw = {k: values[k] for k in values if (wind and k.startswith("wind"))
+          or (waves and k.startswith("wave"))}
+    if waves and "wave_length" not in kw:
+        kw["wave_length"] = ship.particulars.length  # (λ/L = 1: the largest mean loads)
+    with warnings.catch_warnings():
+        # a hull just outside Lvov's eq. (5)-(7) range (the KVLCC2's C_b 0.81 > 0.8)
+        warnings.simplefilter("ignore", ValidityRangeWarning)
+        params = ship_load_params(ship, env, **kw)
+    return {"environment": env, "environment_params": params}
+
+
+def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
+                action_period: float, weather: Mapping[str, float] | None = None,
+                integrator: Any = "rk4") -> Plant:
+    """The :class:`Plant` of ``num_envs`` runs of ``ship``.
+
+    Parameters
+    ----------
+    ship : Ship or str
+        A ship or its catalog name / ship file.
+    num_envs : int
+        Runs (sub-environments).
+    episode_seconds : float
+        One episode [s] (the simulator's horizon); a whole multiple of ``action_period``.
+    dt : float
+        Integration step [s].
+    action_period : float
+        Time between two actions [s] (the controller interval), a whole multiple of ``dt``.
+    weather : mapping, optional
+        :data:`WEATHER_KEYS` (default calm water).
+    integrator : str or ButcherTableau
+        The fixed-step method (default ``"rk4"``; ``"euler"`` is the explicit Euler method of
+        most Python ship environments).
+
+    Raises
+    ------
+    ParameterError
+        Naming the argument (``ship``, ``num_envs``, a weather keyword, a time).
+    """
+    from ..analysis.equilibrium import approach_state
+
+    if isinstance(ship, str):
+        try:
+            ship = get_ship(ship)
+        except (ValueError, FileNotFoundError) as exc:
+            raise ParameterError(f": {exc}", field="ship", value=ship) from None
+    if isinstance(num_envs, bool) or not isinstance(num_envs, (int, np.integer)) \
+            or num_envs < 1:
+        raise ParameterError(f"must be an integer >= 1, got {num_envs!r}", field="num_envs",
+                             value=num_envs)
+    for name, v in (("episode_seconds", episode_seconds), ("dt", dt),
+                    ("action_period", action_period)):
+        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+            raise ParameterError(f"must be > 0 [s], got {v!r}", field=name, unit="s", value=v)
+    ratio = episode_seconds / action_period
+    if abs(ratio - round(ratio)) > 1e-9 * max(1.0, ratio):
+        raise ParameterError(f"must be a whole multiple of action_period = {action_period:g} s, "
+                             f"got {episode_seconds!r}", field="episode_seconds", unit="s",
+                             value=episode_seconds)
+    start = approach_state(ship, trim=True)
+    env_kw = _weather(ship, weather or {})
+    rudder0 = float(start.inputs.get("rudder_angle", 0.0))
+    problem = Problem(ship=ship, x0=np.repeat(start.state[None], int(num_envs), axis=0),
+                      actuator_x0=[rudder0], t_final=float(episode_seconds), dt=float(dt),
+                      controller_dt=float(action_period),
+                      record_every=max(1, int(round(episode_seconds / dt))),
+                      integrator=integrator, **env_kw)
+    sim = Simulator(problem)
+    labels = sim.command_labels
+    inputs = {"rudder_command": rudder0, **start.inputs}
+    command_start = np.array([float(inputs.get(c, 0.0)) for c in labels])
+    gear = getattr(ship, "steering_gear", None)
+    max_rudder = float(getattr(getattr(gear, "params", None), "max_angle", math.radians(35.0)))
+    particulars = getattr(ship, "particulars", None)
+    length = float(getattr(particulars, "length", None) or getattr(ship, "length", 0.0) or 0.0)
+    if not length > 0:
+        raise ParameterError(": the ship has no length (its particulars are needed to scale "
+                             "the tasks)", field="ship", value=getattr(ship, "name", ship))
+    obs0 = sim.reset()
+    speed = float(obs0["speed"][0]) if "speed" in obs0 else float(np.hypot(
+        obs0["surge_speed"][0], obs0["sway_speed"][0]))
+    if not speed > 0:
+        raise ParameterError(f": the approach speed is {speed!r} m/s; the tasks need a ship "
+                             "under way", field="ship", value=getattr(ship, "name", ship))
+    return Plant(ship=ship, simulator=sim, command_labels=labels,
+                 command_units=sim.command_units, command_start=command_start,
+                 state_start=np.array([sim.state(0)[s] for s in sim.state_labels]),
+                 speed=speed, length=length,
+                 max_rudder=max_rudder)

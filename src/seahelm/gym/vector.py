@@ -1,0 +1,360 @@
+"""A native :class:`gymnasium.vector.VectorEnv` over N runs of one
+:class:`~seahelm.Simulator`: every sub-environment is a run of the same compiled loop, all
+stepped by one call (no wrapper of N single environments, no Python per sub-environment).
+
+Autoreset follows gymnasium 1.x's *next-step* mode (``metadata["autoreset_mode"]``): the step
+after a sub-environment's episode ends (terminated or truncated), its action is ignored, it
+starts a new episode and returns that episode's first observation with reward 0 and both flags
+False. ``autoreset_mode="Disabled"`` leaves the restart to ``reset(options={"reset_mask": m})``.
+
+Actions are the actuator's commands, in their units (``rudder_command`` [rad],
+``propeller_rps`` [1/s]), in a bounded ``Box``. An action outside the box is clipped to it (what
+:class:`gymnasium.wrappers.ClipAction` would do; a policy's Gaussian sample routinely is out of
+bounds); an action that is NaN or infinite is refused with a
+:class:`~seahelm.errors.ParameterError` naming ``actions`` and the sub-environment (nothing is
+stepped).
+"""
+
+from __future__ import annotations
+
+import inspect
+import math
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from .._optional import optional_import
+from ..errors import ParameterError
+from .plant import WEATHER_KEYS, Plant, build_plant
+from .tasks import TASKS, Task
+
+gym = optional_import("gymnasium", extra="rl", purpose="seahelm.gym")
+from gymnasium import spaces  # noqa: E402
+from gymnasium.vector import AutoresetMode, VectorEnv  # noqa: E402
+from gymnasium.vector.utils import batch_space  # noqa: E402
+
+__all__ = ["ShipVectorEnv"]
+
+#: Default bounds of the commands an action may set, from the ship: (low, high) given the
+#: largest rudder δ_max [rad] and the approach's rps n_0 [1/s].
+_BOUNDS = {"rudder_command": lambda d, n0: (-d, d),
+           "propeller_rps": lambda d, n0: (0.0, 1.5 * n0)}
+
+_MODES = {m.value: m for m in AutoresetMode}
+
+
+class ShipVectorEnv(VectorEnv):
+    """N sub-environments of one ship and task, stepped together in the compiled loop.
+
+    Parameters
+    ----------
+    num_envs : int
+        Sub-environments (runs of the simulator).
+    task : str
+        ``"HeadingKeeping"`` or ``"PathFollowing"`` (:data:`seahelm.gym.tasks.TASKS`).
+    ship : Ship or str
+        Catalog name or ship file (default ``"kvlcc2-l7"``).
+    actions : sequence of str
+        The commands the agent sets (default ``("rudder_command",)``; add
+        ``"propeller_rps"`` for a ship with a propeller); the others stay at the approach's.
+    action_bounds : mapping command -> (low, high), optional
+        Bounds of the action space in the command's units (default: ±δ_max of the steering
+        gear for the rudder, [0, 1.5 n_0] for the rps).
+    dt, action_period : float
+        Integration step and time between actions [s] (default 0.1 and 1.0).
+    episode_seconds : float, optional
+        Episode length [s] (default: the task's, 120 s heading keeping, 400 s path following);
+        an episode is truncated there.
+    integrator : str or ButcherTableau
+        Fixed-step method (default ``"rk4"``; ``"euler"``: explicit Euler).
+    reward : mapping term -> weight, optional
+        Reward weights (:mod:`seahelm.gym.tasks`).
+    autoreset_mode : str or AutoresetMode
+        ``"NextStep"`` (default) or ``"Disabled"``.
+    render_mode : None
+        No rendering.
+    **options
+        Weather (:data:`seahelm.gym.plant.WEATHER_KEYS`: ``wind_speed`` [m/s],
+        ``wind_direction`` [rad], ``wave_height`` [m], ``wave_length`` [m],
+        ``wave_direction`` [rad]) and the task's keywords (:class:`~seahelm.gym.tasks.Task`).
+
+    Attributes
+    ----------
+    observation_labels, observation_units, action_labels, action_units : tuple of str
+    plant : Plant
+        The ship, its simulator and approach.
+    task : Task
+    """
+
+    metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
+
+    def __init__(self, num_envs: int = 1, *, task: str = "HeadingKeeping",
+                 ship: Any = "kvlcc2-l7", actions: Any = ("rudder_command",),
+                 action_bounds: Mapping[str, tuple[float, float]] | None = None,
+                 dt: float = 0.1, action_period: float = 1.0,
+                 episode_seconds: float | None = None, integrator: Any = "rk4",
+                 reward: Mapping[str, float] | None = None,
+                 autoreset_mode: Any = AutoresetMode.NEXT_STEP,
+                 render_mode: str | None = None, **options: Any) -> None:
+        if task not in TASKS:
+            raise ParameterError(f": unknown task {task!r}; tasks: {', '.join(TASKS)}",
+                                 field="task", value=task)
+        if render_mode is not None:
+            raise ParameterError(f": no render modes, got {render_mode!r}",
+                                 field="render_mode", value=render_mode)
+        mode = _MODES.get(autoreset_mode, autoreset_mode)
+        if mode not in (AutoresetMode.NEXT_STEP, AutoresetMode.DISABLED):
+            raise ParameterError(f"must be 'NextStep' or 'Disabled', got {autoreset_mode!r}",
+                                 field="autoreset_mode", value=autoreset_mode)
+        task_cls = TASKS[task]
+        weather = {k: options.pop(k) for k in list(options) if k in WEATHER_KEYS}
+        allowed = (set(inspect.signature(task_cls.__init__).parameters)
+                   | set(inspect.signature(Task.__init__).parameters)) - {"self", "num_envs",
+                                                                          "kw", "length",
+                                                                          "speed", "max_rudder",
+                                                                          "reward"}
+        for key in options:
+            if key not in allowed:
+                raise ParameterError(f": unknown keyword {key!r} of task {task}; valid: "
+                                     f"{', '.join(sorted(allowed | set(WEATHER_KEYS)))}",
+                                     field=key)
+        seconds = task_cls.default_episode_seconds if episode_seconds is None \
+            else episode_seconds
+        self.plant: Plant = build_plant(ship, num_envs=num_envs, episode_seconds=seconds,
+                                        dt=dt, action_period=action_period, weather=weather,
+                                        integrator=integrator)
+        p = self.plant
+        self.task: Task = task_cls(int(num_envs), length=p.length, speed=p.speed,
+                                   max_rudder=p.max_rudder, reward=reward, **options)
+        self.num_envs = int(num_envs)
+        self.render_mode = None
+        self.metadata = {**type(self).metadata, "autoreset_mode": mode}
+        self.episode_seconds = float(seconds)
+        self._setup_actions(actions, action_bounds or {})
+        self.observation_labels = self.task.observation_labels
+        self.observation_units = self.task.observation_units
+        low, high = self._observation_bounds()
+        self.single_observation_space = spaces.Box(low, high, dtype=np.float32)
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        sim = p.simulator
+        self._sim = sim
+        self._cmd = np.repeat(p.command_start[None], self.num_envs, axis=0)
+        self._rudder_col = sim.command_labels.index("rudder_command")
+        self._previous = self._cmd[:, self._rudder_col].copy()
+        self._done = np.zeros(self.num_envs, dtype=bool)
+        self._started = False
+        self._rng = np.random.default_rng()
+
+    # --------------------------------------------------------------------------------------
+    def _setup_actions(self, actions: Any, bounds: Mapping[str, tuple[float, float]]) -> None:
+        p = self.plant
+        names = (actions,) if isinstance(actions, str) else tuple(actions)
+        if not names or len(set(names)) != len(names):
+            raise ParameterError(f"must be distinct command names, got {actions!r}",
+                                 field="actions", value=actions)
+        if "rudder_command" not in p.command_labels:
+            raise ParameterError(f": the ship's commands ({', '.join(p.command_labels)}) have "
+                                 "no rudder_command; the tasks steer with the rudder",
+                                 field="ship", value=getattr(p.ship, "name", p.ship))
+        for key in bounds:
+            if key not in names:
+                raise ParameterError(f": {key!r} is not an action; actions: "
+                                     f"{', '.join(names)}", field="action_bounds", value=key)
+        low, high = [], []
+        for name in names:
+            if name not in p.command_labels:
+                raise ParameterError(f": unknown command {name!r}; the ship's commands: "
+                                     f"{', '.join(p.command_labels)}", field="actions",
+                                     value=name)
+            j = p.command_labels.index(name)
+            unit = p.command_units[j]
+            if name in bounds:
+                lo, hi = (float(v) for v in bounds[name])
+            elif name in _BOUNDS:
+                n0 = p.command_start[p.command_labels.index("propeller_rps")] \
+                    if "propeller_rps" in p.command_labels else 0.0
+                lo, hi = _BOUNDS[name](p.max_rudder, n0)
+            else:
+                raise ParameterError(f": give the bounds of {name!r} [{unit}] in action_bounds",
+                                     field="action_bounds", value=name)
+            if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+                raise ParameterError(f"[{name!r}] must be finite with low < high [{unit}], got "
+                                     f"({lo!r}, {hi!r})", field="action_bounds", unit=unit,
+                                     value=(lo, hi))
+            low.append(lo)
+            high.append(hi)
+        self.action_labels = names
+        self.action_units = tuple(p.command_units[p.command_labels.index(n)] for n in names)
+        self._act_cols = np.array([p.command_labels.index(n) for n in names])
+        self._low = np.array(low)
+        self._high = np.array(high)
+        self.single_action_space = spaces.Box(self._low.astype(np.float32),
+                                              self._high.astype(np.float32), dtype=np.float32)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+
+    def _observation_bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        p = self.plant
+        rudder = [p.max_rudder, abs(p.command_start[p.command_labels.index("rudder_command")])]
+        if "rudder_command" in self.action_labels:
+            j = self.action_labels.index("rudder_command")
+            rudder += [abs(self._low[j]), abs(self._high[j])]
+        # bounds no run reaches (a gymnasium Box had best be finite), the angles' exact
+        U, L = p.speed, p.length
+        known = {"heading_error": math.pi, "next_turn": math.pi, "rudder_command": max(rudder),
+                 "yaw_rate": 10.0 * U / L, "surge_speed": 10.0 * U, "sway_speed": 10.0 * U,
+                 "cross_track_error": 2.0 * getattr(self.task, "max_cross_track", 0.0)}
+        high = np.array([known[n] for n in self.observation_labels])
+        return -high.astype(np.float32), high.astype(np.float32)
+
+    # --------------------------------------------------------------------------------------
+    def reset(self, *, seed: int | None = None,
+              options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict[str, Any]]:
+        """Start every sub-environment's episode (or those of ``options["reset_mask"]``).
+
+        Parameters
+        ----------
+        seed : int, optional
+            Seeds the episodes' draws (targets, initial errors): the same seed and actions give
+            the same episodes.
+        options : dict, optional
+            ``{"reset_mask": bool array (num_envs,)}``: start only those.
+
+        Returns
+        -------
+        observations (num_envs, observations), info (empty dict)
+        """
+        super().reset(seed=seed)
+        if seed is not None or not self._started:
+            self._rng = self.np_random
+        mask = (options or {}).get("reset_mask")
+        if mask is None:
+            sel = np.arange(self.num_envs)
+        else:
+            m = np.asarray(mask)
+            if m.shape != (self.num_envs,) or m.dtype != bool:
+                raise ParameterError(f"['reset_mask'] must be a bool array of shape "
+                                     f"({self.num_envs},), got {m.dtype} {m.shape}",
+                                     field="options", value=m.shape)
+            if not self._started and not m.all():
+                raise ParameterError(": the first reset starts every sub-environment "
+                                     "(no reset_mask)", field="options")
+            sel = np.flatnonzero(m)
+        self._begin(sel)
+        self._started = True
+        return self._observe_now()
+
+    def step(self, actions: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray,
+                                           dict[str, Any]]:
+        """Apply one action per sub-environment for ``action_period`` seconds.
+
+        Parameters
+        ----------
+        actions : array_like (num_envs, actions)
+            By :attr:`action_labels` in :attr:`action_units`; clipped to the action space;
+            NaN or infinite refused.
+
+        Returns
+        -------
+        observations, rewards, terminations, truncations (num_envs,), info (empty dict)
+
+        Raises
+        ------
+        ParameterError
+            Before :meth:`reset`, on a wrong shape, or a NaN/infinite action (nothing is
+            stepped).
+        """
+        if not self._started:
+            raise ParameterError(": call reset() before step()", field="reset")
+        a = self._actions(actions)
+        sim = self._sim
+        restart = self._done.copy() if self.metadata["autoreset_mode"] is AutoresetMode.NEXT_STEP \
+            else np.zeros(self.num_envs, dtype=bool)
+        self._previous[:] = self._cmd[:, self._rudder_col]
+        if restart.any():
+            sel = np.flatnonzero(restart)
+            self._begin(sel)
+            go = np.flatnonzero(~restart & (sim.status == 0))
+            self._cmd[go[:, None], self._act_cols] = a[go]
+            if go.size:
+                out = sim.step(self._cmd[go], runs=go)
+            else:
+                out = self._sim_observe()
+        else:
+            self._cmd[:, self._act_cols] = a
+            out = sim.step(self._cmd)
+        obs, terms, failed, success = self.task.evaluate(out, self._cmd[:, self._rudder_col],
+                                                         self._previous)
+        diverged = out.status != 0
+        if diverged.any():
+            failed = failed | diverged
+            terms["failure"] = -failed.astype(float)
+        reward = self.task.reward(terms)
+        terminated = failed | success
+        truncated = ~terminated & (out.time >= self.episode_seconds - 1e-9)
+        if restart.any():
+            reward[restart] = 0.0
+            terminated[restart] = False
+            truncated[restart] = False
+        self._done = terminated | truncated
+        return self._cast(obs), reward, terminated, truncated, {}
+
+    def close(self, **kwargs: Any) -> None:
+        """End the simulator's thread pool."""
+        self._sim.close()
+        self.closed = True
+
+    # --------------------------------------------------------------------------------------
+    def _actions(self, actions: Any) -> np.ndarray:
+        n, k = self.num_envs, len(self.action_labels)
+        try:
+            a = np.asarray(actions, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ParameterError(f"must be numbers of shape ({n}, {k}) "
+                                 f"({', '.join(self.action_labels)}), got {actions!r}",
+                                 field="actions") from None
+        if a.shape != (n, k):
+            if a.size == n * k and (a.ndim <= 1 or a.shape == (k, n) and k == 1):
+                a = a.reshape(n, k)
+            else:
+                raise ParameterError(f"must have shape ({n}, {k}) (envs, "
+                                     f"{', '.join(self.action_labels)}), got {a.shape}",
+                                     field="actions", value=a.shape)
+        if not math.isfinite(a.sum()):
+            bad = np.argwhere(~np.isfinite(a))[0]
+            raise ParameterError(f": action {self.action_labels[bad[1]]!r} of sub-environment "
+                                 f"{int(bad[0])} is {float(a[tuple(bad)])!r}; actions must be "
+                                 f"finite [{self.action_units[bad[1]]}]", field="actions",
+                                 value=float(a[tuple(bad)]), run=int(bad[0]))
+        return np.minimum(np.maximum(a, self._low), self._high)
+
+    def _begin(self, sel: np.ndarray) -> None:
+        """Start the episodes of ``sel``: the runs reset, the task's draws set."""
+        p, sim = self.plant, self._sim
+        sim.reset(runs=sel)
+        self._cmd[sel] = p.command_start
+        self._previous[sel] = p.command_start[self._rudder_col]
+        self._done[sel] = False
+        start = self.task.begin(sel, self._rng)
+        for r, i in enumerate(sel):
+            sim.set_state(int(i), {k: float(v[r]) for k, v in start.items()})
+
+    def _sim_observe(self):
+        return self._sim.observe()
+
+    def _observe_now(self) -> tuple[np.ndarray, dict[str, Any]]:
+        """The observations now, without stepping (after a reset)."""
+        out = self._sim.observe()
+        obs, _, _, _ = self.task.evaluate(out, self._cmd[:, self._rudder_col], self._previous)
+        return self._cast(obs), {}
+
+    def _cast(self, obs: np.ndarray) -> np.ndarray:
+        if not math.isfinite(obs.sum()):  # (a diverged run: its last values, kept in bounds)
+            obs = np.nan_to_num(obs, nan=0.0)
+        box = self.single_observation_space
+        # (np.minimum/np.maximum: np.clip's Python wrapper costs more than the work)
+        return np.minimum(np.maximum(obs, box.low), box.high).astype(np.float32)
+
+    def __repr__(self) -> str:
+        return (f"ShipVectorEnv({self.task.name}, {getattr(self.plant.ship, 'name', '?')}, "
+                f"num_envs={self.num_envs}, actions={', '.join(self.action_labels)})")
