@@ -131,8 +131,8 @@ def main() -> None:
           f"({t_nom / n_int * 1e6:.1f} µs an interval; the whole horizon "
           f"{t_nom_whole / n_int * 1e6:.1f} µs an interval)")
     print(f"calibration: one 0-step call of the compiled loop costs {t_call * 1e6:.1f} µs here "
-          "now (about 4 µs on an idle core); a stepped interval makes two such calls (the loop, "
-          "then the outputs) and some Python")
+          "now (about 4 µs on an idle core); a stepped interval makes one such call (the loop "
+          "leaves the outputs at the interval's end) and some Python")
 
 
 if __name__ == "__main__":

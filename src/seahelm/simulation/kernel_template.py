@@ -293,8 +293,8 @@ def observe_runs(i_start, i_stop, k, dt, state, params, signals, waves, scratch,
 
 @njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False)
 def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_every, external,
-              state, params, signals, outcome, record, waves, scratch,
-              wscratch):  # pragma: no cover - compiled
+              state, params, signals, outcome, record, waves, scratch, wscratch,
+              out):  # pragma: no cover - compiled
     """Advance runs ``i_start`` to ``i_stop`` − 1 from step ``k_start`` to ``k_stop`` (the state
     arrays are updated in place, so a simulation goes on chunk by chunk).
 
@@ -305,6 +305,10 @@ def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_eve
     ``scratch`` (:func:`scratch`) and ``wscratch`` (:func:`wave_scratch`). With ``external``
     the controller is not stepped: the commands held in ``state``'s ``cmd`` are applied as
     they are (an external controller, :class:`seahelm.simulation.stepping.Simulator`).
+    With a non-empty ``out`` (runs, outputs) each run's outputs at step ``k_stop`` are written
+    into ``out[i]``, by the loop's own code (the step is not taken: the next call starts
+    there) — a stepped interval's observation without a second call
+    (an empty ``out``, shape (0, outputs): nothing is observed).
     """
     z, cs, cmd, ca = state
     mp, ap, cp, ep, lower, upper = params
@@ -325,6 +329,7 @@ def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_eve
             has_bounds = True
     dist_varies = dist.shape[1] > 1
     ref_varies = ref.shape[1] > 1
+    observe = out.shape[0] > 0
     for i in range(i_start, i_stop):
         if status[i] != 0:
             continue
@@ -346,18 +351,20 @@ def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_eve
         to_rec = (rec_every - k_start % rec_every) % rec_every
         # the record after the last step is one more iteration, that records and stops (the
         # final state is recorded even when the step count is not a multiple of rec_every)
-        k_end = k_stop + 1 if k_stop == n_steps else k_stop
+        # (observed: one more iteration that computes the outputs at k_stop and stops)
+        k_end = k_stop + 1 if k_stop == n_steps or observe else k_stop
         for k in range(k_start, k_end):
             t = k * dt
             last = k == n_steps
+            halt = k == k_stop  # (reached only at the last step, or observed)
             on_grid = to_rec == 0
-            record = on_grid or last
-            control = to_ctrl == 0 and not last
+            record = (on_grid and not halt) or last
+            control = to_ctrl == 0 and not halt
             to_rec = rec_every - 1 if on_grid else to_rec - 1
             to_ctrl = ctrl_every - 1 if control else to_ctrl - 1
             # the model's outputs only when recorded or measured (NM is a compile-time
             # constant: for a controller that measures nothing the branch is gone)
-            if record or (control and NM > 0):
+            if record or (control and NM > 0) or halt:
                 actuator_output(xa, cai, api, ya)
                 route_inputs(ya, cmdi, u)
                 model_output(t, xv, u, mpi, ym)
@@ -394,7 +401,10 @@ def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_eve
                     rec_y[i, m, j] = ym[j]
                 for j in range(ncmd):
                     rec_cmd[i, m, j] = cmdi[j]
-            if last:
+            if halt:
+                if observe:
+                    for j in range(NYM):
+                        out[i, j] = ym[j]
                 break
             if dist_varies:
                 for j in range(nd):

@@ -99,6 +99,8 @@ class _Slices:
             self.wave_scratch.append(wsc)
             self._blocks.append(blocks)
         self._keep_pool = keep_pool
+        # nothing observed (the kernel's ``out`` of the whole-horizon loop): empty, (0, outputs)
+        self._no_out = np.zeros((0, arrays.record[1].shape[2]))
         self._pool: ThreadPoolExecutor | None = None
 
     def warm_up(self, n_steps: int, dt: float, ctrl_every: int, rec_every: int) -> None:
@@ -121,17 +123,19 @@ class _Slices:
                                      wsc, out)
 
     def run(self, k_start: int, k_stop: int, n_steps: int, dt: float, ctrl_every: int,
-            rec_every: int, external: int = 0) -> None:
+            rec_every: int, external: int = 0, out: np.ndarray | None = None) -> None:
         """Advance every run from step ``k_start`` to ``k_stop`` (``external``: the commands
-        held in the state group are applied, the controller is not stepped)."""
+        held in the state group are applied, the controller is not stepped; ``out`` (runs,
+        outputs): each run still going gets its outputs at ``k_stop`` there)."""
         a = self.arrays
         run_slice = self.kernel.run_slice
+        out = self._no_out if out is None else out
 
         def one(s: int) -> None:
             i0, i1 = self.bounds[s]
             run_slice(i0, i1, k_start, k_stop, n_steps, dt, ctrl_every, rec_every, external,
                       a.state, a.params, a.signals, a.outcome, a.record, a.waves,
-                      self.scratch[s], self.wave_scratch[s])
+                      self.scratch[s], self.wave_scratch[s], out)
 
         n_slices = len(self.bounds)
         if self.threads == 1 or k_stop == k_start:

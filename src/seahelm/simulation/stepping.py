@@ -120,9 +120,8 @@ class Simulator:
         self._nc = len(self.command_labels)
         self._all = np.arange(b.n_runs)
         self._seed = problem.seed
-        with quiet(b.jit):
+        with quiet(b.jit):  # (the outputs come from the same loop: run_slice's ``out``)
             b.slices.warm_up(b.n_steps, b.dt, b.ctrl_every, b.record_every)
-            b.slices.observe(0, b.dt, self._out[:0])  # compiles the outputs' function
 
     # --------------------------------------------------------------------------------------
     @property
@@ -262,18 +261,18 @@ class Simulator:
             self._cmd[:, :self._nc] = self._commands(commands, None)
             external = 1
         k1 = min(k0 + n * b.ctrl_every, b.n_steps)
-        if n == 1 or self._n_runs * (k1 - k0) < 100_000:  # (a short step: one call)
-            if b.jit:
-                b.slices.run(k0, k1, b.n_steps, b.dt, b.ctrl_every, b.record_every, external)
-            else:
-                with quiet(False):
-                    b.slices.run(k0, k1, b.n_steps, b.dt, b.ctrl_every, b.record_every,
-                                 external)
+        observed = n == 1 or self._n_runs * (k1 - k0) < 100_000
+        if observed:  # (a short step: one call, which also leaves the outputs at k1 in _out)
+            with quiet(b.jit):
+                b.slices.run(k0, k1, b.n_steps, b.dt, b.ctrl_every, b.record_every, external,
+                             self._out)
         else:  # in slices of wall time: a stop signal gets through
             drive(b.slices, b.n_steps, b.dt, b.ctrl_every, b.record_every, jit=b.jit,
                   k_start=k0, k_stop=k1, external=external)
         self._k0 = k1
         self._k.fill(k1)
+        if observed and not self._status.any():  # (every run's outputs written by the loop)
+            return self._observation()
         return self._finish(None)
 
     def observe(self) -> Observation:
@@ -567,20 +566,25 @@ class Simulator:
             d[i, k0:min(k0 + b.ctrl_every, b.n_steps) + 1, :nd] = dist[r]
 
     def _observe(self) -> Observation:
-        b = self._batch
-        if b.jit:
+        with quiet(self._batch.jit):
             self._observe_into()
-        else:
-            with quiet(False):
-                self._observe_into()
-        return Observation(self._k * b.dt, self._out.copy(), self.output_labels,
+        return self._observation()
+
+    def _observation(self) -> Observation:
+        return Observation(self._k * self._batch.dt, self._out.copy(), self.output_labels,
                            self.output_units, self._status.copy(), self._out_index)
 
     def _observe_into(self) -> None:
         b = self._batch
         k = self._k
-        if self._aligned or (k == k[0]).all():
-            b.slices.observe(int(k[0]), b.dt, self._out)
+        k0 = int(k[0])
+        if self._aligned or (k == k0).all():
+            if k0 < b.n_steps and not self._status.any():  # a zero-step call of the loop
+                # (observe_runs is a second compiled function: compiled only when needed)
+                b.slices.run(k0, k0, b.n_steps, b.dt, b.ctrl_every, b.record_every, 1,
+                             self._out)
+            else:
+                b.slices.observe(k0, b.dt, self._out)
             return
         a = b.slices.arrays
         sc, wsc = b.slices.scratch[0], b.slices.wave_scratch[0]
