@@ -230,6 +230,9 @@ def nomoto(
     from ..errors import ParameterError
     from ._common import output_file
 
+    from .identify_mmg_ls import expand_logs, identify_mmg_ls, parse_free
+
+    files = expand_logs(files)
     for f in files:
         input_file("LOG", f)
     if not 0.0 < level < 1.0:
@@ -423,10 +426,22 @@ def mmg(
     samples: Annotated[int, typer.Option(
         "--samples", metavar="N", help="Without --imo: the number of posterior samples "
         "--save-posterior writes.", min=0, max=MAX_POSTERIOR)] = 0,
+    wind: Annotated[Literal["none", "measured"], typer.Option(
+        "--wind", help="mmg-ls ship: the records' measured true wind as a known input, or "
+        "still air.")] = "none",
+    free: Annotated[Optional[str], typer.Option(
+        "--free", metavar="NAMES", help="mmg-ls ship: the coefficients to fit, comma-separated "
+        "(default: the hull's sway/yaw derivatives, cross-flow and rudder terms, X_0F).")] = None,
+    segment: Annotated[float, typer.Option(
+        "--segment", metavar="S", help="mmg-ls ship: records are fitted in segments of S "
+        "seconds, each from its measured state.")] = 60.0,
     force: ForceFlag = False,
     json_out: JsonFlag = False,
 ) -> None:
     """Identify the MMG hull derivatives from free-running records, the rest from a base ship.
+
+    LOG may be a folder. An mmg-ls ship (esso-osaka-3m): its coefficients (--free) by
+    output error over record segments, the wind an input (seahelm.cli.identify_mmg_ls).
 
     With --imo N the IMO check runs on N ships drawn from the posterior, the identified ship
     bounding their runs' durations; `--imo N -o SHIP.toml --save-posterior FILE.csv` and then
@@ -438,6 +453,9 @@ def mmg(
     from ..ships import get_ship
     from ._common import output_file, write_ship_file
 
+    from .identify_mmg_ls import expand_logs, identify_mmg_ls, parse_free
+
+    files = expand_logs(files)
     for f in files:
         input_file("LOG", f)
     if not 0.0 < level < 1.0:
@@ -446,9 +464,17 @@ def mmg(
         base = get_ship(ship)
     except ValueError as exc:
         raise ParameterError(f"`--ship`: {exc}") from None
-    if not base.model.supports("hull-identification"):
+    low_speed = base.model.supports("record-identification")
+    if not base.model.supports("hull-identification") and not low_speed:
         raise ParameterError(f"`--ship` '{base.name}' uses model '{base.model.name}'; the MMG "
-                             "identification needs an MMG ship (e.g. `seahelm ship estimate`)")
+                             "identification needs an MMG ship (mmg, e.g. `seahelm ship "
+                             "estimate`, or mmg-ls)")
+    if low_speed and imo:
+        raise ParameterError("`--imo` is for an mmg ship; mmg-ls: `--samples N --save-posterior`")
+    if not low_speed and (wind != "none" or free is not None):
+        raise ParameterError(f"`--{'wind' if wind != 'none' else 'free'}` is for an mmg-ls "
+                             f"ship; '{base.name}' uses model mmg (its hull derivatives)")
+    names = parse_free(free) if low_speed else None
     n_post = _posterior_count(imo, samples, save_posterior)
     reads = (*files, *((Path(ship),) if Path(ship).is_file() else ()))
     if out is not None:
@@ -457,6 +483,10 @@ def mmg(
         output_file("--save-posterior", save_posterior, "csv", reads=reads, force=force)
         if out is not None and save_posterior.resolve() == out.resolve():
             raise ParameterError("`--save-posterior` and `--out` are the same file")
+    if low_speed:
+        return identify_mmg_ls(files, base, wind=wind, free=names, segment=segment, out=out,
+                               name=name, samples=n_post, save_posterior=save_posterior,
+                               seed=seed, angles=angles, json_out=json_out)
     records = read_records(files, angles=angles)
     for rec in records:
         rps = rec.channels.get("propeller_rps")
