@@ -26,6 +26,8 @@ def test_the_mmg_model_declares_what_was_keyed_by_its_name():
     assert MMG.capabilities == {"shallow-water", "hull-identification", "engine-estimate"}
     # every other registered model declares none of them: what the name checks allowed
     others = {name: get_model(name).capabilities for name in VESSEL_MODELS if name != "mmg"}
+    # mmg-ls declares the output-error fit of measured records (issue 48 item 3), no other
+    assert others.pop("mmg-ls") == {"record-identification"}
     assert all(not caps for caps in others.values()), others
 
 
@@ -35,7 +37,8 @@ def test_a_capability_must_be_one_of_the_known_names():
         dataclasses.replace(MMG, capabilities=frozenset({"shallow_water"}))
     with pytest.raises(ValueError, match="unknown capability 'shallow'"):
         MMG.supports("shallow")
-    assert set(CAPABILITIES) == {"shallow-water", "hull-identification", "engine-estimate"}
+    assert set(CAPABILITIES) == {"shallow-water", "hull-identification", "engine-estimate",
+                                 "record-identification"}
 
 
 def test_shallow_water_follows_the_capability_not_the_name():

@@ -56,6 +56,9 @@ CAPABILITIES: dict[str, str] = {
     "engine-estimate": "a ship on it with a propeller gets an engine, shaft and reversal "
                        "estimate for the stopping test (seahelm.vessels.mmg_four_quadrant."
                        "from_mmg: the ship on model 'mmg-4q')",
+    "record-identification": "its hull, propeller and rudder coefficients are fitted by output "
+                             "error to segments of measured records (the multi-record fit: "
+                             "`seahelm identify mmg --free` of an mmg-ls ship)",
 }
 
 

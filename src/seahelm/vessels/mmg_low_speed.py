@@ -314,6 +314,7 @@ MMG_LS = VesselModel(
     output_labels=OUTPUTS,
     output_units=OUTPUT_UNITS,
     motion=mmg_motion,
+    capabilities=frozenset({"record-identification"}),
 )
 
 
