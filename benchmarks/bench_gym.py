@@ -17,7 +17,7 @@ a heading, dt = 0.1 s, an action (rudder command) every 1 s, episodes of 120 s:
 Prints medians of several repetitions and the ratios (targets of issue 52: the vector env
 ≥ 50 × the baseline and ≥ 5 × seahelm's single env).
 
-    python benchmarks/bench_gym.py [--repeats 3] [--envs 1024] [--quick]
+    python benchmarks/bench_gym.py [--repeats 5] [--envs 1024] [--quick]
 
 And an FMU of the same ship (``seahelm fmu``) run by fmpy: one ``doStep`` of 1 s against the
 same interval through the Python stepping API (target of issue 52: ≤ 2 ×).
@@ -144,33 +144,37 @@ class PythonMMGHeadingEnv(gymnasium.Env):
         return obs, reward, False, truncated, {}
 
 
-def _single(env: gymnasium.Env, steps: int) -> float:
+def _single(env: gymnasium.Env, steps: int) -> tuple[float, float]:
+    """Env-steps per second of wall time and of this process's CPU time."""
     rng = np.random.default_rng(0)
     actions = rng.uniform(-0.3, 0.3, (steps, 1)).astype(np.float32)
     env.reset(seed=0)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     for k in range(steps):
         _, _, terminated, truncated, _ = env.step(actions[k])
         if terminated or truncated:
             env.reset()
-    return steps / (time.perf_counter() - t0)
+    return steps / (time.perf_counter() - t0), steps / (time.process_time() - c0)
 
 
-def _vector(envs: ShipVectorEnv, steps: int) -> float:
+def _vector(envs: ShipVectorEnv, steps: int) -> tuple[float, float]:
+    """Env-steps per second of wall time and of this process's CPU time (every thread's)."""
     rng = np.random.default_rng(0)
     actions = rng.uniform(-0.3, 0.3, (steps, envs.num_envs, 1)).astype(np.float32)
     envs.reset(seed=0)
     envs.step(actions[0])  # (the thread pool up)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     for k in range(steps):
         envs.step(actions[k])  # autoreset at the episodes' ends, by gymnasium's rule
-    return steps * envs.num_envs / (time.perf_counter() - t0)
+    n = steps * envs.num_envs
+    return n / (time.perf_counter() - t0), n / (time.process_time() - c0)
 
 
 def _fmu_step_cost(steps: int) -> tuple[float, float, float]:
-    """Seconds per 1 s interval: an FMU doStep through fmpy (set the two inputs, doStep, get
-    the eight outputs: a master's round), the bare doStep, and the same interval through the
-    Python stepping API (:meth:`seahelm.Simulator.step` of one 1 s controller interval)."""
+    """Seconds per 1 s interval (medians of interleaved chunks): an FMU doStep through fmpy
+    (set the two inputs, doStep, get the eight outputs: a master's round), the bare doStep,
+    and the same interval through the Python stepping API (:meth:`seahelm.Simulator.step` of
+    one 1 s controller interval)."""
     import tempfile
     from pathlib import Path
 
@@ -198,49 +202,52 @@ def _fmu_step_cost(steps: int) -> tuple[float, float, float]:
         outputs = [vr[n] for n in ("north", "east", "heading", "surge_speed", "sway_speed",
                                    "speed", "yaw_rate", "rudder_angle")]
         n0 = start.inputs["propeller_rps"]
-        t = 0.0
-        fmu.doStep(currentCommunicationPoint=t, communicationStepSize=1.0)
-        t += 1.0
-        t0 = time.perf_counter()
-        for k in range(steps):
-            fmu.setReal(inputs, [0.1 * math.sin(0.1 * k), n0])
-            fmu.doStep(currentCommunicationPoint=t, communicationStepSize=1.0)
-            fmu.getReal(outputs)
-            t += 1.0
-        round_trip = (time.perf_counter() - t0) / steps
-        t0 = time.perf_counter()
-        for k in range(steps):
-            fmu.doStep(currentCommunicationPoint=t, communicationStepSize=1.0)
-            t += 1.0
-        bare = (time.perf_counter() - t0) / steps
-        fmu.terminate()
-        fmu.freeInstance()
-    problem = Problem(ship=ship, x0=start.state, actuator_x0=[start.inputs["rudder_angle"]],
-                      t_final=float(steps + 10), dt=DT, controller_dt=1.0,
-                      record_every=int(round((steps + 10) / DT)))
-    with Simulator(problem) as sim:
+        problem = Problem(ship=ship, x0=start.state,
+                          actuator_x0=[start.inputs["rudder_angle"]],
+                          t_final=float(3 * steps + 10), dt=DT, controller_dt=1.0,
+                          record_every=int(round((3 * steps + 10) / DT)))
+        sim = Simulator(problem)
         sim.reset()
         cmd = np.array([0.0, n0])
         sim.step(cmd)
-        t0 = time.perf_counter()
-        for k in range(steps):
-            cmd[0] = 0.1 * math.sin(0.1 * k)
-            obs = sim.step(cmd)
-            obs.values[0]
-        stepping = (time.perf_counter() - t0) / steps
+        fmu.doStep(currentCommunicationPoint=0.0, communicationStepSize=1.0)
+        t = 1.0
+        chunk = max(1, steps // 10)
+        rows: list[tuple[float, float, float]] = []
+        for _ in range(steps // chunk):  # (chunks interleaved: the load falls on all alike)
+            t0 = time.perf_counter()
+            for k in range(chunk):
+                fmu.setReal(inputs, [0.1 * math.sin(0.1 * k), n0])
+                fmu.doStep(currentCommunicationPoint=t, communicationStepSize=1.0)
+                fmu.getReal(outputs)
+                t += 1.0
+            t1 = time.perf_counter()
+            for k in range(chunk):
+                fmu.doStep(currentCommunicationPoint=t, communicationStepSize=1.0)
+                t += 1.0
+            t2 = time.perf_counter()
+            for k in range(chunk):
+                cmd[0] = 0.1 * math.sin(0.1 * k)
+                sim.step(cmd).values[0]
+            t3 = time.perf_counter()
+            rows.append(((t1 - t0) / chunk, (t2 - t1) / chunk, (t3 - t2) / chunk))
+        sim.close()
+        fmu.terminate()
+        fmu.freeInstance()
+    round_trip, bare, stepping = (statistics.median(r[i] for r in rows) for i in range(3))
     return round_trip, bare, stepping
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--envs", type=int, default=1024)
     parser.add_argument("--quick", action="store_true")
     args = parser.parse_args()
     n_envs = 16 if args.quick else args.envs
     repeats = 1 if args.quick else args.repeats
-    single_steps = 50 if args.quick else 2000
-    vector_steps = 10 if args.quick else 240  # two episodes: one autoreset of every env
+    single_steps = 50 if args.quick else 600
+    vector_steps = 10 if args.quick else 130  # past an episode's end: one autoreset of all
     baseline = PythonMMGHeadingEnv()
     env = ShipEnv(task="HeadingKeeping", ship="kvlcc2-l7", dt=DT, action_period=ACTION_PERIOD,
                   episode_seconds=EPISODE)
@@ -250,31 +257,34 @@ def main() -> None:
                           action_period=ACTION_PERIOD, episode_seconds=EPISODE,
                           integrator="euler")
     _single(env, 5)  # (warm)
-    rows = {"baseline": [], "single": [], "vector": [], "euler": []}
+    # interleaved, so that the machine's load falls on every row alike
+    rows: dict[str, list[tuple[float, float]]] = {k: [] for k in
+                                                  ("baseline", "single", "vector", "euler")}
     for _ in range(repeats):
         rows["baseline"].append(_single(baseline, single_steps // 4))
         rows["single"].append(_single(env, single_steps))
         rows["vector"].append(_vector(envs, vector_steps))
         rows["euler"].append(_vector(euler, vector_steps))
-    med = {k: statistics.median(v) for k, v in rows.items()}
+    wall = {k: statistics.median(w for w, _ in v) for k, v in rows.items()}
+    cpu = {k: statistics.median(c for _, c in v) for k, v in rows.items()}
     print(f"KVLCC2 L7 heading keeping, dt {DT} s, an action every {ACTION_PERIOD} s "
-          f"(medians of {repeats})")
-    print(f"{'environment':60s} {'env-steps/s':>12s}")
-    print(f"{'Python MMG, explicit Euler (TUD_RL-style baseline)':60s} {med['baseline']:12,.0f}")
-    print(f"{'seahelm ShipEnv (one ship)':60s} {med['single']:12,.0f}")
-    print(f"{f'seahelm ShipVectorEnv ({n_envs} sub-environments, RK4)':60s} "
-          f"{med['vector']:12,.0f}")
-    print(f"{f'seahelm ShipVectorEnv ({n_envs}, explicit Euler as the baseline)':60s} "
-          f"{med['euler']:12,.0f}")
-    print(f"vector / baseline: {med['vector'] / med['baseline']:.1f} x RK4, "
-          f"{med['euler'] / med['baseline']:.1f} x Euler (target >= 50 x); "
-          f"vector / single env: {med['vector'] / med['single']:.1f} x (target >= 5 x); "
-          f"single env / baseline: {med['single'] / med['baseline']:.1f} x")
+          f"(medians of {repeats}, interleaved; per second of wall time, and of the process's "
+          f"CPU time: every thread's, the fair measure on a loaded machine)")
+    print(f"{'environment':60s} {'env-steps/s':>12s} {'per CPU-s':>12s}")
+    names = {"baseline": "Python MMG, explicit Euler (TUD_RL-style baseline)",
+             "single": "seahelm ShipEnv (one ship)",
+             "vector": f"seahelm ShipVectorEnv ({n_envs} sub-environments, RK4)",
+             "euler": f"seahelm ShipVectorEnv ({n_envs}, explicit Euler as the baseline)"}
+    for key, name in names.items():
+        print(f"{name:60s} {wall[key]:12,.0f} {cpu[key]:12,.0f}")
+    for what, m in (("wall", wall), ("CPU", cpu)):
+        print(f"{what}: vector / baseline {m['vector'] / m['baseline']:.1f} x RK4, "
+              f"{m['euler'] / m['baseline']:.1f} x Euler (target >= 50 x); vector / single env "
+              f"{m['vector'] / m['single']:.1f} x (target >= 5 x); single env / baseline "
+              f"{m['single'] / m['baseline']:.1f} x")
     for e in (env, envs, euler):
         e.close()
-    fmu_steps = 20 if args.quick else 1000
-    costs = [_fmu_step_cost(fmu_steps) for _ in range(repeats)]
-    round_trip, bare, stepping = (statistics.median(c[i] for c in costs) for i in range(3))
+    round_trip, bare, stepping = _fmu_step_cost(20 if args.quick else 2000)
     print(f"FMU (seahelm fmu kvlcc2-l7, run by fmpy), one 1 s interval (dt {DT} s): "
           f"set inputs + doStep + get outputs {round_trip * 1e6:.0f} us, doStep alone "
           f"{bare * 1e6:.0f} us; Simulator.step of 1 s {stepping * 1e6:.0f} us; "

@@ -256,3 +256,25 @@ def test_cross_entropy_example_learns_a_little_in_two_iterations(tmp_path):
     assert proc.returncode == 0, proc.stderr
     assert "held-out episodes, mean return: initial policy" in proc.stdout
     assert (tmp_path / "rl_cross_entropy.png").stat().st_size > 10_000
+
+
+def test_each_sub_environment_equals_a_single_env_from_the_same_start():
+    # batched = one by one (house style 11): every sub-environment of the vector environment
+    # gives the observations and rewards of a ShipEnv started from its state and target
+    envs = ShipVectorEnv(3, episode_seconds=10.0, **WEATHER)
+    envs.reset(seed=9)
+    vsim = envs.plant.simulator
+    starts = [(vsim.state(i), float(envs.task.target[i])) for i in range(3)]
+    actions = np.random.default_rng(3).uniform(-0.4, 0.4, (8, 3, 1))
+    batched = [envs.step(a)[:2] for a in actions]
+    for i, (state, target) in enumerate(starts):
+        env = ShipEnv(episode_seconds=10.0, **WEATHER)
+        env.reset(seed=0)
+        env.plant.simulator.set_state(0, state)
+        env.task.target[0] = target
+        for k, a in enumerate(actions):
+            obs, reward, *_ = env.step(a[i])
+            np.testing.assert_array_equal(obs, batched[k][0][i])
+            assert reward == batched[k][1][i]
+        env.close()
+    envs.close()
