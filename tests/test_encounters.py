@@ -182,3 +182,18 @@ def test_mixed_ships_run_as_two_batches_in_lockstep():
 def test_bad_input_names_the_key(make, match):
     with pytest.raises(ParameterError, match=match):
         make()
+
+
+def test_rule_based_stand_on_keeps_course_while_a_port_crosser_draws_ahead():
+    """A target from port passing ahead draws to the starboard bow before the CPA; the
+    situation stays the one detected (stand-on), so the baseline keeps its course (Rule 17)."""
+    tgt = Vessel(ship=SHIP, north=4600.0, east=-4000.0, course=math.pi / 2, speed=8.0)
+    res = Encounter([_own(avoid=True), tgt], t_final=900.0, avoidance="rule-based").run()
+    assert res.situation[0, 0] == Situation.CROSSING_STAND_ON
+    assert res.min_range[0, 0] < 1852.0  # (a risk: CPA within the threshold)
+    beta = relative_bearing(np.stack([res.tracks["north"][0, 0], res.tracks["east"][0, 0]], -1),
+                            res.tracks["heading"][0, 0],
+                            np.stack([res.tracks["north"][0, 1], res.tracks["east"][0, 1]], -1))
+    assert (beta < math.pi / 2).any()  # (it drew to starboard)
+    assert res.verdicts["kept_course"][0, 0, 0]
+    assert np.abs(res.tracks["desired_heading"][0, 0]).max() == 0.0
