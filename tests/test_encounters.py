@@ -182,3 +182,36 @@ def test_mixed_ships_run_as_two_batches_in_lockstep():
 def test_bad_input_names_the_key(make, match):
     with pytest.raises(ParameterError, match=match):
         make()
+
+
+def test_rule_based_stand_on_keeps_course_while_a_port_crosser_draws_ahead():
+    """A target from port passing ahead draws to the starboard bow before the CPA; the
+    situation stays the one detected (stand-on), so the baseline keeps its course (Rule 17)."""
+    tgt = Vessel(ship=SHIP, north=4600.0, east=-4000.0, course=math.pi / 2, speed=8.0)
+    res = Encounter([_own(avoid=True), tgt], t_final=900.0, avoidance="rule-based").run()
+    assert res.situation[0, 0] == Situation.CROSSING_STAND_ON
+    assert res.min_range[0, 0] < 1852.0  # (a risk: CPA within the threshold)
+    beta = relative_bearing(np.stack([res.tracks["north"][0, 0], res.tracks["east"][0, 0]], -1),
+                            res.tracks["heading"][0, 0],
+                            np.stack([res.tracks["north"][0, 1], res.tracks["east"][0, 1]], -1))
+    assert (beta < math.pi / 2).any()  # (it drew to starboard)
+    assert res.verdicts["kept_course"][0, 0, 0]
+    assert np.abs(res.tracks["desired_heading"][0, 0]).max() == 0.0
+
+
+def test_velocity_obstacles_stand_on_acts_only_in_the_emergency_and_clears():
+    """A target from the port bow on a near-collision course that does not give way: the own
+    ship (stand-on) keeps its course until the TCPA is below the emergency time (Rule 17(b)),
+    then avoids within its reachable headings and does not collide."""
+    from seahelm.encounters.avoidance import VelocityObstacles
+    from seahelm.encounters.monte_carlo import sample_geometry
+
+    g = sample_geometry(1, own_speed=7.97, bearing=math.radians(344.0), detection_range=7000.0,
+                        dcpa=-180.0, target_speed=7.2, seed=0)
+    tgt = Vessel(ship=SHIP, north=g["north"], east=g["east"], course=g["course"], speed=7.2)
+    method = VelocityObstacles()
+    res = Encounter([_own(avoid=True), tgt], t_final=1200.0, avoidance=method).run()
+    assert res.situation[0, 0] == Situation.CROSSING_STAND_ON
+    t_act = res.verdicts["action_time"][0, 0, 0]
+    assert t_act > g["tcpa"][0] - method.emergency - method.every
+    assert not res.collision[0, 0] and res.min_range[0, 0] > 400.0

@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from .geometry import GIVE_WAY, STAND_ON, ColregSectors, classify, cpa_tcpa, velocity
+from .geometry import GIVE_WAY, STAND_ON, ColregSectors, classify, cpa_tcpa, velocity, wrap_pi
 
 __all__ = ["RuleBased", "VelocityObstacles", "AVOIDANCE", "resolve_avoidance"]
 
@@ -64,7 +64,10 @@ class RuleBased:
     13-15) whose CPA (at the present velocities) is closer than ``dcpa`` within ``tcpa`` turns
     ``turn`` to starboard of its route's heading, and keeps that offset while steering its
     route would bring any vessel within ``dcpa`` again (a CPA at the route's velocity closer
-    than ``dcpa`` and ahead in time); then it resumes the route.
+    than ``dcpa`` and ahead in time); then it resumes the route. The situation of a pair is the
+    one it had when its risk (CPA closer than ``dcpa`` within ``tcpa``) was first detected,
+    kept until the pair has passed (TCPA < 0): a crossing target from port that draws ahead
+    to starboard while passing does not make the stand-on vessel give way.
 
     Attributes
     ----------
@@ -102,7 +105,9 @@ class RuleBased:
         """
         av = np.flatnonzero(avoid)
         return {"active": np.zeros((n_encounters, av.size), dtype=bool), "av": av,
-                "sectors": self.sectors or encounter.sectors}
+                "sectors": self.sectors or encounter.sectors,
+                "latched": np.zeros((n_encounters, av.size, n_vessels), dtype=np.int8),
+                "engaged": np.zeros((n_encounters, av.size, n_vessels), dtype=bool)}
 
     def desired(self, time: float, truth: np.ndarray, view: np.ndarray,
                 route_heading: np.ndarray, state: dict[str, Any]) -> np.ndarray:
@@ -132,9 +137,12 @@ class RuleBased:
         p_o, v_o, p_t, v_t, valid = _pairs(own, av, view)
         with np.errstate(invalid="ignore"):
             dcpa, tcpa = cpa_tcpa(p_o, v_o, p_t, v_t)
-            sit = _situations(own, view, state["sectors"])
-            threat = valid & np.isin(sit, GIVE_WAY) & (tcpa > 0) & (tcpa < self.tcpa) & (
-                dcpa < self.dcpa)
+            risk = valid & (tcpa > 0) & (tcpa < self.tcpa) & (dcpa < self.dcpa)
+            latched = np.where(valid & (tcpa > 0), state["latched"], 0)
+            latched = np.where(risk & (latched == 0), _situations(own, view, state["sectors"]),
+                               latched)
+            state["latched"] = latched.astype(np.int8)
+            threat = risk & np.isin(latched, GIVE_WAY)
             v_route = velocity(route, own[:, :, 3])[:, :, None, :]
             d_r, t_r = cpa_tcpa(p_o, v_route, p_t, v_t)
             unsafe = valid & (t_r > 0) & (t_r < self.tcpa) & (d_r < self.dcpa)
@@ -162,10 +170,11 @@ class VelocityObstacles:
       excludes the half plane of passing on the wrong side;
     - a stand-on vessel keeps its route (Rule 17(a)) unless a velocity obstacle's TCPA is
       shorter than ``emergency`` (Rule 17(b): action when the give-way vessel alone cannot
-      avoid collision).
+      avoid collision); from then on it avoids that vessel until they have passed.
 
-    When every heading is excluded, the one with the largest least DCPA is taken. Ties go to
-    starboard. Against chattering (Kuwata et al. 2014 use hysteresis too): a pair's situation
+    Only headings within ``reach`` of the present one are candidates (a dynamic window: a
+    large ship cannot turn through 150° at once). When every one is excluded, the one with the
+    largest least DCPA is taken. Ties go to starboard. Against chattering (Kuwata et al. 2014 use hysteresis too): a pair's situation
     is latched when its risk first appears and kept until the pair has passed (TCPA at the
     present velocities < 0), and while a vessel is off its route the obstacles' radius is
     ``1 + hysteresis`` times larger (it returns to the route only with that margin).
@@ -184,6 +193,9 @@ class VelocityObstacles:
         TCPA below which a stand-on vessel acts too [s] (default 300 s).
     hysteresis : float
         Relative margin on ``radius`` while off the route [-] (default 0.2).
+    reach : float
+        Candidates more than this from the present heading are not taken [rad] (default 60°:
+        the reachable headings of a slow-turning ship, a dynamic window).
     sectors : ColregSectors, optional
 
     References
@@ -199,11 +211,12 @@ class VelocityObstacles:
     every: float = 5.0
     emergency: float = 300.0
     hysteresis: float = 0.2
+    reach: float = math.radians(60.0)
     sectors: ColregSectors | None = None
 
     def __post_init__(self) -> None:
         _positive(self, ("horizon", "s"), ("radius", "m"), ("every", "s"),
-                  ("emergency", "s"), ("hysteresis", "-"))
+                  ("emergency", "s"), ("hysteresis", "-"), ("reach", "rad"))
         off = np.asarray(self.offsets, dtype=float)
         if off.ndim != 1 or off.size == 0 or not np.isfinite(off).all() or not (off == 0).any():
             raise ParameterError(f"must be finite headings [rad] including 0, got "
@@ -225,7 +238,8 @@ class VelocityObstacles:
         av = np.flatnonzero(avoid)
         return {"offset": np.zeros((n_encounters, n_vessels)), "next": 0.0, "av": av,
                 "sectors": self.sectors or encounter.sectors,
-                "latched": np.zeros((n_encounters, av.size, n_vessels), dtype=np.int8)}
+                "latched": np.zeros((n_encounters, av.size, n_vessels), dtype=np.int8),
+                "engaged": np.zeros((n_encounters, av.size, n_vessels), dtype=bool)}
 
     def desired(self, time: float, truth: np.ndarray, view: np.ndarray,
                 route_heading: np.ndarray, state: dict[str, Any]) -> np.ndarray:
@@ -284,18 +298,23 @@ class VelocityObstacles:
             state["latched"] = latched.astype(np.int8)
             sit = np.where(latched == 0, now, latched)
             give_way = risk & np.isin(sit, GIVE_WAY)
-            calm_stand_on = valid & np.isin(sit, STAND_ON) & ~(risk & (tcpa[:, :, i0, :]
-                                                                       < self.emergency))
+            # a stand-on vessel acts from the emergency on, until the pair has passed
+            engaged = (state["engaged"] & (t_now[:, :, 0, :] > 0)) | (
+                risk & np.isin(sit, STAND_ON) & (tcpa[:, :, i0, :] < self.emergency))
+            state["engaged"] = engaged
+            calm_stand_on = valid & np.isin(sit, STAND_ON) & ~engaged
             w = v_c - v_t
             wrong_side = (r[..., 0] * w[..., 1] - r[..., 1] * w[..., 0]) < 0  # (e, i, c, j)
         counted = (valid & ~calm_stand_on)[:, :, None, :]
         bad = ((in_vo & counted) | (wrong_side & give_way[:, :, None, :])).any(-1)
+        far = np.abs(wrap_pi(heading - own[:, :, 4, None])) > self.reach  # (e, i, c)
+        far &= ~far.all(-1, keepdims=True)  # (none reachable: all are)
         cost = np.abs(off) + 1e-6 * (off < 0)
-        cost = np.where(bad, np.inf, cost[None, None, :])
+        cost = np.where(bad | far, np.inf, cost[None, None, :])
         pick = np.argmin(cost, axis=-1)
         stuck = ~np.isfinite(cost.min(-1))
         if stuck.any():
-            clear = np.where(counted, dcpa, np.inf).min(-1)  # (e, i, c)
+            clear = np.where(far, -np.inf, np.where(counted, dcpa, np.inf).min(-1))
             pick = np.where(stuck, np.argmax(clear, axis=-1), pick)
         return off[pick]
 

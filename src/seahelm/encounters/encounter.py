@@ -211,7 +211,6 @@ class Encounter:
             if r is not None and r.ndim == 3:
                 shapes.append(r.shape[:1])
         try:
-            ne = int(np.prod(np.broadcast_shapes(*shapes))) if shapes else 1
             (ne,) = np.broadcast_shapes(*shapes, (1,))
         except ValueError:
             raise ParameterError(f"the vessels' arrays must broadcast to one axis of "
