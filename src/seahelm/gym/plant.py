@@ -137,6 +137,10 @@ def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
                     ("action_period", action_period)):
         if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
             raise ParameterError(f"must be > 0 [s], got {v!r}", field=name, unit="s", value=v)
+    ratio = action_period / dt
+    if abs(ratio - round(ratio)) > 1e-9 * max(1.0, ratio) or round(ratio) < 1:
+        raise ParameterError(f"must be a whole multiple of dt = {dt:g} s, got {action_period!r}",
+                             field="action_period", unit="s", value=action_period)
     ratio = episode_seconds / action_period
     if abs(ratio - round(ratio)) > 1e-9 * max(1.0, ratio):
         raise ParameterError(f"must be a whole multiple of action_period = {action_period:g} s, "

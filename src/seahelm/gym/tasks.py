@@ -96,12 +96,19 @@ class Task:
         self.n, self.length, self.speed, self.max_rudder = num_envs, length, speed, max_rudder
         self.heading_scale = _positive("heading_scale", heading_scale, "rad")
         self.weights = dict(self.default_weights)
+        if reward is not None and not isinstance(reward, Mapping):
+            raise ParameterError(f"must be a mapping term -> weight, got {reward!r}",
+                                 field="reward", value=reward)
         for key, w in (reward or {}).items():
             if key not in self.default_weights:
                 raise ParameterError(f": unknown reward term {key!r} of {self.name}; terms: "
                                      f"{', '.join(self.default_weights)}", field="reward",
                                      value=key)
-            w = float(w)
+            try:
+                w = float(w)
+            except (TypeError, ValueError):
+                raise ParameterError(f"[{key!r}] must be a number, got {w!r}", field="reward",
+                                     value=w) from None
             if not math.isfinite(w):
                 raise ParameterError(f"[{key!r}] must be finite, got {w!r}", field="reward",
                                      value=w)
