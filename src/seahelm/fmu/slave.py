@@ -39,6 +39,7 @@ from ..errors import ParameterError
 
 pythonfmu = optional_import("pythonfmu", extra="fmu", purpose="seahelm fmu")
 from pythonfmu import Fmi2Causality, Fmi2Slave, Fmi2Variability, Real  # noqa: E402
+from pythonfmu.default_experiment import DefaultExperiment  # noqa: E402
 from pythonfmu.enums import Fmi2Initial, Fmi2Status  # noqa: E402
 
 __all__ = ["ShipSlave", "OUTPUTS", "PARAMETERS", "UNITS", "hold_namespace"]
@@ -103,6 +104,10 @@ class ShipSlave(Fmi2Slave):
     """
 
     ship_file = "ship.toml"
+    #: A communication step of 1 s (a whole multiple of the default ``integration_step``): a
+    #: master that takes its step from the model description (fmpy's ``simulate_fmu`` without
+    #: ``output_interval``) makes steps the FMU can do, not stop_time/500.
+    default_experiment = DefaultExperiment(start_time=0.0, step_size=1.0)
     author = "seahelm"
     description = "seahelm ship (MMG/Nomoto manoeuvring model, steering gear, propeller)"
 
@@ -168,6 +173,12 @@ class ShipSlave(Fmi2Slave):
         if not (math.isfinite(dt) and dt > 0):
             raise ParameterError(f"must be > 0 [s], got {dt!r}", field="integration_step",
                                  unit="s", value=dt)
+        for name in ("wind_speed", "wind_direction"):
+            v = float(getattr(self, name))
+            if not (math.isfinite(v) and (v >= 0 or name == "wind_direction")):
+                raise ParameterError(f"must be finite{' and >= 0' * (name == 'wind_speed')} "
+                                     f"[{'m/s' if name == 'wind_speed' else 'rad'}], got {v!r}",
+                                     field=name, value=v)
         n_steps = max(1, math.ceil(self._horizon / dt - 1e-9))
         env: dict[str, Any] = {}
         if self.wind_speed > 0:
