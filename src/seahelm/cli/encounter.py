@@ -22,6 +22,21 @@ _METHODS = ("none", "rule-based", "velocity-obstacles")
 _FILES = ("encounters.nc", "tracks.png", "cpa.png", "rose.png")
 
 
+#: Memory of one vessel's record in a run, with the simulator's and the result's arrays
+#: (measured: 25 kB an encounter of two vessels and 121 records, with a margin of ~2).
+_BYTES_PER_VESSEL_RECORD = 50
+
+
+def _physical_memory() -> int:
+    """This machine's physical memory [bytes] (0 where the OS does not say)."""
+    import os
+
+    try:
+        return int(os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
+    except (AttributeError, OSError, ValueError):
+        return 0
+
+
 def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, own_ship: str,
            target_ship: str, t_final: float | None, seed: int, detection: float) -> Any:
     from ..encounters import Encounter
@@ -38,10 +53,33 @@ def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, ow
             raise ParameterError(f"must be >= 1 [encounters], got {monte_carlo}",
                                  field="--monte-carlo", value=monte_carlo)
         tf = 1200.0 if t_final is None else t_final
-        vessels, _ = monte_carlo_vessels(monte_carlo, own_ship=own_ship,
-                                         target_ship=target_ship, seed=seed,
-                                         detection_range=(0.75 * detection, detection),
-                                         tcpa=(0.1 * tf, 0.6 * tf), target_speed=(3.0, 8.0))
+        if not (math.isfinite(detection) and detection > 926.0 / 0.75):
+            raise ParameterError(f"must be > {926.0 / 0.75:.0f} [m] (the CPA is drawn within "
+                                 f"±926 m at 0.75 × it), got {detection!r}",
+                                 field="--detection", unit="m", value=detection)
+        if seed < 0:
+            raise ParameterError(f"must be an integer >= 0, got {seed}", field="--seed",
+                                 value=seed)
+        need = monte_carlo * _BYTES_PER_VESSEL_RECORD * 2 * (tf / 10.0 + 1)
+        memory = _physical_memory()
+        if memory and need > memory:
+            raise ParameterError(f"needs about {need / 1e9:.3g} GB for its tracks ({tf:g} s), "
+                                 f"more than this machine's {memory / 1e9:.3g} GB: draw "
+                                 f"fewer, or several batches with different --seed",
+                                 field="--monte-carlo", value=monte_carlo)
+        try:
+            vessels, _ = monte_carlo_vessels(monte_carlo, own_ship=own_ship,
+                                             target_ship=target_ship, seed=seed,
+                                             detection_range=(0.75 * detection, detection),
+                                             tcpa=(0.1 * tf, 0.6 * tf),
+                                             target_speed=(3.0, 8.0))
+        except ParameterError as exc:
+            if exc.field != "target_speed":
+                raise
+            raise ParameterError(f": no target detected at {detection:g} m reaches its CPA "
+                                 f"within 0.1-0.6 x {tf:g} s at 3-8 m/s; give a longer "
+                                 "--t-final or a shorter --detection", field="--t-final",
+                                 unit="s", value=tf) from None
         return lambda m: Encounter(vessels, t_final=tf, avoidance=m, record_every=10), method
     if not files:
         raise ParameterError(": give an encounter scenario (TOML), traffic situations (JSON) "
@@ -55,6 +93,8 @@ def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, ow
     if len(files) != 1 or files[0].suffix.lower() != ".toml":
         raise ParameterError(f": one scenario (.toml) or traffic situations (.json), got "
                              f"{', '.join(f.name for f in files)}", field="FILES")
+    if not files[0].is_file():
+        raise ParameterError(": no such file", field=str(files[0]))
     data = tomllib.loads(files[0].read_text())
     if not is_encounter_scenario(data):
         raise ParameterError(": not an encounter scenario (no [[vessel]] array of tables); "
@@ -166,6 +206,10 @@ def encounter(
                           t_final, seed, detection)
     methods = ([None, "rule-based", "velocity-obstacles"] if compare else [method])
     encounters = [make(m) for m in methods]  # (all validated before any runs)
+    if encounters[0].n_vessels < 2:
+        raise ParameterError(": an encounter needs the own ship and at least one target, got "
+                             f"{encounters[0].n_vessels} vessel", field="vessel",
+                             value=encounters[0].n_vessels)
     payload: dict[str, Any] = {"seahelm_command": command_path() or "seahelm encounter",
                                "methods": {}}
     result = None
