@@ -83,7 +83,7 @@ _A = {"name": "a", "kind": "azimuth", "x": -1.0, "y": 0.0, "max_thrust": 1e4}
     ([{**_T, "max_azimuth_rate": 0.1}], "thrusters[0].max_azimuth_rate",
      ["azimuth thruster only", "[rad/s]"]),
     ([{**_A, "forbidden_sectors_deg": [[0.0, 180.0], [170.0, 360.0]]}],
-     "thrusters.forbidden", ["cover 360 [deg]"]),
+     "thrusters[0].forbidden_sectors_deg", ["cover 360 [deg]"]),
     ([_T, {**_T}], "thrusters.name", ["unique", "'t'"]),
     ([{**_T, "x": "far"}], "thrusters[0].x", ["[m]", "'far'"]),
     ([{**_T, "max_thrust_rate": 0.0}], "thrusters[0].max_thrust_rate", ["> 0 [N/s]"]),

@@ -23,6 +23,7 @@ app = typer.Typer(cls=OneLineErrors, no_args_is_help=True,
 
 
 #: the library's parameter names and the options that set them
+_MAX_HEADINGS = 3600
 _OPTIONS = {"failure": "--failures", "current_speed": "--current", "headings": "--headings"}
 
 
@@ -120,6 +121,9 @@ def capability(
 
     if headings < 1:
         raise ParameterError(f"must be ≥ 1 [-], got {headings}",
+                             field="--headings", unit="-", value=headings)
+    if headings > _MAX_HEADINGS:  # (0.1°; ~10 ms a direction: 1e8 would run for days)
+        raise ParameterError(f"must be ≤ {_MAX_HEADINGS} (0.1° apart) [-], got {headings}",
                              field="--headings", unit="-", value=headings)
     if out is not None:
         output_file("--out", out, "netcdf")

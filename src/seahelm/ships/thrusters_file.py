@@ -26,7 +26,7 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-from ..control.thruster_layout import THRUSTER_KINDS, ThrusterLayout
+from ..control.thruster_layout import THRUSTER_KINDS, ThrusterLayout, _merge
 from ..errors import ParameterError
 
 __all__ = ["THRUSTER_KEYS", "layout_from_tables", "layout_to_tables"]
@@ -90,7 +90,18 @@ def _sectors(tab: Mapping[str, Any], path: str) -> tuple:
     for k, (a, b) in enumerate(value):
         a = _num(a, f"{path}.{key}[{k}]", unit)
         b = _num(b, f"{path}.{key}[{k}]", unit)
+        turn = 360.0 if unit == "deg" else 2 * math.pi
+        if abs(b - a) >= turn - 1e-9:
+            raise ParameterError(f"spans {abs(b - a):g} [{unit}], a full turn or more (no "
+                                 f"admissible direction left): give [start, end] less than "
+                                 f"{turn:g} {unit} apart", field=f"{path}.{key}[{k}]",
+                                 unit=unit, value=[a, b])
         out.append((math.radians(a), math.radians(b)) if unit == "deg" else (a, b))
+    covered = sum(e - s for s, e in _merge(tuple((a % (2 * math.pi), b % (2 * math.pi))
+                                                 for a, b in out)))
+    if covered >= 2 * math.pi - 1e-9:
+        raise ParameterError(f"cover 360 [deg] together (no admissible direction left), got "
+                             f"{value!r}", field=f"{path}.{key}", unit=unit, value=value)
     return tuple(out)
 
 
