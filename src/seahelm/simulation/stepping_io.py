@@ -87,7 +87,12 @@ def check_commands(commands: Any, sel: np.ndarray, held: np.ndarray, labels: tup
             if name not in index:
                 raise ParameterError(f": unknown command {name!r}; commands: {units_text}",
                                      field="commands", value=name)
-            col = np.asarray(v, dtype=float)
+            try:
+                col = np.asarray(v, dtype=float)
+            except (TypeError, ValueError):
+                raise ParameterError(f"[{name!r}] must be a number or numbers (one per stepped "
+                                     f"run) [{units[index[name]]}], got {v!r}",
+                                     field="commands", value=v) from None
             if col.ndim > 1 or (col.ndim == 1 and col.shape[0] != sel.size):
                 raise ParameterError(f"[{name!r}] must be a number or have shape "
                                      f"({sel.size},) (one per stepped run), got "
