@@ -48,6 +48,10 @@ def parse_free(text: str | None) -> tuple[str, ...] | None:
     if bad or not names:
         raise ParameterError(f"`--free`: not coefficients of mmg-ls: "
                              f"{', '.join(bad) or repr(text)} (e.g. N_r,Y_v,a_H)")
+    twice = sorted({n for n in names if names.count(n) > 1})
+    if twice:  # (a coefficient twice: a singular fit, "standard error nan")
+        raise ParameterError(f"`--free`: {', '.join(twice)} given more than once, got "
+                             f"{text!r}")
     return names
 
 
