@@ -90,9 +90,13 @@ def pytest_configure(config):
     controlling process (not in xdist workers, which start after it).
 
     Registers the order of a parallel run (:class:`_OrderForWorkers`) and, with
-    ``SEAHELM_TEST_COMPILE_TIMES`` set, the compile log of every test (:class:`CompileTimes`).
+    ``SEAHELM_TEST_COMPILE_TIMES`` set, the compile log of every test (:class:`CompileTimes`);
+    with ``SEAHELM_TEST_KERNEL_CENSUS`` set, the census of the kernels (:class:`KernelCensus`).
     """
     config.pluginmanager.register(_OrderForWorkers(), "seahelm-order-for-workers")
+    if os.environ.get("SEAHELM_TEST_KERNEL_CENSUS"):
+        config.pluginmanager.register(KernelCensus(os.environ["SEAHELM_TEST_KERNEL_CENSUS"]),
+                                      "seahelm-kernel-census")
     if os.environ.get("SEAHELM_TEST_COMPILE_TIMES"):  # (xdist's controller runs no test)
         from numba.core import event
 
@@ -451,6 +455,40 @@ class CompileTimes:
                "kernels": sorted(self._kernels() - before)}
         with open(self.path, "a", encoding="utf-8") as fh:
             fh.write(json.dumps(row) + "\n")
+
+
+class KernelCensus:
+    """Which combination of components each test needs, without compiling any.
+
+    With ``SEAHELM_TEST_KERNEL_CENSUS=FILE`` every test that builds a closed-loop kernel
+    appends ``{"test": node id, "kernel": "seahelm_kernel_<hash>"}`` to FILE and stops there
+    (skipped: "kernel census"): nothing is compiled for it and it does not pass (a census, not
+    a test run). Only a test's first kernel is seen, and not those of ``seahelm`` subprocesses
+    (which run and compile as usual). A kernel only one test names is a combination only that
+    test needs."""
+
+    def __init__(self, path: str):
+        self.path, self.test = path, None
+
+    def pytest_configure(self, config) -> None:
+        import seahelm.simulation.closed_loop as closed_loop
+
+        real = closed_loop.import_generated
+
+        def census(name: str, text: str):
+            if not name.startswith("seahelm_kernel_"):
+                return real(name, text)
+            import json
+
+            with open(self.path, "a", encoding="utf-8") as fh:
+                fh.write(json.dumps({"test": self.test, "kernel": name}) + "\n")
+            pytest.skip("kernel census")
+
+        closed_loop.import_generated = census
+
+    @pytest.hookimpl(tryfirst=True)
+    def pytest_runtest_setup(self, item) -> None:
+        self.test = item.nodeid
 
 
 # ------------------------------------------------------------------------------------------

@@ -205,3 +205,33 @@ def test_the_compile_times_name_what_compiled_and_for_how_long(tmp_path):
     assert row["test"] == "tests/x.py::t" and row["compiled"] == [] and row["compile"] == 0
     assert row["kernels"] == ["seahelm_kernel_0123"]
     assert row["seconds"] >= 0 and row["cpu"] >= 0
+
+
+def test_the_kernel_census_names_a_tests_kernel_and_stops_it_uncompiled(tmp_path):
+    import json
+
+    import numpy as np
+    import pytest
+
+    import seahelm.simulation.closed_loop as closed_loop
+    from conftest import KernelCensus
+    from seahelm.actuators.servo import DIRECT
+    from seahelm.control.open_loop import OPEN_LOOP
+    from seahelm.simulation.engine import simulate
+    from seahelm.vessels.nomoto import NOMOTO1, Nomoto1Params
+
+    class Item:
+        nodeid = "tests/x.py::t"
+
+    census, real = KernelCensus(str(tmp_path / "census.jsonl")), closed_loop.import_generated
+    census.pytest_configure(None)
+    try:
+        census.pytest_runtest_setup(Item())
+        with pytest.raises(pytest.skip.Exception, match="kernel census"):
+            simulate(NOMOTO1, Nomoto1Params(gain=0.2, time_constant=50.0, speed=5.0),
+                     np.zeros(4), t_final=1.0, dt=0.5, actuator=DIRECT, controller=OPEN_LOOP,
+                     reference=np.array([0.1]).reshape(1, 1, 1))
+    finally:
+        closed_loop.import_generated = real
+    row = json.loads((tmp_path / "census.jsonl").read_text())
+    assert row["test"] == "tests/x.py::t" and row["kernel"].startswith("seahelm_kernel_")
