@@ -93,7 +93,8 @@ def _write_posterior(path: Path | None, fit: Any, draws: Any, base: Any,
                          comments=(
         f"seahelm Laplace posterior samples of the mmg-ls coefficients of '{base.name}' "
         f"({len(draws)} samples, " + (f"seed {seed}" if seed is not None else "unseeded")
-        + f"; covariance inflated by {fit.inflation:.3g} for residuals correlated in time)",
+        + f"; the stated covariance: Laplace x {fit.inflation:.3g} for residuals correlated in "
+        "time, plus the initial states' errors)",
         f"identified by output error over {fit.segments} segments from "
         f"{', '.join(fit.records)}",
         "one row per sample; the other coefficients at the identified ship's values; use: "
