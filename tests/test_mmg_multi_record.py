@@ -202,7 +202,7 @@ def test_cli_fits_a_folder_and_writes_the_ship_and_the_posterior(folder, tmp_pat
                                    "--samples", "20", "--save-posterior", str(post),
                                    "--seed", "1"])
     assert res.exit_code == 0, (res.stdout, res.stderr)
-    assert "2 record(s)" in res.stdout and "N_r" in res.stdout
+    assert "2 record(s)" in res.stdout and "N_r" in res.stdout and "stated" in res.stdout
     ship = get_ship(str(out))
     assert ship.params.N_r == pytest.approx(TRUTH["N_r"], rel=0.15)
     assert ship.params.a_H == pytest.approx(TRUTH["a_H"], rel=0.15)
