@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Collection, Iterable, Mapping
 from typing import Any
 
 import numpy as np
@@ -10,7 +11,7 @@ import numpy as np
 from .errors import ParameterError
 
 __all__ = ["check_finite", "check_positive", "check_nonnegative", "check_range", "as_float_array",
-           "as_finite_series"]
+           "as_finite_series", "lookup_name"]
 
 
 def _fmt(value: Any) -> str:
@@ -223,3 +224,53 @@ def as_finite_series(name: str, value: Any, unit: str, *, what: str = "sample(s)
             f"{np.flatnonzero(bad)[:6].tolist()}", field=name, unit=unit or None
         )
     return a
+
+
+def lookup_name(kind: str, table: Mapping[str, Any] | Collection[str], name: Any, *,
+                error: type[Exception] = ValueError, sort: bool = False, quoted: bool = False,
+                valid: Iterable[str] | None = None, suffix: str = "", **fields: Any) -> Any:
+    """``table[name]`` for a name of ``table``; otherwise the one error of every lookup by
+    name: ``unknown {kind} 'name'; valid: a, b, c``.
+
+    The rule of :func:`seahelm.registry.lookup` (which resolves registry entries with it) for
+    any table: the strategies, methods, forms and sets chosen by name.
+
+    Parameters
+    ----------
+    kind : str
+        What is looked up, for the message (``"Holtrop method"``, ``"guidance law"``).
+    table : mapping of str to object, or collection of str
+        The names and what each gives (or only the names: then the name is returned).
+    name : object
+        The name asked for (anything that is not a key of ``table`` is an error).
+    error : type, optional
+        The exception to raise: ValueError (default), :class:`~seahelm.errors.ParameterError`
+        (then ``fields`` such as ``field=`` go to it), KeyError.
+    sort : bool, optional
+        List the valid names sorted (default: in the table's order).
+    quoted : bool, optional
+        List them quoted (``'a', 'b'``).
+    valid : iterable of str, optional
+        The names to list, where they are not the table's keys (aliases left out, say).
+    suffix : str, optional
+        Said after the list (``" (or None: all types)"``).
+    **fields
+        Keyword arguments of ``error`` (``field``, ``value``).
+
+    Returns
+    -------
+    object
+        ``table[name]`` (``name`` for a table of names only).
+
+    Raises
+    ------
+    ValueError, or ``error``
+        For a name that is not a key of ``table``, naming it and the valid ones.
+    """
+    if isinstance(name, str) and name in table:
+        return table[name] if isinstance(table, Mapping) else name
+    names = list(table if valid is None else valid)
+    if sort:
+        names = sorted(names)
+    listed = ", ".join(repr(n) if quoted else str(n) for n in names)
+    raise error(f"unknown {kind} {name!r}; valid: {listed}{suffix}", **fields) from None

@@ -13,6 +13,7 @@ import importlib
 from collections.abc import Mapping
 from typing import Any
 
+from ._validate import lookup_name
 from .actuators.base import Actuator
 from .control.base import Controller
 from .vessels.base import VesselModel
@@ -102,9 +103,7 @@ def lookup(kind: str, table: Mapping[str, Any], name: Any, cls: type | tuple[typ
     """
     if isinstance(name, cls):
         return name
-    if not isinstance(name, str) or name not in table:
-        raise error(f"unknown {kind} '{name}'; valid: {', '.join(sorted(table))}")
-    entry = table[name]
+    entry = lookup_name(kind, table, name, error=error, sort=True)
     if isinstance(entry, str):
         module, attr = entry.split(":")
         return getattr(importlib.import_module(module), attr)

@@ -42,7 +42,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_float_array, check_positive
+from .._validate import as_float_array, check_positive, lookup_name
 from ..errors import ParameterError
 from ..numerics.runge_kutta import ButcherTableau, get_integrator, rk_step
 
@@ -205,10 +205,7 @@ class FinalStateController:
         get_integrator(self.integrator)
         check_positive("time_constant", self.time_constant, "s")
         check_positive("horizon", self.horizon, "s")
-        if self.prediction not in PREDICTIONS:
-            raise ValueError(
-                f"unknown prediction '{self.prediction}'; valid: {', '.join(PREDICTIONS)}"
-            )
+        lookup_name("prediction", PREDICTIONS, self.prediction)
         if isinstance(self.substeps, bool) or int(self.substeps) != self.substeps or \
                 self.substeps < 1:
             raise ParameterError(f"`substeps` must be a whole number >= 1, got {self.substeps!r}")

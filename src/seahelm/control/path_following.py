@@ -45,7 +45,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
-from .._validate import as_float_array
+from .._validate import as_float_array, lookup_name
 from ..errors import ParameterError
 from ..parameters import Params, param, signal_indices
 
@@ -310,6 +310,4 @@ def get_guidance_law(law: "str | GuidanceLaw") -> GuidanceLaw:
     """
     if isinstance(law, GuidanceLaw):
         return law
-    if law not in GUIDANCE_LAWS:
-        raise ParameterError(f"unknown guidance law {law!r}; valid: {', '.join(GUIDANCE_LAWS)}")
-    return GUIDANCE_LAWS[law]
+    return lookup_name("guidance law", GUIDANCE_LAWS, law, error=ParameterError)

@@ -96,7 +96,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import ArrayLike
 
-from .._validate import as_float_array, check_nonnegative, check_positive, check_range
+from .._validate import as_float_array, check_nonnegative, check_positive, check_range, lookup_name
 from ..constants import RHO_AIR
 from ..errors import ParameterError
 
@@ -224,12 +224,8 @@ def get_blendermann_type(
     """
     if isinstance(vessel_type, BlendermannCoefficients):
         return vessel_type
-    if isinstance(vessel_type, str) and vessel_type in BLENDERMANN_VESSEL_TYPES:
-        return BLENDERMANN_VESSEL_TYPES[vessel_type]
-    raise ValueError(
-        f"unknown Blendermann vessel type {vessel_type!r}; "
-        f"valid: {', '.join(sorted(BLENDERMANN_VESSEL_TYPES))}"
-    )
+    return lookup_name("Blendermann vessel type", BLENDERMANN_VESSEL_TYPES, vessel_type,
+                       sort=True)
 
 
 class WindCoefficients(NamedTuple):

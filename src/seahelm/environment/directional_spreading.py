@@ -38,7 +38,7 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import as_float_array
+from .._validate import as_float_array, lookup_name
 from ..errors import ParameterError
 
 __all__ = ["CosinePowerSpreading", "Cos2sSpreading", "SPREADING", "get_spreading",
@@ -235,12 +235,8 @@ def get_spreading(spreading: str | Any, **params: Any) -> Any:
             raise ParameterError("parameters cannot be given together with a spreading object",
                                  field="spreading")
         return spreading
-    try:
-        cls = SPREADING[spreading]
-    except (KeyError, TypeError):
-        valid = ", ".join(repr(k) for k in SPREADING)
-        raise ParameterError(f"unknown spreading {spreading!r}; valid: {valid}",
-                             field="spreading", value=spreading) from None
+    cls = lookup_name("spreading", SPREADING, spreading, error=ParameterError, quoted=True,
+                      field="spreading", value=spreading)
     return cls(**params)
 
 
@@ -268,9 +264,8 @@ def spreading_with_parameter(name: str, parameter: float) -> Any:
     ParameterError
         For another name (listing the valid ones) or a parameter not > 0.
     """
-    if name not in _PARAMETER:
-        raise ParameterError(f"unknown directional spreading {name!r}; valid: "
-                             f"{', '.join(_PARAMETER)}", field="spreading", value=name)
+    lookup_name("directional spreading", _PARAMETER, name, error=ParameterError,
+                field="spreading", value=name)
     try:
         return get_spreading(name, **{_PARAMETER[name]: parameter})
     except ParameterError as exc:

@@ -27,7 +27,7 @@ from numba import njit
 from numpy.typing import ArrayLike
 from scipy import linalg
 
-from .._validate import check_positive
+from .._validate import check_positive, lookup_name
 
 __all__ = ["DiscreteFilter", "FilterSamples", "van_loan", "single_run_stream"]
 
@@ -212,10 +212,9 @@ class FilterSamples:
 
     def __getitem__(self, label: str) -> np.ndarray:
         """Output ``label`` as an array of shape (runs, n_steps)."""
-        try:
-            return self.values[..., self.labels.index(label)]
-        except ValueError:
-            raise KeyError(f"unknown output {label!r}; valid: {', '.join(self.labels)}") from None
+        index = lookup_name("output", {n: i for i, n in enumerate(self.labels)}, label,
+                            error=KeyError)
+        return self.values[..., index]
 
     def to_xarray(self) -> Any:
         """An ``xarray.Dataset`` with dims (run, time), one variable per output, metadata in attrs."""

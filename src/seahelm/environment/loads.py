@@ -55,7 +55,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
-from .._validate import as_float_array, check_on_hull, check_positive
+from .._validate import as_float_array, check_on_hull, check_positive, lookup_name
 from ..constants import GRAVITY, RHO_AIR, RHO_SEAWATER
 from ..errors import ParameterError
 from ..parameters import Params, as_records, param
@@ -323,10 +323,7 @@ WAVE_LOADS: dict[str, LoadModel] = {"lvov": LVOV_WAVES}
 def _lookup(registry: dict[str, LoadModel], value: "LoadModel | str", what: str) -> LoadModel:
     if isinstance(value, LoadModel):
         return value
-    try:
-        return registry[value]
-    except (KeyError, TypeError):
-        raise ValueError(f"unknown {what} model {value!r}; valid: {', '.join(registry)}") from None
+    return lookup_name(f"{what} model", registry, value)
 
 
 def get_wind_loads(model: "LoadModel | str") -> LoadModel:

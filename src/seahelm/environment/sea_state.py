@@ -30,7 +30,7 @@ from types import MappingProxyType
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import as_float_array, check_positive
+from .._validate import as_float_array, check_positive, lookup_name
 from ..errors import ParameterError, warn_validity
 
 __all__ = [
@@ -154,11 +154,7 @@ LEVELS: Mapping[str, tuple[str, str]] = MappingProxyType(
 
 
 def _lookup(registry: Mapping[str, object], name: str, what: str) -> object:
-    try:
-        return registry[name]
-    except (KeyError, TypeError):
-        valid = ", ".join(repr(k) for k in registry)
-        raise ParameterError(f"unknown {what} {name!r}; valid: {valid}") from None
+    return lookup_name(what, registry, name, error=ParameterError, quoted=True)
 
 
 def wave_variance(h3: ArrayLike) -> np.ndarray | float:
@@ -255,11 +251,8 @@ def _table_version(table: str | Table2Version) -> Table2Version:
         from ..registry import lookup
 
         return lookup("Table 2 version", PRINTED_TABLE2_VERSIONS, table, Table2Version)
-    if not isinstance(table, str) or table not in _VERSIONS:
-        valid = ", ".join(repr(k) for k in (*_VERSIONS, *PRINTED_TABLE2_VERSIONS))
-        raise ParameterError(
-            f"unknown Table 2 version {table!r}; valid: {valid} or a Table2Version")
-    return _VERSIONS[table]
+    return lookup_name("Table 2 version", _VERSIONS, table, error=ParameterError, quoted=True,
+                       valid=(*_VERSIONS, *PRINTED_TABLE2_VERSIONS), suffix=" or a Table2Version")
 
 
 def table2(name: str | Table2Version = "corrected") -> dict[str, np.ndarray]:

@@ -44,7 +44,7 @@ from numpy.typing import ArrayLike
 from scipy import linalg
 
 from .._optional import optional_import
-from .._validate import as_float_array, check_positive
+from .._validate import as_float_array, check_positive, lookup_name
 from ..constants import GRAVITY
 from ..errors import ParameterError
 from .discretisation import (
@@ -491,10 +491,8 @@ def shaping_filter(
     num, den = _trim(num), _trim(den)
     quantities = []
     for o in outputs:
-        if o not in QUANTITIES:
-            valid = ", ".join(repr(k) for k in QUANTITIES)
-            raise ParameterError(f"unknown output {o!r}; valid: {valid}")
-        quantities.append(QUANTITIES[o])
+        quantities.append(lookup_name("output", QUANTITIES, o, error=ParameterError,
+                                      quoted=True))
     nums = []
     for k, per_g, _unit in quantities:
         nums.append(np.concatenate([num / (gravity if per_g else 1.0), np.zeros(k)]))

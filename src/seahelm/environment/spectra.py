@@ -50,7 +50,7 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import check_positive
+from .._validate import check_positive, lookup_name
 from ..constants import GRAVITY
 from ..errors import ParameterError
 from .rational_spectra import (
@@ -408,11 +408,8 @@ def _spectrum_class(name: str) -> type[WaveSpectrum]:
         from ..registry import lookup
 
         return lookup("spectrum", PRINTED_SPECTRA, name, type)
-    try:
-        return SPECTRA[name]
-    except (KeyError, TypeError):
-        valid = ", ".join(repr(k) for k in spectrum_names())
-        raise ParameterError(f"unknown spectrum {name!r}; valid: {valid}") from None
+    return lookup_name("spectrum", SPECTRA, name, error=ParameterError, quoted=True,
+                       valid=spectrum_names())
 
 
 def get_spectrum(spectrum: str | WaveSpectrum, **params: Any) -> WaveSpectrum:

@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_float_array, check_positive, uniform_time_step
+from .._validate import as_float_array, check_positive, lookup_name, uniform_time_step
 from ..errors import ParameterError
 
 __all__ = ["GustSpectrum", "GUST_SPECTRA", "norsok_spectrum", "gust_realisation"]
@@ -86,11 +86,7 @@ def get_gust_spectrum(name: "str | GustSpectrum") -> GustSpectrum:
     """A gust spectrum by name (unknown names list the valid ones)."""
     if isinstance(name, GustSpectrum):
         return name
-    try:
-        return GUST_SPECTRA[name]
-    except (KeyError, TypeError):
-        raise ParameterError(f"unknown gust spectrum {name!r}; valid: "
-                             f"{', '.join(GUST_SPECTRA)}") from None
+    return lookup_name("gust spectrum", GUST_SPECTRA, name, error=ParameterError)
 
 
 def gust_realisation(t: Any, mean_speed: float, seed: Any, *, spectrum: str = "norsok",

@@ -65,7 +65,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import as_float_array, check_nonnegative, check_positive
+from .._validate import as_float_array, check_nonnegative, check_positive, lookup_name
 from ..errors import ParameterError, warn_validity
 from .hull_form import SEAWATER_15C, HullForm, Water
 
@@ -245,11 +245,7 @@ METHODS: dict[str, HoltropMethod] = {
 def _method(method: str | HoltropMethod) -> HoltropMethod:
     if isinstance(method, HoltropMethod):
         return method
-    try:
-        return METHODS[method]
-    except (KeyError, TypeError):
-        raise ValueError(f"unknown Holtrop method {method!r}; valid: "
-                         f"{', '.join(sorted(METHODS))}") from None
+    return lookup_name("Holtrop method", METHODS, method, sort=True)
 
 
 @dataclass(frozen=True)
@@ -303,11 +299,10 @@ def _check_validity(hull: HullForm, fn: np.ndarray, ship_type: str | None,
                     strict: bool | None) -> None:
     if ship_type is None:
         rng, where = _ENVELOPE, "all ship types"
-    elif ship_type in SHIP_TYPES:
-        rng, where = SHIP_TYPES[ship_type], f"ship type {ship_type!r}"
     else:
-        raise ValueError(f"unknown ship type {ship_type!r}; valid: "
-                         f"{', '.join(sorted(SHIP_TYPES))} (or None: all types)")
+        rng = lookup_name("ship type", SHIP_TYPES, ship_type, sort=True,
+                          suffix=" (or None: all types)")
+        where = f"ship type {ship_type!r}"
     problems = []
     for name, value, (low, high) in (
             ("C_P", hull.prismatic_coefficient, rng.prismatic),

@@ -100,6 +100,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 
+from .._validate import lookup_name
 from ..errors import ParameterError
 from ..constants import GRAVITY
 from .hull import HullParticulars, check_ranges
@@ -200,12 +201,8 @@ def shallow_water_factors(hull: HullParticulars, depth: float, *, linear: str = 
         Factor per field of :data:`CORRECTED`, except ``t_P`` whose correction is on 1 − t_P
         (the factor given multiplies 1 − t_P).
     """
-    if linear not in LINEAR_SETS:
-        raise ValueError(f"unknown set of linear shallow-water factors '{linear}'; valid: "
-                         f"{', '.join(LINEAR_SETS)}")
-    if propulsion not in PROPULSION_SETS:
-        raise ValueError(f"unknown set of shallow-water propulsion factors '{propulsion}'; "
-                         f"valid: {', '.join(PROPULSION_SETS)}")
+    lookup_name("set of linear shallow-water factors", LINEAR_SETS, linear)
+    lookup_name("set of shallow-water propulsion factors", PROPULSION_SETS, propulsion)
     h = _check_depth(hull, depth, strict)
     if math.isinf(h):
         return {name: 1.0 for name in CORRECTED}

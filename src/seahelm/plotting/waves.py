@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from .._validate import lookup_name
 from ..environment.sea_state import TABLE1, TABLE2, wave_height_range
 
 __all__ = [
@@ -185,12 +186,11 @@ def plot_sea_state_spectra(
     from ..environment.spectra import spectrum_from_wave_height
 
     transforms = {"ordinate": lambda s: s, "slope": slope_spectrum}
-    if quantity not in transforms:
-        raise ValueError(f"unknown quantity {quantity!r}; valid: 'ordinate', 'slope'")
+    transform = lookup_name("quantity", transforms, quantity, quoted=True)
     ax = _axes(ax)
     for i, g in enumerate(grades):
         h3 = grade_wave_height(g)
-        spec = transforms[quantity](spectrum_from_wave_height(model, h3, table=table))
+        spec = transform(spectrum_from_wave_height(model, h3, table=table))
         plot_spectrum(
             spec, ax=ax, omega=omega, label=grade_label(g, h3),
             linestyle=_LINESTYLES[i % len(_LINESTYLES)], color="k",

@@ -21,6 +21,7 @@ from pydantic import (
     model_validator,
 )
 
+from .._validate import lookup_name
 from ..simulation.integrators import INTEGRATORS
 
 __all__ = ["Number", "VesselSection", "ActuatorSection", "ControllerSection",
@@ -250,8 +251,7 @@ class SimulationSection(_Strict):
     @field_validator("integrator")
     @classmethod
     def _known_integrator(cls, name: str) -> str:
-        if name not in INTEGRATORS:
-            raise ValueError(f"unknown integrator '{name}'; valid: {', '.join(INTEGRATORS)}")
+        lookup_name("integrator", INTEGRATORS, name)
         return name
 
 

@@ -16,6 +16,7 @@ from collections.abc import Iterator, Mapping
 from pathlib import Path
 from typing import Any
 
+from .._validate import lookup_name
 from ..errors import ParameterError
 from .files import read_ship as _read_ship_file
 from .file_format import is_ship_path
@@ -144,12 +145,10 @@ def get(ship: Any) -> Ship:
         raise ParameterError(
             f"`ship` must be a Ship, a catalog name or a ship file path, got "
             f"{type(ship).__name__}")
-    if ship in CATALOG:
-        return CATALOG[ship]
-    if is_ship_path(ship) or Path(ship).is_dir():  # (a directory: said as one)
-        return read_ship(ship)
-    raise ValueError(f"unknown catalog ship '{ship}'; valid: {', '.join(names())} "
-                     "(or the path of a ship file, *.toml)")
+    if ship not in CATALOG and (is_ship_path(ship) or Path(ship).is_dir()):
+        return read_ship(ship)  # (a directory: said as one)
+    return lookup_name("catalog ship", CATALOG, ship, valid=names(),
+                       suffix=" (or the path of a ship file, *.toml)")
 
 
 @functools.cache

@@ -30,7 +30,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_float_array, check_finite, check_positive, uniform_time_step
+from .._validate import as_float_array, check_finite, check_positive, lookup_name, uniform_time_step
 from ..errors import ParameterError
 
 __all__ = ["Constant", "Step", "Steps", "Samples", "Sine", "Ramp", "Sea", "Gust", "SIGNALS",
@@ -172,11 +172,8 @@ class Sea:
 
         check_table_height("h3", self.h3)
 
-        if self.quantity not in ("ordinate", "ordinate_rate", "slope"):
-            raise ParameterError(
-                f"unknown sea quantity {self.quantity!r}; valid: ordinate, ordinate_rate, slope"
-                f" (of {', '.join(QUANTITIES)})"
-            )
+        lookup_name("sea quantity", dict.fromkeys(("ordinate", "ordinate_rate", "slope")),
+                    self.quantity, error=ParameterError, suffix=f" (of {', '.join(QUANTITIES)})")
 
     def __call__(self, t: Any, *, seed: Any = None) -> np.ndarray:
         from ..environment.shaping import shaping_filter
@@ -285,9 +282,7 @@ def make_signal(spec: Any, *, scale: float = 1.0) -> Any:
         raise ParameterError(f"a signal must be a number or a table with `kind`, got {spec!r}")
     spec = dict(spec)
     kind = spec.pop("kind", None)
-    if kind not in SIGNALS:
-        raise ParameterError(f"unknown signal kind {kind!r}; valid: {', '.join(SIGNALS)}")
-    cls = SIGNALS[kind]
+    cls = lookup_name("signal kind", SIGNALS, kind, error=ParameterError)
     names = {f.name for f in dataclasses.fields(cls)}
     unknown = set(spec) - names
     if unknown:

@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
+from .._validate import lookup_name
 from ..errors import ParameterError
 from ..parameters import Params, as_records, stack_params
 
@@ -165,9 +166,7 @@ class VesselModel:
         ValueError
             For a name that is not a capability (a misspelt check would be False for ever).
         """
-        if capability not in CAPABILITIES:
-            raise ValueError(f"unknown capability {capability!r}; valid: "
-                             f"{', '.join(CAPABILITIES)}")
+        lookup_name("capability", CAPABILITIES, capability)
         return capability in self.capabilities
 
     @property

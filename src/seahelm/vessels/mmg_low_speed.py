@@ -52,6 +52,7 @@ from typing import Any, NamedTuple
 import numpy as np
 from numba import njit
 
+from .._validate import lookup_name
 from ..errors import ParameterError
 from ..hydrodynamics.low_speed_hull import low_speed_hull
 from ..hydrodynamics.low_speed_propulsion import (
@@ -235,11 +236,7 @@ def component_code(kind: str, name: str) -> float:
     """
     tables = {"hull": HULL_MODELS, "propeller": PROPELLER_MODELS,
               "rudder_inflow": RUDDER_INFLOW_MODELS}
-    if kind not in tables:
-        raise ValueError(f"unknown component kind {kind!r}; valid: {', '.join(tables)}")
-    if name not in tables[kind]:
-        raise ValueError(f"unknown {kind} model {name!r}; valid: {', '.join(tables[kind])}")
-    return tables[kind][name]
+    return lookup_name(f"{kind} model", lookup_name("component kind", tables, kind), name)
 
 
 @njit(cache=True)

@@ -35,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from ..._validate import as_finite_series, check_positive
+from ..._validate import as_finite_series, check_positive, lookup_name
 from ...errors import ParameterError
 from ...registry import lookup
 from .criteria import CRITERIA, Criterion
@@ -461,9 +461,7 @@ def fit_steady_turns(yaw_rate: Any, rudder_angle: Any, *, method: str = "lsq",
     -------
     SteadyTurnFit
     """
-    if method not in FIT_METHODS:
-        raise ValueError(f"unknown fit method '{method}'; valid: {', '.join(FIT_METHODS)}")
-    return FIT_METHODS[method](yaw_rate, rudder_angle, **kwargs)
+    return lookup_name("fit method", FIT_METHODS, method)(yaw_rate, rudder_angle, **kwargs)
 
 
 def identify_from_time_series(

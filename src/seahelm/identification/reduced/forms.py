@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from ..._validate import lookup_name
 from ..fit_result import FitResult
 
 __all__ = [
@@ -155,9 +156,7 @@ def get_form(form: "str | ReducedForm") -> ReducedForm:
     """
     if isinstance(form, ReducedForm):
         return form
-    if form not in REDUCED_FORMS:
-        raise ValueError(f"unknown reduced form '{form}'; valid: {', '.join(REDUCED_FORMS)}")
-    return REDUCED_FORMS[form]
+    return lookup_name("reduced form", REDUCED_FORMS, form)
 
 
 # --------------------------------------------------------------------------------------------

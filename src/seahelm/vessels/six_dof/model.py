@@ -43,6 +43,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
+from ..._validate import lookup_name
 from ...errors import ParameterError
 from ...parameters import signal_indices
 from ..base import VesselModel
@@ -426,9 +427,7 @@ def six_dof_model(name: str, description: str, params_type: type[SixDofParams], 
     -------
     VesselModel
     """
-    if kinematics not in _KINEMATICS:
-        raise ValueError(f"unknown kinematics {kinematics!r}; valid: {', '.join(_KINEMATICS)}")
-    states, units, rhs, output, motion = _KINEMATICS[kinematics]
+    states, units, rhs, output, motion = lookup_name("kinematics", _KINEMATICS, kinematics)
     unknown = [a for a in azimuthing if a not in thrusters]
     if unknown:
         raise ValueError(f"azimuthing thrusters {unknown} are not among {list(thrusters)}")
