@@ -58,7 +58,7 @@ def test_a_readme_without_the_table_is_exit_2_with_one_line(tmp_path, capsys):
     spec.loader.exec_module(script)
     for kind in script.KINDS:  # a folder that passes the data set's header check
         (tmp_path / "data" / kind).mkdir(parents=True)
-        from seahelm.analysis.records import RECORD_FORMATS
+        from seahelm.identification.records import RECORD_FORMATS
 
         header = ",".join(RECORD_FORMATS["FRT-DS-ESSO"][0])
         (tmp_path / "data" / kind / f"{kind}_1.csv").write_text(header + "\n")

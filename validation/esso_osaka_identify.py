@@ -71,7 +71,7 @@ def run(data: Path, out: Path, *, train: str = "Train-TZRB+", seed: int = 1,
         zigzag_angles: dict[str, int] | None = None) -> dict[str, Any]:
     """The identification, the test-file predictions and the band (module docstring)."""
     from seahelm.analysis.mmg_multi_record import fit_mmg_ls, laplace_samples
-    from seahelm.analysis.records import read_records
+    from seahelm.identification.records import read_records
     from seahelm.ships import get_ship
     from seahelm.ships.writing import ship_to_toml
 
@@ -95,7 +95,7 @@ def run(data: Path, out: Path, *, train: str = "Train-TZRB+", seed: int = 1,
 
 
 def _write_samples(path: Path, fit: Any, draws: np.ndarray, base: Any, seed: int) -> None:
-    from seahelm.analysis.samples_file import write_samples
+    from seahelm.identification.samples_file import write_samples
 
     units = {i.name: i.unit for i in type(base.params).info()}
     cols = {f"vessel.params.{n}": draws[:, j] for j, n in enumerate(fit.names)}
@@ -109,7 +109,7 @@ def _write_samples(path: Path, fit: Any, draws: np.ndarray, base: Any, seed: int
 
 
 def _predict(files: list[Path], base: Any, ship: Any, angles: dict[str, int]) -> list[dict]:
-    from seahelm.analysis.records import read_records
+    from seahelm.identification.records import read_records
     from seahelm.analysis.replay import classify, replay
 
     rows = []
@@ -133,7 +133,7 @@ def _band(files: list[Path], base: Any, fit: Any, draws: np.ndarray) -> dict[str
     identified and the published ship (measured wind): their tracks and the band's coverage
     of the measured track over the first minute."""
     from seahelm.analysis.mmg_multi_record import build_segments, simulate_segments
-    from seahelm.analysis.records import read_records
+    from seahelm.identification.records import read_records
 
     records = [read_records(f)[0] for f in files]
     segs = build_segments(records, base, segment=math.inf, sample=1.0, wind="measured")

@@ -56,7 +56,7 @@ def identify_mmg_ls(files: list[Path], base: Any, *, wind: str, free: tuple[str,
                     json_out: bool) -> None:
     """Run the fit and print or write its results (module docstring)."""
     from ..analysis.mmg_multi_record import FREE_DEFAULT, fit_mmg_ls, laplace_samples
-    from ..analysis.records import read_records
+    from ..identification.records import read_records
     from ..errors import ParameterError
     from ._common import write_ship_file
 
@@ -83,7 +83,7 @@ def identify_mmg_ls(files: list[Path], base: Any, *, wind: str, free: tuple[str,
 
 def _write_posterior(path: Path | None, fit: Any, draws: Any, base: Any,
                      seed: int | None) -> Path:
-    from ..analysis.samples_file import write_samples
+    from ..identification.samples_file import write_samples
 
     assert path is not None  # checked by the caller (--samples needs --save-posterior)
     units = {i.name: i.unit for i in type(base.params).info()}
