@@ -68,6 +68,7 @@ CONTROLLERS: dict[str, str] = {
     "thrust-heading": "seahelm.control.thrust_heading:THRUST_HEADING",
     "auv-depth-heading": "seahelm.control.auv_depth_heading:AUV_DEPTH_HEADING",
     "dp-pid": "seahelm.control.dp_pid:DP_PID",
+    "dp-pid-observer": "seahelm.control.dp_observer:DP_PID_OBSERVER",
 }
 
 

@@ -71,12 +71,19 @@ MEASUREMENTS: tuple[str, ...] = ("north", "east", "heading", "surge_speed", "swa
 REFERENCES: tuple[str, ...] = ("north", "east", "heading", "wind_force_x", "wind_force_y",
                                "wind_moment_z")
 COMMANDS: tuple[str, ...] = ("thrust_surge", "thrust_sway", "thrust_yaw")
+#: The passive observer's states (:mod:`seahelm.control.dp_observer`; unused by ``dp-pid``).
+OBSERVER_STATES: tuple[str, ...] = (
+    "wave_state_north", "wave_north", "wave_state_east", "wave_east", "wave_state_heading",
+    "wave_heading", "estimated_north", "estimated_east", "estimated_heading", "bias_x",
+    "bias_y", "bias_n", "estimated_surge_speed", "estimated_sway_speed", "estimated_yaw_rate",
+    "applied_surge", "applied_sway", "applied_yaw")
 STATES: tuple[str, ...] = (("integral_north", "integral_east", "integral_heading",
                             "desired_north", "desired_east", "desired_heading")
                            + tuple(f"force_x_{k + 1}" for k in range(_N))
                            + tuple(f"force_y_{k + 1}" for k in range(_N))
                            + tuple(f"shaft_{k + 1}" for k in range(_N))
                            + tuple(f"azimuth_{k + 1}" for k in range(_N))
+                           + OBSERVER_STATES
                            + tuple(f"scratch_{k + 1}" for k in range(2 * _N + 3))
                            + tuple(f"workspace_{k + 1}" for k in range(WORKSPACE)))
 OUTPUTS: tuple[str, ...] = (("demand_surge", "demand_sway", "demand_yaw", "unmet_surge",
@@ -394,10 +401,18 @@ def dp_pid_init(z, y, ref, p, cs):  # pragma: no cover - compiled
 
 @njit(cache=True)
 def dp_pid_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
-    psi = y[_M.heading]
+    dp_control(dt, y[_M.north], y[_M.east], y[_M.heading], y[_M.surge_speed],
+               y[_M.sway_speed], y[_M.yaw_rate], ref, p, cs, cmd)
+
+
+@njit(cache=True)
+def dp_control(dt, north, east, psi, surge, sway, yaw_rate, ref, p, cs,
+               cmd):  # pragma: no cover - compiled
+    """The PID, reference model, allocation and shaft lag of one step (see the module), from
+    the position, heading and velocity given (measured, or an observer's estimates)."""
     c, s = math.cos(psi), math.sin(psi)
-    e0 = y[_M.north] - cs[_S.desired_north]
-    e1 = y[_M.east] - cs[_S.desired_east]
+    e0 = north - cs[_S.desired_north]
+    e1 = east - cs[_S.desired_east]
     e2 = wrap_pi(psi - cs[_S.desired_heading])
     zeta = p.damping_ratio
     w0, w1, w2 = p.frequency_surge, p.frequency_sway, p.frequency_yaw
@@ -409,9 +424,9 @@ def dp_pid_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
     # NED-frame P and I terms, rotated to the body: −Rᵀ(K_p ẽ + K_i z)
     pn = kp0 * e0 + kap * w0 * kp0 * cs[_S.integral_north]
     pe = kp1 * e1 + kap * w1 * kp1 * cs[_S.integral_east]
-    tau0 = -(c * pn + s * pe) - kd0 * y[_M.surge_speed] - ref[_R.wind_force_x]
-    tau1 = -(-s * pn + c * pe) - kd1 * y[_M.sway_speed] - ref[_R.wind_force_y]
-    tau2 = -(kp2 * e2 + kap * w2 * kp2 * cs[_S.integral_heading]) - kd2 * y[_M.yaw_rate] \
+    tau0 = -(c * pn + s * pe) - kd0 * surge - ref[_R.wind_force_x]
+    tau1 = -(-s * pn + c * pe) - kd1 * sway - ref[_R.wind_force_y]
+    tau2 = -(kp2 * e2 + kap * w2 * kp2 * cs[_S.integral_heading]) - kd2 * yaw_rate \
         - ref[_R.wind_moment_z]
     cs[_S.integral_north] += dt * e0
     cs[_S.integral_east] += dt * e1
@@ -470,7 +485,8 @@ DP_PID = Controller(
     params_type=DpPidParams,
     state_labels=STATES,
     state_units=("m·s", "m·s", "rad·s", "m", "m", "rad") + ("N",) * (2 * _N) + ("-",) * _N
-    + ("rad",) * _N + ("",) * (2 * _N + 3 + WORKSPACE),
+    + ("rad",) * _N + ("m·s", "m", "m·s", "m", "rad·s", "rad", "m", "m", "rad", "N", "N",
+                        "N·m", "m/s", "m/s", "rad/s", "N", "N", "N·m") + ("",) * (2 * _N + 3 + WORKSPACE),
     reference_labels=REFERENCES,
     reference_units=("m", "m", "rad", "N", "N", "N·m"),
     command_labels=COMMANDS,
