@@ -53,3 +53,28 @@ def test_a_failure_naming_no_thruster_is_refused():
     with pytest.raises(ParameterError, match="names no thruster"):
         level3_capability("supply", failures=["stern-tunnel-9"], headings=1,
                           wind_speeds=[5.0], duration=10.0)
+
+
+def test_cli_level3(tmp_path):
+    import json
+
+    from typer.testing import CliRunner
+
+    from seahelm.cli import app
+
+    runner = CliRunner()
+    res = runner.invoke(app, ["dp", "capability", "supply", "--level", "3", "--headings", "2",
+                              "--winds", "10", "--failures", "none", "--duration", "300",
+                              "--json"])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    assert out["level"] == 3 and out["wind_speed_m_s"]["intact"] == [10.0, 10.0]
+    for args, words in ((["--level", "2"], ["--level", "1 or 3", "2"]),
+                        (["--level", "3", "--winds", "10,x"], ["--winds", "[m/s]", "10,x"]),
+                        (["--level", "3", "--winds", "50"], ["--winds", "m/s", "50"]),
+                        (["--level", "3", "--out", str(tmp_path / "a.nc")], ["--out",
+                                                                            "level 1 only"])):
+        res = runner.invoke(app, ["dp", "capability", "supply", *args])
+        assert res.exit_code == 2, (args, res.output)
+        line = res.stderr.strip()
+        assert "\n" not in line and all(w in line for w in words), (args, line)
