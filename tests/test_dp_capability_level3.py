@@ -78,3 +78,18 @@ def test_cli_level3(tmp_path):
         assert res.exit_code == 2, (args, res.output)
         line = res.stderr.strip()
         assert "\n" not in line and all(w in line for w in words), (args, line)
+
+
+def test_level3_on_dask_equals_in_process():
+    pytest.importorskip("distributed")
+    kw = dict(headings=2, wind_speeds=[10.0, 15.0], failures=["main-port"], duration=200.0,
+              dt=0.5)
+    here = level3_capability("supply", **kw)
+    there = level3_capability("supply", workers=2, **kw)
+    np.testing.assert_array_equal(there.held, here.held)
+    np.testing.assert_array_equal(there.excursion, here.excursion)
+    np.testing.assert_allclose(there.mean_thrust, here.mean_thrust, rtol=1e-12)  # (the means
+    # of the same records, summed in another order)
+    with pytest.raises(ParameterError) as info:
+        level3_capability("supply", workers=0, **kw)
+    assert info.value.field == "workers"

@@ -25,6 +25,7 @@ in tests/test_dp_capability_level3.py).
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -62,8 +63,8 @@ def level3_capability(ship: Any, *, headings: int = 12, wind_speeds: Any = None,
                       failures: Any = "each", current_speed: float = 0.5, waves: bool = True,
                       duration: float = 600.0, dt: float = 0.5,
                       excursion_limit: float = 5.0, heading_limit: float = math.radians(3.0),
-                      unmet_tolerance: float = 1e-3, controller_params: Any = None
-                      ) -> Level3Result:
+                      unmet_tolerance: float = 1e-3, controller_params: Any = None,
+                      workers: int | None = None) -> Level3Result:
     """Level-3 capability of a ship with thrusters (see the module).
 
     Parameters
@@ -91,18 +92,20 @@ def level3_capability(ship: Any, *, headings: int = 12, wind_speeds: Any = None,
         Largest unmet demand over the total rating [-] (default 1e-3).
     controller_params : mapping, optional
         :class:`~seahelm.control.dp_pid.DpPidParams` fields (gains) for every case.
+    workers : int, optional
+        Run the batch in chunks on a local Dask cluster of this many worker processes (the
+        ``dask`` extra); default: one batch in this process (the engine's threads).
 
     Returns
     -------
     Level3Result
     """
-    import time
-
     from ..control.dp_pid import dp_pid_params
     from ..ships.catalog import get
-    from ..simulation.engine import simulate
-    from ..simulation.problem import Problem
 
+    if workers is not None and not (isinstance(workers, int) and workers >= 1):
+        raise ParameterError(f"must be an integer ≥ 1 [-], got {workers!r}", field="workers",
+                             unit="-", value=workers)
     headings = int(headings)
     if headings < 1:
         raise ParameterError(f"must be ≥ 1 [-], got {headings}", field="headings", unit="-",
@@ -131,31 +134,19 @@ def level3_capability(ship: Any, *, headings: int = 12, wind_speeds: Any = None,
     cp = np.repeat(np.stack(cparams), nh * nw, axis=0)             # (nc·nh·nw, n_params)
     ld = np.broadcast_to(load, (nc, nh, nw, 3)).reshape(-1, 3)
     runs = ld.shape[0]
-    t0 = time.perf_counter()
-    res = simulate(Problem(
-        ship=sh, x0=np.zeros(6), t_final=float(duration), dt=float(dt), actuator="direct",
-        controller="dp-pid", controller_params=cp,
-        reference={"north": 0.0, "east": 0.0, "heading": 0.0, "wind_force_x": 0.0,
-                   "wind_force_y": 0.0, "wind_moment_z": 0.0},
-        disturbance={"force_x": ld[:, 0].reshape(runs, 1, 1),
-                     "force_y": ld[:, 1].reshape(runs, 1, 1),
-                     "moment_z": ld[:, 2].reshape(runs, 1, 1)}))
-    seconds = time.perf_counter() - t0
-    t = np.asarray(res.time)
-    late = t >= 0.5 * float(duration)
-    north, east, psi = (np.asarray(res[k])[:, late] for k in ("north", "east", "heading"))
-    excursion = np.hypot(north, east).max(axis=1)
-    dpsi = np.abs((psi + math.pi) % (2 * math.pi) - math.pi).max(axis=1)
-    unmet = np.stack([np.abs(np.asarray(res[k])[:, late]).max(axis=1)
-                      for k in ("unmet_surge", "unmet_sway")], axis=1).max(axis=1)
-    unmet_n = np.abs(np.asarray(res["unmet_yaw"])[:, late]).max(axis=1)
     f_ref = float(np.sum(lay.max_thrust))
     l_ref = max(1.0, float(np.max(np.hypot(lay.x, lay.y))))
-    ok = (np.isfinite(excursion) & (excursion <= excursion_limit) & (dpsi <= heading_limit)
-          & (unmet <= unmet_tolerance * f_ref) & (unmet_n <= unmet_tolerance * f_ref * l_ref)
-          & np.asarray(res.ok))
-    mean = np.stack([np.asarray(res[k])[:, late].mean(axis=1)
-                     for k in ("thrust_surge", "thrust_sway", "thrust_yaw")], axis=1)
+    limits = (float(excursion_limit), float(heading_limit), unmet_tolerance * f_ref,
+              unmet_tolerance * f_ref * l_ref)
+    source = sh.name if sh.name in _catalog_names() and get(sh.name) == sh else \
+        _mapping(sh)
+    t0 = time.perf_counter()
+    if workers is None:
+        parts = [_run_chunk(source, cp, ld, float(duration), float(dt), limits)]
+    else:
+        parts = _on_dask(int(workers), source, cp, ld, float(duration), float(dt), limits)
+    seconds = time.perf_counter() - t0
+    ok, excursion, mean = (np.concatenate([pt[k] for pt in parts]) for k in range(3))
     shape = (nc, nh, nw)
     held = ok.reshape(shape)
     # the largest wind held with every lighter wind of the grid held too
@@ -171,3 +162,73 @@ def level3_capability(ship: Any, *, headings: int = 12, wind_speeds: Any = None,
     return Level3Result(vessel.name, theta, winds, tuple(nm for nm, _ in layouts), held,
                         excursion.reshape(shape), mean.reshape(shape + (3,)),
                         np.broadcast_to(load, shape + (3,)).copy(), best, criteria, seconds)
+
+
+def _catalog_names() -> tuple[str, ...]:
+    from ..ships.catalog import names
+
+    return names()
+
+
+def _mapping(ship: Any) -> dict:
+    from ..ships.writing import ship_to_mapping
+
+    return ship_to_mapping(ship)
+
+
+def _run_chunk(source: Any, cp: np.ndarray, ld: np.ndarray, duration: float, dt: float,
+               limits: tuple) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Simulate the runs (controller parameters ``cp``, loads ``ld``) and judge them: held,
+    the excursion [m] and the mean delivered thrust over the last half."""
+    from ..ships.catalog import get
+    from ..ships.files import ship_from_mapping
+    from ..simulation.engine import simulate
+    from ..simulation.problem import Problem
+
+    sh = get(source) if isinstance(source, str) else ship_from_mapping(source, lookup=get)
+    runs = ld.shape[0]
+    res = simulate(Problem(
+        ship=sh, x0=np.zeros(6), t_final=duration, dt=dt, actuator="direct",
+        controller="dp-pid", controller_params=cp,
+        reference={"north": 0.0, "east": 0.0, "heading": 0.0, "wind_force_x": 0.0,
+                   "wind_force_y": 0.0, "wind_moment_z": 0.0},
+        disturbance={"force_x": ld[:, 0].reshape(runs, 1, 1),
+                     "force_y": ld[:, 1].reshape(runs, 1, 1),
+                     "moment_z": ld[:, 2].reshape(runs, 1, 1)}))
+    t = np.asarray(res.time)
+    late = t >= 0.5 * duration
+    north, east, psi = (np.asarray(res[k])[:, late] for k in ("north", "east", "heading"))
+    excursion = np.hypot(north, east).max(axis=1)
+    dpsi = np.abs((psi + math.pi) % (2 * math.pi) - math.pi).max(axis=1)
+    unmet = np.stack([np.abs(np.asarray(res[k])[:, late]).max(axis=1)
+                      for k in ("unmet_surge", "unmet_sway")], axis=1).max(axis=1)
+    unmet_n = np.abs(np.asarray(res["unmet_yaw"])[:, late]).max(axis=1)
+    ex_lim, psi_lim, f_lim, n_lim = limits
+    ok = (np.isfinite(excursion) & (excursion <= ex_lim) & (dpsi <= psi_lim)
+          & (unmet <= f_lim) & (unmet_n <= n_lim) & np.asarray(res.ok))
+    mean = np.stack([np.asarray(res[k])[:, late].mean(axis=1)
+                     for k in ("thrust_surge", "thrust_sway", "thrust_yaw")], axis=1)
+    return ok, excursion, mean
+
+
+def _on_dask(workers: int, source: Any, cp: np.ndarray, ld: np.ndarray, duration: float,
+             dt: float, limits: tuple) -> list:
+    """The runs in chunks (4 per worker) on a local Dask cluster, in order."""
+    from .._optional import optional_import
+
+    distributed = optional_import("distributed", extra="dask",
+                                  purpose="level-3 capability on a dask cluster (--workers)")
+    runs = ld.shape[0]
+    n_chunks = min(runs, 4 * workers)
+    edges = np.linspace(0, runs, n_chunks + 1).astype(int)
+    cluster = distributed.LocalCluster(n_workers=workers, threads_per_worker=1,
+                                       processes=True, host="127.0.0.1",
+                                       dashboard_address=None)
+    try:
+        with distributed.Client(cluster, set_as_default=False) as client:
+            futures = [client.submit(_run_chunk, source, cp[a:b], ld[a:b], duration, dt,
+                                     limits, pure=False)
+                       for a, b in zip(edges[:-1], edges[1:]) if b > a]
+            return client.gather(futures)
+    finally:
+        cluster.close()

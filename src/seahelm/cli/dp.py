@@ -99,7 +99,7 @@ def _plot(res: Any, path: Path) -> None:
 
 
 def _level3(ship: str, headings: int, failures: str, current: float, no_waves: bool,
-            winds: str, duration: float, json_out: bool) -> None:
+            winds: str, duration: float, json_out: bool, workers: int | None) -> None:
     from ..analysis.dp_capability_level3 import level3_capability
 
     speeds = None
@@ -112,11 +112,14 @@ def _level3(ship: str, headings: int, failures: str, current: float, no_waves: b
     if not (duration > 0 and math.isfinite(duration)):
         raise ParameterError(f"must be > 0 [s], got {duration!r}", field="--duration",
                              unit="s", value=duration)
-    options = {**_OPTIONS, "wind_speeds": "--winds"}
+    if workers is not None and workers < 1:
+        raise ParameterError(f"must be ≥ 1 [-], got {workers}", field="--workers", unit="-",
+                             value=workers)
+    options = {**_OPTIONS, "wind_speeds": "--winds", "workers": "--workers"}
     try:
         res = level3_capability(ship, headings=headings, wind_speeds=speeds,
                                 failures=_failures(failures), current_speed=current,
-                                waves=not no_waves, duration=duration)
+                                waves=not no_waves, duration=duration, workers=workers)
     except ParameterError as exc:
         option = options.get(exc.field or "")
         if option is None:
@@ -164,6 +167,9 @@ def capability(
         "upper speeds from Beaufort 4).")] = "",
     duration: Annotated[float, typer.Option("--duration", help="Level 3: run length [s].")
                         ] = 600.0,
+    workers: Annotated[int | None, typer.Option(
+        "--workers", help="Level 3: run the batch in chunks on a local Dask cluster of N "
+        "processes.")] = None,
     out: Annotated[Path | None, typer.Option("--out", help="Write a NetCDF file.")] = None,
     json_file: Annotated[Path | None, typer.Option("--json-out", help="Write a JSON file.")] = None,
     plot: Annotated[Path | None, typer.Option("--plot", help="Polar capability plot.")] = None,
@@ -177,12 +183,16 @@ def capability(
     if level not in (1, 3):
         raise ParameterError(f"must be 1 or 3 [-], got {level}", field="--level", unit="-",
                              value=level)
+    if level == 1 and workers is not None:
+        raise ParameterError(f"is for level 3 only (level 1 takes under a second), got "
+                             f"{workers}", field="--workers", value=workers)
     if level == 3:
         for opt, given in (("--out", out), ("--json-out", json_file), ("--plot", plot)):
             if given is not None:
                 raise ParameterError("is for level 1 only (level 3 prints its table, or "
                                      f"--json), got {str(given)!r}", field=opt, value=str(given))
-        _level3(ship, headings, failures, current, no_waves, winds, duration, json_out)
+        _level3(ship, headings, failures, current, no_waves, winds, duration, json_out,
+                workers)
         return
     if headings < 1:
         raise ParameterError(f"must be ≥ 1 [-], got {headings}",
