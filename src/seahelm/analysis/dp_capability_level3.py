@@ -231,4 +231,15 @@ def _on_dask(workers: int, source: Any, cp: np.ndarray, ld: np.ndarray, duration
                        for a, b in zip(edges[:-1], edges[1:]) if b > a]
             return client.gather(futures)
     finally:
-        cluster.close()
+        import logging
+
+        # (dask logs its workers' shutdown as warnings: said once here, not per worker)
+        quiet = [logging.getLogger(n) for n in ("distributed", "distributed.nanny")]
+        levels = [lg.level for lg in quiet]
+        for lg in quiet:
+            lg.setLevel(logging.CRITICAL + 1)
+        try:
+            cluster.close()
+        finally:
+            for lg, level in zip(quiet, levels):
+                lg.setLevel(level)
