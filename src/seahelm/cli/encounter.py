@@ -105,7 +105,7 @@ def _print(label: str, rows: list[dict[str, Any]]) -> None:
             highlight=False, markup=False, soft_wrap=True)
 
 
-def _write(result: Any, out: Path, force: bool) -> None:
+def _write(result: Any, out: Path, force: bool, label: str) -> None:
     import matplotlib
 
     matplotlib.use("Agg", force=False)
@@ -115,6 +115,7 @@ def _write(result: Any, out: Path, force: bool) -> None:
 
     ds = result.to_xarray()
     ds.attrs["seahelm_command"] = command_path() or "seahelm encounter"
+    ds.attrs["avoidance"] = label
     write_netcdf(ds, out / "encounters.nc", force=force)
     if result.lengths.size > 1:
         worst = int(result.min_range[:, 0].argmin())
@@ -168,7 +169,7 @@ def encounter(
     encounters = [make(m) for m in methods]  # (all validated before any runs)
     payload: dict[str, Any] = {"seahelm_command": command_path() or "seahelm encounter",
                                "methods": {}}
-    result = None
+    result, label = None, ""
     for m, enc in zip(methods, encounters):
         result = enc.run()
         label = m if m not in (None, "scenario") else _name(enc.avoidance)
@@ -178,6 +179,6 @@ def encounter(
             _print(f"{enc.n_encounters} encounter(s) of {enc.n_vessels} vessels, "
                    f"{enc.t_final:g} s — own ship's avoidance: {label}", rows)
     if out is not None and result is not None:
-        _write(result, out, force)
+        _write(result, out, force, label)
     if json_out:
         print_json(payload)
