@@ -23,7 +23,8 @@ _FILES = ("encounters.nc", "tracks.png", "cpa.png", "rose.png")
 
 
 def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, own_ship: str,
-           target_ship: str, t_final: float | None, seed: int, detection: float) -> Any:
+           target_ship: str, t_final: float | None, seed: int, detection: float,
+           targets_avoid: bool = False) -> Any:
     from ..encounters import Encounter
     from ..encounters.files import (is_encounter_scenario, parse_encounter_scenario,
                                     read_traffic_situations)
@@ -41,7 +42,8 @@ def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, ow
         vessels, _ = monte_carlo_vessels(monte_carlo, own_ship=own_ship,
                                          target_ship=target_ship, seed=seed,
                                          detection_range=(0.75 * detection, detection),
-                                         tcpa=(0.1 * tf, 0.6 * tf), target_speed=(3.0, 8.0))
+                                         tcpa=(0.1 * tf, 0.6 * tf), target_speed=(3.0, 8.0),
+                                         targets_avoid=targets_avoid)
         return lambda m: Encounter(vessels, t_final=tf, avoidance=m, record_every=10), method
     if not files:
         raise ParameterError(": give an encounter scenario (TOML), traffic situations (JSON) "
@@ -50,7 +52,7 @@ def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, ow
         tf = 1200.0 if t_final is None else t_final
         return (lambda m: read_traffic_situations(files, own_ship=own_ship,
                                                   target_ship=target_ship, t_final=tf,
-                                                  avoidance=m),
+                                                  avoidance=m, targets_avoid=targets_avoid),
                 method or "velocity-obstacles")
     if len(files) != 1 or files[0].suffix.lower() != ".toml":
         raise ParameterError(f": one scenario (.toml) or traffic situations (.json), got "
@@ -63,6 +65,9 @@ def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, ow
     base = files[0].parent
     if t_final is not None:
         data = {**data, "encounter": {**data.get("encounter", {}), "t_final": t_final}}
+    if targets_avoid and isinstance(data.get("vessel"), list):
+        data = {**data, "vessel": [{**v, "avoid": True} if isinstance(v, dict) else v
+                                   for v in data["vessel"]]}
 
     def make(m: Any) -> Any:
         d = data if m == "scenario" else {**data, "encounter": {
@@ -148,6 +153,10 @@ def encounter(
         help="--monte-carlo: range at detection [m] (drawn in 0.75 ... 1 times it).")
     ] = 9000.0,
     seed: Annotated[int, typer.Option(help="--monte-carlo seed.")] = 0,
+    targets_avoid: Annotated[bool, typer.Option(
+        "--targets-avoid", help="The targets use the same avoidance method as the own ship "
+                                "(default: they keep their course or route; in a scenario, "
+                                "`avoid = true` in a [[vessel]] table).")] = False,
     out: Annotated[Path | None, typer.Option(
         help=f"Write {', '.join(_FILES)} here (the last method's with --compare).")] = None,
     force: ForceFlag = False,
@@ -164,7 +173,7 @@ def encounter(
     if out is not None:
         output_dir("--out", out, _FILES, reads=tuple(files or ()), force=force)
     make, method = _build(list(files or []), monte_carlo, avoidance, own_ship, target_ship,
-                          t_final, seed, detection)
+                          t_final, seed, detection, targets_avoid)
     methods = ([None, "rule-based", "velocity-obstacles"] if compare else [method])
     encounters = [make(m) for m in methods]  # (all validated before any runs)
     payload: dict[str, Any] = {"seahelm_command": command_path() or "seahelm encounter",

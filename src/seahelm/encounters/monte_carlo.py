@@ -120,7 +120,8 @@ def sample_geometry(n: int, *, own_speed: float, bearing: Any = (0.0, 2 * math.p
 
 
 def monte_carlo_vessels(n: int, *, own_ship: Any, target_ship: Any, own_speed: float | None = None,
-                        seed: int | None = None, **ranges: Any) -> tuple[list[Vessel],
+                        seed: int | None = None, targets_avoid: bool = False,
+                        **ranges: Any) -> tuple[list[Vessel],
                                                                          dict[str, np.ndarray]]:
     """The vessels of ``n`` drawn encounters: the own ship (avoiding) and one target.
 
@@ -133,6 +134,8 @@ def monte_carlo_vessels(n: int, *, own_ship: Any, target_ship: Any, own_speed: f
     own_speed : float, optional
         U_o [m/s] (default the own ship's approach speed).
     seed : int, optional
+    targets_avoid : bool, optional
+        The target runs the encounter's avoidance too (default False: it keeps its course).
     **ranges
         ``bearing``, ``detection_range``, ``target_speed``, ``dcpa`` of :func:`sample_geometry`.
 
@@ -150,5 +153,5 @@ def monte_carlo_vessels(n: int, *, own_ship: Any, target_ship: Any, own_speed: f
                  name="own")
     target = Vessel(ship=target_ship, north=geo["north"], east=geo["east"],
                     course=geo["course"], speed=np.round(geo["target_speed"], 2),
-                    name="target")
+                    avoid=bool(targets_avoid), name="target")
     return [own, target], geo
