@@ -24,7 +24,7 @@ _FILES = ("encounters.nc", "tracks.png", "cpa.png", "rose.png")
 
 def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, own_ship: str,
            target_ship: str, t_final: float | None, seed: int, detection: float,
-           targets_avoid: bool = False) -> Any:
+           targets_avoid: bool = False, overtaking: float = 0.0) -> Any:
     from ..encounters import Encounter
     from ..encounters.files import (is_encounter_scenario, parse_encounter_scenario,
                                     read_traffic_situations)
@@ -38,12 +38,25 @@ def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, ow
         if monte_carlo < 1:
             raise ParameterError(f"must be >= 1 [encounters], got {monte_carlo}",
                                  field="--monte-carlo", value=monte_carlo)
+        if not (math.isfinite(overtaking) and 0.0 <= overtaking <= 1.0):
+            raise ParameterError(f"must be a share in 0 ... 1 [-], got {overtaking!r}",
+                                 field="--overtaking", unit="-", value=overtaking)
         tf = 1200.0 if t_final is None else t_final
-        vessels, _ = monte_carlo_vessels(monte_carlo, own_ship=own_ship,
-                                         target_ship=target_ship, seed=seed,
-                                         detection_range=(0.75 * detection, detection),
-                                         tcpa=(0.1 * tf, 0.6 * tf), target_speed=(3.0, 8.0),
-                                         targets_avoid=targets_avoid)
+        # overtaking closes at a few m/s: closer, within what the horizon lets close
+        hi = max(min(0.35 * detection, 1.8 * tf), 1400.0)
+        lo = max(1000.0, min(0.15 * detection, 0.75 * hi))
+        try:
+            vessels, _ = monte_carlo_vessels(
+                monte_carlo, own_ship=own_ship, target_ship=target_ship, seed=seed,
+                detection_range=(0.75 * detection, detection), tcpa=(0.1 * tf, 0.6 * tf),
+                target_speed=(3.0, 8.0), targets_avoid=targets_avoid, overtaking=overtaking,
+                overtaking_range=(lo, hi))
+        except ParameterError as exc:
+            if exc.field != "overtaking_range":
+                raise
+            raise ParameterError(f": {exc.reason.lstrip(': ')}; give a longer --t-final or "
+                                 f"--overtaking 0", field="--overtaking", value=overtaking
+                                 ) from None
         return lambda m: Encounter(vessels, t_final=tf, avoidance=m, record_every=10), method
     if not files:
         raise ParameterError(": give an encounter scenario (TOML), traffic situations (JSON) "
@@ -136,7 +149,8 @@ def encounter(
              "situations (JSON, one encounter each).")] = None,
     monte_carlo: Annotated[int | None, typer.Option(
         "--monte-carlo", help="Draw N two-ship encounters (bearing all round, CPA within "
-                              "±0.5 nmi at detection) instead of reading files.")] = None,
+                              "±0.5 nmi at detection; a share --overtaking of them "
+                              "overtaking) instead of reading files.")] = None,
     avoidance: Annotated[str | None, typer.Option(
         help=f"Own ship's avoidance: {', '.join(_METHODS)} (default: the scenario's; "
              "velocity-obstacles for situations and --monte-carlo).")] = None,
@@ -153,6 +167,10 @@ def encounter(
         help="--monte-carlo: range at detection [m] (drawn in 0.75 ... 1 times it).")
     ] = 9000.0,
     seed: Annotated[int, typer.Option(help="--monte-carlo seed.")] = 0,
+    overtaking: Annotated[float, typer.Option(
+        help="--monte-carlo: share of the encounters drawn as overtaking (half with the own "
+             "ship overtaking a slower target ahead, half overtaken, at half speed, by one "
+             "from astern), at 0.15 ... 0.35 times --detection.")] = 0.2,
     targets_avoid: Annotated[bool, typer.Option(
         "--targets-avoid", help="The targets use the same avoidance method as the own ship "
                                 "(default: they keep their course or route; in a scenario, "
@@ -173,7 +191,7 @@ def encounter(
     if out is not None:
         output_dir("--out", out, _FILES, reads=tuple(files or ()), force=force)
     make, method = _build(list(files or []), monte_carlo, avoidance, own_ship, target_ship,
-                          t_final, seed, detection, targets_avoid)
+                          t_final, seed, detection, targets_avoid, overtaking)
     methods = ([None, "rule-based", "velocity-obstacles"] if compare else [method])
     encounters = [make(m) for m in methods]  # (all validated before any runs)
     payload: dict[str, Any] = {"seahelm_command": command_path() or "seahelm encounter",
