@@ -21,8 +21,8 @@ runner = CliRunner()
 def study(tmp_path_factory):
     out = tmp_path_factory.mktemp("enc") / "study"
     res = runner.invoke(app, ["encounter", "--monte-carlo", "8", "--t-final", "300",
-                              "--detection", "2600", "--seed", "2", "--overtaking", "0", "--avoidance",
-                              "rule-based", "--out", str(out), "--json"])
+                              "--detection", "2600", "--seed", "2", "--overtaking", "0",
+                              "--avoidance", "rule-based", "--out", str(out), "--json"])
     assert res.exit_code == 0, res.output
     return out, json.loads(res.output)["methods"]["rule-based"]
 

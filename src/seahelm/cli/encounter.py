@@ -171,6 +171,12 @@ def encounter(
         help="--monte-carlo: share of the encounters drawn as overtaking (half with the own "
              "ship overtaking a slower target ahead, half overtaken, at half speed, by one "
              "from astern), at 0.15 ... 0.35 times --detection.")] = 0.2,
+    workers: Annotated[int | None, typer.Option(
+        "--workers", help="Run the encounters in chunks on a local dask cluster of N "
+                          "processes (as `seahelm sweep --workers`); the same result.")] = None,
+    chunk_size: Annotated[int | None, typer.Option(
+        "--chunk-size", help="Encounters per chunk (in this process without --workers; "
+                             "default: the encounters over 4 per worker).")] = None,
     targets_avoid: Annotated[bool, typer.Option(
         "--targets-avoid", help="The targets use the same avoidance method as the own ship "
                                 "(default: they keep their course or route; in a scenario, "
@@ -188,6 +194,9 @@ def encounter(
     if t_final is not None and not (math.isfinite(t_final) and t_final > 0):
         raise ParameterError(f"must be > 0 [s], got {t_final!r}", field="--t-final", unit="s",
                              value=t_final)
+    for name, value in (("--workers", workers), ("--chunk-size", chunk_size)):
+        if value is not None and value < 1:
+            raise ParameterError(f"must be >= 1, got {value}", field=name, value=value)
     if out is not None:
         output_dir("--out", out, _FILES, reads=tuple(files or ()), force=force)
     make, method = _build(list(files or []), monte_carlo, avoidance, own_ship, target_ship,
@@ -198,7 +207,12 @@ def encounter(
                                "methods": {}}
     result, label = None, ""
     for m, enc in zip(methods, encounters):
-        result = enc.run()
+        if workers is None and chunk_size is None:
+            result = enc.run()
+        else:
+            from ..encounters.chunked import run_chunked
+
+            result = run_chunked(enc, chunk_size=chunk_size, workers=workers)
         label = m if m not in (None, "scenario") else _name(enc.avoidance)
         rows = _rows(result)
         payload["methods"][label] = rows
