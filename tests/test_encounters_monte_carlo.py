@@ -123,3 +123,20 @@ def test_monte_carlo_command_has_overtaking_in_the_outcome_table():
     res = CliRunner().invoke(app, ["encounter", "--monte-carlo", "10", "--t-final", "100",
                                    "--detection", "1400"])  # (too short to be overtaken)
     assert res.exit_code == 2 and "--overtaking" in res.output and "--t-final" in res.output
+
+
+def test_the_default_avoidance_is_the_one_the_help_names():
+    """``--monte-carlo`` without ``--avoidance`` ran with no avoidance while the help said
+    velocity obstacles; ``--avoidance none`` on situation files ran velocity obstacles."""
+    import json
+
+    from typer.testing import CliRunner
+
+    from seahelm.cli.main import app
+
+    args = ["encounter", "--monte-carlo", "4", "--overtaking", "0", "--t-final", "600",
+            "--detection", "4000", "--seed", "5", "--json"]
+    for extra, expected in (([], "velocity-obstacles"), (["--avoidance", "none"], "none")):
+        res = CliRunner().invoke(app, [*args, *extra])
+        assert res.exit_code == 0, res.output
+        assert list(json.loads(res.output)["methods"]) == [expected]

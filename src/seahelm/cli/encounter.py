@@ -31,6 +31,9 @@ def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, ow
     from ..encounters.monte_carlo import monte_carlo_vessels
 
     method = None if avoidance in (None, "none") else avoidance
+    # situations and --monte-carlo without --avoidance: velocity obstacles (the help's
+    # default); --avoidance none: none
+    chosen = "velocity-obstacles" if avoidance is None else method
     if monte_carlo is not None:
         if files:
             raise ParameterError(": give files or --monte-carlo, not both",
@@ -57,7 +60,7 @@ def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, ow
             raise ParameterError(f": {exc.reason.lstrip(': ')}; give a longer --t-final or "
                                  f"--overtaking 0", field="--overtaking", value=overtaking
                                  ) from None
-        return lambda m: Encounter(vessels, t_final=tf, avoidance=m, record_every=10), method
+        return lambda m: Encounter(vessels, t_final=tf, avoidance=m, record_every=10), chosen
     if not files:
         raise ParameterError(": give an encounter scenario (TOML), traffic situations (JSON) "
                              "or --monte-carlo N", field="FILES")
@@ -66,7 +69,7 @@ def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, ow
         return (lambda m: read_traffic_situations(files, own_ship=own_ship,
                                                   target_ship=target_ship, t_final=tf,
                                                   avoidance=m, targets_avoid=targets_avoid),
-                method or "velocity-obstacles")
+                chosen)
     if len(files) != 1 or files[0].suffix.lower() != ".toml":
         raise ParameterError(f": one scenario (.toml) or traffic situations (.json), got "
                              f"{', '.join(f.name for f in files)}", field="FILES")
