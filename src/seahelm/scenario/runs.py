@@ -32,6 +32,7 @@ from ..control.path_following import GuidanceLaw, RouteParams, get_guidance_law,
 from ..simulation.signals import Constant, make_signal
 from .environment import KEY_UNITS as _ENV_UNITS, environment_runs
 from .errors import ScenarioError, at_key as _err
+from .first_order import FirstOrderPostPass
 from ..ships.water_depth import params_at_depth
 from .particulars import refuse_varied_particulars
 from .samples import drawn_kinds, samples_draws
@@ -94,6 +95,7 @@ _ENGINE_KEYS = {
     "reference": "controller.reference",
     "disturbance": "environment.disturbance",
     "first_order": "environment.waves.autopilot_sees_first_order",
+    "post_pass": "environment.waves.first_order_motions",
 }
 
 
@@ -466,14 +468,15 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
         bounds=dict(sim.bounds),
         seed=seed,
         metadata={"title": scn.title, "scenario_source": source, "scenario_text": text,
-                  **({} if env is None or env.first_order is None else
-                     {"first_order_motions": json.dumps(env.first_order)} if in_loop is None
-                     else {"first_order_settings": json.dumps(env.first_order)})},
+                  **({} if in_loop is None else
+                     {"first_order_settings": json.dumps(env.first_order)})},
         layout=layout,
         environment=None if env is None else env.environment,
         environment_params=None if env is None else env.params,
         exact_actuator=sim.exact_actuator,
         first_order=in_loop,
+        post_pass=(None if env is None or env.first_order is None or in_loop is not None
+                   else FirstOrderPostPass(tuple(env.first_order), seed, source)),
     )
     try:  # the problem validates itself: its errors name their field, the key comes from it
         return Problem(**inputs)
@@ -536,12 +539,7 @@ def run_batch(
 
     source = str(batch.metadata.get("scenario_source", "<string>"))
     try:
-        result = simulate_batch(batch, throw=throw, progress=progress)
-        if "first_order_motions" in result.metadata:
-            from .first_order import add_first_order_motions
-
-            add_first_order_motions(result, batch.seed, source)
-        return result
+        return simulate_batch(batch, throw=throw, progress=progress)
     except ScenarioError:
         raise
     except ParameterError as exc:

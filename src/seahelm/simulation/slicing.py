@@ -43,7 +43,8 @@ class _Slices:
     more threads than runs (a single run stays in the calling thread). ``numba.set_num_threads``
     and ``NUMBA_NUM_THREADS`` set the number of threads, as for any numba parallel code.
 
-    Every slice has its own scratch buffers (the kernel allocates nothing). ``threads`` caps
+    Every slice has its own scratch buffers (the kernel allocates nothing), the stages' from
+    ``stage_scratch()`` (a tuple of each stage's buffers). ``threads`` caps
     the threads (the pure-Python loop runs in the calling thread: ``threads=1``). With
     ``keep_pool`` the thread pool lives as long as this object (:meth:`close`): a stepped
     batch calls the loop once per controller interval, and a pool costs some 100 µs to start.
@@ -51,7 +52,8 @@ class _Slices:
 
     def __init__(self, kernel: ModuleType, arrays: KernelArrays,
                  scratch_sizes: tuple[int, ...], threads: int | None = None,
-                 wave_sizes: tuple[int, int] = (1, 1), keep_pool: bool = False) -> None:
+                 stage_scratch: Callable[[], tuple[Any, ...]] = tuple,
+                 keep_pool: bool = False) -> None:
         import numba
 
         self.kernel = kernel
@@ -66,7 +68,7 @@ class _Slices:
                      np.linspace(0, n_runs, n_slices + 1).round().astype(np.int64))
         self.bounds = [(int(self.cuts[s]), int(self.cuts[s + 1])) for s in range(n_slices)]
         self.scratch = [kernel.scratch(*scratch_sizes) for _ in range(n_slices)]
-        self.wave_scratch = [kernel.wave_scratch(*wave_sizes) for _ in range(n_slices)]
+        self.stage_scratch = [stage_scratch() for _ in range(n_slices)]
         self._keep_pool = keep_pool
         # nothing observed (the kernel's ``out`` of the whole-horizon loop): empty, (0, outputs)
         self._no_out = np.zeros((0, arrays.record[1].shape[2]))
@@ -81,15 +83,15 @@ class _Slices:
     def init_runs(self) -> None:
         """The controllers' init at t = 0, for every run."""
         a = self.arrays
-        for (i0, i1), sc, wsc in zip(self.bounds, self.scratch, self.wave_scratch):
-            self.kernel.init_runs(i0, i1, a.state, a.params, a.signals, a.waves, sc, wsc)
+        for (i0, i1), sc, ssc in zip(self.bounds, self.scratch, self.stage_scratch):
+            self.kernel.init_runs(i0, i1, a.state, a.params, a.signals, a.stages, sc, ssc)
 
     def observe(self, k: int, dt: float, out: np.ndarray) -> None:
         """Every run's outputs at its state of step ``k`` into ``out`` (runs, outputs)."""
         a = self.arrays
-        for (i0, i1), sc, wsc in zip(self.bounds, self.scratch, self.wave_scratch):
-            self.kernel.observe_runs(i0, i1, k, dt, a.state, a.params, a.signals, a.waves, sc,
-                                     wsc, out)
+        for (i0, i1), sc, ssc in zip(self.bounds, self.scratch, self.stage_scratch):
+            self.kernel.observe_runs(i0, i1, k, dt, a.state, a.params, a.signals, a.stages, sc,
+                                     ssc, out)
 
     def run(self, k_start: int, k_stop: int, n_steps: int, dt: float, ctrl_every: int,
             rec_every: int, external: int = 0, out: np.ndarray | None = None) -> None:
@@ -103,8 +105,8 @@ class _Slices:
         def one(s: int) -> None:
             i0, i1 = self.bounds[s]
             run_slice(i0, i1, k_start, k_stop, n_steps, dt, ctrl_every, rec_every, external,
-                      a.state, a.params, a.signals, a.outcome, a.record, a.waves,
-                      self.scratch[s], self.wave_scratch[s], out)
+                      a.state, a.params, a.signals, a.outcome, a.record, a.stages,
+                      self.scratch[s], self.stage_scratch[s], out)
 
         n_slices = len(self.bounds)
         if self.threads == 1 or k_stop == k_start:
