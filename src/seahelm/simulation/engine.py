@@ -506,6 +506,9 @@ def _result(batch: Batch, *, wall: float, compile_time: float, throw: bool,
         },
         metadata={
             "model": model.name,
+            **({} if problem.ship is None else {
+                "ship": problem.ship.name, "ship_model": problem.ship.model.name,
+                "ship_provenance": problem.ship.provenance or "not given"}),
             "actuator": actuator.name,
             "controller": controller.name,
             "integrator": tableau.name,
