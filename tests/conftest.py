@@ -90,9 +90,13 @@ def pytest_configure(config):
     controlling process (not in xdist workers, which start after it).
 
     Registers the order of a parallel run (:class:`_OrderForWorkers`) and, with
-    ``SEAHELM_TEST_COMPILE_TIMES`` set, the compile log of every test (:class:`CompileTimes`).
+    ``SEAHELM_TEST_COMPILE_TIMES`` set, the compile log of every test (:class:`CompileTimes`);
+    with ``SEAHELM_TEST_KERNEL_CENSUS`` set, the census of the kernels (:class:`KernelCensus`).
     """
     config.pluginmanager.register(_OrderForWorkers(), "seahelm-order-for-workers")
+    if os.environ.get("SEAHELM_TEST_KERNEL_CENSUS"):
+        config.pluginmanager.register(KernelCensus(os.environ["SEAHELM_TEST_KERNEL_CENSUS"]),
+                                      "seahelm-kernel-census")
     if os.environ.get("SEAHELM_TEST_COMPILE_TIMES"):  # (xdist's controller runs no test)
         from numba.core import event
 
@@ -249,36 +253,69 @@ def report_sweep_dir(tmp_path_factory):
 # ------------------------------------------------------------------------------------------
 # the order of a parallel run: the long modules first, a share at the head of each worker
 # ------------------------------------------------------------------------------------------
-#: Seconds the slowest modules took in a fresh clone's `make test` (empty kernel cache, 2 cores,
-#: the 60 slowest durations of that run summed per module; most of it is compiling kernels).
-#: Only the order of the run depends on them: a wrong or missing figure costs time, not a test.
+def _docs(group: str) -> str:
+    """The node id of a group of docs commands (tests/test_docs_commands.py)."""
+    return f"tests/test_docs_commands.py::test_every_command_runs_as_written_in_order[{group}]"
+
+
+#: Seconds the slowest modules (or test functions, or single tests: see :func:`ordering_key`)
+#: took in a fresh clone's `make test` (empty kernel cache, 2 cores; the 30 slowest durations
+#: of that run summed per entry, 2026-12-02, 5,193 tests in 18:03; most of it is compiling
+#: kernels). The docs-command groups (one test per file then: getting-started.rst 142 s,
+#: README.md 65 s) are CPU seconds of their commands in an empty cache: ``seahelm imo``'s IMO
+#: kernels 63 s, then each command that reuses them 2 to 7 s. Only the order of the run
+#: depends on them: a wrong or missing figure costs time, not a test.
 LONG_MODULES: dict[str, float] = {
-    "tests/test_docs_commands.py": 182.0,
+    _docs("README.md:imo-cargo.toml-out-imo"): 70.0,
+    _docs("getting-started.rst:maneuver-turning-ship-my.toml-rudder-35"): 30.0,
+    _docs("getting-started.rst:run-examples-mariner-monte-carlo.toml"): 20.0,
+    _docs("README.md:maneuver-turning-ship-cargo.toml-rudder"): 12.0,
+    _docs("getting-started.rst:maneuver-turning-ship-son-nomoto"): 12.0,
+    _docs("getting-started.rst:sweep-examples-mariner-monte-carlo.toml"): 10.0,
+    _docs("getting-started.rst:run-examples-mariner-route-ilos.toml-out"): 10.0,
+    _docs("getting-started.rst:autopilot-tune-mariner-nonlinear"): 10.0,
+    "tests/test_simulation_pure_python.py": 88.2,  # 143.8 before 2 cases moved (-55.6 s)
+    "tests/test_benchmarks_quick.py": 91.9,
     "tests/test_simulation_integrators.py": 65.2,
-    "tests/test_benchmarks_quick.py": 61.3,
-    "tests/test_first_order_in_loop.py": 60.6,
-    "tests/test_studies_lvov2014.py": 39.2,
+    "tests/test_scenario.py": 60.8,
+    "tests/test_reversals.py": 56.6,
+    "tests/test_first_order_in_loop.py": 51.2,
     "tests/test_analysis_maneuvers_constant_speed.py": 38.8,
+    "tests/test_scenario_first_order_in_loop.py": 35.0,
     "tests/test_docs_coming_from.py": 28.1,
-    "tests/test_control_final_state.py": 26.5,
-    "tests/test_control_lq_cross_track.py": 24.9,
-    "tests/test_simulation_pure_python.py": 22.8,
-    "tests/test_environment_first_order.py": 22.5,
-    "tests/test_control_path_following.py": 22.1,
-    "tests/test_cli_stop_signals.py": 20.4,
+    "tests/test_control_final_state.py": 21.5,
+    "tests/test_sweep_dask.py": 20.7,
+    "tests/test_simulation_batch.py": 20.5,
+    "tests/test_environment_first_order.py": 19.9,
     "tests/test_control_state_space.py": 18.4,
-    "tests/test_scenario.py": 16.8,
-    "tests/test_sweep_dask.py": 16.0,
+    "tests/test_control_path_following.py": 17.4,
+    "tests/test_studies_lvov2014.py": 16.5,
+    "tests/test_cli_reliability_messages.py": 16.3,
+    "tests/test_control_lq_cross_track.py": 15.1,
     "tests/test_vessels_cpp_ship.py": 15.1,
+    "tests/test_cli_stop_signals.py": 15.0,
     "tests/test_cli_main.py": 14.5,
+    "tests/test_control_autopilot_design.py": 14.3,
 }
 
-#: Modules run right after a long module, on its worker, because they need the kernels it
-#: compiles: the README's ``seahelm imo cargo.toml`` and the page's ``seahelm imo kvlcc2-l7``
-#: compile the MMG's IMO kernels that ``imo_check("kvlcc2-l7")`` (73 s of setup in a fresh
+#: Entries run right after a long entry, on its worker, because they need the kernels it
+#: compiles: the README's ``seahelm imo cargo.toml`` compiles the MMG's IMO kernels (turning
+#: circles, zig-zags, crash stop; an estimated ship's are the KVLCC2's: after it, ``seahelm imo
+#: kvlcc2-l7`` compiles nothing) that the page's ``seahelm imo kvlcc2-l7`` (and its Monte-Carlo
+#: draws, its single manoeuvres) and ``imo_check("kvlcc2-l7")`` (73 s of setup in a fresh
 #: clone) would compile again at the same time on the other worker.
 FOLLOWERS: dict[str, tuple[str, ...]] = {
-    "tests/test_docs_commands.py": ("tests/test_analysis_imo.py", "tests/test_plotting_labels.py"),
+    _docs("README.md:imo-cargo.toml-out-imo"): (
+        _docs("getting-started.rst:imo-kvlcc2-l7-out-imo"),
+        _docs("getting-started.rst:imo-kvlcc2-l7-monte-carlo-50-seed-1"),
+        _docs("getting-started.rst:maneuver-stopping-ship-kvlcc2-l7"),
+        _docs("getting-started.rst:maneuver-spiral-ship-kvlcc2-l7"),
+        _docs("getting-started.rst:maneuver-pullout-ship-kvlcc2-l7-rudder"),
+        _docs("README.md:maneuver-zigzag-ship-cargo.toml-rudder"),
+        "tests/test_analysis_imo.py", "tests/test_plotting_labels.py"),
+    # the same turning circle in 10 m of water
+    _docs("README.md:maneuver-turning-ship-cargo.toml-rudder"): (
+        _docs("getting-started.rst:maneuver-turning-ship-cargo.toml-rudder"),),
 }
 
 
@@ -294,35 +331,43 @@ def worksteal_shares(n_items: int, n_workers: int) -> list[int]:
     return shares
 
 
+def ordering_key(nodeid: str, keys) -> str | None:
+    """The entry of ``keys`` that names test ``nodeid``, the most specific first: its node id,
+    its function (``module::name`` for every parameter), its module; None if none does."""
+    for key in (nodeid, nodeid.split("[", 1)[0], nodeid.split("::", 1)[0]):
+        if key in keys:
+            return key
+    return None
+
+
 def order_for_workers(items: list, n_workers: int, seconds: dict[str, float],
                       followers: dict[str, tuple[str, ...]] | None = None) -> list:
-    """``items`` reordered for ``n_workers``: the modules in ``seconds`` (by file path), longest
+    """``items`` reordered for ``n_workers``: the entries of ``seconds`` (a module's path, a
+    test function's ``module::name`` or one test's node id, see :func:`ordering_key`), longest
     first, each to the worker with the fewest seconds so far, at the head of that worker's
-    slice (see :func:`worksteal_shares`), each followed by its ``followers`` (modules that
-    reuse its kernels); every other test after them in its own order. The tests of a module
-    keep their order and stay together (its module fixtures are made once)."""
+    slice (see :func:`worksteal_shares`), each followed by its ``followers`` (entries that
+    reuse its kernels); every other test after them in its own order. The tests of an entry
+    keep their order and stay together (a module's fixtures are made once)."""
     followers = followers or {}
-
-    def module(item):
-        return item.nodeid.split("::", 1)[0]
-
-    present = {module(item) for item in items}
-    placed = {m for m in seconds if m in present}
-    placed |= {f for m in placed for f in followers.get(m, ())}
-    by_module: dict[str, list] = {}
+    keys = set(seconds) | {f for fs in followers.values() for f in fs}
+    named = [ordering_key(item.nodeid, keys) for item in items]
+    leaders = {k for k in named if k in seconds}
+    placed = leaders | {f for k in leaders for f in followers.get(k, ())}
+    by_key: dict[str, list] = {}
     rest = []
-    for item in items:
-        if module(item) in placed:
-            by_module.setdefault(module(item), []).append(item)
+    for item, key in zip(items, named):
+        if key in placed:
+            by_key.setdefault(key, []).append(item)
         else:
             rest.append(item)
     heads: list[list] = [[] for _ in range(n_workers)]
     load = [0.0] * n_workers
-    for name in sorted((m for m in seconds if m in by_module), key=lambda m: (-seconds[m], m)):
+    for name in sorted((k for k in seconds if k in by_key), key=lambda k: (-seconds[k], k)):
         worker = min(range(n_workers), key=lambda w: (load[w], w))
         for each in (name, *followers.get(name, ())):
-            heads[worker].extend(by_module.pop(each, []))
-        load[worker] += seconds[name]
+            if each in by_key:
+                heads[worker].extend(by_key.pop(each))
+                load[worker] += seconds.get(each, 0.0)
     ordered, start = [], 0
     for head, share in zip(heads, worksteal_shares(len(items), n_workers)):
         fill = max(0, share - len(head))
@@ -342,9 +387,11 @@ class CompileTimes:
     id), ``seconds`` (wall, setup to teardown), ``cpu`` (this process and its finished
     children), ``compile`` (seconds of the outermost compilations) and ``compiled``
     (``[function, seconds]``; a kernel is ``seahelm_kernel_<hash>.run_slice``, one hash per
-    combination of components). A kernel only one test compiles is a combination only it needs.
-    Subprocesses (``seahelm`` commands) are not followed: their compilations are in their
-    ``cpu``. xdist workers append to the same file.
+    combination of components) and ``kernels`` (the closed-loop kernels this test was the first
+    in its process to use, compiled or loaded from the cache). A kernel that one test alone
+    compiles and no other uses is a combination only it needs. Subprocesses (``seahelm``
+    commands) are not followed: their compilations are in their ``cpu``. xdist workers append
+    to the same file.
     """
 
     def __init__(self, path: str):
@@ -388,18 +435,60 @@ class CompileTimes:
                                                           resource.RUSAGE_CHILDREN))
         return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
 
+    @staticmethod
+    def _kernels() -> set[str]:
+        import sys
+
+        return {name for name in sys.modules if name.startswith("seahelm_kernel_")}
+
     @pytest.hookimpl(hookwrapper=True)
     def pytest_runtest_protocol(self, item, nextitem):
         import json
         import time
 
         self.compiled, start, cpu = [], time.perf_counter(), self._cpu()
+        before = self._kernels()
         yield
         row = {"test": item.nodeid, "seconds": round(time.perf_counter() - start, 3),
                "cpu": round(self._cpu() - cpu, 3),
-               "compile": round(sum(s for _, s in self.compiled), 3), "compiled": self.compiled}
+               "compile": round(sum(s for _, s in self.compiled), 3), "compiled": self.compiled,
+               "kernels": sorted(self._kernels() - before)}
         with open(self.path, "a", encoding="utf-8") as fh:
             fh.write(json.dumps(row) + "\n")
+
+
+class KernelCensus:
+    """Which combination of components each test needs, without compiling any.
+
+    With ``SEAHELM_TEST_KERNEL_CENSUS=FILE`` every test that builds a closed-loop kernel
+    appends ``{"test": node id, "kernel": "seahelm_kernel_<hash>"}`` to FILE and stops there
+    (skipped: "kernel census"): nothing is compiled for it and it does not pass (a census, not
+    a test run). Only a test's first kernel is seen, and not those of ``seahelm`` subprocesses
+    (which run and compile as usual). A kernel only one test names is a combination only that
+    test needs."""
+
+    def __init__(self, path: str):
+        self.path, self.test = path, None
+
+    def pytest_configure(self, config) -> None:
+        import seahelm.simulation.closed_loop as closed_loop
+
+        real = closed_loop.import_generated
+
+        def census(name: str, text: str):
+            if not name.startswith("seahelm_kernel_"):
+                return real(name, text)
+            import json
+
+            with open(self.path, "a", encoding="utf-8") as fh:
+                fh.write(json.dumps({"test": self.test, "kernel": name}) + "\n")
+            pytest.skip("kernel census")
+
+        closed_loop.import_generated = census
+
+    @pytest.hookimpl(tryfirst=True)
+    def pytest_runtest_setup(self, item) -> None:
+        self.test = item.nodeid
 
 
 # ------------------------------------------------------------------------------------------

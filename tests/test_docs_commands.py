@@ -3,11 +3,14 @@ fresh directory (issue 44).
 
 The commands are taken from the files themselves (the README's fenced blocks, the page's
 literal blocks): every line that starts with ``seahelm`` or ``python -m seahelm``, with its
-``\\`` continuation lines. Each file's commands run in a directory of their own that holds
-only ``examples/`` (a link to the repository's, as a fresh clone has it), through ``bash``
-with ``seahelm`` and ``python`` on ``PATH`` meaning this interpreter's seahelm, so
-redirections (``> my.toml``) and ``&&`` work as they do for a reader. A command that fails
-names the file, the line and the output.
+``\\`` continuation lines. They run in groups (:func:`command_groups`): a command that reads a
+file an earlier one writes (``zz/zigzag-runs.nc``, ``my.toml``) runs after it, in the same
+directory, in the files' order; commands that share nothing are separate tests, so a parallel
+run balances them (one test per file took 142 s and serialised the end of the run). Each
+group runs in a directory of its own that holds only ``examples/`` (a link to the
+repository's, as a fresh clone has it), through ``bash`` with ``seahelm`` and ``python`` on
+``PATH`` meaning this interpreter's seahelm, so redirections (``> my.toml``) and ``&&`` work as
+they do for a reader. A command that fails names the file, the line and the output.
 
 The fast tests check the README as a front page: its size, its picture and its links.
 """
@@ -197,13 +200,136 @@ def _run_in_order(path: Path, commands: list[tuple[int, str]], tmp: Path) -> lis
     return timings
 
 
+#: What a command writes without naming it (its default output), by the command's start.
+IMPLICIT_OUTPUTS = {"seahelm demo": "seahelm-out"}
+#: Options whose value is a file or directory the command writes (``>``: a redirection).
+OUTPUT_OPTIONS = ("--out", "-o", "--store", "--plot", ">")
+#: Commands that take a second or two: a group that reads what one writes runs it again
+#: rather than joining every other group that reads it (the README's ``cargo.toml`` feeds
+#: three commands that share nothing else).
+CHEAP_PREREQUISITES = ("seahelm ship estimate ", "seahelm ship show ")
+_PATH = re.compile(r"/|\.(nc|toml|zarr|csv|png|html|json)$")
+
+
+def command_files(command: str) -> tuple[set[str], set[str]]:
+    """``(reads, writes)`` of a command: the first path component of each file or directory
+    it names (``zz`` of ``zz/zigzag-runs.nc``), outputs being the values of
+    :data:`OUTPUT_OPTIONS` and :data:`IMPLICIT_OUTPUTS`, inputs every other path but those in
+    ``examples/`` (a fresh clone's)."""
+    words = shlex.split(command, comments=True)
+    reads, writes = set(), set()
+    for before, word in zip(["", *words], words):
+        if word.startswith("-") or not _PATH.search(word):
+            continue
+        (writes if before in OUTPUT_OPTIONS else reads).add(word.split("/", 1)[0])
+    writes |= {out for start, out in IMPLICIT_OUTPUTS.items()
+               if command == start or command.startswith(start + " ")}
+    return reads - {"examples"}, writes
+
+
+def command_groups(commands: list[tuple[int, str]]) -> list[list[tuple[int, str]]]:
+    """``commands`` (in the file's order) in groups that share no file, each in that order.
+
+    A command joins the group of the last earlier command that writes what it reads; one in
+    :data:`CHEAP_PREREQUISITES` is copied into each group that reads its output instead. A
+    command that reads a path no earlier command writes is an error (a new command's input
+    needs its writer named in :data:`IMPLICIT_OUTPUTS`)."""
+    parent = list(range(len(commands)))
+
+    def find(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    copies: dict[int, set[int]] = {}
+    files = [command_files(c) for _, c in commands]
+    for j, (reads, _) in enumerate(files):
+        for path in sorted(reads):
+            writers = [i for i in range(j) if path in files[i][1]]
+            if not writers:
+                raise AssertionError(f"line {commands[j][0]}: `{commands[j][1]}` reads {path!r},"
+                                     " which no earlier command writes")
+            i = writers[-1]
+            if commands[i][1].startswith(CHEAP_PREREQUISITES):
+                copies.setdefault(j, set()).add(i)
+            else:
+                parent[find(j)] = find(i)
+    members: dict[int, set[int]] = {}
+    for j in range(len(commands)):
+        members.setdefault(find(j), set()).add(j)
+    for group in members.values():
+        group |= {i for j in list(group) for i in copies.get(j, ())}
+    # a cheap command whose output only others read runs in their groups alone
+    needed = {i for c in copies.values() for i in c}
+    groups = [sorted(g) for g in members.values()
+              if not (len(g) == 1 and next(iter(g)) in needed)]
+    return [[commands[i] for i in g] for g in sorted(groups)]
+
+
+def _group_id(path: Path, group: list[tuple[int, str]]) -> str:
+    """``README.md:imo-cargo.toml-out-imo``: the file and the group's first command (that
+    is not a copied prerequisite), without ``seahelm`` and its comment, in up to 40
+    characters of whole words."""
+    first = next((c for _, c in group if not c.startswith(CHEAP_PREREQUISITES)), group[0][1])
+    words = shlex.split(first, comments=True)[1:]
+    words = words[2:] if words[:2] == ["-m", "seahelm"] else words
+    slug = ""
+    for part in re.sub(r"[^A-Za-z0-9.]+", "-", " ".join(words)).strip("-").split("-"):
+        if slug and len(slug) + 1 + len(part) > 40:
+            break
+        slug = f"{slug}-{part}" if slug else part
+    return f"{path.name}:{slug}"
+
+
+def docs_command_groups() -> list[tuple[Path, list[tuple[int, str]], str]]:
+    """``(file, group, id)`` of every group of the README's and the page's commands."""
+    out = []
+    for path, extract in ((README, markdown_commands), (GETTING_STARTED, rest_commands)):
+        for group in command_groups(extract(path.read_text(encoding="utf-8"))):
+            out.append((path, group, _group_id(path, group)))
+    return out
+
+
+def test_the_commands_are_grouped_by_the_files_they_share():
+    commands = list(enumerate([
+        "seahelm demo", "seahelm inspect seahelm-out/result.nc",
+        "seahelm ship show x --toml > my.toml", "seahelm maneuver zigzag --ship x --out zz/",
+        "seahelm maneuver turning --ship my.toml --out turn/",
+        "seahelm identify nomoto zz/zigzag-runs.nc --plot fit.png",
+        "seahelm identify mmg zz/z.nc turn/t.nc --ship my.toml -o identified.toml",
+        "seahelm ship check my.toml", "seahelm run examples/a.toml --out a/", "seahelm models"],
+        1))
+    assert command_files(commands[4][1]) == ({"my.toml"}, {"turn"})
+    assert command_files(commands[8][1]) == (set(), {"a"})
+    assert [[n for n, _ in g] for g in command_groups(commands)] == [
+        [1, 2], [3, 4, 5, 6, 7], [3, 8], [9], [10]]
+    with pytest.raises(AssertionError, match="line 2: .* reads 'nowhere'"):
+        command_groups([(1, "seahelm models"), (2, "seahelm inspect nowhere/result.nc")])
+    # every command of both files runs, each once (but the cheap prerequisites)
+    for path, extract in ((README, markdown_commands), (GETTING_STARTED, rest_commands)):
+        commands = extract(path.read_text(encoding="utf-8"))
+        grouped = [c for g in command_groups(commands) for c in g]
+        assert set(grouped) == set(commands)
+        assert len(grouped) == len(commands) + sum(
+            grouped.count(c) - 1 for c in commands if c[1].startswith(CHEAP_PREREQUISITES))
+    ids = [i for _, _, i in docs_command_groups()]
+    assert len(set(ids)) == len(ids), ids
+    assert len(ids) >= 20
+
+
+try:
+    _GROUPS = docs_command_groups()
+except AssertionError as exc:  # (a command reads what no earlier one writes: one failing test)
+    _GROUPS = [(None, str(exc), "a-command-reads-what-no-earlier-one-writes")]
+
+
 @pytest.mark.slow
-@pytest.mark.parametrize("path, extract", [(README, markdown_commands),
-                                           (GETTING_STARTED, rest_commands)],
-                         ids=["README.md", "getting-started.rst"])
-def test_every_command_runs_as_written_in_order(path, extract, tmp_path, capsys):
-    commands = extract(path.read_text(encoding="utf-8"))
-    assert commands
-    timings = _run_in_order(path, commands, tmp_path)
+@pytest.mark.parametrize("path, group", [(p, g) for p, g, _ in _GROUPS],
+                         ids=[i for _, _, i in _GROUPS])
+def test_every_command_runs_as_written_in_order(path, group, tmp_path, capsys):
+    if path is None:
+        pytest.fail(group)
+    timings = _run_in_order(path, group, tmp_path)
     with capsys.disabled():
         print("\n" + "\n".join(timings))

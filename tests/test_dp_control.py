@@ -61,7 +61,7 @@ def _azimuth_layout():
         direction=(0.3, 2.0, 0.5 * math.pi), azimuthing=(True, True, False),
         max_thrust=(4e5, 4e5, 2e5), forbidden=(((math.radians(80), math.radians(120)),),
                                                (), ()),
-        max_thrust_rate=(5e4, 5e4, 4e4), max_azimuth_rate=(math.radians(10), math.inf,
+        max_thrust_rate=(5e4, 5e4, 4e4), max_azimuth_rate=(math.inf, math.radians(10),
                                                            math.inf))
 
 

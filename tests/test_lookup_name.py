@@ -44,6 +44,10 @@ def test_the_message_of_a_lookup():
     assert err.value.field == "thing"
     with pytest.raises(KeyError):
         lookup_name("thing", table, ["unhashable"], error=KeyError)
+    # a table of names only (a tuple of the valid sets)
+    assert lookup_name("set", ("x", "y"), "y") == "y"
+    with pytest.raises(ValueError, match=r"^unknown set 'z'; valid: x, y$"):
+        lookup_name("set", ("x", "y"), "z")
 
 
 def test_the_registry_lookup_says_what_it_said():

@@ -1,7 +1,7 @@
 """The metrics' variables filled directly are the ones xarray's constructor makes.
 
-:func:`seahelm.analysis.maneuvers.common._variable` fills an ``xr.Variable``'s four slots
-itself where the probe :func:`~seahelm.analysis.maneuvers.common._raw_variables` found the
+:func:`seahelm.analysis.maneuvers.datasets._variable` fills an ``xr.Variable``'s four slots
+itself where the probe :func:`~seahelm.analysis.maneuvers.datasets._raw_variables` found the
 constructor to fill them so (a fifth of its cost, paid twenty times by a single run's metrics:
 issue 46 item 6); every slot, the Datasets built from them and their repr must be the same.
 """
@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from seahelm.analysis.maneuvers import common, turning_circle
+from seahelm.analysis.maneuvers import datasets, turning_circle
 
 ARRAYS = [((), np.array(1.5), {"units": "m", "long_name": "advance"}),
           ((), np.array(True), {"long_name": "complete"}),
@@ -24,12 +24,12 @@ ARRAYS = [((), np.array(1.5), {"units": "m", "long_name": "advance"}),
 
 
 def test_the_probe_finds_this_xarray_fills_the_slots_as_expected():
-    assert common._raw_variables()
+    assert datasets._raw_variables()
 
 
 @pytest.mark.parametrize("dims, arr, attrs", ARRAYS)
 def test_a_variable_filled_directly_is_the_constructors(dims, arr, attrs):
-    got = common._variable(dims, arr, attrs)
+    got = datasets._variable(dims, arr, attrs)
     want = xr.Variable(dims, arr, attrs)
     assert type(got) is type(want) and got.identical(want)
     for slot in ("_dims", "_attrs", "_encoding"):
@@ -44,7 +44,7 @@ def test_metrics_equal_those_built_by_the_constructor(monkeypatch):
         return turning_circle("kvlcc2-l7", math.radians(35.0), sides=1, t_final=40.0).metrics
 
     fast = metrics()
-    monkeypatch.setattr(common, "_raw_variables", lambda: False)
+    monkeypatch.setattr(datasets, "_raw_variables", lambda: False)
     slow = metrics()
     assert fast.identical(slow) and repr(fast) == repr(slow)
     assert list(fast.variables) == list(slow.variables)

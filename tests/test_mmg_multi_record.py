@@ -20,7 +20,7 @@ from seahelm.analysis.mmg_multi_record import (
     laplace_samples,
     simulate_segments,
 )
-from seahelm.analysis.records import RECORD_FORMATS, ManoeuvreRecord, read_records
+from seahelm.identification.records import RECORD_FORMATS, ManoeuvreRecord, read_records
 from seahelm.errors import ParameterError
 from seahelm.ships import get_ship
 
@@ -193,7 +193,7 @@ def folder(records, tmp_path_factory):
 def test_cli_fits_a_folder_and_writes_the_ship_and_the_posterior(folder, tmp_path):
     from typer.testing import CliRunner
 
-    from seahelm.analysis.samples_file import read_samples
+    from seahelm.identification.samples_file import read_samples
     from seahelm.cli.main import app
 
     out, post = tmp_path / "ident.toml", tmp_path / "post.csv"
@@ -202,7 +202,7 @@ def test_cli_fits_a_folder_and_writes_the_ship_and_the_posterior(folder, tmp_pat
                                    "--samples", "20", "--save-posterior", str(post),
                                    "--seed", "1"])
     assert res.exit_code == 0, (res.stdout, res.stderr)
-    assert "2 record(s)" in res.stdout and "N_r" in res.stdout
+    assert "2 record(s)" in res.stdout and "N_r" in res.stdout and "stated" in res.stdout
     ship = get_ship(str(out))
     assert ship.params.N_r == pytest.approx(TRUTH["N_r"], rel=0.15)
     assert ship.params.a_H == pytest.approx(TRUTH["a_H"], rel=0.15)

@@ -136,6 +136,20 @@ COMBINATIONS = {
         "model.depth -> controller.depth\nmodel.pitch -> controller.pitch\n"
         "model.heading -> controller.heading\nmodel.heave_speed -> controller.heave_speed\n"
         "model.pitch_rate -> controller.pitch_rate\nmodel.yaw_rate -> controller.yaw_rate"),
+    # examples/supply_dp_setpoint.toml: the DP controller's generalized thrust passes the
+    # direct actuator to the DP model; it measures position, heading and the body velocities;
+    # its references are the set-point and the measured wind load (feedforward)
+    ("dp-3dof", "direct", "dp-pid"): (
+        ("north", "east", "heading", "wind_force_x", "wind_force_y", "wind_moment_z"),
+        "controller.thrust_surge -> actuator.thrust_surge\n"
+        "controller.thrust_sway -> actuator.thrust_sway\n"
+        "controller.thrust_yaw -> actuator.thrust_yaw\n"
+        "actuator.thrust_surge -> model.thrust_surge\n"
+        "actuator.thrust_sway -> model.thrust_sway\n"
+        "actuator.thrust_yaw -> model.thrust_yaw\n"
+        "model.north -> controller.north\nmodel.east -> controller.east\n"
+        "model.heading -> controller.heading\nmodel.surge_speed -> controller.surge_speed\n"
+        "model.sway_speed -> controller.sway_speed\nmodel.yaw_rate -> controller.yaw_rate"),
 }
 
 

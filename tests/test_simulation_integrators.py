@@ -360,13 +360,13 @@ def test_heavy_models_loop_over_the_stages_and_light_ones_write_them_out():
     rk4, euler = get_integrator("rk4"), get_integrator("euler")
 
     def looped(model, actuator, tab):
-        return _stage_code_size(model, actuator, tab, None) > STAGE_LOOP_ABOVE
+        return _stage_code_size(model, actuator, tab) > STAGE_LOOP_ABOVE
 
     assert looped(MMG, RUDDER_PROPELLER, rk4) and looped(MARINER, RUDDER_SERVO, rk4)
     assert not looped(NOMOTO2, RUDDER_SERVO, rk4) and not looped(CATAMARAN, DIRECT, rk4)
     assert not looped(MMG, RUDDER_PROPELLER, euler)  # one stage: one copy either way
     # the size counts what the right-hand side calls, each function once
-    assert _stage_code_size(MMG, DIRECT, rk4, None) > 4 * 500
+    assert _stage_code_size(MMG, DIRECT, rk4) > 4 * 500
     assert hasattr(compile_closed_loop(MMG, RUDDER_PROPELLER, OPEN_LOOP, "rk4"), "RK_A")
     assert not hasattr(compile_closed_loop(NOMOTO2, RUDDER_SERVO, PID_HEADING, "rk4"), "RK_A")
     # the environment's loads count (compiled in the same go): Voitkunsky's model with Lvov's
@@ -381,8 +381,12 @@ def test_heavy_models_loop_over_the_stages_and_light_ones_write_them_out():
         job = load_scenario(Path(__file__).resolve().parents[1] / "examples"
                             / "compensation_storm_compensated.toml")
     assert job.environment is not None and job.model.name == "voitkunsky"
-    with_loads = _stage_code_size(job.model, job.actuator, rk4, job.environment, True)
-    without = _stage_code_size(job.model, job.actuator, rk4, None, True)
+    from seahelm.simulation.stages import stages_of
+
+    stages = stages_of(job)  # (the environment's stage)
+    assert [stage.name for stage in stages] == ["environment"]
+    with_loads = _stage_code_size(job.model, job.actuator, rk4, stages, True)
+    without = _stage_code_size(job.model, job.actuator, rk4, (), True)
     assert without < STAGE_LOOP_ABOVE < with_loads
 
 

@@ -5,7 +5,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from conftest import FOLLOWERS, LONG_MODULES, order_for_workers, worksteal_shares
+from conftest import (
+    FOLLOWERS,
+    LONG_MODULES,
+    order_for_workers,
+    ordering_key,
+    worksteal_shares,
+)
 
 
 @dataclass(frozen=True)
@@ -54,6 +60,29 @@ def test_a_follower_runs_right_after_its_long_module_on_its_worker():
                                                            if "long" not in i.nodeid]
 
 
+def test_the_tests_of_one_function_or_one_test_are_spread_over_the_workers():
+    # the docs-command groups are one function's parameters: each its own entry
+    items = ([Item(f"tests/a.py::t{i}") for i in range(20)]
+             + [Item(f"tests/d.py::run[g{i}]") for i in range(4)] + [Item("tests/d.py::fast")]
+             + [Item(f"tests/b.py::t{i}") for i in range(20)])
+    seconds = {"tests/d.py::run[g0]": 100.0, "tests/d.py::run[g1]": 60.0,
+               "tests/d.py::run": 30.0, "tests/b.py": 45.0}
+    ordered = order_for_workers(items, 2, seconds, {"tests/d.py::run[g0]": ("tests/b.py",)})
+    assert sorted(ordered, key=items.index) == items
+    first, second = ordered[:22], ordered[22:]  # worksteal_shares(45, 2) == [22, 23]
+    # g0 (100 s) and its follower b to worker 0; g1 (60 s), then g2 and g3 (the function's
+    # entry, 30 s) to worker 1; the module's other test stays in the rest
+    assert [i.nodeid for i in first[:21]] == (["tests/d.py::run[g0]"]
+                                              + [f"tests/b.py::t{i}" for i in range(20)])
+    assert [i.nodeid for i in second[:3]] == ["tests/d.py::run[g1]", "tests/d.py::run[g2]",
+                                              "tests/d.py::run[g3]"]
+    assert [i.nodeid for i in ordered if i.nodeid.startswith("tests/a.py")] == [
+        f"tests/a.py::t{i}" for i in range(20)]
+    assert ordering_key("tests/d.py::run[g1]", seconds) == "tests/d.py::run[g1]"
+    assert ordering_key("tests/d.py::run[g3]", seconds) == "tests/d.py::run"
+    assert ordering_key("tests/d.py::fast", seconds) is None
+
+
 def test_a_selection_smaller_than_the_long_modules_is_still_all_there():
     items = _items({"long1": 5, "a": 1})
     ordered = order_for_workers(items, 2, {"tests/long1.py": 10.0})
@@ -61,11 +90,26 @@ def test_a_selection_smaller_than_the_long_modules_is_still_all_there():
 
 
 def test_the_long_modules_exist():
+    """Every entry names a module, a test function of it or (the docs-command groups, whose
+    ids come from the docs) one of that function's parameters."""
     from pathlib import Path
 
+    from test_docs_commands import docs_command_groups
+
     root = Path(__file__).resolve().parents[1]
-    named = [*LONG_MODULES, *(f for fs in FOLLOWERS.values() for f in fs)]
-    missing = [m for m in named if not (root / m).is_file()]
+    docs = {f"tests/test_docs_commands.py::test_every_command_runs_as_written_in_order[{i}]"
+            for _, _, i in docs_command_groups()}
+    named = [*LONG_MODULES, *FOLLOWERS, *(f for fs in FOLLOWERS.values() for f in fs)]
+    missing = []
+    for name in named:
+        module, _, function = name.partition("::")
+        if not (root / module).is_file():
+            missing.append(name)
+        elif "[" in function:
+            if name not in docs:
+                missing.append(name)
+        elif function and f"\ndef {function}(" not in (root / module).read_text("utf-8"):
+            missing.append(name)
     assert not missing, missing
 
 
@@ -103,7 +147,7 @@ def test_the_unit_modules_exist_and_are_in_the_tier(request):
     assert not [m for m in UNIT_MODULES if not (root / m).is_file()]
     # this module is one of them, so this test runs in `make test-fast`
     assert request.node.get_closest_marker("slow") is None
-    assert not UNIT_MODULES & set(LONG_MODULES)
+    assert not UNIT_MODULES & {k.split("::", 1)[0] for k in LONG_MODULES}
 
 
 def test_the_slow_tests_of_the_unit_modules_exist():
@@ -145,12 +189,50 @@ def test_the_compile_times_name_what_compiled_and_for_how_long(tmp_path):
     class Item:
         nodeid = "tests/x.py::t"
 
+    import sys
+    import types
+
     hook = times.pytest_runtest_protocol(Item(), None)
-    next(hook)  # (the test runs here: nothing compiled)
+    next(hook)  # (the test runs here: nothing compiled, a kernel loaded)
+    sys.modules["seahelm_kernel_0123"] = types.ModuleType("seahelm_kernel_0123")
     try:
         next(hook)
     except StopIteration:
         pass
+    finally:
+        del sys.modules["seahelm_kernel_0123"]
     row = json.loads((tmp_path / "times.jsonl").read_text())
     assert row["test"] == "tests/x.py::t" and row["compiled"] == [] and row["compile"] == 0
+    assert row["kernels"] == ["seahelm_kernel_0123"]
     assert row["seconds"] >= 0 and row["cpu"] >= 0
+
+
+def test_the_kernel_census_names_a_tests_kernel_and_stops_it_uncompiled(tmp_path):
+    import json
+
+    import numpy as np
+    import pytest
+
+    import seahelm.simulation.closed_loop as closed_loop
+    from conftest import KernelCensus
+    from seahelm.actuators.servo import DIRECT
+    from seahelm.control.open_loop import OPEN_LOOP
+    from seahelm.simulation.engine import simulate
+    from seahelm.vessels.nomoto import NOMOTO1, Nomoto1Params
+
+    class Item:
+        nodeid = "tests/x.py::t"
+
+    census, real = KernelCensus(str(tmp_path / "census.jsonl")), closed_loop.import_generated
+    census.pytest_configure(None)
+    closed_loop.compile_closed_loop.cache_clear()  # (a kernel this process built is cached)
+    try:
+        census.pytest_runtest_setup(Item())
+        with pytest.raises(pytest.skip.Exception, match="kernel census"):
+            simulate(NOMOTO1, Nomoto1Params(gain=0.2, time_constant=50.0, speed=5.0),
+                     np.zeros(4), t_final=1.0, dt=0.5, actuator=DIRECT, controller=OPEN_LOOP,
+                     reference=np.array([0.1]).reshape(1, 1, 1))
+    finally:
+        closed_loop.import_generated = real
+    row = json.loads((tmp_path / "census.jsonl").read_text())
+    assert row["test"] == "tests/x.py::t" and row["kernel"].startswith("seahelm_kernel_")

@@ -232,8 +232,11 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="esso_osaka.py", description=__doc__.splitlines()[0])
     parser.add_argument("--data", required=True, type=Path, help="clone of FRT-DS-ESSO")
     parser.add_argument("--out", type=Path, default=DEFAULT_OUT, help="output folder")
-    parser.add_argument("--part", choices=("all", "stops", "replays"), default="all",
-                        help="what to regenerate (default all)")
+    parser.add_argument("--part", choices=("all", "stops", "replays", "identify"),
+                        default="all", help="what to regenerate (default all)")
+    parser.add_argument("--train", default="Train-TZRB+",
+                        help="--part identify: the training column of the README's Wakita "
+                             "(2022) table (Train-TZB, Train-TZRB, Train-TZRB+)")
     args = parser.parse_args(argv)
     try:
         files = _files(args.data)
@@ -263,7 +266,39 @@ def main(argv: list[str] | None = None) -> int:
             f"closed loop) took {t_all:.0f} s "
             "on the machine that made this page (warm kernel cache; 2 cores shared with "
             "other work).\n")
+    if args.part in ("all", "identify"):
+        try:
+            _identify(args)
+        except SystemExit as exc:  # a README without the train/test table, a bad --train
+            print(exc, file=sys.stderr)
+            return 2
     return 0
+
+
+def _identify(args: argparse.Namespace) -> None:
+    """``--part identify`` (validation/esso_osaka_identify.py)."""
+    sys.path.insert(0, str(HERE))
+    import esso_osaka_identify as ident
+
+    result = ident.run(args.data, args.out, train=args.train, zigzag_angles=ZIGZAG_NOMINAL)
+    coef, test = ident.tables(result, _fmt, _rst_table)
+    (args.out / "identify.inc").write_text(coef)
+    (args.out / "identify-test.inc").write_text(test)
+    print(coef)
+    print(test)
+    for name, (inside, width) in result["band"]["coverage"].items():
+        print(f"{name}: first 60 s inside the 95 % band: north {100 * inside[0]:.0f} %, east "
+              f"{100 * inside[1]:.0f} %, heading {100 * inside[2]:.0f} %; mean band width "
+              f"{width[0]:.3g} m, {width[1]:.3g} m, {math.degrees(width[2]):.3g} deg")
+    ident.figure(result, args.out / "identify-band.png")
+    fit = result["fit"]
+    line = (f"The identification ({len(result['train'])} training files, {fit.segments} "
+            f"segments, {fit.evaluations} evaluations of the batched simulation) took "
+            f"{result['cpu_seconds']:.0f} s of CPU time ({result['seconds']:.0f} s wall "
+            "time) on the machine that made this page (warm kernel cache; 2 cores shared "
+            "with other work).\n")
+    (args.out / "timing-identify.inc").write_text(line)
+    print(line, end="")
 
 
 if __name__ == "__main__":

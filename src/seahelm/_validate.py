@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Collection, Iterable, Mapping
 from typing import Any
 
 import numpy as np
@@ -226,7 +226,7 @@ def as_finite_series(name: str, value: Any, unit: str, *, what: str = "sample(s)
     return a
 
 
-def lookup_name(kind: str, table: Mapping[str, Any], name: Any, *,
+def lookup_name(kind: str, table: Mapping[str, Any] | Collection[str], name: Any, *,
                 error: type[Exception] = ValueError, sort: bool = False, quoted: bool = False,
                 valid: Iterable[str] | None = None, suffix: str = "", **fields: Any) -> Any:
     """``table[name]`` for a name of ``table``; otherwise the one error of every lookup by
@@ -239,8 +239,8 @@ def lookup_name(kind: str, table: Mapping[str, Any], name: Any, *,
     ----------
     kind : str
         What is looked up, for the message (``"Holtrop method"``, ``"guidance law"``).
-    table : mapping of str to object
-        The names and what each gives.
+    table : mapping of str to object, or collection of str
+        The names and what each gives (or only the names: then the name is returned).
     name : object
         The name asked for (anything that is not a key of ``table`` is an error).
     error : type, optional
@@ -260,7 +260,7 @@ def lookup_name(kind: str, table: Mapping[str, Any], name: Any, *,
     Returns
     -------
     object
-        ``table[name]``.
+        ``table[name]`` (``name`` for a table of names only).
 
     Raises
     ------
@@ -268,7 +268,7 @@ def lookup_name(kind: str, table: Mapping[str, Any], name: Any, *,
         For a name that is not a key of ``table``, naming it and the valid ones.
     """
     if isinstance(name, str) and name in table:
-        return table[name]
+        return table[name] if isinstance(table, Mapping) else name
     names = list(table if valid is None else valid)
     if sort:
         names = sorted(names)

@@ -40,7 +40,7 @@ on its own start only, so one state of every segment is perturbed at once). Mode
 
 Coefficients whose standard error exceeds their magnitude, or whose correlation with another
 exceeds 0.999, are set back to the start ship's values and the rest fitted again (at most
-``max_rounds`` times), as :func:`~seahelm.analysis.mmg_fit.identify_mmg` does for the ``mmg``
+``max_rounds`` times), as :func:`~seahelm.identification.mmg_fit.identify_mmg` does for the ``mmg``
 hull.
 
 References
@@ -65,7 +65,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from .fit_statistics import CovarianceSummary
+from ..identification.fit_result import FitResult
 from .record_segments import (
     OUTPUTS,
     RECORD_CHANNELS,
@@ -74,7 +74,7 @@ from .record_segments import (
     residuals,
     simulate_segments,
 )
-from .records import ManoeuvreRecord
+from ..identification.records import ManoeuvreRecord
 
 __all__ = ["FREE_DEFAULT", "OUTPUTS", "MultiRecordFit", "Segments", "build_segments",
            "simulate_segments", "fit_mmg_ls", "laplace_samples", "RECORD_CHANNELS"]
@@ -88,7 +88,7 @@ FREE_DEFAULT = ("X_0F", "Y_v", "Y_r", "N_v", "N_r", "C_rY", "C_rN", "epsilon", "
                 "gamma_P", "a_H")
 
 @dataclasses.dataclass(frozen=True)
-class MultiRecordFit(CovarianceSummary):
+class MultiRecordFit(FitResult):
     """Coefficients of an ``mmg-ls`` ship identified from many records (:func:`fit_mmg_ls`).
 
     Attributes

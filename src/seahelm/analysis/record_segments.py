@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from .records import ManoeuvreRecord
+from ..identification.records import ManoeuvreRecord
 
 __all__ = ["OUTPUTS", "RECORD_CHANNELS", "Segments", "build_segments", "simulate_segments",
            "residuals", "STATE_ORDER"]

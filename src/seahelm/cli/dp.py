@@ -99,6 +99,57 @@ def _plot(res: Any, path: Path) -> None:
     save_figure(fig, path, dpi=100)
 
 
+def _level3(ship: str, headings: int, failures: str, current: float, no_waves: bool,
+            winds: str, duration: float, json_out: bool, workers: int | None) -> None:
+    from ..analysis.dp_capability_level3 import level3_capability
+
+    speeds = None
+    if winds.strip():
+        try:
+            speeds = [float(w) for w in winds.split(",") if w.strip()]
+        except ValueError:
+            raise ParameterError(f"must be wind speeds [m/s], comma-separated, got {winds!r}",
+                                 field="--winds", unit="m/s", value=winds) from None
+    if not (duration > 0 and math.isfinite(duration)):
+        raise ParameterError(f"must be > 0 [s], got {duration!r}", field="--duration",
+                             unit="s", value=duration)
+    if workers is not None and workers < 1:
+        raise ParameterError(f"must be ≥ 1 [-], got {workers}", field="--workers", unit="-",
+                             value=workers)
+    options = {**_OPTIONS, "wind_speeds": "--winds", "workers": "--workers"}
+    try:
+        res = level3_capability(ship, headings=headings, wind_speeds=speeds,
+                                failures=_failures(failures), current_speed=current,
+                                waves=not no_waves, duration=duration, workers=workers)
+    except ParameterError as exc:
+        option = options.get(exc.field or "")
+        if option is None:
+            raise
+        raise ParameterError(exc.reason, field=option, unit=exc.unit, value=exc.value) from exc
+    payload = {
+        "seahelm_command": command_path() or "seahelm dp capability",
+        "vessel": res.vessel, "level": 3,
+        "directions_deg": [round(math.degrees(t), 9) for t in res.directions],
+        "wind_speeds_m_s": [float(w) for w in res.wind_speeds], "cases": list(res.cases),
+        "wind_speed_m_s": {c: [float(v) for v in row] for c, row in
+                           zip(res.cases, res.wind_speed)},
+        "criteria": list(res.criteria), "seconds": res.seconds,
+    }
+    if json_out:
+        print_json(payload)
+        return
+    console.print(f"DP capability level 3 — {res.vessel} ({len(res.cases)} cases x "
+                  f"{len(res.directions)} directions x {len(res.wind_speeds)} winds in one "
+                  f"batch, {res.seconds:.1f} s)", highlight=False, markup=False)
+    for note in res.criteria:
+        console.print(f"  * {note}", highlight=False, markup=False)
+    console.print("  largest wind speed held [m/s]: min / max over directions", highlight=False,
+                  markup=False)
+    for case, row in zip(res.cases, res.wind_speed):
+        console.print(f"  {case:>28}: {row.min():6.2f} / {row.max():6.2f}", highlight=False,
+                      markup=False)
+
+
 @app.command("capability")
 @handle_errors
 def capability(
@@ -109,6 +160,17 @@ def capability(
     ] = "each",
     current: Annotated[float, typer.Option("--current", help="Current speed [m/s].")] = 0.5,
     no_waves: Annotated[bool, typer.Option("--no-waves", help="Without the wave drift.")] = False,
+    level: Annotated[int, typer.Option(
+        "--level", help="1: quasi-static; 3: time domain, one batch of the closed loop "
+        "(a dp-3dof ship such as supply).")] = 1,
+    winds: Annotated[str, typer.Option(
+        "--winds", help="Level 3: wind speeds [m/s], comma-separated (default: the Beaufort "
+        "upper speeds from Beaufort 4).")] = "",
+    duration: Annotated[float, typer.Option("--duration", help="Level 3: run length [s].")
+                        ] = 600.0,
+    workers: Annotated[int | None, typer.Option(
+        "--workers", help="Level 3: run the batch in chunks on a local Dask cluster of N "
+        "processes.")] = None,
     out: Annotated[Path | None, typer.Option("--out", help="Write a NetCDF file.")] = None,
     json_file: Annotated[Path | None, typer.Option("--json-out", help="Write a JSON file.")] = None,
     plot: Annotated[Path | None, typer.Option("--plot", help="Polar capability plot.")] = None,
@@ -119,6 +181,20 @@ def capability(
     with each single thruster failure (DNV-ST-0111's method; environment as stated)."""
     from ..analysis.dp_capability import dp_vessel, level1_capability
 
+    if level not in (1, 3):
+        raise ParameterError(f"must be 1 or 3 [-], got {level}", field="--level", unit="-",
+                             value=level)
+    if level == 1 and workers is not None:
+        raise ParameterError(f"is for level 3 only (level 1 takes under a second), got "
+                             f"{workers}", field="--workers", value=workers)
+    if level == 3:
+        for opt, given in (("--out", out), ("--json-out", json_file), ("--plot", plot)):
+            if given is not None:
+                raise ParameterError("is for level 1 only (level 3 prints its table, or "
+                                     f"--json), got {str(given)!r}", field=opt, value=str(given))
+        _level3(ship, headings, failures, current, no_waves, winds, duration, json_out,
+                workers)
+        return
     if headings < 1:
         raise ParameterError(f"must be ≥ 1 [-], got {headings}",
                              field="--headings", unit="-", value=headings)

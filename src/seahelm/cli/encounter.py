@@ -38,13 +38,17 @@ def _physical_memory() -> int:
 
 
 def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, own_ship: str,
-           target_ship: str, t_final: float | None, seed: int, detection: float) -> Any:
+           target_ship: str, t_final: float | None, seed: int, detection: float,
+           targets_avoid: bool = False, overtaking: float = 0.0) -> Any:
     from ..encounters import Encounter
     from ..encounters.files import (is_encounter_scenario, parse_encounter_scenario,
                                     read_traffic_situations)
     from ..encounters.monte_carlo import monte_carlo_vessels
 
     method = None if avoidance in (None, "none") else avoidance
+    # situations and --monte-carlo without --avoidance: velocity obstacles (the help's
+    # default); --avoidance none: none
+    chosen = "velocity-obstacles" if avoidance is None else method
     if monte_carlo is not None:
         if files:
             raise ParameterError(": give files or --monte-carlo, not both",
@@ -52,6 +56,9 @@ def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, ow
         if monte_carlo < 1:
             raise ParameterError(f"must be >= 1 [encounters], got {monte_carlo}",
                                  field="--monte-carlo", value=monte_carlo)
+        if not (math.isfinite(overtaking) and 0.0 <= overtaking <= 1.0):
+            raise ParameterError(f"must be a share in 0 ... 1 [-], got {overtaking!r}",
+                                 field="--overtaking", unit="-", value=overtaking)
         tf = 1200.0 if t_final is None else t_final
         if not (math.isfinite(detection) and detection > 926.0 / 0.75):
             raise ParameterError(f"must be > {926.0 / 0.75:.0f} [m] (the CPA is drawn within "
@@ -67,20 +74,27 @@ def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, ow
                                  f"more than this machine's {memory / 1e9:.3g} GB: draw "
                                  f"fewer, or several batches with different --seed",
                                  field="--monte-carlo", value=monte_carlo)
+        # overtaking closes at a few m/s: closer, within what the horizon lets close
+        hi = max(min(0.35 * detection, 1.8 * tf), 1400.0)
+        lo = max(1000.0, min(0.15 * detection, 0.75 * hi))
         try:
-            vessels, _ = monte_carlo_vessels(monte_carlo, own_ship=own_ship,
-                                             target_ship=target_ship, seed=seed,
-                                             detection_range=(0.75 * detection, detection),
-                                             tcpa=(0.1 * tf, 0.6 * tf),
-                                             target_speed=(3.0, 8.0))
+            vessels, _ = monte_carlo_vessels(
+                monte_carlo, own_ship=own_ship, target_ship=target_ship, seed=seed,
+                detection_range=(0.75 * detection, detection), tcpa=(0.1 * tf, 0.6 * tf),
+                target_speed=(3.0, 8.0), targets_avoid=targets_avoid, overtaking=overtaking,
+                overtaking_range=(lo, hi))
         except ParameterError as exc:
-            if exc.field != "target_speed":
+            if exc.field == "target_speed":
+                raise ParameterError(f": no target detected at {detection:g} m reaches its "
+                                     f"CPA within 0.1-0.6 x {tf:g} s at 3-8 m/s; give a longer "
+                                     "--t-final or a shorter --detection", field="--t-final",
+                                     unit="s", value=tf) from None
+            if exc.field != "overtaking_range":
                 raise
-            raise ParameterError(f": no target detected at {detection:g} m reaches its CPA "
-                                 f"within 0.1-0.6 x {tf:g} s at 3-8 m/s; give a longer "
-                                 "--t-final or a shorter --detection", field="--t-final",
-                                 unit="s", value=tf) from None
-        return lambda m: Encounter(vessels, t_final=tf, avoidance=m, record_every=10), method
+            raise ParameterError(f": {exc.reason.lstrip(': ')}; give a longer --t-final or "
+                                 f"--overtaking 0", field="--overtaking", value=overtaking
+                                 ) from None
+        return lambda m: Encounter(vessels, t_final=tf, avoidance=m, record_every=10), chosen
     if not files:
         raise ParameterError(": give an encounter scenario (TOML), traffic situations (JSON) "
                              "or --monte-carlo N", field="FILES")
@@ -88,8 +102,8 @@ def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, ow
         tf = 1200.0 if t_final is None else t_final
         return (lambda m: read_traffic_situations(files, own_ship=own_ship,
                                                   target_ship=target_ship, t_final=tf,
-                                                  avoidance=m),
-                method or "velocity-obstacles")
+                                                  avoidance=m, targets_avoid=targets_avoid),
+                chosen)
     if len(files) != 1 or files[0].suffix.lower() != ".toml":
         raise ParameterError(f": one scenario (.toml) or traffic situations (.json), got "
                              f"{', '.join(f.name for f in files)}", field="FILES")
@@ -103,6 +117,9 @@ def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, ow
     base = files[0].parent
     if t_final is not None:
         data = {**data, "encounter": {**data.get("encounter", {}), "t_final": t_final}}
+    if targets_avoid and isinstance(data.get("vessel"), list):
+        data = {**data, "vessel": [{**v, "avoid": True} if isinstance(v, dict) else v
+                                   for v in data["vessel"]]}
 
     def make(m: Any) -> Any:
         d = data if m == "scenario" else {**data, "encounter": {
@@ -145,7 +162,7 @@ def _print(label: str, rows: list[dict[str, Any]]) -> None:
             highlight=False, markup=False, soft_wrap=True)
 
 
-def _write(result: Any, out: Path, force: bool) -> None:
+def _write(result: Any, out: Path, force: bool, label: str) -> None:
     import matplotlib
 
     matplotlib.use("Agg", force=False)
@@ -155,6 +172,7 @@ def _write(result: Any, out: Path, force: bool) -> None:
 
     ds = result.to_xarray()
     ds.attrs["seahelm_command"] = command_path() or "seahelm encounter"
+    ds.attrs["avoidance"] = label
     write_netcdf(ds, out / "encounters.nc", force=force)
     if result.lengths.size > 1:
         worst = int(result.min_range[:, 0].argmin())
@@ -170,7 +188,8 @@ def encounter(
              "situations (JSON, one encounter each).")] = None,
     monte_carlo: Annotated[int | None, typer.Option(
         "--monte-carlo", help="Draw N two-ship encounters (bearing all round, CPA within "
-                              "±0.5 nmi at detection) instead of reading files.")] = None,
+                              "±0.5 nmi at detection; a share --overtaking of them "
+                              "overtaking) instead of reading files.")] = None,
     avoidance: Annotated[str | None, typer.Option(
         help=f"Own ship's avoidance: {', '.join(_METHODS)} (default: the scenario's; "
              "velocity-obstacles for situations and --monte-carlo).")] = None,
@@ -187,6 +206,20 @@ def encounter(
         help="--monte-carlo: range at detection [m] (drawn in 0.75 ... 1 times it).")
     ] = 9000.0,
     seed: Annotated[int, typer.Option(help="--monte-carlo seed.")] = 0,
+    overtaking: Annotated[float, typer.Option(
+        help="--monte-carlo: share of the encounters drawn as overtaking (half with the own "
+             "ship overtaking a slower target ahead, half overtaken, at half speed, by one "
+             "from astern), at 0.15 ... 0.35 times --detection.")] = 0.2,
+    workers: Annotated[int | None, typer.Option(
+        "--workers", help="Run the encounters in chunks on a local dask cluster of N "
+                          "processes (as `seahelm sweep --workers`); the same result.")] = None,
+    chunk_size: Annotated[int | None, typer.Option(
+        "--chunk-size", help="Encounters per chunk (in this process without --workers; "
+                             "default: the encounters over 4 per worker).")] = None,
+    targets_avoid: Annotated[bool, typer.Option(
+        "--targets-avoid", help="The targets use the same avoidance method as the own ship "
+                                "(default: they keep their course or route; in a scenario, "
+                                "`avoid = true` in a [[vessel]] table).")] = False,
     out: Annotated[Path | None, typer.Option(
         help=f"Write {', '.join(_FILES)} here (the last method's with --compare).")] = None,
     force: ForceFlag = False,
@@ -200,10 +233,13 @@ def encounter(
     if t_final is not None and not (math.isfinite(t_final) and t_final > 0):
         raise ParameterError(f"must be > 0 [s], got {t_final!r}", field="--t-final", unit="s",
                              value=t_final)
+    for name, value in (("--workers", workers), ("--chunk-size", chunk_size)):
+        if value is not None and value < 1:
+            raise ParameterError(f"must be >= 1, got {value}", field=name, value=value)
     if out is not None:
         output_dir("--out", out, _FILES, reads=tuple(files or ()), force=force)
     make, method = _build(list(files or []), monte_carlo, avoidance, own_ship, target_ship,
-                          t_final, seed, detection)
+                          t_final, seed, detection, targets_avoid, overtaking)
     methods = ([None, "rule-based", "velocity-obstacles"] if compare else [method])
     encounters = [make(m) for m in methods]  # (all validated before any runs)
     if encounters[0].n_vessels < 2:
@@ -212,9 +248,14 @@ def encounter(
                              value=encounters[0].n_vessels)
     payload: dict[str, Any] = {"seahelm_command": command_path() or "seahelm encounter",
                                "methods": {}}
-    result = None
+    result, label = None, ""
     for m, enc in zip(methods, encounters):
-        result = enc.run()
+        if workers is None and chunk_size is None:
+            result = enc.run()
+        else:
+            from ..encounters.chunked import run_chunked
+
+            result = run_chunked(enc, chunk_size=chunk_size, workers=workers)
         label = m if m not in (None, "scenario") else _name(enc.avoidance)
         rows = _rows(result)
         payload["methods"][label] = rows
@@ -222,6 +263,6 @@ def encounter(
             _print(f"{enc.n_encounters} encounter(s) of {enc.n_vessels} vessels, "
                    f"{enc.t_final:g} s — own ship's avoidance: {label}", rows)
     if out is not None and result is not None:
-        _write(result, out, force)
+        _write(result, out, force, label)
     if json_out:
         print_json(payload)

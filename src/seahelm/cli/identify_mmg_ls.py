@@ -8,7 +8,6 @@ posterior samples (``--samples N --save-posterior FILE.csv``).
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Any
 
@@ -61,7 +60,7 @@ def identify_mmg_ls(files: list[Path], base: Any, *, wind: str, free: tuple[str,
                     json_out: bool) -> None:
     """Run the fit and print or write its results (module docstring)."""
     from ..analysis.mmg_multi_record import FREE_DEFAULT, fit_mmg_ls, laplace_samples
-    from ..analysis.records import read_records
+    from ..identification.records import read_records
     from ..errors import ParameterError
     from ._common import write_ship_file
 
@@ -88,7 +87,7 @@ def identify_mmg_ls(files: list[Path], base: Any, *, wind: str, free: tuple[str,
 
 def _write_posterior(path: Path | None, fit: Any, draws: Any, base: Any,
                      seed: int | None) -> Path:
-    from ..analysis.samples_file import write_samples
+    from ..identification.samples_file import write_samples
 
     assert path is not None  # checked by the caller (--samples needs --save-posterior)
     units = {i.name: i.unit for i in type(base.params).info()}
@@ -97,7 +96,8 @@ def _write_posterior(path: Path | None, fit: Any, draws: Any, base: Any,
                          comments=(
         f"seahelm Laplace posterior samples of the mmg-ls coefficients of '{base.name}' "
         f"({len(draws)} samples, " + (f"seed {seed}" if seed is not None else "unseeded")
-        + f"; covariance inflated by {fit.inflation:.3g} for residuals correlated in time)",
+        + f"; the stated covariance: Laplace x {fit.inflation:.3g} for residuals correlated in "
+        "time, plus the initial states' errors)",
         f"identified by output error over {fit.segments} segments from "
         f"{', '.join(fit.records)}",
         "one row per sample; the other coefficients at the identified ship's values; use: "
@@ -113,18 +113,17 @@ def _print(fit: Any, base: Any, payload: dict[str, Any]) -> None:
         f"{fit.segments} segments of {fit.segment:g} s, wind {fit.wind}; RMS of the scaled "
         f"residuals {fit.rms_start:.4g} -> {fit.rms_fit:.4g} ({fit.evaluations} evaluations, "
         f"{fit.seconds:.0f} s)"), highlight=False, soft_wrap=True)
-    table = Table("coefficient", "value", "std. error", f"x sqrt({fit.inflation:.3g})",
-                  f"{base.name}")
+    table = Table("coefficient", "value", "std. error", "stated", f"{base.name}")
     for j, n in enumerate(fit.names):
-        se = float(fit.standard_errors[j])
-        table.add_row(n, f"{fit.values[j]:.5g}", f"{se:.3g}",
-                      f"{se * math.sqrt(fit.inflation):.3g}", f"{fit.start[n]:.5g}")
+        table.add_row(n, f"{fit.values[j]:.5g}", f"{float(fit.standard_errors[j]):.3g}",
+                      f"{float(fit.stated_errors[j]):.3g}", f"{fit.start[n]:.5g}")
     console.print(table)
     for n, why in fit.fixed.items():
         console.print(escape(f"  {n} not identified (kept at the base ship's value): {why}"),
                       highlight=False, soft_wrap=True)
-    console.print(f"condition number of JᵀJ {fit.condition_number:.3g}; residuals correlated "
-                  f"in time: intervals x sqrt({fit.inflation:.3g})", highlight=False)
+    console.print(f"condition number of JᵀJ {fit.condition_number:.3g}; std. error: Laplace; "
+                  f"stated: its variance x {fit.inflation:.3g} (residuals correlated in time) "
+                  "plus the initial states' errors", highlight=False, soft_wrap=True)
     for key, what in (("posterior_file", "posterior samples"), ("ship_file", "ship")):
         if key in payload:
             console.print(escape(f"wrote {what} {payload[key]}"), highlight=False,

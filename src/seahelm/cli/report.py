@@ -6,12 +6,14 @@ RESULT is ``result.nc`` of ``seahelm run``/``demo``, or a manoeuvre's ``*-runs.n
 ``seahelm imo --out`` and the IMO criteria), ``imo-probabilities.nc`` (``seahelm imo
 --monte-carlo --out``: the pass probabilities), ``seakeeping.nc`` (``seahelm seakeeping
 --out``: the polar diagrams and the largest responses per speed), ``replay.nc`` (``seahelm
-replay --out``: the measured and simulated metrics and tracks), or a sweep store (``seahelm
+replay --out``: the measured and simulated metrics and tracks), ``encounters.nc`` (``seahelm
+encounter --out``: outcomes by COLREG situation, tracks, CPA, outcome rose), or a sweep store (``seahelm
 sweep``; of an ``imo`` Monte-Carlo scenario, with the pass probabilities). The page
 (:mod:`seahelm.report`) holds plotly.js and all the data, so it opens with no network. ``-o``
 is checked before anything is read; the file is written atomically; without it the page is
 ``report.html`` beside RESULT (the name ``seahelm run --report`` and ``demo`` give it). Several result files
-(not sweep stores, ``imo-probabilities.nc``, ``seakeeping.nc`` or ``replay.nc``, which are
+(not sweep stores, ``imo-probabilities.nc``, ``seakeeping.nc``, ``replay.nc`` or
+``encounters.nc``, which are
 reported alone) give one page with
 each file's runs named by the file (:func:`seahelm.report.combined_report_data`).
 """
@@ -48,7 +50,7 @@ def report(
             "Result file written by seahelm (NetCDF): result.nc of `seahelm run`/`demo`, a "
             "manoeuvre's *-runs.nc or *-metrics.nc, imo-probabilities.nc of `seahelm imo "
             "--monte-carlo`, seakeeping.nc of `seahelm seakeeping`, replay.nc of `seahelm "
-            "replay`; or a sweep store of "
+            "replay`, encounters.nc of `seahelm encounter`; or a sweep store of "
             "`seahelm sweep`. Several result files: one "
             "page with each file's runs side by side."))],
     out: Annotated[Path | None, typer.Option(

@@ -312,7 +312,7 @@ def _ship_state(ship: Any, lat0: float, lon0: float, where: str) -> dict[str, An
 
 
 def read_traffic_situations(paths: Sequence[str | Path], *, own_ship: Any, target_ship: Any,
-                            **encounter: Any) -> Encounter:
+                            targets_avoid: bool = False, **encounter: Any) -> Encounter:
     """An :class:`~seahelm.encounters.encounter.Encounter` batch from maritime-schema JSON
     files (module notes): one encounter per file, the own ship avoiding.
 
@@ -323,6 +323,9 @@ def read_traffic_situations(paths: Sequence[str | Path], *, own_ship: Any, targe
     own_ship, target_ship : Ship or str
         The seahelm ships that play the situation's own ship and targets (the schema gives
         lengths and types, not manoeuvring models).
+    targets_avoid : bool, optional
+        The targets run the encounter's avoidance too (default False: they keep their course
+        or route).
     **encounter
         Keyword arguments of :class:`Encounter` (``t_final`` required).
 
@@ -371,5 +374,6 @@ def read_traffic_situations(paths: Sequence[str | Path], *, own_ship: Any, targe
                               north=np.array([c["north"] for c in col]),
                               east=np.array([c["east"] for c in col]), course=course,
                               speed=np.array([c["speed"] for c in col]), route=route,
-                              avoid=i == 0, name="own" if i == 0 else f"target {i}"))
+                              avoid=i == 0 or bool(targets_avoid),
+                              name="own" if i == 0 else f"target {i}"))
     return Encounter(vessels, **encounter)

@@ -32,7 +32,11 @@ import numpy as np
 from ..errors import ParameterError
 from .geometry import GIVE_WAY, STAND_ON, Situation, classify, cpa_tcpa, velocity, wrap_pi
 
-__all__ = ["VerdictRules", "EncounterResult", "wilson_interval"]
+__all__ = ["VerdictRules", "EncounterResult", "wilson_interval", "is_encounter_dataset",
+           "DATASET_FORMAT"]
+
+#: The ``format`` attribute of an encounter result file (``encounters.nc``).
+DATASET_FORMAT = "seahelm-encounters-1"
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -272,5 +276,73 @@ class EncounterResult:
         for name, arr in self.verdicts.items():
             data[f"verdict_{name}"] = (("encounter", "target", "party"), arr)
         data["status"] = (("encounter", "vessel"), self.status)
+        data["length"] = (("vessel",), np.asarray(self.lengths, dtype=float), {"units": "m"})
         return xr.Dataset(data, coords={"time": self.time, "vessel": list(self.names),
-                                        "party": ["own", "target"]})
+                                        "party": ["own", "target"]},
+                          attrs={"format": DATASET_FORMAT,
+                                 "domain_along_L": float(self.domain_axes[0]),
+                                 "domain_across_L": float(self.domain_axes[1])})
+
+    @classmethod
+    def from_xarray(cls, ds: Any) -> "EncounterResult":
+        """The result of a Dataset of :meth:`to_xarray` (``encounters.nc`` of ``seahelm
+        encounter --out``), so that its :meth:`summary` and plots work on a file.
+
+        Parameters
+        ----------
+        ds : xarray.Dataset
+
+        Returns
+        -------
+        EncounterResult
+
+        Raises
+        ------
+        ParameterError
+            If ``ds`` is not an encounter result (its ``format`` attribute, a variable
+            missing).
+        """
+        if not is_encounter_dataset(ds):
+            raise ParameterError(f": not an encounter result (attribute format = "
+                                 f"{ds.attrs.get('format')!r}, expected {DATASET_FORMAT!r})",
+                                 field="format", value=ds.attrs.get("format"))
+        need = ([*Recorder.TRACK, "length", "status", "min_range", "t_min_range",
+                 "min_domain_distance", "situation", "collision", "near_miss"]
+                + [f"pair_{n}" for n in ("range", "dcpa", "tcpa", "domain_distance",
+                                         "situation")]
+                + [f"verdict_{n}" for n in ("role", "alteration", "action_time",
+                                            "action_range", "acted", "substantial", "early",
+                                            "kept_course")])
+        missing = [n for n in need if n not in ds.variables]
+        if missing:
+            raise ParameterError(f": not an encounter result: no variable {missing[0]!r}",
+                                 field=missing[0])
+        self = cls.__new__(cls)
+
+        def arr(name: str) -> np.ndarray:
+            return np.asarray(ds[name].values)
+
+        self.names = tuple(str(v) for v in ds["vessel"].values)
+        self.lengths = arr("length").astype(float)
+        self.domain_axes = (float(ds.attrs["domain_along_L"]),
+                            float(ds.attrs["domain_across_L"]))
+        self.time = np.asarray(ds["time"].values, dtype=float)
+        self.tracks = {n: arr(n).astype(float) for n in Recorder.TRACK}
+        self.pair = {n: arr(f"pair_{n}") for n in ("range", "dcpa", "tcpa", "domain_distance",
+                                                   "situation")}
+        self.status = arr("status")
+        self.min_range, self.t_min_range = arr("min_range"), arr("t_min_range")
+        self.min_domain_distance = arr("min_domain_distance")
+        self.situation = arr("situation").astype(np.int8)
+        self.collision, self.near_miss = arr("collision").astype(bool), \
+            arr("near_miss").astype(bool)
+        self.verdicts = {n: arr(f"verdict_{n}") for n in ("role", "alteration", "action_time",
+                                                          "action_range")}
+        self.verdicts.update({n: arr(f"verdict_{n}").astype(bool)
+                              for n in ("acted", "substantial", "early", "kept_course")})
+        return self
+
+
+def is_encounter_dataset(ds: Any) -> bool:
+    """Whether ``ds`` is an encounter result (:meth:`EncounterResult.to_xarray`)."""
+    return ds.attrs.get("format") == DATASET_FORMAT

@@ -25,8 +25,19 @@ __all__ = ["workspace_size", "solve_qp_rows"]
 
 
 def workspace_size(n_vars: int, n_rows: int) -> int:
-    """Floats of workspace :func:`solve_qp_rows` needs for ``n_vars`` variables and up to
-    ``n_rows`` rows (the rows themselves included)."""
+    """Floats of workspace :func:`solve_qp_rows` needs (the rows themselves included).
+
+    Parameters
+    ----------
+    n_vars : int
+        Variables.
+    n_rows : int
+        Constraint rows at most (the capacity ``cap``).
+
+    Returns
+    -------
+    int
+    """
     return 6 * n_rows + 5 * n_vars * n_vars + 6 * (n_vars + 1)
 
 

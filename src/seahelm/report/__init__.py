@@ -58,7 +58,8 @@ class ReportSummary:
         The files read.
     counted : str
         What ``n_runs`` counts: ``"run"``, ``"sample"`` for an IMO ensemble (its samples
-        are ships, each with its manoeuvres), or ``"replay"`` for a replay (one).
+        are ships, each with its manoeuvres), ``"replay"`` for a replay (one), or
+        ``"encounter"`` for an encounter study.
     """
 
     path: Path
@@ -146,4 +147,5 @@ def write_report(source: "str | os.PathLike[str] | xr.Dataset | ReportData",
     return ReportSummary(path=path, bytes=len(encoded), title=data.title, sections=ids,
                          n_runs=data.n_runs, sources=data.sources,
                          counted="sample" if data.imo_ensemble is not None else
-                         "replay" if data.replay is not None else "run")
+                         "replay" if data.replay is not None else
+                         "encounter" if data.encounters is not None else "run")

@@ -10,7 +10,9 @@ A report covers one result file and the files seahelm wrote beside it for the sa
 * ``imo-probabilities.nc`` of ``seahelm imo --monte-carlo --out`` (or of an ``imo``
   Monte-Carlo scenario): the probability of passing each criterion of the IMO check;
 * ``replay.nc`` of ``seahelm replay --out``: the measured and the simulated track and their
-  metrics.
+  metrics;
+* ``encounters.nc`` of ``seahelm encounter --out``: an encounter study's outcomes, tracks,
+  CPA over time and outcome rose.
 
 * a sweep store (``seahelm sweep``, a Zarr directory): its state (chunks written), the
   summary statistics stored with it, the distribution of every metric over the runs and,
@@ -120,6 +122,9 @@ class ReportData:
     replay : xarray.Dataset or None
         A replay's measured and simulated tracks and metrics (``replay.nc`` of ``seahelm
         replay --out``, :mod:`seahelm.analysis.replay_dataset`); None for other inputs.
+    encounters : xarray.Dataset or None
+        An encounter study (``encounters.nc`` of ``seahelm encounter --out``,
+        :meth:`seahelm.encounters.result.EncounterResult.to_xarray`); None for other inputs.
     """
 
     title: str
@@ -130,6 +135,7 @@ class ReportData:
     imo_ensemble: "xr.Dataset | None" = None
     seakeeping: "xr.Dataset | None" = None
     replay: "xr.Dataset | None" = None
+    encounters: "xr.Dataset | None" = None
 
     @property
     def n_runs(self) -> int:
@@ -139,6 +145,8 @@ class ReportData:
             return int(self.sweep.sizes["run"])
         if self.replay is not None:  # (one replay: a measured and a simulated track)
             return 1
+        if self.encounters is not None:
+            return int(self.encounters.sizes["encounter"])
         if self.imo_ensemble is not None and "sample" in self.imo_ensemble.sizes:
             return int(self.imo_ensemble.sizes["sample"])
         return sum(s.n_runs for s in self.sets)
@@ -238,6 +246,19 @@ def load_report_data(path: str | Path) -> ReportData:
         return ReportData(title=f"Replay of {ds.attrs.get('record', path.name)} with "
                                 f"{ds.attrs.get('ship', '?')}", sets=(),
                           sources=(str(path),), replay=ds)
+    from ..encounters.result import EncounterResult, is_encounter_dataset
+
+    if is_encounter_dataset(ds):
+        if any(ds.sizes[d] == 0 for d in ("encounter", "time")):
+            raise ParameterError(f"{path}: the encounter result holds no encounters or no "
+                                 "time samples")
+        try:
+            EncounterResult.from_xarray(ds)
+        except ParameterError as exc:
+            raise ParameterError(f"{path}{exc}") from None
+        return ReportData(title=f"Encounters: {ds.sizes['encounter']} of "
+                                f"{', '.join(str(v) for v in ds['vessel'].values)}",
+                          sets=(), sources=(str(path),), encounters=ds)
     if _is_runs(ds):
         _check_runs(ds, path)
         maneuver = ds.attrs.get("maneuver")
@@ -251,7 +272,7 @@ def load_report_data(path: str | Path) -> ReportData:
         raise ParameterError(
             f"{path}: not a seahelm result file: neither a simulation result (result.nc of "
             "`seahelm run --out`, a manoeuvre's *-runs.nc), a manoeuvre's *-metrics.nc, "
-            "an imo-probabilities.nc, a seakeeping.nc nor a replay.nc")
+            "an imo-probabilities.nc, a seakeeping.nc, a replay.nc nor an encounters.nc")
     directory = path.parent
     imo_file = directory / IMO_REPORT
     names = [str(maneuver)]
@@ -408,10 +429,11 @@ def combined_report_data(paths: "list[str | Path]") -> ReportData:
         return datas[0]
     for path, data in zip(paths, datas):
         if data.sweep is not None or data.imo_ensemble is not None \
-                or data.seakeeping is not None or data.replay is not None:
+                or data.seakeeping is not None or data.replay is not None \
+                or data.encounters is not None:
             raise ParameterError(f"{path}: a sweep store, an imo-probabilities.nc, a "
-                                 "seakeeping.nc or a replay.nc is reported alone, not with "
-                                 "other results")
+                                 "seakeeping.nc, a replay.nc or an encounters.nc is reported "
+                                 "alone, not with other results")
     seen: dict[str, Path] = {}
     for path, data in zip(paths, datas):
         for source in data.sources:

@@ -38,6 +38,7 @@ every run, one ``rao_file`` and one ``components`` for the batch.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import types
@@ -48,12 +49,12 @@ import numpy as np
 from ..errors import ParameterError
 from .errors import at_key as _err
 
-__all__ = ["first_order_settings", "add_first_order_motions", "first_order_in_the_loop"]
+__all__ = ["first_order_settings", "FirstOrderPostPass", "first_order_in_the_loop"]
 
 
 def first_order_settings(v: dict[str, Any], h3: float, ship: Any, source: str
                          ) -> dict[str, Any]:
-    """One run's settings (plain numbers: they travel as the result's metadata).
+    """One run's settings (plain numbers: the post-pass's :attr:`FirstOrderPostPass.specs`).
 
     Parameters
     ----------
@@ -184,26 +185,67 @@ def _speed_groups(speed: np.ndarray, rows: list[int]) -> list[tuple[tuple[float,
     return out
 
 
-def add_first_order_motions(result: Any, batch_seed: int | None, source: str) -> None:
-    """Compute the motions the result's metadata asks for and add them to ``result.extra``.
+@dataclasses.dataclass(frozen=True)
+class FirstOrderPostPass:
+    """The first-order motions after the run: a :attr:`Problem.post_pass
+    <seahelm.simulation.problem.Problem>` (``simulate`` computes it from the recordings into
+    the result's ``extra`` channels).
 
-    Parameters
+    Attributes
     ----------
-    result : SimResult
-        The simulated runs; ``metadata["first_order_motions"]`` holds the runs' settings
-        (JSON) and is replaced by a description; ``metadata["first_order_first_run"]`` (a
-        sweep's chunk, :func:`seahelm.sweep.chunks.select_runs`; removed) is the flat index
-        of the first run, by which the runs are seeded.
+    specs : tuple of dict
+        Each run's settings (:func:`first_order_settings`).
     batch_seed : int or None
         The batch's (Monte-Carlo) seed.
     source : str
         Scenario name for messages.
+    first_run : int
+        The flat index of the first run (a sweep's chunk, :meth:`select_runs`), by which the
+        runs are seeded.
     """
+
+    specs: tuple[dict[str, Any], ...]
+    batch_seed: int | None
+    source: str
+    first_run: int = 0
+
+    def select_runs(self, start: int, stop: int) -> "FirstOrderPostPass":
+        """Runs ``start`` to ``stop`` − 1 alone (a sweep's chunk: run i keeps run i's sea).
+
+        Parameters
+        ----------
+        start, stop : int
+
+        Returns
+        -------
+        FirstOrderPostPass
+        """
+        return dataclasses.replace(self, specs=self.specs[start:stop],
+                                   first_run=self.first_run + start)
+
+    def compute(self, result: Any) -> tuple[dict[str, Any], dict[str, Any]]:
+        """The motions of ``result``'s runs (NaN in diverged runs).
+
+        Parameters
+        ----------
+        result : SimResult
+            The simulated runs (before it is returned).
+
+        Returns
+        -------
+        (dict, dict)
+            The ``extra`` channels (name -> (values (runs, time), unit, description)) and the
+            metadata's ``first_order_motions`` (what was added, from which RAOs).
+        """
+        return _first_order_motions(result, list(self.specs), self.batch_seed, self.source,
+                                    self.first_run)
+
+
+def _first_order_motions(result: Any, specs: list[dict[str, Any]], batch_seed: int | None,
+                         source: str, first: int) -> tuple[dict[str, Any], dict[str, Any]]:
     from ..environment.first_order import first_order_motions
     from ..environment.spectra import spectrum_from_wave_height
 
-    specs = json.loads(result.metadata["first_order_motions"])
-    first = int(result.metadata.pop("first_order_first_run", 0))  # (a sweep's chunk)
     n, R = result.time.size, result.n_runs
     groups: dict[str, list[int]] = {}
     for i, spec in enumerate(specs):
@@ -233,25 +275,26 @@ def add_first_order_motions(result: Any, batch_seed: int | None, source: str) ->
     from ..environment.first_order import OUTPUT_NAMES
     from ..environment.rao import DOF_UNITS
 
+    extra: dict[str, Any] = {}
     for dof, v in values.items():
-        result.extra[OUTPUT_NAMES[dof]] = (v, DOF_UNITS[dof].split("/")[0],
-                                           f"first-order (wave-frequency) {dof}")
+        extra[OUTPUT_NAMES[dof]] = (v, DOF_UNITS[dof].split("/")[0],
+                                    f"first-order (wave-frequency) {dof}")
     if "roll" in values:
         total = values["roll"] + (result["roll_angle"] if has_roll else 0.0)
-        result.extra["roll"] = (total, "rad", "model roll angle + first-order roll" if has_roll
-                                else "first-order roll (the model has no roll)")
+        extra["roll"] = (total, "rad", "model roll angle + first-order roll" if has_roll
+                         else "first-order roll (the model has no roll)")
     if "yaw" in values:
-        result.extra["heading_total"] = (result["heading"] + values["yaw"], "rad",
-                                         "heading + first-order yaw (after the run: the "
-                                         "autopilot did not see it)")
+        extra["heading_total"] = (result["heading"] + values["yaw"], "rad",
+                                  "heading + first-order yaw (after the run: the "
+                                  "autopilot did not see it)")
     files = {spec.get("rao_file") for spec in specs}
-    result.metadata["first_order_motions"] = (
+    return extra, {"first_order_motions": (
         ", ".join(values) + " from "
         + ("closed-form RAOs (Jensen et al. 2004)" if files == {None} else
            "RAO file(s) " + ", ".join(str(f) for f in files if f)
            + (" and closed-form RAOs" if None in files else ""))
         + " in the irregular sea, added after the run (seahelm.environment.first_order); NaN "
-        "in diverged runs")
+        "in diverged runs")}
 
 
 def first_order_in_the_loop(specs: list[dict[str, Any]], batch_seed: int | None, source: str

@@ -32,6 +32,8 @@ from ..control.path_following import GuidanceLaw, RouteParams, get_guidance_law,
 from ..simulation.signals import Constant, make_signal
 from .environment import KEY_UNITS as _ENV_UNITS, environment_runs
 from .errors import ScenarioError, at_key as _err
+from .first_order import FirstOrderPostPass
+from ..ships.file_format import is_ship_path
 from ..ships.water_depth import params_at_depth
 from .particulars import refuse_varied_particulars
 from .samples import drawn_kinds, samples_draws
@@ -71,30 +73,46 @@ _OVERRIDABLE = ("vessel.params.", "vessel.initial.", "actuator.params.", "contro
                 "controller.reference.", "environment.disturbance.", "environment.wind.",
                 "environment.waves.", "guidance.")
 
-#: Field of the :class:`~seahelm.simulation.problem.Problem` (an error's ``field``, its first
-#: part) -> the scenario key it comes from.
-_ENGINE_KEYS = {
-    "model": "vessel.model",
-    "ship": "vessel.ship",
-    "actuator": "actuator.model",
-    "controller": "controller.model",
-    "environment": "environment",
-    "environment_params": "environment",
-    "exact_actuator": "simulation.exact_actuator",
+#: Each field of the :class:`~seahelm.simulation.problem.Problem` -> the scenario key an
+#: error of it (its ``field``, first part) is said at, or None: a field the scenario sets from
+#: no key of its own. Checked against ``Problem``'s fields below: a field added to the problem
+#: without a line here fails on import, not silently in a message.
+_FIELD_KEYS: dict[str, str | None] = {
     "t_final": "simulation.t_final",
     "dt": "simulation.dt",
-    "controller_dt": "controller.dt",
-    "record_every": "simulation.record_every",
-    "integrator": "simulation.integrator",
-    "bounds": "simulation.bounds",
+    "ship": "vessel.ship",
+    "model": "vessel.model",
     "params": "vessel.params",
     "x0": "vessel.initial",
-    "actuator_params": "actuator.params",
+    "controller": "controller.model",
     "controller_params": "controller.params",
+    "actuator": "actuator.model",
+    "actuator_params": "actuator.params",
+    "actuator_x0": None,
     "reference": "controller.reference",
     "disturbance": "environment.disturbance",
+    "environment": "environment",
+    "environment_params": "environment",
+    "controller_dt": "controller.dt",
+    "integrator": "simulation.integrator",
+    "record_every": "simulation.record_every",
+    "bounds": "simulation.bounds",
+    "seed": None,
+    "metadata": None,
+    "layout": None,
+    "exact_actuator": "simulation.exact_actuator",
+    "jit": None,
     "first_order": "environment.waves.autopilot_sees_first_order",
+    "post_pass": "environment.waves.first_order_motions",
 }
+if set(_FIELD_KEYS) != {f.name for f in dataclasses.fields(Problem)}:  # pragma: no cover
+    raise AssertionError("scenario.runs._FIELD_KEYS must name every field of Problem: "
+                         f"{sorted(set(_FIELD_KEYS) ^ {f.name for f in dataclasses.fields(Problem)})}")
+
+#: Field of the problem -> the scenario key it comes from (those said at a key), in the order
+#: of ``Problem``'s fields.
+_ENGINE_KEYS = {f.name: _FIELD_KEYS[f.name] for f in dataclasses.fields(Problem)
+                if _FIELD_KEYS[f.name] is not None}
 
 
 def _key_units(key: str, model: Any, actuator: Any, wiring: Any) -> str:
@@ -466,14 +484,18 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
         bounds=dict(sim.bounds),
         seed=seed,
         metadata={"title": scn.title, "scenario_source": source, "scenario_text": text,
-                  **({} if env is None or env.first_order is None else
-                     {"first_order_motions": json.dumps(env.first_order)} if in_loop is None
-                     else {"first_order_settings": json.dumps(env.first_order)})},
+                  **({} if ship is None or not is_ship_path(scn.vessel.ship or "") else
+                     {"ship_file": str(scn.vessel.ship)}),
+                  **({} if in_loop is None else
+                     {"first_order_settings": json.dumps(env.first_order)})},
         layout=layout,
         environment=None if env is None else env.environment,
         environment_params=None if env is None else env.params,
         exact_actuator=sim.exact_actuator,
         first_order=in_loop,
+        ship=ship,  # (its name and provenance reach the result's metadata)
+        post_pass=(None if env is None or env.first_order is None or in_loop is not None
+                   else FirstOrderPostPass(tuple(env.first_order), seed, source)),
     )
     try:  # the problem validates itself: its errors name their field, the key comes from it
         return Problem(**inputs)
@@ -536,12 +558,7 @@ def run_batch(
 
     source = str(batch.metadata.get("scenario_source", "<string>"))
     try:
-        result = simulate_batch(batch, throw=throw, progress=progress)
-        if "first_order_motions" in result.metadata:
-            from .first_order import add_first_order_motions
-
-            add_first_order_motions(result, batch.seed, source)
-        return result
+        return simulate_batch(batch, throw=throw, progress=progress)
     except ScenarioError:
         raise
     except ParameterError as exc:

@@ -1,7 +1,8 @@
 """Generation of the compiled closed loop: one module per combination of components.
 
 :func:`compile_closed_loop` writes :mod:`seahelm.simulation.kernel_template`'s text with the
-components' numba functions bound in (:func:`_binding`), the routing of signals by name from
+components' numba functions bound in (:func:`~seahelm.simulation.stage.binding`), the stages' hooks
+(:func:`~seahelm.simulation.stage.hooks_source`), the routing of signals by name from
 :func:`~seahelm.simulation.composition.compose` and the integrator's step from its Butcher
 tableau, and imports it from the kernel cache (numba compiles it once per machine). The engine
 (:mod:`seahelm.simulation.engine`) and the stepping simulator
@@ -13,53 +14,23 @@ from __future__ import annotations
 import functools
 import hashlib
 import re
-import sys
 from pathlib import Path
-from types import FunctionType, ModuleType
+from types import ModuleType
 from typing import Any
 
 from .. import __version__
 from ..actuators.base import Actuator
 from ..control.base import Controller
-from ..environment.first_order_kernel import first_order_sample
 from ..vessels.base import VesselModel
 from .compiled_step import compiled_advance_source, compiled_stage_loop_source
 from .composition import compose
-from .environment_stage import (
-    environment_stage,
-    no_apply_loads,
-    no_environment_loads,
-    python_environment_stage,
-)
-from .generated import code_fingerprint, exec_generated, import_generated
+from .generated import exec_generated, import_generated
 from .inlining import inlined_size
 from .integrators import ButcherTableau, get_integrator
 from .problem import _numba_jit_disabled
-from .wave_motion_stage import wave_constants
+from .stage import Stage, binding, hooks_source
 
 __all__ = ["compile_closed_loop", "STAGE_LOOP_ABOVE", "PYTHON_HEADER"]
-
-
-def _binding(func: Any, alias: str, inline: bool = True, jit: bool = True) -> tuple[str, bytes]:
-    py = getattr(func, "py_func", None)
-    if py is None and not jit and isinstance(func, FunctionType):
-        py = func  # the pure-Python loop (numba's JIT disabled: njit returned the function)
-    if py is None:
-        raise TypeError(f"{alias} must be a numba @njit function, got {func!r}")
-    module, name = py.__module__, py.__name__
-    mod = sys.modules.get(module)
-    if mod is None or getattr(mod, name, None) is not func:
-        raise TypeError(
-            f"{alias} '{module}.{name}' must be importable as a module-level name"
-        )
-    if not inline and jit:  # called, not inlined (compiled once, with _nrt=False, by its module)
-        return f"from {module} import {name} as {alias}\n", code_fingerprint(py)
-    # re-jit the component, and every numba function it calls, with inline="always": numba
-    # then inlines them at IR level into the loop, which lets LLVM optimise across the
-    # component boundaries (a helper left as a call cost the catamaran loop 25 %)
-    line = (f"from {module} import {name} as _{alias}\n"
-            f"{alias} = inline_always(_{alias})\n")
-    return line, code_fingerprint(py)
 
 
 _TEMPLATE_TEXT = (Path(__file__).with_name("kernel_template.py")).read_text()
@@ -100,18 +71,18 @@ _BLOCK = re.compile(r"# <(header|footer)>\n.*?# </\1>\n", re.S)
 STAGE_LOOP_ABOVE = 1850
 
 def _stage_code_size(model: VesselModel, actuator: Actuator, tableau: ButcherTableau,
-                     environment: Any, exact_actuator: bool = False, jit: bool = True) -> int:
+                     stages: tuple[Stage, ...] = (), exact_actuator: bool = False,
+                     jit: bool = True) -> int:
     """The code a written-out step makes numba compile (see :data:`STAGE_LOOP_ABOVE`): what
-    each stage inlines, times the stages, plus the environment's loads (compiled once, as a
-    function of their own, but in the same compile the user waits for)."""
+    each stage inlines, times the stages, plus what the loop's stages compile once (the
+    environment's loads: a function of their own, but in the same compile the user waits
+    for)."""
     per_stage = (inlined_size(model.rhs) + inlined_size(actuator.output)
                  + inlined_size(actuator.advance if exact_actuator else actuator.rhs))
     once = 0
-    if environment is not None:
-        loads, apply = (environment_stage if jit else python_environment_stage)(environment,
-                                                                                  model)
-        per_stage += inlined_size(apply)
-        once = inlined_size(loads)
+    for stage in stages:
+        each, one = stage.code_size(model, jit)
+        per_stage, once = per_stage + each, once + one
     return tableau.stages * per_stage + once
 
 
@@ -127,11 +98,10 @@ def compile_closed_loop(
     actuator: Actuator,
     controller: Controller,
     integrator: str | ButcherTableau = "rk4",
-    environment: Any = None,
+    stages: tuple[Stage, ...] = (),
     stage_loop: bool | None = None,
     exact_actuator: bool | None = None,
     jit: bool = True,
-    first_order: tuple[tuple[str, ...], bool] | None = None,
 ) -> ModuleType:
     """The compiled closed-loop module for one combination of components (cached).
 
@@ -144,9 +114,12 @@ def compile_closed_loop(
         A name in :data:`~seahelm.simulation.integrators.INTEGRATORS` (default "rk4") or a
         tableau; its step is generated into the module, so the module's name (a hash of its
         text) differs between tableaus.
-    environment : Environment, optional
-        Wind and wave loads (:mod:`seahelm.environment.loads`), evaluated at every stage
-        from the live state (:mod:`seahelm.simulation.environment_stage`).
+    stages : tuple of Stage
+        The loop's stages, in order (:mod:`seahelm.simulation.stage`, the registry
+        :data:`seahelm.simulation.stages.STAGES`): e.g. the environment's loads from the live
+        state (:class:`~seahelm.simulation.environment_stage.EnvironmentStage`), the
+        first-order wave motions (:class:`~seahelm.simulation.wave_motion_stage.FirstOrderStage`).
+        Each adds its lines to the loop's hooks; a loop without stages has none.
     stage_loop : bool, optional
         Write the integrator's step as a loop over its stages
         (:func:`~seahelm.simulation.compiled_step.compiled_stage_loop_source`: the stage
@@ -165,10 +138,6 @@ def compile_closed_loop(
         Python functions (:func:`~seahelm.simulation.inlining.python_function`), so nothing is
         compiled, nothing is written to the kernel cache or numba's, and a breakpoint in a
         component's source is hit. The stages are written out or looped over as compiled.
-    first_order : (tuple of str, bool), optional
-        First-order wave motions in the loop (:mod:`seahelm.environment.first_order_in_loop`):
-        the degrees of freedom evaluated, and whether the controller's ``heading``
-        measurement is ``heading_total`` (ψ + ψ₁) instead of the model's ``heading``.
 
     Returns
     -------
@@ -191,35 +160,31 @@ def compile_closed_loop(
         raise ValueError(f"exact_actuator: the actuator {actuator.name!r} has no closed-form "
                          "step (advance)")
     parts = [
-        _binding(model.rhs, "model_rhs", jit=jit),
-        _binding(model.output, "model_output", jit=jit),
-        _binding(actuator.rhs, "actuator_rhs", jit=jit),
-        _binding(actuator.output, "actuator_output", jit=jit),
-        _binding(controller.init, "controller_init", jit=jit),
-        _binding(controller.step, "controller_step", jit=jit),
+        binding(model.rhs, "model_rhs", jit=jit),
+        binding(model.output, "model_output", jit=jit),
+        binding(actuator.rhs, "actuator_rhs", jit=jit),
+        binding(actuator.output, "actuator_output", jit=jit),
+        binding(controller.init, "controller_init", jit=jit),
+        binding(controller.step, "controller_step", jit=jit),
     ]
     if exact_actuator:
-        parts.append(_binding(actuator.advance, "actuator_advance", jit=jit))
-    loads, apply = ((no_environment_loads, no_apply_loads) if environment is None
-                    else (environment_stage if jit else python_environment_stage)(environment,
-                                                                                  model))
-    # the environment's loads are called, not inlined: inlined at every stage and record site
-    # they doubled the loop's compile time (76 s against 31 s for the KVLCC2), and a call
-    # costs little beside their transcendental functions
-    parts += [_binding(loads, "environment_loads", inline=environment is None, jit=jit),
-              _binding(apply, "apply_loads", jit=jit),
-              _binding(first_order_sample, "first_order_sample", jit=jit)]
-    n_env = 0 if environment is None else len(environment.output_labels)
-    waves = wave_constants(model, controller, wiring.measurement_from, n_env, first_order)
+        parts.append(binding(actuator.advance, "actuator_advance", jit=jit))
+    # the stages' lines, each after the outputs of the model and of the stages before it
+    measurement_from, n_out, codes = tuple(wiring.measurement_from), model.n_outputs, []
+    for stage in stages:
+        code = stage.code(model, controller, measurement_from, n_out, jit)
+        codes.append(code)
+        parts += code.bindings
+        measurement_from = code.measurement_from or measurement_from
+        n_out += len(stage.outputs(model)[0])
+    hooks, disturbance = hooks_source(codes)
     header = ("" if jit else PYTHON_HEADER) + "".join(p[0] for p in parts) + (
         f"\nNX = {model.n_states}\nNA = {actuator.n_states}\nNU = {model.n_inputs}\n"
-        f"NYM = {model.n_outputs + n_env + waves['NW_OUT']}\n"
+        f"NYM = {n_out}\n"
         f"NYA = {len(wiring.actuator_outputs)}\n"
         f"NCA = {len(wiring.actuator_commands)}\nNM = {controller.n_measurements}\n"
-        f"NDM = {model.n_disturbances}\nHAS_ENV = {environment is not None}\n"
-        f"HOLD_LOADS = {bool(getattr(environment, 'hold_over_step', False))}\n"
+        f"NDM = {model.n_disturbances}\n"
         f"EXACT_ACTUATOR = {bool(exact_actuator)}\n"
-        + "".join(f"{k} = {v}\n" for k, v in waves.items() if k != "measurement_from") +
         "FASTMATH = {\"arcp\", \"contract\", \"afn\", \"reassoc\"}\n"
     )
     header += _route_source("route_actuator_commands", "cmd, ca", [
@@ -228,9 +193,10 @@ def compile_closed_loop(
         f"u[{i}] = {'ya' if kind == 'actuator' else 'cmd'}[{j}]"
         for i, (kind, j) in enumerate(wiring.input_from)])
     header += _route_source("route_measurements", "ym, y", [
-        f"y[{i}] = ym[{j}]" for i, j in enumerate(waves["measurement_from"])])
+        f"y[{i}] = ym[{j}]" for i, j in enumerate(measurement_from)])
+    header += hooks + _CLOSED_RHS.format(disturbance=disturbance)
     if stage_loop is None:
-        stage_loop = _stage_code_size(model, actuator, tableau, environment,
+        stage_loop = _stage_code_size(model, actuator, tableau, stages,
                                       exact_actuator, jit) > STAGE_LOOP_ABOVE
     footer = (compiled_stage_loop_source if stage_loop else compiled_advance_source)(
         tableau, exact_actuator)
@@ -243,3 +209,18 @@ def compile_closed_loop(
         return exec_generated(f"seahelm_python_loop_{digest}", text)
     return import_generated(f"seahelm_kernel_{digest}", text)
 
+
+#: The closed loop's right-hand side at one stage of the integrator: the actuator's outputs
+#: routed to the model's inputs, the stages' ``rhs`` lines (the environment's loads), the
+#: model's right-hand side on the disturbance they leave, the actuator's.
+_CLOSED_RHS = """
+
+@njit(inline="always", fastmath=FASTMATH, _nrt=False)
+def closed_rhs(t, xv, xa, cmd, ca, d, mp, ap, ir, sg, ss, ya, u, dxv, dxa):  # pragma: no cover
+    actuator_output(xa, ca, ap, ya)
+    route_inputs(ya, cmd, u)
+    stages_rhs(t, ir, xv, u, mp, d, sg, ss)
+    model_rhs(t, xv, u, {disturbance}, mp, dxv)
+    if not EXACT_ACTUATOR:  # else the step takes the actuator states from actuator_advance
+        actuator_rhs(t, xa, ca, ap, dxa)
+"""

@@ -42,8 +42,9 @@ def compiled_advance_source(method: str | ButcherTableau, exact_actuator: bool =
     """Python source of the closed-loop kernel's ``advance`` for one tableau.
 
     The source defines ``NSTAGES`` (the number of stages, the first dimension of the kernel's
-    stage buffers) and ``advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ep, ya, u, yms, dm,
-    lm, kv, ka, fv, fa, tv, ta)``: one step of the vessel states ``xv`` (NX) and actuator
+    stage buffers) and ``advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ir, sg, ss, ya, u,
+    kv, ka, fv, fa, tv, ta)`` (``ir``, ``sg``, ``ss``: the run and the stages' arrays and
+    scratch, :mod:`seahelm.simulation.stage`): one step of the vessel states ``xv`` (NX) and actuator
     states ``xa`` (NA) in place,
     straight-line, with the tableau's coefficients as literals and zero coefficients skipped.
     Each stage calls ``closed_rhs`` of :mod:`seahelm.simulation.kernel_template` into the 1-D
@@ -84,7 +85,7 @@ def compiled_advance_source(method: str | ButcherTableau, exact_actuator: bool =
         "",
         "",
         '@njit(cache=True, inline="always", fastmath=FASTMATH)',
-        "def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ep, ya, u, yms, dm, lm, kv, ka, "
+        "def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ir, sg, ss, ya, u, kv, ka, "
         "fv, "
         "fa, tv, ta):"
         "  # pragma: no cover",
@@ -121,7 +122,7 @@ def compiled_advance_source(method: str | ButcherTableau, exact_actuator: bool =
         elif exact_actuator:
             actuator_input = "xa"
         lines.append(f"    closed_rhs({time}, {stage_input[0]}, {actuator_input}, cmd, ca, {d}, "
-                     f"mp, ap, ep, ya, u, yms, dm, lm, fv, fa)")
+                     f"mp, ap, ir, sg, ss, ya, u, fv, fa)")
         if i == s - 1:
             break
         # store k_i where later stages need it, and form the input of stage i + 1
@@ -217,7 +218,7 @@ def compiled_stage_loop_source(method: str | ButcherTableau,
         "",
         "",
         '@njit(cache=True, inline="always", fastmath=FASTMATH)',
-        "def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ep, ya, u, yms, dm, lm, kv, ka, "
+        "def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ir, sg, ss, ya, u, kv, ka, "
         "fv, "
         "fa, tv, ta):  # pragma: no cover",
         "    for i in range(NSTAGES):",
@@ -234,7 +235,7 @@ def compiled_stage_loop_source(method: str | ButcherTableau,
         "                ds[j] = d1[j]",
         "            else:",
         "                ds[j] = d0[j] + ci * (d1[j] - d0[j])",
-        "        closed_rhs(t + ci * h, tv, ta, cmd, ca, ds, mp, ap, ep, ya, u, yms, dm, lm, fv,"
+        "        closed_rhs(t + ci * h, tv, ta, cmd, ca, ds, mp, ap, ir, sg, ss, ya, u, fv,"
         " fa)",
         "        for j in range(NX):",
         "            kv[i, j] = fv[j]",

@@ -46,7 +46,6 @@ import numpy as np
 from .._validate import as_float_array
 from ..actuators.base import Actuator
 from ..control.base import Controller
-from ..environment.first_order_in_loop import HEADING_TOTAL
 from ..errors import ParameterError, SimulationDiverged
 from ..parameters import Params, as_records
 from ..resources import check_work
@@ -57,7 +56,6 @@ from .closed_loop import (  # noqa: F401 (the engine's names, as before the spli
     _stage_code_size,
     compile_closed_loop,
 )
-from .environment_stage import environment_stage, python_environment_stage
 from .generated import code_fingerprint, import_generated, kernel_cache_dir
 from .inputs import (  # noqa: F401
     MAX_ANGLE,
@@ -78,6 +76,7 @@ from .memory import (  # noqa: F401
     physical_memory,
 )
 from .problem import Problem, jit_enabled
+from .stages import stages_of
 from .slicing import FIRST_SLICE, FIRST_SLICE_PYTHON, SLICE_SECONDS, _Slices, drive, quiet  # noqa: F401
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -131,6 +130,7 @@ def simulate(
     exact_actuator: bool | None = None,
     jit: bool | None = None,
     first_order: Any = None,
+    post_pass: Any = None,
 ) -> "SimResult":
     """Simulate a batch of closed-loop runs: a :class:`~seahelm.simulation.problem.Problem`.
 
@@ -219,6 +219,9 @@ def simulate(
         outputs (``heave``, ``roll_wave``, ``pitch``, ``yaw_wave``, ``heading_total``, and
         ``roll`` on a model with roll); with ``autopilot_sees_first_order`` the controller's
         ``heading`` is ``heading_total``. ``metadata["controller_heading"]`` says which.
+    post_pass : object, optional
+        Computed from the recordings after the run, into the result's ``extra`` channels and
+        metadata (:attr:`Problem.post_pass <seahelm.simulation.problem.Problem>`).
 
     Returns
     -------
@@ -340,50 +343,23 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
     params, x0, actuator_x0 = problem.params, problem.x0, problem.actuator_x0
     actuator_params, controller_params = problem.actuator_params, problem.controller_params
     reference, disturbance = problem.reference, problem.disturbance
-    environment, environment_params = problem.environment, problem.environment_params
     bounds, seed, metadata = problem.bounds, problem.seed, problem.metadata
     exact_actuator, dt, t_final = problem.exact_actuator, problem.dt, problem.t_final
     use_jit = problem._derived["jit"]  # (resolved when the problem was made)
     n_steps, ctrl_every = problem.n_steps, problem.controller_every
     ctrl_dt, record_every = problem._derived["controller_dt"], problem.record_every
     tableau, wiring = problem.tableau, problem.wiring
-    if environment is None:
-        env_signals: tuple[str, ...] = ()
-        env_units: tuple[str, ...] = ()
-        env_outputs: tuple[str, ...] = ()
-        env_output_units: tuple[str, ...] = ()
-        ep, e_cls = np.zeros((1, 1)), None
-    else:
-        # checks the model has what the loads need
-        (environment_stage if use_jit else python_environment_stage)(environment, model)
-        env_signals, env_units = environment.signal_labels, environment.signal_units
-        env_outputs, env_output_units = environment.output_labels, environment.output_units
-        ep, e_cls = _param_rows("environment_params", environment_params,
-                                environment.params_type)
-        mp_check, m_check_cls = _param_rows("params", params, model.params_type)
-        for name in model.load_params:
-            j = m_check_cls.value_names().index(name)
-            bad = ~(mp_check[:, j] > 0)
-            if bad.any():
-                raise ParameterError(
-                    f": model '{model.name}' needs `{name}` > 0 to take the "
-                    f"environment's loads, got {mp_check[bad, j][0]!r} (run "
-                    f"{int(np.argmax(bad))})", field="params", run=int(np.argmax(bad)))
-    dist_labels = model.disturbance_labels + env_signals
-    dist_units = model.disturbance_units + env_units
-    out_labels = model.output_labels + env_outputs
-    out_units = model.output_units + env_output_units
-    first_order = problem.first_order
-    if first_order is None:
-        wave_arrays = (np.zeros((1, 6, 1)), np.zeros((1, 2, 1, 1, 2, 1)), np.zeros(1),
-                       np.zeros(1), np.ones(1))
-        wave_key = None
-    else:
-        wave_arrays = first_order.arrays
-        wave_key = (first_order.dofs, first_order.autopilot_sees_first_order)
-        wave_labels, wave_units = first_order.output_signals("roll_angle" in
-                                                             model.output_labels)
-        out_labels, out_units = out_labels + wave_labels, out_units + wave_units
+    # the loop's stages (seahelm.simulation.stages): their inputs checked, their signals after
+    # the model's disturbance channels, their outputs after the model's
+    stages = stages_of(problem)
+    stage_inputs = [stage.inputs(problem, model) for stage in stages]
+    dist_labels, dist_units = model.disturbance_labels, model.disturbance_units
+    out_labels, out_units = model.output_labels, model.output_units
+    for stage in stages:
+        (sig, sig_units), (outs, outs_units) = stage.signals(), stage.outputs(model)
+        dist_labels, dist_units = dist_labels + sig, dist_units + sig_units
+        out_labels, out_units = out_labels + outs, out_units + outs_units
+    stage_runs = [c for stage, inp in zip(stages, stage_inputs) for c in stage.run_counts(inp)]
 
     mp, m_cls = _param_rows("params", params, model.params_type)
     ap, a_cls = _param_rows("actuator_params", actuator_params, actuator.params_type)
@@ -402,8 +378,8 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
     # the recordings must fit before anything of the batch's size is built (the time grid too:
     # a long run with a coarse record needs no array of all its steps)
     n_rec_early = n_steps // record_every + 1 + (n_steps % record_every != 0)
-    n_runs_early = max(mp.shape[0], ap.shape[0], cp.shape[0], ep.shape[0], x0.shape[0],
-                       1 if first_order is None else first_order.n_runs)
+    n_runs_early = max(mp.shape[0], ap.shape[0], cp.shape[0], x0.shape[0],
+                       *(n for _, n in stage_runs))
     channels_early = (model.n_states + actuator.n_states + len(out_labels)
                       + len(wiring.commands) + len(controller.output_labels)
                       + len(wiring.references) + len(dist_labels))
@@ -418,22 +394,18 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
     dist = _signal("disturbance", disturbance, len(dist_labels), t_grid, "", dist_labels)
     n_runs = _runs(
         ("params", mp.shape[0]), ("actuator_params", ap.shape[0]),
-        ("controller_params", cp.shape[0]), ("environment_params", ep.shape[0]),
-        ("x0", x0.shape[0]),
+        ("controller_params", cp.shape[0]), ("x0", x0.shape[0]),
         ("actuator_x0", xa0.shape[0]), ("reference", ref.shape[0]),
-        ("disturbance", dist.shape[0]),
-        *(() if first_order is None else (("first_order", first_order.n_runs),)),
+        ("disturbance", dist.shape[0]), *stage_runs,
     )
-    if first_order is not None and first_order.n_runs != n_runs:
-        raise ParameterError(f": the first-order motions were drawn for {first_order.n_runs} "
-                             f"run(s), the batch has {n_runs}", field="first_order")
+    stage_arrays = tuple(stage.arrays(inp, n_runs) for stage, inp in zip(stages, stage_inputs))
 
     def rows(a: np.ndarray) -> np.ndarray:
         if a.shape[0] == n_runs and a.dtype == np.float64 and a.flags.c_contiguous:
             return a  # (as it is: a broadcast and a copy cost µs, a tenth of a short run)
         return np.ascontiguousarray(np.broadcast_to(a, (n_runs,) + a.shape[1:]), dtype=float)
 
-    mp, ap, cp, ep = rows(mp), rows(ap), rows(cp), rows(ep)
+    mp, ap, cp = rows(mp), rows(ap), rows(cp)
     z = np.concatenate([rows(x0), rows(xa0)], axis=1)
     labels = model.state_labels + actuator.state_labels
     lower = np.array(list(model.state_lower) + [-np.inf] * actuator.n_states, dtype=float)
@@ -449,13 +421,11 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
 
     if exact_actuator is None:
         exact_actuator = actuator.advance is not None
-    kernel = compile_closed_loop(model, actuator, controller, tableau, environment,
-                                 exact_actuator=bool(exact_actuator), jit=use_jit,
-                                 first_order=wave_key)
+    kernel = compile_closed_loop(model, actuator, controller, tableau, stages,
+                                 exact_actuator=bool(exact_actuator), jit=use_jit)
     mr = as_records(mp, m_cls)
     ar = as_records(ap, a_cls)
     cr = as_records(cp, c_cls)
-    er = ep if e_cls is None else environment.kernel_records(ep)  # + per-run constants
     nz = z.shape[1]
     ncmd = len(wiring.commands) + len(controller.output_labels)  # outputs after commands
     # every record_every-th step and the final one (the last interval may be shorter)
@@ -473,20 +443,28 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
     rec_cmd = np.full((n_runs, n_rec, ncmd), np.nan)
 
     arrays = KernelArrays(
-        state=(z, cs, cmd, ca), params=(mr, ar, cr, er, lower, upper), signals=(dist, ref),
-        outcome=(status, t_fail, z_fail), record=(rec_z, rec_y, rec_cmd), waves=wave_arrays)
+        state=(z, cs, cmd, ca), params=(mr, ar, cr, lower, upper), signals=(dist, ref),
+        outcome=(status, t_fail, z_fail), record=(rec_z, rec_y, rec_cmd), stages=stage_arrays,
+        stage_names=tuple(stage.name for stage in stages))
+    n_out = len(out_labels)
+
+    def stage_scratch() -> tuple[tuple[np.ndarray, ...], ...]:
+        return tuple(stage.scratch(model, g, n_out) for stage, g in zip(stages, stage_arrays))
+
     slices = _Slices(kernel, arrays,
                      (ncmd, ca.shape[1], cs.shape[1], dist.shape[2], ref.shape[2]),
-                     threads=None if use_jit else 1,
-                     wave_sizes=(wave_arrays[0].shape[2], wave_arrays[1].shape[3]),
+                     threads=None if use_jit else 1, stage_scratch=stage_scratch,
                      keep_pool=keep_pool)
+    result_params: dict[str, Any] = {}
+    for stage, inp in zip(stages, stage_inputs):
+        result_params.update(stage.result_params(inp, n_runs))
     return Batch(problem=problem, kernel=kernel, slices=slices, n_steps=n_steps, dt=float(dt),
                  ctrl_every=ctrl_every, record_every=record_every, jit=use_jit, labels=labels,
                  out_labels=out_labels, out_units=out_units, dist_labels=dist_labels,
                  dist_units=dist_units, z0=slices.arrays.state[0].copy(),
-                 info={"mp": mp, "ap": ap, "cp": cp, "ep": ep, "m_cls": m_cls, "a_cls": a_cls,
-                       "c_cls": c_cls, "e_cls": e_cls, "n_rec": n_rec, "exact_actuator": exact_actuator,
-                       "ctrl_dt": ctrl_dt})
+                 info={"mp": mp, "ap": ap, "cp": cp, "m_cls": m_cls, "a_cls": a_cls,
+                       "c_cls": c_cls, "n_rec": n_rec, "exact_actuator": exact_actuator,
+                       "ctrl_dt": ctrl_dt, "stages": stages, "stage_params": result_params})
 
 
 def _result(batch: Batch, *, wall: float, compile_time: float, throw: bool,
@@ -496,14 +474,14 @@ def _result(batch: Batch, *, wall: float, compile_time: float, throw: bool,
 
     problem, info = batch.problem, batch.info
     model, actuator, controller = problem.model, problem.actuator, problem.controller
-    environment, first_order, seed = problem.environment, problem.first_order, problem.seed
+    seed = problem.seed
     tableau, wiring = problem.tableau, problem.wiring
     n_steps, record_every, n_rec = batch.n_steps, batch.record_every, info["n_rec"]
     dt, t_final, ctrl_dt = batch.dt, problem.t_final, info["ctrl_dt"]
     exact_actuator, use_jit = info["exact_actuator"], batch.jit
     (dist, ref), labels = batch.slices.arrays.signals, batch.labels
-    m_cls, a_cls, c_cls, e_cls = info["m_cls"], info["a_cls"], info["c_cls"], info["e_cls"]
-    mp, ap, cp, ep = info["mp"], info["ap"], info["cp"], info["ep"]
+    m_cls, a_cls, c_cls = info["m_cls"], info["a_cls"], info["c_cls"]
+    mp, ap, cp = info["mp"], info["ap"], info["cp"]
     rec_z, rec_y, rec_cmd = batch.slices.arrays.record
     status, t_fail, z_fail = batch.slices.arrays.outcome
     out_labels, out_units = batch.out_labels, batch.out_units
@@ -536,22 +514,19 @@ def _result(batch: Batch, *, wall: float, compile_time: float, throw: bool,
             "vessel": (m_cls, mp),
             "actuator": (a_cls, ap),
             "controller": (c_cls, cp),
-            **({} if e_cls is None else {"environment": (e_cls, ep)}),
+            **info["stage_params"],
         },
         metadata={
             "model": model.name,
+            **({} if problem.ship is None else {
+                "ship": problem.ship.name, "ship_model": problem.ship.model.name,
+                "ship_provenance": problem.ship.provenance or "not given"}),
             "actuator": actuator.name,
             "controller": controller.name,
             "integrator": tableau.name,
             "actuator_step": "closed-form" if exact_actuator else "integrated",
             "execution": "compiled" if use_jit else "python",
-            **({} if environment is None else {"environment": environment.name}),
-            **({} if first_order is None else {
-                "first_order_in_loop": ", ".join(first_order.dofs)
-                + " (seahelm.environment.first_order_in_loop)",
-                "controller_heading": (f"{HEADING_TOTAL} (heading + first-order yaw)"
-                                       if first_order.autopilot_sees_first_order
-                                       else "heading")}),
+            **{k: v for stage in info["stages"] for k, v in stage.metadata(problem).items()},
             "dt": float(dt),
             "controller_dt": ctrl_dt,
             "t_final": float(t_final),
@@ -562,6 +537,10 @@ def _result(batch: Batch, *, wall: float, compile_time: float, throw: bool,
             **(dict(metadata) if metadata else {}),
         },
     )
+    if problem.post_pass is not None:  # (computed from the recordings, into the result)
+        extra, more = problem.post_pass.compute(result)
+        result.extra.update(extra)
+        result.metadata.update(more)
     if throw and status.any():
         i = int(np.argmax(status != 0))
         raise SimulationDiverged(

@@ -30,39 +30,32 @@ and ``apparent_wind_angle`` are the full relative wind.
 
 The indices are resolved here, once, by name; a model without the channels or outputs the
 environment needs is a :class:`~seahelm.errors.ParameterError` naming what is missing.
-:func:`no_environment` is the stage of a loop without one (the kernel skips the call).
+:class:`EnvironmentStage` is this stage of the loop (:mod:`seahelm.simulation.stage`): its
+outputs, the signals it reads, its per-run arrays (the environment's parameter records), its
+scratch and its lines at each place of the step. A loop without an environment has none of it.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import hashlib
 from typing import Any
 
-from numba import njit
+import numpy as np
 
 from ..errors import ParameterError
-from .inlining import py_func_of
+from .inlining import inlined_size, py_func_of
+from .inputs import _param_rows
+from .stage import Stage, StageCode, aligned_buffers, binding
 
-__all__ = ["no_environment_loads", "no_apply_loads", "environment_stage",
-           "python_environment_stage", "check_environment", "LOAD_CHANNELS", "MOTION_OUTPUTS"]
+__all__ = ["EnvironmentStage", "environment_stage", "python_environment_stage",
+           "check_environment", "LOAD_CHANNELS", "MOTION_OUTPUTS"]
 
 #: The model disturbance channels the environment's loads go to, with their units.
 LOAD_CHANNELS: dict[str, str] = {"force_x": "N", "force_y": "N", "moment_z": "N·m"}
 #: The model outputs the environment reads (velocity through the water, heading).
 MOTION_OUTPUTS: dict[str, str] = {"heading": "rad", "surge_speed": "m/s", "sway_speed": "m/s"}
-
-
-@njit(cache=True)
-def no_environment_loads(t, x, u, p, ym, d, ep, lm):  # pragma: no cover - compiled
-    """The stage of a loop without an environment (never called: ``HAS_ENV`` is False)."""
-    return
-
-
-@njit(cache=True)
-def no_apply_loads(d, lm, dm):  # pragma: no cover - compiled
-    """(Never called: ``HAS_ENV`` is False.)"""
-    return
 
 
 def _module_name(func: Any) -> tuple[str, str]:
@@ -283,3 +276,103 @@ def _stage_source(environment: Any, model: Any, njit_import: str) -> tuple[str, 
     digest = hashlib.sha1(b"\0".join([source.encode()] + [
         code_fingerprint(py_func_of(f)) for f in funcs])).hexdigest()[:16]
     return source, digest
+
+
+@dataclasses.dataclass(frozen=True)
+class EnvironmentStage(Stage):
+    """The environment's loads as a stage of the loop (module docstring).
+
+    Its lines: at every stage of the integrator the loads from the live state
+    (``environment_loads``, called: inlined at every site they doubled the loop's compile
+    time, 76 s against 31 s for the KVLCC2, and a call costs little beside their
+    transcendental functions) added to the model's load channels (``apply_loads``, into its
+    buffer ``dm``, which the model's right-hand side reads); with ``hold_over_step`` the loads
+    once per step, at its start; after the model's outputs, its own (apparent wind, loads).
+
+    Attributes
+    ----------
+    environment : Environment
+    """
+
+    environment: Any
+    name = "environment"
+    members = ("params",)
+
+    @classmethod
+    def from_problem(cls, problem: Any) -> "EnvironmentStage | None":
+        return None if problem.environment is None else cls(problem.environment)
+
+    def signals(self) -> tuple[tuple[str, ...], tuple[str, ...]]:
+        return self.environment.signal_labels, self.environment.signal_units
+
+    def outputs(self, model: Any) -> tuple[tuple[str, ...], tuple[str, ...]]:
+        return self.environment.output_labels, self.environment.output_units
+
+    def _functions(self, model: Any, jit: bool) -> Any:
+        return (environment_stage if jit else python_environment_stage)(self.environment, model)
+
+    def code_size(self, model: Any, jit: bool) -> tuple[int, int]:
+        loads, apply = self._functions(model, jit)
+        return inlined_size(apply), inlined_size(loads)
+
+    def code(self, model: Any, controller: Any, measurement_from: tuple[int, ...],
+             first_output: int, jit: bool) -> StageCode:
+        loads, apply = self._functions(model, jit)
+        live = "environment_loads(t, xv, u, mp, s[0], {d}, g[0][i], s[2])"
+        held = bool(getattr(self.environment, "hold_over_step", False))
+        return StageCode(
+            bindings=(binding(loads, "environment_loads", inline=False, jit=jit),
+                      binding(apply, "apply_loads", jit=jit)),
+            lines={
+                # its outputs (loads, apparent wind) from the disturbance of step k
+                "outputs": ("if dist.shape[1] > 1:",
+                            "    for j in range(dist.shape[2]):",
+                            "        ds[j] = dist[idist, k, j]",
+                            "    environment_loads(t, xv, u, mp, ym, ds, g[0][i], s[2])",
+                            "else:",
+                            "    environment_loads(t, xv, u, mp, ym, d0, g[0][i], s[2])"),
+                # the loads of the step's start, held over the step; else at every stage
+                **({"step_start": (live.format(d="d0"),)} if held else {}),
+                "rhs": (*(() if held else (live.format(d="d"),)), "apply_loads(d, s[2], s[1])"),
+            },
+            disturbance=1)
+
+    def inputs(self, problem: Any, model: Any) -> Any:
+        """The environment's parameter rows and class, checked against the model."""
+        check_environment(self.environment, model)
+        ep, e_cls = _param_rows("environment_params", problem.environment_params,
+                                self.environment.params_type)
+        mp, m_cls = _param_rows("params", problem.params, model.params_type)
+        for name in model.load_params:
+            j = m_cls.value_names().index(name)
+            bad = ~(mp[:, j] > 0)
+            if bad.any():
+                raise ParameterError(
+                    f": model '{model.name}' needs `{name}` > 0 to take the "
+                    f"environment's loads, got {mp[bad, j][0]!r} (run "
+                    f"{int(np.argmax(bad))})", field="params", run=int(np.argmax(bad)))
+        return ep, e_cls
+
+    def run_counts(self, inputs: Any) -> tuple[tuple[str, int], ...]:
+        return (("environment_params", inputs[0].shape[0]),)
+
+    def arrays(self, inputs: Any, n_runs: int) -> tuple[np.ndarray, ...]:
+        ep = inputs[0]
+        if ep.shape[0] != n_runs:
+            ep = np.ascontiguousarray(np.broadcast_to(ep, (n_runs,) + ep.shape[1:]))
+        return (self.environment.kernel_records(ep),)  # + per-run constants
+
+    def scratch(self, model: Any, arrays: tuple[np.ndarray, ...],
+                n_outputs: int) -> tuple[np.ndarray, ...]:
+        # the model's outputs where it has no motion() (then the loads evaluate them), the
+        # disturbance with the loads, the loads (X, Y, N)
+        return aligned_buffers([(max(n_outputs, 1),), (max(model.n_disturbances, 1),), (3,)])
+
+    def metadata(self, problem: Any) -> dict[str, Any]:
+        return {"environment": self.environment.name}
+
+    def result_params(self, inputs: Any, n_runs: int) -> dict[str, Any]:
+        ep, e_cls = inputs
+        if ep.shape[0] != n_runs:
+            ep = np.ascontiguousarray(np.broadcast_to(ep, (n_runs,) + ep.shape[1:]))
+        return {"environment": (e_cls, ep)}

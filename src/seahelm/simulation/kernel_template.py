@@ -49,6 +49,7 @@ import numpy as np
 from numba import njit
 
 from seahelm.simulation.inlining import inline_always, local_record
+from seahelm.simulation.stage import aligned_buffers
 
 # <header>
 from seahelm.actuators.servo import servo_output as _actuator_output
@@ -57,9 +58,6 @@ from seahelm.control.pid import pid_heading_init as _controller_init
 from seahelm.control.pid import pid_heading_step as _controller_step
 from seahelm.vessels.nomoto import nomoto1_output as _model_output
 from seahelm.vessels.nomoto import nomoto1_rhs as _model_rhs
-from seahelm.simulation.environment_stage import no_apply_loads as _apply_loads
-from seahelm.simulation.environment_stage import no_environment_loads as _environment_loads
-from seahelm.environment.first_order_kernel import first_order_sample as _first_order_sample
 
 actuator_output = inline_always(_actuator_output)
 actuator_rhs = inline_always(_actuator_rhs)
@@ -67,9 +65,6 @@ controller_init = inline_always(_controller_init)
 controller_step = inline_always(_controller_step)
 model_output = inline_always(_model_output)
 model_rhs = inline_always(_model_rhs)
-environment_loads = inline_always(_environment_loads)
-apply_loads = inline_always(_apply_loads)
-first_order_sample = inline_always(_first_order_sample)
 
 NX = 4
 NA = 1
@@ -79,19 +74,7 @@ NYA = 1
 NCA = 1
 NM = 2
 NDM = 2
-HAS_ENV = False
-HOLD_LOADS = False
 EXACT_ACTUATOR = False
-HAS_WAVES = False
-NWD = 0
-WAVE_X = 0
-WAVE_Y = 0
-WAVE_PSI = 0
-WAVE_U = 0
-WAVE_OUT0 = 0
-WAVE_YAW = -1
-WAVE_ROLL = -1
-WAVE_ROLL_MODEL = -1
 FASTMATH = {"arcp", "contract", "afn", "reassoc"}
 
 
@@ -109,47 +92,34 @@ def route_inputs(ya, cmd, u):  # pragma: no cover - compiled
 def route_measurements(ym, y):  # pragma: no cover - compiled
     y[0] = ym[2]
     y[1] = ym[3]
+
+
+@njit(inline="always", fastmath=FASTMATH, _nrt=False)
+def stages_outputs(t, k, i, xv, u, mp, ym, dist, idist, d0, ds, sg, ss):  # pragma: no cover
+    pass
+
+
+@njit(inline="always", fastmath=FASTMATH, _nrt=False)
+def stages_step_start(t, i, xv, u, mp, d0, sg, ss):  # pragma: no cover - compiled
+    pass
+
+
+@njit(inline="always", fastmath=FASTMATH, _nrt=False)
+def stages_rhs(t, i, xv, u, mp, d, sg, ss):  # pragma: no cover - compiled
+    pass
+
+
+@njit(inline="always", fastmath=FASTMATH, _nrt=False)
+def closed_rhs(t, xv, xa, cmd, ca, d, mp, ap, ir, sg, ss, ya, u, dxv, dxa):  # pragma: no cover
+    actuator_output(xa, ca, ap, ya)
+    route_inputs(ya, cmd, u)
+    stages_rhs(t, ir, xv, u, mp, d, sg, ss)
+    model_rhs(t, xv, u, d, mp, dxv)
+    if not EXACT_ACTUATOR:  # else the step takes the actuator states from actuator_advance
+        actuator_rhs(t, xa, ca, ap, dxa)
 # </header>
 
 NZ = NX + NA
-
-
-@njit(inline="always", fastmath=FASTMATH, _nrt=False)
-def wave_stage(t, i, ym, wcomp, wtab, wsame, wspeeds, wstep, wc, ws, wj, ww,
-               wout):  # pragma: no cover - compiled
-    """Run ``i``'s first-order motions at the live state into ``ym`` (after the model's and
-    the environment's outputs): η_j, then ψ + ψ₁ with a yaw RAO, then the model's roll + the
-    first-order roll on a model with roll (:mod:`seahelm.environment.first_order_in_loop`;
-    the post-pass's own per-sample code)."""
-    first_order_sample(t, ym[WAVE_X], ym[WAVE_Y], ym[WAVE_PSI], ym[WAVE_U], wcomp[i, 0],
-                       wcomp[i, 1], wcomp[i, 2], wcomp[i, 3], wcomp[i, 4], wcomp[i, 5],
-                       wtab[i, 0], wtab[i, 1], wstep[0], wspeeds, wsame[i] != 0.0, wc, ws, wj,
-                       ww, wout)
-    for j in range(NWD):
-        ym[WAVE_OUT0 + j] = wout[j]
-    o = WAVE_OUT0 + NWD
-    if WAVE_YAW >= 0:
-        ym[o] = ym[WAVE_PSI] + wout[WAVE_YAW]
-        o += 1
-    if WAVE_ROLL_MODEL >= 0:
-        ym[o] = ym[WAVE_ROLL_MODEL] + wout[WAVE_ROLL]
-
-
-@njit(inline="always", fastmath=FASTMATH, _nrt=False)
-def closed_rhs(t, xv, xa, cmd, ca, d, mp, ap, ep, ya, u, yms, dm, lm, dxv, dxa):  # pragma: no cover
-    actuator_output(xa, ca, ap, ya)
-    route_inputs(ya, cmd, u)
-    if HAS_ENV:
-        # the environment's loads from the live state at this stage (or, held, from the
-        # step's start), added to the model's disturbance channels: dm = d + the loads
-        if not HOLD_LOADS:
-            environment_loads(t, xv, u, mp, yms, d, ep, lm)
-        apply_loads(d, lm, dm)
-        model_rhs(t, xv, u, dm, mp, dxv)
-    else:
-        model_rhs(t, xv, u, d, mp, dxv)
-    if not EXACT_ACTUATOR:  # else the step takes the actuator states from actuator_advance
-        actuator_rhs(t, xa, ca, ap, dxa)
 
 
 # <footer>
@@ -160,8 +130,8 @@ NSTAGES = 1
 
 
 @njit(inline="always", fastmath=FASTMATH, _nrt=False)
-def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ep, ya, u, yms, dm, lm, kv, ka, fv, fa, tv, ta):  # pragma: no cover
-    closed_rhs(t, xv, xa, cmd, ca, d0, mp, ap, ep, ya, u, yms, dm, lm, fv, fa)
+def advance(t, h, xv, xa, cmd, ca, d0, d1, ds, mp, ap, ir, sg, ss, ya, u, kv, ka, fv, fa, tv, ta):  # pragma: no cover
+    closed_rhs(t, xv, xa, cmd, ca, d0, mp, ap, ir, sg, ss, ya, u, fv, fa)
     for j in range(NX):
         xv[j] += h * fv[j]
     for j in range(NA):
@@ -173,37 +143,13 @@ def scratch(ncmd, nca, ncs, nd, nr):
     """Fresh per-run buffers, the ``scratch`` group of :func:`run_slice` (one set per slice of
     runs).
 
-    Views of one block, each starting on its own 64-byte cache line and the block padded by a
-    line at both ends: buffers of different threads never share a cache line (tiny arrays
-    allocated one by one do, and the threads' stores then contend for it at every step).
+    Views of one block, each on cache lines of its own
+    (:func:`~seahelm.simulation.stage.aligned_buffers`).
     """
-    shapes = [(NX,), (NA,), (NZ,), (ncmd,), (nca,), (ncs,), (NU,), (max(NYA, 1),), (NYM,),
-              (max(NM, 1),), (NSTAGES, NX), (NSTAGES, NA), (NX,), (NA,), (NX,), (NA,), (nd,),
-              (nd,), (nd,), (nr,), (max(NYM, 1),), (max(NDM, 1),), (3,)]
-    line = 8  # float64 per 64-byte cache line
-    counts = [math.prod(sh) for sh in shapes]  # (math.prod: np.prod costs µs per call)
-    sizes = [-(-n // line) * line for n in counts]
-    block = np.zeros(sum(sizes) + 3 * line)
-    o = line + (-block.ctypes.data // 8) % line  # first line boundary after the padding
-    views = []
-    for sh, n, size in zip(shapes, counts, sizes):
-        views.append(block[o:o + n].reshape(sh))
-        o += size
-    return tuple(views)
-
-
-def wave_scratch(m, ndof):
-    """This slice's buffers of the first-order stage: cos θ_i, sin θ_i, heading cells and
-    weights over the ``m`` components (exactly ``m`` long: the sums run over their length),
-    and the ``ndof`` responses, each starting on a cache line of its own, as :func:`scratch`'s."""
-    line = 8
-    pad = -(-m // line) * line
-    block = np.zeros(3 * pad + -(-max(ndof, 1) // line) * line + 2 * line)
-    o = line + (-block.ctypes.data // 8) % line
-    c, s, w = (block[o + q * pad:o + q * pad + m] for q in range(3))
-    cells = np.zeros(pad + 2 * line, np.int64)
-    oc = line + (-cells.ctypes.data // 8) % line
-    return (c, s, cells[oc:oc + m], w, block[o + 3 * pad:o + 3 * pad + max(ndof, 1)])
+    return aligned_buffers([(NX,), (NA,), (NZ,), (ncmd,), (nca,), (ncs,), (NU,),
+                            (max(NYA, 1),), (NYM,), (max(NM, 1),), (NSTAGES, NX),
+                            (NSTAGES, NA), (NX,), (NA,), (NX,), (NA,), (nd,), (nd,), (nd,),
+                            (nr,)])
 
 
 @njit(inline="always", _nrt=False)
@@ -222,34 +168,29 @@ def load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi):  # pragma: no cover - c
 
 
 @njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False)
-def init_runs(i_start, i_stop, state, params, signals, waves, scratch,
-              wscratch):  # pragma: no cover - compiled
+def init_runs(i_start, i_stop, state, params, signals, stages, scratch,
+              stage_scratch):  # pragma: no cover - compiled
     """Call the controller's init at t = 0 for runs ``i_start`` to ``i_stop`` − 1 (once per
     simulation). The arguments are the kernel's groups (:mod:`seahelm.simulation.kernel_args`)."""
     z, cs, cmd, ca = state
-    mp, ap, cp, ep, lower, upper = params
+    mp, ap, cp, lower, upper = params
     dist, ref = signals
-    wcomp, wtab, wsame, wspeeds, wstep = waves
-    (xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds, refk, yms,
-     dm, lm) = scratch
-    wc, ws, wj, ww, wout = wscratch
+    (xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds,
+     refk) = scratch
     for i in range(i_start, i_stop):
         ir = i if ref.shape[0] > 1 else 0
+        idist = i if dist.shape[0] > 1 else 0
         load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi)
         for j in range(NZ):
             zfull[j] = z[i, j]
         for j in range(ref.shape[2]):
             refk[j] = ref[ir, 0, j]
+        for j in range(dist.shape[2]):
+            d0[j] = dist[idist, 0, j]
         actuator_output(xa, cai, ap[i], ya)
         route_inputs(ya, cmdi, u)
         model_output(0.0, xv, u, mp[i], ym)
-        if HAS_ENV:
-            idist = i if dist.shape[0] > 1 else 0
-            for j in range(dist.shape[2]):
-                d0[j] = dist[idist, 0, j]
-            environment_loads(0.0, xv, u, mp[i], ym, d0, ep[i], lm)
-        if HAS_WAVES:
-            wave_stage(0.0, i, ym, wcomp, wtab, wsame, wspeeds, wstep, wc, ws, wj, ww, wout)
+        stages_outputs(0.0, 0, i, xv, u, mp[i], ym, dist, idist, d0, ds, stages, stage_scratch)
         route_measurements(ym, y)
         controller_init(zfull, y, refk, cp[i], csi)
         for j in range(cs.shape[1]):
@@ -257,43 +198,35 @@ def init_runs(i_start, i_stop, state, params, signals, waves, scratch,
 
 
 @njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False)
-def observe_runs(i_start, i_stop, k, dt, state, params, signals, waves, scratch, wscratch,
-                 out):  # pragma: no cover - compiled
-    """The outputs (model's, environment's, first-order motions') of runs ``i_start`` to
-    ``i_stop`` − 1 at their state of step ``k`` into ``out[i]``: the code the loop runs before
-    it records or measures, so the values are those it records (:mod:`seahelm.simulation.stepping`)."""
+def observe_runs(i_start, i_stop, k, dt, state, params, signals, stages, scratch,
+                 stage_scratch, out):  # pragma: no cover - compiled
+    """The outputs (the model's, then the stages') of runs ``i_start`` to ``i_stop`` − 1 at
+    their state of step ``k`` into ``out[i]``: the code the loop runs before it records or
+    measures, so the values are those it records (:mod:`seahelm.simulation.stepping`)."""
     z, cs, cmd, ca = state
-    mp, ap, cp, ep, lower, upper = params
+    mp, ap, cp, lower, upper = params
     dist, ref = signals
-    wcomp, wtab, wsame, wspeeds, wstep = waves
-    (xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds, refk, yms,
-     dm, lm) = scratch
-    wc, ws, wj, ww, wout = wscratch
-    nd = dist.shape[2]
+    (xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds,
+     refk) = scratch
     t = k * dt
     for i in range(i_start, i_stop):
         load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi)
         mpi = local_record(mp[i])
         api = local_record(ap[i])
-        epi = local_record(ep[i])
+        idist = i if dist.shape[0] > 1 else 0
+        for j in range(dist.shape[2]):
+            d0[j] = dist[idist, 0, j]
         actuator_output(xa, cai, api, ya)
         route_inputs(ya, cmdi, u)
         model_output(t, xv, u, mpi, ym)
-        if HAS_ENV:
-            idist = i if dist.shape[0] > 1 else 0
-            kd = k if dist.shape[1] > 1 else 0
-            for j in range(nd):
-                ds[j] = dist[idist, kd, j]
-            environment_loads(t, xv, u, mpi, ym, ds, epi, lm)
-        if HAS_WAVES:
-            wave_stage(t, i, ym, wcomp, wtab, wsame, wspeeds, wstep, wc, ws, wj, ww, wout)
+        stages_outputs(t, k, i, xv, u, mpi, ym, dist, idist, d0, ds, stages, stage_scratch)
         for j in range(NYM):
             out[i, j] = ym[j]
 
 
 @njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False)
 def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_every, external,
-              state, params, signals, outcome, record, waves, scratch, wscratch,
+              state, params, signals, outcome, record, stages, scratch, stage_scratch,
               out):  # pragma: no cover - compiled
     """Advance runs ``i_start`` to ``i_stop`` − 1 from step ``k_start`` to ``k_stop`` (the state
     arrays are updated in place, so a simulation goes on chunk by chunk).
@@ -301,8 +234,9 @@ def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_eve
     Runs with a non-zero status are skipped; a run that becomes invalid gets status 1 or 2,
     the time and state of the first invalid step, and stops. The arrays come in the kernel's
     groups (:mod:`seahelm.simulation.kernel_args`): ``state``, ``params``, ``signals``,
-    ``outcome``, ``record``, the first-order motions' inputs ``waves``, and this thread's
-    ``scratch`` (:func:`scratch`) and ``wscratch`` (:func:`wave_scratch`). With ``external``
+    ``outcome``, ``record``, the stages' per-run arrays ``stages`` (a tuple of groups, one per
+    stage of the loop: :mod:`seahelm.simulation.stage`), and this thread's ``scratch``
+    (:func:`scratch`) and ``stage_scratch`` (the stages'). With ``external``
     the controller is not stepped: the commands held in ``state``'s ``cmd`` are applied as
     they are (an external controller, :class:`seahelm.simulation.stepping.Simulator`).
     With a non-empty ``out`` (runs, outputs) each run's outputs at step ``k_stop`` are written
@@ -311,14 +245,12 @@ def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_eve
     (an empty ``out``, shape (0, outputs): nothing is observed).
     """
     z, cs, cmd, ca = state
-    mp, ap, cp, ep, lower, upper = params
+    mp, ap, cp, lower, upper = params
     dist, ref = signals
     status, t_fail, z_fail = outcome
     rec_z, rec_y, rec_cmd = record
-    wcomp, wtab, wsame, wspeeds, wstep = waves
-    (xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds, refk, yms,
-     dm, lm) = scratch
-    wc, ws, wj, ww, wout = wscratch
+    (xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds,
+     refk) = scratch
     nd = dist.shape[2]
     nr = ref.shape[2]
     ncmd = cmd.shape[1]
@@ -338,7 +270,6 @@ def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_eve
         mpi = local_record(mp[i])
         api = local_record(ap[i])
         cpi = local_record(cp[i])
-        epi = local_record(ep[i])
         idist = i if dist.shape[0] > 1 else 0
         iref = i if ref.shape[0] > 1 else 0
         if not dist_varies:
@@ -368,17 +299,9 @@ def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_eve
                 actuator_output(xa, cai, api, ya)
                 route_inputs(ya, cmdi, u)
                 model_output(t, xv, u, mpi, ym)
-                if HAS_ENV:
-                    # the environment's outputs (loads, apparent wind) follow the model's
-                    if dist_varies:
-                        for j in range(nd):
-                            ds[j] = dist[idist, k, j]
-                        environment_loads(t, xv, u, mpi, ym, ds, epi, lm)
-                    else:
-                        environment_loads(t, xv, u, mpi, ym, d0, epi, lm)
-                if HAS_WAVES:  # the first-order motions at the live state (outputs only)
-                    wave_stage(t, i, ym, wcomp, wtab, wsame, wspeeds, wstep, wc, ws, wj, ww,
-                               wout)
+                # the stages' outputs follow the model's
+                stages_outputs(t, k, i, xv, u, mpi, ym, dist, idist, d0, ds, stages,
+                               stage_scratch)
             if control:
                 kr = k if ref_varies else 0
                 for j in range(nr):
@@ -410,10 +333,9 @@ def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_eve
                 for j in range(nd):
                     d0[j] = dist[idist, k, j]
                     d1[j] = dist[idist, k + 1, j]
-            if HAS_ENV and HOLD_LOADS:  # the loads of the step's start, held over the step
-                environment_loads(t, xv, u, mpi, yms, d0, epi, lm)
-            advance(t, dt, xv, xa, cmdi, cai, d0, d1, ds, mpi, api, epi, ya, u, yms, dm, lm, kv,
-                    ka, fv, fa, tv, ta)
+            stages_step_start(t, i, xv, u, mpi, d0, stages, stage_scratch)
+            advance(t, dt, xv, xa, cmdi, cai, d0, d1, ds, mpi, api, i, stages, stage_scratch,
+                    ya, u, kv, ka, fv, fa, tv, ta)
             # one finiteness test of the sum per step (NaN or ±inf in any state makes it
             # non-finite); only then, or with declared bounds, the state-by-state test
             acc = 0.0

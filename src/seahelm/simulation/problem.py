@@ -162,6 +162,13 @@ class Problem:
         components per run; the model must output ``north``, ``east``, ``heading`` and
         ``surge_speed``, and a controller that is to see the first-order yaw must measure
         ``heading``.
+    post_pass : object, optional
+        Computed after the run from its recordings by :func:`simulate`, into the result: an
+        object with ``compute(result) -> (extra, metadata)`` (channels for
+        :attr:`~seahelm.results.SimResult.extra`, name -> (values (runs, time), unit,
+        description), and metadata entries), and ``select_runs(start, stop)`` for a sweep's
+        chunks (e.g. a scenario's first-order wave motions after the run,
+        :class:`seahelm.scenario.first_order.FirstOrderPostPass`).
 
     Notes
     -----
@@ -196,6 +203,7 @@ class Problem:
     exact_actuator: bool | None = None
     jit: bool | None = None
     first_order: Any = None
+    post_pass: Any = None
 
     def __post_init__(self) -> None:
         def field_error(name: str, exc: Exception) -> ParameterError:
@@ -375,6 +383,9 @@ class Problem:
         except ParameterError as exc:
             raise field_error("jit", exc) from None
         _check_first_order(self.first_order, model, controller)
+        if self.post_pass is not None and not callable(getattr(self.post_pass, "compute", None)):
+            raise ParameterError(f"must have a compute(result) method, got "
+                                 f"{type(self.post_pass).__name__}", field="post_pass")
         if self.layout is not None and not isinstance(self.layout, BatchLayout):
             raise ParameterError(f"must be a BatchLayout, got {type(self.layout).__name__}",
                                  field="layout")

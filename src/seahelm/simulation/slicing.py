@@ -35,11 +35,10 @@ FIRST_SLICE = 200_000
 FIRST_SLICE_PYTHON = 200
 
 
-#: Scratch buffer sets kept for reuse per (kernel, scratch sizes, wave sizes)
+#: Scratch buffer sets kept for reuse per (kernel, scratch sizes)
 #: (:meth:`_Slices.release`): as many as a batch has slices, four per thread.
 SCRATCH_KEPT = 16
-_SCRATCH: dict[tuple[Any, ...], list[tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...],
-                                           list[np.ndarray]]]] = {}
+_SCRATCH: dict[tuple[Any, ...], list[tuple[tuple[np.ndarray, ...], list[np.ndarray]]]] = {}
 
 
 def _blocks(views: tuple[np.ndarray, ...]) -> list[np.ndarray]:
@@ -59,7 +58,8 @@ class _Slices:
     more threads than runs (a single run stays in the calling thread). ``numba.set_num_threads``
     and ``NUMBA_NUM_THREADS`` set the number of threads, as for any numba parallel code.
 
-    Every slice has its own scratch buffers (the kernel allocates nothing). ``threads`` caps
+    Every slice has its own scratch buffers (the kernel allocates nothing), the stages' from
+    ``stage_scratch()`` (a tuple of each stage's buffers). ``threads`` caps
     the threads (the pure-Python loop runs in the calling thread: ``threads=1``). With
     ``keep_pool`` the thread pool lives as long as this object (:meth:`close`): a stepped
     batch calls the loop once per controller interval, and a pool costs some 100 µs to start.
@@ -67,7 +67,8 @@ class _Slices:
 
     def __init__(self, kernel: ModuleType, arrays: KernelArrays,
                  scratch_sizes: tuple[int, ...], threads: int | None = None,
-                 wave_sizes: tuple[int, int] = (1, 1), keep_pool: bool = False) -> None:
+                 stage_scratch: Callable[[], tuple[Any, ...]] = tuple,
+                 keep_pool: bool = False) -> None:
         import numba
 
         self.kernel = kernel
@@ -82,22 +83,23 @@ class _Slices:
                      np.linspace(0, n_runs, n_slices + 1).round().astype(np.int64))
         self.bounds = [(int(self.cuts[s]), int(self.cuts[s + 1])) for s in range(n_slices)]
         # (the buffers of a finished batch of the same kernel and sizes, zeroed, or fresh:
-        # making the two dozen views costs some 20 µs, a tenth of a short run)
-        self._scratch_key = (kernel, tuple(scratch_sizes), tuple(wave_sizes))
+        # making the two dozen views costs some 20 µs, a tenth of a short run; the stages'
+        # buffers, sized by the problem, are made fresh)
+        self._scratch_key = (kernel, tuple(scratch_sizes))
         free = _SCRATCH.get(self._scratch_key, [])
-        self.scratch, self.wave_scratch, self._blocks = [], [], []
+        self.scratch, self._blocks = [], []
         for _ in range(n_slices):
             try:
-                sc, wsc, blocks = free.pop()
+                sc, blocks = free.pop()
             except IndexError:
-                sc, wsc = kernel.scratch(*scratch_sizes), kernel.wave_scratch(*wave_sizes)
-                blocks = _blocks(sc + wsc)
+                sc = kernel.scratch(*scratch_sizes)
+                blocks = _blocks(sc)
             else:
                 for block in blocks:
                     block.fill(0)
             self.scratch.append(sc)
-            self.wave_scratch.append(wsc)
             self._blocks.append(blocks)
+        self.stage_scratch = [stage_scratch() for _ in range(n_slices)]
         self._keep_pool = keep_pool
         # nothing observed (the kernel's ``out`` of the whole-horizon loop): empty, (0, outputs)
         self._no_out = np.zeros((0, arrays.record[1].shape[2]))
@@ -112,15 +114,15 @@ class _Slices:
     def init_runs(self) -> None:
         """The controllers' init at t = 0, for every run."""
         a = self.arrays
-        for (i0, i1), sc, wsc in zip(self.bounds, self.scratch, self.wave_scratch):
-            self.kernel.init_runs(i0, i1, a.state, a.params, a.signals, a.waves, sc, wsc)
+        for (i0, i1), sc, ssc in zip(self.bounds, self.scratch, self.stage_scratch):
+            self.kernel.init_runs(i0, i1, a.state, a.params, a.signals, a.stages, sc, ssc)
 
     def observe(self, k: int, dt: float, out: np.ndarray) -> None:
         """Every run's outputs at its state of step ``k`` into ``out`` (runs, outputs)."""
         a = self.arrays
-        for (i0, i1), sc, wsc in zip(self.bounds, self.scratch, self.wave_scratch):
-            self.kernel.observe_runs(i0, i1, k, dt, a.state, a.params, a.signals, a.waves, sc,
-                                     wsc, out)
+        for (i0, i1), sc, ssc in zip(self.bounds, self.scratch, self.stage_scratch):
+            self.kernel.observe_runs(i0, i1, k, dt, a.state, a.params, a.signals, a.stages, sc,
+                                     ssc, out)
 
     def run(self, k_start: int, k_stop: int, n_steps: int, dt: float, ctrl_every: int,
             rec_every: int, external: int = 0, out: np.ndarray | None = None) -> None:
@@ -134,8 +136,8 @@ class _Slices:
         def one(s: int) -> None:
             i0, i1 = self.bounds[s]
             run_slice(i0, i1, k_start, k_stop, n_steps, dt, ctrl_every, rec_every, external,
-                      a.state, a.params, a.signals, a.outcome, a.record, a.waves,
-                      self.scratch[s], self.wave_scratch[s], out)
+                      a.state, a.params, a.signals, a.outcome, a.record, a.stages,
+                      self.scratch[s], self.stage_scratch[s], out)
 
         n_slices = len(self.bounds)
         if self.threads == 1 or k_stop == k_start:
@@ -156,8 +158,8 @@ class _Slices:
         (the batch is not run again; at most :data:`SCRATCH_KEPT` sets are kept per key)."""
         free = _SCRATCH.setdefault(self._scratch_key, [])
         while self.scratch and len(free) < SCRATCH_KEPT:
-            free.append((self.scratch.pop(), self.wave_scratch.pop(), self._blocks.pop()))
-        self.scratch, self.wave_scratch, self._blocks = [], [], []
+            free.append((self.scratch.pop(), self._blocks.pop()))
+        self.scratch, self._blocks = [], []
 
     def close(self) -> None:
         """End the kept thread pool (if any)."""

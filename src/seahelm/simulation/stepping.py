@@ -176,10 +176,10 @@ class Simulator:
         self._k[sel] = 0
         self._aligned = not (self._k != 0).any()
         self._k0 = 0
-        kernel, sc, wsc = b.kernel, b.slices.scratch[0], b.slices.wave_scratch[0]
+        kernel, sc, ssc = b.kernel, b.slices.scratch[0], b.slices.stage_scratch[0]
         with quiet(b.jit):
             for i0, i1 in _spans(sel):
-                kernel.init_runs(i0, i1, a.state, a.params, a.signals, a.waves, sc, wsc)
+                kernel.init_runs(i0, i1, a.state, a.params, a.signals, a.stages, sc, ssc)
         return self._observe()
 
     def step(self, commands: Any = None, n: int = 1, runs: Any = None) -> Observation:
@@ -329,7 +329,7 @@ class Simulator:
                                      f"({', '.join(self.state_labels)}), got {arr.shape}",
                                      field="values", value=arr.shape)
             z = arr.copy()
-        lower, upper = self._batch.slices.arrays.params[4:6]
+        lower, upper = (self._batch.slices.arrays.get("params", n) for n in ("lower", "upper"))
         bad = ~np.isfinite(z) | (z < lower) | (z > upper)
         if bad.any():
             j = int(np.argmax(bad))
@@ -587,10 +587,10 @@ class Simulator:
                 b.slices.observe(k0, b.dt, self._out)
             return
         a = b.slices.arrays
-        sc, wsc = b.slices.scratch[0], b.slices.wave_scratch[0]
+        sc, ssc = b.slices.scratch[0], b.slices.stage_scratch[0]
         for i in range(self.n_runs):
             b.kernel.observe_runs(i, i + 1, int(k[i]), b.dt, a.state, a.params, a.signals,
-                                  a.waves, sc, wsc, self._out)
+                                  a.stages, sc, ssc, self._out)
 
     def _finish(self, sel: np.ndarray | None) -> Observation:
         obs = self._observe()

@@ -1,7 +1,7 @@
 """The first-order wave motions' stage of the compiled closed loop: which outputs it reads and
 writes, and what the controller measures.
 
-The kernel (:mod:`seahelm.simulation.kernel_template`, ``wave_stage``) evaluates, at every
+The stage (:class:`FirstOrderStage`, :mod:`seahelm.simulation.stage`) evaluates, at every
 recorded step and every controller sample, run i's first-order motions
 (:mod:`seahelm.environment.first_order_in_loop`) with the post-pass's own per-sample code
 (:func:`~seahelm.environment.first_order_kernel.first_order_sample`) from the model's outputs
@@ -9,22 +9,29 @@ recorded step and every controller sample, run i's first-order motions
 model's and the environment's: η_j (``heave``, ``roll_wave``, ``pitch``, ``yaw_wave``, …), then
 ``heading_total`` = ψ + ψ₁ with yaw, then ``roll`` = the model's ``roll_angle`` + the first-order
 roll on a model with roll. :func:`wave_constants` resolves those indices by name, once, as
-compile-time constants of the generated loop; with ``autopilot_sees_first_order`` the
-controller's ``heading`` measurement is routed from ``heading_total``. The stage does not act
-on the dynamics (it runs outside the integrator's stages), so with the controller reading the
-model's heading the states are bit-for-bit those of a loop without it.
+literals of the generated lines; with ``autopilot_sees_first_order`` the controller's
+``heading`` measurement is routed from ``heading_total``. The stage does not act on the
+dynamics (it runs outside the integrator's stages), so with the controller reading the model's
+heading the states are bit-for-bit those of a loop without it. Its per-run arrays are the
+drawn components and the RAO tables (:attr:`FirstOrderInLoop.arrays`), its scratch cos θ_i,
+sin θ_i, heading cells and weights over the components and the responses.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from typing import Any
+
+import numpy as np
 
 from ..control.base import Controller
 from ..environment.first_order_in_loop import HEADING_TOTAL, MOTION_INPUTS, output_signals
+from ..environment.first_order_kernel import first_order_sample
 from ..errors import ParameterError
 from ..vessels.base import VesselModel
+from .stage import Stage, StageCode, aligned_buffers, binding
 
-__all__ = ["wave_constants"]
+__all__ = ["wave_constants", "FirstOrderStage"]
 
 
 def wave_constants(model: VesselModel, controller: Controller, measurement_from: tuple[int, ...],
@@ -89,3 +96,75 @@ def wave_constants(model: VesselModel, controller: Controller, measurement_from:
             "WAVE_ROLL": dofs.index("roll") if "roll" in dofs else -1,
             "WAVE_ROLL_MODEL": (outs.index("roll_angle") if "roll" in labels else -1),
             "measurement_from": meas}
+
+
+@dataclasses.dataclass(frozen=True)
+class FirstOrderStage(Stage):
+    """The first-order wave motions in the loop as a stage (module docstring).
+
+    Attributes
+    ----------
+    dofs : tuple of str
+        The degrees of freedom evaluated.
+    autopilot_sees_first_order : bool
+        The controller's ``heading`` is ψ + ψ₁.
+    """
+
+    dofs: tuple[str, ...]
+    autopilot_sees_first_order: bool
+    name = "first_order"
+    members = ("components", "tables", "same_speed", "speeds", "speed_step")
+
+    @classmethod
+    def from_problem(cls, problem: Any) -> "FirstOrderStage | None":
+        fo = problem.first_order
+        return None if fo is None else cls(tuple(fo.dofs), bool(fo.autopilot_sees_first_order))
+
+    def outputs(self, model: Any) -> tuple[tuple[str, ...], tuple[str, ...]]:
+        return output_signals(self.dofs, "roll_angle" in model.output_labels)
+
+    def code(self, model: Any, controller: Any, measurement_from: tuple[int, ...],
+             first_output: int, jit: bool) -> StageCode:
+        w = wave_constants(model, controller, measurement_from, first_output - model.n_outputs,
+                           (self.dofs, self.autopilot_sees_first_order))
+        x, y, psi, us, out0 = w["WAVE_X"], w["WAVE_Y"], w["WAVE_PSI"], w["WAVE_U"], w["WAVE_OUT0"]
+        lines = [f"first_order_sample(t, ym[{x}], ym[{y}], ym[{psi}], ym[{us}], "
+                 + ", ".join(f"g[0][i, {c}]" for c in range(6))
+                 + ", g[1][i, 0], g[1][i, 1], g[4][0], g[3], g[2][i] != 0.0, s[0], s[1], s[2], "
+                   "s[3], s[4])"]
+        lines += [f"ym[{out0 + j}] = s[4][{j}]" for j in range(w["NWD"])]
+        o = out0 + w["NWD"]
+        if w["WAVE_YAW"] >= 0:  # ψ + ψ₁
+            lines.append(f"ym[{o}] = ym[{psi}] + s[4][{w['WAVE_YAW']}]")
+            o += 1
+        if w["WAVE_ROLL_MODEL"] >= 0:  # the model's roll + the first-order roll
+            lines.append(f"ym[{o}] = ym[{w['WAVE_ROLL_MODEL']}] + s[4][{w['WAVE_ROLL']}]")
+        return StageCode(bindings=(binding(first_order_sample, "first_order_sample", jit=jit),),
+                         lines={"outputs": tuple(lines)},
+                         measurement_from=tuple(w["measurement_from"]))
+
+    def inputs(self, problem: Any, model: Any) -> Any:
+        return problem.first_order
+
+    def run_counts(self, inputs: Any) -> tuple[tuple[str, int], ...]:
+        return (("first_order", inputs.n_runs),)
+
+    def arrays(self, inputs: Any, n_runs: int) -> tuple[np.ndarray, ...]:
+        if inputs.n_runs != n_runs:
+            raise ParameterError(f": the first-order motions were drawn for {inputs.n_runs} "
+                                 f"run(s), the batch has {n_runs}", field="first_order")
+        return tuple(inputs.arrays)
+
+    def scratch(self, model: Any, arrays: tuple[np.ndarray, ...],
+                n_outputs: int) -> tuple[np.ndarray, ...]:
+        # cos θ_i, sin θ_i, heading cells and weights over the m components (exactly m long:
+        # the sums run over their length), the responses of the DOF
+        m, ndof = arrays[0].shape[2], arrays[1].shape[3]
+        return aligned_buffers([(m,), (m,), (m,), (m,), (max(ndof, 1),)],
+                               [np.float64, np.float64, np.int64, np.float64, np.float64])
+
+    def metadata(self, problem: Any) -> dict[str, Any]:
+        return {"first_order_in_loop": ", ".join(self.dofs)
+                + " (seahelm.environment.first_order_in_loop)",
+                "controller_heading": (f"{HEADING_TOTAL} (heading + first-order yaw)"
+                                       if self.autopilot_sees_first_order else "heading")}

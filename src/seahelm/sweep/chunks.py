@@ -17,7 +17,6 @@ from __future__ import annotations
 import dataclasses
 import functools
 import hashlib
-import json
 import math
 import sys
 from typing import TYPE_CHECKING, Any
@@ -198,9 +197,9 @@ def select_runs(batch: "Problem", start: int, stop: int) -> "Problem":
 
     Per-run inputs (parameter rows, initial states, constant reference and disturbance rows,
     environment parameters) are sliced; time-varying signals of a scenario keep their runs'
-    realisations (their seeds are drawn by flat run index), and so do the first-order wave
-    motions (their settings are sliced and ``first_order_first_run`` says the first run's
-    index, :mod:`seahelm.scenario.first_order`). The result has no layout (one
+    realisations (their seeds are drawn by flat run index), and so does every input that
+    selects its own runs (``select_runs(start, stop)``: the first-order wave motions in the
+    loop and after it, :mod:`seahelm.scenario.first_order`). The result has no layout (one
     ``run`` dimension, numbered from 0).
 
     Parameters
@@ -232,14 +231,10 @@ def select_runs(batch: "Problem", start: int, stop: int) -> "Problem":
         elif value is not None:
             raise ParameterError(f"cannot split the `{name}` input ({type(value).__name__}) "
                                  "into chunks")
-    if getattr(batch, "first_order", None) is not None:  # in the loop: its runs' own seas
-        changes["first_order"] = batch.first_order.select_runs(start, stop)
-    if "first_order_motions" in batch.metadata:  # the runs' settings, seeded by run index
-        meta = dict(batch.metadata)
-        meta["first_order_motions"] = json.dumps(
-            json.loads(meta["first_order_motions"])[start:stop])
-        meta["first_order_first_run"] = int(meta.get("first_order_first_run", 0)) + start
-        changes["metadata"] = meta
+    for field in dataclasses.fields(batch):  # per-run inputs that select their own runs
+        value = getattr(batch, field.name)
+        if field.name not in changes and callable(getattr(value, "select_runs", None)):
+            changes[field.name] = value.select_runs(start, stop)
     return batch.replace(**changes)
 
 

@@ -421,12 +421,15 @@ def frequency_domain_moments(polar: SweepSeakeeping, text: str, source: str = "<
         warnings.simplefilter("ignore", ValidityRangeWarning)
         job = prepared(text, source)
     meta = getattr(job, "metadata", {}) or {}
-    settings = meta.get("first_order_motions", meta.get("first_order_settings"))  # (in the loop)
+    post_pass = getattr(job, "post_pass", None)
+    settings = (list(post_pass.specs) if post_pass is not None else  # (after the run)
+                json.loads(meta["first_order_settings"]) if "first_order_settings" in meta
+                else None)  # (in the loop)
     if settings is None:
         raise ParameterError(f"{source}: the scenario has no first-order motions",
                              field="environment.waves.first_order_motions")
     specs = {json.dumps({k: v for k, v in s.items() if k not in ("direction", "seed")},
-                        sort_keys=True) for s in json.loads(settings)}
+                        sort_keys=True) for s in settings}
     if len(specs) != 1:
         raise ParameterError(f"{source}: the runs' seas differ in more than their direction; "
                              "the frequency-domain cells need one sea", field="batch.grid")

@@ -47,6 +47,7 @@ from ...control.open_loop import OPEN_LOOP
 from ...errors import ParameterError, ValidityRangeWarning, deprecated_names
 from ...vessels.base import VesselModel
 from ..equilibrium import EquilibriumError
+from .datasets import _indexless_dataset, _variable
 from .ships import (  # re-exported: the manoeuvres and tests import them from here
     SPEED_VALIDITY,
     STEP_VALIDITY,
@@ -488,83 +489,6 @@ def _mask_failed(plan: "Plan", name: str, arr: np.ndarray, failed: np.ndarray) -
     elif out.dtype.kind == "b":
         out[failed] = False
     return out
-
-
-def _variable(dims: tuple[str, ...], arr: Any, attrs: Mapping[str, Any]) -> "xr.Variable":
-    """``xr.Variable(dims, arr, attrs)`` of a plain numeric, boolean or string array.
-
-    What xarray makes of such an array is the array itself (its conversions concern objects,
-    dates and other array types): its fast path is taken, and where this xarray's Variable is
-    the four slots that constructor fills (:func:`_raw_variables`, checked once against the
-    constructor), they are filled directly — a fifth of the constructor's microsecond, which
-    twenty metrics of a single run paid each.
-    """
-    import xarray as xr
-
-    if type(arr) is not np.ndarray or arr.dtype.kind not in "biufU":
-        return xr.Variable(dims, arr, attrs)
-    if len(dims) != arr.ndim or not _raw_variables():
-        return xr.Variable(dims, arr, attrs, fastpath=True)
-    var = _NEW_VARIABLE(xr.Variable)
-    var._data, var._dims = arr, tuple(dims)
-    var._attrs, var._encoding = (dict(attrs) if attrs else None), None
-    return var
-
-
-_NEW_VARIABLE = object.__new__
-
-
-@functools.cache
-def _raw_variables() -> bool:
-    """Whether this xarray's Variable is exactly the slots ``_data``, ``_dims``, ``_attrs``,
-    ``_encoding`` and its fast-path constructor fills them as :func:`_variable` does (a probe
-    of both, compared slot by slot)."""
-    import xarray as xr
-
-    slots: set[str] = set()
-    for cls in type.mro(xr.Variable):
-        slots.update(getattr(cls, "__slots__", ()) or ())
-    if slots != {"_data", "_dims", "_attrs", "_encoding"}:  # pragma: no cover - other xarray
-        return False
-    probe = np.array([1.0, 2.0])
-    made = xr.Variable(("x",), probe, {"units": "m"}, fastpath=True)
-    try:
-        return (made._data is probe and made._dims == ("x",) and made._attrs == {"units": "m"}
-                and type(made._attrs) is dict and made._encoding is None)
-    except AttributeError:  # pragma: no cover - other xarray
-        return False
-
-
-def _indexless_dataset(data: Mapping[str, Any], coords: Mapping[str, Any],
-                       attrs: dict[str, Any]) -> "xr.Dataset | None":
-    """A Dataset of ready :class:`xarray.Variable` objects that need no index, built directly.
-
-    ``xr.Dataset(...)`` merges, aligns and copies every variable: for a single run's metrics
-    (twenty 0-d variables) that took about 1 ms, half of a whole turning circle, where putting
-    the variables in place takes microseconds. This does the latter through xarray's
-    ``Dataset._construct_direct`` once it has checked what that constructor assumes: every
-    variable a Variable, no name shared by data and coordinates, no dimension coordinate (which
-    would need an index) and consistent dimension sizes. None when a check fails or this
-    xarray lacks the constructor: the caller then builds the Dataset the ordinary way
-    (``tests/test_analysis_maneuvers.py`` checks that both give identical Datasets).
-    """
-    import xarray as xr
-
-    construct = getattr(xr.Dataset, "_construct_direct", None)
-    if construct is None or set(data) & set(coords):  # pragma: no cover - other xarray
-        return None
-    variables = {**data, **coords}
-    dims: dict[str, int] = {}
-    for name, var in variables.items():
-        if type(var) is not xr.Variable or name in var.dims:
-            return None
-        for dim, size in zip(var.dims, var.shape):
-            if dims.setdefault(dim, size) != size:
-                return None
-    try:
-        return construct(variables, set(coords), dims, attrs, {}, None)
-    except TypeError:  # pragma: no cover - a changed signature
-        return None
 
 
 def _conditions_kwargs(conditions: Any, model: VesselModel) -> dict[str, Any]:

@@ -166,10 +166,10 @@ def get_form(form: "str | ReducedForm") -> ReducedForm:
 class SteadyTurnFit(FitResult):
     """Coefficients of the reduced steady-turn model fitted to steady turns.
 
-    A :class:`~seahelm.identification.fit_result.FitResult` on :attr:`names` and
-    :attr:`values` (= ``coef``); its intervals are Student-t with the points' degrees of
-    freedom where the covariance is scaled by the residual variance, normal where it uses
-    known noise (``absolute_sigma``).
+    A :class:`~seahelm.identification.fit_result.FitResult` on ``names`` (the form's
+    coefficient names) and ``values`` (= ``coef``); its intervals are Student-t with the
+    points' degrees of freedom where the covariance is scaled by the residual variance, normal
+    where it uses known noise (``absolute_sigma``).
 
     Attributes
     ----------
@@ -216,15 +216,11 @@ class SteadyTurnFit(FitResult):
     absolute_sigma: bool
     elapsed: float = 0.0
 
-    @property
-    def names(self) -> tuple[str, ...]:  # type: ignore[override]
-        """The coefficients' names (the form's: ``a``, ``b``, ``c`` and ``d``)."""
-        return self.form.names
-
-    @property
-    def values(self) -> np.ndarray:  # type: ignore[override]
-        """The coefficients (:attr:`coef`)."""
-        return self.coef
+    def __post_init__(self) -> None:
+        # the FitResult view: names = the form's coefficient names, values = coef (plain
+        # attributes, not fields: the dataclass's fields, repr and equality stay as they were)
+        object.__setattr__(self, "names", self.form.names)
+        object.__setattr__(self, "values", self.coef)
 
     @property
     def interval_dof(self) -> int | None:

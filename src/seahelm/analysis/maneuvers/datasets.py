@@ -1,0 +1,100 @@
+"""Metrics Datasets of manoeuvres built without xarray's per-object overhead.
+
+A single run's metrics are twenty 0-d variables; building them the ordinary way (each
+``xr.Variable`` through its constructor, the Dataset through its merge and alignment) took a
+good part of a short turning circle (issue 46 item 6). :func:`_variable` fills a Variable's
+slots directly and :func:`_indexless_dataset` puts ready variables in place, each after
+checking what it assumes of this xarray, with the ordinary construction as the fallback
+(``tests/test_maneuver_metrics_variables.py`` and ``tests/test_analysis_maneuvers.py`` compare
+the two).
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+if TYPE_CHECKING:  # pragma: no cover
+    import xarray as xr
+
+__all__: list[str] = []
+
+
+def _variable(dims: tuple[str, ...], arr: Any, attrs: Mapping[str, Any]) -> "xr.Variable":
+    """``xr.Variable(dims, arr, attrs)`` of a plain numeric, boolean or string array.
+
+    What xarray makes of such an array is the array itself (its conversions concern objects,
+    dates and other array types): its fast path is taken, and where this xarray's Variable is
+    the four slots that constructor fills (:func:`_raw_variables`, checked once against the
+    constructor), they are filled directly — a fifth of the constructor's microsecond, which
+    twenty metrics of a single run paid each.
+    """
+    import xarray as xr
+
+    if type(arr) is not np.ndarray or arr.dtype.kind not in "biufU":
+        return xr.Variable(dims, arr, attrs)
+    if len(dims) != arr.ndim or not _raw_variables():
+        return xr.Variable(dims, arr, attrs, fastpath=True)
+    var = _NEW_VARIABLE(xr.Variable)
+    var._data, var._dims = arr, tuple(dims)
+    var._attrs, var._encoding = (dict(attrs) if attrs else None), None
+    return var
+
+
+_NEW_VARIABLE = object.__new__
+
+
+@functools.cache
+def _raw_variables() -> bool:
+    """Whether this xarray's Variable is exactly the slots ``_data``, ``_dims``, ``_attrs``,
+    ``_encoding`` and its fast-path constructor fills them as :func:`_variable` does (a probe
+    of both, compared slot by slot)."""
+    import xarray as xr
+
+    slots: set[str] = set()
+    for cls in type.mro(xr.Variable):
+        slots.update(getattr(cls, "__slots__", ()) or ())
+    if slots != {"_data", "_dims", "_attrs", "_encoding"}:  # pragma: no cover - other xarray
+        return False
+    probe = np.array([1.0, 2.0])
+    made = xr.Variable(("x",), probe, {"units": "m"}, fastpath=True)
+    try:
+        return (made._data is probe and made._dims == ("x",) and made._attrs == {"units": "m"}
+                and type(made._attrs) is dict and made._encoding is None)
+    except AttributeError:  # pragma: no cover - other xarray
+        return False
+
+
+def _indexless_dataset(data: Mapping[str, Any], coords: Mapping[str, Any],
+                       attrs: dict[str, Any]) -> "xr.Dataset | None":
+    """A Dataset of ready :class:`xarray.Variable` objects that need no index, built directly.
+
+    ``xr.Dataset(...)`` merges, aligns and copies every variable: for a single run's metrics
+    (twenty 0-d variables) that took about 1 ms, half of a whole turning circle, where putting
+    the variables in place takes microseconds. This does the latter through xarray's
+    ``Dataset._construct_direct`` once it has checked what that constructor assumes: every
+    variable a Variable, no name shared by data and coordinates, no dimension coordinate (which
+    would need an index) and consistent dimension sizes. None when a check fails or this
+    xarray lacks the constructor: the caller then builds the Dataset the ordinary way
+    (``tests/test_analysis_maneuvers.py`` checks that both give identical Datasets).
+    """
+    import xarray as xr
+
+    construct = getattr(xr.Dataset, "_construct_direct", None)
+    if construct is None or set(data) & set(coords):  # pragma: no cover - other xarray
+        return None
+    variables = {**data, **coords}
+    dims: dict[str, int] = {}
+    for name, var in variables.items():
+        if type(var) is not xr.Variable or name in var.dims:
+            return None
+        for dim, size in zip(var.dims, var.shape):
+            if dims.setdefault(dim, size) != size:
+                return None
+    try:
+        return construct(variables, set(coords), dims, attrs, {}, None)
+    except TypeError:  # pragma: no cover - a changed signature
+        return None

@@ -1,0 +1,37 @@
+"""The registry of the closed loop's stages (:mod:`seahelm.simulation.stage`).
+
+A loop runs, in this order, every stage its problem asks for
+(:meth:`~seahelm.simulation.stage.Stage.from_problem`); their outputs follow the model's in
+this order. Adding a stage is its module and one line here.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from .environment_stage import EnvironmentStage
+from .stage import Stage
+from .wave_motion_stage import FirstOrderStage
+
+__all__ = ["STAGES", "stages_of"]
+
+#: Stage name -> its class, in the order the loop runs them.
+STAGES: dict[str, type[Stage]] = {
+    "environment": EnvironmentStage,
+    "first_order": FirstOrderStage,
+}
+
+
+def stages_of(problem: Any) -> tuple[Stage, ...]:
+    """The stages a problem's loop runs (those it asks for, in the registry's order).
+
+    Parameters
+    ----------
+    problem : Problem
+
+    Returns
+    -------
+    tuple of Stage
+    """
+    found = (cls.from_problem(problem) for cls in STAGES.values())
+    return tuple(stage for stage in found if stage is not None)
