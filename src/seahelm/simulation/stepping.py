@@ -44,7 +44,7 @@ from ..errors import ParameterError, SimulationDiverged
 from .engine import Batch, failure_text, prepare
 from .problem import Problem
 from .slicing import drive, quiet
-from .stepping_io import Observation, _spans, check_commands
+from .stepping_io import Observation, _spans, check_commands, run_index, run_indices
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..results import SimResult
@@ -391,35 +391,13 @@ class Simulator:
                                  field="reset")
 
     def _run_index(self, run: Any) -> int:
-        try:
-            i = operator.index(run)
-        except TypeError:
-            raise ParameterError(f"must be a run index, got {run!r}", field="run",
-                                 value=run) from None
-        if not -self.n_runs <= i < self.n_runs:
-            raise ParameterError(f"must be in 0 ... {self.n_runs - 1}, got {i}", field="run",
-                                 value=i)
-        return i % self.n_runs
+        return run_index(run, self.n_runs)
 
     def _runs(self, runs: Any, *, refuse_diverged: bool) -> np.ndarray:
         """The selected runs as sorted unique indices (all: every run)."""
+        arr = run_indices(runs, self.n_runs)
         if runs is None:
-            return np.arange(self.n_runs)
-        arr = np.atleast_1d(np.asarray(runs))
-        if arr.dtype == bool:
-            if arr.shape != (self.n_runs,):
-                raise ParameterError(f"as a mask must have shape ({self.n_runs},), got "
-                                     f"{arr.shape}", field="runs", value=arr.shape)
-            arr = np.flatnonzero(arr)
-        if arr.ndim != 1 or (arr.size and arr.dtype.kind not in "iu"):
-            raise ParameterError(f"must be run indices (integers), got {runs!r}",
-                                 field="runs", value=runs)
-        bad = (arr < 0) | (arr >= self.n_runs)
-        if bad.any():
-            raise ParameterError(f"must be in 0 ... {self.n_runs - 1}, got "
-                                 f"{int(arr[np.argmax(bad)])}", field="runs",
-                                 value=int(arr[np.argmax(bad)]))
-        arr = np.unique(arr.astype(np.int64))
+            return arr
         if refuse_diverged and self._k is not None:
             gone = arr[self._status[arr] != 0]
             if gone.size:

@@ -4,6 +4,7 @@ commands of a step, checked (:func:`check_commands`), and the outputs after it
 
 from __future__ import annotations
 
+import operator
 from collections.abc import Iterator, Mapping
 from typing import Any
 
@@ -11,7 +12,7 @@ import numpy as np
 
 from ..errors import ParameterError
 
-__all__ = ["Observation", "check_commands"]
+__all__ = ["Observation", "check_commands", "run_index", "run_indices"]
 
 
 class Observation(Mapping):
@@ -128,3 +129,37 @@ def _spans(sel: np.ndarray) -> list[tuple[int, int]]:
     starts = np.concatenate([[0], cut])
     stops = np.concatenate([cut, [sel.size]])
     return [(int(sel[s]), int(sel[e - 1]) + 1) for s, e in zip(starts, stops)]
+
+
+def run_index(run: Any, n_runs: int) -> int:
+    """``run`` as the index of one of ``n_runs`` runs (negative from the end), or a
+    :class:`ParameterError` naming ``run``."""
+    try:
+        i = operator.index(run)
+    except TypeError:
+        raise ParameterError(f"must be a run index, got {run!r}", field="run",
+                             value=run) from None
+    if not -n_runs <= i < n_runs:
+        raise ParameterError(f"must be in 0 ... {n_runs - 1}, got {i}", field="run", value=i)
+    return i % n_runs
+
+
+def run_indices(runs: Any, n_runs: int) -> np.ndarray:
+    """``runs`` (None: all; indices or a boolean mask) as sorted unique indices of ``n_runs``
+    runs, or a :class:`ParameterError` naming ``runs``."""
+    if runs is None:
+        return np.arange(n_runs)
+    arr = np.atleast_1d(np.asarray(runs))
+    if arr.dtype == bool:
+        if arr.shape != (n_runs,):
+            raise ParameterError(f"as a mask must have shape ({n_runs},), got {arr.shape}",
+                                 field="runs", value=arr.shape)
+        arr = np.flatnonzero(arr)
+    if arr.ndim != 1 or (arr.size and arr.dtype.kind not in "iu"):
+        raise ParameterError(f"must be run indices (integers), got {runs!r}", field="runs",
+                             value=runs)
+    bad = (arr < 0) | (arr >= n_runs)
+    if bad.any():
+        raise ParameterError(f"must be in 0 ... {n_runs - 1}, got {int(arr[np.argmax(bad)])}",
+                             field="runs", value=int(arr[np.argmax(bad)]))
+    return np.unique(arr.astype(np.int64))
