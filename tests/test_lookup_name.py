@@ -21,6 +21,8 @@ HAND_WRITTEN = {
     "vessels/base.py": "several names at once (the capabilities a model declares)",
     "scenario/runs.py": "a channel of a scenario, said with the scenario's keys after the list",
     "scenario/environment.py": "said as a scenario error at its TOML key (_err)",
+    "encounters/files.py": "a key of an encounter scenario or situation file, said at its key path",
+    "gym/plant.py": "a keyword of the environment's weather, said as the keyword",
 }
 
 #: ``unknown <what> {name}; valid:`` or ``unknown <what> '{name}'; valid:`` in a string,

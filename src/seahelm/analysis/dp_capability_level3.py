@@ -223,7 +223,8 @@ def _on_dask(workers: int, source: Any, cp: np.ndarray, ld: np.ndarray, duration
     edges = np.linspace(0, runs, n_chunks + 1).astype(int)
     cluster = distributed.LocalCluster(n_workers=workers, threads_per_worker=1,
                                        processes=True, host="127.0.0.1",
-                                       dashboard_address=None)
+                                       dashboard_address=None,
+                                       silence_logs=40)  # (logging.ERROR: see sweep)
     try:
         with distributed.Client(cluster, set_as_default=False) as client:
             futures = [client.submit(_run_chunk, source, cp[a:b], ld[a:b], duration, dt,

@@ -265,7 +265,17 @@ def _scales(segments: Segments, length: float) -> np.ndarray:
 
 
 def residuals(sim: np.ndarray, segments: Segments, length: float) -> np.ndarray:
-    """(P, n_residuals): (measured − simulated)/scale over the masked samples."""
+    """(P, n_residuals): (measured − simulated)/scale over the masked samples.
+
+    Parameters
+    ----------
+    sim : ndarray
+        The simulated segments (parameter sets, segments, channels, samples).
+    segments : Segments
+        The measured segments (:func:`build_segments`).
+    length : float
+        The ship's length [m], the scale of the position residuals.
+    """
     scale = _scales(segments, length)[None, None, :, None]
     err = (segments.measured[None] - sim) / scale
     err = np.where(np.isfinite(err), err, 10.0)

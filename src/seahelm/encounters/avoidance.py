@@ -22,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from .._validate import lookup_name
 from ..errors import ParameterError
 from .geometry import GIVE_WAY, STAND_ON, ColregSectors, classify, cpa_tcpa, velocity, wrap_pi
 
@@ -338,10 +339,8 @@ def resolve_avoidance(method: Any) -> Any:
     if method is None:
         return None
     if isinstance(method, str):
-        if method not in AVOIDANCE:
-            raise ParameterError(f": unknown avoidance method {method!r}; valid: "
-                                 f"{', '.join(AVOIDANCE)}", field="avoidance", value=method)
-        return AVOIDANCE[method]()
+        return lookup_name("avoidance method", AVOIDANCE, method, error=ParameterError,
+                           field="avoidance", value=method)()
     if not (callable(getattr(method, "start", None)) and callable(getattr(method, "desired",
                                                                           None))):
         raise ParameterError(f"must be a name ({', '.join(AVOIDANCE)}) or an object with "

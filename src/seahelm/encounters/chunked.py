@@ -13,6 +13,7 @@ draws its noise per batch, so chunks would draw other noise: refused.
 from __future__ import annotations
 
 import dataclasses
+import logging
 import math
 from typing import Any
 
@@ -160,7 +161,8 @@ def run_chunked(enc: Encounter, *, chunk_size: int | None = None, workers: int |
     else:
         with distributed.LocalCluster(n_workers=workers, threads_per_worker=1,
                                       processes=True, host="127.0.0.1",
-                                      dashboard_address=None) as cluster, \
+                                      dashboard_address=None,
+                                      silence_logs=logging.ERROR) as cluster, \
                 distributed.Client(cluster, set_as_default=False) as client:
             results = client.gather(client.map(_run_chunk, vessels, settings, pure=False))
     return concat_results(list(results))

@@ -344,5 +344,11 @@ class EncounterResult:
 
 
 def is_encounter_dataset(ds: Any) -> bool:
-    """Whether ``ds`` is an encounter result (:meth:`EncounterResult.to_xarray`)."""
+    """Whether ``ds`` is an encounter result (:meth:`EncounterResult.to_xarray`).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A dataset read from a file.
+    """
     return ds.attrs.get("format") == DATASET_FORMAT

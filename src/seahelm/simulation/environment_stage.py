@@ -300,6 +300,13 @@ class EnvironmentStage(Stage):
 
     @classmethod
     def from_problem(cls, problem: Any) -> "EnvironmentStage | None":
+        """The stage a problem asks for, or None (the loop then runs without it).
+
+        Parameters
+        ----------
+        problem : Problem
+            The problem the loop is built for.
+        """
         return None if problem.environment is None else cls(problem.environment)
 
     def signals(self) -> tuple[tuple[str, ...], tuple[str, ...]]:
@@ -338,7 +345,15 @@ class EnvironmentStage(Stage):
             disturbance=1)
 
     def inputs(self, problem: Any, model: Any) -> Any:
-        """The environment's parameter rows and class, checked against the model."""
+        """The environment's parameter rows and class, checked against the model.
+
+        Parameters
+        ----------
+        problem : Problem
+            The problem the loop is built for.
+        model : VesselModel
+            The loop's vessel model.
+        """
         check_environment(self.environment, model)
         ep, e_cls = _param_rows("environment_params", problem.environment_params,
                                 self.environment.params_type)

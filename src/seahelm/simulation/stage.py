@@ -95,7 +95,13 @@ class Stage:
 
     @classmethod
     def from_problem(cls, problem: Any) -> "Stage | None":
-        """The stage a problem asks for, or None (the loop then runs without it)."""
+        """The stage a problem asks for, or None (the loop then runs without it).
+
+        Parameters
+        ----------
+        problem : Problem
+            The problem the loop is built for.
+        """
         raise NotImplementedError
 
     @property
@@ -109,15 +115,37 @@ class Stage:
         return (), ()
 
     def outputs(self, model: Any) -> tuple[tuple[str, ...], tuple[str, ...]]:
-        """The outputs it writes after the model's (and earlier stages'): names, units."""
+        """The outputs it writes after the model's (and earlier stages'): names, units.
+
+        Parameters
+        ----------
+        model : VesselModel
+            The loop's vessel model.
+        """
         return (), ()
 
     def check(self, problem: Any, model: Any) -> None:
-        """Raise a :class:`~seahelm.errors.ParameterError` if the problem cannot take it."""
+        """Raise a :class:`~seahelm.errors.ParameterError` if the problem cannot take it.
+
+        Parameters
+        ----------
+        problem : Problem
+            The problem the loop is built for.
+        model : VesselModel
+            The loop's vessel model.
+        """
 
     def code_size(self, model: Any, jit: bool) -> tuple[int, int]:
         """Bytecode its ``rhs`` lines inline at each integrator stage, and what it compiles
-        once (:data:`seahelm.simulation.closed_loop.STAGE_LOOP_ABOVE`)."""
+        once (:data:`seahelm.simulation.closed_loop.STAGE_LOOP_ABOVE`).
+
+        Parameters
+        ----------
+        model : VesselModel
+            The loop's vessel model.
+        jit : bool
+            The compiled loop (else the pure-Python one).
+        """
         return 0, 0
 
     def code(self, model: Any, controller: Any, measurement_from: tuple[int, ...],
@@ -126,7 +154,7 @@ class Stage:
 
         Parameters
         ----------
-        model, controller
+        model, controller : VesselModel, Controller
             The components.
         measurement_from : tuple of int
             The controller's measurements as routed so far.
@@ -139,36 +167,88 @@ class Stage:
 
     # ---- per run -----------------------------------------------------------------------
     def inputs(self, problem: Any, model: Any) -> Any:
-        """Its per-run inputs from the problem, checked (passed to the methods below)."""
+        """Its per-run inputs from the problem, checked (passed to the methods below).
+
+        Parameters
+        ----------
+        problem : Problem
+            The problem the loop is built for.
+        model : VesselModel
+            The loop's vessel model.
+        """
         return None
 
     def run_counts(self, inputs: Any) -> tuple[tuple[str, int], ...]:
-        """The runs its inputs were made for, by the field that gave them (none: any)."""
+        """The runs its inputs were made for, by the field that gave them (none: any).
+
+        Parameters
+        ----------
+        inputs : object
+            What :meth:`inputs` gave for the problem.
+        """
         return ()
 
     def arrays(self, inputs: Any, n_runs: int) -> tuple[np.ndarray, ...]:
-        """Its per-run arrays (:attr:`members`), for ``n_runs`` runs."""
+        """Its per-run arrays (:attr:`members`), for ``n_runs`` runs.
+
+        Parameters
+        ----------
+        inputs : object
+            What :meth:`inputs` gave for the problem.
+        n_runs : int
+            Runs of the batch.
+        """
         return ()
 
     def scratch(self, model: Any, arrays: tuple[np.ndarray, ...],
                 n_outputs: int) -> tuple[np.ndarray, ...]:
         """Fresh buffers for one slice of runs (:func:`aligned_buffers`); ``n_outputs`` is
-        the loop's number of outputs."""
+        the loop's number of outputs.
+
+        Parameters
+        ----------
+        model : VesselModel
+            The loop's vessel model.
+        arrays : tuple of ndarray
+            Its per-run arrays (:meth:`arrays`).
+        n_outputs : int
+            The loop's number of outputs.
+        """
         return ()
 
     def metadata(self, problem: Any) -> dict[str, Any]:
-        """What the result's metadata says of it."""
+        """What the result's metadata says of it.
+
+        Parameters
+        ----------
+        problem : Problem
+            The problem the loop is built for.
+        """
         return {}
 
     def result_params(self, inputs: Any, n_runs: int) -> dict[str, Any]:
-        """Parameter records the result keeps (name -> (record class, rows))."""
+        """Parameter records the result keeps (name -> (record class, rows)).
+
+        Parameters
+        ----------
+        inputs : object
+            What :meth:`inputs` gave for the problem.
+        n_runs : int
+            Runs of the batch.
+        """
         return {}
 
 
 def hooks_source(codes: list[StageCode]) -> tuple[str, str]:
     """The generated hook functions ``stages_<position>`` of :data:`POSITIONS` for the loop's
     stages (in order), and the expression of the disturbance the model's right-hand side
-    reads (``d``, or the last ``rhs`` stage's buffer)."""
+    reads (``d``, or the last ``rhs`` stage's buffer).
+
+    Parameters
+    ----------
+    codes : list of StageCode
+        The loop's stages' parts, in the loop's order.
+    """
     disturbance = "d"
     out = []
     for position, args in POSITIONS.items():

@@ -133,7 +133,15 @@ def _spans(sel: np.ndarray) -> list[tuple[int, int]]:
 
 def run_index(run: Any, n_runs: int) -> int:
     """``run`` as the index of one of ``n_runs`` runs (negative from the end), or a
-    :class:`ParameterError` naming ``run``."""
+    :class:`ParameterError` naming ``run``.
+
+    Parameters
+    ----------
+    run : int
+        A run index (negative: from the end).
+    n_runs : int
+        Runs of the batch.
+    """
     try:
         i = operator.index(run)
     except TypeError:
@@ -146,7 +154,15 @@ def run_index(run: Any, n_runs: int) -> int:
 
 def run_indices(runs: Any, n_runs: int) -> np.ndarray:
     """``runs`` (None: all; indices or a boolean mask) as sorted unique indices of ``n_runs``
-    runs, or a :class:`ParameterError` naming ``runs``."""
+    runs, or a :class:`ParameterError` naming ``runs``.
+
+    Parameters
+    ----------
+    runs : None, sequence of int or ndarray of bool
+        The runs (None: all), as indices or a mask of ``n_runs``.
+    n_runs : int
+        Runs of the batch.
+    """
     if runs is None:
         return np.arange(n_runs)
     arr = np.atleast_1d(np.asarray(runs))

@@ -117,6 +117,13 @@ class FirstOrderStage(Stage):
 
     @classmethod
     def from_problem(cls, problem: Any) -> "FirstOrderStage | None":
+        """The stage a problem asks for, or None (the loop then runs without it).
+
+        Parameters
+        ----------
+        problem : Problem
+            The problem the loop is built for.
+        """
         fo = problem.first_order
         return None if fo is None else cls(tuple(fo.dofs), bool(fo.autopilot_sees_first_order))
 

@@ -132,9 +132,11 @@ class DaskCluster:
             main_thread = threading.current_thread() is threading.main_thread()
             old = signal.signal(signal.SIGINT, signal.SIG_IGN) if main_thread else None
             try:
+                # the workers' own logs at ERROR: a worker's warnings (a task cancelled by a
+                # Ctrl-C, its shutdown) reached the command's stderr beside its one line
                 self.cluster = distributed.LocalCluster(
                     n_workers=self.n_workers, threads_per_worker=1, processes=True,
-                    host="127.0.0.1", dashboard_address=None)
+                    host="127.0.0.1", dashboard_address=None, silence_logs=logging.ERROR)
             finally:
                 if main_thread:
                     signal.signal(signal.SIGINT, old)
