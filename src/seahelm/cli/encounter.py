@@ -142,24 +142,29 @@ def _rows(result: Any) -> list[dict[str, Any]]:
 
 
 def _print(label: str, rows: list[dict[str, Any]]) -> None:
-    console.print(f"{label}", highlight=False, markup=False, soft_wrap=True)
-    console.print(f"  {'situation':18s} {'n':>6s} {'collision [95% CI]':>24s} "
-                  f"{'domain intruded [95% CI]':>26s} {'give-way acted':>14s} "
-                  f"{'substantial':>11s} {'stand-on kept':>13s} {'min range':>10s}",
-                  highlight=False, markup=False, soft_wrap=True)
+    """The outcome table by situation, as a rich table (the CLI's consoles fit it to the
+    terminal, or a pipe's 80 columns). A near miss is the target inside the own ship's domain
+    without a collision."""
+    from rich.markup import escape
+    from rich.table import Table
 
     def pct(v: Any) -> str:
         return "-" if v is None else f"{100 * v:.1f} %"
 
+    def ci(c: Any) -> str:
+        return f"{100 * c[0]:.1f}-{100 * c[1]:.1f} %"
+
+    table = Table(title=escape(label), title_justify="left")
+    for name in ("situation", "n", "collision", "95% CI", "near miss", "95% CI",
+                 "give-way acted", "substantial", "stand-on kept",
+                 "median least range [m]"):
+        table.add_column(escape(name), justify="left" if name == "situation" else "right")
     for r in rows:
-        c, n = r["collision_ci"], r["near_miss_ci"]
-        console.print(
-            f"  {r['situation']:18s} {r['encounters']:6d} "
-            f"{pct(r['collision']):>8s} [{100 * c[0]:4.1f}, {100 * c[1]:4.1f}] % "
-            f"{pct(r['near_miss']):>10s} [{100 * n[0]:4.1f}, {100 * n[1]:4.1f}] % "
-            f"{pct(r['own_acted']):>14s} {pct(r['own_substantial']):>11s} "
-            f"{pct(r['own_kept_course']):>13s} {r['min_range_median']:8.0f} m",
-            highlight=False, markup=False, soft_wrap=True)
+        table.add_row(r["situation"], str(r["encounters"]), pct(r["collision"]),
+                      ci(r["collision_ci"]), pct(r["near_miss"]), ci(r["near_miss_ci"]),
+                      pct(r["own_acted"]), pct(r["own_substantial"]),
+                      pct(r["own_kept_course"]), f"{r['min_range_median']:.0f}")
+    console.print(table)
 
 
 def _write(result: Any, out: Path, force: bool, label: str) -> None:

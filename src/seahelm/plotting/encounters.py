@@ -83,7 +83,7 @@ def plot_encounter_tracks(result: Any, encounter: int = 0, *, marks: float = 120
         title += (f": least range {result.min_range[encounter, 0]:.0f} m at "
                   f"{result.t_min_range[encounter, 0] / 60:.1f} min"
                   f"{' (COLLISION)' if result.collision[encounter, 0] else ''}"
-                  f"{' (domain intruded)' if result.near_miss[encounter, 0] else ''}")
+                  f"{' (near miss: inside the domain)' if result.near_miss[encounter, 0] else ''}")
     ax.set(xlabel="east [m]", ylabel="north [m]", title=title)
     ax.set_aspect("equal", adjustable="datalim")
     ax.legend(fontsize="small", loc="best", title="marks: minutes")
@@ -151,7 +151,8 @@ def plot_outcome_rose(result: Any, *, sectors: int = 16, ax: Any = None) -> Any:
     ax.set_theta_zero_location("N")
     ax.set_theta_direction(-1)
     ax.bar(centre, clear, width=width * 0.9, color="C2", label="clear")
-    ax.bar(centre, near, width=width * 0.9, bottom=clear, color="C1", label="domain intruded")
+    ax.bar(centre, near, width=width * 0.9, bottom=clear, color="C1",
+           label="near miss (domain, no collision)")
     ax.bar(centre, coll, width=width * 0.9, bottom=clear + near, color="C3", label="collision")
     ax.set_title("outcomes by the target's relative bearing at the start")
     ax.legend(fontsize="small", loc="lower left", bbox_to_anchor=(-0.1, -0.1))

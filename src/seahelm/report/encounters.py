@@ -40,7 +40,7 @@ def _ci(value: float, ci: tuple[float, float]) -> str:
 
 
 def outcome_rows(result: Any) -> list[list[str]]:
-    """The outcome table's rows (situation, n, collision, domain intruded, give-way acted,
+    """The outcome table's rows (situation, n, collision, near miss, give-way acted,
     substantial, stand-on kept course, median least range) of ``result.summary()``."""
     return [[r["situation"], str(r["encounters"]), _ci(r["collision"], r["collision_ci"]),
              _ci(r["near_miss"], r["near_miss_ci"]), _pct(r["own_acted"]),
@@ -127,14 +127,14 @@ def rose_counts(result: Any, sectors: int = ROSE_SECTORS) -> dict[str, np.ndarra
     k = np.floor(((beta + width / 2) % (2 * math.pi)) / width).astype(int) % sectors
     coll, near = result.collision[:, 0], result.near_miss[:, 0]
     return {"collision": np.bincount(k[coll], minlength=sectors),
-            "domain intruded": np.bincount(k[near], minlength=sectors),
+            "near miss": np.bincount(k[near], minlength=sectors),
             "clear": np.bincount(k[~(coll | near)], minlength=sectors)}
 
 
 def _rose_figure(result: Any) -> dict[str, Any]:
     counts = rose_counts(result)
     theta = (np.arange(ROSE_SECTORS) * 360.0 / ROSE_SECTORS).tolist()
-    colors = {"collision": "#d62728", "domain intruded": "#ff7f0e", "clear": "#2ca02c"}
+    colors = {"collision": "#d62728", "near miss": "#ff7f0e", "clear": "#2ca02c"}
     data = [{"type": "barpolar", "name": name, "theta": theta, "r": c.tolist(),
              "width": [360.0 / ROSE_SECTORS] * ROSE_SECTORS,
              "marker": {"color": colors[name], "line": {"width": 0.5, "color": "#ffffff"}},
@@ -184,7 +184,7 @@ def encounter_sections(data: ReportData) -> list[Section]:
         sec.blocks.append(paragraph("one vessel: no encounter to count"))
         return [sec]
     sec.blocks.append(table(
-        ["situation", "n", "collision [95% CI]", "domain intruded [95% CI]",
+        ["situation", "n", "collision [95% CI]", "near miss [95% CI]",
          "give-way acted", "substantial", "stand-on kept course", "least range (median)"],
         outcome_rows(result), cls="metrics",
         caption="by the own ship's COLREG situation at the start, against the first target; "
@@ -198,7 +198,7 @@ def encounter_sections(data: ReportData) -> list[Section]:
             f"encounter {e}: least range {fmt(float(result.min_range[e, 0]), 4)} m at "
             f"{fmt(float(result.t_min_range[e, 0]) / 60, 3)} min"
             + (" — collision" if result.collision[e, 0] else "")
-            + (" — domain intruded" if result.near_miss[e, 0] else "")
+            + (" — near miss (inside the domain)" if result.near_miss[e, 0] else "")
             + f"; marks every {MARKS / 60:g} min (labels: minutes), the own ship's domain "
               "at the marks and at the least range; east right, north up", cls="caption"))
         sec.blocks.append(_track_figure(result, e))
