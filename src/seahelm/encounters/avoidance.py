@@ -26,7 +26,7 @@ from .._validate import lookup_name
 from ..errors import ParameterError
 from .geometry import GIVE_WAY, STAND_ON, ColregSectors, classify, cpa_tcpa, velocity, wrap_pi
 
-__all__ = ["RuleBased", "VelocityObstacles", "AVOIDANCE", "resolve_avoidance"]
+__all__ = ["AvoidanceMethod", "RuleBased", "VelocityObstacles", "AVOIDANCE", "resolve_avoidance"]
 
 
 def _positive(obj: Any, *names_units: tuple[str, str]) -> None:
@@ -57,8 +57,67 @@ def _situations(own: np.ndarray, view: np.ndarray, sectors: ColregSectors) -> np
                     v[:, None, :, 4], sectors)
 
 
+class AvoidanceMethod:
+    """What an avoidance method implements (:data:`AVOIDANCE` lists them): a frozen dataclass
+    of its settings with :meth:`start` (its state for a batch) and :meth:`desired` (the heading
+    each avoiding vessel steers next), called by the encounter's loop between controller
+    intervals."""
+
+    sectors: ColregSectors | None = None
+
+    def start(self, n_encounters: int, n_vessels: int, avoid: np.ndarray,
+              encounter: Any) -> dict[str, Any]:
+        """The method's state for a batch.
+
+        Parameters
+        ----------
+        n_encounters, n_vessels : int
+            The batch's shape.
+        avoid : ndarray of bool (vessels,)
+            The vessels that avoid.
+        encounter : Encounter
+            The encounter (its ``sectors`` are the default).
+        """
+        raise NotImplementedError
+
+    def desired(self, time: float, truth: np.ndarray, view: np.ndarray,
+                route_heading: np.ndarray, state: dict[str, Any]) -> np.ndarray:
+        """The heading each vessel steers next (the others keep ``route_heading``).
+
+        Parameters
+        ----------
+        time : float
+            Time [s].
+        truth : ndarray (encounters, vessels, 6)
+            Own true north, east [m], course [rad], speed [m/s], heading [rad], yaw rate
+            [rad/s].
+        view : ndarray (encounters, vessels, 5)
+            The AIS view of every vessel (north, east, course, speed, heading; NaN unheard).
+        route_heading : ndarray (encounters, vessels)
+            The heading the route asks for [rad].
+        state : dict
+            From :meth:`start`, updated in place.
+
+        Returns
+        -------
+        ndarray (encounters, vessels)
+            Desired heading [rad].
+        """
+        raise NotImplementedError
+
+    def _pair_state(self, n_encounters: int, n_vessels: int, avoid: np.ndarray,
+                    encounter: Any) -> dict[str, Any]:
+        """The state every method keeps: the avoiding vessels ``av``, the situation
+        thresholds, and per pair the situation latched at first risk and whether the pair
+        is engaged."""
+        av = np.flatnonzero(avoid)
+        return {"av": av, "sectors": self.sectors or encounter.sectors,
+                "latched": np.zeros((n_encounters, av.size, n_vessels), dtype=np.int8),
+                "engaged": np.zeros((n_encounters, av.size, n_vessels), dtype=bool)}
+
+
 @dataclasses.dataclass(frozen=True, kw_only=True)
-class RuleBased:
+class RuleBased(AvoidanceMethod):
     """The baseline: turn to starboard by ``turn`` when give-way with a close CPA; resume.
 
     A vessel that is give-way to another (head-on, crossing from starboard, overtaking: Rules
@@ -93,46 +152,11 @@ class RuleBased:
 
     def start(self, n_encounters: int, n_vessels: int, avoid: np.ndarray,
               encounter: Any) -> dict[str, Any]:
-        """The method's state for a batch.
-
-        Parameters
-        ----------
-        n_encounters, n_vessels : int
-            The batch's shape.
-        avoid : ndarray of bool (vessels,)
-            The vessels that avoid.
-        encounter : Encounter
-            The encounter (its ``sectors`` are the default).
-        """
-        av = np.flatnonzero(avoid)
-        return {"active": np.zeros((n_encounters, av.size), dtype=bool), "av": av,
-                "sectors": self.sectors or encounter.sectors,
-                "latched": np.zeros((n_encounters, av.size, n_vessels), dtype=np.int8),
-                "engaged": np.zeros((n_encounters, av.size, n_vessels), dtype=bool)}
+        state = self._pair_state(n_encounters, n_vessels, avoid, encounter)
+        return {**state, "active": np.zeros((n_encounters, state["av"].size), dtype=bool)}
 
     def desired(self, time: float, truth: np.ndarray, view: np.ndarray,
                 route_heading: np.ndarray, state: dict[str, Any]) -> np.ndarray:
-        """The heading each vessel steers next (the others keep ``route_heading``).
-
-        Parameters
-        ----------
-        time : float
-            Time [s].
-        truth : ndarray (encounters, vessels, 6)
-            Own true north, east [m], course [rad], speed [m/s], heading [rad], yaw rate
-            [rad/s].
-        view : ndarray (encounters, vessels, 5)
-            The AIS view of every vessel (north, east, course, speed, heading; NaN unheard).
-        route_heading : ndarray (encounters, vessels)
-            The heading the route asks for [rad].
-        state : dict
-            From :meth:`start`, updated in place.
-
-        Returns
-        -------
-        ndarray (encounters, vessels)
-            Desired heading [rad].
-        """
         av = state["av"]
         own, route = truth[:, av], route_heading[:, av]
         p_o, v_o, p_t, v_t, valid = _pairs(own, av, view)
@@ -155,7 +179,7 @@ class RuleBased:
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
-class VelocityObstacles:
+class VelocityObstacles(AvoidanceMethod):
     """Velocity obstacles with COLREG constraints, after Kuwata et al. (2014).
 
     Every ``every`` seconds each avoiding vessel picks, from headings ``offsets`` about its
@@ -225,46 +249,11 @@ class VelocityObstacles:
 
     def start(self, n_encounters: int, n_vessels: int, avoid: np.ndarray,
               encounter: Any) -> dict[str, Any]:
-        """The method's state for a batch.
-
-        Parameters
-        ----------
-        n_encounters, n_vessels : int
-            The batch's shape.
-        avoid : ndarray of bool (vessels,)
-            The vessels that avoid.
-        encounter : Encounter
-            The encounter (its ``sectors`` are the default).
-        """
-        av = np.flatnonzero(avoid)
-        return {"offset": np.zeros((n_encounters, n_vessels)), "next": 0.0, "av": av,
-                "sectors": self.sectors or encounter.sectors,
-                "latched": np.zeros((n_encounters, av.size, n_vessels), dtype=np.int8),
-                "engaged": np.zeros((n_encounters, av.size, n_vessels), dtype=bool)}
+        return {**self._pair_state(n_encounters, n_vessels, avoid, encounter),
+                "offset": np.zeros((n_encounters, n_vessels)), "next": 0.0}
 
     def desired(self, time: float, truth: np.ndarray, view: np.ndarray,
                 route_heading: np.ndarray, state: dict[str, Any]) -> np.ndarray:
-        """The heading each vessel steers next (the others keep ``route_heading``).
-
-        Parameters
-        ----------
-        time : float
-            Time [s].
-        truth : ndarray (encounters, vessels, 6)
-            Own true north, east [m], course [rad], speed [m/s], heading [rad], yaw rate
-            [rad/s].
-        view : ndarray (encounters, vessels, 5)
-            The AIS view of every vessel (north, east, course, speed, heading; NaN unheard).
-        route_heading : ndarray (encounters, vessels)
-            The heading the route asks for [rad].
-        state : dict
-            From :meth:`start`, updated in place.
-
-        Returns
-        -------
-        ndarray (encounters, vessels)
-            Desired heading [rad].
-        """
         if time + 1e-9 >= state["next"]:
             state["next"] = time + self.every
             av = state["av"]
