@@ -1,6 +1,6 @@
 """The IMO check over a Monte-Carlo ensemble at scale: members/s, and the steady turns batched.
 
-:func:`seahelm.analysis.imo_probability.imo_probabilities` of ``--members`` Monte-Carlo copies
+:func:`seahelm.analysis.imo.probability.imo_probabilities` of ``--members`` Monte-Carlo copies
 of the KVLCC2 L7 (Y'_v, Y'_r, N'_v, N'_r drawn, 10 % standard deviation — issue 32's case):
 the 35° and 10° turning circles and the 10/10 and 20/20 zig-zags to both sides and the crash
 stop of every member. Timed in one process, warm (the kernels compiled or loaded before):
@@ -41,8 +41,8 @@ import time
 
 import numpy as np
 
-from seahelm.analysis import imo_probability
-from seahelm.analysis.imo_probability import imo_probabilities, monte_carlo_ships
+from seahelm.analysis.imo import probability as imo_probability
+from seahelm.analysis.imo.probability import imo_probabilities, monte_carlo_ships
 from seahelm.analysis.maneuvers import maneuver_ship
 from seahelm.analysis.maneuvers import common as maneuver_common
 from seahelm.analysis.maneuvers.ships import (

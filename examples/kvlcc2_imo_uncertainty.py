@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from seahelm.analysis.imo import (
+from seahelm.analysis.imo.check import (
     ADVANCE_LIMIT,
     INITIAL_TURNING_LIMIT,
     TACTICAL_DIAMETER_LIMIT,

@@ -21,7 +21,7 @@ from seahelm.analysis.equilibrium import (
     steady_turn,
     steady_turn_state,
 )
-from seahelm.analysis.imo_probability import monte_carlo_ships
+from seahelm.analysis.imo.probability import monte_carlo_ships
 from seahelm.errors import ParameterError
 from seahelm.ships import get_ship
 from seahelm.vessels.mariner import MARINER, MARINER_NONLINEAR

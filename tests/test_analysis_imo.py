@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from seahelm.analysis.imo import (
+from seahelm.analysis.imo.check import (
     ImoReport,
     imo_check,
     imo_overshoot_limits,

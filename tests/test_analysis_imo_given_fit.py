@@ -1,5 +1,5 @@
 """The fit → posterior → IMO workflow as a library call (issue 47 item 4:
-:mod:`seahelm.analysis.imo_given_fit`, what ``seahelm identify nomoto|mmg --imo N`` did inside
+:mod:`seahelm.analysis.imo.given_fit`, what ``seahelm identify nomoto|mmg --imo N`` did inside
 the CLI): the command's probabilities are the call's; missing speed or length and a fit that
 identifies nothing are refused naming the argument."""
 
@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from seahelm.analysis.imo_given_fit import imo_given_nomoto_fit
+from seahelm.analysis.imo.given_fit import imo_given_nomoto_fit
 from seahelm.identification.nomoto_fit import fit_nomoto
 from seahelm.identification.records import read_records
 from seahelm.errors import ParameterError

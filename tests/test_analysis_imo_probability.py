@@ -7,8 +7,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from seahelm.analysis.imo import imo_check
-from seahelm.analysis.imo_probability import imo_probabilities, wilson_interval
+from seahelm.analysis.imo.check import imo_check
+from seahelm.analysis.imo.probability import imo_probabilities, wilson_interval
 from seahelm.identification.nomoto_fit import fit_nomoto
 from seahelm.identification.nomoto_posterior import posterior_samples, posterior_ships
 from seahelm.errors import ParameterError
@@ -84,7 +84,7 @@ def test_ensemble_needs_one_length(fit_and_record):
 
 
 def test_monte_carlo_ships_default_and_given_draws():
-    from seahelm.analysis.imo_probability import monte_carlo_ships
+    from seahelm.analysis.imo.probability import monte_carlo_ships
     from seahelm.numerics.sampling import get_distribution
     from seahelm.ships import get_ship
 
@@ -134,7 +134,7 @@ def test_members_rerun_for_longer_get_the_values_of_one_long_run(monkeypatch):
     their events run again for LAST_PASS times them: with a first pass too short for any member
     (all rerun) the values equal those of the default passes, which equal the manoeuvres run
     once for the long duration (what every member did before the passes)."""
-    from seahelm.analysis import imo_probability as ip
+    from seahelm.analysis.imo import probability as ip
     from seahelm.ships import get_ship
 
     ship = get_ship("kvlcc2-l7")
@@ -163,7 +163,7 @@ def test_the_first_pass_minimises_the_expected_simulated_time():
     second pass), the first pass lasts the f that minimises f + LAST_PASS * P(need > f):
     checked against a brute-force search on a fine grid; below LEARN members it is
     FIRST_PASS."""
-    from seahelm.analysis import imo_probability as ip
+    from seahelm.analysis.imo import probability as ip
 
     rng = np.random.default_rng(7)
     passes = ip._Passes(record_dt=0.3)

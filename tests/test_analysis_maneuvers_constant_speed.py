@@ -29,7 +29,7 @@ from seahelm.analysis.equilibrium import (
     steady_turn,
     steady_turn_state,
 )
-from seahelm.analysis.imo import imo_check
+from seahelm.analysis.imo.check import imo_check
 from seahelm.analysis.maneuvers import maneuver_ship, pull_out, turning_circle, zigzag
 from seahelm.errors import ParameterError
 from seahelm.ships import get_ship

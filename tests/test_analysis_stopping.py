@@ -212,7 +212,7 @@ def test_head_reach_is_plausible_against_the_momentum_estimate(l7_stop):
 
 
 def test_ensemble_check_includes_stopping_for_ships_that_can_stop():
-    from seahelm.analysis.imo_probability import imo_probabilities
+    from seahelm.analysis.imo.probability import imo_probabilities
 
     ens = imo_probabilities(["kvlcc2-l7", "kvlcc2-l7-xp-0.5"])
     (row,) = [r for r in ens.rows if r["ability"] == "stopping"]

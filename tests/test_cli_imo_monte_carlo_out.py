@@ -1,7 +1,7 @@
 """``seahelm imo SHIP --monte-carlo N`` (issue 44 item 7 leftovers, issue 47 item 4): ``--out``
 writes the distribution figure next to ``imo-probabilities.nc``; the output names the drawn
 parameters with their units; a progress bar shows under a pseudo-terminal; the command is
-one library call (:func:`seahelm.analysis.imo_monte_carlo.imo_monte_carlo`) whose numbers are
+one library call (:func:`seahelm.analysis.imo.monte_carlo.imo_monte_carlo`) whose numbers are
 the command's.
 
 Sizes are small (one KVLCC2 L7 sample's IMO check costs about 0.3 s).
@@ -91,7 +91,7 @@ def test_the_table_shows_the_drawn_parameters():
 
 
 def test_one_library_call_gives_the_commands_numbers(checked):
-    from seahelm.analysis.imo_monte_carlo import imo_monte_carlo
+    from seahelm.analysis.imo.monte_carlo import imo_monte_carlo
     from seahelm.ships import get_ship
 
     _, payload = checked
@@ -109,7 +109,7 @@ def test_one_library_call_gives_the_commands_numbers(checked):
 
 
 def test_ships_of_samples_names_the_column(tmp_path):
-    from seahelm.analysis.imo_monte_carlo import ships_of_samples
+    from seahelm.analysis.imo.monte_carlo import ships_of_samples
     from seahelm.identification.samples_file import read_samples
     from seahelm.errors import ParameterError
     from seahelm.ships import get_ship

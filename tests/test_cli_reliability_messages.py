@@ -101,7 +101,7 @@ def test_an_impossible_length_to_beam_names_the_particulars():
 def test_uncertainty_beyond_its_range_is_named():
     line = _error(["imo", "kvlcc2-l7", "--monte-carlo", "4", "--uncertainty", "10"])
     assert "`--uncertainty` must be in (0, 1]" in line and "Y_vvv" not in line
-    from seahelm.analysis.imo_probability import monte_carlo_ships
+    from seahelm.analysis.imo.probability import monte_carlo_ships
     from seahelm.ships import get_ship
 
     with pytest.raises(ParameterError, match=r"must be in \(0, 1\]") as info:

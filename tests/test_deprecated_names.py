@@ -54,7 +54,7 @@ def test_the_old_names_are_not_in_the_public_lists():
 def test_importing_seahelm_uses_no_old_name():
     code = ("import warnings; warnings.simplefilter('error', DeprecationWarning); "
             "import seahelm, seahelm.cli.main, seahelm.scenario, seahelm.analysis.maneuvers, "
-            "seahelm.sweep.chunks, seahelm.analysis.imo_probability; print('ok')")
+            "seahelm.sweep.chunks, seahelm.analysis.imo.probability; print('ok')")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.returncode == 0 and out.stdout.strip() == "ok", out.stderr
 

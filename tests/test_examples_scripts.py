@@ -59,7 +59,7 @@ def test_kvlcc2_imo_uncertainty_example(tmp_path):
 
     import numpy as np
 
-    from seahelm.analysis.imo import imo_check
+    from seahelm.analysis.imo.check import imo_check
     from seahelm.analysis.maneuvers import maneuver_ship
     from seahelm.sweep import open_sweep
     from seahelm.ships import get_ship

@@ -31,6 +31,11 @@ MOVED = {
     "seahelm.identification.segments": "seahelm.identification.reduced.segments",
     "seahelm.identification.steady_turns": "seahelm.identification.reduced.turns",
     "seahelm.identification.turn_log": "seahelm.identification.records",
+    # analysis regrouped into subpackages (issue 47, item 2)
+    "seahelm.analysis.imo_probability": "seahelm.analysis.imo.probability",
+    "seahelm.analysis.imo_monte_carlo": "seahelm.analysis.imo.monte_carlo",
+    "seahelm.analysis.imo_ensemble": "seahelm.analysis.imo.ensemble",
+    "seahelm.analysis.imo_given_fit": "seahelm.analysis.imo.given_fit",
 }
 
 

@@ -19,7 +19,7 @@ import pytest
 from typer.testing import CliRunner
 
 from conftest import one_error
-from seahelm.analysis.imo_probability import probabilities_from_values, wilson_interval
+from seahelm.analysis.imo.probability import probabilities_from_values, wilson_interval
 from seahelm.cli.main import app
 from seahelm.results import open_result_file
 from seahelm.scenario import load_scenario

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from seahelm._repr import describe, names, shorten, summary_html, summary_text
-from seahelm.analysis.imo import ImoCriterion, ImoReport
+from seahelm.analysis.imo.check import ImoCriterion, ImoReport
 from seahelm.ships import get_ship
 from seahelm.simulation.problem import Problem
 

@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from seahelm.analysis.imo import imo_check
+from seahelm.analysis.imo.check import imo_check
 from seahelm.analysis.maneuvers import maneuver_ship, turning_circle, zigzag
 from seahelm.cli.main import app
 from seahelm.scenario import ManeuverJob, ScenarioError, load_scenario, parse_scenario, run_scenario

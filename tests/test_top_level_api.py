@@ -20,7 +20,7 @@ def test_user_objects_come_first() -> None:
 
 
 def test_they_are_the_library_objects() -> None:
-    from seahelm.analysis.imo import imo_check
+    from seahelm.analysis.imo.check import imo_check
     from seahelm.analysis.maneuvers import crash_stop, turning_circle, zigzag
     from seahelm.ships import Ship, get_ship
     from seahelm.simulation.engine import simulate

@@ -11,4 +11,13 @@ _MOVED = {old: f"seahelm.identification.{new}" for old, new in {
     "fit_statistics": "fit_result", "records": "records",
     "velocity_smoother": "velocity_smoother", "samples_file": "samples_file"}.items()}
 
-__getattr__ = deprecated_modules(__name__, _MOVED)
+#: Modules regrouped into the subpackages of :mod:`seahelm.analysis` (issue 47, item 2): the old
+#: paths warn and give the module itself.
+_REGROUPED = {
+    "imo_probability": "seahelm.analysis.imo.probability",
+    "imo_monte_carlo": "seahelm.analysis.imo.monte_carlo",
+    "imo_ensemble": "seahelm.analysis.imo.ensemble",
+    "imo_given_fit": "seahelm.analysis.imo.given_fit",
+}
+
+__getattr__ = deprecated_modules(__name__, {**_MOVED, **_REGROUPED})

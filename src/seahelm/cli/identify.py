@@ -280,9 +280,9 @@ def nomoto(
 def _imo_given_fit(fit: Any, records: Any, n: int, posterior: str, seed: int | None,
                    speed: float | None, length: float | None, max_rudder: float,
                    rudder_rate: float, level: float, json_out: bool) -> dict[str, Any]:
-    """``identify nomoto --imo N``: :func:`seahelm.analysis.imo_given_fit.
+    """``identify nomoto --imo N``: :func:`seahelm.analysis.imo.given_fit.
     imo_given_nomoto_fit`, its errors in the command's words."""
-    from ..analysis.imo_given_fit import imo_given_nomoto_fit
+    from ..analysis.imo.given_fit import imo_given_nomoto_fit
     from ..errors import ParameterError
 
     if speed is None or length is None:
@@ -506,12 +506,12 @@ def mmg(
         except ParameterError as exc:
             raise ParameterError(f"`{option}`: {exc}") from None
         if save_posterior is not None:
-            from ..analysis.imo_given_fit import write_posterior_samples
+            from ..analysis.imo.given_fit import write_posterior_samples
 
             payload["posterior_file"] = str(write_posterior_samples(save_posterior, fit, post,
                                                                     base, seed))
         if imo:
-            from ..analysis.imo_given_fit import imo_given_mmg_fit
+            from ..analysis.imo.given_fit import imo_given_mmg_fit
 
             bar = _bar(imo, json_out)
             try:

@@ -1,7 +1,7 @@
 """``seahelm imo SHIP``: check a ship (catalog name or ship file) against IMO Resolution
 MSC.137(76).
 
-Runs :func:`seahelm.analysis.imo.imo_check` (35° turning circles and 10° initial turning to
+Runs :func:`seahelm.analysis.imo.check.imo_check` (35° turning circles and 10° initial turning to
 both sides, 10/10 and 20/20 zig-zags to both sides, the full-astern stopping test of a ship
 with a propeller) and prints a table of the criteria with value, limit, margin (limit − value)
 and pass/fail; stopping is "not evaluated" for a ship without a propeller, with the reason.
@@ -11,11 +11,11 @@ zig-zag (and stopping) figures as PNG. Exit codes: 0 the check ran (whether or n
 passes), 2 bad input, 1 other failure.
 
 ``--monte-carlo N`` checks N samples of the ship with uncertain coefficients instead
-(:func:`seahelm.analysis.imo_probability.imo_probabilities`): the probability of passing each
+(:func:`seahelm.analysis.imo.probability.imo_probabilities`): the probability of passing each
 criterion and the whole check with Wilson intervals, the samples that do not complete
 excluded, counted and listed with their reason, and a table of the drawn parameters (name,
 distribution, unit, mean, standard deviation, range); ``--out DIR`` writes
-``imo-probabilities.nc`` (:mod:`seahelm.analysis.imo_ensemble`) and ``imo-probabilities.png``
+``imo-probabilities.nc`` (:mod:`seahelm.analysis.imo.ensemble`) and ``imo-probabilities.png``
 (:func:`seahelm.plotting.imo_ensemble.plot_imo_ensemble`). A progress bar shows on a terminal. A ``kind = "imo"`` scenario with
 ``[batch.monte_carlo]`` is shown the same way by ``seahelm run`` (:func:`present_imo_ensemble`).
 """
@@ -31,7 +31,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ..analysis.imo_ensemble import ENSEMBLE_FILE
+from ..analysis.imo.ensemble import ENSEMBLE_FILE
 from ..errors import ParameterError
 from ._common import (
     ForceFlag,
@@ -116,7 +116,7 @@ def imo(
     Exit codes: 0 the check ran (the verdict is in the report, "passed" in the JSON); with
     --check, 4 when the ship fails a criterion; 2 bad input; 1 any other failure.
     """
-    from ..analysis.imo import imo_check
+    from ..analysis.imo.check import imo_check
 
     ship = ship_of(model, water_depth)
     check_speed_rps(ship, speed, rps)
@@ -158,9 +158,9 @@ def imo(
 
 def _monte_carlo(ship: Any, n: int, seed: int, uncertainty: float, draws: Path | None,
                  dt: float | None, json_out: bool, out: Path | None) -> None:
-    from ..analysis.imo_monte_carlo import imo_monte_carlo
-    from ..analysis.imo_probability import MAX_UNCERTAINTY
-    from ..analysis.imo_monte_carlo import SHARED_KEYS
+    from ..analysis.imo.monte_carlo import imo_monte_carlo
+    from ..analysis.imo.probability import MAX_UNCERTAINTY
+    from ..analysis.imo.monte_carlo import SHARED_KEYS
 
     if not (math.isfinite(uncertainty) and 0 < uncertainty <= MAX_UNCERTAINTY):
         raise ParameterError(f"`--uncertainty` must be in (0, {MAX_UNCERTAINTY:g}] (the "
@@ -200,9 +200,9 @@ def _bar(n: int | None, json_out: bool) -> Any:
 def _from_samples(ship: Any, n: int | None, path: Path, dt: float | None, json_out: bool,
                   out: Path | None) -> None:
     """``--draws FILE.csv``: the ships of a samples file's rows
-    (:func:`seahelm.analysis.imo_monte_carlo.imo_of_samples`), checked as ``--monte-carlo``
+    (:func:`seahelm.analysis.imo.monte_carlo.imo_of_samples`), checked as ``--monte-carlo``
     checks its draws."""
-    from ..analysis.imo_monte_carlo import imo_of_samples
+    from ..analysis.imo.monte_carlo import imo_of_samples
     from ..identification.samples_file import read_samples
     from ._common import input_file
 
@@ -233,7 +233,7 @@ def present_imo_ensemble(job: Any, out: Path | None, as_json: bool, *,
                          reads: tuple[Path, ...] = ()) -> None:
     """Run an ``imo`` scenario with ``[batch.monte_carlo]`` and show it as ``seahelm imo
     --monte-carlo`` does: the probabilities table (or one JSON object) and, with ``out``,
-    ``imo-probabilities.nc`` (:mod:`seahelm.analysis.imo_ensemble`).
+    ``imo-probabilities.nc`` (:mod:`seahelm.analysis.imo.ensemble`).
 
     Parameters
     ----------
@@ -282,13 +282,13 @@ def show_ensemble(probs: Any, meta: dict[str, Any], drawn: dict[str, Any], out: 
     title : str
         The table's title.
     """
-    from ..analysis.imo_ensemble import ensemble_dataset
+    from ..analysis.imo.ensemble import ensemble_dataset
 
     payload = probs.as_dict()
     payload.update({k: v for k, v in meta.items() if k not in ("scenario_text", "title")})
     payload["excluded_samples"] = [{"sample": i, "reason": why}
                                    for i, why in enumerate(probs.reasons) if why]
-    from ..analysis.imo_monte_carlo import drawn_statistics
+    from ..analysis.imo.monte_carlo import drawn_statistics
 
     payload["drawn_parameters"] = drawn_statistics(drawn)
     if out is not None:
@@ -331,16 +331,16 @@ MAX_EXCLUDED_SHOWN = 10
 
 
 def print_imo_probabilities(p: dict[str, Any], title: str) -> None:
-    """The pass probabilities of an ensemble (:func:`~seahelm.analysis.imo_probability.
+    """The pass probabilities of an ensemble (:func:`~seahelm.analysis.imo.probability.
     imo_probabilities`), as a table and a line for the whole check with the count of the
     excluded samples, and the first of them with their reasons.
 
     Parameters
     ----------
     p : dict
-        :meth:`~seahelm.analysis.imo_probability.ImoProbabilities.as_dict`, optionally with
+        :meth:`~seahelm.analysis.imo.probability.ImoProbabilities.as_dict`, optionally with
         ``excluded_samples`` (``{"sample", "reason"}``) or ``excluded_by_reason`` (counts),
-        and ``drawn_parameters`` (:func:`~seahelm.analysis.imo_monte_carlo.
+        and ``drawn_parameters`` (:func:`~seahelm.analysis.imo.monte_carlo.
         drawn_statistics`: printed as a second table).
     title : str
         The table's title.
@@ -380,7 +380,7 @@ def print_imo_probabilities(p: dict[str, Any], title: str) -> None:
 
 
 def show_report(report: Any, out: Path | None, as_json: bool, *, plot: bool = True) -> None:
-    """Write (``out``) and print an :class:`~seahelm.analysis.imo.ImoReport`: the criteria
+    """Write (``out``) and print an :class:`~seahelm.analysis.imo.check.ImoReport`: the criteria
     table with notes, or one JSON object."""
     rows = [_display(c) for c in report.criteria]
     payload: dict[str, Any] = {

@@ -63,7 +63,7 @@ def inspect(
     json_out: JsonFlag = False,
 ) -> None:
     """Show a result file: run metadata, batch, per-run status and the summary table."""
-    from ..analysis.imo_ensemble import is_ensemble_dataset
+    from ..analysis.imo.ensemble import is_ensemble_dataset
     from ..analysis.replay_dataset import is_replay_dataset
     from ..results import open_result_file
     from ..sweep.store import store_attrs
@@ -174,7 +174,7 @@ def _show_metrics(result: Path, ds: Any, json_out: bool) -> None:
 def _show_ensemble(result: Path, ds: Any, json_out: bool) -> None:
     """The IMO check of an ensemble (``imo-probabilities.nc``): metadata, the drawn keys and
     the probabilities table as ``seahelm imo --monte-carlo`` printed it."""
-    from ..analysis.imo_ensemble import ensemble_payload
+    from ..analysis.imo.ensemble import ensemble_payload
     from .imo import print_imo_probabilities
 
     metadata = {k: _plain(v) for k, v in ds.attrs.items()}

@@ -134,7 +134,7 @@ def _execute(batch: Any, out: Path | None, *, as_json: bool, plot: bool, csv: bo
         if report and out is not None:  # from the manoeuvre's files (it reads their pair)
             source = next(n for n in OUT_FILES[batch.kind] if n.endswith(".nc"))
             if batch.kind == "imo" and batch.monte_carlo is not None:
-                from ..analysis.imo_ensemble import ENSEMBLE_FILE as source
+                from ..analysis.imo.ensemble import ENSEMBLE_FILE as source
             _write_report(out / source, out / REPORT_NAME, quiet=as_json)
         return None
 

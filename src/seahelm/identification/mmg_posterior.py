@@ -33,7 +33,7 @@ eigenvalue of the correlation matrix below 1e-10 — is refused with that direct
 than sampled as if it were known.
 
 :func:`posterior_ships` turns samples into ships (the base ship with a sample's derivatives) for
-:func:`~seahelm.analysis.imo_probability.imo_probabilities`: the probability of passing each
+:func:`~seahelm.analysis.imo.probability.imo_probabilities`: the probability of passing each
 IMO criterion given the identification.
 
 References

@@ -17,7 +17,7 @@ records:
     strong K–T correlation of zig-zag records.
 
 :func:`posterior_ships` turns samples into ships (for
-:func:`~seahelm.analysis.imo_probability.imo_probabilities`: the probability of passing the
+:func:`~seahelm.analysis.imo.probability.imo_probabilities`: the probability of passing the
 IMO criteria given the identification).
 
 References

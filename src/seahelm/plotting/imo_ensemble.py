@@ -6,7 +6,7 @@ and port drawn as steps in one panel, the criterion's limit as a vertical line a
 probability of passing it (with its Wilson interval) in the panel's title; a member passes
 where its value lies left of the line (MSC.137(76): value <= limit). The figure is
 ``imo-probabilities.png`` of ``seahelm imo SHIP --monte-carlo N --out DIR``; its data is
-the Dataset of :func:`seahelm.analysis.imo_ensemble.ensemble_dataset`.
+the Dataset of :func:`seahelm.analysis.imo.ensemble.ensemble_dataset`.
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ def plot_imo_ensemble(ds: Any, *, fig: Any = None) -> Any:
     Parameters
     ----------
     ds : xarray.Dataset
-        An ensemble check (:func:`seahelm.analysis.imo_ensemble.ensemble_dataset`, or
+        An ensemble check (:func:`seahelm.analysis.imo.ensemble.ensemble_dataset`, or
         ``imo-probabilities.nc`` opened).
     fig : matplotlib.figure.Figure, optional
         Drawn on (default: a new figure).
@@ -44,7 +44,7 @@ def plot_imo_ensemble(ds: Any, *, fig: Any = None) -> Any:
     """
     import matplotlib.pyplot as plt
 
-    from ..analysis.imo_ensemble import is_ensemble_dataset
+    from ..analysis.imo.ensemble import is_ensemble_dataset
 
     if not is_ensemble_dataset(ds):
         raise ValueError("not the Dataset of an IMO ensemble check (ensemble_dataset)")

@@ -4,7 +4,7 @@ reasons, the distribution of every criterion's value against its limit, and the 
 for the samples.
 
 From either input that holds an ensemble's check: the file ``imo-probabilities.nc``
-(:mod:`seahelm.analysis.imo_ensemble`; the probabilities as stored) or a sweep store of an
+(:mod:`seahelm.analysis.imo.ensemble`; the probabilities as stored) or a sweep store of an
 ``imo`` Monte-Carlo scenario (:mod:`seahelm.sweep.imo`; the probabilities computed from the
 stored values and limits of the samples written so far).
 """
@@ -37,7 +37,7 @@ def ensemble_sections(data: ReportData) -> list[Section]:
     -------
     list of Section
     """
-    from ..analysis.imo_ensemble import ensemble_payload
+    from ..analysis.imo.ensemble import ensemble_payload
     from ..sweep.imo import is_imo_store, store_probabilities
 
     if data.imo_ensemble is not None:

@@ -115,7 +115,7 @@ class ReportData:
         store's attributes (``sweep_summary`` when complete); None for other inputs.
     imo_ensemble : xarray.Dataset or None
         The IMO check of an ensemble (``imo-probabilities.nc``,
-        :mod:`seahelm.analysis.imo_ensemble`); None for other inputs.
+        :mod:`seahelm.analysis.imo.ensemble`); None for other inputs.
     seakeeping : xarray.Dataset or None
         Seakeeping statistics over (dof, speed, heading) (``seakeeping.nc``,
         :mod:`seahelm.analysis.seakeeping`); None for other inputs.
@@ -229,7 +229,7 @@ def load_report_data(path: str | Path) -> ReportData:
     if path.is_dir() or path.suffix == ".zarr":
         return _sweep_data(path)
     ds = open_result_file(path)
-    from ..analysis.imo_ensemble import is_ensemble_dataset
+    from ..analysis.imo.ensemble import is_ensemble_dataset
 
     if is_ensemble_dataset(ds):
         return ReportData(title=str(ds.attrs.get("title") or path.name), sets=(),

@@ -20,7 +20,7 @@ def read_draws(path: str | os.PathLike[str]) -> dict[str, Any]:
     """The ``[draws]`` table of a TOML file as sampling distributions, by parameter name
     (``N_r = {distribution = "normal", mean = -0.049, std = 0.0049}``; the distributions of a
     scenario's ``[batch.monte_carlo.draws]``). The names and units are checked against a ship
-    where the draws are used (:func:`seahelm.analysis.imo_probability.monte_carlo_ships`).
+    where the draws are used (:func:`seahelm.analysis.imo.probability.monte_carlo_ships`).
 
     Parameters
     ----------

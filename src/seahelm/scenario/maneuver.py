@@ -19,7 +19,7 @@ or in degrees with ``_deg``); they are the keyword arguments of
 :func:`~seahelm.analysis.maneuvers.turning_circle`, :func:`~seahelm.analysis.maneuvers.zigzag`
 (``heading``: the heading trigger, default equal to the rudder angle),
 :func:`~seahelm.analysis.maneuvers.pull_out`, :func:`~seahelm.analysis.maneuvers.spirals`
-(``max_rudder``, ``hold``) and :func:`~seahelm.analysis.imo.imo_check`. Every run of a
+(``max_rudder``, ``hold``) and :func:`~seahelm.analysis.imo.check.imo_check`. Every run of a
 manoeuvre is one compiled batch, as from the library or ``seahelm maneuver``.
 """
 
@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError, ValidityRangeWarning
-from ..analysis.imo_monte_carlo import SHARED_KEYS
+from ..analysis.imo.monte_carlo import SHARED_KEYS
 from ..ships.water_depth import params_at_depth
 from .errors import ScenarioError, at_key
 from .particulars import PREFIX, EstimatedSamples, check_drawn_particulars
@@ -215,9 +215,9 @@ class ManeuverJob:
             A :class:`~seahelm.analysis.maneuvers.ManeuverResult` for ``turning``, ``zigzag``,
             ``pullout`` and ``stopping`` (:func:`~seahelm.analysis.maneuvers.crash_stop`); the
             direct and reverse spirals for ``spiral``; an
-            :class:`~seahelm.analysis.imo.ImoReport` for ``imo``, and for ``imo`` with
+            :class:`~seahelm.analysis.imo.check.ImoReport` for ``imo``, and for ``imo`` with
             ``[batch.monte_carlo]`` the pass probabilities of the samples' ships
-            (:func:`~seahelm.analysis.imo_probability.imo_probabilities`, the scenario's ship
+            (:func:`~seahelm.analysis.imo.probability.imo_probabilities`, the scenario's ship
             as the reference of the manoeuvres' durations). The scenario's metadata is in the
             attributes of every metrics Dataset.
 
@@ -228,7 +228,7 @@ class ManeuverJob:
         """
         from ..analysis import maneuvers
         from ..analysis.equilibrium import EquilibriumError
-        from ..analysis.imo import imo_check
+        from ..analysis.imo.check import imo_check
 
         functions = {"turning": maneuvers.turning_circle, "zigzag": maneuvers.zigzag,
                      "pullout": maneuvers.pull_out, "spiral": maneuvers.spirals,
@@ -257,10 +257,10 @@ class ManeuverJob:
         Returns
         -------
         ImoProbabilities
-            With every member's values (:func:`~seahelm.analysis.imo_probability.
+            With every member's values (:func:`~seahelm.analysis.imo.probability.
             imo_probabilities`, the scenario's ship as the reference).
         """
-        from ..analysis.imo_probability import imo_probabilities
+        from ..analysis.imo.probability import imo_probabilities
 
         return imo_probabilities(ships, dt=self.options.get("dt"), reference=self.ship)
 

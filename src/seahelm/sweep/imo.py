@@ -58,8 +58,8 @@ def imo_chunk(job: "ManeuverJob", start: int, stop: int, *, with_attrs: bool = F
     """
     import xarray as xr
 
-    from ..analysis.imo_ensemble import INTERVAL, criteria_json, criterion_label
-    from ..analysis.imo_probability import NO_APPROACH
+    from ..analysis.imo.ensemble import INTERVAL, criteria_json, criterion_label
+    from ..analysis.imo.probability import NO_APPROACH
 
     probs = job.imo_probabilities(job.ships(start, stop))
     failure = np.array([0 if ok else (1 if why.startswith(NO_APPROACH) else 2)
@@ -101,7 +101,7 @@ def is_imo_store(ds: "xr.Dataset") -> bool:
 
 def store_probabilities(ds: "xr.Dataset") -> dict[str, Any]:
     """The pass probabilities of the samples a store holds, from their stored values and the
-    stored limits (:func:`~seahelm.analysis.imo_probability.probabilities_from_values`).
+    stored limits (:func:`~seahelm.analysis.imo.probability.probabilities_from_values`).
 
     Parameters
     ----------
@@ -115,7 +115,7 @@ def store_probabilities(ds: "xr.Dataset") -> dict[str, Any]:
         As ``seahelm imo --monte-carlo --json`` (``criteria``, ``probability``, ``ci_low``,
         ``ci_high``, ``excluded``, ...), with ``samples`` and ``excluded_by_reason``.
     """
-    from ..analysis.imo_probability import probabilities_from_values
+    from ..analysis.imo.probability import probabilities_from_values
 
     criteria = json.loads(ds.attrs["imo_criteria"])
     values = np.asarray(ds["value"].transpose("run", "criterion").values, dtype=float)

@@ -248,7 +248,7 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
         in it (default True; one batched steady-turn solve of every ship). False skips that
         solve: such a run ends with its execute not reached (NaN, ``complete`` False, the
         ``message`` says so) — what an ensemble wants, where one member must not stop the
-        others (:func:`~seahelm.analysis.imo_probability.imo_probabilities`).
+        others (:func:`~seahelm.analysis.imo.probability.imo_probabilities`).
 
     Returns
     -------

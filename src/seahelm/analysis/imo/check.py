@@ -59,11 +59,11 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from .._validate import as_float_array
-from ..errors import ParameterError
-from ..simulation.compile_ahead import CompileAhead
-from .constant_speed import is_constant_speed
-from .maneuvers import (
+from ..._validate import as_float_array
+from ...errors import ParameterError
+from ...simulation.compile_ahead import CompileAhead
+from ..constant_speed import is_constant_speed
+from ..maneuvers import (
     ManeuverResult,
     crash_stop,
     maneuver_ship,
@@ -252,12 +252,12 @@ class ImoReport:
         return title, rows
 
     def __repr__(self) -> str:
-        from .._repr import summary_text
+        from ..._repr import summary_text
 
         return summary_text(*self._summary())
 
     def _repr_html_(self) -> str:
-        from .._repr import summary_html
+        from ..._repr import summary_html
 
         return summary_html(*self._summary())
 

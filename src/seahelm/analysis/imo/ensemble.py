@@ -38,7 +38,7 @@ import numpy as np
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
-    from .imo_probability import ImoProbabilities
+    from .probability import ImoProbabilities
 
 __all__ = ["ENSEMBLE_FILE", "ensemble_dataset", "is_ensemble_dataset", "ensemble_payload",
            "criterion_label", "criteria_json", "excluded_samples"]
@@ -91,7 +91,7 @@ def ensemble_dataset(probs: "ImoProbabilities", *,
     Parameters
     ----------
     probs : ImoProbabilities
-        From :func:`~seahelm.analysis.imo_probability.imo_probabilities` (with its per-member
+        From :func:`~seahelm.analysis.imo.probability.imo_probabilities` (with its per-member
         values).
     draws : mapping of key path to (values, attrs), optional
         The drawn values of every member and their attributes (``distribution``, ``units``).
@@ -109,7 +109,7 @@ def ensemble_dataset(probs: "ImoProbabilities", *,
     """
     import xarray as xr
 
-    from .. import __version__
+    from ... import __version__
 
     if probs.complete is None or len(probs.values) != len(probs.rows):
         raise ValueError("the check holds no per-member values (an ImoProbabilities of an "

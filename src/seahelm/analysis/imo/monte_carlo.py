@@ -1,10 +1,10 @@
 """The IMO check of a ship under uncertainty, in one call: draw, check, keep what was drawn.
 
 :func:`imo_monte_carlo` draws ``n`` samples of a ship's coefficients
-(:func:`~seahelm.analysis.imo_probability.monte_carlo_ships`: by default a normal
+(:func:`~seahelm.analysis.imo.probability.monte_carlo_ships`: by default a normal
 distribution of relative standard deviation ``uncertainty`` around the model's
-:data:`~seahelm.analysis.imo_probability.UNCERTAIN_COEFFICIENTS`), checks them
-(:func:`~seahelm.analysis.imo_probability.imo_probabilities`) and returns an
+:data:`~seahelm.analysis.imo.probability.UNCERTAIN_COEFFICIENTS`), checks them
+(:func:`~seahelm.analysis.imo.probability.imo_probabilities`) and returns an
 :class:`ImoEnsemble`: the probabilities, every sample's drawn values by key path
 (``vessel.params.<name>``) with their distribution and unit, and what was checked.
 :func:`imo_of_samples` does the same for the rows of a samples file
@@ -20,13 +20,13 @@ import dataclasses
 from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
-from ..errors import ParameterError
-from .imo_probability import DEFAULT_UNCERTAINTY, UNCERTAIN_COEFFICIENTS
+from ...errors import ParameterError
+from .probability import DEFAULT_UNCERTAINTY, UNCERTAIN_COEFFICIENTS
 
 if TYPE_CHECKING:
     import xarray as xr
 
-    from .imo_probability import ImoProbabilities
+    from .probability import ImoProbabilities
 
 __all__ = ["SHARED_KEYS", "ImoEnsemble", "drawn_statistics", "imo_monte_carlo", "imo_of_samples", "drawn_values",
            "ships_of_samples"]
@@ -67,14 +67,14 @@ class ImoEnsemble:
     title: str
 
     def dataset(self) -> "xr.Dataset":
-        """The check as a Dataset (:func:`~seahelm.analysis.imo_ensemble.ensemble_dataset`:
+        """The check as a Dataset (:func:`~seahelm.analysis.imo.ensemble.ensemble_dataset`:
         ``imo-probabilities.nc``).
 
         Returns
         -------
         xarray.Dataset
         """
-        from .imo_ensemble import ensemble_dataset
+        from .ensemble import ensemble_dataset
 
         return ensemble_dataset(self.probabilities, draws=self.drawn,
                                 attrs={**self.metadata, "title": self.title})
@@ -126,7 +126,7 @@ def imo_monte_carlo(ship: Any, n: int, *, seed: int = 0, draws: Mapping[str, Any
         Integration step [s] (default: the manoeuvres').
     progress : callable(done, total), optional
         Called as the manoeuvres of the samples complete
-        (:func:`~seahelm.analysis.imo_probability.imo_probabilities`).
+        (:func:`~seahelm.analysis.imo.probability.imo_probabilities`).
     source : str, optional
         Where ``draws`` came from (a file), for the metadata (default ``"draws"``).
 
@@ -137,10 +137,10 @@ def imo_monte_carlo(ship: Any, n: int, *, seed: int = 0, draws: Mapping[str, Any
     Raises
     ------
     ParameterError
-        As :func:`~seahelm.analysis.imo_probability.monte_carlo_ships` and
-        :func:`~seahelm.analysis.imo_probability.imo_probabilities`.
+        As :func:`~seahelm.analysis.imo.probability.monte_carlo_ships` and
+        :func:`~seahelm.analysis.imo.probability.imo_probabilities`.
     """
-    from .imo_probability import imo_probabilities, monte_carlo_ships
+    from .probability import imo_probabilities, monte_carlo_ships
 
     ships = monte_carlo_ships(ship, n, seed=seed, draws=draws, uncertainty=uncertainty)
     probs = imo_probabilities(ships, dt=dt, reference=ship, progress=progress)
@@ -177,7 +177,7 @@ def ships_of_samples(ship: Any, table: Any, n: int | None = None) -> list[Any]:
         of an IMO check share), more rows asked for than the table holds, units other than
         the stored ones, a row the ship cannot take (with ``run`` the row).
     """
-    from ..identification.samples_file import check_units
+    from ...identification.samples_file import check_units
 
     names = set(ship.params.field_names())
     for key in table.keys:
@@ -240,8 +240,8 @@ def imo_of_samples(ship: Any, table: Any, *, n: int | None = None, dt: float | N
     ParameterError
         As :func:`ships_of_samples`.
     """
-    from .imo_probability import imo_probabilities
-    from ..identification.samples_file import samples_attrs
+    from .probability import imo_probabilities
+    from ...identification.samples_file import samples_attrs
 
     ships = ships_of_samples(ship, table, n)
     n = len(ships)
@@ -263,7 +263,7 @@ def drawn_statistics(drawn: dict[str, Any]) -> list[dict[str, Any]]:
     Parameters
     ----------
     drawn : dict
-        :attr:`seahelm.analysis.imo_monte_carlo.ImoEnsemble.drawn`.
+        :attr:`seahelm.analysis.imo.monte_carlo.ImoEnsemble.drawn`.
 
     Returns
     -------

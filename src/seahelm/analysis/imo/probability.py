@@ -2,9 +2,10 @@
 
 An uncertain ship — an identification's posterior, a Monte-Carlo of its coefficients — is an
 ensemble of parameter sets. :func:`imo_probabilities` runs the manoeuvres of the IMO check
-(:func:`seahelm.analysis.imo.imo_check`: 35° turning and 10° turning both sides, the 10/10 and
-20/20 zig-zags both sides) for the whole ensemble in **one batch each** (per chunk of
-members), evaluates every criterion for every member with the limits of :mod:`seahelm.analysis.imo`, and gives the
+(:func:`seahelm.analysis.imo.check.imo_check`: 35° turning and 10° turning both sides, the
+10/10 and 20/20 zig-zags both sides) for the whole ensemble in **one batch each** (per chunk of
+members), evaluates every criterion for every member with the limits of
+:mod:`seahelm.analysis.imo.check`, and gives the
 fraction that passes each criterion and the whole check with a Wilson score interval (Wilson
 1927; it stays inside [0, 1] and keeps its coverage for fractions near 0 or 1, where the normal
 interval does not). Every member's runs last :data:`FIRST_PASS` (1.15) times the time the
@@ -37,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError
+from ...errors import ParameterError
 
 #: Members simulated together (a bound on the memory of the recorded manoeuvres).
 CHUNK = 500
@@ -173,14 +174,14 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
         An empty ensemble, members (or the reference) of different lengths, test speeds or
         steering-gear limits; an ensemble none of whose members has a straight approach.
     """
-    from .imo import (
+    from .check import (
         ADVANCE_LIMIT,
         INITIAL_TURNING_LIMIT,
         TACTICAL_DIAMETER_LIMIT,
         ZIGZAG_20_FIRST_OVERSHOOT_LIMIT,
         imo_overshoot_limits,
     )
-    from .maneuvers import maneuver_ship, turning_circle, zigzag
+    from ..maneuvers import maneuver_ship, turning_circle, zigzag
 
     members = [maneuver_ship(s) for s in ships]
     if not members:
@@ -236,7 +237,7 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
     passes = _Passes(record_dt)
     stopping_note, stoppers = "", None
     try:
-        from .maneuvers import crash_stop, stopping_ship
+        from ..maneuvers import crash_stop, stopping_ship
 
         stoppers = [stopping_ship(s) for s in members]
     except ParameterError as exc:
@@ -292,7 +293,7 @@ def imo_probabilities(ships: Sequence[Any], *, level: float = 0.95, dt: float | 
     checks = [(a, c, side, np.concatenate(parts[(a, c, side)]), limit, unit)
               for side in ("starboard", "port") for a, c, unit, limit in names]
     if stoppers is not None:
-        from .imo import STOPPING_LIMIT
+        from .check import STOPPING_LIMIT
 
         ref_stop = crash_stop(stopping_ship(ref), speed=V, dt=dt).metrics
         t_stop = _last(ref_stop["time_dead"], ref_stop.attrs["t_final"])
@@ -397,8 +398,8 @@ def _with_approach(members: list[Any], reference: list[Any]
     manoeuvres that follow), the reference ship (``reference``'s if it has an approach, else
     the first such member) and why each other member has none (by index). With no such
     member, the reference alone stands in (its values are not the ensemble's)."""
-    from .equilibrium import EquilibriumError
-    from .maneuvers.ships import steady_approaches
+    from ..equilibrium import EquilibriumError
+    from ..maneuvers.ships import steady_approaches
 
     both = members + reference
     found = steady_approaches(both[0].model, [s.params for s in both],
@@ -540,7 +541,7 @@ def monte_carlo_ships(ship: Any, n: int, *, seed: int = 0, draws: Any = None,
         A bad ``n``, ``seed`` or ``uncertainty``; a draw on a parameter the ship does not have;
         a drawn value outside the parameter's range (naming the sample).
     """
-    from ..numerics.sampling import draw_samples, get_distribution
+    from ...numerics.sampling import draw_samples, get_distribution
 
     if isinstance(n, bool) or not isinstance(n, int) or n < 1:
         raise ParameterError(f"must be a whole number >= 1, got {n!r}", field="n", value=n)

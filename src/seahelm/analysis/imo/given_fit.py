@@ -2,7 +2,7 @@
 
 An identified model is uncertain; the probability that the ship passes IMO MSC.137(76) given
 the records is the fraction of ships drawn from the fit's posterior that pass
-(:func:`~seahelm.analysis.imo_probability.imo_probabilities`, Wilson intervals).
+(:func:`~seahelm.analysis.imo.probability.imo_probabilities`, Wilson intervals).
 :func:`imo_given_nomoto_fit` draws the posterior of a Nomoto fit
 (:func:`~seahelm.identification.nomoto_posterior.posterior_samples`) and builds its ships with the
 given speed, length and steering gear (:func:`~seahelm.identification.nomoto_posterior.
@@ -22,7 +22,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-from ..errors import ParameterError
+from ...errors import ParameterError
 
 __all__ = ["imo_given_nomoto_fit", "imo_given_mmg_fit", "write_posterior_samples"]
 
@@ -54,12 +54,12 @@ def imo_given_nomoto_fit(fit: Any, records: Sequence[Any], n: int, *, speed: flo
     level : float, optional
         Of the Wilson intervals.
     progress : callable(done, total), optional
-        As :func:`~seahelm.analysis.imo_probability.imo_probabilities`'.
+        As :func:`~seahelm.analysis.imo.probability.imo_probabilities`'.
 
     Returns
     -------
     dict
-        :meth:`~seahelm.analysis.imo_probability.ImoProbabilities.as_dict` with ``samples``,
+        :meth:`~seahelm.analysis.imo.probability.ImoProbabilities.as_dict` with ``samples``,
         ``posterior`` and ``seed``.
 
     Raises
@@ -68,7 +68,7 @@ def imo_given_nomoto_fit(fit: Any, records: Sequence[Any], n: int, *, speed: flo
         No speed or length (``field="speed"``/``"length"``); a fit that does not identify
         its parameters (``field="fit"``): no posterior to draw from.
     """
-    from ..identification.nomoto_posterior import posterior_samples, posterior_ships
+    from ...identification.nomoto_posterior import posterior_samples, posterior_ships
 
     for field, value in (("speed", speed), ("length", length)):
         if value is None:
@@ -115,7 +115,7 @@ def imo_given_mmg_fit(fit: Any, records: Sequence[Any], base: Any, n: int, *,
         As :func:`imo_given_nomoto_fit`'s, with ``posterior_samples`` (the posterior's
         diagnostics).
     """
-    from ..identification.mmg_posterior import mmg_posterior, posterior_ships
+    from ...identification.mmg_posterior import mmg_posterior, posterior_ships
 
     post = posterior if posterior is not None else mmg_posterior(fit, records, n=n,
                                                                  method=method, seed=seed)
@@ -127,7 +127,7 @@ def imo_given_mmg_fit(fit: Any, records: Sequence[Any], base: Any, n: int, *,
 
 def _probabilities(ships: list[Any], n: int, method: str, seed: int | None, level: float,
                    reference: Any, progress: Any) -> dict[str, Any]:
-    from .imo_probability import imo_probabilities
+    from .probability import imo_probabilities
 
     out = imo_probabilities(ships, level=level, reference=reference,
                             progress=progress).as_dict()
@@ -154,8 +154,8 @@ def write_posterior_samples(path: str | os.PathLike[str], fit: Any, post: Any, b
     -------
     pathlib.Path
     """
-    from ..identification.mmg_posterior import posterior_columns
-    from ..identification.samples_file import write_samples
+    from ...identification.mmg_posterior import posterior_columns
+    from ...identification.samples_file import write_samples
 
     columns = posterior_columns(fit, post)
     units = {i.name: i.unit for i in type(base.params).info()}
