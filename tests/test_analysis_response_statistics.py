@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from scipy import integrate, optimize
 
-from seahelm.analysis.response_statistics import (
+from seahelm.analysis.seakeeping.response_statistics import (
     crest_period,
     exceedance_probability,
     most_probable_maximum,

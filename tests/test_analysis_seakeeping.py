@@ -15,7 +15,7 @@ import pytest
 from numpy.polynomial import polynomial as P
 from scipy import integrate
 
-from seahelm.analysis.seakeeping import closed_form_moments, response_moments
+from seahelm.analysis.seakeeping.frequency_domain import closed_form_moments, response_moments
 from seahelm.constants import GRAVITY
 from seahelm.environment.encounter import EncounterSpectrum
 from seahelm.environment.rao import RAO, closed_form_rao

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from seahelm.analysis.maneuvers import summarize, summary_units
-from seahelm.analysis.wave_motion_metrics import wave_motion_metrics
+from seahelm.analysis.seakeeping.time_domain import wave_motion_metrics
 from seahelm.environment.loads import LvovWaveParams
 
 

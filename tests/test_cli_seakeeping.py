@@ -12,7 +12,7 @@ import pytest
 import xarray as xr
 from typer.testing import CliRunner
 
-from seahelm.analysis.seakeeping import closed_form_moments
+from seahelm.analysis.seakeeping.frequency_domain import closed_form_moments
 from seahelm.cli.main import app
 from seahelm.environment.rao import closed_form_rao
 from seahelm.environment.rao_io import write_rao_table

@@ -69,7 +69,7 @@ def _rao():
 
 
 def _moments():
-    from seahelm.analysis.seakeeping import closed_form_moments
+    from seahelm.analysis.seakeeping.frequency_domain import closed_form_moments
     from seahelm.environment.spectra import Jonswap
     from seahelm.vessels.particulars import Particulars
 

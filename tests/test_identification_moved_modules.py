@@ -36,6 +36,8 @@ MOVED = {
     "seahelm.analysis.imo_monte_carlo": "seahelm.analysis.imo.monte_carlo",
     "seahelm.analysis.imo_ensemble": "seahelm.analysis.imo.ensemble",
     "seahelm.analysis.imo_given_fit": "seahelm.analysis.imo.given_fit",
+    "seahelm.analysis.response_statistics": "seahelm.analysis.seakeeping.response_statistics",
+    "seahelm.analysis.wave_motion_metrics": "seahelm.analysis.seakeeping.time_domain",
 }
 
 

@@ -106,7 +106,7 @@ def test_a_sweep_in_chunks_keeps_each_runs_sea_in_the_loop(tmp_path):
 def test_run_metrics_of_motions_in_the_loop():
     """The in-loop motions are the loop's outputs, not ``extra``: wave_motion_metrics found
     none (no rms_heave_m ... in seahelm run's summary nor in a sweep's store)."""
-    from seahelm.analysis.wave_motion_metrics import wave_motion_metrics
+    from seahelm.analysis.seakeeping.time_domain import wave_motion_metrics
 
     res = run_scenario(parse_scenario(text(f'rao_file = "{BARGE}"',
                                            "autopilot_sees_first_order = true"), source="in"))
@@ -129,7 +129,7 @@ def test_the_polar_of_a_sweep_with_a_rao_file_takes_its_frequency_domain_from_th
     the scenario file's, wherever the store is (it was looked for beside the store)."""
     import shutil
 
-    from seahelm.analysis.seakeeping import response_moments
+    from seahelm.analysis.seakeeping.frequency_domain import response_moments
     from seahelm.sweep import run_sweep
     from seahelm.sweep.seakeeping import sweep_seakeeping
 

@@ -71,8 +71,8 @@ def test_the_aggregation_against_the_stored_runs(validation):
 def test_time_domain_agrees_with_the_frequency_domain_within_three_standard_errors(
         validation):
     """|m̂0 − m0| <= 3 σ̂/√R in every cell where the response does not vanish at the exact
-    heading; m0 of seahelm.analysis.seakeeping.response_moments (the same RAO tables, sea
-    and band, at the cell's mean speed and heading). Where it vanishes (pitch in beam seas,
+    heading; m0 of seahelm.analysis.seakeeping.frequency_domain.response_moments (the same RAO
+    tables, sea and band, at the cell's mean speed and heading). Where it vanishes (pitch in beam seas,
     roll in head seas) the autopilot's heading wander alone gives the time domain its
     value: small against the same response elsewhere."""
     _, p = validation

@@ -18,6 +18,8 @@ _REGROUPED = {
     "imo_monte_carlo": "seahelm.analysis.imo.monte_carlo",
     "imo_ensemble": "seahelm.analysis.imo.ensemble",
     "imo_given_fit": "seahelm.analysis.imo.given_fit",
+    "response_statistics": "seahelm.analysis.seakeeping.response_statistics",
+    "wave_motion_metrics": "seahelm.analysis.seakeeping.time_domain",
 }
 
 __getattr__ = deprecated_modules(__name__, {**_MOVED, **_REGROUPED})

@@ -5,7 +5,7 @@ re-evaluated at every speed) — or, with ``--rao FILE``, the RAOs of a file at 
 wave spectrum, optionally short-crested (``--spreading``): the response's spectral moments
 (:mod:`seahelm.analysis.seakeeping`), its RMS, significant amplitude (2√m0), mean zero
 up-crossing period and, with ``--exceed``, the probability of exceeding that level at least
-once in ``--duration`` (:mod:`seahelm.analysis.response_statistics`). Prints a table (a
+once in ``--duration`` (:mod:`seahelm.analysis.seakeeping.response_statistics`). Prints a table (a
 summary per speed for grids of more than 40 cells); ``--out DIR`` writes ``seakeeping.nc``
 (all dofs, SI units) and the polar diagram ``seakeeping-<dof>.png``, together or not at all.
 Roll and pitch are shown in degrees, heave in metres; ``--limit`` and ``--exceed`` are in
@@ -229,7 +229,7 @@ def seakeeping(
     json_out: JsonFlag = False,
 ) -> None:
     """Seakeeping in a sea state: RMS, significant amplitude, exceedance, polar diagram."""
-    from ..analysis.seakeeping import closed_form_moments, response_moments
+    from ..analysis.seakeeping.frequency_domain import closed_form_moments, response_moments
 
     if sweep is not None:
         given = _given_besides(("dof", "limit", "out", "sweep", "json_out"))

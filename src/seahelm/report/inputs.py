@@ -234,7 +234,7 @@ def load_report_data(path: str | Path) -> ReportData:
     if is_ensemble_dataset(ds):
         return ReportData(title=str(ds.attrs.get("title") or path.name), sets=(),
                           sources=(str(path),), imo_ensemble=ds)
-    from ..analysis.seakeeping import DATASET_FORMAT
+    from ..analysis.seakeeping.frequency_domain import DATASET_FORMAT
 
     if ds.attrs.get("format") == DATASET_FORMAT:
         return ReportData(title=str(ds.attrs.get("title") or path.name), sets=(),

@@ -1,6 +1,6 @@
 """The report section of a seakeeping result (``seakeeping.nc`` of ``seahelm seakeeping
---out``, :meth:`seahelm.analysis.seakeeping.ResponseMoments.to_xarray`): what was computed,
-a polar diagram of each degree of freedom's RMS over wave heading × speed (plotly
+--out``, :meth:`seahelm.analysis.seakeeping.frequency_domain.ResponseMoments.to_xarray`): what
+was computed, a polar diagram of each degree of freedom's RMS over wave heading × speed (plotly
 ``barpolar``: head seas up, following seas down, waves from port on the left, as the PNG of
 :mod:`seahelm.plotting.seakeeping`), and per speed the largest RMS and significant amplitude
 over the headings with the heading where it occurs. Roll and pitch are shown in degrees, heave

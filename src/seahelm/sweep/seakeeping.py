@@ -5,7 +5,7 @@ first_order_motions = true``) over the wave direction (``environment.waves.direc
 the ship's course ``controller.reference.heading_deg``) × a speed knob (any other grid key: the
 shaft speed, a model's speed), with seeded runs per cell (``[batch.monte_carlo] runs``), stores
 each run's RMS heave, pitch and roll, mean surge speed and mean wave heading relative to the
-ship (:mod:`seahelm.analysis.wave_motion_metrics`). Per cell, with R runs of mean squares
+ship (:mod:`seahelm.analysis.seakeeping.time_domain`). Per cell, with R runs of mean squares
 x_r = RMS_r²::
 
     m̂0 = (1/R) Σ x_r,      se(m̂0) = σ̂/√R,   σ̂² = Σ (x_r − m̂0)²/(R − 1)
@@ -408,7 +408,7 @@ def frequency_domain_moments(polar: SweepSeakeeping, text: str, source: str = "<
     ParameterError
         If the scenario has no first-order motions.
     """
-    from ..analysis.seakeeping import response_moments
+    from ..analysis.seakeeping.frequency_domain import response_moments
     from ..environment.directional_spreading import spreading_with_parameter
     from ..environment.rao import closed_form_rao
     from ..environment.rao_io import read_rao

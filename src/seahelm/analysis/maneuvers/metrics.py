@@ -10,7 +10,7 @@ import numpy as np
 
 from ...constants import wrap_angle
 from ...units import metric_units
-from ..wave_motion_metrics import wave_motion_metrics
+from ..seakeeping.time_domain import wave_motion_metrics
 
 __all__ = ["settling_time", "overshoot", "turning_diameter", "rudder_reversals", "summarize",
            "summary_units"]
@@ -233,7 +233,7 @@ def summarize(result) -> list[dict[str, float | str]]:  # noqa: ANN001 - SimResu
     """Per-run summary metrics of a :class:`~seahelm.results.SimResult` (SI units unless
     the key says ``_deg``; each metric's unit: :func:`summary_units`). Runs with first-order
     wave motions also get their RMS heave, pitch and roll, mean surge speed and mean wave
-    heading (:func:`seahelm.analysis.wave_motion_metrics.wave_motion_metrics`).
+    heading (:func:`seahelm.analysis.seakeeping.time_domain.wave_motion_metrics`).
 
     Parameters
     ----------

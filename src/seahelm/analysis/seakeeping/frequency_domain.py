@@ -17,7 +17,7 @@ and with directional spreading D(θ) (:mod:`seahelm.environment.directional_spre
 grid (default: 2,000 frequencies from ω_p/200 to 10 ω_p, ω_p the spectrum's peak), the θ
 integral the spreading's quadrature. The statistics (RMS, significant amplitude 2√m0, the
 zero up-crossing period, the probability of exceeding a level in a time, the most probable
-maximum) are :mod:`seahelm.analysis.response_statistics`.
+maximum) are :mod:`seahelm.analysis.seakeeping.response_statistics`.
 
 :func:`response_moments` takes RAOs (one per speed: a file's, or any :class:`~seahelm.
 environment.rao.RAO`), interpolated as :meth:`RAO.__call__ <seahelm.environment.rao.RAO.
@@ -44,12 +44,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.integrate import trapezoid
 
-from .._validate import as_float_array, check_nonnegative, check_positive
-from ..constants import GRAVITY
-from ..environment.directional_spreading import get_spreading
-from ..environment.rao import DOF_UNITS, RAO, closed_form_rao
-from ..environment.spectrum_base import WaveSpectrum
-from ..errors import ParameterError, deprecated_method, warn_validity
+from ..._validate import as_float_array, check_nonnegative, check_positive
+from ...constants import GRAVITY
+from ...environment.directional_spreading import get_spreading
+from ...environment.rao import DOF_UNITS, RAO, closed_form_rao
+from ...environment.spectrum_base import WaveSpectrum
+from ...errors import ParameterError, deprecated_method, warn_validity
 from . import response_statistics as stats
 
 __all__ = ["ResponseMoments", "response_moments", "closed_form_moments", "response_unit",
@@ -193,7 +193,7 @@ class ResponseMoments:
                                both_sides: bool = False) -> np.ndarray:
         """P(the response exceeds ``level`` at least once in ``duration``) over (speed, heading).
 
-        :func:`~seahelm.analysis.response_statistics.exceedance_probability`.
+        :func:`~seahelm.analysis.seakeeping.response_statistics.exceedance_probability`.
 
         Parameters
         ----------

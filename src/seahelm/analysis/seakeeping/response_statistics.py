@@ -1,7 +1,7 @@
 """Short-term statistics of a Gaussian response from its spectral moments m0, m2, m4.
 
 A linear response to a stationary Gaussian sea is a zero-mean Gaussian process x(t) with
-spectral moments m_n = ∫ ω_eⁿ S_R(ω_e) dω_e (:mod:`seahelm.analysis.seakeeping` computes them).
+spectral moments m_n = ∫ ω_eⁿ S_R(ω_e) dω_e (:mod:`.frequency_domain` computes them).
 Its short-term statistics follow from them alone:
 
 * RMS σ = √m0; **significant amplitude** 2√m0 (the mean of the highest third of the
@@ -39,8 +39,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import as_float_array, check_nonnegative, check_positive
-from ..errors import ParameterError
+from ..._validate import as_float_array, check_nonnegative, check_positive
+from ...errors import ParameterError
 
 __all__ = [
     "significant_amplitude",
