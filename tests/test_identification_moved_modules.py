@@ -38,6 +38,10 @@ MOVED = {
     "seahelm.analysis.imo_given_fit": "seahelm.analysis.imo.given_fit",
     "seahelm.analysis.response_statistics": "seahelm.analysis.seakeeping.response_statistics",
     "seahelm.analysis.wave_motion_metrics": "seahelm.analysis.seakeeping.time_domain",
+    "seahelm.analysis.replay_dataset": "seahelm.analysis.replay.dataset",
+    "seahelm.analysis.reversals": "seahelm.analysis.replay.reversals",
+    "seahelm.analysis.record_segments": "seahelm.analysis.replay.segments",
+    "seahelm.analysis.mmg_multi_record": "seahelm.analysis.replay.mmg_multi_record",
 }
 
 

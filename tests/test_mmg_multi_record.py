@@ -1,4 +1,4 @@
-"""Multi-record identification of an ``mmg-ls`` ship (seahelm.analysis.mmg_multi_record) and
+"""Multi-record identification of an ``mmg-ls`` ship (seahelm.analysis.replay.mmg_multi_record) and
 ``seahelm identify mmg`` with an mmg-ls ship: synthetic records only (no measured data).
 
 The records are simulated by the engine through the replay's path (a ``Problem`` with the
@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pytest
 
-from seahelm.analysis.mmg_multi_record import (
+from seahelm.analysis.replay.mmg_multi_record import (
     build_segments,
     fit_mmg_ls,
     laplace_samples,

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from seahelm.identification.records import RECORD_FORMATS, read_records
-from seahelm.analysis.replay import classify, replay
+from seahelm.analysis.replay.simulate import classify, replay
 from seahelm.errors import ParameterError
 from seahelm.ships import get_ship
 from seahelm.simulation.engine import simulate

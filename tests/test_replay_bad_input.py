@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from seahelm.identification.records import read_records
-from seahelm.analysis.replay import manoeuvre_metrics
+from seahelm.analysis.replay.simulate import manoeuvre_metrics
 from seahelm.errors import ParameterError
 
 from conftest import one_error
@@ -159,7 +159,7 @@ def test_a_recording_too_large_names_the_step(turn_csv):
 
 def test_a_replay_result_shows_a_summary_not_its_arrays(turn_csv):
     # was the dataclass's repr: 4.3 kB of the record's and both tracks' arrays
-    from seahelm.analysis.replay import replay
+    from seahelm.analysis.replay.simulate import replay
 
     rec, = read_records(turn_csv)
     text = repr(replay(rec, SHIP))

@@ -43,7 +43,7 @@ def test_a_step_that_diverges_names_the_step_not_the_ship(turn_csv):
 
 def test_a_default_step_that_diverges_still_names_the_ship(turn_csv, monkeypatch):
     # the ship (not the step, which was not given) is what the divergence is said of
-    import seahelm.analysis.replay as rp
+    import seahelm.analysis.replay.simulate as rp
 
     real = rp._simulate
 

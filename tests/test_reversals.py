@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from seahelm.identification.records import RECORD_FORMATS, read_records, record_from_arrays
-from seahelm.analysis.reversals import (
+from seahelm.analysis.replay.reversals import (
     REVERSAL_RULE,
     find_reversals,
     replay_stop,
@@ -148,11 +148,11 @@ def test_slice_and_rule_text(crash_stop):
 def test_the_measured_wind_uses_the_ships_own_wind_model(crash_stop):
     """esso-osaka-3m has Fujiwara's windage data: the replay's default loads are Fujiwara's;
     a ship without them keeps Blendermann's."""
-    from seahelm.analysis.replay import _default_wind_loads
+    from seahelm.analysis.replay.simulate import _default_wind_loads
 
     assert _default_wind_loads(get_ship(SHIP)) == "fujiwara"
     assert _default_wind_loads(get_ship("kvlcc2-l7")) == "blendermann"
-    from seahelm.analysis.replay import replay
+    from seahelm.analysis.replay.simulate import replay
 
     _res, record = crash_stop
     got = replay(slice_record(record, 0, 100), SHIP, kind="none", wind="measured")

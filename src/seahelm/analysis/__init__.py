@@ -20,6 +20,10 @@ _REGROUPED = {
     "imo_given_fit": "seahelm.analysis.imo.given_fit",
     "response_statistics": "seahelm.analysis.seakeeping.response_statistics",
     "wave_motion_metrics": "seahelm.analysis.seakeeping.time_domain",
+    "replay_dataset": "seahelm.analysis.replay.dataset",
+    "reversals": "seahelm.analysis.replay.reversals",
+    "record_segments": "seahelm.analysis.replay.segments",
+    "mmg_multi_record": "seahelm.analysis.replay.mmg_multi_record",
 }
 
 __getattr__ = deprecated_modules(__name__, {**_MOVED, **_REGROUPED})

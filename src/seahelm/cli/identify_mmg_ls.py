@@ -2,7 +2,7 @@
 
 The branch of :func:`seahelm.cli.identify.mmg` taken when ``--ship`` is a low-speed MMG ship
 (model ``mmg-ls``, e.g. ``esso-osaka-3m``): the output-error fit over record segments of
-:func:`seahelm.analysis.mmg_multi_record.fit_mmg_ls`, a ship file (``--out``) and Laplace
+:func:`seahelm.analysis.replay.mmg_multi_record.fit_mmg_ls`, a ship file (``--out``) and Laplace
 posterior samples (``--samples N --save-posterior FILE.csv``).
 """
 
@@ -59,7 +59,7 @@ def identify_mmg_ls(files: list[Path], base: Any, *, wind: str, free: tuple[str,
                     save_posterior: Path | None, seed: int | None, angles: str,
                     json_out: bool) -> None:
     """Run the fit and print or write its results (module docstring)."""
-    from ..analysis.mmg_multi_record import FREE_DEFAULT, fit_mmg_ls, laplace_samples
+    from ..analysis.replay.mmg_multi_record import FREE_DEFAULT, fit_mmg_ls, laplace_samples
     from ..identification.records import read_records
     from ..errors import ParameterError
     from ._common import write_ship_file

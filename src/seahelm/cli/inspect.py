@@ -64,7 +64,7 @@ def inspect(
 ) -> None:
     """Show a result file: run metadata, batch, per-run status and the summary table."""
     from ..analysis.imo.ensemble import is_ensemble_dataset
-    from ..analysis.replay_dataset import is_replay_dataset
+    from ..analysis.replay.dataset import is_replay_dataset
     from ..results import open_result_file
     from ..sweep.store import store_attrs
 
@@ -196,7 +196,7 @@ def _show_ensemble(result: Path, ds: Any, json_out: bool) -> None:
 def _show_replay(result: Path, ds: Any, json_out: bool) -> None:
     """A replay (``replay.nc`` of ``seahelm replay --out``): its settings, then the measured
     and simulated metrics and the RMS position errors, as ``seahelm replay`` printed them."""
-    from ..analysis.replay_dataset import check_replay_dataset, replay_metrics
+    from ..analysis.replay.dataset import check_replay_dataset, replay_metrics
 
     check_replay_dataset(ds, result)
     metadata = {k: _plain(v) for k, v in ds.attrs.items()

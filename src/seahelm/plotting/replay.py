@@ -16,7 +16,7 @@ def plot_replay(result: Any, *, fig: Any = None) -> Any:
     Parameters
     ----------
     result : ReplayResult
-        A replay (:func:`~seahelm.analysis.replay.replay`).
+        A replay (:func:`~seahelm.analysis.replay.simulate.replay`).
     fig : matplotlib Figure, optional
         Figure to draw into (default: a new one).
 

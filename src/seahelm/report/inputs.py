@@ -121,7 +121,7 @@ class ReportData:
         :mod:`seahelm.analysis.seakeeping`); None for other inputs.
     replay : xarray.Dataset or None
         A replay's measured and simulated tracks and metrics (``replay.nc`` of ``seahelm
-        replay --out``, :mod:`seahelm.analysis.replay_dataset`); None for other inputs.
+        replay --out``, :mod:`seahelm.analysis.replay.dataset`); None for other inputs.
     encounters : xarray.Dataset or None
         An encounter study (``encounters.nc`` of ``seahelm encounter --out``,
         :meth:`seahelm.encounters.result.EncounterResult.to_xarray`); None for other inputs.
@@ -239,7 +239,7 @@ def load_report_data(path: str | Path) -> ReportData:
     if ds.attrs.get("format") == DATASET_FORMAT:
         return ReportData(title=str(ds.attrs.get("title") or path.name), sets=(),
                           sources=(str(path),), seakeeping=ds)
-    from ..analysis.replay_dataset import check_replay_dataset, is_replay_dataset
+    from ..analysis.replay.dataset import check_replay_dataset, is_replay_dataset
 
     if is_replay_dataset(ds):
         check_replay_dataset(ds, path)

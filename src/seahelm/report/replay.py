@@ -1,6 +1,6 @@
 """The report section of a replay (``replay.nc`` of ``seahelm replay --out``,
-:meth:`seahelm.analysis.replay.ReplayResult.to_xarray`): the replay's settings, the measured
-and simulated metrics side by side with the RMS position errors (as ``seahelm replay``
+:meth:`seahelm.analysis.replay.simulate.ReplayResult.to_xarray`): the replay's settings, the
+measured and simulated metrics side by side with the RMS position errors (as ``seahelm replay``
 printed them), the two tracks in the horizontal plane and the heading, yaw rate and rudder
 angle of both over time.
 """
@@ -41,7 +41,7 @@ def replay_sections(data: ReportData) -> list[Section]:
     -------
     list of Section
     """
-    from ..analysis.replay_dataset import replay_metrics
+    from ..analysis.replay.dataset import replay_metrics
 
     ds = data.replay
     if ds is None:

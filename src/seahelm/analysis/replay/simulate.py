@@ -54,8 +54,8 @@ from typing import Any, Literal
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..identification.records import ManoeuvreRecord
+from ...errors import ParameterError
+from ...identification.records import ManoeuvreRecord
 
 __all__ = ["ReplayResult", "replay", "manoeuvre_metrics", "classify", "REPLAY_CHANNELS",
            "RMS_WINDOW", "KINDS", "WIND"]
@@ -142,12 +142,12 @@ class ReplayResult:
             ("metrics", ", ".join(self.metrics) or "none")])
 
     def __repr__(self) -> str:
-        from .._repr import summary_text
+        from ..._repr import summary_text
 
         return summary_text(*self._summary())
 
     def _repr_html_(self) -> str:
-        from .._repr import summary_html
+        from ..._repr import summary_html
 
         return summary_html(*self._summary())
 
@@ -161,7 +161,7 @@ class ReplayResult:
                  "rudder_angle": "rad", "propeller_rps": "1/s"}
         data = {k: (("track", "time"), np.stack([self.measured[k], self.simulated[k]]),
                     {"units": units[k]}) for k in self.measured}
-        from .replay_dataset import REPLAY_FORMAT
+        from .dataset import REPLAY_FORMAT
 
         attrs = {"format": REPLAY_FORMAT, "record": self.record.name, "ship": self.ship,
                  "kind": self.kind,
@@ -269,9 +269,9 @@ def manoeuvre_metrics(kind: str, time: np.ndarray, track: dict[str, np.ndarray],
         Zig-zag: ``overshoot_1..3`` [rad], ``execute_time_2..4`` [s] (from the first execute),
         ``time_to_check_yaw`` [s] and ``period`` [s]. None: empty.
     """
-    from .maneuvers.metrics import turning_diameter
-    from .maneuvers.zigzag import zigzag_metrics
-    from .turning import turning_metrics
+    from ..maneuvers.metrics import turning_diameter
+    from ..maneuvers.zigzag import zigzag_metrics
+    from ..turning import turning_metrics
 
     k0 = _order_index(rudder)
     north, east, psi = track["north"], track["east"], track["heading"]
@@ -390,10 +390,10 @@ def replay(record: ManoeuvreRecord, ship: Any, *,
         the manoeuvre needs (a turn that does not reach 180° of heading change, a zig-zag
         without its third execute), a simulation that diverged.
     """
-    from ..ships import get_ship
-    from ..simulation.engine import simulate
-    from ..simulation.problem import Problem
-    from ..simulation.signals import Samples
+    from ...ships import get_ship
+    from ...simulation.engine import simulate
+    from ...simulation.problem import Problem
+    from ...simulation.signals import Samples
 
     if kind not in KINDS:
         raise ParameterError(f"must be one of {', '.join(KINDS)}, got {kind!r}", field="kind")
@@ -479,8 +479,8 @@ def _simulate(simulate: Any, problem: Any, record: ManoeuvreRecord, step: float,
               n_steps: int) -> Any:
     """``simulate(problem)``; too much work or recording said in the replay's words (the
     step, the record's duration), not the engine's (``t_final``, ``record_every``)."""
-    from ..resources import WorkTooLarge
-    from ..simulation.engine import RecordingTooLarge
+    from ...resources import WorkTooLarge
+    from ...simulation.engine import RecordingTooLarge
 
     try:
         return simulate(problem)
@@ -507,8 +507,8 @@ def _default_wind_loads(ship: Any) -> str:
 def _measured_wind(record: ManoeuvreRecord, ship: Any, load_model: str
                    ) -> tuple[dict[str, Any], dict[str, Any]]:
     """The record's true wind as the Problem's environment fields (module docstring)."""
-    from ..environment.loads import environment, ship_load_params
-    from ..simulation.signals import Samples
+    from ...environment.loads import environment, ship_load_params
+    from ...simulation.signals import Samples
 
     missing = [c for c in ("true_wind_speed", "true_wind_direction") if c not in record.channels]
     if missing:
@@ -537,8 +537,8 @@ def _measured_wind(record: ManoeuvreRecord, ship: Any, load_model: str
 def _closed_loop(record: ManoeuvreRecord, ship: Any, measured: dict[str, np.ndarray],
                  trigger: float, timing: dict[str, Any]) -> Any:
     """The zig-zag controller through the ship's steering gear (module docstring)."""
-    from ..control.zigzag import ZIGZAG, ZIGZAG_RPS, ZigZagParams, ZigZagRpsParams
-    from ..simulation.problem import Problem
+    from ...control.zigzag import ZIGZAG, ZIGZAG_RPS, ZigZagParams, ZigZagRpsParams
+    from ...simulation.problem import Problem
 
     delta = record.rudder_angle
     k0 = _order_index(delta)

@@ -7,7 +7,7 @@ true wind (``wind="measured"``: the records' ``true_wind_speed`` and ``true_wind
 
 **Segments (multiple shooting).** Every record is cut into segments of ``segment`` seconds
 (default 60 s, the window of the replay's early position error,
-:data:`~seahelm.analysis.replay.RMS_WINDOW`); each segment is simulated from the *measured*
+:data:`~seahelm.analysis.replay.simulate.RMS_WINDOW`); each segment is simulated from the *measured*
 state at its start (u, v, r, position, heading: each the value of a quadratic fitted to the
 samples within 1 s of the start, so that one sample's noise is not all of the initial-state
 error) with the measured δ and n (first-order hold onto the integration grid) and the
@@ -16,7 +16,7 @@ its direction held at the segment's circular mean — the engine's wind directio
 parameter). One output-error simulation of a whole 10-min random record drifts so far that
 the cost is not smooth in the coefficients; a minute is what the test files are judged on.
 All segments of all records, and all parameter sets a Jacobian needs, are **one batched
-engine run** (:mod:`seahelm.analysis.record_segments`).
+engine run** (:mod:`seahelm.analysis.replay.segments`).
 
 **Residuals** at every ``sample`` seconds of each segment: the position error over L (north,
 east), the heading error [rad], and u, v, r over U_0, U_0, U_0/L (U_0 the records' mean speed)
@@ -64,9 +64,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..identification.fit_result import FitResult
-from .record_segments import (
+from ...errors import ParameterError
+from ...identification.fit_result import FitResult
+from .segments import (
     OUTPUTS,
     RECORD_CHANNELS,
     Segments,
@@ -74,7 +74,7 @@ from .record_segments import (
     residuals,
     simulate_segments,
 )
-from ..identification.records import ManoeuvreRecord
+from ...identification.records import ManoeuvreRecord
 
 __all__ = ["FREE_DEFAULT", "OUTPUTS", "MultiRecordFit", "Segments", "build_segments",
            "simulate_segments", "fit_mmg_ls", "laplace_samples", "RECORD_CHANNELS"]
@@ -213,7 +213,7 @@ class MultiRecordFit(FitResult):
                         f"from {n_rec} record(s)",
             provenance=f"{', '.join(self.names)} identified by output error over "
                        f"{self.segments} segments of {self.segment:g} s with the wind "
-                       f"{self.wind} (seahelm.analysis.mmg_multi_record) from "
+                       f"{self.wind} (seahelm.analysis.replay.mmg_multi_record) from "
                        f"{', '.join(self.records)}; the rest of '{base.name}': "
                        f"{base.provenance}")
 
@@ -271,7 +271,7 @@ def fit_mmg_ls(records: ManoeuvreRecord | Sequence[ManoeuvreRecord], base: Any, 
     """
     from scipy.optimize import least_squares
 
-    from ..vessels.mmg_low_speed import MMGLowSpeedParams
+    from ...vessels.mmg_low_speed import MMGLowSpeedParams
 
     if not isinstance(getattr(base, "params", None), MMGLowSpeedParams):
         model = getattr(getattr(base, "model", None), "name", type(base).__name__)
@@ -404,7 +404,7 @@ def laplace_samples(fit: MultiRecordFit, n: int, *, seed: int | None = None,
     ndarray, shape (n, len(fit.names))
         Rejected draws (outside a coefficient's admissible range) are drawn again.
     """
-    from ..vessels.mmg_low_speed import MMGLowSpeedParams
+    from ...vessels.mmg_low_speed import MMGLowSpeedParams
 
     if n < 1:
         raise ParameterError(f"must be >= 1, got {n!r}", field="n")

@@ -1,6 +1,6 @@
 """Record segments for output-error fits: cut from measured records, simulated in one batch.
 
-The segments of :mod:`seahelm.analysis.mmg_multi_record` (its module docstring: why
+The segments of :mod:`seahelm.analysis.replay.mmg_multi_record` (its module docstring: why
 segments, the residuals): :func:`build_segments` cuts records into segments that start from
 the measured state, with the inputs (δ, n) and the measured true wind on the integration grid;
 :func:`simulate_segments` runs every segment with every parameter set as one batched engine
@@ -16,8 +16,8 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..identification.records import ManoeuvreRecord
+from ...errors import ParameterError
+from ...identification.records import ManoeuvreRecord
 
 __all__ = ["OUTPUTS", "RECORD_CHANNELS", "Segments", "build_segments", "simulate_segments",
            "residuals", "STATE_ORDER"]
@@ -124,7 +124,7 @@ def build_segments(records: ManoeuvreRecord | Sequence[ManoeuvreRecord], ship: A
     -------
     Segments
     """
-    from .replay import default_step
+    from .simulate import default_step
 
     if wind not in ("measured", "none"):
         raise ParameterError(f"must be 'measured' or 'none', got {wind!r}", field="wind")
@@ -225,9 +225,9 @@ def simulate_segments(ship: Any, segments: Segments, params: Sequence[Any]) -> n
     ndarray, shape (P, S, 6, M + 1)
         :data:`OUTPUTS` at the segments' samples (NaN for a diverged run).
     """
-    from ..environment.loads import environment, ship_load_params
-    from ..simulation.engine import simulate
-    from ..simulation.problem import Problem
+    from ...environment.loads import environment, ship_load_params
+    from ...simulation.engine import simulate
+    from ...simulation.problem import Problem
 
     P, S = len(params), len(segments.names)
     every = int(round(segments.sample / segments.dt))
@@ -254,7 +254,7 @@ def simulate_segments(ship: Any, segments: Segments, params: Sequence[Any]) -> n
 
 
 def _fujiwara(ship: Any) -> bool:
-    from .replay import _default_wind_loads
+    from .simulate import _default_wind_loads
 
     return _default_wind_loads(ship) == "fujiwara"
 

@@ -2,7 +2,7 @@
 
 A free-running record with a propeller that goes astern while the ship still moves ahead is a
 measured stop. :func:`find_reversals` finds them by a fixed rule, :func:`replay_stop`
-replays each from its start with :func:`~seahelm.analysis.replay.replay` (the measured rps and
+replays each from its start with :func:`~.simulate.replay` (the measured rps and
 rudder as inputs, first-order hold) and compares the time and the head reach to u ≤ 0.
 
 The rule (:data:`REVERSAL_RULE`), on the record's samples k:
@@ -40,8 +40,8 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..identification.records import ManoeuvreRecord
+from ...errors import ParameterError
+from ...identification.records import ManoeuvreRecord
 
 __all__ = ["Reversal", "StopComparison", "find_reversals", "replay_stop", "slice_record",
            "REVERSAL_RULE", "MIN_SPEED", "MIN_ASTERN_RPS"]
@@ -245,7 +245,7 @@ def replay_stop(record: ManoeuvreRecord, reversal: Reversal, ship: Any, *,
     ship : Ship or str
         The ship.
     wind : {"none", "measured"}, optional
-        Still air or the record's measured true wind (:func:`~seahelm.analysis.replay.replay`).
+        Still air or the record's measured true wind (:func:`~.simulate.replay`).
     wind_loads : str, optional
         The wind-load model with the measured wind (default ``"fujiwara"``).
     dt : float, optional
@@ -255,7 +255,7 @@ def replay_stop(record: ManoeuvreRecord, reversal: Reversal, ship: Any, *,
     -------
     StopComparison
     """
-    from .replay import replay
+    from .simulate import replay
 
     s, j = reversal.start, reversal.stop
     end = min(len(record.time), s + 2 * (j - s) + 1)

@@ -1,7 +1,7 @@
 """A replay's file (``replay.nc`` of ``seahelm replay --out``) read back: what it is and its
 metrics.
 
-:meth:`seahelm.analysis.replay.ReplayResult.to_xarray` writes both tracks over a ``track``
+:meth:`seahelm.analysis.replay.simulate.ReplayResult.to_xarray` writes both tracks over a ``track``
 dimension (``measured``, ``simulated``) and the record's ``time``, and the metrics, errors and
 settings as attributes (``measured_<metric>``, ``simulated_<metric>``, ``rms_error_60s_L``,
 ``rms_error_L``, ``record``, ``ship``, ``kind``, ``dt_s``, ...), with ``format`` =
@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..errors import ParameterError
+from ...errors import ParameterError
 
 __all__ = ["REPLAY_FORMAT", "METRIC_UNITS", "check_replay_dataset", "is_replay_dataset",
            "replay_metrics"]
