@@ -34,7 +34,7 @@ from pathlib import Path
 
 import numpy as np
 
-from seahelm.analysis.course_keeping import heading_metrics
+from seahelm.analysis.maneuvers.course_keeping import heading_metrics
 from seahelm.control.compensation import controllability_monitor
 from seahelm.errors import ValidityRangeWarning
 from seahelm.scenario import parse_scenario, run_batch

@@ -15,7 +15,7 @@ import numpy as np
 
 from seahelm.actuators.servo import RUDDER_SERVO
 from seahelm.analysis.equilibrium import approach_state
-from seahelm.analysis.turning import turning_metrics
+from seahelm.analysis.maneuvers.advance_transfer import turning_metrics
 from seahelm.control.open_loop import OPEN_LOOP
 from seahelm.simulation.engine import simulate
 from seahelm.ships import get_ship

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from seahelm.analysis import course_keeping as ck
+from seahelm.analysis.maneuvers import course_keeping as ck
 
 
 def test_heading_metrics_synthetic():

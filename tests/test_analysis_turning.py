@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from seahelm.analysis.turning import heading_change_crossing, turning_metrics
+from seahelm.analysis.maneuvers.advance_transfer import heading_change_crossing, turning_metrics
 from seahelm.errors import ParameterError
 
 R, OMEGA = 50.0, 0.02  # radius [m], yaw rate [rad/s]

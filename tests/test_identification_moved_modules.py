@@ -42,6 +42,8 @@ MOVED = {
     "seahelm.analysis.reversals": "seahelm.analysis.replay.reversals",
     "seahelm.analysis.record_segments": "seahelm.analysis.replay.segments",
     "seahelm.analysis.mmg_multi_record": "seahelm.analysis.replay.mmg_multi_record",
+    "seahelm.analysis.turning": "seahelm.analysis.maneuvers.advance_transfer",
+    "seahelm.analysis.course_keeping": "seahelm.analysis.maneuvers.course_keeping",
 }
 
 

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from seahelm.analysis import course_keeping as ck
+from seahelm.analysis.maneuvers import course_keeping as ck
 from seahelm.control import compensation as cp
 from seahelm.control.pid import PID_HEADING, PIDHeadingParams, pid_gains_from_nomoto
 from seahelm.errors import ValidityRangeWarning

@@ -13,7 +13,7 @@ import pytest
 
 from seahelm.actuators.servo import RUDDER_SERVO
 from seahelm.analysis.equilibrium import self_propulsion_rps
-from seahelm.analysis.turning import turning_metrics
+from seahelm.analysis.maneuvers.advance_transfer import turning_metrics
 from seahelm.control.open_loop import OPEN_LOOP
 from seahelm.errors import ParameterError
 from seahelm.simulation.engine import simulate

@@ -24,6 +24,8 @@ _REGROUPED = {
     "reversals": "seahelm.analysis.replay.reversals",
     "record_segments": "seahelm.analysis.replay.segments",
     "mmg_multi_record": "seahelm.analysis.replay.mmg_multi_record",
+    "turning": "seahelm.analysis.maneuvers.advance_transfer",
+    "course_keeping": "seahelm.analysis.maneuvers.course_keeping",
 }
 
 __getattr__ = deprecated_modules(__name__, {**_MOVED, **_REGROUPED})

@@ -3,15 +3,15 @@
 Reads the record (:func:`seahelm.identification.records.read_records`: a CSV file with a header, a
 known format such as the FRT-DS-ESSO free-running tests read as it is, other headers through
 ``--column HEADER=CHANNEL``; or a seahelm NetCDF result), replays every record in it
-(:func:`seahelm.analysis.replay.simulate.replay`: from its first sample, with its measured
-rudder and rps as first-order hold inputs; ``--wind measured``: with its measured true wind)
-and prints the measured and simulated metrics side by side and the RMS position error over
-the first 60 s and the whole record in ship lengths. ``--json`` prints one JSON object; ``--out DIR`` writes
-``replay.nc`` (both tracks) and ``replay.png`` (the overlay). ``--closed-loop`` replays a
-zig-zag with its rudder switched by the simulated heading at the check angle. Exit codes: 0
-done, 2 bad input (a missing or misnamed column, a NaN, a time that goes backwards, degrees
-where radians are expected, a record shorter than its manoeuvre needs: one line naming the
-file, column and row), 1 other failure.
+(:func:`seahelm.analysis.replay.simulate.replay`: from its first sample, with its measured rudder
+and rps as first-order hold inputs; ``--wind measured``: with its measured true wind) and prints
+the measured and simulated metrics side by side and the RMS position error over the first 60 s and
+the whole record in ship lengths. ``--json`` prints one JSON object; ``--out DIR`` writes
+``replay.nc`` (both tracks) and ``replay.png`` (the overlay). ``--closed-loop`` replays a zig-zag
+with its rudder switched by the simulated heading at the check angle. Exit codes: 0 done, 2 bad
+input (a missing or misnamed column, a NaN, a time that goes backwards, degrees where radians are
+expected, a record shorter than its manoeuvre needs: one line naming the file, column and row), 1
+other failure.
 """
 
 from __future__ import annotations

@@ -5,8 +5,8 @@ The reusable parts are components: the empirical wave loads of eq. (5)-(11) in
 :mod:`seahelm.environment.wind`, the compensating rudder angle of eq. (12)-(14), the
 loss-of-controllability monitor and the compensated autopilot of Fig. 1 in
 :mod:`seahelm.control.compensation`, the course setter in :mod:`seahelm.control.guidance` and
-the course-keeping metrics in :mod:`seahelm.analysis.course_keeping`. This module holds the
-paper's reproduction on top of them:
+the course-keeping metrics in :mod:`seahelm.analysis.maneuvers.course_keeping`. This module
+holds the paper's reproduction on top of them:
 
 * :class:`ShipParticulars` and :data:`MARINER_PARTICULARS` — the ship data eq. (5)-(14) need;
 * :func:`compensation_summary` — every number of the paper's chain for one ship and sea (the

@@ -24,16 +24,21 @@ The IMO MSC.137(76) check on top of these is :mod:`seahelm.analysis.imo`.
 Metrics of recorded runs that the scenario runner uses (:mod:`.metrics`): :func:`settling_time`,
 :func:`overshoot`, :func:`turning_diameter`, :func:`rudder_reversals`,
 :func:`path_following_metrics`, :func:`summarize` (and the metrics' units:
-:func:`summary_units`).
+:func:`summary_units`). Of any recorded track (a simulated or a measured one):
+:func:`turning_metrics`, the advance, transfer and tactical diameter of a turn
+(:mod:`.advance_transfer`), and :func:`heading_metrics`, a heading autopilot's course keeping
+(:mod:`.course_keeping`).
 """
 
 from __future__ import annotations
 
 from ...errors import deprecated_names
+from .advance_transfer import TurningMetrics, heading_change_crossing, turning_metrics
 from .common import (
     default_time_step,
     maneuver_ship,
 )
+from .course_keeping import heading_metrics
 from .metrics import (
     overshoot,
     path_following_metrics,
@@ -76,6 +81,10 @@ __all__ = [
     "summarize",
     "summary_units",
     "path_following_metrics",
+    "turning_metrics",
+    "TurningMetrics",
+    "heading_change_crossing",
+    "heading_metrics",
 ]
 
 #: ``ManeuverShip``, the old name of :class:`~seahelm.ships.Ship`: deprecated (a warning on

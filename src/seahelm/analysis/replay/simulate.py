@@ -14,7 +14,8 @@ simulates the ship
   onto the integration grid and held over each step, as the engine holds its commands.
 
 Then it computes the **same metrics from both tracks with the same code**: a turning circle's
-advance, transfer and tactical diameter (:func:`~seahelm.analysis.turning.turning_metrics`),
+advance, transfer and tactical diameter
+(:func:`~seahelm.analysis.maneuvers.advance_transfer.turning_metrics`),
 steady diameter (:func:`~seahelm.analysis.maneuvers.metrics.turning_diameter`) and speed loss
 1 − U_end/U_0; a zig-zag's overshoots, execute times and period
 (:func:`~seahelm.analysis.maneuvers.zigzag.zigzag_metrics`); and the RMS distance between the
@@ -271,7 +272,7 @@ def manoeuvre_metrics(kind: str, time: np.ndarray, track: dict[str, np.ndarray],
     """
     from ..maneuvers.metrics import turning_diameter
     from ..maneuvers.zigzag import zigzag_metrics
-    from ..turning import turning_metrics
+    from ..maneuvers.advance_transfer import turning_metrics
 
     k0 = _order_index(rudder)
     north, east, psi = track["north"], track["east"], track["heading"]

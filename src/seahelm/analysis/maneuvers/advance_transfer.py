@@ -24,8 +24,8 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from .._validate import as_float_array
-from ..errors import ParameterError
+from ..._validate import as_float_array
+from ...errors import ParameterError
 
 __all__ = ["TurningMetrics", "turning_metrics", "heading_change_crossing"]
 

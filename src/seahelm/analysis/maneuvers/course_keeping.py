@@ -12,8 +12,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import as_float_array
-from ..constants import wrap_angle
+from ..._validate import as_float_array
+from ...constants import wrap_angle
 
 __all__ = ["heading_metrics"]
 
