@@ -1,5 +1,6 @@
 """The autopilot design workflow as a library call (issue 47 item 4:
-:mod:`seahelm.analysis.autopilot_tuning`, what ``seahelm autopilot tune`` did inside the CLI):
+:mod:`seahelm.analysis.steering.autopilot_tuning`, what ``seahelm autopilot tune`` did inside the
+CLI):
 the cross-track loop's poles against the characteristic polynomial worked by hand, the
 scenario's duration rule, the scenario written as TOML by tomlkit and read back by the
 scenario loader, the design equal to the control building blocks', errors naming the
@@ -15,7 +16,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from seahelm.analysis.autopilot_tuning import (
+from seahelm.analysis.steering.autopilot_tuning import (
     cross_track_loop_poles,
     poles_text,
     scenario_duration,
@@ -78,7 +79,7 @@ def mariner():
 
 def test_pid_design_is_the_pole_placement_of_the_ship_nomoto(mariner):
     from seahelm.analysis.linearisation import linearize
-    from seahelm.analysis.steering_indices import steering_indices
+    from seahelm.analysis.steering.indices import steering_indices
     from seahelm.control.autopilot_design import pid_pole_placement
 
     tuning = tune_autopilot(mariner, design="pid", bandwidth=0.05, damping=0.8)

@@ -13,7 +13,7 @@ from typer.testing import CliRunner
 
 from seahelm.analysis.linearisation import LinearModel, linearize, linearize_at, \
     richardson_jacobian
-from seahelm.analysis.steering_indices import steering_indices
+from seahelm.analysis.steering.indices import steering_indices
 from seahelm.actuators.servo import RUDDER_SERVO, ServoParams
 from seahelm.errors import ParameterError
 from seahelm.vessels.nomoto import NOMOTO1, NOMOTO2, Nomoto1Params, Nomoto2Params

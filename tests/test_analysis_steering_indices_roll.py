@@ -11,7 +11,7 @@ import pytest
 from typer.testing import CliRunner
 
 from seahelm.analysis.linearisation import LinearModel, linearize
-from seahelm.analysis.steering_indices import steering_indices
+from seahelm.analysis.steering.indices import steering_indices
 from seahelm.cli.main import app
 from seahelm.hydrodynamics.linear_model import nomoto_from_state_space
 

@@ -44,6 +44,8 @@ MOVED = {
     "seahelm.analysis.mmg_multi_record": "seahelm.analysis.replay.mmg_multi_record",
     "seahelm.analysis.turning": "seahelm.analysis.maneuvers.advance_transfer",
     "seahelm.analysis.course_keeping": "seahelm.analysis.maneuvers.course_keeping",
+    "seahelm.analysis.steering_indices": "seahelm.analysis.steering.indices",
+    "seahelm.analysis.autopilot_tuning": "seahelm.analysis.steering.autopilot_tuning",
 }
 
 

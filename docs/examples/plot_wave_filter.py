@@ -20,7 +20,7 @@ from scipy import signal
 
 from seahelm.analysis.equilibrium import approach_state
 from seahelm.analysis.linearisation import linearize
-from seahelm.analysis.steering_indices import steering_indices
+from seahelm.analysis.steering.indices import steering_indices
 from seahelm.control.autopilot_design import pid_pole_placement
 from seahelm.control.pid import PID_HEADING
 from seahelm.control.wave_filter import design_wave_filter, wave_filtered

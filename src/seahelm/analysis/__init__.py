@@ -26,6 +26,8 @@ _REGROUPED = {
     "mmg_multi_record": "seahelm.analysis.replay.mmg_multi_record",
     "turning": "seahelm.analysis.maneuvers.advance_transfer",
     "course_keeping": "seahelm.analysis.maneuvers.course_keeping",
+    "steering_indices": "seahelm.analysis.steering.indices",
+    "autopilot_tuning": "seahelm.analysis.steering.autopilot_tuning",
 }
 
 __getattr__ = deprecated_modules(__name__, {**_MOVED, **_REGROUPED})

@@ -1,9 +1,11 @@
 """``seahelm autopilot tune SHIP``: autopilot gains from the ship's linear model.
 
-The command parses, calls :func:`seahelm.analysis.autopilot_tuning.tune_autopilot` and renders
-its result (the scenario written by :meth:`~seahelm.analysis.autopilot_tuning.AutopilotTuning.
-scenario` and :func:`~seahelm.analysis.autopilot_tuning.scenario_toml`). It linearises the
-ship at its straight run (:mod:`seahelm.analysis.linearisation`), takes Nomoto's K and T = T_1 + T_2 − T_3 (:mod:`seahelm.analysis.steering_indices`) and designs
+The command parses, calls :func:`seahelm.analysis.steering.autopilot_tuning.tune_autopilot`
+and renders its result (the scenario written by
+:meth:`~seahelm.analysis.steering.autopilot_tuning.AutopilotTuning.scenario` and
+:func:`~seahelm.analysis.steering.autopilot_tuning.scenario_toml`). It linearises the ship at
+its straight run (:mod:`seahelm.analysis.linearisation`), takes Nomoto's K and
+T = T_1 + T_2 − T_3 (:mod:`seahelm.analysis.steering.indices`) and designs
 
 * ``--design pid`` (default): the ``pid-heading`` gains placing the Nomoto loop's poles at the
   bandwidth ``--bandwidth`` [rad/s], damping ``--damping`` and integral time
@@ -103,7 +105,7 @@ def tune(
     json_out: JsonFlag = False,
 ) -> None:
     """Design a heading or cross-track autopilot: gains, closed-loop poles, margins, a scenario."""
-    from ..analysis.autopilot_tuning import poles_text, scenario_toml, tune_autopilot
+    from ..analysis.steering.autopilot_tuning import poles_text, scenario_toml, tune_autopilot
     from ..errors import ParameterError
     from ..ships import get_ship
 

@@ -3,7 +3,7 @@
 Linearises the ship (catalog name or ship file) at its trimmed straight run at ``--speed``
 (or at the steady turn at ``--rudder`` degrees) with :func:`seahelm.analysis.linearisation.
 linearize`, and prints Nomoto's K, T_1, T_2, T_3, the first-order T, the course-stability
-index and lever (:mod:`seahelm.analysis.steering_indices`), the poles, and with ``--matrices``
+index and lever (:mod:`seahelm.analysis.steering.indices`), the poles, and with ``--matrices``
 the A, B, C, D of the ship with its steering gear (input ``rudder_command``). A model with roll
 (Son & Nomoto's container ship) gets Nomoto's indices of its sway–yaw block with roll held
 quasi-static, the poles of the whole block, and the size of the roll coupling. At a point
@@ -66,7 +66,7 @@ def linearize(
 ) -> None:
     """Linearise a ship at an equilibrium: Nomoto K, T1, T2, T3, T and course stability."""
     from ..analysis.linearisation import linearize as _linearize
-    from ..analysis.steering_indices import steering_indices
+    from ..analysis.steering.indices import steering_indices
     from ..errors import ParameterError
     from ..ships import get_ship
 
@@ -127,7 +127,7 @@ def _max_error(lin: Any) -> dict[str, float]:
 
 
 def _print_indices(title: str, indices: Any) -> None:
-    from ..analysis.steering_indices import ROLL_STATES
+    from ..analysis.steering.indices import ROLL_STATES
 
     n = indices.nomoto
     table = Table(title=escape(title), title_justify="left")
@@ -161,7 +161,7 @@ def _print_matrices(full: Any, max_error: dict[str, float]) -> None:
 def _kinked(ship: str, bare: Any, full: Any, json_out: bool, matrices: bool) -> None:
     """A non-smooth point: both one-sided linearisations, which is stable, and why; never the
     central difference (their mean)."""
-    from ..analysis.steering_indices import steering_indices
+    from ..analysis.steering.indices import steering_indices
 
     sides = []
     for b, f in zip(bare.sides, full.sides):

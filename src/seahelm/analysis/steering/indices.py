@@ -53,9 +53,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..hydrodynamics.linear_model import NomotoConstants, nomoto_from_state_space
-from .linearisation import LinearModel
+from ...errors import ParameterError
+from ...hydrodynamics.linear_model import NomotoConstants, nomoto_from_state_space
+from ..linearisation import LinearModel
 
 __all__ = ["SteeringIndices", "steering_indices", "NON_STEERING_STATES", "ROLL_STATES"]
 

@@ -3,7 +3,7 @@ scenario.
 
 :func:`tune_autopilot` linearises the ship at its straight run
 (:func:`~seahelm.analysis.linearisation.linearize`), takes Nomoto's K and T = T_1 + T_2 − T_3
-(:func:`~seahelm.analysis.steering_indices.steering_indices`) and designs
+(:func:`~seahelm.analysis.steering.indices.steering_indices`) and designs
 
 * ``"pid"``: the ``pid-heading`` gains placing the Nomoto loop's poles
   (:func:`~seahelm.control.autopilot_design.pid_pole_placement`);
@@ -34,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError
+from ...errors import ParameterError
 
 __all__ = ["DESIGNS", "MAX_PERIOD_SHARE", "AutopilotTuning", "tune_autopilot",
            "cross_track_loop_poles", "cross_track_settles", "scenario_duration",
@@ -167,8 +167,8 @@ def cross_track_settles(ship: Any, bare: Any, full: Any, designs: Sequence[Any],
     -------
     list of bool
     """
-    from ..registry import get_controller
-    from ..simulation.engine import simulate
+    from ...registry import get_controller
+    from ...simulation.engine import simulate
 
     t_final = float(max(300.0, 100.0 * math.ceil(0.1 * max(
         settling_time(cross_track_loop_poles(full, d.gains)) for d in designs))))
@@ -192,7 +192,7 @@ def _cross_track_design(block: Any, states: tuple[str, ...], surge: float, max_c
     """The LQ cross-track design at the weights [m], [deg] if they were given (``explicit``);
     else at the smallest of them × 2^(k/4), k = 0 ... 7, whose nonlinear closed loop settles
     (``settles``: candidate designs -> one bool each). Returns the design and its weights."""
-    from ..control.lq_cross_track import lq_cross_track
+    from ...control.lq_cross_track import lq_cross_track
 
     candidates = []
     for k in range(1 if explicit else 8):
@@ -421,12 +421,12 @@ def tune_autopilot(ship: Any, *, design: str = "pid", bandwidth: float = 0.05,
         design, ``dt`` above |T|/5, a ship without steering gear (``field="ship"``), a
         bandwidth above what the rudder rate gives, no cross-track weights that settle.
     """
-    from ..control.autopilot_design import (AutopilotDesignWarning, heading_loop_poles,
+    from ...control.autopilot_design import (AutopilotDesignWarning, heading_loop_poles,
                                             lq_heading, pid_pole_placement,
                                             state_space_response)
-    from ..ships import get_ship
-    from .linearisation import linearize
-    from .steering_indices import steering_indices
+    from ...ships import get_ship
+    from ..linearisation import linearize
+    from .indices import steering_indices
 
     if design not in DESIGNS:
         raise ParameterError(f"must be one of {', '.join(DESIGNS)}, got {design!r}",
