@@ -21,7 +21,7 @@ import time
 
 import numpy as np
 
-from seahelm.analysis.averaging import sphere_grid
+from seahelm.studies.platonov.averaging import sphere_grid
 from seahelm.studies.platonov.averaged_system import (
     STUDY_DIRECTION,
     _original_rhs,

@@ -9,9 +9,20 @@ import math
 import numpy as np
 import pytest
 
-from seahelm.analysis.averaging import hausdorff_from_support, maximise_polynomial, sphere_grid
 from seahelm.errors import ParameterError
 from seahelm.numerics.periodic import period_mean
+from seahelm.studies.platonov.averaging import (
+    chunk_slices,
+    hausdorff_from_support,
+    maximise_polynomial,
+    sphere_grid,
+)
+
+
+@pytest.mark.parametrize("n, size, expected", [
+    (0, 4, []), (3, 4, [(0, 3)]), (8, 4, [(0, 4), (4, 8)]), (9, 4, [(0, 4), (4, 8), (8, 9)])])
+def test_chunk_slices_cut_the_rows_in_order(n, size, expected):
+    assert [(s.start, s.stop) for s in chunk_slices(n, size)] == expected
 
 
 def test_period_mean_exact_at_kinks():

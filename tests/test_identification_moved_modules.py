@@ -46,6 +46,7 @@ MOVED = {
     "seahelm.analysis.course_keeping": "seahelm.analysis.maneuvers.course_keeping",
     "seahelm.analysis.steering_indices": "seahelm.analysis.steering.indices",
     "seahelm.analysis.autopilot_tuning": "seahelm.analysis.steering.autopilot_tuning",
+    "seahelm.analysis.averaging": "seahelm.studies.platonov.averaging",
 }
 
 

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from seahelm.analysis.averaging import (
+from seahelm.studies.platonov.averaging import (
     PolynomialControlSet,
     averaged_drift,
     boundary_map,

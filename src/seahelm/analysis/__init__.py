@@ -28,6 +28,8 @@ _REGROUPED = {
     "course_keeping": "seahelm.analysis.maneuvers.course_keeping",
     "steering_indices": "seahelm.analysis.steering.indices",
     "autopilot_tuning": "seahelm.analysis.steering.autopilot_tuning",
+    # used by Platonov & Platonova's study only: beside it
+    "averaging": "seahelm.studies.platonov.averaging",
 }
 
 __getattr__ = deprecated_modules(__name__, {**_MOVED, **_REGROUPED})

@@ -1,8 +1,11 @@
 """Platonov & Platonova: full averaging of the motion of a CPP ship in regular waves.
 
-The ship is a component (:mod:`seahelm.vessels.cpp_ship`, eq. (5)-(12)), the averaging theory
-for control-affine periodic systems too (:mod:`seahelm.analysis.averaging`, eq. (1)-(4)). The
-paper's application of one to the other is here:
+The ship is a component (:mod:`seahelm.vessels.cpp_ship`, eq. (5)-(12)). The paper's averaging
+theory for control-affine periodic systems, eq. (1)-(4), and its application to the ship are
+here:
+
+* :mod:`seahelm.studies.platonov.averaging` — full averaging and the averaged control set of a
+  control-affine periodic system (nothing in it depends on the ship);
 
 * :mod:`seahelm.studies.platonov.control_set` — the admissible control set V (eq. (14)-(16)),
   with the printed eq. (15) as a registry object next to the clipped maximiser;

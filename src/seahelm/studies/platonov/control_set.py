@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 
 from ..._validate import as_float_array, check_range
-from ...analysis.averaging import PolynomialControlSet, _chunks
+from .averaging import PolynomialControlSet, chunk_slices
 from ...errors import ParameterError
 from ...numerics.periodic import TWO_PI, nodes_on_breaks, period_mean
 from ...registry import lookup
@@ -304,7 +304,7 @@ def cpp_boundary_map(
         raise ParameterError(f"`z` must end in 3 components, got shape {z.shape}")
     zf = z.reshape(-1, 3)
     out = np.empty_like(zf)
-    for sl in _chunks(zf.shape[0], int(chunk)):
+    for sl in chunk_slices(zf.shape[0], int(chunk)):
         zc = zf[sl]
         t, w = nodes_on_breaks(_cpp_breaks(zc, immersion, amplitude), int(nodes))
         c1, c2 = emergence_factors(t, immersion, amplitude)

@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from ..._validate import as_float_array
-from ...analysis.averaging import hausdorff_from_support, maximise_polynomial, sphere_grid
+from .averaging import hausdorff_from_support, maximise_polynomial, sphere_grid
 from ...errors import ParameterError
 from ...registry import lookup
 from .control_set import _check_waves, cpp_betas, cpp_boundary_map, cpp_support_function

@@ -16,21 +16,23 @@ polynomial in a scalar control (:func:`maximise_polynomial`), control sets polyn
 directions of eq. (17) (:func:`sphere_grid`) and the Hausdorff distance of convex sets from
 their support functions (:func:`hausdorff_from_support`). Period means are
 :func:`seahelm.numerics.periodic.period_mean`. The CPP ship of the paper (its control set,
-the printed and corrected eq. (13)-(24), the ε study) is :mod:`seahelm.studies.platonov`.
+the printed and corrected eq. (13)-(24), the ε study) is the rest of
+:mod:`seahelm.studies.platonov`, the only user of this module, which therefore lives beside it
+(it was ``seahelm.analysis.averaging``, a deprecated path now; issue 47).
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import Any
 
 import numpy as np
 
-from .._validate import as_float_array, check_range
-from ..errors import ParameterError
-from ..numerics.periodic import TWO_PI, nodes_on_breaks, period_breaks
+from ..._validate import as_float_array, check_range
+from ...errors import ParameterError
+from ...numerics.periodic import TWO_PI, nodes_on_breaks, period_breaks
 
 __all__ = [
     "averaged_drift",
@@ -40,6 +42,7 @@ __all__ = [
     "boundary_map",
     "sphere_grid",
     "hausdorff_from_support",
+    "chunk_slices",
 ]
 
 
@@ -197,7 +200,20 @@ class PolynomialControlSet:
         check_range("low", self.low, -math.inf, self.high)
 
 
-def _chunks(n: int, size: int):
+def chunk_slices(n: int, size: int) -> Iterator[slice]:
+    """The slices that cut ``n`` rows into consecutive chunks of at most ``size`` rows.
+
+    Parameters
+    ----------
+    n : int
+        Number of rows.
+    size : int
+        Rows per chunk (the last may hold fewer).
+
+    Returns
+    -------
+    iterator of slice
+    """
     for i in range(0, n, size):
         yield slice(i, min(n, i + size))
 
@@ -214,7 +230,7 @@ def _generic_eval(
     zf = z.reshape(-1, m)
     h = np.empty(zf.shape[0])
     sig = np.empty((zf.shape[0], m))
-    for sl in _chunks(zf.shape[0], 1024):
+    for sl in chunk_slices(zf.shape[0], 1024):
         q = np.einsum("bm,mkt->btk", zf[sl], phi)
         u, val = maximise_polynomial(q, cs.low, cs.high)  # (b, nt)
         powers = u[..., None] ** np.arange(phi.shape[1])  # (b, nt, K+1)
