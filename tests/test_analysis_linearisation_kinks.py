@@ -11,7 +11,7 @@ import pytest
 from typer.testing import CliRunner
 
 from seahelm.analysis.linearisation import linearize, richardson_jacobian
-from seahelm.analysis.nonsmooth import kinked_columns, one_sided_jacobians, side_jacobians
+from seahelm.numerics.nonsmooth import kinked_columns, one_sided_jacobians, side_jacobians
 from seahelm.analysis.steering.indices import steering_indices
 from seahelm.cli.main import app
 from seahelm.ships import get_ship

@@ -47,6 +47,7 @@ MOVED = {
     "seahelm.analysis.steering_indices": "seahelm.analysis.steering.indices",
     "seahelm.analysis.autopilot_tuning": "seahelm.analysis.steering.autopilot_tuning",
     "seahelm.analysis.averaging": "seahelm.studies.platonov.averaging",
+    "seahelm.analysis.nonsmooth": "seahelm.numerics.nonsmooth",
 }
 
 

@@ -28,6 +28,8 @@ _REGROUPED = {
     "course_keeping": "seahelm.analysis.maneuvers.course_keeping",
     "steering_indices": "seahelm.analysis.steering.indices",
     "autopilot_tuning": "seahelm.analysis.steering.autopilot_tuning",
+    # generic numerics (no ship): below everything
+    "nonsmooth": "seahelm.numerics.nonsmooth",
     # used by Platonov & Platonova's study only: beside it
     "averaging": "seahelm.studies.platonov.averaging",
 }

@@ -37,7 +37,7 @@ Non-smooth points
     of the two one-sided derivatives: a model of neither side (the KVLCC2's straight run gave
     T_1 = −2400 s, between +91 s on one side and −82 s on the other). :func:`linearize_at`
     therefore also takes the one-sided quotients of every column and compares them
-    (:mod:`seahelm.analysis.nonsmooth`); where they differ, :attr:`LinearModel.kinks` names
+    (:mod:`seahelm.numerics.nonsmooth`); where they differ, :attr:`LinearModel.kinks` names
     the variables, :attr:`LinearModel.sides` holds the linear model of each side and
     :attr:`LinearModel.note` says why. At a smooth point the result is the central
     difference, unchanged.
@@ -72,7 +72,7 @@ from .._validate import check_positive
 from ..errors import ParameterError
 from ..parameters import Params, as_records
 from ..vessels.base import VesselModel, _batched_actuator, _param_array
-from .nonsmooth import kinked_columns, one_sided_jacobians, side_jacobians
+from ..numerics.nonsmooth import kinked_columns, one_sided_jacobians, side_jacobians
 
 __all__ = ["LinearModel", "richardson_jacobian", "linearize_at", "linearize"]
 
@@ -106,7 +106,7 @@ class LinearModel:
         two sides, which is a model of neither: use ``sides``.
     sides : tuple of LinearModel
         At a kink, the one-sided linear models (side "+" and side "−", module docstring of
-        :mod:`seahelm.analysis.nonsmooth`); empty at a smooth point.
+        :mod:`seahelm.numerics.nonsmooth`); empty at a smooth point.
     side : str
         For a one-sided model, its side: ``"sway_speed +, yaw_rate −"`` is the side reached by
         increasing the sway speed or decreasing the yaw rate.
