@@ -1,6 +1,7 @@
-"""The identification modules moved into :mod:`seahelm.identification` (issue 47, item 1):
-the old paths users may import still give the same objects, with a DeprecationWarning that
-names the new module, and no module lives at the old path (no second home)."""
+"""The identification modules moved into :mod:`seahelm.identification` (issue 47, item 1), and
+the analysis modules regrouped into subpackages (item 2): the old paths users may import still
+give the same objects, with a DeprecationWarning that names the new module, and no module lives
+at the old path (no second home)."""
 from __future__ import annotations
 
 import importlib

@@ -1,4 +1,27 @@
-"""seahelm.analysis."""
+"""seahelm.analysis: what is computed from simulated (and measured) runs, one subpackage a
+concept.
+
+:mod:`~seahelm.analysis.maneuvers`
+    the standard manoeuvres (turning circle, zig-zag, spirals, pull-out, crash stop) and the
+    metrics of recorded tracks (advance and transfer, course keeping, settling, overshoot);
+:mod:`~seahelm.analysis.imo`
+    the IMO MSC.137(76) check of a ship, and of an ensemble (probabilities, Monte-Carlo,
+    given an identification);
+:mod:`~seahelm.analysis.seakeeping`
+    seakeeping statistics: response spectral moments, short-term statistics, the per-run
+    statistics of records with first-order motions;
+:mod:`~seahelm.analysis.replay`
+    measured records replayed (and the stops in them, and the multi-record fit built on
+    replayed segments);
+:mod:`~seahelm.analysis.steering`
+    Nomoto's steering indices of a linearised ship and the autopilots designed from them;
+:mod:`~seahelm.analysis.statistics`
+    the statistics of a batch's per-run metrics (the Monte-Carlo tables, the report, sweeps).
+
+The equilibria, the linearisation, the DP capability and the roll balance of a steady motion
+are modules here too. Modules that moved keep their old path as a deprecated alias (a
+:class:`DeprecationWarning` naming the new module, which is given itself).
+"""
 
 from ..errors import deprecated_modules
 
