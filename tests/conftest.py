@@ -71,7 +71,7 @@ def kvlcc2_l7_imo():
     """``imo_check("kvlcc2-l7")``: the IMO MSC.137(76) check of the model-scale KVLCC2
     (turning circles, zig-zags, stopping), run once for the suite: its tests read it
     (tests/test_analysis_imo.py, the figures of tests/test_plotting_labels.py)."""
-    from seahelm.analysis.imo.check import imo_check
+    from seahelm.analysis.imo import imo_check
 
     return imo_check("kvlcc2-l7")
 
