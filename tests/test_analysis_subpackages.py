@@ -16,6 +16,7 @@ SUBPACKAGES = {
     "seahelm.analysis.replay": ("simulate", "dataset", "reversals", "segments",
                                 "mmg_multi_record"),
     "seahelm.analysis.steering": ("indices", "autopilot_tuning"),
+    "seahelm.analysis.dp": ("level1", "level3"),
 }
 
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from seahelm.analysis.dp_capability import (
+from seahelm.analysis.dp.level1 import (
     BEAUFORT_WIND,
     DpVessel,
     environment_loads,
@@ -129,7 +129,7 @@ def test_supply_vessel_layout_and_capability():
     """Fossen's supply vessel: six thrusters; head-on wind alone is held by the two main
     propellers up to U* = √(2 · 31.2 · 160² / |X(U = 1)|) (no side force or moment head-on);
     losing a thruster never holds more wind, in any direction."""
-    from seahelm.analysis.dp_capability import dp_vessel
+    from seahelm.analysis.dp.level1 import dp_vessel
 
     ship = dp_vessel("supply")
     assert ship.layout.count == 6

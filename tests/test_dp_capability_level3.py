@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from seahelm.analysis.dp_capability import dp_vessel, level1_capability
-from seahelm.analysis.dp_capability_level3 import level3_capability
+from seahelm.analysis.dp.level1 import dp_vessel, level1_capability
+from seahelm.analysis.dp.level3 import level3_capability
 from seahelm.errors import ParameterError
 
 

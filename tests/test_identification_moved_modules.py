@@ -49,6 +49,8 @@ MOVED = {
     "seahelm.analysis.autopilot_tuning": "seahelm.analysis.steering.autopilot_tuning",
     "seahelm.analysis.averaging": "seahelm.studies.platonov.averaging",
     "seahelm.analysis.nonsmooth": "seahelm.numerics.nonsmooth",
+    "seahelm.analysis.dp_capability": "seahelm.analysis.dp.level1",
+    "seahelm.analysis.dp_capability_level3": "seahelm.analysis.dp.level3",
 }
 
 

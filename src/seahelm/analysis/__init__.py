@@ -15,11 +15,13 @@ concept.
     replayed segments);
 :mod:`~seahelm.analysis.steering`
     Nomoto's steering indices of a linearised ship and the autopilots designed from them;
+:mod:`~seahelm.analysis.dp`
+    DP station-keeping capability after DNV-ST-0111, levels 1 and 3;
 :mod:`~seahelm.analysis.statistics`
     the statistics of a batch's per-run metrics (the Monte-Carlo tables, the report, sweeps).
 
-The equilibria, the linearisation, the DP capability and the roll balance of a steady motion
-are modules here too. Modules that moved keep their old path as a deprecated alias (a
+The equilibria, the linearisation and the roll balance of a steady motion are modules here
+too. Modules that moved keep their old path as a deprecated alias (a
 :class:`DeprecationWarning` naming the new module, which is given itself).
 """
 
@@ -51,6 +53,8 @@ _REGROUPED = {
     "course_keeping": "seahelm.analysis.maneuvers.course_keeping",
     "steering_indices": "seahelm.analysis.steering.indices",
     "autopilot_tuning": "seahelm.analysis.steering.autopilot_tuning",
+    "dp_capability": "seahelm.analysis.dp.level1",
+    "dp_capability_level3": "seahelm.analysis.dp.level3",
     # generic numerics (no ship): below everything
     "nonsmooth": "seahelm.numerics.nonsmooth",
     # used by Platonov & Platonova's study only: beside it

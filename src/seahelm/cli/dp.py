@@ -101,7 +101,7 @@ def _plot(res: Any, path: Path) -> None:
 
 def _level3(ship: str, headings: int, failures: str, current: float, no_waves: bool,
             winds: str, duration: float, json_out: bool, workers: int | None) -> None:
-    from ..analysis.dp_capability_level3 import level3_capability
+    from ..analysis.dp.level3 import level3_capability
 
     speeds = None
     if winds.strip():
@@ -179,7 +179,7 @@ def capability(
 ) -> None:
     """Level-1 (quasi-static) DP capability: the largest wind held per direction, intact and
     with each single thruster failure (DNV-ST-0111's method; environment as stated)."""
-    from ..analysis.dp_capability import dp_vessel, level1_capability
+    from ..analysis.dp.level1 import dp_vessel, level1_capability
 
     if level not in (1, 3):
         raise ParameterError(f"must be 1 or 3 [-], got {level}", field="--level", unit="-",

@@ -2,7 +2,7 @@
 azimuth sectors (merged, their allowed arcs), and the layout left by a single failure.
 
 Used by :mod:`seahelm.control.dp_allocation` (the constrained allocation) and the level-1
-capability (:mod:`seahelm.analysis.dp_capability`).
+capability (:mod:`seahelm.analysis.dp.level1`).
 """
 
 from __future__ import annotations

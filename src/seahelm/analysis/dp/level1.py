@@ -40,10 +40,10 @@ from typing import Any
 
 import numpy as np
 
-from ..constants import GRAVITY, RHO_SEAWATER
-from ..control.dp_allocation import ConstrainedAllocation, ThrusterLayout
-from ..environment.blendermann import blendermann_wind_loads
-from ..errors import ParameterError
+from ...constants import GRAVITY, RHO_SEAWATER
+from ...control.dp_allocation import ConstrainedAllocation, ThrusterLayout
+from ...environment.blendermann import blendermann_wind_loads
+from ...errors import ParameterError
 
 __all__ = ["BEAUFORT_WIND", "DpVessel", "dp_vessel", "CapabilityResult", "level1_capability",
            "environment_loads", "sea_from_wind"]
@@ -265,7 +265,7 @@ def dp_vessel(ship: Any) -> DpVessel:
         A ship without thrusters, or without the particulars the loads need (naming what is
         missing); an unknown name (listing the catalog).
     """
-    from ..ships.catalog import get
+    from ...ships.catalog import get
 
     try:
         sh = get(ship)
@@ -297,7 +297,7 @@ def _catalog_dp_ships() -> tuple[str, ...]:
     """The catalog ships whose files declare thrusters (their TOML tables only)."""
     import tomllib
 
-    from ..ships.catalog import DATA_DIR, names
+    from ...ships.catalog import DATA_DIR, names
 
     out = []
     for name in names():

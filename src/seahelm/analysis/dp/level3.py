@@ -4,7 +4,7 @@ Every case of the grid (failure case × environment direction θ × wind speed U
 one batch of the closed loop — the vessel's model (``dp-3dof``), the ``dp-pid`` controller
 with the constrained allocation at every control step, for the layout of that failure case —
 from rest at the set-point, under the mean environmental load of level 1
-(:func:`seahelm.analysis.dp_capability.environment_loads`: wind, wave drift and current, same
+(:func:`seahelm.analysis.dp.level1.environment_loads`: wind, wave drift and current, same
 models and environment) applied as a constant load from t = 0. A case is **held** when, over
 the last half of the run,
 
@@ -31,8 +31,8 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError
-from .dp_capability import BEAUFORT_WIND, dp_vessel, environment_loads
+from ...errors import ParameterError
+from .level1 import BEAUFORT_WIND, dp_vessel, environment_loads
 
 __all__ = ["Level3Result", "level3_capability"]
 
@@ -77,7 +77,7 @@ def level3_capability(ship: Any, *, headings: int = 12, wind_speeds: Any = None,
     wind_speeds : array_like, optional
         Wind speeds [m/s] (default the Beaufort upper speeds from Beaufort 4).
     failures : "each", "none" or sequence of str
-        As :func:`~seahelm.analysis.dp_capability.level1_capability`.
+        As :func:`~seahelm.analysis.dp.level1.level1_capability`.
     current_speed : float, optional
         [m/s] (default 0.5).
     waves : bool, optional
@@ -100,8 +100,8 @@ def level3_capability(ship: Any, *, headings: int = 12, wind_speeds: Any = None,
     -------
     Level3Result
     """
-    from ..control.dp_pid import dp_pid_params
-    from ..ships.catalog import get
+    from ...control.dp_pid import dp_pid_params
+    from ...ships.catalog import get
 
     if workers is not None and not (isinstance(workers, int) and workers >= 1):
         raise ParameterError(f"must be an integer ≥ 1 [-], got {workers!r}", field="workers",
@@ -165,13 +165,13 @@ def level3_capability(ship: Any, *, headings: int = 12, wind_speeds: Any = None,
 
 
 def _catalog_names() -> tuple[str, ...]:
-    from ..ships.catalog import names
+    from ...ships.catalog import names
 
     return names()
 
 
 def _mapping(ship: Any) -> dict:
-    from ..ships.writing import ship_to_mapping
+    from ...ships.writing import ship_to_mapping
 
     return ship_to_mapping(ship)
 
@@ -180,10 +180,10 @@ def _run_chunk(source: Any, cp: np.ndarray, ld: np.ndarray, duration: float, dt:
                limits: tuple) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Simulate the runs (controller parameters ``cp``, loads ``ld``) and judge them: held,
     the excursion [m] and the mean delivered thrust over the last half."""
-    from ..ships.catalog import get
-    from ..ships.files import ship_from_mapping
-    from ..simulation.engine import simulate
-    from ..simulation.problem import Problem
+    from ...ships.catalog import get
+    from ...ships.files import ship_from_mapping
+    from ...simulation.engine import simulate
+    from ...simulation.problem import Problem
 
     sh = get(source) if isinstance(source, str) else ship_from_mapping(source, lookup=get)
     runs = ld.shape[0]
@@ -214,7 +214,7 @@ def _run_chunk(source: Any, cp: np.ndarray, ld: np.ndarray, duration: float, dt:
 def _on_dask(workers: int, source: Any, cp: np.ndarray, ld: np.ndarray, duration: float,
              dt: float, limits: tuple) -> list:
     """The runs in chunks (4 per worker) on a local Dask cluster, in order."""
-    from .._optional import optional_import
+    from ..._optional import optional_import
 
     distributed = optional_import("distributed", extra="dask",
                                   purpose="level-3 capability on a dask cluster (--workers)")
