@@ -53,14 +53,14 @@ def _params(model, source):
     return get_ship(source).params
 
 
-def _one_run(params, model):
-    from seahelm.analysis.equilibrium import _Plant
-    return _Plant(params, model)
+def _one_run(params, model):  # (before issue 47: equilibrium._Plant(params, model))
+    from seahelm.analysis.equilibria.plant import Plant
+    return Plant.of(params, model)
 
 
-def _batch(model, params):
-    from seahelm.analysis.batch_equilibrium import _Batch
-    return _Batch(model, params)
+def _batch(model, params):  # (before: batch_equilibrium._Batch(model, params))
+    from seahelm.analysis.equilibria.plant import Plant
+    return Plant(model, params)
 
 
 def _resolved(plant):
