@@ -38,8 +38,6 @@ approaches are solved one after the other by the one-run code (they cost microse
 
 from __future__ import annotations
 
-import dataclasses
-import enum
 import math
 from collections.abc import Callable, Sequence
 from typing import Any, NamedTuple
@@ -50,6 +48,7 @@ from ..errors import ParameterError
 from ..parameters import Params
 from ..vessels.base import VesselModel, _batched_output
 from .constant_speed import is_constant_speed
+from .equilibria.approach import ApproachStatus, BatchApproach
 from .equilibria.plant import Plant
 
 __all__ = ["ApproachStatus", "BatchApproach", "approach_states"]
@@ -60,64 +59,6 @@ RESIDUAL_TOL = 1e-9
 STEP_TOL = 1e-14
 #: brentq's tolerances of the one-run self-propulsion solve: |Δn| ≤ XTOL + RTOL |n|.
 RPS_XTOL, RPS_RTOL = 1e-14, 4 * np.finfo(float).eps
-
-
-class ApproachStatus(enum.IntEnum):
-    """Outcome of one run's approach (0 is success)."""
-
-    OK = 0
-    NO_SELF_PROPULSION = 1
-    """The surge force is not negative with the propeller stopped."""
-    RPS_OUT_OF_RANGE = 2
-    """No rps up to ``max_rps`` gives zero surge force."""
-    NOT_FINITE = 3
-    """The right-hand side was NaN or infinite."""
-    SINGULAR = 4
-    """The Jacobian of the trim equations is singular."""
-    LINE_SEARCH = 5
-    """The line search found no decrease of the residual."""
-    MAX_ITERATIONS = 6
-    """Not converged within ``max_iterations``."""
-    NO_EQUILIBRIUM = 7
-    """A constant-speed model's one-run solve raised (its message is kept)."""
-
-
-@dataclasses.dataclass(frozen=True)
-class BatchApproach:
-    """Steady straight approaches of a batch of runs (arrays over ``runs``).
-
-    A failed run keeps NaN in its state, rudder, rps and drift angle; ``status`` and
-    ``message`` say why.
-    """
-
-    state: np.ndarray
-    """States (runs, n_states) in the model's ``state_labels`` order (SI units, radians)."""
-    rudder: np.ndarray
-    """Trim rudder angle δ [rad] (0 without ``trim``)."""
-    rps: np.ndarray
-    """Self-propulsion propeller rps [1/s] (NaN for a model without a propeller input)."""
-    speed: np.ndarray
-    """Approach speed U_0 [m/s]."""
-    drift_angle: np.ndarray
-    """Drift angle β of the approach [rad] (0 for a ship symmetric at rest)."""
-    status: np.ndarray
-    """:class:`ApproachStatus` per run (int)."""
-    message: tuple[str, ...]
-    """'ok' or the reason of the failure, per run."""
-    iterations: np.ndarray
-    """Newton iterations of the trim (rps iterations for an untrimmed approach)."""
-    residual: np.ndarray
-    """Final scaled residual ‖F‖∞ of the trim (of the surge equation without trim)."""
-
-    @property
-    def ok(self) -> np.ndarray:
-        """Boolean mask of the runs whose approach was found."""
-        return self.status == ApproachStatus.OK
-
-    @property
-    def n_runs(self) -> int:
-        """Number of runs."""
-        return int(self.status.size)
 
 
 def approach_states(model: VesselModel, params: Params | Sequence[Params], speed: Any = None,

@@ -54,6 +54,7 @@ from ..errors import ParameterError
 from ..registry import model_for_params
 from ..vessels.base import VesselModel
 from .constant_speed import ConstantSpeedPlant, is_constant_speed
+from .equilibria.approach import Approach
 from .equilibria.plant import EquilibriumError, Plant, resolve_params
 
 # scipy.optimize (0.2 s to import) is imported inside the functions that use it
@@ -105,15 +106,6 @@ class SpiralCurve(NamedTuple):
     """Speed U [m/s]."""
     drift_angle: Any
     """Drift angle β [rad]."""
-
-
-class Approach(NamedTuple):
-    """Initial state and constant inputs of a steady straight approach."""
-
-    state: np.ndarray
-    """State vector in the model's ``state_labels`` order (SI units, radians)."""
-    inputs: dict[str, float]
-    """Model inputs by name, e.g. ``{"rudder_angle": 0.0, "propeller_rps": 11.85}``."""
 
 
 # ------------------------------------------------------------------------------------------
@@ -428,7 +420,7 @@ def approach_state(params: Any, speed: float | None = None, *, model: VesselMode
     cs = _constant_speed(params, model)
     if cs is not None:  # no surge state: the model's own speed, at rest in yaw
         state, rudder = cs.approach(speed, heading=heading, trim=trim)
-        return Approach(state, {"rudder_angle": rudder})
+        return Approach(state, {"rudder_angle": rudder}, cs.speed)
     plant = Plant.of(params, model)
     U0 = float(plant.u_ref[0]) if speed is None else speed
     check_positive("speed", U0, "m/s")
@@ -447,10 +439,10 @@ def approach_state(params: Any, speed: float | None = None, *, model: VesselMode
     surge, v = U0, 0.0
     if trim:
         surge, v, delta = _solve(plant, {"r": 0.0}, ("surge", "v", "rudder"),
-                                      np.array([U0, 0.0, 0.0]), n)
+                                 np.array([U0, 0.0, 0.0]), n)
         inputs["rudder_angle"] = float(delta)
     return Approach(plant.state(surge, v, 0.0, float(heading),
-                                plant.inputs(inputs["rudder_angle"], n)), inputs)
+                                plant.inputs(inputs["rudder_angle"], n)), inputs, U0)
 
 
 def straight_run_speed(model_or_params: Any, rps: Any, *, model: VesselModel | None = None,
@@ -557,7 +549,8 @@ def steady_turn_state(params: Any, rudder: float, rps: float | None = None, *,
     cs = _constant_speed(params, model, rps)
     if cs is not None:
         states = cs.steady_turns(rudder, max_rudder, math.radians(2.5))[1]
-        return Approach(cs.state(states, float(heading)), {"rudder_angle": float(rudder)})
+        return Approach(cs.state(states, float(heading)), {"rudder_angle": float(rudder)},
+                        cs.speed)
     plant = Plant.of(params, model)
     turn = steady_turn(plant.params[0], rudder, rps, model=plant.model, max_rudder=max_rudder)
     n = _check_rps(plant, rps)
@@ -565,7 +558,8 @@ def steady_turn_state(params: Any, rudder: float, rps: float | None = None, *,
     if n is not None:
         inputs["propeller_rps"] = n
     return Approach(plant.state(turn.surge_speed, turn.sway_speed, turn.yaw_rate,
-                                float(heading), plant.inputs(float(rudder), n)), inputs)
+                                float(heading), plant.inputs(float(rudder), n)), inputs,
+                    turn.speed)
 
 
 def rudder_for_yaw_rate(params: Any, yaw_rate: Any, rps: float | None = None, *,
