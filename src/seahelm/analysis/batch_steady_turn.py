@@ -50,12 +50,12 @@ from ..parameters import Params
 from ..vessels.base import VesselModel, _batched_output
 from .batch_equilibrium import (
     ApproachStatus,
-    _Batch,
     _newton,
     _newton_failure,
     _trim,
 )
 from .constant_speed import is_constant_speed
+from .equilibria.plant import Plant
 from .heel import heel_balance
 
 __all__ = ["TurnStatus", "BatchSteadyTurn", "steady_turns", "steady_turn_states"]
@@ -346,7 +346,7 @@ def _solve(model: VesselModel, plist: list[Params], delta: np.ndarray,
     # 1. the straight run, once per distinct (parameter set, rps)
     rps_list = [None] * n if n_rps is None else n_rps.tolist()
     plant, members = _distinct([(id(p), r) for p, r in zip(plist, rps_list)])
-    b = _Batch(model, [plist[i] for i in members])
+    b = Plant(model, [plist[i] for i in members])
     rps_p = None if n_rps is None else n_rps[members]
     n_p = len(members)
     p_status = np.zeros(n_p, dtype=np.int64)
@@ -386,14 +386,14 @@ class _Scales:
     """The one-run solve's scaling: unknowns (u, v) by U_ref, r by U_ref/L, δ by 1; the
     accelerations by (1, 1, 1/L) U_ref²/L — per plant."""
 
-    def __init__(self, b: _Batch) -> None:
+    def __init__(self, b: Plant) -> None:
         self.speed = b.u_ref
         self.rate = b.u_ref / b.length
         self.acc = (np.stack([np.ones_like(b.length), np.ones_like(b.length), 1.0 / b.length],
                              axis=1) * (b.u_ref ** 2 / b.length)[:, None])
 
 
-def _continue_in_r(b: _Batch, s: _Scales, plant: np.ndarray, trim: np.ndarray,
+def _continue_in_r(b: Plant, s: _Scales, plant: np.ndarray, trim: np.ndarray,
                    sign: np.ndarray, delta: np.ndarray, runs: np.ndarray,
                    rps_p: np.ndarray | None, rudder_step: float, max_iterations: int,
                    out: _Out) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
@@ -456,7 +456,7 @@ def _continue_in_r(b: _Batch, s: _Scales, plant: np.ndarray, trim: np.ndarray,
             {k: np.array(v) for k, v in switch.items()})
 
 
-def _residual(b: _Batch, s: _Scales, rps_p: np.ndarray | None, plants: np.ndarray, *,
+def _residual(b: Plant, s: _Scales, rps_p: np.ndarray | None, plants: np.ndarray, *,
               fixed_r: np.ndarray | None = None, fixed_rudder: np.ndarray | None = None
               ) -> Any:
     """The scaled residual F(j, z) of the rows j of a solve whose row j is a run of plant
@@ -503,7 +503,7 @@ def _record(runs: np.ndarray, result: Any, F: Any, delta_of: Any, plant: np.ndar
     return result.code == ApproachStatus.OK
 
 
-def _turn_at_rudder(b: _Batch, s: _Scales, plant: np.ndarray, delta: np.ndarray,
+def _turn_at_rudder(b: Plant, s: _Scales, plant: np.ndarray, delta: np.ndarray,
                     rps_p: np.ndarray | None, polish: dict[str, np.ndarray],
                     max_iterations: int, out: _Out, sol: np.ndarray) -> None:
     """Stage 3: (u, v, r) at each run's δ from the point interpolated in its bracket."""
@@ -534,7 +534,7 @@ def _turn_at_rudder(b: _Batch, s: _Scales, plant: np.ndarray, delta: np.ndarray,
     sol[runs[keep]] = y[keep]
 
 
-def _continue_in_rudder(b: _Batch, s: _Scales, plant: np.ndarray, delta: np.ndarray,
+def _continue_in_rudder(b: Plant, s: _Scales, plant: np.ndarray, delta: np.ndarray,
                         rps_p: np.ndarray | None, switch: dict[str, np.ndarray],
                         rudder_step: float, max_iterations: int, out: _Out,
                         sol: np.ndarray) -> None:
@@ -561,7 +561,7 @@ def _continue_in_rudder(b: _Batch, s: _Scales, plant: np.ndarray, delta: np.ndar
     sol[runs[alive]] = y[alive]
 
 
-def _outputs(b: _Batch, plant: np.ndarray, ok: np.ndarray, delta: np.ndarray,
+def _outputs(b: Plant, plant: np.ndarray, ok: np.ndarray, delta: np.ndarray,
              rps_p: np.ndarray | None, sol: np.ndarray, out: _Out) -> None:
     """The SteadyTurn fields of the runs ``ok`` from the model's outputs."""
     if not ok.size:
