@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
-import json
 import math
 from collections.abc import Callable
 from typing import Any
@@ -470,9 +469,7 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
         seed=seed,
         metadata={"title": scn.title, "scenario_source": source, "scenario_text": text,
                   **({} if ship is None or not is_ship_path(scn.vessel.ship or "") else
-                     {"ship_file": str(scn.vessel.ship)}),
-                  **({} if in_loop is None else
-                     {"first_order_settings": json.dumps(env.first_order)})},
+                     {"ship_file": str(scn.vessel.ship)})},
         layout=layout,
         environment=None if env is None else env.environment,
         environment_params=None if env is None else env.params,
