@@ -182,6 +182,9 @@ RANK = {part: rank for rank, row in enumerate(LAYERS) for part in row}
 LAZY_UPWARD: dict[tuple[str, str], str] = {
     ("seahelm.results", "seahelm.plotting.timeseries"):
         "SimResult.plot() (house style 8: results have .plot(); 9: matplotlib lazily)",
+    ("seahelm.simulation.ship_start", "seahelm.analysis.maneuvers.ships"):
+        "Problem(ship=...) without x0 starts on the ship's trimmed straight approach, the one "
+        "the manoeuvres start from (solved by the analysis layer; only when asked for)",
 }
 
 #: Imports against the order that are not fixed yet, each with its reason. Exact: an import

@@ -121,12 +121,16 @@ class Problem:
         The vessel model (or its registry name); from the ship when one is given.
     params : Params, sequence of Params or array (runs, n_params), optional
         Vessel parameters, one set or one per run (default: the ship's).
-    x0 : array_like, shape (n_states,) or (runs, n_states)
-        Initial vessel state (SI units, radians).
+    x0 : array_like, shape (n_states,) or (runs, n_states), optional
+        Initial vessel state (SI units, radians). Required without a ``ship``; with one, the
+        default is its trimmed straight approach at its test speed, as the manoeuvres start
+        (:mod:`seahelm.simulation.ship_start`: the steering gear at the trim angle and, for an
+        open-loop problem without a ``reference``, the approach's rudder and rps held).
     controller, controller_params : Controller or str, Params or array, optional
         Controller (default: open loop, reference = command) and its parameters.
     actuator, actuator_params, actuator_x0 : Actuator or str, Params or array, array_like
-        Actuator (default: the ship's steering gear, else the rudder servo), its parameters
+        Actuator (default: the ship's steering gear, else the rudder servo for a model with a
+        ``rudder_angle`` input, else ``direct``), its parameters
         (default: the steering gear's) and initial state (default zeros).
     reference, disturbance : None, scalar, array, callable or mapping, optional
         Controller reference and the model's disturbance inputs
@@ -217,10 +221,11 @@ class Problem:
                                      f"'{model.name}', or a `ship`)", field="params")
             put(self, "params", resolved.params)
         _check_params("params", self.params, model.params_type)
-        if self.x0 is None:
-            raise ParameterError(f"is required: the initial state ({', '.join(model.state_labels)})",
+        if self.x0 is None and resolved.ship is None:
+            raise ParameterError(f"is required: the initial state ({', '.join(model.state_labels)})"
+                                 " (or give a `ship`: it starts on its straight approach)",
                                  field="x0")
-        if model.check_initial_state is not None:  # e.g. a unit quaternion in x0
+        if self.x0 is not None and model.check_initial_state is not None:  # a unit quaternion
             x0 = np.asarray(self.x0, dtype=float)
             if x0.shape[-1:] == (model.n_states,):
                 model.check_initial_state(x0.reshape(-1, model.n_states))
@@ -279,6 +284,12 @@ class Problem:
             raise field_error("integrator", exc) from None
         # environment, bounds, options
         wiring = resolved.wiring
+        if self.x0 is None:  # a ship's: its trimmed straight approach (simulation.ship_start)
+            from .ship_start import approach_start
+
+            for name, value in zip(("x0", "actuator_x0", "reference"), approach_start(
+                    resolved.ship, self.params, wiring, self.actuator_x0, self.reference)):
+                put(self, name, value)
         if self.environment is not None and not isinstance(self.environment, Environment):
             raise ParameterError(
                 f"must be an Environment (seahelm.environment.loads.environment(wind=..., "

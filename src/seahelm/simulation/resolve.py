@@ -26,7 +26,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..actuators.base import Actuator
-from ..actuators.servo import RUDDER_SERVO
+from ..actuators.servo import DIRECT, RUDDER_SERVO
 from ..control.base import Controller
 from ..control.open_loop import OPEN_LOOP
 from ..errors import ParameterError
@@ -172,7 +172,9 @@ def resolve_components(*, ship: Any = None, model: Any = None, actuator: Any = N
         raise ParameterError(f"must be a VesselModel, got {type(model).__name__}", field="model")
     gear = None if ship is None else ship.steering_gear
     if actuator is None:
-        actuator = gear.actuator if gear is not None else RUDDER_SERVO
+        # (a craft without a rudder input, the Otter's thrusters: no rudder servo either)
+        actuator = gear.actuator if gear is not None else (
+            RUDDER_SERVO if "rudder_angle" in model.input_labels else DIRECT)
     else:
         try:
             actuator = get_actuator(actuator)
