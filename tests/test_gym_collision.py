@@ -79,6 +79,13 @@ def test_a_constant_action_is_the_encounter_run(action):
     for j, name in enumerate(("north", "east", "course", "speed", "heading", "yaw_rate")):
         np.testing.assert_array_equal(stepped[:, :, j], result.tracks[name], err_msg=name)
     assert np.ptp(result.tracks["heading"][:, 0]) > (0.1 if action else -1.0)  # it turned
+    # batched = one by one: each sub-environment is its encounter run alone
+    for e in (0, n - 1):
+        alone = Encounter([own, dataclasses.replace(target, north=g["north"][e],
+                                                    east=g["east"][e], course=g["course"][e])],
+                          t_final=seconds, avoidance=avoidance, record_every=1).run()
+        np.testing.assert_array_equal(stepped[e, :, 0], alone.tracks["north"][0])
+        np.testing.assert_array_equal(stepped[e, :, 4], alone.tracks["heading"][0])
 
 
 def test_a_collision_terminates_with_the_collision_term():
@@ -222,3 +229,21 @@ def test_bad_input_is_refused_by_name():
         EncounterVectorEnv(0)
     with pytest.raises(ParameterError, match="reset"):
         EncounterVectorEnv(1).step(np.zeros((1, 1)))
+
+
+def test_the_docs_example_runs():
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parent.parent / "docs" / "guide"
+            / "driven-from-outside.rst").read_text()
+    section = text[text.index("**Collision avoidance**"):]
+    lines = section[section.index(".. code-block:: python"):].splitlines()[2:]
+    block = []
+    for line in lines:
+        if line and not line.startswith("    "):
+            break
+        block.append(line[4:])
+    namespace: dict = {}
+    exec("\n".join(block), namespace)  # noqa: S102 - the page's own example
+    assert namespace["obs"].shape == (64, 12) and namespace["reward"].shape == (64,)
+    namespace["envs"].close()
