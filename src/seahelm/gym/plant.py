@@ -53,6 +53,8 @@ class Plant:
     autopilot : Controller or None
         The heading autopilot run inside the compiled loop (set-point actions), else None
         (the actions are the commands).
+    action_period : float
+        Time between two actions [s].
     intervals_per_action : int
         Controller intervals per action (1 without an autopilot: the commands are held over
         ``action_period``; with one, the autopilot's samples in ``action_period``).
@@ -67,6 +69,7 @@ class Plant:
     speed: float
     length: float
     max_rudder: float
+    action_period: float = 1.0
     autopilot: Any = None
     intervals_per_action: int = 1
 
@@ -196,7 +199,8 @@ def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
     return Plant(ship=ship, simulator=sim, command_labels=labels,
                  command_units=sim.command_units, command_start=command_start,
                  state_start=np.array([sim.state(0)[s] for s in sim.state_labels]),
-                 speed=speed, length=length, max_rudder=max_rudder, autopilot=autopilot,
+                 speed=speed, length=length, max_rudder=max_rudder,
+                 action_period=float(action_period), autopilot=autopilot,
                  intervals_per_action=every)
 
 

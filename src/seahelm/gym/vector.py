@@ -29,7 +29,7 @@ import numpy as np
 
 from .._optional import optional_import
 from ..errors import ParameterError
-from ..simulation.stepping_reference import held_commands, set_reference
+from ..simulation.stepping_reference import held_commands, restart_clock, set_reference
 from .plant import WEATHER_KEYS, Plant, build_plant
 from .tasks import TASKS, Task
 
@@ -105,6 +105,11 @@ class ShipVectorEnv(VectorEnv):
     plant : Plant
         The ship, its simulator and approach.
     task : Task
+    elapsed : ndarray (num_envs,)
+        Each sub-environment's time in its episode [s]. (The simulator's runs are kept at
+        one step, the batch stepped by one call of the loop: a sub-environment started again
+        is reset in the simulator and every run's clock set back to 0, the model being
+        time-invariant; so the simulator's ``time`` is not the episodes'.)
     """
 
     metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
@@ -167,6 +172,9 @@ class ShipVectorEnv(VectorEnv):
         self._rudder_col = sim.command_labels.index("rudder_command")
         self._previous = self._cmd[:, self._rudder_col].copy()
         self._done = np.zeros(self.num_envs, dtype=bool)
+        #: Each sub-environment's time in its episode [s] (num_envs,).
+        self.elapsed = np.zeros(self.num_envs)
+        self._horizon = float(p.simulator.problem.t_final) + 1e-9
         self._started = False
         self._rng = np.random.default_rng()
 
@@ -311,27 +319,21 @@ class ShipVectorEnv(VectorEnv):
         setpoint = self.plant.autopilot is not None
         if setpoint:  # (the autopilot's set-point: absolute, from the task's direction)
             a = self.task.reference_direction() + a[:, 0]
-        if restart.any():
-            sel = np.flatnonzero(restart)
-            self._begin(sel)
-            go = np.flatnonzero(~restart & (sim.status == 0))
-            if not go.size:
-                out = self._sim_observe()
-            elif setpoint:
-                set_reference(sim, a[go, None], runs=go)
-                out = sim.step(None, n=every, runs=go)
-            else:
-                self._cmd[go[:, None], self._act_cols] = a[go]
-                out = sim.step(self._cmd[go], runs=go)
-        elif setpoint:
+        if sim.time[0] + self.plant.action_period > self._horizon:
+            restart_clock(sim)  # (the simulator's horizon reached: its clock back to 0)
+        # every run stepped (one call of the loop; the runs stay at the same step): those
+        # restarting now are started again after it, from their new episode's start
+        if setpoint:
             set_reference(sim, a[:, None])
             out = sim.step(None, n=every)
+            self._cmd[:] = held_commands(sim)  # (the autopilot's rudder: observed, rewarded)
         else:
             self._cmd[:, self._act_cols] = a
             out = sim.step(self._cmd)
-        if setpoint:  # (the rudder the autopilot ordered, for the observation and reward)
-            stepped = np.flatnonzero(~restart)
-            self._cmd[stepped] = held_commands(sim)[stepped]
+        self.elapsed += self.plant.action_period
+        if restart.any():
+            self._begin(np.flatnonzero(restart))
+            out = sim.observe()
         obs, terms, failed, success = self.task.evaluate(out, self._cmd[:, self._rudder_col],
                                                          self._previous)
         diverged = out.status != 0
@@ -340,7 +342,7 @@ class ShipVectorEnv(VectorEnv):
             terms["failure"] = -failed.astype(float)
         reward = self.task.reward(terms)
         terminated = failed | success
-        truncated = ~terminated & (out.time >= self.episode_seconds - 1e-9)
+        truncated = ~terminated & (self.elapsed >= self.episode_seconds - 1e-9)
         if restart.any():
             reward[restart] = 0.0
             terminated[restart] = False
@@ -378,18 +380,18 @@ class ShipVectorEnv(VectorEnv):
         return np.minimum(np.maximum(a, self._low), self._high)
 
     def _begin(self, sel: np.ndarray) -> None:
-        """Start the episodes of ``sel``: the runs reset, the task's draws set."""
+        """Start the episodes of ``sel``: the runs reset, the task's draws set, every run's
+        clock at the same step again (:func:`~seahelm.simulation.stepping_reference.
+        restart_clock`: the batch goes on as one call of the loop a step)."""
         p, sim = self.plant, self._sim
-        sim.reset(runs=sel)
+        restart_clock(sim, sel)  # (sel from the start, the others kept: all at t = 0)
         self._cmd[sel] = p.command_start
         self._previous[sel] = p.command_start[self._rudder_col]
         self._done[sel] = False
+        self.elapsed[sel] = 0.0
         start = self.task.begin(sel, self._rng)
         for r, i in enumerate(sel):
             sim.set_state(int(i), {k: float(v[r]) for k, v in start.items()})
-
-    def _sim_observe(self):
-        return self._sim.observe()
 
     def _observe_now(self) -> tuple[np.ndarray, dict[str, Any]]:
         """The observations now, without stepping (after a reset)."""

@@ -1,6 +1,7 @@
-"""Set-points of a stepped batch: the controller's reference of a :class:`~seahelm.Simulator`'s
-runs written between two steps (:func:`set_reference`), and the commands the loop holds now
-(:func:`held_commands`).
+"""Set-points and clocks of a stepped batch: the controller's reference of a
+:class:`~seahelm.Simulator`'s runs written between two steps (:func:`set_reference`), the
+commands the loop holds now (:func:`held_commands`), and every run's clock set back to t = 0
+with its state kept (:func:`restart_clock`).
 
 With ``commands=None`` :meth:`Simulator.step <seahelm.simulation.stepping.Simulator.step>` lets
 the problem's controller (an autopilot) compute the commands inside the compiled loop from its
@@ -23,7 +24,7 @@ from .stepping_io import check_commands, run_indices
 if TYPE_CHECKING:  # pragma: no cover
     from .stepping import Simulator
 
-__all__ = ["set_reference", "held_commands"]
+__all__ = ["set_reference", "held_commands", "restart_clock"]
 
 
 def _reference_array(sim: "Simulator") -> np.ndarray:
@@ -90,3 +91,44 @@ def held_commands(sim: "Simulator") -> np.ndarray:
     """
     sim._require_reset()
     return sim._cmd[:, :len(sim.command_labels)].copy()
+
+
+def restart_clock(sim: "Simulator", runs: Any = None) -> None:
+    """Set every run's time back to t = 0, keeping its state, commands, controller state and
+    status -- except ``runs``, started again from the problem's initial state: the runs are at
+    the same step again, so the next :meth:`~seahelm.simulation.stepping.Simulator.step` is
+    one call of the loop for the whole batch (runs at different steps, as after
+    ``Simulator.reset(runs=...)``, are stepped group by group and observed run by run).
+
+    For a time-invariant problem -- no time series among the references and disturbances, a
+    model and loads that do not read the time -- the runs kept go on exactly as they would
+    have; the recordings start again (:meth:`~seahelm.simulation.stepping.Simulator.result`
+    holds t = 0 only).
+
+    Parameters
+    ----------
+    sim : Simulator
+        A reset simulator.
+    runs : int or sequence of int, optional
+        The runs to start again (as ``Simulator.reset(runs=...)``; default none).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``reference``/``disturbance`` for a problem whose references or disturbances
+        vary in time (their values are read at the run's time), or ``runs`` out of range.
+    """
+    sim._require_reset()
+    a = sim._batch.slices.arrays
+    for name, arr in (("disturbance", a.signals[0]), ("reference", a.signals[1])):
+        if arr.shape[1] > 1:
+            raise ParameterError(f": the {name} is a time series (shape {arr.shape}); the "
+                                 "clock of its runs cannot be set back", field=name,
+                                 value=arr.shape)
+    keep = np.ones(sim.n_runs, dtype=bool)
+    if runs is not None:
+        keep[run_indices(runs, sim.n_runs)] = False
+    saved = [x[keep].copy() for x in (*a.state, *a.outcome)]
+    sim.reset()
+    for live, old in zip((*a.state, *a.outcome), saved):
+        live[keep] = old
