@@ -32,7 +32,7 @@ from ..encounters.geometry import wrap_pi
 from ..errors import ParameterError
 from ..ships import get_ship
 from ..simulation.stepping import Simulator
-from ..simulation.stepping_reference import restart_clock
+from ..simulation.stepping_reference import restart_clock, set_states
 from .collision import CollisionAvoidance
 
 gym = optional_import("gymnasium", extra="rl", purpose="seahelm.gym")
@@ -384,12 +384,13 @@ class EncounterVectorEnv(VectorEnv):
             rows = self._row[runs[self._group[runs] == g]]
             if rows.size:  # (from the start; the others kept, every clock back to 0)
                 restart_clock(sim, rows)
-        for r, e in enumerate(sel):  # (the own ship starts where the problem has it)
-            flat = int(e) * nv + 1
-            self._sims[self._group[flat]].set_state(
-                int(self._row[flat]), {"north": float(geo["north"][r]),
-                                       "east": float(geo["east"][r]),
-                                       "heading": float(geo["course"][r])})
+        targets = sel * nv + 1  # (the own ship starts where the problem has it)
+        for g, sim in enumerate(self._sims):
+            mine = self._group[targets] == g
+            if mine.any():
+                set_states(sim, self._row[targets[mine]],
+                           {"north": geo["north"][mine], "east": geo["east"][mine],
+                            "heading": geo["course"][mine]})
         self._course0[sel, 1] = geo["course"]
         self.elapsed[sel] = 0.0
         for key in ("north", "east", "course"):
