@@ -109,3 +109,25 @@ def test_restart_clock_starts_runs_again():
         np.testing.assert_array_equal(b.values[1], f.values[1])  # as a fresh run
         with pytest.raises(ParameterError, match="run"):
             restart_clock(clocked, runs=[5])
+
+
+def test_set_states_writes_many_runs_or_refuses_by_name():
+    from seahelm.simulation.stepping_reference import set_states
+    from seahelm.vessels.nomoto import NOMOTO1, Nomoto1Params
+
+    problem = Problem(model=NOMOTO1, params=Nomoto1Params(gain=0.1, time_constant=20.0,
+                                                          speed=5.0),
+                      x0=np.zeros((3, 4)), t_final=1.0, dt=0.1,
+                      bounds={"yaw_rate": (-1.0, 1.0)})
+    with Simulator(problem) as sim:
+        sim.reset()
+        set_states(sim, [0, 2], {"heading": [0.5, -0.5], "yaw_rate": 0.01})
+        assert [sim.state(i)["heading"] for i in range(3)] == [0.5, 0.0, -0.5]
+        assert [sim.state(i)["yaw_rate"] for i in range(3)] == [0.01, 0.0, 0.01]
+        with pytest.raises(ParameterError, match="values.*unknown state 'roll'"):
+            set_states(sim, [0], {"roll": 0.1})
+        with pytest.raises(ParameterError, match=r"values.*\['heading'\].*shape \(2,\)"):
+            set_states(sim, [0, 1], {"heading": [0.1, 0.2, 0.3]})
+        with pytest.raises(ParameterError, match="values.*'yaw_rate' = 2.0 of run 1.*bounds"):
+            set_states(sim, [0, 1], {"yaw_rate": [0.0, 2.0]})
+        assert sim.state(1)["yaw_rate"] == 0.0  # (nothing written)

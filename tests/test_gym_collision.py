@@ -91,7 +91,8 @@ def test_a_constant_action_is_the_encounter_run(action):
 def test_a_collision_terminates_with_the_collision_term():
     envs = EncounterVectorEnv(3, ship=SHIP, dcpa=0.01)  # on a collision course: CPA ±0.07 m
     envs.reset(seed=1)
-    for _ in range(300):
+    g = {k: v.copy() for k, v in envs.start_geometry.items()}
+    for steps in range(1, 300):
         obs, reward, terminated, truncated, _ = envs.step(np.zeros((3, 1)))
         if terminated.any():
             break
@@ -103,6 +104,17 @@ def test_a_collision_terminates_with_the_collision_term():
     obs, reward, terminated, *_ = envs.step(np.zeros((3, 1)))  # next step: a new encounter
     assert (reward[hit] == 0.0).all() and not terminated[hit].any()
     assert (obs[hit, envs.observation_labels.index("target_range")] > 11 * 7.0).all()
+    # the others went on through that restart exactly as their encounter alone
+    assert (~hit).any()
+    states = envs.vessel_states
+    for e in np.flatnonzero(~hit):
+        alone = Encounter([Vessel(ship=SHIP, course=0.0),
+                           Vessel(ship=SHIP, north=g["north"][e], east=g["east"][e],
+                                  course=g["course"][e])],
+                          t_final=float(steps + 1), record_every=1).run()
+        np.testing.assert_array_equal(states[e, :, 0], alone.tracks["north"][0, :, -1])
+        np.testing.assert_array_equal(states[e, :, 4], alone.tracks["heading"][0, :, -1])
+    assert envs.elapsed[hit].tolist() == [0.0] * int(hit.sum())
     envs.close()
 
 

@@ -32,6 +32,7 @@ from ..encounters.geometry import wrap_pi
 from ..errors import ParameterError
 from ..ships import get_ship
 from ..simulation.stepping import Simulator
+from ..simulation.stepping_reference import restart_clock, set_states
 from .collision import CollisionAvoidance
 
 gym = optional_import("gymnasium", extra="rl", purpose="seahelm.gym")
@@ -101,6 +102,10 @@ class EncounterVectorEnv(VectorEnv):
     task : CollisionAvoidance
     encounter : Encounter
         The encounters as first drawn (their problems are the simulators').
+    elapsed : ndarray (num_envs,)
+        Each encounter's time in its episode [s] (the simulators' runs are kept at one step:
+        an encounter started again sets every run's clock back to 0, the models being
+        time-invariant).
     start_geometry : dict
         The target's start of each encounter's episode now: ``north``, ``east`` [m],
         ``course`` [rad] (num_envs,) (the own ship at the origin, heading north).
@@ -157,6 +162,9 @@ class EncounterVectorEnv(VectorEnv):
         self._setup_spaces(own, action_bounds)
         self._build_loop(enc)
         self._done = np.zeros(n, dtype=bool)
+        #: Each encounter's time in its episode [s] (num_envs,).
+        self.elapsed = np.zeros(n)
+        self._horizon = self.episode_seconds + 1e-9
         self._started = False
         self._clock = 0.0
         self._rng = np.random.default_rng()
@@ -196,6 +204,7 @@ class EncounterVectorEnv(VectorEnv):
                                                          enc.uncoupled_problems(),
                                                          self._index)):
             sim = Simulator(problem)
+            sim.reset()
             self._sims.append(sim)
             labels = sim.command_labels
             ship = problem.ship
@@ -304,18 +313,17 @@ class EncounterVectorEnv(VectorEnv):
         kp, td = enc.autopilot.gain, self._td
         rudder = np.clip(kp * wrap_pi(desired.reshape(-1) - truth[:, 4])
                          - kp * td * truth[:, 5], -self._e_lim, self._e_lim)
+        # every run stepped (one call of the loop a simulator: the runs stay at one step);
+        # the encounters restarting now are started again after it
+        for g, (sim, cmd, index) in enumerate(zip(self._sims, self._cmds, self._index)):
+            if sim.time[0] + enc.controller_dt > self._horizon:
+                restart_clock(sim)  # (the horizon reached: the clock back to 0)
+            cmd[:, self._rudder_j[g]] = rudder[index]
+            sim.step(cmd)
+        self._rudder[:] = rudder
+        self.elapsed += enc.controller_dt
         if restart.any():
             self._begin(np.flatnonzero(restart))
-        going = np.repeat(~restart, nv)
-        for g, (sim, cmd, index) in enumerate(zip(self._sims, self._cmds, self._index)):
-            cmd[:, self._rudder_j[g]] = rudder[index]
-            rows = np.flatnonzero(going[index] & (sim.status == 0))
-            if rows.size == index.size:
-                sim.step(cmd)
-            elif rows.size:
-                sim.step(cmd[rows], runs=rows)
-        keep = np.flatnonzero(going)
-        self._rudder[keep] = rudder[keep]
         self._clock += enc.controller_dt
         self._observe()
         obs, terms, collided, passed = self._evaluate()
@@ -327,11 +335,7 @@ class EncounterVectorEnv(VectorEnv):
         terms["collision"] = -failed.astype(float)
         reward = self.task.reward(terms)
         terminated = failed | passed
-        t_own = np.zeros(n)  # (each encounter's time: its own ship's)
-        for sim, index in zip(self._sims, self._index):
-            own = index % nv == 0
-            t_own[index[own] // nv] = sim.time[own]
-        truncated = ~terminated & (t_own >= self.episode_seconds - 1e-9)
+        truncated = ~terminated & (self.elapsed >= self.episode_seconds - 1e-9)
         reward[restart] = 0.0
         terminated[restart] = False
         truncated[restart] = False
@@ -378,15 +382,17 @@ class EncounterVectorEnv(VectorEnv):
         runs = (sel[:, None] * nv + np.arange(nv)[None, :]).reshape(-1)
         for g, sim in enumerate(self._sims):
             rows = self._row[runs[self._group[runs] == g]]
-            if rows.size:
-                sim.reset(runs=rows)
-        for r, e in enumerate(sel):  # (the own ship starts where the problem has it)
-            flat = int(e) * nv + 1
-            self._sims[self._group[flat]].set_state(
-                int(self._row[flat]), {"north": float(geo["north"][r]),
-                                       "east": float(geo["east"][r]),
-                                       "heading": float(geo["course"][r])})
+            if rows.size:  # (from the start; the others kept, every clock back to 0)
+                restart_clock(sim, rows)
+        targets = sel * nv + 1  # (the own ship starts where the problem has it)
+        for g, sim in enumerate(self._sims):
+            mine = self._group[targets] == g
+            if mine.any():
+                set_states(sim, self._row[targets[mine]],
+                           {"north": geo["north"][mine], "east": geo["east"][mine],
+                            "heading": geo["course"][mine]})
         self._course0[sel, 1] = geo["course"]
+        self.elapsed[sel] = 0.0
         for key in ("north", "east", "course"):
             self.start_geometry[key][sel] = geo[key]
         self._rudder[runs] = 0.0

@@ -29,7 +29,8 @@ import numpy as np
 
 from .._optional import optional_import
 from ..errors import ParameterError
-from ..simulation.stepping_reference import held_commands, restart_clock, set_reference
+from ..simulation.stepping_reference import (held_commands, restart_clock, set_reference,
+                                              set_states)
 from .plant import WEATHER_KEYS, Plant, build_plant
 from .tasks import TASKS, Task
 
@@ -389,9 +390,7 @@ class ShipVectorEnv(VectorEnv):
         self._previous[sel] = p.command_start[self._rudder_col]
         self._done[sel] = False
         self.elapsed[sel] = 0.0
-        start = self.task.begin(sel, self._rng)
-        for r, i in enumerate(sel):
-            sim.set_state(int(i), {k: float(v[r]) for k, v in start.items()})
+        set_states(sim, sel, self.task.begin(sel, self._rng))
 
     def _observe_now(self) -> tuple[np.ndarray, dict[str, Any]]:
         """The observations now, without stepping (after a reset)."""

@@ -1,7 +1,8 @@
 """Set-points and clocks of a stepped batch: the controller's reference of a
 :class:`~seahelm.Simulator`'s runs written between two steps (:func:`set_reference`), the
-commands the loop holds now (:func:`held_commands`), and every run's clock set back to t = 0
-with its state kept (:func:`restart_clock`).
+commands the loop holds now (:func:`held_commands`), every run's clock set back to t = 0
+with its state kept (:func:`restart_clock`), and states of many runs set at once
+(:func:`set_states`).
 
 With ``commands=None`` :meth:`Simulator.step <seahelm.simulation.stepping.Simulator.step>` lets
 the problem's controller (an autopilot) compute the commands inside the compiled loop from its
@@ -14,6 +15,7 @@ that reference held constant.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -24,7 +26,7 @@ from .stepping_io import check_commands, run_indices
 if TYPE_CHECKING:  # pragma: no cover
     from .stepping import Simulator
 
-__all__ = ["set_reference", "held_commands", "restart_clock"]
+__all__ = ["set_reference", "held_commands", "restart_clock", "set_states"]
 
 
 def _reference_array(sim: "Simulator") -> np.ndarray:
@@ -102,8 +104,8 @@ def restart_clock(sim: "Simulator", runs: Any = None) -> None:
 
     For a time-invariant problem -- no time series among the references and disturbances, a
     model and loads that do not read the time -- the runs kept go on exactly as they would
-    have; the recordings start again (:meth:`~seahelm.simulation.stepping.Simulator.result`
-    holds t = 0 only).
+    have; their recordings are written again from t = 0 on (what
+    :meth:`~seahelm.simulation.stepping.Simulator.result` holds later is not one run's past).
 
     Parameters
     ----------
@@ -125,10 +127,57 @@ def restart_clock(sim: "Simulator", runs: Any = None) -> None:
             raise ParameterError(f": the {name} is a time series (shape {arr.shape}); the "
                                  "clock of its runs cannot be set back", field=name,
                                  value=arr.shape)
-    keep = np.ones(sim.n_runs, dtype=bool)
-    if runs is not None:
-        keep[run_indices(runs, sim.n_runs)] = False
-    saved = [x[keep].copy() for x in (*a.state, *a.outcome)]
-    sim.reset()
-    for live, old in zip((*a.state, *a.outcome), saved):
-        live[keep] = old
+    sel = None if runs is None else run_indices(runs, sim.n_runs)
+    # every clock at step 0 (the states, commands, controller states and statuses kept: the
+    # loop reads nothing else of a run's past), then the runs to start again reset -- all at
+    # one step, so that reset observes them in one call of the loop
+    sim._k[:] = 0
+    sim._k0 = 0
+    sim._aligned = True
+    if sel is not None and sel.size:
+        sim.reset(runs=sel)
+
+
+def set_states(sim: "Simulator", runs: Any, values: Mapping[str, Any]) -> None:
+    """Set some states of some runs at once (:meth:`Simulator.set_state
+    <seahelm.simulation.stepping.Simulator.set_state>` for many runs; the controller's state
+    is kept).
+
+    Parameters
+    ----------
+    sim : Simulator
+        A reset simulator.
+    runs : int or sequence of int
+        The runs.
+    values : mapping
+        State label -> value or values (one per run) [SI]; the states not named keep theirs.
+        Finite and within the state's bounds.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``values`` on an unknown label, a wrong shape, a value not finite or outside
+        its bounds (nothing is written then).
+    """
+    sim._require_reset()
+    sel = run_indices(runs, sim.n_runs)
+    z = sim._z[sel].copy()
+    labels = sim.state_labels
+    for name, v in values.items():
+        if name not in labels:
+            raise ParameterError(f": unknown state {name!r}; states: {', '.join(labels)}",
+                                 field="values", value=name)
+        col = np.asarray(v, dtype=float)
+        if col.ndim > 1 or (col.ndim == 1 and col.shape[0] != sel.size):
+            raise ParameterError(f"[{name!r}] must be a number or have shape ({sel.size},) "
+                                 f"(one per run), got {col.shape}", field="values",
+                                 value=col.shape)
+        z[:, labels.index(name)] = col
+    lower, upper = (sim._batch.slices.arrays.get("params", n) for n in ("lower", "upper"))
+    bad = ~np.isfinite(z) | (z < lower) | (z > upper)
+    if bad.any():
+        r, j = np.argwhere(bad)[0]
+        raise ParameterError(f": state {labels[j]!r} = {float(z[r, j])!r} of run {int(sel[r])} is not "
+                             f"finite or outside its bounds [{lower[j]:g}, {upper[j]:g}]",
+                             field="values", value=float(z[r, j]), run=int(sel[r]))
+    sim._z[sel] = z
