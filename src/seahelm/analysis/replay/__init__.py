@@ -26,7 +26,7 @@ from ..._optional import lazy_exports
 
 __all__, __getattr__, __dir__ = lazy_exports(__name__, {
     "simulate": ("ReplayResult", "replay", "manoeuvre_metrics", "classify", "REPLAY_CHANNELS",
-                 "RMS_WINDOW", "KINDS", "WIND", "default_step"),
+                 "RMS_WINDOW", "KINDS", "WIND"),
     "dataset": ("REPLAY_FORMAT", "METRIC_UNITS", "check_replay_dataset", "is_replay_dataset",
                 "replay_metrics"),
     "reversals": ("Reversal", "StopComparison", "find_reversals", "replay_stop", "slice_record",
