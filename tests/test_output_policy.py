@@ -162,6 +162,9 @@ CASES: dict[tuple[tuple[str, ...], str], Case] = {
         lambda f: ["encounter", "--monte-carlo", "1", "--t-final", "300", "--detection", "2500",
                    "--avoidance", "none"], "--out",
         directory=("encounters.nc", "tracks.png", "cpa.png", "rose.png")),
+    (("encounter",), "--store"): Case(
+        lambda f: ["encounter", "--monte-carlo", "1", "--t-final", "300", "--detection", "2500",
+                   "--avoidance", "none"], "--store", kind="store"),
     (("imo",), "--out"): Case(
         lambda f: ["imo", str(f.kv)], "--out", directory=("imo-report.json",),
         own_input=lambda f: f.kv),
