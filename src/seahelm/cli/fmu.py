@@ -14,6 +14,7 @@ from typing import Annotated
 import typer
 from rich.markup import escape
 
+from ..errors import ParameterError
 from ._common import ForceFlag, console, handle_errors
 
 __all__ = ["fmu"]
@@ -34,6 +35,9 @@ def fmu(
 
     reads = (Path(ship),) if Path(ship).is_file() else ()
     output_file("--out", out, "fmu", force=force, reads=reads)
+    if out.suffix.lower() != ".fmu":  # (an FMU is a zip an importer finds by its suffix)
+        raise ParameterError(f"`--out` must name an .fmu file, got {str(out)!r}"
+                             + (f" (suffix {out.suffix!r})" if out.suffix else " (no suffix)"))
     path = build_fmu(ship, out, force=True, reads=reads, option="--out",
                      force_word="--force")
     console.print(f"wrote {escape(str(path))}: FMI 2.0 co-simulation FMU of {escape(ship)} "
