@@ -3,7 +3,8 @@
 Inputs the ship's commands (``rudder_command`` [rad], ``propeller_rps`` [1/s]), outputs
 position, heading, speeds, yaw rate and rudder angle, with units and start values; parameters:
 initial position and heading, integration step, wind (:mod:`seahelm.fmu.slave`). Exit codes: 0,
-2 bad input (a ship without a steering gear, an output that may not be written), 1 other.
+2 bad input (a ship without a steering gear, an output that may not be written or is not named
+.fmu), 1 other.
 """
 
 from __future__ import annotations
