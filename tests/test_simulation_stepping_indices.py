@@ -91,3 +91,9 @@ def test_the_whole_horizon_in_one_step_is_allowed(sim):
     sim.step(n=5)
     obs = sim.step(n=20)  # (15 left: the runs stop at t_final, as documented)
     assert obs.time.tolist() == [20.0] * RUNS
+
+
+def test_a_bad_state_is_said_as_a_number(sim):
+    # (it read "state 'heading' = np.float64(nan) is not finite")
+    with pytest.raises(ParameterError, match=r"`values`: state 'heading' = nan is not finite"):
+        sim.set_state(0, {"heading": float("nan")})

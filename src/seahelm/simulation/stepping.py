@@ -341,8 +341,8 @@ class Simulator:
         bad = ~np.isfinite(z) | (z < lower) | (z > upper)
         if bad.any():
             j = int(np.argmax(bad))
-            raise ParameterError(f": state {self.state_labels[j]!r} = {z[j]!r} is not finite "
-                                 f"or outside its bounds [{lower[j]:g}, {upper[j]:g}]",
+            raise ParameterError(f": state {self.state_labels[j]!r} = {float(z[j])!r} is not "
+                                 f"finite or outside its bounds [{lower[j]:g}, {upper[j]:g}]",
                                  field="values", value=z[j], run=i)
         self._z[i] = z
 
