@@ -60,9 +60,12 @@ def _run(controller, params, seed=4):
 
 @pytest.fixture(scope="module")
 def runs():
-    base = dp_pid_params(SHIP)
-    obs = DpObserverParams(**base.as_dict(), wave_frequency=W0)
-    return _run(DP_PID_OBSERVER, obs), _run(DP_PID, base)
+    """The observer's loop and the PID's fed the raw positions, with the same PID gains. Both
+    read one parameter record (the observer's: the PID's fields and the observer's, which
+    ``dp-pid`` ignores), so numba compiles their shared control law (``dp_control`` and its
+    allocation) for one record type, once: 115 -> 84 s CPU in an empty numba cache."""
+    obs = DpObserverParams(**dp_pid_params(SHIP).as_dict(), wave_frequency=W0)
+    return _run(DP_PID_OBSERVER, obs), _run(DP_PID, obs)
 
 
 def test_the_observer_is_registered():
