@@ -297,8 +297,8 @@ def _first_order_motions(result: Any, specs: list[dict[str, Any]], batch_seed: i
         "in diverged runs")}
 
 
-def first_order_in_the_loop(specs: list[dict[str, Any]], batch_seed: int | None, source: str
-                            ) -> Any:
+def first_order_in_the_loop(specs: list[dict[str, Any]], batch_seed: int | None, source: str,
+                            surge_sway: bool = False) -> Any:
     """The in-loop motions of a batch whose runs ask for ``autopilot_sees_first_order``.
 
     Run i's components are drawn as the post-pass draws them (the second child of run i's sea
@@ -312,6 +312,9 @@ def first_order_in_the_loop(specs: list[dict[str, Any]], batch_seed: int | None,
         The batch's (Monte-Carlo) seed.
     source : str
         Scenario name for messages.
+    surge_sway : bool, optional
+        Evaluate the RAO's surge and sway too (``[sensors] wave_motion``: the DP sensors
+        see them), with its heave, roll, pitch and yaw.
 
     Returns
     -------
@@ -353,7 +356,10 @@ def first_order_in_the_loop(specs: list[dict[str, Any]], batch_seed: int | None,
         "frequency", "wavenumber", "direction", "amplitude", "phase")), band,
         [p.seeds[0] for p in parts])
     try:
+        dofs = None if not surge_sway else [d for d in ("surge", "sway", "heave", "roll",
+                                                         "pitch", "yaw") if d in rao.dofs]
         return first_order_in_loop(next(iter(spectra.values())), rao, wave_direction=0.0,
-                                   components=stacked, autopilot_sees_first_order=True)
+                                   components=stacked, autopilot_sees_first_order=True,
+                                   dofs=dofs)
     except ParameterError as exc:
         raise _err(source, "environment.waves.rao_file", str(exc)) from None
