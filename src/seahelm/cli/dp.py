@@ -287,3 +287,99 @@ def capability(
     for case, row in zip(res.cases, res.wind_speed):
         console.print(f"  {case:>28}: {row.min():6.2f} / {row.max():6.2f}", highlight=False,
                       markup=False)
+
+
+def _poles_text(poles: Any) -> str:
+    return ", ".join(f"{p.real:.4g}" if abs(p.imag) < 1e-12 else
+                     f"{p.real:.4g}{p.imag:+.4g}j" for p in poles)
+
+
+@app.command("tune")
+@handle_errors
+def tune(
+    ship: Annotated[str, typer.Argument(metavar="SHIP", help=(
+        "A ship with thrusters and a dp-3dof model: a catalog ship (supply) or a ship file."))],
+    bandwidth: Annotated[str, typer.Option(
+        "--bandwidth", help="Closed-loop bandwidth ω [rad/s]: one for every DOF, or surge,sway,"
+        "yaw.")] = "0.1,0.1,0.2",
+    damping: Annotated[float, typer.Option("--damping", help="Relative damping ζ [-].")] = 1.0,
+    dt: Annotated[float, typer.Option("--dt", help="Controller sample period [s].")] = 0.1,
+    north: Annotated[float, typer.Option("--north", help="Scenario: set-point north [m].")
+                     ] = 10.0,
+    east: Annotated[float, typer.Option("--east", help="Scenario: set-point east [m].")] = 10.0,
+    heading: Annotated[float, typer.Option(
+        "--heading", help="Scenario: set-point heading [deg].")] = 10.0,
+    t_final: Annotated[float, typer.Option("--t-final", help="Scenario: run length [s].")
+                       ] = 300.0,
+    out: Annotated[Path | None, typer.Option(
+        "--out", help="Write a set-point scenario (TOML) with these gains here.")] = None,
+    force: ForceFlag = False,
+    json_out: JsonFlag = False,
+) -> None:
+    """Design the dp-pid gains by pole placement (Fossen 2021 §12.2.6), with the closed loop
+    checked on the vessel's full M and D, and a set-point scenario."""
+    import os
+
+    from ..analysis.autopilot_tuning import scenario_toml
+    from ..control.dp_tuning import tune_dp
+    from ..ships import get_ship
+
+    try:
+        ws = [float(w) for w in bandwidth.split(",") if w.strip()]
+    except ValueError:
+        raise ParameterError(f"must be one or three bandwidths [rad/s], comma-separated, got "
+                             f"{bandwidth!r}", field="--bandwidth", unit="rad/s",
+                             value=bandwidth) from None
+    for option, value, unit in (("--north", north, "m"), ("--east", east, "m"),
+                                ("--heading", heading, "deg")):
+        if not math.isfinite(value):
+            raise ParameterError(f"must be finite [{unit}], got {value!r}", field=option,
+                                 unit=unit, value=value)
+    if not (math.isfinite(t_final) and t_final > 0):
+        raise ParameterError(f"must be > 0 [s], got {t_final!r}", field="--t-final", unit="s",
+                             value=t_final)
+    if out is not None:
+        output_file("--out", out, "toml", force=force,
+                    reads=(Path(ship),) if Path(ship).is_file() else ())
+    the_ship = get_ship(ship)
+    try:
+        tuning = tune_dp(the_ship, bandwidth=ws if len(ws) != 1 else ws[0], damping=damping,
+                         dt=dt)
+    except ParameterError as exc:
+        option = {"bandwidth": "--bandwidth", "damping": "--damping", "dt": "--dt"}.get(
+            exc.field or "")
+        if option is None:
+            raise
+        value = bandwidth if option == "--bandwidth" else exc.value
+        raise ParameterError(exc.reason, field=option, unit=exc.unit, value=value) from None
+    payload = tuning.as_dict()
+    if out is not None:
+        from ..output_files import write_output, written_by_line
+
+        ship_ref = (os.path.relpath(Path(ship).resolve(), Path(out).resolve().parent)
+                    if Path(ship).suffix == ".toml" else ship)
+        text = scenario_toml(tuning.scenario(ship_ref, north=north, east=east,
+                                             heading_deg=heading, t_final=t_final),
+                             tuning.comment())
+        command = command_path()
+        text += written_by_line(command) if command else ""
+        write_output(out, lambda tmp: Path(tmp).write_text(text), "toml", option="--out",
+                     force_word="--force", command=command)
+        payload["files"] = {"scenario": str(out)}
+    if json_out:
+        print_json(payload)
+        return
+    say = dict(highlight=False, markup=False)
+    for w in tuning.warnings:
+        console.print(f"warning: {w}", style="yellow", **say)
+    console.print(f"{tuning.vessel}: dp-pid by pole placement, ω = "
+                  + ", ".join(f"{w:g}" for w in tuning.bandwidth)
+                  + f" rad/s (surge, sway, yaw), ζ = {tuning.damping:g}", **say)
+    for dof, row in zip(("surge", "sway", "yaw"), tuning.designed):
+        g = tuning.gains
+        console.print(f"  {dof:>5}: K_p {g[f'kp_{dof}']:.5g}  K_d {g[f'kd_{dof}']:.5g}  K_i "
+                      f"{g[f'ki_{dof}']:.5g}   designed poles {_poles_text(row)} [1/s]", **say)
+    console.print("  closed loop on the full M, D (about ψ = 0): " + _poles_text(tuning.poles)
+                  + " [1/s] — " + ("stable" if tuning.stable else "UNSTABLE"), **say)
+    if out is not None:
+        console.print(f"  scenario: {out} (seahelm run {out})", **say)
