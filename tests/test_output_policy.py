@@ -142,6 +142,7 @@ CASES: dict[tuple[tuple[str, ...], str], Case] = {
         lambda f: ["waves", "figure", "--duration", "20"], "--out", cheap=True, kind="png"),
     (("waves", "spectrum"), "--plot"): Case(
         lambda f: ["waves", "spectrum", "--h3", "3"], "--plot", cheap=True, kind="png"),
+    (("dp", "tune"), "--out"): Case(lambda f: ["dp", "tune", "supply"], "--out", cheap=True),
     (("dp", "capability"), "--out"): Case(
         lambda f: ["dp", "capability", "shushlyapin2017-dp", "--headings", "4"], "--out", cheap=True,
         kind="nc"),

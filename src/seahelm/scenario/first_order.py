@@ -360,7 +360,7 @@ def _first_order_motions(result: Any, specs: list[FirstOrderSettings], batch_see
 
 
 def first_order_in_the_loop(specs: list[FirstOrderSettings], batch_seed: int | None,
-                            source: str) -> Any:
+                            source: str, surge_sway: bool = False) -> Any:
     """The in-loop motions of a batch whose runs ask for ``autopilot_sees_first_order``.
 
     Run i's components are drawn as the post-pass draws them (the second child of run i's sea
@@ -374,6 +374,9 @@ def first_order_in_the_loop(specs: list[FirstOrderSettings], batch_seed: int | N
         The batch's (Monte-Carlo) seed.
     source : str
         Scenario name for messages.
+    surge_sway : bool, optional
+        Evaluate the RAO's surge and sway too (``[sensors] wave_motion``: the DP sensors
+        see them), with its heave, roll, pitch and yaw.
 
     Returns
     -------
@@ -417,8 +420,11 @@ def first_order_in_the_loop(specs: list[FirstOrderSettings], batch_seed: int | N
         "frequency", "wavenumber", "direction", "amplitude", "phase")), band,
         [p.seeds[0] for p in parts])
     try:
+        dofs = None if not surge_sway else [d for d in ("surge", "sway", "heave", "roll",
+                                                         "pitch", "yaw") if d in rao.dofs]
         in_loop = first_order_in_loop(next(iter(spectra.values())), rao, wave_direction=0.0,
-                                      components=stacked, autopilot_sees_first_order=True)
+                                      components=stacked, autopilot_sees_first_order=True,
+                                      dofs=dofs)
         return dataclasses.replace(in_loop, settings=tuple(specs))
     except ParameterError as exc:
         raise _err(source, "environment.waves.rao_file", str(exc)) from None

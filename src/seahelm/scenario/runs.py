@@ -97,6 +97,7 @@ _FIELD_KEYS: dict[str, str | None] = {
     "jit": None,
     "first_order": "environment.waves.autopilot_sees_first_order",
     "post_pass": "environment.waves.first_order_motions",
+    "sensors": "sensors",
 }
 if set(_FIELD_KEYS) != {f.name for f in dataclasses.fields(Problem)}:  # pragma: no cover
     raise AssertionError("scenario.runs._FIELD_KEYS must name every field of Problem: "
@@ -447,7 +448,17 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
     if env is not None and env.first_order is not None:
         from .first_order import first_order_in_the_loop
 
-        in_loop = first_order_in_the_loop(env.first_order, seed, source)
+        in_loop = first_order_in_the_loop(
+            env.first_order, seed, source,
+            surge_sway=scn.sensors is not None and scn.sensors.wave_motion)
+    sensors = None
+    if scn.sensors is not None:
+        from ..simulation.sensor_stage import PositionSensors
+
+        sn = scn.sensors
+        sensors = PositionSensors(noise_north=sn.noise_north, noise_east=sn.noise_east,
+                                  noise_heading=math.radians(sn.noise_heading_deg),
+                                  wave_motion=sn.wave_motion, seed=sn.seed)
     inputs = dict(
         model=comp.model,
         params=np.array(mp),
@@ -475,6 +486,7 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
         environment_params=None if env is None else env.params,
         exact_actuator=sim.exact_actuator,
         first_order=in_loop,
+        sensors=sensors,
         ship=comp.ship,  # (its name and provenance reach the result's metadata)
         post_pass=(None if env is None or env.first_order is None or in_loop is not None
                    else FirstOrderPostPass(tuple(env.first_order), seed, source)),

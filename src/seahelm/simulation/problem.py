@@ -163,6 +163,10 @@ class Problem:
         components per run; the model must output ``north``, ``east``, ``heading`` and
         ``surge_speed``, and a controller that is to see the first-order yaw must measure
         ``heading``.
+    sensors : PositionSensors, optional
+        What the controller's ``north``, ``east`` and ``heading`` sensors see: the
+        first-order surge, sway and yaw of ``first_order`` and seeded noise
+        (:mod:`seahelm.simulation.sensor_stage`).
     post_pass : object, optional
         Computed after the run from its recordings by :func:`simulate`, into the result: an
         object with ``compute(result) -> (extra, metadata)`` (channels for
@@ -205,6 +209,7 @@ class Problem:
     jit: bool | None = None
     first_order: Any = None
     post_pass: Any = None
+    sensors: Any = None
 
     def __post_init__(self) -> None:
         put = object.__setattr__
@@ -341,6 +346,10 @@ class Problem:
         except ParameterError as exc:
             raise field_error("jit", exc) from None
         _check_first_order(self.first_order, model, controller)
+        if self.sensors is not None:
+            from .sensor_stage import check_sensors
+
+            check_sensors(self.sensors, self.first_order, model, controller)
         if self.post_pass is not None and not callable(getattr(self.post_pass, "compute", None)):
             raise ParameterError(f"must have a compute(result) method, got "
                                  f"{type(self.post_pass).__name__}", field="post_pass")
@@ -374,7 +383,7 @@ class Problem:
             ("initial state", describe(None if self.x0 is None else np.asarray(self.x0))),
             ("reference", describe(self.reference)),
         ]
-        for name in ("disturbance", "environment", "first_order"):
+        for name in ("disturbance", "environment", "first_order", "sensors"):
             if getattr(self, name) is not None:
                 rows.append((name, describe(getattr(self, name))))
         if self.layout is not None:
