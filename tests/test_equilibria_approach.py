@@ -9,9 +9,9 @@ import pytest
 from seahelm.analysis import batch_equilibrium, equilibrium
 from seahelm.analysis.batch_equilibrium import approach_states
 from seahelm.analysis.equilibria import approach as approach_module
-from seahelm.analysis.equilibria.approach import (
+from seahelm.analysis.equilibria.approach import Approach
+from seahelm.analysis.equilibria.approach_cache import (
     APPROACHES,
-    Approach,
     ApproachCache,
     steady_approach,
     steady_approaches,

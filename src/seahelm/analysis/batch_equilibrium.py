@@ -49,7 +49,8 @@ from ..parameters import Params
 from ..vessels.base import VesselModel, _batched_output
 from .constant_speed import is_constant_speed
 from .equilibria.approach import ApproachStatus, BatchApproach
-from .equilibria.plant import Plant
+from .equilibria import fallback
+from .equilibria.plant import EquilibriumError, Plant
 
 __all__ = ["ApproachStatus", "BatchApproach", "approach_states"]
 
@@ -445,8 +446,6 @@ def _drift(b: Plant, state: np.ndarray, rudder: np.ndarray, rps: np.ndarray,
 def _constant_speed(model: VesselModel, plist: list[Params], speed: Any, trim: bool,
                     heading: float) -> BatchApproach:
     """A constant-speed model's approaches, one run after the other (see the module)."""
-    from .equilibrium import EquilibriumError, approach_state
-
     n = len(plist)
     speeds = (np.full(n, np.nan) if speed is None
               else np.broadcast_to(np.asarray(speed, dtype=float), (n,)))
@@ -456,14 +455,16 @@ def _constant_speed(model: VesselModel, plist: list[Params], speed: Any, trim: b
     status = np.zeros(n, dtype=np.int64)
     messages = []
     for i, p in enumerate(plist):
+        cs = fallback.constant_speed_plant(p, model)
+        if cs is None:  # (not the model's parameter type: the plant says so)
+            Plant(model, [p])
         try:
-            a = approach_state(p, None if speed is None else float(speeds[i]), model=model,
-                               heading=heading, trim=trim)
+            state[i], rudder[i] = cs.approach(None if speed is None else float(speeds[i]),
+                                              heading=heading, trim=trim)
         except EquilibriumError as exc:
             status[i] = ApproachStatus.NO_EQUILIBRIUM
             messages.append(str(exc))
             continue
-        state[i], rudder[i] = a.state, a.inputs["rudder_angle"]
         messages.append("ok")
     drift = np.where(status == 0, 0.0, np.nan)
     if "drift_angle" in model.state_labels:

@@ -19,8 +19,8 @@ from ...registry import model_for_params
 from ...vessels.base import VesselModel
 from ...ships import Ship
 from ..constant_speed import is_constant_speed
-from ..equilibria.approach import (  # the one Approach type; imported from here too
-    Approach,
+from ..equilibria.approach import Approach  # the one Approach type; imported from here too
+from ..equilibria.approach_cache import (
     clear_approaches,
     steady_approach,
     steady_approaches,
