@@ -8,12 +8,12 @@ import math
 import numpy as np
 import pytest
 
-from seahelm.analysis import batch_equilibrium
-from seahelm.analysis.batch_equilibrium import approach_states
-from seahelm.analysis.batch_steady_turn import steady_turns
+from seahelm.analysis.equilibria import batch_equilibrium
+from seahelm.analysis.equilibria.batch_equilibrium import approach_states
+from seahelm.analysis.equilibria.batch_steady_turn import steady_turns
 from seahelm.analysis.equilibria import fallback
 from seahelm.analysis.equilibria.plant import Plant
-from seahelm.analysis.equilibrium import (
+from seahelm.analysis.equilibria.equilibrium import (
     EquilibriumError,
     approach_state,
     self_propulsion_rps,

@@ -11,4 +11,9 @@ _MOVED = {old: f"seahelm.identification.{new}" for old, new in {
     "fit_statistics": "fit_result", "records": "records",
     "velocity_smoother": "velocity_smoother", "samples_file": "samples_file"}.items()}
 
+#: Modules moved to :mod:`seahelm.analysis.equilibria` (issue 47, item 3): the same.
+_MOVED.update({old: f"seahelm.analysis.equilibria.{old}" for old in (
+    "equilibrium", "batch_equilibrium", "batch_steady_turn", "constant_speed", "linearisation",
+    "heel")})
+
 __getattr__ = deprecated_modules(__name__, _MOVED)

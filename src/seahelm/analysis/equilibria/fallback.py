@@ -1,8 +1,8 @@
 """The one-run solves by ``scipy.optimize``: the fallback inside the equilibrium solvers.
 
-The public functions of :mod:`seahelm.analysis.equilibrium` solve a run as a batch of one
-with the batched Newton solvers (:mod:`seahelm.analysis.batch_equilibrium`,
-:mod:`seahelm.analysis.batch_steady_turn`); a run they do not solve, a model with roll (its
+The public functions of :mod:`seahelm.analysis.equilibria.equilibrium` solve a run as a batch of one
+with the batched Newton solvers (:mod:`seahelm.analysis.equilibria.batch_equilibrium`,
+:mod:`seahelm.analysis.equilibria.batch_steady_turn`); a run they do not solve, a model with roll (its
 heel balanced in every evaluation) and what has no batch form yet (the spiral curve δ(r),
 the straight-run speed at an rps) are solved here, one run at a time, by
 ``scipy.optimize.root`` / ``brentq`` on the model's own derivative, and an equation without a
@@ -11,7 +11,7 @@ was solving for. The batched solvers' own fallback (``steady_turns(fallback=True
 module too, so neither imports the public one-run module.
 
 Constant-speed models (no surge equation) are handed to
-:class:`~seahelm.analysis.constant_speed.ConstantSpeedPlant` (:func:`constant_speed_plant`).
+:class:`~seahelm.analysis.equilibria.constant_speed.ConstantSpeedPlant` (:func:`constant_speed_plant`).
 """
 
 from __future__ import annotations
@@ -24,7 +24,7 @@ import numpy as np
 from ...errors import ParameterError
 from ...registry import model_for_params
 from ...vessels.base import VesselModel
-from ..constant_speed import ConstantSpeedPlant, is_constant_speed
+from .constant_speed import ConstantSpeedPlant, is_constant_speed
 from .plant import EquilibriumError, Plant, resolve_params
 
 # scipy.optimize (0.2 s to import) is imported inside the functions that use it
@@ -86,7 +86,7 @@ def self_propulsion(plant: Plant, U: float, max_rps: float) -> float:
 
 def turn_fields(plant: Plant, deltas: np.ndarray, n: float | None,
                 rudder_step: float) -> np.ndarray:
-    """The :class:`~seahelm.analysis.equilibrium.SteadyTurn` fields (6, len(deltas)) of the
+    """The :class:`~seahelm.analysis.equilibria.equilibrium.SteadyTurn` fields (6, len(deltas)) of the
     plant's one run at the rudder angles ``deltas`` by scipy's continuation from the straight
     run, or the EquilibriumError of the first angle without a steady turn."""
     trim = solve(plant, {"r": 0.0}, ("surge", "v", "rudder"),
@@ -109,7 +109,7 @@ def turn_fields(plant: Plant, deltas: np.ndarray, n: float | None,
 
 def _turn(plant: Plant, trim: np.ndarray, delta: float, n: float | None,
           rudder_step: float) -> tuple[float, float, float]:
-    """(surge, v, r) of the steady turn at ``delta`` by continuation (see :func:`~seahelm.analysis.equilibrium.steady_turn`)."""
+    """(surge, v, r) of the steady turn at ``delta`` by continuation (see :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn`)."""
     from scipy.optimize import brentq
 
     u0, v0, d0 = (float(c) for c in trim)
@@ -160,8 +160,8 @@ def _turn_in_rudder(plant: Plant, d_from: float, d_to: float, guess: tuple[float
 
 def constant_speed_plant(value: Any, model: VesselModel | None,
                     rps: Any = None) -> ConstantSpeedPlant | None:
-    """The plant of a constant-speed model (:mod:`seahelm.analysis.constant_speed`), None for another model
-    (whose :class:`~.equilibria.plant.Plant` then says what it lacks)."""
+    """The plant of a constant-speed model (:mod:`seahelm.analysis.equilibria.constant_speed`), None for another model
+    (whose :class:`~.plant.Plant` then says what it lacks)."""
     params, ship_model = resolve_params(value)
     model = model or ship_model or model_for_params(type(params))
     if model is None or not is_constant_speed(model) or not isinstance(params,

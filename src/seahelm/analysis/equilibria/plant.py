@@ -1,10 +1,10 @@
 """The plant of the equilibrium solvers: a model, the parameter sets of its runs and the
 signals the solvers need, resolved once.
 
-One :class:`Plant` serves the one-run solvers (:mod:`seahelm.analysis.equilibrium`, a batch
-of one) and the batched ones (:mod:`seahelm.analysis.batch_equilibrium`,
-:mod:`seahelm.analysis.batch_steady_turn`). It resolves, by name (the module docstring of
-:mod:`seahelm.analysis.equilibrium` lists the signals):
+One :class:`Plant` serves the one-run solvers (:mod:`seahelm.analysis.equilibria.equilibrium`, a batch
+of one) and the batched ones (:mod:`seahelm.analysis.equilibria.batch_equilibrium`,
+:mod:`seahelm.analysis.equilibria.batch_steady_turn`). It resolves, by name (the module docstring of
+:mod:`seahelm.analysis.equilibria.equilibrium` lists the signals):
 
 * the surge state: ``surge_speed`` (MMG), or ``surge_perturbation`` about a parameter
   ``nominal_speed`` (Mariner; :attr:`Plant.u_offset` is then that speed per run);
@@ -12,7 +12,7 @@ of one) and the batched ones (:mod:`seahelm.analysis.batch_equilibrium`,
 * the inputs ``rudder_angle`` and, optionally, ``propeller_rps``;
 * per run the length L and the reference speed U_ref (``approach_speed``, else
   ``nominal_speed``, else 1 m/s) that scale the unknowns and the accelerations;
-* for a model with roll, its heel balance (:func:`~seahelm.analysis.heel.heel_balance`).
+* for a model with roll, its heel balance (:func:`~seahelm.analysis.equilibria.heel.heel_balance`).
 
 Before issue 47 this resolution was written twice (``equilibrium._Plant`` for one run,
 ``batch_equilibrium._Batch`` for a batch); ``tests/test_equilibria_plant.py`` pins it on
@@ -31,7 +31,7 @@ from ...errors import ParameterError
 from ...parameters import Params, as_records, stack_params
 from ...registry import model_for_params
 from ...vessels.base import VesselModel, _batched_indexed_rhs
-from ..heel import heel_balance
+from .heel import heel_balance
 
 __all__ = ["EquilibriumError", "Plant", "resolve_params"]
 

@@ -27,7 +27,7 @@ identified at one speed: K ∝ U/L and T ∝ L/U for given non-dimensional K', T
 approach at another speed is refused rather than run with coefficients of the wrong speed.
 The speed does not change in a turn: these models have no speed loss.
 
-:mod:`seahelm.analysis.equilibrium` hands such a model to this module; the manoeuvre library
+:mod:`seahelm.analysis.equilibria.equilibrium` hands such a model to this module; the manoeuvre library
 then runs on it unchanged.
 """
 
@@ -38,10 +38,10 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_float_array, check_finite, check_positive, check_range
-from ..errors import ParameterError
-from ..parameters import Params
-from ..vessels.base import VesselModel
+from ..._validate import as_float_array, check_finite, check_positive, check_range
+from ...errors import ParameterError
+from ...parameters import Params
+from ...vessels.base import VesselModel
 
 __all__ = ["is_constant_speed", "ConstantSpeedPlant", "SPEED_FIELD", "POSITION_STATES"]
 
@@ -344,7 +344,7 @@ class ConstantSpeedPlant:
         Returns
         -------
         tuple of numpy.ndarray
-            The fields of :class:`~seahelm.analysis.equilibrium.SteadyTurn`, shape
+            The fields of :class:`~seahelm.analysis.equilibria.equilibrium.SteadyTurn`, shape
             (6, *rudder.shape), and the steering states, shape (states, *rudder.shape).
         """
         check_positive("max_rudder", max_rudder, "rad")

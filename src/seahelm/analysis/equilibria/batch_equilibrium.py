@@ -1,6 +1,6 @@
 """Steady straight approaches of a whole batch of parameter sets in one vectorised solve.
 
-:func:`approach_states` is :func:`~seahelm.analysis.equilibrium.approach_state` (with
+:func:`approach_states` is :func:`~seahelm.analysis.equilibria.equilibrium.approach_state` (with
 ``trim=True`` by default) for many parameter sets of one model at once — a Monte-Carlo
 study's ships, or one ship at many speeds. Each run has two stages, solved for all runs
 together with the model's own compiled right-hand side (one compiled loop over the
@@ -8,7 +8,7 @@ still-active runs per evaluation, each run's parameter record read in place):
 
 1. **self-propulsion rps** (models with a ``propeller_rps`` input): the zero of the surge
    acceleration f(n) at u = U_0, v = r = δ = 0, bracketed from n = 0 upwards by doubling (as
-   :func:`~seahelm.analysis.equilibrium.self_propulsion_rps`), then a safeguarded Newton
+   :func:`~seahelm.analysis.equilibria.equilibrium.self_propulsion_rps`), then a safeguarded Newton
    iteration (forward-difference derivative; bisection whenever the step leaves the bracket)
    down to |Δn| ≤ 10⁻¹⁴ + 4 ε |n|, brentq's tolerance in the one-run solve;
 2. **trim** (``trim=True``): u̇ = v̇ = ṙ = 0 with r = 0 solved for (u, v, δ) at that rps by
@@ -32,7 +32,7 @@ right-hand side, a singular Jacobian, a line search without decrease, too many i
 Bad arguments (a speed ≤ 0, a perturbation model at another speed than its own) raise
 :class:`~seahelm.errors.ParameterError` as the one-run functions do.
 
-Constant-speed models (:mod:`seahelm.analysis.constant_speed`) have no surge equation; their
+Constant-speed models (:mod:`seahelm.analysis.equilibria.constant_speed`) have no surge equation; their
 approaches are solved one after the other by the one-run code (they cost microseconds).
 """
 
@@ -44,17 +44,17 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..parameters import Params
-from ..vessels.base import VesselModel, _batched_output
+from ...errors import ParameterError
+from ...parameters import Params
+from ...vessels.base import VesselModel, _batched_output
 from .constant_speed import is_constant_speed
-from .equilibria.approach import ApproachStatus, BatchApproach
-from .equilibria import fallback
-from .equilibria.plant import EquilibriumError, Plant
+from .approach import ApproachStatus, BatchApproach
+from . import fallback
+from .plant import EquilibriumError, Plant
 
 __all__ = ["ApproachStatus", "BatchApproach", "approach_states"]
 
-#: Accepted scaled residual ‖F‖∞ (as the one-run solve, :func:`seahelm.analysis.equilibrium._solve`).
+#: Accepted scaled residual ‖F‖∞ (as the one-run solve, :func:`seahelm.analysis.equilibria.equilibrium._solve`).
 RESIDUAL_TOL = 1e-9
 #: Relative Newton step below which the trim has converged.
 STEP_TOL = 1e-14
@@ -67,7 +67,7 @@ def approach_states(model: VesselModel, params: Params | Sequence[Params], speed
                     max_iterations: int = 50) -> BatchApproach:
     """Steady straight approaches of many parameter sets in one vectorised solve.
 
-    The batch form of :func:`~seahelm.analysis.equilibrium.approach_state` (see the module
+    The batch form of :func:`~seahelm.analysis.equilibria.equilibrium.approach_state` (see the module
     docstring for the method): the same results to the solvers' tolerance (within 10⁻¹¹
     relative on the catalog ships and Monte-Carlo sets, 10⁻¹⁵ to 10⁻¹³ measured; see
     ``tests/test_analysis_batch_equilibrium.py``).

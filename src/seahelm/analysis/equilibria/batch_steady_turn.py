@@ -1,11 +1,11 @@
 """Steady turns of a whole batch of ships and rudder angles in one vectorised solve.
 
-:func:`steady_turns` is :func:`~seahelm.analysis.equilibrium.steady_turn` for many (parameter
+:func:`steady_turns` is :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn` for many (parameter
 set, rudder angle, rps) runs of one model at once — the four zig-zag turns of every member of
 a Monte-Carlo study — with the same equations, the same continuation and the same answer to
 the solvers' tolerance (``tests/test_analysis_batch_steady_turn.py``). It solves with the
 machinery of :mod:`.batch_equilibrium` (the model's compiled right-hand side over all active
-runs per evaluation, :func:`~seahelm.analysis.batch_equilibrium._newton`'s damped Newton):
+runs per evaluation, :func:`~seahelm.analysis.equilibria.batch_equilibrium._newton`'s damped Newton):
 
 1. **straight run** at the rps (r = 0, solved for u, v, δ from (U_ref, 0, 0)), once per
    distinct (parameter set, rps): the trim of :mod:`.batch_equilibrium`;
@@ -25,11 +25,11 @@ runs per evaluation, :func:`~seahelm.analysis.batch_equilibrium._newton`'s dampe
 
 A run that fails in the batch is solved again one at a time by scipy's continuation
 (:mod:`seahelm.analysis.equilibria.fallback`; ``fallback=True``, the default): its result, or
-the message of its :class:`~seahelm.analysis.equilibrium.EquilibriumError`
+the message of its :class:`~seahelm.analysis.equilibria.equilibrium.EquilibriumError`
 (``NO_STEADY_TURN``), is the run's. Constant-speed models (:mod:`.constant_speed`, no surge
 equation; microseconds a turn) and models with a roll state (their heel is balanced in every
 evaluation, :mod:`.heel`) are solved one run after the other by that one-run code.
-:func:`~seahelm.analysis.equilibrium.steady_turn` is this function for a batch of one.
+:func:`~seahelm.analysis.equilibria.equilibrium.steady_turn` is this function for a batch of one.
 
 Bad arguments (a rudder angle beyond ``max_rudder``, a missing or non-positive rps) raise
 :class:`~seahelm.errors.ParameterError` for the batch, as the one-run function does.
@@ -45,10 +45,10 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import check_positive, check_range
-from ..errors import ParameterError
-from ..parameters import Params
-from ..vessels.base import VesselModel, _batched_output
+from ..._validate import check_positive, check_range
+from ...errors import ParameterError
+from ...parameters import Params
+from ...vessels.base import VesselModel, _batched_output
 from .batch_equilibrium import (
     ApproachStatus,
     _newton,
@@ -56,8 +56,8 @@ from .batch_equilibrium import (
     _trim,
 )
 from .constant_speed import is_constant_speed
-from .equilibria import fallback
-from .equilibria.plant import EquilibriumError, Plant
+from . import fallback
+from .plant import EquilibriumError, Plant
 from .heel import heel_balance
 
 __all__ = ["TurnStatus", "BatchSteadyTurn", "steady_turns", "steady_turn_states"]
@@ -96,7 +96,7 @@ class TurnStatus(enum.IntEnum):
 class BatchSteadyTurn:
     """Steady turns of a batch of runs (arrays over ``runs``; NaN where failed).
 
-    The first six fields are those of :class:`~seahelm.analysis.equilibrium.SteadyTurn`.
+    The first six fields are those of :class:`~seahelm.analysis.equilibria.equilibrium.SteadyTurn`.
     """
 
     surge_speed: np.ndarray
@@ -137,7 +137,7 @@ def steady_turns(model: VesselModel, params: Params | Sequence[Params], rudder: 
                  fallback: bool = True) -> BatchSteadyTurn:
     """Steady turns of many (parameter set, rudder angle, rps) runs in one vectorised solve.
 
-    The batch form of :func:`~seahelm.analysis.equilibrium.steady_turn` (see the module
+    The batch form of :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn` (see the module
     docstring for the method): the same turns to the solvers' tolerance.
 
     Parameters
@@ -228,7 +228,7 @@ def steady_turn_states(model: VesselModel, params: Params | Sequence[Params], ru
                        ) -> tuple[np.ndarray, BatchSteadyTurn]:
     """State vectors of the steady turns of a batch (e.g. the starts of pull-outs).
 
-    The batch form of :func:`~seahelm.analysis.equilibrium.steady_turn_state` at heading 0:
+    The batch form of :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn_state` at heading 0:
     the turns of :func:`steady_turns`, as states at the origin; a constant-speed model or a
     model with roll is solved one run after the other by ``steady_turn_state`` itself.
 
@@ -289,8 +289,8 @@ def steady_turn_states(model: VesselModel, params: Params | Sequence[Params], ru
 
 def _one_run_turn(model: VesselModel, params: Params, delta: float, rps: float | None,
                   max_rudder: float, rudder_step: float) -> tuple[np.ndarray, np.ndarray]:
-    """One run's steady turn by the one-run code (:mod:`.equilibria.fallback`): its
-    :class:`~seahelm.analysis.equilibrium.SteadyTurn` fields and its state at the origin,
+    """One run's steady turn by the one-run code (:mod:`.fallback`): its
+    :class:`~seahelm.analysis.equilibria.equilibrium.SteadyTurn` fields and its state at the origin,
     heading 0 (heel balanced for a model with roll), or its EquilibriumError."""
     cs = fallback.constant_speed_plant(params, model, rps)
     if cs is not None:
