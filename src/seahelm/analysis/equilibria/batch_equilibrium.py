@@ -6,7 +6,9 @@ study's ships, or one ship at many speeds. Each run has two stages, solved for a
 together with the model's own compiled right-hand side (one compiled loop over the
 still-active runs per evaluation, each run's parameter record read in place):
 
-1. **self-propulsion rps** (models with a ``propeller_rps`` input): the zero of the surge
+1. **self-propulsion rps** (models with a ``propeller_rps`` input): the closed form where
+   the model declares one (:mod:`.closed_forms`; the MMG model) and its right-hand side
+   vanishes there; otherwise the zero of the surge
    acceleration f(n) at u = U_0, v = r = δ = 0, bracketed from n = 0 upwards by doubling (as
    :func:`~seahelm.analysis.equilibria.equilibrium.self_propulsion_rps`), then a safeguarded Newton
    iteration (forward-difference derivative; bisection whenever the step leaves the bracket)
@@ -49,7 +51,7 @@ from ...parameters import Params
 from ...vessels.base import VesselModel, _batched_output
 from .constant_speed import is_constant_speed
 from .approach import ApproachStatus, BatchApproach
-from . import fallback
+from . import closed_forms, fallback
 from .plant import EquilibriumError, Plant
 
 __all__ = ["ApproachStatus", "BatchApproach", "approach_states"]
@@ -207,10 +209,21 @@ def _self_propulsion(b: Plant, U0: np.ndarray, max_rps: float, max_iterations: i
     _fail(status, reason, every[f_lo >= 0.0], ApproachStatus.NO_SELF_PROPULSION,
           lambda i: f"at `speed` = {float(U0[i])!r} [m/s] the surge force is not negative with the "
                     "propeller stopped: no self-propulsion point")
+    # a closed form the model declares, where its right-hand side vanishes (closed_forms)
+    closed = closed_forms.self_propulsion_rps(b, U0)
+    take = every[(status == ApproachStatus.OK) & np.isfinite(closed) & (closed > 0.0)
+                 & (closed <= max_rps)]
+    solved = np.zeros(n, dtype=bool)
+    fx = np.full(n, np.nan)
+    if take.size:
+        fc = f(take, closed[take])
+        good = np.abs(fc) * b.length[take] / b.u_ref[take] ** 2 <= closed_forms.RESIDUAL_TOL
+        solved[take[good]] = True
+        fx[take[good]] = fc[good]
     lo = np.zeros(n)
     hi = np.ones(n)
     f_hi = np.full(n, np.nan)
-    active = every[status == ApproachStatus.OK]
+    active = every[(status == ApproachStatus.OK) & ~solved]
     while active.size:  # bracket: double hi until the propeller pushes
         f_hi[active] = f(active, hi[active])
         nan = active[~np.isfinite(f_hi[active])]
@@ -223,12 +236,12 @@ def _self_propulsion(b: Plant, U0: np.ndarray, max_rps: float, max_iterations: i
                         f"at `speed` = {float(U0[i])!r} [m/s]")
         active = short[status[short] == ApproachStatus.OK]
         hi[active] = np.minimum(2.0 * hi[active], max_rps)
-    active = every[status == ApproachStatus.OK]
+    active = every[(status == ApproachStatus.OK) & ~solved]
     # start from the secant of the bracket, then Newton with bisection as a safeguard
     with np.errstate(all="ignore"):
         x = lo - f_lo * (hi - lo) / (f_hi - f_lo)
     x = np.where(np.isfinite(x) & (x > lo) & (x < hi), x, 0.5 * (lo + hi))
-    fx = np.full(n, np.nan)
+    x[solved] = closed[solved]
     for _ in range(4 * max_iterations):
         if not active.size:
             break
