@@ -53,7 +53,7 @@ def kvlcc2_full():
 @pytest.fixture(scope="session")
 def mariner_linear():
     """``linearize("mariner-nonlinear", actuator=False)``: the Mariner's straight run."""
-    from seahelm.analysis.linearisation import linearize
+    from seahelm.analysis.equilibria.linearisation import linearize
 
     return linearize("mariner-nonlinear", actuator=False)
 
@@ -61,7 +61,7 @@ def mariner_linear():
 @pytest.fixture(scope="session")
 def kvlcc2_l7_linear():
     """``linearize("kvlcc2-l7", actuator=False)``: the KVLCC2's straight run (a kink)."""
-    from seahelm.analysis.linearisation import linearize
+    from seahelm.analysis.equilibria.linearisation import linearize
 
     return linearize("kvlcc2-l7", actuator=False)
 

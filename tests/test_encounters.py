@@ -50,7 +50,7 @@ def test_coupled_run_without_avoidance_equals_each_vessel_alone_bit_for_bit():
 
 def test_an_encounter_vessel_equals_a_simulator_driven_by_hand():
     """The target of the head-on case, driven by a PD law written here on a plain Simulator."""
-    from seahelm.analysis.equilibrium import approach_state
+    from seahelm.analysis.equilibria.equilibrium import approach_state
 
     ship = get_ship(SHIP)
     start = approach_state(ship)

@@ -6,17 +6,17 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from seahelm.analysis import batch_equilibrium, equilibrium
-from seahelm.analysis.batch_equilibrium import approach_states
+from seahelm.analysis.equilibria import batch_equilibrium, equilibrium
+from seahelm.analysis.equilibria.batch_equilibrium import approach_states
 from seahelm.analysis.equilibria import approach as approach_module
-from seahelm.analysis.equilibria.approach import (
+from seahelm.analysis.equilibria.approach import Approach
+from seahelm.analysis.equilibria.approach_cache import (
     APPROACHES,
-    Approach,
     ApproachCache,
     steady_approach,
     steady_approaches,
 )
-from seahelm.analysis.equilibrium import EquilibriumError, approach_state
+from seahelm.analysis.equilibria.equilibrium import EquilibriumError, approach_state
 from seahelm.analysis.maneuvers import common, ships
 from seahelm.errors import ParameterError
 from seahelm.ships import get_ship

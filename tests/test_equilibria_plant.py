@@ -29,9 +29,17 @@ EXPECTED = {
                                           u_ref=7.7175)),
     "container": ("son-nomoto-container", dict(i_u=0, u_offset=0.0, i_v=1, i_r=2, i_psi=5,
                                                j_delta=0, j_rps=1, length=175.0, u_ref=7.0)),
-    "nomoto1": ("mariner-nomoto1", "needs a state 'surge_speed'"),
-    "nomoto2": ("mariner-nomoto2", "needs a state 'surge_speed'"),
-    "voitkunsky": ("mariner-voitkunsky", "needs a state 'surge_speed'"),
+    # constant-speed models: the surge held (step D; before, refused: "needs a state
+    # 'surge_speed'"), their speed the parameter `speed`, the steering states resolved
+    "nomoto1": ("mariner-nomoto1", dict(i_u=None, u_offset=0.0, i_v=None, i_r=3, i_psi=2,
+                                        j_delta=0, j_rps=None, length=160.93, u_ref=7.7175,
+                                        steering=[3])),
+    "nomoto2": ("mariner-nomoto2", dict(i_u=None, u_offset=0.0, i_v=None, i_r=3, i_psi=2,
+                                        j_delta=0, j_rps=None, length=160.93, u_ref=7.7175,
+                                        steering=[3, 4])),
+    "voitkunsky": ("mariner-voitkunsky", dict(i_u=None, u_offset=0.0, i_v=None, i_r=3,
+                                              i_psi=2, j_delta=0, j_rps=None, length=160.93,
+                                              u_ref=7.7175, steering=[3, 4])),
     "cpp-ship-calm": ("cpp-ship-calm", "needs a state 'surge_speed'"),
     "cpp-ship-waves": ("cpp-ship-waves", "needs a state 'surge_speed'"),
     "catamaran": ("shushlyapin2017-consistent", "has no state 'sway_speed'"),
@@ -96,3 +104,17 @@ def test_one_run_and_batch_resolve_the_same_signals(name):
     assert _resolved(many) == _resolved(one)
     for k in ("u_offset", "length", "u_ref"):  # per run in a batch
         assert np.shape(getattr(many, k)) == (2,)
+    assert one.surge_held == ("steering" in expected)
+    assert one.steering == expected.get("steering")
+
+
+def test_the_constant_speed_solves_stand_on_the_surge_held_plant():
+    from seahelm.analysis.equilibria.constant_speed import ConstantSpeedPlant
+    from seahelm.analysis.equilibria.plant import Plant
+
+    ship = get_ship("mariner-nomoto2")
+    cs = ConstantSpeedPlant(ship.params, ship.model)
+    assert isinstance(cs.plant, Plant) and cs.plant.surge_held
+    assert cs.steering == [3, 4] and cs.speed == 7.7175
+    assert cs.rate == 7.7175 / 160.93  # U/L
+    assert cs.scale.tolist() == [cs.rate, cs.rate]  # both steering states in rad/s

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from seahelm.actuators.servo import DIRECT, RUDDER_SERVO
-from seahelm.analysis.equilibrium import approach_state, self_propulsion_rps
+from seahelm.analysis.equilibria.equilibrium import approach_state, self_propulsion_rps
 from seahelm.control.pid import PID_HEADING, PIDHeadingParams
 from seahelm.errors import ParameterError
 from seahelm.ships import get_ship, write_ship

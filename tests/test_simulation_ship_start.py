@@ -3,7 +3,7 @@
 Before: ``Problem(ship="kvlcc2-l7", t_final=..., dt=...)`` raised "`x0` is required"; the CLI's
 manoeuvres start from the ship's straight approach, and so does a Problem now. A straight run
 is checked by what it must do (keep its speed, not turn), against the one-run scipy solver
-(:func:`seahelm.analysis.equilibrium.approach_state`), not the batched one the default uses.
+(:func:`seahelm.analysis.equilibria.equilibrium.approach_state`), not the batched one the default uses.
 """
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from seahelm.actuators.servo import DIRECT
-from seahelm.analysis.equilibrium import approach_state
+from seahelm.analysis.equilibria.equilibrium import approach_state
 from seahelm.errors import ParameterError
 from seahelm.ships import get_ship
 from seahelm.simulation.engine import simulate

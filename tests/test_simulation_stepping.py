@@ -65,7 +65,7 @@ def test_stepping_with_wind_and_waves_equals_simulate():
 
 
 def test_stepping_with_first_order_motions_in_the_loop_equals_simulate():
-    from seahelm.analysis.equilibrium import approach_state
+    from seahelm.analysis.equilibria.equilibrium import approach_state
     from seahelm.control.pid import PID_HEADING, PIDHeadingParams
     from seahelm.environment import rao_io
     from seahelm.environment.first_order_in_loop import first_order_in_loop

@@ -57,4 +57,9 @@ _REGROUPED = {
     "averaging": "seahelm.studies.platonov.averaging",
 }
 
+#: Modules moved to :mod:`seahelm.analysis.equilibria` (issue 47, item 3): the same.
+_MOVED.update({old: f"seahelm.analysis.equilibria.{old}" for old in (
+    "equilibrium", "batch_equilibrium", "batch_steady_turn", "constant_speed", "linearisation",
+    "heel")})
+
 __getattr__ = deprecated_modules(__name__, {**_MOVED, **_REGROUPED})

@@ -320,7 +320,7 @@ def tune(
     checked on the vessel's full M and D, and a set-point scenario."""
     import os
 
-    from ..analysis.autopilot_tuning import scenario_toml
+    from ..analysis.steering.autopilot_tuning import scenario_toml
     from ..control.dp_tuning import tune_dp
     from ..ships import get_ship
 

@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from ..analysis.equilibrium import approach_state
+from ..analysis.equilibria.equilibrium import approach_state
 from ..errors import ParameterError
 from ..ships import Ship, get_ship
 from ..simulation.problem import Problem

@@ -140,7 +140,7 @@ def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
     ParameterError
         Naming the argument (``ship``, ``num_envs``, a weather keyword, a time, ``autopilot``).
     """
-    from ..analysis.equilibrium import approach_state
+    from ..analysis.equilibria.equilibrium import approach_state
 
     if isinstance(ship, str):
         try:

@@ -3,7 +3,7 @@
 ``Problem(ship="kvlcc2-l7", t_final=120.0, dt=0.1)`` without ``x0`` starts where the CLI's
 manoeuvres start: the ship's steady straight approach at its test speed U_0, trimmed
 (:func:`seahelm.analysis.maneuvers.ships.steady_approach`, i.e.
-:func:`seahelm.analysis.equilibrium.approach_state` with ``trim=True``): surge at U_0, the
+:func:`seahelm.analysis.equilibria.equilibrium.approach_state` with ``trim=True``): surge at U_0, the
 propeller at its self-propulsion rps, the rudder at the angle that keeps the yaw rate zero,
 heading 0, at the origin. Where the actuator has a state of the same name (the steering gear's
 ``rudder_angle``), it starts there too; an open-loop problem without a ``reference`` holds the

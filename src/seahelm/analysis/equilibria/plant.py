@@ -1,10 +1,10 @@
 """The plant of the equilibrium solvers: a model, the parameter sets of its runs and the
 signals the solvers need, resolved once.
 
-One :class:`Plant` serves the one-run solvers (:mod:`seahelm.analysis.equilibrium`, a batch
-of one) and the batched ones (:mod:`seahelm.analysis.batch_equilibrium`,
-:mod:`seahelm.analysis.batch_steady_turn`). It resolves, by name (the module docstring of
-:mod:`seahelm.analysis.equilibrium` lists the signals):
+One :class:`Plant` serves the one-run solvers (:mod:`seahelm.analysis.equilibria.equilibrium`, a batch
+of one) and the batched ones (:mod:`seahelm.analysis.equilibria.batch_equilibrium`,
+:mod:`seahelm.analysis.equilibria.batch_steady_turn`). It resolves, by name (the module docstring of
+:mod:`seahelm.analysis.equilibria.equilibrium` lists the signals):
 
 * the surge state: ``surge_speed`` (MMG), or ``surge_perturbation`` about a parameter
   ``nominal_speed`` (Mariner; :attr:`Plant.u_offset` is then that speed per run);
@@ -12,7 +12,14 @@ of one) and the batched ones (:mod:`seahelm.analysis.batch_equilibrium`,
 * the inputs ``rudder_angle`` and, optionally, ``propeller_rps``;
 * per run the length L and the reference speed U_ref (``approach_speed``, else
   ``nominal_speed``, else 1 m/s) that scale the unknowns and the accelerations;
-* for a model with roll, its heel balance (:func:`~seahelm.analysis.heel.heel_balance`).
+* for a model with roll, its heel balance (:func:`~.heel.heel_balance`).
+
+A constant-speed steering model (Nomoto, Voitkunsky: no surge state, the speed a parameter
+``speed``; :func:`is_constant_speed`) is the plant's **surge-held** mode
+(:attr:`Plant.surge_held`): there is no surge state to resolve, and the plant resolves the
+heading, yaw rate and steering states, the speed U, the rate U/L and each steering state's
+typical size, which :class:`~seahelm.analysis.equilibria.constant_speed.ConstantSpeedPlant`
+solves on.
 
 Before issue 47 this resolution was written twice (``equilibrium._Plant`` for one run,
 ``batch_equilibrium._Batch`` for a batch); ``tests/test_equilibria_plant.py`` pins it on
@@ -22,6 +29,7 @@ every registered model.
 from __future__ import annotations
 
 import functools
+import math
 from collections.abc import Sequence
 from typing import Any
 
@@ -31,9 +39,43 @@ from ...errors import ParameterError
 from ...parameters import Params, as_records, stack_params
 from ...registry import model_for_params
 from ...vessels.base import VesselModel, _batched_indexed_rhs
-from ..heel import heel_balance
+from .heel import heel_balance
 
-__all__ = ["EquilibriumError", "Plant", "resolve_params"]
+__all__ = ["EquilibriumError", "Plant", "resolve_params", "is_constant_speed", "SPEED_FIELD",
+           "POSITION_STATES"]
+
+#: The parameter holding a constant-speed model's speed U [m/s].
+SPEED_FIELD = "speed"
+#: States that move freely in an equilibrium (the rest are a constant-speed model's steering
+#: states).
+POSITION_STATES = ("north", "east", "heading")
+_SURGE_STATES = ("surge_speed", "surge_perturbation")
+
+
+def is_constant_speed(model: VesselModel) -> bool:
+    """Whether ``model`` is a constant-speed steering model: no surge state, its speed a
+    parameter ``speed`` (the surge held), the states ``north``, ``east``, ``heading`` and
+    ``yaw_rate`` and the input ``rudder_angle``
+    (:mod:`seahelm.analysis.equilibria.constant_speed`).
+
+    Parameters
+    ----------
+    model : VesselModel
+
+    Returns
+    -------
+    bool
+    """
+    states = set(model.state_labels)
+    return (not states & set(_SURGE_STATES)
+            and {"north", "east", "heading", "yaw_rate"} <= states
+            and "rudder_angle" in model.input_labels
+            and SPEED_FIELD in model.params_type.field_names())
+
+
+def _steering_scale(unit: str, rate: float) -> float:
+    """Typical size of a steering state or its derivative of ``unit`` (rate = U/L [1/s])."""
+    return {"rad": 1.0, "rad/s": rate, "rad/s²": rate * rate, "m/s": 1.0}.get(unit, 1.0)
 
 
 class EquilibriumError(ParameterError):
@@ -104,6 +146,12 @@ class Plant:
         self.params: list[Params] = plist
         first = plist[0]
         states = model.state_labels
+        #: the surge held: a constant-speed model (its speed a parameter, no surge equation)
+        self.surge_held = is_constant_speed(model)
+        if self.surge_held:
+            self._surge_held(plist)
+            return
+        self.steering = None
         if "surge_speed" in states:
             self.i_u = states.index("surge_speed")
             self.u_offset = np.zeros(len(plist))
@@ -131,6 +179,31 @@ class Plant:
         self.u_ref = (np.array([float(getattr(p, ref)) for p in plist]) if ref is not None
                       else np.ones(len(plist)))
         self.heel = heel_balance(model)  # a model with roll: its steady heel
+
+    def _surge_held(self, plist: list[Params]) -> None:
+        """The signals of a constant-speed model: heading, yaw rate and the other steering
+        states (all but the position and heading), the rudder; per run the speed U, the
+        length L (NaN without one), the rate U/L (1/s when either is missing) and each
+        steering state's typical size."""
+        m = self.model
+        states = m.state_labels
+        self.i_u = None
+        self.u_offset = np.zeros(len(plist))
+        self.i_v = states.index("sway_speed") if "sway_speed" in states else None
+        self.i_r = states.index("yaw_rate")
+        self.i_psi = states.index("heading")
+        self.j_delta = m.input_labels.index("rudder_angle")
+        self.j_rps = None
+        self.steering = [k for k, s in enumerate(states) if s not in POSITION_STATES]
+        self.speed = np.array([float(getattr(p, SPEED_FIELD)) for p in plist])
+        self.length = np.array([float(getattr(p, "length", math.nan)) for p in plist])
+        self.u_ref = self.speed
+        self.rate = np.array([U / L if L > 0 and U > 0 else 1.0
+                              for U, L in zip(self.speed.tolist(), self.length.tolist())])
+        self.steering_scale = np.array([[_steering_scale(m.state_units[k], rate)
+                                         for k in self.steering]
+                                        for rate in self.rate.tolist()])
+        self.heel = None
 
     @classmethod
     def of(cls, value: Any, model: VesselModel | None = None) -> Plant:

@@ -18,14 +18,14 @@ from ...parameters import Params
 from ...registry import model_for_params
 from ...vessels.base import VesselModel
 from ...ships import Ship
-from ..constant_speed import is_constant_speed
-from ..equilibria.approach import (  # the one Approach type; imported from here too
-    Approach,
+from ..equilibria.constant_speed import is_constant_speed
+from ..equilibria.approach import Approach  # the one Approach type; imported from here too
+from ..equilibria.approach_cache import (
     clear_approaches,
     steady_approach,
     steady_approaches,
 )
-from ..equilibrium import (
+from ..equilibria.equilibrium import (
     EquilibriumError,
     straight_run_speed,
 )
@@ -300,7 +300,7 @@ def _straight_run_speed(ship: Any, rps: float) -> float:
 
 def yaw_lag(ship: Any) -> float:
     """The time a constant-speed model's yaw rate takes to build up [s]
-    (:meth:`~seahelm.analysis.constant_speed.ConstantSpeedPlant.lag`; T of Nomoto 1), added to
+    (:meth:`~seahelm.analysis.equilibria.constant_speed.ConstantSpeedPlant.lag`; T of Nomoto 1), added to
     the default durations of the manoeuvres; 0 for a model with a surge state (whose defaults
     stay as they were)."""
     if not is_constant_speed(ship.model):
@@ -310,16 +310,16 @@ def yaw_lag(ship: Any) -> float:
 
 @functools.lru_cache(maxsize=64)
 def _lag(model: VesselModel, params: Params) -> float:
-    from ..constant_speed import ConstantSpeedPlant
+    from ..equilibria.constant_speed import ConstantSpeedPlant
 
     return ConstantSpeedPlant(params, model, EquilibriumError).lag()
 
 
 def steady_yaw_rate(ship: Any, rudder: Any, approach: Approach) -> np.ndarray:
     """|r| [rad/s] of the steady turns at ``rudder`` [rad] from ``approach``
-    (:func:`~seahelm.analysis.equilibrium.steady_turn`), an error naming the approach and
+    (:func:`~seahelm.analysis.equilibria.equilibrium.steady_turn`), an error naming the approach and
     `t_final` (which skips the estimate that needs it) if there is none."""
-    from ..equilibrium import steady_turn
+    from ..equilibria.equilibrium import steady_turn
 
     try:
         return np.abs(steady_turn(ship.params, rudder, approach.rps, model=ship.model,
@@ -341,8 +341,8 @@ def steady_yaw_rates(groups: Sequence[tuple[Any, Any, Approach]]) -> list[np.nda
     """:func:`steady_yaw_rate` of many (ship, rudder angles, approach) groups in one batch.
 
     The steady turns of all groups are solved together
-    (:func:`~seahelm.analysis.batch_steady_turn.steady_turns`, the one-at-a-time
-    :func:`~seahelm.analysis.equilibrium.steady_turn` for a run that fails there), one batch
+    (:func:`~seahelm.analysis.equilibria.batch_steady_turn.steady_turns`, the one-at-a-time
+    :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn` for a run that fails there), one batch
     per model; the results equal :func:`steady_yaw_rate`'s to the solvers' tolerance.
 
     Parameters
@@ -363,7 +363,7 @@ def steady_yaw_rates(groups: Sequence[tuple[Any, Any, Approach]]) -> list[np.nda
     ParameterError
         If a rudder angle is beyond a ship's steering gear, or an rps is missing or not > 0.
     """
-    from ..batch_steady_turn import steady_turns
+    from ..equilibria.batch_steady_turn import steady_turns
 
     shapes = [np.shape(d) for _, d, _ in groups]
     rates: list[np.ndarray | None] = [None] * len(groups)

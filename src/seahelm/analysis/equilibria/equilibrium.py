@@ -49,13 +49,12 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from .._validate import as_float_array, check_finite, check_positive, check_range
-from ..errors import ParameterError
-from ..registry import model_for_params
-from ..vessels.base import VesselModel
-from .constant_speed import ConstantSpeedPlant, is_constant_speed
-from .equilibria.approach import Approach
-from .equilibria.plant import EquilibriumError, Plant, resolve_params
+from ..._validate import as_float_array, check_finite, check_positive, check_range
+from ...errors import ParameterError
+from ...vessels.base import VesselModel
+from . import fallback
+from .approach import Approach
+from .plant import EquilibriumError, Plant
 
 # scipy.optimize (0.2 s to import) is imported inside the functions that use it
 
@@ -111,51 +110,6 @@ class SpiralCurve(NamedTuple):
 # ------------------------------------------------------------------------------------------
 # plumbing: which model, which signals (the one Plant of .equilibria.plant, a batch of one)
 # ------------------------------------------------------------------------------------------
-def _solve(plant: Plant, fixed: dict[str, float], unknowns: tuple[str, ...],
-           guess: np.ndarray, rps: float | None) -> np.ndarray:
-    """u̇ = v̇ = ṙ = 0 for three of (surge, v, r, rudder) of the plant's one run, the others
-    ``fixed`` (``scipy.optimize.root``, scaled: (u, v) by U_ref, r by U_ref/L)."""
-    from scipy.optimize import root
-
-    u_ref, length = float(plant.u_ref[0]), float(plant.length[0])
-    scale = {"surge": u_ref, "v": u_ref, "r": u_ref / length, "rudder": 1.0}
-    acc_scale = np.array([1.0, 1.0, 1.0 / length]) * u_ref ** 2 / length
-    s = np.array([scale[k] for k in unknowns])
-
-    def residual(z: np.ndarray) -> np.ndarray:
-        values = dict(fixed)
-        values.update(zip(unknowns, z * s))
-        acc = plant.acceleration(values["surge"], values["v"], values["r"],
-                                 values["rudder"], rps)
-        return acc / acc_scale
-
-    sol = root(residual, np.asarray(guess, dtype=float) / s, method="hybr",
-               options={"xtol": 1e-13})
-    res = residual(sol.x)
-    if not np.all(np.isfinite(res)) or np.max(np.abs(res)) > 1e-9:
-        raise EquilibriumError(
-            f"no equilibrium found for {', '.join(unknowns)} with "
-            + ", ".join(f"{k} = {v:.6g}" for k, v in fixed.items())
-            + (f", rps = {rps:.6g} [1/s]" if rps is not None else "")
-            + f" ({sol.message.strip()}; residual {np.max(np.abs(res)):.3g})")
-    return sol.x * s
-
-
-def _constant_speed(value: Any, model: VesselModel | None,
-                    rps: Any = None) -> ConstantSpeedPlant | None:
-    """The plant of a constant-speed model (:mod:`.constant_speed`), None for another model
-    (whose :class:`~.equilibria.plant.Plant` then says what it lacks)."""
-    params, ship_model = resolve_params(value)
-    model = model or ship_model or model_for_params(type(params))
-    if model is None or not is_constant_speed(model) or not isinstance(params,
-                                                                      model.params_type):
-        return None
-    if rps is not None:
-        raise ParameterError(f": model '{model.name}' has no propeller_rps input, got {rps!r}",
-                             field="rps", unit="1/s", value=rps)
-    return ConstantSpeedPlant(params, model, EquilibriumError)
-
-
 def _propelled_plant(model_or_params: Any, model: VesselModel | None) -> Plant:
     """The plant of a model that has a ``propeller_rps`` input (ParameterError otherwise)."""
     plant = Plant.of(model_or_params, model)
@@ -186,8 +140,11 @@ def self_propulsion_rps(model_or_params: Any, speed: Any, *, model: VesselModel 
     """Propeller rps of a steady straight run at ``speed`` (zero surge force, v = r = δ = 0).
 
     Solves X_H + X_P + X_R = 0 (Yasukawa & Yoshimura 2015, surge equation with u̇ = 0) for the
-    propeller rps n with ``scipy.optimize.brentq`` on the model's right-hand side, bracketing
-    from n = 0 (the propeller drags: J_P → ∞) upwards by doubling.
+    propeller rps n on the model's right-hand side, bracketing from n = 0 (the propeller drags:
+    J_P → ∞) upwards by doubling: all speeds at once by the batched safeguarded Newton of
+    :func:`~seahelm.analysis.equilibria.batch_equilibrium.approach_states` (to brentq's tolerance); a
+    speed it does not solve, and a model with roll, by ``scipy.optimize.brentq``, whose
+    error is the one raised.
 
     Parameters
     ----------
@@ -214,32 +171,20 @@ def self_propulsion_rps(model_or_params: Any, speed: Any, *, model: VesselModel 
     EquilibriumError
         If no rps in (0, ``max_rps``] gives zero surge force.
     """
-    from scipy.optimize import brentq
-
     plant = _propelled_plant(model_or_params, model)
     speeds = as_float_array("speed", speed, "m/s")
     check_positive("speed", speeds, "m/s")
     check_positive("max_rps", max_rps, "1/s")
-    out = np.empty(speeds.shape)
-    for idx, U_item in np.ndenumerate(speeds):
-        U = float(U_item)
+    flat = np.full(speeds.size, np.nan)
+    if plant.heel is None and speeds.size:  # the batched Newton (a model with roll: scipy)
+        from .batch_equilibrium import approach_states
 
-        def surge_acc(n: float, U: float = U) -> float:
-            return float(plant.acceleration(U, 0.0, 0.0, 0.0, n)[0])
-
-        if surge_acc(0.0) >= 0.0:
-            raise EquilibriumError(
-                f"at `speed` = {U!r} [m/s] the surge force is not negative with the propeller "
-                "stopped: no self-propulsion point")
-        hi = 1.0
-        while surge_acc(hi) <= 0.0:
-            if hi >= max_rps:
-                raise EquilibriumError(
-                    f"no propeller rps in (0, {max_rps:g}] [1/s] gives zero surge force at "
-                    f"`speed` = {U!r} [m/s]")
-            hi = min(2.0 * hi, float(max_rps))
-        out[idx] = brentq(surge_acc, 0.0, hi, xtol=1e-14, rtol=4 * np.finfo(float).eps)
-    return float(out) if out.ndim == 0 else out
+        batch = approach_states(plant.model, plant.params * speeds.size, speeds.ravel(),
+                                trim=False, max_rps=float(max_rps))
+        flat[batch.ok] = batch.rps[batch.ok]
+    for i in np.flatnonzero(~np.isfinite(flat)):  # the fallback: brentq, or its error
+        flat[i] = fallback.self_propulsion(plant, float(speeds.flat[i]), float(max_rps))
+    return float(flat[0]) if speeds.ndim == 0 else flat.reshape(speeds.shape)
 
 
 def steady_turn(params: Any, rudder: Any, rps: float | None = None, *,
@@ -247,7 +192,10 @@ def steady_turn(params: Any, rudder: Any, rps: float | None = None, *,
                 rudder_step: float = math.radians(2.5)) -> SteadyTurn:
     """The steady turn at a rudder angle: u̇ = v̇ = ṙ = 0 solved for (u, v, r).
 
-    The three force balances are solved with ``scipy.optimize.root``, each time from a nearby
+    The three force balances are solved for all rudder angles at once by the batched damped
+    Newton of :func:`~seahelm.analysis.equilibria.batch_steady_turn.steady_turns` (the same continuation,
+    the same root to round-off); a rudder angle it does not solve, and a model with roll, by
+    ``scipy.optimize.root``, whose error is the one raised. Each solve starts from a nearby
     solution, by continuation along the spiral curve δ(r) from the straight run:
 
     1. the straight run with zero yaw rate (its rudder angle δ_0 is 0 for a ship symmetric at
@@ -296,7 +244,7 @@ def steady_turn(params: Any, rudder: Any, rps: float | None = None, *,
     EquilibriumError
         If the continuation fails to converge.
     """
-    cs = _constant_speed(params, model, rps)
+    cs = fallback.constant_speed_plant(params, model, rps)
     if cs is not None:
         fields = cs.steady_turns(rudder, max_rudder, rudder_step)[0]
         if np.ndim(rudder) == 0:
@@ -308,75 +256,25 @@ def steady_turn(params: Any, rudder: Any, rps: float | None = None, *,
     deltas = as_float_array("rudder", rudder, "rad")
     check_range("rudder", deltas, -max_rudder, max_rudder, "rad")
     n = _check_rps(plant, rps)
-    trim = _solve(plant, {"r": 0.0}, ("surge", "v", "rudder"),
-                  np.array([float(plant.u_ref[0]), 0.0, 0.0]), n)
-    fields = np.full((6,) + deltas.shape, np.nan)
-    for idx, delta in np.ndenumerate(deltas):
-        surge, v, r = _turn(plant, trim, float(delta), n, float(rudder_step))
-        if not surge > 0.0:
-            raise EquilibriumError(
-                f"the steady turn at `rudder` = {delta!r} [rad] ({math.degrees(delta):.4g} deg) "
-                f"has surge speed {surge:.6g} [m/s] <= 0")
-        y = plant.model.outputs(0.0, plant.state(surge, v, r), plant.inputs(float(delta), n),
-                                plant.params[0])
-        speed = y[plant.model.output_index("speed")]
-        fields[(slice(None),) + idx] = (
-            y[plant.model.output_index("surge_speed")], v, r, speed,
-            y[plant.model.output_index("drift_angle")], speed / abs(r) if r != 0.0 else np.inf)
+    flat = np.full((6, deltas.size), np.nan)
+    if plant.heel is None and deltas.size:
+        from .batch_steady_turn import steady_turns
+
+        turns = steady_turns(plant.model, plant.params[0], deltas.ravel(), n,
+                             max_rudder=max_rudder, rudder_step=rudder_step, fallback=False)
+        flat[:, turns.ok] = np.stack(
+            [turns.surge_speed, turns.sway_speed, turns.yaw_rate, turns.speed,
+             turns.drift_angle, turns.radius])[:, turns.ok]
+    fields = flat.reshape((6,) + deltas.shape)
+    todo = [idx for idx in np.ndindex(deltas.shape) if not np.isfinite(fields[(0,) + idx])]
+    if todo:  # the fallback: scipy's continuation, or its error
+        got = fallback.turn_fields(plant, np.array([deltas[idx] for idx in todo]), n,
+                                   float(rudder_step))
+        for k, idx in enumerate(todo):
+            fields[(slice(None),) + idx] = got[:, k]
     if deltas.ndim == 0:
         return SteadyTurn(*(float(f) for f in fields))
     return SteadyTurn(*fields)
-
-
-def _turn(plant: Plant, trim: np.ndarray, delta: float, n: float | None,
-          rudder_step: float) -> tuple[float, float, float]:
-    """(surge, v, r) of the steady turn at ``delta`` by continuation (see :func:`steady_turn`)."""
-    from scipy.optimize import brentq
-
-    u0, v0, d0 = (float(c) for c in trim)
-    if delta == d0:
-        return u0, v0, 0.0
-    sign = 1.0 if delta > d0 else -1.0
-    r_step = 0.01 * float(plant.u_ref[0]) / float(plant.length[0])
-    free_r = ("surge", "v", "rudder")
-    prev_r, prev = 0.0, np.array([u0, v0, d0])
-    for k in range(1, 301):
-        r = sign * k * r_step
-        try:
-            z = _solve(plant, {"r": r}, free_r, prev, n)
-        except EquilibriumError:
-            z = None
-        if z is None or abs(z[2] - prev[2]) > rudder_step:
-            return _turn_in_rudder(plant, prev[2], delta, (prev[0], prev[1], prev_r), n,
-                                   rudder_step)
-        if sign * (z[2] - delta) >= 0.0:
-            start = prev.copy()
-
-            def offset(rr: float) -> float:
-                return float(_solve(plant, {"r": rr}, free_r, start, n)[2] - delta)
-
-            r_star = brentq(offset, prev_r, r, xtol=1e-13 * r_step, rtol=1e-14)
-            zs = _solve(plant, {"r": r_star}, free_r, start, n)
-            try:
-                return tuple(float(c) for c in _solve(plant, 
-                    {"rudder": delta}, ("surge", "v", "r"), np.array([zs[0], zs[1], r_star]),
-                    n))
-            except EquilibriumError:  # pragma: no cover - brentq's point is within 1e-13
-                return float(zs[0]), float(zs[1]), float(r_star)
-        prev_r, prev = r, z
-    raise EquilibriumError(
-        f"no steady turn found at `rudder` = {delta!r} [rad] ({math.degrees(delta):.4g} deg) "
-        "up to r L/U_0 = 3")
-
-
-def _turn_in_rudder(plant: Plant, d_from: float, d_to: float, guess: tuple[float, ...],
-                    n: float | None, rudder_step: float) -> tuple[float, float, float]:
-    """Continue (surge, v, r) in the rudder angle from ``d_from`` to ``d_to``."""
-    z = np.asarray(guess, dtype=float)
-    steps = max(1, int(math.ceil(abs(d_to - d_from) / rudder_step)))
-    for d_k in np.linspace(d_from, d_to, steps + 1)[1:]:
-        z = _solve(plant, {"rudder": float(d_k)}, ("surge", "v", "r"), z, n)
-    return float(z[0]), float(z[1]), float(z[2])
 
 
 def approach_state(params: Any, speed: float | None = None, *, model: VesselModel | None = None,
@@ -389,6 +287,11 @@ def approach_state(params: Any, speed: float | None = None, *, model: VesselMode
     zero. With ``trim=True`` the rudder angle, surge and sway speed are solved so that the run
     is an exact equilibrium with zero yaw rate (a biased model such as the Mariner needs a small
     rudder angle to keep a straight course; for the symmetric-at-zero MMG ship nothing changes).
+
+    Solved as a batch of one by :func:`~seahelm.analysis.equilibria.batch_equilibrium.approach_states`
+    (safeguarded Newton for the rps, damped Newton for the trim); where it finds no solution,
+    and for a model with roll, by ``scipy.optimize`` (brentq, root), whose error is the one
+    raised.
 
     Parameters
     ----------
@@ -417,7 +320,7 @@ def approach_state(params: Any, speed: float | None = None, *, model: VesselMode
     EquilibriumError
         If the self-propulsion point or the trim is not found.
     """
-    cs = _constant_speed(params, model)
+    cs = fallback.constant_speed_plant(params, model)
     if cs is not None:  # no surge state: the model's own speed, at rest in yaw
         state, rudder = cs.approach(speed, heading=heading, trim=trim)
         return Approach(state, {"rudder_angle": rudder}, cs.speed)
@@ -431,14 +334,25 @@ def approach_state(params: Any, speed: float | None = None, *, model: VesselMode
         raise ParameterError(
             f"`speed` must be the nominal speed U_0 = {offset!r} [m/s] of the "
             f"perturbation model '{plant.model.name}', got {U0!r}")
+    if plant.heel is None:  # the batched Newton (a model with roll: scipy)
+        from .batch_equilibrium import approach_states
+
+        batch = approach_states(plant.model, plant.params, U0, trim=trim,
+                                heading=float(heading))
+        if batch.ok[0]:
+            inputs = {"rudder_angle": float(batch.rudder[0])}
+            if plant.j_rps is not None:
+                inputs["propeller_rps"] = float(batch.rps[0])
+            return Approach(batch.state[0], inputs, U0)
+    # the fallback: scipy (brentq, root), or its error
     inputs = {"rudder_angle": 0.0}
     n = None
     if plant.j_rps is not None:
-        n = float(self_propulsion_rps(plant.params[0], U0, model=plant.model))
+        n = float(fallback.self_propulsion(plant, U0, 1000.0))
         inputs["propeller_rps"] = n
     surge, v = U0, 0.0
     if trim:
-        surge, v, delta = _solve(plant, {"r": 0.0}, ("surge", "v", "rudder"),
+        surge, v, delta = fallback.solve(plant, {"r": 0.0}, ("surge", "v", "rudder"),
                                  np.array([U0, 0.0, 0.0]), n)
         inputs["rudder_angle"] = float(delta)
     return Approach(plant.state(surge, v, 0.0, float(heading),
@@ -546,7 +460,7 @@ def steady_turn_state(params: Any, rudder: float, rps: float | None = None, *,
     if np.ndim(rudder) != 0:
         raise ParameterError(f"`rudder` must be a scalar [rad], got shape {np.shape(rudder)}")
     check_finite("heading", heading, "rad")
-    cs = _constant_speed(params, model, rps)
+    cs = fallback.constant_speed_plant(params, model, rps)
     if cs is not None:
         states = cs.steady_turns(rudder, max_rudder, math.radians(2.5))[1]
         return Approach(cs.state(states, float(heading)), {"rudder_angle": float(rudder)},
@@ -600,7 +514,7 @@ def rudder_for_yaw_rate(params: Any, yaw_rate: Any, rps: float | None = None, *,
         balance).
     """
     rates = as_float_array("yaw_rate", yaw_rate, "rad/s")
-    cs = _constant_speed(params, model, rps)
+    cs = fallback.constant_speed_plant(params, model, rps)
     if cs is not None:
         fields = cs.spiral(rates)
         if rates.ndim == 0:
@@ -611,7 +525,7 @@ def rudder_for_yaw_rate(params: Any, yaw_rate: Any, rps: float | None = None, *,
     free = ("surge", "v", "rudder")
     u_ref = float(plant.u_ref[0])
     r_step = 0.01 * u_ref / float(plant.length[0])
-    trim = _solve(plant, {"r": 0.0}, free, np.array([u_ref, 0.0, 0.0]), n)
+    trim = fallback.solve(plant, {"r": 0.0}, free, np.array([u_ref, 0.0, 0.0]), n)
     flat = rates.ravel()
     sol = np.full((flat.size, 3), np.nan)
     for i in np.flatnonzero(flat == 0.0):
@@ -623,7 +537,7 @@ def rudder_for_yaw_rate(params: Any, yaw_rate: Any, rps: float | None = None, *,
             target = float(flat[i])
             steps = max(1, int(math.ceil(abs(target - prev_r) / r_step)))
             for rr in np.linspace(prev_r, target, steps + 1)[1:]:
-                z = _solve(plant, {"r": float(rr)}, free, z, n)
+                z = fallback.solve(plant, {"r": float(rr)}, free, z, n)
             prev_r = target
             sol[i] = z
     fields = np.full((6, flat.size), np.nan)

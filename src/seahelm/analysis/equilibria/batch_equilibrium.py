@@ -1,14 +1,16 @@
 """Steady straight approaches of a whole batch of parameter sets in one vectorised solve.
 
-:func:`approach_states` is :func:`~seahelm.analysis.equilibrium.approach_state` (with
+:func:`approach_states` is :func:`~seahelm.analysis.equilibria.equilibrium.approach_state` (with
 ``trim=True`` by default) for many parameter sets of one model at once — a Monte-Carlo
 study's ships, or one ship at many speeds. Each run has two stages, solved for all runs
 together with the model's own compiled right-hand side (one compiled loop over the
 still-active runs per evaluation, each run's parameter record read in place):
 
-1. **self-propulsion rps** (models with a ``propeller_rps`` input): the zero of the surge
+1. **self-propulsion rps** (models with a ``propeller_rps`` input): the closed form where
+   the model declares one (:mod:`.closed_forms`; the MMG model) and its right-hand side
+   vanishes there; otherwise the zero of the surge
    acceleration f(n) at u = U_0, v = r = δ = 0, bracketed from n = 0 upwards by doubling (as
-   :func:`~seahelm.analysis.equilibrium.self_propulsion_rps`), then a safeguarded Newton
+   :func:`~seahelm.analysis.equilibria.equilibrium.self_propulsion_rps`), then a safeguarded Newton
    iteration (forward-difference derivative; bisection whenever the step leaves the bracket)
    down to |Δn| ≤ 10⁻¹⁴ + 4 ε |n|, brentq's tolerance in the one-run solve;
 2. **trim** (``trim=True``): u̇ = v̇ = ṙ = 0 with r = 0 solved for (u, v, δ) at that rps by
@@ -32,7 +34,7 @@ right-hand side, a singular Jacobian, a line search without decrease, too many i
 Bad arguments (a speed ≤ 0, a perturbation model at another speed than its own) raise
 :class:`~seahelm.errors.ParameterError` as the one-run functions do.
 
-Constant-speed models (:mod:`seahelm.analysis.constant_speed`) have no surge equation; their
+Constant-speed models (:mod:`seahelm.analysis.equilibria.constant_speed`) have no surge equation; their
 approaches are solved one after the other by the one-run code (they cost microseconds).
 """
 
@@ -44,16 +46,17 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..parameters import Params
-from ..vessels.base import VesselModel, _batched_output
+from ...errors import ParameterError
+from ...parameters import Params
+from ...vessels.base import VesselModel, _batched_output
 from .constant_speed import is_constant_speed
-from .equilibria.approach import ApproachStatus, BatchApproach
-from .equilibria.plant import Plant
+from .approach import ApproachStatus, BatchApproach
+from . import closed_forms, fallback
+from .plant import EquilibriumError, Plant
 
 __all__ = ["ApproachStatus", "BatchApproach", "approach_states"]
 
-#: Accepted scaled residual ‖F‖∞ (as the one-run solve, :func:`seahelm.analysis.equilibrium._solve`).
+#: Accepted scaled residual ‖F‖∞ (as the one-run solve, :func:`seahelm.analysis.equilibria.equilibrium._solve`).
 RESIDUAL_TOL = 1e-9
 #: Relative Newton step below which the trim has converged.
 STEP_TOL = 1e-14
@@ -66,7 +69,7 @@ def approach_states(model: VesselModel, params: Params | Sequence[Params], speed
                     max_iterations: int = 50) -> BatchApproach:
     """Steady straight approaches of many parameter sets in one vectorised solve.
 
-    The batch form of :func:`~seahelm.analysis.equilibrium.approach_state` (see the module
+    The batch form of :func:`~seahelm.analysis.equilibria.equilibrium.approach_state` (see the module
     docstring for the method): the same results to the solvers' tolerance (within 10⁻¹¹
     relative on the catalog ships and Monte-Carlo sets, 10⁻¹⁵ to 10⁻¹³ measured; see
     ``tests/test_analysis_batch_equilibrium.py``).
@@ -206,10 +209,21 @@ def _self_propulsion(b: Plant, U0: np.ndarray, max_rps: float, max_iterations: i
     _fail(status, reason, every[f_lo >= 0.0], ApproachStatus.NO_SELF_PROPULSION,
           lambda i: f"at `speed` = {float(U0[i])!r} [m/s] the surge force is not negative with the "
                     "propeller stopped: no self-propulsion point")
+    # a closed form the model declares, where its right-hand side vanishes (closed_forms)
+    closed = closed_forms.self_propulsion_rps(b, U0)
+    take = every[(status == ApproachStatus.OK) & np.isfinite(closed) & (closed > 0.0)
+                 & (closed <= max_rps)]
+    solved = np.zeros(n, dtype=bool)
+    fx = np.full(n, np.nan)
+    if take.size:
+        fc = f(take, closed[take])
+        good = np.abs(fc) * b.length[take] / b.u_ref[take] ** 2 <= closed_forms.RESIDUAL_TOL
+        solved[take[good]] = True
+        fx[take[good]] = fc[good]
     lo = np.zeros(n)
     hi = np.ones(n)
     f_hi = np.full(n, np.nan)
-    active = every[status == ApproachStatus.OK]
+    active = every[(status == ApproachStatus.OK) & ~solved]
     while active.size:  # bracket: double hi until the propeller pushes
         f_hi[active] = f(active, hi[active])
         nan = active[~np.isfinite(f_hi[active])]
@@ -222,12 +236,12 @@ def _self_propulsion(b: Plant, U0: np.ndarray, max_rps: float, max_iterations: i
                         f"at `speed` = {float(U0[i])!r} [m/s]")
         active = short[status[short] == ApproachStatus.OK]
         hi[active] = np.minimum(2.0 * hi[active], max_rps)
-    active = every[status == ApproachStatus.OK]
+    active = every[(status == ApproachStatus.OK) & ~solved]
     # start from the secant of the bracket, then Newton with bisection as a safeguard
     with np.errstate(all="ignore"):
         x = lo - f_lo * (hi - lo) / (f_hi - f_lo)
     x = np.where(np.isfinite(x) & (x > lo) & (x < hi), x, 0.5 * (lo + hi))
-    fx = np.full(n, np.nan)
+    x[solved] = closed[solved]
     for _ in range(4 * max_iterations):
         if not active.size:
             break
@@ -445,8 +459,6 @@ def _drift(b: Plant, state: np.ndarray, rudder: np.ndarray, rps: np.ndarray,
 def _constant_speed(model: VesselModel, plist: list[Params], speed: Any, trim: bool,
                     heading: float) -> BatchApproach:
     """A constant-speed model's approaches, one run after the other (see the module)."""
-    from .equilibrium import EquilibriumError, approach_state
-
     n = len(plist)
     speeds = (np.full(n, np.nan) if speed is None
               else np.broadcast_to(np.asarray(speed, dtype=float), (n,)))
@@ -456,14 +468,16 @@ def _constant_speed(model: VesselModel, plist: list[Params], speed: Any, trim: b
     status = np.zeros(n, dtype=np.int64)
     messages = []
     for i, p in enumerate(plist):
+        cs = fallback.constant_speed_plant(p, model)
+        if cs is None:  # (not the model's parameter type: the plant says so)
+            Plant(model, [p])
         try:
-            a = approach_state(p, None if speed is None else float(speeds[i]), model=model,
-                               heading=heading, trim=trim)
+            state[i], rudder[i] = cs.approach(None if speed is None else float(speeds[i]),
+                                              heading=heading, trim=trim)
         except EquilibriumError as exc:
             status[i] = ApproachStatus.NO_EQUILIBRIUM
             messages.append(str(exc))
             continue
-        state[i], rudder[i] = a.state, a.inputs["rudder_angle"]
         messages.append("ok")
     drift = np.where(status == 0, 0.0, np.nan)
     if "drift_angle" in model.state_labels:
