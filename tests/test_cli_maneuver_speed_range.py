@@ -35,3 +35,12 @@ def test_a_low_speed_model_takes_a_low_speed():
     res = CliRunner().invoke(app, ["maneuver", "turning", "--ship", "esso-osaka-3m", "--speed",
                                    "0.02", "--side", "starboard", "--t-final", "60", "--json"])
     assert "below the range" not in res.stderr, res.stderr
+
+
+def test_a_turning_circle_shorter_than_one_default_sample_runs():
+    # before: "`controller_dt` = 0.25 s exceeds `--t-final` = 0.05 s" (an option never given)
+    from seahelm.analysis.maneuvers import turning_circle
+
+    result = turning_circle("kvlcc2-l7", sides=1, t_final=0.05, dt=0.05)
+    assert not bool(result.metrics["complete"])  # (nothing reached in one step, and said so)
+    assert result.runs.sizes["time"] == 2

@@ -163,9 +163,12 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
                     if record_dt is not None
                     or "roll_angle" in plan.model.output_labels
                     or "roll_angle" in plan.model.state_labels
-                    else default_record_every(  # (of the runs that run)
+                    else min(default_record_every(  # (of the runs that run)
                         float(dt), plan.run_lengths()[plan.run_ok],
-                        np.array([a.speed for a in approaches])[plan.run_ok]))
+                        np.array([a.speed for a in approaches])[plan.run_ok]),
+                        # (a t_final shorter than one default sample: every step; it was
+                        # "`controller_dt` = 0.25 s exceeds t_final", an option never given)
+                        max(1, int(round(float(t_final) / float(dt))))))
 
     x0 = np.stack([a.state for a in approaches])
     rudder0 = np.array([[a.rudder] for a in approaches])
