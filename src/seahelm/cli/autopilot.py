@@ -3,7 +3,8 @@
 The command parses, calls :func:`seahelm.analysis.autopilot_tuning.tune_autopilot` and renders
 its result (the scenario written by :meth:`~seahelm.analysis.autopilot_tuning.AutopilotTuning.
 scenario` and :func:`~seahelm.analysis.autopilot_tuning.scenario_toml`). It linearises the
-ship at its straight run (:mod:`seahelm.analysis.equilibria.linearisation`), takes Nomoto's K and T = T_1 + T_2 − T_3 (:mod:`seahelm.analysis.steering_indices`) and designs
+ship at its straight run (:mod:`seahelm.analysis.equilibria.linearisation`), takes Nomoto's K and T
+= T_1 + T_2 − T_3 (:mod:`seahelm.analysis.steering_indices`) and designs
 
 * ``--design pid`` (default): the ``pid-heading`` gains placing the Nomoto loop's poles at the
   bandwidth ``--bandwidth`` [rad/s], damping ``--damping`` and integral time

@@ -1,16 +1,16 @@
 """``seahelm linearize SHIP``: the linear model of a ship at an equilibrium and its steering indices.
 
 Linearises the ship (catalog name or ship file) at its trimmed straight run at ``--speed``
-(or at the steady turn at ``--rudder`` degrees) with :func:`seahelm.analysis.equilibria.linearisation.
-linearize`, and prints Nomoto's K, T_1, T_2, T_3, the first-order T, the course-stability
-index and lever (:mod:`seahelm.analysis.steering_indices`), the poles, and with ``--matrices``
-the A, B, C, D of the ship with its steering gear (input ``rudder_command``). A model with roll
-(Son & Nomoto's container ship) gets Nomoto's indices of its sway–yaw block with roll held
-quasi-static, the poles of the whole block, and the size of the roll coupling. At a point
-where the model has no derivative (the MMG ships' straight run: γ_R switches with the sign of
-β_R) it prints both one-sided linearisations, which of them is course stable and why, never
-their mean (``--json``: ``smooth: false``, ``kinks``, ``why``, ``one_sided``). ``--json`` prints
-one JSON object (the matrices always, with their row and column names and units). Exit codes:
+(or at the steady turn at ``--rudder`` degrees) with
+:func:`seahelm.analysis.equilibria.linearisation.linearize`, and prints Nomoto's K, T_1, T_2, T_3,
+the first-order T, the course-stability index and lever (:mod:`seahelm.analysis.steering_indices`),
+the poles, and with ``--matrices`` the A, B, C, D of the ship with its steering gear (input
+``rudder_command``). A model with roll (Son & Nomoto's container ship) gets Nomoto's indices of its
+sway–yaw block with roll held quasi-static, the poles of the whole block, and the size of the roll
+coupling. At a point where the model has no derivative (the MMG ships' straight run: γ_R switches
+with the sign of β_R) it prints both one-sided linearisations, which of them is course stable and
+why, never their mean (``--json``: ``smooth: false``, ``kinks``, ``why``, ``one_sided``). ``--json``
+prints one JSON object (the matrices always, with their row and column names and units). Exit codes:
 0 done, 2 bad input (no equilibrium at that speed or rudder, a speed the model does not admit),
 1 other failure.
 """
