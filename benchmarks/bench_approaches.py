@@ -10,8 +10,8 @@ case. For each sample count, timed in one process (warm: the kernel compiled or 
 * ``approaches, one run at a time``: :func:`seahelm.analysis.equilibria.equilibrium.approach_state`
   (``trim=True``) per sample — the solve the manoeuvres made before issue 32 (the old
   ``steady_approach``);
-* ``approaches, batched``: :func:`seahelm.analysis.equilibria.batch_equilibrium.approach_states` of all
-  samples at once;
+* ``approaches, batched``: :func:`seahelm.analysis.equilibria.batch_equilibrium.approach_states` of
+  all samples at once;
 * ``bare batch``: the simulation alone (:meth:`Plan.simulate` of the grid: the engine's batch
   with the approaches given);
 * ``manoeuvre``: :func:`~seahelm.analysis.maneuvers.turning_circle` of the ships (approaches,

@@ -14,7 +14,11 @@ import numpy as np
 import pytest
 
 import seahelm.analysis.equilibria.batch_steady_turn as bst
-from seahelm.analysis.equilibria.batch_steady_turn import TurnStatus, steady_turn_states, steady_turns
+from seahelm.analysis.equilibria.batch_steady_turn import (
+    TurnStatus,
+    steady_turn_states,
+    steady_turns,
+)
 from seahelm.analysis.equilibria.equilibrium import (
     EquilibriumError,
     self_propulsion_rps,

@@ -1,6 +1,7 @@
 """The linear sway–yaw model identified from records (issue 30, item 3; seahelm.analysis.
 linear_fit): exact on a linear system simulated by scipy, and against the linearised MMG model
-(seahelm.analysis.equilibria.linearisation) from a small random-rudder run of the MMG model itself."""
+(seahelm.analysis.equilibria.linearisation) from a small random-rudder run of the MMG model
+itself."""
 
 from __future__ import annotations
 

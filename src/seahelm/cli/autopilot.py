@@ -45,7 +45,8 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ._common import ForceFlag, JsonFlag, OneLineErrors, console, handle_errors, output_file, print_json
+from ._common import (ForceFlag, JsonFlag, OneLineErrors, console, handle_errors, output_file,
+                      print_json)
 
 __all__ = ["app", "tune"]
 

@@ -373,7 +373,8 @@ TURNING_FIELDS: tuple[Field, ...] = (
     ("yaw_rate_degps", "steady yaw rate [deg/s]", _deg("steady_yaw_rate")),
     ("steady", "steady at the end", lambda r: bool(r["steady"])),
 )
-#: Of a model with roll (:func:`seahelm.analysis.equilibria.heel.heel_metrics`), after TURNING_FIELDS.
+#: Of a model with roll (:func:`seahelm.analysis.equilibria.heel.heel_metrics`), after
+#: TURNING_FIELDS.
 HEEL_FIELDS: tuple[Field, ...] = (
     ("max_heel_deg", "maximum heel [deg] (+ starboard down)", _deg("max_heel_angle")),
     ("steady_heel_deg", "steady heel [deg] (+ starboard down)", _deg("steady_heel_angle")),

@@ -3,8 +3,8 @@
 :class:`Approach`
     one run's approach: its ``state`` (model order), its constant ``inputs`` by name and its
     ``speed`` U_0; ``rudder`` and ``rps`` read the inputs. What
-    :func:`~seahelm.analysis.equilibria.equilibrium.approach_state` returns, what the manoeuvres start
-    from (before issue 47 the manoeuvres had their own ``Approach(state, rudder, rps, speed)``
+    :func:`~seahelm.analysis.equilibria.equilibrium.approach_state` returns, what the manoeuvres
+    start from (before issue 47 the manoeuvres had their own ``Approach(state, rudder, rps, speed)``
     in ``analysis/maneuvers/ships.py``).
 :class:`BatchApproach`
     the approaches of a batch (arrays over runs, with a status and message per run), what

@@ -5,8 +5,8 @@ dictionaries: a manoeuvre or a study may pass its own (``cache=``), and :data:`A
 the one the manoeuvres share by default (a Monte-Carlo study's 10⁴ ships are looked up three
 or four times, once per manoeuvre). Not a ``functools.lru_cache``: the approaches a batch
 misses are solved together in one vectorised solve
-(:func:`~seahelm.analysis.equilibria.batch_equilibrium.approach_states`), which a per-key cache cannot
-do. (Before issue 47: ``_MEMO``, ``_KEYS`` and ``MEMO_SIZE`` in
+(:func:`~seahelm.analysis.equilibria.batch_equilibrium.approach_states`), which a per-key cache
+cannot do. (Before issue 47: ``_MEMO``, ``_KEYS`` and ``MEMO_SIZE`` in
 ``analysis/maneuvers/ships.py``.)
 """
 
@@ -154,9 +154,9 @@ def steady_approaches(model: VesselModel, params: Sequence[Params], speeds: Sequ
     """The trimmed straight approaches of many (parameter set, speed) pairs of one model.
 
     Those not in the cache are solved in one batch
-    (:func:`~seahelm.analysis.equilibria.batch_equilibrium.approach_states`, trim rudder included); the
-    results equal :func:`~seahelm.analysis.equilibria.equilibrium.approach_state` with ``trim=True`` to
-    the solvers' tolerance.
+    (:func:`~seahelm.analysis.equilibria.batch_equilibrium.approach_states`, trim rudder included);
+    the results equal :func:`~seahelm.analysis.equilibria.equilibrium.approach_state` with
+    ``trim=True`` to the solvers' tolerance.
 
     Parameters
     ----------
@@ -184,7 +184,8 @@ def steady_approaches(model: VesselModel, params: Sequence[Params], speeds: Sequ
 
 def steady_approach(model: VesselModel, params: Params, speed: float, *,
                     cache: ApproachCache | None = None) -> Approach:
-    """The trimmed straight approach of :func:`~seahelm.analysis.equilibria.equilibrium.approach_state`
+    """The trimmed straight approach of
+    :func:`~seahelm.analysis.equilibria.equilibrium.approach_state`
     (kept in ``cache``, default :data:`APPROACHES`; :func:`steady_approaches`).
 
     Parameters

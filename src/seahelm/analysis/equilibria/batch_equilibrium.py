@@ -34,8 +34,8 @@ right-hand side, a singular Jacobian, a line search without decrease, too many i
 Bad arguments (a speed ≤ 0, a perturbation model at another speed than its own) raise
 :class:`~seahelm.errors.ParameterError` as the one-run functions do.
 
-Constant-speed models (:mod:`seahelm.analysis.equilibria.constant_speed`) have no surge equation; their
-approaches are solved one after the other by the one-run code (they cost microseconds).
+Constant-speed models (:mod:`seahelm.analysis.equilibria.constant_speed`) have no surge equation;
+their approaches are solved one after the other by the one-run code (they cost microseconds).
 """
 
 from __future__ import annotations
@@ -56,7 +56,7 @@ from .plant import EquilibriumError, Plant
 
 __all__ = ["ApproachStatus", "BatchApproach", "approach_states"]
 
-#: Accepted scaled residual ‖F‖∞ (as the one-run solve, :func:`seahelm.analysis.equilibria.equilibrium._solve`).
+#: Accepted scaled residual ‖F‖∞ (as the one-run solve, :func:`.fallback.solve`).
 RESIDUAL_TOL = 1e-9
 #: Relative Newton step below which the trim has converged.
 STEP_TOL = 1e-14
@@ -69,8 +69,8 @@ def approach_states(model: VesselModel, params: Params | Sequence[Params], speed
                     max_iterations: int = 50) -> BatchApproach:
     """Steady straight approaches of many parameter sets in one vectorised solve.
 
-    The batch form of :func:`~seahelm.analysis.equilibria.equilibrium.approach_state` (see the module
-    docstring for the method): the same results to the solvers' tolerance (within 10⁻¹¹
+    The batch form of :func:`~seahelm.analysis.equilibria.equilibrium.approach_state` (see the
+    module docstring for the method): the same results to the solvers' tolerance (within 10⁻¹¹
     relative on the catalog ships and Monte-Carlo sets, 10⁻¹⁵ to 10⁻¹³ measured; see
     ``tests/test_analysis_batch_equilibrium.py``).
 

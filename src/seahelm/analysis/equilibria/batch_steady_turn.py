@@ -1,11 +1,12 @@
 """Steady turns of a whole batch of ships and rudder angles in one vectorised solve.
 
-:func:`steady_turns` is :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn` for many (parameter
-set, rudder angle, rps) runs of one model at once — the four zig-zag turns of every member of
-a Monte-Carlo study — with the same equations, the same continuation and the same answer to
-the solvers' tolerance (``tests/test_analysis_batch_steady_turn.py``). It solves with the
+:func:`steady_turns` is :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn` for many
+(parameter set, rudder angle, rps) runs of one model at once — the four zig-zag turns of every
+member of a Monte-Carlo study — with the same equations, the same continuation and the same answer
+to the solvers' tolerance (``tests/test_analysis_batch_steady_turn.py``). It solves with the
 machinery of :mod:`.batch_equilibrium` (the model's compiled right-hand side over all active
-runs per evaluation, :func:`~seahelm.analysis.equilibria.batch_equilibrium._newton`'s damped Newton):
+runs per evaluation, :func:`~seahelm.analysis.equilibria.batch_equilibrium._newton`'s damped
+Newton):
 
 1. **straight run** at the rps (r = 0, solved for u, v, δ from (U_ref, 0, 0)), once per
    distinct (parameter set, rps): the trim of :mod:`.batch_equilibrium`;
@@ -228,8 +229,8 @@ def steady_turn_states(model: VesselModel, params: Params | Sequence[Params], ru
                        ) -> tuple[np.ndarray, BatchSteadyTurn]:
     """State vectors of the steady turns of a batch (e.g. the starts of pull-outs).
 
-    The batch form of :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn_state` at heading 0:
-    the turns of :func:`steady_turns`, as states at the origin; a constant-speed model or a
+    The batch form of :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn_state` at heading
+    0: the turns of :func:`steady_turns`, as states at the origin; a constant-speed model or a
     model with roll is solved one run after the other by ``steady_turn_state`` itself.
 
     Parameters

@@ -27,8 +27,8 @@ identified at one speed: K ∝ U/L and T ∝ L/U for given non-dimensional K', T
 approach at another speed is refused rather than run with coefficients of the wrong speed.
 The speed does not change in a turn: these models have no speed loss.
 
-:mod:`seahelm.analysis.equilibria.equilibrium` hands such a model to this module; the manoeuvre library
-then runs on it unchanged.
+:mod:`seahelm.analysis.equilibria.equilibrium` hands such a model to this module; the manoeuvre
+library then runs on it unchanged.
 """
 
 from __future__ import annotations

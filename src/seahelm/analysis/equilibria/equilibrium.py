@@ -142,8 +142,8 @@ def self_propulsion_rps(model_or_params: Any, speed: Any, *, model: VesselModel 
     Solves X_H + X_P + X_R = 0 (Yasukawa & Yoshimura 2015, surge equation with u̇ = 0) for the
     propeller rps n on the model's right-hand side, bracketing from n = 0 (the propeller drags:
     J_P → ∞) upwards by doubling: all speeds at once by the batched safeguarded Newton of
-    :func:`~seahelm.analysis.equilibria.batch_equilibrium.approach_states` (to brentq's tolerance); a
-    speed it does not solve, and a model with roll, by ``scipy.optimize.brentq``, whose
+    :func:`~seahelm.analysis.equilibria.batch_equilibrium.approach_states` (to brentq's tolerance);
+    a speed it does not solve, and a model with roll, by ``scipy.optimize.brentq``, whose
     error is the one raised.
 
     Parameters
@@ -193,9 +193,9 @@ def steady_turn(params: Any, rudder: Any, rps: float | None = None, *,
     """The steady turn at a rudder angle: u̇ = v̇ = ṙ = 0 solved for (u, v, r).
 
     The three force balances are solved for all rudder angles at once by the batched damped
-    Newton of :func:`~seahelm.analysis.equilibria.batch_steady_turn.steady_turns` (the same continuation,
-    the same root to round-off); a rudder angle it does not solve, and a model with roll, by
-    ``scipy.optimize.root``, whose error is the one raised. Each solve starts from a nearby
+    Newton of :func:`~seahelm.analysis.equilibria.batch_steady_turn.steady_turns` (the same
+    continuation, the same root to round-off); a rudder angle it does not solve, and a model with
+    roll, by ``scipy.optimize.root``, whose error is the one raised. Each solve starts from a nearby
     solution, by continuation along the spiral curve δ(r) from the straight run:
 
     1. the straight run with zero yaw rate (its rudder angle δ_0 is 0 for a ship symmetric at
@@ -288,10 +288,10 @@ def approach_state(params: Any, speed: float | None = None, *, model: VesselMode
     is an exact equilibrium with zero yaw rate (a biased model such as the Mariner needs a small
     rudder angle to keep a straight course; for the symmetric-at-zero MMG ship nothing changes).
 
-    Solved as a batch of one by :func:`~seahelm.analysis.equilibria.batch_equilibrium.approach_states`
-    (safeguarded Newton for the rps, damped Newton for the trim); where it finds no solution,
-    and for a model with roll, by ``scipy.optimize`` (brentq, root), whose error is the one
-    raised.
+    Solved as a batch of one by
+    :func:`~seahelm.analysis.equilibria.batch_equilibrium.approach_states` (safeguarded Newton for
+    the rps, damped Newton for the trim); where it finds no solution, and for a model with roll, by
+    ``scipy.optimize`` (brentq, root), whose error is the one raised.
 
     Parameters
     ----------

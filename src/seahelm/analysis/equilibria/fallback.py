@@ -2,8 +2,8 @@
 
 The public functions of :mod:`seahelm.analysis.equilibria.equilibrium` solve a run as a batch of one
 with the batched Newton solvers (:mod:`seahelm.analysis.equilibria.batch_equilibrium`,
-:mod:`seahelm.analysis.equilibria.batch_steady_turn`); a run they do not solve, a model with roll (its
-heel balanced in every evaluation) and what has no batch form yet (the spiral curve δ(r),
+:mod:`seahelm.analysis.equilibria.batch_steady_turn`); a run they do not solve, a model with roll
+(its heel balanced in every evaluation) and what has no batch form yet (the spiral curve δ(r),
 the straight-run speed at an rps) are solved here, one run at a time, by
 ``scipy.optimize.root`` / ``brentq`` on the model's own derivative, and an equation without a
 solution raises :class:`~seahelm.analysis.equilibria.plant.EquilibriumError` with what it
@@ -11,7 +11,8 @@ was solving for. The batched solvers' own fallback (``steady_turns(fallback=True
 module too, so neither imports the public one-run module.
 
 Constant-speed models (no surge equation) are handed to
-:class:`~seahelm.analysis.equilibria.constant_speed.ConstantSpeedPlant` (:func:`constant_speed_plant`).
+:class:`~seahelm.analysis.equilibria.constant_speed.ConstantSpeedPlant`
+(:func:`constant_speed_plant`).
 """
 
 from __future__ import annotations
@@ -35,7 +36,32 @@ __all__ = ["solve", "self_propulsion", "turn_fields", "constant_speed_plant"]
 def solve(plant: Plant, fixed: dict[str, float], unknowns: tuple[str, ...],
            guess: np.ndarray, rps: float | None) -> np.ndarray:
     """u̇ = v̇ = ṙ = 0 for three of (surge, v, r, rudder) of the plant's one run, the others
-    ``fixed`` (``scipy.optimize.root``, scaled: (u, v) by U_ref, r by U_ref/L)."""
+    ``fixed`` (``scipy.optimize.root``, scaled: (u, v) by U_ref, r by U_ref/L).
+
+    Parameters
+    ----------
+    plant : Plant
+        A batch of one.
+    fixed : dict of str to float
+        The given ones of ``surge`` [m/s], ``v`` [m/s], ``r`` [rad/s], ``rudder`` [rad].
+    unknowns : tuple of str
+        The three solved for.
+    guess : numpy.ndarray
+        Their start (SI units).
+    rps : float or None
+        Propeller rps [1/s].
+
+    Returns
+    -------
+    numpy.ndarray
+        The unknowns (SI units).
+
+    Raises
+    ------
+    EquilibriumError
+        If the residual is not below 1e-9 (what was solved for, with what, and scipy's
+        message).
+    """
     from scipy.optimize import root
 
     u_ref, length = float(plant.u_ref[0]), float(plant.length[0])
@@ -64,7 +90,22 @@ def solve(plant: Plant, fixed: dict[str, float], unknowns: tuple[str, ...],
 
 def self_propulsion(plant: Plant, U: float, max_rps: float) -> float:
     """The self-propulsion rps at ``U`` by ``scipy.optimize.brentq`` (bracketed from n = 0
-    upwards by doubling), or the EquilibriumError saying why there is none."""
+    upwards by doubling), or the EquilibriumError saying why there is none.
+
+    Parameters
+    ----------
+    plant : Plant
+        A batch of one, with a ``propeller_rps`` input.
+    U : float
+        Straight-run speed [m/s].
+    max_rps : float
+        Upper end of the search [1/s].
+
+    Returns
+    -------
+    float
+        rps [1/s].
+    """
     from scipy.optimize import brentq
 
     def surge_acc(n: float) -> float:
@@ -86,9 +127,25 @@ def self_propulsion(plant: Plant, U: float, max_rps: float) -> float:
 
 def turn_fields(plant: Plant, deltas: np.ndarray, n: float | None,
                 rudder_step: float) -> np.ndarray:
-    """The :class:`~seahelm.analysis.equilibria.equilibrium.SteadyTurn` fields (6, len(deltas)) of the
-    plant's one run at the rudder angles ``deltas`` by scipy's continuation from the straight
-    run, or the EquilibriumError of the first angle without a steady turn."""
+    """The :class:`~seahelm.analysis.equilibria.equilibrium.SteadyTurn` fields (6, len(deltas))
+    of the plant's one run at the rudder angles ``deltas`` by scipy's continuation from the
+    straight run, or the EquilibriumError of the first angle without a steady turn.
+
+    Parameters
+    ----------
+    plant : Plant
+        A batch of one.
+    deltas : numpy.ndarray
+        Rudder angles δ [rad].
+    n : float or None
+        Propeller rps [1/s].
+    rudder_step : float
+        Largest rudder change per continuation step [rad].
+
+    Returns
+    -------
+    numpy.ndarray, shape (6, len(deltas))
+    """
     trim = solve(plant, {"r": 0.0}, ("surge", "v", "rudder"),
                  np.array([float(plant.u_ref[0]), 0.0, 0.0]), n)
     fields = np.full((6, len(deltas)), np.nan)
@@ -109,7 +166,8 @@ def turn_fields(plant: Plant, deltas: np.ndarray, n: float | None,
 
 def _turn(plant: Plant, trim: np.ndarray, delta: float, n: float | None,
           rudder_step: float) -> tuple[float, float, float]:
-    """(surge, v, r) of the steady turn at ``delta`` by continuation (see :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn`)."""
+    """(surge, v, r) of the steady turn at ``delta`` by continuation (see
+    :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn`)."""
     from scipy.optimize import brentq
 
     u0, v0, d0 = (float(c) for c in trim)
@@ -160,8 +218,28 @@ def _turn_in_rudder(plant: Plant, d_from: float, d_to: float, guess: tuple[float
 
 def constant_speed_plant(value: Any, model: VesselModel | None,
                     rps: Any = None) -> ConstantSpeedPlant | None:
-    """The plant of a constant-speed model (:mod:`seahelm.analysis.equilibria.constant_speed`), None for another model
-    (whose :class:`~.plant.Plant` then says what it lacks)."""
+    """The solver of a constant-speed model
+    (:mod:`seahelm.analysis.equilibria.constant_speed`), None for another model (whose
+    :class:`~.plant.Plant` then says what it lacks).
+
+    Parameters
+    ----------
+    value : Params, Ship, str or path
+        Parameter set, ship, catalog name or ship file path.
+    model : VesselModel or None
+        The model (default: the ship's or the parameter type's).
+    rps : float, optional
+        Must be None (such a model has no propeller input).
+
+    Returns
+    -------
+    ConstantSpeedPlant or None
+
+    Raises
+    ------
+    ParameterError
+        If ``rps`` is given for a constant-speed model.
+    """
     params, ship_model = resolve_params(value)
     model = model or ship_model or model_for_params(type(params))
     if model is None or not is_constant_speed(model) or not isinstance(params,

@@ -490,7 +490,8 @@ def linearize(ship: Any, *, speed: float | None = None, rudder: float | None = N
         perturbation or constant-speed model admits its own speed only.
     rudder : float, optional
         Rudder angle δ [rad] of a steady turn (positive to starboard); default: the trimmed
-        straight run (:func:`~seahelm.analysis.equilibria.equilibrium.approach_state` with ``trim``).
+        straight run (:func:`~seahelm.analysis.equilibria.equilibrium.approach_state` with
+        ``trim``).
     rps : float, optional
         Propeller rps [1/s] of the turn for a model with a propeller (default: the
         self-propulsion rps of the straight run at ``speed``).

@@ -1,8 +1,8 @@
 """The plant of the equilibrium solvers: a model, the parameter sets of its runs and the
 signals the solvers need, resolved once.
 
-One :class:`Plant` serves the one-run solvers (:mod:`seahelm.analysis.equilibria.equilibrium`, a batch
-of one) and the batched ones (:mod:`seahelm.analysis.equilibria.batch_equilibrium`,
+One :class:`Plant` serves the one-run solvers (:mod:`seahelm.analysis.equilibria.equilibrium`, a
+batch of one) and the batched ones (:mod:`seahelm.analysis.equilibria.batch_equilibrium`,
 :mod:`seahelm.analysis.equilibria.batch_steady_turn`). It resolves, by name (the module docstring of
 :mod:`seahelm.analysis.equilibria.equilibrium` lists the signals):
 

@@ -300,9 +300,9 @@ def _straight_run_speed(ship: Any, rps: float) -> float:
 
 def yaw_lag(ship: Any) -> float:
     """The time a constant-speed model's yaw rate takes to build up [s]
-    (:meth:`~seahelm.analysis.equilibria.constant_speed.ConstantSpeedPlant.lag`; T of Nomoto 1), added to
-    the default durations of the manoeuvres; 0 for a model with a surge state (whose defaults
-    stay as they were)."""
+    (:meth:`~seahelm.analysis.equilibria.constant_speed.ConstantSpeedPlant.lag`; T of Nomoto 1),
+    added to the default durations of the manoeuvres; 0 for a model with a surge state (whose
+    defaults stay as they were)."""
     if not is_constant_speed(ship.model):
         return 0.0
     return _lag(ship.model, ship.params)
@@ -342,8 +342,8 @@ def steady_yaw_rates(groups: Sequence[tuple[Any, Any, Approach]]) -> list[np.nda
 
     The steady turns of all groups are solved together
     (:func:`~seahelm.analysis.equilibria.batch_steady_turn.steady_turns`, the one-at-a-time
-    :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn` for a run that fails there), one batch
-    per model; the results equal :func:`steady_yaw_rate`'s to the solvers' tolerance.
+    :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn` for a run that fails there), one
+    batch per model; the results equal :func:`steady_yaw_rate`'s to the solvers' tolerance.
 
     Parameters
     ----------

@@ -14,9 +14,9 @@
     the rudder angle needed for a sequence of yaw rates. Bech's test holds the yaw rate with a
     controller and measures the mean rudder angle; here the same points are computed as the
     **equilibria** of the model at the prescribed yaw rates
-    (:func:`seahelm.analysis.equilibria.equilibrium.rudder_for_yaw_rate`, continuation in r) — the limit a
-    perfect yaw-rate controller reaches, without transients or controller tuning, and including
-    the part of the curve that is unstable at fixed rudder. The loop width is exact: the
+    (:func:`seahelm.analysis.equilibria.equilibrium.rudder_for_yaw_rate`, continuation in r) — the
+    limit a perfect yaw-rate controller reaches, without transients or controller tuning, and
+    including the part of the curve that is unstable at fixed rudder. The loop width is exact: the
     rudder angles of the local extrema of δ(r) (refined on a fine grid of r around each), the
     band in which a fixed rudder angle has three steady turns. A course-stable ship has a
     monotonic δ(r) and width 0.

@@ -62,7 +62,8 @@ from .track import distance_until, track_distance
 __all__ = ["turning_circle", "track_distance", "default_record_every", "SAMPLES_PER_LENGTH"]
 
 _DEG10 = math.radians(10.0)
-#: What the metrics of a constant-speed model (:mod:`seahelm.analysis.equilibria.constant_speed`) say.
+#: What the metrics of a constant-speed model (:mod:`seahelm.analysis.equilibria.constant_speed`)
+#: say.
 CONSTANT_SPEED_NOTE = ("constant-speed model: the speed does not change in the turn, the "
                        "speed loss is not modelled")
 
@@ -107,9 +108,9 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
         of the straight run at this rps.
     t_final : float, optional
         Duration [s] (default: rudder travel time + 1.3 × ``heading_change`` / the slowest
-        steady yaw rate of the grid, from :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn`;
-        for a constant-speed model plus 3 × its yaw time constant, T of Nomoto 1, so that
-        the turn is steady at the end).
+        steady yaw rate of the grid, from
+        :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn`; for a constant-speed model
+        plus 3 × its yaw time constant, T of Nomoto 1, so that the turn is steady at the end).
     dt : float, optional
         Integration step [s] (default :func:`~seahelm.analysis.maneuvers.default_time_step`).
     record_dt : float, optional

@@ -2,8 +2,8 @@
 scenario.
 
 :func:`tune_autopilot` linearises the ship at its straight run
-(:func:`~seahelm.analysis.equilibria.linearisation.linearize`), takes Nomoto's K and T = T_1 + T_2 − T_3
-(:func:`~seahelm.analysis.steering.indices.steering_indices`) and designs
+(:func:`~seahelm.analysis.equilibria.linearisation.linearize`), takes Nomoto's K and
+T = T_1 + T_2 − T_3 (:func:`~seahelm.analysis.steering.indices.steering_indices`) and designs
 
 * ``"pid"``: the ``pid-heading`` gains placing the Nomoto loop's poles
   (:func:`~seahelm.control.autopilot_design.pid_pole_placement`);
