@@ -321,6 +321,9 @@ FOLLOWERS: dict[str, tuple[str, ...]] = {
     # the same turning circle in 10 m of water
     _docs("README.md:maneuver-turning-ship-cargo.toml-rudder"): (
         _docs("getting-started.rst:maneuver-turning-ship-cargo.toml-rudder"),),
+    # the Esso Osaka with Fujiwara's wind loads from the measured wind (a replay there, an MMG
+    # fit here): one kernel, 26 s CPU to compile, that only these two modules use
+    "tests/test_reversals.py": ("tests/test_mmg_multi_record.py",),
 }
 
 
