@@ -7,11 +7,11 @@ case. For each sample count, timed in one process (warm: the kernel compiled or 
 
 * ``ships``: the samples' ships (:meth:`~seahelm.scenario.ManeuverJob.ships`: drawn values,
   parameter sets validated, steering gears);
-* ``approaches, one run at a time``: :func:`seahelm.analysis.equilibrium.approach_state`
+* ``approaches, one run at a time``: :func:`seahelm.analysis.equilibria.equilibrium.approach_state`
   (``trim=True``) per sample — the solve the manoeuvres made before issue 32 (the old
   ``steady_approach``);
-* ``approaches, batched``: :func:`seahelm.analysis.batch_equilibrium.approach_states` of all
-  samples at once;
+* ``approaches, batched``: :func:`seahelm.analysis.equilibria.batch_equilibrium.approach_states` of
+  all samples at once;
 * ``bare batch``: the simulation alone (:meth:`Plan.simulate` of the grid: the engine's batch
   with the approaches given);
 * ``manoeuvre``: :func:`~seahelm.analysis.maneuvers.turning_circle` of the ships (approaches,
@@ -39,8 +39,8 @@ from pathlib import Path
 
 import numpy as np
 
-from seahelm.analysis.batch_equilibrium import approach_states
-from seahelm.analysis.equilibrium import approach_state
+from seahelm.analysis.equilibria.batch_equilibrium import approach_states
+from seahelm.analysis.equilibria.equilibrium import approach_state
 from seahelm.analysis.maneuvers import turning_circle
 from seahelm.analysis.maneuvers.common import Plan, side_axis, value_axis
 from seahelm.analysis.maneuvers.ships import clear_approaches

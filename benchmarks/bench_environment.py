@@ -32,7 +32,7 @@ import warnings
 import numpy as np
 
 from seahelm.actuators.servo import RUDDER_SERVO
-from seahelm.analysis.equilibrium import approach_state
+from seahelm.analysis.equilibria.equilibrium import approach_state
 from seahelm.control.pid import PID_HEADING_RPS, PIDHeadingRpsParams
 from seahelm.environment.loads import environment, ship_load_params, wave_load_fluctuation
 from seahelm.ships import get_ship

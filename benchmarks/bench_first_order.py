@@ -39,7 +39,7 @@ import warnings
 import numpy as np
 
 from seahelm.actuators.servo import RUDDER_SERVO
-from seahelm.analysis.equilibrium import approach_state
+from seahelm.analysis.equilibria.equilibrium import approach_state
 from seahelm.control.pid import PID_HEADING_RPS, PIDHeadingRpsParams
 from seahelm.environment import rao_io
 from seahelm.environment.first_order import first_order_motions

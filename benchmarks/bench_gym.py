@@ -182,7 +182,7 @@ def _fmu_step_cost(steps: int) -> tuple[float, float, float]:
     import fmpy.fmi2
 
     from seahelm import Problem, Simulator
-    from seahelm.analysis.equilibrium import approach_state
+    from seahelm.analysis.equilibria.equilibrium import approach_state
     from seahelm.fmu import build_fmu
 
     ship = get_ship("kvlcc2-l7")

@@ -46,7 +46,7 @@ import time
 
 import numpy as np
 
-from seahelm.analysis.equilibrium import self_propulsion_rps
+from seahelm.analysis.equilibria.equilibrium import self_propulsion_rps
 from seahelm.analysis.maneuvers import turning_circle
 from seahelm.vessels.mmg import KVLCC2_L7
 

@@ -28,7 +28,7 @@ import time
 import numpy as np
 
 from seahelm import Problem, Simulator, simulate
-from seahelm.analysis.equilibrium import approach_state
+from seahelm.analysis.equilibria.equilibrium import approach_state
 from seahelm.ships import get_ship
 from seahelm.vessels.nomoto import NOMOTO1, Nomoto1Params
 

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from seahelm import Problem, get_ship, simulate
-from seahelm.analysis.equilibrium import approach_state
+from seahelm.analysis.equilibria.equilibrium import approach_state
 from seahelm.fmu import build_fmu
 
 DT, STOP, HEADING0 = 0.1, 60.0, math.radians(30.0)

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from seahelm.actuators.servo import RUDDER_SERVO
-from seahelm.analysis.equilibrium import approach_state
+from seahelm.analysis.equilibria.equilibrium import approach_state
 from seahelm.analysis.maneuvers.advance_transfer import turning_metrics
 from seahelm.control.open_loop import OPEN_LOOP
 from seahelm.simulation.engine import simulate

@@ -22,8 +22,8 @@ import time
 import control as ct
 import numpy as np
 
-from seahelm.analysis.equilibrium import approach_state
-from seahelm.analysis.linearisation import linearize
+from seahelm.analysis.equilibria.equilibrium import approach_state
+from seahelm.analysis.equilibria.linearisation import linearize
 from seahelm.control.state_space import state_space_controller
 from seahelm.ships import get_ship
 from seahelm.simulation.engine import simulate

@@ -53,7 +53,7 @@ def kvlcc2_full():
 @pytest.fixture(scope="session")
 def mariner_linear():
     """``linearize("mariner-nonlinear", actuator=False)``: the Mariner's straight run."""
-    from seahelm.analysis.linearisation import linearize
+    from seahelm.analysis.equilibria.linearisation import linearize
 
     return linearize("mariner-nonlinear", actuator=False)
 
@@ -61,7 +61,7 @@ def mariner_linear():
 @pytest.fixture(scope="session")
 def kvlcc2_l7_linear():
     """``linearize("kvlcc2-l7", actuator=False)``: the KVLCC2's straight run (a kink)."""
-    from seahelm.analysis.linearisation import linearize
+    from seahelm.analysis.equilibria.linearisation import linearize
 
     return linearize("kvlcc2-l7", actuator=False)
 
@@ -259,11 +259,15 @@ def _docs(group: str) -> str:
 
 
 #: Seconds the slowest modules (or test functions, or single tests: see :func:`ordering_key`)
-#: took in a fresh clone's `make test` (empty kernel cache, 2 cores; the 30 slowest durations
-#: of that run summed per entry, 2026-12-02, 5,193 tests in 18:03; most of it is compiling
-#: kernels). The docs-command groups (one test per file then: getting-started.rst 142 s,
-#: README.md 65 s) are CPU seconds of their commands in an empty cache: ``seahelm imo``'s IMO
-#: kernels 63 s, then each command that reuses them 2 to 7 s. Only the order of the run
+#: take in a fresh clone's `make test` (empty kernel cache, 2 cores; most of it is compiling
+#: kernels): CPU seconds per module (the process's and its finished children's, summed over the
+#: module's tests) of the fresh-clone run of 2026-12-02 06:00 with
+#: ``SEAHELM_TEST_COMPILE_TIMES`` (:class:`CompileTimes`), where that run had reached the
+#: module; else the 30 slowest durations of the run before, summed per entry.
+#: tests/test_dp_observer.py is its module fixture (84 s CPU) scaled to the wall time it took
+#: (133 s at 115 s CPU). The docs-command groups (one test per file then: getting-started.rst
+#: 142 s, README.md 65 s) are CPU seconds of their commands in an empty cache: ``seahelm imo``'s
+#: IMO kernels 63 s, then each command that reuses them 2 to 7 s. Only the order of the run
 #: depends on them: a wrong or missing figure costs time, not a test.
 LONG_MODULES: dict[str, float] = {
     _docs("README.md:imo-cargo.toml-out-imo"): 70.0,
@@ -274,15 +278,19 @@ LONG_MODULES: dict[str, float] = {
     _docs("getting-started.rst:sweep-examples-mariner-monte-carlo.toml"): 10.0,
     _docs("getting-started.rst:run-examples-mariner-route-ilos.toml-out"): 10.0,
     _docs("getting-started.rst:autopilot-tune-mariner-nonlinear"): 10.0,
-    "tests/test_simulation_pure_python.py": 88.2,  # 143.8 before 2 cases moved (-55.6 s)
-    "tests/test_benchmarks_quick.py": 91.9,
-    "tests/test_simulation_integrators.py": 65.2,
-    "tests/test_scenario.py": 60.8,
-    "tests/test_reversals.py": 56.6,
-    "tests/test_first_order_in_loop.py": 51.2,
+    "tests/test_simulation_pure_python.py": 212.0,
+    "tests/test_benchmarks_quick.py": 187.1,
+    "tests/test_simulation_integrators.py": 118.9,
+    "tests/test_scenario.py": 106.1,
+    "tests/test_dp_observer.py": 97.0,
+    "tests/test_first_order_in_loop.py": 63.8,
+    "tests/test_cli_stop_signals.py": 59.7,
     "tests/test_analysis_maneuvers_constant_speed.py": 38.8,
-    "tests/test_scenario_first_order_in_loop.py": 35.0,
+    "tests/test_scenario_first_order_in_loop.py": 36.0,
+    "tests/test_control_lq_cross_track.py": 29.2,
+    "tests/test_control_autopilot_design.py": 28.4,
     "tests/test_docs_coming_from.py": 28.1,
+    "tests/test_reversals.py": 25.9,
     "tests/test_control_final_state.py": 21.5,
     "tests/test_sweep_dask.py": 20.7,
     "tests/test_simulation_batch.py": 20.5,
@@ -291,11 +299,8 @@ LONG_MODULES: dict[str, float] = {
     "tests/test_control_path_following.py": 17.4,
     "tests/test_studies_lvov2014.py": 16.5,
     "tests/test_cli_reliability_messages.py": 16.3,
-    "tests/test_control_lq_cross_track.py": 15.1,
     "tests/test_vessels_cpp_ship.py": 15.1,
-    "tests/test_cli_stop_signals.py": 15.0,
     "tests/test_cli_main.py": 14.5,
-    "tests/test_control_autopilot_design.py": 14.3,
 }
 
 #: Entries run right after a long entry, on its worker, because they need the kernels it
@@ -316,6 +321,9 @@ FOLLOWERS: dict[str, tuple[str, ...]] = {
     # the same turning circle in 10 m of water
     _docs("README.md:maneuver-turning-ship-cargo.toml-rudder"): (
         _docs("getting-started.rst:maneuver-turning-ship-cargo.toml-rudder"),),
+    # the Esso Osaka with Fujiwara's wind loads from the measured wind (a replay there, an MMG
+    # fit here): one kernel, 26 s CPU to compile, that only these two modules use
+    "tests/test_reversals.py": ("tests/test_mmg_multi_record.py",),
 }
 
 

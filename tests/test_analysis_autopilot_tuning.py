@@ -78,7 +78,7 @@ def mariner():
 
 
 def test_pid_design_is_the_pole_placement_of_the_ship_nomoto(mariner):
-    from seahelm.analysis.linearisation import linearize
+    from seahelm.analysis.equilibria.linearisation import linearize
     from seahelm.analysis.steering.indices import steering_indices
     from seahelm.control.autopilot_design import pid_pole_placement
 

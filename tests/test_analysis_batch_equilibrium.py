@@ -1,7 +1,7 @@
 """Batched steady approaches (analysis.batch_equilibrium) against the one-run solve.
 
-The reference is :func:`seahelm.analysis.equilibrium.approach_state` (``trim=True``): brentq
-to |Δn| ≤ 1e-14 + 4 ε n for the rps, scipy's hybr to a relative step of 1e-13 for the trim.
+The reference is :func:`seahelm.analysis.equilibria.equilibrium.approach_state` (``trim=True``):
+brentq to |Δn| ≤ 1e-14 + 4 ε n for the rps, scipy's hybr to a relative step of 1e-13 for the trim.
 Both solves stop at the round-off floor of the same equations, so they agree to ~1e-15; the
 bound asserted here is 1e-11 relative (rps, rudder, surge) and 1e-11 (U/L or 1 rad) absolute
 for what is zero or near zero (sway speed, rudder, drift angle).
@@ -14,8 +14,8 @@ import math
 import numpy as np
 import pytest
 
-from seahelm.analysis.batch_equilibrium import ApproachStatus, approach_states
-from seahelm.analysis.equilibrium import approach_state
+from seahelm.analysis.equilibria.batch_equilibrium import ApproachStatus, approach_states
+from seahelm.analysis.equilibria.equilibrium import approach_state
 from seahelm.errors import ParameterError
 from seahelm.vessels.mariner import MARINER, MARINER_NONLINEAR
 from seahelm.vessels.mmg import KVLCC2_FULL, KVLCC2_L7, MMG

@@ -1,6 +1,6 @@
 """Batched steady turns (analysis.batch_steady_turn) against the one-at-a-time solve.
 
-The reference is :func:`seahelm.analysis.equilibrium.steady_turn`: scipy's hybr (relative
+The reference is :func:`seahelm.analysis.equilibria.equilibrium.steady_turn`: scipy's hybr (relative
 step 1e-13) along a continuation in r, brentq on the crossing and a polish at δ. Both solves end
 at the round-off floor of the same equations, so they agree to ~1e-15; the bound asserted is
 1e-9 relative (every field of a turn is far from zero).
@@ -13,9 +13,13 @@ import math
 import numpy as np
 import pytest
 
-import seahelm.analysis.batch_steady_turn as bst
-from seahelm.analysis.batch_steady_turn import TurnStatus, steady_turn_states, steady_turns
-from seahelm.analysis.equilibrium import (
+import seahelm.analysis.equilibria.batch_steady_turn as bst
+from seahelm.analysis.equilibria.batch_steady_turn import (
+    TurnStatus,
+    steady_turn_states,
+    steady_turns,
+)
+from seahelm.analysis.equilibria.equilibrium import (
     EquilibriumError,
     self_propulsion_rps,
     steady_turn,

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from seahelm.actuators.servo import RUDDER_SERVO
-from seahelm.analysis.equilibrium import (
+from seahelm.analysis.equilibria.equilibrium import (
     EquilibriumError,
     approach_state,
     self_propulsion_rps,

@@ -1,6 +1,7 @@
 """The linear sway–yaw model identified from records (issue 30, item 3; seahelm.analysis.
 linear_fit): exact on a linear system simulated by scipy, and against the linearised MMG model
-(seahelm.analysis.linearisation) from a small random-rudder run of the MMG model itself."""
+(seahelm.analysis.equilibria.linearisation) from a small random-rudder run of the MMG model
+itself."""
 
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ from scipy.signal import lsim
 
 from seahelm.actuators.hold import hold_actuator, hold_reference
 from seahelm.identification.linear_fit import LINEAR_NAMES, fit_linear
-from seahelm.analysis.linearisation import linearize
+from seahelm.analysis.equilibria.linearisation import linearize
 from seahelm.identification.records import record_from_arrays
 from seahelm.errors import ParameterError
 from seahelm.registry import get_model

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from seahelm.analysis.linearisation import LinearModel, linearize, linearize_at, \
+from seahelm.analysis.equilibria.linearisation import LinearModel, linearize, linearize_at, \
     richardson_jacobian
 from seahelm.analysis.steering.indices import steering_indices
 from seahelm.actuators.servo import RUDDER_SERVO, ServoParams

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from seahelm.analysis.linearisation import linearize, richardson_jacobian
+from seahelm.analysis.equilibria.linearisation import linearize, richardson_jacobian
 from seahelm.numerics.nonsmooth import kinked_columns, one_sided_jacobians, side_jacobians
 from seahelm.analysis.steering.indices import steering_indices
 from seahelm.cli.main import app

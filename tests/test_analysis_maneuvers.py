@@ -15,7 +15,11 @@ import numpy as np
 import pytest
 
 from seahelm.actuators.servo import RUDDER_SERVO
-from seahelm.analysis.equilibrium import rudder_for_yaw_rate, self_propulsion_rps, steady_turn
+from seahelm.analysis.equilibria.equilibrium import (
+    rudder_for_yaw_rate,
+    self_propulsion_rps,
+    steady_turn,
+)
 from seahelm.analysis.maneuvers import (
     default_time_step,
     direct_spiral,

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from seahelm.analysis import maneuvers
-from seahelm.analysis.equilibrium import EquilibriumError, approach_state
+from seahelm.analysis.equilibria.equilibrium import EquilibriumError, approach_state
 from seahelm.analysis.maneuvers.ships import (
     clear_approaches,
     maneuver_ship,

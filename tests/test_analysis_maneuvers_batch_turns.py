@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from seahelm.analysis.equilibrium import EquilibriumError, steady_turn, steady_turn_state
+from seahelm.analysis.equilibria.equilibrium import EquilibriumError, steady_turn, steady_turn_state
 from seahelm.analysis.imo.probability import monte_carlo_ships
 from seahelm.analysis.maneuvers import maneuver_ship, pull_out, zigzag
 from seahelm.analysis.maneuvers.ships import (

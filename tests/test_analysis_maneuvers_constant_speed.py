@@ -23,7 +23,7 @@ from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
 from seahelm.actuators.servo import ServoParams
-from seahelm.analysis.equilibrium import (
+from seahelm.analysis.equilibria.equilibrium import (
     approach_state,
     rudder_for_yaw_rate,
     steady_turn,

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from seahelm.analysis.linearisation import LinearModel, linearize
+from seahelm.analysis.equilibria.linearisation import LinearModel, linearize
 from seahelm.analysis.steering.indices import steering_indices
 from seahelm.cli.main import app
 from seahelm.hydrodynamics.linear_model import nomoto_from_state_space

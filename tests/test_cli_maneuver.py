@@ -216,7 +216,7 @@ def test_no_steady_turn_names_the_option_that_avoids_it():
 
 def test_library_messages_keep_python_names_outside_the_cli():
     """The equilibrium failure names the keyword that avoids it (`t_final`), in degrees."""
-    from seahelm.analysis.equilibrium import EquilibriumError
+    from seahelm.analysis.equilibria.equilibrium import EquilibriumError
 
     with pytest.raises(EquilibriumError, match=r"^`t_final`: no steady turn of 'kvlcc2-l7' at "
                                                r"rudder 35 deg .*\(35 deg\).*give `t_final`"):

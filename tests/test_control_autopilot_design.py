@@ -200,7 +200,7 @@ def test_cli_tune_lq_for_a_ship_with_a_propeller(runner, tmp_path):
     """KVLCC2 L7 (MMG, propeller): linearised at the self-propelled straight run, the design is
     ``lq-heading-rps`` holding the self-propulsion rps; the scenario starts at the approach
     speed and `seahelm run` (with the ship's steering gear) settles the 10° course change."""
-    from seahelm.analysis.equilibrium import approach_state
+    from seahelm.analysis.equilibria.equilibrium import approach_state
     from seahelm.cli.main import app
     from seahelm.control.lq_heading import LQ_HEADING_RPS
 

@@ -159,8 +159,8 @@ def test_on_the_nonlinear_mariner_it_converges_and_beside_ilos():
     calm water, and on it in a 1 m/s cross current: the LQ-integral design (50 m, 20°) ends on
     the line in both; in the current it holds it closer than ILOS (Δ = 800 m, κ = U/4, PID
     kp 3, kd 60) — the figures of docs/guide/control-design.rst."""
-    from seahelm.analysis.equilibrium import approach_state
-    from seahelm.analysis.linearisation import linearize
+    from seahelm.analysis.equilibria.equilibrium import approach_state
+    from seahelm.analysis.equilibria.linearisation import linearize
     from seahelm.control.guided import guided
     from seahelm.control.path_following import ILOS, route_params
     from seahelm.control.pid import PID_HEADING
@@ -244,7 +244,7 @@ def test_cli_tune_cross_track_writes_a_route_scenario_that_settles(tmp_path):
     KVLCC2 L7 gets the ``-rps`` variant holding the self-propulsion rps."""
     from typer.testing import CliRunner
 
-    from seahelm.analysis.linearisation import linearize
+    from seahelm.analysis.equilibria.linearisation import linearize
     from seahelm.cli.main import app
 
     runner = CliRunner()

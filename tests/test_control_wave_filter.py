@@ -74,7 +74,7 @@ def test_in_an_irregular_sea_it_cuts_rudder_activity_at_equal_lf_error(design):
     the figures of docs/guide/control-design.rst: 4.5 vs 0.14 °/s)."""
     from scipy import signal
 
-    from seahelm.analysis.equilibrium import approach_state
+    from seahelm.analysis.equilibria.equilibrium import approach_state
     from seahelm.control.autopilot_design import pid_pole_placement
     from seahelm.ships import get_ship
     from seahelm.simulation.engine import simulate

@@ -63,17 +63,28 @@ def test_cli_level3(tmp_path):
     from seahelm.cli import app
 
     runner = CliRunner()
+    files = {"--out": tmp_path / "l3.nc", "--json-out": tmp_path / "l3.json",
+             "--plot": tmp_path / "l3.png"}
     res = runner.invoke(app, ["dp", "capability", "supply", "--level", "3", "--headings", "2",
                               "--winds", "10", "--failures", "none", "--duration", "300",
-                              "--json"])
+                              "--json", *(str(x) for kv in files.items() for x in kv)])
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
     assert out["level"] == 3 and out["wind_speed_m_s"]["intact"] == [10.0, 10.0]
+    # the files: the same numbers (JSON), the grid's dimensions (NetCDF), a figure
+    assert json.loads(files["--json-out"].read_text())["wind_speed_m_s"] == out["wind_speed_m_s"]
+    import xarray as xr
+
+    with xr.open_dataset(files["--out"]) as ds:
+        assert ds.attrs["level"] == 3 and ds.held.dims == ("case", "direction", "wind")
+        assert ds.held.values.tolist() == [[[1], [1]]]
+        np.testing.assert_array_equal(ds.wind_speed.values, [[10.0, 10.0]])
+    assert files["--plot"].read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     for args, words in ((["--level", "2"], ["--level", "1 or 3", "2"]),
                         (["--level", "3", "--winds", "10,x"], ["--winds", "[m/s]", "10,x"]),
                         (["--level", "3", "--winds", "50"], ["--winds", "m/s", "50"]),
-                        (["--level", "3", "--out", str(tmp_path / "a.nc")], ["--out",
-                                                                            "level 1 only"])):
+                        (["--level", "3", "--workers", "0"], ["--workers", "[-]", "0"]),
+                        (["--level", "3", "--duration", "-5"], ["--duration", "[s]", "-5"])):
         res = runner.invoke(app, ["dp", "capability", "supply", *args])
         assert res.exit_code == 2, (args, res.output)
         line = res.stderr.strip()

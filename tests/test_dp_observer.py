@@ -1,5 +1,7 @@
-"""The passive wave-filtering observer (dp-pid-observer) on the supply vessel, in a loop run
-here: measurements of position and heading with first-order wave motion and noise."""
+"""The passive wave-filtering observer (dp-pid-observer) on the supply vessel in the engine: its
+measurements are position and heading with the first-order surge, sway and yaw of an irregular
+sea and seeded noise, made by the sensor stage inside the compiled loop
+(seahelm.simulation.sensor_stage), against the raw dp-pid fed the same measured positions."""
 
 from __future__ import annotations
 
@@ -10,103 +12,130 @@ import pytest
 
 from seahelm.control.dp_observer import DP_PID_OBSERVER, DpObserverParams
 from seahelm.control.dp_pid import DP_PID, DpPidParams, dp_pid_params
-from seahelm.parameters import as_records
+from seahelm.environment import rao_io
+from seahelm.environment.first_order_in_loop import first_order_in_loop
+from seahelm.environment.spectra import spectrum_from_wave_height
 from seahelm.registry import get_controller
 from seahelm.ships import get_ship
+from seahelm.simulation.engine import simulate
+from seahelm.simulation.problem import Problem
+from seahelm.simulation.sensor_stage import PositionSensors
 
 SHIP = get_ship("supply")
 H = 0.1
 T_FINAL = 400.0
 SET = np.array([5.0, 5.0, math.radians(5.0)])
-W0 = 0.8
+#: The sea: h3% 4 m (Rakhmanin–Firsov), from 135° (off the port bow at ψ = 5°), peak 0.85 rad/s
+SEA = spectrum_from_wave_height("rakhmanin-firsov-2", 4.0)
+W0 = SEA.peak_frequency
+NOISE = dict(noise_north=0.05, noise_east=0.05, noise_heading=math.radians(0.1))
 
 
-def _waves(t):
-    """First-order wave motion [m, m, rad] at ω₀ = 0.8 rad/s (the observer's wave model)."""
-    return np.array([1.0 * math.sin(W0 * t), 0.8 * math.sin(W0 * t + 1.0),
-                     math.radians(2.0) * math.sin(W0 * t + 2.0)])
+def dp_problem(controller, params, runs=1, seed=4, sensors=None, t_final=T_FINAL,
+               wave_dofs=("surge", "sway", "yaw")):
+    """The supply vessel held at SET from rest, the box barge's panel-method RAOs for its
+    first-order surge, sway and yaw (the catalog vessel has none of its own), its controller
+    measuring what the sensor stage gives."""
+    barge = rao_io.read_rao(rao_io.box_barge_database())
+    fo = first_order_in_loop(SEA, barge, wave_direction=math.radians(135.0), runs=runs,
+                             seed=seed, dofs=wave_dofs)
+    ref = {"north": SET[0], "east": SET[1], "heading": SET[2], "wind_force_x": 0.0,
+           "wind_force_y": 0.0, "wind_moment_z": 0.0}
+    return Problem(ship=SHIP, t_final=t_final, dt=H, controller_dt=H, x0=np.zeros((runs, 6)),
+                   controller=controller, controller_params=params, actuator="direct",
+                   reference=ref, first_order=fo,
+                   sensors=sensors or PositionSensors(**NOISE, seed=1))
 
 
-def _run(controller, params, seed=4):
-    rec = as_records(params.to_array()[None], type(params))[0]
-    rng = np.random.default_rng(seed)
-    x = np.zeros(6)
-    cs = np.zeros(controller.n_states)
-    cmd = np.zeros(controller.n_commands + len(controller.output_labels))
-    ref = np.array([*SET, 0.0, 0.0, 0.0])
-    rows = []
-    for k in range(int(round(T_FINAL / H))):
-        t = k * H
-        meas = x[:3] + _waves(t) + rng.normal(size=3) * [0.05, 0.05, math.radians(0.1)]
-        if controller is DP_PID:          # measured velocity: the true one
-            y = np.concatenate([meas, x[3:]])
-        else:
-            y = meas
-        if k == 0:
-            controller.init(x.copy(), y, ref, rec, cs)
-        controller.step(t, H, x.copy(), y, ref, rec, cs, cmd)
-        u = cmd[:3].copy()
-        f = lambda xx: SHIP.model.derivative(0.0, xx, u, SHIP.params)  # noqa: E731
-        k1 = f(x)
-        k2 = f(x + 0.5 * H * k1)
-        k3 = f(x + 0.5 * H * k2)
-        k4 = f(x + H * k3)
-        est = [cs[controller.state_labels.index(n)] for n in
-               ("estimated_north", "estimated_east", "estimated_heading")]
-        rows.append(np.concatenate([[t], x, u, est, meas]))
-        x = x + H / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
-    return np.array(rows)
+def observer_params():
+    """dp-pid's gains and the observer at the sea's peak frequency; κ₄ = 0.01 1/s² (the
+    default 0.1 lets the irregular sea's band into ν̂, and the derivative gain passes it:
+    wave-band thrust 0.97, 0.86, 0.28 of the raw PID's in surge, sway, yaw)."""
+    return DpObserverParams(**dp_pid_params(SHIP).as_dict(), wave_frequency=W0,
+                            observer_stiffness=0.01)
 
 
 @pytest.fixture(scope="module")
 def runs():
-    base = dp_pid_params(SHIP)
-    obs = DpObserverParams(**base.as_dict(), wave_frequency=W0)
-    return _run(DP_PID_OBSERVER, obs), _run(DP_PID, base)
+    obs = simulate(dp_problem(DP_PID_OBSERVER, observer_params())).to_xarray()
+    raw = simulate(dp_problem(DP_PID, dp_pid_params(SHIP))).to_xarray()
+    return obs, raw
+
+
+def _late(ds, after):
+    return ds.time.values > after
 
 
 def test_the_observer_is_registered():
     assert get_controller("dp-pid-observer") is DP_PID_OBSERVER
     assert DP_PID_OBSERVER.measurement_labels == ("north", "east", "heading")
+    assert DP_PID_OBSERVER.output_labels[-3:] == ("estimated_north", "estimated_east",
+                                                  "estimated_heading")
+
+
+def test_the_measurements_carry_the_waves_and_the_noise(runs):
+    """What the controller saw: the true position plus the first-order motion rotated to
+    north/east (0.23 m, 0.27 m, 0.48° standard deviations here) and the noise."""
+    obs, _ = runs
+    psi = obs.heading.values[0]
+    xi1, xi2 = obs.surge_wave.values[0], obs.sway_wave.values[0]
+    wave_n = np.cos(psi) * xi1 - np.sin(psi) * xi2
+    noise = obs.measured_north.values[0] - obs.north.values[0] - wave_n
+    assert 0.045 < noise.std() < 0.055 and abs(noise.mean()) < 0.005
+    assert obs.surge_wave.values.std() > 0.1 and obs.sway_wave.values.std() > 0.1
+    assert np.degrees(obs.yaw_wave.values.std()) > 0.3
 
 
 def test_the_vessel_reaches_its_set_point_on_the_estimates(runs):
+    """Held within 0.3 m and 0.3° over the last 100 s (measured: 0.11 m, 0.10 m, 0.07°)."""
     obs, _ = runs
-    late = obs[:, 0] > T_FINAL - 100.0
-    pos = obs[late][:, 1:4]
+    late = _late(obs, T_FINAL - 100.0)
+    assert obs.status.values[0] == 0
+    pos = np.stack([obs[n].values[0, late] for n in ("north", "east", "heading")], 1)
     assert np.max(np.abs(pos[:, :2] - SET[:2])) < 0.3
     assert np.max(np.abs(pos[:, 2] - SET[2])) < math.radians(0.3)
 
 
 def test_the_estimates_filter_the_waves_out(runs):
-    """The estimate η̂ follows the true (low-frequency) position: its error is a small part of
-    the measurement's (waves of 1 m and 0.8 m, 2°, and noise)."""
+    """The estimate η̂ follows the true (low-frequency) position: its rms error is a part of
+    the measurement's (the first-order motion and the noise). Measured: 0.53, 0.52, 0.20 in
+    north, east, heading (the notch at ω₀ takes a sinusoid there out, as the last session's
+    Python loop had it, to 0.15; the irregular sea's band is wider than the notch)."""
     obs, _ = runs
-    late = obs[:, 0] > 100.0
-    true, est, meas = obs[late][:, 1:4], obs[late][:, 10:13], obs[late][:, 13:16]
-    err_est = np.sqrt(np.mean((est - true) ** 2, axis=0))
-    err_meas = np.sqrt(np.mean((meas - true) ** 2, axis=0))
-    assert np.all(err_est < 0.15 * err_meas), (err_est, err_meas)
+    late = _late(obs, 100.0)
+    err_est, err_meas = [], []
+    for est, meas, true in (("estimated_north", "measured_north", "north"),
+                            ("estimated_east", "measured_east", "east"),
+                            ("estimated_heading", "measured_heading", "heading")):
+        t = obs[true].values[0, late]
+        err_est.append(np.sqrt(np.mean((obs[est].values[0, late] - t) ** 2)))
+        err_meas.append(np.sqrt(np.mean((obs[meas].values[0, late] - t) ** 2)))
+    err_est, err_meas = np.array(err_est), np.array(err_meas)
+    print("estimate / measurement rms error:", err_est / err_meas)
+    assert np.all(err_est < 0.6 * err_meas), (err_est, err_meas)
 
 
 def test_the_thrusters_do_not_chase_the_waves(runs):
     """The thrust's fluctuation in the wave band (what is left after a moving mean over one
-    wave period) with the observer is a small fraction of that of the PID fed the
-    wave-contaminated positions (measured: 0.23, 0.25, 0.14 in surge, sway, yaw; the rest is
-    mostly the 0.05 m / 0.1° white noise, which the low-pass at ω_c = 1.1 ω₀ passes in part)."""
+    peak period) with the observer is a fraction of that of the PID fed the same measured
+    positions (and the true velocities, which no DP sensor gives). Measured in the engine:
+    0.34, 0.31, 0.16 in surge, sway, yaw (in the last session's Python loop, a sinusoid at
+    ω₀: 0.23, 0.25, 0.14); the rest is mostly the noise and the sea's band off ω₀."""
     obs, raw = runs
     width = int(round(2.0 * math.pi / W0 / H))
 
-    def wave_band(rows):
-        thrust = rows[:, 7:10]
+    def wave_band(ds):
+        thrust = np.stack([ds[n].values[0] for n in ("thrust_surge", "thrust_sway",
+                                                      "thrust_yaw")], 1)
         kernel = np.ones(width) / width
         mean = np.stack([np.convolve(thrust[:, j], kernel, mode="same") for j in range(3)], 1)
-        late = (rows[:, 0] > 100.0) & (rows[:, 0] < T_FINAL - width * H)
+        t = ds.time.values
+        late = (t > 100.0) & (t < T_FINAL - width * H)
         return (thrust - mean)[late].std(axis=0)
 
     sd_obs, sd_raw = wave_band(obs), wave_band(raw)
     print("wave-band thrust std, observer / raw:", sd_obs / sd_raw)
-    assert np.all(sd_obs < 0.3 * sd_raw), (sd_obs, sd_raw)
+    assert np.all(sd_obs < 0.45 * sd_raw), (sd_obs, sd_raw)
 
 
 def test_observer_params_are_the_pid_params_and_more():

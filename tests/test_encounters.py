@@ -50,7 +50,7 @@ def test_coupled_run_without_avoidance_equals_each_vessel_alone_bit_for_bit():
 
 def test_an_encounter_vessel_equals_a_simulator_driven_by_hand():
     """The target of the head-on case, driven by a PD law written here on a plain Simulator."""
-    from seahelm.analysis.equilibrium import approach_state
+    from seahelm.analysis.equilibria.equilibrium import approach_state
 
     ship = get_ship(SHIP)
     start = approach_state(ship)
@@ -150,7 +150,7 @@ def test_avoidance_acts_as_the_rules_ask(method):
     # then resumed the route
     assert np.abs(res.tracks["desired_heading"][:2, 0, -1]).max() < 1e-12
     # stand-on (target from port, who does not avoid: collision course) kept course until
-    # the last moment (Rule 17(b) lets the velocity obstacles act late)
+    # the last moment (the velocity obstacles act once its inaction is apparent, Rule 17(a)(ii))
     assert v["role"][2, 0, 0] == -1
     if method == "rule-based":
         assert v["kept_course"][2, 0, 0]
@@ -199,10 +199,12 @@ def test_rule_based_stand_on_keeps_course_while_a_port_crosser_draws_ahead():
     assert np.abs(res.tracks["desired_heading"][0, 0]).max() == 0.0
 
 
-def test_velocity_obstacles_stand_on_acts_only_in_the_emergency_and_clears():
+def test_velocity_obstacles_stand_on_acts_only_when_the_give_way_does_not_and_clears():
     """A target from the port bow on a near-collision course that does not give way: the own
-    ship (stand-on) keeps its course until the TCPA is below the emergency time (Rule 17(b)),
-    then avoids within its reachable headings and does not collide."""
+    ship (stand-on) keeps its course for the observation time (its inaction apparent, Rule
+    17(a)(ii); the TCPA at detection is already below ``act_tcpa``), then avoids to
+    starboard within its reachable headings and does not collide (tests in
+    test_encounters_rule17.py)."""
     from seahelm.encounters.avoidance import VelocityObstacles
     from seahelm.encounters.monte_carlo import sample_geometry
 
@@ -213,5 +215,8 @@ def test_velocity_obstacles_stand_on_acts_only_in_the_emergency_and_clears():
     res = Encounter([_own(avoid=True), tgt], t_final=1200.0, avoidance=method).run()
     assert res.situation[0, 0] == Situation.CROSSING_STAND_ON
     t_act = res.verdicts["action_time"][0, 0, 0]
-    assert t_act > g["tcpa"][0] - method.emergency - method.every
+    assert g["tcpa"][0] < method.stand_on.act_tcpa
+    assert t_act > method.stand_on.observe
+    off = res.tracks["desired_heading"][0, 0] - res.tracks["route_heading"][0, 0]
+    assert off.min() >= 0.0 and off.max() > 0.0
     assert not res.collision[0, 0] and res.min_range[0, 0] > 400.0

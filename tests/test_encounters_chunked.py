@@ -11,7 +11,7 @@ import pytest
 from typer.testing import CliRunner
 
 from seahelm.cli.main import app
-from seahelm.encounters import AIS, Encounter
+from seahelm.encounters import Encounter
 from seahelm.encounters.chunked import concat_results, run_chunked, split_encounter
 from seahelm.encounters.monte_carlo import monte_carlo_vessels
 from seahelm.errors import ParameterError
@@ -65,9 +65,6 @@ def test_bad_chunking():
     with pytest.raises(ParameterError, match="workers"):
         run_chunked(enc, workers=0)
     vessels = list(enc.vessels)
-    noisy = Encounter(vessels, t_final=60.0, sensor=AIS(position_noise=5.0, seed=1))
-    with pytest.raises(ParameterError, match="sensor"):
-        split_encounter(noisy, 2)
     with pytest.raises(ParameterError, match="joined"):
         short = Encounter(vessels, t_final=60.0).run()
         concat_results([short, Encounter(vessels, t_final=30.0).run()])

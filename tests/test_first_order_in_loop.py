@@ -11,7 +11,7 @@ import math
 import numpy as np
 import pytest
 
-from seahelm.analysis.equilibrium import approach_state
+from seahelm.analysis.equilibria.equilibrium import approach_state
 from seahelm.control.pid import PID_HEADING, PIDHeadingParams
 from seahelm.environment import rao_io
 from seahelm.environment.first_order import OUTPUT_NAMES

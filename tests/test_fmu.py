@@ -22,7 +22,7 @@ pytest.importorskip("pythonfmu")
 from typer.testing import CliRunner  # noqa: E402
 
 from seahelm import Problem, get_ship, simulate  # noqa: E402
-from seahelm.analysis.equilibrium import approach_state  # noqa: E402
+from seahelm.analysis.equilibria.equilibrium import approach_state  # noqa: E402
 from seahelm.cli.main import app  # noqa: E402
 from seahelm.errors import ParameterError  # noqa: E402
 from seahelm.fmu import build_fmu  # noqa: E402

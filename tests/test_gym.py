@@ -163,11 +163,15 @@ def test_a_failed_episode_restarts_alone_the_others_go_on():
             break
     assert terminated[0] and not terminated[1] and not truncated.any()
     assert reward[0] < -40  # the failure term (-50)
-    t_fail = sim.time.copy()
+    t_fail = envs.elapsed.copy()
+    state1 = sim.state(1)
     obs, reward, terminated, truncated, _ = envs.step(hard)
-    assert sim.time[0] == 0.0 and sim.time[1] == t_fail[1] + 1.0 and reward[0] == 0.0
+    assert envs.elapsed[0] == 0.0 and envs.elapsed[1] == t_fail[1] + 1.0 and reward[0] == 0.0
+    assert sim.state(1) != state1  # (run 1 went on)
     obs, *_ = envs.step(hard)
-    assert sim.time[0] == 1.0 and sim.time[1] == t_fail[1] + 2.0
+    assert envs.elapsed[0] == 1.0 and envs.elapsed[1] == t_fail[1] + 2.0
+    # the simulator's runs are kept at one step (one call of the loop a step)
+    assert sim.time[0] == sim.time[1]
     envs.close()
 
 

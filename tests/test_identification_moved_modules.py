@@ -111,7 +111,7 @@ def test_the_warning_points_at_the_importing_code():
 
 def test_the_renamed_steady_turns_of_the_reduced_model():
     # 'steady_turns' was two functions: the batched equilibria of any model
-    # (seahelm.analysis.batch_steady_turn.steady_turns, kept) and the steady turns of
+    # (seahelm.analysis.equilibria.batch_steady_turn.steady_turns, kept) and the steady turns of
     # Voitkunsky's model, now voitkunsky_turns
     from seahelm.identification.reduced import turns
 

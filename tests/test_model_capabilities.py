@@ -23,7 +23,8 @@ def _on(ship, model):
 
 
 def test_the_mmg_model_declares_what_was_keyed_by_its_name():
-    assert MMG.capabilities == {"shallow-water", "hull-identification", "engine-estimate"}
+    assert MMG.capabilities == {"shallow-water", "hull-identification", "engine-estimate",
+                                "closed-form-self-propulsion"}  # (the last: issue 47 item 3)
     # every other registered model declares none of them: what the name checks allowed
     others = {name: get_model(name).capabilities for name in VESSEL_MODELS if name != "mmg"}
     # mmg-ls declares the output-error fit of measured records (issue 48 item 3), no other
@@ -38,7 +39,7 @@ def test_a_capability_must_be_one_of_the_known_names():
     with pytest.raises(ValueError, match="unknown capability 'shallow'"):
         MMG.supports("shallow")
     assert set(CAPABILITIES) == {"shallow-water", "hull-identification", "engine-estimate",
-                                 "record-identification"}
+                                 "record-identification", "closed-form-self-propulsion"}
 
 
 def test_shallow_water_follows_the_capability_not_the_name():

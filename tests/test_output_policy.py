@@ -142,6 +142,7 @@ CASES: dict[tuple[tuple[str, ...], str], Case] = {
         lambda f: ["waves", "figure", "--duration", "20"], "--out", cheap=True, kind="png"),
     (("waves", "spectrum"), "--plot"): Case(
         lambda f: ["waves", "spectrum", "--h3", "3"], "--plot", cheap=True, kind="png"),
+    (("dp", "tune"), "--out"): Case(lambda f: ["dp", "tune", "supply"], "--out", cheap=True),
     (("dp", "capability"), "--out"): Case(
         lambda f: ["dp", "capability", "shushlyapin2017-dp", "--headings", "4"], "--out", cheap=True,
         kind="nc"),
@@ -162,6 +163,9 @@ CASES: dict[tuple[tuple[str, ...], str], Case] = {
         lambda f: ["encounter", "--monte-carlo", "1", "--t-final", "300", "--detection", "2500",
                    "--avoidance", "none"], "--out",
         directory=("encounters.nc", "tracks.png", "cpa.png", "rose.png")),
+    (("encounter",), "--store"): Case(
+        lambda f: ["encounter", "--monte-carlo", "1", "--t-final", "300", "--detection", "2500",
+                   "--avoidance", "none"], "--store", kind="store"),
     (("imo",), "--out"): Case(
         lambda f: ["imo", str(f.kv)], "--out", directory=("imo-report.json",),
         own_input=lambda f: f.kv),

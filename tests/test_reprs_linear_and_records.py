@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from seahelm.analysis.linearisation import linearize
+from seahelm.analysis.equilibria.linearisation import linearize
 from seahelm.identification.records import ManoeuvreRecord
 
 MAX_LINES = 15

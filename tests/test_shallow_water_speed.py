@@ -15,7 +15,7 @@ import math
 import numpy as np
 import pytest
 
-from seahelm.analysis.equilibrium import straight_run_speed
+from seahelm.analysis.equilibria.equilibrium import straight_run_speed
 from seahelm.errors import ParameterError, ValidityRangeWarning, strict_validity
 from seahelm.hydrodynamics.hull import HullParticulars
 from seahelm.hydrodynamics.shallow_water import (

@@ -8,7 +8,7 @@ import math
 import pytest
 from typer.testing import CliRunner
 
-from seahelm.analysis.linearisation import linearize
+from seahelm.analysis.equilibria.linearisation import linearize
 from seahelm.cli.main import app
 from seahelm.errors import ParameterError
 from seahelm.ships import read_ship

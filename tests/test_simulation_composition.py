@@ -139,6 +139,18 @@ COMBINATIONS = {
     # examples/supply_dp_setpoint.toml: the DP controller's generalized thrust passes the
     # direct actuator to the DP model; it measures position, heading and the body velocities;
     # its references are the set-point and the measured wind load (feedforward)
+    # examples/supply_dp_observer_waves.toml, test_dp_observer, test_sensor_stage: the
+    # observer measures position and heading only (the sensor stage reroutes them)
+    ("dp-3dof", "direct", "dp-pid-observer"): (
+        ("north", "east", "heading", "wind_force_x", "wind_force_y", "wind_moment_z"),
+        "controller.thrust_surge -> actuator.thrust_surge\n"
+        "controller.thrust_sway -> actuator.thrust_sway\n"
+        "controller.thrust_yaw -> actuator.thrust_yaw\n"
+        "actuator.thrust_surge -> model.thrust_surge\n"
+        "actuator.thrust_sway -> model.thrust_sway\n"
+        "actuator.thrust_yaw -> model.thrust_yaw\n"
+        "model.north -> controller.north\nmodel.east -> controller.east\n"
+        "model.heading -> controller.heading"),
     ("dp-3dof", "direct", "dp-pid"): (
         ("north", "east", "heading", "wind_force_x", "wind_force_y", "wind_moment_z"),
         "controller.thrust_surge -> actuator.thrust_surge\n"

@@ -394,7 +394,7 @@ def test_heavy_models_loop_over_the_stages_and_light_ones_write_them_out():
 def _kvlcc2_circle(actuator, dt: float, method: str = "rk4"):
     """60 s of a 35 deg starboard turn of the KVLCC2 L7 model from a straight run at the
     self-propulsion rps, the rudder through its steering gear (15.8 deg/s, 0.1 s lag)."""
-    from seahelm.analysis.equilibrium import self_propulsion_rps
+    from seahelm.analysis.equilibria.equilibrium import self_propulsion_rps
     from seahelm.vessels.mmg import KVLCC2_L7, KVLCC2_L7_SERVO, MMG
 
     rps = float(self_propulsion_rps(KVLCC2_L7, 1.179))
@@ -428,7 +428,7 @@ def test_a_closed_form_servo_frees_the_step_from_the_servo_lag():
 def test_simulate_integrates_the_servo_on_request():
     """``exact_actuator=False`` is the integrated servo (the behaviour before the closed form),
     the same run as an actuator without ``advance``; ``True`` needs a closed form."""
-    from seahelm.analysis.equilibrium import self_propulsion_rps
+    from seahelm.analysis.equilibria.equilibrium import self_propulsion_rps
     from seahelm.vessels.mmg import KVLCC2_L7, KVLCC2_L7_SERVO, MMG
 
     rps = float(self_propulsion_rps(KVLCC2_L7, 1.179))

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from seahelm.actuators.servo import DIRECT, RUDDER_SERVO
-from seahelm.analysis.equilibrium import approach_state, self_propulsion_rps
+from seahelm.analysis.equilibria.equilibrium import approach_state, self_propulsion_rps
 from seahelm.control.pid import PID_HEADING, PIDHeadingParams
 from seahelm.errors import ParameterError
 from seahelm.ships import get_ship, write_ship
@@ -69,7 +69,9 @@ def test_exact_actuator_is_an_option_of_the_problem():
                                                 "controller 'pid-heading': model input "
                                                 "'propeller_rps' is not fed"),
     ({"ship": "kvlcc9"}, "ship", "unknown catalog ship 'kvlcc9'"),
-    ({"x0": None}, "x0", "is required: the initial state"),
+    # (with a ship, no x0 is its straight approach: tests/test_simulation_ship_start.py)
+    ({"ship": None, "model": MMG, "params": L7.params, "x0": None}, "x0",
+     "is required: the initial state"),
 ])
 def test_bad_requests_name_their_field(changes, field, match):
     problem = Problem(ship="kvlcc2-l7", x0=START, t_final=20.0, dt=0.05, reference=REF)

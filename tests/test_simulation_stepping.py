@@ -65,7 +65,7 @@ def test_stepping_with_wind_and_waves_equals_simulate():
 
 
 def test_stepping_with_first_order_motions_in_the_loop_equals_simulate():
-    from seahelm.analysis.equilibrium import approach_state
+    from seahelm.analysis.equilibria.equilibrium import approach_state
     from seahelm.control.pid import PID_HEADING, PIDHeadingParams
     from seahelm.environment import rao_io
     from seahelm.environment.first_order_in_loop import first_order_in_loop
@@ -94,7 +94,7 @@ def test_stepping_several_intervals_and_a_short_last_interval():
     with Simulator(problem) as sim:
         sim.reset()
         sim.step(n=3)
-        obs = sim.step(n=100)  # runs to the end of the horizon, not past it
+        obs = sim.step(n=10)  # runs to the end of the horizon (8 intervals), not past it
         np.testing.assert_array_equal(obs.time, [10.5, 10.5])
         assert_bit_for_bit(sim.result(), whole)
         with pytest.raises(ParameterError, match="end of the horizon") as err:
@@ -237,8 +237,8 @@ def test_bad_input_is_one_parameter_error_and_changes_nothing():
         (dict(commands=[[0.1, 0.2]]), "commands", r"shape \(2, 1\)"),
         (dict(commands=[math.nan]), "commands", "must be finite"),
         (dict(commands={"rudder": 0.1}), "commands", "unknown command 'rudder'"),
-        (dict(runs=[2]), "runs", r"0 \.\.\. 1, got 2"),
-        (dict(runs=[-1]), "runs", "got -1"),
+        (dict(runs=[2]), "runs", r"-2 \.\.\. 1 \(negative: from the end, as numpy\), got 2"),
+        (dict(runs=[-3]), "runs", "got -3"),  # (-1 is the last run, as numpy)
         (dict(n=0), "n", "integer >= 1"),
         (dict(commands=[[0.1]], runs=[0, 1]), "commands", r"\(2, 1\)"),
     ]

@@ -13,7 +13,11 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from seahelm.analysis.equilibrium import steady_turn, steady_turn_state, straight_run_speed
+from seahelm.analysis.equilibria.equilibrium import (
+    steady_turn,
+    steady_turn_state,
+    straight_run_speed,
+)
 from seahelm.analysis.maneuvers import turning_circle, zigzag
 from seahelm.errors import ParameterError
 from seahelm.ships import get_ship

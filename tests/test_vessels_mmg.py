@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from seahelm.actuators.servo import RUDDER_SERVO
-from seahelm.analysis.equilibrium import self_propulsion_rps
+from seahelm.analysis.equilibria.equilibrium import self_propulsion_rps
 from seahelm.analysis.maneuvers.advance_transfer import turning_metrics
 from seahelm.control.open_loop import OPEN_LOOP
 from seahelm.errors import ParameterError

@@ -18,8 +18,8 @@ import math
 import matplotlib.pyplot as plt
 import numpy as np
 
-from seahelm.analysis.equilibrium import approach_state
-from seahelm.analysis.linearisation import linearize
+from seahelm.analysis.equilibria.equilibrium import approach_state
+from seahelm.analysis.equilibria.linearisation import linearize
 from seahelm.control.guided import guided
 from seahelm.control.lq_cross_track import LQ_CROSS_TRACK, lq_cross_track
 from seahelm.control.path_following import ILOS, route_params

@@ -16,7 +16,7 @@ import warnings
 import matplotlib.pyplot as plt
 import numpy as np
 
-from seahelm.analysis.equilibrium import straight_run_speed
+from seahelm.analysis.equilibria.equilibrium import straight_run_speed
 from seahelm.errors import ValidityRangeWarning
 from seahelm.ships import get_ship
 from seahelm.ships.estimate import Design, estimate_ship

@@ -18,8 +18,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 from scipy import signal
 
-from seahelm.analysis.equilibrium import approach_state
-from seahelm.analysis.linearisation import linearize
+from seahelm.analysis.equilibria.equilibrium import approach_state
+from seahelm.analysis.equilibria.linearisation import linearize
 from seahelm.analysis.steering.indices import steering_indices
 from seahelm.control.autopilot_design import pid_pole_placement
 from seahelm.control.pid import PID_HEADING

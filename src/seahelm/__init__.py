@@ -39,7 +39,7 @@ _USER_API = {
     "pull_out": "seahelm.analysis.maneuvers",
     "crash_stop": "seahelm.analysis.maneuvers",
     "imo_check": "seahelm.analysis.imo",
-    "linearize": "seahelm.analysis.linearisation",
+    "linearize": "seahelm.analysis.equilibria.linearisation",
     "read_records": "seahelm.identification.records",
     "fit_nomoto": "seahelm.identification.nomoto_fit",
     "regress_hull": "seahelm.identification.mmg_fit",

@@ -181,7 +181,8 @@ def sim_result_summary(result: object) -> tuple[str, list[tuple[str, object]]]:
 
 
 def linear_model_summary(model: object) -> tuple[str, list[tuple[str, object]]]:
-    """Title and rows of a :class:`~seahelm.analysis.linearisation.LinearModel`'s summary.
+    """Title and rows of a :class:`~seahelm.analysis.equilibria.linearisation.LinearModel`'s
+    summary.
 
     Its matrices are not printed (``to_numpy()`` gives them): at a kink the model holds two
     one-sided models besides the mean, and its dataclass repr ran to 22 kB.

@@ -187,7 +187,7 @@ def as_float_array(name: str, value: Any, unit: str = "", *, finite: bool = True
                              field=name, unit=unit or None, value=value)
     try:
         arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError) as exc:
+    except (TypeError, ValueError, OverflowError) as exc:  # (10**400: beyond floats)
         raise ParameterError(f"must be numeric{_unit(unit)}, got {value!r}",
                              field=name, unit=unit or None, value=value) from exc
     if finite:

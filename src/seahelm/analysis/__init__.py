@@ -1,6 +1,9 @@
 """seahelm.analysis: what is computed from simulated (and measured) runs, one subpackage a
 concept.
 
+:mod:`~seahelm.analysis.equilibria`
+    the steady motions of a model (self-propulsion, straight approach, steady turn, the roll
+    balance of a steady heel) and the linearisation there;
 :mod:`~seahelm.analysis.maneuvers`
     the standard manoeuvres (turning circle, zig-zag, spirals, pull-out, crash stop) and the
     metrics of recorded tracks (advance and transfer, course keeping, settling, overshoot);
@@ -20,9 +23,8 @@ concept.
 :mod:`~seahelm.analysis.statistics`
     the statistics of a batch's per-run metrics (the Monte-Carlo tables, the report, sweeps).
 
-The equilibria, the linearisation and the roll balance of a steady motion are modules here
-too. Modules that moved keep their old path as a deprecated alias (a
-:class:`DeprecationWarning` naming the new module, which is given itself).
+Modules that moved keep their old path as a deprecated alias (a :class:`DeprecationWarning`
+naming the new module, which is given itself).
 """
 
 from ..errors import deprecated_modules
@@ -60,5 +62,10 @@ _REGROUPED = {
     # used by Platonov & Platonova's study only: beside it
     "averaging": "seahelm.studies.platonov.averaging",
 }
+
+#: Modules moved to :mod:`seahelm.analysis.equilibria` (issue 47, item 3): the same.
+_MOVED.update({old: f"seahelm.analysis.equilibria.{old}" for old in (
+    "equilibrium", "batch_equilibrium", "batch_steady_turn", "constant_speed", "linearisation",
+    "heel")})
 
 __getattr__ = deprecated_modules(__name__, {**_MOVED, **_REGROUPED})

@@ -4,7 +4,7 @@ The command parses, calls :func:`seahelm.analysis.steering.autopilot_tuning.tune
 and renders its result (the scenario written by
 :meth:`~seahelm.analysis.steering.autopilot_tuning.AutopilotTuning.scenario` and
 :func:`~seahelm.analysis.steering.autopilot_tuning.scenario_toml`). It linearises the ship at
-its straight run (:mod:`seahelm.analysis.linearisation`), takes Nomoto's K and
+its straight run (:mod:`seahelm.analysis.equilibria.linearisation`), takes Nomoto's K and
 T = T_1 + T_2 − T_3 (:mod:`seahelm.analysis.steering.indices`) and designs
 
 * ``--design pid`` (default): the ``pid-heading`` gains placing the Nomoto loop's poles at the
@@ -45,7 +45,8 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ._common import ForceFlag, JsonFlag, OneLineErrors, console, handle_errors, output_file, print_json
+from ._common import (ForceFlag, JsonFlag, OneLineErrors, console, handle_errors, output_file,
+                      print_json)
 
 __all__ = ["app", "tune"]
 

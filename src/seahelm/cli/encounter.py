@@ -15,8 +15,8 @@ from typing import Annotated, Any
 import typer
 
 from ..errors import ParameterError
-from ._common import ForceFlag, JsonFlag, command_path, console, handle_errors, output_dir, \
-    print_json
+from ._common import ForceFlag, JsonFlag, _writable_directory, command_path, console, \
+    handle_errors, output_dir, print_json, store_containing
 
 _METHODS = ("none", "rule-based", "velocity-obstacles")
 _FILES = ("encounters.nc", "tracks.png", "cpa.png", "rose.png")
@@ -227,6 +227,11 @@ def encounter(
                                 "`avoid = true` in a [[vessel]] table).")] = False,
     out: Annotated[Path | None, typer.Option(
         help=f"Write {', '.join(_FILES)} here (the last method's with --compare).")] = None,
+    store: Annotated[Path | None, typer.Option(
+        "--store", help="Zarr store directory (e.g. study.zarr): each chunk written as it "
+                        "finishes, one study per avoidance method; an interrupted study "
+                        "is resumed by the same command (the chunks written are "
+                        "skipped).")] = None,
     force: ForceFlag = False,
     json_out: JsonFlag = False,
 ) -> None:
@@ -243,6 +248,14 @@ def encounter(
             raise ParameterError(f"must be >= 1, got {value}", field=name, value=value)
     if out is not None:
         output_dir("--out", out, _FILES, reads=tuple(files or ()), force=force)
+    if store is not None:
+        if any(Path(f).resolve() == store.resolve() for f in files or ()):
+            raise ParameterError(f"`--store` {store} is a file this command reads: writing "
+                                 "the store there would destroy it; choose another path")
+        outer = store_containing(store.parent)
+        if outer is not None:
+            raise ParameterError(f"`--store` {store} is inside the store {outer}: writing "
+                                 "there would corrupt it; choose a path outside it")
     make, method = _build(list(files or []), monte_carlo, avoidance, own_ship, target_ship,
                           t_final, seed, detection, targets_avoid, overtaking)
     methods = ([None, "rule-based", "velocity-obstacles"] if compare else [method])
@@ -253,15 +266,39 @@ def encounter(
                              value=encounters[0].n_vessels)
     payload: dict[str, Any] = {"seahelm_command": command_path() or "seahelm encounter",
                                "methods": {}}
+    labels = [m if m not in (None, "scenario") else _name(enc.avoidance)
+              for m, enc in zip(methods, encounters)]
+    sizes: list[int | None] = [chunk_size] * len(encounters)
+    if store is not None:
+        from ..sweep.encounter_store import check_study_store, stored_chunk_size
+
+        for i, (name, enc) in enumerate(zip(labels, encounters)):
+            held = stored_chunk_size(store, name) if chunk_size is None else None
+            sizes[i] = held or chunk_size or max(1, math.ceil(enc.n_encounters
+                                                               / (4 * (workers or 1))))
+        check_study_store(store, {name: (enc, c) for name, enc, c
+                                  in zip(labels, encounters, sizes)}, force=force)
+        _writable_directory("--store", store.parent)
+        payload["store"] = str(store)
     result, label = None, ""
-    for m, enc in zip(methods, encounters):
-        if workers is None and chunk_size is None:
+    for m, enc, label, size in zip(methods, encounters, labels, sizes):
+        if store is not None:
+            from ..sweep.encounter_store import run_study
+
+            counts: list[int] = []
+            result = run_study(enc, store, label, chunk_size=size, workers=workers,
+                               force=force, on_chunk=lambda d, n: counts.append(d) or None)
+            if not json_out:
+                console.print(f"store {store}, study {label}: {counts[0]} of "
+                              f"{math.ceil(enc.n_encounters / size)} chunk(s) there before, "
+                              f"{counts[-1] - counts[0]} run now", highlight=False,
+                              soft_wrap=True)
+        elif workers is None and chunk_size is None:
             result = enc.run()
         else:
             from ..encounters.chunked import run_chunked
 
             result = run_chunked(enc, chunk_size=chunk_size, workers=workers)
-        label = m if m not in (None, "scenario") else _name(enc.avoidance)
         rows = _rows(result)
         payload["methods"][label] = rows
         if not json_out:

@@ -1,9 +1,9 @@
 """``seahelm linearize SHIP``: the linear model of a ship at an equilibrium and its steering indices.
 
 Linearises the ship (catalog name or ship file) at its trimmed straight run at ``--speed``
-(or at the steady turn at ``--rudder`` degrees) with :func:`seahelm.analysis.linearisation.
-linearize`, and prints Nomoto's K, T_1, T_2, T_3, the first-order T, the course-stability
-index and lever (:mod:`seahelm.analysis.steering.indices`), the poles, and with ``--matrices``
+(or at the steady turn at ``--rudder`` degrees) with
+:func:`seahelm.analysis.equilibria.linearisation.linearize`, and prints Nomoto's K, T_1, T_2,
+T_3, the first-order T, the course-stability index and lever (:mod:`seahelm.analysis.steering.indices`), the poles, and with ``--matrices``
 the A, B, C, D of the ship with its steering gear (input ``rudder_command``). A model with roll
 (Son & Nomoto's container ship) gets Nomoto's indices of its sway–yaw block with roll held
 quasi-static, the poles of the whole block, and the size of the roll coupling. At a point
@@ -65,7 +65,7 @@ def linearize(
     json_out: JsonFlag = False,
 ) -> None:
     """Linearise a ship at an equilibrium: Nomoto K, T1, T2, T3, T and course stability."""
-    from ..analysis.linearisation import linearize as _linearize
+    from ..analysis.equilibria.linearisation import linearize as _linearize
     from ..analysis.steering.indices import steering_indices
     from ..errors import ParameterError
     from ..ships import get_ship

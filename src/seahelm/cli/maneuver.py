@@ -133,10 +133,30 @@ def ship_of(ship: ShipName, water_depth: float | None = None) -> Any:
         raise ParameterError(exc.reason.lstrip(": ")) from None
 
 
+#: The lowest approach speed of a manoeuvre, as a fraction of the speed the ship's parameter set
+#: was identified at: the MMG standard method is one for manoeuvring at moderate speed, not the
+#: low-speed manoeuvring of berthing (Yasukawa & Yoshimura 2015, sec. 1); the KVLCC2 model
+#: still gives its tactical diameter at 1/20 of its speed, but at 1/100 no steady turn is found
+#: and at 1e-4 m/s both turns diverged after 18 s of work (exit 0). Above
+#: ``SPEED_VALIDITY`` (1.5) times that speed a manoeuvre warns. A model made for low speeds
+#: (``mmg-ls``, with its ``min_speed``) takes any speed above that.
+LOWEST_SPEED_FRACTION = 0.1
+
+
 def check_speed_rps(ship: Any, speed: float | None, rps: float | None) -> None:
-    """``--speed`` > 0, ``--rps`` > 0 (and only for a ship with a propeller), not both."""
+    """``--speed`` > 0 and not below the model's range (:data:`LOWEST_SPEED_FRACTION`),
+    ``--rps`` > 0 (and only for a ship with a propeller), not both."""
     if speed is not None and not (math.isfinite(speed) and speed > 0):
         raise ParameterError(f"`--speed` must be > 0 [m/s], got {speed!r}")
+    design = ship.approach_speed
+    low_speed_model = "min_speed" in ship.params.field_names()
+    if speed is not None and math.isfinite(design) and not low_speed_model \
+            and speed < LOWEST_SPEED_FRACTION * design:
+        raise ParameterError(
+            f"`--speed` = {speed:g} m/s is below the range of '{ship.name}''s model "
+            f"{ship.model.name}: from {LOWEST_SPEED_FRACTION:g} x the speed its parameter set "
+            f"was identified at ({design:.4g} m/s), {LOWEST_SPEED_FRACTION * design:.4g} m/s "
+            "(a model for manoeuvring at moderate speed; above 1.5 x it warns)")
     if rps is not None:
         if not (math.isfinite(rps) and rps > 0):
             raise ParameterError(f"`--rps` must be > 0 [1/s], got {rps!r}")
@@ -353,7 +373,8 @@ TURNING_FIELDS: tuple[Field, ...] = (
     ("yaw_rate_degps", "steady yaw rate [deg/s]", _deg("steady_yaw_rate")),
     ("steady", "steady at the end", lambda r: bool(r["steady"])),
 )
-#: Of a model with roll (:func:`seahelm.analysis.heel.heel_metrics`), after TURNING_FIELDS.
+#: Of a model with roll (:func:`seahelm.analysis.equilibria.heel.heel_metrics`), after
+#: TURNING_FIELDS.
 HEEL_FIELDS: tuple[Field, ...] = (
     ("max_heel_deg", "maximum heel [deg] (+ starboard down)", _deg("max_heel_angle")),
     ("steady_heel_deg", "steady heel [deg] (+ starboard down)", _deg("steady_heel_angle")),

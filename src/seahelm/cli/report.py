@@ -75,6 +75,10 @@ def report(
     default = (default_report_path(results[0]) if len(results) == 1
                else results[0].parent / COMBINED_NAME)
     target = output_file("--out", out or default, "html", reads=reads, force=force)
+    if target.suffix.lower() not in (".html", ".htm"):  # (a browser opens it by its suffix)
+        raise ParameterError(f"`--out` must name an .html file, got {str(target)!r}"
+                             + (f" (suffix {target.suffix!r})" if target.suffix
+                                else " (no suffix)"))
     from ..report import combined_report_data, write_report
 
     summary = write_report(results[0] if len(results) == 1 else combined_report_data(results),

@@ -4,7 +4,10 @@
 The controller ``dp-pid-observer`` measures position and heading only (``north``, ``east``,
 ``heading``: with first-order wave motion and noise on them, what a DP system's sensors give)
 and controls on the observer's low-frequency estimates η̂, ν̂, so that the thrusters do not
-chase the waves. The observer (Fossen & Strand 1999, "Passive nonlinear observer design for
+chase the waves; it records ``dp-pid``'s outputs and η̂ (``estimated_north`` [m],
+``estimated_east`` [m], ``estimated_heading`` [rad], after the step's update). In a
+simulation, the sensor stage (:mod:`seahelm.simulation.sensor_stage`, ``Problem(sensors=...)``)
+gives it the measurements with the first-order motions and noise. The observer (Fossen & Strand 1999, "Passive nonlinear observer design for
 ships using Lyapunov methods: full-scale experiments with a supply vessel", *Automatica*
 35(1), 3–16; Fossen 2021, *Handbook of Marine Craft Hydrodynamics and Motion Control*, 2nd ed.,
 §13.4.2), per DOF i of η = (x_N, y_E, ψ)::
@@ -40,6 +43,10 @@ from .dp_pid import (COMMANDS, DP_PID, OUTPUTS, REFERENCES, STATES, DpPidParams,
 __all__ = ["DpObserverParams", "DP_PID_OBSERVER", "observer_update"]
 
 MEASUREMENTS: tuple[str, ...] = ("north", "east", "heading")
+#: Recorded outputs: ``dp-pid``'s, then the observer's low-frequency estimates η̂.
+OBSERVER_OUTPUTS: tuple[str, ...] = OUTPUTS + ("estimated_north", "estimated_east",
+                                               "estimated_heading")
+_EST0 = len(COMMANDS) + len(OUTPUTS)
 _M = signal_indices(MEASUREMENTS)
 _S = signal_indices(STATES)
 _C = signal_indices(COMMANDS)
@@ -138,6 +145,9 @@ def dp_observer_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compil
     cs[_S.applied_surge] = cmd[_C.thrust_surge]
     cs[_S.applied_sway] = cmd[_C.thrust_sway]
     cs[_S.applied_yaw] = cmd[_C.thrust_yaw]
+    cmd[_EST0] = cs[_S.estimated_north]
+    cmd[_EST0 + 1] = cs[_S.estimated_east]
+    cmd[_EST0 + 2] = cs[_S.estimated_heading]
 
 
 DP_PID_OBSERVER = Controller(
@@ -154,6 +164,6 @@ DP_PID_OBSERVER = Controller(
     init=dp_observer_init,
     step=dp_observer_step,
     measurement_labels=MEASUREMENTS,
-    output_labels=OUTPUTS,
-    output_units=DP_PID.output_units,
+    output_labels=OBSERVER_OUTPUTS,
+    output_units=DP_PID.output_units + ("m", "m", "rad"),
 )

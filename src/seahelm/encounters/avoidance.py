@@ -24,9 +24,11 @@ import numpy as np
 
 from .._validate import lookup_name
 from ..errors import ParameterError
-from .geometry import GIVE_WAY, STAND_ON, ColregSectors, classify, cpa_tcpa, velocity, wrap_pi
+from .geometry import (GIVE_WAY, STAND_ON, ColregSectors, Situation, classify, cpa_tcpa,
+                       velocity, wrap_pi)
 
-__all__ = ["AvoidanceMethod", "RuleBased", "VelocityObstacles", "AVOIDANCE", "resolve_avoidance"]
+__all__ = ["AvoidanceMethod", "RuleBased", "VelocityObstacles", "StandOnRules", "AVOIDANCE",
+           "resolve_avoidance"]
 
 
 def _positive(obj: Any, *names_units: tuple[str, str]) -> None:
@@ -55,6 +57,78 @@ def _situations(own: np.ndarray, view: np.ndarray, sectors: ColregSectors) -> np
     v = np.nan_to_num(view)
     return classify(own[:, :, None, 0:2], own[:, :, None, 4], v[:, None, :, 0:2],
                     v[:, None, :, 4], sectors)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class StandOnRules:
+    """When and how a stand-on vessel may act on its own (COLREG Rule 17), for
+    :class:`VelocityObstacles`.
+
+    Rule 17(a)(i): the stand-on vessel keeps her course and speed. (a)(ii): she *may* act
+    "as soon as it becomes apparent to her that the vessel required to keep out of the way is
+    not taking appropriate action". (b): she *shall* act when "collision cannot be avoided by
+    the action of the give-way vessel alone". (c): in a crossing situation she shall, "if the
+    circumstances of the case admit, not alter course to port for a vessel on her own port
+    side". The rules give no numbers; these are ours (stated, configurable):
+
+    - *apparent* (17(a)(ii)): the pair has been at risk (the route's velocity inside the
+      other's velocity obstacle) for ``observe`` seconds -- time for the give-way vessel to
+      act -- and the give-way vessel has not acted (its reported course within
+      ``alteration`` and its speed within ``speed_change`` of those it had when the risk
+      was first seen), and still the CPA at the present velocities is closer than the
+      method's ``radius`` with a TCPA below ``act_tcpa``;
+    - *must act* (17(b)): the TCPA is below the method's ``emergency`` and the CPA at the
+      present velocities closer than ``close``, whatever the time observed or the other
+      did (a give-way vessel that is acting but too little, or too late);
+    - *side* (17(c)): in a crossing situation, for a vessel on her port side (relative
+      bearing 180° ... 360°) when she starts to act, no heading to port of her route's;
+      otherwise (a vessel overtaking her, to which 17(c) does not apply: turning away from
+      one on the quarter may turn into its path) no heading that would have the other pass
+      on her other side than it passes when she starts to act (the sign of ``r × w``, line
+      of sight × relative velocity, kept until the pair has passed: she does not cross the
+      other's relative track, nor swing from one side to the other as the velocity obstacles
+      alone did).
+
+    Attributes
+    ----------
+    act_tcpa : float
+        TCPA below which an unresolved risk makes the give-way's inaction apparent [s]
+        (default 600 s, 10 min).
+    observe : float
+        Time a risk must have lasted before the give-way's inaction is apparent [s] (default
+        120 s).
+    alteration : float
+        A change of the give-way's course larger than this is an action [rad] (default 10°).
+    speed_change : float
+        A relative change of the give-way's speed larger than this is an action [-] (default
+        0.2).
+    close : float
+        CPA below which, with the TCPA below ``emergency``, the stand-on must act [m]
+        (default 926 m, 0.5 nmi).
+    keep_side : bool
+        Apply the side rule above (default True; False: the velocity obstacles alone choose
+        the side).
+
+    References
+    ----------
+    IMO (1972, as amended). Convention on the International Regulations for Preventing
+    Collisions at Sea (COLREG), Rule 17.
+    """
+
+    act_tcpa: float = 600.0
+    observe: float = 120.0
+    alteration: float = math.radians(10.0)
+    speed_change: float = 0.2
+    close: float = 926.0
+    keep_side: bool = True
+
+    def __post_init__(self) -> None:
+        _positive(self, ("act_tcpa", "s"), ("alteration", "rad"), ("speed_change", "-"),
+                  ("close", "m"))
+        v = self.observe
+        if not (isinstance(v, (int, float)) and math.isfinite(v) and v >= 0):
+            raise ParameterError(f"must be >= 0 [s], got {v!r}", field="avoidance.observe",
+                                 unit="s", value=v)
 
 
 class AvoidanceMethod:
@@ -193,9 +267,11 @@ class VelocityObstacles(AvoidanceMethod):
       vessel on its port side -- ``r × (v_own - v_other) ≥ 0`` with ``r`` the line of sight
       (north-east cross product): the COLREG constraint of Kuwata et al. (2014), which
       excludes the half plane of passing on the wrong side;
-    - a stand-on vessel keeps its route (Rule 17(a)) unless a velocity obstacle's TCPA is
-      shorter than ``emergency`` (Rule 17(b): action when the give-way vessel alone cannot
-      avoid collision); from then on it avoids that vessel until they have passed.
+    - a stand-on vessel keeps its route (Rule 17(a)(i)) until the give-way vessel's inaction
+      is apparent (17(a)(ii)) or the TCPA is shorter than ``emergency`` (17(b)), by the
+      thresholds of ``stand_on`` (:class:`StandOnRules`); from then on it avoids that
+      vessel until they have passed, never to port for a crossing vessel on its port side
+      (17(c)), and otherwise letting the other pass on the side it passed when it started.
 
     Only headings within ``reach`` of the present one are candidates (a dynamic window: a
     large ship cannot turn through 150° at once). When every one is excluded, the one with the
@@ -215,13 +291,15 @@ class VelocityObstacles(AvoidanceMethod):
     every : float
         Time between decisions [s] (default 5 s); the heading is held in between.
     emergency : float
-        TCPA below which a stand-on vessel acts too [s] (default 300 s).
+        TCPA below which a stand-on vessel acts too [s] (default 300 s; Rule 17(b)).
     hysteresis : float
         Relative margin on ``radius`` while off the route [-] (default 0.2).
     reach : float
         Candidates more than this from the present heading are not taken [rad] (default 60°:
         the reachable headings of a slow-turning ship, a dynamic window).
     sectors : ColregSectors, optional
+    stand_on : StandOnRules
+        When a stand-on vessel may act and to which side (default :class:`StandOnRules`).
 
     References
     ----------
@@ -238,8 +316,12 @@ class VelocityObstacles(AvoidanceMethod):
     hysteresis: float = 0.2
     reach: float = math.radians(60.0)
     sectors: ColregSectors | None = None
+    stand_on: StandOnRules = StandOnRules()
 
     def __post_init__(self) -> None:
+        if not isinstance(self.stand_on, StandOnRules):
+            raise ParameterError(f"must be a StandOnRules, got {type(self.stand_on).__name__}",
+                                 field="avoidance.stand_on", value=self.stand_on)
         _positive(self, ("horizon", "s"), ("radius", "m"), ("every", "s"),
                   ("emergency", "s"), ("hysteresis", "-"), ("reach", "rad"))
         off = np.asarray(self.offsets, dtype=float)
@@ -249,20 +331,23 @@ class VelocityObstacles(AvoidanceMethod):
 
     def start(self, n_encounters: int, n_vessels: int, avoid: np.ndarray,
               encounter: Any) -> dict[str, Any]:
-        return {**self._pair_state(n_encounters, n_vessels, avoid, encounter),
-                "offset": np.zeros((n_encounters, n_vessels)), "next": 0.0}
+        state = self._pair_state(n_encounters, n_vessels, avoid, encounter)
+        shape = state["latched"].shape
+        return {**state, "offset": np.zeros((n_encounters, n_vessels)), "next": 0.0,
+                "since": np.full(shape, np.nan), "side": np.zeros(shape, dtype=np.int8),
+                "seen": np.full((*shape, 2), np.nan)}
 
     def desired(self, time: float, truth: np.ndarray, view: np.ndarray,
                 route_heading: np.ndarray, state: dict[str, Any]) -> np.ndarray:
         if time + 1e-9 >= state["next"]:
             state["next"] = time + self.every
             av = state["av"]
-            state["offset"][:, av] = self._choose(truth[:, av], view, route_heading[:, av],
-                                                  state)
+            state["offset"][:, av] = self._choose(time, truth[:, av], view,
+                                                  route_heading[:, av], state)
         return route_heading + state["offset"]
 
-    def _choose(self, own: np.ndarray, view: np.ndarray, route_heading: np.ndarray,
-                state: dict[str, Any]) -> np.ndarray:
+    def _choose(self, time: float, own: np.ndarray, view: np.ndarray,
+                route_heading: np.ndarray, state: dict[str, Any]) -> np.ndarray:
         """The offsets (e, a) of the avoiding vessels (``own = truth[:, av]``)."""
         av = state["av"]
         p_o, _, p_t, v_t, valid = _pairs(own, av, view)
@@ -281,31 +366,69 @@ class VelocityObstacles(AvoidanceMethod):
             risk = in_vo[:, :, i0, :] & valid
             # the situation, latched from the first risk until the pair has passed
             v_now = velocity(own[:, :, 2], own[:, :, 3])[:, :, None, None, :]
-            _, t_now = cpa_tcpa(p_o, v_now, p_t, v_t)
+            d_now, t_now = cpa_tcpa(p_o, v_now, p_t, v_t)
+            d_now, t_now = d_now[:, :, 0, :], t_now[:, :, 0, :]  # (e, i, j)
             now = _situations(own, view, state["sectors"])
-            latched = np.where(valid & (t_now[:, :, 0, :] > 0), state["latched"], 0)
-            latched = np.where(risk & (latched == 0), now, latched)
+            ahead = valid & (t_now > 0)
+            latched = np.where(ahead, state["latched"], 0)
+            fresh = risk & (latched == 0)
+            latched = np.where(fresh, now, latched)
             state["latched"] = latched.astype(np.int8)
+            since = np.where(ahead, state["since"], np.nan)
+            since = np.where(fresh, time, since)
+            state["since"] = since
+            # the other's course and speed when the risk was first seen
+            other = np.broadcast_to(view[:, None, :, 2:4], (*since.shape, 2))
+            seen = np.where(fresh[..., None], other, state["seen"])
+            state["seen"] = seen
             sit = np.where(latched == 0, now, latched)
             give_way = risk & np.isin(sit, GIVE_WAY)
-            # a stand-on vessel acts from the emergency on, until the pair has passed
-            engaged = (state["engaged"] & (t_now[:, :, 0, :] > 0)) | (
-                risk & np.isin(sit, STAND_ON) & (tcpa[:, :, i0, :] < self.emergency))
+            # Rule 17: a stand-on vessel acts once the give-way's inaction is apparent (a)(ii)
+            # or in the emergency (b), and from then on until the pair has passed
+            rule = self.stand_on
+            stand_on = risk & np.isin(sit, STAND_ON)
+            kept = ((np.abs(wrap_pi(other[..., 0] - seen[..., 0])) <= rule.alteration)
+                    & (np.abs(other[..., 1] - seen[..., 1])
+                       <= rule.speed_change * seen[..., 1]))
+            apparent = ((time - since >= rule.observe) & kept & (d_now < self.radius)
+                        & (t_now < rule.act_tcpa))
+            before = state["engaged"] & (t_now > 0)
+            must = (t_now < self.emergency) & (d_now < rule.close)
+            engaged = before | (stand_on & (apparent | must))
             state["engaged"] = engaged
             calm_stand_on = valid & np.isin(sit, STAND_ON) & ~engaged
             w = v_c - v_t
             wrong_side = (r[..., 0] * w[..., 1] - r[..., 1] * w[..., 0]) < 0  # (e, i, c, j)
+            # the side (17(c)): 2 starboard only (a crossing vessel on the port side);
+            # +1 / -1 the other passing with r x w of that sign only; 0 free
+            side = np.where(before, state["side"], 0)
+            if rule.keep_side:
+                port = (r[:, :, 0, :, 1] * np.cos(own[:, :, 4, None])
+                        - r[:, :, 0, :, 0] * np.sin(own[:, :, 4, None])) < 0  # (e, i, j)
+                crossing = sit == Situation.CROSSING_STAND_ON
+                w0 = v_now[:, :, 0] - v_t[:, :, 0]  # (e, i, j, 2)
+                r0 = r[:, :, 0]
+                passing = np.where(r0[..., 0] * w0[..., 1] - r0[..., 1] * w0[..., 0] < 0, -1, 1)
+                start = engaged & ~before
+                side = np.where(start, np.where(port & crossing, 2, passing), side)
+            cross = r[..., 0] * w[..., 1] - r[..., 1] * w[..., 0]  # (e, i, c, j)
         counted = (valid & ~calm_stand_on)[:, :, None, :]
         bad = ((in_vo & counted) | (wrong_side & give_way[:, :, None, :])).any(-1)
         far = np.abs(wrap_pi(heading - own[:, :, 4, None])) > self.reach  # (e, i, c)
         far &= ~far.all(-1, keepdims=True)  # (none reachable: all are)
+        s_c = side[:, :, None, :]  # (e, i, 1, j)
+        barred = (((s_c == 2) & (off < 0)[None, None, :, None])
+                  | ((np.abs(s_c) == 1) & (cross * s_c < 0))).any(-1)
+        barred &= ~(barred | far).all(-1, keepdims=True)  # (e, i, c)
         cost = np.abs(off) + 1e-6 * (off < 0)
-        cost = np.where(bad | far, np.inf, cost[None, None, :])
+        cost = np.where(bad | far | barred, np.inf, cost[None, None, :])
         pick = np.argmin(cost, axis=-1)
         stuck = ~np.isfinite(cost.min(-1))
         if stuck.any():
-            clear = np.where(far, -np.inf, np.where(counted, dcpa, np.inf).min(-1))
+            clear = np.where(far | barred, -np.inf,
+                             np.where(counted, dcpa, np.inf).min(-1))
             pick = np.where(stuck, np.argmax(clear, axis=-1), pick)
+        state["side"] = side.astype(np.int8)
         return off[pick]
 
 

@@ -6,8 +6,9 @@ for bit, with avoidance on: ``tests/test_encounters.py``), so a batch splits alo
 encounter axis into chunks of ``chunk_size`` encounters that run anywhere, and their results
 put back together in order are those of the whole batch run at once. A chunk travels as its
 vessels (sliced; a catalog ship by its name) and the encounter's settings; the worker builds
-and runs it. A noisy sensor
-draws its noise per batch, so chunks would draw other noise: refused.
+and runs it. A noisy sensor's noise is a function of the encounter's index in the study
+(:mod:`.sensing`): each chunk runs with its first encounter's index, and a sensor without a
+seed gets one drawn once for all the chunks, so chunks see the noise of the whole batch.
 """
 
 from __future__ import annotations
@@ -62,11 +63,13 @@ def split_encounter(enc: Encounter, chunk_size: int) -> list[tuple[list[Vessel],
     if not (isinstance(chunk_size, (int, np.integer)) and chunk_size >= 1):
         raise ParameterError(f"must be an integer >= 1 [encounters], got {chunk_size!r}",
                              field="chunk_size", value=chunk_size)
-    if enc.sensor.noisy and enc.n_encounters > chunk_size:
-        raise ParameterError(": a noisy sensor draws its noise per batch; chunks would draw "
-                             "other noise (run it in one batch)", field="sensor")
     ne, settings = enc.n_encounters, _settings(enc)
-    return [([_slice(v, lo, min(lo + chunk_size, ne), ne) for v in enc.vessels], settings)
+    if enc.sensor.noisy and enc.sensor.seed is None:  # (one seed for every chunk)
+        settings["sensor"] = dataclasses.replace(
+            enc.sensor, seed=int(np.random.SeedSequence().generate_state(1)[0]))
+    first = enc.first_encounter
+    return [([_slice(v, lo, min(lo + chunk_size, ne), ne) for v in enc.vessels],
+             {**settings, "first_encounter": first + lo})
             for lo in range(0, ne, chunk_size)]
 
 

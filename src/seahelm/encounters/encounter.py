@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from ..analysis.equilibrium import approach_state
+from ..analysis.equilibria.equilibrium import approach_state
 from ..errors import ParameterError
 from ..ships import Ship, get_ship
 from ..simulation.problem import Problem
@@ -154,6 +154,10 @@ class Encounter:
     record_every : int
         Record the tracks every n-th controller interval (default 10); CPA, ranges and the
         verdicts' inputs are followed at every interval.
+    first_encounter : int
+        The index of the first encounter in its study (default 0; a chunk of a study gives
+        its start): the sensor's noise of an encounter depends on its index only, so a
+        chunk's encounters see the noise they see in the whole batch.
 
     Raises
     ------
@@ -166,7 +170,8 @@ class Encounter:
                  controller_dt: float = 1.0, sensor: AIS | None = None,
                  avoidance: Any = None, autopilot: HeadingAutopilot | None = None,
                  sectors: ColregSectors | None = None, domain: FujiiDomain | None = None,
-                 verdicts: VerdictRules | None = None, record_every: int = 10) -> None:
+                 verdicts: VerdictRules | None = None, record_every: int = 10,
+                 first_encounter: int = 0) -> None:
         if not vessels or not all(isinstance(v, Vessel) for v in vessels):
             raise ParameterError("must be a non-empty sequence of Vessel", field="vessels")
         for name, v in (("t_final", t_final), ("dt", dt), ("controller_dt", controller_dt)):
@@ -176,6 +181,10 @@ class Encounter:
         if not (isinstance(record_every, int) and record_every >= 1):
             raise ParameterError(f"must be an integer >= 1 [intervals], got {record_every!r}",
                                  field="record_every", value=record_every)
+        if not (isinstance(first_encounter, (int, np.integer)) and first_encounter >= 0):
+            raise ParameterError(f"must be an integer >= 0, got {first_encounter!r}",
+                                 field="first_encounter", value=first_encounter)
+        self.first_encounter = int(first_encounter)
         self.vessels = tuple(vessels)
         self.t_final, self.dt, self.controller_dt = float(t_final), float(dt), float(controller_dt)
         self.sensor = sensor or AIS()
@@ -424,7 +433,8 @@ class Encounter:
               e_lim: np.ndarray, td: np.ndarray, out_j: list[dict[str, int]]) -> EncounterResult:
         ne, nv = self.n_encounters, self.n_vessels
         n_int = sims[0].n_intervals
-        view_state = self.sensor.start(ne * nv, self.controller_dt, self.t_final)
+        view_state = self.sensor.start(ne * nv, self.controller_dt, self.t_final,
+                                       n_vessels=nv, first_encounter=self.first_encounter)
         wp = np.zeros((ne, nv), dtype=np.int64)
         self._leg = np.zeros((ne, nv))
         avoid_state = (self.avoidance.start(ne, nv, self.avoid, self)

@@ -114,6 +114,11 @@ class FirstOrderInLoop:
         The kernel's inputs: components (runs, 6, m) (ω, k, cos β, sin β, β, ϕ), tables
         (runs, 2, speeds, DOF, headings + 1, m) (real and imaginary a_i H_j), long-crested flags
         (runs,), speeds [m/s] and the heading step [rad] (1,).
+    settings : tuple
+        What the components were drawn from, one per run, if its maker keeps it (e.g. a
+        scenario's :class:`~seahelm.scenario.first_order.FirstOrderSettings`; default none):
+        typed values, written into the result's metadata as JSON
+        (``first_order_settings``) by the loop's stage; sliced with the runs.
     """
 
     components: WaveComponents
@@ -122,6 +127,7 @@ class FirstOrderInLoop:
     autopilot_sees_first_order: bool
     spectrum: Any
     arrays: tuple[np.ndarray, ...]
+    settings: tuple[Any, ...] = ()
 
     @property
     def n_runs(self) -> int:
@@ -164,7 +170,8 @@ class FirstOrderInLoop:
             seeds=list(c.seeds[start:stop]))
         per_run = self.arrays[:3]  # components, tables, long-crested flags: by run
         arrays = tuple(a[start:stop] for a in per_run) + tuple(self.arrays[3:])
-        return dataclasses.replace(self, components=comps, arrays=arrays)
+        return dataclasses.replace(self, components=comps, arrays=arrays,
+                                   settings=tuple(self.settings[start:stop]))
 
     def post_pass(self, result: Any, **kwargs: Any) -> FirstOrderMotions:
         """The post-pass on ``result``'s recorded states with these very components.

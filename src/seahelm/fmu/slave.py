@@ -113,7 +113,7 @@ class ShipSlave(Fmi2Slave):
 
     def __init__(self, **kwargs: Any) -> None:
         super().__init__(**kwargs)
-        from ..analysis.equilibrium import approach_state
+        from ..analysis.equilibria.equilibrium import approach_state
         from ..ships import get_ship
         from ..simulation.problem import Problem
 

@@ -23,9 +23,9 @@ class ShipEnv(gym.Env):
     ----------
     **kwargs
         Of :class:`~seahelm.gym.vector.ShipVectorEnv` (``task``, ``ship``, ``actions``,
-        ``action_bounds``, ``dt``, ``action_period``, ``episode_seconds``, ``integrator``,
-        ``reward``, the weather and the task's keywords), except ``num_envs`` and
-        ``autoreset_mode``.
+        ``action_bounds``, ``autopilot``, ``autopilot_params``, ``dt``, ``action_period``,
+        ``episode_seconds``, ``integrator``, ``reward``, the weather and the task's keywords),
+        except ``num_envs`` and ``autoreset_mode``.
 
     Notes
     -----

@@ -20,7 +20,7 @@ from ..ships import get_ship
 from ..simulation.problem import Problem
 from ..simulation.stepping import Simulator
 
-__all__ = ["Plant", "build_plant", "WEATHER_KEYS"]
+__all__ = ["Plant", "build_plant", "autopilot_params_for", "WEATHER_KEYS"]
 
 #: Weather keywords an environment takes [SI units, radians; directions the waves and wind come
 #: from, clockwise from north]: any non-zero ``wind_speed`` adds Blendermann's wind loads, any
@@ -50,6 +50,14 @@ class Plant:
         Ship length L [m].
     max_rudder : float
         Largest rudder command [rad] (the steering gear's, else 35°).
+    autopilot : Controller or None
+        The heading autopilot run inside the compiled loop (set-point actions), else None
+        (the actions are the commands).
+    action_period : float
+        Time between two actions [s].
+    intervals_per_action : int
+        Controller intervals per action (1 without an autopilot: the commands are held over
+        ``action_period``; with one, the autopilot's samples in ``action_period``).
     """
 
     ship: Any
@@ -61,6 +69,9 @@ class Plant:
     speed: float
     length: float
     max_rudder: float
+    action_period: float = 1.0
+    autopilot: Any = None
+    intervals_per_action: int = 1
 
 
 def _weather(ship: Any, weather: Mapping[str, float]) -> dict[str, Any]:
@@ -96,7 +107,8 @@ def _weather(ship: Any, weather: Mapping[str, float]) -> dict[str, Any]:
 
 def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
                 action_period: float, weather: Mapping[str, float] | None = None,
-                integrator: Any = "rk4") -> Plant:
+                integrator: Any = "rk4", autopilot: Any = None,
+                autopilot_params: Any = None) -> Plant:
     """The :class:`Plant` of ``num_envs`` runs of ``ship``.
 
     Parameters
@@ -116,13 +128,19 @@ def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
     integrator : str or ButcherTableau
         The fixed-step method (default ``"rk4"``; ``"euler"`` is the explicit Euler method of
         most Python ship environments).
+    autopilot : Controller or str, optional
+        A heading autopilot (a controller whose references include ``heading``, e.g.
+        ``"pid-heading-rps"``) run inside the compiled loop every ``dt`` (or at its own
+        sample period) on a per-run heading set-point (:func:`autopilot_params_for`).
+    autopilot_params : Params, optional
+        Its parameters (default :func:`autopilot_params_for`).
 
     Raises
     ------
     ParameterError
-        Naming the argument (``ship``, ``num_envs``, a weather keyword, a time).
+        Naming the argument (``ship``, ``num_envs``, a weather keyword, a time, ``autopilot``).
     """
-    from ..analysis.equilibrium import approach_state
+    from ..analysis.equilibria.equilibrium import approach_state
 
     if isinstance(ship, str):
         try:
@@ -149,15 +167,7 @@ def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
     start = approach_state(ship, trim=True)
     env_kw = _weather(ship, weather or {})
     rudder0 = float(start.inputs.get("rudder_angle", 0.0))
-    problem = Problem(ship=ship, x0=np.repeat(start.state[None], int(num_envs), axis=0),
-                      actuator_x0=[rudder0], t_final=float(episode_seconds), dt=float(dt),
-                      controller_dt=float(action_period),
-                      record_every=max(1, int(round(episode_seconds / dt))),
-                      integrator=integrator, **env_kw)
-    sim = Simulator(problem)
-    labels = sim.command_labels
     inputs = {"rudder_command": rudder0, **start.inputs}
-    command_start = np.array([float(inputs.get(c, 0.0)) for c in labels])
     gear = getattr(ship, "steering_gear", None)
     max_rudder = float(getattr(getattr(gear, "params", None), "max_angle", math.radians(35.0)))
     particulars = getattr(ship, "particulars", None)
@@ -165,6 +175,21 @@ def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
     if not length > 0:
         raise ParameterError(": the ship has no length (its particulars are needed to scale "
                              "the tasks)", field="ship", value=getattr(ship, "name", ship))
+    n = int(num_envs)
+    loop_kw: dict[str, Any] = {"controller_dt": float(action_period)}
+    every = 1
+    if autopilot is not None:
+        autopilot, loop_kw, every = _autopilot_loop(
+            ship, autopilot, autopilot_params, n, dt=float(dt), action_period=float(action_period),
+            length=length, max_rudder=max_rudder, inputs=inputs,
+            heading=float(start.state[list(ship.model.state_labels).index("heading")]))
+    problem = Problem(ship=ship, x0=np.repeat(start.state[None], n, axis=0),
+                      actuator_x0=[rudder0], t_final=float(episode_seconds), dt=float(dt),
+                      record_every=max(1, int(round(episode_seconds / dt))),
+                      integrator=integrator, **loop_kw, **env_kw)
+    sim = Simulator(problem)
+    labels = sim.command_labels
+    command_start = np.array([float(inputs.get(c, 0.0)) for c in labels])
     obs0 = sim.reset()
     speed = float(obs0["speed"][0]) if "speed" in obs0 else float(np.hypot(
         obs0["surge_speed"][0], obs0["sway_speed"][0]))
@@ -174,5 +199,72 @@ def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
     return Plant(ship=ship, simulator=sim, command_labels=labels,
                  command_units=sim.command_units, command_start=command_start,
                  state_start=np.array([sim.state(0)[s] for s in sim.state_labels]),
-                 speed=speed, length=length,
-                 max_rudder=max_rudder)
+                 speed=speed, length=length, max_rudder=max_rudder,
+                 action_period=float(action_period), autopilot=autopilot,
+                 intervals_per_action=every)
+
+
+def autopilot_params_for(autopilot: Any, *, length: float, speed: float, max_rudder: float,
+                         propeller_rps: float | None = None) -> Any:
+    """Default parameters of a heading autopilot for a ship: the controller's defaults, with a
+    PD law scaled to the ship where the controller has those gains.
+
+    ``K_p = 1`` [rad/rad], ``K_d = 1.5 L/U_0`` [s] (the derivative time of
+    :class:`seahelm.encounters.HeadingAutopilot`: 1.5 times the time to run one length), the
+    saturation ``δ_max`` and the held ``propeller_rps`` of the approach, for the parameters
+    the controller has (``kp``, ``kd``, ``max_command``, ``propeller_rps``); the others keep the
+    controller's defaults.
+
+    Parameters
+    ----------
+    autopilot : Controller
+        The controller.
+    length, speed, max_rudder : float
+        Ship length L [m], approach speed U_0 [m/s], rudder limit δ_max [rad].
+    propeller_rps : float, optional
+        The approach's propeller rps [1/s] (for a ``-rps`` controller).
+
+    Returns
+    -------
+    Params
+        Of ``autopilot.params_type``.
+    """
+    fields = set(autopilot.params_type.field_names())
+    wanted = {"kp": 1.0, "kd": 1.5 * length / speed, "max_command": max_rudder,
+              "propeller_rps": propeller_rps}
+    return autopilot.params_type(**{k: v for k, v in wanted.items()
+                                    if k in fields and v is not None})
+
+
+def _autopilot_loop(ship: Any, autopilot: Any, params: Any, n: int, *, dt: float,
+                    action_period: float, length: float, max_rudder: float,
+                    inputs: Mapping[str, float], heading: float
+                    ) -> tuple[Any, dict[str, Any], int]:
+    """The autopilot, the Problem keywords that run it in the loop, its samples per action."""
+    from ..registry import get_controller
+
+    try:
+        autopilot = get_controller(autopilot)
+    except (ValueError, TypeError) as exc:
+        raise ParameterError(f": {exc}", field="autopilot", value=autopilot) from None
+    refs = autopilot.reference_labels
+    if "heading" not in refs:
+        raise ParameterError(f": controller '{autopilot.name}' takes no heading set-point "
+                             f"(its references: {', '.join(refs) or 'none'}); a set-point "
+                             "action needs a heading autopilot, e.g. 'pid-heading-rps'",
+                             field="autopilot", value=autopilot.name)
+    ctrl_dt = dt if autopilot.sample_period is None else float(autopilot.sample_period)
+    ratio = action_period / ctrl_dt
+    if abs(ratio - round(ratio)) > 1e-9 * max(1.0, ratio) or round(ratio) < 1:
+        raise ParameterError(f"must be a whole multiple of the autopilot's sample period "
+                             f"{ctrl_dt:g} s, got {action_period!r}", field="action_period",
+                             unit="s", value=action_period)
+    speed = float(ship.approach_speed)
+    if params is None:
+        params = autopilot_params_for(autopilot, length=length, speed=speed,
+                                      max_rudder=max_rudder,
+                                      propeller_rps=inputs.get("propeller_rps"))
+    # a per-run constant reference, the loop's own array (a mapping: built, not the caller's)
+    reference = {r: np.full((n, 1, 1), heading if r == "heading" else 0.0) for r in refs}
+    return autopilot, {"controller": autopilot, "controller_params": params,
+                       "controller_dt": ctrl_dt, "reference": reference}, int(round(ratio))

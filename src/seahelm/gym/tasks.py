@@ -160,6 +160,12 @@ class Task:
         """
         return self._evaluate(out, rudder, previous_rudder)
 
+    def reference_direction(self) -> np.ndarray:
+        """The direction a heading set-point action is relative to, per sub-environment
+        (envs,) [rad]: the target heading (heading keeping), the current leg's direction (path
+        following)."""
+        raise NotImplementedError
+
     def _draw(self, sel: np.ndarray, rng: np.random.Generator) -> dict[str, np.ndarray]:
         raise NotImplementedError
 
@@ -234,6 +240,10 @@ class HeadingKeeping(Task):
         error = rng.uniform(-1.0, 1.0, sel.size) * self.initial_heading_error
         self.target[sel] = target
         return {"heading": target + error}
+
+    def reference_direction(self) -> np.ndarray:
+        """The target headings ψ_d (envs,) [rad]."""
+        return self.target
 
     def _evaluate(self, out, rudder, previous_rudder):
         error = wrap(out["heading"] - self.target)
@@ -319,6 +329,10 @@ class PathFollowing(Task):
         a = self.leg_angle[0]
         return {"north": self.route[0, 0] - offset * math.sin(a),
                 "east": self.route[0, 1] + offset * math.cos(a), "heading": a + error}
+
+    def reference_direction(self) -> np.ndarray:
+        """The current legs' directions (envs,) [rad]."""
+        return self.leg_angle[self.leg]
 
     def _along_across(self, out):
         k = self.leg

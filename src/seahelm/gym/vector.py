@@ -8,7 +8,10 @@ starts a new episode and returns that episode's first observation with reward 0 
 False. ``autoreset_mode="Disabled"`` leaves the restart to ``reset(options={"reset_mask": m})``.
 
 Actions are the actuator's commands, in their units (``rudder_command`` [rad],
-``propeller_rps`` [1/s]), in a bounded ``Box``. An action outside the box is clipped to it (what
+``propeller_rps`` [1/s]), in a bounded ``Box`` -- or, with ``autopilot=`` a heading autopilot
+(e.g. ``"pid-heading-rps"``), a heading set-point ``heading_setpoint`` [rad] that the autopilot
+steers for inside the compiled loop (the set-point is relative to the task's reference
+direction: the target heading, the current leg's direction). An action outside the box is clipped to it (what
 :class:`gymnasium.wrappers.ClipAction` would do; a policy's Gaussian sample routinely is out of
 bounds); an action that is NaN or infinite is refused with a
 :class:`~seahelm.errors.ParameterError` naming ``actions`` and the sub-environment (nothing is
@@ -26,6 +29,8 @@ import numpy as np
 
 from .._optional import optional_import
 from ..errors import ParameterError
+from ..simulation.stepping_reference import (held_commands, restart_clock, set_reference,
+                                              set_states)
 from .plant import WEATHER_KEYS, Plant, build_plant
 from .tasks import TASKS, Task
 
@@ -39,7 +44,12 @@ __all__ = ["ShipVectorEnv"]
 #: Default bounds of the commands an action may set, from the ship: (low, high) given the
 #: largest rudder δ_max [rad] and the approach's rps n_0 [1/s].
 _BOUNDS = {"rudder_command": lambda d, n0: (-d, d),
-           "propeller_rps": lambda d, n0: (0.0, 1.5 * n0)}
+           "propeller_rps": lambda d, n0: (0.0, 1.5 * n0),
+           "heading_setpoint": lambda d, n0: (-0.25 * math.pi, 0.25 * math.pi)}
+
+#: The action of a set-point environment (``autopilot=...``): the heading set-point relative to
+#: the task's reference direction [rad].
+SETPOINT = "heading_setpoint"
 
 _MODES = {m.value: m for m in AutoresetMode}
 
@@ -55,12 +65,23 @@ class ShipVectorEnv(VectorEnv):
         ``"HeadingKeeping"`` or ``"PathFollowing"`` (:data:`seahelm.gym.tasks.TASKS`).
     ship : Ship or str
         Catalog name or ship file (default ``"kvlcc2-l7"``).
-    actions : sequence of str
+    actions : sequence of str, optional
         The commands the agent sets (default ``("rudder_command",)``; add
         ``"propeller_rps"`` for a ship with a propeller); the others stay at the approach's.
+        With an ``autopilot``: ``("heading_setpoint",)`` (the default then).
     action_bounds : mapping command -> (low, high), optional
         Bounds of the action space in the command's units (default: ±δ_max of the steering
-        gear for the rudder, [0, 1.5 n_0] for the rps).
+        gear for the rudder, [0, 1.5 n_0] for the rps, ±45° for the heading set-point).
+    autopilot : Controller or str, optional
+        A heading autopilot (references include ``heading``: ``"pid-heading-rps"``,
+        ``"lq-heading-rps"``, ... or a Controller) that runs inside the compiled loop every
+        ``dt`` (or at its own sample period); the action is then its heading set-point
+        ``heading_setpoint`` [rad], relative to the task's reference direction (heading
+        keeping: the target heading; path following: the current leg's direction), held over
+        ``action_period``. Default None: the actions are the commands.
+    autopilot_params : Params, optional
+        Its parameters (default :func:`seahelm.gym.plant.autopilot_params_for`: K_p = 1,
+        K_d = 1.5 L/U_0, the rudder limit and the approach rps).
     dt, action_period : float
         Integration step and time between actions [s] (default 0.1 and 1.0).
     episode_seconds : float, optional
@@ -85,13 +106,19 @@ class ShipVectorEnv(VectorEnv):
     plant : Plant
         The ship, its simulator and approach.
     task : Task
+    elapsed : ndarray (num_envs,)
+        Each sub-environment's time in its episode [s]. (The simulator's runs are kept at
+        one step, the batch stepped by one call of the loop: a sub-environment started again
+        is reset in the simulator and every run's clock set back to 0, the model being
+        time-invariant; so the simulator's ``time`` is not the episodes'.)
     """
 
     metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
 
     def __init__(self, num_envs: int = 1, *, task: str = "HeadingKeeping",
-                 ship: Any = "kvlcc2-l7", actions: Any = ("rudder_command",),
+                 ship: Any = "kvlcc2-l7", actions: Any = None,
                  action_bounds: Mapping[str, tuple[float, float]] | None = None,
+                 autopilot: Any = None, autopilot_params: Any = None,
                  dt: float = 0.1, action_period: float = 1.0,
                  episode_seconds: float | None = None, integrator: Any = "rk4",
                  reward: Mapping[str, float] | None = None,
@@ -123,7 +150,8 @@ class ShipVectorEnv(VectorEnv):
             else episode_seconds
         self.plant: Plant = build_plant(ship, num_envs=num_envs, episode_seconds=seconds,
                                         dt=dt, action_period=action_period, weather=weather,
-                                        integrator=integrator)
+                                        integrator=integrator, autopilot=autopilot,
+                                        autopilot_params=autopilot_params)
         p = self.plant
         self.task: Task = task_cls(int(num_envs), length=p.length, speed=p.speed,
                                    max_rudder=p.max_rudder, reward=reward, **options)
@@ -131,6 +159,8 @@ class ShipVectorEnv(VectorEnv):
         self.render_mode = None
         self.metadata = {**type(self).metadata, "autoreset_mode": mode}
         self.episode_seconds = float(seconds)
+        if actions is None:
+            actions = (SETPOINT,) if p.autopilot is not None else ("rudder_command",)
         self._setup_actions(actions, action_bounds or {})
         self.observation_labels = self.task.observation_labels
         self.observation_units = self.task.observation_units
@@ -143,6 +173,9 @@ class ShipVectorEnv(VectorEnv):
         self._rudder_col = sim.command_labels.index("rudder_command")
         self._previous = self._cmd[:, self._rudder_col].copy()
         self._done = np.zeros(self.num_envs, dtype=bool)
+        #: Each sub-environment's time in its episode [s] (num_envs,).
+        self.elapsed = np.zeros(self.num_envs)
+        self._horizon = float(p.simulator.problem.t_final) + 1e-9
         self._started = False
         self._rng = np.random.default_rng()
 
@@ -162,13 +195,24 @@ class ShipVectorEnv(VectorEnv):
                 raise ParameterError(f": {key!r} is not an action; actions: "
                                      f"{', '.join(names)}", field="action_bounds", value=key)
         low, high = [], []
+        if p.autopilot is not None and names != (SETPOINT,):
+            raise ParameterError(f"must be ({SETPOINT!r},) with an autopilot (it computes "
+                                 f"the commands), got {actions!r}", field="actions",
+                                 value=actions)
+        if p.autopilot is None and SETPOINT in names:
+            raise ParameterError(f": {SETPOINT!r} needs an autopilot (autopilot="
+                                 "'pid-heading-rps', ...)", field="actions", value=SETPOINT)
+        units = {SETPOINT: "rad"}
         for name in names:
-            if name not in p.command_labels:
+            if name == SETPOINT:
+                unit = "rad"
+            elif name not in p.command_labels:
                 raise ParameterError(f": unknown command {name!r}; the ship's commands: "
                                      f"{', '.join(p.command_labels)}", field="actions",
                                      value=name)
-            j = p.command_labels.index(name)
-            unit = p.command_units[j]
+            else:
+                unit = p.command_units[p.command_labels.index(name)]
+                units[name] = unit
             if name in bounds:
                 lo, hi = (float(v) for v in bounds[name])
             elif name in _BOUNDS:
@@ -185,8 +229,9 @@ class ShipVectorEnv(VectorEnv):
             low.append(lo)
             high.append(hi)
         self.action_labels = names
-        self.action_units = tuple(p.command_units[p.command_labels.index(n)] for n in names)
-        self._act_cols = np.array([p.command_labels.index(n) for n in names])
+        self.action_units = tuple(units[n] for n in names)
+        self._act_cols = np.array([p.command_labels.index(n) for n in names
+                                   if n in p.command_labels], dtype=np.int64)
         self._low = np.array(low)
         self._high = np.array(high)
         self.single_action_space = spaces.Box(self._low.astype(np.float32),
@@ -271,18 +316,25 @@ class ShipVectorEnv(VectorEnv):
         restart = self._done.copy() if self.metadata["autoreset_mode"] is AutoresetMode.NEXT_STEP \
             else np.zeros(self.num_envs, dtype=bool)
         self._previous[:] = self._cmd[:, self._rudder_col]
-        if restart.any():
-            sel = np.flatnonzero(restart)
-            self._begin(sel)
-            go = np.flatnonzero(~restart & (sim.status == 0))
-            self._cmd[go[:, None], self._act_cols] = a[go]
-            if go.size:
-                out = sim.step(self._cmd[go], runs=go)
-            else:
-                out = self._sim_observe()
+        every = self.plant.intervals_per_action
+        setpoint = self.plant.autopilot is not None
+        if setpoint:  # (the autopilot's set-point: absolute, from the task's direction)
+            a = self.task.reference_direction() + a[:, 0]
+        if sim.time[0] + self.plant.action_period > self._horizon:
+            restart_clock(sim)  # (the simulator's horizon reached: its clock back to 0)
+        # every run stepped (one call of the loop; the runs stay at the same step): those
+        # restarting now are started again after it, from their new episode's start
+        if setpoint:
+            set_reference(sim, a[:, None])
+            out = sim.step(None, n=every)
+            self._cmd[:] = held_commands(sim)  # (the autopilot's rudder: observed, rewarded)
         else:
             self._cmd[:, self._act_cols] = a
             out = sim.step(self._cmd)
+        self.elapsed += self.plant.action_period
+        if restart.any():
+            self._begin(np.flatnonzero(restart))
+            out = sim.observe()
         obs, terms, failed, success = self.task.evaluate(out, self._cmd[:, self._rudder_col],
                                                          self._previous)
         diverged = out.status != 0
@@ -291,7 +343,7 @@ class ShipVectorEnv(VectorEnv):
             terms["failure"] = -failed.astype(float)
         reward = self.task.reward(terms)
         terminated = failed | success
-        truncated = ~terminated & (out.time >= self.episode_seconds - 1e-9)
+        truncated = ~terminated & (self.elapsed >= self.episode_seconds - 1e-9)
         if restart.any():
             reward[restart] = 0.0
             terminated[restart] = False
@@ -329,18 +381,16 @@ class ShipVectorEnv(VectorEnv):
         return np.minimum(np.maximum(a, self._low), self._high)
 
     def _begin(self, sel: np.ndarray) -> None:
-        """Start the episodes of ``sel``: the runs reset, the task's draws set."""
+        """Start the episodes of ``sel``: the runs reset, the task's draws set, every run's
+        clock at the same step again (:func:`~seahelm.simulation.stepping_reference.
+        restart_clock`: the batch goes on as one call of the loop a step)."""
         p, sim = self.plant, self._sim
-        sim.reset(runs=sel)
+        restart_clock(sim, sel)  # (sel from the start, the others kept: all at t = 0)
         self._cmd[sel] = p.command_start
         self._previous[sel] = p.command_start[self._rudder_col]
         self._done[sel] = False
-        start = self.task.begin(sel, self._rng)
-        for r, i in enumerate(sel):
-            sim.set_state(int(i), {k: float(v[r]) for k, v in start.items()})
-
-    def _sim_observe(self):
-        return self._sim.observe()
+        self.elapsed[sel] = 0.0
+        set_states(sim, sel, self.task.begin(sel, self._rng))
 
     def _observe_now(self) -> tuple[np.ndarray, dict[str, Any]]:
         """The observations now, without stepping (after a reset)."""

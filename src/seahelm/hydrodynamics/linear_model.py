@@ -21,7 +21,7 @@ masses ÷ ½ρL³, inertias ÷ ½ρL⁵), with c = −π (T/L)²::
 part), dimensional at a speed U: K [1/s] = K' U/L, T_i [s] = T'_i L/U; it hands the
 dimensional system to :func:`nomoto_from_state_space`, which does the same for any one- or
 two-state steering system ẋ = A x + b δ (the linearisation of a vessel model at an equilibrium,
-:mod:`seahelm.analysis.linearisation`).
+:mod:`seahelm.analysis.equilibria.linearisation`).
 
 References
 ----------

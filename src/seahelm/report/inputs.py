@@ -125,6 +125,9 @@ class ReportData:
     encounters : xarray.Dataset or None
         An encounter study (``encounters.nc`` of ``seahelm encounter --out``,
         :meth:`seahelm.encounters.result.EncounterResult.to_xarray`); None for other inputs.
+    dp_capability : xarray.Dataset or None
+        A DP capability rose (``seahelm dp capability --out``, level 1 or 3,
+        :mod:`seahelm.report.dp_capability`); None for other inputs.
     """
 
     title: str
@@ -136,6 +139,7 @@ class ReportData:
     seakeeping: "xr.Dataset | None" = None
     replay: "xr.Dataset | None" = None
     encounters: "xr.Dataset | None" = None
+    dp_capability: "xr.Dataset | None" = None
 
     @property
     def n_runs(self) -> int:
@@ -147,9 +151,25 @@ class ReportData:
             return 1
         if self.encounters is not None:
             return int(self.encounters.sizes["encounter"])
+        if self.dp_capability is not None:  # (level 3: its simulated runs)
+            held = self.dp_capability.get("held")
+            return int((held if held is not None else self.dp_capability["wind_speed"]).size)
         if self.imo_ensemble is not None and "sample" in self.imo_ensemble.sizes:
             return int(self.imo_ensemble.sizes["sample"])
         return sum(s.n_runs for s in self.sets)
+
+
+def is_dp_capability_dataset(ds: Any) -> bool:
+    """A dataset written by ``seahelm dp capability --out`` (either level).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+    """
+    from ..output_files import WRITTEN_BY_ATTR
+
+    return (str(ds.attrs.get(WRITTEN_BY_ATTR, "")).startswith("seahelm dp capability")
+            and "wind_speed" in ds and set(ds["wind_speed"].dims) == {"case", "direction"})
 
 
 def _is_runs(ds: "xr.Dataset") -> bool:
@@ -259,6 +279,10 @@ def load_report_data(path: str | Path) -> ReportData:
         return ReportData(title=f"Encounters: {ds.sizes['encounter']} of "
                                 f"{', '.join(str(v) for v in ds['vessel'].values)}",
                           sets=(), sources=(str(path),), encounters=ds)
+    if is_dp_capability_dataset(ds):
+        return ReportData(title=f"DP capability level {int(ds.attrs.get('level', 1))}: "
+                                f"{ds.attrs.get('vessel', path.name)}", sets=(),
+                          sources=(str(path),), dp_capability=ds)
     if _is_runs(ds):
         _check_runs(ds, path)
         maneuver = ds.attrs.get("maneuver")
@@ -272,7 +296,8 @@ def load_report_data(path: str | Path) -> ReportData:
         raise ParameterError(
             f"{path}: not a seahelm result file: neither a simulation result (result.nc of "
             "`seahelm run --out`, a manoeuvre's *-runs.nc), a manoeuvre's *-metrics.nc, "
-            "an imo-probabilities.nc, a seakeeping.nc, a replay.nc nor an encounters.nc")
+            "an imo-probabilities.nc, a seakeeping.nc, a replay.nc, an encounters.nc nor a "
+            "dp capability file")
     directory = path.parent
     imo_file = directory / IMO_REPORT
     names = [str(maneuver)]
@@ -430,7 +455,7 @@ def combined_report_data(paths: "list[str | Path]") -> ReportData:
     for path, data in zip(paths, datas):
         if data.sweep is not None or data.imo_ensemble is not None \
                 or data.seakeeping is not None or data.replay is not None \
-                or data.encounters is not None:
+                or data.encounters is not None or data.dp_capability is not None:
             raise ParameterError(f"{path}: a sweep store, an imo-probabilities.nc, a "
                                  "seakeeping.nc, a replay.nc or an encounters.nc is reported "
                                  "alone, not with other results")

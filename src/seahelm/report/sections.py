@@ -30,6 +30,7 @@ from .blocks import Section, escape, fmt, paragraph, run_attrs, set_title, subhe
 from .figures import timeseries_sections, track_sections
 from .imo_ensemble import ensemble_sections
 from .encounters import encounter_sections
+from .dp_capability import dp_capability_sections
 from .replay import replay_sections
 from .seakeeping import seakeeping_sections
 from .seakeeping_sweep import sweep_seakeeping_sections
@@ -328,6 +329,7 @@ def _coord_label(key: str, value: Any, ds: Any) -> str:
 SECTIONS: tuple[Callable[[ReportData], list[Section]], ...] = (
     imo_sections, ensemble_sections, overview_sections, sweep_sections, status_sections,
     seakeeping_sections, sweep_seakeeping_sections, replay_sections, encounter_sections,
+    dp_capability_sections,
     metrics_sections, statistics_sections,
     track_sections, timeseries_sections)
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import warnings
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -32,6 +32,9 @@ from ..errors import ParameterError, ValidityRangeWarning
 from ..vessels.particulars import Particulars
 from .errors import at_key as _err
 from .schema import Scenario
+
+if TYPE_CHECKING:
+    from .first_order import FirstOrderSettings
 
 __all__ = ["KEY_UNITS", "WaveLoadFluctuation", "EnvironmentRuns", "environment_runs"]
 
@@ -99,7 +102,7 @@ class EnvironmentRuns:
     params: np.ndarray
     signals: list[dict[str, Any]]
     #: per run, the first-order motions' settings (:mod:`seahelm.scenario.first_order`), or None
-    first_order: list[dict[str, Any]] | None = None
+    first_order: list[FirstOrderSettings] | None = None
 
 
 def _ship(scn: Scenario, source: str) -> Particulars | None:

@@ -39,7 +39,6 @@ every run, one ``rao_file`` and one ``components`` for the batch.
 from __future__ import annotations
 
 import dataclasses
-import json
 import math
 import types
 from typing import Any
@@ -49,12 +48,77 @@ import numpy as np
 from ..errors import ParameterError
 from .errors import at_key as _err
 
-__all__ = ["first_order_settings", "FirstOrderPostPass", "first_order_in_the_loop"]
+__all__ = ["FirstOrderSettings", "first_order_settings", "FirstOrderPostPass",
+           "first_order_in_the_loop"]
+
+
+@dataclasses.dataclass(frozen=True)
+class FirstOrderSettings:
+    """One run's first-order motions, as its ``[environment.waves]`` section gives them
+    (:func:`first_order_settings`): the post-pass's :attr:`FirstOrderPostPass.specs`, the
+    in-loop motions' :attr:`~seahelm.environment.first_order_in_loop.FirstOrderInLoop.settings`.
+
+    Hashable (runs of equal settings are computed together); :meth:`as_dict` is its form in a
+    result's metadata (``first_order_settings``, JSON).
+
+    Attributes
+    ----------
+    h3 : float
+        The sea's h3% wave height [m].
+    spectrum : str
+        The spectrum's name.
+    seed : int
+        The sea's seed.
+    rao_file : str or None
+        The RAO file (absolute path), or None for the closed-form RAOs.
+    autopilot_sees : bool
+        The motions are evaluated in the loop and the autopilot sees ψ + ψ₁.
+    direction : float
+        Mean wave direction (from) [rad].
+    gm : float or None
+        Metacentric height GM [m] of the closed-form roll RAO (None: no roll).
+    components : int
+        Wave components per run.
+    spreading : str or None
+        Directional spreading function (None: long-crested).
+    spreading_parameter : float
+        Its parameter [-].
+    hull : tuple of float
+        Length, beam, draft [m] and block coefficient [-] of the closed-form RAOs.
+    """
+
+    h3: float
+    spectrum: str
+    seed: int
+    rao_file: str | None
+    autopilot_sees: bool
+    direction: float
+    gm: float | None
+    components: int
+    spreading: str | None
+    spreading_parameter: float
+    hull: tuple[float, float, float, float]
+
+    def as_dict(self) -> dict[str, Any]:
+        """The settings as plain values (the hull as a list), in the fields' order.
+
+        Returns
+        -------
+        dict
+        """
+        out = dataclasses.asdict(self)
+        out["hull"] = list(self.hull)
+        return out
+
+    def sea(self) -> "FirstOrderSettings":
+        """The settings but the direction and the seed (the sea a frequency-domain cell
+        needs)."""
+        return dataclasses.replace(self, direction=0.0, seed=0)
 
 
 def first_order_settings(v: dict[str, Any], h3: float, ship: Any, source: str
-                         ) -> dict[str, Any]:
-    """One run's settings (plain numbers: the post-pass's :attr:`FirstOrderPostPass.specs`).
+                         ) -> FirstOrderSettings:
+    """One run's settings (:class:`FirstOrderSettings`), checked.
 
     Parameters
     ----------
@@ -69,7 +133,7 @@ def first_order_settings(v: dict[str, Any], h3: float, ship: Any, source: str
 
     Returns
     -------
-    dict
+    FirstOrderSettings
     """
     if ship is None or any(getattr(ship, k, None) is None for k in
                            ("length", "beam", "draft", "block_coefficient")):
@@ -116,15 +180,14 @@ def first_order_settings(v: dict[str, Any], h3: float, ship: Any, source: str
                    + ". Give `rao_file`: a capytaine NetCDF (e.g. the shipped box barge, "
                    "seahelm.environment.rao_io.box_barge_database()) or an RAO table with a yaw "
                    "column")
-    return {"h3": float(h3), "spectrum": v["spectrum"], "seed": int(v.get("seed", 0)),
-            "rao_file": rao_file, "autopilot_sees": sees,
-            "direction": math.radians(float(v["direction_deg"])),
-            "gm": v.get("metacentric_height", getattr(ship, "metacentric_height", None)),
-            "components": int(n),
-            "spreading": v.get("spreading"),
-            "spreading_parameter": float(v.get("spreading_parameter", 2.0)),
-            "hull": [float(ship.length), float(ship.beam), float(ship.draft),
-                     float(ship.block_coefficient)]}
+    return FirstOrderSettings(
+        h3=float(h3), spectrum=v["spectrum"], seed=int(v.get("seed", 0)), rao_file=rao_file,
+        autopilot_sees=sees, direction=math.radians(float(v["direction_deg"])),
+        gm=v.get("metacentric_height", getattr(ship, "metacentric_height", None)),
+        components=int(n), spreading=v.get("spreading"),
+        spreading_parameter=float(v.get("spreading_parameter", 2.0)),
+        hull=(float(ship.length), float(ship.beam), float(ship.draft),
+              float(ship.block_coefficient)))
 
 
 #: The speed step of the RAOs [m/s]: a run whose recorded surge speed spans less takes the
@@ -141,17 +204,17 @@ def _rao_speeds(lo: float, hi: float) -> tuple[float, ...]:
     return tuple(k * SPEED_STEP for k in range(k0, k1 + 1))
 
 
-def _raos(spec: dict[str, Any], speeds: tuple[float, ...]) -> list[Any]:
+def _raos(spec: FirstOrderSettings, speeds: tuple[float, ...]) -> list[Any]:
     from ..environment.rao import closed_form_rao
 
-    if spec.get("rao_file"):
+    if spec.rao_file:
         from ..environment.rao_io import read_rao
 
-        return [read_rao(spec["rao_file"])]
+        return [read_rao(spec.rao_file)]
 
-    L, B, T, cb = spec["hull"]
+    L, B, T, cb = spec.hull
     hull = types.SimpleNamespace(length=L, beam=B, draft=T, block_coefficient=cb)
-    return [closed_form_rao(hull, s, metacentric_height=spec["gm"]) for s in speeds]
+    return [closed_form_rao(hull, s, metacentric_height=spec.gm) for s in speeds]
 
 
 def _speed_groups(speed: np.ndarray, rows: list[int]) -> list[tuple[tuple[float, ...],
@@ -193,7 +256,7 @@ class FirstOrderPostPass:
 
     Attributes
     ----------
-    specs : tuple of dict
+    specs : tuple of FirstOrderSettings
         Each run's settings (:func:`first_order_settings`).
     batch_seed : int or None
         The batch's (Monte-Carlo) seed.
@@ -204,7 +267,7 @@ class FirstOrderPostPass:
         runs are seeded.
     """
 
-    specs: tuple[dict[str, Any], ...]
+    specs: tuple[FirstOrderSettings, ...]
     batch_seed: int | None
     source: str
     first_run: int = 0
@@ -241,33 +304,32 @@ class FirstOrderPostPass:
                                     self.first_run)
 
 
-def _first_order_motions(result: Any, specs: list[dict[str, Any]], batch_seed: int | None,
+def _first_order_motions(result: Any, specs: list[FirstOrderSettings], batch_seed: int | None,
                          source: str, first: int) -> tuple[dict[str, Any], dict[str, Any]]:
     from ..environment.first_order import first_order_motions
     from ..environment.spectra import spectrum_from_wave_height
 
     n, R = result.time.size, result.n_runs
-    groups: dict[str, list[int]] = {}
+    groups: dict[FirstOrderSettings, list[int]] = {}
     for i, spec in enumerate(specs):
-        groups.setdefault(json.dumps(spec, sort_keys=True), []).append(i)
+        groups.setdefault(spec, []).append(i)
     values: dict[str, np.ndarray] = {}
     has_roll = "roll_angle" in result.channel_names()
-    for key, rows in groups.items():
-        spec = json.loads(key)
+    for spec, rows in groups.items():
         ok = [i for i in rows if result.status[i] == 0]  # a diverged run has no wave motions
-        entropy = spec["seed"] if batch_seed is None else [spec["seed"], batch_seed]
+        entropy = spec.seed if batch_seed is None else [spec.seed, batch_seed]
         for speeds, members in _speed_groups(result["surge_speed"], ok):
             record = {"time": result.time,
                       **{name: result[name][members] for name in ("surge_speed", "heading",
                                                                   "north", "east")}}
             try:
                 m = first_order_motions(
-                    record, spectrum_from_wave_height(spec["spectrum"], spec["h3"]),
-                    _raos(spec, speeds), wave_direction=spec["direction"],
+                    record, spectrum_from_wave_height(spec.spectrum, spec.h3),
+                    _raos(spec, speeds), wave_direction=spec.direction,
                     seed=[np.random.SeedSequence(entropy, spawn_key=(first + i, 1))
                           for i in members],
-                    n_components=spec["components"], spreading=spec["spreading"],
-                    spreading_parameter=spec["spreading_parameter"])
+                    n_components=spec.components, spreading=spec.spreading,
+                    spreading_parameter=spec.spreading_parameter)
             except (KeyError, ParameterError) as exc:
                 raise _err(source, "environment.waves.first_order_motions", str(exc)) from None
             for dof, v in m.values.items():
@@ -287,7 +349,7 @@ def _first_order_motions(result: Any, specs: list[dict[str, Any]], batch_seed: i
         extra["heading_total"] = (result["heading"] + values["yaw"], "rad",
                                   "heading + first-order yaw (after the run: the "
                                   "autopilot did not see it)")
-    files = {spec.get("rao_file") for spec in specs}
+    files = {spec.rao_file for spec in specs}
     return extra, {"first_order_motions": (
         ", ".join(values) + " from "
         + ("closed-form RAOs (Jensen et al. 2004)" if files == {None} else
@@ -297,8 +359,8 @@ def _first_order_motions(result: Any, specs: list[dict[str, Any]], batch_seed: i
         "in diverged runs")}
 
 
-def first_order_in_the_loop(specs: list[dict[str, Any]], batch_seed: int | None, source: str
-                            ) -> Any:
+def first_order_in_the_loop(specs: list[FirstOrderSettings], batch_seed: int | None,
+                            source: str, surge_sway: bool = False) -> Any:
     """The in-loop motions of a batch whose runs ask for ``autopilot_sees_first_order``.
 
     Run i's components are drawn as the post-pass draws them (the second child of run i's sea
@@ -306,19 +368,24 @@ def first_order_in_the_loop(specs: list[dict[str, Any]], batch_seed: int | None,
 
     Parameters
     ----------
-    specs : list of dict
+    specs : list of FirstOrderSettings
         The runs' settings (:func:`first_order_settings`).
     batch_seed : int or None
         The batch's (Monte-Carlo) seed.
     source : str
         Scenario name for messages.
+    surge_sway : bool, optional
+        Evaluate the RAO's surge and sway too (``[sensors] wave_motion``: the DP sensors
+        see them), with its heave, roll, pitch and yaw.
 
     Returns
     -------
     FirstOrderInLoop or None
-        None when no run asks for it (the post-pass then runs after the simulation).
+        None when no run asks for it (the post-pass then runs after the simulation); its
+        :attr:`~seahelm.environment.first_order_in_loop.FirstOrderInLoop.settings` are
+        ``specs``.
     """
-    sees = {bool(s.get("autopilot_sees")) for s in specs}
+    sees = {bool(s.autopilot_sees) for s in specs}
     if sees == {False}:
         return None
     if len(sees) > 1:
@@ -326,7 +393,7 @@ def first_order_in_the_loop(specs: list[dict[str, Any]], batch_seed: int | None,
                    "must be the same in every run (the motions are in the loop or after it)")
     for key, what in (("rao_file", "one RAO file"), ("components", "one number of "
                                                                      "components")):
-        if len({s[key] for s in specs}) > 1:
+        if len({getattr(s, key) for s in specs}) > 1:
             raise _err(source, f"environment.waves.{key}", f"must be the same in every run "
                        f"when the autopilot sees the first-order yaw ({what} for the batch's "
                        "tables)")
@@ -335,25 +402,29 @@ def first_order_in_the_loop(specs: list[dict[str, Any]], batch_seed: int | None,
     from ..environment.rao_io import read_rao
     from ..environment.spectra import spectrum_from_wave_height
 
-    rao = read_rao(specs[0]["rao_file"])
+    rao = read_rao(specs[0].rao_file)
     band = (float(rao.frequency[0]), float(rao.frequency[-1]))
     spectra: dict[tuple[str, float], Any] = {}
     parts = []
     for i, spec in enumerate(specs):
-        key = (spec["spectrum"], spec["h3"])
+        key = (spec.spectrum, spec.h3)
         if key not in spectra:
             spectra[key] = spectrum_from_wave_height(*key)
-        entropy = spec["seed"] if batch_seed is None else [spec["seed"], batch_seed]
+        entropy = spec.seed if batch_seed is None else [spec.seed, batch_seed]
         parts.append(draw_wave_components(
-            spectra[key], spec["direction"], runs=1,
+            spectra[key], spec.direction, runs=1,
             seed=[np.random.SeedSequence(entropy, spawn_key=(i, 1))],
-            n_components=spec["components"], band=band, spreading=spec["spreading"],
-            spreading_parameter=spec["spreading_parameter"]))
+            n_components=spec.components, band=band, spreading=spec.spreading,
+            spreading_parameter=spec.spreading_parameter))
     stacked = WaveComponents(*(np.concatenate([getattr(p, f) for p in parts]) for f in (
         "frequency", "wavenumber", "direction", "amplitude", "phase")), band,
         [p.seeds[0] for p in parts])
     try:
-        return first_order_in_loop(next(iter(spectra.values())), rao, wave_direction=0.0,
-                                   components=stacked, autopilot_sees_first_order=True)
+        dofs = None if not surge_sway else [d for d in ("surge", "sway", "heave", "roll",
+                                                         "pitch", "yaw") if d in rao.dofs]
+        in_loop = first_order_in_loop(next(iter(spectra.values())), rao, wave_direction=0.0,
+                                      components=stacked, autopilot_sees_first_order=True,
+                                      dofs=dofs)
+        return dataclasses.replace(in_loop, settings=tuple(specs))
     except ParameterError as exc:
         raise _err(source, "environment.waves.rao_file", str(exc)) from None

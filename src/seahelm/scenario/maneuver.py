@@ -227,7 +227,7 @@ class ManeuverJob:
             When the manoeuvre rejects a value (naming the scenario file and the key).
         """
         from ..analysis import maneuvers
-        from ..analysis.equilibrium import EquilibriumError
+        from ..analysis.equilibria.equilibrium import EquilibriumError
         from ..analysis.imo.check import imo_check
 
         functions = {"turning": maneuvers.turning_circle, "zigzag": maneuvers.zigzag,

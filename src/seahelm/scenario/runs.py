@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
-import json
 import math
 from collections.abc import Callable
 from typing import Any
@@ -20,11 +19,10 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from ..parameters import Params
-from ..registry import get_actuator, get_controller, get_model
+from ..registry import get_controller, get_model
 from ..simulation.batch import BatchAxis, BatchLayout, BatchValues, grid_axes
 from ..simulation.problem import Problem
-from ..simulation.composition import compose
+from ..simulation.resolve import resolve_components
 from ..resources import WorkTooLarge, check_work
 from ..simulation.engine import check_record_memory
 from ..control.guided import guided
@@ -34,7 +32,6 @@ from .environment import KEY_UNITS as _ENV_UNITS, environment_runs
 from .errors import ScenarioError, at_key as _err
 from .first_order import FirstOrderPostPass
 from ..ships.file_format import is_ship_path
-from ..ships.water_depth import params_at_depth
 from .particulars import refuse_varied_particulars
 from .samples import drawn_kinds, samples_draws
 from .vessel import ship_key, vessel_ship
@@ -60,10 +57,6 @@ def _channel(name: str, labels: tuple[str, ...], units: tuple[str, ...]) -> tupl
         f"unknown channel '{name}'; valid: {', '.join(labels) or '(none)'} "
         "(angles also as <name>_deg)"
     )
-
-
-def _params(cls: type[Params], values: dict[str, float], base: Params | None) -> Params:
-    return cls.from_mapping(values, base=base)
 
 
 #: Runs one scenario batch may have (grid points × Monte-Carlo samples).
@@ -104,6 +97,7 @@ _FIELD_KEYS: dict[str, str | None] = {
     "jit": None,
     "first_order": "environment.waves.autopilot_sees_first_order",
     "post_pass": "environment.waves.first_order_motions",
+    "sensors": "sensors",
 }
 if set(_FIELD_KEYS) != {f.name for f in dataclasses.fields(Problem)}:  # pragma: no cover
     raise AssertionError("scenario.runs._FIELD_KEYS must name every field of Problem: "
@@ -339,13 +333,9 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
     refuse_varied_particulars(scn, source)  # (they vary in [maneuver] scenarios only)
     model = _vessel_model(scn, source)
     ship = vessel_ship(scn, source)
-    gear = ship.steering_gear if ship is not None else None
-    try:  # a ship's own steering gear unless [actuator] names another actuator
-        actuator = (gear.actuator if gear is not None and "model" not in
-                    scn.actuator.model_fields_set else get_actuator(scn.actuator.model))
-    except ValueError as exc:
-        raise _err(source, "actuator.model", str(exc)) from None
-    actuator_base = gear.params if gear is not None and gear.actuator is actuator else None
+    if ship is not None and ship.model is not model:
+        raise _err(source, ship_key(scn),
+                   f"'{ship.name}' is a ship of model '{ship.model.name}', not '{model.name}'")
     try:
         controller = get_controller(scn.controller.model)
     except ValueError as exc:
@@ -356,18 +346,14 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
             controller = guided(guidance[0], controller)
         except ParameterError as exc:
             raise _err(source, "guidance.law", str(exc)) from None
-    try:  # the engine's wiring by signal name: it names the reference channels
-        wiring = compose(model, actuator, controller)
+    try:  # the components, their wiring and defaults, as the Problem resolves them: a ship's
+        # own steering gear unless [actuator] names another actuator
+        comp = resolve_components(
+            ship=ship, model=model, controller=controller,
+            actuator=scn.actuator.model if "model" in scn.actuator.model_fields_set else None)
     except ParameterError as exc:
-        raise _err(source, "controller.model", str(exc)) from None
-    base_params: Params | None = None
-    if ship is not None:
-        if ship.model is not model:
-            raise _err(source, ship_key(scn),
-                       f"'{ship.name}' is a ship of model '{ship.model.name}', not "
-                       f"'{model.name}'")
-        # on a ship in shallow water an override is to the deep-water value (as in its file)
-        base_params = ship.deep_water_params or ship.params
+        raise _engine_error(source, exc, None) from None
+    actuator, wiring = comp.actuator, comp.wiring
 
     # names a batch dimension must not take: the result's variables and dimensions
     reserved = {*model.state_labels, *actuator.state_labels, *model.output_labels,
@@ -419,19 +405,18 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
     mp, ap, cp, x0s, refs, dists = [], [], [], [], [], []
     for i, over in enumerate(runs):
         where = f" (run {i}: {over})" if over else ""
-        for key, sec, cls, base, bucket in (
-            ("vessel.params", scn.vessel.params, model.params_type, base_params, mp),
-            ("actuator.params", scn.actuator.params, actuator.params_type, actuator_base, ap),
-            ("controller.params", scn.controller.params, controller.params_type, None, cp),
+        for key, sec, cls, build, bucket in (
+            ("vessel.params", scn.vessel.params, model.params_type, comp.vessel_params, mp),
+            ("actuator.params", scn.actuator.params, actuator.params_type,
+             comp.actuator_params_with, ap),
+            ("controller.params", scn.controller.params, controller.params_type,
+             controller.params_type.from_mapping, cp),
         ):
             values = section(over, key + ".", sec)
             if key == "controller.params" and guidance is not None:
                 values = {**section(over, "guidance.", guidance[1]), **values}
             try:
-                built = _params(cls, values, base)
-                if key == "vessel.params" and ship is not None and ship.in_shallow_water:
-                    built = params_at_depth(ship, built)
-                bucket.append(built.to_array())
+                bucket.append(build(values).to_array())
             except ParameterError as exc:
                 named = (exc.field or "").partition("[")[0]
                 if guidance is not None and named in guidance[1]:
@@ -463,9 +448,19 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
     if env is not None and env.first_order is not None:
         from .first_order import first_order_in_the_loop
 
-        in_loop = first_order_in_the_loop(env.first_order, seed, source)
+        in_loop = first_order_in_the_loop(
+            env.first_order, seed, source,
+            surge_sway=scn.sensors is not None and scn.sensors.wave_motion)
+    sensors = None
+    if scn.sensors is not None:
+        from ..simulation.sensor_stage import PositionSensors
+
+        sn = scn.sensors
+        sensors = PositionSensors(noise_north=sn.noise_north, noise_east=sn.noise_east,
+                                  noise_heading=math.radians(sn.noise_heading_deg),
+                                  wave_motion=sn.wave_motion, seed=sn.seed)
     inputs = dict(
-        model=model,
+        model=comp.model,
         params=np.array(mp),
         x0=np.array(x0s),
         t_final=sim.t_final,
@@ -485,15 +480,14 @@ def prepare_runs(scn: Scenario, *, source: str = "<string>", text: str = "",
         seed=seed,
         metadata={"title": scn.title, "scenario_source": source, "scenario_text": text,
                   **({} if ship is None or not is_ship_path(scn.vessel.ship or "") else
-                     {"ship_file": str(scn.vessel.ship)}),
-                  **({} if in_loop is None else
-                     {"first_order_settings": json.dumps(env.first_order)})},
+                     {"ship_file": str(scn.vessel.ship)})},
         layout=layout,
         environment=None if env is None else env.environment,
         environment_params=None if env is None else env.params,
         exact_actuator=sim.exact_actuator,
         first_order=in_loop,
-        ship=ship,  # (its name and provenance reach the result's metadata)
+        sensors=sensors,
+        ship=comp.ship,  # (its name and provenance reach the result's metadata)
         post_pass=(None if env is None or env.first_order is None or in_loop is not None
                    else FirstOrderPostPass(tuple(env.first_order), seed, source)),
     )

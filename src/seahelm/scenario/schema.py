@@ -427,6 +427,22 @@ class ManeuverSection(_Strict):
         return self
 
 
+class SensorsSection(_Strict):
+    """``[sensors]``: what the controller's ``north``, ``east`` and ``heading`` sensors see
+    (:mod:`seahelm.simulation.sensor_stage`): seeded Gaussian noise of standard deviations
+    ``noise_north``, ``noise_east`` [m] and ``noise_heading_deg`` [deg], and with
+    ``wave_motion = true`` the first-order surge, sway and yaw of the sea evaluated in the
+    loop (``[environment.waves]`` with ``autopilot_sees_first_order = true`` and a
+    ``rao_file`` with those DOF); ``seed`` of the noise (run i: ``SeedSequence(seed,
+    spawn_key=(i,))``)."""
+
+    noise_north: Annotated[Number, Field(ge=0)] = 0.0
+    noise_east: Annotated[Number, Field(ge=0)] = 0.0
+    noise_heading_deg: Annotated[Number, Field(ge=0)] = 0.0
+    wave_motion: StrictBool = False
+    seed: Annotated[int, Strict(), Field(ge=0)] = 0
+
+
 class Scenario(_Strict):
     """The validated structure of a scenario file: a simulation (``[simulation]``) or a
     standard manoeuvre (``[maneuver]``)."""
@@ -441,6 +457,7 @@ class Scenario(_Strict):
     batch: BatchSection = Field(default_factory=BatchSection)
     maneuver: ManeuverSection | None = None
     guidance: GuidanceSection | None = None
+    sensors: SensorsSection | None = None
 
     @model_validator(mode="after")
     def _simulation_or_maneuver(self) -> "Scenario":

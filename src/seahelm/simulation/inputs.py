@@ -74,6 +74,15 @@ def _by_name(name: str, value: Mapping[str, Any], labels: tuple[str, ...],
         raise ParameterError(
             f": unknown channel(s) {', '.join(map(repr, unknown))}; channels: "
             f"{', '.join(labels) if labels else 'none'}", field=name)
+    if labels:  # every channel a finite number (a set-point): one row, no per-channel arrays
+        row = [value.get(lab, 0.0) for lab in labels]
+        if all(type(v) is float or type(v) is int for v in row):
+            try:
+                finite = math.isfinite(math.fsum(row))
+            except OverflowError:  # (an int beyond floats: the general path names it)
+                finite = False
+            if finite:
+                return np.array(row, dtype=float).reshape(1, 1, len(labels))
     cols = [_signal(f"{name}['{lab}']", value.get(lab, 0.0), 1, t_grid, unit) for lab in labels]
     if not cols:
         return np.zeros((1, 1, 1))

@@ -73,6 +73,8 @@ class KernelArrays:
         def mine(group: tuple[np.ndarray, ...]) -> tuple[np.ndarray, ...]:
             return tuple(a if a.flags.writeable else a.copy() for a in group)
 
+        if all(a.flags.writeable for a in self):  # (the engine's own arrays: as they are)
+            return self
         return KernelArrays(**{name: mine(getattr(self, name)) for name in GROUPS},
                             stages=tuple(mine(g) for g in self.stages),
                             stage_names=self.stage_names)

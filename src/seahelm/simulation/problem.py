@@ -38,18 +38,15 @@ import numpy as np
 from numba.core import config as _numba_config
 
 from ..actuators.base import Actuator
-from ..actuators.servo import RUDDER_SERVO
 from ..control.base import Controller
-from ..control.open_loop import OPEN_LOOP
 from ..environment.loads import Environment
 from ..errors import ParameterError
 from ..numerics.runge_kutta import get_integrator
 from ..parameters import Params
-from ..registry import get_actuator, get_controller, get_model
 from ..result_layout import BatchLayout
 from ..vessels.base import VesselModel
-from .composition import compose
 from .environment_stage import check_environment
+from .resolve import Components, field_error, resolve_components
 
 __all__ = ["Problem", "OPTION_FIELDS", "jit_enabled"]
 
@@ -124,12 +121,16 @@ class Problem:
         The vessel model (or its registry name); from the ship when one is given.
     params : Params, sequence of Params or array (runs, n_params), optional
         Vessel parameters, one set or one per run (default: the ship's).
-    x0 : array_like, shape (n_states,) or (runs, n_states)
-        Initial vessel state (SI units, radians).
+    x0 : array_like, shape (n_states,) or (runs, n_states), optional
+        Initial vessel state (SI units, radians). Required without a ``ship``; with one, the
+        default is its trimmed straight approach at its test speed, as the manoeuvres start
+        (:mod:`seahelm.simulation.ship_start`: the steering gear at the trim angle and, for an
+        open-loop problem without a ``reference``, the approach's rudder and rps held).
     controller, controller_params : Controller or str, Params or array, optional
         Controller (default: open loop, reference = command) and its parameters.
     actuator, actuator_params, actuator_x0 : Actuator or str, Params or array, array_like
-        Actuator (default: the ship's steering gear, else the rudder servo), its parameters
+        Actuator (default: the ship's steering gear, else the rudder servo for a model with a
+        ``rudder_angle`` input, else ``direct``), its parameters
         (default: the steering gear's) and initial state (default zeros).
     reference, disturbance : None, scalar, array, callable or mapping, optional
         Controller reference and the model's disturbance inputs
@@ -162,6 +163,10 @@ class Problem:
         components per run; the model must output ``north``, ``east``, ``heading`` and
         ``surge_speed``, and a controller that is to see the first-order yaw must measure
         ``heading``.
+    sensors : PositionSensors, optional
+        What the controller's ``north``, ``east`` and ``heading`` sensors see: the
+        first-order surge, sway and yaw of ``first_order`` and seeded noise
+        (:mod:`seahelm.simulation.sensor_stage`).
     post_pass : object, optional
         Computed after the run from its recordings by :func:`simulate`, into the result: an
         object with ``compute(result) -> (extra, metadata)`` (channels for
@@ -204,79 +209,34 @@ class Problem:
     jit: bool | None = None
     first_order: Any = None
     post_pass: Any = None
+    sensors: Any = None
 
     def __post_init__(self) -> None:
-        def field_error(name: str, exc: Exception) -> ParameterError:
-            if isinstance(exc, ParameterError) and exc.field is not None:
-                return exc.within(name) if not exc.field.startswith(name) else exc
-            return ParameterError(f": {exc}", field=name)
-
         put = object.__setattr__
-        ship = self.ship
-        if ship is not None:
-            from ..ships import get_ship
-
-            try:
-                ship = get_ship(ship)
-            except ValueError as exc:
-                raise field_error("ship", exc) from None
-            put(self, "ship", ship)
-        # the model: given, or the ship's
-        model = self.model
-        if model is None:
-            if ship is None:
-                raise ParameterError("is required: give a `model` (seahelm models lists them) "
-                                     "or a `ship`", field="model")
-            model = ship.model
-        else:
-            try:
-                model = get_model(model)
-            except ValueError as exc:
-                raise field_error("model", exc) from None
-            if ship is not None and model is not ship.model:
-                raise ParameterError(f"'{model.name}' is not the model of ship '{ship.name}' "
-                                     f"('{ship.model.name}')", field="model")
-        if not isinstance(model, VesselModel):  # pragma: no cover - get_model checks
-            raise ParameterError(f"must be a VesselModel, got {type(model).__name__}",
-                                 field="model")
+        # the components and their defaults: resolved in one place (simulation.resolve), as the
+        # scenario's problem resolves them
+        resolved = resolve_components(ship=self.ship, model=self.model, actuator=self.actuator,
+                                      controller=self.controller)
+        model, actuator, controller = resolved.model, resolved.actuator, resolved.controller
+        put(self, "ship", resolved.ship)
         put(self, "model", model)
         if self.params is None:
-            if ship is None:
+            if resolved.params is None:
                 raise ParameterError(f"is required ({model.params_type.__name__} of model "
                                      f"'{model.name}', or a `ship`)", field="params")
-            put(self, "params", ship.params)
+            put(self, "params", resolved.params)
         _check_params("params", self.params, model.params_type)
-        if self.x0 is None:
-            raise ParameterError(f"is required: the initial state ({', '.join(model.state_labels)})",
+        if self.x0 is None and resolved.ship is None:
+            raise ParameterError(f"is required: the initial state ({', '.join(model.state_labels)})"
+                                 " (or give a `ship`: it starts on its straight approach)",
                                  field="x0")
-        if model.check_initial_state is not None:  # e.g. a unit quaternion in x0
+        if self.x0 is not None and model.check_initial_state is not None:  # a unit quaternion
             x0 = np.asarray(self.x0, dtype=float)
             if x0.shape[-1:] == (model.n_states,):
                 model.check_initial_state(x0.reshape(-1, model.n_states))
-        # the actuator: given, the ship's steering gear, or the rudder servo
-        gear = None if ship is None else ship.steering_gear
-        actuator = self.actuator
-        if actuator is None:
-            actuator = gear.actuator if gear is not None else RUDDER_SERVO
-        else:
-            try:
-                actuator = get_actuator(actuator)
-            except ValueError as exc:
-                raise field_error("actuator", exc) from None
-        if not isinstance(actuator, Actuator):  # pragma: no cover - get_actuator checks
-            raise ParameterError(f"must be an Actuator, got {type(actuator).__name__}",
-                                 field="actuator")
         put(self, "actuator", actuator)
-        if self.actuator_params is None and gear is not None and gear.actuator is actuator:
-            put(self, "actuator_params", gear.params)
-        controller = OPEN_LOOP if self.controller is None else self.controller
-        try:
-            controller = get_controller(controller)
-        except ValueError as exc:
-            raise field_error("controller", exc) from None
-        if not isinstance(controller, Controller):  # pragma: no cover - get_controller checks
-            raise ParameterError(f"must be a Controller, got {type(controller).__name__}",
-                                 field="controller")
+        if self.actuator_params is None and resolved.actuator_params is not None:
+            put(self, "actuator_params", resolved.actuator_params)
         put(self, "controller", controller)
         for name, comp in (("actuator_params", actuator), ("controller_params", controller)):
             if getattr(self, name) is not None:
@@ -327,11 +287,14 @@ class Problem:
             tableau = get_integrator(self.integrator)
         except (ValueError, TypeError) as exc:
             raise field_error("integrator", exc) from None
-        # wiring, environment, bounds, options
-        try:
-            wiring = compose(model, actuator, controller)
-        except ParameterError as exc:
-            raise field_error("controller", exc) from None
+        # environment, bounds, options
+        wiring = resolved.wiring
+        if self.x0 is None:  # a ship's: its trimmed straight approach (simulation.ship_start)
+            from .ship_start import approach_start
+
+            for name, value in zip(("x0", "actuator_x0", "reference"), approach_start(
+                    resolved.ship, self.params, wiring, self.actuator_x0, self.reference)):
+                put(self, name, value)
         if self.environment is not None and not isinstance(self.environment, Environment):
             raise ParameterError(
                 f"must be an Environment (seahelm.environment.loads.environment(wind=..., "
@@ -383,6 +346,10 @@ class Problem:
         except ParameterError as exc:
             raise field_error("jit", exc) from None
         _check_first_order(self.first_order, model, controller)
+        if self.sensors is not None:
+            from .sensor_stage import check_sensors
+
+            check_sensors(self.sensors, self.first_order, model, controller)
         if self.post_pass is not None and not callable(getattr(self.post_pass, "compute", None)):
             raise ParameterError(f"must have a compute(result) method, got "
                                  f"{type(self.post_pass).__name__}", field="post_pass")
@@ -393,7 +360,7 @@ class Problem:
         put(self, "metadata", types.MappingProxyType(dict(self.metadata or {})))
         put(self, "_derived", types.MappingProxyType({
             "n_steps": n_steps, "controller_every": ctrl_every, "controller_dt": float(ctrl_dt),
-            "tableau": tableau, "wiring": wiring, "jit": use_jit}))
+            "tableau": tableau, "wiring": wiring, "jit": use_jit, "components": resolved}))
 
     # -- derived ------------------------------------------------------------------------
     def _summary(self) -> tuple[str, list[tuple[str, object]]]:
@@ -416,7 +383,7 @@ class Problem:
             ("initial state", describe(None if self.x0 is None else np.asarray(self.x0))),
             ("reference", describe(self.reference)),
         ]
-        for name in ("disturbance", "environment", "first_order"):
+        for name in ("disturbance", "environment", "first_order", "sensors"):
             if getattr(self, name) is not None:
                 rows.append((name, describe(getattr(self, name))))
         if self.layout is not None:
@@ -458,6 +425,12 @@ class Problem:
     def wiring(self) -> Any:
         """Controller → actuator → model by signal name."""
         return self._derived["wiring"]
+
+    @property
+    def components(self) -> Components:
+        """The resolved components and their defaults
+        (:func:`~seahelm.simulation.resolve.resolve_components`)."""
+        return self._derived["components"]
 
     @property
     def n_runs(self) -> int | None:

@@ -76,8 +76,9 @@ class _Slices:
         # numba types a read-only array apart from a writable one: a kernel called with both
         # (a broadcast view of one run, say) would compile twice, each 15-80 s
         self.arrays = arrays.writable()
-        self.threads = max(1, min(numba.get_num_threads() if threads is None else threads,
-                                  n_runs))
+        # (one run: one thread, without asking numba, whose answer costs a few µs per call)
+        self.threads = 1 if n_runs <= 1 else max(1, min(
+            numba.get_num_threads() if threads is None else threads, n_runs))
         n_slices = 1 if self.threads == 1 else min(n_runs, 4 * self.threads)
         self.cuts = (np.array([0, n_runs]) if n_slices == 1 else
                      np.linspace(0, n_runs, n_slices + 1).round().astype(np.int64))

@@ -10,6 +10,7 @@ from __future__ import annotations
 from typing import Any
 
 from .environment_stage import EnvironmentStage
+from .sensor_stage import SensorStage
 from .stage import Stage
 from .wave_motion_stage import FirstOrderStage
 
@@ -19,6 +20,7 @@ __all__ = ["STAGES", "stages_of"]
 STAGES: dict[str, type[Stage]] = {
     "environment": EnvironmentStage,
     "first_order": FirstOrderStage,
+    "sensors": SensorStage,
 }
 
 

@@ -194,7 +194,10 @@ class Simulator:
             (the commands not named keep their last values). Default: the problem's controller.
         n : int
             Controller intervals (``controller_dt`` each; the last of the horizon may be
-            shorter).
+            shorter), from 1 to :attr:`n_intervals` (more is refused). A run that reaches
+            the end of the horizon (``t_final``) stops there: the rest of ``n`` is not
+            stepped, and a step of a run already there does nothing (refused when ``runs``
+            names it).
         runs : int or sequence of int, optional
             The runs to advance (default every run still going); ``commands`` then has one row
             per selected run.
@@ -219,6 +222,11 @@ class Simulator:
         if n < 1:
             raise ParameterError(f"must be an integer >= 1 (controller intervals), got {n!r}",
                                  field="n", value=n)
+        if n > self.n_intervals:  # (10**9 stopped silently at t_final)
+            raise ParameterError(
+                f"= {int(n)} exceeds the {self.n_intervals} controller intervals of the horizon "
+                f"(t_final = {self.problem.t_final:g} s, controller_dt = "
+                f"{self.problem.controller_every * self.problem.dt:g} s)", field="n", value=n)
         b = self._batch
         if runs is None and self._aligned and self.coupling is None:
             # every run at the same step, all stepped: one call of the loop, no selection
@@ -233,7 +241,7 @@ class Simulator:
         sel = requested[going]
         external = 0
         if commands is not None:
-            values = self._commands(commands, requested)[going]
+            values = self._commands(commands, requested, runs)[going]
             external = 1
         if sel.size == 0:
             return self._observe()
@@ -333,8 +341,8 @@ class Simulator:
         bad = ~np.isfinite(z) | (z < lower) | (z > upper)
         if bad.any():
             j = int(np.argmax(bad))
-            raise ParameterError(f": state {self.state_labels[j]!r} = {z[j]!r} is not finite "
-                                 f"or outside its bounds [{lower[j]:g}, {upper[j]:g}]",
+            raise ParameterError(f": state {self.state_labels[j]!r} = {float(z[j])!r} is not "
+                                 f"finite or outside its bounds [{lower[j]:g}, {upper[j]:g}]",
                                  field="values", value=z[j], run=i)
         self._z[i] = z
 
@@ -407,10 +415,16 @@ class Simulator:
                                      field="runs", value=i, run=i)
         return arr
 
-    def _commands(self, commands: Any, sel: np.ndarray | None) -> np.ndarray:
+    def _commands(self, commands: Any, sel: np.ndarray | None, runs: Any = None) -> np.ndarray:
         """The commands (selected runs, commands) — or (runs|1, commands) for every run
-        (``sel`` None) — checked."""
+        (``sel`` None) — checked; rows given in the order of ``runs``, returned in ``sel``'s
+        (sorted: ``runs=[2, 0]`` gave run 0 the first row)."""
         nc = self._nc
+        given = None if runs is None else run_indices(runs, self.n_runs, as_given=True)
+        if given is not None and not np.array_equal(given, sel):
+            values = check_commands(commands, given, self._cmd[given, :nc], self.command_labels,
+                                    self.command_units)
+            return values[np.argsort(given)]
         if sel is None and type(commands) is np.ndarray and commands.dtype == np.float64:
             # (the fast path of a stepped single vessel: an array of the right shape)
             if commands.shape == (nc,) or commands.shape == (self._n_runs, nc):

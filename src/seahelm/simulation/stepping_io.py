@@ -131,8 +131,14 @@ def _spans(sel: np.ndarray) -> list[tuple[int, int]]:
     return [(int(sel[s]), int(sel[e - 1]) + 1) for s, e in zip(starts, stops)]
 
 
+def _out_of_range(what: str, i: int, n_runs: int) -> ParameterError:
+    """The one message of a run index out of range (``run`` and ``runs`` alike)."""
+    return ParameterError(f"must be a run index in {-n_runs} ... {n_runs - 1} (negative: from "
+                          f"the end, as numpy), got {i}", field=what, value=i)
+
+
 def run_index(run: Any, n_runs: int) -> int:
-    """``run`` as the index of one of ``n_runs`` runs (negative from the end), or a
+    """``run`` as the index of one of ``n_runs`` runs (negative from the end, as numpy), or a
     :class:`ParameterError` naming ``run``.
 
     Parameters
@@ -143,25 +149,33 @@ def run_index(run: Any, n_runs: int) -> int:
         Runs of the batch.
     """
     try:
+        if isinstance(run, (bool, np.bool_)):  # (True was run 1)
+            raise TypeError
         i = operator.index(run)
     except TypeError:
-        raise ParameterError(f"must be a run index, got {run!r}", field="run",
+        raise ParameterError(f"must be a run index (an integer), got {run!r}", field="run",
                              value=run) from None
     if not -n_runs <= i < n_runs:
-        raise ParameterError(f"must be in 0 ... {n_runs - 1}, got {i}", field="run", value=i)
+        raise _out_of_range("run", i, n_runs)
     return i % n_runs
 
 
-def run_indices(runs: Any, n_runs: int) -> np.ndarray:
+def run_indices(runs: Any, n_runs: int, *, as_given: bool = False) -> np.ndarray:
     """``runs`` (None: all; indices or a boolean mask) as sorted unique indices of ``n_runs``
     runs, or a :class:`ParameterError` naming ``runs``.
 
+    Negative indices count from the end, as in :func:`run_index` (and numpy); a run given
+    twice is refused (its commands would be ambiguous).
+
     Parameters
     ----------
-    runs : None, sequence of int or ndarray of bool
+    runs : None, int, sequence of int or ndarray of bool
         The runs (None: all), as indices or a mask of ``n_runs``.
     n_runs : int
         Runs of the batch.
+    as_given : bool
+        Return the indices in the order given (the order of a step's command rows), not
+        sorted.
     """
     if runs is None:
         return np.arange(n_runs)
@@ -174,8 +188,14 @@ def run_indices(runs: Any, n_runs: int) -> np.ndarray:
     if arr.ndim != 1 or (arr.size and arr.dtype.kind not in "iu"):
         raise ParameterError(f"must be run indices (integers), got {runs!r}", field="runs",
                              value=runs)
-    bad = (arr < 0) | (arr >= n_runs)
+    arr = arr.astype(np.int64)
+    bad = (arr < -n_runs) | (arr >= n_runs)
     if bad.any():
-        raise ParameterError(f"must be in 0 ... {n_runs - 1}, got {int(arr[np.argmax(bad)])}",
-                             field="runs", value=int(arr[np.argmax(bad)]))
-    return np.unique(arr.astype(np.int64))
+        raise _out_of_range("runs", int(arr[np.argmax(bad)]), n_runs)
+    arr = arr % max(n_runs, 1)
+    unique, counts = np.unique(arr, return_counts=True)
+    if (counts > 1).any():
+        i = int(unique[np.argmax(counts > 1)])
+        raise ParameterError(f"must name each run once, got run {i} {int(counts.max())} times "
+                             f"in {runs!r}", field="runs", value=i)
+    return arr if as_given else unique

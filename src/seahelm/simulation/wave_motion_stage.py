@@ -20,6 +20,7 @@ sin θ_i, heading cells and weights over the components and the responses.
 from __future__ import annotations
 
 import dataclasses
+import json
 from typing import Any
 
 import numpy as np
@@ -35,8 +36,7 @@ __all__ = ["wave_constants", "FirstOrderStage"]
 
 
 def wave_constants(model: VesselModel, controller: Controller, measurement_from: tuple[int, ...],
-                    n_env: int, first_order: tuple[tuple[str, ...], bool] | None
-                    ) -> dict[str, Any]:
+                    n_env: int, first_order: tuple[tuple[str, ...], bool]) -> dict[str, Any]:
     """The kernel's constants of the first-order stage and the controller's measurements.
 
     Parameters
@@ -50,13 +50,13 @@ def wave_constants(model: VesselModel, controller: Controller, measurement_from:
         For each of its measurements, the model output it reads (the composition's).
     n_env : int
         Number of the environment's outputs (after the model's in ``ym``).
-    first_order : (tuple of str, bool) or None
+    first_order : (tuple of str, bool)
         The DOF evaluated and whether the controller sees ψ + ψ₁.
 
     Returns
     -------
     dict
-        ``HAS_WAVES``, ``NWD`` (DOF), ``NW_OUT`` (outputs written), the ``ym`` indices
+        ``NWD`` (DOF), ``NW_OUT`` (outputs written), the ``ym`` indices
         ``WAVE_X``, ``WAVE_Y``, ``WAVE_PSI``, ``WAVE_U``, ``WAVE_OUT0``, ``WAVE_ROLL_MODEL``,
         the DOF indices ``WAVE_YAW``, ``WAVE_ROLL`` (−1: none), and ``measurement_from`` (the
         controller's ``heading`` from ``heading_total`` if it sees it).
@@ -68,11 +68,7 @@ def wave_constants(model: VesselModel, controller: Controller, measurement_from:
         is to see ψ + ψ₁ measures no ``heading``.
     """
     meas = list(measurement_from)
-    if first_order is None:
-        return {"HAS_WAVES": False, "NWD": 0, "NW_OUT": 0, "WAVE_X": 0, "WAVE_Y": 0,
-                "WAVE_PSI": 0, "WAVE_U": 0, "WAVE_OUT0": 0, "WAVE_YAW": -1, "WAVE_ROLL": -1,
-                "WAVE_ROLL_MODEL": -1, "measurement_from": meas}
-    dofs, sees = first_order
+    dofs, sees = first_order  # (the stage exists only with the motions: no loop without them)
     outs = model.output_labels
     missing = [n for n in MOTION_INPUTS if n not in outs]
     if missing:
@@ -89,7 +85,7 @@ def wave_constants(model: VesselModel, controller: Controller, measurement_from:
                 "`heading`", field="first_order", value=True)
         meas[controller.measurement_labels.index("heading")] = base + labels.index(
             HEADING_TOTAL)
-    return {"HAS_WAVES": True, "NWD": len(dofs), "NW_OUT": len(labels),
+    return {"NWD": len(dofs), "NW_OUT": len(labels),
             "WAVE_X": outs.index("north"), "WAVE_Y": outs.index("east"),
             "WAVE_PSI": outs.index("heading"), "WAVE_U": outs.index("surge_speed"),
             "WAVE_OUT0": base, "WAVE_YAW": dofs.index("yaw") if "yaw" in dofs else -1,
@@ -171,7 +167,11 @@ class FirstOrderStage(Stage):
                                [np.float64, np.float64, np.int64, np.float64, np.float64])
 
     def metadata(self, problem: Any) -> dict[str, Any]:
-        return {"first_order_in_loop": ", ".join(self.dofs)
-                + " (seahelm.environment.first_order_in_loop)",
-                "controller_heading": (f"{HEADING_TOTAL} (heading + first-order yaw)"
-                                       if self.autopilot_sees_first_order else "heading")}
+        out = {"first_order_in_loop": ", ".join(self.dofs)
+               + " (seahelm.environment.first_order_in_loop)",
+               "controller_heading": (f"{HEADING_TOTAL} (heading + first-order yaw)"
+                                      if self.autopilot_sees_first_order else "heading")}
+        settings = getattr(problem.first_order, "settings", ())
+        if settings:  # (the typed settings' form in a result file)
+            out["first_order_settings"] = json.dumps([s.as_dict() for s in settings])
+        return out

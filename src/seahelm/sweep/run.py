@@ -25,6 +25,7 @@ from .store import (
     check_store,
     completed_chunks,
     create_store,
+    is_initialised,
     mark_complete,
     open_sweep,
     store_attrs,
@@ -160,25 +161,56 @@ def run_sweep(
         attrs["sweep_dims"] = json.dumps(_dims(job))
         if replace:
             shutil.rmtree(store)
-        create_store(store, spec, template, layout_vars, attrs, coords=coords)
-        done = completed_chunks(store, spec)
-        todo = [i for i in range(spec.n_chunks) if i not in done]
-        count = [len(done)]
-        if progress is not None:
-            progress(count[0], spec.n_chunks)
-
-        def on_done(index: int, ds: Any) -> None:
-            write_chunk(store, spec, index, ds)
-            count[0] += 1
+        with _store_built(store, spec, template, layout_vars, attrs, coords, pool) as built:
+            done = set() if built is not None else completed_chunks(store, spec)
+            todo = [i for i in range(spec.n_chunks) if i not in done]
+            count = [len(done)]
             if progress is not None:
                 progress(count[0], spec.n_chunks)
 
-        pool.run(spec, todo, on_done)
+            def on_done(index: int, ds: Any) -> None:
+                if built is not None:
+                    built.result()  # (the store's arrays exist before the first write)
+                write_chunk(store, spec, index, ds)
+                count[0] += 1
+                if progress is not None:
+                    progress(count[0], spec.n_chunks)
+
+            pool.run(spec, todo, on_done)
     summary = summary_statistics(open_sweep(store, flat=True, verify=False))  # (just checked)
     mark_complete(store, summary)
     return SweepReport(store=store, n_runs=n_runs, n_chunks=spec.n_chunks,
                        chunk_size=chunk_size, computed=len(todo), skipped=len(done),
                        wall_time_s=time.perf_counter() - t0, summary=summary)
+
+
+@contextlib.contextmanager
+def _store_built(store: Path, spec: SweepSpec, template: Any, layout_vars: dict[str, Any],
+                 attrs: dict[str, Any], coords: tuple[str, ...], pool: Any) -> Iterator[Any]:
+    """Create the store; a new store of an in-process sweep whose chunks are written while
+    the next is computed is built on a thread while the first chunk is computed (yields its
+    future, which the first write waits for; nothing of it is done yet), else here (yields
+    None).
+
+    The store's bytes are the same either way (:func:`~seahelm.sweep.store.create_store` builds
+    it next to its place and renames it there); the build's exception is raised at the first
+    write or, at the latest, on leaving.
+    """
+    if not (isinstance(pool, InProcess) and pool.overlap) or is_initialised(store, spec):
+        create_store(store, spec, template, layout_vars, attrs, coords=coords)
+        yield None
+        return
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(1, thread_name_prefix="seahelm-sweep-store") as builder:
+        built = builder.submit(create_store, store, spec, template, layout_vars, attrs,
+                               coords=coords)
+        try:
+            yield built
+        finally:
+            exc = built.exception()  # (waits for the build)
+    if exc is not None:
+        raise exc
 
 
 def _two_chunks_fit(chunk_size: int, bytes_per_run: float) -> bool:

@@ -420,31 +420,29 @@ def frequency_domain_moments(polar: SweepSeakeeping, text: str, source: str = "<
     with warnings.catch_warnings():  # (the sweep said the scenario's range warnings)
         warnings.simplefilter("ignore", ValidityRangeWarning)
         job = prepared(text, source)
-    meta = getattr(job, "metadata", {}) or {}
     post_pass = getattr(job, "post_pass", None)
+    in_loop = getattr(job, "first_order", None)
     settings = (list(post_pass.specs) if post_pass is not None else  # (after the run)
-                json.loads(meta["first_order_settings"]) if "first_order_settings" in meta
-                else None)  # (in the loop)
-    if settings is None:
+                list(in_loop.settings) if in_loop is not None else None)  # (in the loop)
+    if not settings:
         raise ParameterError(f"{source}: the scenario has no first-order motions",
                              field="environment.waves.first_order_motions")
-    specs = {json.dumps({k: v for k, v in s.items() if k not in ("direction", "seed")},
-                        sort_keys=True) for s in settings}
-    if len(specs) != 1:
+    seas = {s.sea() for s in settings}
+    if len(seas) != 1:
         raise ParameterError(f"{source}: the runs' seas differ in more than their direction; "
                              "the frequency-domain cells need one sea", field="batch.grid")
-    spec = json.loads(specs.pop())
-    sea = spectrum_from_wave_height(spec["spectrum"], spec["h3"])
-    spreading = (None if spec["spreading"] is None else
-                 spreading_with_parameter(spec["spreading"], spec["spreading_parameter"]))
-    L, B, T, cb = spec["hull"]
+    spec = seas.pop()
+    sea = spectrum_from_wave_height(spec.spectrum, spec.h3)
+    spreading = (None if spec.spreading is None else
+                 spreading_with_parameter(spec.spreading, spec.spreading_parameter))
+    L, B, T, cb = spec.hull
     hull = SimpleNamespace(length=L, beam=B, draft=T, block_coefficient=cb)
     out = np.full((len(polar.dofs), *polar.speed.shape), np.nan)
     chosen = [d for d in polar.dofs if d in ("heave", "pitch", "roll")]
-    table = read_rao(spec["rao_file"]) if spec.get("rao_file") else None  # (at every speed)
+    table = read_rao(spec.rao_file) if spec.rao_file else None  # (at every speed)
     for i, j in np.ndindex(*polar.speed.shape):
         rao = table or closed_form_rao(hull, float(polar.speed[i, j]),
-                                       metacentric_height=spec["gm"])
+                                       metacentric_height=spec.gm)
         dofs = [d for d in chosen if d in rao.dofs]
         band = np.linspace(rao.frequency[0], rao.frequency[-1], 2000)
         m = response_moments(rao, sea, [float(polar.heading[i, j])], dofs=dofs,

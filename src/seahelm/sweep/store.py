@@ -38,7 +38,8 @@ from .chunks import SweepSpec
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
-__all__ = ["MARKERS", "check_store", "create_store", "completed_chunks", "write_chunk",
+__all__ = ["MARKERS", "check_store", "create_store", "is_initialised", "completed_chunks",
+           "write_chunk",
            "mark_complete", "open_sweep", "store_attrs", "scenario_digest", "chunk_digests",
            "damaged_chunks", "CorruptStoreError"]
 
@@ -166,6 +167,24 @@ def _initialised(path: Path, spec: SweepSpec) -> bool:
     attrs = store_attrs(path)
     return (attrs is not None and attrs.get("sweep_fingerprint") == spec.fingerprint
             and (path / MARKERS / "init").is_file())
+
+
+def is_initialised(path: str | Path, spec: SweepSpec) -> bool:
+    """Whether ``path`` holds the complete initialisation of this sweep (:func:`create_store`
+    would leave it as it is; its completed chunks count).
+
+    Parameters
+    ----------
+    path : str or Path
+        The store directory.
+    spec : SweepSpec
+        The sweep.
+
+    Returns
+    -------
+    bool
+    """
+    return _initialised(Path(path), spec)
 
 
 def create_store(path: str | Path, spec: SweepSpec, template: "xr.Dataset",

@@ -59,6 +59,10 @@ CAPABILITIES: dict[str, str] = {
     "record-identification": "its hull, propeller and rudder coefficients are fitted by output "
                              "error to segments of measured records (the multi-record fit: "
                              "`seahelm identify mmg --free` of an mmg-ls ship)",
+    "closed-form-self-propulsion": "the propeller rps of its straight run has a closed form "
+                                   "(seahelm.vessels.mmg_four_quadrant.self_propulsion_rps), "
+                                   "which the equilibrium solvers try first "
+                                   "(seahelm.analysis.equilibria.closed_forms)",
 }
 
 

@@ -414,7 +414,8 @@ MMG = VesselModel(
     # the MMG standard method covers ahead motion: going astern marks the run diverged
     state_lower=(0.0, -np.inf, -np.inf, -np.inf, -np.inf, -np.inf),
     motion=mmg_motion,
-    capabilities=frozenset({"shallow-water", "hull-identification", "engine-estimate"}),
+    capabilities=frozenset({"shallow-water", "hull-identification", "engine-estimate",
+                            "closed-form-self-propulsion"}),
 )
 
 

@@ -62,7 +62,7 @@ import numpy as np
 from ..._validate import as_float_array
 from ...errors import ParameterError
 from ...simulation.compile_ahead import CompileAhead
-from ..constant_speed import is_constant_speed
+from ..equilibria.constant_speed import is_constant_speed
 from ..maneuvers import (
     ManeuverResult,
     crash_stop,

@@ -398,7 +398,7 @@ def _with_approach(members: list[Any], reference: list[Any]
     manoeuvres that follow), the reference ship (``reference``'s if it has an approach, else
     the first such member) and why each other member has none (by index). With no such
     member, the reference alone stands in (its values are not the ensemble's)."""
-    from ..equilibrium import EquilibriumError
+    from ..equilibria.equilibrium import EquilibriumError
     from ..maneuvers.ships import steady_approaches
 
     both = members + reference

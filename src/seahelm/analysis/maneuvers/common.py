@@ -21,9 +21,9 @@ varies"): ``ship`` (index, with the coordinate ``ship_name``), ``approach_speed`
 no batch dimension at all.
 
 Every manoeuvre starts from a steady straight approach
-(:func:`seahelm.analysis.equilibrium.approach_state` with ``trim=True``): surge at the approach
-speed, the MMG propeller at its self-propulsion rps (held constant through the manoeuvre), the
-rudder at the trim angle that keeps the yaw rate zero (0 for the KVLCC2; about −1.11° for the
+(:func:`seahelm.analysis.equilibria.equilibrium.approach_state` with ``trim=True``): surge at the
+approach speed, the MMG propeller at its self-propulsion rps (held constant through the manoeuvre),
+the rudder at the trim angle that keeps the yaw rate zero (0 for the KVLCC2; about −1.11° for the
 Mariner with its single-screw bias Y_0, N_0), heading 0 (north), position at the origin. The
 rudder is **ordered** at t = 0 to the manoeuvre's absolute angle and moves there through the
 steering gear (rate- and angle-limited servo, ``rudder-servo``), so its travel time counts.
@@ -46,7 +46,7 @@ from ...actuators.servo import RUDDER_SERVO
 from ...control.open_loop import OPEN_LOOP
 from ...errors import ParameterError, ValidityRangeWarning, deprecated_names
 from ...vessels.base import VesselModel
-from ..equilibrium import EquilibriumError
+from ..equilibria.equilibrium import EquilibriumError
 from .datasets import _indexless_dataset, _variable
 from .ships import (  # re-exported: the manoeuvres and tests import them from here
     SPEED_VALIDITY,

@@ -8,8 +8,8 @@ with residual yaw rates of opposite sign whose difference is the height of the s
 loop at δ = 0.
 
 Each run starts exactly in the steady turn
-(:func:`seahelm.analysis.equilibrium.steady_turn_state` at the approach's propeller rps — the
-end of a long turning circle) with the rudder at ±δ; at t = 0 the rudder is ordered to 0 and
+(:func:`seahelm.analysis.equilibria.equilibrium.steady_turn_state` at the approach's propeller rps —
+the end of a long turning circle) with the rudder at ±δ; at t = 0 the rudder is ordered to 0 and
 moves there through the steering gear. Metrics: the initial (steady) and residual yaw rates
 — the mean over the last 5 % of the run — whether the yaw rate had settled (its change over the
 last 10 % of the run below 1 % of the initial yaw rate), the time for the yaw rate to fall to
@@ -25,8 +25,8 @@ from typing import Any
 
 import numpy as np
 
-from ..batch_steady_turn import steady_turn_states
-from ..equilibrium import EquilibriumError
+from ..equilibria.batch_steady_turn import steady_turn_states
+from ..equilibria.equilibrium import EquilibriumError
 from .common import (
     Plan,
     check_rudder,

@@ -3,12 +3,11 @@ straight approach (with the equilibrium failures named for the user)."""
 
 from __future__ import annotations
 
-import collections
 import dataclasses
 import functools
 import math
 from collections.abc import Sequence
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 
@@ -19,8 +18,14 @@ from ...parameters import Params
 from ...registry import model_for_params
 from ...vessels.base import VesselModel
 from ...ships import Ship
-from ..constant_speed import is_constant_speed
-from ..equilibrium import (
+from ..equilibria.constant_speed import is_constant_speed
+from ..equilibria.approach import Approach  # the one Approach type; imported from here too
+from ..equilibria.approach_cache import (
+    clear_approaches,
+    steady_approach,
+    steady_approaches,
+)
+from ..equilibria.equilibrium import (
     EquilibriumError,
     straight_run_speed,
 )
@@ -278,150 +283,6 @@ def usual_time_step(ships: Sequence[Ship], speeds: Any) -> float:
 # ------------------------------------------------------------------------------------------
 # grids of runs
 # ------------------------------------------------------------------------------------------
-class Approach(NamedTuple):
-    """Steady straight approach of one ship at one speed."""
-
-    state: np.ndarray
-    rudder: float
-    rps: float | None
-    speed: float
-
-
-#: Steady approaches memoised per (model, parameter set, speed): parameter sets are frozen, so
-#: the equilibrium of a ship at a speed is computed once per process (least recently used out).
-_MEMO: "collections.OrderedDict[tuple[Any, ...], Approach]" = collections.OrderedDict()
-MEMO_SIZE = 512
-
-
-class _MemoKey:
-    """A memo key (model, parameter set, speed) hashed once: a parameter set's hash is that of
-    the tuple of all its fields (some 10 µs), and a study of 10,000 samples looked each key up
-    three times."""
-
-    __slots__ = ("key", "hash")
-
-    def __init__(self, key: tuple[Any, ...]) -> None:
-        self.key = key
-        self.hash = hash(key)
-
-    def __hash__(self) -> int:
-        return self.hash
-
-    def __eq__(self, other: object) -> bool:
-        return self is other or (isinstance(other, _MemoKey) and self.hash == other.hash
-                                 and self.key == other.key)
-
-
-#: The memo's keys by the identity of their model and parameter set (and the speed): a
-#: manoeuvre of a ship it ran before finds its key without hashing the parameter set again.
-#: Each key holds its model and parameter set, so their ids stay theirs while it is here.
-_KEYS: "collections.OrderedDict[tuple[int, int, float], _MemoKey]" = collections.OrderedDict()
-
-
-def _memo_key(model: Any, params: Any, speed: float) -> _MemoKey:
-    """The memo key of (model, parameter set, speed), the one made before for these very
-    objects if there is one."""
-    ident = (id(model), id(params), speed)
-    key = _KEYS.get(ident)
-    if key is not None and key.key[0] is model and key.key[1] is params:
-        return key
-    key = _MemoKey((model, params, speed))
-    _KEYS[ident] = key
-    if len(_KEYS) > 4 * MEMO_SIZE:
-        _KEYS.popitem(last=False)
-    return key
-
-
-def clear_approaches() -> None:
-    """Forget the memoised steady approaches (a benchmark times their computation)."""
-    _MEMO.clear()
-    _KEYS.clear()
-
-
-def steady_approaches(model: VesselModel, params: Sequence[Params],
-                      speeds: Sequence[float]) -> list[Approach | str]:
-    """The trimmed straight approaches of many (parameter set, speed) pairs of one model.
-
-    Those not memoised are solved in one batch
-    (:func:`~seahelm.analysis.batch_equilibrium.approach_states`, trim rudder included); the
-    results equal :func:`~seahelm.analysis.equilibrium.approach_state` with ``trim=True`` to
-    the solvers' tolerance.
-
-    Parameters
-    ----------
-    model : VesselModel
-        The model of every parameter set.
-    params : sequence of Params
-        One parameter set per pair.
-    speeds : sequence of float
-        Approach speed U_0 [m/s] per pair.
-
-    Returns
-    -------
-    list of Approach or str
-        Per pair, the approach, or the reason it was not found (a failure is not memoised).
-
-    Raises
-    ------
-    ParameterError
-        If a speed is not > 0 or differs from a perturbation model's nominal speed.
-    """
-    from ..batch_equilibrium import approach_states
-
-    out: list[Approach | str | None] = [None] * len(params)
-    keys = [_memo_key(model, p, float(U)) for p, U in zip(params, speeds)]
-    missing = []
-    for k, key in enumerate(keys):
-        hit = _MEMO.get(key)
-        if hit is None:
-            missing.append(k)
-        else:
-            _MEMO.move_to_end(key)
-            out[k] = hit
-    if missing:
-        todo = {}  # (one solve per distinct pair: a batch may repeat a ship)
-        for k in missing:
-            todo.setdefault(keys[k], []).append(k)
-        solved = approach_states(model, [key.key[1] for key in todo],
-                                 np.array([key.key[2] for key in todo]), trim=True)
-        has_rps = "propeller_rps" in model.input_labels
-        # (only the last MEMO_SIZE found can stay in the memo: the others are not put in)
-        found = np.flatnonzero(np.asarray(solved.status) == 0)
-        kept = int(found[-MEMO_SIZE]) if found.size > MEMO_SIZE else -1
-        for m, (key, ks) in enumerate(todo.items()):
-            if solved.status[m] != 0:
-                for k in ks:
-                    out[k] = solved.message[m]
-                continue
-            state = solved.state[m].copy()
-            state.setflags(write=False)
-            a = Approach(state, float(solved.rudder[m]),
-                         float(solved.rps[m]) if has_rps else None, key.key[2])
-            if m >= kept:
-                _MEMO[key] = a
-            for k in ks:
-                out[k] = a
-        while len(_MEMO) > MEMO_SIZE:
-            _MEMO.popitem(last=False)
-    return out  # type: ignore[return-value]
-
-
-def steady_approach(model: VesselModel, params: Params, speed: float) -> Approach:
-    """The trimmed straight approach of :func:`~seahelm.analysis.equilibrium.approach_state`.
-
-    Memoised per (model, parameter set, speed) (:func:`steady_approaches`).
-
-    Raises
-    ------
-    EquilibriumError
-        If the approach is not found (its reason as the message).
-    """
-    a = steady_approaches(model, [params], [float(speed)])[0]
-    if isinstance(a, str):
-        raise EquilibriumError(a)
-    return a
-
-
 def _identified_near(ship: Any) -> str:
     """"; its parameter set was identified near 1.18 m/s" (empty without a design speed)."""
     design = ship.approach_speed
@@ -439,9 +300,9 @@ def _straight_run_speed(ship: Any, rps: float) -> float:
 
 def yaw_lag(ship: Any) -> float:
     """The time a constant-speed model's yaw rate takes to build up [s]
-    (:meth:`~seahelm.analysis.constant_speed.ConstantSpeedPlant.lag`; T of Nomoto 1), added to
-    the default durations of the manoeuvres; 0 for a model with a surge state (whose defaults
-    stay as they were)."""
+    (:meth:`~seahelm.analysis.equilibria.constant_speed.ConstantSpeedPlant.lag`; T of Nomoto 1),
+    added to the default durations of the manoeuvres; 0 for a model with a surge state (whose
+    defaults stay as they were)."""
     if not is_constant_speed(ship.model):
         return 0.0
     return _lag(ship.model, ship.params)
@@ -449,16 +310,16 @@ def yaw_lag(ship: Any) -> float:
 
 @functools.lru_cache(maxsize=64)
 def _lag(model: VesselModel, params: Params) -> float:
-    from ..constant_speed import ConstantSpeedPlant
+    from ..equilibria.constant_speed import ConstantSpeedPlant
 
     return ConstantSpeedPlant(params, model, EquilibriumError).lag()
 
 
 def steady_yaw_rate(ship: Any, rudder: Any, approach: Approach) -> np.ndarray:
     """|r| [rad/s] of the steady turns at ``rudder`` [rad] from ``approach``
-    (:func:`~seahelm.analysis.equilibrium.steady_turn`), an error naming the approach and
+    (:func:`~seahelm.analysis.equilibria.equilibrium.steady_turn`), an error naming the approach and
     `t_final` (which skips the estimate that needs it) if there is none."""
-    from ..equilibrium import steady_turn
+    from ..equilibria.equilibrium import steady_turn
 
     try:
         return np.abs(steady_turn(ship.params, rudder, approach.rps, model=ship.model,
@@ -480,9 +341,9 @@ def steady_yaw_rates(groups: Sequence[tuple[Any, Any, Approach]]) -> list[np.nda
     """:func:`steady_yaw_rate` of many (ship, rudder angles, approach) groups in one batch.
 
     The steady turns of all groups are solved together
-    (:func:`~seahelm.analysis.batch_steady_turn.steady_turns`, the one-at-a-time
-    :func:`~seahelm.analysis.equilibrium.steady_turn` for a run that fails there), one batch
-    per model; the results equal :func:`steady_yaw_rate`'s to the solvers' tolerance.
+    (:func:`~seahelm.analysis.equilibria.batch_steady_turn.steady_turns`, the one-at-a-time
+    :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn` for a run that fails there), one
+    batch per model; the results equal :func:`steady_yaw_rate`'s to the solvers' tolerance.
 
     Parameters
     ----------
@@ -502,7 +363,7 @@ def steady_yaw_rates(groups: Sequence[tuple[Any, Any, Approach]]) -> list[np.nda
     ParameterError
         If a rudder angle is beyond a ship's steering gear, or an rps is missing or not > 0.
     """
-    from ..batch_steady_turn import steady_turns
+    from ..equilibria.batch_steady_turn import steady_turns
 
     shapes = [np.shape(d) for _, d, _ in groups]
     rates: list[np.ndarray | None] = [None] * len(groups)

@@ -14,9 +14,9 @@
     the rudder angle needed for a sequence of yaw rates. Bech's test holds the yaw rate with a
     controller and measures the mean rudder angle; here the same points are computed as the
     **equilibria** of the model at the prescribed yaw rates
-    (:func:`seahelm.analysis.equilibrium.rudder_for_yaw_rate`, continuation in r) — the limit a
-    perfect yaw-rate controller reaches, without transients or controller tuning, and including
-    the part of the curve that is unstable at fixed rudder. The loop width is exact: the
+    (:func:`seahelm.analysis.equilibria.equilibrium.rudder_for_yaw_rate`, continuation in r) — the
+    limit a perfect yaw-rate controller reaches, without transients or controller tuning, and
+    including the part of the curve that is unstable at fixed rudder. The loop width is exact: the
     rudder angles of the local extrema of δ(r) (refined on a fine grid of r around each), the
     band in which a fixed rudder angle has three steady turns. A course-stable ship has a
     monotonic δ(r) and width 0.
@@ -35,7 +35,7 @@ import numpy as np
 from ..._validate import as_float_array
 from ...errors import ParameterError
 from ...simulation.engine import check_record_memory
-from ..equilibrium import rudder_for_yaw_rate, steady_turn
+from ..equilibria.equilibrium import rudder_for_yaw_rate, steady_turn
 from .common import (
     Plan,
     check_rudder,
@@ -220,7 +220,7 @@ def spiral_loop(params: Any, yaw_rate: np.ndarray, rudder: np.ndarray, rps: floa
 
     The local maxima and minima of δ(r) (sampled at increasing ``yaw_rate``) are refined on a
     grid of ``refine`` yaw rates between their neighbours
-    (:func:`~seahelm.analysis.equilibrium.rudder_for_yaw_rate`); the loop spans from the
+    (:func:`~seahelm.analysis.equilibria.equilibrium.rudder_for_yaw_rate`); the loop spans from the
     smallest local minimum to the largest local maximum of δ. A monotonic curve has no loop:
     (0, NaN, NaN).
 

@@ -20,7 +20,7 @@ steady turn
     at the end of the run (by default after an estimated 360° heading change): turning radius
     U/|r| of the reference point, speed U and speed loss 1 − U/U_0, drift angle β, yaw rate r;
     ``steady`` says whether the yaw rate changed by less than 1 % over the last 90° of heading.
-heel (models with roll only, :func:`seahelm.analysis.heel.heel_metrics`)
+heel (models with roll only, :func:`seahelm.analysis.equilibria.heel.heel_metrics`)
     ``max_heel_angle``, the heel of largest magnitude over the run, and ``steady_heel_angle``
     at its end (signed, positive starboard down: outward heel has the yaw rate's opposite sign).
 
@@ -44,8 +44,8 @@ import numpy as np
 from numba import njit
 
 from ...errors import ParameterError
-from ..constant_speed import is_constant_speed
-from ..heel import heel_metrics
+from ..equilibria.constant_speed import is_constant_speed
+from ..equilibria.heel import heel_metrics
 from .common import (
     Plan,
     check_rudder,
@@ -62,7 +62,8 @@ from .track import distance_until, track_distance
 __all__ = ["turning_circle", "track_distance", "default_record_every", "SAMPLES_PER_LENGTH"]
 
 _DEG10 = math.radians(10.0)
-#: What the metrics of a constant-speed model (:mod:`seahelm.analysis.constant_speed`) say.
+#: What the metrics of a constant-speed model (:mod:`seahelm.analysis.equilibria.constant_speed`)
+#: say.
 CONSTANT_SPEED_NOTE = ("constant-speed model: the speed does not change in the turn, the "
                        "speed loss is not modelled")
 
@@ -107,9 +108,9 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
         of the straight run at this rps.
     t_final : float, optional
         Duration [s] (default: rudder travel time + 1.3 × ``heading_change`` / the slowest
-        steady yaw rate of the grid, from :func:`~seahelm.analysis.equilibrium.steady_turn`;
-        for a constant-speed model plus 3 × its yaw time constant, T of Nomoto 1, so that
-        the turn is steady at the end).
+        steady yaw rate of the grid, from
+        :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn`; for a constant-speed model
+        plus 3 × its yaw time constant, T of Nomoto 1, so that the turn is steady at the end).
     dt : float, optional
         Integration step [s] (default :func:`~seahelm.analysis.maneuvers.default_time_step`).
     record_dt : float, optional
@@ -163,9 +164,12 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
                     if record_dt is not None
                     or "roll_angle" in plan.model.output_labels
                     or "roll_angle" in plan.model.state_labels
-                    else default_record_every(  # (of the runs that run)
+                    else min(default_record_every(  # (of the runs that run)
                         float(dt), plan.run_lengths()[plan.run_ok],
-                        np.array([a.speed for a in approaches])[plan.run_ok]))
+                        np.array([a.speed for a in approaches])[plan.run_ok]),
+                        # (a t_final shorter than one default sample: every step; it was
+                        # "`controller_dt` = 0.25 s exceeds t_final", an option never given)
+                        max(1, int(round(float(t_final) / float(dt))))))
 
     x0 = np.stack([a.state for a in approaches])
     rudder0 = np.array([[a.rudder] for a in approaches])

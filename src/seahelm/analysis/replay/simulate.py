@@ -340,7 +340,22 @@ def _time_step(record: ManoeuvreRecord, length: float, speed: np.ndarray,
 
 def default_step(record: ManoeuvreRecord, length: float, speed: np.ndarray) -> float:
     """The replay's default integration step [s]: the record's median sampling interval, at
-    most L/(100 U_max) (a hundred steps per ship length at the record's top speed)."""
+    most L/(100 U_max) (a hundred steps per ship length at the record's top speed).
+
+    Parameters
+    ----------
+    record : ManoeuvreRecord
+        The measured record (its median sampling interval).
+    length : float
+        The ship's length L [m].
+    speed : numpy.ndarray
+        The record's speed samples [m/s] (their maximum is U_max).
+
+    Returns
+    -------
+    float
+        The step [s].
+    """
     u_max = max(float(np.max(speed)), 1e-6)
     return min(record.median_interval, length / (100.0 * u_max))
 

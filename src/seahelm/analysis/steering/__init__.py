@@ -2,7 +2,7 @@
 track autopilots designed from them.
 
 :mod:`.indices`
-    :func:`steering_indices` of a :class:`~seahelm.analysis.linearisation.LinearModel`:
+    :func:`steering_indices` of a :class:`~seahelm.analysis.equilibria.linearisation.LinearModel`:
     Nomoto's K, T_1, T_2, T_3 and T, the course-stability lever, as :class:`SteeringIndices`.
 :mod:`.autopilot_tuning`
     :func:`tune_autopilot`: linearise, take K and T, design the ``pid-heading``, ``lq-heading``

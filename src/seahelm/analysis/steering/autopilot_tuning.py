@@ -2,8 +2,8 @@
 scenario.
 
 :func:`tune_autopilot` linearises the ship at its straight run
-(:func:`~seahelm.analysis.linearisation.linearize`), takes Nomoto's K and T = T_1 + T_2 − T_3
-(:func:`~seahelm.analysis.steering.indices.steering_indices`) and designs
+(:func:`~seahelm.analysis.equilibria.linearisation.linearize`), takes Nomoto's K and
+T = T_1 + T_2 − T_3 (:func:`~seahelm.analysis.steering.indices.steering_indices`) and designs
 
 * ``"pid"``: the ``pid-heading`` gains placing the Nomoto loop's poles
   (:func:`~seahelm.control.autopilot_design.pid_pole_placement`);
@@ -425,7 +425,7 @@ def tune_autopilot(ship: Any, *, design: str = "pid", bandwidth: float = 0.05,
                                             lq_heading, pid_pole_placement,
                                             state_space_response)
     from ...ships import get_ship
-    from ..linearisation import linearize
+    from ..equilibria.linearisation import linearize
     from .indices import steering_indices
 
     if design not in DESIGNS:

@@ -1,6 +1,6 @@
 """Steering indices of a linearised ship: Nomoto K, T_1, T_2, T_3, T and course stability.
 
-From a :class:`~seahelm.analysis.linearisation.LinearModel` of the ship alone (linearised
+From a :class:`~seahelm.analysis.equilibria.linearisation.LinearModel` of the ship alone (linearised
 without its steering gear, input ``rudder_angle``), the *steering states* are the states other
 than position, heading and surge: sway and yaw rate of a 3-DOF model, yaw rate (and the
 auxiliary state) of a Nomoto model, drift angle and yaw rate of Voitkunsky's. Nomoto's (1957)
@@ -55,7 +55,7 @@ import numpy as np
 
 from ...errors import ParameterError
 from ...hydrodynamics.linear_model import NomotoConstants, nomoto_from_state_space
-from ..linearisation import LinearModel
+from ..equilibria.linearisation import LinearModel
 
 __all__ = ["SteeringIndices", "steering_indices", "NON_STEERING_STATES", "ROLL_STATES"]
 

@@ -313,7 +313,8 @@ def reduced_coefficients(params: VoitkunskyParams, branch: int = 1) -> ReducedCo
 
 
 
-#: Old names (issue 47: ``steady_turns`` was also :func:`seahelm.analysis.batch_steady_turn.
+#: Old names (issue 47: ``steady_turns`` was also
+#: :func:`seahelm.analysis.equilibria.batch_steady_turn.
 #: steady_turns`, the batched equilibria of any model).
 __getattr__ = deprecated_names(__name__, {"steady_turns": (
     __name__, "voitkunsky_turns", "seahelm.identification.reduced.turns.voitkunsky_turns")})

@@ -1,6 +1,6 @@
 """Linearisation of a vessel model (with its steering gear) at an equilibrium: A, B, C, D.
 
-:func:`linearize` finds the operating point with :mod:`seahelm.analysis.equilibrium` (the
+:func:`linearize` finds the operating point with :mod:`seahelm.analysis.equilibria.equilibrium` (the
 trimmed straight run at a speed, or the steady turn at a rudder angle) and
 :func:`linearize_at` differentiates the compiled right-hand side there::
 
@@ -67,12 +67,12 @@ from typing import Any
 
 import numpy as np
 
-from .._optional import optional_import
-from .._validate import check_positive
-from ..errors import ParameterError
-from ..parameters import Params, as_records
-from ..vessels.base import VesselModel, _batched_actuator, _param_array
-from ..numerics.nonsmooth import kinked_columns, one_sided_jacobians, side_jacobians
+from ..._optional import optional_import
+from ..._validate import check_positive
+from ...errors import ParameterError
+from ...parameters import Params, as_records
+from ...vessels.base import VesselModel, _batched_actuator, _param_array
+from ...numerics.nonsmooth import kinked_columns, one_sided_jacobians, side_jacobians
 
 __all__ = ["LinearModel", "richardson_jacobian", "linearize_at", "linearize"]
 
@@ -203,12 +203,12 @@ class LinearModel:
             x0=self.x0[i], u0=self.u0[j], y0=self.y0[k], error=err)
 
     def __repr__(self) -> str:
-        from .._repr import linear_model_summary, summary_text
+        from ..._repr import linear_model_summary, summary_text
 
         return summary_text(*linear_model_summary(self))
 
     def _repr_html_(self) -> str:
-        from .._repr import linear_model_summary, summary_html
+        from ..._repr import linear_model_summary, summary_html
 
         return summary_html(*linear_model_summary(self))
 
@@ -490,7 +490,8 @@ def linearize(ship: Any, *, speed: float | None = None, rudder: float | None = N
         perturbation or constant-speed model admits its own speed only.
     rudder : float, optional
         Rudder angle δ [rad] of a steady turn (positive to starboard); default: the trimmed
-        straight run (:func:`~seahelm.analysis.equilibrium.approach_state` with ``trim``).
+        straight run (:func:`~seahelm.analysis.equilibria.equilibrium.approach_state` with
+        ``trim``).
     rps : float, optional
         Propeller rps [1/s] of the turn for a model with a propeller (default: the
         self-propulsion rps of the straight run at ``speed``).
@@ -515,14 +516,14 @@ def linearize(ship: Any, *, speed: float | None = None, rudder: float | None = N
     EquilibriumError
         If no equilibrium is found (no straight run at that speed, no turn at that rudder).
     """
-    from ..ships import Ship, get_ship
+    from ...ships import Ship, get_ship
     from .equilibrium import approach_state, steady_turn_state
 
     if isinstance(ship, Params):
         params, gear, ship_name = ship, None, type(ship).__name__
         base = ship
         if model is None:
-            from ..registry import model_for_params
+            from ...registry import model_for_params
             model = model_for_params(type(ship))
         if model is None:
             raise ParameterError(f"no default model for {type(ship).__name__}; pass `model=`",

@@ -1,11 +1,12 @@
 """Steady turns of a whole batch of ships and rudder angles in one vectorised solve.
 
-:func:`steady_turns` is :func:`~seahelm.analysis.equilibrium.steady_turn` for many (parameter
-set, rudder angle, rps) runs of one model at once — the four zig-zag turns of every member of
-a Monte-Carlo study — with the same equations, the same continuation and the same answer to
-the solvers' tolerance (``tests/test_analysis_batch_steady_turn.py``). It solves with the
+:func:`steady_turns` is :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn` for many
+(parameter set, rudder angle, rps) runs of one model at once — the four zig-zag turns of every
+member of a Monte-Carlo study — with the same equations, the same continuation and the same answer
+to the solvers' tolerance (``tests/test_analysis_batch_steady_turn.py``). It solves with the
 machinery of :mod:`.batch_equilibrium` (the model's compiled right-hand side over all active
-runs per evaluation, :func:`~seahelm.analysis.batch_equilibrium._newton`'s damped Newton):
+runs per evaluation, :func:`~seahelm.analysis.equilibria.batch_equilibrium._newton`'s damped
+Newton):
 
 1. **straight run** at the rps (r = 0, solved for u, v, δ from (U_ref, 0, 0)), once per
    distinct (parameter set, rps): the trim of :mod:`.batch_equilibrium`;
@@ -23,12 +24,13 @@ runs per evaluation, :func:`~seahelm.analysis.batch_equilibrium._newton`'s dampe
 4. **continuation in δ** from the last good point in rudder steps of at most
    ``rudder_step`` (where δ(r) is steep, near the largest yaw rate the rudder gives).
 
-A run that fails in the batch is solved again one at a time by
-:func:`~seahelm.analysis.equilibrium.steady_turn` (``fallback=True``, the default): its result,
-or the message of its :class:`~seahelm.analysis.equilibrium.EquilibriumError`
+A run that fails in the batch is solved again one at a time by scipy's continuation
+(:mod:`seahelm.analysis.equilibria.fallback`; ``fallback=True``, the default): its result, or
+the message of its :class:`~seahelm.analysis.equilibria.equilibrium.EquilibriumError`
 (``NO_STEADY_TURN``), is the run's. Constant-speed models (:mod:`.constant_speed`, no surge
 equation; microseconds a turn) and models with a roll state (their heel is balanced in every
-evaluation, :mod:`.heel`) are solved one run after the other by the one-run code.
+evaluation, :mod:`.heel`) are solved one run after the other by that one-run code.
+:func:`~seahelm.analysis.equilibria.equilibrium.steady_turn` is this function for a batch of one.
 
 Bad arguments (a rudder angle beyond ``max_rudder``, a missing or non-positive rps) raise
 :class:`~seahelm.errors.ParameterError` for the batch, as the one-run function does.
@@ -44,18 +46,19 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import check_positive, check_range
-from ..errors import ParameterError
-from ..parameters import Params
-from ..vessels.base import VesselModel, _batched_output
+from ..._validate import check_positive, check_range
+from ...errors import ParameterError
+from ...parameters import Params
+from ...vessels.base import VesselModel, _batched_output
 from .batch_equilibrium import (
     ApproachStatus,
-    _Batch,
     _newton,
     _newton_failure,
     _trim,
 )
 from .constant_speed import is_constant_speed
+from . import fallback
+from .plant import EquilibriumError, Plant
 from .heel import heel_balance
 
 __all__ = ["TurnStatus", "BatchSteadyTurn", "steady_turns", "steady_turn_states"]
@@ -94,7 +97,7 @@ class TurnStatus(enum.IntEnum):
 class BatchSteadyTurn:
     """Steady turns of a batch of runs (arrays over ``runs``; NaN where failed).
 
-    The first six fields are those of :class:`~seahelm.analysis.equilibrium.SteadyTurn`.
+    The first six fields are those of :class:`~seahelm.analysis.equilibria.equilibrium.SteadyTurn`.
     """
 
     surge_speed: np.ndarray
@@ -135,7 +138,7 @@ def steady_turns(model: VesselModel, params: Params | Sequence[Params], rudder: 
                  fallback: bool = True) -> BatchSteadyTurn:
     """Steady turns of many (parameter set, rudder angle, rps) runs in one vectorised solve.
 
-    The batch form of :func:`~seahelm.analysis.equilibrium.steady_turn` (see the module
+    The batch form of :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn` (see the module
     docstring for the method): the same turns to the solvers' tolerance.
 
     Parameters
@@ -171,8 +174,6 @@ def steady_turns(model: VesselModel, params: Params | Sequence[Params], rudder: 
         beyond ``max_rudder``, ``rps`` is missing, not allowed or not > 0, ``rudder_step`` is
         not > 0, or the model lacks the signals :func:`steady_turn` needs.
     """
-    from .equilibrium import EquilibriumError, steady_turn
-
     plist = [params] if isinstance(params, Params) else list(params)
     delta = np.atleast_1d(np.asarray(rudder, dtype=float))
     n = max(len(plist), delta.size)
@@ -210,9 +211,8 @@ def steady_turns(model: VesselModel, params: Params | Sequence[Params], rudder: 
         todo = np.flatnonzero(out.status != TurnStatus.OK) if fallback else np.arange(0)
     for i in todo.tolist():  # one at a time: the one-run solve's result or its message
         try:
-            t = steady_turn(plist[i], float(delta[i]), None if n_rps is None else
-                            float(n_rps[i]), model=model, max_rudder=float(limit[i]),
-                            rudder_step=float(rudder_step))
+            t = _one_run_turn(model, plist[i], float(delta[i]), None if n_rps is None else
+                              float(n_rps[i]), float(limit[i]), float(rudder_step))[0]
         except EquilibriumError as exc:
             text = str(exc)
             out.fail(np.array([i]), TurnStatus.NO_STEADY_TURN, lambda _i: text, force=True)
@@ -229,8 +229,8 @@ def steady_turn_states(model: VesselModel, params: Params | Sequence[Params], ru
                        ) -> tuple[np.ndarray, BatchSteadyTurn]:
     """State vectors of the steady turns of a batch (e.g. the starts of pull-outs).
 
-    The batch form of :func:`~seahelm.analysis.equilibrium.steady_turn_state` at heading 0:
-    the turns of :func:`steady_turns`, as states at the origin; a constant-speed model or a
+    The batch form of :func:`~seahelm.analysis.equilibria.equilibrium.steady_turn_state` at heading
+    0: the turns of :func:`steady_turns`, as states at the origin; a constant-speed model or a
     model with roll is solved one run after the other by ``steady_turn_state`` itself.
 
     Parameters
@@ -257,8 +257,6 @@ def steady_turn_states(model: VesselModel, params: Params | Sequence[Params], ru
     ParameterError
         As :func:`steady_turns`.
     """
-    from .equilibrium import EquilibriumError, steady_turn_state
-
     turns = steady_turns(model, params, rudder, rps, max_rudder=max_rudder)
     n = turns.n_runs
     states = np.full((n, model.n_states), np.nan)
@@ -269,9 +267,9 @@ def steady_turn_states(model: VesselModel, params: Params | Sequence[Params], ru
         limit = _per_run("max_rudder", max_rudder, n)
         for i in np.flatnonzero(turns.ok).tolist():
             try:
-                states[i] = steady_turn_state(
-                    plist[i], float(turns.rudder[i]), None if n_rps is None
-                    else float(n_rps[i]), model=model, max_rudder=float(limit[i])).state
+                states[i] = _one_run_turn(model, plist[i], float(turns.rudder[i]),
+                                          None if n_rps is None else float(n_rps[i]),
+                                          float(limit[i]), math.radians(2.5))[1]
             except EquilibriumError:  # pragma: no cover - its steady turn was found
                 continue
         return states, turns
@@ -288,6 +286,20 @@ def steady_turn_states(model: VesselModel, params: Params | Sequence[Params], ru
     states[ok, model.state_index("sway_speed")] = turns.sway_speed[ok]
     states[ok, model.state_index("yaw_rate")] = turns.yaw_rate[ok]
     return states, turns
+
+
+def _one_run_turn(model: VesselModel, params: Params, delta: float, rps: float | None,
+                  max_rudder: float, rudder_step: float) -> tuple[np.ndarray, np.ndarray]:
+    """One run's steady turn by the one-run code (:mod:`.fallback`): its
+    :class:`~seahelm.analysis.equilibria.equilibrium.SteadyTurn` fields and its state at the origin,
+    heading 0 (heel balanced for a model with roll), or its EquilibriumError."""
+    cs = fallback.constant_speed_plant(params, model, rps)
+    if cs is not None:
+        fields, steering = cs.steady_turns(delta, max_rudder, rudder_step)
+        return fields, cs.state(steering, 0.0)
+    plant = Plant(model, [params])
+    f = fallback.turn_fields(plant, np.array([delta]), rps, rudder_step)[:, 0]
+    return f, plant.state(f[0], f[1], f[2], 0.0, plant.inputs(delta, rps))
 
 
 def _per_run(name: str, value: Any, n: int) -> np.ndarray:
@@ -346,7 +358,7 @@ def _solve(model: VesselModel, plist: list[Params], delta: np.ndarray,
     # 1. the straight run, once per distinct (parameter set, rps)
     rps_list = [None] * n if n_rps is None else n_rps.tolist()
     plant, members = _distinct([(id(p), r) for p, r in zip(plist, rps_list)])
-    b = _Batch(model, [plist[i] for i in members])
+    b = Plant(model, [plist[i] for i in members])
     rps_p = None if n_rps is None else n_rps[members]
     n_p = len(members)
     p_status = np.zeros(n_p, dtype=np.int64)
@@ -386,14 +398,14 @@ class _Scales:
     """The one-run solve's scaling: unknowns (u, v) by U_ref, r by U_ref/L, δ by 1; the
     accelerations by (1, 1, 1/L) U_ref²/L — per plant."""
 
-    def __init__(self, b: _Batch) -> None:
+    def __init__(self, b: Plant) -> None:
         self.speed = b.u_ref
         self.rate = b.u_ref / b.length
         self.acc = (np.stack([np.ones_like(b.length), np.ones_like(b.length), 1.0 / b.length],
                              axis=1) * (b.u_ref ** 2 / b.length)[:, None])
 
 
-def _continue_in_r(b: _Batch, s: _Scales, plant: np.ndarray, trim: np.ndarray,
+def _continue_in_r(b: Plant, s: _Scales, plant: np.ndarray, trim: np.ndarray,
                    sign: np.ndarray, delta: np.ndarray, runs: np.ndarray,
                    rps_p: np.ndarray | None, rudder_step: float, max_iterations: int,
                    out: _Out) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
@@ -456,7 +468,7 @@ def _continue_in_r(b: _Batch, s: _Scales, plant: np.ndarray, trim: np.ndarray,
             {k: np.array(v) for k, v in switch.items()})
 
 
-def _residual(b: _Batch, s: _Scales, rps_p: np.ndarray | None, plants: np.ndarray, *,
+def _residual(b: Plant, s: _Scales, rps_p: np.ndarray | None, plants: np.ndarray, *,
               fixed_r: np.ndarray | None = None, fixed_rudder: np.ndarray | None = None
               ) -> Any:
     """The scaled residual F(j, z) of the rows j of a solve whose row j is a run of plant
@@ -503,7 +515,7 @@ def _record(runs: np.ndarray, result: Any, F: Any, delta_of: Any, plant: np.ndar
     return result.code == ApproachStatus.OK
 
 
-def _turn_at_rudder(b: _Batch, s: _Scales, plant: np.ndarray, delta: np.ndarray,
+def _turn_at_rudder(b: Plant, s: _Scales, plant: np.ndarray, delta: np.ndarray,
                     rps_p: np.ndarray | None, polish: dict[str, np.ndarray],
                     max_iterations: int, out: _Out, sol: np.ndarray) -> None:
     """Stage 3: (u, v, r) at each run's δ from the point interpolated in its bracket."""
@@ -534,7 +546,7 @@ def _turn_at_rudder(b: _Batch, s: _Scales, plant: np.ndarray, delta: np.ndarray,
     sol[runs[keep]] = y[keep]
 
 
-def _continue_in_rudder(b: _Batch, s: _Scales, plant: np.ndarray, delta: np.ndarray,
+def _continue_in_rudder(b: Plant, s: _Scales, plant: np.ndarray, delta: np.ndarray,
                         rps_p: np.ndarray | None, switch: dict[str, np.ndarray],
                         rudder_step: float, max_iterations: int, out: _Out,
                         sol: np.ndarray) -> None:
@@ -561,7 +573,7 @@ def _continue_in_rudder(b: _Batch, s: _Scales, plant: np.ndarray, delta: np.ndar
     sol[runs[alive]] = y[alive]
 
 
-def _outputs(b: _Batch, plant: np.ndarray, ok: np.ndarray, delta: np.ndarray,
+def _outputs(b: Plant, plant: np.ndarray, ok: np.ndarray, delta: np.ndarray,
              rps_p: np.ndarray | None, sol: np.ndarray, out: _Out) -> None:
     """The SteadyTurn fields of the runs ``ok`` from the model's outputs."""
     if not ok.size:

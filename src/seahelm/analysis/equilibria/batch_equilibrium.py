@@ -1,14 +1,16 @@
 """Steady straight approaches of a whole batch of parameter sets in one vectorised solve.
 
-:func:`approach_states` is :func:`~seahelm.analysis.equilibrium.approach_state` (with
+:func:`approach_states` is :func:`~seahelm.analysis.equilibria.equilibrium.approach_state` (with
 ``trim=True`` by default) for many parameter sets of one model at once — a Monte-Carlo
 study's ships, or one ship at many speeds. Each run has two stages, solved for all runs
 together with the model's own compiled right-hand side (one compiled loop over the
 still-active runs per evaluation, each run's parameter record read in place):
 
-1. **self-propulsion rps** (models with a ``propeller_rps`` input): the zero of the surge
+1. **self-propulsion rps** (models with a ``propeller_rps`` input): the closed form where
+   the model declares one (:mod:`.closed_forms`; the MMG model) and its right-hand side
+   vanishes there; otherwise the zero of the surge
    acceleration f(n) at u = U_0, v = r = δ = 0, bracketed from n = 0 upwards by doubling (as
-   :func:`~seahelm.analysis.equilibrium.self_propulsion_rps`), then a safeguarded Newton
+   :func:`~seahelm.analysis.equilibria.equilibrium.self_propulsion_rps`), then a safeguarded Newton
    iteration (forward-difference derivative; bisection whenever the step leaves the bracket)
    down to |Δn| ≤ 10⁻¹⁴ + 4 ε |n|, brentq's tolerance in the one-run solve;
 2. **trim** (``trim=True``): u̇ = v̇ = ṙ = 0 with r = 0 solved for (u, v, δ) at that rps by
@@ -32,28 +34,29 @@ right-hand side, a singular Jacobian, a line search without decrease, too many i
 Bad arguments (a speed ≤ 0, a perturbation model at another speed than its own) raise
 :class:`~seahelm.errors.ParameterError` as the one-run functions do.
 
-Constant-speed models (:mod:`seahelm.analysis.constant_speed`) have no surge equation; their
-approaches are solved one after the other by the one-run code (they cost microseconds).
+Constant-speed models (:mod:`seahelm.analysis.equilibria.constant_speed`) have no surge equation;
+their approaches are solved one after the other by the one-run code (they cost microseconds).
 """
 
 from __future__ import annotations
 
-import dataclasses
-import enum
 import math
 from collections.abc import Callable, Sequence
 from typing import Any, NamedTuple
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..parameters import Params, as_records, stack_params
-from ..vessels.base import VesselModel, _batched_indexed_rhs, _batched_output
+from ...errors import ParameterError
+from ...parameters import Params
+from ...vessels.base import VesselModel, _batched_output
 from .constant_speed import is_constant_speed
+from .approach import ApproachStatus, BatchApproach
+from . import closed_forms, fallback
+from .plant import EquilibriumError, Plant
 
 __all__ = ["ApproachStatus", "BatchApproach", "approach_states"]
 
-#: Accepted scaled residual ‖F‖∞ (as :meth:`seahelm.analysis.equilibrium._Plant.solve`).
+#: Accepted scaled residual ‖F‖∞ (as the one-run solve, :func:`.fallback.solve`).
 RESIDUAL_TOL = 1e-9
 #: Relative Newton step below which the trim has converged.
 STEP_TOL = 1e-14
@@ -61,130 +64,13 @@ STEP_TOL = 1e-14
 RPS_XTOL, RPS_RTOL = 1e-14, 4 * np.finfo(float).eps
 
 
-class ApproachStatus(enum.IntEnum):
-    """Outcome of one run's approach (0 is success)."""
-
-    OK = 0
-    NO_SELF_PROPULSION = 1
-    """The surge force is not negative with the propeller stopped."""
-    RPS_OUT_OF_RANGE = 2
-    """No rps up to ``max_rps`` gives zero surge force."""
-    NOT_FINITE = 3
-    """The right-hand side was NaN or infinite."""
-    SINGULAR = 4
-    """The Jacobian of the trim equations is singular."""
-    LINE_SEARCH = 5
-    """The line search found no decrease of the residual."""
-    MAX_ITERATIONS = 6
-    """Not converged within ``max_iterations``."""
-    NO_EQUILIBRIUM = 7
-    """A constant-speed model's one-run solve raised (its message is kept)."""
-
-
-@dataclasses.dataclass(frozen=True)
-class BatchApproach:
-    """Steady straight approaches of a batch of runs (arrays over ``runs``).
-
-    A failed run keeps NaN in its state, rudder, rps and drift angle; ``status`` and
-    ``message`` say why.
-    """
-
-    state: np.ndarray
-    """States (runs, n_states) in the model's ``state_labels`` order (SI units, radians)."""
-    rudder: np.ndarray
-    """Trim rudder angle δ [rad] (0 without ``trim``)."""
-    rps: np.ndarray
-    """Self-propulsion propeller rps [1/s] (NaN for a model without a propeller input)."""
-    speed: np.ndarray
-    """Approach speed U_0 [m/s]."""
-    drift_angle: np.ndarray
-    """Drift angle β of the approach [rad] (0 for a ship symmetric at rest)."""
-    status: np.ndarray
-    """:class:`ApproachStatus` per run (int)."""
-    message: tuple[str, ...]
-    """'ok' or the reason of the failure, per run."""
-    iterations: np.ndarray
-    """Newton iterations of the trim (rps iterations for an untrimmed approach)."""
-    residual: np.ndarray
-    """Final scaled residual ‖F‖∞ of the trim (of the surge equation without trim)."""
-
-    @property
-    def ok(self) -> np.ndarray:
-        """Boolean mask of the runs whose approach was found."""
-        return self.status == ApproachStatus.OK
-
-    @property
-    def n_runs(self) -> int:
-        """Number of runs."""
-        return int(self.status.size)
-
-
-class _Batch:
-    """One model and the parameter rows of a batch, with the signal indices the solve needs
-    (the batch form of :class:`~seahelm.analysis.equilibrium._Plant`)."""
-
-    def __init__(self, model: VesselModel, params: Sequence[Params]) -> None:
-        self.model = model
-        cls = type(params[0])
-        self.records = as_records(stack_params(params, model.params_type), cls)
-        states = model.state_labels
-        if "surge_speed" in states:
-            self.i_u = states.index("surge_speed")
-            self.u_offset = np.zeros(len(params))
-        elif "surge_perturbation" in states and "nominal_speed" in cls.field_names():
-            self.i_u = states.index("surge_perturbation")
-            self.u_offset = np.array(self.records["nominal_speed"], dtype=float)
-        else:
-            raise ParameterError(
-                f"model '{model.name}' needs a state 'surge_speed' (or 'surge_perturbation' "
-                f"with a parameter 'nominal_speed'); states: {', '.join(states)}")
-        self.i_v = model.state_index("sway_speed")
-        self.i_r = model.state_index("yaw_rate")
-        self.i_psi = states.index("heading") if "heading" in states else None
-        if "rudder_angle" not in model.input_labels:
-            raise ParameterError(f"model '{model.name}' has no input 'rudder_angle'")
-        self.j_delta = model.input_labels.index("rudder_angle")
-        self.j_rps = (model.input_labels.index("propeller_rps")
-                      if "propeller_rps" in model.input_labels else None)
-        names = cls.field_names()
-        self.length = np.array(self.records["length"], dtype=float)
-        ref = next((n for n in ("approach_speed", "nominal_speed") if n in names), None)
-        self.u_ref = (np.array(self.records[ref], dtype=float) if ref is not None
-                      else np.ones(len(params)))
-
-    def accelerations(self, rows: np.ndarray, surge: np.ndarray, v: np.ndarray,
-                      rudder: np.ndarray, rps: np.ndarray | None,
-                      r: np.ndarray | None = None) -> np.ndarray:
-        """(u̇, v̇, ṙ) of runs ``rows`` (a run may repeat) at yaw rate ``r`` (default 0):
-        (len(rows), 3)."""
-        m = self.model
-        k = rows.size
-        x = np.zeros((k, m.n_states))
-        x[:, self.i_u] = surge - self.u_offset[rows]
-        x[:, self.i_v] = v
-        if r is not None:
-            x[:, self.i_r] = r
-        u = np.zeros((k, m.n_inputs))
-        u[:, self.j_delta] = rudder
-        if self.j_rps is not None and rps is not None:
-            u[:, self.j_rps] = rps
-        d = np.zeros((k, m.n_disturbances))
-        out = np.empty_like(x)
-        with np.errstate(all="ignore"):
-            # each run's parameter record read in place (copying the records of the rows
-            # would cost several times the right-hand side itself)
-            _batched_indexed_rhs(m.rhs, 0.0, x, u, d, self.records,
-                                 np.ascontiguousarray(rows, dtype=np.int64), out)
-        return out[:, [self.i_u, self.i_v, self.i_r]]
-
-
 def approach_states(model: VesselModel, params: Params | Sequence[Params], speed: Any = None,
                     *, trim: bool = True, heading: float = 0.0, max_rps: float = 1000.0,
                     max_iterations: int = 50) -> BatchApproach:
     """Steady straight approaches of many parameter sets in one vectorised solve.
 
-    The batch form of :func:`~seahelm.analysis.equilibrium.approach_state` (see the module
-    docstring for the method): the same results to the solvers' tolerance (within 10⁻¹¹
+    The batch form of :func:`~seahelm.analysis.equilibria.equilibrium.approach_state` (see the
+    module docstring for the method): the same results to the solvers' tolerance (within 10⁻¹¹
     relative on the catalog ships and Monte-Carlo sets, 10⁻¹⁵ to 10⁻¹³ measured; see
     ``tests/test_analysis_batch_equilibrium.py``).
 
@@ -235,7 +121,7 @@ def approach_states(model: VesselModel, params: Params | Sequence[Params], speed
                              field="max_iterations", value=max_iterations)
     if is_constant_speed(model):
         return _constant_speed(model, plist, speed, trim, float(heading))
-    b = _Batch(model, plist)
+    b = Plant(model, plist)
     U0 = _speeds(b, speed, n)
     status = np.zeros(n, dtype=np.int64)
     reason: dict[int, str] = {}
@@ -267,7 +153,7 @@ def approach_states(model: VesselModel, params: Params | Sequence[Params], speed
                          residual=residual)
 
 
-def _speeds(b: _Batch, speed: Any, n: int) -> np.ndarray:
+def _speeds(b: Plant, speed: Any, n: int) -> np.ndarray:
     """Each run's approach speed, validated as the one-run solve validates it."""
     if speed is None:
         U0 = b.u_ref.copy()
@@ -304,7 +190,7 @@ def _fail(status: np.ndarray, reason: dict[int, str], rows: np.ndarray, code: Ap
             reason[i] = text(i)
 
 
-def _self_propulsion(b: _Batch, U0: np.ndarray, max_rps: float, max_iterations: int,
+def _self_propulsion(b: Plant, U0: np.ndarray, max_rps: float, max_iterations: int,
                      status: np.ndarray, reason: dict[int, str], out: np.ndarray
                      ) -> tuple[np.ndarray, np.ndarray]:
     """Stage 1: the self-propulsion rps of every run into ``out`` (failures recorded)."""
@@ -323,10 +209,21 @@ def _self_propulsion(b: _Batch, U0: np.ndarray, max_rps: float, max_iterations: 
     _fail(status, reason, every[f_lo >= 0.0], ApproachStatus.NO_SELF_PROPULSION,
           lambda i: f"at `speed` = {float(U0[i])!r} [m/s] the surge force is not negative with the "
                     "propeller stopped: no self-propulsion point")
+    # a closed form the model declares, where its right-hand side vanishes (closed_forms)
+    closed = closed_forms.self_propulsion_rps(b, U0)
+    take = every[(status == ApproachStatus.OK) & np.isfinite(closed) & (closed > 0.0)
+                 & (closed <= max_rps)]
+    solved = np.zeros(n, dtype=bool)
+    fx = np.full(n, np.nan)
+    if take.size:
+        fc = f(take, closed[take])
+        good = np.abs(fc) * b.length[take] / b.u_ref[take] ** 2 <= closed_forms.RESIDUAL_TOL
+        solved[take[good]] = True
+        fx[take[good]] = fc[good]
     lo = np.zeros(n)
     hi = np.ones(n)
     f_hi = np.full(n, np.nan)
-    active = every[status == ApproachStatus.OK]
+    active = every[(status == ApproachStatus.OK) & ~solved]
     while active.size:  # bracket: double hi until the propeller pushes
         f_hi[active] = f(active, hi[active])
         nan = active[~np.isfinite(f_hi[active])]
@@ -339,12 +236,12 @@ def _self_propulsion(b: _Batch, U0: np.ndarray, max_rps: float, max_iterations: 
                         f"at `speed` = {float(U0[i])!r} [m/s]")
         active = short[status[short] == ApproachStatus.OK]
         hi[active] = np.minimum(2.0 * hi[active], max_rps)
-    active = every[status == ApproachStatus.OK]
+    active = every[(status == ApproachStatus.OK) & ~solved]
     # start from the secant of the bracket, then Newton with bisection as a safeguard
     with np.errstate(all="ignore"):
         x = lo - f_lo * (hi - lo) / (f_hi - f_lo)
     x = np.where(np.isfinite(x) & (x > lo) & (x < hi), x, 0.5 * (lo + hi))
-    fx = np.full(n, np.nan)
+    x[solved] = closed[solved]
     for _ in range(4 * max_iterations):
         if not active.size:
             break
@@ -481,7 +378,7 @@ def _newton(F: Callable[[np.ndarray, np.ndarray], np.ndarray], rows: np.ndarray,
     return _Newton(z, Fz, code, exhausted, iterations)
 
 
-def _trim(b: _Batch, surge: np.ndarray, v: np.ndarray, rudder: np.ndarray,
+def _trim(b: Plant, surge: np.ndarray, v: np.ndarray, rudder: np.ndarray,
           rps: np.ndarray | None, max_iterations: int, status: np.ndarray,
           reason: dict[int, str], iterations: np.ndarray, residual: np.ndarray) -> None:
     """Stage 2: (surge, v, rudder) with u̇ = v̇ = ṙ = 0 at r = 0, in place."""
@@ -536,7 +433,7 @@ def _newton_failure(what: str, code: int, exhausted: bool, res: float, max_itera
     return f"{what} (residual {res:.3g} > {RESIDUAL_TOL:g})"
 
 
-def _drift(b: _Batch, state: np.ndarray, rudder: np.ndarray, rps: np.ndarray,
+def _drift(b: Plant, state: np.ndarray, rudder: np.ndarray, rps: np.ndarray,
            surge: np.ndarray, v: np.ndarray) -> np.ndarray:
     """The model's ``drift_angle`` output (β = atan2(−v, u) without one); NaN where failed."""
     m = b.model
@@ -562,8 +459,6 @@ def _drift(b: _Batch, state: np.ndarray, rudder: np.ndarray, rps: np.ndarray,
 def _constant_speed(model: VesselModel, plist: list[Params], speed: Any, trim: bool,
                     heading: float) -> BatchApproach:
     """A constant-speed model's approaches, one run after the other (see the module)."""
-    from .equilibrium import EquilibriumError, approach_state
-
     n = len(plist)
     speeds = (np.full(n, np.nan) if speed is None
               else np.broadcast_to(np.asarray(speed, dtype=float), (n,)))
@@ -573,14 +468,16 @@ def _constant_speed(model: VesselModel, plist: list[Params], speed: Any, trim: b
     status = np.zeros(n, dtype=np.int64)
     messages = []
     for i, p in enumerate(plist):
+        cs = fallback.constant_speed_plant(p, model)
+        if cs is None:  # (not the model's parameter type: the plant says so)
+            Plant(model, [p])
         try:
-            a = approach_state(p, None if speed is None else float(speeds[i]), model=model,
-                               heading=heading, trim=trim)
+            state[i], rudder[i] = cs.approach(None if speed is None else float(speeds[i]),
+                                              heading=heading, trim=trim)
         except EquilibriumError as exc:
             status[i] = ApproachStatus.NO_EQUILIBRIUM
             messages.append(str(exc))
             continue
-        state[i], rudder[i] = a.state, a.inputs["rudder_angle"]
         messages.append("ok")
     drift = np.where(status == 0, 0.0, np.nan)
     if "drift_angle" in model.state_labels:

@@ -27,8 +27,8 @@ identified at one speed: K ∝ U/L and T ∝ L/U for given non-dimensional K', T
 approach at another speed is refused rather than run with coefficients of the wrong speed.
 The speed does not change in a turn: these models have no speed loss.
 
-:mod:`seahelm.analysis.equilibrium` hands such a model to this module; the manoeuvre library
-then runs on it unchanged.
+:mod:`seahelm.analysis.equilibria.equilibrium` hands such a model to this module; the manoeuvre
+library then runs on it unchanged.
 """
 
 from __future__ import annotations
@@ -38,45 +38,19 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_float_array, check_finite, check_positive, check_range
-from ..errors import ParameterError
-from ..parameters import Params
-from ..vessels.base import VesselModel
+from ..._validate import as_float_array, check_finite, check_positive, check_range
+from ...errors import ParameterError
+from ...parameters import Params
+from ...vessels.base import VesselModel
+from .plant import POSITION_STATES, SPEED_FIELD, Plant, is_constant_speed
 
+#: (is_constant_speed, SPEED_FIELD and POSITION_STATES are the plant's, re-exported here)
 __all__ = ["is_constant_speed", "ConstantSpeedPlant", "SPEED_FIELD", "POSITION_STATES"]
 
-#: The parameter holding a constant-speed model's speed U [m/s].
-SPEED_FIELD = "speed"
-#: States that move freely in an equilibrium (the rest are steering states).
-POSITION_STATES = ("north", "east", "heading")
-_SURGE_STATES = ("surge_speed", "surge_perturbation")
-
-
-def is_constant_speed(model: VesselModel) -> bool:
-    """Whether ``model`` is a constant-speed steering model (see the module docstring).
-
-    Parameters
-    ----------
-    model : VesselModel
-
-    Returns
-    -------
-    bool
-    """
-    states = set(model.state_labels)
-    return (not states & set(_SURGE_STATES)
-            and {"north", "east", "heading", "yaw_rate"} <= states
-            and "rudder_angle" in model.input_labels
-            and SPEED_FIELD in model.params_type.field_names())
-
-
-def _scale(unit: str, rate: float) -> float:
-    """Typical size of a steering state or its derivative of ``unit`` (rate = U/L [1/s])."""
-    return {"rad": 1.0, "rad/s": rate, "rad/s²": rate * rate, "m/s": 1.0}.get(unit, 1.0)
-
-
 class ConstantSpeedPlant:
-    """A constant-speed model and one parameter set, with its steering states' indices.
+    """The equilibria of a constant-speed model and one parameter set: the steering-state
+    solves on the surge-held mode of the one :class:`~seahelm.analysis.equilibria.plant.Plant`
+    (which resolves the heading, yaw rate and steering states, the speed and their scales).
 
     Parameters
     ----------
@@ -96,15 +70,13 @@ class ConstantSpeedPlant:
         if not is_constant_speed(model):  # pragma: no cover - the callers check
             raise ParameterError(f"model '{model.name}' is not a constant-speed model")
         self.params, self.model = params, model
-        states = model.state_labels
-        self.i_psi = states.index("heading")
-        self.i_r = states.index("yaw_rate")
-        self.steering = [k for k, s in enumerate(states) if s not in POSITION_STATES]
-        self.j_delta = model.input_labels.index("rudder_angle")
-        self.speed = float(getattr(params, SPEED_FIELD))
-        length = float(getattr(params, "length", math.nan))
-        self.rate = self.speed / length if length > 0 and self.speed > 0 else 1.0
-        self.scale = np.array([_scale(model.state_units[k], self.rate) for k in self.steering])
+        #: the one plant's surge-held mode resolves the signals (a batch of one)
+        self.plant = plant = Plant(model, [params])
+        self.i_psi, self.i_r, self.j_delta = plant.i_psi, plant.i_r, plant.j_delta
+        self.steering = plant.steering
+        self.speed = float(plant.speed[0])
+        self.rate = float(plant.rate[0])
+        self.scale = plant.steering_scale[0]
 
     # -- the model's right-hand side -----------------------------------------------------
     def state(self, steering: np.ndarray, heading: float = 0.0) -> np.ndarray:
@@ -344,7 +316,7 @@ class ConstantSpeedPlant:
         Returns
         -------
         tuple of numpy.ndarray
-            The fields of :class:`~seahelm.analysis.equilibrium.SteadyTurn`, shape
+            The fields of :class:`~seahelm.analysis.equilibria.equilibrium.SteadyTurn`, shape
             (6, *rudder.shape), and the steering states, shape (states, *rudder.shape).
         """
         check_positive("max_rudder", max_rudder, "rad")

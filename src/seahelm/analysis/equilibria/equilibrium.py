@@ -49,13 +49,12 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from .._validate import as_float_array, check_finite, check_positive, check_range
-from ..errors import ParameterError
-from ..parameters import Params
-from ..registry import model_for_params
-from ..vessels.base import VesselModel
-from .constant_speed import ConstantSpeedPlant, is_constant_speed
-from .heel import heel_balance
+from ..._validate import as_float_array, check_finite, check_positive, check_range
+from ...errors import ParameterError
+from ...vessels.base import VesselModel
+from . import fallback
+from .approach import Approach
+from .plant import EquilibriumError, Plant
 
 # scipy.optimize (0.2 s to import) is imported inside the functions that use it
 
@@ -72,13 +71,6 @@ __all__ = [
     "approach_state",
 ]
 
-
-
-class EquilibriumError(ParameterError):
-    """The equilibrium equations have no solution for the given arguments (or it was not found).
-
-    A :class:`~seahelm.errors.ParameterError` (so a ``ValueError``): it names the argument it
-    concerns in its ``field`` where there is one."""
 
 
 class SteadyTurn(NamedTuple):
@@ -115,142 +107,12 @@ class SpiralCurve(NamedTuple):
     """Drift angle β [rad]."""
 
 
-class Approach(NamedTuple):
-    """Initial state and constant inputs of a steady straight approach."""
-
-    state: np.ndarray
-    """State vector in the model's ``state_labels`` order (SI units, radians)."""
-    inputs: dict[str, float]
-    """Model inputs by name, e.g. ``{"rudder_angle": 0.0, "propeller_rps": 11.85}``."""
-
-
 # ------------------------------------------------------------------------------------------
-# plumbing: which model, which signals
+# plumbing: which model, which signals (the one Plant of .equilibria.plant, a batch of one)
 # ------------------------------------------------------------------------------------------
-def _resolve_params(value: Any) -> tuple[Params, VesselModel | None]:
-    """The parameter set (and the model, for a ship) of a parameter set, ship or ship name."""
-    if isinstance(value, Params):
-        return value, None
-    from ..ships import Ship, get_ship
-
-    if isinstance(value, (Ship, str)) or hasattr(value, "__fspath__"):
-        ship = get_ship(value)
-        return ship.params, ship.model
-    raise ParameterError(
-        f"expected a parameter set, a ship or a catalog name, got {type(value).__name__}")
-
-
-class _Plant:
-    """A model and one parameter set, with the indices of the signals the solvers need."""
-
-    def __init__(self, params: Any, model: VesselModel | None) -> None:
-        self.params, ship_model = _resolve_params(params)
-        if model is None:
-            model = ship_model or model_for_params(type(self.params))
-            if model is None:
-                raise ParameterError(
-                    f"no default model for {type(self.params).__name__}; pass `model=` "
-                    "(a default exists for a parameter type only one registered model takes)")
-        if not isinstance(self.params, model.params_type):
-            raise ParameterError(
-                f"model '{model.name}' takes {model.params_type.__name__}, got "
-                f"{type(self.params).__name__}")
-        self.model = model
-        states = model.state_labels
-        if "surge_speed" in states:
-            self.i_u, self.u_offset = states.index("surge_speed"), 0.0
-        elif "surge_perturbation" in states and hasattr(self.params, "nominal_speed"):
-            self.i_u = states.index("surge_perturbation")
-            self.u_offset = float(self.params.nominal_speed)
-        else:
-            raise ParameterError(
-                f"model '{model.name}' needs a state 'surge_speed' (or 'surge_perturbation' "
-                f"with a parameter 'nominal_speed'); states: {', '.join(states)}")
-        self.i_v = model.state_index("sway_speed")
-        self.i_r = model.state_index("yaw_rate")
-        self.i_psi = states.index("heading") if "heading" in states else None
-        if "rudder_angle" not in model.input_labels:
-            raise ParameterError(f"model '{model.name}' has no input 'rudder_angle'")
-        self.j_delta = model.input_labels.index("rudder_angle")
-        self.j_rps = (model.input_labels.index("propeller_rps")
-                      if "propeller_rps" in model.input_labels else None)
-        self.length = float(self.params.length)
-        self.u_ref = float(getattr(self.params, "approach_speed",
-                                   getattr(self.params, "nominal_speed", 1.0)))
-        self.heel = heel_balance(model)  # a model with roll: its steady heel (.heel)
-
-    def state(self, surge: float, v: float, r: float, heading: float = 0.0,
-              inputs: np.ndarray | None = None) -> np.ndarray:
-        x = np.zeros(self.model.n_states)
-        x[self.i_u] = surge - self.u_offset
-        x[self.i_v] = v
-        x[self.i_r] = r
-        if self.i_psi is not None:
-            x[self.i_psi] = heading
-        if self.heel is not None and inputs is not None:
-            x = self.heel(x, inputs, self.params)
-        return x
-
-    def inputs(self, rudder: float, rps: float | None) -> np.ndarray:
-        u = np.zeros(self.model.n_inputs)
-        u[self.j_delta] = rudder
-        if self.j_rps is not None:
-            u[self.j_rps] = 0.0 if rps is None else rps
-        return u
-
-    def accelerations(self, surge: float, v: float, r: float, rudder: float,
-                      rps: float | None) -> np.ndarray:
-        u = self.inputs(rudder, rps)
-        dx = self.model.derivative(0.0, self.state(surge, v, r, inputs=u), u, self.params)
-        return dx[[self.i_u, self.i_v, self.i_r]]
-
-    def solve(self, fixed: dict[str, float], unknowns: tuple[str, ...], guess: np.ndarray,
-              rps: float | None) -> np.ndarray:
-        """u̇ = v̇ = ṙ = 0 for three of (surge, v, r, rudder), the others ``fixed``."""
-        from scipy.optimize import root
-
-        scale = {"surge": self.u_ref, "v": self.u_ref, "r": self.u_ref / self.length,
-                 "rudder": 1.0}
-        acc_scale = np.array([1.0, 1.0, 1.0 / self.length]) * self.u_ref ** 2 / self.length
-        s = np.array([scale[k] for k in unknowns])
-
-        def residual(z: np.ndarray) -> np.ndarray:
-            values = dict(fixed)
-            values.update(zip(unknowns, z * s))
-            acc = self.accelerations(values["surge"], values["v"], values["r"],
-                                     values["rudder"], rps)
-            return acc / acc_scale
-
-        sol = root(residual, np.asarray(guess, dtype=float) / s, method="hybr",
-                   options={"xtol": 1e-13})
-        res = residual(sol.x)
-        if not np.all(np.isfinite(res)) or np.max(np.abs(res)) > 1e-9:
-            raise EquilibriumError(
-                f"no equilibrium found for {', '.join(unknowns)} with "
-                + ", ".join(f"{k} = {v:.6g}" for k, v in fixed.items())
-                + (f", rps = {rps:.6g} [1/s]" if rps is not None else "")
-                + f" ({sol.message.strip()}; residual {np.max(np.abs(res)):.3g})")
-        return sol.x * s
-
-
-def _constant_speed(value: Any, model: VesselModel | None,
-                    rps: Any = None) -> ConstantSpeedPlant | None:
-    """The plant of a constant-speed model (:mod:`.constant_speed`), None for another model
-    (whose :class:`_Plant` then says what it lacks)."""
-    params, ship_model = _resolve_params(value)
-    model = model or ship_model or model_for_params(type(params))
-    if model is None or not is_constant_speed(model) or not isinstance(params,
-                                                                      model.params_type):
-        return None
-    if rps is not None:
-        raise ParameterError(f": model '{model.name}' has no propeller_rps input, got {rps!r}",
-                             field="rps", unit="1/s", value=rps)
-    return ConstantSpeedPlant(params, model, EquilibriumError)
-
-
-def _propelled_plant(model_or_params: Any, model: VesselModel | None) -> _Plant:
+def _propelled_plant(model_or_params: Any, model: VesselModel | None) -> Plant:
     """The plant of a model that has a ``propeller_rps`` input (ParameterError otherwise)."""
-    plant = _Plant(model_or_params, model)
+    plant = Plant.of(model_or_params, model)
     if plant.j_rps is None:
         raise ParameterError(
             f"model '{plant.model.name}' has no input 'propeller_rps'; inputs: "
@@ -258,7 +120,7 @@ def _propelled_plant(model_or_params: Any, model: VesselModel | None) -> _Plant:
     return plant
 
 
-def _check_rps(plant: _Plant, rps: Any) -> float | None:
+def _check_rps(plant: Plant, rps: Any) -> float | None:
     if plant.j_rps is None:
         if rps is not None:
             raise ParameterError(
@@ -278,8 +140,11 @@ def self_propulsion_rps(model_or_params: Any, speed: Any, *, model: VesselModel 
     """Propeller rps of a steady straight run at ``speed`` (zero surge force, v = r = δ = 0).
 
     Solves X_H + X_P + X_R = 0 (Yasukawa & Yoshimura 2015, surge equation with u̇ = 0) for the
-    propeller rps n with ``scipy.optimize.brentq`` on the model's right-hand side, bracketing
-    from n = 0 (the propeller drags: J_P → ∞) upwards by doubling.
+    propeller rps n on the model's right-hand side, bracketing from n = 0 (the propeller drags:
+    J_P → ∞) upwards by doubling: all speeds at once by the batched safeguarded Newton of
+    :func:`~seahelm.analysis.equilibria.batch_equilibrium.approach_states` (to brentq's tolerance);
+    a speed it does not solve, and a model with roll, by ``scipy.optimize.brentq``, whose
+    error is the one raised.
 
     Parameters
     ----------
@@ -306,32 +171,20 @@ def self_propulsion_rps(model_or_params: Any, speed: Any, *, model: VesselModel 
     EquilibriumError
         If no rps in (0, ``max_rps``] gives zero surge force.
     """
-    from scipy.optimize import brentq
-
     plant = _propelled_plant(model_or_params, model)
     speeds = as_float_array("speed", speed, "m/s")
     check_positive("speed", speeds, "m/s")
     check_positive("max_rps", max_rps, "1/s")
-    out = np.empty(speeds.shape)
-    for idx, U_item in np.ndenumerate(speeds):
-        U = float(U_item)
+    flat = np.full(speeds.size, np.nan)
+    if plant.heel is None and speeds.size:  # the batched Newton (a model with roll: scipy)
+        from .batch_equilibrium import approach_states
 
-        def surge_acc(n: float, U: float = U) -> float:
-            return float(plant.accelerations(U, 0.0, 0.0, 0.0, n)[0])
-
-        if surge_acc(0.0) >= 0.0:
-            raise EquilibriumError(
-                f"at `speed` = {U!r} [m/s] the surge force is not negative with the propeller "
-                "stopped: no self-propulsion point")
-        hi = 1.0
-        while surge_acc(hi) <= 0.0:
-            if hi >= max_rps:
-                raise EquilibriumError(
-                    f"no propeller rps in (0, {max_rps:g}] [1/s] gives zero surge force at "
-                    f"`speed` = {U!r} [m/s]")
-            hi = min(2.0 * hi, float(max_rps))
-        out[idx] = brentq(surge_acc, 0.0, hi, xtol=1e-14, rtol=4 * np.finfo(float).eps)
-    return float(out) if out.ndim == 0 else out
+        batch = approach_states(plant.model, plant.params * speeds.size, speeds.ravel(),
+                                trim=False, max_rps=float(max_rps))
+        flat[batch.ok] = batch.rps[batch.ok]
+    for i in np.flatnonzero(~np.isfinite(flat)):  # the fallback: brentq, or its error
+        flat[i] = fallback.self_propulsion(plant, float(speeds.flat[i]), float(max_rps))
+    return float(flat[0]) if speeds.ndim == 0 else flat.reshape(speeds.shape)
 
 
 def steady_turn(params: Any, rudder: Any, rps: float | None = None, *,
@@ -339,7 +192,10 @@ def steady_turn(params: Any, rudder: Any, rps: float | None = None, *,
                 rudder_step: float = math.radians(2.5)) -> SteadyTurn:
     """The steady turn at a rudder angle: u̇ = v̇ = ṙ = 0 solved for (u, v, r).
 
-    The three force balances are solved with ``scipy.optimize.root``, each time from a nearby
+    The three force balances are solved for all rudder angles at once by the batched damped
+    Newton of :func:`~seahelm.analysis.equilibria.batch_steady_turn.steady_turns` (the same
+    continuation, the same root to round-off); a rudder angle it does not solve, and a model with
+    roll, by ``scipy.optimize.root``, whose error is the one raised. Each solve starts from a nearby
     solution, by continuation along the spiral curve δ(r) from the straight run:
 
     1. the straight run with zero yaw rate (its rudder angle δ_0 is 0 for a ship symmetric at
@@ -388,87 +244,37 @@ def steady_turn(params: Any, rudder: Any, rps: float | None = None, *,
     EquilibriumError
         If the continuation fails to converge.
     """
-    cs = _constant_speed(params, model, rps)
+    cs = fallback.constant_speed_plant(params, model, rps)
     if cs is not None:
         fields = cs.steady_turns(rudder, max_rudder, rudder_step)[0]
         if np.ndim(rudder) == 0:
             return SteadyTurn(*(float(f) for f in fields))
         return SteadyTurn(*fields)
-    plant = _Plant(params, model)
+    plant = Plant.of(params, model)
     check_positive("max_rudder", max_rudder, "rad")
     check_positive("rudder_step", rudder_step, "rad")
     deltas = as_float_array("rudder", rudder, "rad")
     check_range("rudder", deltas, -max_rudder, max_rudder, "rad")
     n = _check_rps(plant, rps)
-    trim = plant.solve({"r": 0.0}, ("surge", "v", "rudder"), np.array([plant.u_ref, 0.0, 0.0]),
-                       n)
-    fields = np.full((6,) + deltas.shape, np.nan)
-    for idx, delta in np.ndenumerate(deltas):
-        surge, v, r = _turn(plant, trim, float(delta), n, float(rudder_step))
-        if not surge > 0.0:
-            raise EquilibriumError(
-                f"the steady turn at `rudder` = {delta!r} [rad] ({math.degrees(delta):.4g} deg) "
-                f"has surge speed {surge:.6g} [m/s] <= 0")
-        y = plant.model.outputs(0.0, plant.state(surge, v, r), plant.inputs(float(delta), n),
-                                plant.params)
-        speed = y[plant.model.output_index("speed")]
-        fields[(slice(None),) + idx] = (
-            y[plant.model.output_index("surge_speed")], v, r, speed,
-            y[plant.model.output_index("drift_angle")], speed / abs(r) if r != 0.0 else np.inf)
+    flat = np.full((6, deltas.size), np.nan)
+    if plant.heel is None and deltas.size:
+        from .batch_steady_turn import steady_turns
+
+        turns = steady_turns(plant.model, plant.params[0], deltas.ravel(), n,
+                             max_rudder=max_rudder, rudder_step=rudder_step, fallback=False)
+        flat[:, turns.ok] = np.stack(
+            [turns.surge_speed, turns.sway_speed, turns.yaw_rate, turns.speed,
+             turns.drift_angle, turns.radius])[:, turns.ok]
+    fields = flat.reshape((6,) + deltas.shape)
+    todo = [idx for idx in np.ndindex(deltas.shape) if not np.isfinite(fields[(0,) + idx])]
+    if todo:  # the fallback: scipy's continuation, or its error
+        got = fallback.turn_fields(plant, np.array([deltas[idx] for idx in todo]), n,
+                                   float(rudder_step))
+        for k, idx in enumerate(todo):
+            fields[(slice(None),) + idx] = got[:, k]
     if deltas.ndim == 0:
         return SteadyTurn(*(float(f) for f in fields))
     return SteadyTurn(*fields)
-
-
-def _turn(plant: _Plant, trim: np.ndarray, delta: float, n: float | None,
-          rudder_step: float) -> tuple[float, float, float]:
-    """(surge, v, r) of the steady turn at ``delta`` by continuation (see :func:`steady_turn`)."""
-    from scipy.optimize import brentq
-
-    u0, v0, d0 = (float(c) for c in trim)
-    if delta == d0:
-        return u0, v0, 0.0
-    sign = 1.0 if delta > d0 else -1.0
-    r_step = 0.01 * plant.u_ref / plant.length
-    free_r = ("surge", "v", "rudder")
-    prev_r, prev = 0.0, np.array([u0, v0, d0])
-    for k in range(1, 301):
-        r = sign * k * r_step
-        try:
-            z = plant.solve({"r": r}, free_r, prev, n)
-        except EquilibriumError:
-            z = None
-        if z is None or abs(z[2] - prev[2]) > rudder_step:
-            return _turn_in_rudder(plant, prev[2], delta, (prev[0], prev[1], prev_r), n,
-                                   rudder_step)
-        if sign * (z[2] - delta) >= 0.0:
-            start = prev.copy()
-
-            def offset(rr: float) -> float:
-                return float(plant.solve({"r": rr}, free_r, start, n)[2] - delta)
-
-            r_star = brentq(offset, prev_r, r, xtol=1e-13 * r_step, rtol=1e-14)
-            zs = plant.solve({"r": r_star}, free_r, start, n)
-            try:
-                return tuple(float(c) for c in plant.solve(
-                    {"rudder": delta}, ("surge", "v", "r"), np.array([zs[0], zs[1], r_star]),
-                    n))
-            except EquilibriumError:  # pragma: no cover - brentq's point is within 1e-13
-                return float(zs[0]), float(zs[1]), float(r_star)
-        prev_r, prev = r, z
-    raise EquilibriumError(
-        f"no steady turn found at `rudder` = {delta!r} [rad] ({math.degrees(delta):.4g} deg) "
-        "up to r L/U_0 = 3")
-
-
-def _turn_in_rudder(plant: _Plant, d_from: float, d_to: float, guess: tuple[float, ...],
-                    n: float | None, rudder_step: float) -> tuple[float, float, float]:
-    """Continue (surge, v, r) in the rudder angle from ``d_from`` to ``d_to``."""
-    z = np.asarray(guess, dtype=float)
-    steps = max(1, int(math.ceil(abs(d_to - d_from) / rudder_step)))
-    for d_k in np.linspace(d_from, d_to, steps + 1)[1:]:
-        z = plant.solve({"rudder": float(d_k)}, ("surge", "v", "r"), z, n)
-    return float(z[0]), float(z[1]), float(z[2])
 
 
 def approach_state(params: Any, speed: float | None = None, *, model: VesselModel | None = None,
@@ -481,6 +287,11 @@ def approach_state(params: Any, speed: float | None = None, *, model: VesselMode
     zero. With ``trim=True`` the rudder angle, surge and sway speed are solved so that the run
     is an exact equilibrium with zero yaw rate (a biased model such as the Mariner needs a small
     rudder angle to keep a straight course; for the symmetric-at-zero MMG ship nothing changes).
+
+    Solved as a batch of one by
+    :func:`~seahelm.analysis.equilibria.batch_equilibrium.approach_states` (safeguarded Newton for
+    the rps, damped Newton for the trim); where it finds no solution, and for a model with roll, by
+    ``scipy.optimize`` (brentq, root), whose error is the one raised.
 
     Parameters
     ----------
@@ -509,31 +320,43 @@ def approach_state(params: Any, speed: float | None = None, *, model: VesselMode
     EquilibriumError
         If the self-propulsion point or the trim is not found.
     """
-    cs = _constant_speed(params, model)
+    cs = fallback.constant_speed_plant(params, model)
     if cs is not None:  # no surge state: the model's own speed, at rest in yaw
         state, rudder = cs.approach(speed, heading=heading, trim=trim)
-        return Approach(state, {"rudder_angle": rudder})
-    plant = _Plant(params, model)
-    U0 = plant.u_ref if speed is None else speed
+        return Approach(state, {"rudder_angle": rudder}, cs.speed)
+    plant = Plant.of(params, model)
+    U0 = float(plant.u_ref[0]) if speed is None else speed
     check_positive("speed", U0, "m/s")
     check_finite("heading", heading, "rad")
     U0 = float(U0)
-    if plant.u_offset and not math.isclose(U0, plant.u_offset, rel_tol=1e-12):
+    offset = float(plant.u_offset[0])
+    if offset and not math.isclose(U0, offset, rel_tol=1e-12):
         raise ParameterError(
-            f"`speed` must be the nominal speed U_0 = {plant.u_offset!r} [m/s] of the "
+            f"`speed` must be the nominal speed U_0 = {offset!r} [m/s] of the "
             f"perturbation model '{plant.model.name}', got {U0!r}")
+    if plant.heel is None:  # the batched Newton (a model with roll: scipy)
+        from .batch_equilibrium import approach_states
+
+        batch = approach_states(plant.model, plant.params, U0, trim=trim,
+                                heading=float(heading))
+        if batch.ok[0]:
+            inputs = {"rudder_angle": float(batch.rudder[0])}
+            if plant.j_rps is not None:
+                inputs["propeller_rps"] = float(batch.rps[0])
+            return Approach(batch.state[0], inputs, U0)
+    # the fallback: scipy (brentq, root), or its error
     inputs = {"rudder_angle": 0.0}
     n = None
     if plant.j_rps is not None:
-        n = float(self_propulsion_rps(plant.params, U0, model=plant.model))
+        n = float(fallback.self_propulsion(plant, U0, 1000.0))
         inputs["propeller_rps"] = n
     surge, v = U0, 0.0
     if trim:
-        surge, v, delta = plant.solve({"r": 0.0}, ("surge", "v", "rudder"),
-                                      np.array([U0, 0.0, 0.0]), n)
+        surge, v, delta = fallback.solve(plant, {"r": 0.0}, ("surge", "v", "rudder"),
+                                 np.array([U0, 0.0, 0.0]), n)
         inputs["rudder_angle"] = float(delta)
     return Approach(plant.state(surge, v, 0.0, float(heading),
-                                plant.inputs(inputs["rudder_angle"], n)), inputs)
+                                plant.inputs(inputs["rudder_angle"], n)), inputs, U0)
 
 
 def straight_run_speed(model_or_params: Any, rps: Any, *, model: VesselModel | None = None,
@@ -573,20 +396,21 @@ def straight_run_speed(model_or_params: Any, rps: Any, *, model: VesselModel | N
     plant = _propelled_plant(model_or_params, model)
     rates = as_float_array("rps", rps, "1/s")
     check_positive("rps", rates, "1/s")
-    top = 100.0 * plant.u_ref if max_speed is None else max_speed
+    u_ref = float(plant.u_ref[0])
+    top = 100.0 * u_ref if max_speed is None else max_speed
     check_positive("max_speed", top, "m/s")
     out = np.empty(rates.shape)
     for idx, n_item in np.ndenumerate(rates):
         n = float(n_item)
 
         def surge_acc(U: float, n: float = n) -> float:
-            return float(plant.accelerations(U, 0.0, 0.0, 0.0, n)[0])
+            return float(plant.acceleration(U, 0.0, 0.0, 0.0, n)[0])
 
-        lo = 1e-6 * plant.u_ref
+        lo = 1e-6 * u_ref
         if surge_acc(lo) <= 0.0:
             raise EquilibriumError(
                 f"at `rps` = {n!r} [1/s] the propeller does not push the ship ahead from rest")
-        hi = plant.u_ref
+        hi = u_ref
         while surge_acc(hi) >= 0.0:
             if hi >= top:
                 raise EquilibriumError(
@@ -636,18 +460,20 @@ def steady_turn_state(params: Any, rudder: float, rps: float | None = None, *,
     if np.ndim(rudder) != 0:
         raise ParameterError(f"`rudder` must be a scalar [rad], got shape {np.shape(rudder)}")
     check_finite("heading", heading, "rad")
-    cs = _constant_speed(params, model, rps)
+    cs = fallback.constant_speed_plant(params, model, rps)
     if cs is not None:
         states = cs.steady_turns(rudder, max_rudder, math.radians(2.5))[1]
-        return Approach(cs.state(states, float(heading)), {"rudder_angle": float(rudder)})
-    plant = _Plant(params, model)
-    turn = steady_turn(plant.params, rudder, rps, model=plant.model, max_rudder=max_rudder)
+        return Approach(cs.state(states, float(heading)), {"rudder_angle": float(rudder)},
+                        cs.speed)
+    plant = Plant.of(params, model)
+    turn = steady_turn(plant.params[0], rudder, rps, model=plant.model, max_rudder=max_rudder)
     n = _check_rps(plant, rps)
     inputs = {"rudder_angle": float(rudder)}
     if n is not None:
         inputs["propeller_rps"] = n
     return Approach(plant.state(turn.surge_speed, turn.sway_speed, turn.yaw_rate,
-                                float(heading), plant.inputs(float(rudder), n)), inputs)
+                                float(heading), plant.inputs(float(rudder), n)), inputs,
+                    turn.speed)
 
 
 def rudder_for_yaw_rate(params: Any, yaw_rate: Any, rps: float | None = None, *,
@@ -688,17 +514,18 @@ def rudder_for_yaw_rate(params: Any, yaw_rate: Any, rps: float | None = None, *,
         balance).
     """
     rates = as_float_array("yaw_rate", yaw_rate, "rad/s")
-    cs = _constant_speed(params, model, rps)
+    cs = fallback.constant_speed_plant(params, model, rps)
     if cs is not None:
         fields = cs.spiral(rates)
         if rates.ndim == 0:
             return SpiralCurve(*(float(f[0]) for f in fields))
         return SpiralCurve(*(f.reshape(rates.shape) for f in fields))
-    plant = _Plant(params, model)
+    plant = Plant.of(params, model)
     n = _check_rps(plant, rps)
     free = ("surge", "v", "rudder")
-    r_step = 0.01 * plant.u_ref / plant.length
-    trim = plant.solve({"r": 0.0}, free, np.array([plant.u_ref, 0.0, 0.0]), n)
+    u_ref = float(plant.u_ref[0])
+    r_step = 0.01 * u_ref / float(plant.length[0])
+    trim = fallback.solve(plant, {"r": 0.0}, free, np.array([u_ref, 0.0, 0.0]), n)
     flat = rates.ravel()
     sol = np.full((flat.size, 3), np.nan)
     for i in np.flatnonzero(flat == 0.0):
@@ -710,14 +537,14 @@ def rudder_for_yaw_rate(params: Any, yaw_rate: Any, rps: float | None = None, *,
             target = float(flat[i])
             steps = max(1, int(math.ceil(abs(target - prev_r) / r_step)))
             for rr in np.linspace(prev_r, target, steps + 1)[1:]:
-                z = plant.solve({"r": float(rr)}, free, z, n)
+                z = fallback.solve(plant, {"r": float(rr)}, free, z, n)
             prev_r = target
             sol[i] = z
     fields = np.full((6, flat.size), np.nan)
     for i in range(flat.size):
         surge, v, delta = sol[i]
         y = plant.model.outputs(0.0, plant.state(surge, v, float(flat[i])),
-                                plant.inputs(float(delta), n), plant.params)
+                                plant.inputs(float(delta), n), plant.params[0])
         fields[:, i] = (flat[i], delta, y[plant.model.output_index("surge_speed")], v,
                         y[plant.model.output_index("speed")],
                         y[plant.model.output_index("drift_angle")])

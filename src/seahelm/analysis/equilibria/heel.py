@@ -17,8 +17,8 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..vessels.base import VesselModel
+from ...errors import ParameterError
+from ...vessels.base import VesselModel
 
 __all__ = ["heel_balance", "ROLL_STATES"]
 

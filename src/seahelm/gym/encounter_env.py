@@ -1,0 +1,512 @@
+"""Collision avoidance as a gymnasium environment: an own ship meets a target ship
+(:mod:`seahelm.encounters`), N encounters of Monte-Carlo geometry stepped together.
+
+:class:`EncounterVectorEnv` is a native :class:`gymnasium.vector.VectorEnv` over an
+:class:`~seahelm.encounters.Encounter` of N encounters: its vessels are runs of the encounter's
+simulators (one per distinct ship), stepped one action period at a time, and the loop between
+two steps is the encounter's (:meth:`Encounter.run <seahelm.encounters.Encounter.run>`): the
+vessels' heading autopilot (:class:`~seahelm.encounters.HeadingAutopilot`, a PD law between
+intervals) steers each vessel for its desired heading -- the target's route course, or its
+avoidance method's heading; the own ship's the agent's action added to its route course. So a
+constant action of 0 is the encounter with avoidance off, bit for bit, and a constant action a
+the encounter whose own ship steers its route course + a.
+
+The action is ``course_change`` [rad], the own ship's desired heading relative to its route
+course, in ±45° by default (clipped, NaN refused as in :class:`~seahelm.gym.ShipVectorEnv`).
+Observations, reward terms and the episode's end: :mod:`seahelm.gym.collision`. Autoreset:
+gymnasium's next-step mode (or ``"Disabled"`` with ``reset(options={"reset_mask": m})``); each
+new episode is a new encounter drawn from the environment's generator.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from .._optional import optional_import
+from ..encounters import Encounter, HeadingAutopilot, Vessel
+from ..encounters.encounter import DEFAULT_MAX_RUDDER
+from ..encounters.geometry import wrap_pi
+from ..errors import ParameterError
+from ..ships import get_ship
+from ..simulation.stepping import Simulator
+from ..simulation.stepping_reference import restart_clock, set_states
+from .collision import CollisionAvoidance
+
+gym = optional_import("gymnasium", extra="rl", purpose="seahelm.gym")
+from gymnasium import spaces  # noqa: E402
+from gymnasium.vector import AutoresetMode, VectorEnv  # noqa: E402
+from gymnasium.vector.utils import batch_space  # noqa: E402
+
+__all__ = ["EncounterVectorEnv", "EncounterEnv"]
+
+_MODES = {m.value: m for m in AutoresetMode}
+_TASK_KEYS = ("detection_range", "dcpa", "route_scale", "port_tolerance", "domain")
+
+
+def _ship(value: Any, name: str) -> Any:
+    if not isinstance(value, str):
+        return value
+    try:
+        return get_ship(value)
+    except (ValueError, FileNotFoundError) as exc:
+        raise ParameterError(f": {exc}", field=name, value=value) from None
+
+
+def _max_rudder(ship: Any) -> float:
+    try:  # (as the encounter's autopilot: 35° for a ship without a steering gear)
+        return float(ship.max_rudder)
+    except ParameterError:
+        return DEFAULT_MAX_RUDDER
+
+
+class EncounterVectorEnv(VectorEnv):
+    """N encounters of an own ship and a target ship, the own ship steered by the agent.
+
+    Parameters
+    ----------
+    num_envs : int
+        Encounters (sub-environments).
+    ship : Ship or str
+        The own ship (default ``"kvlcc2-l7"``).
+    target_ship : Ship or str, optional
+        The target (default: the own ship's ship).
+    target_avoidance : str or object, optional
+        The target's avoidance method (:data:`seahelm.encounters.AVOIDANCE`, e.g.
+        ``"rule-based"``); default None: the target keeps its course.
+    dt, action_period : float
+        Integration step and time between actions [s] (default 0.1 and 1.0; the vessels'
+        autopilot acts every ``action_period``).
+    episode_seconds : float, optional
+        Episode length [s] (default: 1.5 times the longest detection range over the own
+        speed, in whole action periods).
+    autopilot : HeadingAutopilot, optional
+        The vessels' heading autopilot (default K_p = 1, T_d = 1.5 L/U).
+    action_bounds : (low, high), optional
+        Of ``course_change`` [rad] (default ±45°).
+    reward : mapping term -> weight, optional
+        Reward weights (:mod:`seahelm.gym.collision`).
+    autoreset_mode : str or AutoresetMode
+        ``"NextStep"`` (default) or ``"Disabled"``.
+    render_mode : None
+        No rendering.
+    **options
+        Of :class:`~seahelm.gym.collision.CollisionAvoidance`: ``detection_range``, ``dcpa``
+        [own ship lengths], ``route_scale`` [m], ``port_tolerance`` [rad], ``domain``.
+
+    Attributes
+    ----------
+    observation_labels, observation_units, action_labels, action_units : tuple of str
+    task : CollisionAvoidance
+    encounter : Encounter
+        The encounters as first drawn (their problems are the simulators').
+    elapsed : ndarray (num_envs,)
+        Each encounter's time in its episode [s] (the simulators' runs are kept at one step:
+        an encounter started again sets every run's clock back to 0, the models being
+        time-invariant).
+    start_geometry : dict
+        The target's start of each encounter's episode now: ``north``, ``east`` [m],
+        ``course`` [rad] (num_envs,) (the own ship at the origin, heading north).
+    """
+
+    metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
+
+    def __init__(self, num_envs: int = 1, *, ship: Any = "kvlcc2-l7", target_ship: Any = None,
+                 target_avoidance: Any = None, dt: float = 0.1, action_period: float = 1.0,
+                 episode_seconds: float | None = None,
+                 autopilot: HeadingAutopilot | None = None, action_bounds: Any = None,
+                 reward: Any = None, autoreset_mode: Any = AutoresetMode.NEXT_STEP,
+                 render_mode: str | None = None, **options: Any) -> None:
+        if render_mode is not None:
+            raise ParameterError(f": no render modes, got {render_mode!r}",
+                                 field="render_mode", value=render_mode)
+        mode = _MODES.get(autoreset_mode, autoreset_mode)
+        if mode not in (AutoresetMode.NEXT_STEP, AutoresetMode.DISABLED):
+            raise ParameterError(f"must be 'NextStep' or 'Disabled', got {autoreset_mode!r}",
+                                 field="autoreset_mode", value=autoreset_mode)
+        for key in options:
+            if key not in _TASK_KEYS:
+                raise ParameterError(f": unknown keyword {key!r} of task CollisionAvoidance; "
+                                     f"valid: {', '.join(_TASK_KEYS)}", field=key)
+        if isinstance(num_envs, bool) or not isinstance(num_envs, (int, np.integer)) \
+                or num_envs < 1:
+            raise ParameterError(f"must be an integer >= 1, got {num_envs!r}", field="num_envs",
+                                 value=num_envs)
+        for name, v in (("dt", dt), ("action_period", action_period)):
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                raise ParameterError(f"must be > 0 [s], got {v!r}", field=name, unit="s",
+                                     value=v)
+        own, tgt = _ship(ship, "ship"), _ship(target_ship if target_ship is not None else ship,
+                                              "target_ship")
+        n = self.num_envs = int(num_envs)
+        self.task = CollisionAvoidance(n, own_length=own.length, target_length=tgt.length,
+                                       own_speed=own.approach_speed,
+                                       target_speed=tgt.approach_speed, reward=reward,
+                                       **options)
+        if episode_seconds is None:
+            longest = self.task.detection_range[1] * own.length / own.approach_speed
+            episode_seconds = math.ceil(1.5 * longest / action_period) * action_period
+        self.episode_seconds = float(episode_seconds)
+        geo = self.task.draw(n, np.random.default_rng(0))
+        self.encounter = Encounter(
+            [Vessel(ship=own, north=0.0, east=0.0, course=0.0, name="own"),
+             Vessel(ship=tgt, north=geo["north"], east=geo["east"], course=geo["course"],
+                    avoid=target_avoidance is not None, name="target")],
+            t_final=self.episode_seconds, dt=dt, controller_dt=action_period,
+            avoidance=target_avoidance, autopilot=autopilot, record_every=1)
+        enc = self.encounter
+        self.render_mode = None
+        self.metadata = {**type(self).metadata, "autoreset_mode": mode}
+        self._setup_spaces(own, action_bounds)
+        self._build_loop(enc)
+        self._done = np.zeros(n, dtype=bool)
+        #: Each encounter's time in its episode [s] (num_envs,).
+        self.elapsed = np.zeros(n)
+        self._horizon = self.episode_seconds + 1e-9
+        self._started = False
+        self._clock = 0.0
+        self._rng = np.random.default_rng()
+
+    # --------------------------------------------------------------------------------------
+    def _setup_spaces(self, own: Any, bounds: Any) -> None:
+        lo, hi = (-0.25 * math.pi, 0.25 * math.pi) if bounds is None else bounds
+        lo, hi = float(lo), float(hi)
+        if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+            raise ParameterError(f"must be finite with low < high [rad], got {bounds!r}",
+                                 field="action_bounds", unit="rad", value=bounds)
+        self.action_labels, self.action_units = ("course_change",), ("rad",)
+        self._low, self._high = np.array([lo]), np.array([hi])
+        self.single_action_space = spaces.Box(np.float32(lo), np.float32(hi), (1,),
+                                              dtype=np.float32)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+        self.observation_labels = self.task.observation_labels
+        self.observation_units = self.task.observation_units
+        low, high = self.task.observation_bounds(self.episode_seconds, _max_rudder(own))
+        self.single_observation_space = spaces.Box(low.astype(np.float32),
+                                                   high.astype(np.float32), dtype=np.float32)
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+
+    def _build_loop(self, enc: Encounter) -> None:
+        """The encounter's simulators and the per-run arrays of its loop (as in its run)."""
+        nv = enc.n_vessels
+        n_runs = enc.n_encounters * nv
+        self._sims: list[Simulator] = []
+        self._cmds: list[np.ndarray] = []
+        self._rudder_j: list[int] = []
+        self._out_j: list[dict[str, int]] = []
+        self._index = enc.run_index
+        self._e_lim, self._td = np.zeros(n_runs), np.zeros(n_runs)
+        self._group = np.zeros(n_runs, dtype=np.int64)
+        self._row = np.zeros(n_runs, dtype=np.int64)
+        for gi, (problem, opened, index) in enumerate(zip(enc.problems,
+                                                         enc.uncoupled_problems(),
+                                                         self._index)):
+            sim = Simulator(problem)
+            sim.reset()
+            self._sims.append(sim)
+            labels = sim.command_labels
+            ship = problem.ship
+            if "rudder_command" not in labels:
+                raise ParameterError(f": ship {ship.name!r} takes no rudder_command "
+                                     f"(commands: {', '.join(labels)})", field="ship",
+                                     value=ship.name)
+            c = np.zeros((index.size, len(labels)))
+            if "propeller_rps" in labels:
+                j = labels.index("propeller_rps")
+                c[:, j] = opened.reference[:, 0, j]
+            self._cmds.append(c)
+            self._rudder_j.append(labels.index("rudder_command"))
+            self._e_lim[index] = _max_rudder(ship)
+            self._td[index] = enc.autopilot.derivative_time * ship.length / ship.approach_speed
+            self._out_j.append({name: j for j, name in enumerate(sim.output_labels)})
+            self._group[index], self._row[index] = gi, np.arange(index.size)
+        self._x0 = [np.array(p.x0, dtype=float) for p in enc.problems]
+        self._course0 = enc.course0.copy()
+        self._avoid_state = None
+        if enc.avoidance is not None:
+            self._fresh_avoid = enc.avoidance.start(enc.n_encounters, nv, enc.avoid, enc)
+        self.start_geometry = {k: np.full(enc.n_encounters, np.nan)
+                               for k in ("north", "east", "course")}
+        self._rudder = np.zeros(n_runs)
+        self._truth = np.zeros((n_runs, 6))
+        self._uv = np.zeros((n_runs, 2))
+
+    # --------------------------------------------------------------------------------------
+    def reset(self, *, seed: int | None = None,
+              options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict[str, Any]]:
+        """Start every encounter's episode (or those of ``options["reset_mask"]``), each a
+        new Monte-Carlo geometry.
+
+        Parameters
+        ----------
+        seed : int, optional
+            Seeds the geometries' draws: the same seed and actions give the same episodes.
+        options : dict, optional
+            ``{"reset_mask": bool array (num_envs,)}``: start only those.
+
+        Returns
+        -------
+        observations (num_envs, observations), info (empty dict)
+        """
+        super().reset(seed=seed)
+        if seed is not None or not self._started:
+            self._rng = self.np_random
+        mask = (options or {}).get("reset_mask")
+        if mask is None:
+            sel = np.arange(self.num_envs)
+        else:
+            m = np.asarray(mask)
+            if m.shape != (self.num_envs,) or m.dtype != bool:
+                raise ParameterError(f"['reset_mask'] must be a bool array of shape "
+                                     f"({self.num_envs},), got {m.dtype} {m.shape}",
+                                     field="options", value=m.shape)
+            if not self._started and not m.all():
+                raise ParameterError(": the first reset starts every sub-environment "
+                                     "(no reset_mask)", field="options")
+            sel = np.flatnonzero(m)
+        if not self._started:
+            self._clock = 0.0
+            if self.encounter.avoidance is not None:
+                self._avoid_state = {k: (v.copy() if isinstance(v, np.ndarray) else v)
+                                     for k, v in self._fresh_avoid.items()}
+        self._begin(sel)
+        self._started = True
+        return self._cast(self._evaluate()[0]), {}
+
+    def step(self, actions: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray,
+                                           dict[str, Any]]:
+        """Steer each own ship for ``action_period`` seconds.
+
+        Parameters
+        ----------
+        actions : array_like (num_envs, 1)
+            ``course_change`` [rad]; clipped to the action space, NaN or infinite refused.
+
+        Returns
+        -------
+        observations, rewards, terminations, truncations (num_envs,), info (empty dict)
+
+        Raises
+        ------
+        ParameterError
+            Before :meth:`reset`, on a wrong shape, or a NaN/infinite action (nothing is
+            stepped).
+        """
+        if not self._started:
+            raise ParameterError(": call reset() before step()", field="reset")
+        a = self._actions(actions)
+        n, enc = self.num_envs, self.encounter
+        nv = enc.n_vessels
+        restart = self._done.copy() if self.metadata["autoreset_mode"] is \
+            AutoresetMode.NEXT_STEP else np.zeros(n, dtype=bool)
+        truth = self._truth
+        route = self._course0
+        desired = route
+        if self._avoid_state is not None:
+            desired = enc.avoidance.desired(self._clock, truth.reshape(n, nv, 6),
+                                            truth[:, :5].reshape(n, nv, 5), route,
+                                            self._avoid_state)
+        desired = desired.copy()
+        desired[:, 0] = route[:, 0] + a[:, 0]
+        kp, td = enc.autopilot.gain, self._td
+        rudder = np.clip(kp * wrap_pi(desired.reshape(-1) - truth[:, 4])
+                         - kp * td * truth[:, 5], -self._e_lim, self._e_lim)
+        # every run stepped (one call of the loop a simulator: the runs stay at one step);
+        # the encounters restarting now are started again after it
+        for g, (sim, cmd, index) in enumerate(zip(self._sims, self._cmds, self._index)):
+            if sim.time[0] + enc.controller_dt > self._horizon:
+                restart_clock(sim)  # (the horizon reached: the clock back to 0)
+            cmd[:, self._rudder_j[g]] = rudder[index]
+            sim.step(cmd)
+        self._rudder[:] = rudder
+        self.elapsed += enc.controller_dt
+        if restart.any():
+            self._begin(np.flatnonzero(restart))
+        self._clock += enc.controller_dt
+        self._observe()
+        obs, terms, collided, passed = self._evaluate()
+        diverged = np.zeros(n * nv, dtype=bool)
+        for sim, index in zip(self._sims, self._index):
+            diverged[index] = sim.status != 0
+        diverged = diverged.reshape(n, nv).any(axis=1)
+        failed = collided | diverged
+        terms["collision"] = -failed.astype(float)
+        reward = self.task.reward(terms)
+        terminated = failed | passed
+        truncated = ~terminated & (self.elapsed >= self.episode_seconds - 1e-9)
+        reward[restart] = 0.0
+        terminated[restart] = False
+        truncated[restart] = False
+        self._done = terminated | truncated
+        return self._cast(obs), reward, terminated, truncated, {}
+
+    @property
+    def vessel_states(self) -> np.ndarray:
+        """Every vessel's north, east [m], course over ground [rad], speed over ground [m/s],
+        heading [rad] and yaw rate [rad/s] now, (num_envs, vessels, 6) (a copy; vessel 0 the
+        own ship)."""
+        return self._truth.reshape(self.num_envs, self.encounter.n_vessels, 6).copy()
+
+    def close(self, **kwargs: Any) -> None:
+        """End the simulators' thread pools."""
+        for sim in self._sims:
+            sim.close()
+        self.closed = True
+
+    # --------------------------------------------------------------------------------------
+    def _actions(self, actions: Any) -> np.ndarray:
+        n = self.num_envs
+        try:
+            a = np.asarray(actions, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ParameterError(f"must be numbers of shape ({n}, 1) (course_change), got "
+                                 f"{actions!r}", field="actions") from None
+        if a.shape != (n, 1):
+            if a.size != n:
+                raise ParameterError(f"must have shape ({n}, 1) (envs, course_change), got "
+                                     f"{a.shape}", field="actions", value=a.shape)
+            a = a.reshape(n, 1)
+        if not math.isfinite(a.sum()):
+            bad = int(np.argwhere(~np.isfinite(a))[0, 0])
+            raise ParameterError(f": action 'course_change' of sub-environment {bad} is "
+                                 f"{float(a[bad, 0])!r}; actions must be finite [rad]",
+                                 field="actions", value=float(a[bad, 0]), run=bad)
+        return np.minimum(np.maximum(a, self._low), self._high)
+
+    def _begin(self, sel: np.ndarray) -> None:
+        """Start the episodes of ``sel``: new geometries, the runs reset, the task's start."""
+        nv = self.encounter.n_vessels
+        geo = self.task.draw(sel.size, self._rng)
+        runs = (sel[:, None] * nv + np.arange(nv)[None, :]).reshape(-1)
+        for g, sim in enumerate(self._sims):
+            rows = self._row[runs[self._group[runs] == g]]
+            if rows.size:  # (from the start; the others kept, every clock back to 0)
+                restart_clock(sim, rows)
+        targets = sel * nv + 1  # (the own ship starts where the problem has it)
+        for g, sim in enumerate(self._sims):
+            mine = self._group[targets] == g
+            if mine.any():
+                set_states(sim, self._row[targets[mine]],
+                           {"north": geo["north"][mine], "east": geo["east"][mine],
+                            "heading": geo["course"][mine]})
+        self._course0[sel, 1] = geo["course"]
+        self.elapsed[sel] = 0.0
+        for key in ("north", "east", "course"):
+            self.start_geometry[key][sel] = geo[key]
+        self._rudder[runs] = 0.0
+        self._done[sel] = False
+        if self._avoid_state is not None:
+            for key, fresh in self._fresh_avoid.items():
+                live = self._avoid_state[key]
+                if isinstance(live, np.ndarray) and live.ndim >= 2 \
+                        and live.shape[0] == self.num_envs:
+                    live[sel] = fresh[sel]
+        self._observe()
+        own, target = self._truth[sel * nv], self._truth[sel * nv + 1]
+        self.task.begin(sel, own, target)
+
+    def _observe(self) -> None:
+        """Every vessel's (north, east, course, speed, heading, yaw rate) and surge/sway
+        speeds from the simulators' outputs (as the encounter's loop computes them)."""
+        truth = self._truth
+        for sim, idx, index in zip(self._sims, self._out_j, self._index):
+            vals = sim.observe().values
+            psi = vals[:, idx["heading"]]
+            u = vals[:, idx["surge_speed"]] if "surge_speed" in idx else vals[:, idx["speed"]]
+            v = vals[:, idx["sway_speed"]] if "sway_speed" in idx else 0.0 * u
+            vn = u * np.cos(psi) - v * np.sin(psi)
+            ve = u * np.sin(psi) + v * np.cos(psi)
+            r = vals[:, idx["yaw_rate"]] if "yaw_rate" in idx else 0.0 * u
+            truth[index] = np.stack([vals[:, idx["north"]], vals[:, idx["east"]],
+                                     np.arctan2(ve, vn), np.hypot(vn, ve), psi, r], axis=1)
+            self._uv[index] = np.stack([u, v], axis=1)
+
+    def _evaluate(self):
+        nv = self.encounter.n_vessels
+        own, target = self._truth[::nv], self._truth[1::nv]
+        start = np.zeros((self.num_envs, 2))
+        return self.task.evaluate(own, target, self._uv[::nv], self._rudder[::nv], start)
+
+    def _cast(self, obs: np.ndarray) -> np.ndarray:
+        if not math.isfinite(obs.sum()):
+            obs = np.nan_to_num(obs, nan=0.0)
+        box = self.single_observation_space
+        return np.minimum(np.maximum(obs, box.low), box.high).astype(np.float32)
+
+    def __repr__(self) -> str:
+        names = self.encounter.names
+        return f"EncounterVectorEnv({names[0]} meets {names[1]}, num_envs={self.num_envs})"
+
+
+class EncounterEnv(gym.Env):
+    """One encounter, the own ship steered by an agent
+    (``gymnasium.make("seahelm/CollisionAvoidance-v0", ...)``): the
+    :class:`EncounterVectorEnv` of one sub-environment, without autoreset.
+
+    Parameters
+    ----------
+    render_mode : None
+        No rendering.
+    **kwargs
+        Of :class:`EncounterVectorEnv`, except ``num_envs`` and ``autoreset_mode``.
+    """
+
+    metadata = {"render_modes": []}
+
+    def __init__(self, render_mode: str | None = None, **kwargs: Any) -> None:
+        self._vec = EncounterVectorEnv(1, autoreset_mode="Disabled", render_mode=render_mode,
+                                       **kwargs)
+        v = self._vec
+        self.observation_space = v.single_observation_space
+        self.action_space = v.single_action_space
+        self.observation_labels, self.observation_units = v.observation_labels, \
+            v.observation_units
+        self.action_labels, self.action_units = v.action_labels, v.action_units
+        self.task, self.encounter = v.task, v.encounter
+        self.render_mode = None
+
+    def reset(self, *, seed: int | None = None,
+              options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict[str, Any]]:
+        """Start an episode: a new encounter.
+
+        Parameters
+        ----------
+        seed : int, optional
+            Seeds the geometry's draw.
+        options : dict, optional
+            Not used.
+
+        Returns
+        -------
+        observation (observations,), info (empty dict)
+        """
+        super().reset(seed=seed)
+        v = self._vec
+        v._rng = self.np_random
+        if not v._started and v.encounter.avoidance is not None:
+            v._avoid_state = {k: (x.copy() if isinstance(x, np.ndarray) else x)
+                              for k, x in v._fresh_avoid.items()}
+        v._started = True
+        v._begin(np.arange(1))
+        return v._cast(v._evaluate()[0])[0], {}
+
+    def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+        """Steer for ``action_period`` seconds.
+
+        Parameters
+        ----------
+        action : array_like (1,)
+            ``course_change`` [rad]; clipped, NaN or infinite refused.
+
+        Returns
+        -------
+        observation, reward, terminated, truncated, info (empty dict)
+        """
+        obs, reward, terminated, truncated, _ = self._vec.step([action])
+        return obs[0], float(reward[0]), bool(terminated[0]), bool(truncated[0]), {}
+
+    def close(self) -> None:
+        """End the simulators' thread pools."""
+        self._vec.close()

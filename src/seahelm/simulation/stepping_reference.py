@@ -1,0 +1,183 @@
+"""Set-points and clocks of a stepped batch: the controller's reference of a
+:class:`~seahelm.Simulator`'s runs written between two steps (:func:`set_reference`), the
+commands the loop holds now (:func:`held_commands`), every run's clock set back to t = 0
+with its state kept (:func:`restart_clock`), and states of many runs set at once
+(:func:`set_states`).
+
+With ``commands=None`` :meth:`Simulator.step <seahelm.simulation.stepping.Simulator.step>` lets
+the problem's controller (an autopilot) compute the commands inside the compiled loop from its
+reference; an outside agent that gives that autopilot its set-point (:mod:`seahelm.gym`'s
+set-point actions, a co-simulation master) writes the reference between steps. The loop reads
+the reference array of the batch at every controller sample, so a set-point written before a
+step is the one the controller sees over that step -- the same numbers as ``simulate`` with
+that reference held constant.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..errors import ParameterError
+from .stepping_io import check_commands, run_indices
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .stepping import Simulator
+
+__all__ = ["set_reference", "held_commands", "restart_clock", "set_states"]
+
+
+def _reference_array(sim: "Simulator") -> np.ndarray:
+    return sim._batch.slices.arrays.signals[1]
+
+
+def set_reference(sim: "Simulator", values: Any, runs: Any = None) -> None:
+    """Hold the controller's reference (its set-points) of some runs from the next step on.
+
+    Parameters
+    ----------
+    sim : Simulator
+        Built from a problem whose reference is one constant per run: a ``(runs, 1,
+        references)`` array or a mapping of ``(runs, 1, 1)`` arrays (written in place: a time
+        series or one reference for every run cannot hold a set-point per run).
+    values : array_like or mapping
+        By the problem's reference labels (``problem.wiring.references``, e.g. ``heading``
+        [rad] for a heading autopilot) in their units: an array (selected runs, references) --
+        or (references,) for every selected run -- or a mapping name -> value(s) (the
+        references not named keep theirs).
+    runs : int or sequence of int, optional
+        The runs (default every run).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``reference`` for a problem whose reference is not one per run (or is the
+        caller's own array, which the loop would overwrite), else naming ``values`` on a wrong
+        shape, an unknown name or a value that is not finite; nothing is written then.
+    """
+    ref = _reference_array(sim)
+    given = sim.problem.reference
+    if ref.shape[:2] != (sim.n_runs, 1) or (isinstance(given, np.ndarray)
+                                             and np.shares_memory(ref, given)):
+        raise ParameterError(
+            f": the simulator's reference has shape {ref.shape}; a set-point written between "
+            f"steps needs one constant reference per run of its own, shape ({sim.n_runs}, 1, "
+            f"references) -- give Problem(reference={{name: array ({sim.n_runs}, 1, 1)}}) or a "
+            "copy of an array of that shape", field="reference", value=ref.shape)
+    wiring = sim.problem.wiring
+    sel = run_indices(runs, sim.n_runs)
+    try:
+        checked = check_commands(values, sel, ref[sel, 0, :], wiring.references,
+                                 wiring.reference_units)
+    except ParameterError as exc:
+        raise ParameterError(f"{exc.reason.replace('command', 'reference')}", field="values",
+                             unit=exc.unit, value=exc.value, run=exc.run) from None
+    ref[sel, 0, :] = checked
+
+
+def held_commands(sim: "Simulator") -> np.ndarray:
+    """The commands every run holds now (runs, commands) by ``sim.command_labels`` [SI]: the
+    last ones given to ``step``, or those its controller computed at its last sample.
+
+    Parameters
+    ----------
+    sim : Simulator
+        A reset simulator.
+
+    Returns
+    -------
+    ndarray (runs, commands)
+        A copy.
+    """
+    sim._require_reset()
+    return sim._cmd[:, :len(sim.command_labels)].copy()
+
+
+def restart_clock(sim: "Simulator", runs: Any = None) -> None:
+    """Set every run's time back to t = 0, keeping its state, commands, controller state and
+    status -- except ``runs``, started again from the problem's initial state: the runs are at
+    the same step again, so the next :meth:`~seahelm.simulation.stepping.Simulator.step` is
+    one call of the loop for the whole batch (runs at different steps, as after
+    ``Simulator.reset(runs=...)``, are stepped group by group and observed run by run).
+
+    For a time-invariant problem -- no time series among the references and disturbances, a
+    model and loads that do not read the time -- the runs kept go on exactly as they would
+    have; their recordings are written again from t = 0 on (what
+    :meth:`~seahelm.simulation.stepping.Simulator.result` holds later is not one run's past).
+
+    Parameters
+    ----------
+    sim : Simulator
+        A reset simulator.
+    runs : int or sequence of int, optional
+        The runs to start again (as ``Simulator.reset(runs=...)``; default none).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``reference``/``disturbance`` for a problem whose references or disturbances
+        vary in time (their values are read at the run's time), or ``runs`` out of range.
+    """
+    sim._require_reset()
+    a = sim._batch.slices.arrays
+    for name, arr in (("disturbance", a.signals[0]), ("reference", a.signals[1])):
+        if arr.shape[1] > 1:
+            raise ParameterError(f": the {name} is a time series (shape {arr.shape}); the "
+                                 "clock of its runs cannot be set back", field=name,
+                                 value=arr.shape)
+    sel = None if runs is None else run_indices(runs, sim.n_runs)
+    # every clock at step 0 (the states, commands, controller states and statuses kept: the
+    # loop reads nothing else of a run's past), then the runs to start again reset -- all at
+    # one step, so that reset observes them in one call of the loop
+    sim._k[:] = 0
+    sim._k0 = 0
+    sim._aligned = True
+    if sel is not None and sel.size:
+        sim.reset(runs=sel)
+
+
+def set_states(sim: "Simulator", runs: Any, values: Mapping[str, Any]) -> None:
+    """Set some states of some runs at once (:meth:`Simulator.set_state
+    <seahelm.simulation.stepping.Simulator.set_state>` for many runs; the controller's state
+    is kept).
+
+    Parameters
+    ----------
+    sim : Simulator
+        A reset simulator.
+    runs : int or sequence of int
+        The runs.
+    values : mapping
+        State label -> value or values (one per run) [SI]; the states not named keep theirs.
+        Finite and within the state's bounds.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``values`` on an unknown label, a wrong shape, a value not finite or outside
+        its bounds (nothing is written then).
+    """
+    sim._require_reset()
+    sel = run_indices(runs, sim.n_runs)
+    z = sim._z[sel].copy()
+    labels = sim.state_labels
+    for name, v in values.items():
+        if name not in labels:
+            raise ParameterError(f": unknown state {name!r}; states: {', '.join(labels)}",
+                                 field="values", value=name)
+        col = np.asarray(v, dtype=float)
+        if col.ndim > 1 or (col.ndim == 1 and col.shape[0] != sel.size):
+            raise ParameterError(f"[{name!r}] must be a number or have shape ({sel.size},) "
+                                 f"(one per run), got {col.shape}", field="values",
+                                 value=col.shape)
+        z[:, labels.index(name)] = col
+    lower, upper = (sim._batch.slices.arrays.get("params", n) for n in ("lower", "upper"))
+    bad = ~np.isfinite(z) | (z < lower) | (z > upper)
+    if bad.any():
+        r, j = np.argwhere(bad)[0]
+        raise ParameterError(f": state {labels[j]!r} = {float(z[r, j])!r} of run {int(sel[r])} is not "
+                             f"finite or outside its bounds [{lower[j]:g}, {upper[j]:g}]",
+                             field="values", value=float(z[r, j]), run=int(sel[r]))
+    sim._z[sel] = z
