@@ -34,6 +34,7 @@ from ..ships import get_ship
 from ..simulation.stepping import Simulator
 from ..simulation.stepping_reference import restart_clock, set_states
 from .collision import CollisionAvoidance
+from .plant import episode_named
 
 gym = optional_import("gymnasium", extra="rl", purpose="seahelm.gym")
 from gymnasium import spaces  # noqa: E402
@@ -160,7 +161,8 @@ class EncounterVectorEnv(VectorEnv):
         self.render_mode = None
         self.metadata = {**type(self).metadata, "autoreset_mode": mode}
         self._setup_spaces(own, action_bounds)
-        self._build_loop(enc)
+        with episode_named(self.episode_seconds):
+            self._build_loop(enc)
         self._done = np.zeros(n, dtype=bool)
         #: Each encounter's time in its episode [s] (num_envs,).
         self.elapsed = np.zeros(n)

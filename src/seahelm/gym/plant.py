@@ -9,13 +9,15 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from ..errors import ParameterError, ValidityRangeWarning
+from ..resources import WorkTooLarge
 from ..ships import get_ship
 from ..simulation.problem import Problem
 from ..simulation.stepping import Simulator
@@ -105,6 +107,22 @@ def _weather(ship: Any, weather: Mapping[str, float]) -> dict[str, Any]:
     return {"environment": env, "environment_params": params}
 
 
+@contextmanager
+def episode_named(episode_seconds: float) -> Iterator[None]:
+    """Refusals of the engine's ``t_final`` (the work budget) re-raised naming
+    ``episode_seconds``, the environment's keyword for it (the user never gave a ``t_final``).
+    """
+    try:
+        yield
+    except WorkTooLarge as exc:
+        if exc.field != "t_final":
+            raise
+        raise WorkTooLarge(f": {exc.over}; a shorter `episode_seconds` (got {episode_seconds:g} "
+                           f"s), a larger `dt` or fewer `num_envs` {exc.anyway}",
+                           field="episode_seconds", work=exc.work, budget=exc.budget,
+                           over=exc.over, anyway=exc.anyway) from None
+
+
 def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
                 action_period: float, weather: Mapping[str, float] | None = None,
                 integrator: Any = "rk4", autopilot: Any = None,
@@ -187,7 +205,8 @@ def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
                       actuator_x0=[rudder0], t_final=float(episode_seconds), dt=float(dt),
                       record_every=max(1, int(round(episode_seconds / dt))),
                       integrator=integrator, **loop_kw, **env_kw)
-    sim = Simulator(problem)
+    with episode_named(episode_seconds):
+        sim = Simulator(problem)
     labels = sim.command_labels
     command_start = np.array([float(inputs.get(c, 0.0)) for c in labels])
     obs0 = sim.reset()
