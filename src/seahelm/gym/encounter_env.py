@@ -360,6 +360,9 @@ class EncounterVectorEnv(VectorEnv):
     # --------------------------------------------------------------------------------------
     def _actions(self, actions: Any) -> np.ndarray:
         n = self.num_envs
+        if actions is None:  # (numpy makes None a NaN: "is nan" said nothing of the cause)
+            raise ParameterError(f": missing (None); step() needs an array of shape ({n}, 1) "
+                                 "(envs, course_change [rad])", field="actions")
         try:
             a = np.asarray(actions, dtype=np.float64)
         except (TypeError, ValueError):
@@ -506,6 +509,9 @@ class EncounterEnv(gym.Env):
         -------
         observation, reward, terminated, truncated, info (empty dict)
         """
+        if action is None:
+            raise ParameterError(": missing (None); step() needs an array of shape (1,) "
+                                 "(course_change [rad])", field="action")
         obs, reward, terminated, truncated, _ = self._vec.step([action])
         return obs[0], float(reward[0]), bool(terminated[0]), bool(truncated[0]), {}
 
