@@ -46,3 +46,26 @@ def test_missing_vector_actions_say_missing_and_the_shape(env_id, labels):
                                              rf"array of shape \(3, 1\) \({labels}\)$"):
         envs.step(None)
     envs.close()
+
+
+@pytest.mark.parametrize("env_id", ["seahelm/HeadingKeeping-v0",
+                                    "seahelm/CollisionAvoidance-v0"])
+def test_too_many_envs_for_the_memory_name_num_envs(env_id):
+    # was: numpy's "Unable to allocate 43.7 TiB for an array with shape (1000000000000, 6)"
+    # (a bare MemoryError naming nothing)
+    with pytest.raises(ParameterError, match=r"^`num_envs` = 1000000000000 needs about [0-9.e+]+ "
+                                             r"GB \([0-9]+ B a sub-environment\), more than "
+                                             r"the [0-9.]+ GB this process may use \(.+\); "
+                                             r"give at most [0-9]+$") as info:
+        gymnasium.make_vec(env_id, num_envs=10**12)
+    assert info.value.field == "num_envs"
+
+
+def test_the_memory_check_passes_what_fits():
+    from seahelm.gym.plant import BYTES_PER_ENV, check_env_memory
+    from seahelm.resources import memory_limit
+
+    room = memory_limit().bytes
+    check_env_memory(int(0.9 * room // BYTES_PER_ENV), BYTES_PER_ENV)  # no error
+    with pytest.raises(ParameterError, match="`num_envs`"):
+        check_env_memory(int(1.1 * room // BYTES_PER_ENV), BYTES_PER_ENV)

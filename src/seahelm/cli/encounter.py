@@ -28,13 +28,13 @@ _BYTES_PER_VESSEL_RECORD = 50
 
 
 def _physical_memory() -> int:
-    """This machine's physical memory [bytes] (0 where the OS does not say)."""
-    import os
+    """The memory this process may use [bytes] (0 where the OS does not say): the smallest of
+    the machine's, its cgroup's room and its address-space room, the one helper the library
+    uses too (:func:`seahelm.resources.memory_limit`)."""
+    from ..resources import memory_limit
 
-    try:
-        return int(os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
-    except (AttributeError, OSError, ValueError):
-        return 0
+    limit = memory_limit()
+    return 0 if limit is None else int(limit.bytes)
 
 
 def _encounter_ship(option: str, name: str) -> Any:
@@ -98,7 +98,7 @@ def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, ow
         memory = _physical_memory()
         if memory and need > memory:
             raise ParameterError(f"needs about {need / 1e9:.3g} GB for its tracks ({tf:g} s), "
-                                 f"more than this machine's {memory / 1e9:.3g} GB: draw "
+                                 f"more than the {memory / 1e9:.3g} GB this process may use: draw "
                                  f"fewer, or several batches with different --seed",
                                  field="--monte-carlo", value=monte_carlo)
         # overtaking closes at a few m/s: closer, within what the horizon lets close

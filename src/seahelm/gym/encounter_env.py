@@ -34,7 +34,11 @@ from ..ships import get_ship
 from ..simulation.stepping import Simulator
 from ..simulation.stepping_reference import restart_clock, set_states
 from .collision import CollisionAvoidance
-from .plant import episode_named
+from .plant import check_env_memory, episode_named
+
+#: Memory of one sub-environment [B], about twice what one takes (peak RSS over 1,000 and
+#: 100,000 sub-environments of CollisionAvoidance-v0, KVLCC2 L7, 2026-12-02: 4.8 kB).
+_BYTES_PER_ENCOUNTER = 10_000
 
 gym = optional_import("gymnasium", extra="rl", purpose="seahelm.gym")
 from gymnasium import spaces  # noqa: E402
@@ -135,6 +139,7 @@ class EncounterVectorEnv(VectorEnv):
                 or num_envs < 1:
             raise ParameterError(f"must be an integer >= 1, got {num_envs!r}", field="num_envs",
                                  value=num_envs)
+        check_env_memory(int(num_envs), _BYTES_PER_ENCOUNTER)
         for name, v in (("dt", dt), ("action_period", action_period)):
             if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
                 raise ParameterError(f"must be > 0 [s], got {v!r}", field=name, unit="s",
