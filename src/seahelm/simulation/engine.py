@@ -537,6 +537,8 @@ def _result(batch: Batch, *, wall: float, compile_time: float, throw: bool,
             **(dict(metadata) if metadata else {}),
         },
     )
+    if model.check_result is not None:  # (the model's validity range, on what was run)
+        model.check_result(result)
     if problem.post_pass is not None:  # (computed from the recordings, into the result)
         extra, more = problem.post_pass.compute(result)
         result.extra.update(extra)
