@@ -224,8 +224,8 @@ def simulate(
         Computed from the recordings after the run, into the result's ``extra`` channels and
         metadata (:attr:`Problem.post_pass <seahelm.simulation.problem.Problem>`).
     sensors : PositionSensors, optional
-        What the controller's ``north``, ``east`` and ``heading`` sensors see (first-order
-        wave motion and seeded noise added in the loop: :mod:`seahelm.simulation.sensor_stage`).
+        What the controller's position and heading sensors see: first-order motion and noise
+        (:mod:`seahelm.simulation.sensor_stage`).
 
     Returns
     -------
@@ -541,6 +541,8 @@ def _result(batch: Batch, *, wall: float, compile_time: float, throw: bool,
             **(dict(metadata) if metadata else {}),
         },
     )
+    if model.check_result is not None:  # (the model's validity range, on what was run)
+        model.check_result(result)
     if problem.post_pass is not None:  # (computed from the recordings, into the result)
         extra, more = problem.post_pass.compute(result)
         result.extra.update(extra)
