@@ -387,8 +387,8 @@ def _event_values(north: np.ndarray, east: np.ndarray, psi: np.ndarray, times: n
     The distances are formed at the four nodes of each event only, each element by the same
     operations as over the whole record (so the same numbers), and gathered into the memory
     layout :func:`_at_cubic`'s gather of the stacked signals has (signal innermost: the
-    weighted sum runs as it did); the whole record is formed only for a run whose event has
-    no cubic (the linear fallback).
+    weighted sum runs as it did). Where some event has no cubic (not reached: the linear
+    fallback) the whole record is formed and :func:`_at_cubic` takes it, as before.
     """
     n0, e0 = north[:, :1], east[:, :1]
     c0, s0 = np.cos(psi[:, :1]), np.sin(psi[:, :1])
@@ -397,8 +397,9 @@ def _event_values(north: np.ndarray, east: np.ndarray, psi: np.ndarray, times: n
         dn, de = north - n0, east - e0
         return np.stack([dn * c0 + de * s0, np.abs(-dn * s0 + de * c0), times, dist])
 
-    if north.shape[1] < 4:
-        return _at_crossings(full(), k, w)
+    if north.shape[1] < 4 or not ((k >= 0) & np.isfinite(weights[..., 0])).all():
+        # (an event without a cubic: the linear fallback needs the whole record anyway)
+        return _at_cubic(full(), k, w, j0, weights)
     idx = j0[..., None] + _POWERS  # (levels, runs, 4 nodes)
     rows = np.arange(north.shape[0])[None, :, None]
     buf = np.empty(idx.shape + (4,))  # (levels, runs, nodes, signals)
