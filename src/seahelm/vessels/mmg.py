@@ -89,7 +89,8 @@ from ..constants import GRAVITY, KNOT
 from ..errors import ParameterError
 from ..parameters import Params, param, signal_indices
 from .base import VesselModel
-from .rigid_body import horizontal_velocity, midship_accelerations
+from .rigid_body import (PLANAR_OUTPUT_UNITS, PLANAR_OUTPUTS, horizontal_velocity,
+                         midship_accelerations, write_planar_outputs)
 
 __all__ = [
     "MMGParams",
@@ -118,9 +119,8 @@ INPUTS = ("rudder_angle", "propeller_rps")
 INPUT_UNITS = ("rad", "1/s")
 DISTURBANCES = ("force_x", "force_y", "moment_z", "current_north", "current_east")
 DISTURBANCE_UNITS = ("N", "N", "N·m", "m/s", "m/s")
-OUTPUTS = ("north", "east", "heading", "yaw_rate", "surge_speed", "sway_speed", "speed",
-           "drift_angle", "thrust", "rudder_normal_force", "rudder_inflow_angle")
-OUTPUT_UNITS = ("m", "m", "rad", "rad/s", "m/s", "m/s", "m/s", "rad", "N", "N", "rad")
+OUTPUTS = PLANAR_OUTPUTS + ("thrust", "rudder_normal_force", "rudder_inflow_angle")
+OUTPUT_UNITS = PLANAR_OUTPUT_UNITS + ("N", "N", "rad")
 
 S = signal_indices(STATES)
 U = signal_indices(INPUTS)
@@ -417,14 +417,8 @@ def write_mmg_outputs(x, y, speed, beta, thrust, F_N, inflow_angle):  # pragma: 
     ``mmg-4q``'s and ``mmg-ls``'s; their states begin with :data:`STATES`): the state's
     position, heading, rates and speeds, then ``speed``, ``drift_angle``, ``thrust``,
     ``rudder_normal_force`` and ``rudder_inflow_angle`` as the model computed them."""
-    y[Y.north] = x[S.north]
-    y[Y.east] = x[S.east]
-    y[Y.heading] = x[S.heading]
-    y[Y.yaw_rate] = x[S.yaw_rate]
-    y[Y.surge_speed] = x[S.surge_speed]
-    y[Y.sway_speed] = x[S.sway_speed]
-    y[Y.speed] = speed
-    y[Y.drift_angle] = beta
+    write_planar_outputs(y, x[S.north], x[S.east], x[S.heading], x[S.yaw_rate],
+                         x[S.surge_speed], x[S.sway_speed], speed, beta)
     y[Y.thrust] = thrust
     y[Y.rudder_normal_force] = F_N
     y[Y.rudder_inflow_angle] = inflow_angle
