@@ -43,7 +43,8 @@ def _time(kw: dict, workers: int | None, repeats: int) -> tuple[float, object]:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--headings", type=int, default=12)
-    ap.add_argument("--winds", type=int, default=12, help="wind speeds, 4 to 32.6 m/s (the Beaufort table's end)")
+    ap.add_argument("--winds", type=int, default=12,
+                    help="wind speeds, 4 to 32.6 m/s (the Beaufort table's end)")
     ap.add_argument("--duration", type=float, default=600.0, help="[s] per run")
     ap.add_argument("--repeats", type=int, default=1)
     ap.add_argument("--no-dask", action="store_true", help="in process only")

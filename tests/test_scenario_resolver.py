@@ -83,6 +83,13 @@ def _python_problem(path: Path, scenario: Problem, jit: bool | None = False) -> 
         act = get_actuator(actuator) if actuator else (gear.actuator if gear else RUDDER_SERVO)
         base = gear.params if gear is not None and gear.actuator is act else None
         aparams = act.params_type.from_mapping(aparams, base=base)
+    sensors = None
+    if "sensors" in doc:  # [sensors]: the noise of the heading in degrees there
+        from seahelm.simulation.sensor_stage import PositionSensors
+
+        sn = dict(doc["sensors"])
+        sn["noise_heading"] = math.radians(sn.pop("noise_heading_deg", 0.0))
+        sensors = PositionSensors(**sn)
     return Problem(
         ship=ship, model=model, actuator=actuator, controller=controller,
         params=params, actuator_params=aparams or None,
@@ -92,7 +99,8 @@ def _python_problem(path: Path, scenario: Problem, jit: bool | None = False) -> 
         integrator=scenario.integrator, record_every=scenario.record_every,
         reference=scenario.reference, disturbance=scenario.disturbance,
         environment=scenario.environment, environment_params=scenario.environment_params,
-        first_order=scenario.first_order, bounds=dict(scenario.bounds), jit=jit)
+        first_order=scenario.first_order, sensors=sensors, bounds=dict(scenario.bounds),
+        jit=jit)
 
 
 def _same_rows(name: str, a: np.ndarray, b: np.ndarray, fields: tuple[str, ...],

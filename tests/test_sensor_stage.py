@@ -123,3 +123,32 @@ def test_a_problem_that_cannot_take_its_sensors_is_refused():
         dp_problem(DP_PID, dp_pid_params(SHIP), t_final=10.0, wave_dofs=("heave",))
     with pytest.raises(ParameterError, match=r"sensors.*must be a PositionSensors"):
         problem.replace(sensors={"noise_north": 0.1})
+
+
+@pytest.mark.parametrize("extra, words", [
+    ("[sensors]\nwave_motion = true\n", ["sensors", "wave_motion", "first-order motions"]),
+    ("[sensors]\nnoise_north = -1.0\n", ["sensors.noise_north", "-1"]),
+    ("[sensors]\nnoise_heading = 0.1\n", ["sensors", "noise_heading"]),
+])
+def test_the_scenario_key_is_checked(extra, words):
+    from pathlib import Path
+
+    from seahelm.scenario import parse_scenario
+
+    text = (Path(__file__).parents[1] / "examples" / "supply_dp_setpoint.toml").read_text()
+    with pytest.raises((ParameterError, ValueError)) as info:
+        parse_scenario(text + extra)
+    message = str(info.value)
+    assert all(w in message for w in words), message
+
+
+def test_the_scenario_key_makes_the_sensors():
+    from pathlib import Path
+
+    from seahelm.scenario import parse_scenario
+
+    text = (Path(__file__).parents[1] / "examples" / "supply_dp_setpoint.toml").read_text()
+    problem = parse_scenario(text + "[sensors]\nnoise_north = 0.1\nnoise_heading_deg = 0.5\n"
+                                    "seed = 3\n")
+    assert problem.sensors == PositionSensors(noise_north=0.1, noise_heading=math.radians(0.5),
+                                              wave_motion=False, seed=3)

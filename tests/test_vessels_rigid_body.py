@@ -14,7 +14,7 @@ import pytest
 from numba import njit
 
 from seahelm.parameters import as_records, stack_params
-from seahelm.vessels import container, mariner, mmg, mmg_four_quadrant, nomoto
+from seahelm.vessels import container, mariner, mmg, mmg_four_quadrant, mmg_low_speed, nomoto
 from seahelm.vessels.rigid_body import cramer_2x2, horizontal_velocity, midship_accelerations
 
 
@@ -198,10 +198,21 @@ def test_container_and_nomoto_kinematics_as_written_bit_for_bit():
             assert (got[i, 0], got[i, 1]) == (7.0 * c - v * s + cn, 7.0 * s + v * c + ce)
 
 
-@pytest.mark.parametrize("rhs", [mmg.mmg_rhs, mmg_four_quadrant.mmg4q_rhs, mariner.mariner_rhs,
+@pytest.mark.parametrize("rhs", [mmg.mmg_rhs, mmg_four_quadrant.mmg4q_rhs,
+                                 mmg_low_speed.mmg_ls_rhs, mariner.mariner_rhs,
                                  container.container_rhs, nomoto.nomoto1_rhs,
                                  nomoto.nomoto2_rhs])
 def test_every_3dof_model_moves_through_the_shared_kinematics(rhs):
     names = rhs.py_func.__code__.co_names
+    if "write_mmg_rates" in names:  # the MMG family: its state rates written in one place
+        names = mmg.write_mmg_rates.py_func.__code__.co_names
     assert "horizontal_velocity" in names
     assert "cos" not in names or rhs is container.container_rhs  # (the roll angle's cosine)
+
+
+def test_the_mmg_family_shares_its_rates_and_its_rudder():
+    for rhs in (mmg.mmg_rhs, mmg_four_quadrant.mmg4q_rhs, mmg_low_speed.mmg_ls_rhs):
+        names = rhs.py_func.__code__.co_names
+        assert "write_mmg_rates" in names and "north" not in names  # (not written twice)
+    for forces in (mmg._forces, mmg_four_quadrant._forces4q):
+        assert "mmg_rudder_forces" in forces.py_func.__code__.co_names

@@ -28,13 +28,37 @@ _BYTES_PER_VESSEL_RECORD = 50
 
 
 def _physical_memory() -> int:
-    """This machine's physical memory [bytes] (0 where the OS does not say)."""
-    import os
+    """The memory this process may use [bytes] (0 where the OS does not say): the smallest of
+    the machine's, its cgroup's room and its address-space room, the one helper the library
+    uses too (:func:`seahelm.resources.memory_limit`)."""
+    from ..resources import memory_limit
+
+    limit = memory_limit()
+    return 0 if limit is None else int(limit.bytes)
+
+
+def _encounter_ship(option: str, name: str) -> Any:
+    """The catalog ship or ship file ``name`` of ``option`` (``--own-ship``/``--target-ship``).
+
+    An encounter starts each vessel at a speed and scales the track-keeping autopilot's
+    derivative time by L/U_0, so a ship without a test speed U_0 (the Otter, REMUS 100, the
+    DP vessels; none of them steers by rudder either) is refused here, naming the option.
+    """
+    from ..ships import get_ship, ship_names
 
     try:
-        return int(os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
-    except (AttributeError, OSError, ValueError):
-        return 0
+        ship = get_ship(name)
+    except ParameterError:
+        raise
+    except ValueError as exc:
+        raise ParameterError(f": {exc}", field=option, value=name) from None
+    if ship.test_speed is None:
+        with_speed = [n for n in ship_names() if get_ship(n).test_speed is not None]
+        raise ParameterError(f": ship {name!r} has no test speed [m/s] (an encounter steers "
+                             "each ship by rudder about its test speed); give a ship with "
+                             f"one, e.g. {', '.join(with_speed)}",
+                             field=option, unit="m/s", value=name)
+    return ship
 
 
 def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, own_ship: str,
@@ -49,6 +73,9 @@ def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, ow
     # situations and --monte-carlo without --avoidance: velocity obstacles (the help's
     # default); --avoidance none: none
     chosen = "velocity-obstacles" if avoidance is None else method
+    if monte_carlo is not None or (files and all(f.suffix.lower() == ".json" for f in files)):
+        own_ship = _encounter_ship("--own-ship", own_ship)
+        target_ship = _encounter_ship("--target-ship", target_ship)
     if monte_carlo is not None:
         if files:
             raise ParameterError(": give files or --monte-carlo, not both",
@@ -71,7 +98,7 @@ def _build(files: list[Path], monte_carlo: int | None, avoidance: str | None, ow
         memory = _physical_memory()
         if memory and need > memory:
             raise ParameterError(f"needs about {need / 1e9:.3g} GB for its tracks ({tf:g} s), "
-                                 f"more than this machine's {memory / 1e9:.3g} GB: draw "
+                                 f"more than the {memory / 1e9:.3g} GB this process may use: draw "
                                  f"fewer, or several batches with different --seed",
                                  field="--monte-carlo", value=monte_carlo)
         # overtaking closes at a few m/s: closer, within what the horizon lets close

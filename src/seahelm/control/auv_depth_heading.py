@@ -36,7 +36,7 @@ from numba import njit
 
 from ..parameters import Params, param, signal_indices
 from .base import Controller, wrap_pi
-from .heading_reference import heading_reference_step
+from .heading_reference import heading_reference_init, heading_reference_step
 
 __all__ = ["AuvDepthHeadingParams", "AUV_DEPTH_HEADING"]
 
@@ -97,9 +97,8 @@ def auv_depth_heading_init(z, y, ref, p, cs):  # pragma: no cover - compiled
     cs[_S.depth_integral] = 0.0
     cs[_S.pitch_integral] = 0.0
     cs[_S.heading_error_integral] = 0.0
-    cs[_S.desired_heading] = y[_M.heading]
-    cs[_S.desired_yaw_rate] = 0.0
-    cs[_S.desired_yaw_acceleration] = 0.0
+    heading_reference_init(cs, _S.desired_heading, _S.desired_yaw_rate,
+                           _S.desired_yaw_acceleration, y[_M.heading])
 
 
 @njit(cache=True)

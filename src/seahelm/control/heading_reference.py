@@ -1,5 +1,5 @@
 """The third-order heading reference model of the craft autopilots (Fossen 2021, §12.1.1):
-one step of it, shared by :mod:`.thrust_heading` (Otter USV) and :mod:`.auv_depth_heading`
+its start and one step of it, shared by :mod:`.thrust_heading` (Otter USV) and :mod:`.auv_depth_heading`
 (REMUS 100).
 
 The desired heading ψ_d follows the commanded ψ_ref through three cascaded first-order
@@ -20,7 +20,25 @@ from numba import njit
 
 from .base import wrap_pi
 
-__all__ = ["heading_reference_step"]
+__all__ = ["heading_reference_init", "heading_reference_step"]
+
+
+@njit(cache=True)
+def heading_reference_init(cs, heading, rate, acceleration, psi):  # pragma: no cover - compiled
+    """Start the reference model at rest on the craft's heading.
+
+    Parameters
+    ----------
+    cs : numpy.ndarray
+        The controller's states; written in place.
+    heading, rate, acceleration : int
+        Where ψ_d [rad], r_d [rad/s] and a_d [rad/s²] are in ``cs``.
+    psi : float
+        The craft's heading ψ [rad]: ψ_d = ψ, r_d = a_d = 0.
+    """
+    cs[heading] = psi
+    cs[rate] = 0.0
+    cs[acceleration] = 0.0
 
 
 @njit(cache=True)

@@ -31,6 +31,7 @@ from numba import njit
 from ..parameters import Params, param, signal_indices
 from .base import Controller, wrap_pi
 from .held_rps import with_held_rps
+from .pid import pid_heading_init, saturate_integrating
 
 __all__ = ["LQHeadingParams", "LQHeadingRpsParams", "LQ_HEADING", "LQ_HEADING_RPS"]
 
@@ -59,22 +60,14 @@ _S = signal_indices(STATES)
 
 
 @njit(cache=True)
-def lq_heading_init(z, y, ref, p, cs):  # pragma: no cover - compiled
-    cs[_S.heading_error_integral] = 0.0
-
-
-@njit(cache=True)
 def lq_heading_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compiled
     e = wrap_pi(ref[_R.heading] - y[_M.heading])
     r_ref = ref[_R.yaw_rate] if ref.shape[0] > _R.yaw_rate else 0.0
     integral = cs[_S.heading_error_integral]
     u_unsat = (p.k_integral * integral + p.k_heading * e - p.k_yaw_rate * (y[_M.yaw_rate] - r_ref)
                - p.k_sway * y[_M.sway_speed])
-    umax = p.max_command
-    u = min(max(u_unsat, -umax), umax)
-    if u == u_unsat or e * u_unsat < 0.0:
-        cs[_S.heading_error_integral] = integral + e * dt
-    cmd[_C.rudder_command] = u
+    cmd[_C.rudder_command], cs[_S.heading_error_integral] = saturate_integrating(
+        u_unsat, p.max_command, e, integral, dt)
 
 
 LQ_HEADING = Controller(
@@ -88,7 +81,7 @@ LQ_HEADING = Controller(
     command_labels=COMMANDS,
     command_units=("rad",),
     state_units=("rad·s",),
-    init=lq_heading_init,
+    init=pid_heading_init,  # (the same state: ∫e dt = 0)
     step=lq_heading_step,
     measurement_labels=MEASUREMENTS,
 )

@@ -73,11 +73,41 @@ def pid_heading_step(t, dt, z, y, ref, p, cs, cmd):  # pragma: no cover - compil
     r_ref = ref[_R.yaw_rate] if ref.shape[0] > _R.yaw_rate else 0.0
     integral = cs[_S.heading_error_integral]
     u_unsat = kp * e + ki * integral + kd * (r_ref - y[_M.yaw_rate])
+    cmd[_C.rudder_command], cs[_S.heading_error_integral] = saturate_integrating(
+        u_unsat, umax, e, integral, dt)
+
+
+@njit(cache=True)
+def saturate_integrating(u_unsat, umax, error, integral, dt):  # pragma: no cover - compiled
+    """The command saturated to ±``umax`` and the error integral after conditional integration.
+
+    Anti-windup by conditional integration (Åström & Hägglund 2006, §3.5): the integral takes
+    ``error`` dt unless the command is saturated and the error pushes it further out. Used by
+    every heading autopilot with an integral of the heading error (``pid-heading``,
+    ``lq-heading``).
+
+    Parameters
+    ----------
+    u_unsat : float
+        The unsaturated command.
+    umax : float
+        The saturation (> 0), in the command's unit.
+    error : float
+        The error being integrated.
+    integral : float
+        Its integral so far.
+    dt : float
+        The controller's step [s].
+
+    Returns
+    -------
+    (float, float)
+        The command min(max(u_unsat, −umax), umax) and the integral to keep.
+    """
     u = min(max(u_unsat, -umax), umax)
-    # conditional integration: integrate unless saturated and pushing further out
-    if u == u_unsat or e * u_unsat < 0.0:
-        cs[_S.heading_error_integral] = integral + e * dt
-    cmd[_C.rudder_command] = u
+    if u == u_unsat or error * u_unsat < 0.0:
+        integral = integral + error * dt
+    return u, integral
 
 
 PID_HEADING = Controller(

@@ -34,7 +34,7 @@ from numba import njit
 
 from ..parameters import Params, param, signal_indices
 from .base import Controller, wrap_pi
-from .heading_reference import heading_reference_step
+from .heading_reference import heading_reference_init, heading_reference_step
 
 __all__ = ["ThrustHeadingParams", "THRUST_HEADING"]
 
@@ -90,9 +90,8 @@ _O = signal_indices(OUTPUTS)
 @njit(cache=True)
 def thrust_heading_init(z, y, ref, p, cs):  # pragma: no cover - compiled
     cs[_S.heading_error_integral] = 0.0
-    cs[_S.desired_heading] = y[_M.heading]
-    cs[_S.desired_yaw_rate] = 0.0
-    cs[_S.desired_yaw_acceleration] = 0.0
+    heading_reference_init(cs, _S.desired_heading, _S.desired_yaw_rate,
+                           _S.desired_yaw_acceleration, y[_M.heading])
 
 
 @njit(cache=True)

@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from .._optional import optional_import
+from ..errors import ParameterError
 from .vector import ShipVectorEnv
 
 gym = optional_import("gymnasium", extra="rl", purpose="seahelm.gym")
@@ -85,6 +86,11 @@ class ShipEnv(gym.Env):
         -------
         observation, reward, terminated, truncated, info (empty dict)
         """
+        if action is None:
+            k = len(self.action_labels)
+            raise ParameterError(f": missing (None); step() needs an array of shape ({k},) "
+                                 f"({', '.join(self.action_labels)} "
+                                 f"[{', '.join(self.action_units)}])", field="action")
         obs, reward, terminated, truncated, _ = self._vec.step([action])
         return obs[0], float(reward[0]), bool(terminated[0]), bool(truncated[0]), {}
 

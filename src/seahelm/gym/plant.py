@@ -9,13 +9,15 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from ..errors import ParameterError, ValidityRangeWarning
+from ..resources import WorkTooLarge, memory_limit
 from ..ships import get_ship
 from ..simulation.problem import Problem
 from ..simulation.stepping import Simulator
@@ -105,6 +107,57 @@ def _weather(ship: Any, weather: Mapping[str, float]) -> dict[str, Any]:
     return {"environment": env, "environment_params": params}
 
 
+#: Memory of one sub-environment [B] of a ship task (HeadingKeeping ...), about twice what
+#: one takes (peak RSS over 1,000 and 200,000 sub-environments of HeadingKeeping-v0,
+#: KVLCC2 L7, RK4, 2026-12-02: 2.1-2.2 kB).
+BYTES_PER_ENV = 4096
+
+
+def check_env_memory(num_envs: int, bytes_per_env: float) -> None:
+    """Refuse, before anything is allocated, more sub-environments than fit in memory.
+
+    Parameters
+    ----------
+    num_envs : int
+        Sub-environments.
+    bytes_per_env : float
+        The memory one takes [B] (:data:`BYTES_PER_ENV` for a ship task).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``num_envs``, the memory it needs and what this process may use
+        (:func:`seahelm.resources.memory_limit`: the machine's, its cgroup's or its
+        address-space limit, the smallest).
+    """
+    need = float(num_envs) * bytes_per_env
+    if need <= 1 << 26:  # (every limit that matters is larger; asking the OS costs ~60 us)
+        return
+    limit = memory_limit()
+    if limit is not None and need > limit.bytes:
+        raise ParameterError(f"= {num_envs} needs about {need / 1e9:.3g} GB "
+                             f"({bytes_per_env:g} B a sub-environment), more than the "
+                             f"{limit.bytes / 1e9:.3g} GB this process may use ({limit.source})"
+                             f"; give at most {int(limit.bytes // bytes_per_env)}",
+                             field="num_envs", unit="B", value=num_envs)
+
+
+@contextmanager
+def episode_named(episode_seconds: float) -> Iterator[None]:
+    """Refusals of the engine's ``t_final`` (the work budget) re-raised naming
+    ``episode_seconds``, the environment's keyword for it (the user never gave a ``t_final``).
+    """
+    try:
+        yield
+    except WorkTooLarge as exc:
+        if exc.field != "t_final":
+            raise
+        raise WorkTooLarge(f": {exc.over}; a shorter `episode_seconds` (got {episode_seconds:g} "
+                           f"s), a larger `dt` or fewer `num_envs` {exc.anyway}",
+                           field="episode_seconds", work=exc.work, budget=exc.budget,
+                           over=exc.over, anyway=exc.anyway) from None
+
+
 def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
                 action_period: float, weather: Mapping[str, float] | None = None,
                 integrator: Any = "rk4", autopilot: Any = None,
@@ -151,6 +204,7 @@ def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
             or num_envs < 1:
         raise ParameterError(f"must be an integer >= 1, got {num_envs!r}", field="num_envs",
                              value=num_envs)
+    check_env_memory(int(num_envs), BYTES_PER_ENV)
     for name, v in (("episode_seconds", episode_seconds), ("dt", dt),
                     ("action_period", action_period)):
         if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
@@ -187,7 +241,8 @@ def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
                       actuator_x0=[rudder0], t_final=float(episode_seconds), dt=float(dt),
                       record_every=max(1, int(round(episode_seconds / dt))),
                       integrator=integrator, **loop_kw, **env_kw)
-    sim = Simulator(problem)
+    with episode_named(episode_seconds):
+        sim = Simulator(problem)
     labels = sim.command_labels
     command_start = np.array([float(inputs.get(c, 0.0)) for c in labels])
     obs0 = sim.reset()

@@ -359,6 +359,10 @@ class ShipVectorEnv(VectorEnv):
     # --------------------------------------------------------------------------------------
     def _actions(self, actions: Any) -> np.ndarray:
         n, k = self.num_envs, len(self.action_labels)
+        if actions is None:  # (numpy makes None a NaN: "is nan" said nothing of the cause)
+            raise ParameterError(f": missing (None); step() needs an array of shape ({n}, {k}) "
+                                 f"(envs, {', '.join(self.action_labels)} "
+                                 f"[{', '.join(self.action_units)}])", field="actions")
         try:
             a = np.asarray(actions, dtype=np.float64)
         except (TypeError, ValueError):

@@ -79,8 +79,9 @@ def dp_capability_sections(data: Any) -> list[Section]:
                             caption=f"over {directions.size} direction(s)"))
     if level == 3 and "held" in ds:
         held = np.asarray(ds["held"].values, dtype=bool)
+        excursion = np.asarray(ds["excursion"].values)
+        largest = fmt(float(excursion[held].max()), 4) if held.any() else "–"
         sec.blocks.append(paragraph(
             f"{int(held.sum())} of {held.size} runs held (case × direction × wind); the "
-            f"largest excursion of a held run: "
-            f"{fmt(float(np.asarray(ds['excursion'].values)[held].max()), 4) if held.any() else '–'} m"))
+            f"largest excursion of a held run: {largest} m"))
     return [sec]

@@ -50,7 +50,9 @@ class VesselSection(_Strict):
     degrees with ``_deg``; in a ``[maneuver]`` scenario they may be drawn in
     ``[batch.monte_carlo]`` as ``vessel.particulars.<key>``, one estimated ship per sample).
     ``params`` override the ship's parameters (of an estimated ship: its estimated MMG
-    coefficients), ``initial`` its initial state; ``water_depth`` [m] puts the ship in shallow
+    coefficients), ``initial`` its initial state (the states not given are 0: without it the
+    ship starts at rest, unlike a Python ``Problem(ship=...)`` without ``x0``, which starts on
+    the ship's straight approach); ``water_depth`` [m] puts the ship in shallow
     water (its MMG coefficients corrected; ``params`` then change the deep-water ones)."""
 
     model: str | None = None  # the ship's model when a ship is named

@@ -131,6 +131,7 @@ def simulate(
     jit: bool | None = None,
     first_order: Any = None,
     post_pass: Any = None,
+    sensors: Any = None,
 ) -> "SimResult":
     """Simulate a batch of closed-loop runs: a :class:`~seahelm.simulation.problem.Problem`.
 
@@ -222,6 +223,9 @@ def simulate(
     post_pass : object, optional
         Computed from the recordings after the run, into the result's ``extra`` channels and
         metadata (:attr:`Problem.post_pass <seahelm.simulation.problem.Problem>`).
+    sensors : PositionSensors, optional
+        What the controller's position and heading sensors see: first-order motion and noise
+        (:mod:`seahelm.simulation.sensor_stage`).
 
     Returns
     -------
@@ -537,6 +541,8 @@ def _result(batch: Batch, *, wall: float, compile_time: float, throw: bool,
             **(dict(metadata) if metadata else {}),
         },
     )
+    if model.check_result is not None:  # (the model's validity range, on what was run)
+        model.check_result(result)
     if problem.post_pass is not None:  # (computed from the recordings, into the result)
         extra, more = problem.post_pass.compute(result)
         result.extra.update(extra)

@@ -125,7 +125,9 @@ class Problem:
         Initial vessel state (SI units, radians). Required without a ``ship``; with one, the
         default is its trimmed straight approach at its test speed, as the manoeuvres start
         (:mod:`seahelm.simulation.ship_start`: the steering gear at the trim angle and, for an
-        open-loop problem without a ``reference``, the approach's rudder and rps held).
+        open-loop problem without a ``reference``, the approach's rudder and rps held). (A
+        scenario's ``[vessel] initial`` is different: the states it does not give are 0, so a
+        scenario without it starts at rest.)
     controller, controller_params : Controller or str, Params or array, optional
         Controller (default: open loop, reference = command) and its parameters.
     actuator, actuator_params, actuator_x0 : Actuator or str, Params or array, array_like

@@ -118,7 +118,9 @@ def restart_clock(sim: "Simulator", runs: Any = None) -> None:
     ------
     ParameterError
         Naming ``reference``/``disturbance`` for a problem whose references or disturbances
-        vary in time (their values are read at the run's time), or ``runs`` out of range.
+        vary in time (their values are read at the run's time), ``first_order`` for
+        first-order wave motions in the loop (a function of the time), ``sensors`` for
+        position sensors with noise (a function of the step), or ``runs`` out of range.
     """
     sim._require_reset()
     a = sim._batch.slices.arrays
@@ -127,6 +129,16 @@ def restart_clock(sim: "Simulator", runs: Any = None) -> None:
             raise ParameterError(f": the {name} is a time series (shape {arr.shape}); the "
                                  "clock of its runs cannot be set back", field=name,
                                  value=arr.shape)
+    problem = sim.problem
+    if getattr(problem, "first_order", None) is not None:
+        raise ParameterError(": the first-order wave motions in the loop are a function of the "
+                             "time (their sea would start again from t = 0 for the runs kept); "
+                             "the clock of its runs cannot be set back", field="first_order")
+    sensors = getattr(problem, "sensors", None)
+    if sensors is not None and any(s > 0.0 for s in sensors.noise):
+        raise ParameterError(": the position sensors' noise is a function of the step (the runs "
+                             "kept would measure their noise from step 0 again); the clock of "
+                             "its runs cannot be set back", field="sensors")
     sel = None if runs is None else run_indices(runs, sim.n_runs)
     # every clock at step 0 (the states, commands, controller states and statuses kept: the
     # loop reads nothing else of a run's past), then the runs to start again reset -- all at

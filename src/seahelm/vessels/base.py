@@ -105,6 +105,10 @@ class VesselModel:
     capabilities : frozenset of str, optional
         What the model supports beyond the engine, names of :data:`CAPABILITIES`
         (:meth:`supports`).
+    check_result : callable, optional
+        ``check_result(result)``, called by :func:`~seahelm.simulation.engine.simulate` on the
+        finished result: warns (:func:`~seahelm.errors.warn_validity`) where the runs left the
+        model's published range (a low-speed model driven fast).
     """
 
     name: str
@@ -126,6 +130,7 @@ class VesselModel:
     motion: Any = None
     check_initial_state: Any = None
     capabilities: frozenset[str] = frozenset()
+    check_result: Any = None
 
     def __post_init__(self) -> None:
         n = len(self.state_labels)

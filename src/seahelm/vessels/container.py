@@ -86,7 +86,8 @@ from ..constants import GRAVITY
 from ..errors import ParameterError
 from ..parameters import Params, param, signal_indices
 from .base import VesselModel
-from .rigid_body import horizontal_velocity
+from .rigid_body import (PLANAR_OUTPUT_UNITS, PLANAR_OUTPUTS, horizontal_velocity,
+                         write_planar_outputs)
 
 __all__ = ["ContainerParams", "CONTAINER", "CONTAINER_SHIP", "CONTAINER_SERVO",
            "CONTAINER_MSS_SERVO", "CONTAINER_PROVENANCE", "STATES", "INPUTS", "DISTURBANCES", "OUTPUTS"]
@@ -98,9 +99,8 @@ INPUTS = ("rudder_angle", "propeller_rps")
 INPUT_UNITS = ("rad", "1/s")
 DISTURBANCES = ("force_x", "force_y", "moment_x", "moment_z", "current_north", "current_east")
 DISTURBANCE_UNITS = ("N", "N", "N·m", "N·m", "m/s", "m/s")
-OUTPUTS = ("north", "east", "heading", "yaw_rate", "surge_speed", "sway_speed", "speed",
-           "drift_angle", "roll_angle", "roll_rate", "thrust", "rudder_normal_force")
-OUTPUT_UNITS = ("m", "m", "rad", "rad/s", "m/s", "m/s", "m/s", "rad", "rad", "rad/s", "N", "N")
+OUTPUTS = PLANAR_OUTPUTS + ("roll_angle", "roll_rate", "thrust", "rudder_normal_force")
+OUTPUT_UNITS = PLANAR_OUTPUT_UNITS + ("rad", "rad/s", "N", "N")
 
 S = signal_indices(STATES)
 U = signal_indices(INPUTS)
@@ -338,14 +338,8 @@ def container_output(t, x, u, p, y):  # pragma: no cover - compiled
     _X, _Y, _K, _N, thrust, F_N, speed = _forces(
         uu, v, x[S.yaw_rate], x[S.roll_rate], x[S.roll_angle], u[U.rudder_angle],
         u[U.propeller_rps], p)
-    y[Y.north] = x[S.north]
-    y[Y.east] = x[S.east]
-    y[Y.heading] = x[S.heading]
-    y[Y.yaw_rate] = x[S.yaw_rate]
-    y[Y.surge_speed] = uu
-    y[Y.sway_speed] = v
-    y[Y.speed] = speed
-    y[Y.drift_angle] = math.atan2(-v, uu)
+    write_planar_outputs(y, x[S.north], x[S.east], x[S.heading], x[S.yaw_rate], uu, v, speed,
+                         math.atan2(-v, uu))
     y[Y.roll_angle] = x[S.roll_angle]
     y[Y.roll_rate] = x[S.roll_rate]
     y[Y.thrust] = thrust

@@ -16,22 +16,32 @@ has D₂₃ ≠ D₃₂); M must be invertible.
 
 The matrices' elements are parameters (m11 … m33, d11 … d33, SI units): a ship file gives
 them with their source.
+
+**Range**: the model is the station-keeping one — linear damping, no Coriolis or nonlinear
+terms — identified from a supply vessel under DP (Fossen, Sagatun & Sørensen 1996, Control
+Engineering Practice 4(3), 369–376) and stated by Fossen (2021, §6.7) for low-speed
+applications (station keeping and low-speed manoeuvring), without a number that was reachable
+here. seahelm's limit is :data:`MAX_SPEED` = 2 m/s through the water (Froude number
+U/√(gL) = 0.073 for the supply vessel's 76.2 m): a run faster than that warns
+(:class:`~seahelm.errors.ValidityRangeWarning`, an error in strict mode) after it is done
+(``check_result``), naming the run, the speed and the limit.
 The catalog's ``supply`` is Fossen's supply vessel in this model.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numba import njit
 
-from ..errors import ParameterError
+from ..errors import ParameterError, warn_validity
 from ..parameters import Params, param, signal_indices
 from .base import NAV_OUTPUT_UNITS, NAV_OUTPUTS, VesselModel
 from .rigid_body import horizontal_velocity
 
-__all__ = ["DpThreeDofParams", "DP_3DOF", "STATES", "INPUTS"]
+__all__ = ["DpThreeDofParams", "DP_3DOF", "STATES", "INPUTS", "MAX_SPEED", "check_result"]
 
 STATES: tuple[str, ...] = ("north", "east", "heading", "surge_speed", "sway_speed", "yaw_rate")
 INPUTS: tuple[str, ...] = ("thrust_surge", "thrust_sway", "thrust_yaw")
@@ -144,6 +154,32 @@ def dp_3dof_output(t, x, u, p, y):  # pragma: no cover - compiled
     y[_Y.speed] = np.sqrt(x[_X.surge_speed] ** 2 + x[_X.sway_speed] ** 2)
 
 
+#: Speed through the water [m/s] above which a run warns (the module's Range: seahelm's).
+MAX_SPEED = 2.0
+
+
+def check_result(result: Any) -> None:
+    """Warn if a run's speed through the water exceeded :data:`MAX_SPEED` (module docstring).
+
+    Parameters
+    ----------
+    result : SimResult
+        A finished run of the model (diverged runs are not looked at).
+    """
+    u, v = np.asarray(result["surge_speed"]), np.asarray(result["sway_speed"])
+    speed = np.sqrt(u * u + v * v)
+    speed = np.where(np.asarray(result.status)[:, None] == 0, speed, 0.0)
+    peak = np.nanmax(speed, axis=1) if speed.size else np.zeros(0)
+    over = np.flatnonzero(peak > MAX_SPEED)
+    if over.size:
+        i = int(over[np.argmax(peak[over])])
+        warn_validity(
+            f"dp-3dof (the low-speed DP model, Fossen 2021 §6.7) used outside its range: "
+            f"{over.size} run(s) faster than {MAX_SPEED:g} m/s through the water, run {i} "
+            f"at {peak[i]:.3g} m/s (seahelm's limit for station keeping and low-speed "
+            "manoeuvring)", stacklevel=4)
+
+
 @njit(cache=True)
 def dp_3dof_motion(x, p):  # pragma: no cover - compiled
     return x[_X.surge_speed], x[_X.sway_speed], x[_X.heading]
@@ -165,4 +201,5 @@ DP_3DOF = VesselModel(
     output_labels=OUTPUTS,
     output_units=NAV_OUTPUT_UNITS + ("m/s",),
     motion=dp_3dof_motion,
+    check_result=check_result,
 )

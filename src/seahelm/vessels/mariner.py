@@ -78,7 +78,8 @@ from ..constants import GRAVITY
 from ..errors import ParameterError
 from ..parameters import Params, param, signal_indices
 from .base import VesselModel
-from .rigid_body import cramer_2x2, horizontal_velocity
+from .rigid_body import (PLANAR_OUTPUT_UNITS, PLANAR_OUTPUTS, cramer_2x2, horizontal_velocity,
+                         write_planar_outputs)
 
 __all__ = [
     "MarinerParams",
@@ -98,9 +99,8 @@ INPUTS = ("rudder_angle",)
 INPUT_UNITS = ("rad",)
 DISTURBANCES = ("force_x", "force_y", "moment_z", "current_north", "current_east")
 DISTURBANCE_UNITS = ("N", "N", "N·m", "m/s", "m/s")
-OUTPUTS = ("north", "east", "heading", "yaw_rate", "surge_speed", "sway_speed", "speed",
-           "drift_angle")
-OUTPUT_UNITS = ("m", "m", "rad", "rad/s", "m/s", "m/s", "m/s", "rad")
+OUTPUTS = PLANAR_OUTPUTS
+OUTPUT_UNITS = PLANAR_OUTPUT_UNITS
 
 S = signal_indices(STATES)
 U = signal_indices(INPUTS)
@@ -258,14 +258,8 @@ def mariner_output(t, x, u, p, y):  # pragma: no cover - compiled
     """Outputs of the Mariner model (``OUTPUTS`` order) for one run."""
     surge = p.nominal_speed + x[S.surge_perturbation]
     v = x[S.sway_speed]
-    y[Y.north] = x[S.north]
-    y[Y.east] = x[S.east]
-    y[Y.heading] = x[S.heading]
-    y[Y.yaw_rate] = x[S.yaw_rate]
-    y[Y.surge_speed] = surge
-    y[Y.sway_speed] = v
-    y[Y.speed] = math.sqrt(surge * surge + v * v)
-    y[Y.drift_angle] = math.atan2(-v, surge)
+    write_planar_outputs(y, x[S.north], x[S.east], x[S.heading], x[S.yaw_rate], surge, v,
+                         math.sqrt(surge * surge + v * v), math.atan2(-v, surge))
 
 
 @njit(cache=True)

@@ -89,7 +89,8 @@ from ..constants import GRAVITY, KNOT
 from ..errors import ParameterError
 from ..parameters import Params, param, signal_indices
 from .base import VesselModel
-from .rigid_body import horizontal_velocity, midship_accelerations
+from .rigid_body import (PLANAR_OUTPUT_UNITS, PLANAR_OUTPUTS, horizontal_velocity,
+                         midship_accelerations, write_planar_outputs)
 
 __all__ = [
     "MMGParams",
@@ -118,9 +119,8 @@ INPUTS = ("rudder_angle", "propeller_rps")
 INPUT_UNITS = ("rad", "1/s")
 DISTURBANCES = ("force_x", "force_y", "moment_z", "current_north", "current_east")
 DISTURBANCE_UNITS = ("N", "N", "N·m", "m/s", "m/s")
-OUTPUTS = ("north", "east", "heading", "yaw_rate", "surge_speed", "sway_speed", "speed",
-           "drift_angle", "thrust", "rudder_normal_force", "rudder_inflow_angle")
-OUTPUT_UNITS = ("m", "m", "rad", "rad/s", "m/s", "m/s", "m/s", "rad", "N", "N", "rad")
+OUTPUTS = PLANAR_OUTPUTS + ("thrust", "rudder_normal_force", "rudder_inflow_angle")
+OUTPUT_UNITS = PLANAR_OUTPUT_UNITS + ("N", "N", "rad")
 
 S = signal_indices(STATES)
 U = signal_indices(INPUTS)
@@ -292,6 +292,41 @@ def _forces(u, v, r, delta, n, p):  # pragma: no cover - compiled
     dp = p.propeller_diameter
     thrust = rho * dp * dp * (p.k_0 * n * n * dp * dp + p.k_1 * n * dp * u_P + p.k_2 * u_P * u_P)
     X_P = (1.0 - p.t_P) * thrust
+    X_R, Y_R, F_N, cos_d, u_R, v_R = mmg_rudder_forces(u_P, thrust, beta, rn, speed, delta, p)
+    x_R = p.x_R * L  # metres
+    x_H = p.x_H * L
+    N_R = -(x_R + p.a_H * x_H) * F_N * cos_d
+    return (X_H, Y_H, N_H, X_P, X_R, Y_R, N_R, thrust, F_N, w_P, u_R, v_R, speed, beta)
+
+
+@njit(cache=True)
+def mmg_rudder_forces(u_P, thrust, beta, rn, speed, delta, p):  # pragma: no cover - compiled
+    """The MMG rudder's surge and sway forces (Yasukawa & Yoshimura 2015, rudder force),
+    for every model of the MMG family that has its rudder (``mmg``, ``mmg-4q``).
+
+    Parameters
+    ----------
+    u_P : float
+        Propeller inflow speed u (1 − w_P) [m/s].
+    thrust : float
+        Propeller thrust T [N].
+    beta, rn : float
+        Drift angle β [rad] and non-dimensional yaw rate r' [-] at the midship point.
+    speed : float
+        Speed U through the water [m/s].
+    delta : float
+        Rudder angle δ [rad].
+    p : parameters
+        The model's parameters (ρ, D_P, H_R, κ, ε, l'_R, γ_R±, A_R, f_α, t_R, a_H).
+
+    Returns
+    -------
+    (float, float, float, float, float, float)
+        X_R = −(1 − t_R) F_N sin δ and Y_R = −(1 + a_H) F_N cos δ [N], F_N [N], cos δ (for the
+        model's yaw moment N_R = −(x_R + a_H x_H) F_N cos δ), u_R and v_R [m/s].
+    """
+    rho = p.rho
+    dp = p.propeller_diameter
     # rudder inflow: u_P (1 + κ(√(1 + 8K_T/(πJ²)) − 1)) = (1 − κ) u_P + κ √(u_P² + 8T/(πρD²))
     eta = dp / p.rudder_span
     slip = u_P * u_P + 8.0 * thrust / (math.pi * rho * dp * dp)
@@ -309,12 +344,9 @@ def _forces(u, v, r, delta, n, p):  # pragma: no cover - compiled
     cos_d = math.cos(delta)
     U_R = math.sqrt(u_R * u_R + v_R * v_R)
     F_N = 0.5 * rho * p.rudder_area * p.f_alpha * U_R * (u_R * sin_d - v_R * cos_d)
-    x_R = p.x_R * L  # metres
-    x_H = p.x_H * L
     X_R = -(1.0 - p.t_R) * F_N * sin_d
     Y_R = -(1.0 + p.a_H) * F_N * cos_d
-    N_R = -(x_R + p.a_H * x_H) * F_N * cos_d
-    return (X_H, Y_H, N_H, X_P, X_R, Y_R, N_R, thrust, F_N, w_P, u_R, v_R, speed, beta)
+    return X_R, Y_R, F_N, cos_d, u_R, v_R
 
 
 @njit(cache=True)
@@ -343,21 +375,30 @@ def mmg_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     uu = x[S.surge_speed]
     v = x[S.sway_speed]
     r = x[S.yaw_rate]
-    psi = x[S.heading]
     X_H, Y_H, N_H, X_P, X_R, Y_R, N_R, _T, _F_N, _w_P, _u_R, _v_R, _U, _b = _forces(
         uu, v, r, u[U.rudder_angle], u[U.propeller_rps], p)
     X = X_H + X_P + X_R + d[D.force_x]
     Yf = Y_H + Y_R + d[D.force_y]
     N = N_H + N_R + d[D.moment_z]
     du, dv, dr = mmg_accelerations(X, Yf, N, uu, v, r, p)
+    write_mmg_rates(x, d, dx, du, dv, dr)
+
+
+@njit(cache=True)
+def write_mmg_rates(x, d, dx, du, dv, dr):  # pragma: no cover - compiled
+    """The rates of the states every model of the MMG family has (:data:`STATES`, the first
+    of ``mmg-4q``'s and ``mmg-ls``'s; their disturbances are :data:`DISTURBANCES`): the
+    accelerations (u̇, v̇_m, ṙ) the model computed, and the kinematics
+    (:func:`~seahelm.vessels.rigid_body.horizontal_velocity`): the velocities are through the
+    water, the position moves with the current as well."""
     dx[S.surge_speed] = du
     dx[S.sway_speed] = dv
     dx[S.yaw_rate] = dr
-    # velocities through the water; the position moves with the current as well
-    north, east = horizontal_velocity(uu, v, psi, d[D.current_north], d[D.current_east])
+    north, east = horizontal_velocity(x[S.surge_speed], x[S.sway_speed], x[S.heading],
+                                      d[D.current_north], d[D.current_east])
     dx[S.north] = north
     dx[S.east] = east
-    dx[S.heading] = r
+    dx[S.heading] = x[S.yaw_rate]
 
 
 @njit(cache=True)
@@ -376,14 +417,8 @@ def write_mmg_outputs(x, y, speed, beta, thrust, F_N, inflow_angle):  # pragma: 
     ``mmg-4q``'s and ``mmg-ls``'s; their states begin with :data:`STATES`): the state's
     position, heading, rates and speeds, then ``speed``, ``drift_angle``, ``thrust``,
     ``rudder_normal_force`` and ``rudder_inflow_angle`` as the model computed them."""
-    y[Y.north] = x[S.north]
-    y[Y.east] = x[S.east]
-    y[Y.heading] = x[S.heading]
-    y[Y.yaw_rate] = x[S.yaw_rate]
-    y[Y.surge_speed] = x[S.surge_speed]
-    y[Y.sway_speed] = x[S.sway_speed]
-    y[Y.speed] = speed
-    y[Y.drift_angle] = beta
+    write_planar_outputs(y, x[S.north], x[S.east], x[S.heading], x[S.yaw_rate],
+                         x[S.surge_speed], x[S.sway_speed], speed, beta)
     y[Y.thrust] = thrust
     y[Y.rudder_normal_force] = F_N
     y[Y.rudder_inflow_angle] = inflow_angle

@@ -101,13 +101,14 @@ from .mmg import (
     _forces,
     mmg_accelerations,
     mmg_motion,
+    mmg_rudder_forces,
     rudder_inflow_angle,
     wake_fraction,
     write_mmg_outputs,
+    write_mmg_rates,
 )
 from .mmg import OUTPUT_UNITS as _MMG_OUTPUT_UNITS
 from .mmg import OUTPUTS as _MMG_OUTPUTS
-from .rigid_body import horizontal_velocity
 
 __all__ = ["MMG4QParams", "MMG_4Q", "STATES", "INPUTS", "OUTPUTS", "KVLCC2_FULL_4Q",
            "KVLCC2_L7_4Q", "KVLCC2_ENGINE_NOTE", "self_propulsion_rps", "propeller_torque",
@@ -244,24 +245,8 @@ def _forces4q(u, v, r, delta, n, p):  # pragma: no cover - compiled
     if n < 0.0:
         Y_P = -p.backing_side_force * abs(thrust)
         N_P = p.x_R * L * Y_P
-    # rudder: the MMG formulas (mmg._forces) with this thrust
-    dp = p.propeller_diameter
-    eta = dp / p.rudder_span
-    slip = u_P * u_P + 8.0 * thrust / (math.pi * rho * dp * dp)
-    a_P = abs(u_P)
-    jet = (1.0 - p.kappa) * a_P + p.kappa * math.sqrt(max(slip, 0.0))
-    u_R = p.epsilon * math.sqrt(eta * jet * jet + (1.0 - eta) * a_P * a_P)
-    if u_P < 0.0:
-        u_R = -u_R
-    beta_R = beta - p.l_R * rn
-    gamma_R = p.gamma_R_minus if beta_R < 0.0 else p.gamma_R_plus
-    v_R = speed * gamma_R * beta_R
-    sin_d = math.sin(delta)
-    cos_d = math.cos(delta)
-    U_R = math.sqrt(u_R * u_R + v_R * v_R)
-    F_N = 0.5 * rho * p.rudder_area * p.f_alpha * U_R * (u_R * sin_d - v_R * cos_d)
-    X_R = -(1.0 - p.t_R) * F_N * sin_d
-    Y_R = -(1.0 + p.a_H) * F_N * cos_d
+    # rudder: the MMG formulas (mmg.mmg_rudder_forces) with this thrust
+    X_R, Y_R, F_N, cos_d, u_R, v_R = mmg_rudder_forces(u_P, thrust, beta, rn, speed, delta, p)
     N_R = -(p.x_R * L + p.a_H * p.x_H * L) * F_N * cos_d
     return (X_H, Y_H, N_H, X_P, Y_P, N_P, X_R, Y_R, N_R, thrust, torque, F_N, u_R, v_R,
             speed, beta, b_adv)
@@ -273,7 +258,6 @@ def mmg4q_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     uu = x[S.surge_speed]
     v = x[S.sway_speed]
     r = x[S.yaw_rate]
-    psi = x[S.heading]
     n = x[S.propeller_rps]
     (X_H, Y_H, N_H, X_P, Y_P, N_P, X_R, Y_R, N_R, _T, torque, _F_N, _u_R, _v_R, _U, _b,
      _b_adv) = _forces4q(uu, v, r, u[U.rudder_angle], n, p)
@@ -281,13 +265,7 @@ def mmg4q_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     Yf = Y_H + Y_R + Y_P + d[D.force_y]
     N = N_H + N_R + N_P + d[D.moment_z]
     du, dv, dr = mmg_accelerations(X, Yf, N, uu, v, r, p)
-    dx[S.surge_speed] = du
-    dx[S.sway_speed] = dv
-    dx[S.yaw_rate] = dr
-    north, east = horizontal_velocity(uu, v, psi, d[D.current_north], d[D.current_east])
-    dx[S.north] = north
-    dx[S.east] = east
-    dx[S.heading] = r
+    write_mmg_rates(x, d, dx, du, dv, dr)
     clock = x[S.reversal_clock]
     dx[S.propeller_rps] = shaft_acceleration(n, u[U.engine_order], torque, clock, p)
     dx[S.reversal_clock] = reversal_clock_rate(n, u[U.engine_order], clock, p)

@@ -63,9 +63,9 @@ from ..hydrodynamics.low_speed_propulsion import (
 )
 from ..parameters import Params, param, signal_indices
 from .base import VesselModel
-from .rigid_body import horizontal_velocity, midship_accelerations
+from .rigid_body import midship_accelerations
 from .mmg import (DISTURBANCE_UNITS, DISTURBANCES, OUTPUT_UNITS, OUTPUTS, STATE_UNITS, STATES,
-                  mmg_motion, write_mmg_outputs)
+                  mmg_motion, write_mmg_outputs, write_mmg_rates)
 
 __all__ = ["MMGLowSpeedParams", "MMG_LS", "HULL_MODELS", "LowSpeedForces", "force_components",
            "ESSO_OSAKA_3M", "component_code"]
@@ -265,7 +265,6 @@ def mmg_ls_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     uu = x[S.surge_speed]
     v = x[S.sway_speed]
     r = x[S.yaw_rate]
-    psi = x[S.heading]
     (X_H, Y_H, N_H, X_P, Y_P, N_P, X_R, Y_R, N_R, _F_N, _u_R, _v_R, _U, _b,
      _w) = _forces_ls(uu, v, r, u[U.rudder_angle], u[U.propeller_rps], p)
     X = X_H + X_P + X_R + d[D.force_x]
@@ -277,14 +276,7 @@ def mmg_ls_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     # the midship equations of motion with I_zG + J_z given as one coefficient (I_zz_J_zz)
     du, dv, dr = midship_accelerations(X, Yf, N, uu, v, r, m, p.m_x * scale, p.m_y * scale,
                                        0.0, p.I_zz_J_zz * scale * L * L, p.x_G)
-    dx[S.surge_speed] = du
-    dx[S.sway_speed] = dv
-    dx[S.yaw_rate] = dr
-    # velocities through the water; the position moves with the current as well
-    north, east = horizontal_velocity(uu, v, psi, d[D.current_north], d[D.current_east])
-    dx[S.north] = north
-    dx[S.east] = east
-    dx[S.heading] = r
+    write_mmg_rates(x, d, dx, du, dv, dr)
 
 
 @njit(cache=True)

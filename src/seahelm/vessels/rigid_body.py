@@ -1,4 +1,5 @@
-"""The rigid-body part of the 3-DOF models, written once: kinematics and the mass-matrix solve.
+"""The rigid-body part of the 3-DOF models, written once: kinematics, the mass-matrix solve and
+the outputs they begin with (:data:`PLANAR_OUTPUTS`, :func:`write_planar_outputs`).
 
 Every surface-ship model in the horizontal plane moves its reference point the same way, and
 every model with a coupled sway–yaw mass matrix solves the same 2×2 system; the models
@@ -40,7 +41,17 @@ import math
 
 from numba import njit
 
-__all__ = ["horizontal_velocity", "cramer_2x2", "midship_accelerations"]
+from ..parameters import signal_indices
+
+__all__ = ["horizontal_velocity", "cramer_2x2", "midship_accelerations", "PLANAR_OUTPUTS",
+           "PLANAR_OUTPUT_UNITS", "write_planar_outputs"]
+
+#: The outputs a 3-DOF surface model with sway begins with (``mmg`` and its family, ``mariner``,
+#: ``container``), in this order: :func:`write_planar_outputs` writes them.
+PLANAR_OUTPUTS: tuple[str, ...] = ("north", "east", "heading", "yaw_rate", "surge_speed",
+                                   "sway_speed", "speed", "drift_angle")
+PLANAR_OUTPUT_UNITS: tuple[str, ...] = ("m", "m", "rad", "rad/s", "m/s", "m/s", "m/s", "rad")
+_Y = signal_indices(PLANAR_OUTPUTS)
 
 
 @njit(cache=True)
@@ -117,3 +128,33 @@ def midship_accelerations(X, Y, N, u, v, r, m, m_x, m_y, I_zG, J_z, x_G):  # pra
     d1, d2, det = cramer_2x2(m + m_y, a12, a12, I_zG + x_G * x_G * m + J_z,
                              Y - (m + m_x) * u * r, N - x_G * m * u * r)
     return du, d1 / det, d2 / det
+
+
+@njit(cache=True)
+def write_planar_outputs(y, north, east, heading, yaw_rate, surge_speed, sway_speed, speed,
+                         drift_angle):  # pragma: no cover - compiled
+    """Write the :data:`PLANAR_OUTPUTS` (the first eight outputs) of one run into ``y``.
+
+    Parameters
+    ----------
+    y : numpy.ndarray
+        The run's outputs; its first eight entries are written.
+    north, east : float
+        Position [m].
+    heading : float
+        Heading ψ [rad].
+    yaw_rate : float
+        Yaw rate r [rad/s].
+    surge_speed, sway_speed, speed : float
+        u, v and U through the water [m/s].
+    drift_angle : float
+        Drift angle β [rad].
+    """
+    y[_Y.north] = north
+    y[_Y.east] = east
+    y[_Y.heading] = heading
+    y[_Y.yaw_rate] = yaw_rate
+    y[_Y.surge_speed] = surge_speed
+    y[_Y.sway_speed] = sway_speed
+    y[_Y.speed] = speed
+    y[_Y.drift_angle] = drift_angle

@@ -117,11 +117,13 @@ def _gauss_speeds(t: np.ndarray, north: np.ndarray, east: np.ndarray, nodes: np.
                   until: np.ndarray, out: np.ndarray) -> int:  # pragma: no cover - compiled
     """The speed |(dN/dt, dE/dt)| along the splines through each run's track (rows of
     ``north``, ``east``) at the Gauss points ``nodes`` of its first ``until[run]`` intervals,
-    into ``out`` (intervals, nodes, runs; 0 in the later intervals). The Hermite coefficients and the derivative c2 + 2 c1 x + 3 c0 x²
+    into ``out`` (intervals, nodes, runs; 0 in the later intervals; ``out`` may hold fewer
+    intervals than the track, the first ones). The Hermite coefficients and the derivative c2 + 2 c1 x + 3 c0 x²
     are formed as ``CubicHermiteSpline`` and ``PPoly`` form them, term by term, at x from the
     interval's start. 0, or the 1-based row of a zero pivot."""
     n = t.size
     runs = north.shape[0]
+    width = min(n - 1, out.shape[0])  # (the intervals asked for)
     lower, diag, upper = np.empty(n - 1), np.empty(n), np.empty(n - 1)
     fact, swap = np.empty(n - 1), np.empty(n - 1, dtype=np.bool_)
     info = _factor(t, lower, diag, upper, fact, swap)
@@ -144,7 +146,7 @@ def _gauss_speeds(t: np.ndarray, north: np.ndarray, east: np.ndarray, nodes: np.
                 me[jj, i] = (east[j0 + jj, i + 1] - east[j0 + jj, i]) / h[i]
             _solve(t, mn[jj], lower, diag, upper, fact, swap, sn[jj])
             _solve(t, me[jj], lower, diag, upper, fact, swap, se[jj])
-        for i in range(n - 1):
+        for i in range(width):
             for jj in range(size):
                 tt_n = (sn[jj, i] + sn[jj, i + 1] - 2 * mn[jj, i]) / h[i]
                 c0_n = tt_n / h[i]
@@ -232,16 +234,21 @@ def distance_until(north: Any, east: Any, time: Any = None, until: Any = None) -
         north_rows = n if every else n[rows]
         intervals = np.full(n.shape[0], n.shape[1] - 1, dtype=np.int64) if until is None \
             else np.asarray(until, dtype=np.int64)
-        speed = np.empty((t.size - 1, nodes.size, north_rows.shape[0]))
+        wanted = np.ascontiguousarray(intervals if every else intervals[rows])
+        # only the intervals some run asks for are evaluated and summed: the later ones'
+        # pieces are 0 (as the kernel writes beyond ``until``; 0.5 h (0 @ w) is +0.0)
+        width = (t.size - 1 if until is None or not wanted.size
+                 else int(min(t.size - 1, max(int(wanted.max()), 0))))
+        speed = np.empty((width, nodes.size, north_rows.shape[0]))
         if _gauss_speeds(t, np.ascontiguousarray(north_rows),
-                         np.ascontiguousarray(e if every else e[rows]), nodes,
-                         np.ascontiguousarray(intervals if every else intervals[rows]),
-                         speed):
+                         np.ascontiguousarray(e if every else e[rows]), nodes, wanted, speed):
             raise np.linalg.LinAlgError("singular matrix")  # pragma: no cover - h > 0
         # (the quadrature sum over this memory layout, (intervals, 3, runs) seen as
         # (runs, intervals, 3), as before: numpy's matmul sums in an order of its layout's
-        # and size's)
-        arc = 0.5 * h * (speed.transpose(2, 0, 1) @ weights)
+        # and size's; each run's and interval's sum of three is the same for fewer intervals)
+        arc = 0.5 * h[:width] * (speed.transpose(2, 0, 1) @ weights)
+        if width < t.size - 1:
+            arc = np.concatenate([arc, np.zeros((arc.shape[0], t.size - 1 - width))], axis=1)
         if every:
             pieces = arc
         else:

@@ -62,6 +62,8 @@ from .track import distance_until, track_distance
 __all__ = ["turning_circle", "track_distance", "default_record_every", "SAMPLES_PER_LENGTH"]
 
 _DEG10 = math.radians(10.0)
+#: Powers 0..3 of a cubic (and offsets of its four nodes).
+_POWERS = np.arange(4)
 #: What the metrics of a constant-speed model (:mod:`seahelm.analysis.equilibria.constant_speed`)
 #: say.
 CONSTANT_SPEED_NOTE = ("constant-speed model: the speed does not change in the turn, the "
@@ -283,11 +285,12 @@ def _cubic_crossings(times: np.ndarray, change: np.ndarray, levels: np.ndarray,
     s = np.empty(k.shape)
     _bracket(times, np.ascontiguousarray(change, dtype=float), k, w, j0, s_nodes, c_nodes,
              good, s)
-    vander = s_nodes[..., None] ** np.arange(4)  # (levels, runs, 4 nodes, 4 powers)
-    vander[~good] = np.eye(4)  # (placeholders: never used)
+    vander = s_nodes[..., None] ** _POWERS  # (levels, runs, 4 nodes, 4 powers)
+    if not good.all():  # (every event inside the record: no placeholder to set)
+        vander[~good] = np.eye(4)  # (placeholders: never used)
     coef = np.linalg.solve(vander, c_nodes[..., None])[..., 0]  # power coefficients
     _newton(np.ascontiguousarray(coef), levels, s)
-    powers = s[..., None] ** np.arange(4)
+    powers = s[..., None] ** _POWERS
     weights = np.linalg.solve(np.swapaxes(vander, -1, -2), powers[..., None])[..., 0]
     return j0, np.where(good[..., None], weights, np.nan)
 
@@ -358,14 +361,58 @@ def _at_cubic(values: np.ndarray, k: np.ndarray, w: np.ndarray, j0: np.ndarray,
     steps = values.shape[2]
     if steps < 4:
         return _at_crossings(values, k, w)
-    idx = j0[..., None] + np.arange(4)
+    idx = j0[..., None] + _POWERS
     rows = np.arange(values.shape[1])[None, :, None]
-    nodes = values[:, rows, idx]  # (signals, levels, runs, 4)
-    out = np.einsum("slrj,lrj->slr", nodes, np.nan_to_num(weights))
-    cubic = (k >= 0) & np.isfinite(weights[..., 0])
+    return _weigh(values[:, rows, idx], k, w, weights, lambda: values)
+
+
+def _weigh(nodes: np.ndarray, k: np.ndarray, w: np.ndarray, weights: np.ndarray,
+           full: Any) -> np.ndarray:
+    """The signals at the crossings from their values at the four nodes of each, ``nodes``
+    (signals, levels, runs, 4), by the cubic weights (:func:`_at_cubic`); where a crossing
+    has no cubic (not reached, or at the record's start) the linear interpolation of the
+    whole signals ``full()`` (signals, runs, steps), asked for only then."""
+    finite = np.isfinite(weights)
+    every = bool(finite.all())  # (the usual case: no NaN weight to zero)
+    out = np.einsum("slrj,lrj->slr", nodes, weights if every else np.nan_to_num(weights))
+    cubic = (k >= 0) & finite[..., 0]
     if cubic.all():  # (every event reached inside the record: no linear fallback to take)
         return out
-    return np.where(cubic, out, _at_crossings(values, k, w))
+    return np.where(cubic, out, _at_crossings(full(), k, w))
+
+
+def _event_values(north: np.ndarray, east: np.ndarray, psi: np.ndarray, times: np.ndarray,
+                  dist: np.ndarray, k: np.ndarray, w: np.ndarray, j0: np.ndarray,
+                  weights: np.ndarray) -> np.ndarray:
+    """The distances along and across the original course (from the position at the order),
+    the time and the distance along the track at every event (:func:`_at_cubic` of the four
+    signals): (4, levels, runs).
+
+    The distances are formed at the four nodes of each event only, each element by the same
+    operations as over the whole record (so the same numbers), and gathered into the memory
+    layout :func:`_at_cubic`'s gather of the stacked signals has (signal innermost: the
+    weighted sum runs as it did). Where some event has no cubic (not reached: the linear
+    fallback) the whole record is formed and :func:`_at_cubic` takes it, as before.
+    """
+    n0, e0 = north[:, :1], east[:, :1]
+    c0, s0 = np.cos(psi[:, :1]), np.sin(psi[:, :1])
+
+    def full() -> np.ndarray:
+        dn, de = north - n0, east - e0
+        return np.stack([dn * c0 + de * s0, np.abs(-dn * s0 + de * c0), times, dist])
+
+    if north.shape[1] < 4 or not ((k >= 0) & np.isfinite(weights[..., 0])).all():
+        # (an event without a cubic: the linear fallback needs the whole record anyway)
+        return _at_cubic(full(), k, w, j0, weights)
+    idx = j0[..., None] + _POWERS  # (levels, runs, 4 nodes)
+    rows = np.arange(north.shape[0])[None, :, None]
+    buf = np.empty(idx.shape + (4,))  # (levels, runs, nodes, signals)
+    dn, de = north[rows, idx] - n0, east[rows, idx] - e0
+    buf[..., 0] = dn * c0 + de * s0
+    buf[..., 1] = np.abs(-dn * s0 + de * c0)
+    buf[..., 2] = times[rows, idx]
+    buf[..., 3] = dist[rows, idx]
+    return _weigh(buf.transpose(3, 0, 1, 2), k, w, weights, full)
 
 
 #: Heading changes of the events: 90 deg (advance, transfer), 180 deg (tactical diameter),
@@ -378,19 +425,15 @@ _NOT_STEADY = ("ok; the turn was not yet steady at the end (yaw rate still chang
 def _metrics(plan: Plan, result: Any) -> Any:
     t = result.time
     north, east, psi = result["north"], result["east"], result["heading"]
-    # distances from the position at the order, along and across the original course
-    dn, de = north - north[:, :1], east - east[:, :1]
-    c0, s0 = np.cos(psi[:, :1]), np.sin(psi[:, :1])
-    along, across = dn * c0 + de * s0, np.abs(-dn * s0 + de * c0)
     change = np.abs(psi - psi[:, :1])
     times = np.broadcast_to(t, psi.shape)
     k, w = _crossings(change, _LEVELS)
     j0, weights = _cubic_crossings(np.ascontiguousarray(times), change, _LEVELS, k, w)
     # the distance along the track is read at the 10 deg event only (its four samples j0..)
     dist = distance_until(north, east, t, until=j0[2] + 3)
-    # every signal at every event (one gather: a few are not needed, all cost one numpy call)
-    (along_at, across_at, time_at, dist_at) = _at_cubic(
-        np.stack([along, across, times, dist]), k, w, j0, weights)
+    # every signal at every event (a few are not needed: all cost one gather)
+    (along_at, across_at, time_at, dist_at) = _event_values(north, east, psi, times, dist, k,
+                                                            w, j0, weights)
     advance, transfer, time_90 = along_at[0], across_at[0], time_at[0]
     tactical_diameter, time_180 = across_at[1], time_at[1]
     time_10, distance_10 = time_at[2], dist_at[2]
@@ -403,7 +446,7 @@ def _metrics(plan: Plan, result: Any) -> Any:
     n = plan.n_runs
     approaches = plan.run_approaches()
     U0 = np.array([a.speed for a in approaches])
-    rps = np.array([np.nan if a.rps is None else a.rps for a in approaches])
+    rps = np.array([np.nan if (x := a.rps) is None else x for a in approaches])
     length = plan.run_lengths()
     steady_r = r[:, -1]
     steady_U = speed[:, -1]
@@ -415,15 +458,13 @@ def _metrics(plan: Plan, result: Any) -> Any:
     with np.errstate(invalid="ignore"):
         steady = (back.any(axis=1) & np.isfinite(steady_r)
                   & (np.abs(steady_r - r_back) <= 0.01 * np.abs(steady_r)))
-    messages = []
-    complete = np.zeros(n, dtype=bool)
     status = result.messages()
     reached = ~np.isnan(time_10) & ~np.isnan(time_90) & ~np.isnan(time_180)
-    for i in range(n):
-        if reached[i] and status[i] == "ok":  # (most runs: nothing to say)
-            complete[i] = True
-            messages.append("ok" if steady[i] else _NOT_STEADY)
-            continue
+    # complete: every event reached and the run went well (most runs: nothing more to say,
+    # their message set for all at once; the loop below is over the others only)
+    complete = reached & np.array([m == "ok" for m in status], dtype=bool)
+    messages = ["ok" if steady_i else _NOT_STEADY for steady_i in steady.tolist()]
+    for i in np.flatnonzero(~complete).tolist():
         missing = [f"{name} heading change" for name, value in
                    (("10 deg", time_10[i]), ("90 deg", time_90[i]), ("180 deg", time_180[i]))
                    if np.isnan(value)]
@@ -433,10 +474,7 @@ def _metrics(plan: Plan, result: Any) -> Any:
         if missing:
             text.append(f"{', '.join(missing)} not reached within t_final = {t[-1]:.6g} s "
                         f"(final heading change {math.degrees(change[i, -1]):.4g} deg)")
-        complete[i] = not text
-        if not steady[i] and not text:
-            text.append(_NOT_STEADY)
-        messages.append("; ".join(text) if text else "ok")
+        messages[i] = "; ".join(text)  # (not complete: something to say)
     variables = {
         "advance": (advance, "m", "advance at 90 deg heading change"),
         "transfer": (transfer, "m", "transfer at 90 deg heading change"),

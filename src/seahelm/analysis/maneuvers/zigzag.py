@@ -288,27 +288,33 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
     if dt is None:
         dt = 0.5 * usual_time_step(plan.ships, [a.speed for a in plan.approaches.values()])
     n = plan.n_runs
-    amp = np.array([np.atleast_1d(d)[plan.index[i]["pair"]] for i in range(n)])
-    trig = np.array([np.atleast_1d(h)[plan.index[i]["pair"]] for i in range(n)])
-    first = np.array([plan.value(i, "side") for i in range(n)], dtype=float)
+    # each run's values gathered along the grid's axes at once (a 10,000-sample study asked
+    # each run's position as a dict, several times per run)
+    pair_of = plan.run_values("pair")
+    amp = np.atleast_1d(d)[pair_of]
+    trig = np.atleast_1d(h)[pair_of]
+    first = plan.run_values("side").astype(float)
+    ship_of = plan._positions[0].tolist()  # (each run's ship and speed index)
+    speed_of = plan._positions[1].tolist()
+    ships = [plan.ships[j] for j in ship_of]
+    approaches = plan.run_approaches()
     # steady yaw rate at ±δ_z per (ship, speed, pair, side): reachability and default t_final
     # (all of them in one batch solve; NaN: a run left out, without an approach)
     rates = np.full(n, np.nan)
     keys: dict[tuple[int, int, float], int] = {}
     runs, slot, groups = np.flatnonzero(plan.run_ok), [], []
     for i in runs.tolist():
-        idx = plan.index[i]
-        key = (idx["ship"], idx.get("approach_speed", idx.get("approach_rps", 0)),
-               float(first[i] * amp[i]))
+        key = (ship_of[i], speed_of[i], float(first[i] * amp[i]))
         if key not in keys:
             keys[key] = len(groups)
-            groups.append((plan.ship(i), key[2], plan.approach(i)))
+            groups.append((ships[i], key[2], approaches[i]))
         slot.append(keys[key])
     if groups and check_reachable:
         rates[runs] = np.array([float(r) for r in steady_yaw_rates(groups)])[slot]
-    swing = np.array([2.0 * amp[i] / plan.ship(i).servo.max_rate for i in range(n)])
+    swing = np.array([2.0 * amp[i] / ships[i].servo.max_rate for i in range(n)])
     if t_final is None:
-        lags = np.array([yaw_lag(plan.ship(i)) for i in range(n)])
+        lag_of = [yaw_lag(s_) for s_ in plan.ships]  # (one per ship)
+        lags = np.array([lag_of[j] for j in ship_of])
         t_final = float(np.nanmax(4.0 * swing + 4.0 * 6.0 * trig / rates + 6.0 * lags))
     elif check_reachable:
         need = 0.5 * swing + trig / rates
@@ -318,19 +324,19 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
             raise ParameterError(
                 f"trigger {math.degrees(trig[i]):.4g} deg is not reached within "
                 f"`t_final` = {t_final!r} [s] with {math.degrees(amp[i]):.4g} deg rudder: "
-                f"the steady turn of '{plan.ship(i).name}' at that rudder angle turns at "
+                f"the steady turn of '{ships[i].name}' at that rudder angle turns at "
                 f"{math.degrees(rates[i]):.4g} deg/s, which needs at least {need[i]:.4g} s",
                 field="heading")
     t_final = final_time(float(t_final), float(dt))
     record_every = record_every_for(float(dt), record_dt, float(t_final))
-    x0 = np.stack([plan.approach(i).state for i in range(n)])
-    rudder0 = np.array([[plan.approach(i).rudder] for i in range(n)])
+    x0 = np.stack([a.state for a in approaches])
+    rudder0 = np.array([[a.rudder] for a in approaches])
     if plan.ships[0].has_propeller:
         controller = ZIGZAG_RPS
         cparams = [ZigZagRpsParams(rudder_amplitude=float(amp[i]),
                                    heading_trigger=float(trig[i]), first_side=float(first[i]),
                                    base_heading=float(x0[i, plan.model.state_index("heading")]),
-                                   propeller_rps=float(plan.approach(i).rps))
+                                   propeller_rps=float(approaches[i].rps))
                    for i in range(n)]
     else:
         controller = ZIGZAG
@@ -348,9 +354,8 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
     status = result.messages()
     messages = [m if s_ == "ok" else f"{s_}; {m}" for s_, m in zip(status, zm.message)]
     complete = np.array([m == "ok" for m in messages])
-    U0 = np.array([plan.approach(i).speed for i in range(n)])
-    rps_v = np.array([np.nan if plan.approach(i).rps is None else plan.approach(i).rps
-                      for i in range(n)])
+    U0 = np.array([a.speed for a in approaches])
+    rps_v = np.array([np.nan if (x := a.rps) is None else x for a in approaches])
     variables = {
         "overshoot": (zm.overshoot, "rad", "overshoot angle beyond the trigger"),
         "overshoot_time": (zm.overshoot_time, "s", "time of the heading extreme, from the order"),
@@ -366,7 +371,7 @@ def zigzag(ship: Any, rudder: Any = math.radians(10.0), heading: Any = None, *,
                                       "yaw rate of the steady turn at the first rudder order"),
         "approach_speed_value": (U0, "m/s", "approach speed U_0"),
         "propeller_rps": (rps_v, "1/s", "propeller rps (constant; NaN: no propeller input)"),
-        "length": (np.array([plan.ship(i).length for i in range(n)]), "m", "ship length L"),
+        "length": (plan.run_lengths(), "m", "ship length L"),
         "complete": (complete, "", "every event reached and the run did not diverge"),
         "message": (np.array(messages, dtype=object), "", "what was not reached, or ok"),
     }
