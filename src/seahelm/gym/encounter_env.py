@@ -34,7 +34,7 @@ from ..ships import get_ship
 from ..simulation.stepping import Simulator
 from ..simulation.stepping_reference import restart_clock, set_states
 from .collision import CollisionAvoidance
-from .plant import check_env_memory, episode_named
+from .plant import check_env_memory, episode_named, reset_selection
 
 #: Memory of one sub-environment [B], about twice what one takes (peak RSS over 1,000 and
 #: 100,000 sub-environments of CollisionAvoidance-v0, KVLCC2 L7, 2026-12-02: 4.8 kB).
@@ -260,19 +260,7 @@ class EncounterVectorEnv(VectorEnv):
         super().reset(seed=seed)
         if seed is not None or not self._started:
             self._rng = self.np_random
-        mask = (options or {}).get("reset_mask")
-        if mask is None:
-            sel = np.arange(self.num_envs)
-        else:
-            m = np.asarray(mask)
-            if m.shape != (self.num_envs,) or m.dtype != bool:
-                raise ParameterError(f"['reset_mask'] must be a bool array of shape "
-                                     f"({self.num_envs},), got {m.dtype} {m.shape}",
-                                     field="options", value=m.shape)
-            if not self._started and not m.all():
-                raise ParameterError(": the first reset starts every sub-environment "
-                                     "(no reset_mask)", field="options")
-            sel = np.flatnonzero(m)
+        sel = reset_selection(options, self.num_envs, self._started)
         if not self._started:
             self._clock = 0.0
             if self.encounter.avoidance is not None:

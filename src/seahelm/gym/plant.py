@@ -323,3 +323,40 @@ def _autopilot_loop(ship: Any, autopilot: Any, params: Any, n: int, *, dt: float
     reference = {r: np.full((n, 1, 1), heading if r == "heading" else 0.0) for r in refs}
     return autopilot, {"controller": autopilot, "controller_params": params,
                        "controller_dt": ctrl_dt, "reference": reference}, int(round(ratio))
+
+
+def reset_selection(options: Mapping[str, Any] | None, num_envs: int,
+                    started: bool) -> np.ndarray:
+    """The sub-environments a vector environment's ``reset`` starts: all, or those of
+    ``options["reset_mask"]`` (gymnasium's autoreset option), as indices.
+
+    Parameters
+    ----------
+    options : mapping, optional
+        ``reset``'s options; ``{"reset_mask": bool array (num_envs,)}`` starts only those.
+    num_envs : int
+        Sub-environments.
+    started : bool
+        Whether the environment was reset before (the first reset starts every one).
+
+    Returns
+    -------
+    numpy.ndarray
+        Indices of the sub-environments to start.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``options``: a mask of another shape or dtype, or a mask at the first reset.
+    """
+    mask = (options or {}).get("reset_mask")
+    if mask is None:
+        return np.arange(num_envs)
+    m = np.asarray(mask)
+    if m.shape != (num_envs,) or m.dtype != bool:
+        raise ParameterError(f"['reset_mask'] must be a bool array of shape ({num_envs},), "
+                             f"got {m.dtype} {m.shape}", field="options", value=m.shape)
+    if not started and not m.all():
+        raise ParameterError(": the first reset starts every sub-environment (no reset_mask)",
+                             field="options")
+    return np.flatnonzero(m)

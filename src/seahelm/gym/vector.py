@@ -31,7 +31,7 @@ from .._optional import optional_import
 from ..errors import ParameterError
 from ..simulation.stepping_reference import (held_commands, restart_clock, set_reference,
                                               set_states)
-from .plant import WEATHER_KEYS, Plant, build_plant
+from .plant import WEATHER_KEYS, Plant, build_plant, reset_selection
 from .tasks import TASKS, Task
 
 gym = optional_import("gymnasium", extra="rl", purpose="seahelm.gym")
@@ -272,19 +272,7 @@ class ShipVectorEnv(VectorEnv):
         super().reset(seed=seed)
         if seed is not None or not self._started:
             self._rng = self.np_random
-        mask = (options or {}).get("reset_mask")
-        if mask is None:
-            sel = np.arange(self.num_envs)
-        else:
-            m = np.asarray(mask)
-            if m.shape != (self.num_envs,) or m.dtype != bool:
-                raise ParameterError(f"['reset_mask'] must be a bool array of shape "
-                                     f"({self.num_envs},), got {m.dtype} {m.shape}",
-                                     field="options", value=m.shape)
-            if not self._started and not m.all():
-                raise ParameterError(": the first reset starts every sub-environment "
-                                     "(no reset_mask)", field="options")
-            sel = np.flatnonzero(m)
+        sel = reset_selection(options, self.num_envs, self._started)
         self._begin(sel)
         self._started = True
         return self._observe_now()
