@@ -44,7 +44,7 @@ def dp_problem(controller, params, runs=1, seed=4, sensors=None, t_final=T_FINAL
     return Problem(ship=SHIP, t_final=t_final, dt=H, controller_dt=H, x0=np.zeros((runs, 6)),
                    controller=controller, controller_params=params, actuator="direct",
                    reference=ref, first_order=fo,
-                   sensors=sensors or PositionSensors(**NOISE, seed=1))
+                   sensors=sensors or PositionSensors(**NOISE, wave_motion=True, seed=1))
 
 
 def observer_params():

@@ -23,7 +23,7 @@ T = 20.0
 
 def test_in_loop_wave_motions_refuse_the_clock_set_back():
     problem = dp_problem(DP_PID, dp_pid_params(SHIP), t_final=T,
-                         sensors=PositionSensors(seed=1))  # (no noise: the sea alone)
+                         sensors=PositionSensors(wave_motion=True, seed=1))  # (no noise: the sea alone)
     with Simulator(problem) as sim:
         sim.reset()
         half = sim.n_intervals // 2

@@ -52,7 +52,7 @@ def test_zero_noise_and_no_wave_motion_is_todays_run_bit_for_bit():
                        ("measured_heading", "heading")):
         assert np.array_equal(with_stage[meas], with_stage[true])
     # and on: the wave motion moves the vessel's thrusters (the test can fail)
-    on = simulate(off.replace(sensors=PositionSensors(**NOISE)))
+    on = simulate(off.replace(sensors=PositionSensors(**NOISE, wave_motion=True)))
     assert not np.array_equal(on.command, today.command)
 
 

@@ -68,7 +68,9 @@ class PositionSensors:
         Standard deviation of the heading noise [rad] (default 0).
     wave_motion : bool
         Add the first-order surge, sway and yaw of the loop's first-order stage (``Problem(
-        first_order=...)`` with one of those DOF; default True).
+        first_order=...)`` with one of those DOF; default False, as the scenario's ``[sensors]
+        wave_motion``: a sensor adds nothing it is not asked for, so the defaults give the run
+        without the stage bit for bit).
     seed : int
         Seed of the runs' noise keys (default 0).
     run_offset : int
@@ -78,7 +80,7 @@ class PositionSensors:
     noise_north: float = 0.0
     noise_east: float = 0.0
     noise_heading: float = 0.0
-    wave_motion: bool = True
+    wave_motion: bool = False
     seed: int = 0
     run_offset: int = 0
 
