@@ -164,12 +164,15 @@ def check_result(result: Any) -> None:
     Parameters
     ----------
     result : SimResult
-        A finished run of the model (diverged runs are not looked at).
+        Runs of the model, finished (:func:`~seahelm.simulation.engine.simulate`) or as far as
+        they were stepped (:meth:`~seahelm.simulation.stepping.Simulator.result`; the records
+        not reached yet are not looked at, nor are diverged runs).
     """
     u, v = np.asarray(result["surge_speed"]), np.asarray(result["sway_speed"])
     speed = np.sqrt(u * u + v * v)
-    speed = np.where(np.asarray(result.status)[:, None] == 0, speed, 0.0)
-    peak = np.nanmax(speed, axis=1) if speed.size else np.zeros(0)
+    # (diverged runs and the records a stepped result has not reached yet, NaN, count as 0)
+    speed = np.where((np.asarray(result.status)[:, None] == 0) & np.isfinite(speed), speed, 0.0)
+    peak = speed.max(axis=1) if speed.size else np.zeros(0)
     over = np.flatnonzero(peak > MAX_SPEED)
     if over.size:
         i = int(over[np.argmax(peak[over])])
