@@ -49,6 +49,7 @@ from ._outputs import (  # noqa: F401 - the commands import the output checks fr
     protect_inputs,
     remove_created_dirs,
     store_containing,
+    write_scenario_file,
     write_ship_file,
 )
 from ._tables import FitTables

@@ -136,6 +136,43 @@ def write_ship_file(ship: Any, out: Path, option: str = "--out") -> Path:
                         option=option, force_word="--force", command=command)
 
 
+def write_scenario_file(out: Path, ship: str, scenario: Any, comment: str = "",
+                        option: str = "--out") -> Path:
+    """Write the scenario a tuning command made (``autopilot tune``, ``dp tune``) by the output
+    policy, as :func:`write_ship_file` does a ship file.
+
+    Parameters
+    ----------
+    out : Path
+        The scenario file (checked before the work by :func:`output_file`).
+    ship : str
+        The ship as the command was given it: a ship file is named by its path from the
+        scenario's folder (a scenario's paths are its own: the pair stays valid where it is
+        copied together), a catalog name as it is.
+    scenario : callable
+        ``scenario(ship_ref)``: the scenario mapping naming the ship by ``ship_ref``
+        (:meth:`~seahelm.analysis.steering.autopilot_tuning.AutopilotTuning.scenario`).
+    comment : str, optional
+        Its first ``#`` lines (the tuning's ``comment()``).
+    option : str, optional
+        The command's option for the file, named in its errors.
+
+    Returns
+    -------
+    Path
+    """
+    from ..analysis.steering.autopilot_tuning import scenario_toml
+    from ..output_files import write_output, written_by_line
+
+    ship_ref = (os.path.relpath(Path(ship).resolve(), Path(out).resolve().parent)
+                if Path(ship).suffix == ".toml" else ship)
+    command = command_path()
+    text = scenario_toml(scenario(ship_ref), comment)
+    text += written_by_line(command) if command else ""
+    return write_output(out, lambda tmp: Path(tmp).write_text(text), "toml", option=option,
+                        force_word="--force", command=command)
+
+
 def _raw_value(path: Path) -> str:
     """``path`` as the command line gave it: with its trailing slash, if it had one."""
     for word in _raw_args:

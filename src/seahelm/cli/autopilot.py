@@ -37,7 +37,6 @@ below the minimum margins warns.
 from __future__ import annotations
 
 import math
-import os
 from pathlib import Path
 from typing import Annotated, Literal
 
@@ -106,7 +105,7 @@ def tune(
     json_out: JsonFlag = False,
 ) -> None:
     """Design a heading or cross-track autopilot: gains, closed-loop poles, margins, a scenario."""
-    from ..analysis.steering.autopilot_tuning import poles_text, scenario_toml, tune_autopilot
+    from ..analysis.steering.autopilot_tuning import poles_text, tune_autopilot
     from ..errors import ParameterError
     from ..ships import get_ship
 
@@ -141,20 +140,11 @@ def tune(
     K, T = tuning.nomoto.gain, tuning.nomoto.time_constant
     payload = tuning.as_dict()
     if out is not None:
-        from ..output_files import write_output, written_by_line
+        from ._common import write_scenario_file
 
-        from ._common import command_path
-
-        # a ship file by its path from the scenario's folder (a scenario's paths are its
-        # own): the file stays valid where it is copied with its ship (it held /abs/paths)
-        ship_ref = (os.path.relpath(Path(ship).resolve(), Path(out).resolve().parent)
-                    if Path(ship).suffix == ".toml" else ship)
-        text = scenario_toml(tuning.scenario(ship=ship_ref, heading_step=heading_step),
-                             tuning.comment())
-        command = command_path()
-        text += written_by_line(command) if command else ""
-        write_output(out, lambda tmp: Path(tmp).write_text(text), "toml", option="--out",
-                     force_word="--force", command=command)
+        # a ship file by its path from the scenario's folder (it held /abs/paths)
+        write_scenario_file(out, ship, lambda ref: tuning.scenario(
+            ship=ref, heading_step=heading_step), tuning.comment())
         payload["files"] = {"scenario": str(out)}
     if json_out:
         print_json(payload)

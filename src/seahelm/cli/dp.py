@@ -318,9 +318,6 @@ def tune(
 ) -> None:
     """Design the dp-pid gains by pole placement (Fossen 2021 §12.2.6), with the closed loop
     checked on the vessel's full M and D, and a set-point scenario."""
-    import os
-
-    from ..analysis.steering.autopilot_tuning import scenario_toml
     from ..control.dp_tuning import tune_dp
     from ..ships import get_ship
 
@@ -354,17 +351,11 @@ def tune(
         raise ParameterError(exc.reason, field=option, unit=exc.unit, value=value) from None
     payload = tuning.as_dict()
     if out is not None:
-        from ..output_files import write_output, written_by_line
+        from ._common import write_scenario_file
 
-        ship_ref = (os.path.relpath(Path(ship).resolve(), Path(out).resolve().parent)
-                    if Path(ship).suffix == ".toml" else ship)
-        text = scenario_toml(tuning.scenario(ship_ref, north=north, east=east,
-                                             heading_deg=heading, t_final=t_final),
-                             tuning.comment())
-        command = command_path()
-        text += written_by_line(command) if command else ""
-        write_output(out, lambda tmp: Path(tmp).write_text(text), "toml", option="--out",
-                     force_word="--force", command=command)
+        write_scenario_file(out, ship, lambda ref: tuning.scenario(
+            ref, north=north, east=east, heading_deg=heading, t_final=t_final),
+            tuning.comment())
         payload["files"] = {"scenario": str(out)}
     if json_out:
         print_json(payload)
