@@ -89,7 +89,7 @@ def study_digest(enc: Encounter, chunk_size: int) -> str:
         Hexadecimal digest.
     """
     h = hashlib.sha256(STUDY_FORMAT.encode())
-    settings = {k: repr(v) for k, v in sorted(_chunked._settings(enc).items())}
+    settings = {k: repr(v) for k, v in sorted(_chunked.encounter_settings(enc).items())}
     settings.update(chunk_size=str(int(chunk_size)), first_encounter=str(enc.first_encounter),
                     names=repr(enc.names), acceptance=repr(enc.acceptance.tolist()),
                     avoid=repr(enc.avoid.tolist()))
@@ -383,7 +383,7 @@ def run_study(enc: Encounter, path: str | Path, name: str, *, chunk_size: int | 
 
     if workers is None and scheduler is None:
         for i in todo:
-            store(i, _chunked._run_chunk(*chunks[i]))
+            store(i, _chunked.run_chunk(*chunks[i]))
     elif todo:
         _on_dask(chunks, todo, store, workers, scheduler)
     return open_study(path, name)
@@ -399,8 +399,8 @@ def _on_dask(chunks: list[Any], todo: list[int], store: Callable[[int, Any], Non
                                   purpose="encounters on a dask cluster")
 
     def submit(client: Any) -> None:
-        futures = {client.submit(_chunked._run_chunk,
-                                 [_chunked._portable(v) for v in chunks[i][0]], chunks[i][1],
+        futures = {client.submit(_chunked.run_chunk,
+                                 [_chunked.portable_vessel(v) for v in chunks[i][0]], chunks[i][1],
                                  pure=False): i for i in todo}
         for future, index in futures.items():  # (written in order, each as it is ready)
             store(index, future.result())
