@@ -285,7 +285,14 @@ def _create(study: Path, ds: Any, n_encounters: int, chunk_size: int,
 
 
 def _write_chunk(study: Path, index: int, lo: int, ds: Any) -> None:
-    region = ds.drop_vars([v for v in ds.variables if "encounter" not in ds[v].dims])
+    import zarr
+
+    # (a study begun by an earlier seahelm holds fewer variables, e.g. no Rule 17(c)
+    # verdict: its chunks still to run are written without them, and it reads without them)
+    with _quiet():
+        held = {name for name, _ in zarr.open_group(study, mode="r", zarr_format=3).arrays()}
+    region = ds.drop_vars([v for v in ds.variables
+                           if "encounter" not in ds[v].dims or v not in held])
     hi = lo + region.sizes["encounter"]
     with _quiet():
         region.to_zarr(study, region={"encounter": slice(lo, hi)}, mode="r+",
