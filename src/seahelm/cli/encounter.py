@@ -184,13 +184,14 @@ def _print(label: str, rows: list[dict[str, Any]]) -> None:
     table = Table(title=escape(label), title_justify="left")
     for name in ("situation", "n", "collision", "95% CI", "near miss", "95% CI",
                  "give-way acted", "substantial", "stand-on kept",
-                 "median least range [m]"):
+                 "stand-on to port (17c)", "median least range [m]"):
         table.add_column(escape(name), justify="left" if name == "situation" else "right")
     for r in rows:
         table.add_row(r["situation"], str(r["encounters"]), pct(r["collision"]),
                       ci(r["collision_ci"]), pct(r["near_miss"]), ci(r["near_miss_ci"]),
                       pct(r["own_acted"]), pct(r["own_substantial"]),
-                      pct(r["own_kept_course"]), f"{r['min_range_median']:.0f}")
+                      pct(r["own_kept_course"]), pct(r.get("own_altered_to_port")),
+                      f"{r['min_range_median']:.0f}")
     console.print(table)
 
 

@@ -25,10 +25,24 @@ from ..errors import ParameterError
 from .encounter import Encounter, Vessel
 from .result import EncounterResult
 
-__all__ = ["split_encounter", "concat_results", "run_chunked"]
+__all__ = ["split_encounter", "concat_results", "run_chunked", "encounter_settings",
+           "portable_vessel", "run_chunk"]
 
 
-def _settings(enc: Encounter) -> dict[str, Any]:
+def encounter_settings(enc: Encounter) -> dict[str, Any]:
+    """The settings a chunk of ``enc`` carries: the keyword arguments of :class:`Encounter`
+    other than its vessels and ``first_encounter`` (horizon, steps, sensor, avoidance,
+    autopilot, sectors, domain, verdict rules, record interval).
+
+    Parameters
+    ----------
+    enc : Encounter
+
+    Returns
+    -------
+    dict
+        ``Encounter(vessels, **settings)`` builds the same encounter for other vessels.
+    """
     return {"t_final": enc.t_final, "dt": enc.dt, "controller_dt": enc.controller_dt,
             "sensor": enc.sensor, "avoidance": enc.avoidance, "autopilot": enc.autopilot,
             "sectors": enc.sectors, "domain": enc.domain, "verdicts": enc.verdict_rules,
@@ -63,7 +77,7 @@ def split_encounter(enc: Encounter, chunk_size: int) -> list[tuple[list[Vessel],
     if not (isinstance(chunk_size, (int, np.integer)) and chunk_size >= 1):
         raise ParameterError(f"must be an integer >= 1 [encounters], got {chunk_size!r}",
                              field="chunk_size", value=chunk_size)
-    ne, settings = enc.n_encounters, _settings(enc)
+    ne, settings = enc.n_encounters, encounter_settings(enc)
     if enc.sensor.noisy and enc.sensor.seed is None:  # (one seed for every chunk)
         settings["sensor"] = dataclasses.replace(
             enc.sensor, seed=int(np.random.SeedSequence().generate_state(1)[0]))
@@ -73,9 +87,19 @@ def split_encounter(enc: Encounter, chunk_size: int) -> list[tuple[list[Vessel],
             for lo in range(0, ne, chunk_size)]
 
 
-def _portable(v: Vessel) -> Vessel:
-    """A vessel whose ship is a catalog ship, sent by name (a Ship object's compiled model
-    functions do not travel to another process as themselves)."""
+def portable_vessel(v: Vessel) -> Vessel:
+    """``v`` ready to travel to another process: a ship equal to a catalog ship is sent by its
+    name (a Ship object's compiled model functions do not travel as themselves); any other
+    vessel is returned as it is.
+
+    Parameters
+    ----------
+    v : Vessel
+
+    Returns
+    -------
+    Vessel
+    """
     from ..ships import Ship, get_ship
 
     if isinstance(v.ship, Ship):
@@ -90,6 +114,25 @@ def _portable(v: Vessel) -> Vessel:
 
 def _run_chunk(vessels: list[Vessel], settings: dict[str, Any]) -> EncounterResult:
     return Encounter(vessels, **settings).run()
+
+
+def run_chunk(vessels: list[Vessel], settings: dict[str, Any]) -> EncounterResult:
+    """Run one chunk of :func:`split_encounter` (here or on a worker).
+
+    Parameters
+    ----------
+    vessels : list of Vessel
+        The chunk's vessels (sliced; :func:`portable_vessel` to send them elsewhere).
+    settings : dict
+        The chunk's settings (:func:`encounter_settings` and its ``first_encounter``).
+
+    Returns
+    -------
+    EncounterResult
+        The chunk's encounters, as in the whole batch run at once.
+    """
+    # (through the module's _run_chunk: the seam the store tests interrupt)
+    return _run_chunk(vessels, settings)
 
 
 def concat_results(results: list[EncounterResult]) -> EncounterResult:
@@ -153,19 +196,19 @@ def run_chunked(enc: Encounter, *, chunk_size: int | None = None, workers: int |
         chunk_size = max(1, math.ceil(ne / (4 * (workers or 1))))
     chunks = split_encounter(enc, chunk_size)
     if workers is None and scheduler is None:
-        return concat_results([_run_chunk(*c) for c in chunks])
+        return concat_results([run_chunk(*c) for c in chunks])
     distributed = optional_import("distributed", extra="dask",
                                   purpose="encounters on a dask cluster")
-    vessels = [[_portable(v) for v in c[0]] for c in chunks]
+    vessels = [[portable_vessel(v) for v in c[0]] for c in chunks]
     settings = [c[1] for c in chunks]
     if scheduler is not None:
         with distributed.Client(scheduler, set_as_default=False) as client:
-            results = client.gather(client.map(_run_chunk, vessels, settings, pure=False))
+            results = client.gather(client.map(run_chunk, vessels, settings, pure=False))
     else:
         with distributed.LocalCluster(n_workers=workers, threads_per_worker=1,
                                       processes=True, host="127.0.0.1",
                                       dashboard_address=None,
                                       silence_logs=logging.ERROR) as cluster, \
                 distributed.Client(cluster, set_as_default=False) as client:
-            results = client.gather(client.map(_run_chunk, vessels, settings, pure=False))
+            results = client.gather(client.map(run_chunk, vessels, settings, pure=False))
     return concat_results(list(results))

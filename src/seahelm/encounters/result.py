@@ -15,7 +15,15 @@ the start (its :class:`~seahelm.encounters.geometry.Situation`):
   "large enough to be readily apparent"; 30° by default, a common reading, stated as a
   parameter) and *early* if it started beyond ``early_range``;
 - a **stand-on** vessel *kept course* if its heading stayed within ``keep`` of its route's
-  heading until the pair's closest point of approach (Rule 17(a)(i)).
+  heading until the pair's closest point of approach (Rule 17(a)(i));
+- a vessel stand-on in a **crossing** situation (the other on its port side at the start:
+  :attr:`~seahelm.encounters.geometry.Situation.CROSSING_STAND_ON`) *altered to port* if it
+  turned to port of its route's heading by more than ``action`` before the pair's closest
+  point of approach while the other was on its port side (Rule 17(c): such a vessel "shall,
+  if the circumstances of the case admit, not alter course to port for a vessel on her own
+  port side"); ``port_alteration`` is that largest turn to port [rad]. A turn to port once
+  the other has drawn to the starboard side, and a vessel overtaken, head-on or giving way,
+  are not counted.
 
 A collision is a least range below the sum of half the two lengths (circles; coarse); a near
 miss, the target inside the own ship's domain without a collision.
@@ -30,7 +38,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from .geometry import GIVE_WAY, STAND_ON, Situation, classify, cpa_tcpa, velocity, wrap_pi
+from .geometry import (GIVE_WAY, STAND_ON, Situation, classify, cpa_tcpa, relative_bearing,
+                       velocity, wrap_pi)
 
 __all__ = ["VerdictRules", "EncounterResult", "wilson_interval", "is_encounter_dataset",
            "DATASET_FORMAT"]
@@ -115,6 +124,7 @@ class Recorder:
         self.situation0 = None
         self.role0 = None  # (ne, nt, 2): situation of own, of target, at the start
         self.alter = np.zeros((ne, nt, 2))       # largest alteration before CPA (own, target)
+        self.port = np.zeros((ne, nt, 2))        # largest alteration to port before CPA
         self.action_time = np.full((ne, nt, 2), np.nan)
         self.action_range = np.full((ne, nt, 2), np.nan)
         self.before_cpa = np.ones((ne, nt), dtype=bool)
@@ -156,10 +166,17 @@ class Recorder:
         self.min_domain = np.minimum(self.min_domain, dom)
         # course alterations before the pair's CPA (own: index 0, target: 1)
         self.before_cpa &= tcpa > 0
-        dev = np.abs(wrap_pi(np.stack([np.broadcast_to(own[..., 4] - route[:, :1], rng.shape),
-                                       tgt[..., 4] - route[:, 1:]], axis=-1)))
+        signed = wrap_pi(np.stack([np.broadcast_to(own[..., 4] - route[:, :1], rng.shape),
+                                   tgt[..., 4] - route[:, 1:]], axis=-1))
+        dev = np.abs(signed)
         live = self.before_cpa[..., None]
         self.alter = np.where(live, np.maximum(self.alter, dev), self.alter)
+        # (headings clockwise from north: a turn to port is a heading below the route's)
+        # Rule 17(c) counts a turn to port only "for a vessel on her own port side": while the
+        # other is on the port side (relative bearing beyond 180°) at that interval
+        port_side = np.stack([relative_bearing(p_o, own[..., 4], p_t) > math.pi,
+                              relative_bearing(p_t, tgt[..., 4], p_o) > math.pi], axis=-1)
+        self.port = np.where(live & port_side, np.maximum(self.port, -signed), self.port)
         first = live & np.isnan(self.action_time) & (dev > enc.verdict_rules.action)
         self.action_time = np.where(first, time, self.action_time)
         self.action_range = np.where(first, rng[..., None], self.action_range)
@@ -191,7 +208,9 @@ class EncounterResult:
     verdicts : dict name -> ndarray (encounters, targets, 2)
         For the own ship (index 0) and the target (index 1) of each pair: ``role`` (1 give-way,
         -1 stand-on, 0 neither), ``alteration`` [rad], ``action_time`` [s], ``action_range``
-        [m], ``acted``, ``substantial``, ``early`` (give-way), ``kept_course`` (stand-on).
+        [m], ``acted``, ``substantial``, ``early`` (give-way), ``kept_course`` (stand-on),
+        ``port_alteration`` [rad] and ``altered_to_port`` (stand-on in a crossing situation,
+        Rule 17(c); module notes).
     status : ndarray (encounters, vessels)
         Each run's :class:`~seahelm.simulation.engine.RunStatus`.
     names, lengths : the vessels' labels and lengths [m]
@@ -226,6 +245,8 @@ class EncounterResult:
             "substantial": (role == 1) & (rec.alter >= rules.substantial),
             "early": (role == 1) & acted & (rec.action_range >= rules.early_range),
             "kept_course": (role == -1) & (rec.alter <= rules.keep),
+            "port_alteration": rec.port,
+            "altered_to_port": (roles == Situation.CROSSING_STAND_ON) & (rec.port > rules.action),
         }
 
     @property
@@ -257,6 +278,11 @@ class EncounterResult:
                                       if give.any() else None)
             row["own_kept_course"] = (float(v["kept_course"][mask, 0, 0][stand].mean())
                                       if stand.any() else None)
+            # Rule 17(c): of the crossing stand-on encounters, the share turning to port
+            crossing = sit[mask] == Situation.CROSSING_STAND_ON
+            row["own_altered_to_port"] = (
+                float(v["altered_to_port"][mask, 0, 0][crossing].mean())
+                if crossing.any() and "altered_to_port" in v else None)
             row["min_range_median"] = float(np.median(self.min_range[mask, 0]))
             rows.append(row)
         return rows
@@ -340,6 +366,9 @@ class EncounterResult:
                                                           "action_range")}
         self.verdicts.update({n: arr(f"verdict_{n}").astype(bool)
                               for n in ("acted", "substantial", "early", "kept_course")})
+        if "verdict_altered_to_port" in ds.variables:  # (files written before it: without)
+            self.verdicts["port_alteration"] = arr("verdict_port_alteration")
+            self.verdicts["altered_to_port"] = arr("verdict_altered_to_port").astype(bool)
         return self
 
 

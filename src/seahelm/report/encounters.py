@@ -41,10 +41,12 @@ def _ci(value: float, ci: tuple[float, float]) -> str:
 
 def outcome_rows(result: Any) -> list[list[str]]:
     """The outcome table's rows (situation, n, collision, near miss, give-way acted,
-    substantial, stand-on kept course, median least range) of ``result.summary()``."""
+    substantial, stand-on kept course, crossing stand-on altered to port (Rule 17(c)), median
+    least range) of ``result.summary()``."""
     return [[r["situation"], str(r["encounters"]), _ci(r["collision"], r["collision_ci"]),
              _ci(r["near_miss"], r["near_miss_ci"]), _pct(r["own_acted"]),
              _pct(r["own_substantial"]), _pct(r["own_kept_course"]),
+             _pct(r.get("own_altered_to_port")),
              f"{fmt(r['min_range_median'], 4)} m"] for r in result.summary()]
 
 
@@ -185,12 +187,15 @@ def encounter_sections(data: ReportData) -> list[Section]:
         return [sec]
     sec.blocks.append(table(
         ["situation", "n", "collision [95% CI]", "near miss [95% CI]",
-         "give-way acted", "substantial", "stand-on kept course", "least range (median)"],
+         "give-way acted", "substantial", "stand-on kept course",
+         "stand-on altered to port (Rule 17(c))", "least range (median)"],
         outcome_rows(result), cls="metrics",
         caption="by the own ship's COLREG situation at the start, against the first target; "
                 "intervals: Wilson 95 %; a collision is a least range below the half "
                 "lengths' sum, a domain intrusion the target inside the own ship's domain "
-                "without one"))
+                "without one; Rule 17(c): of the crossing encounters where the own ship "
+                "stands on, those where it turned to port (for a vessel on its port side) "
+                "by more than the action threshold before the closest point of approach"))
     order = _order(result)
     for e in order[:TRACKS_SHOWN]:
         e = int(e)

@@ -89,7 +89,7 @@ def study_digest(enc: Encounter, chunk_size: int) -> str:
         Hexadecimal digest.
     """
     h = hashlib.sha256(STUDY_FORMAT.encode())
-    settings = {k: repr(v) for k, v in sorted(_chunked._settings(enc).items())}
+    settings = {k: repr(v) for k, v in sorted(_chunked.encounter_settings(enc).items())}
     settings.update(chunk_size=str(int(chunk_size)), first_encounter=str(enc.first_encounter),
                     names=repr(enc.names), acceptance=repr(enc.acceptance.tolist()),
                     avoid=repr(enc.avoid.tolist()))
@@ -285,7 +285,14 @@ def _create(study: Path, ds: Any, n_encounters: int, chunk_size: int,
 
 
 def _write_chunk(study: Path, index: int, lo: int, ds: Any) -> None:
-    region = ds.drop_vars([v for v in ds.variables if "encounter" not in ds[v].dims])
+    import zarr
+
+    # (a study begun by an earlier seahelm holds fewer variables, e.g. no Rule 17(c)
+    # verdict: its chunks still to run are written without them, and it reads without them)
+    with _quiet():
+        held = {name for name, _ in zarr.open_group(study, mode="r", zarr_format=3).arrays()}
+    region = ds.drop_vars([v for v in ds.variables
+                           if "encounter" not in ds[v].dims or v not in held])
     hi = lo + region.sizes["encounter"]
     with _quiet():
         region.to_zarr(study, region={"encounter": slice(lo, hi)}, mode="r+",
@@ -383,7 +390,7 @@ def run_study(enc: Encounter, path: str | Path, name: str, *, chunk_size: int | 
 
     if workers is None and scheduler is None:
         for i in todo:
-            store(i, _chunked._run_chunk(*chunks[i]))
+            store(i, _chunked.run_chunk(*chunks[i]))
     elif todo:
         _on_dask(chunks, todo, store, workers, scheduler)
     return open_study(path, name)
@@ -399,8 +406,8 @@ def _on_dask(chunks: list[Any], todo: list[int], store: Callable[[int, Any], Non
                                   purpose="encounters on a dask cluster")
 
     def submit(client: Any) -> None:
-        futures = {client.submit(_chunked._run_chunk,
-                                 [_chunked._portable(v) for v in chunks[i][0]], chunks[i][1],
+        futures = {client.submit(_chunked.run_chunk,
+                                 [_chunked.portable_vessel(v) for v in chunks[i][0]], chunks[i][1],
                                  pure=False): i for i in todo}
         for future, index in futures.items():  # (written in order, each as it is ready)
             store(index, future.result())
