@@ -50,3 +50,32 @@ def test_one_parameter_set_stacks_to_a_row_of_its_own():
         stack_params(p, type("Params", (Nomoto1Params,), {}))
     rec = as_records(stack_params(p), Nomoto1Params)
     assert rec[0].time_constant == 20.0 and isinstance(rec[0], np.record)
+
+
+def _nomoto_run(x0, **kw):
+    from seahelm.simulation.engine import simulate
+    from seahelm.vessels.nomoto import NOMOTO1
+
+    return simulate(NOMOTO1, Nomoto1Params(gain=0.1, time_constant=20.0, speed=5.0), x0,
+                    t_final=1.0, dt=0.1, **kw)
+
+
+def test_the_first_initial_state_outside_a_bound_is_named():
+    x0 = np.zeros((4, 4))
+    x0[2, 3] = 0.5  # the yaw rate beyond the bound given below
+    x0[3, 3] = -0.5
+    with pytest.raises(ParameterError, match="initial state of run 2"):
+        _nomoto_run(x0, bounds={"yaw_rate": (-0.4, 0.4), "rudder_angle": (-1.0, 1.0)})
+    x0 = np.zeros((3, 4))
+    with pytest.raises(ParameterError, match="initial state of run 0"):  # (the actuator's)
+        _nomoto_run(x0, bounds={"rudder_angle": (0.1, 1.0)})
+    x0[1, 3] = 0.5
+    assert _nomoto_run(x0, bounds={"yaw_rate": (-0.5, 0.5)}).ok.all()  # (on the bound: in)
+
+
+@pytest.mark.parametrize("every, steps", [(3, [0, 3, 6, 9, 10]), (5, [0, 5, 10]),
+                                          (1, list(range(11))), (10, [0, 10]), (7, [0, 7, 10])])
+def test_recorded_times_are_every_nth_step_and_the_last(every, steps):
+    res = _nomoto_run(np.zeros(4), record_every=every)
+    assert np.array_equal(res.time, np.array(steps) * 0.1)
+    assert res.state.shape[1] == len(steps)

@@ -417,9 +417,11 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
     for label, (lo, hi) in (bounds or {}).items():  # (labels checked by the Problem)
         j = labels.index(label)
         lower[j], upper[j] = max(lower[j], float(lo)), min(upper[j], float(hi))
-    if not (np.isfinite(z).all() and (z >= lower).all() and (z <= upper).all()):
-        bad0 = ~np.isfinite(z).all(axis=1) | (z < lower).any(axis=1) | (z > upper).any(axis=1)
-        i = int(np.argmax(bad0))
+    within = np.isfinite(z)  # (in place, one reduction: some µs of a short run)
+    within &= z >= lower
+    within &= z <= upper
+    if not within.all():
+        i = int(np.argmax(~within.all(axis=1)))
         raise ParameterError(f": the initial state of run {i} is not finite or outside the "
                              f"bounds: {z[i]}", field="x0", run=i)
 
@@ -498,7 +500,9 @@ def _result(batch: Batch, *, wall: float, compile_time: float, throw: bool,
     out_labels, out_units = batch.out_labels, batch.out_units
     dist_labels, dist_units = batch.dist_labels, batch.dist_units
     metadata = problem.metadata if metadata is None else metadata
-    ref_idx = np.minimum(np.arange(n_rec) * record_every, n_steps)
+    # the recorded steps: every record_every-th, and the last (np.minimum(k * every, n_steps))
+    ref_idx = np.arange(0, n_rec * record_every, record_every)
+    ref_idx[-1] = min(int(ref_idx[-1]), n_steps)
     rec_t = ref_idx * float(dt)
     result = SimResult(
         layout=problem.layout,

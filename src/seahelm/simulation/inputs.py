@@ -164,7 +164,7 @@ def _check_angles(name: str, values: np.ndarray, labels: tuple[str, ...],
     """Angle channels ([rad]) of a signal within ±:data:`MAX_ANGLE`."""
     for j, (label, unit) in enumerate(zip(labels, units)):
         if unit == "rad" and j < values.shape[-1]:
-            worst = float(np.max(np.abs(values[..., j])))
+            worst = float(np.abs(values[..., j]).max())
             if worst > MAX_ANGLE:
                 raise ParameterError(
                     f": channel '{label}' reaches {worst:.6g} rad, more than a thousand turns "
