@@ -459,7 +459,8 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
 
     slices = _Slices(kernel, arrays,
                      (ncmd, ca.shape[1], cs.shape[1], dist.shape[2], ref.shape[2]),
-                     threads=None if use_jit else 1, stage_scratch=stage_scratch,
+                     threads=None if use_jit else 1,
+                     stage_scratch=stage_scratch if stages else tuple,
                      keep_pool=keep_pool)
     result_params: dict[str, Any] = {}
     for stage, inp in zip(stages, stage_inputs):
