@@ -205,6 +205,12 @@ class Params:
         return np.dtype([(n, np.float64, (size,)) if _is_vector(cls, n) else (n, np.float64)
                          for n, size in zip(cls.field_names(), cls.field_sizes())])
 
+    @classmethod
+    @functools.cache
+    def _record_view_dtype(cls) -> np.dtype:
+        """:meth:`record_dtype` as records (items read as ``rec.kp``), for :func:`as_records`."""
+        return np.dtype((np.record, cls.record_dtype()))
+
     def to_record(self) -> np.record:
         """This parameter set as one record (``rec.kp``), for compiled code.
 
@@ -504,6 +510,8 @@ def stack_params(params: "Params | Sequence[Params]", cls: type[Params] | None =
     numpy.ndarray, shape (n_runs, n_params)
     """
     if isinstance(params, Params):
+        if cls is None or isinstance(params, cls):  # (one set: its row, a copy of its own)
+            return params._packed()[None, :].copy()
         params = [params]
     params = list(params)
     if not params:
@@ -549,7 +557,7 @@ def as_records(rows: Any, cls: type[Params]) -> np.ndarray:
     if not arr.flags.writeable:  # one compiled specialisation per kernel, not two
         arr = arr.copy()
     # np.record items read as ``rec.kp`` in Python too (NUMBA_DISABLE_JIT, py_func)
-    return arr.view(np.dtype((np.record, cls.record_dtype()))).reshape(arr.shape[0])
+    return arr.view(cls._record_view_dtype()).reshape(arr.shape[0])
 
 
 def signal_indices(labels: Sequence[str]) -> Any:

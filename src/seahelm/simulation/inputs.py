@@ -66,6 +66,16 @@ class _TimeGrid:
         return self._array
 
 
+def _number(value: Any) -> Any:
+    """A one-sample constant as a Python number: a float64 array of one value, 0-d, (1,) or
+    (1, 1, 1), which :func:`_signal` reads as that one value (a manoeuvre's schedule gives its
+    constant channels so); anything else as it is."""
+    if (type(value) is np.ndarray and value.dtype == np.float64 and value.size == 1
+            and value.ndim in (0, 1, 3)):
+        return value.item()
+    return value
+
+
 def _by_name(name: str, value: Mapping[str, Any], labels: tuple[str, ...],
              t_grid: "_TimeGrid", unit: str) -> np.ndarray:
     """A mapping channel name -> specification, assembled into (runs|1, steps+1|1, channels)."""
@@ -75,7 +85,7 @@ def _by_name(name: str, value: Mapping[str, Any], labels: tuple[str, ...],
             f": unknown channel(s) {', '.join(map(repr, unknown))}; channels: "
             f"{', '.join(labels) if labels else 'none'}", field=name)
     if labels:  # every channel a finite number (a set-point): one row, no per-channel arrays
-        row = [value.get(lab, 0.0) for lab in labels]
+        row = [_number(value.get(lab, 0.0)) for lab in labels]
         if all(type(v) is float or type(v) is int for v in row):
             try:
                 finite = math.isfinite(math.fsum(row))
@@ -154,7 +164,7 @@ def _check_angles(name: str, values: np.ndarray, labels: tuple[str, ...],
     """Angle channels ([rad]) of a signal within ±:data:`MAX_ANGLE`."""
     for j, (label, unit) in enumerate(zip(labels, units)):
         if unit == "rad" and j < values.shape[-1]:
-            worst = float(np.max(np.abs(values[..., j])))
+            worst = float(np.abs(values[..., j]).max())
             if worst > MAX_ANGLE:
                 raise ParameterError(
                     f": channel '{label}' reaches {worst:.6g} rad, more than a thousand turns "
