@@ -32,8 +32,8 @@ term               value                                                        
 ``colreg_side``    −1 on a step where the own ship, give-way at the start (head-on or      0.5
                    crossing with the target to starboard, Rules 14-15), is turned more
                    than ``port_tolerance`` (5°) to port of its route before the CPA
-``route``          −(1 − exp(−(e/σ_e)²)), e the cross-track error, σ_e = ``route_scale``   0.2
-                   (default 2 L)
+``route``          −(1 − exp(−(e/σ_e)²)), e the cross-track error,                       0.2
+                   σ_e = ``route_scale`` (default 2 L)
 =================  ===================================================================  ======
 
 The episode terminates at a collision (failed) or once the target has passed (TCPA < 0 and the

@@ -8,7 +8,7 @@
 :mod:`.fallback`
     scipy's one-run solves, the fallback inside them;
 :mod:`.plant`
-    the one :class:`~.plant.Plant` that resolves the signals (one run: a batch of one);
+    the one :class:`~seahelm.analysis.equilibria.plant.Plant` that resolves the signals (one run: a batch of one);
 :mod:`.approach`, :mod:`.approach_cache`
     the one :class:`~.approach.Approach` type and the cache of solved approaches;
 :mod:`.constant_speed`, :mod:`.heel`

@@ -10,6 +10,7 @@
     the approaches of a batch (arrays over runs, with a status and message per run), what
     :func:`~seahelm.analysis.equilibria.batch_equilibrium.approach_states` returns;
     :meth:`BatchApproach.approach` is one run's :class:`Approach`.
+
 :mod:`.approach_cache` keeps solved approaches (``ApproachCache``).
 """
 

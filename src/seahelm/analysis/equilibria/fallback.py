@@ -220,7 +220,7 @@ def constant_speed_plant(value: Any, model: VesselModel | None,
                     rps: Any = None) -> ConstantSpeedPlant | None:
     """The solver of a constant-speed model
     (:mod:`seahelm.analysis.equilibria.constant_speed`), None for another model (whose
-    :class:`~.plant.Plant` then says what it lacks).
+    :class:`~seahelm.analysis.equilibria.plant.Plant` then says what it lacks).
 
     Parameters
     ----------
