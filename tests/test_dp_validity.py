@@ -40,3 +40,18 @@ def test_a_fast_run_warns_naming_it():
 def test_strict_mode_raises():
     with strict_validity(), pytest.raises(ParameterError, match="faster than 2 m/s"):
         simulate(_problem([2.5]))
+
+
+def test_the_warning_points_at_the_users_line():
+    # (it named a line of seahelm/simulation/engine.py: the check runs three calls deep)
+    with pytest.warns(ValidityRangeWarning) as caught:
+        simulate(_problem([0.0, 3.0]))
+    assert caught[0].filename == __file__, caught[0].filename
+
+
+def test_a_formula_outside_its_range_points_at_the_users_line():
+    from seahelm.hydrodynamics.propeller_series import thrust_coefficient
+
+    with pytest.warns(ValidityRangeWarning) as caught:  # (P/D = 2.5: the series ends at 1.4)
+        thrust_coefficient(0.5, 2.5, 0.55, 4)
+    assert all(w.filename == __file__ for w in caught), [w.filename for w in caught]

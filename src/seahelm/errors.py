@@ -161,7 +161,23 @@ class strict_validity:
         _STRICT["on"] = self._old
 
 
-def warn_validity(message: str, *, strict: bool | None = None, stacklevel: int = 3) -> None:
+def _first_frame_outside_seahelm() -> int:
+    """The :func:`warnings.warn` ``stacklevel`` of the first caller outside the seahelm package
+    (the user's line; 2 if every frame is seahelm's), counted from the caller of this function."""
+    import os
+    import sys
+
+    package = os.path.dirname(os.path.abspath(__file__)) + os.sep
+    frame, level = sys._getframe(2), 2  # (the caller of warn_validity is level 2 of warn)
+    while frame is not None:
+        if not os.path.abspath(frame.f_code.co_filename).startswith(package):
+            return level
+        frame, level = frame.f_back, level + 1
+    return 2
+
+
+def warn_validity(message: str, *, strict: bool | None = None,
+                  stacklevel: int | None = None) -> None:
     """Warn (or raise in strict mode) that an empirical formula is outside its validity range.
 
     Parameters
@@ -171,12 +187,16 @@ def warn_validity(message: str, *, strict: bool | None = None, stacklevel: int =
     strict : bool, optional
         Raise :class:`ParameterError` instead of warning (default: the global strict mode).
     stacklevel : int, optional
-        Passed to :func:`warnings.warn` (default 3).
+        Passed to :func:`warnings.warn`; by default the warning points at the first line
+        outside seahelm on the call stack: the user's call (``simulate(...)``, a manoeuvre,
+        ``Simulator.step``), however deep in the library the check runs.
     """
     if strict is None:
         strict = _STRICT["on"]
     if strict:
         raise ParameterError(message)
+    if stacklevel is None:
+        stacklevel = _first_frame_outside_seahelm()
     warnings.warn(message, ValidityRangeWarning, stacklevel=stacklevel)
 
 

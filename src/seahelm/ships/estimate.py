@@ -302,7 +302,7 @@ def _thrust_fit(pitch_ratio: float, area_ratio: float, blades: int, strict: bool
     fit, said = _fit_and_warnings(float(pitch_ratio), float(area_ratio), int(blades))
     for message, category in said:
         if issubclass(category, ValidityRangeWarning):
-            warn_validity(message, strict=strict, stacklevel=4)
+            warn_validity(message, strict=strict)
         else:
             warnings.warn(message, category, stacklevel=4)
     return fit

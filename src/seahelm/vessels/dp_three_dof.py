@@ -180,7 +180,7 @@ def check_result(result: Any) -> None:
             f"dp-3dof (the low-speed DP model, Fossen 2021 §6.7) used outside its range: "
             f"{over.size} run(s) faster than {MAX_SPEED:g} m/s through the water, run {i} "
             f"at {peak[i]:.3g} m/s (seahelm's limit for station keeping and low-speed "
-            "manoeuvring)", stacklevel=4)
+            "manoeuvring)")
 
 
 @njit(cache=True)
