@@ -23,6 +23,12 @@ And an FMU of the same ship (``seahelm fmu``) run by fmpy: one ``doStep`` of 1 s
 same interval through the Python stepping API (target of issue 52: ≤ 2 ×).
 
 ``--quick`` (the test suite's smoke run): 16 sub-environments, a few steps, one repeat.
+
+The vector env runs the compiled loop (``nogil``) in slices on a pool of threads, one per
+core: on an idle 2-core machine its wall rate is about 1.5 x its CPU rate (the slices overlap;
+the rest of a step, observation, reward and restarts, is serial Python). On a shared machine
+the other core is often someone else's and the wall rate falls to the CPU rate, so the run
+prints the load it saw: the cores busy with other processes, from ``/proc/stat`` (Linux).
 """
 
 from __future__ import annotations
@@ -157,6 +163,16 @@ def _single(env: gymnasium.Env, steps: int) -> tuple[float, float]:
     return steps / (time.perf_counter() - t0), steps / (time.process_time() - c0)
 
 
+def _busy_jiffies() -> tuple[int, int] | None:
+    """Machine-wide busy and total CPU jiffies (``/proc/stat``), or None off Linux."""
+    try:
+        with open("/proc/stat") as f:
+            v = [int(x) for x in f.readline().split()[1:]]
+    except (OSError, ValueError):
+        return None
+    return sum(v) - v[3] - (v[4] if len(v) > 4 else 0), sum(v)
+
+
 def _vector(envs: ShipVectorEnv, steps: int) -> tuple[float, float]:
     """Env-steps per second of wall time and of this process's CPU time (every thread's)."""
     rng = np.random.default_rng(0)
@@ -260,11 +276,13 @@ def main() -> None:
     # interleaved, so that the machine's load falls on every row alike
     rows: dict[str, list[tuple[float, float]]] = {k: [] for k in
                                                   ("baseline", "single", "vector", "euler")}
+    j0, c0, t0 = _busy_jiffies(), time.process_time(), time.perf_counter()
     for _ in range(repeats):
         rows["baseline"].append(_single(baseline, single_steps // 4))
         rows["single"].append(_single(env, single_steps))
         rows["vector"].append(_vector(envs, vector_steps))
         rows["euler"].append(_vector(euler, vector_steps))
+    j1, c1, t1 = _busy_jiffies(), time.process_time(), time.perf_counter()
     wall = {k: statistics.median(w for w, _ in v) for k, v in rows.items()}
     cpu = {k: statistics.median(c for _, c in v) for k, v in rows.items()}
     print(f"KVLCC2 L7 heading keeping, dt {DT} s, an action every {ACTION_PERIOD} s "
@@ -277,6 +295,14 @@ def main() -> None:
              "euler": f"seahelm ShipVectorEnv ({n_envs}, explicit Euler as the baseline)"}
     for key, name in names.items():
         print(f"{name:60s} {wall[key]:12,.0f} {cpu[key]:12,.0f}")
+    if j0 is not None and j1 is not None and j1[1] > j0[1]:
+        import os
+
+        cores = os.cpu_count() or 1
+        busy = cores * (j1[0] - j0[0]) / (j1[1] - j0[1])  # cores busy, machine-wide
+        own = (c1 - c0) / (t1 - t0)  # this process's cores
+        print(f"load during the rows: {max(0.0, busy - own):.2f} of {cores} cores busy with "
+              f"other processes (this process: {own:.2f} cores on average)")
     for what, m in (("wall", wall), ("CPU", cpu)):
         print(f"{what}: vector / baseline {m['vector'] / m['baseline']:.1f} x RK4, "
               f"{m['euler'] / m['baseline']:.1f} x Euler (target >= 50 x); vector / single env "
