@@ -1,6 +1,6 @@
 """``esso_osaka.py --part identify``: the ``mmg-ls`` identification on the training files.
 
-Fits the coefficients of :data:`seahelm.analysis.mmg_multi_record.FREE_DEFAULT` of
+Fits the coefficients of :data:`seahelm.analysis.replay.mmg_multi_record.FREE_DEFAULT` of
 ``esso-osaka-3m`` on the training files of Wakita et al. (2022) (the data set's README, column
 ``Train-TZRB+`` by default: every file but the test ones) with the measured wind as a known
 input, writes the identified ship file and its Laplace posterior samples, then predicts the
@@ -70,7 +70,7 @@ def _kind(path: Path) -> str:
 def run(data: Path, out: Path, *, train: str = "Train-TZRB+", seed: int = 1,
         zigzag_angles: dict[str, int] | None = None) -> dict[str, Any]:
     """The identification, the test-file predictions and the band (module docstring)."""
-    from seahelm.analysis.mmg_multi_record import fit_mmg_ls, laplace_samples
+    from seahelm.analysis.replay.mmg_multi_record import fit_mmg_ls, laplace_samples
     from seahelm.identification.records import read_records
     from seahelm.ships import get_ship
     from seahelm.ships.writing import ship_to_toml
@@ -132,7 +132,7 @@ def _band(files: list[Path], base: Any, fit: Any, draws: np.ndarray) -> dict[str
     """The test files simulated whole from their first sample by the posterior draws, the
     identified and the published ship (measured wind): their tracks and the band's coverage
     of the measured track over the first minute."""
-    from seahelm.analysis.mmg_multi_record import build_segments, simulate_segments
+    from seahelm.analysis.replay.mmg_multi_record import build_segments, simulate_segments
     from seahelm.identification.records import read_records
 
     records = [read_records(f)[0] for f in files]
