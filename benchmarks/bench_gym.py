@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import statistics
 import time
 
@@ -296,13 +297,11 @@ def main() -> None:
     for key, name in names.items():
         print(f"{name:60s} {wall[key]:12,.0f} {cpu[key]:12,.0f}")
     if j0 is not None and j1 is not None and j1[1] > j0[1]:
-        import os
-
         cores = os.cpu_count() or 1
         busy = cores * (j1[0] - j0[0]) / (j1[1] - j0[1])  # cores busy, machine-wide
         own = (c1 - c0) / (t1 - t0)  # this process's cores
-        print(f"load during the rows: {max(0.0, busy - own):.2f} of {cores} cores busy with "
-              f"other processes (this process: {own:.2f} cores on average)")
+        print(f"load: {max(0.0, busy - own):.2f} of {cores} cores busy elsewhere during the "
+              f"rows (this process {own:.2f})")
     for what, m in (("wall", wall), ("CPU", cpu)):
         print(f"{what}: vector / baseline {m['vector'] / m['baseline']:.1f} x RK4, "
               f"{m['euler'] / m['baseline']:.1f} x Euler (target >= 50 x); vector / single env "
