@@ -3,7 +3,8 @@
 :func:`_param_rows` turns parameter sets (records or arrays) into rows, :func:`_signal` a
 reference or disturbance specification (a number, an array, a callable of time or a mapping by
 channel name) into an array of shape (runs|1, steps+1|1, channels); :func:`_runs` checks that
-batch sizes broadcast and :func:`_check_angles` that angle channels are angles.
+batch sizes broadcast, :func:`_check_angles` that angle channels are angles and
+:func:`check_rudder_angles` that a rudder is not told to turn beyond a right angle.
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ from .._validate import as_float_array
 from ..errors import ParameterError
 from ..parameters import Params, stack_params
 
-__all__ = ["MAX_ANGLE"]
+__all__ = ["MAX_ANGLE", "MAX_RUDDER_ANGLE", "check_rudder_angles"]
 
 
 @functools.lru_cache(maxsize=None)
@@ -161,7 +162,9 @@ MAX_ANGLE = 2000.0 * math.pi
 
 def _check_angles(name: str, values: np.ndarray, labels: tuple[str, ...],
                   units: tuple[str, ...]) -> None:
-    """Angle channels ([rad]) of a signal within ±:data:`MAX_ANGLE`."""
+    """Angle channels ([rad]) of a signal within ±:data:`MAX_ANGLE` (rudders within
+    ±:data:`MAX_RUDDER_ANGLE`, :func:`check_rudder_angles`)."""
+    check_rudder_angles(name, values, labels, units)
     for j, (label, unit) in enumerate(zip(labels, units)):
         if unit == "rad" and j < values.shape[-1]:
             worst = float(np.abs(values[..., j]).max())
@@ -170,6 +173,44 @@ def _check_angles(name: str, values: np.ndarray, labels: tuple[str, ...],
                     f": channel '{label}' reaches {worst:.6g} rad, more than a thousand turns "
                     f"(±{MAX_ANGLE:.6g} rad); an angle is given in radians here (degrees in a "
                     "scenario as <name>_deg)", field=name, unit="rad", value=worst)
+
+
+#: Largest rudder angle a command or reference may name [rad]: a right angle. No rudder turns
+#: further (high-lift rudders reach 65-70 deg); ``rudder_command = 35.0`` is degrees given as
+#: radians, which the rudder's limit would otherwise silently turn into hard over.
+MAX_RUDDER_ANGLE = 0.5 * math.pi
+
+
+def check_rudder_angles(name: str, values: np.ndarray, labels: tuple[str, ...],
+                        units: tuple[str, ...]) -> None:
+    """Rudder channels (a label beginning ``rudder``, unit ``rad``) within
+    ±:data:`MAX_RUDDER_ANGLE`.
+
+    Parameters
+    ----------
+    name : str
+        The parameter named in the error (``reference``, ``commands``).
+    values : ndarray (..., channels)
+        The channels, in the order of ``labels``.
+    labels, units : tuple of str
+        The channel names and units.
+
+    Raises
+    ------
+    ParameterError
+        Naming the channel, its largest magnitude in rad and degrees, and that value read as
+        degrees in radians.
+    """
+    for j, (label, unit) in enumerate(zip(labels, units)):
+        if unit == "rad" and label.startswith("rudder") and j < values.shape[-1]:
+            worst = float(np.abs(values[..., j]).max())
+            if worst > MAX_RUDDER_ANGLE:  # (nan is not: callers name non-finite values)
+                raise ParameterError(
+                    f": channel '{label}' reaches {worst:.6g} rad ({math.degrees(worst):.6g} deg);"
+                    f" a rudder turns at most ±90 deg (±{MAX_RUDDER_ANGLE:.6g} rad). Angles are "
+                    f"radians here: {worst:.6g} deg is {math.radians(worst):.6g} rad "
+                    "(math.radians; degrees in a scenario as <name>_deg)",
+                    field=name, unit="rad", value=worst)
 
 
 def _runs(*sizes: tuple[str, int]) -> int:

@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
+from .inputs import check_rudder_angles
 
 __all__ = ["Observation", "check_commands", "run_index", "run_indices"]
 
@@ -77,7 +78,9 @@ def check_commands(commands: Any, sel: np.ndarray, held: np.ndarray, labels: tup
     Raises
     ------
     ParameterError
-        On a wrong shape, an unknown name or a value that is not finite.
+        On a wrong shape, an unknown name, a value that is not a finite number (``None``
+        included, which numpy would read as nan) or a rudder beyond ±90 deg
+        (:func:`~seahelm.simulation.inputs.check_rudder_angles`).
     """
     nc = len(labels)
     index = {name: j for j, name in enumerate(labels)}
@@ -89,7 +92,7 @@ def check_commands(commands: Any, sel: np.ndarray, held: np.ndarray, labels: tup
                 raise ParameterError(f": unknown command {name!r}; commands: {units_text}",
                                      field="commands", value=name)
             try:
-                col = np.asarray(v, dtype=float)
+                col = _numbers(v)
             except (TypeError, ValueError):
                 raise ParameterError(f"[{name!r}] must be a number or numbers (one per stepped "
                                      f"run) [{units[index[name]]}], got {v!r}",
@@ -101,7 +104,7 @@ def check_commands(commands: Any, sel: np.ndarray, held: np.ndarray, labels: tup
             values[:, index[name]] = col
     else:
         try:
-            values = np.asarray(commands, dtype=float)
+            values = _numbers(commands)
         except (TypeError, ValueError):
             raise ParameterError(f"must be numbers (runs, {nc}) by {units_text}, got "
                                  f"{commands!r}", field="commands") from None
@@ -118,7 +121,21 @@ def check_commands(commands: Any, sel: np.ndarray, held: np.ndarray, labels: tup
                              f"({units_text})",
                              field="commands", value=float(values[r, j]),
                              run=int(sel[r]))
+    check_rudder_angles("commands", values, labels, units)
     return values
+
+
+def _numbers(value: Any) -> np.ndarray:
+    """``value`` as float64, refusing ``None`` (numpy would make it nan, and the error would
+    then say the command "is nan")."""
+    if value is None:
+        raise TypeError("None")
+    if type(value) is np.ndarray and value.dtype != object:
+        return np.asarray(value, dtype=float)
+    raw = np.asarray(value)
+    if raw.dtype == object and any(v is None for v in raw.flat):
+        raise TypeError("None")
+    return np.asarray(raw, dtype=float)
 
 
 def _spans(sel: np.ndarray) -> list[tuple[int, int]]:

@@ -15,6 +15,8 @@ that reference held constant.
 
 from __future__ import annotations
 
+import re
+
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
@@ -72,7 +74,7 @@ def set_reference(sim: "Simulator", values: Any, runs: Any = None) -> None:
         checked = check_commands(values, sel, ref[sel, 0, :], wiring.references,
                                  wiring.reference_units)
     except ParameterError as exc:
-        raise ParameterError(f"{exc.reason.replace('command', 'reference')}", field="values",
+        raise ParameterError(re.sub(r"\bcommand", "reference", exc.reason), field="values",
                              unit=exc.unit, value=exc.value, run=exc.run) from None
     ref[sel, 0, :] = checked
 
