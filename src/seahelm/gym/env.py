@@ -69,8 +69,7 @@ class ShipEnv(gym.Env):
         super().reset(seed=seed)
         self._vec._rng = self.np_random
         self._vec._started = True
-        self._vec._begin(np.arange(1))
-        obs, _ = self._vec._observe_now()
+        obs, _ = self._vec._observe_now(self._vec._begin(np.arange(1)))
         return obs[0], {}
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:

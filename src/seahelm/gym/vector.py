@@ -29,8 +29,8 @@ import numpy as np
 
 from .._optional import optional_import
 from ..errors import ParameterError
-from ..simulation.stepping_reference import (held_commands, restart_clock, set_reference,
-                                              set_states)
+from ..simulation.stepping_reference import (held_commands, restart_clock, restart_runs,
+                                              set_reference)
 from .plant import WEATHER_KEYS, Plant, build_plant, reset_selection
 from .tasks import TASKS, Task
 
@@ -273,9 +273,9 @@ class ShipVectorEnv(VectorEnv):
         if seed is not None or not self._started:
             self._rng = self.np_random
         sel = reset_selection(options, self.num_envs, self._started)
-        self._begin(sel)
+        out = self._begin(sel)
         self._started = True
-        return self._observe_now()
+        return self._observe_now(out)
 
     def step(self, actions: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray,
                                            dict[str, Any]]:
@@ -320,9 +320,8 @@ class ShipVectorEnv(VectorEnv):
             self._cmd[:, self._act_cols] = a
             out = sim.step(self._cmd)
         self.elapsed += self.plant.action_period
-        if restart.any():
-            self._begin(np.flatnonzero(restart))
-            out = sim.observe()
+        if restart.any():  # (observed: the restarted runs; the others as the step left them)
+            out = self._begin(np.flatnonzero(restart))
         obs, terms, failed, success = self.task.evaluate(out, self._cmd[:, self._rudder_col],
                                                          self._previous)
         diverged = out.status != 0
@@ -372,21 +371,22 @@ class ShipVectorEnv(VectorEnv):
                                  value=float(a[tuple(bad)]), run=int(bad[0]))
         return np.minimum(np.maximum(a, self._low), self._high)
 
-    def _begin(self, sel: np.ndarray) -> None:
+    def _begin(self, sel: np.ndarray) -> Any:
         """Start the episodes of ``sel``: the runs reset, the task's draws set, every run's
         clock at the same step again (:func:`~seahelm.simulation.stepping_reference.
-        restart_clock`: the batch goes on as one call of the loop a step)."""
-        p, sim = self.plant, self._sim
-        restart_clock(sim, sel)  # (sel from the start, the others kept: all at t = 0)
+        restart_runs`: the batch goes on as one call of the loop a step); returns the
+        simulator's observation (the runs of ``sel`` at their new start)."""
+        p = self.plant
         self._cmd[sel] = p.command_start
         self._previous[sel] = p.command_start[self._rudder_col]
         self._done[sel] = False
         self.elapsed[sel] = 0.0
-        set_states(sim, sel, self.task.begin(sel, self._rng))
+        # (sel from the start, the others kept: all at t = 0)
+        return restart_runs(self._sim, sel, self.task.begin(sel, self._rng))
 
-    def _observe_now(self) -> tuple[np.ndarray, dict[str, Any]]:
-        """The observations now, without stepping (after a reset)."""
-        out = self._sim.observe()
+    def _observe_now(self, out: Any = None) -> tuple[np.ndarray, dict[str, Any]]:
+        """The observations now, without stepping (after a reset: its observation)."""
+        out = self._sim.observe() if out is None else out
         obs, _, _, _ = self.task.evaluate(out, self._cmd[:, self._rudder_col], self._previous)
         return self._cast(obs), {}
 
