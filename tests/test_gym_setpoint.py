@@ -125,7 +125,8 @@ def test_autoreset_with_the_setpoint_action():
 def test_bad_setpoint_setups_are_refused_by_name():
     with pytest.raises(ParameterError, match="actions.*'heading_setpoint'.*needs an autopilot"):
         ShipVectorEnv(2, actions=("heading_setpoint",))
-    with pytest.raises(ParameterError, match=r"actions.*must be \('heading_setpoint',\) with an "
+    with pytest.raises(ParameterError, match=r"actions.*must be \('heading_setpoint',\) or "
+                                             r"\('heading_setpoint', 'rps_setpoint'\) with an "
                                              "autopilot"):
         ShipVectorEnv(2, autopilot="pid-heading-rps", actions=("rudder_command",))
     with pytest.raises(ParameterError, match="autopilot.*'no-such-pilot'"):

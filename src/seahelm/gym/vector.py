@@ -11,7 +11,9 @@ Actions are the actuator's commands, in their units (``rudder_command`` [rad],
 ``propeller_rps`` [1/s]), in a bounded ``Box`` -- or, with ``autopilot=`` a heading autopilot
 (e.g. ``"pid-heading-rps"``), a heading set-point ``heading_setpoint`` [rad] that the autopilot
 steers for inside the compiled loop (the set-point is relative to the task's reference
-direction: the target heading, the current leg's direction). An action outside the box is clipped to it (what
+direction: the target heading, the current leg's direction); with a ``-rps`` autopilot also
+the propeller rps it holds, ``rps_setpoint`` (n = n_0 (1 + a), n_0 the approach's rps; no
+registered controller takes a speed set-point: the speed follows the rps). An action outside the box is clipped to it (what
 :class:`gymnasium.wrappers.ClipAction` would do; a policy's Gaussian sample routinely is out of
 bounds); an action that is NaN or infinite is refused with a
 :class:`~seahelm.errors.ParameterError` naming ``actions`` and the sub-environment (nothing is
@@ -30,7 +32,7 @@ import numpy as np
 from .._optional import optional_import
 from ..errors import ParameterError
 from ..simulation.stepping_reference import (held_commands, restart_clock, restart_runs,
-                                              set_reference)
+                                              set_controller_param, set_reference)
 from .plant import WEATHER_KEYS, Plant, build_plant, reset_selection
 from .tasks import TASKS, Task
 
@@ -45,11 +47,20 @@ __all__ = ["ShipVectorEnv"]
 #: largest rudder δ_max [rad] and the approach's rps n_0 [1/s].
 _BOUNDS = {"rudder_command": lambda d, n0: (-d, d),
            "propeller_rps": lambda d, n0: (0.0, 1.5 * n0),
-           "heading_setpoint": lambda d, n0: (-0.25 * math.pi, 0.25 * math.pi)}
+           "heading_setpoint": lambda d, n0: (-0.25 * math.pi, 0.25 * math.pi),
+           "rps_setpoint": lambda d, n0: (-0.5, 0.5)}
 
 #: The action of a set-point environment (``autopilot=...``): the heading set-point relative to
 #: the task's reference direction [rad].
 SETPOINT = "heading_setpoint"
+
+#: The second action a ``-rps`` autopilot takes: the propeller rps it holds (its parameter
+#: ``propeller_rps``), relative to the approach's n_0: n = n_0 (1 + a) [-] (symmetric about
+#: the approach, as gymnasium recommends a Box to be). No registered controller takes a
+#: *speed* set-point (the ``-rps`` autopilots hold a constant rps:
+#: :mod:`seahelm.control.held_rps`), so the agent sets the rps the autopilot holds and the
+#: speed follows through the ship's dynamics.
+RPS_SETPOINT = "rps_setpoint"
 
 _MODES = {m.value: m for m in AutoresetMode}
 
@@ -68,10 +79,13 @@ class ShipVectorEnv(VectorEnv):
     actions : sequence of str, optional
         The commands the agent sets (default ``("rudder_command",)``; add
         ``"propeller_rps"`` for a ship with a propeller); the others stay at the approach's.
-        With an ``autopilot``: ``("heading_setpoint",)`` (the default then).
+        With an ``autopilot``: ``("heading_setpoint",)`` (the default then), or
+        ``("heading_setpoint", "rps_setpoint")`` with a ``-rps`` autopilot: the propeller rps
+        it holds too, n = n_0 (1 + a) [-] (no registered controller takes a speed set-point).
     action_bounds : mapping command -> (low, high), optional
         Bounds of the action space in the command's units (default: ±δ_max of the steering
-        gear for the rudder, [0, 1.5 n_0] for the rps, ±45° for the heading set-point).
+        gear for the rudder, [0, 1.5 n_0] for the rps, ±45° for the heading set-point,
+        ±0.5 for the rps set-point: 0.5 to 1.5 n_0).
     autopilot : Controller or str, optional
         A heading autopilot (references include ``heading``: ``"pid-heading-rps"``,
         ``"lq-heading-rps"``, ... or a Controller) that runs inside the compiled loop every
@@ -195,17 +209,24 @@ class ShipVectorEnv(VectorEnv):
                 raise ParameterError(f": {key!r} is not an action; actions: "
                                      f"{', '.join(names)}", field="action_bounds", value=key)
         low, high = [], []
-        if p.autopilot is not None and names != (SETPOINT,):
-            raise ParameterError(f"must be ({SETPOINT!r},) with an autopilot (it computes "
-                                 f"the commands), got {actions!r}", field="actions",
-                                 value=actions)
+        holds_rps = p.autopilot is not None and "propeller_rps" in \
+            p.autopilot.params_type.field_names()
+        if p.autopilot is not None and names not in ((SETPOINT,), (SETPOINT, RPS_SETPOINT)):
+            raise ParameterError(f"must be ({SETPOINT!r},) or ({SETPOINT!r}, {RPS_SETPOINT!r}) "
+                                 f"with an autopilot (it computes the commands), got "
+                                 f"{actions!r}", field="actions", value=actions)
+        if RPS_SETPOINT in names and not holds_rps:
+            raise ParameterError(f": {RPS_SETPOINT!r} needs an autopilot that holds the "
+                                 "propeller rps (a '-rps' controller: 'pid-heading-rps', ...); "
+                                 "without one the action 'propeller_rps' sets the rps command",
+                                 field="actions", value=RPS_SETPOINT)
         if p.autopilot is None and SETPOINT in names:
             raise ParameterError(f": {SETPOINT!r} needs an autopilot (autopilot="
                                  "'pid-heading-rps', ...)", field="actions", value=SETPOINT)
-        units = {SETPOINT: "rad"}
+        units = {SETPOINT: "rad", RPS_SETPOINT: "-"}
         for name in names:
-            if name == SETPOINT:
-                unit = "rad"
+            if name in units:
+                unit = units[name]
             elif name not in p.command_labels:
                 raise ParameterError(f": unknown command {name!r}; the ship's commands: "
                                      f"{', '.join(p.command_labels)}", field="actions",
@@ -226,9 +247,17 @@ class ShipVectorEnv(VectorEnv):
                 raise ParameterError(f"[{name!r}] must be finite with low < high [{unit}], got "
                                      f"({lo!r}, {hi!r})", field="action_bounds", unit=unit,
                                      value=(lo, hi))
+            if name == RPS_SETPOINT and lo <= -1:
+                raise ParameterError(f"[{name!r}] must have low > -1 (n = n_0 (1 + a): the "
+                                     f"autopilot holds a turning propeller), got ({lo!r}, "
+                                     f"{hi!r})", field="action_bounds", unit="-", value=(lo, hi))
             low.append(lo)
             high.append(hi)
         self.action_labels = names
+        self._rps_setpoint = RPS_SETPOINT in names
+        #: The rps the autopilot holds by its parameters, n_0 of the rps set-point [1/s].
+        self._rps0 = float(p.simulator.problem.controller_params.propeller_rps) \
+            if self._rps_setpoint else math.nan
         self.action_units = tuple(units[n] for n in names)
         self._act_cols = np.array([p.command_labels.index(n) for n in names
                                    if n in p.command_labels], dtype=np.int64)
@@ -307,6 +336,7 @@ class ShipVectorEnv(VectorEnv):
         every = self.plant.intervals_per_action
         setpoint = self.plant.autopilot is not None
         if setpoint:  # (the autopilot's set-point: absolute, from the task's direction)
+            rps = self._rps0 * (1.0 + a[:, 1]) if self._rps_setpoint else None
             a = self.task.reference_direction() + a[:, 0]
         if sim.time[0] + self.plant.action_period > self._horizon:
             restart_clock(sim)  # (the simulator's horizon reached: its clock back to 0)
@@ -314,6 +344,8 @@ class ShipVectorEnv(VectorEnv):
         # restarting now are started again after it, from their new episode's start
         if setpoint:
             set_reference(sim, a[:, None])
+            if self._rps_setpoint:
+                set_controller_param(sim, "propeller_rps", rps)
             out = sim.step(None, n=every)
             self._cmd[:] = held_commands(sim)  # (the autopilot's rudder: observed, rewarded)
         else:
@@ -381,6 +413,8 @@ class ShipVectorEnv(VectorEnv):
         self._previous[sel] = p.command_start[self._rudder_col]
         self._done[sel] = False
         self.elapsed[sel] = 0.0
+        if self._rps_setpoint:  # (the autopilot's own rps until the first action)
+            set_controller_param(self._sim, "propeller_rps", self._rps0, sel)
         # (sel from the start, the others kept: all at t = 0)
         return restart_runs(self._sim, sel, self.task.begin(sel, self._rng))
 

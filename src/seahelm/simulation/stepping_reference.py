@@ -31,7 +31,8 @@ if TYPE_CHECKING:  # pragma: no cover
 #: loop a slice, on the thread pool) rather than span by span.
 _SPANS_SHARE = 0.25
 
-__all__ = ["set_reference", "held_commands", "restart_clock", "restart_runs", "set_states"]
+__all__ = ["set_reference", "set_controller_param", "held_commands", "restart_clock",
+           "restart_runs", "set_states"]
 
 
 def _reference_array(sim: "Simulator") -> np.ndarray:
@@ -80,6 +81,63 @@ def set_reference(sim: "Simulator", values: Any, runs: Any = None) -> None:
         raise ParameterError(f"{exc.reason.replace('command', 'reference')}", field="values",
                              unit=exc.unit, value=exc.value, run=exc.run) from None
     ref[sel, 0, :] = checked
+
+
+def set_controller_param(sim: "Simulator", name: str, values: Any, runs: Any = None) -> None:
+    """Hold a parameter of the controller (a set-point that is a parameter, e.g. the
+    ``propeller_rps`` a ``-rps`` autopilot holds) of some runs from the next step on.
+
+    The loop reads each run's controller parameters at the start of every call, so a value
+    written before a step is the one the controller uses over that step -- the numbers of
+    ``simulate`` with the controller's parameters holding that value.
+
+    Parameters
+    ----------
+    sim : Simulator
+        A simulator whose problem has a controller with the parameter ``name``.
+    name : str
+        The parameter (a number, not a vector), e.g. ``"propeller_rps"`` [1/s].
+    values : float or array_like
+        One for every selected run, or (selected runs,), in the parameter's unit; finite and
+        within the parameter's range.
+    runs : int or sequence of int, optional
+        The runs (default every run).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``name`` for a parameter the controller does not have (or a vector one),
+        else ``values`` on a wrong shape or a value not finite or outside the parameter's
+        range; nothing is written then.
+    """
+    controller = sim.problem.controller
+    params_type = getattr(controller, "params_type", None)
+    checks = {c[1]: c for c in params_type._field_checks()} if params_type is not None else {}
+    if name not in checks or checks[name][2]:
+        have = ", ".join(c for c, v in checks.items() if not v[2]) or "none"
+        raise ParameterError(f": the controller '{getattr(controller, 'name', controller)}' has "
+                             f"no parameter {name!r} (a number); its parameters: {have}",
+                             field="name", value=name)
+    _, _, _, low, high, low_inclusive = checks[name]
+    unit = params_type._fields_by_name()[name].metadata.get("unit", "")
+    sel = run_indices(runs, sim.n_runs)
+    v = np.asarray(values, dtype=float)
+    if v.ndim > 1 or (v.ndim == 1 and v.shape[0] != sel.size):
+        raise ParameterError(f"must be a number or have shape ({sel.size},) (one per run), got "
+                             f"{v.shape}", field="values", unit=unit, value=v.shape)
+    v = np.broadcast_to(v, sel.shape)
+    bad = ~np.isfinite(v) | (v < low) | (v > high) | ((v == low) & (not low_inclusive))
+    if bad.any():
+        r = int(np.argmax(bad))
+        side = "[" if low_inclusive else "("
+        raise ParameterError(f": {name} = {float(v[r])!r} [{unit}] of run {int(sel[r])} is not "
+                             f"finite or outside {side}{low:g}, {high:g}]", field="values",
+                             unit=unit, value=float(v[r]), run=int(sel[r]))
+    cp = sim._batch.slices.arrays.get("params", "controller")
+    if cp.shape[0] != sim.n_runs:  # (one record for every run: not writable per run)
+        raise ParameterError(f": the controller's parameters have {cp.shape[0]} rows for "
+                             f"{sim.n_runs} runs", field="controller_params", value=cp.shape)
+    cp[name][sel] = v
 
 
 def held_commands(sim: "Simulator") -> np.ndarray:
