@@ -26,13 +26,14 @@ from typing import Any
 import numpy as np
 
 from .._optional import optional_import
-from ..encounters import Encounter, HeadingAutopilot, Vessel
+from ..encounters import AIS, Encounter, HeadingAutopilot, Vessel
 from ..encounters.encounter import DEFAULT_MAX_RUDDER
 from ..encounters.geometry import wrap_pi
 from ..errors import ParameterError
 from ..ships import get_ship
 from ..simulation.stepping import Simulator
 from ..simulation.stepping_reference import restart_clock, set_states
+from .ais import EpisodeAIS
 from .collision import CollisionAvoidance
 from .plant import check_env_memory, episode_named, reset_selection
 
@@ -89,6 +90,13 @@ class EncounterVectorEnv(VectorEnv):
         speed, in whole action periods).
     autopilot : HeadingAutopilot, optional
         The vessels' heading autopilot (default K_p = 1, T_d = 1.5 L/U).
+    sensor : AIS, optional
+        What the agent (and an avoiding target) sees of the other vessel: its AIS reports
+        (:class:`~seahelm.encounters.AIS`: ``update_interval``, ``delay`` [s], noise, ``seed``;
+        :mod:`seahelm.gym.ais`), on each episode's clock. Default None: the other vessel's
+        true state every interval. The rewards and the episode's end are the true geometry's.
+        Until an episode's first report has arrived (``delay`` after its start) the target's
+        six observations are 0.
     action_bounds : (low, high), optional
         Of ``course_change`` [rad] (default ±45°).
     reward : mapping term -> weight, optional
@@ -121,7 +129,8 @@ class EncounterVectorEnv(VectorEnv):
     def __init__(self, num_envs: int = 1, *, ship: Any = "kvlcc2-l7", target_ship: Any = None,
                  target_avoidance: Any = None, dt: float = 0.1, action_period: float = 1.0,
                  episode_seconds: float | None = None,
-                 autopilot: HeadingAutopilot | None = None, action_bounds: Any = None,
+                 autopilot: HeadingAutopilot | None = None, sensor: Any = None,
+                 action_bounds: Any = None,
                  reward: Any = None, autoreset_mode: Any = AutoresetMode.NEXT_STEP,
                  render_mode: str | None = None, **options: Any) -> None:
         if render_mode is not None:
@@ -155,14 +164,21 @@ class EncounterVectorEnv(VectorEnv):
             longest = self.task.detection_range[1] * own.length / own.approach_speed
             episode_seconds = math.ceil(1.5 * longest / action_period) * action_period
         self.episode_seconds = float(episode_seconds)
+        if sensor is not None and not isinstance(sensor, AIS):
+            raise ParameterError(f"must be a seahelm.encounters.AIS, got "
+                                 f"{type(sensor).__name__}", field="sensor", value=sensor)
         geo = self.task.draw(n, np.random.default_rng(0))
         self.encounter = Encounter(
             [Vessel(ship=own, north=0.0, east=0.0, course=0.0, name="own"),
              Vessel(ship=tgt, north=geo["north"], east=geo["east"], course=geo["course"],
                     avoid=target_avoidance is not None, name="target")],
             t_final=self.episode_seconds, dt=dt, controller_dt=action_period,
-            avoidance=target_avoidance, autopilot=autopilot, record_every=1)
+            avoidance=target_avoidance, autopilot=autopilot, record_every=1,
+            **({} if sensor is None else {"sensor": sensor}))
         enc = self.encounter
+        #: The AIS reports the agent sees (None: the true state).
+        self._ais = None if sensor is None else EpisodeAIS(
+            sensor, n, enc.n_vessels, enc.controller_dt, self.episode_seconds)
         self.render_mode = None
         self.metadata = {**type(self).metadata, "autoreset_mode": mode}
         self._setup_spaces(own, action_bounds)
@@ -300,9 +316,9 @@ class EncounterVectorEnv(VectorEnv):
         route = self._course0
         desired = route
         if self._avoid_state is not None:
+            seen = truth[:, :5] if self._ais is None else self._ais.view
             desired = enc.avoidance.desired(self._clock, truth.reshape(n, nv, 6),
-                                            truth[:, :5].reshape(n, nv, 5), route,
-                                            self._avoid_state)
+                                            seen.reshape(n, nv, 5), route, self._avoid_state)
         desired = desired.copy()
         desired[:, 0] = route[:, 0] + a[:, 0]
         kp, td = enc.autopilot.gain, self._td
@@ -317,10 +333,14 @@ class EncounterVectorEnv(VectorEnv):
             sim.step(cmd)
         self._rudder[:] = rudder
         self.elapsed += enc.controller_dt
+        if self._ais is not None:
+            self._ais.advance()
         if restart.any():
             self._begin(np.flatnonzero(restart))
         self._clock += enc.controller_dt
         self._observe()
+        if self._ais is not None:  # (the restarted encounters' first reports: sent in _begin)
+            self._ais.update(truth[:, :5], np.flatnonzero(~np.repeat(restart, nv)))
         obs, terms, collided, passed = self._evaluate()
         diverged = np.zeros(n * nv, dtype=bool)
         for sim, index in zip(self._sims, self._index):
@@ -336,6 +356,17 @@ class EncounterVectorEnv(VectorEnv):
         truncated[restart] = False
         self._done = terminated | truncated
         return self._cast(obs), reward, terminated, truncated, {}
+
+    @property
+    def target_view(self) -> np.ndarray:
+        """What the own ship knows of the target now: its north, east [m], course over ground
+        [rad], speed over ground [m/s] and heading [rad], (num_envs, 5) (a copy): the latest
+        AIS report received (NaN before the episode's first), or with no ``sensor`` its true
+        state."""
+        nv = self.encounter.n_vessels
+        if self._ais is None:
+            return self._truth[1::nv, :5].copy()
+        return self._ais.view[1::nv].copy()
 
     @property
     def vessel_states(self) -> np.ndarray:
@@ -404,6 +435,9 @@ class EncounterVectorEnv(VectorEnv):
         self._observe()
         own, target = self._truth[sel * nv], self._truth[sel * nv + 1]
         self.task.begin(sel, own, target)
+        if self._ais is not None:  # (the episode's first reports, sent at its start)
+            self._ais.begin(sel)
+            self._ais.update(self._truth[:, :5], runs)
 
     def _observe(self) -> None:
         """Every vessel's (north, east, course, speed, heading, yaw rate) and surge/sway
@@ -425,7 +459,14 @@ class EncounterVectorEnv(VectorEnv):
         nv = self.encounter.n_vessels
         own, target = self._truth[::nv], self._truth[1::nv]
         start = np.zeros((self.num_envs, 2))
-        return self.task.evaluate(own, target, self._uv[::nv], self._rudder[::nv], start)
+        args = (self._uv[::nv], self._rudder[::nv], start)
+        result = self.task.evaluate(own, target, *args)
+        if self._ais is None:
+            return result
+        # the agent observes the target as reported; the rewards and the end are the truth's
+        seen = np.concatenate([self._ais.view[1::nv], target[:, 5:]], axis=1)
+        obs = self.task.evaluate(own, seen, *args)[0]
+        return (obs, *result[1:])
 
     def _cast(self, obs: np.ndarray) -> np.ndarray:
         if not math.isfinite(obs.sum()):
