@@ -35,7 +35,7 @@ from ..simulation.stepping import Simulator
 from ..simulation.stepping_reference import restart_clock, set_states
 from .ais import EpisodeAIS
 from .collision import CollisionAvoidance
-from .plant import check_env_memory, episode_named, reset_selection
+from .plant import check_env_memory, episode_named
 
 #: Memory of one sub-environment [B], about twice what one takes (peak RSS over 1,000 and
 #: 100,000 sub-environments of CollisionAvoidance-v0, KVLCC2 L7, 2026-12-02: 4.8 kB).
@@ -43,12 +43,13 @@ _BYTES_PER_ENCOUNTER = 10_000
 
 gym = optional_import("gymnasium", extra="rl", purpose="seahelm.gym")
 from gymnasium import spaces  # noqa: E402
-from gymnasium.vector import AutoresetMode, VectorEnv  # noqa: E402
+from gymnasium.vector import AutoresetMode  # noqa: E402
 from gymnasium.vector.utils import batch_space  # noqa: E402
 
-__all__ = ["EncounterVectorEnv", "EncounterEnv"]
+from .base import BatchEnv, OneEnv  # noqa: E402
+from .base import autoreset_mode as autoreset_mode_of  # noqa: E402
 
-_MODES = {m.value: m for m in AutoresetMode}
+__all__ = ["EncounterVectorEnv", "EncounterEnv"]
 _TASK_KEYS = ("detection_range", "dcpa", "route_scale", "port_tolerance", "domain")
 
 
@@ -68,7 +69,7 @@ def _max_rudder(ship: Any) -> float:
         return DEFAULT_MAX_RUDDER
 
 
-class EncounterVectorEnv(VectorEnv):
+class EncounterVectorEnv(BatchEnv):
     """N encounters of an own ship and a target ship, the own ship steered by the agent.
 
     Parameters
@@ -133,13 +134,7 @@ class EncounterVectorEnv(VectorEnv):
                  action_bounds: Any = None,
                  reward: Any = None, autoreset_mode: Any = AutoresetMode.NEXT_STEP,
                  render_mode: str | None = None, **options: Any) -> None:
-        if render_mode is not None:
-            raise ParameterError(f": no render modes, got {render_mode!r}",
-                                 field="render_mode", value=render_mode)
-        mode = _MODES.get(autoreset_mode, autoreset_mode)
-        if mode not in (AutoresetMode.NEXT_STEP, AutoresetMode.DISABLED):
-            raise ParameterError(f"must be 'NextStep' or 'Disabled', got {autoreset_mode!r}",
-                                 field="autoreset_mode", value=autoreset_mode)
+        mode = autoreset_mode_of(autoreset_mode, render_mode)
         for key in options:
             if key not in _TASK_KEYS:
                 raise ParameterError(f": unknown keyword {key!r} of task CollisionAvoidance; "
@@ -273,10 +268,7 @@ class EncounterVectorEnv(VectorEnv):
         -------
         observations (num_envs, observations), info (empty dict)
         """
-        super().reset(seed=seed)
-        if seed is not None or not self._started:
-            self._rng = self.np_random
-        sel = reset_selection(options, self.num_envs, self._started)
+        sel = self._reset_start(seed, options)
         if not self._started:
             self._clock = 0.0
             if self.encounter.avoidance is not None:
@@ -305,13 +297,9 @@ class EncounterVectorEnv(VectorEnv):
             Before :meth:`reset`, on a wrong shape, or a NaN/infinite action (nothing is
             stepped).
         """
-        if not self._started:
-            raise ParameterError(": call reset() before step()", field="reset")
-        a = self._actions(actions)
+        a, restart = self._step_start(actions)
         n, enc = self.num_envs, self.encounter
         nv = enc.n_vessels
-        restart = self._done.copy() if self.metadata["autoreset_mode"] is \
-            AutoresetMode.NEXT_STEP else np.zeros(n, dtype=bool)
         truth = self._truth
         route = self._course0
         desired = route
@@ -351,11 +339,7 @@ class EncounterVectorEnv(VectorEnv):
         reward = self.task.reward(terms)
         terminated = failed | passed
         truncated = ~terminated & (self.elapsed >= self.episode_seconds - 1e-9)
-        reward[restart] = 0.0
-        terminated[restart] = False
-        truncated[restart] = False
-        self._done = terminated | truncated
-        return self._cast(obs), reward, terminated, truncated, {}
+        return self._step_end(obs, reward, terminated, truncated, restart)
 
     @property
     def target_view(self) -> np.ndarray:
@@ -382,28 +366,6 @@ class EncounterVectorEnv(VectorEnv):
         self.closed = True
 
     # --------------------------------------------------------------------------------------
-    def _actions(self, actions: Any) -> np.ndarray:
-        n = self.num_envs
-        if actions is None:  # (numpy makes None a NaN: "is nan" said nothing of the cause)
-            raise ParameterError(f": missing (None); step() needs an array of shape ({n}, 1) "
-                                 "(envs, course_change [rad])", field="actions")
-        try:
-            a = np.asarray(actions, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ParameterError(f"must be numbers of shape ({n}, 1) (course_change), got "
-                                 f"{actions!r}", field="actions") from None
-        if a.shape != (n, 1):
-            if a.size != n:
-                raise ParameterError(f"must have shape ({n}, 1) (envs, course_change), got "
-                                     f"{a.shape}", field="actions", value=a.shape)
-            a = a.reshape(n, 1)
-        if not math.isfinite(a.sum()):
-            bad = int(np.argwhere(~np.isfinite(a))[0, 0])
-            raise ParameterError(f": action 'course_change' of sub-environment {bad} is "
-                                 f"{float(a[bad, 0])!r}; actions must be finite [rad]",
-                                 field="actions", value=float(a[bad, 0]), run=bad)
-        return np.minimum(np.maximum(a, self._low), self._high)
-
     def _begin(self, sel: np.ndarray) -> None:
         """Start the episodes of ``sel``: new geometries, the runs reset, the task's start."""
         nv = self.encounter.n_vessels
@@ -468,18 +430,12 @@ class EncounterVectorEnv(VectorEnv):
         obs = self.task.evaluate(own, seen, *args)[0]
         return (obs, *result[1:])
 
-    def _cast(self, obs: np.ndarray) -> np.ndarray:
-        if not math.isfinite(obs.sum()):
-            obs = np.nan_to_num(obs, nan=0.0)
-        box = self.single_observation_space
-        return np.minimum(np.maximum(obs, box.low), box.high).astype(np.float32)
-
     def __repr__(self) -> str:
         names = self.encounter.names
         return f"EncounterVectorEnv({names[0]} meets {names[1]}, num_envs={self.num_envs})"
 
 
-class EncounterEnv(gym.Env):
+class EncounterEnv(OneEnv):
     """One encounter, the own ship steered by an agent
     (``gymnasium.make("seahelm/CollisionAvoidance-v0", ...)``): the
     :class:`EncounterVectorEnv` of one sub-environment, without autoreset.
@@ -492,63 +448,16 @@ class EncounterEnv(gym.Env):
         Of :class:`EncounterVectorEnv`, except ``num_envs`` and ``autoreset_mode``.
     """
 
-    metadata = {"render_modes": []}
-
     def __init__(self, render_mode: str | None = None, **kwargs: Any) -> None:
-        self._vec = EncounterVectorEnv(1, autoreset_mode="Disabled", render_mode=render_mode,
-                                       **kwargs)
+        super().__init__(EncounterVectorEnv(1, autoreset_mode="Disabled",
+                                            render_mode=render_mode, **kwargs))
+        self.encounter = self._vec.encounter
+
+    def _start(self) -> np.ndarray:
         v = self._vec
-        self.observation_space = v.single_observation_space
-        self.action_space = v.single_action_space
-        self.observation_labels, self.observation_units = v.observation_labels, \
-            v.observation_units
-        self.action_labels, self.action_units = v.action_labels, v.action_units
-        self.task, self.encounter = v.task, v.encounter
-        self.render_mode = None
-
-    def reset(self, *, seed: int | None = None,
-              options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict[str, Any]]:
-        """Start an episode: a new encounter.
-
-        Parameters
-        ----------
-        seed : int, optional
-            Seeds the geometry's draw.
-        options : dict, optional
-            Not used.
-
-        Returns
-        -------
-        observation (observations,), info (empty dict)
-        """
-        super().reset(seed=seed)
-        v = self._vec
-        v._rng = self.np_random
         if not v._started and v.encounter.avoidance is not None:
             v._avoid_state = {k: (x.copy() if isinstance(x, np.ndarray) else x)
                               for k, x in v._fresh_avoid.items()}
         v._started = True
         v._begin(np.arange(1))
-        return v._cast(v._evaluate()[0])[0], {}
-
-    def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
-        """Steer for ``action_period`` seconds.
-
-        Parameters
-        ----------
-        action : array_like (1,)
-            ``course_change`` [rad]; clipped, NaN or infinite refused.
-
-        Returns
-        -------
-        observation, reward, terminated, truncated, info (empty dict)
-        """
-        if action is None:
-            raise ParameterError(": missing (None); step() needs an array of shape (1,) "
-                                 "(course_change [rad])", field="action")
-        obs, reward, terminated, truncated, _ = self._vec.step([action])
-        return obs[0], float(reward[0]), bool(terminated[0]), bool(truncated[0]), {}
-
-    def close(self) -> None:
-        """End the simulators' thread pools."""
-        self._vec.close()
+        return v._cast(v._evaluate()[0])[0]

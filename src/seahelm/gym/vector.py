@@ -33,13 +33,16 @@ from .._optional import optional_import
 from ..errors import ParameterError
 from ..simulation.stepping_reference import (held_commands, restart_clock, restart_runs,
                                               set_controller_param, set_reference)
-from .plant import WEATHER_KEYS, Plant, build_plant, reset_selection
+from .plant import WEATHER_KEYS, Plant, build_plant
 from .tasks import TASKS, Task
 
 gym = optional_import("gymnasium", extra="rl", purpose="seahelm.gym")
 from gymnasium import spaces  # noqa: E402
-from gymnasium.vector import AutoresetMode, VectorEnv  # noqa: E402
+from gymnasium.vector import AutoresetMode  # noqa: E402
 from gymnasium.vector.utils import batch_space  # noqa: E402
+
+from .base import BatchEnv  # noqa: E402
+from .base import autoreset_mode as autoreset_mode_of  # noqa: E402
 
 __all__ = ["ShipVectorEnv"]
 
@@ -62,10 +65,7 @@ SETPOINT = "heading_setpoint"
 #: speed follows through the ship's dynamics.
 RPS_SETPOINT = "rps_setpoint"
 
-_MODES = {m.value: m for m in AutoresetMode}
-
-
-class ShipVectorEnv(VectorEnv):
+class ShipVectorEnv(BatchEnv):
     """N sub-environments of one ship and task, stepped together in the compiled loop.
 
     Parameters
@@ -141,13 +141,7 @@ class ShipVectorEnv(VectorEnv):
         if task not in TASKS:
             raise ParameterError(f": unknown task {task!r}; tasks: {', '.join(TASKS)}",
                                  field="task", value=task)
-        if render_mode is not None:
-            raise ParameterError(f": no render modes, got {render_mode!r}",
-                                 field="render_mode", value=render_mode)
-        mode = _MODES.get(autoreset_mode, autoreset_mode)
-        if mode not in (AutoresetMode.NEXT_STEP, AutoresetMode.DISABLED):
-            raise ParameterError(f"must be 'NextStep' or 'Disabled', got {autoreset_mode!r}",
-                                 field="autoreset_mode", value=autoreset_mode)
+        mode = autoreset_mode_of(autoreset_mode, render_mode)
         task_cls = TASKS[task]
         weather = {k: options.pop(k) for k in list(options) if k in WEATHER_KEYS}
         allowed = (set(inspect.signature(task_cls.__init__).parameters)
@@ -298,10 +292,7 @@ class ShipVectorEnv(VectorEnv):
         -------
         observations (num_envs, observations), info (empty dict)
         """
-        super().reset(seed=seed)
-        if seed is not None or not self._started:
-            self._rng = self.np_random
-        sel = reset_selection(options, self.num_envs, self._started)
+        sel = self._reset_start(seed, options)
         out = self._begin(sel)
         self._started = True
         return self._observe_now(out)
@@ -326,12 +317,8 @@ class ShipVectorEnv(VectorEnv):
             Before :meth:`reset`, on a wrong shape, or a NaN/infinite action (nothing is
             stepped).
         """
-        if not self._started:
-            raise ParameterError(": call reset() before step()", field="reset")
-        a = self._actions(actions)
+        a, restart = self._step_start(actions)
         sim = self._sim
-        restart = self._done.copy() if self.metadata["autoreset_mode"] is AutoresetMode.NEXT_STEP \
-            else np.zeros(self.num_envs, dtype=bool)
         self._previous[:] = self._cmd[:, self._rudder_col]
         every = self.plant.intervals_per_action
         setpoint = self.plant.autopilot is not None
@@ -363,12 +350,7 @@ class ShipVectorEnv(VectorEnv):
         reward = self.task.reward(terms)
         terminated = failed | success
         truncated = ~terminated & (self.elapsed >= self.episode_seconds - 1e-9)
-        if restart.any():
-            reward[restart] = 0.0
-            terminated[restart] = False
-            truncated[restart] = False
-        self._done = terminated | truncated
-        return self._cast(obs), reward, terminated, truncated, {}
+        return self._step_end(obs, reward, terminated, truncated, restart)
 
     def close(self, **kwargs: Any) -> None:
         """End the simulator's thread pool."""
@@ -376,33 +358,6 @@ class ShipVectorEnv(VectorEnv):
         self.closed = True
 
     # --------------------------------------------------------------------------------------
-    def _actions(self, actions: Any) -> np.ndarray:
-        n, k = self.num_envs, len(self.action_labels)
-        if actions is None:  # (numpy makes None a NaN: "is nan" said nothing of the cause)
-            raise ParameterError(f": missing (None); step() needs an array of shape ({n}, {k}) "
-                                 f"(envs, {', '.join(self.action_labels)} "
-                                 f"[{', '.join(self.action_units)}])", field="actions")
-        try:
-            a = np.asarray(actions, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ParameterError(f"must be numbers of shape ({n}, {k}) "
-                                 f"({', '.join(self.action_labels)}), got {actions!r}",
-                                 field="actions") from None
-        if a.shape != (n, k):
-            if a.size == n * k and (a.ndim <= 1 or a.shape == (k, n) and k == 1):
-                a = a.reshape(n, k)
-            else:
-                raise ParameterError(f"must have shape ({n}, {k}) (envs, "
-                                     f"{', '.join(self.action_labels)}), got {a.shape}",
-                                     field="actions", value=a.shape)
-        if not math.isfinite(a.sum()):
-            bad = np.argwhere(~np.isfinite(a))[0]
-            raise ParameterError(f": action {self.action_labels[bad[1]]!r} of sub-environment "
-                                 f"{int(bad[0])} is {float(a[tuple(bad)])!r}; actions must be "
-                                 f"finite [{self.action_units[bad[1]]}]", field="actions",
-                                 value=float(a[tuple(bad)]), run=int(bad[0]))
-        return np.minimum(np.maximum(a, self._low), self._high)
-
     def _begin(self, sel: np.ndarray) -> Any:
         """Start the episodes of ``sel``: the runs reset, the task's draws set, every run's
         clock at the same step again (:func:`~seahelm.simulation.stepping_reference.
@@ -423,13 +378,6 @@ class ShipVectorEnv(VectorEnv):
         out = self._sim.observe() if out is None else out
         obs, _, _, _ = self.task.evaluate(out, self._cmd[:, self._rudder_col], self._previous)
         return self._cast(obs), {}
-
-    def _cast(self, obs: np.ndarray) -> np.ndarray:
-        if not math.isfinite(obs.sum()):  # (a diverged run: its last values, kept in bounds)
-            obs = np.nan_to_num(obs, nan=0.0)
-        box = self.single_observation_space
-        # (np.minimum/np.maximum: np.clip's Python wrapper costs more than the work)
-        return np.minimum(np.maximum(obs, box.low), box.high).astype(np.float32)
 
     def __repr__(self) -> str:
         return (f"ShipVectorEnv({self.task.name}, {getattr(self.plant.ship, 'name', '?')}, "
