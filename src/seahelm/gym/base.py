@@ -129,8 +129,11 @@ class BatchEnv(VectorEnv):
         if not math.isfinite(obs.sum()):
             obs = np.nan_to_num(obs, nan=0.0)
         box = self.single_observation_space
-        # (np.minimum/np.maximum: np.clip's Python wrapper costs more than the work)
-        return np.minimum(np.maximum(obs, box.low), box.high).astype(np.float32)
+        # (np.minimum/np.maximum: np.clip's Python wrapper costs more than the work; in
+        # place: ``obs`` is the task's own new array, and temporaries cost more than the work)
+        np.maximum(obs, box.low, out=obs)
+        np.minimum(obs, box.high, out=obs)
+        return obs.astype(np.float32)
 
 
 class OneEnv(gym.Env):

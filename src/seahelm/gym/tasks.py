@@ -119,11 +119,11 @@ def weighted_sum(weights: Mapping[str, float], terms: Mapping[str, np.ndarray],
     -------
     ndarray (n,)
     """
-    total = 0.0
+    total = np.zeros(n)
     for key, w in weights.items():
         if w:
-            total = total + w * terms[key]
-    return np.broadcast_to(total, (n,)).astype(float)
+            total += w * terms[key]  # (in place: 0 + ... as the sum always began)
+    return total
 
 
 def _positive(name: str, value: Any, unit: str) -> float:
