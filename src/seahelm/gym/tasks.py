@@ -126,6 +126,14 @@ def weighted_sum(weights: Mapping[str, float], terms: Mapping[str, np.ndarray],
     return total
 
 
+def _bell(x: np.ndarray, scale: float) -> np.ndarray:
+    """exp(-(x / scale)²), in place on one new array."""
+    y = x / scale
+    np.square(y, out=y)
+    np.negative(y, out=y)
+    return np.exp(y, out=y)
+
+
 def _positive(name: str, value: Any, unit: str) -> float:
     v = float(value)
     if not (math.isfinite(v) and v > 0):
@@ -250,9 +258,15 @@ class Task(Weighted):
 
     def _common_terms(self, out: Mapping[str, np.ndarray], rudder: np.ndarray,
                       previous_rudder: np.ndarray) -> dict[str, np.ndarray]:
+        # (in place on each term's own new array: temporaries cost more than the work)
         r_nd = out["yaw_rate"] * (self.length / self.speed)
-        return {"yaw_rate": -(r_nd ** 2), "rudder": -((rudder / self.max_rudder) ** 2),
-                "rudder_rate": -(((rudder - previous_rudder) / self.max_rudder) ** 2)}
+        rel = rudder / self.max_rudder
+        rate = rudder - previous_rudder
+        rate /= self.max_rudder
+        for x in (r_nd, rel, rate):
+            np.square(x, out=x)
+            np.negative(x, out=x)
+        return {"yaw_rate": r_nd, "rudder": rel, "rudder_rate": rate}
 
 
 class HeadingKeeping(Task):
@@ -307,7 +321,7 @@ class HeadingKeeping(Task):
                        axis=1)
         failed = np.abs(error) > self.max_heading_error
         terms = self._common_terms(out, rudder, previous_rudder)
-        terms["heading"] = np.exp(-(error / self.heading_scale) ** 2)
+        terms["heading"] = _bell(error, self.heading_scale)
         terms["failure"] = -failed.astype(float)
         return obs, terms, failed, np.zeros(self.n, dtype=bool)
 
@@ -413,8 +427,8 @@ class PathFollowing(Task):
                         rudder, self.turn[self.leg]], axis=1)
         failed = np.abs(across) > self.max_cross_track
         terms = self._common_terms(out, rudder, previous_rudder)
-        terms["cross_track"] = np.exp(-(across / self.cross_track_scale) ** 2)
-        terms["heading"] = np.exp(-(error / self.heading_scale) ** 2)
+        terms["cross_track"] = _bell(across, self.cross_track_scale)
+        terms["heading"] = _bell(error, self.heading_scale)
         terms["failure"] = -failed.astype(float)
         return obs, terms, failed, done
 
