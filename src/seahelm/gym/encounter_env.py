@@ -32,7 +32,7 @@ from ..encounters.geometry import wrap_pi
 from ..errors import ParameterError
 from ..ships import get_ship
 from ..simulation.stepping import Simulator
-from ..simulation.stepping_reference import restart_clock, set_states
+from ..simulation.stepping_reference import restart_clock, restart_runs
 from .ais import EpisodeAIS
 from .collision import CollisionAvoidance
 from .plant import check_env_memory, episode_named
@@ -211,6 +211,8 @@ class EncounterVectorEnv(BatchEnv):
         nv = enc.n_vessels
         n_runs = enc.n_encounters * nv
         self._sims: list[Simulator] = []
+        #: each simulator's last observation (its step's, or its restart's)
+        self._obs: list[Any] = []
         self._cmds: list[np.ndarray] = []
         self._rudder_j: list[int] = []
         self._out_j: list[dict[str, int]] = []
@@ -222,7 +224,7 @@ class EncounterVectorEnv(BatchEnv):
                                                          enc.uncoupled_problems(),
                                                          self._index)):
             sim = Simulator(problem)
-            sim.reset()
+            self._obs.append(sim.reset())
             self._sims.append(sim)
             labels = sim.command_labels
             ship = problem.ship
@@ -318,7 +320,7 @@ class EncounterVectorEnv(BatchEnv):
             if sim.time[0] + enc.controller_dt > self._horizon:
                 restart_clock(sim)  # (the horizon reached: the clock back to 0)
             cmd[:, self._rudder_j[g]] = rudder[index]
-            sim.step(cmd)
+            self._obs[g] = sim.step(cmd)
         self._rudder[:] = rudder
         self.elapsed += enc.controller_dt
         if self._ais is not None:
@@ -371,17 +373,19 @@ class EncounterVectorEnv(BatchEnv):
         nv = self.encounter.n_vessels
         geo = self.task.draw(sel.size, self._rng)
         runs = (sel[:, None] * nv + np.arange(nv)[None, :]).reshape(-1)
-        for g, sim in enumerate(self._sims):
-            rows = self._row[runs[self._group[runs] == g]]
-            if rows.size:  # (from the start; the others kept, every clock back to 0)
-                restart_clock(sim, rows)
         targets = sel * nv + 1  # (the own ship starts where the problem has it)
+        others = np.setdiff1d(runs, targets)
         for g, sim in enumerate(self._sims):
+            # from the start, observed alone (the others kept, every clock back to 0)
+            rows = self._row[others[self._group[others] == g]]
+            if rows.size:
+                self._obs[g] = restart_runs(sim, rows)
             mine = self._group[targets] == g
             if mine.any():
-                set_states(sim, self._row[targets[mine]],
-                           {"north": geo["north"][mine], "east": geo["east"][mine],
-                            "heading": geo["course"][mine]})
+                self._obs[g] = restart_runs(sim, self._row[targets[mine]],
+                                            {"north": geo["north"][mine],
+                                             "east": geo["east"][mine],
+                                             "heading": geo["course"][mine]})
         self._course0[sel, 1] = geo["course"]
         self.elapsed[sel] = 0.0
         for key in ("north", "east", "course"):
@@ -405,8 +409,8 @@ class EncounterVectorEnv(BatchEnv):
         """Every vessel's (north, east, course, speed, heading, yaw rate) and surge/sway
         speeds from the simulators' outputs (as the encounter's loop computes them)."""
         truth = self._truth
-        for sim, idx, index in zip(self._sims, self._out_j, self._index):
-            vals = sim.observe().values
+        for obs, idx, index in zip(self._obs, self._out_j, self._index):
+            vals = obs.values
             psi = vals[:, idx["heading"]]
             u = vals[:, idx["surge_speed"]] if "surge_speed" in idx else vals[:, idx["speed"]]
             v = vals[:, idx["sway_speed"]] if "sway_speed" in idx else 0.0 * u
