@@ -27,12 +27,12 @@ from .stepping_io import Observation, _spans, check_commands, run_indices
 if TYPE_CHECKING:  # pragma: no cover
     from .stepping import Simulator
 
+__all__ = ["set_reference", "set_controller_param", "held_commands", "restart_clock",
+           "restart_runs", "set_states"]
+
 #: Restarted runs above this share of the batch are observed with every run (one call of the
 #: loop a slice, on the thread pool) rather than span by span.
 _SPANS_SHARE = 0.25
-
-__all__ = ["set_reference", "set_controller_param", "held_commands", "restart_clock",
-           "restart_runs", "set_states"]
 
 
 def _reference_array(sim: "Simulator") -> np.ndarray:
@@ -213,8 +213,8 @@ def restart_runs(sim: "Simulator", runs: Any, states: Mapping[str, Any] | None =
     Parameters
     ----------
     sim : Simulator
-        A reset simulator whose last call was a :meth:`step` or :meth:`reset` of every run
-        (its outputs are the other runs' observation).
+        A reset simulator whose outputs now are the other runs' (its last call a ``step``
+        of every run, a ``reset`` or a ``restart_runs``: not a ``set_state``).
     runs : int or sequence of int
         The runs to start again.
     states : mapping, optional
