@@ -21,9 +21,11 @@ a heading, dt = 0.1 s, an action (rudder command) every 1 s, episodes of 120 s:
 * seahelm's :class:`~seahelm.gym.ShipEnv` (one ship, the compiled loop, RK4);
 * seahelm's :class:`~seahelm.gym.ShipVectorEnv` with 1,024 sub-environments (one compiled
   batch, the simulator's threads), with RK4 (seahelm's default) and with explicit Euler: the
-  row of the ≥ 50 × target, the integrator of the baseline's cost -- one evaluation of the
-  forces per step (seahelm's Euler advances the positions with the old velocities, the
-  baseline with the mean of old and new: the same forces, a cheaper kinematics).
+  row of the ≥ 50 × target, the integrator of the baseline: in calm water no force reads the
+  position or the heading, so the ballistic update's velocities are explicit Euler's, step
+  for step; only the positions and the heading differ (seahelm's Euler advances them with the
+  old velocities, the baseline with the mean of old and new) -- one evaluation of the forces
+  per step either way.
 
 Prints medians of several repetitions and the ratios (targets of issue 52: the vector env
 ≥ 50 × the baseline and ≥ 5 × seahelm's single env).
