@@ -1,6 +1,6 @@
 """Reinforcement-learning environments: env-steps per second of seahelm's gymnasium
 environments against a single-ship environment built the usual way (TUD_RL's KVLCC2
-environments: the MMG model in Python, one call per step, explicit Euler).
+environments: the MMG model in Python, one call per step, their Euler/trapezoid integrator).
 
 Three environments of the same problem, side by side in one run: the KVLCC2 L7 model keeping
 a heading, dt = 0.1 s, an action (rudder command) every 1 s, episodes of 120 s:
@@ -8,11 +8,24 @@ a heading, dt = 0.1 s, an action (rudder command) every 1 s, episodes of 120 s:
 * **baseline**: a ``gymnasium.Env`` whose ``step`` integrates the MMG standard method
   (Yasukawa & Yoshimura 2015, eqs. (4)-(41), written out below from the paper's equations with
   the KVLCC2 L7 coefficients of seahelm's catalog) and a rate-limited rudder servo in Python,
-  ten explicit Euler steps of 0.1 s per action;
+  with TUD_RL's integrator: ten steps of 0.1 s per action, each one evaluation of the forces,
+  the velocities (and the rudder) by explicit Euler, the positions and the heading by the
+  trapezoid of the old and new velocities (the "ballistic" update of Treiber & Kanagaraj
+  2015). TUD_RL (github.com/MarWaltz/TUD_RL, ``tud_rl/envs/_envs/MMG_KVLCC2.py``,
+  ``KVLCC2._upd_dynamics``) steps its KVLCC2 that way, one step of ``delta_t`` per call
+  (``MMG_Env``: ``delta_t = 3.0`` s, one call per env-step; the ``HHOS_*`` environments call
+  it ``n_loops`` times per action); an earlier version of the same file integrated
+  ``delta_t`` with ``scipy.integrate.solve_ivp(method="RK45")``. TUD_RL sets the rudder angle
+  directly; the baseline keeps the rate-limited servo of seahelm's steering gear, so that
+  the three environments simulate the same ship;
 * seahelm's :class:`~seahelm.gym.ShipEnv` (one ship, the compiled loop, RK4);
 * seahelm's :class:`~seahelm.gym.ShipVectorEnv` with 1,024 sub-environments (one compiled
-  batch, the simulator's threads), with RK4 (seahelm's default) and with the baseline's
-  explicit Euler (the same work per step as the baseline).
+  batch, the simulator's threads), with RK4 (seahelm's default) and with explicit Euler: the
+  row of the ≥ 50 × target, the integrator of the baseline: in calm water no force reads the
+  position or the heading, so the ballistic update's velocities are explicit Euler's, step
+  for step; only the positions and the heading differ (seahelm's Euler advances them with the
+  old velocities, the baseline with the mean of old and new) -- one evaluation of the forces
+  per step either way.
 
 Prints medians of several repetitions and the ratios (targets of issue 52: the vector env
 ≥ 50 × the baseline and ≥ 5 × seahelm's single env).
@@ -50,8 +63,9 @@ DT, ACTION_PERIOD, EPISODE = 0.1, 1.0, 120.0
 
 
 class PythonMMGHeadingEnv(gymnasium.Env):
-    """The baseline: KVLCC2 heading keeping with the MMG model stepped in Python (explicit
-    Euler), the way TUD_RL's KVLCC2 environments are built (not their code)."""
+    """The baseline: KVLCC2 heading keeping with the MMG model stepped in Python, the way
+    TUD_RL's KVLCC2 environments are built (their integrator: explicit Euler velocities,
+    trapezoidal positions; not their code)."""
 
     metadata = {"render_modes": []}
 
@@ -141,9 +155,15 @@ class PythonMMGHeadingEnv(gymnasium.Env):
     def step(self, action):
         command = float(np.clip(action[0], -self.max_rudder, self.max_rudder))
         s = self.s
-        for _ in range(round(ACTION_PERIOD / DT)):  # explicit Euler, as TUD_RL
-            ds = self._rhs(s, command)
-            s = [a + DT * b for a, b in zip(s, ds)]
+        h = 0.5 * DT
+        for _ in range(round(ACTION_PERIOD / DT)):  # TUD_RL's "ballistic" step
+            u, v, r, x, y, psi, delta = s
+            du, dv, dr, dx, dy, _, ddelta = self._rhs(s, command)
+            u1, v1, r1 = u + DT * du, v + DT * dv, r + DT * dr  # velocities: explicit Euler
+            c, sn = math.cos(psi), math.sin(psi)  # positions: the old and new velocities'
+            s = [u1, v1, r1, x + h * (dx + u1 * c - v1 * sn),  # mean (rotated by the old
+                 y + h * (dy + u1 * sn + v1 * c), psi + h * (r + r1),  # heading, as TUD_RL)
+                 delta + DT * ddelta]
         self.s, self.t = s, self.t + ACTION_PERIOD
         obs = self._obs()
         reward = math.exp(-(obs[0] / math.radians(10.0)) ** 2) - 0.1 * (s[2] * self.L / 1.179) ** 2
@@ -290,10 +310,10 @@ def main() -> None:
           f"(medians of {repeats}, interleaved; per second of wall time, and of the process's "
           f"CPU time: every thread's, the fair measure on a loaded machine)")
     print(f"{'environment':60s} {'env-steps/s':>12s} {'per CPU-s':>12s}")
-    names = {"baseline": "Python MMG, explicit Euler (TUD_RL-style baseline)",
+    names = {"baseline": "Python MMG, TUD_RL's Euler/trapezoid (baseline)",
              "single": "seahelm ShipEnv (one ship)",
              "vector": f"seahelm ShipVectorEnv ({n_envs} sub-environments, RK4)",
-             "euler": f"seahelm ShipVectorEnv ({n_envs}, explicit Euler as the baseline)"}
+             "euler": f"seahelm ShipVectorEnv ({n_envs}, Euler: the baseline's cost)"}
     for key, name in names.items():
         print(f"{name:60s} {wall[key]:12,.0f} {cpu[key]:12,.0f}")
     if j0 is not None and j1 is not None and j1[1] > j0[1]:

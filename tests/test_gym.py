@@ -23,6 +23,7 @@ from gymnasium.vector import AutoresetMode, VectorEnv  # noqa: E402
 from seahelm import Problem, simulate  # noqa: E402
 from seahelm.errors import ParameterError  # noqa: E402
 from seahelm.gym import ShipEnv, ShipVectorEnv  # noqa: E402
+from gym_checks import assert_each_sub_env_is_a_single_env  # noqa: E402
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 WEATHER = dict(wind_speed=3.0, wind_direction=math.radians(45.0), wave_height=0.066,
@@ -265,20 +266,7 @@ def test_cross_entropy_example_learns_a_little_in_two_iterations(tmp_path):
 def test_each_sub_environment_equals_a_single_env_from_the_same_start():
     # batched = one by one (house style 11): every sub-environment of the vector environment
     # gives the observations and rewards of a ShipEnv started from its state and target
-    envs = ShipVectorEnv(3, episode_seconds=10.0, **WEATHER)
-    envs.reset(seed=9)
-    vsim = envs.plant.simulator
-    starts = [(vsim.state(i), float(envs.task.target[i])) for i in range(3)]
-    actions = np.random.default_rng(3).uniform(-0.4, 0.4, (8, 3, 1))
-    batched = [envs.step(a)[:2] for a in actions]
-    for i, (state, target) in enumerate(starts):
-        env = ShipEnv(episode_seconds=10.0, **WEATHER)
-        env.reset(seed=0)
-        env.plant.simulator.set_state(0, state)
-        env.task.target[0] = target
-        for k, a in enumerate(actions):
-            obs, reward, *_ = env.step(a[i])
-            np.testing.assert_array_equal(obs, batched[k][0][i])
-            assert reward == batched[k][1][i]
-        env.close()
-    envs.close()
+    assert_each_sub_env_is_a_single_env(
+        lambda: ShipVectorEnv(3, episode_seconds=10.0, **WEATHER),
+        lambda: ShipEnv(episode_seconds=10.0, **WEATHER),
+        np.random.default_rng(3).uniform(-0.4, 0.4, (8, 3, 1)))

@@ -19,6 +19,7 @@ from gymnasium.utils.env_checker import check_env  # noqa: E402
 from seahelm import Problem, Simulator, simulate  # noqa: E402
 from seahelm.errors import ParameterError  # noqa: E402
 from seahelm.gym import ShipEnv, ShipVectorEnv  # noqa: E402
+from gym_checks import assert_each_sub_env_is_a_single_env  # noqa: E402
 from seahelm.simulation.stepping_reference import held_commands, set_reference  # noqa: E402
 
 WEATHER = dict(wind_speed=3.0, wind_direction=math.radians(45.0), wave_height=0.066,
@@ -77,23 +78,10 @@ def test_make_takes_the_autopilot():
 
 
 def test_each_sub_environment_equals_a_single_env_with_the_setpoint_action():
-    envs = ShipVectorEnv(3, autopilot="pid-heading-rps", episode_seconds=10.0, **WEATHER)
-    envs.reset(seed=9)
-    vsim = envs.plant.simulator
-    starts = [(vsim.state(i), float(envs.task.target[i])) for i in range(3)]
-    actions = np.random.default_rng(3).uniform(-0.5, 0.5, (8, 3, 1))
-    batched = [envs.step(a)[:2] for a in actions]
-    for i, (state, target) in enumerate(starts):
-        env = ShipEnv(autopilot="pid-heading-rps", episode_seconds=10.0, **WEATHER)
-        env.reset(seed=0)
-        env.plant.simulator.set_state(0, state)
-        env.task.target[0] = target
-        for k, a in enumerate(actions):
-            obs, reward, *_ = env.step(a[i])
-            np.testing.assert_array_equal(obs, batched[k][0][i])
-            assert reward == batched[k][1][i]
-        env.close()
-    envs.close()
+    assert_each_sub_env_is_a_single_env(
+        lambda: ShipVectorEnv(3, autopilot="pid-heading-rps", episode_seconds=10.0, **WEATHER),
+        lambda: ShipEnv(autopilot="pid-heading-rps", episode_seconds=10.0, **WEATHER),
+        np.random.default_rng(3).uniform(-0.5, 0.5, (8, 3, 1)))
 
 
 def test_the_rudder_observed_is_the_autopilot_s_order():
@@ -125,7 +113,8 @@ def test_autoreset_with_the_setpoint_action():
 def test_bad_setpoint_setups_are_refused_by_name():
     with pytest.raises(ParameterError, match="actions.*'heading_setpoint'.*needs an autopilot"):
         ShipVectorEnv(2, actions=("heading_setpoint",))
-    with pytest.raises(ParameterError, match=r"actions.*must be \('heading_setpoint',\) with an "
+    with pytest.raises(ParameterError, match=r"actions.*must be \('heading_setpoint',\) or "
+                                             r"\('heading_setpoint', 'rps_setpoint'\) with an "
                                              "autopilot"):
         ShipVectorEnv(2, autopilot="pid-heading-rps", actions=("rudder_command",))
     with pytest.raises(ParameterError, match="autopilot.*'no-such-pilot'"):

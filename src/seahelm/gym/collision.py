@@ -51,6 +51,7 @@ import numpy as np
 from ..encounters import FujiiDomain, classify, cpa_tcpa, relative_bearing, velocity
 from ..encounters.geometry import Situation, wrap_pi
 from ..errors import ParameterError
+from .tasks import Weighted, reward_weights
 
 __all__ = ["CollisionAvoidance"]
 
@@ -78,7 +79,7 @@ def _range(name: str, value: Any, unit: str) -> tuple[float, float]:
     return float(a[0]), float(a[1])
 
 
-class CollisionAvoidance:
+class CollisionAvoidance(Weighted):
     """Meet a target ship without collision, clear of its domain, to starboard as the rules
     say, close to the route (module docstring: observations, reward table, episode end).
 
@@ -139,32 +140,11 @@ class CollisionAvoidance:
                                  field="domain", value=domain)
         self.domain = domain or FujiiDomain()
         self.touch = 0.5 * (self.own_length + self.target_length)
-        self.weights = dict(self.default_weights)
-        if reward is not None and not isinstance(reward, Mapping):
-            raise ParameterError(f"must be a mapping term -> weight, got {reward!r}",
-                                 field="reward", value=reward)
-        for key, w in (reward or {}).items():
-            if key not in self.default_weights:
-                raise ParameterError(f": unknown reward term {key!r} of {self.name}; terms: "
-                                     f"{', '.join(self.default_weights)}", field="reward",
-                                     value=key)
-            try:
-                w = float(w)
-            except (TypeError, ValueError):
-                w = math.nan
-            if not math.isfinite(w):
-                raise ParameterError(f"[{key!r}] must be a finite number, got "
-                                     f"{reward[key]!r}", field="reward", value=reward[key])
-            self.weights[key] = w
+        self.weights = reward_weights(self.name, self.default_weights, reward)
         #: each encounter's own route course χ_route [rad] and the own ship's COLREG
         #: situation at the start (:class:`~seahelm.encounters.Situation` codes)
         self.route_course = np.zeros(num_envs)
         self.situation = np.zeros(num_envs, dtype=np.int8)
-
-    @property
-    def terms(self) -> tuple[str, ...]:
-        """The reward terms."""
-        return tuple(self.default_weights)
 
     def observation_bounds(self, episode_seconds: float, max_rudder: float
                            ) -> tuple[np.ndarray, np.ndarray]:
@@ -276,21 +256,3 @@ class CollisionAvoidance:
                  "colreg_side": -to_port.astype(float),
                  "route": -(1.0 - np.exp(-(across / self.route_scale) ** 2))}
         return obs, terms, collided, passed
-
-    def reward(self, terms: Mapping[str, np.ndarray]) -> np.ndarray:
-        """The reward Σ weight · term.
-
-        Parameters
-        ----------
-        terms : mapping
-            Reward term name -> (envs,), as :meth:`evaluate` gives them.
-
-        Returns
-        -------
-        ndarray (envs,)
-        """
-        total = np.zeros(self.n)
-        for key, w in self.weights.items():
-            if w:
-                total = total + w * terms[key]
-        return total

@@ -26,15 +26,16 @@ from typing import Any
 import numpy as np
 
 from .._optional import optional_import
-from ..encounters import Encounter, HeadingAutopilot, Vessel
+from ..encounters import AIS, Encounter, HeadingAutopilot, Vessel
 from ..encounters.encounter import DEFAULT_MAX_RUDDER
 from ..encounters.geometry import wrap_pi
 from ..errors import ParameterError
 from ..ships import get_ship
 from ..simulation.stepping import Simulator
-from ..simulation.stepping_reference import restart_clock, set_states
+from ..simulation.stepping_reference import restart_clock, restart_runs
+from .ais import EpisodeAIS
 from .collision import CollisionAvoidance
-from .plant import check_env_memory, episode_named, reset_selection
+from .plant import check_env_memory, episode_named
 
 #: Memory of one sub-environment [B], about twice what one takes (peak RSS over 1,000 and
 #: 100,000 sub-environments of CollisionAvoidance-v0, KVLCC2 L7, 2026-12-02: 4.8 kB).
@@ -42,12 +43,13 @@ _BYTES_PER_ENCOUNTER = 10_000
 
 gym = optional_import("gymnasium", extra="rl", purpose="seahelm.gym")
 from gymnasium import spaces  # noqa: E402
-from gymnasium.vector import AutoresetMode, VectorEnv  # noqa: E402
+from gymnasium.vector import AutoresetMode  # noqa: E402
 from gymnasium.vector.utils import batch_space  # noqa: E402
 
-__all__ = ["EncounterVectorEnv", "EncounterEnv"]
+from .base import BatchEnv, OneEnv  # noqa: E402
+from .base import autoreset_mode as autoreset_mode_of  # noqa: E402
 
-_MODES = {m.value: m for m in AutoresetMode}
+__all__ = ["EncounterVectorEnv", "EncounterEnv"]
 _TASK_KEYS = ("detection_range", "dcpa", "route_scale", "port_tolerance", "domain")
 
 
@@ -67,7 +69,7 @@ def _max_rudder(ship: Any) -> float:
         return DEFAULT_MAX_RUDDER
 
 
-class EncounterVectorEnv(VectorEnv):
+class EncounterVectorEnv(BatchEnv):
     """N encounters of an own ship and a target ship, the own ship steered by the agent.
 
     Parameters
@@ -89,6 +91,13 @@ class EncounterVectorEnv(VectorEnv):
         speed, in whole action periods).
     autopilot : HeadingAutopilot, optional
         The vessels' heading autopilot (default K_p = 1, T_d = 1.5 L/U).
+    sensor : AIS, optional
+        What the agent (and an avoiding target) sees of the other vessel: its AIS reports
+        (:class:`~seahelm.encounters.AIS`: ``update_interval``, ``delay`` [s], noise, ``seed``;
+        :mod:`seahelm.gym.ais`), on each episode's clock. Default None: the other vessel's
+        true state every interval. The rewards and the episode's end are the true geometry's.
+        Until an episode's first report has arrived (``delay`` after its start) the target's
+        six observations are 0.
     action_bounds : (low, high), optional
         Of ``course_change`` [rad] (default ±45°).
     reward : mapping term -> weight, optional
@@ -121,16 +130,11 @@ class EncounterVectorEnv(VectorEnv):
     def __init__(self, num_envs: int = 1, *, ship: Any = "kvlcc2-l7", target_ship: Any = None,
                  target_avoidance: Any = None, dt: float = 0.1, action_period: float = 1.0,
                  episode_seconds: float | None = None,
-                 autopilot: HeadingAutopilot | None = None, action_bounds: Any = None,
+                 autopilot: HeadingAutopilot | None = None, sensor: Any = None,
+                 action_bounds: Any = None,
                  reward: Any = None, autoreset_mode: Any = AutoresetMode.NEXT_STEP,
                  render_mode: str | None = None, **options: Any) -> None:
-        if render_mode is not None:
-            raise ParameterError(f": no render modes, got {render_mode!r}",
-                                 field="render_mode", value=render_mode)
-        mode = _MODES.get(autoreset_mode, autoreset_mode)
-        if mode not in (AutoresetMode.NEXT_STEP, AutoresetMode.DISABLED):
-            raise ParameterError(f"must be 'NextStep' or 'Disabled', got {autoreset_mode!r}",
-                                 field="autoreset_mode", value=autoreset_mode)
+        mode = autoreset_mode_of(autoreset_mode, render_mode)
         for key in options:
             if key not in _TASK_KEYS:
                 raise ParameterError(f": unknown keyword {key!r} of task CollisionAvoidance; "
@@ -155,14 +159,21 @@ class EncounterVectorEnv(VectorEnv):
             longest = self.task.detection_range[1] * own.length / own.approach_speed
             episode_seconds = math.ceil(1.5 * longest / action_period) * action_period
         self.episode_seconds = float(episode_seconds)
+        if sensor is not None and not isinstance(sensor, AIS):
+            raise ParameterError(f"must be a seahelm.encounters.AIS, got "
+                                 f"{type(sensor).__name__}", field="sensor", value=sensor)
         geo = self.task.draw(n, np.random.default_rng(0))
         self.encounter = Encounter(
             [Vessel(ship=own, north=0.0, east=0.0, course=0.0, name="own"),
              Vessel(ship=tgt, north=geo["north"], east=geo["east"], course=geo["course"],
                     avoid=target_avoidance is not None, name="target")],
             t_final=self.episode_seconds, dt=dt, controller_dt=action_period,
-            avoidance=target_avoidance, autopilot=autopilot, record_every=1)
+            avoidance=target_avoidance, autopilot=autopilot, record_every=1,
+            **({} if sensor is None else {"sensor": sensor}))
         enc = self.encounter
+        #: The AIS reports the agent sees (None: the true state).
+        self._ais = None if sensor is None else EpisodeAIS(
+            sensor, n, enc.n_vessels, enc.controller_dt, self.episode_seconds)
         self.render_mode = None
         self.metadata = {**type(self).metadata, "autoreset_mode": mode}
         self._setup_spaces(own, action_bounds)
@@ -200,6 +211,8 @@ class EncounterVectorEnv(VectorEnv):
         nv = enc.n_vessels
         n_runs = enc.n_encounters * nv
         self._sims: list[Simulator] = []
+        #: each simulator's last observation (its step's, or its restart's)
+        self._obs: list[Any] = []
         self._cmds: list[np.ndarray] = []
         self._rudder_j: list[int] = []
         self._out_j: list[dict[str, int]] = []
@@ -211,7 +224,7 @@ class EncounterVectorEnv(VectorEnv):
                                                          enc.uncoupled_problems(),
                                                          self._index)):
             sim = Simulator(problem)
-            sim.reset()
+            self._obs.append(sim.reset())
             self._sims.append(sim)
             labels = sim.command_labels
             ship = problem.ship
@@ -257,10 +270,7 @@ class EncounterVectorEnv(VectorEnv):
         -------
         observations (num_envs, observations), info (empty dict)
         """
-        super().reset(seed=seed)
-        if seed is not None or not self._started:
-            self._rng = self.np_random
-        sel = reset_selection(options, self.num_envs, self._started)
+        sel = self._reset_start(seed, options)
         if not self._started:
             self._clock = 0.0
             if self.encounter.avoidance is not None:
@@ -289,20 +299,16 @@ class EncounterVectorEnv(VectorEnv):
             Before :meth:`reset`, on a wrong shape, or a NaN/infinite action (nothing is
             stepped).
         """
-        if not self._started:
-            raise ParameterError(": call reset() before step()", field="reset")
-        a = self._actions(actions)
+        a, restart = self._step_start(actions)
         n, enc = self.num_envs, self.encounter
         nv = enc.n_vessels
-        restart = self._done.copy() if self.metadata["autoreset_mode"] is \
-            AutoresetMode.NEXT_STEP else np.zeros(n, dtype=bool)
         truth = self._truth
         route = self._course0
         desired = route
         if self._avoid_state is not None:
+            seen = truth[:, :5] if self._ais is None else self._ais.view
             desired = enc.avoidance.desired(self._clock, truth.reshape(n, nv, 6),
-                                            truth[:, :5].reshape(n, nv, 5), route,
-                                            self._avoid_state)
+                                            seen.reshape(n, nv, 5), route, self._avoid_state)
         desired = desired.copy()
         desired[:, 0] = route[:, 0] + a[:, 0]
         kp, td = enc.autopilot.gain, self._td
@@ -314,13 +320,17 @@ class EncounterVectorEnv(VectorEnv):
             if sim.time[0] + enc.controller_dt > self._horizon:
                 restart_clock(sim)  # (the horizon reached: the clock back to 0)
             cmd[:, self._rudder_j[g]] = rudder[index]
-            sim.step(cmd)
+            self._obs[g] = sim.step(cmd)
         self._rudder[:] = rudder
         self.elapsed += enc.controller_dt
+        if self._ais is not None:
+            self._ais.advance()
         if restart.any():
             self._begin(np.flatnonzero(restart))
         self._clock += enc.controller_dt
         self._observe()
+        if self._ais is not None:  # (the restarted encounters' first reports: sent in _begin)
+            self._ais.update(truth[:, :5], np.flatnonzero(~np.repeat(restart, nv)))
         obs, terms, collided, passed = self._evaluate()
         diverged = np.zeros(n * nv, dtype=bool)
         for sim, index in zip(self._sims, self._index):
@@ -331,11 +341,18 @@ class EncounterVectorEnv(VectorEnv):
         reward = self.task.reward(terms)
         terminated = failed | passed
         truncated = ~terminated & (self.elapsed >= self.episode_seconds - 1e-9)
-        reward[restart] = 0.0
-        terminated[restart] = False
-        truncated[restart] = False
-        self._done = terminated | truncated
-        return self._cast(obs), reward, terminated, truncated, {}
+        return self._step_end(obs, reward, terminated, truncated, restart)
+
+    @property
+    def target_view(self) -> np.ndarray:
+        """What the own ship knows of the target now: its north, east [m], course over ground
+        [rad], speed over ground [m/s] and heading [rad], (num_envs, 5) (a copy): the latest
+        AIS report received (NaN before the episode's first), or with no ``sensor`` its true
+        state."""
+        nv = self.encounter.n_vessels
+        if self._ais is None:
+            return self._truth[1::nv, :5].copy()
+        return self._ais.view[1::nv].copy()
 
     @property
     def vessel_states(self) -> np.ndarray:
@@ -351,44 +368,24 @@ class EncounterVectorEnv(VectorEnv):
         self.closed = True
 
     # --------------------------------------------------------------------------------------
-    def _actions(self, actions: Any) -> np.ndarray:
-        n = self.num_envs
-        if actions is None:  # (numpy makes None a NaN: "is nan" said nothing of the cause)
-            raise ParameterError(f": missing (None); step() needs an array of shape ({n}, 1) "
-                                 "(envs, course_change [rad])", field="actions")
-        try:
-            a = np.asarray(actions, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ParameterError(f"must be numbers of shape ({n}, 1) (course_change), got "
-                                 f"{actions!r}", field="actions") from None
-        if a.shape != (n, 1):
-            if a.size != n:
-                raise ParameterError(f"must have shape ({n}, 1) (envs, course_change), got "
-                                     f"{a.shape}", field="actions", value=a.shape)
-            a = a.reshape(n, 1)
-        if not math.isfinite(a.sum()):
-            bad = int(np.argwhere(~np.isfinite(a))[0, 0])
-            raise ParameterError(f": action 'course_change' of sub-environment {bad} is "
-                                 f"{float(a[bad, 0])!r}; actions must be finite [rad]",
-                                 field="actions", value=float(a[bad, 0]), run=bad)
-        return np.minimum(np.maximum(a, self._low), self._high)
-
     def _begin(self, sel: np.ndarray) -> None:
         """Start the episodes of ``sel``: new geometries, the runs reset, the task's start."""
         nv = self.encounter.n_vessels
         geo = self.task.draw(sel.size, self._rng)
         runs = (sel[:, None] * nv + np.arange(nv)[None, :]).reshape(-1)
-        for g, sim in enumerate(self._sims):
-            rows = self._row[runs[self._group[runs] == g]]
-            if rows.size:  # (from the start; the others kept, every clock back to 0)
-                restart_clock(sim, rows)
         targets = sel * nv + 1  # (the own ship starts where the problem has it)
+        others = np.setdiff1d(runs, targets)
         for g, sim in enumerate(self._sims):
+            # from the start, observed alone (the others kept, every clock back to 0)
+            rows = self._row[others[self._group[others] == g]]
+            if rows.size:
+                self._obs[g] = restart_runs(sim, rows)
             mine = self._group[targets] == g
             if mine.any():
-                set_states(sim, self._row[targets[mine]],
-                           {"north": geo["north"][mine], "east": geo["east"][mine],
-                            "heading": geo["course"][mine]})
+                self._obs[g] = restart_runs(sim, self._row[targets[mine]],
+                                            {"north": geo["north"][mine],
+                                             "east": geo["east"][mine],
+                                             "heading": geo["course"][mine]})
         self._course0[sel, 1] = geo["course"]
         self.elapsed[sel] = 0.0
         for key in ("north", "east", "course"):
@@ -404,13 +401,16 @@ class EncounterVectorEnv(VectorEnv):
         self._observe()
         own, target = self._truth[sel * nv], self._truth[sel * nv + 1]
         self.task.begin(sel, own, target)
+        if self._ais is not None:  # (the episode's first reports, sent at its start)
+            self._ais.begin(sel)
+            self._ais.update(self._truth[:, :5], runs)
 
     def _observe(self) -> None:
         """Every vessel's (north, east, course, speed, heading, yaw rate) and surge/sway
         speeds from the simulators' outputs (as the encounter's loop computes them)."""
         truth = self._truth
-        for sim, idx, index in zip(self._sims, self._out_j, self._index):
-            vals = sim.observe().values
+        for obs, idx, index in zip(self._obs, self._out_j, self._index):
+            vals = obs.values
             psi = vals[:, idx["heading"]]
             u = vals[:, idx["surge_speed"]] if "surge_speed" in idx else vals[:, idx["speed"]]
             v = vals[:, idx["sway_speed"]] if "sway_speed" in idx else 0.0 * u
@@ -425,20 +425,21 @@ class EncounterVectorEnv(VectorEnv):
         nv = self.encounter.n_vessels
         own, target = self._truth[::nv], self._truth[1::nv]
         start = np.zeros((self.num_envs, 2))
-        return self.task.evaluate(own, target, self._uv[::nv], self._rudder[::nv], start)
-
-    def _cast(self, obs: np.ndarray) -> np.ndarray:
-        if not math.isfinite(obs.sum()):
-            obs = np.nan_to_num(obs, nan=0.0)
-        box = self.single_observation_space
-        return np.minimum(np.maximum(obs, box.low), box.high).astype(np.float32)
+        args = (self._uv[::nv], self._rudder[::nv], start)
+        result = self.task.evaluate(own, target, *args)
+        if self._ais is None:
+            return result
+        # the agent observes the target as reported; the rewards and the end are the truth's
+        seen = np.concatenate([self._ais.view[1::nv], target[:, 5:]], axis=1)
+        obs = self.task.evaluate(own, seen, *args)[0]
+        return (obs, *result[1:])
 
     def __repr__(self) -> str:
         names = self.encounter.names
         return f"EncounterVectorEnv({names[0]} meets {names[1]}, num_envs={self.num_envs})"
 
 
-class EncounterEnv(gym.Env):
+class EncounterEnv(OneEnv):
     """One encounter, the own ship steered by an agent
     (``gymnasium.make("seahelm/CollisionAvoidance-v0", ...)``): the
     :class:`EncounterVectorEnv` of one sub-environment, without autoreset.
@@ -451,63 +452,16 @@ class EncounterEnv(gym.Env):
         Of :class:`EncounterVectorEnv`, except ``num_envs`` and ``autoreset_mode``.
     """
 
-    metadata = {"render_modes": []}
-
     def __init__(self, render_mode: str | None = None, **kwargs: Any) -> None:
-        self._vec = EncounterVectorEnv(1, autoreset_mode="Disabled", render_mode=render_mode,
-                                       **kwargs)
+        super().__init__(EncounterVectorEnv(1, autoreset_mode="Disabled",
+                                            render_mode=render_mode, **kwargs))
+        self.encounter = self._vec.encounter
+
+    def _start(self) -> np.ndarray:
         v = self._vec
-        self.observation_space = v.single_observation_space
-        self.action_space = v.single_action_space
-        self.observation_labels, self.observation_units = v.observation_labels, \
-            v.observation_units
-        self.action_labels, self.action_units = v.action_labels, v.action_units
-        self.task, self.encounter = v.task, v.encounter
-        self.render_mode = None
-
-    def reset(self, *, seed: int | None = None,
-              options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict[str, Any]]:
-        """Start an episode: a new encounter.
-
-        Parameters
-        ----------
-        seed : int, optional
-            Seeds the geometry's draw.
-        options : dict, optional
-            Not used.
-
-        Returns
-        -------
-        observation (observations,), info (empty dict)
-        """
-        super().reset(seed=seed)
-        v = self._vec
-        v._rng = self.np_random
         if not v._started and v.encounter.avoidance is not None:
             v._avoid_state = {k: (x.copy() if isinstance(x, np.ndarray) else x)
                               for k, x in v._fresh_avoid.items()}
         v._started = True
         v._begin(np.arange(1))
-        return v._cast(v._evaluate()[0])[0], {}
-
-    def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
-        """Steer for ``action_period`` seconds.
-
-        Parameters
-        ----------
-        action : array_like (1,)
-            ``course_change`` [rad]; clipped, NaN or infinite refused.
-
-        Returns
-        -------
-        observation, reward, terminated, truncated, info (empty dict)
-        """
-        if action is None:
-            raise ParameterError(": missing (None); step() needs an array of shape (1,) "
-                                 "(course_change [rad])", field="action")
-        obs, reward, terminated, truncated, _ = self._vec.step([action])
-        return obs[0], float(reward[0]), bool(terminated[0]), bool(truncated[0]), {}
-
-    def close(self) -> None:
-        """End the simulators' thread pools."""
-        self._vec.close()
+        return v._cast(v._evaluate()[0])[0]

@@ -237,10 +237,16 @@ def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
             ship, autopilot, autopilot_params, n, dt=float(dt), action_period=float(action_period),
             length=length, max_rudder=max_rudder, inputs=inputs,
             heading=float(start.state[list(ship.model.state_labels).index("heading")]))
-    problem = Problem(ship=ship, x0=np.repeat(start.state[None], n, axis=0),
-                      actuator_x0=[rudder0], t_final=float(episode_seconds), dt=float(dt),
-                      record_every=max(1, int(round(episode_seconds / dt))),
-                      integrator=integrator, **loop_kw, **env_kw)
+    try:
+        problem = Problem(ship=ship, x0=np.repeat(start.state[None], n, axis=0),
+                          actuator_x0=[rudder0], t_final=float(episode_seconds), dt=float(dt),
+                          record_every=max(1, int(round(episode_seconds / dt))),
+                          integrator=integrator, **loop_kw, **env_kw)
+    except ParameterError as exc:  # (the environment's keyword for the loop's controller)
+        if autopilot is None or exc.field not in ("controller", "controller_params"):
+            raise
+        field = "autopilot" if exc.field == "controller" else "autopilot_params"
+        raise ParameterError(exc.reason, field=field, unit=exc.unit, value=exc.value) from None
     with episode_named(episode_seconds):
         sim = Simulator(problem)
     labels = sim.command_labels

@@ -39,7 +39,8 @@ import numpy as np
 
 from ..errors import ParameterError
 
-__all__ = ["Task", "HeadingKeeping", "PathFollowing", "TASKS", "wrap"]
+__all__ = ["Task", "Weighted", "HeadingKeeping", "PathFollowing", "TASKS", "wrap", "reward_weights",
+           "weighted_sum"]
 
 
 def wrap(angle: np.ndarray) -> np.ndarray:
@@ -58,6 +59,81 @@ def wrap(angle: np.ndarray) -> np.ndarray:
     return (angle + np.pi) % (2.0 * np.pi) - np.pi
 
 
+def reward_weights(task: str, defaults: Mapping[str, float],
+                   reward: Mapping[str, float] | None) -> dict[str, float]:
+    """A task's reward weights: ``defaults`` with those of ``reward`` (term -> weight).
+
+    Parameters
+    ----------
+    task : str
+        The task's name (in the messages).
+    defaults : mapping
+        Every term's default weight.
+    reward : mapping, optional
+        The weights given (the terms not named keep their defaults).
+
+    Returns
+    -------
+    dict
+        Term -> weight.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``reward``: not a mapping, an unknown term, a weight not a finite number.
+    """
+    weights = dict(defaults)
+    if reward is not None and not isinstance(reward, Mapping):
+        raise ParameterError(f"must be a mapping term -> weight, got {reward!r}",
+                             field="reward", value=reward)
+    for key, w in (reward or {}).items():
+        if key not in defaults:
+            raise ParameterError(f": unknown reward term {key!r} of {task}; terms: "
+                                 f"{', '.join(defaults)}", field="reward", value=key)
+        try:
+            v = float(w)
+        except (TypeError, ValueError):
+            raise ParameterError(f"[{key!r}] must be a number, got {w!r}", field="reward",
+                                 value=w) from None
+        if not math.isfinite(v):
+            raise ParameterError(f"[{key!r}] must be finite, got {w!r}", field="reward",
+                                 value=w)
+        weights[key] = v
+    return weights
+
+
+def weighted_sum(weights: Mapping[str, float], terms: Mapping[str, np.ndarray],
+                 n: int) -> np.ndarray:
+    """The reward Σ weight · term (n,) over the terms of non-zero weight.
+
+    Parameters
+    ----------
+    weights : mapping
+        Term -> weight.
+    terms : mapping
+        Term -> (n,) or a number.
+    n : int
+        Sub-environments.
+
+    Returns
+    -------
+    ndarray (n,)
+    """
+    total = np.zeros(n)
+    for key, w in weights.items():
+        if w:
+            total += w * terms[key]  # (in place: 0 + ... as the sum always began)
+    return total
+
+
+def _bell(x: np.ndarray, scale: float) -> np.ndarray:
+    """exp(-(x / scale)²), in place on one new array."""
+    y = x / scale
+    np.square(y, out=y)
+    np.negative(y, out=y)
+    return np.exp(y, out=y)
+
+
 def _positive(name: str, value: Any, unit: str) -> float:
     v = float(value)
     if not (math.isfinite(v) and v > 0):
@@ -66,7 +142,35 @@ def _positive(name: str, value: Any, unit: str) -> float:
     return v
 
 
-class Task:
+class Weighted:
+    """A task's reward, Σ weight · term (``weights``, ``default_weights``, ``n`` set by the
+    task)."""
+
+    default_weights: ClassVar[dict[str, float]] = {}
+    weights: dict[str, float]
+    n: int
+
+    @property
+    def terms(self) -> tuple[str, ...]:
+        """The reward terms."""
+        return tuple(self.default_weights)
+
+    def reward(self, terms: Mapping[str, np.ndarray]) -> np.ndarray:
+        """The reward Σ weight · term.
+
+        Parameters
+        ----------
+        terms : mapping
+            Reward term name -> (envs,), as :meth:`evaluate` gives them.
+
+        Returns
+        -------
+        ndarray (envs,)
+        """
+        return weighted_sum(self.weights, terms, self.n)
+
+
+class Task(Weighted):
     """What a sub-environment is asked to do (base class: see the module's table).
 
     Parameters
@@ -95,29 +199,7 @@ class Task:
                  heading_scale: float = math.radians(10.0)) -> None:
         self.n, self.length, self.speed, self.max_rudder = num_envs, length, speed, max_rudder
         self.heading_scale = _positive("heading_scale", heading_scale, "rad")
-        self.weights = dict(self.default_weights)
-        if reward is not None and not isinstance(reward, Mapping):
-            raise ParameterError(f"must be a mapping term -> weight, got {reward!r}",
-                                 field="reward", value=reward)
-        for key, w in (reward or {}).items():
-            if key not in self.default_weights:
-                raise ParameterError(f": unknown reward term {key!r} of {self.name}; terms: "
-                                     f"{', '.join(self.default_weights)}", field="reward",
-                                     value=key)
-            try:
-                w = float(w)
-            except (TypeError, ValueError):
-                raise ParameterError(f"[{key!r}] must be a number, got {w!r}", field="reward",
-                                     value=w) from None
-            if not math.isfinite(w):
-                raise ParameterError(f"[{key!r}] must be finite, got {w!r}", field="reward",
-                                     value=w)
-            self.weights[key] = w
-
-    @property
-    def terms(self) -> tuple[str, ...]:
-        """The reward terms."""
-        return tuple(self.default_weights)
+        self.weights = reward_weights(self.name, self.default_weights, reward)
 
     def begin(self, sel: np.ndarray, rng: np.random.Generator) -> dict[str, np.ndarray]:
         """Draw the episodes of some sub-environments.
@@ -174,29 +256,17 @@ class Task:
                                                          np.ndarray, np.ndarray]:
         raise NotImplementedError
 
-    def reward(self, terms: Mapping[str, np.ndarray]) -> np.ndarray:
-        """The reward Σ weight · term.
-
-        Parameters
-        ----------
-        terms : mapping
-            Reward term name -> (envs,), as :meth:`evaluate` gives them.
-
-        Returns
-        -------
-        ndarray (envs,)
-        """
-        total = 0.0
-        for key, w in self.weights.items():
-            if w:
-                total = total + w * terms[key]
-        return np.broadcast_to(total, (self.n,)).astype(float)
-
     def _common_terms(self, out: Mapping[str, np.ndarray], rudder: np.ndarray,
                       previous_rudder: np.ndarray) -> dict[str, np.ndarray]:
+        # (in place on each term's own new array: temporaries cost more than the work)
         r_nd = out["yaw_rate"] * (self.length / self.speed)
-        return {"yaw_rate": -(r_nd ** 2), "rudder": -((rudder / self.max_rudder) ** 2),
-                "rudder_rate": -(((rudder - previous_rudder) / self.max_rudder) ** 2)}
+        rel = rudder / self.max_rudder
+        rate = rudder - previous_rudder
+        rate /= self.max_rudder
+        for x in (r_nd, rel, rate):
+            np.square(x, out=x)
+            np.negative(x, out=x)
+        return {"yaw_rate": r_nd, "rudder": rel, "rudder_rate": rate}
 
 
 class HeadingKeeping(Task):
@@ -251,7 +321,7 @@ class HeadingKeeping(Task):
                        axis=1)
         failed = np.abs(error) > self.max_heading_error
         terms = self._common_terms(out, rudder, previous_rudder)
-        terms["heading"] = np.exp(-(error / self.heading_scale) ** 2)
+        terms["heading"] = _bell(error, self.heading_scale)
         terms["failure"] = -failed.astype(float)
         return obs, terms, failed, np.zeros(self.n, dtype=bool)
 
@@ -357,8 +427,8 @@ class PathFollowing(Task):
                         rudder, self.turn[self.leg]], axis=1)
         failed = np.abs(across) > self.max_cross_track
         terms = self._common_terms(out, rudder, previous_rudder)
-        terms["cross_track"] = np.exp(-(across / self.cross_track_scale) ** 2)
-        terms["heading"] = np.exp(-(error / self.heading_scale) ** 2)
+        terms["cross_track"] = _bell(across, self.cross_track_scale)
+        terms["heading"] = _bell(error, self.heading_scale)
         terms["failure"] = -failed.astype(float)
         return obs, terms, failed, done
 

@@ -11,7 +11,9 @@ Actions are the actuator's commands, in their units (``rudder_command`` [rad],
 ``propeller_rps`` [1/s]), in a bounded ``Box`` -- or, with ``autopilot=`` a heading autopilot
 (e.g. ``"pid-heading-rps"``), a heading set-point ``heading_setpoint`` [rad] that the autopilot
 steers for inside the compiled loop (the set-point is relative to the task's reference
-direction: the target heading, the current leg's direction). An action outside the box is clipped to it (what
+direction: the target heading, the current leg's direction); with a ``-rps`` autopilot also
+the propeller rps it holds, ``rps_setpoint`` (n = n_0 (1 + a), n_0 the approach's rps; no
+registered controller takes a speed set-point: the speed follows the rps). An action outside the box is clipped to it (what
 :class:`gymnasium.wrappers.ClipAction` would do; a policy's Gaussian sample routinely is out of
 bounds); an action that is NaN or infinite is refused with a
 :class:`~seahelm.errors.ParameterError` naming ``actions`` and the sub-environment (nothing is
@@ -29,15 +31,18 @@ import numpy as np
 
 from .._optional import optional_import
 from ..errors import ParameterError
-from ..simulation.stepping_reference import (held_commands, restart_clock, set_reference,
-                                              set_states)
-from .plant import WEATHER_KEYS, Plant, build_plant, reset_selection
+from ..simulation.stepping_reference import (held_commands, restart_clock, restart_runs,
+                                              set_controller_param, set_reference)
+from .plant import WEATHER_KEYS, Plant, build_plant
 from .tasks import TASKS, Task
 
 gym = optional_import("gymnasium", extra="rl", purpose="seahelm.gym")
 from gymnasium import spaces  # noqa: E402
-from gymnasium.vector import AutoresetMode, VectorEnv  # noqa: E402
+from gymnasium.vector import AutoresetMode  # noqa: E402
 from gymnasium.vector.utils import batch_space  # noqa: E402
+
+from .base import BatchEnv  # noqa: E402
+from .base import autoreset_mode as autoreset_mode_of  # noqa: E402
 
 __all__ = ["ShipVectorEnv"]
 
@@ -45,16 +50,22 @@ __all__ = ["ShipVectorEnv"]
 #: largest rudder δ_max [rad] and the approach's rps n_0 [1/s].
 _BOUNDS = {"rudder_command": lambda d, n0: (-d, d),
            "propeller_rps": lambda d, n0: (0.0, 1.5 * n0),
-           "heading_setpoint": lambda d, n0: (-0.25 * math.pi, 0.25 * math.pi)}
+           "heading_setpoint": lambda d, n0: (-0.25 * math.pi, 0.25 * math.pi),
+           "rps_setpoint": lambda d, n0: (-0.5, 0.5)}
 
 #: The action of a set-point environment (``autopilot=...``): the heading set-point relative to
 #: the task's reference direction [rad].
 SETPOINT = "heading_setpoint"
 
-_MODES = {m.value: m for m in AutoresetMode}
+#: The second action a ``-rps`` autopilot takes: the propeller rps it holds (its parameter
+#: ``propeller_rps``), relative to the approach's n_0: n = n_0 (1 + a) [-] (symmetric about
+#: the approach, as gymnasium recommends a Box to be). No registered controller takes a
+#: *speed* set-point (the ``-rps`` autopilots hold a constant rps:
+#: :mod:`seahelm.control.held_rps`), so the agent sets the rps the autopilot holds and the
+#: speed follows through the ship's dynamics.
+RPS_SETPOINT = "rps_setpoint"
 
-
-class ShipVectorEnv(VectorEnv):
+class ShipVectorEnv(BatchEnv):
     """N sub-environments of one ship and task, stepped together in the compiled loop.
 
     Parameters
@@ -68,10 +79,13 @@ class ShipVectorEnv(VectorEnv):
     actions : sequence of str, optional
         The commands the agent sets (default ``("rudder_command",)``; add
         ``"propeller_rps"`` for a ship with a propeller); the others stay at the approach's.
-        With an ``autopilot``: ``("heading_setpoint",)`` (the default then).
+        With an ``autopilot``: ``("heading_setpoint",)`` (the default then), or
+        ``("heading_setpoint", "rps_setpoint")`` with a ``-rps`` autopilot: the propeller rps
+        it holds too, n = n_0 (1 + a) [-] (no registered controller takes a speed set-point).
     action_bounds : mapping command -> (low, high), optional
         Bounds of the action space in the command's units (default: ±δ_max of the steering
-        gear for the rudder, [0, 1.5 n_0] for the rps, ±45° for the heading set-point).
+        gear for the rudder, [0, 1.5 n_0] for the rps, ±45° for the heading set-point,
+        ±0.5 for the rps set-point: 0.5 to 1.5 n_0).
     autopilot : Controller or str, optional
         A heading autopilot (references include ``heading``: ``"pid-heading-rps"``,
         ``"lq-heading-rps"``, ... or a Controller) that runs inside the compiled loop every
@@ -127,13 +141,7 @@ class ShipVectorEnv(VectorEnv):
         if task not in TASKS:
             raise ParameterError(f": unknown task {task!r}; tasks: {', '.join(TASKS)}",
                                  field="task", value=task)
-        if render_mode is not None:
-            raise ParameterError(f": no render modes, got {render_mode!r}",
-                                 field="render_mode", value=render_mode)
-        mode = _MODES.get(autoreset_mode, autoreset_mode)
-        if mode not in (AutoresetMode.NEXT_STEP, AutoresetMode.DISABLED):
-            raise ParameterError(f"must be 'NextStep' or 'Disabled', got {autoreset_mode!r}",
-                                 field="autoreset_mode", value=autoreset_mode)
+        mode = autoreset_mode_of(autoreset_mode, render_mode)
         task_cls = TASKS[task]
         weather = {k: options.pop(k) for k in list(options) if k in WEATHER_KEYS}
         allowed = (set(inspect.signature(task_cls.__init__).parameters)
@@ -195,17 +203,24 @@ class ShipVectorEnv(VectorEnv):
                 raise ParameterError(f": {key!r} is not an action; actions: "
                                      f"{', '.join(names)}", field="action_bounds", value=key)
         low, high = [], []
-        if p.autopilot is not None and names != (SETPOINT,):
-            raise ParameterError(f"must be ({SETPOINT!r},) with an autopilot (it computes "
-                                 f"the commands), got {actions!r}", field="actions",
-                                 value=actions)
+        holds_rps = p.autopilot is not None and "propeller_rps" in \
+            p.autopilot.params_type.field_names()
+        if p.autopilot is not None and names not in ((SETPOINT,), (SETPOINT, RPS_SETPOINT)):
+            raise ParameterError(f"must be ({SETPOINT!r},) or ({SETPOINT!r}, {RPS_SETPOINT!r}) "
+                                 f"with an autopilot (it computes the commands), got "
+                                 f"{actions!r}", field="actions", value=actions)
+        if RPS_SETPOINT in names and not holds_rps:
+            raise ParameterError(f": {RPS_SETPOINT!r} needs an autopilot that holds the "
+                                 "propeller rps (a '-rps' controller: 'pid-heading-rps', ...); "
+                                 "without one the action 'propeller_rps' sets the rps command",
+                                 field="actions", value=RPS_SETPOINT)
         if p.autopilot is None and SETPOINT in names:
             raise ParameterError(f": {SETPOINT!r} needs an autopilot (autopilot="
                                  "'pid-heading-rps', ...)", field="actions", value=SETPOINT)
-        units = {SETPOINT: "rad"}
+        units = {SETPOINT: "rad", RPS_SETPOINT: "-"}
         for name in names:
-            if name == SETPOINT:
-                unit = "rad"
+            if name in units:
+                unit = units[name]
             elif name not in p.command_labels:
                 raise ParameterError(f": unknown command {name!r}; the ship's commands: "
                                      f"{', '.join(p.command_labels)}", field="actions",
@@ -226,9 +241,17 @@ class ShipVectorEnv(VectorEnv):
                 raise ParameterError(f"[{name!r}] must be finite with low < high [{unit}], got "
                                      f"({lo!r}, {hi!r})", field="action_bounds", unit=unit,
                                      value=(lo, hi))
+            if name == RPS_SETPOINT and lo <= -1:
+                raise ParameterError(f"[{name!r}] must have low > -1 (n = n_0 (1 + a): the "
+                                     f"autopilot holds a turning propeller), got ({lo!r}, "
+                                     f"{hi!r})", field="action_bounds", unit="-", value=(lo, hi))
             low.append(lo)
             high.append(hi)
         self.action_labels = names
+        self._rps_setpoint = RPS_SETPOINT in names
+        #: The rps the autopilot holds by its parameters, n_0 of the rps set-point [1/s].
+        self._rps0 = float(p.simulator.problem.controller_params.propeller_rps) \
+            if self._rps_setpoint else math.nan
         self.action_units = tuple(units[n] for n in names)
         self._act_cols = np.array([p.command_labels.index(n) for n in names
                                    if n in p.command_labels], dtype=np.int64)
@@ -269,13 +292,10 @@ class ShipVectorEnv(VectorEnv):
         -------
         observations (num_envs, observations), info (empty dict)
         """
-        super().reset(seed=seed)
-        if seed is not None or not self._started:
-            self._rng = self.np_random
-        sel = reset_selection(options, self.num_envs, self._started)
-        self._begin(sel)
+        sel = self._reset_start(seed, options)
+        out = self._begin(sel)
         self._started = True
-        return self._observe_now()
+        return self._observe_now(out)
 
     def step(self, actions: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray,
                                            dict[str, Any]]:
@@ -297,16 +317,13 @@ class ShipVectorEnv(VectorEnv):
             Before :meth:`reset`, on a wrong shape, or a NaN/infinite action (nothing is
             stepped).
         """
-        if not self._started:
-            raise ParameterError(": call reset() before step()", field="reset")
-        a = self._actions(actions)
+        a, restart = self._step_start(actions)
         sim = self._sim
-        restart = self._done.copy() if self.metadata["autoreset_mode"] is AutoresetMode.NEXT_STEP \
-            else np.zeros(self.num_envs, dtype=bool)
         self._previous[:] = self._cmd[:, self._rudder_col]
         every = self.plant.intervals_per_action
         setpoint = self.plant.autopilot is not None
         if setpoint:  # (the autopilot's set-point: absolute, from the task's direction)
+            rps = self._rps0 * (1.0 + a[:, 1]) if self._rps_setpoint else None
             a = self.task.reference_direction() + a[:, 0]
         if sim.time[0] + self.plant.action_period > self._horizon:
             restart_clock(sim)  # (the simulator's horizon reached: its clock back to 0)
@@ -314,15 +331,16 @@ class ShipVectorEnv(VectorEnv):
         # restarting now are started again after it, from their new episode's start
         if setpoint:
             set_reference(sim, a[:, None])
+            if self._rps_setpoint:
+                set_controller_param(sim, "propeller_rps", rps)
             out = sim.step(None, n=every)
             self._cmd[:] = held_commands(sim)  # (the autopilot's rudder: observed, rewarded)
         else:
             self._cmd[:, self._act_cols] = a
             out = sim.step(self._cmd)
         self.elapsed += self.plant.action_period
-        if restart.any():
-            self._begin(np.flatnonzero(restart))
-            out = sim.observe()
+        if restart.any():  # (observed: the restarted runs; the others as the step left them)
+            out = self._begin(np.flatnonzero(restart))
         obs, terms, failed, success = self.task.evaluate(out, self._cmd[:, self._rudder_col],
                                                          self._previous)
         diverged = out.status != 0
@@ -332,12 +350,7 @@ class ShipVectorEnv(VectorEnv):
         reward = self.task.reward(terms)
         terminated = failed | success
         truncated = ~terminated & (self.elapsed >= self.episode_seconds - 1e-9)
-        if restart.any():
-            reward[restart] = 0.0
-            terminated[restart] = False
-            truncated[restart] = False
-        self._done = terminated | truncated
-        return self._cast(obs), reward, terminated, truncated, {}
+        return self._step_end(obs, reward, terminated, truncated, restart)
 
     def close(self, **kwargs: Any) -> None:
         """End the simulator's thread pool."""
@@ -345,57 +358,26 @@ class ShipVectorEnv(VectorEnv):
         self.closed = True
 
     # --------------------------------------------------------------------------------------
-    def _actions(self, actions: Any) -> np.ndarray:
-        n, k = self.num_envs, len(self.action_labels)
-        if actions is None:  # (numpy makes None a NaN: "is nan" said nothing of the cause)
-            raise ParameterError(f": missing (None); step() needs an array of shape ({n}, {k}) "
-                                 f"(envs, {', '.join(self.action_labels)} "
-                                 f"[{', '.join(self.action_units)}])", field="actions")
-        try:
-            a = np.asarray(actions, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ParameterError(f"must be numbers of shape ({n}, {k}) "
-                                 f"({', '.join(self.action_labels)}), got {actions!r}",
-                                 field="actions") from None
-        if a.shape != (n, k):
-            if a.size == n * k and (a.ndim <= 1 or a.shape == (k, n) and k == 1):
-                a = a.reshape(n, k)
-            else:
-                raise ParameterError(f"must have shape ({n}, {k}) (envs, "
-                                     f"{', '.join(self.action_labels)}), got {a.shape}",
-                                     field="actions", value=a.shape)
-        if not math.isfinite(a.sum()):
-            bad = np.argwhere(~np.isfinite(a))[0]
-            raise ParameterError(f": action {self.action_labels[bad[1]]!r} of sub-environment "
-                                 f"{int(bad[0])} is {float(a[tuple(bad)])!r}; actions must be "
-                                 f"finite [{self.action_units[bad[1]]}]", field="actions",
-                                 value=float(a[tuple(bad)]), run=int(bad[0]))
-        return np.minimum(np.maximum(a, self._low), self._high)
-
-    def _begin(self, sel: np.ndarray) -> None:
+    def _begin(self, sel: np.ndarray) -> Any:
         """Start the episodes of ``sel``: the runs reset, the task's draws set, every run's
         clock at the same step again (:func:`~seahelm.simulation.stepping_reference.
-        restart_clock`: the batch goes on as one call of the loop a step)."""
-        p, sim = self.plant, self._sim
-        restart_clock(sim, sel)  # (sel from the start, the others kept: all at t = 0)
+        restart_runs`: the batch goes on as one call of the loop a step); returns the
+        simulator's observation (the runs of ``sel`` at their new start)."""
+        p = self.plant
         self._cmd[sel] = p.command_start
         self._previous[sel] = p.command_start[self._rudder_col]
         self._done[sel] = False
         self.elapsed[sel] = 0.0
-        set_states(sim, sel, self.task.begin(sel, self._rng))
+        if self._rps_setpoint:  # (the autopilot's own rps until the first action)
+            set_controller_param(self._sim, "propeller_rps", self._rps0, sel)
+        # (sel from the start, the others kept: all at t = 0)
+        return restart_runs(self._sim, sel, self.task.begin(sel, self._rng))
 
-    def _observe_now(self) -> tuple[np.ndarray, dict[str, Any]]:
-        """The observations now, without stepping (after a reset)."""
-        out = self._sim.observe()
+    def _observe_now(self, out: Any = None) -> tuple[np.ndarray, dict[str, Any]]:
+        """The observations now, without stepping (after a reset: its observation)."""
+        out = self._sim.observe() if out is None else out
         obs, _, _, _ = self.task.evaluate(out, self._cmd[:, self._rudder_col], self._previous)
         return self._cast(obs), {}
-
-    def _cast(self, obs: np.ndarray) -> np.ndarray:
-        if not math.isfinite(obs.sum()):  # (a diverged run: its last values, kept in bounds)
-            obs = np.nan_to_num(obs, nan=0.0)
-        box = self.single_observation_space
-        # (np.minimum/np.maximum: np.clip's Python wrapper costs more than the work)
-        return np.minimum(np.maximum(obs, box.low), box.high).astype(np.float32)
 
     def __repr__(self) -> str:
         return (f"ShipVectorEnv({self.task.name}, {getattr(self.plant.ship, 'name', '?')}, "

@@ -120,11 +120,58 @@ class _Slices:
             self.kernel.init_runs(i0, i1, a.state, a.params, a.signals, a.stages, sc, ssc)
 
     def observe(self, k: int, dt: float, out: np.ndarray) -> None:
-        """Every run's outputs at its state of step ``k`` into ``out`` (runs, outputs)."""
+        """Every run's outputs at its state of step ``k`` into ``out`` (runs, outputs): the
+        slices on the kept thread pool (``observe_runs`` releases the GIL as ``run_slice``
+        does), else one after another in the calling thread."""
         a = self.arrays
-        for (i0, i1), sc, ssc in zip(self.bounds, self.scratch, self.stage_scratch):
-            self.kernel.observe_runs(i0, i1, k, dt, a.state, a.params, a.signals, a.stages, sc,
-                                     ssc, out)
+        observe_runs = self.kernel.observe_runs
+
+        def one(s: int) -> None:
+            i0, i1 = self.bounds[s]
+            observe_runs(i0, i1, k, dt, a.state, a.params, a.signals, a.stages,
+                         self.scratch[s], self.stage_scratch[s], out)
+
+        if self._keep_pool and self.threads > 1:
+            self._shared(one)
+            return
+        for s in range(len(self.bounds)):
+            one(s)
+
+    def observe_spans(self, spans: list[tuple[int, int]], k: int, n_steps: int, dt: float,
+                      ctrl_every: int, rec_every: int, out: np.ndarray) -> None:
+        """The outputs of the runs of ``spans`` (contiguous [i0, i1) ranges) at their state of
+        step ``k`` into their rows of ``out`` (runs, outputs): a zero-step call of the loop a
+        span (the code of :meth:`run`'s observation), in the calling thread (a few runs
+        restarted: one short call a span); the other rows are left as they are."""
+        a = self.arrays
+        sc, ssc = self.scratch[0], self.stage_scratch[0]
+        for i0, i1 in spans:
+            self.kernel.run_slice(i0, i1, k, k, n_steps, dt, ctrl_every, rec_every, 1,
+                                  a.state, a.params, a.signals, a.outcome, a.record, a.stages,
+                                  sc, ssc, out)
+
+    def _shared(self, one: Callable[[int], None]) -> None:
+        """``one(s)`` of every slice ``s``, shared by the calling thread and ``threads - 1``
+        threads of the kept pool, each taking the next slice not yet taken (a stepped batch
+        calls this once per interval: one task a thread to hand over, not one a slice, each
+        costing some 10 µs; and the calling thread works instead of waiting). An exception of
+        any slice is raised here once every thread has stopped."""
+        if self._pool is None:
+            self._pool = ThreadPoolExecutor(self.threads - 1, thread_name_prefix="seahelm")
+        todo = iter(range(len(self.bounds)))  # (its next() is atomic under the GIL)
+
+        def work() -> None:
+            for s in todo:
+                one(s)
+
+        helpers = [self._pool.submit(work) for _ in range(self.threads - 1)]
+        try:
+            work()
+        finally:
+            for f in helpers:  # (the arrays are not handed back while a slice runs)
+                f.exception()
+        for f in helpers:
+            f.result()  # (re-raises a helper's exception)
 
     def run(self, k_start: int, k_stop: int, n_steps: int, dt: float, ctrl_every: int,
             rec_every: int, external: int = 0, out: np.ndarray | None = None) -> None:
@@ -142,14 +189,14 @@ class _Slices:
                       self.scratch[s], self.stage_scratch[s], out)
 
         n_slices = len(self.bounds)
-        if self.threads == 1 or k_stop == k_start:
+        # (a zero-step call: serial unless it observes on the kept pool -- warm_up's is not)
+        if self.threads == 1 or (k_stop == k_start and not (self._keep_pool
+                                                            and out.shape[0] > 0)):
             for s in range(n_slices):
                 one(s)
             return
         if self._keep_pool:
-            if self._pool is None:
-                self._pool = ThreadPoolExecutor(self.threads, thread_name_prefix="seahelm")
-            list(self._pool.map(one, range(n_slices)))
+            self._shared(one)
             return
         with ThreadPoolExecutor(self.threads, thread_name_prefix="seahelm") as pool:
             # list() re-raises an exception of any slice here

@@ -23,12 +23,18 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..errors import ParameterError
-from .stepping_io import check_commands, run_indices
+from .slicing import quiet
+from .stepping_io import Observation, _spans, check_commands, run_indices
 
 if TYPE_CHECKING:  # pragma: no cover
     from .stepping import Simulator
 
-__all__ = ["set_reference", "held_commands", "restart_clock", "set_states"]
+__all__ = ["set_reference", "set_controller_param", "held_commands", "restart_clock",
+           "restart_runs", "set_states"]
+
+#: Restarted runs above this share of the batch are observed with every run (one call of the
+#: loop a slice, on the thread pool) rather than span by span.
+_SPANS_SHARE = 0.25
 
 
 def _reference_array(sim: "Simulator") -> np.ndarray:
@@ -79,6 +85,63 @@ def set_reference(sim: "Simulator", values: Any, runs: Any = None) -> None:
     ref[sel, 0, :] = checked
 
 
+def set_controller_param(sim: "Simulator", name: str, values: Any, runs: Any = None) -> None:
+    """Hold a parameter of the controller (a set-point that is a parameter, e.g. the
+    ``propeller_rps`` a ``-rps`` autopilot holds) of some runs from the next step on.
+
+    The loop reads each run's controller parameters at the start of every call, so a value
+    written before a step is the one the controller uses over that step -- the numbers of
+    ``simulate`` with the controller's parameters holding that value.
+
+    Parameters
+    ----------
+    sim : Simulator
+        A simulator whose problem has a controller with the parameter ``name``.
+    name : str
+        The parameter (a number, not a vector), e.g. ``"propeller_rps"`` [1/s].
+    values : float or array_like
+        One for every selected run, or (selected runs,), in the parameter's unit; finite and
+        within the parameter's range.
+    runs : int or sequence of int, optional
+        The runs (default every run).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``name`` for a parameter the controller does not have (or a vector one),
+        else ``values`` on a wrong shape or a value not finite or outside the parameter's
+        range; nothing is written then.
+    """
+    controller = sim.problem.controller
+    params_type = getattr(controller, "params_type", None)
+    checks = {c[1]: c for c in params_type._field_checks()} if params_type is not None else {}
+    if name not in checks or checks[name][2]:
+        have = ", ".join(c for c, v in checks.items() if not v[2]) or "none"
+        raise ParameterError(f": the controller '{getattr(controller, 'name', controller)}' has "
+                             f"no parameter {name!r} (a number); its parameters: {have}",
+                             field="name", value=name)
+    _, _, _, low, high, low_inclusive = checks[name]
+    unit = params_type._fields_by_name()[name].metadata.get("unit", "")
+    sel = run_indices(runs, sim.n_runs)
+    v = np.asarray(values, dtype=float)
+    if v.ndim > 1 or (v.ndim == 1 and v.shape[0] != sel.size):
+        raise ParameterError(f"must be a number or have shape ({sel.size},) (one per run), got "
+                             f"{v.shape}", field="values", unit=unit, value=v.shape)
+    v = np.broadcast_to(v, sel.shape)
+    bad = ~np.isfinite(v) | (v < low) | (v > high) | ((v == low) & (not low_inclusive))
+    if bad.any():
+        r = int(np.argmax(bad))
+        side = "[" if low_inclusive else "("
+        raise ParameterError(f": {name} = {float(v[r])!r} [{unit}] of run {int(sel[r])} is not "
+                             f"finite or outside {side}{low:g}, {high:g}]", field="values",
+                             unit=unit, value=float(v[r]), run=int(sel[r]))
+    cp = sim._batch.slices.arrays.get("params", "controller")
+    if cp.shape[0] != sim.n_runs:  # (one record for every run: not writable per run)
+        raise ParameterError(f": the controller's parameters have {cp.shape[0]} rows for "
+                             f"{sim.n_runs} runs", field="controller_params", value=cp.shape)
+    cp[name][sel] = v
+
+
 def held_commands(sim: "Simulator") -> np.ndarray:
     """The commands every run holds now (runs, commands) by ``sim.command_labels`` [SI]: the
     last ones given to ``step``, or those its controller computed at its last sample.
@@ -124,6 +187,78 @@ def restart_clock(sim: "Simulator", runs: Any = None) -> None:
         first-order wave motions in the loop (a function of the time), ``sensors`` for
         position sensors with noise (a function of the step), or ``runs`` out of range.
     """
+    _check_time_invariant(sim)
+    sel = None if runs is None else run_indices(runs, sim.n_runs)
+    # every clock at step 0 (the states, commands, controller states and statuses kept: the
+    # loop reads nothing else of a run's past), then the runs to start again reset -- all at
+    # one step, so that reset observes them in one call of the loop
+    sim._k[:] = 0
+    sim._k0 = 0
+    sim._aligned = True
+    if sel is not None and sel.size:
+        sim.reset(runs=sel)
+
+
+def restart_runs(sim: "Simulator", runs: Any, states: Mapping[str, Any] | None = None
+                 ) -> Observation:
+    """:func:`restart_clock` of ``runs`` then :func:`set_states` of them, observing only them:
+    the restart of a few sub-environments between two steps of a batch.
+
+    The runs named start again from the problem's initial state (the controller's init at
+    t = 0 on it, as :meth:`Simulator.reset <seahelm.simulation.stepping.Simulator.reset>`),
+    then get ``states``; every run's clock is set back to t = 0. The observation returned has
+    the restarted runs' outputs at their new state and the other runs' outputs as the last
+    step left them (the same numbers an observation of every run gives for a time-invariant
+    problem, which :func:`restart_clock` requires) -- without the two whole-batch
+    observations of ``restart_clock`` + ``set_states`` + ``observe``.
+
+    Parameters
+    ----------
+    sim : Simulator
+        A reset simulator whose outputs now are the other runs' (its last call a ``step``
+        of every run, a ``reset`` or a ``restart_runs``: not a ``set_state``).
+    runs : int or sequence of int
+        The runs to start again.
+    states : mapping, optional
+        State label -> value or values (one per run) [SI], as :func:`set_states`.
+
+    Returns
+    -------
+    Observation
+        Every run's outputs, all at t = 0.
+
+    Raises
+    ------
+    ParameterError
+        As :func:`restart_clock` and :func:`set_states` (nothing is changed then).
+    """
+    _check_time_invariant(sim)
+    sel = run_indices(runs, sim.n_runs)
+    z = _checked_states(sim, sel, states or {}, start=True)
+    b = sim._batch
+    a = b.slices.arrays
+    sim._k[:] = 0
+    sim._k0 = 0
+    sim._aligned = True
+    if sel.size:
+        for live, fresh in zip((*a.state, *a.outcome, *a.record), sim._fresh):
+            live[sel] = fresh[sel]
+        spans = _spans(sel)
+        kernel, sc, ssc = b.kernel, b.slices.scratch[0], b.slices.stage_scratch[0]
+        with quiet(b.jit):
+            for i0, i1 in spans:  # (the controller's init on the initial state, as reset)
+                kernel.init_runs(i0, i1, a.state, a.params, a.signals, a.stages, sc, ssc)
+            sim._z[sel] = z
+            if sel.size > _SPANS_SHARE * sim.n_runs:
+                sim._observe_into()
+            else:
+                b.slices.observe_spans(spans, 0, b.n_steps, b.dt, b.ctrl_every,
+                                       b.record_every, sim._out)
+    return sim._observation()
+
+
+def _check_time_invariant(sim: "Simulator") -> None:
+    """Refuse to set the clock back of a problem that reads the time (see restart_clock)."""
     sim._require_reset()
     a = sim._batch.slices.arrays
     for name, arr in (("disturbance", a.signals[0]), ("reference", a.signals[1])):
@@ -141,15 +276,6 @@ def restart_clock(sim: "Simulator", runs: Any = None) -> None:
         raise ParameterError(": the position sensors' noise is a function of the step (the runs "
                              "kept would measure their noise from step 0 again); the clock of "
                              "its runs cannot be set back", field="sensors")
-    sel = None if runs is None else run_indices(runs, sim.n_runs)
-    # every clock at step 0 (the states, commands, controller states and statuses kept: the
-    # loop reads nothing else of a run's past), then the runs to start again reset -- all at
-    # one step, so that reset observes them in one call of the loop
-    sim._k[:] = 0
-    sim._k0 = 0
-    sim._aligned = True
-    if sel is not None and sel.size:
-        sim.reset(runs=sel)
 
 
 def set_states(sim: "Simulator", runs: Any, values: Mapping[str, Any]) -> None:
@@ -175,7 +301,14 @@ def set_states(sim: "Simulator", runs: Any, values: Mapping[str, Any]) -> None:
     """
     sim._require_reset()
     sel = run_indices(runs, sim.n_runs)
-    z = sim._z[sel].copy()
+    sim._z[sel] = _checked_states(sim, sel, values, start=False)
+
+
+def _checked_states(sim: "Simulator", sel: np.ndarray, values: Mapping[str, Any], *,
+                    start: bool) -> np.ndarray:
+    """The states (len(sel), states) of the runs ``sel`` with ``values`` written in, checked:
+    from their state now, or (``start``) from the problem's initial state."""
+    z = (sim._fresh[0] if start else sim._z)[sel]  # (fancy indexing: a copy)
     labels = sim.state_labels
     for name, v in values.items():
         if name not in labels:
@@ -194,4 +327,4 @@ def set_states(sim: "Simulator", runs: Any, values: Mapping[str, Any]) -> None:
         raise ParameterError(f": state {labels[j]!r} = {float(z[r, j])!r} of run {int(sel[r])} is not "
                              f"finite or outside its bounds [{lower[j]:g}, {upper[j]:g}]",
                              field="values", value=float(z[r, j]), run=int(sel[r]))
-    sim._z[sel] = z
+    return z
