@@ -288,11 +288,39 @@ def _cubic_crossings(times: np.ndarray, change: np.ndarray, levels: np.ndarray,
     vander = s_nodes[..., None] ** _POWERS  # (levels, runs, 4 nodes, 4 powers)
     if not good.all():  # (every event inside the record: no placeholder to set)
         vander[~good] = np.eye(4)  # (placeholders: never used)
-    coef = np.linalg.solve(vander, c_nodes[..., None])[..., 0]  # power coefficients
+    coef = _solve(vander, c_nodes[..., None])[..., 0]  # power coefficients
     _newton(np.ascontiguousarray(coef), levels, s)
     powers = s[..., None] ** _POWERS
-    weights = np.linalg.solve(np.swapaxes(vander, -1, -2), powers[..., None])[..., 0]
-    return j0, np.where(good[..., None], weights, np.nan)
+    weights = _solve(np.swapaxes(vander, -1, -2), powers[..., None])[..., 0]
+    return j0, weights if good.all() else np.where(good[..., None], weights, np.nan)
+
+
+def _solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``np.linalg.solve(a, b)`` of stacked real 4 × 4 systems (float64, b of shape
+    (..., 4, 1)): the LAPACK ``gesv`` gufunc that ``np.linalg.solve`` calls, called directly
+    (its argument checks and error state cost ten times the solves of a turning circle's
+    three events, issue 46 item 6); the same numbers. Where that gufunc is not found, or a
+    system is singular (a NaN in the solution: the nodes are distinct times, so never in a
+    manoeuvre), ``np.linalg.solve`` itself, which raises ``LinAlgError`` as before."""
+    if _GESV is not None and a.dtype == np.float64 and b.dtype == np.float64:
+        with np.errstate(all="ignore"):  # (as np.linalg.solve, without its raising call)
+            out = _GESV(a, b, signature="dd->d")
+        if np.isfinite(out).all():
+            return out
+    return np.linalg.solve(a, b)
+
+
+def _gesv() -> Any:
+    """numpy's stacked ``solve`` gufunc (None where this numpy does not have it)."""
+    try:
+        from numpy.linalg import _umath_linalg
+    except ImportError:  # pragma: no cover - another numpy
+        return None
+    gufunc = getattr(_umath_linalg, "solve", None)
+    return gufunc if isinstance(gufunc, np.ufunc) else None
+
+
+_GESV = _gesv()
 
 
 @njit(cache=True, nogil=True)
