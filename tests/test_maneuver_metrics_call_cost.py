@@ -40,3 +40,44 @@ def test_solve_without_the_gufunc_is_numpy_linalg_solve(monkeypatch):
     vander, rhs = _systems(5, (3, 2))
     monkeypatch.setattr(tc, "_GESV", None)
     assert np.array_equal(tc._solve(vander, rhs), np.linalg.solve(vander, rhs))
+
+
+cm = importlib.import_module("seahelm.analysis.maneuvers.common")
+sh = importlib.import_module("seahelm.analysis.maneuvers.ships")
+
+
+@pytest.mark.parametrize("values, allow_zero, positive, ok", [
+    ([0.6], False, True, True),
+    ([0.0], False, False, False),      # zero: refused unless allow_zero
+    ([0.0], True, False, True),
+    ([-0.3], False, True, False),      # negative with positive=True
+    ([-0.3], False, False, True),      # magnitude only
+    ([0.7], False, True, False),       # beyond the KVLCC2's 35 deg
+    ([0.5, float("nan")], False, True, False),
+    ([0.1, 0.2, 0.3], True, False, True),
+])
+def test_check_rudder_fast_path_agrees_with_the_array_form(values, allow_zero, positive, ok):
+    ship = sh.maneuver_ship("kvlcc2-l7")
+    arr = np.array(values)
+    assert cm._rudders_fit([ship], arr, allow_zero, positive) is (
+        ok and not np.isnan(arr).any())
+    if ok:
+        cm.check_rudder([ship], "rudder", arr, allow_zero=allow_zero, positive=positive)
+    else:  # the array form reports it, as before
+        with pytest.raises(cm.ParameterError, match="rudder"):
+            cm.check_rudder([ship], "rudder", arr, allow_zero=allow_zero, positive=positive)
+
+
+def test_positions_of_a_single_run_equal_np_indices():
+    plan = cm.Plan("kvlcc2-l7", None, None, [cm.value_axis("rudder", 0.6, "rad"),
+                                             cm.side_axis(1)])
+    expected = np.indices(plan.shape).reshape(len(plan.shape), -1)
+    assert plan._positions.dtype == expected.dtype
+    assert np.array_equal(plan._positions, expected)
+
+
+@pytest.mark.parametrize("ship", ["kvlcc2-l7", "kvlcc2-full", "mariner-nonlinear"])
+def test_usual_time_step_of_ready_ships_is_default_time_step(ship):
+    s = sh.maneuver_ship(ship)
+    for speed in (0.5 * s.approach_speed, s.approach_speed):
+        assert sh.usual_time_step([s], [speed]) == sh.default_time_step(s, speed)

@@ -32,19 +32,27 @@ def _variable(dims: tuple[str, ...], arr: Any, attrs: Mapping[str, Any]) -> "xr.
     constructor), they are filled directly — a fifth of the constructor's microsecond, which
     twenty metrics of a single run paid each.
     """
-    import xarray as xr
-
+    variable = _variable_class()
     if type(arr) is not np.ndarray or arr.dtype.kind not in "biufU":
-        return xr.Variable(dims, arr, attrs)
+        return variable(dims, arr, attrs)
     if len(dims) != arr.ndim or not _raw_variables():
-        return xr.Variable(dims, arr, attrs, fastpath=True)
-    var = _NEW_VARIABLE(xr.Variable)
+        return variable(dims, arr, attrs, fastpath=True)
+    var = _NEW_VARIABLE(variable)
     var._data, var._dims = arr, tuple(dims)
     var._attrs, var._encoding = (dict(attrs) if attrs else None), None
     return var
 
 
 _NEW_VARIABLE = object.__new__
+
+
+@functools.cache
+def _variable_class() -> type:
+    """``xarray.Variable``, imported when first needed (xarray is imported lazily; an import
+    statement in :func:`_variable` cost a fifth of it, for each of twenty metrics)."""
+    import xarray as xr
+
+    return xr.Variable
 
 
 @functools.cache

@@ -252,7 +252,11 @@ def default_time_step(ship: Any, speed: float | None = None) -> float:
     float
         Time step [s].
     """
-    s = maneuver_ship(ship)
+    return _time_step(maneuver_ship(ship), speed)
+
+
+def _time_step(s: Ship, speed: float | None) -> float:
+    """:func:`default_time_step` of a ship ready for manoeuvres (:func:`maneuver_ship`)."""
     U = s.approach_speed if speed is None else float(speed)
     check_positive("speed", U, "m/s")
     raw = min(s.length / (100.0 * U), float(s.servo.time_constant))
@@ -275,8 +279,9 @@ def usual_time_step(ships: Sequence[Ship], speeds: Any) -> float:
     steps: dict[tuple[float, float], float] = {}
     for s in ships:
         key = (s.length, float(s.servo.time_constant))
-        if key not in steps:
-            steps[key] = default_time_step(s, fastest)
+        if key not in steps:  # (the ships of a plan are ready: no maneuver_ship again)
+            steps[key] = (_time_step(s, fastest) if type(s) is Ship and s.steering_gear
+                          is not None else default_time_step(s, fastest))
     return min(steps.values())
 
 

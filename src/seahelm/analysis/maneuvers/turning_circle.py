@@ -167,13 +167,13 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
                     or "roll_angle" in plan.model.output_labels
                     or "roll_angle" in plan.model.state_labels
                     else min(default_record_every(  # (of the runs that run)
-                        float(dt), plan.run_lengths()[plan.run_ok],
-                        np.array([a.speed for a in approaches])[plan.run_ok]),
+                        float(dt), *_of_runs_that_run(plan, plan.run_lengths(),
+                                                      [a.speed for a in approaches])),
                         # (a t_final shorter than one default sample: every step; it was
                         # "`controller_dt` = 0.25 s exceeds t_final", an option never given)
                         max(1, int(round(float(t_final) / float(dt))))))
 
-    x0 = np.stack([a.state for a in approaches])
+    x0 = np.array([a.state for a in approaches], dtype=float)  # (as np.stack: (runs, states))
     rudder0 = np.array([[a.rudder] for a in approaches])
     orders = plan.run_values("side") * plan.run_values("rudder")
     reference: dict[str, Any] = {"rudder_command": orders.reshape(-1, 1, 1)}
@@ -186,6 +186,15 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
     metrics = _metrics(plan, result)
     return ManeuverResult("turning-circle", metrics, tuple(plan.ships), result,
                           lambda: plan.runs_dataset(result))
+
+
+def _of_runs_that_run(plan: Plan, lengths: np.ndarray, speeds: list[float]
+                      ) -> tuple[np.ndarray, np.ndarray]:
+    """The runs' lengths and approach speeds, of the runs with an approach only (all of
+    them, without a boolean selection, when every approach was found)."""
+    if not plan.failed:
+        return lengths, np.array(speeds)
+    return lengths[plan.run_ok], np.array(speeds)[plan.run_ok]
 
 
 #: Recorded samples per ship length travelled at the approach speed, by default.
@@ -454,7 +463,8 @@ def _metrics(plan: Plan, result: Any) -> Any:
     t = result.time
     north, east, psi = result["north"], result["east"], result["heading"]
     change = np.abs(psi - psi[:, :1])
-    times = np.broadcast_to(t, psi.shape)
+    # (one run: the time row itself, contiguous; a batch: broadcast, then a contiguous copy)
+    times = t.reshape(1, -1) if psi.shape[0] == 1 else np.broadcast_to(t, psi.shape)
     k, w = _crossings(change, _LEVELS)
     j0, weights = _cubic_crossings(np.ascontiguousarray(times), change, _LEVELS, k, w)
     # the distance along the track is read at the 10 deg event only (its four samples j0..)
