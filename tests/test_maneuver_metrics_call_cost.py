@@ -81,3 +81,30 @@ def test_usual_time_step_of_ready_ships_is_default_time_step(ship):
     s = sh.maneuver_ship(ship)
     for speed in (0.5 * s.approach_speed, s.approach_speed):
         assert sh.usual_time_step([s], [speed]) == sh.default_time_step(s, speed)
+
+
+track = importlib.import_module("seahelm.analysis.maneuvers.track")
+
+
+@pytest.mark.parametrize("seed, runs, steps, until", [
+    (0, 1, 181, [23]), (1, 17, 120, None), (2, 5, 60, [0, 3, 59, 200, 7]), (3, 2, 4, [1, 2])])
+def test_distance_until_fast_path_equals_the_general_form_bit_for_bit(monkeypatch, seed, runs,
+                                                                      steps, until):
+    rng = np.random.default_rng(seed)
+    t = np.cumsum(rng.uniform(0.2, 0.8, steps))
+    north = np.cumsum(rng.normal(size=(runs, steps)), axis=1)
+    east = np.cumsum(rng.normal(size=(runs, steps)), axis=1)
+    fast = track.distance_until(north, east, t, until=until)
+    assert track._every_run_by_spline(np.atleast_2d(north), np.atleast_2d(east), t,
+                                      until) is not None
+    monkeypatch.setattr(track, "_every_run_by_spline", lambda *args: None)
+    assert np.array_equal(fast, track.distance_until(north, east, t, until=until))
+
+
+def test_distance_until_leaves_a_nan_run_and_bad_times_to_the_general_form():
+    t = np.arange(6.0)
+    north = np.array([[0.0, 1.0, 2.0, 3.0, 4.0, 5.0], [0.0, np.nan, 2.0, 3.0, 4.0, 5.0]])
+    assert track._every_run_by_spline(north, north.copy(), t, None) is None
+    assert np.isnan(track.distance_until(north, north.copy(), t)[1]).any()
+    with pytest.raises(ValueError, match="strictly increasing"):
+        track.distance_until(north[:1], north[:1], t[::-1])

@@ -438,18 +438,49 @@ def _event_values(north: np.ndarray, east: np.ndarray, psi: np.ndarray, times: n
         dn, de = north - n0, east - e0
         return np.stack([dn * c0 + de * s0, np.abs(-dn * s0 + de * c0), times, dist])
 
-    if north.shape[1] < 4 or not ((k >= 0) & np.isfinite(weights[..., 0])).all():
-        # (an event without a cubic: the linear fallback needs the whole record anyway)
+    if north.shape[1] < 4:
         return _at_cubic(full(), k, w, j0, weights)
-    idx = j0[..., None] + _POWERS  # (levels, runs, 4 nodes)
-    rows = np.arange(north.shape[0])[None, :, None]
-    buf = np.empty(idx.shape + (4,))  # (levels, runs, nodes, signals)
-    dn, de = north[rows, idx] - n0, east[rows, idx] - e0
-    buf[..., 0] = dn * c0 + de * s0
-    buf[..., 1] = np.abs(-dn * s0 + de * c0)
-    buf[..., 2] = times[rows, idx]
-    buf[..., 3] = dist[rows, idx]
+    buf = np.empty(k.shape + (4, 4))  # (levels, runs, nodes, signals)
+    found = _event_nodes(north, east, np.ascontiguousarray(times, dtype=float),
+                         np.ascontiguousarray(dist, dtype=float), k, j0,
+                         np.ascontiguousarray(weights), c0[:, 0].copy(), s0[:, 0].copy(), buf)
+    if found == 0:  # (an event without a cubic: the linear fallback needs the whole record)
+        return _at_cubic(full(), k, w, j0, weights)
+    if found == 2:  # (every weight finite, every event reached: _weigh's first path)
+        return np.einsum("slrj,lrj->slr", buf.transpose(3, 0, 1, 2), weights)
     return _weigh(buf.transpose(3, 0, 1, 2), k, w, weights, full)
+
+
+@njit(cache=True, nogil=True)
+def _event_nodes(north: np.ndarray, east: np.ndarray, times: np.ndarray, dist: np.ndarray,
+                 k: np.ndarray, j0: np.ndarray, weights: np.ndarray, c0: np.ndarray,
+                 s0: np.ndarray, buf: np.ndarray) -> int:  # pragma: no cover - compiled
+    """The four signals of :func:`_event_values` at the four nodes of every event into
+    ``buf`` (levels, runs, nodes, signals), each element by the operations of the array form
+    (dn c0 + de s0, |−dn s0 + de c0|, the time, the distance along the track; ``c0``, ``s0``
+    the cosine and sine of each run's first heading, formed by numpy): 0 (``buf`` not
+    filled) if an event has no cubic (not reached, or a NaN first weight), else 2 if every
+    weight is finite, 1 if not."""
+    every = True
+    for a in range(k.shape[0]):
+        for r in range(k.shape[1]):
+            if k[a, r] < 0 or not np.isfinite(weights[a, r, 0]):
+                return 0
+            for m in range(4):
+                if not np.isfinite(weights[a, r, m]):
+                    every = False
+    for a in range(k.shape[0]):
+        for r in range(k.shape[1]):
+            n0, e0 = north[r, 0], east[r, 0]
+            for m in range(4):
+                j = j0[a, r] + m
+                dn = north[r, j] - n0
+                de = east[r, j] - e0
+                buf[a, r, m, 0] = dn * c0[r] + de * s0[r]
+                buf[a, r, m, 1] = abs(-dn * s0[r] + de * c0[r])
+                buf[a, r, m, 2] = times[r, j]
+                buf[a, r, m, 3] = dist[r, j]
+    return 2 if every else 1
 
 
 #: Heading changes of the events: 90 deg (advance, transfer), 180 deg (tactical diameter),
@@ -466,7 +497,8 @@ def _metrics(plan: Plan, result: Any) -> Any:
     # (one run: the time row itself, contiguous; a batch: broadcast, then a contiguous copy)
     times = t.reshape(1, -1) if psi.shape[0] == 1 else np.broadcast_to(t, psi.shape)
     k, w = _crossings(change, _LEVELS)
-    j0, weights = _cubic_crossings(np.ascontiguousarray(times), change, _LEVELS, k, w)
+    times = np.ascontiguousarray(times)
+    j0, weights = _cubic_crossings(times, change, _LEVELS, k, w)
     # the distance along the track is read at the 10 deg event only (its four samples j0..)
     dist = distance_until(north, east, t, until=j0[2] + 3)
     # every signal at every event (a few are not needed: all cost one gather)
