@@ -108,3 +108,43 @@ def test_distance_until_leaves_a_nan_run_and_bad_times_to_the_general_form():
     assert np.isnan(track.distance_until(north, north.copy(), t)[1]).any()
     with pytest.raises(ValueError, match="strictly increasing"):
         track.distance_until(north[:1], north[:1], t[::-1])
+
+
+kernels = importlib.import_module("seahelm.analysis.maneuvers.turning_kernels")
+
+
+def _steady_array_form(change, r, speed):
+    """The steady end of a turn as the metrics formed it with numpy before (written out)."""
+    n = change.shape[0]
+    steady_r, steady_U = r[:, -1], speed[:, -1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        radius = np.where(steady_r != 0.0, steady_U / np.abs(steady_r), np.inf)
+    back = change <= change[:, -1:] - 0.5 * np.pi
+    last_back = back.shape[1] - 1 - np.argmax(back[:, ::-1], axis=1)
+    r_back = r[np.arange(n), last_back]
+    with np.errstate(invalid="ignore"):
+        steady = (back.any(axis=1) & np.isfinite(steady_r)
+                  & (np.abs(steady_r - r_back) <= 0.01 * np.abs(steady_r)))
+    return radius, steady
+
+
+def test_steady_ends_equal_the_array_form_bit_for_bit():
+    rng = np.random.default_rng(7)
+    runs, steps = 60, 50
+    change = np.cumsum(rng.uniform(0.0, 0.2, (runs, steps)), axis=1)
+    r = rng.normal(0.05, 0.01, (runs, steps))
+    r[:, -1] = r[:, -2] * rng.choice([1.0, 1.005, 1.02], runs)  # steady, barely, not
+    speed = rng.uniform(0.5, 1.5, (runs, steps))
+    change[0] = np.linspace(0.0, 1.0, steps)   # never 90 deg before the end
+    r[1, -1] = 0.0                             # no turn: infinite radius
+    r[2, -1] = -0.0
+    r[3, -1] = np.nan                          # a diverged run
+    change[4, -1] = np.nan
+    speed[5, -1] = np.nan
+    r[6, -10] = np.nan                         # NaN where the 90 deg sample may fall
+    radius, steady = np.empty(runs), np.empty(runs, dtype=np.bool_)
+    kernels._steady_ends(change, r, speed, radius, steady)
+    expected_radius, expected_steady = _steady_array_form(change, r, speed)
+    assert np.array_equal(radius, expected_radius, equal_nan=True)
+    assert np.array_equal(steady, expected_steady)
+    assert steady.any() and not steady.all()

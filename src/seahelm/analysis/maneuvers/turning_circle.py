@@ -58,6 +58,7 @@ from .common import (
 from .ships import steady_yaw_rates, yaw_lag
 from .result import ManeuverResult
 from .track import distance_until, track_distance
+from .turning_kernels import _event_nodes, _steady_ends
 
 __all__ = ["turning_circle", "track_distance", "default_record_every", "SAMPLES_PER_LENGTH"]
 
@@ -451,38 +452,6 @@ def _event_values(north: np.ndarray, east: np.ndarray, psi: np.ndarray, times: n
     return _weigh(buf.transpose(3, 0, 1, 2), k, w, weights, full)
 
 
-@njit(cache=True, nogil=True)
-def _event_nodes(north: np.ndarray, east: np.ndarray, times: np.ndarray, dist: np.ndarray,
-                 k: np.ndarray, j0: np.ndarray, weights: np.ndarray, c0: np.ndarray,
-                 s0: np.ndarray, buf: np.ndarray) -> int:  # pragma: no cover - compiled
-    """The four signals of :func:`_event_values` at the four nodes of every event into
-    ``buf`` (levels, runs, nodes, signals), each element by the operations of the array form
-    (dn c0 + de s0, |−dn s0 + de c0|, the time, the distance along the track; ``c0``, ``s0``
-    the cosine and sine of each run's first heading, formed by numpy): 0 (``buf`` not
-    filled) if an event has no cubic (not reached, or a NaN first weight), else 2 if every
-    weight is finite, 1 if not."""
-    every = True
-    for a in range(k.shape[0]):
-        for r in range(k.shape[1]):
-            if k[a, r] < 0 or not np.isfinite(weights[a, r, 0]):
-                return 0
-            for m in range(4):
-                if not np.isfinite(weights[a, r, m]):
-                    every = False
-    for a in range(k.shape[0]):
-        for r in range(k.shape[1]):
-            n0, e0 = north[r, 0], east[r, 0]
-            for m in range(4):
-                j = j0[a, r] + m
-                dn = north[r, j] - n0
-                de = east[r, j] - e0
-                buf[a, r, m, 0] = dn * c0[r] + de * s0[r]
-                buf[a, r, m, 1] = abs(-dn * s0[r] + de * c0[r])
-                buf[a, r, m, 2] = times[r, j]
-                buf[a, r, m, 3] = dist[r, j]
-    return 2 if every else 1
-
-
 #: Heading changes of the events: 90 deg (advance, transfer), 180 deg (tactical diameter),
 #: 10 deg (initial turning).
 _LEVELS = np.array([0.5 * math.pi, math.pi, _DEG10])
@@ -520,14 +489,10 @@ def _metrics(plan: Plan, result: Any) -> Any:
     length = plan.run_lengths()
     steady_r = r[:, -1]
     steady_U = speed[:, -1]
-    radius = np.where(steady_r != 0.0, steady_U / np.abs(steady_r), np.inf)
-    # steady: |r| changed by <= 1 % since the last sample 90 deg of heading before the end
-    back = change <= change[:, -1:] - 0.5 * math.pi
-    last_back = back.shape[1] - 1 - np.argmax(back[:, ::-1], axis=1)
-    r_back = r[np.arange(n), last_back]
-    with np.errstate(invalid="ignore"):
-        steady = (back.any(axis=1) & np.isfinite(steady_r)
-                  & (np.abs(steady_r - r_back) <= 0.01 * np.abs(steady_r)))
+    # the radius U/|r| (inf where r = 0), and steady: |r| changed by <= 1 % since the last
+    # sample 90 deg of heading before the end
+    radius, steady = np.empty(n), np.empty(n, dtype=np.bool_)
+    _steady_ends(change, r, speed, radius, steady)
     status = result.messages()
     reached = ~np.isnan(time_10) & ~np.isnan(time_90) & ~np.isnan(time_180)
     # complete: every event reached and the run went well (most runs: nothing more to say,
