@@ -390,19 +390,19 @@ class Plan:
             arr = np.asarray(values)
             if failed is not None and arr.shape[:1] == (self.n_runs,):
                 arr = _mask_failed(self, name, arr, failed)
-            if arr.dtype == object:
+            if arr.dtype.kind == "O":
                 arr = arr.astype(str)
             dims, shape = grid_dims, grid_shape
             if arr.ndim == 2:
                 dim, k = (extra_dims or {})[name]
                 dims, shape = dims + (dim,), shape + (k,)
-            var_attrs = {"long_name": long_name}
-            if units:
-                var_attrs["units"] = units
-            arr = arr.reshape(shape)
+            var_attrs = {"long_name": long_name, "units": units} if units else {
+                "long_name": long_name}
+            if arr.shape != shape:
+                arr = arr.reshape(shape)
             # a plain numeric, boolean or string array is what xarray would make of it anyway
             # (its conversions concern objects, dates and other array types): skip them
-            data[name] = _variable(dims, arr, var_attrs)
+            data[name] = _variable(dims, arr, var_attrs, own=True)
         all_coords = self._coords()
         all_coords.update(coords or {})
         if not any(np.ndim(c[1]) for c in all_coords.values()):

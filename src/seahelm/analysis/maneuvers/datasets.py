@@ -23,7 +23,8 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__: list[str] = []
 
 
-def _variable(dims: tuple[str, ...], arr: Any, attrs: Mapping[str, Any]) -> "xr.Variable":
+def _variable(dims: tuple[str, ...], arr: Any, attrs: Mapping[str, Any], *,
+              own: bool = False) -> "xr.Variable":
     """``xr.Variable(dims, arr, attrs)`` of a plain numeric, boolean or string array.
 
     What xarray makes of such an array is the array itself (its conversions concern objects,
@@ -39,7 +40,9 @@ def _variable(dims: tuple[str, ...], arr: Any, attrs: Mapping[str, Any]) -> "xr.
         return variable(dims, arr, attrs, fastpath=True)
     var = _NEW_VARIABLE(variable)
     var._data, var._dims = arr, tuple(dims)
-    var._attrs, var._encoding = (dict(attrs) if attrs else None), None
+    # (``own``: ``attrs`` is a fresh dict of the caller's, kept rather than copied)
+    var._attrs = (attrs if own and type(attrs) is dict else dict(attrs)) if attrs else None
+    var._encoding = None
     return var
 
 
