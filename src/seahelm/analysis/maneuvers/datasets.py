@@ -99,10 +99,15 @@ def _indexless_dataset(data: Mapping[str, Any], coords: Mapping[str, Any],
         return None
     variables = {**data, **coords}
     dims: dict[str, int] = {}
+    raw = _raw_variables()  # (then a Variable's dims and shape are its slots': read them)
     for name, var in variables.items():
-        if type(var) is not xr.Variable or name in var.dims:
+        if type(var) is not xr.Variable:
             return None
-        for dim, size in zip(var.dims, var.shape):
+        var_dims, shape = (var._dims, var._data.shape) if raw and type(
+            var._data) is np.ndarray else (var.dims, var.shape)
+        if name in var_dims:
+            return None
+        for dim, size in zip(var_dims, shape):
             if dims.setdefault(dim, size) != size:
                 return None
     try:
