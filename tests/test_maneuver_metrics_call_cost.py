@@ -148,3 +148,23 @@ def test_steady_ends_equal_the_array_form_bit_for_bit():
     assert np.array_equal(radius, expected_radius, equal_nan=True)
     assert np.array_equal(steady, expected_steady)
     assert steady.any() and not steady.all()
+
+
+def test_as_records_equal_the_view_of_the_rows():
+    from numba import typeof
+
+    from seahelm.control.open_loop import OPEN_LOOP
+    from seahelm.parameters import as_records, stack_params
+    from seahelm.ships import get_ship
+
+    params = get_ship("kvlcc2-l7").params
+    for cls, rows in ((type(params), stack_params([params, params])),
+                      (OPEN_LOOP.params_type, np.zeros((3, 0)))):
+        got = as_records(rows, cls)
+        base = np.zeros((rows.shape[0], 1)) if rows.shape[1] == 0 else rows
+        view = base.view(cls._record_view_dtype()).reshape(rows.shape[0])
+        assert got.dtype == view.dtype and got.shape == view.shape
+        assert typeof(got) == typeof(view) and got.flags.writeable
+        assert got.tobytes() == view.tobytes()
+    got = as_records(stack_params(params), type(params))
+    assert np.shares_memory(got, got.base) and got[0].length == params.length
