@@ -168,3 +168,27 @@ def test_as_records_equal_the_view_of_the_rows():
         assert got.tobytes() == view.tobytes()
     got = as_records(stack_params(params), type(params))
     assert np.shares_memory(got, got.base) and got[0].length == params.length
+
+
+@pytest.mark.parametrize("value", [0.5, -1e300, 3, np.float64(2.0), np.arange(3.0),
+                                   np.arange(3), [1.0, 2.0], np.arange(4.0)[::2]])
+def test_as_float_array_fast_paths_equal_the_general_form(value):
+    from seahelm._validate import as_float_array
+
+    got = as_float_array("x", value, "m")
+    expected = np.asarray(value, dtype=float)
+    assert got.dtype == expected.dtype and got.shape == expected.shape
+    assert np.array_equal(got, expected)
+    if isinstance(value, np.ndarray) and value.dtype == np.float64:
+        assert got is value  # (no copy, as np.asarray gave none)
+
+
+@pytest.mark.parametrize("value", [float("nan"), float("inf"), np.array([1.0, np.nan])])
+def test_as_float_array_fast_paths_still_refuse_non_finite(value):
+    from seahelm._validate import as_float_array
+    from seahelm.errors import ParameterError
+
+    with pytest.raises(ParameterError, match=r"`x` must be finite \[m\]"):
+        as_float_array("x", value, "m")
+    assert np.isnan(as_float_array("x", value, "m", finite=False)).any() or np.isinf(
+        as_float_array("x", value, "m", finite=False)).any()
