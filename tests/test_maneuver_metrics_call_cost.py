@@ -192,3 +192,29 @@ def test_as_float_array_fast_paths_still_refuse_non_finite(value):
         as_float_array("x", value, "m")
     assert np.isnan(as_float_array("x", value, "m", finite=False)).any() or np.isinf(
         as_float_array("x", value, "m", finite=False)).any()
+
+
+def test_registry_entries_by_module_path_resolve_to_the_imported_objects():
+    import importlib as il
+
+    from seahelm import registry
+
+    for table, get in ((registry.CONTROLLERS, registry.get_controller),
+                       (registry.ACTUATORS, registry.get_actuator)):
+        for name, entry in table.items():
+            if isinstance(entry, str):
+                module, attr = entry.split(":")
+                assert get(name) is getattr(il.import_module(module), attr)
+
+
+@pytest.mark.parametrize("ship", ["kvlcc2-l7", "mariner-nonlinear", "mariner-nomoto1",
+                                  "otter", "remus100", "shushlyapin2017-dp"])
+def test_can_maneuver_is_the_states_rule(ship):
+    from seahelm.ships import get_ship
+
+    model = get_ship(ship).model
+    states = set(model.state_labels)
+    rule = bool(({"sway_speed", "yaw_rate", "heading"} <= states
+                 and states & {"surge_speed", "surge_perturbation"})
+                or sh.is_constant_speed(model))
+    assert sh._can_maneuver(model) is rule

@@ -129,10 +129,7 @@ def maneuver_ship(ship: Any, *, servo: ServoParams | None = None,
     if name is not None and name != base.name:
         changes["name"] = name
     ship = dataclasses.replace(base, **changes) if changes else base
-    states = set(ship.model.state_labels)
-    if not (({"sway_speed", "yaw_rate", "heading"} <= states
-             and states & {"surge_speed", "surge_perturbation"})
-            or is_constant_speed(ship.model)):
+    if not _can_maneuver(ship.model):
         raise ParameterError(
             f": ship '{ship.name}' (model '{ship.model.name}') cannot run the standard "
             "manoeuvres: they need a 3-DOF model with surge, sway and yaw states (mmg, "
@@ -192,6 +189,17 @@ def sample_ships(base: Ship, params: Sequence[Params], servos: Sequence[ServoPar
                                        else float(getattr(p, speed_field)))
         out.append(ship)
     return out
+
+
+@functools.lru_cache(maxsize=64)
+def _can_maneuver(model: VesselModel) -> bool:
+    """Whether a model can run the standard manoeuvres (a 3-DOF model with surge, sway and yaw
+    states, or a constant-speed steering model): a property of the (frozen) model, asked
+    once per model rather than at every manoeuvre call."""
+    states = set(model.state_labels)
+    return bool(({"sway_speed", "yaw_rate", "heading"} <= states
+                 and states & {"surge_speed", "surge_perturbation"})
+                or is_constant_speed(model))
 
 
 @functools.lru_cache(maxsize=64)
