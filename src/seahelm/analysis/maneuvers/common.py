@@ -50,7 +50,7 @@ from ...simulation.memory import RecordingTooLarge
 from ...simulation.problem import Problem
 from ...vessels.base import VesselModel
 from ..equilibria.equilibrium import EquilibriumError
-from .datasets import _indexless_dataset, _variable
+from .datasets import _indexless_dataset, _variable, _xarray
 from .ships import (  # re-exported: the manoeuvres and tests import them from here
     SPEED_VALIDITY,
     STEP_VALIDITY,
@@ -380,8 +380,6 @@ class Plan:
         fixed-width unicode, booleans as bool. Built in one Dataset construction (xarray's
         per-object overhead is most of the cost of a short manoeuvre).
         """
-        import xarray as xr
-
         data = {}
         grid_dims: tuple[str, ...] = self.dims
         grid_shape = self.dim_shape
@@ -414,9 +412,10 @@ class Plan:
             fast = _indexless_dataset(data, coord_vars, dict(attrs or {}))
             if fast is not None:
                 return fast
+            xr = _xarray()
             return xr.Dataset(data, coords=xr.Coordinates(coord_vars, indexes={}),
                               attrs=dict(attrs or {}))
-        return xr.Dataset(data, coords=all_coords, attrs=dict(attrs or {}))
+        return _xarray().Dataset(data, coords=all_coords, attrs=dict(attrs or {}))
 
     def _coords(self) -> dict[str, Any]:
         coords: dict[str, Any] = {}

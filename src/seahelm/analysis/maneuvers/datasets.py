@@ -50,12 +50,17 @@ _NEW_VARIABLE = object.__new__
 
 
 @functools.cache
-def _variable_class() -> type:
-    """``xarray.Variable``, imported when first needed (xarray is imported lazily; an import
-    statement in :func:`_variable` cost a fifth of it, for each of twenty metrics)."""
+def _xarray() -> Any:
+    """The xarray module, imported when first needed (xarray is imported lazily; an import
+    statement at every call cost a fifth of :func:`_variable`, for each of twenty metrics)."""
     import xarray as xr
 
-    return xr.Variable
+    return xr
+
+
+def _variable_class() -> type:
+    """``xarray.Variable`` (:func:`_xarray`)."""
+    return _xarray().Variable
 
 
 @functools.cache
@@ -92,8 +97,7 @@ def _indexless_dataset(data: Mapping[str, Any], coords: Mapping[str, Any],
     xarray lacks the constructor: the caller then builds the Dataset the ordinary way
     (``tests/test_analysis_maneuvers.py`` checks that both give identical Datasets).
     """
-    import xarray as xr
-
+    xr = _xarray()
     construct = getattr(xr.Dataset, "_construct_direct", None)
     if construct is None or set(data) & set(coords):  # pragma: no cover - other xarray
         return None

@@ -499,7 +499,7 @@ def _metrics(plan: Plan, result: Any) -> Any:
     # their message set for all at once; the loop below is over the others only)
     complete = reached & np.array([m == "ok" for m in status], dtype=bool)
     messages = ["ok" if steady_i else _NOT_STEADY for steady_i in steady.tolist()]
-    for i in np.flatnonzero(~complete).tolist():
+    for i in ([] if complete.all() else np.flatnonzero(~complete).tolist()):
         missing = [f"{name} heading change" for name, value in
                    (("10 deg", time_10[i]), ("90 deg", time_90[i]), ("180 deg", time_180[i]))
                    if np.isnan(value)]
