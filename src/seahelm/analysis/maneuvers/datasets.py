@@ -58,6 +58,7 @@ def _xarray() -> Any:
     return xr
 
 
+@functools.cache
 def _variable_class() -> type:
     """``xarray.Variable`` (:func:`_xarray`)."""
     return _xarray().Variable
