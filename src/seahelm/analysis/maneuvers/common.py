@@ -46,6 +46,7 @@ from ...actuators.servo import RUDDER_SERVO
 from ...control.open_loop import OPEN_LOOP
 from ...errors import ParameterError, ValidityRangeWarning, deprecated_names
 from ...resources import WorkTooLarge
+from ...simulation.batch import BatchAxis, BatchLayout, simulate_batch
 from ...simulation.memory import RecordingTooLarge
 from ...simulation.problem import Problem
 from ...vessels.base import VesselModel
@@ -301,8 +302,6 @@ class Plan:
         (:class:`~seahelm.environment.loads.Conditions`): wind, waves and current acting from
         t = 0 on (the approach is the calm-water one).
         """
-        from ...simulation.batch import BatchAxis, BatchLayout, simulate_batch
-
         usual = usual_time_step(self.ships, [a.speed for a in self.approaches.values()])
         if dt > STEP_VALIDITY * usual:
             warnings.warn(f"`dt` = {dt:g} s is {dt / usual:.3g} x the usual step of this ship "
