@@ -179,6 +179,12 @@ def as_float_array(name: str, value: Any, unit: str = "", *, finite: bool = True
     numpy.ndarray
         ``value`` as a float64 array.
     """
+    if type(value) is float and (math.isfinite(value) or not finite):  # (a number, quickly:
+        return np.array(value)  # the 0-d float64 array of the general form, without its checks)
+    if type(value) is np.ndarray and value.dtype == np.float64:  # (as it is, checked once)
+        if finite:
+            check_finite(name, value, unit)
+        return value
     raw = np.asarray(value) if not isinstance(value, np.ndarray) else value
     if raw.dtype.kind in "cUSO" and raw.dtype != object or raw.dtype.kind == "b":
         # complex, text or booleans: not read as numbers (a complex part would be dropped)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import functools
 import importlib
+import sys
 from collections.abc import Mapping
 from typing import Any
 
@@ -109,7 +110,10 @@ def lookup(kind: str, table: Mapping[str, Any], name: Any, cls: type | tuple[typ
     entry = lookup_name(kind, table, name, error=error, sort=True)
     if isinstance(entry, str):
         module, attr = entry.split(":")
-        return getattr(importlib.import_module(module), attr)
+        loaded = sys.modules.get(module)  # (imported already, the usual case: no import call)
+        if loaded is None or getattr(getattr(loaded, "__spec__", None), "_initializing", False):
+            loaded = importlib.import_module(module)
+        return getattr(loaded, attr)
     return entry
 
 

@@ -22,6 +22,7 @@ field (``ship``, ``model``, ``actuator``, ``controller``).
 from __future__ import annotations
 
 import dataclasses
+import functools
 from collections.abc import Mapping
 from typing import Any
 
@@ -121,6 +122,16 @@ class Components:
         return self.actuator.params_type.from_mapping(values, base=self.actuator_params)
 
 
+@functools.cache
+def _ship_lookup() -> Any:
+    """:func:`seahelm.ships.get_ship`, imported when first needed (``seahelm.ships`` is not
+    imported with the simulation; an import statement at every call of
+    :func:`resolve_components` cost more than the lookup of a catalog ship)."""
+    from ..ships import get_ship
+
+    return get_ship
+
+
 def resolve_components(*, ship: Any = None, model: Any = None, actuator: Any = None,
                        controller: Any = None) -> Components:
     """A run's ship, model, actuator, controller, wiring and default parameters (module
@@ -149,10 +160,8 @@ def resolve_components(*, ship: Any = None, model: Any = None, actuator: Any = N
         do not connect (at ``controller``).
     """
     if ship is not None:
-        from ..ships import get_ship
-
         try:
-            ship = get_ship(ship)
+            ship = _ship_lookup()(ship)
         except ValueError as exc:
             raise field_error("ship", exc) from None
     if model is None:

@@ -45,9 +45,13 @@ from ..._validate import as_float_array, check_positive
 from ...actuators.servo import RUDDER_SERVO
 from ...control.open_loop import OPEN_LOOP
 from ...errors import ParameterError, ValidityRangeWarning, deprecated_names
+from ...resources import WorkTooLarge
+from ...simulation.batch import BatchAxis, BatchLayout, simulate_batch
+from ...simulation.memory import RecordingTooLarge
+from ...simulation.problem import Problem
 from ...vessels.base import VesselModel
 from ..equilibria.equilibrium import EquilibriumError
-from .datasets import _indexless_dataset, _variable
+from .datasets import _indexless_dataset, _variable, _xarray
 from .ships import (  # re-exported: the manoeuvres and tests import them from here
     SPEED_VALIDITY,
     STEP_VALIDITY,
@@ -254,6 +258,8 @@ class Plan:
     @functools.cached_property
     def _positions(self) -> np.ndarray:
         """Each run's position along every axis, (axes, runs) in C order (as ``index``)."""
+        if self.n_runs == 1:  # (one run: position 0 on every axis, without np.indices)
+            return np.zeros((len(self.shape), 1), dtype=int)  # (np.indices' dtype)
         return np.indices(self.shape).reshape(len(self.shape), -1)
 
     def run_values(self, axis: str) -> np.ndarray:
@@ -296,11 +302,6 @@ class Plan:
         (:class:`~seahelm.environment.loads.Conditions`): wind, waves and current acting from
         t = 0 on (the approach is the calm-water one).
         """
-        from ...simulation.batch import BatchAxis, BatchLayout, simulate_batch
-        from ...simulation.problem import Problem
-        from ...resources import WorkTooLarge
-        from ...simulation.engine import RecordingTooLarge
-
         usual = usual_time_step(self.ships, [a.speed for a in self.approaches.values()])
         if dt > STEP_VALIDITY * usual:
             warnings.warn(f"`dt` = {dt:g} s is {dt / usual:.3g} x the usual step of this ship "
@@ -378,8 +379,6 @@ class Plan:
         fixed-width unicode, booleans as bool. Built in one Dataset construction (xarray's
         per-object overhead is most of the cost of a short manoeuvre).
         """
-        import xarray as xr
-
         data = {}
         grid_dims: tuple[str, ...] = self.dims
         grid_shape = self.dim_shape
@@ -388,19 +387,19 @@ class Plan:
             arr = np.asarray(values)
             if failed is not None and arr.shape[:1] == (self.n_runs,):
                 arr = _mask_failed(self, name, arr, failed)
-            if arr.dtype == object:
+            if arr.dtype.kind == "O":
                 arr = arr.astype(str)
             dims, shape = grid_dims, grid_shape
             if arr.ndim == 2:
                 dim, k = (extra_dims or {})[name]
                 dims, shape = dims + (dim,), shape + (k,)
-            var_attrs = {"long_name": long_name}
-            if units:
-                var_attrs["units"] = units
-            arr = arr.reshape(shape)
+            var_attrs = {"long_name": long_name, "units": units} if units else {
+                "long_name": long_name}
+            if arr.shape != shape:
+                arr = arr.reshape(shape)
             # a plain numeric, boolean or string array is what xarray would make of it anyway
             # (its conversions concern objects, dates and other array types): skip them
-            data[name] = _variable(dims, arr, var_attrs)
+            data[name] = _variable(dims, arr, var_attrs, own=True)
         all_coords = self._coords()
         all_coords.update(coords or {})
         if not any(np.ndim(c[1]) for c in all_coords.values()):
@@ -412,9 +411,10 @@ class Plan:
             fast = _indexless_dataset(data, coord_vars, dict(attrs or {}))
             if fast is not None:
                 return fast
+            xr = _xarray()
             return xr.Dataset(data, coords=xr.Coordinates(coord_vars, indexes={}),
                               attrs=dict(attrs or {}))
-        return xr.Dataset(data, coords=all_coords, attrs=dict(attrs or {}))
+        return _xarray().Dataset(data, coords=all_coords, attrs=dict(attrs or {}))
 
     def _coords(self) -> dict[str, Any]:
         coords: dict[str, Any] = {}
@@ -537,6 +537,9 @@ def check_rudder(ships: Sequence["Ship"], name: str, values: np.ndarray, *,
     """|δ| within the steering gear's limit of every ship (ParameterError naming it); with
     ``positive``, δ > 0 (a manoeuvre whose side is its ``sides``: a negative angle on side +1
     turned to port labelled starboard, issue 43's mixed-sign turns)."""
+    if np.ndim(values) <= 1 and np.size(values) <= 8 and _rudders_fit(ships, values, allow_zero,
+                                                                    positive):
+        return  # (a few angles, all within every limit: no numpy pass to take)
     if positive and np.any(np.asarray(values) < 0):
         v = float(np.asarray(values).ravel()[np.flatnonzero(np.asarray(values).ravel() < 0)[0]])
         raise ParameterError(f"must be > 0 [rad]: the side of the turn is `sides` (+1 "
@@ -554,3 +557,16 @@ def check_rudder(ships: Sequence["Ship"], name: str, values: np.ndarray, *,
             raise ParameterError(
                 f"must be in {lo}, {limit:.6g}] [rad] in magnitude (the steering "
                 f"gear limit of '{s.name}', {math.degrees(limit):.4g} deg), got {v!r}", field=name)
+
+
+def _rudders_fit(ships: Sequence["Ship"], values: Any, allow_zero: bool,
+                 positive: bool) -> bool:
+    """Whether a few rudder angles pass :func:`check_rudder`: its tests in Python floats, the
+    same comparisons as its array form (a NaN passes none), so that it has nothing to report
+    and no numpy pass to take (False: the array form finds what to report)."""
+    angles = np.asarray(values, dtype=float).ravel().tolist()
+    if positive and any(v < 0.0 for v in angles):
+        return False
+    limits = {s.max_rudder for s in ships} if len(ships) > 1 else (ships[0].max_rudder,)
+    return all(abs(v) <= limit * (1 + 1e-12) and (abs(v) > 0 or allow_zero)
+               for limit in limits for v in angles)

@@ -23,7 +23,8 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__: list[str] = []
 
 
-def _variable(dims: tuple[str, ...], arr: Any, attrs: Mapping[str, Any]) -> "xr.Variable":
+def _variable(dims: tuple[str, ...], arr: Any, attrs: Mapping[str, Any], *,
+              own: bool = False) -> "xr.Variable":
     """``xr.Variable(dims, arr, attrs)`` of a plain numeric, boolean or string array.
 
     What xarray makes of such an array is the array itself (its conversions concern objects,
@@ -32,19 +33,35 @@ def _variable(dims: tuple[str, ...], arr: Any, attrs: Mapping[str, Any]) -> "xr.
     constructor), they are filled directly — a fifth of the constructor's microsecond, which
     twenty metrics of a single run paid each.
     """
-    import xarray as xr
-
+    variable = _variable_class()
     if type(arr) is not np.ndarray or arr.dtype.kind not in "biufU":
-        return xr.Variable(dims, arr, attrs)
+        return variable(dims, arr, attrs)
     if len(dims) != arr.ndim or not _raw_variables():
-        return xr.Variable(dims, arr, attrs, fastpath=True)
-    var = _NEW_VARIABLE(xr.Variable)
+        return variable(dims, arr, attrs, fastpath=True)
+    var = _NEW_VARIABLE(variable)
     var._data, var._dims = arr, tuple(dims)
-    var._attrs, var._encoding = (dict(attrs) if attrs else None), None
+    # (``own``: ``attrs`` is a fresh dict of the caller's, kept rather than copied)
+    var._attrs = (attrs if own and type(attrs) is dict else dict(attrs)) if attrs else None
+    var._encoding = None
     return var
 
 
 _NEW_VARIABLE = object.__new__
+
+
+@functools.cache
+def _xarray() -> Any:
+    """The xarray module, imported when first needed (xarray is imported lazily; an import
+    statement at every call cost a fifth of :func:`_variable`, for each of twenty metrics)."""
+    import xarray as xr
+
+    return xr
+
+
+@functools.cache
+def _variable_class() -> type:
+    """``xarray.Variable`` (:func:`_xarray`)."""
+    return _xarray().Variable
 
 
 @functools.cache
@@ -81,17 +98,21 @@ def _indexless_dataset(data: Mapping[str, Any], coords: Mapping[str, Any],
     xarray lacks the constructor: the caller then builds the Dataset the ordinary way
     (``tests/test_analysis_maneuvers.py`` checks that both give identical Datasets).
     """
-    import xarray as xr
-
+    xr = _xarray()
     construct = getattr(xr.Dataset, "_construct_direct", None)
     if construct is None or set(data) & set(coords):  # pragma: no cover - other xarray
         return None
     variables = {**data, **coords}
     dims: dict[str, int] = {}
+    raw = _raw_variables()  # (then a Variable's dims and shape are its slots': read them)
     for name, var in variables.items():
-        if type(var) is not xr.Variable or name in var.dims:
+        if type(var) is not xr.Variable:
             return None
-        for dim, size in zip(var.dims, var.shape):
+        var_dims, shape = (var._dims, var._data.shape) if raw and type(
+            var._data) is np.ndarray else (var.dims, var.shape)
+        if name in var_dims:
+            return None
+        for dim, size in zip(var_dims, shape):
             if dims.setdefault(dim, size) != size:
                 return None
     try:

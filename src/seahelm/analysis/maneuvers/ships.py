@@ -129,10 +129,7 @@ def maneuver_ship(ship: Any, *, servo: ServoParams | None = None,
     if name is not None and name != base.name:
         changes["name"] = name
     ship = dataclasses.replace(base, **changes) if changes else base
-    states = set(ship.model.state_labels)
-    if not (({"sway_speed", "yaw_rate", "heading"} <= states
-             and states & {"surge_speed", "surge_perturbation"})
-            or is_constant_speed(ship.model)):
+    if not _can_maneuver(ship.model):
         raise ParameterError(
             f": ship '{ship.name}' (model '{ship.model.name}') cannot run the standard "
             "manoeuvres: they need a 3-DOF model with surge, sway and yaw states (mmg, "
@@ -195,6 +192,17 @@ def sample_ships(base: Ship, params: Sequence[Params], servos: Sequence[ServoPar
 
 
 @functools.lru_cache(maxsize=64)
+def _can_maneuver(model: VesselModel) -> bool:
+    """Whether a model can run the standard manoeuvres (a 3-DOF model with surge, sway and yaw
+    states, or a constant-speed steering model): a property of the (frozen) model, asked
+    once per model rather than at every manoeuvre call."""
+    states = set(model.state_labels)
+    return bool(({"sway_speed", "yaw_rate", "heading"} <= states
+                 and states & {"surge_speed", "surge_perturbation"})
+                or is_constant_speed(model))
+
+
+@functools.lru_cache(maxsize=64)
 def _gear(servo: ServoParams) -> Any:
     """The rudder-servo steering gear of ``servo`` (one object per parameter set)."""
     from ...ships import SteeringGear
@@ -252,7 +260,11 @@ def default_time_step(ship: Any, speed: float | None = None) -> float:
     float
         Time step [s].
     """
-    s = maneuver_ship(ship)
+    return _time_step(maneuver_ship(ship), speed)
+
+
+def _time_step(s: Ship, speed: float | None) -> float:
+    """:func:`default_time_step` of a ship ready for manoeuvres (:func:`maneuver_ship`)."""
     U = s.approach_speed if speed is None else float(speed)
     check_positive("speed", U, "m/s")
     raw = min(s.length / (100.0 * U), float(s.servo.time_constant))
@@ -275,8 +287,9 @@ def usual_time_step(ships: Sequence[Ship], speeds: Any) -> float:
     steps: dict[tuple[float, float], float] = {}
     for s in ships:
         key = (s.length, float(s.servo.time_constant))
-        if key not in steps:
-            steps[key] = default_time_step(s, fastest)
+        if key not in steps:  # (the ships of a plan are ready: no maneuver_ship again)
+            steps[key] = (_time_step(s, fastest) if type(s) is Ship and s.steering_gear
+                          is not None else default_time_step(s, fastest))
     return min(steps.values())
 
 

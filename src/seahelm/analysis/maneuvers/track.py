@@ -218,6 +218,9 @@ def distance_until(north: Any, east: Any, time: Any = None, until: Any = None) -
     """
     n = np.atleast_2d(np.asarray(north, dtype=float))
     e = np.atleast_2d(np.asarray(east, dtype=float))
+    fast = _every_run_by_spline(n, e, time, until)
+    if fast is not None:
+        return fast
     rows = np.isfinite(n).all(axis=1) & np.isfinite(e).all(axis=1)  # (a run not run: NaN)
     spline = time is not None and n.shape[1] >= 4 and bool(rows.any())
     pieces = (np.hypot(np.diff(n, axis=1), np.diff(e, axis=1)) if not spline or not rows.all()
@@ -254,3 +257,52 @@ def distance_until(north: Any, east: Any, time: Any = None, until: Any = None) -
         else:
             pieces[rows] = arc
     return np.concatenate([np.zeros((n.shape[0], 1)), np.cumsum(pieces, axis=1)], axis=1)
+
+
+def _every_run_by_spline(n: np.ndarray, e: np.ndarray, time: Any,
+                         until: Any) -> np.ndarray | None:
+    """:func:`distance_until` of the usual case, every run finite and the times valid (one
+    compiled pass checks both, :func:`_times_and_tracks`): the same steps and numbers, without
+    the array checks and the two concatenations; None otherwise (the general form then checks,
+    raises or takes the chords as before)."""
+    if time is None or n.ndim != 2 or n.shape != e.shape or n.shape[1] < 4:
+        return None
+    t = np.asarray(time, dtype=float)
+    if t.ndim != 1 or t.size != n.shape[1]:
+        return None
+    t = np.ascontiguousarray(t)
+    h = np.empty(t.size - 1)
+    if _times_and_tracks(t, n, e, h):
+        return None
+    nodes, weights = _gauss3()
+    wanted = (np.full(n.shape[0], n.shape[1] - 1, dtype=np.int64) if until is None
+              else np.ascontiguousarray(np.asarray(until, dtype=np.int64)))
+    width = (t.size - 1 if until is None or not wanted.size
+             else int(min(t.size - 1, max(int(wanted.max()), 0))))
+    speed = np.empty((width, nodes.size, n.shape[0]))
+    if _gauss_speeds(t, np.ascontiguousarray(n), np.ascontiguousarray(e), nodes, wanted, speed):
+        return None  # pragma: no cover - h > 0 (the general form raises)
+    arc = 0.5 * h[:width] * (speed.transpose(2, 0, 1) @ weights)  # (as distance_until)
+    out = np.zeros((n.shape[0], t.size))
+    np.cumsum(arc, axis=1, out=out[:, 1:width + 1])  # (the pieces beyond ``width`` are 0:
+    out[:, width + 1:] = out[:, width:width + 1]     # their sums stay the last one)
+    return out
+
+
+@njit(cache=True, nogil=True)
+def _times_and_tracks(t: np.ndarray, north: np.ndarray, east: np.ndarray,
+                      h: np.ndarray) -> int:  # pragma: no cover - compiled
+    """0 if the times ``t`` are finite and strictly increasing and every position finite
+    (``h`` then holds the steps t[i+1] − t[i], as ``np.diff``), else 1."""
+    for i in range(t.size):
+        if not np.isfinite(t[i]):
+            return 1
+    for i in range(t.size - 1):
+        h[i] = t[i + 1] - t[i]
+        if not h[i] > 0:
+            return 1
+    for r in range(north.shape[0]):
+        for j in range(north.shape[1]):
+            if not (np.isfinite(north[r, j]) and np.isfinite(east[r, j])):
+                return 1
+    return 0

@@ -58,6 +58,7 @@ from .common import (
 from .ships import steady_yaw_rates, yaw_lag
 from .result import ManeuverResult
 from .track import distance_until, track_distance
+from .turning_kernels import _event_nodes, _steady_ends
 
 __all__ = ["turning_circle", "track_distance", "default_record_every", "SAMPLES_PER_LENGTH"]
 
@@ -167,13 +168,13 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
                     or "roll_angle" in plan.model.output_labels
                     or "roll_angle" in plan.model.state_labels
                     else min(default_record_every(  # (of the runs that run)
-                        float(dt), plan.run_lengths()[plan.run_ok],
-                        np.array([a.speed for a in approaches])[plan.run_ok]),
+                        float(dt), *_of_runs_that_run(plan, plan.run_lengths(),
+                                                      [a.speed for a in approaches])),
                         # (a t_final shorter than one default sample: every step; it was
                         # "`controller_dt` = 0.25 s exceeds t_final", an option never given)
                         max(1, int(round(float(t_final) / float(dt))))))
 
-    x0 = np.stack([a.state for a in approaches])
+    x0 = np.array([a.state for a in approaches], dtype=float)  # (as np.stack: (runs, states))
     rudder0 = np.array([[a.rudder] for a in approaches])
     orders = plan.run_values("side") * plan.run_values("rudder")
     reference: dict[str, Any] = {"rudder_command": orders.reshape(-1, 1, 1)}
@@ -186,6 +187,15 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
     metrics = _metrics(plan, result)
     return ManeuverResult("turning-circle", metrics, tuple(plan.ships), result,
                           lambda: plan.runs_dataset(result))
+
+
+def _of_runs_that_run(plan: Plan, lengths: np.ndarray, speeds: list[float]
+                      ) -> tuple[np.ndarray, np.ndarray]:
+    """The runs' lengths and approach speeds, of the runs with an approach only (all of
+    them, without a boolean selection, when every approach was found)."""
+    if not plan.failed:
+        return lengths, np.array(speeds)
+    return lengths[plan.run_ok], np.array(speeds)[plan.run_ok]
 
 
 #: Recorded samples per ship length travelled at the approach speed, by default.
@@ -288,11 +298,39 @@ def _cubic_crossings(times: np.ndarray, change: np.ndarray, levels: np.ndarray,
     vander = s_nodes[..., None] ** _POWERS  # (levels, runs, 4 nodes, 4 powers)
     if not good.all():  # (every event inside the record: no placeholder to set)
         vander[~good] = np.eye(4)  # (placeholders: never used)
-    coef = np.linalg.solve(vander, c_nodes[..., None])[..., 0]  # power coefficients
+    coef = _solve(vander, c_nodes[..., None])[..., 0]  # power coefficients
     _newton(np.ascontiguousarray(coef), levels, s)
     powers = s[..., None] ** _POWERS
-    weights = np.linalg.solve(np.swapaxes(vander, -1, -2), powers[..., None])[..., 0]
-    return j0, np.where(good[..., None], weights, np.nan)
+    weights = _solve(np.swapaxes(vander, -1, -2), powers[..., None])[..., 0]
+    return j0, weights if good.all() else np.where(good[..., None], weights, np.nan)
+
+
+def _solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``np.linalg.solve(a, b)`` of stacked real 4 × 4 systems (float64, b of shape
+    (..., 4, 1)): the LAPACK ``gesv`` gufunc that ``np.linalg.solve`` calls, called directly
+    (its argument checks and error state cost ten times the solves of a turning circle's
+    three events, issue 46 item 6); the same numbers. Where that gufunc is not found, or a
+    system is singular (a NaN in the solution: the nodes are distinct times, so never in a
+    manoeuvre), ``np.linalg.solve`` itself, which raises ``LinAlgError`` as before."""
+    if _GESV is not None and a.dtype == np.float64 and b.dtype == np.float64:
+        with np.errstate(all="ignore"):  # (as np.linalg.solve, without its raising call)
+            out = _GESV(a, b, signature="dd->d")
+        if np.isfinite(out).all():
+            return out
+    return np.linalg.solve(a, b)
+
+
+def _gesv() -> Any:
+    """numpy's stacked ``solve`` gufunc (None where this numpy does not have it)."""
+    try:
+        from numpy.linalg import _umath_linalg
+    except ImportError:  # pragma: no cover - another numpy
+        return None
+    gufunc = getattr(_umath_linalg, "solve", None)
+    return gufunc if isinstance(gufunc, np.ufunc) else None
+
+
+_GESV = _gesv()
 
 
 @njit(cache=True, nogil=True)
@@ -401,17 +439,16 @@ def _event_values(north: np.ndarray, east: np.ndarray, psi: np.ndarray, times: n
         dn, de = north - n0, east - e0
         return np.stack([dn * c0 + de * s0, np.abs(-dn * s0 + de * c0), times, dist])
 
-    if north.shape[1] < 4 or not ((k >= 0) & np.isfinite(weights[..., 0])).all():
-        # (an event without a cubic: the linear fallback needs the whole record anyway)
+    if north.shape[1] < 4:
         return _at_cubic(full(), k, w, j0, weights)
-    idx = j0[..., None] + _POWERS  # (levels, runs, 4 nodes)
-    rows = np.arange(north.shape[0])[None, :, None]
-    buf = np.empty(idx.shape + (4,))  # (levels, runs, nodes, signals)
-    dn, de = north[rows, idx] - n0, east[rows, idx] - e0
-    buf[..., 0] = dn * c0 + de * s0
-    buf[..., 1] = np.abs(-dn * s0 + de * c0)
-    buf[..., 2] = times[rows, idx]
-    buf[..., 3] = dist[rows, idx]
+    buf = np.empty(k.shape + (4, 4))  # (levels, runs, nodes, signals)
+    found = _event_nodes(north, east, np.ascontiguousarray(times, dtype=float),
+                         np.ascontiguousarray(dist, dtype=float), k, j0,
+                         np.ascontiguousarray(weights), c0[:, 0].copy(), s0[:, 0].copy(), buf)
+    if found == 0:  # (an event without a cubic: the linear fallback needs the whole record)
+        return _at_cubic(full(), k, w, j0, weights)
+    if found == 2:  # (every weight finite, every event reached: _weigh's first path)
+        return np.einsum("slrj,lrj->slr", buf.transpose(3, 0, 1, 2), weights)
     return _weigh(buf.transpose(3, 0, 1, 2), k, w, weights, full)
 
 
@@ -426,9 +463,11 @@ def _metrics(plan: Plan, result: Any) -> Any:
     t = result.time
     north, east, psi = result["north"], result["east"], result["heading"]
     change = np.abs(psi - psi[:, :1])
-    times = np.broadcast_to(t, psi.shape)
+    # (one run: the time row itself, contiguous; a batch: broadcast, then a contiguous copy)
+    times = t.reshape(1, -1) if psi.shape[0] == 1 else np.broadcast_to(t, psi.shape)
     k, w = _crossings(change, _LEVELS)
-    j0, weights = _cubic_crossings(np.ascontiguousarray(times), change, _LEVELS, k, w)
+    times = np.ascontiguousarray(times)
+    j0, weights = _cubic_crossings(times, change, _LEVELS, k, w)
     # the distance along the track is read at the 10 deg event only (its four samples j0..)
     dist = distance_until(north, east, t, until=j0[2] + 3)
     # every signal at every event (a few are not needed: all cost one gather)
@@ -450,21 +489,17 @@ def _metrics(plan: Plan, result: Any) -> Any:
     length = plan.run_lengths()
     steady_r = r[:, -1]
     steady_U = speed[:, -1]
-    radius = np.where(steady_r != 0.0, steady_U / np.abs(steady_r), np.inf)
-    # steady: |r| changed by <= 1 % since the last sample 90 deg of heading before the end
-    back = change <= change[:, -1:] - 0.5 * math.pi
-    last_back = back.shape[1] - 1 - np.argmax(back[:, ::-1], axis=1)
-    r_back = r[np.arange(n), last_back]
-    with np.errstate(invalid="ignore"):
-        steady = (back.any(axis=1) & np.isfinite(steady_r)
-                  & (np.abs(steady_r - r_back) <= 0.01 * np.abs(steady_r)))
+    # the radius U/|r| (inf where r = 0), and steady: |r| changed by <= 1 % since the last
+    # sample 90 deg of heading before the end
+    radius, steady = np.empty(n), np.empty(n, dtype=np.bool_)
+    _steady_ends(change, r, speed, radius, steady)
     status = result.messages()
     reached = ~np.isnan(time_10) & ~np.isnan(time_90) & ~np.isnan(time_180)
     # complete: every event reached and the run went well (most runs: nothing more to say,
     # their message set for all at once; the loop below is over the others only)
     complete = reached & np.array([m == "ok" for m in status], dtype=bool)
     messages = ["ok" if steady_i else _NOT_STEADY for steady_i in steady.tolist()]
-    for i in np.flatnonzero(~complete).tolist():
+    for i in ([] if complete.all() else np.flatnonzero(~complete).tolist()):
         missing = [f"{name} heading change" for name, value in
                    (("10 deg", time_10[i]), ("90 deg", time_90[i]), ("180 deg", time_180[i]))
                    if np.isnan(value)]
