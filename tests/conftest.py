@@ -264,8 +264,10 @@ def _docs(group: str) -> str:
 #: module's tests) of the fresh-clone run of 2026-12-02 06:00 with
 #: ``SEAHELM_TEST_COMPILE_TIMES`` (:class:`CompileTimes`), where that run had reached the
 #: module; else the 30 slowest durations of the run before, summed per entry.
-#: tests/test_dp_observer.py is its module fixture (84 s CPU) scaled to the wall time it took
-#: (133 s at 115 s CPU). The docs-command groups (one test per file then: getting-started.rst
+#: tests/test_dp_observer.py is its module measured in empty caches on 2026-12-02 14:30 (129 s
+#: CPU) less the kernel it now shares with examples/supply_dp_observer_waves.toml (87 s, compiled
+#: by test_scenario.py, which it follows); tests/test_environment_first_order.py less the 7 s
+#: its variance test no longer takes. The docs-command groups (one test per file then: getting-started.rst
 #: 142 s, README.md 65 s) are CPU seconds of their commands in an empty cache: ``seahelm imo``'s
 #: IMO kernels 63 s, then each command that reuses them 2 to 7 s. Only the order of the run
 #: depends on them: a wrong or missing figure costs time, not a test.
@@ -282,7 +284,7 @@ LONG_MODULES: dict[str, float] = {
     "tests/test_benchmarks_quick.py": 187.1,
     "tests/test_simulation_integrators.py": 118.9,
     "tests/test_scenario.py": 106.1,
-    "tests/test_dp_observer.py": 97.0,
+    "tests/test_dp_observer.py": 45.0,
     "tests/test_first_order_in_loop.py": 63.8,
     "tests/test_cli_stop_signals.py": 59.7,
     "tests/test_analysis_maneuvers_constant_speed.py": 38.8,
@@ -294,7 +296,7 @@ LONG_MODULES: dict[str, float] = {
     "tests/test_control_final_state.py": 21.5,
     "tests/test_sweep_dask.py": 20.7,
     "tests/test_simulation_batch.py": 20.5,
-    "tests/test_environment_first_order.py": 19.9,
+    "tests/test_environment_first_order.py": 13.0,
     "tests/test_control_state_space.py": 18.4,
     "tests/test_control_path_following.py": 17.4,
     "tests/test_studies_lvov2014.py": 16.5,
@@ -324,6 +326,14 @@ FOLLOWERS: dict[str, tuple[str, ...]] = {
     # the Esso Osaka with Fujiwara's wind loads from the measured wind (a replay there, an MMG
     # fit here): one kernel, 26 s CPU to compile, that only these two modules use
     "tests/test_reversals.py": ("tests/test_mmg_multi_record.py",),
+    # the supply vessel's DP loops in waves: examples/supply_dp_observer_waves.toml's kernel
+    # (dp-pid-observer, the sea's mean loads and first-order motions, the sensors) is the one of
+    # test_dp_observer's observer runs and test_sensor_stage's stepping test; dp-pid with the
+    # first-order motions and sensors is test_sensor_stage's, test_sensor_defaults' and
+    # test_restart_clock_time_varying's (each ~40-60 s CPU to compile in a fresh clone)
+    "tests/test_scenario.py": ("tests/test_dp_observer.py", "tests/test_sensor_stage.py",
+                               "tests/test_sensor_defaults.py",
+                               "tests/test_restart_clock_time_varying.py"),
 }
 
 

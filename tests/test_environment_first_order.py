@@ -133,10 +133,14 @@ def test_irregular_sea_variance_within_the_sampling_error(rao, sea, spread):
     """E[η²] over a record = Σ E[a_i²|H_i|²]/2 = ∫|H|²S dω exactly (frequencies uniform in
     their bins, phases uniform): the mean over R independent runs of each run's mean square
     lies within 3 σ̂/√R of it, σ̂ the sample std of the per-run mean squares. (A short-crested
-    sea scatters more from run to run, one random direction per component: more components.)"""
+    sea scatters more from run to run, one random direction per component: more components.)
+    Sampled every 0.5 s: the expectation holds at any sampling, and the encounter frequencies
+    (|ω_e| ≤ ω + ω²U/g < 4.9 rad/s for the band to 2 rad/s at 7 m/s) are below Nyquist's
+    6.3 rad/s, so the per-run mean squares are those of the 0.1 s record (measured: the same
+    z-scores and bounds to 3 digits, at a fifth of the 7 s CPU the two cases took)."""
     R = 48
     eps = math.radians(60.0)
-    m = first_order_motions(straight(R), sea, rao, wave_direction=math.pi + eps, seed=11,
+    m = first_order_motions(straight(R, dt=0.5), sea, rao, wave_direction=math.pi + eps, seed=11,
                             n_components=64 if spread is None else 256,
                             spreading=None if spread is None else "cos-2s",
                             spreading_parameter=spread or 2.0)

@@ -18,7 +18,7 @@ from seahelm.simulation.sensor_stage import PositionSensors, sensor_noise
 from seahelm.simulation.stages import STAGES
 from seahelm.simulation.stepping import Simulator
 
-from test_dp_observer import NOISE, SHIP, dp_problem, observer_params
+from test_dp_observer import NOISE, SHIP, dp_problem, observer_params, sea_problem
 
 
 def _same(a, b):
@@ -73,8 +73,9 @@ def test_a_batch_equals_its_runs_one_by_one():
 
 def test_stepping_equals_the_whole_horizon():
     """The observer's loop stepped one controller interval at a time gives simulate's values
-    bit for bit (the noise is a function of the step, not a stream)."""
-    problem = dp_problem(DP_PID_OBSERVER, observer_params(), runs=2, seed=[4, 5], t_final=30.0)
+    bit for bit (the noise is a function of the step, not a stream); in the sea of
+    examples/supply_dp_observer_waves.toml (its mean wave loads too: that example's kernel)."""
+    problem = sea_problem(DP_PID_OBSERVER, observer_params(), runs=2, seed=[4, 5], t_final=30.0)
     whole = simulate(problem)
     with Simulator(problem) as sim:
         sim.reset()
