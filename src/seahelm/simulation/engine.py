@@ -39,7 +39,7 @@ import functools
 import time as _time
 from collections.abc import Callable, Mapping, Sequence
 from types import ModuleType
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
@@ -49,6 +49,7 @@ from ..control.base import Controller
 from ..errors import ParameterError, SimulationDiverged
 from ..parameters import Params, as_records
 from ..resources import check_work
+from ..results import SimResult
 from ..vessels.base import VesselModel
 from .closed_loop import (  # noqa: F401 (the engine's names, as before the split)
     PYTHON_HEADER,
@@ -78,9 +79,6 @@ from .memory import (  # noqa: F401
 from .problem import Problem, jit_enabled
 from .stages import stages_of
 from .slicing import FIRST_SLICE, FIRST_SLICE_PYTHON, SLICE_SECONDS, _Slices, drive, quiet  # noqa: F401
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ..results import SimResult
 
 __all__ = ["RunStatus", "simulate", "compile_closed_loop", "STAGE_LOOP_ABOVE", "kernel_cache_dir",
            "jit_enabled",
@@ -238,8 +236,6 @@ def simulate(
     SimulationDiverged
         With ``throw=True``, when a run diverges.
     """
-    from .problem import Problem
-
     # the keyword form's arguments are Problem's fields, by name (no copy of the list: a
     # field added to Problem and to this signature is passed on; a test checks the two agree)
     arguments = locals()
@@ -434,10 +430,12 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
     cr = as_records(cp, c_cls)
     nz = z.shape[1]
     ncmd = len(wiring.commands) + len(controller.output_labels)  # outputs after commands
-    # every record_every-th step and the final one (the last interval may be shorter)
-    n_rec = n_steps // record_every + 1 + (n_steps % record_every != 0)
-    check_record_memory(n_runs, n_rec, nz + len(out_labels) + ncmd
-                         + len(wiring.references) + len(dist_labels))
+    # every record_every-th step and the final one (the last interval may be shorter); the
+    # channels are the early check's, so only more runs (a reference's or disturbance's) than
+    # it counted need another look
+    n_rec = n_rec_early
+    if n_runs != n_runs_early:
+        check_record_memory(n_runs, n_rec, channels_early)
     cs = np.zeros((n_runs, max(controller.n_states, 1)))
     cmd = np.zeros((n_runs, ncmd))
     ca = np.zeros((n_runs, max(len(wiring.actuator_commands), 1)))
@@ -484,8 +482,6 @@ def _nans(shape: tuple[int, ...]) -> np.ndarray:
 def _result(batch: Batch, *, wall: float, compile_time: float, throw: bool,
             metadata: Mapping[str, Any] | None = None) -> "SimResult":
     """The result of a batch's recordings (:meth:`Batch.result`)."""
-    from ..results import SimResult
-
     problem, info = batch.problem, batch.info
     model, actuator, controller = problem.model, problem.actuator, problem.controller
     seed = problem.seed

@@ -15,6 +15,7 @@ from concurrent.futures import ThreadPoolExecutor
 from types import ModuleType
 from typing import Any
 
+import numba
 import numpy as np
 
 from .kernel_args import KernelArrays
@@ -69,8 +70,6 @@ class _Slices:
                  scratch_sizes: tuple[int, ...], threads: int | None = None,
                  stage_scratch: Callable[[], tuple[Any, ...]] = tuple,
                  keep_pool: bool = False) -> None:
-        import numba
-
         self.kernel = kernel
         n_runs = arrays.n_runs
         # numba types a read-only array apart from a writable one: a kernel called with both
