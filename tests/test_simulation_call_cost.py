@@ -64,3 +64,49 @@ def test_more_runs_from_the_reference_than_counted_early_are_still_checked(monke
     assert problem.n_steps == 1000
     with pytest.raises(RecordingTooLarge, match="400 run"):
         simulate(Problem(**kw, reference=ref))
+
+
+# one reduction for the angle checks: the errors the two passes gave, in their order
+ANGLE_LABELS = ("heading", "rudder_command", "surge_force", "rudder_2")
+ANGLE_UNITS = ("rad", "rad", "N", "rad")
+
+
+def _check(values):
+    from seahelm.simulation.inputs import _check_angles
+
+    _check_angles("reference", np.asarray(values, dtype=float), ANGLE_LABELS, ANGLE_UNITS)
+
+
+def test_angles_within_range_pass_and_forces_are_not_angles():
+    _check([[[-6e3, 1.5, 1e9, -1.5]]])
+    _check(np.zeros((3, 5, 4)))
+
+
+def test_a_rudder_beyond_a_right_angle_is_named_before_a_heading_of_many_turns():
+    with pytest.raises(Exception, match=r"channel 'rudder_command' reaches 2 rad \(114\.592 deg\)"):
+        _check([[[1e5, 2.0, 0.0, 0.0]]])
+
+
+def test_the_second_rudder_channel_and_the_largest_magnitude_over_runs_and_time():
+    values = np.zeros((2, 3, 4))
+    values[1, 2, 3] = -1.75
+    values[0, 1, 3] = 1.7
+    with pytest.raises(Exception, match=r"channel 'rudder_2' reaches 1\.75 rad"):
+        _check(values)
+
+
+def test_a_heading_of_many_turns_is_named():
+    from seahelm.errors import ParameterError
+
+    with pytest.raises(ParameterError, match=r"channel 'heading' reaches 20000 rad, more than a "
+                                             r"thousand turns") as err:
+        _check([[[-2e4, 0.1, 0.0, 0.0]]])
+    assert err.value.field == "reference" and err.value.value == 2e4
+
+
+def test_a_signal_with_fewer_channels_than_labels_checks_those_it_has():
+    from seahelm.simulation.inputs import _check_angles
+
+    _check_angles("reference", np.array([[[0.1]]]), ANGLE_LABELS, ANGLE_UNITS)
+    with pytest.raises(Exception, match="'heading' reaches"):
+        _check_angles("reference", np.array([[[1e5]]]), ANGLE_LABELS, ANGLE_UNITS)

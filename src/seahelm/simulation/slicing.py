@@ -275,4 +275,7 @@ def drive(slices: _Slices, n_steps: int, dt: float, ctrl_every: int, record_ever
 def quiet(jit: bool) -> Any:
     """The pure-Python loop's numpy scalars warn where the compiled loop silently makes
     inf/NaN (then recorded as the run's divergence, as compiled): silenced."""
-    return contextlib.nullcontext() if jit else np.errstate(all="ignore")
+    return _NULL_CONTEXT if jit else np.errstate(all="ignore")
+
+
+_NULL_CONTEXT = contextlib.nullcontext()  # (stateless, so one serves every call)
