@@ -170,8 +170,12 @@ def _check_angles(name: str, values: np.ndarray, labels: tuple[str, ...],
     rad = [j for j in range(n) if units[j] == "rad"]
     if not rad:
         return
-    # each channel's largest magnitude (the same numbers as channel by channel: max is exact)
-    worst_of = np.abs(values.reshape(-1, values.shape[-1])).max(axis=0).tolist()
+    # each angle channel's largest magnitude, once (a set-point, one sample a channel, as
+    # Python floats: the same numbers without a reduction)
+    if values.size == values.shape[-1]:
+        worst_of = [abs(v) for v in values.ravel().tolist()]
+    else:
+        worst_of = {j: float(np.abs(values[..., j]).max()) for j in rad}
     for j in rad:
         if labels[j].startswith("rudder") and worst_of[j] > MAX_RUDDER_ANGLE:
             raise _rudder_error(name, labels[j], worst_of[j])
