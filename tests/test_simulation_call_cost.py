@@ -110,3 +110,20 @@ def test_a_signal_with_fewer_channels_than_labels_checks_those_it_has():
     _check_angles("reference", np.array([[[0.1]]]), ANGLE_LABELS, ANGLE_UNITS)
     with pytest.raises(Exception, match="'heading' reaches"):
         _check_angles("reference", np.array([[[1e5]]]), ANGLE_LABELS, ANGLE_UNITS)
+
+
+@pytest.mark.parametrize("extra", [{"dt": 0.1}, {"reference": np.array([0.1, 0.2])},
+                                   {"x0": np.zeros((2, 3))}, {"throw": True, "sensors": 0}])
+def test_a_problem_and_a_keyword_argument_are_refused(extra):
+    # simulate(problem) skips the keyword form's bookkeeping; anything else given with it,
+    # an array too (no truth value asked of it), is still refused, naming it
+    from seahelm.errors import ParameterError
+    from seahelm.simulation.engine import simulate
+    from seahelm.simulation.problem import Problem
+
+    problem = Problem(ship="mariner-nonlinear", t_final=1.0, dt=0.5)
+    name = next(k for k in extra if k != "throw")
+    with pytest.raises(ParameterError, match=f"not both \\(got {name}\\)") as err:
+        simulate(problem, **extra)
+    assert err.value.field == name
+    assert simulate(problem, throw=True).ok.all()  # (throw and progress are not fields)

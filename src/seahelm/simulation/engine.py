@@ -36,6 +36,8 @@ from __future__ import annotations
 import dataclasses
 import enum
 import functools
+import itertools
+import operator
 import time as _time
 from collections.abc import Callable, Mapping, Sequence
 from types import ModuleType
@@ -239,6 +241,9 @@ def simulate(
     # the keyword form's arguments are Problem's fields, by name (no copy of the list: a
     # field added to Problem and to this signature is passed on; a test checks the two agree)
     arguments = locals()
+    if isinstance(model, Problem) and not any(map(operator.is_not, _keyword_values()(arguments),
+                                                  itertools.repeat(None))):
+        return _run(model, throw=throw, progress=progress)  # (a problem alone: the usual call)
     given = {name: arguments[name] for name in _keyword_fields()
              if arguments[name] is not None}
     if model is not None and not isinstance(model, (Problem, VesselModel)):
@@ -273,6 +278,13 @@ def _keyword_fields() -> tuple[str, ...]:
     taken = inspect.signature(simulate).parameters
     return tuple(f.name for f in dataclasses.fields(Problem)
                  if f.name in taken and f.name != "model")
+
+
+@functools.cache
+def _keyword_values() -> Callable[[Mapping[str, Any]], tuple[Any, ...]]:
+    """The values of :func:`_keyword_fields` from :func:`simulate`'s arguments, as a tuple
+    (``operator.itemgetter``: one C call, not a dictionary built a name at a time)."""
+    return operator.itemgetter(*_keyword_fields())
 
 
 def _run(problem: "Problem", *, throw: bool,
