@@ -485,8 +485,11 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
 
 
 def _rows_2d(a: np.ndarray) -> np.ndarray:
-    """``np.atleast_2d(a)``, a 2-D array as it is (numpy's function costs a µs a call)."""
-    return a if a.ndim == 2 else np.atleast_2d(a)
+    """``np.atleast_2d(a)``: a 2-D array as it is, a 1-D one as its view ``a[None, :]`` (what
+    numpy's function returns, without its µs a call)."""
+    if a.ndim == 2:
+        return a
+    return a[None, :] if a.ndim == 1 else np.atleast_2d(a)
 
 
 def _nans(shape: tuple[int, ...]) -> np.ndarray:

@@ -180,6 +180,13 @@ class _Slices:
         a = self.arrays
         run_slice = self.kernel.run_slice
         out = self._no_out if out is None else out
+        if self.threads == 1 and len(self.bounds) == 1:
+            # (one slice in the calling thread, a single run's: the call, no closure around it)
+            i0, i1 = self.bounds[0]
+            run_slice(i0, i1, k_start, k_stop, n_steps, dt, ctrl_every, rec_every, external,
+                      a.state, a.params, a.signals, a.outcome, a.record, a.stages,
+                      self.scratch[0], self.stage_scratch[0], out)
+            return
 
         def one(s: int) -> None:
             i0, i1 = self.bounds[s]
