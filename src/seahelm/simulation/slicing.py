@@ -79,10 +79,11 @@ class _Slices:
         self.threads = 1 if n_runs <= 1 else max(1, min(
             numba.get_num_threads() if threads is None else threads, n_runs))
         n_slices = 1 if self.threads == 1 else min(n_runs, 4 * self.threads)
-        self.cuts = (np.array([0, n_runs]) if n_slices == 1 else
-                     np.linspace(0, n_runs, n_slices + 1).round().astype(np.int64))
-        self.bounds = ([(0, n_runs)] if n_slices == 1 else
-                       [(int(self.cuts[s]), int(self.cuts[s + 1])) for s in range(n_slices)])
+        if n_slices == 1:
+            self.bounds = [(0, n_runs)]
+        else:
+            cuts = np.linspace(0, n_runs, n_slices + 1).round().astype(np.int64).tolist()
+            self.bounds = [(cuts[s], cuts[s + 1]) for s in range(n_slices)]
         # (the buffers of a finished batch of the same kernel and sizes, zeroed, or fresh:
         # making the two dozen views costs some 20 µs, a tenth of a short run; the stages'
         # buffers, sized by the problem, are made fresh)
