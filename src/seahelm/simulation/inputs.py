@@ -164,8 +164,8 @@ def _check_angles(name: str, values: np.ndarray, labels: tuple[str, ...],
                   units: tuple[str, ...]) -> None:
     """Angle channels ([rad]) of a signal within ±:data:`MAX_ANGLE` (rudders within
     ±:data:`MAX_RUDDER_ANGLE`, :func:`check_rudder_angles`): every rudder channel first,
-    then every angle, as the two checks one after the other (one reduction of the signal
-    here, not one per angle channel and another per rudder)."""
+    then every angle, as the two checks one after the other (each angle channel's magnitude
+    found once, not again for the rudder check)."""
     n = min(len(labels), len(units), values.shape[-1])
     rad = [j for j in range(n) if units[j] == "rad"]
     if not rad:
