@@ -36,10 +36,12 @@ from __future__ import annotations
 import dataclasses
 import enum
 import functools
+import itertools
+import operator
 import time as _time
 from collections.abc import Callable, Mapping, Sequence
 from types import ModuleType
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
@@ -49,6 +51,7 @@ from ..control.base import Controller
 from ..errors import ParameterError, SimulationDiverged
 from ..parameters import Params, as_records
 from ..resources import check_work
+from ..results import SimResult
 from ..vessels.base import VesselModel
 from .closed_loop import (  # noqa: F401 (the engine's names, as before the split)
     PYTHON_HEADER,
@@ -78,9 +81,6 @@ from .memory import (  # noqa: F401
 from .problem import Problem, jit_enabled
 from .stages import stages_of
 from .slicing import FIRST_SLICE, FIRST_SLICE_PYTHON, SLICE_SECONDS, _Slices, drive, quiet  # noqa: F401
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ..results import SimResult
 
 __all__ = ["RunStatus", "simulate", "compile_closed_loop", "STAGE_LOOP_ABOVE", "kernel_cache_dir",
            "jit_enabled",
@@ -238,11 +238,12 @@ def simulate(
     SimulationDiverged
         With ``throw=True``, when a run diverges.
     """
-    from .problem import Problem
-
     # the keyword form's arguments are Problem's fields, by name (no copy of the list: a
     # field added to Problem and to this signature is passed on; a test checks the two agree)
     arguments = locals()
+    if isinstance(model, Problem) and not any(map(operator.is_not, _keyword_values()(arguments),
+                                                  itertools.repeat(None))):
+        return _run(model, throw=throw, progress=progress)  # (a problem alone: the usual call)
     given = {name: arguments[name] for name in _keyword_fields()
              if arguments[name] is not None}
     if model is not None and not isinstance(model, (Problem, VesselModel)):
@@ -277,6 +278,13 @@ def _keyword_fields() -> tuple[str, ...]:
     taken = inspect.signature(simulate).parameters
     return tuple(f.name for f in dataclasses.fields(Problem)
                  if f.name in taken and f.name != "model")
+
+
+@functools.cache
+def _keyword_values() -> Callable[[Mapping[str, Any]], tuple[Any, ...]]:
+    """The values of :func:`_keyword_fields` from :func:`simulate`'s arguments, as a tuple
+    (``operator.itemgetter``: one C call, not a dictionary built a name at a time)."""
+    return operator.itemgetter(*_keyword_fields())
 
 
 def _run(problem: "Problem", *, throw: bool,
@@ -368,12 +376,12 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
     mp, m_cls = _param_rows("params", params, model.params_type)
     ap, a_cls = _param_rows("actuator_params", actuator_params, actuator.params_type)
     cp, c_cls = _param_rows("controller_params", controller_params, controller.params_type)
-    x0 = np.atleast_2d(as_float_array("x0", x0))
+    x0 = _rows_2d(as_float_array("x0", x0))
     if x0.shape[-1] != model.n_states or x0.ndim != 2:
         raise ParameterError(
             f"must have {model.n_states} states ({', '.join(model.state_labels)}), "
             f"got shape {x0.shape}", field="x0")
-    xa0 = np.zeros((1, actuator.n_states)) if actuator_x0 is None else np.atleast_2d(
+    xa0 = np.zeros((1, actuator.n_states)) if actuator_x0 is None else _rows_2d(
         as_float_array("actuator_x0", actuator_x0)
     )
     if xa0.shape[-1] != actuator.n_states:
@@ -434,10 +442,12 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
     cr = as_records(cp, c_cls)
     nz = z.shape[1]
     ncmd = len(wiring.commands) + len(controller.output_labels)  # outputs after commands
-    # every record_every-th step and the final one (the last interval may be shorter)
-    n_rec = n_steps // record_every + 1 + (n_steps % record_every != 0)
-    check_record_memory(n_runs, n_rec, nz + len(out_labels) + ncmd
-                         + len(wiring.references) + len(dist_labels))
+    # every record_every-th step and the final one (the last interval may be shorter); the
+    # channels are the early check's, so only more runs (a reference's or disturbance's) than
+    # it counted need another look
+    n_rec = n_rec_early
+    if n_runs != n_runs_early:
+        check_record_memory(n_runs, n_rec, channels_early)
     cs = np.zeros((n_runs, max(controller.n_states, 1)))
     cmd = np.zeros((n_runs, ncmd))
     ca = np.zeros((n_runs, max(len(wiring.actuator_commands), 1)))
@@ -474,6 +484,14 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
                        "ctrl_dt": ctrl_dt, "stages": stages, "stage_params": result_params})
 
 
+def _rows_2d(a: np.ndarray) -> np.ndarray:
+    """``np.atleast_2d(a)``: a 2-D array as it is, a 1-D one as its view ``a[None, :]`` (what
+    numpy's function returns, without its µs a call)."""
+    if a.ndim == 2:
+        return a
+    return a[None, :] if a.ndim == 1 else np.atleast_2d(a)
+
+
 def _nans(shape: tuple[int, ...]) -> np.ndarray:
     """An array of NaN, as ``np.full(shape, np.nan)`` (which costs some µs more a call)."""
     out = np.empty(shape)
@@ -484,8 +502,6 @@ def _nans(shape: tuple[int, ...]) -> np.ndarray:
 def _result(batch: Batch, *, wall: float, compile_time: float, throw: bool,
             metadata: Mapping[str, Any] | None = None) -> "SimResult":
     """The result of a batch's recordings (:meth:`Batch.result`)."""
-    from ..results import SimResult
-
     problem, info = batch.problem, batch.info
     model, actuator, controller = problem.model, problem.actuator, problem.controller
     seed = problem.seed
@@ -517,10 +533,10 @@ def _result(batch: Batch, *, wall: float, compile_time: float, throw: bool,
         command=rec_cmd,
         command_labels=wiring.commands + controller.output_labels,
         command_units=wiring.command_units + controller.output_units,
-        reference=ref[:, ref_idx] if ref.shape[1] > 1 else np.repeat(ref, n_rec, axis=1),
+        reference=ref[:, ref_idx] if ref.shape[1] > 1 else ref.repeat(n_rec, axis=1),
         reference_labels=wiring.references,
         reference_units=wiring.reference_units,
-        disturbance=dist[:, ref_idx] if dist.shape[1] > 1 else np.repeat(dist, n_rec, axis=1),
+        disturbance=dist[:, ref_idx] if dist.shape[1] > 1 else dist.repeat(n_rec, axis=1),
         disturbance_labels=dist_labels,
         disturbance_units=dist_units,
         status=status,

@@ -163,16 +163,29 @@ MAX_ANGLE = 2000.0 * math.pi
 def _check_angles(name: str, values: np.ndarray, labels: tuple[str, ...],
                   units: tuple[str, ...]) -> None:
     """Angle channels ([rad]) of a signal within ±:data:`MAX_ANGLE` (rudders within
-    ±:data:`MAX_RUDDER_ANGLE`, :func:`check_rudder_angles`)."""
-    check_rudder_angles(name, values, labels, units)
-    for j, (label, unit) in enumerate(zip(labels, units)):
-        if unit == "rad" and j < values.shape[-1]:
-            worst = float(np.abs(values[..., j]).max())
-            if worst > MAX_ANGLE:
-                raise ParameterError(
-                    f": channel '{label}' reaches {worst:.6g} rad, more than a thousand turns "
-                    f"(±{MAX_ANGLE:.6g} rad); an angle is given in radians here (degrees in a "
-                    "scenario as <name>_deg)", field=name, unit="rad", value=worst)
+    ±:data:`MAX_RUDDER_ANGLE`, :func:`check_rudder_angles`): every rudder channel first,
+    then every angle, as the two checks one after the other (each angle channel's magnitude
+    found once, not again for the rudder check)."""
+    n = min(len(labels), len(units), values.shape[-1])
+    rad = [j for j in range(n) if units[j] == "rad"]
+    if not rad:
+        return
+    # each angle channel's largest magnitude, once (a set-point, one sample a channel, as
+    # Python floats: the same numbers without a reduction)
+    if values.size == values.shape[-1]:
+        worst_of = [abs(v) for v in values.ravel().tolist()]
+    else:
+        worst_of = {j: float(np.abs(values[..., j]).max()) for j in rad}
+    for j in rad:
+        if labels[j].startswith("rudder") and worst_of[j] > MAX_RUDDER_ANGLE:
+            raise _rudder_error(name, labels[j], worst_of[j])
+    for j in rad:
+        label, worst = labels[j], worst_of[j]
+        if worst > MAX_ANGLE:
+            raise ParameterError(
+                f": channel '{label}' reaches {worst:.6g} rad, more than a thousand turns "
+                f"(±{MAX_ANGLE:.6g} rad); an angle is given in radians here (degrees in a "
+                "scenario as <name>_deg)", field=name, unit="rad", value=worst)
 
 
 #: Largest rudder angle a command or reference may name [rad]: a right angle. No rudder turns
@@ -205,16 +218,25 @@ def check_rudder_angles(name: str, values: np.ndarray, labels: tuple[str, ...],
         if unit == "rad" and label.startswith("rudder") and j < values.shape[-1]:
             worst = float(np.abs(values[..., j]).max())
             if worst > MAX_RUDDER_ANGLE:  # (nan is not: callers name non-finite values)
-                raise ParameterError(
-                    f": channel '{label}' reaches {worst:.6g} rad ({math.degrees(worst):.6g} deg);"
-                    f" a rudder turns at most ±90 deg (±{MAX_RUDDER_ANGLE:.6g} rad). Angles are "
-                    f"radians here: {worst:.6g} deg is {math.radians(worst):.6g} rad "
-                    "(math.radians; degrees in a scenario as <name>_deg)",
-                    field=name, unit="rad", value=worst)
+                raise _rudder_error(name, label, worst)
+
+
+def _rudder_error(name: str, label: str, worst: float) -> ParameterError:
+    """The error of a rudder channel beyond ±:data:`MAX_RUDDER_ANGLE`
+    (:func:`check_rudder_angles`)."""
+    return ParameterError(
+        f": channel '{label}' reaches {worst:.6g} rad ({math.degrees(worst):.6g} deg);"
+        f" a rudder turns at most ±90 deg (±{MAX_RUDDER_ANGLE:.6g} rad). Angles are "
+        f"radians here: {worst:.6g} deg is {math.radians(worst):.6g} rad "
+        "(math.radians; degrees in a scenario as <name>_deg)",
+        field=name, unit="rad", value=worst)
 
 
 def _runs(*sizes: tuple[str, int]) -> int:
-    n = max(s for _, s in sizes)
+    n = sizes[0][1]  # (the largest; a loop, not max() of a generator: a step a size)
+    for _, s in sizes:
+        if s > n:
+            n = s
     for name, s in sizes:
         if s not in (1, n):
             others = ", ".join(f"{k}={v}" for k, v in sizes)

@@ -73,7 +73,17 @@ class KernelArrays:
         def mine(group: tuple[np.ndarray, ...]) -> tuple[np.ndarray, ...]:
             return tuple(a if a.flags.writeable else a.copy() for a in group)
 
-        if all(a.flags.writeable for a in self):  # (the engine's own arrays: as they are)
+        # (the engine's own arrays: as they are; a loop, not all() over the generator
+        # __iter__, which costs a generator step an array, twice, at every call)
+        for group in (self.state, self.params, self.signals, self.outcome, self.record,
+                      *self.stages):
+            for a in group:
+                if not a.flags.writeable:
+                    break
+            else:
+                continue
+            break
+        else:
             return self
         return KernelArrays(**{name: mine(getattr(self, name)) for name in GROUPS},
                             stages=tuple(mine(g) for g in self.stages),

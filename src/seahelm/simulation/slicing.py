@@ -15,6 +15,7 @@ from concurrent.futures import ThreadPoolExecutor
 from types import ModuleType
 from typing import Any
 
+import numba
 import numpy as np
 
 from .kernel_args import KernelArrays
@@ -69,8 +70,6 @@ class _Slices:
                  scratch_sizes: tuple[int, ...], threads: int | None = None,
                  stage_scratch: Callable[[], tuple[Any, ...]] = tuple,
                  keep_pool: bool = False) -> None:
-        import numba
-
         self.kernel = kernel
         n_runs = arrays.n_runs
         # numba types a read-only array apart from a writable one: a kernel called with both
@@ -80,10 +79,11 @@ class _Slices:
         self.threads = 1 if n_runs <= 1 else max(1, min(
             numba.get_num_threads() if threads is None else threads, n_runs))
         n_slices = 1 if self.threads == 1 else min(n_runs, 4 * self.threads)
-        self.cuts = (np.array([0, n_runs]) if n_slices == 1 else
-                     np.linspace(0, n_runs, n_slices + 1).round().astype(np.int64))
-        self.bounds = ([(0, n_runs)] if n_slices == 1 else
-                       [(int(self.cuts[s]), int(self.cuts[s + 1])) for s in range(n_slices)])
+        if n_slices == 1:
+            self.bounds = [(0, n_runs)]
+        else:
+            cuts = np.linspace(0, n_runs, n_slices + 1).round().astype(np.int64).tolist()
+            self.bounds = [(cuts[s], cuts[s + 1]) for s in range(n_slices)]
         # (the buffers of a finished batch of the same kernel and sizes, zeroed, or fresh:
         # making the two dozen views costs some 20 µs, a tenth of a short run; the stages'
         # buffers, sized by the problem, are made fresh)
@@ -181,6 +181,13 @@ class _Slices:
         a = self.arrays
         run_slice = self.kernel.run_slice
         out = self._no_out if out is None else out
+        if self.threads == 1 and len(self.bounds) == 1:
+            # (one slice in the calling thread, a single run's: the call, no closure around it)
+            i0, i1 = self.bounds[0]
+            run_slice(i0, i1, k_start, k_stop, n_steps, dt, ctrl_every, rec_every, external,
+                      a.state, a.params, a.signals, a.outcome, a.record, a.stages,
+                      self.scratch[0], self.stage_scratch[0], out)
+            return
 
         def one(s: int) -> None:
             i0, i1 = self.bounds[s]
@@ -276,4 +283,7 @@ def drive(slices: _Slices, n_steps: int, dt: float, ctrl_every: int, record_ever
 def quiet(jit: bool) -> Any:
     """The pure-Python loop's numpy scalars warn where the compiled loop silently makes
     inf/NaN (then recorded as the run's divergence, as compiled): silenced."""
-    return contextlib.nullcontext() if jit else np.errstate(all="ignore")
+    return _NULL_CONTEXT if jit else np.errstate(all="ignore")
+
+
+_NULL_CONTEXT = contextlib.nullcontext()  # (stateless, so one serves every call)

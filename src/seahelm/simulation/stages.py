@@ -35,5 +35,9 @@ def stages_of(problem: Any) -> tuple[Stage, ...]:
     -------
     tuple of Stage
     """
-    found = (cls.from_problem(problem) for cls in STAGES.values())
-    return tuple(stage for stage in found if stage is not None)
+    found = []  # (a loop: two generators cost a step each per stage at every call)
+    for cls in STAGES.values():
+        stage = cls.from_problem(problem)
+        if stage is not None:
+            found.append(stage)
+    return tuple(found)
