@@ -175,8 +175,14 @@ def _inline(func: Dispatcher, memo: dict[int, Any]) -> Dispatcher:
     return out
 
 
+#: Fields of a named tuple of indices above which an inlined copy reads it through a
+#: stand-in (:func:`_slim_index_tuples`); smaller ones cost the compile nothing measurable,
+#: and are not looked for (looking costs some 0.1 ms per function at every kernel import).
+SLIM_TUPLES_ABOVE = 64
+
+
 def _slim_index_tuples(code: types.CodeType, glb: dict[str, Any]) -> dict[str, Any]:
-    """Smaller stand-ins for the named tuples of integers (:func:`seahelm.parameters.
+    """Smaller stand-ins for the big named tuples of integers (:func:`seahelm.parameters.
     signal_indices`) that ``code`` reads fields of: each holds only the fields read, with
     their values.
 
@@ -187,8 +193,25 @@ def _slim_index_tuples(code: types.CodeType, glb: dict[str, Any]) -> dict[str, A
     LLVM's ``EarlyCSE`` pass spent most of the loop's compile on them. A stand-in with the
     fields read gives each read the same integer, so the compiled code computes the same.
     A tuple that ``code`` uses otherwise than by reading a field (``len``, indexing, passing
-    it on) is left as it is.
+    it on) is left as it is, and so is one of at most :data:`SLIM_TUPLES_ABOVE` fields.
     """
+    big = {name for name in _names(code)
+           if _is_index_tuple(glb.get(name)) and len(glb[name]) > SLIM_TUPLES_ABOVE}
+    if not big:
+        return {}
+    key = (code, tuple(sorted((name, id(glb[name])) for name in big)))
+    if key not in _SLIMMED:  # (reading a big function's bytecode takes some 30 ms)
+        _SLIMMED[key] = _slimmed(code, glb, big)
+    return dict(_SLIMMED[key])
+
+
+#: The stand-ins made, per code object and the tuples it reads (a process that builds several
+#: loops of one component reads its bytecode once); the tuples are kept alive by the keys'
+#: modules.
+_SLIMMED: dict[tuple[Any, ...], dict[str, Any]] = {}
+
+
+def _slimmed(code: types.CodeType, glb: dict[str, Any], big: set[str]) -> dict[str, Any]:
     reads: dict[str, set[str]] = {}
     whole: set[str] = set()
     codes = [code]
@@ -197,14 +220,11 @@ def _slim_index_tuples(code: types.CodeType, glb: dict[str, Any]) -> dict[str, A
         codes.extend(k for k in c.co_consts if isinstance(k, types.CodeType))
         ins = list(dis.get_instructions(c))
         for j, i in enumerate(ins):
-            if i.opname not in ("LOAD_GLOBAL", "LOAD_NAME", "LOAD_DEREF"):
-                continue
-            obj = glb.get(i.argval)
-            if not _is_index_tuple(obj):
+            if i.opname not in ("LOAD_GLOBAL", "LOAD_NAME", "LOAD_DEREF") or i.argval not in big:
                 continue
             nxt = ins[j + 1] if j + 1 < len(ins) else None
             if (i.opname == "LOAD_GLOBAL" and nxt is not None and nxt.opname == "LOAD_ATTR"
-                    and nxt.argval in obj._fields):
+                    and nxt.argval in glb[i.argval]._fields):
                 reads.setdefault(i.argval, set()).add(nxt.argval)
             else:
                 whole.add(i.argval)
@@ -214,9 +234,8 @@ def _slim_index_tuples(code: types.CodeType, glb: dict[str, Any]) -> dict[str, A
             continue
         obj = glb[name]
         kept = tuple(f for f in obj._fields if f in fields)
-        if len(kept) < len(obj._fields):
-            out[name] = collections.namedtuple(type(obj).__name__, kept)(
-                *(getattr(obj, f) for f in kept))
+        out[name] = collections.namedtuple(type(obj).__name__, kept)(
+            *(getattr(obj, f) for f in kept))
     return out
 
 
