@@ -25,6 +25,7 @@ components compute from them alone) out of the step loop.
 
 from __future__ import annotations
 
+import collections
 import dis
 import types
 from typing import Any
@@ -168,9 +169,81 @@ def _inline(func: Dispatcher, memo: dict[int, Any]) -> Dispatcher:
         obj = glb.get(name)
         if isinstance(obj, Dispatcher) and obj is not func:
             glb[name] = _inline(obj, memo)
+    glb.update(_slim_index_tuples(py.__code__, glb))
     out = njit(inline="always")(_copy(py, glb, py.__closure__))
     memo[key] = out
     return out
+
+
+#: Fields of a named tuple of indices above which an inlined copy reads it through a
+#: stand-in (:func:`_slim_index_tuples`); smaller ones cost the compile nothing measurable,
+#: and are not looked for (looking costs some 0.1 ms per function at every kernel import).
+SLIM_TUPLES_ABOVE = 64
+
+
+def _slim_index_tuples(code: types.CodeType, glb: dict[str, Any]) -> dict[str, Any]:
+    """Smaller stand-ins for the big named tuples of integers (:func:`seahelm.parameters.
+    signal_indices`) that ``code`` reads fields of: each holds only the fields read, with
+    their values.
+
+    numba freezes a global named tuple into the code as a constant, but it builds the whole
+    tuple, one ``insertvalue`` per field, wherever a field is read: the DP controllers' state
+    indices (5,153 fields, most of them the allocation's workspace) made 36,000 of the 41,000
+    LLVM instructions of the DP loop's ``init_runs`` and 20 MB of its ``run_slice``'s IR, and
+    LLVM's ``EarlyCSE`` pass spent most of the loop's compile on them. A stand-in with the
+    fields read gives each read the same integer, so the compiled code computes the same.
+    A tuple that ``code`` uses otherwise than by reading a field (``len``, indexing, passing
+    it on) is left as it is, and so is one of at most :data:`SLIM_TUPLES_ABOVE` fields.
+    """
+    big = {name for name in _names(code)
+           if _is_index_tuple(glb.get(name)) and len(glb[name]) > SLIM_TUPLES_ABOVE}
+    if not big:
+        return {}
+    key = (code, tuple(sorted((name, id(glb[name])) for name in big)))
+    if key not in _SLIMMED:  # (reading a big function's bytecode takes some 30 ms)
+        _SLIMMED[key] = _slimmed(code, glb, big)
+    return dict(_SLIMMED[key])
+
+
+#: The stand-ins made, per code object and the tuples it reads (a process that builds several
+#: loops of one component reads its bytecode once); the tuples are kept alive by the keys'
+#: modules.
+_SLIMMED: dict[tuple[Any, ...], dict[str, Any]] = {}
+
+
+def _slimmed(code: types.CodeType, glb: dict[str, Any], big: set[str]) -> dict[str, Any]:
+    reads: dict[str, set[str]] = {}
+    whole: set[str] = set()
+    codes = [code]
+    while codes:
+        c = codes.pop()
+        codes.extend(k for k in c.co_consts if isinstance(k, types.CodeType))
+        ins = list(dis.get_instructions(c))
+        for j, i in enumerate(ins):
+            if i.opname not in ("LOAD_GLOBAL", "LOAD_NAME", "LOAD_DEREF") or i.argval not in big:
+                continue
+            nxt = ins[j + 1] if j + 1 < len(ins) else None
+            if (i.opname == "LOAD_GLOBAL" and nxt is not None and nxt.opname == "LOAD_ATTR"
+                    and nxt.argval in glb[i.argval]._fields):
+                reads.setdefault(i.argval, set()).add(nxt.argval)
+            else:
+                whole.add(i.argval)
+    out: dict[str, Any] = {}
+    for name, fields in reads.items():
+        if name in whole:
+            continue
+        obj = glb[name]
+        kept = tuple(f for f in obj._fields if f in fields)
+        out[name] = collections.namedtuple(type(obj).__name__, kept)(
+            *(getattr(obj, f) for f in kept))
+    return out
+
+
+def _is_index_tuple(obj: Any) -> bool:
+    """A named tuple of plain integers (what :func:`seahelm.parameters.signal_indices`
+    returns)."""
+    return (isinstance(obj, tuple) and hasattr(type(obj), "_fields")
+            and all(type(v) is int for v in obj))
 
 
 def python_function(func: Any) -> types.FunctionType:
