@@ -1,0 +1,130 @@
+"""The candidate search of :class:`~seahelm.encounters.avoidance.VelocityObstacles`, compiled:
+one pass over (encounter, avoiding vessel, candidate heading, other vessel).
+
+For each candidate velocity ``v_c`` and each other vessel heard from, the closest point of
+approach of the relative motion (:func:`~seahelm.encounters.geometry.cpa_tcpa`: ``w = v_t -
+v_c``, ``TCPA = -(r·w)/|w|²``, ``DCPA = |r + w·TCPA|``), whether ``v_c`` is inside that
+vessel's velocity obstacle (Kuwata et al. 2014: ``0 < TCPA < horizon`` and ``DCPA < radius``,
+or inside the radius already and closing), whether it passes on the wrong side
+(``r × (v_c - v_t) < 0``), and the side rule's bar; then per (encounter, vessel) the cheapest
+admissible candidate, or when none is, the one with the largest least DCPA.
+
+The arithmetic is that of the numpy expressions it replaces, operation for operation (no
+fused multiply-adds: numba compiles without ``fastmath``; ``math.hypot`` is the C library's
+``hypot``, as ``numpy.hypot``), so the picks are the same, bit for bit
+(``tests/test_encounters_vo_search.py``); every transcendental function (the candidates'
+velocities, the wrapped heading errors) is still computed by numpy, outside.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+__all__ = ["vo_pick"]
+
+
+@njit(cache=True)
+def vo_pick(v_c, p_o, p_t, v_t, rr, radius, horizon, live, counted, give_way, side, far,
+            off):  # pragma: no cover - compiled
+    """The candidate each avoiding vessel takes (index into ``off``).
+
+    Parameters
+    ----------
+    v_c : ndarray (e, a, c, 2)
+        Candidate velocities (north, east) [m/s].
+    p_o : ndarray (e, a, 2)
+        The avoiding vessels' true positions [m].
+    p_t, v_t : ndarray (e, j, 2)
+        Every vessel's reported position [m] and velocity [m/s].
+    rr : ndarray (e, a, j)
+        Range to each vessel [m].
+    radius : ndarray (e, a)
+        Safety radius [m] (with hysteresis while off the route).
+    horizon : float
+        Time horizon of the obstacles [s].
+    live : ndarray of bool (e, a, j)
+        The pairs that count at all (another vessel, heard from): ``counted`` and
+        ``give_way`` must be False elsewhere (their closest points are not computed).
+    counted, give_way : ndarray of bool (e, a, j)
+        Pairs whose obstacle excludes candidates; pairs whose wrong side excludes them.
+    side : ndarray of int8 (e, a, j)
+        The side rule: 2 starboard only, ±1 the sign ``r × w`` must keep, 0 free.
+    far : ndarray of bool (e, a, c)
+        Candidates out of reach (already relaxed where none is within reach).
+    off : ndarray (c,)
+        The candidates' offsets from the route's heading [rad].
+
+    Returns
+    -------
+    ndarray of int64 (e, a)
+    """
+    ne, na, nc = v_c.shape[0], v_c.shape[1], v_c.shape[2]
+    nj = p_t.shape[1]
+    pick = np.empty((ne, na), dtype=np.int64)
+    bad = np.empty(nc, dtype=np.bool_)
+    barred = np.empty(nc, dtype=np.bool_)
+    clear = np.empty(nc)
+    cost0 = np.empty(nc)
+    for c in range(nc):
+        cost0[c] = abs(off[c]) + 1e-6 * (1.0 if off[c] < 0 else 0.0)
+    for e in range(ne):
+        for a in range(na):
+            rad = radius[e, a]
+            po0, po1 = p_o[e, a, 0], p_o[e, a, 1]
+            for c in range(nc):
+                vc0, vc1 = v_c[e, a, c, 0], v_c[e, a, c, 1]
+                b = False
+                bar = False
+                least = math.inf
+                for j in range(nj):
+                    r0 = p_t[e, j, 0] - po0
+                    r1 = p_t[e, j, 1] - po1
+                    # r x (v_c - v_t)
+                    s0 = vc0 - v_t[e, j, 0]
+                    s1 = vc1 - v_t[e, j, 1]
+                    cross = r0 * s1 - r1 * s0
+                    s = side[e, a, j]
+                    if (s == 2 and off[c] < 0) or ((s == 1 or s == -1) and cross * s < 0):
+                        bar = True
+                    if not live[e, a, j]:  # (counted and give_way are False there)
+                        continue
+                    # cpa_tcpa(p_o, v_c, p_t, v_t)
+                    w0 = v_t[e, j, 0] - vc0
+                    w1 = v_t[e, j, 1] - vc1
+                    ww = w0 * w0 + w1 * w1
+                    rw = r0 * w0 + r1 * w1
+                    tcpa = (-rw) / ww if ww > 0.0 else 0.0
+                    dcpa = math.hypot(r0 + w0 * tcpa, r1 + w1 * tcpa)
+                    in_vo = (((tcpa > 0) and (tcpa < horizon) and (dcpa < rad))
+                             or ((rr[e, a, j] < rad) and (tcpa > 0)))
+                    if (in_vo and counted[e, a, j]) or (cross < 0 and give_way[e, a, j]):
+                        b = True
+                    if counted[e, a, j]:  # (np.min: a NaN wins)
+                        if math.isnan(dcpa) or dcpa < least:  # (NaN < x is False)
+                            least = dcpa
+                bad[c], barred[c], clear[c] = b, bar, least
+            every = True
+            for c in range(nc):
+                if not (barred[c] or far[e, a, c]):
+                    every = False
+                    break
+            best, k = math.inf, 0
+            for c in range(nc):
+                if every:
+                    barred[c] = False
+                if not (bad[c] or far[e, a, c] or barred[c]) and cost0[c] < best:
+                    best, k = cost0[c], c
+            if best == math.inf:  # stuck: the largest least DCPA (np.argmax: a NaN wins)
+                top, k = -math.inf, 0
+                for c in range(nc):
+                    v = -math.inf if (far[e, a, c] or barred[c]) else clear[c]
+                    if math.isnan(v):
+                        k = c
+                        break
+                    if v > top:
+                        top, k = v, c
+            pick[e, a] = k
+    return pick
