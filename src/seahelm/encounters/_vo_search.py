@@ -27,14 +27,14 @@ __all__ = ["vo_pick"]
 
 
 @njit(cache=True)
-def vo_pick(v_c, p_o, p_t, v_t, rr, radius, horizon, live, counted, give_way, side, far,
+def vo_pick(v_cn, v_ce, p_o, p_t, v_t, rr, radius, horizon, live, counted, give_way, side, far,
             off):  # pragma: no cover - compiled
     """The candidate each avoiding vessel takes (index into ``off``).
 
     Parameters
     ----------
-    v_c : ndarray (e, a, c, 2)
-        Candidate velocities (north, east) [m/s].
+    v_cn, v_ce : ndarray (e, a, c)
+        Candidate velocities, north and east [m/s].
     p_o : ndarray (e, a, 2)
         The avoiding vessels' true positions [m].
     p_t, v_t : ndarray (e, j, 2)
@@ -61,7 +61,7 @@ def vo_pick(v_c, p_o, p_t, v_t, rr, radius, horizon, live, counted, give_way, si
     -------
     ndarray of int64 (e, a)
     """
-    ne, na, nc = v_c.shape[0], v_c.shape[1], v_c.shape[2]
+    ne, na, nc = v_cn.shape[0], v_cn.shape[1], v_cn.shape[2]
     nj = p_t.shape[1]
     pick = np.empty((ne, na), dtype=np.int64)
     bad = np.empty(nc, dtype=np.bool_)
@@ -75,7 +75,7 @@ def vo_pick(v_c, p_o, p_t, v_t, rr, radius, horizon, live, counted, give_way, si
             rad = radius[e, a]
             po0, po1 = p_o[e, a, 0], p_o[e, a, 1]
             for c in range(nc):
-                vc0, vc1 = v_c[e, a, c, 0], v_c[e, a, c, 1]
+                vc0, vc1 = v_cn[e, a, c], v_ce[e, a, c]
                 b = False
                 bar = False
                 least = math.inf

@@ -357,13 +357,14 @@ class VelocityObstacles(AvoidanceMethod):
         p_o, _, p_t, v_t, valid = _pairs(own, av, view)  # (e, a, 1, 2), (e, 1, j, 2)
         off = np.asarray(self.offsets, dtype=float)
         i0 = int(np.flatnonzero(off == 0)[0])
-        heading = route_heading[:, :, None] + off  # (e, a, c)
-        v_c = velocity(heading, own[:, :, 3, None])  # (e, a, c, 2)
+        speed = own[:, :, 3]
+        heading0 = route_heading + off[i0]  # (e, a): the route's candidate
+        v0 = velocity(heading0, speed)[:, :, None, :]  # (e, a, 1, 2)
         radius = np.where(state["offset"][:, av] != 0.0, self.radius * (1.0 + self.hysteresis),
                           self.radius)  # (e, a)
         with np.errstate(invalid="ignore"):
-            # the route's candidate (c = i0) for every pair: is it at risk?
-            dcpa0, tcpa0 = cpa_tcpa(p_o, v_c[:, :, i0, None, :], p_t, v_t)  # (e, a, j)
+            # the route's candidate for every pair: is it at risk?
+            dcpa0, tcpa0 = cpa_tcpa(p_o, v0, p_t, v_t)  # (e, a, j)
             r = p_t - p_o  # (e, a, j, 2)
             rr = np.hypot(r[..., 0], r[..., 1])
             rad = radius[:, :, None]
@@ -413,14 +414,29 @@ class VelocityObstacles(AvoidanceMethod):
                 passing = np.where(r[..., 0] * w0[..., 1] - r[..., 1] * w0[..., 0] < 0, -1, 1)
                 start = engaged & ~before
                 side = np.where(start, np.where(port & crossing, 2, passing), side)
-        side = side.astype(np.int8)
-        counted = valid & ~calm_stand_on
-        far = np.abs(wrap_pi(heading - own[:, :, 4, None])) > self.reach  # (e, a, c)
-        far &= ~far.all(-1, keepdims=True)  # (none reachable: all are)
-        c = np.ascontiguousarray  # (one compiled signature)
-        pick = vo_pick(c(v_c), c(p_o[:, :, 0]), c(p_t[:, 0]), c(v_t[:, 0]), c(rr), c(radius),
-                       float(self.horizon), c(valid), c(counted), c(give_way), c(side),
-                       c(far), c(off))
+            side = side.astype(np.int8)
+            counted = valid & ~calm_stand_on
+            # the route's candidate is taken where it is admissible (its cost, 0, the least):
+            # not in a counted obstacle, not on the wrong side, not barred, within reach; the
+            # other candidates are searched only where it is not
+            s0 = v0 - v_t
+            cross0 = r[..., 0] * s0[..., 1] - r[..., 1] * s0[..., 0]  # (e, a, j)
+            bad0 = ((in_vo0 & counted) | ((cross0 < 0) & give_way)).any(-1)
+            barred0 = (((side == 2) & (off[i0] < 0))
+                       | ((np.abs(side) == 1) & (cross0 * side < 0))).any(-1)
+            far0 = np.abs(wrap_pi(heading0 - own[:, :, 4])) > self.reach
+        pick = np.full(speed.shape, i0)
+        e = np.flatnonzero((bad0 | barred0 | far0).any(-1))  # (the encounters searched)
+        if e.size:
+            heading = route_heading[e, :, None] + off  # (e', a, c)
+            sp = speed[e, :, None]
+            far = np.abs(wrap_pi(heading - own[e, :, 4, None])) > self.reach
+            far &= ~far.all(-1, keepdims=True)  # (none reachable: all are)
+            c = np.ascontiguousarray  # (one compiled signature)
+            pick[e] = vo_pick(sp * np.cos(heading), sp * np.sin(heading), c(p_o[e, :, 0]),
+                              c(p_t[e, 0]), c(v_t[e, 0]), c(rr[e]), c(radius[e]),
+                              float(self.horizon), c(valid[e]), c(counted[e]),
+                              c(give_way[e]), c(side[e]), c(far), c(off))
         state["side"] = side
         return off[pick]
 
