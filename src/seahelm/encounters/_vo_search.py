@@ -27,6 +27,31 @@ __all__ = ["vo_pick"]
 
 
 @njit(cache=True)
+def _tcpa(r0, r1, w0, w1):  # pragma: no cover - compiled
+    """TCPA of :func:`~seahelm.encounters.geometry.cpa_tcpa` (0 without relative motion),
+    and the relative velocity it was computed for."""
+    ww = w0 * w0 + w1 * w1
+    rw = r0 * w0 + r1 * w1
+    return ((-rw) / ww if ww > 0.0 else 0.0), w0, w1
+
+
+@njit(cache=True)
+def _least_dcpa(e, a, c, v_cn, v_ce, po0, po1, p_t, v_t, counted):  # pragma: no cover
+    """The least DCPA of candidate ``c`` over the counted pairs (inf without one; NaN if
+    one is NaN, as ``np.min``)."""
+    least = math.inf
+    for j in range(p_t.shape[1]):
+        if counted[e, a, j]:
+            r0, r1 = p_t[e, j, 0] - po0, p_t[e, j, 1] - po1
+            tcpa, w0, w1 = _tcpa(r0, r1, v_t[e, j, 0] - v_cn[e, a, c],
+                                 v_t[e, j, 1] - v_ce[e, a, c])
+            dcpa = math.hypot(r0 + w0 * tcpa, r1 + w1 * tcpa)
+            if math.isnan(dcpa) or dcpa < least:  # (NaN < x is False)
+                least = dcpa
+    return least
+
+
+@njit(cache=True)
 def vo_pick(v_cn, v_ce, p_o, p_t, v_t, rr, radius, horizon, live, counted, give_way, side, far,
             off):  # pragma: no cover - compiled
     """The candidate each avoiding vessel takes (index into ``off``).
@@ -66,7 +91,6 @@ def vo_pick(v_cn, v_ce, p_o, p_t, v_t, rr, radius, horizon, live, counted, give_
     pick = np.empty((ne, na), dtype=np.int64)
     bad = np.empty(nc, dtype=np.bool_)
     barred = np.empty(nc, dtype=np.bool_)
-    clear = np.empty(nc)
     cost0 = np.empty(nc)
     for c in range(nc):
         cost0[c] = abs(off[c]) + 1e-6 * (1.0 if off[c] < 0 else 0.0)
@@ -75,37 +99,31 @@ def vo_pick(v_cn, v_ce, p_o, p_t, v_t, rr, radius, horizon, live, counted, give_
             rad = radius[e, a]
             po0, po1 = p_o[e, a, 0], p_o[e, a, 1]
             for c in range(nc):
+                # (a candidate out of reach is excluded whatever else it is, and its
+                # largest least DCPA is -inf: nothing else about it is needed)
+                bad[c] = barred[c] = False
+                if far[e, a, c]:
+                    continue
                 vc0, vc1 = v_cn[e, a, c], v_ce[e, a, c]
-                b = False
-                bar = False
-                least = math.inf
                 for j in range(nj):
                     r0 = p_t[e, j, 0] - po0
                     r1 = p_t[e, j, 1] - po1
                     # r x (v_c - v_t)
-                    s0 = vc0 - v_t[e, j, 0]
-                    s1 = vc1 - v_t[e, j, 1]
-                    cross = r0 * s1 - r1 * s0
+                    cross = r0 * (vc1 - v_t[e, j, 1]) - r1 * (vc0 - v_t[e, j, 0])
                     s = side[e, a, j]
                     if (s == 2 and off[c] < 0) or ((s == 1 or s == -1) and cross * s < 0):
-                        bar = True
-                    if not live[e, a, j]:  # (counted and give_way are False there)
+                        barred[c] = True
+                    # (counted and give_way are False where the pair is not live)
+                    if bad[c] or not live[e, a, j]:
                         continue
-                    # cpa_tcpa(p_o, v_c, p_t, v_t)
-                    w0 = v_t[e, j, 0] - vc0
-                    w1 = v_t[e, j, 1] - vc1
-                    ww = w0 * w0 + w1 * w1
-                    rw = r0 * w0 + r1 * w1
-                    tcpa = (-rw) / ww if ww > 0.0 else 0.0
-                    dcpa = math.hypot(r0 + w0 * tcpa, r1 + w1 * tcpa)
-                    in_vo = (((tcpa > 0) and (tcpa < horizon) and (dcpa < rad))
-                             or ((rr[e, a, j] < rad) and (tcpa > 0)))
-                    if (in_vo and counted[e, a, j]) or (cross < 0 and give_way[e, a, j]):
-                        b = True
-                    if counted[e, a, j]:  # (np.min: a NaN wins)
-                        if math.isnan(dcpa) or dcpa < least:  # (NaN < x is False)
-                            least = dcpa
-                bad[c], barred[c], clear[c] = b, bar, least
+                    if cross < 0 and give_way[e, a, j]:
+                        bad[c] = True
+                    elif counted[e, a, j]:  # in the obstacle (the DCPA only if it decides)
+                        tcpa, w0, w1 = _tcpa(r0, r1, v_t[e, j, 0] - vc0, v_t[e, j, 1] - vc1)
+                        if tcpa > 0 and (rr[e, a, j] < rad or (
+                                tcpa < horizon
+                                and math.hypot(r0 + w0 * tcpa, r1 + w1 * tcpa) < rad)):
+                            bad[c] = True
             every = True
             for c in range(nc):
                 if not (barred[c] or far[e, a, c]):
@@ -120,7 +138,9 @@ def vo_pick(v_cn, v_ce, p_o, p_t, v_t, rr, radius, horizon, live, counted, give_
             if best == math.inf:  # stuck: the largest least DCPA (np.argmax: a NaN wins)
                 top, k = -math.inf, 0
                 for c in range(nc):
-                    v = -math.inf if (far[e, a, c] or barred[c]) else clear[c]
+                    v = -math.inf
+                    if not (far[e, a, c] or barred[c]):
+                        v = _least_dcpa(e, a, c, v_cn, v_ce, po0, po1, p_t, v_t, counted)
                     if math.isnan(v):
                         k = c
                         break
