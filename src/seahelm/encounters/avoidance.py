@@ -239,8 +239,9 @@ class RuleBased(AvoidanceMethod):
             dcpa, tcpa = cpa_tcpa(p_o, v_o, p_t, v_t)
             risk = valid & (tcpa > 0) & (tcpa < self.tcpa) & (dcpa < self.dcpa)
             latched = np.where(valid & (tcpa > 0), state["latched"], 0)
-            latched = np.where(risk & (latched == 0), _situations(own, view, state["sectors"]),
-                               latched)
+            fresh = risk & (latched == 0)
+            if fresh.any():  # (the situations only when a pair's risk is first seen)
+                latched = np.where(fresh, _situations(own, view, state["sectors"]), latched)
             state["latched"] = latched.astype(np.int8)
             threat = risk & np.isin(latched, GIVE_WAY)
             v_route = velocity(route, own[:, :, 3])[:, :, None, :]
