@@ -91,8 +91,8 @@ def test_compiled_search_equals_the_numpy_expressions(seed, na, nj, twice):
     r = p_t[:, None] - p_o[:, :, None]
     with np.errstate(invalid="ignore"):
         rr = np.hypot(r[..., 0], r[..., 1])
-    got = vo_pick(v_c[..., 0].copy(), v_c[..., 1].copy(), p_o, p_t, v_t, rr, radius, 1200.0, live, counted, give_way, side,
-                  far, off)
+    got = vo_pick(v_c[..., 0].copy(), v_c[..., 1].copy(), p_o, p_t, v_t, rr, radius, 1200.0,
+                  live, counted, give_way, side, far, off)
     assert got.dtype == np.int64 and got.shape == want.shape
     np.testing.assert_array_equal(got, want)
     # the branches were exercised: a free pick, a route pick, stuck rows, a non-zero pick
