@@ -5,15 +5,23 @@
 :func:`seahelm.encounters.monte_carlo.monte_carlo_vessels` (relative bearing all round, 6-9 km
 at detection, CPA within ±0.5 nmi, target 3-8 m/s), side by side in one run of this script:
 
-* ``uncoupled``: the same 2 × n ships from the same starts, ``simulate`` of one batch over the
-  whole horizon (rudder held at zero, propeller at its self-propulsion rate);
+* ``uncoupled, rudder at zero``: the same 2 × n ships from the same starts, ``simulate`` of
+  one batch over the whole horizon (rudder held at zero, propeller at its self-propulsion
+  rate: :meth:`~seahelm.encounters.Encounter.uncoupled_problems`);
+* ``uncoupled, same autopilot``: the same batch steered by the encounter's heading autopilot
+  in the compiled loop, each ship on its initial course
+  (:meth:`~seahelm.encounters.Encounter.autopilot_problems`): the ships as they steer in the
+  encounter, without the coupling -- the like-for-like reference, and the target's;
 * ``encounter, no avoidance``: :class:`seahelm.encounters.Encounter` stepped one interval at
   a time, every vessel's AIS view, autopilot and guidance computed between intervals;
 * ``encounter, velocity obstacles``: the own ship avoiding (Kuwata et al. 2014), target on
   course.
 
-Target (issue 51): the avoiding encounters ≤ 2 × the uncoupled batch. Medians of
-``--repeats``; every kernel compiled before the clock starts.
+Target (issue 51): the avoiding encounters ≤ 2 × the same ships uncoupled in one batch
+(both ratios printed). Medians of ``--repeats``, the rows interleaved in each repeat (on a
+shared machine the load drifts); wall time, and the CPU time of the process (the compiled
+loop runs on every core, the coupling in one thread). Every kernel is compiled before the
+clock starts.
 
     python benchmarks/bench_encounters.py [--encounters 10000] [--t-final 1200] [--repeats 1]
                                           [--quick]
@@ -24,6 +32,7 @@ Target (issue 51): the avoiding encounters ≤ 2 × the uncoupled batch. Medians
 from __future__ import annotations
 
 import argparse
+import os
 import statistics
 import time
 
@@ -50,43 +59,56 @@ def main() -> None:
                                      target_speed=(3.0, 8.0), seed=51, **ranges)
     record = 60
 
-    def uncoupled() -> float:
-        (problem,) = Encounter(vessels, t_final=tf, record_every=record).uncoupled_problems()
-        t = time.perf_counter()
-        res = simulate(problem)
-        wall = time.perf_counter() - t
-        assert res.ok.all()
-        return wall
+    def batch(kind: str):
+        def run() -> tuple[float, float]:
+            enc = Encounter(vessels, t_final=tf, record_every=record)
+            (problem,) = (enc.uncoupled_problems() if kind == "zero"
+                          else enc.autopilot_problems())
+            t, c = time.perf_counter(), time.process_time()
+            res = simulate(problem)
+            wall, cpu = time.perf_counter() - t, time.process_time() - c
+            assert res.ok.all()
+            return wall, cpu
+        return run
 
     def coupled(avoidance):
-        def run() -> float:
+        def run() -> tuple[float, float]:
             enc = Encounter(vessels, t_final=tf, avoidance=avoidance, record_every=record)
-            t = time.perf_counter()
+            t, c = time.perf_counter(), time.process_time()
             res = enc.run()
-            wall = time.perf_counter() - t
+            wall, cpu = time.perf_counter() - t, time.process_time() - c
             assert (res.status == 0).all()
-            run.result = res
-            return wall
+            return wall, cpu
         return run
 
     # compile everything first (short horizons)
     warm = monte_carlo_vessels(2, own_ship="kvlcc2-full", target_ship="kvlcc2-full", seed=1,
                                detection_range=2500.0, tcpa=(10.0, 400.0))[0]
-    Encounter(warm, t_final=20.0, avoidance="velocity-obstacles").run()
-    rows = []
-    for name, fn in (("uncoupled (simulate, one batch)", uncoupled),
-                     ("encounter, no avoidance", coupled(None)),
-                     ("encounter, velocity obstacles", coupled("velocity-obstacles"))):
-        walls = [fn() for _ in range(args.repeats)]
-        rows.append((name, statistics.median(walls)))
-    base = rows[0][1]
+    enc = Encounter(warm, t_final=20.0, avoidance="velocity-obstacles")
+    enc.run()
+    for problem in enc.uncoupled_problems() + enc.autopilot_problems():
+        simulate(problem)
+    rows = {"uncoupled, rudder at zero": batch("zero"),
+            "uncoupled, same autopilot": batch("autopilot"),
+            "encounter, no avoidance": coupled(None),
+            "encounter, velocity obstacles": coupled("velocity-obstacles")}
+    times: dict[str, list[tuple[float, float]]] = {name: [] for name in rows}
+    for _ in range(args.repeats):
+        for name, fn in rows.items():
+            times[name].append(fn())
+    wall = {name: statistics.median(w for w, _ in v) for name, v in times.items()}
+    cpu = {name: statistics.median(c for _, c in v) for name, v in times.items()}
+    zero, auto = wall["uncoupled, rudder at zero"], wall["uncoupled, same autopilot"]
     print(f"{n} two-ship KVLCC2 encounters ({2 * n} ships), {tf:g} s, dt 0.1 s, "
-          f"controller 1 s; medians of {args.repeats}")
-    print(f"{'':34s} {'wall [s]':>10s} {'ratio':>8s}")
-    for name, wall in rows:
-        print(f"{name:34s} {wall:10.3f} s {wall / base:7.2f} x")
-    print(f"target: encounter with avoidance <= 2 x uncoupled: "
-          f"{'met' if rows[2][1] <= 2 * base else 'NOT met'} ({rows[2][1] / base:.2f} x)")
+          f"controller 1 s; medians of {args.repeats}; load {os.getloadavg()[0]:.1f}")
+    print(f"{'':32s} {'wall [s]':>10s} {'cpu [s]':>9s} {'/ zero':>8s} {'/ autopilot':>12s}")
+    for name in rows:
+        print(f"{name:32s} {wall[name]:8.3f} s {cpu[name]:7.2f} s {wall[name] / zero:6.2f} x "
+              f"{wall[name] / auto:10.2f} x")
+    vo = wall["encounter, velocity obstacles"]
+    for what, base in (("the same autopilot", auto), ("the rudder at zero", zero)):
+        print(f"target: encounter with avoidance <= 2 x uncoupled with {what}: "
+              f"{'met' if vo <= 2 * base else 'NOT met'} ({vo / base:.2f} x)")
 
 
 if __name__ == "__main__":

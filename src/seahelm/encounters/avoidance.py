@@ -24,6 +24,7 @@ import numpy as np
 
 from .._validate import lookup_name
 from ..errors import ParameterError
+from ._vo_search import vo_pick
 from .geometry import (GIVE_WAY, STAND_ON, ColregSectors, Situation, classify, cpa_tcpa,
                        velocity, wrap_pi)
 
@@ -238,8 +239,9 @@ class RuleBased(AvoidanceMethod):
             dcpa, tcpa = cpa_tcpa(p_o, v_o, p_t, v_t)
             risk = valid & (tcpa > 0) & (tcpa < self.tcpa) & (dcpa < self.dcpa)
             latched = np.where(valid & (tcpa > 0), state["latched"], 0)
-            latched = np.where(risk & (latched == 0), _situations(own, view, state["sectors"]),
-                               latched)
+            fresh = risk & (latched == 0)
+            if fresh.any():  # (the situations only when a pair's risk is first seen)
+                latched = np.where(fresh, _situations(own, view, state["sectors"]), latched)
             state["latched"] = latched.astype(np.int8)
             threat = risk & np.isin(latched, GIVE_WAY)
             v_route = velocity(route, own[:, :, 3])[:, :, None, :]
@@ -348,26 +350,31 @@ class VelocityObstacles(AvoidanceMethod):
 
     def _choose(self, time: float, own: np.ndarray, view: np.ndarray,
                 route_heading: np.ndarray, state: dict[str, Any]) -> np.ndarray:
-        """The offsets (e, a) of the avoiding vessels (``own = truth[:, av]``)."""
+        """The offsets (e, a) of the avoiding vessels (``own = truth[:, av]``).
+
+        The pairs' state (situation latched, Rule 17, the side) is numpy over (e, a, j); the
+        candidates (e, a, c, j) are searched in one compiled pass (:mod:`._vo_search`)."""
         av = state["av"]
-        p_o, _, p_t, v_t, valid = _pairs(own, av, view)
+        p_o, _, p_t, v_t, valid = _pairs(own, av, view)  # (e, a, 1, 2), (e, 1, j, 2)
         off = np.asarray(self.offsets, dtype=float)
         i0 = int(np.flatnonzero(off == 0)[0])
-        heading = route_heading[:, :, None] + off  # (e, i, c)
-        v_c = velocity(heading, own[:, :, 3, None])[:, :, :, None, :]  # (e, i, c, 1, 2)
-        p_o, p_t, v_t = p_o[:, :, None], p_t[:, :, None], v_t[:, :, None]  # (e, i|1, 1, j|1, 2)
+        speed = own[:, :, 3]
+        heading0 = route_heading + off[i0]  # (e, a): the route's candidate
+        v0 = velocity(heading0, speed)[:, :, None, :]  # (e, a, 1, 2)
         radius = np.where(state["offset"][:, av] != 0.0, self.radius * (1.0 + self.hysteresis),
-                          self.radius)[:, :, None, None]  # (e, i, 1, 1)
+                          self.radius)  # (e, a)
         with np.errstate(invalid="ignore"):
-            dcpa, tcpa = cpa_tcpa(p_o, v_c, p_t, v_t)  # (e, i, c, j)
-            r = p_t - p_o  # (e, i, 1, j, 2)
-            in_vo = ((tcpa > 0) & (tcpa < self.horizon) & (dcpa < radius)) | (
-                (np.hypot(r[..., 0], r[..., 1]) < radius) & (tcpa > 0))
-            risk = in_vo[:, :, i0, :] & valid
+            # the route's candidate for every pair: is it at risk?
+            dcpa0, tcpa0 = cpa_tcpa(p_o, v0, p_t, v_t)  # (e, a, j)
+            r = p_t - p_o  # (e, a, j, 2)
+            rr = np.hypot(r[..., 0], r[..., 1])
+            rad = radius[:, :, None]
+            in_vo0 = ((tcpa0 > 0) & (tcpa0 < self.horizon) & (dcpa0 < rad)) | (
+                (rr < rad) & (tcpa0 > 0))
+            risk = in_vo0 & valid
             # the situation, latched from the first risk until the pair has passed
-            v_now = velocity(own[:, :, 2], own[:, :, 3])[:, :, None, None, :]
-            d_now, t_now = cpa_tcpa(p_o, v_now, p_t, v_t)
-            d_now, t_now = d_now[:, :, 0, :], t_now[:, :, 0, :]  # (e, i, j)
+            v_now = velocity(own[:, :, 2], own[:, :, 3])[:, :, None, :]  # (e, a, 1, 2)
+            d_now, t_now = cpa_tcpa(p_o, v_now, p_t, v_t)  # (e, a, j)
             now = _situations(own, view, state["sectors"])
             ahead = valid & (t_now > 0)
             latched = np.where(ahead, state["latched"], 0)
@@ -397,38 +404,41 @@ class VelocityObstacles(AvoidanceMethod):
             engaged = before | (stand_on & (apparent | must))
             state["engaged"] = engaged
             calm_stand_on = valid & np.isin(sit, STAND_ON) & ~engaged
-            w = v_c - v_t
-            wrong_side = (r[..., 0] * w[..., 1] - r[..., 1] * w[..., 0]) < 0  # (e, i, c, j)
             # the side (17(c)): 2 starboard only (a crossing vessel on the port side);
             # +1 / -1 the other passing with r x w of that sign only; 0 free
             side = np.where(before, state["side"], 0)
             if rule.keep_side:
-                port = (r[:, :, 0, :, 1] * np.cos(own[:, :, 4, None])
-                        - r[:, :, 0, :, 0] * np.sin(own[:, :, 4, None])) < 0  # (e, i, j)
+                port = (r[..., 1] * np.cos(own[:, :, 4, None])
+                        - r[..., 0] * np.sin(own[:, :, 4, None])) < 0  # (e, a, j)
                 crossing = sit == Situation.CROSSING_STAND_ON
-                w0 = v_now[:, :, 0] - v_t[:, :, 0]  # (e, i, j, 2)
-                r0 = r[:, :, 0]
-                passing = np.where(r0[..., 0] * w0[..., 1] - r0[..., 1] * w0[..., 0] < 0, -1, 1)
+                w0 = v_now - v_t  # (e, a, j, 2)
+                passing = np.where(r[..., 0] * w0[..., 1] - r[..., 1] * w0[..., 0] < 0, -1, 1)
                 start = engaged & ~before
                 side = np.where(start, np.where(port & crossing, 2, passing), side)
-            cross = r[..., 0] * w[..., 1] - r[..., 1] * w[..., 0]  # (e, i, c, j)
-        counted = (valid & ~calm_stand_on)[:, :, None, :]
-        bad = ((in_vo & counted) | (wrong_side & give_way[:, :, None, :])).any(-1)
-        far = np.abs(wrap_pi(heading - own[:, :, 4, None])) > self.reach  # (e, i, c)
-        far &= ~far.all(-1, keepdims=True)  # (none reachable: all are)
-        s_c = side[:, :, None, :]  # (e, i, 1, j)
-        barred = (((s_c == 2) & (off < 0)[None, None, :, None])
-                  | ((np.abs(s_c) == 1) & (cross * s_c < 0))).any(-1)
-        barred &= ~(barred | far).all(-1, keepdims=True)  # (e, i, c)
-        cost = np.abs(off) + 1e-6 * (off < 0)
-        cost = np.where(bad | far | barred, np.inf, cost[None, None, :])
-        pick = np.argmin(cost, axis=-1)
-        stuck = ~np.isfinite(cost.min(-1))
-        if stuck.any():
-            clear = np.where(far | barred, -np.inf,
-                             np.where(counted, dcpa, np.inf).min(-1))
-            pick = np.where(stuck, np.argmax(clear, axis=-1), pick)
-        state["side"] = side.astype(np.int8)
+            side = side.astype(np.int8)
+            counted = valid & ~calm_stand_on
+            # the route's candidate is taken where it is admissible (its cost, 0, the least):
+            # not in a counted obstacle, not on the wrong side, not barred, within reach; the
+            # other candidates are searched only where it is not
+            s0 = v0 - v_t
+            cross0 = r[..., 0] * s0[..., 1] - r[..., 1] * s0[..., 0]  # (e, a, j)
+            bad0 = ((in_vo0 & counted) | ((cross0 < 0) & give_way)).any(-1)
+            barred0 = (((side == 2) & (off[i0] < 0))
+                       | ((np.abs(side) == 1) & (cross0 * side < 0))).any(-1)
+            far0 = np.abs(wrap_pi(heading0 - own[:, :, 4])) > self.reach
+        pick = np.full(speed.shape, i0)
+        e = np.flatnonzero((bad0 | barred0 | far0).any(-1))  # (the encounters searched)
+        if e.size:
+            heading = route_heading[e, :, None] + off  # (e', a, c)
+            sp = speed[e, :, None]
+            far = np.abs(wrap_pi(heading - own[e, :, 4, None])) > self.reach
+            far &= ~far.all(-1, keepdims=True)  # (none reachable: all are)
+            c = np.ascontiguousarray  # (one compiled signature)
+            pick[e] = vo_pick(sp * np.cos(heading), sp * np.sin(heading), c(p_o[e, :, 0]),
+                              c(p_t[e, 0]), c(v_t[e, 0]), c(rr[e]), c(radius[e]),
+                              float(self.horizon), c(valid[e]), c(counted[e]),
+                              c(give_way[e]), c(side[e]), c(far), c(off))
+        state["side"] = side
         return off[pick]
 
 

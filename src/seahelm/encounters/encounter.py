@@ -336,6 +336,42 @@ class Encounter:
             out.append(dataclasses.replace(problem, reference=ref))
         return out
 
+    def autopilot_problems(self) -> list[Problem]:
+        """:attr:`problems` steered by the encounter's heading autopilot inside the compiled
+        loop, every vessel holding its initial course, the propeller at its self-propulsion
+        rate: the same ships, steering as they steer in the encounter, run uncoupled over the
+        whole horizon by ``simulate`` (no view of the others, no guidance, no avoidance).
+
+        The law is :class:`HeadingAutopilot`'s as the ``pid-heading`` controller (its
+        ``-rps`` variant for a ship with a propeller command): ``K_p`` = ``gain``, ``K_i`` =
+        0, ``K_d`` = ``gain`` · T_d, ``δ_max`` the ship's rudder limit, sampled every
+        ``controller_dt``. The compiled controller wraps the heading error its own way, so
+        its runs equal the encounter's without avoidance to rounding, not bit for bit.
+
+        Returns
+        -------
+        list of Problem
+            One per distinct ship, in the order of :attr:`problems`.
+        """
+        from ..control.pid import PID_HEADING, PID_HEADING_RPS
+
+        out = []
+        kp = float(self.autopilot.gain)
+        for (problem, rps), g in zip(self._problems, self._groups):
+            ship = g.ship
+            kd = kp * (self.autopilot.derivative_time * ship.length / ship.approach_speed)
+            gains = dict(kp=kp, ki=0.0, kd=kd, max_command=_max_rudder(ship))
+            held = "propeller_rps" in problem.wiring.commands
+            controller = PID_HEADING_RPS if held else PID_HEADING
+            params = [controller.params_type(**gains, **({"propeller_rps": float(r)}
+                                                         if held else {}))
+                      for r in rps]
+            e, v = np.divmod(g.index, self.n_vessels)
+            out.append(dataclasses.replace(problem, controller=controller,
+                                           controller_params=params,
+                                           reference=self.course0[e, v][:, None, None]))
+        return out
+
     @property
     def run_index(self) -> list[np.ndarray]:
         """For each of :attr:`problems`, its runs' flat index ``encounter * n_vessels +

@@ -62,7 +62,7 @@ import numpy as np
 from ..errors import ParameterError
 
 __all__ = ["Situation", "ColregSectors", "FujiiDomain", "cpa_tcpa", "relative_bearing",
-           "classify", "velocity", "wrap_pi", "GIVE_WAY", "STAND_ON"]
+           "classify", "classify_bearings", "velocity", "wrap_pi", "GIVE_WAY", "STAND_ON"]
 
 _TWO_PI = 2.0 * math.pi
 
@@ -230,9 +230,31 @@ def classify(own_position: Any, own_heading: Any, target_position: Any, target_h
     starboard side of Rule 15 is ``0 ≤ β ≤ stern_start``, the port side ``2π - stern_start ≤ β
     < 2π``. Order: Rule 13, then 14, then 15 (module notes).
     """
-    s = sectors or ColregSectors()
     beta = relative_bearing(own_position, own_heading, target_position)
     alpha = relative_bearing(target_position, target_heading, own_position)
+    return classify_bearings(beta, alpha, sectors)
+
+
+def classify_bearings(beta: Any, alpha: Any, sectors: ColregSectors | None = None) -> np.ndarray:
+    """:func:`classify` from the two relative bearings (for a caller that has them).
+
+    Parameters
+    ----------
+    beta : array_like (...)
+        Relative bearing of the target from the own bow, in [0, 2π) [rad]
+        (:func:`relative_bearing` of the own ship).
+    alpha : array_like (...)
+        Relative bearing of the own ship from the target's bow, in [0, 2π) [rad].
+    sectors : ColregSectors, optional
+        The thresholds (default 6° head-on, 22.5° abaft the beam).
+
+    Returns
+    -------
+    ndarray of int8 (...)
+        :class:`Situation` codes.
+    """
+    s = sectors or ColregSectors()
+    beta, alpha = np.asarray(beta, dtype=float), np.asarray(alpha, dtype=float)
     lo, hi = s.stern_start, _TWO_PI - s.stern_start
     own_astern_of_target = (alpha > lo) & (alpha < hi)
     target_astern = (beta > lo) & (beta < hi)

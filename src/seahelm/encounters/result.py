@@ -38,8 +38,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from .geometry import (GIVE_WAY, STAND_ON, Situation, classify, cpa_tcpa, relative_bearing,
-                       velocity, wrap_pi)
+from .geometry import (GIVE_WAY, STAND_ON, Situation, classify_bearings, cpa_tcpa,
+                       relative_bearing, velocity, wrap_pi)
 
 __all__ = ["VerdictRules", "EncounterResult", "wilson_interval", "is_encounter_dataset",
            "DATASET_FORMAT"]
@@ -155,9 +155,12 @@ class Recorder:
                               velocity(tgt[..., 2], tgt[..., 3]))
         rng = np.hypot(p_t[..., 0] - p_o[..., 0], p_t[..., 1] - p_o[..., 1])
         dom = enc.domain.distance(p_o, own[..., 4], enc.lengths[0], p_t)
-        sit = classify(p_o, own[..., 4], p_t, tgt[..., 4], enc.sectors)
+        # the target's bearing from the own bow, and the own ship's from the target's
+        beta = relative_bearing(p_o, own[..., 4], p_t)
+        alpha = relative_bearing(p_t, tgt[..., 4], p_o)
+        sit = classify_bearings(beta, alpha, enc.sectors)
         if self.situation0 is None:
-            sit_t = classify(p_t, tgt[..., 4], p_o, own[..., 4], enc.sectors)
+            sit_t = classify_bearings(alpha, beta, enc.sectors)
             self.situation0 = sit.copy()
             self.role0 = np.stack([sit, sit_t], axis=-1)
         closer = rng < self.min_range
@@ -174,8 +177,7 @@ class Recorder:
         # (headings clockwise from north: a turn to port is a heading below the route's)
         # Rule 17(c) counts a turn to port only "for a vessel on her own port side": while the
         # other is on the port side (relative bearing beyond 180°) at that interval
-        port_side = np.stack([relative_bearing(p_o, own[..., 4], p_t) > math.pi,
-                              relative_bearing(p_t, tgt[..., 4], p_o) > math.pi], axis=-1)
+        port_side = np.stack([beta > math.pi, alpha > math.pi], axis=-1)
         self.port = np.where(live & port_side, np.maximum(self.port, -signed), self.port)
         first = live & np.isnan(self.action_time) & (dev > enc.verdict_rules.action)
         self.action_time = np.where(first, time, self.action_time)
