@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..errors import ParameterError
+from ..parameters import Params
 from .slicing import quiet
 from .stepping_io import Observation, _spans, check_commands, run_indices
 
@@ -109,8 +110,9 @@ def set_controller_param(sim: "Simulator", name: str, values: Any, runs: Any = N
     ------
     ParameterError
         Naming ``name`` for a parameter the controller does not have (or a vector one),
-        else ``values`` on a wrong shape or a value not finite or outside the parameter's
-        range; nothing is written then.
+        else ``values`` on a wrong shape, a value not finite or outside the parameter's
+        range, or one its parameter class refuses otherwise (its ``validate``: a zig-zag's
+        ``first_side`` of 0.5); nothing is written then.
     """
     controller = sim.problem.controller
     params_type = getattr(controller, "params_type", None)
@@ -123,7 +125,11 @@ def set_controller_param(sim: "Simulator", name: str, values: Any, runs: Any = N
     _, _, _, low, high, low_inclusive = checks[name]
     unit = params_type._fields_by_name()[name].metadata.get("unit", "")
     sel = run_indices(runs, sim.n_runs)
-    v = np.asarray(values, dtype=float)
+    try:
+        v = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):  # (text, a ragged list: numpy's words, not the field's)
+        raise ParameterError(f"must be a number or numbers (one per run) [{unit}], got "
+                             f"{values!r}", field="values", unit=unit, value=values) from None
     if v.ndim > 1 or (v.ndim == 1 and v.shape[0] != sel.size):
         raise ParameterError(f"must be a number or have shape ({sel.size},) (one per run), got "
                              f"{v.shape}", field="values", unit=unit, value=v.shape)
@@ -139,7 +145,29 @@ def set_controller_param(sim: "Simulator", name: str, values: Any, runs: Any = N
     if cp.shape[0] != sim.n_runs:  # (one record for every run: not writable per run)
         raise ParameterError(f": the controller's parameters have {cp.shape[0]} rows for "
                              f"{sim.n_runs} runs", field="controller_params", value=cp.shape)
+    _check_whole_sets(sim._batch.info["c_cls"], cp, name, sel, v, unit)
     cp[name][sel] = v
+
+
+def _check_whole_sets(cls: type[Params], cp: np.ndarray, name: str, sel: np.ndarray,
+                      v: np.ndarray, unit: str) -> None:
+    """The parameter sets of the runs ``sel`` with ``name`` = ``v`` made as ``cls``, for a
+    class whose construction checks more than each field's range (``validate``'s cross-field
+    rules: a zig-zag's side is +1 or -1, a route's waypoint count a whole number): what
+    :class:`~seahelm.parameters.Params` refuses is refused here too, naming ``values``."""
+    if cls.validate is Params.validate and cls.__post_init__ is Params.__post_init__:
+        return  # (the field's range, checked by the caller, is all a construction checks)
+    rows = cp.view(np.float64).reshape(cp.shape[0], -1)
+    j = cls.value_names().index(name)
+    for r, value in zip(sel.tolist(), v.tolist()):
+        row = rows[r].copy()
+        row[j] = value
+        try:
+            cls.from_array(row)
+        except ValueError as exc:  # (ParameterError included)
+            raise ParameterError(f": {name} = {value!r} [{unit}] of run {r} makes no "
+                                 f"parameter set of {cls.__name__}: {exc}", field="values",
+                                 unit=unit, value=value, run=r) from None
 
 
 def held_commands(sim: "Simulator") -> np.ndarray:
