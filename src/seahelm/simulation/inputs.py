@@ -90,8 +90,8 @@ def _by_name(name: str, value: Mapping[str, Any], labels: tuple[str, ...],
         if all(type(v) is float or type(v) is int for v in row):
             try:
                 finite = math.isfinite(math.fsum(row))
-            except OverflowError:  # (an int beyond floats: the general path names it)
-                finite = False
+            except (OverflowError, ValueError):  # (an int beyond floats, or inf and -inf
+                finite = False  # together -- fsum's ValueError: the general path names them)
             if finite:
                 return np.array(row, dtype=float).reshape(1, 1, len(labels))
     cols = [_signal(f"{name}['{lab}']", value.get(lab, 0.0), 1, t_grid, unit) for lab in labels]
