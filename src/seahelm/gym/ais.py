@@ -16,7 +16,8 @@ The noise is :func:`~seahelm.encounters.sensing.report_noise` of (the sensor's s
 episode's number, the vessel, the interval): episode ``j`` of sub-environment ``i`` of ``N`` is
 number ``i + j N``, so the first episodes of a vector environment see the noise of
 ``Encounter.run`` of those encounters with that sensor, bit for bit, and every later episode
-fresh noise.
+fresh noise; a ``reset`` with a seed numbers them from 0 again (:meth:`EpisodeAIS.renumber`:
+the same seed, the same episodes).
 """
 
 from __future__ import annotations
@@ -89,6 +90,11 @@ class EpisodeAIS:
         self.k[runs] = 0
         self.number[runs] = np.repeat(sel + self.n * self.episodes[sel], self.nv)
         self.episodes[sel] += 1
+
+    def renumber(self) -> None:
+        """Number the episodes from 0 again, as when the sensor was made (a seeded
+        ``reset``: the same seed and actions, the same reports, noise included)."""
+        self.episodes[:] = 0
 
     def update(self, truth: np.ndarray, runs: np.ndarray | None = None) -> np.ndarray:
         """Send the reports due now from ``truth`` and return the view (every run's).

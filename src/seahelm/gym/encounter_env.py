@@ -262,7 +262,8 @@ class EncounterVectorEnv(BatchEnv):
         Parameters
         ----------
         seed : int, optional
-            Seeds the geometries' draws: the same seed and actions give the same episodes.
+            Seeds the geometries' draws (and numbers the AIS reports' episodes from 0 again,
+            their noise with them): the same seed and actions give the same episodes.
         options : dict, optional
             ``{"reset_mask": bool array (num_envs,)}``: start only those.
 
@@ -271,6 +272,8 @@ class EncounterVectorEnv(BatchEnv):
         observations (num_envs, observations), info (empty dict)
         """
         sel = self._reset_start(seed, options)
+        if seed is not None and self._ais is not None:  # (the same seed: the same noise too)
+            self._ais.renumber()
         if not self._started:
             self._clock = 0.0
             if self.encounter.avoidance is not None:
@@ -456,6 +459,26 @@ class EncounterEnv(OneEnv):
         super().__init__(EncounterVectorEnv(1, autoreset_mode="Disabled",
                                             render_mode=render_mode, **kwargs))
         self.encounter = self._vec.encounter
+
+    def reset(self, *, seed: int | None = None,
+              options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict[str, Any]]:
+        """Start an episode (a new Monte-Carlo geometry).
+
+        Parameters
+        ----------
+        seed : int, optional
+            Seeds the episode's draws (the geometry, and the AIS reports' noise numbered from
+            the first episode again): the same seed and actions give the same episode.
+        options : dict, optional
+            Not used.
+
+        Returns
+        -------
+        observation (observations,), info (empty dict)
+        """
+        if seed is not None and self._vec._ais is not None:
+            self._vec._ais.renumber()
+        return super().reset(seed=seed, options=options)
 
     def _start(self) -> np.ndarray:
         v = self._vec
