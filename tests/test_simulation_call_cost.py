@@ -91,7 +91,7 @@ def test_the_second_rudder_channel_and_the_largest_magnitude_over_runs_and_time(
     values = np.zeros((2, 3, 4))
     values[1, 2, 3] = -1.75
     values[0, 1, 3] = 1.7
-    with pytest.raises(Exception, match=r"channel 'rudder_2' reaches 1\.75 rad"):
+    with pytest.raises(Exception, match=r"channel 'rudder_2' of run 1 reaches -1\.75 rad"):
         _check(values)
 
 

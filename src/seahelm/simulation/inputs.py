@@ -178,7 +178,7 @@ def _check_angles(name: str, values: np.ndarray, labels: tuple[str, ...],
         worst_of = {j: float(np.abs(values[..., j]).max()) for j in rad}
     for j in rad:
         if labels[j].startswith("rudder") and worst_of[j] > MAX_RUDDER_ANGLE:
-            raise _rudder_error(name, labels[j], worst_of[j])
+            raise _rudder_error(name, labels[j], values[..., j])
     for j in rad:
         label, worst = labels[j], worst_of[j]
         if worst > MAX_ANGLE:
@@ -195,7 +195,7 @@ MAX_RUDDER_ANGLE = 0.5 * math.pi
 
 
 def check_rudder_angles(name: str, values: np.ndarray, labels: tuple[str, ...],
-                        units: tuple[str, ...]) -> None:
+                        units: tuple[str, ...], runs: np.ndarray | None = None) -> None:
     """Rudder channels (a label beginning ``rudder``, unit ``rad``) within
     ±:data:`MAX_RUDDER_ANGLE`.
 
@@ -207,29 +207,41 @@ def check_rudder_angles(name: str, values: np.ndarray, labels: tuple[str, ...],
         The channels, in the order of ``labels``.
     labels, units : tuple of str
         The channel names and units.
+    runs : ndarray of int, optional
+        The run of each row of ``values`` (default: row i is run i).
 
     Raises
     ------
     ParameterError
-        Naming the channel, its largest magnitude in rad and degrees, and that value read as
-        degrees in radians.
+        Naming the channel, the run (of a batch of several), the value farthest out in rad
+        and degrees, and that value read as degrees in radians.
     """
     for j, (label, unit) in enumerate(zip(labels, units)):
         if unit == "rad" and label.startswith("rudder") and j < values.shape[-1]:
             worst = float(np.abs(values[..., j]).max())
             if worst > MAX_RUDDER_ANGLE:  # (nan is not: callers name non-finite values)
-                raise _rudder_error(name, label, worst)
+                raise _rudder_error(name, label, values[..., j], runs)
 
 
-def _rudder_error(name: str, label: str, worst: float) -> ParameterError:
+def _rudder_error(name: str, label: str, column: np.ndarray,
+                  runs: np.ndarray | None = None) -> ParameterError:
     """The error of a rudder channel beyond ±:data:`MAX_RUDDER_ANGLE`
-    (:func:`check_rudder_angles`)."""
+    (:func:`check_rudder_angles`): ``column`` the channel (rows = runs, then samples), its
+    value farthest out named with its sign and, in a batch of several, its run."""
+    column = np.asarray(column)
+    k = int(np.nanargmax(np.abs(column)))
+    value = float(column.flat[k])
+    run = None
+    if column.ndim >= 1 and column.shape[0] > 1:
+        run = int(np.unravel_index(k, column.shape)[0])
+        run = int(runs[run]) if runs is not None else run
+    where = f" of run {run}" if run is not None else ""
     return ParameterError(
-        f": channel '{label}' reaches {worst:.6g} rad ({math.degrees(worst):.6g} deg);"
+        f": channel '{label}'{where} reaches {value:.6g} rad ({math.degrees(value):.6g} deg);"
         f" a rudder turns at most ±90 deg (±{MAX_RUDDER_ANGLE:.6g} rad). Angles are "
-        f"radians here: {worst:.6g} deg is {math.radians(worst):.6g} rad "
+        f"radians here: {value:.6g} deg is {math.radians(value):.6g} rad "
         "(math.radians; degrees in a scenario as <name>_deg)",
-        field=name, unit="rad", value=worst)
+        field=name, unit="rad", value=value, run=run)
 
 
 def _runs(*sizes: tuple[str, int]) -> int:

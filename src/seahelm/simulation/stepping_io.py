@@ -121,7 +121,7 @@ def check_commands(commands: Any, sel: np.ndarray, held: np.ndarray, labels: tup
                              f"({units_text})",
                              field="commands", value=float(values[r, j]),
                              run=int(sel[r]))
-    check_rudder_angles("commands", values, labels, units)
+    check_rudder_angles("commands", values, labels, units, sel)
     return values
 
 
