@@ -201,14 +201,15 @@ def _slim_index_tuples(code: types.CodeType, glb: dict[str, Any]) -> dict[str, A
         return {}
     key = (code, tuple(sorted((name, id(glb[name])) for name in big)))
     if key not in _SLIMMED:  # (reading a big function's bytecode takes some 30 ms)
-        _SLIMMED[key] = _slimmed(code, glb, big)
-    return dict(_SLIMMED[key])
+        _SLIMMED[key] = (tuple(glb[name] for name in sorted(big)), _slimmed(code, glb, big))
+    return dict(_SLIMMED[key][1])
 
 
 #: The stand-ins made, per code object and the tuples it reads (a process that builds several
-#: loops of one component reads its bytecode once); the tuples are kept alive by the keys'
-#: modules.
-_SLIMMED: dict[tuple[Any, ...], dict[str, Any]] = {}
+#: loops of one component reads its bytecode once). Each entry holds the tuples themselves
+#: too: while an entry lives no other object can take a tuple's ``id``, so a key never names
+#: a tuple other than the one its stand-ins were made from.
+_SLIMMED: dict[tuple[Any, ...], tuple[tuple[Any, ...], dict[str, Any]]] = {}
 
 
 def _slimmed(code: types.CodeType, glb: dict[str, Any], big: set[str]) -> dict[str, Any]:
