@@ -27,10 +27,12 @@ a heading, dt = 0.1 s, an action (rudder command) every 1 s, episodes of 120 s:
   old velocities, the baseline with the mean of old and new) -- one evaluation of the forces
   per step either way.
 
-Prints medians of several repetitions and the ratios (targets of issue 52: the vector env
-≥ 50 × the baseline and ≥ 5 × seahelm's single env).
+Prints the median and quartiles of several repetitions (each repetition runs the rows one
+after another: the baseline for ten episodes, then the vector env with Euler, ...) and of the
+ratios of each repetition's rows (targets of issue 52: the vector env ≥ 50 × the baseline and
+≥ 5 × seahelm's single env), so that a figure is not one lucky draw of a loaded machine.
 
-    python benchmarks/bench_gym.py [--repeats 5] [--envs 1024] [--quick]
+    python benchmarks/bench_gym.py [--repeats 9] [--envs 1024] [--quick]
 
 And an FMU of the same ship (``seahelm fmu``) run by fmpy: one ``doStep`` of 1 s against the
 same interval through the Python stepping API (target of issue 52: ≤ 2 ×).
@@ -275,15 +277,30 @@ def _fmu_step_cost(steps: int) -> tuple[float, float, float]:
     return round_trip, bare, stepping
 
 
+def _quartiles(values: list[float]) -> tuple[float, float, float]:
+    """Lower quartile, median and upper quartile (linear interpolation; one value: itself)."""
+    q1, q2, q3 = np.percentile(np.asarray(values, dtype=float), [25, 50, 75])
+    return float(q1), float(q2), float(q3)
+
+
+def _spread(values: list[float], fmt: str) -> str:
+    """``median [q1, q3]`` of ``values`` in ``fmt``."""
+    q1, q2, q3 = _quartiles(values)
+    return f"{q2:{fmt}} [{q1:{fmt}}, {q3:{fmt}}]"
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--repeats", type=int, default=9)
     parser.add_argument("--envs", type=int, default=1024)
     parser.add_argument("--quick", action="store_true")
     args = parser.parse_args()
     n_envs = 16 if args.quick else args.envs
     repeats = 1 if args.quick else args.repeats
     single_steps = 50 if args.quick else 600
+    # the baseline's run of a repeat: ten episodes (about 50 ms); a run of a few ms (150
+    # steps, as before) measured the scheduler as much as the loop (idle, 19-30 k between runs)
+    baseline_steps = 50 if args.quick else 1200
     vector_steps = 10 if args.quick else 130  # past an episode's end: one autoreset of all
     baseline = PythonMMGHeadingEnv()
     env = ShipEnv(task="HeadingKeeping", ship="kvlcc2-l7", dt=DT, action_period=ACTION_PERIOD,
@@ -294,39 +311,43 @@ def main() -> None:
                           action_period=ACTION_PERIOD, episode_seconds=EPISODE,
                           integrator="euler")
     _single(env, 5)  # (warm)
-    # interleaved, so that the machine's load falls on every row alike
+    _single(baseline, 50)
+    # interleaved, so that the machine's load falls on every row alike; the ratios of each
+    # repeat are of rows measured back to back (a slow drift of the load cancels in them)
     rows: dict[str, list[tuple[float, float]]] = {k: [] for k in
                                                   ("baseline", "single", "vector", "euler")}
     j0, c0, t0 = _busy_jiffies(), time.process_time(), time.perf_counter()
     for _ in range(repeats):
-        rows["baseline"].append(_single(baseline, single_steps // 4))
+        rows["baseline"].append(_single(baseline, baseline_steps))
+        rows["euler"].append(_vector(euler, vector_steps))
         rows["single"].append(_single(env, single_steps))
         rows["vector"].append(_vector(envs, vector_steps))
-        rows["euler"].append(_vector(euler, vector_steps))
     j1, c1, t1 = _busy_jiffies(), time.process_time(), time.perf_counter()
-    wall = {k: statistics.median(w for w, _ in v) for k, v in rows.items()}
-    cpu = {k: statistics.median(c for _, c in v) for k, v in rows.items()}
     print(f"KVLCC2 L7 heading keeping, dt {DT} s, an action every {ACTION_PERIOD} s "
-          f"(medians of {repeats}, interleaved; per second of wall time, and of the process's "
-          f"CPU time: every thread's, the fair measure on a loaded machine)")
-    print(f"{'environment':60s} {'env-steps/s':>12s} {'per CPU-s':>12s}")
+          f"(median [quartiles] of {repeats} repeats, interleaved; per second of wall time, "
+          f"and of the process's CPU time: every thread's, the fair measure on a loaded "
+          f"machine)")
+    print(f"{'environment':52s} {'env-steps/s (wall)':>28s} {'per CPU-s':>28s}")
     names = {"baseline": "Python MMG, TUD_RL's Euler/trapezoid (baseline)",
              "single": "seahelm ShipEnv (one ship)",
-             "vector": f"seahelm ShipVectorEnv ({n_envs} sub-environments, RK4)",
-             "euler": f"seahelm ShipVectorEnv ({n_envs}, Euler: the baseline's cost)"}
+             "vector": f"seahelm ShipVectorEnv ({n_envs} sub-envs, RK4)",
+             "euler": f"seahelm ShipVectorEnv ({n_envs}, Euler: the baseline's)"}
     for key, name in names.items():
-        print(f"{name:60s} {wall[key]:12,.0f} {cpu[key]:12,.0f}")
+        print(f"{name:52s} {_spread([w for w, _ in rows[key]], ',.0f'):>28s} "
+              f"{_spread([c for _, c in rows[key]], ',.0f'):>28s}")
     if j0 is not None and j1 is not None and j1[1] > j0[1]:
         cores = os.cpu_count() or 1
         busy = cores * (j1[0] - j0[0]) / (j1[1] - j0[1])  # cores busy, machine-wide
         own = (c1 - c0) / (t1 - t0)  # this process's cores
         print(f"load: {max(0.0, busy - own):.2f} of {cores} cores busy elsewhere during the "
               f"rows (this process {own:.2f})")
-    for what, m in (("wall", wall), ("CPU", cpu)):
-        print(f"{what}: vector / baseline {m['vector'] / m['baseline']:.1f} x RK4, "
-              f"{m['euler'] / m['baseline']:.1f} x Euler (target >= 50 x); vector / single env "
-              f"{m['vector'] / m['single']:.1f} x (target >= 5 x); single env / baseline "
-              f"{m['single'] / m['baseline']:.1f} x")
+    for what, i in (("wall", 0), ("CPU", 1)):
+        def ratio(a: str, b: str) -> str:
+            return _spread([x[i] / y[i] for x, y in zip(rows[a], rows[b])], ".1f")
+        print(f"{what}: vector / baseline (each repeat's pair) {ratio('euler', 'baseline')} x "
+              f"Euler (target >= 50 x), {ratio('vector', 'baseline')} x RK4; vector / single "
+              f"env {ratio('vector', 'single')} x (target >= 5 x); single env / baseline "
+              f"{ratio('single', 'baseline')} x")
     for e in (env, envs, euler):
         e.close()
     round_trip, bare, stepping = _fmu_step_cost(20 if args.quick else 2000)
