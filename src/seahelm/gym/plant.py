@@ -22,7 +22,7 @@ from ..ships import get_ship
 from ..simulation.problem import Problem
 from ..simulation.stepping import Simulator
 
-__all__ = ["Plant", "build_plant", "autopilot_params_for", "WEATHER_KEYS"]
+__all__ = ["Plant", "build_plant", "autopilot_params_for", "state_views", "WEATHER_KEYS"]
 
 #: Weather keywords an environment takes [SI units, radians; directions the waves and wind come
 #: from, clockwise from north]: any non-zero ``wind_speed`` adds Blendermann's wind loads, any
@@ -263,6 +263,52 @@ def build_plant(ship: Any, *, num_envs: int, episode_seconds: float, dt: float,
                  speed=speed, length=length, max_rudder=max_rudder,
                  action_period=float(action_period), autopilot=autopilot,
                  intervals_per_action=every)
+
+
+def state_views(sim: Simulator, labels: tuple[str, ...] | None
+                ) -> dict[str, np.ndarray] | None:
+    """Views of the simulator's live state array (runs,) by label, for a task that reads only
+    ``labels``, when each is a state that the loop outputs unchanged (as the MMG family and
+    the planar models do for position, heading, speeds and yaw rate); else None.
+
+    An environment that reads the states needs no observation from the loop (its outputs at
+    the interval's end: a model evaluation per run and step,
+    :func:`~seahelm.simulation.stepping_reference.advance_unobserved`). Whether an output is
+    its state is probed on run 0 of the freshly reset simulator, with every state moved off
+    the approach (the heading past π, so that a wrapped heading output is seen), through the
+    loop's own observation; the simulator is reset afterwards.
+
+    Parameters
+    ----------
+    sim : Simulator
+        The plant's simulator, just reset.
+    labels : tuple of str or None
+        What the task reads (:attr:`seahelm.gym.tasks.Task.reads`); None: not declared.
+
+    Returns
+    -------
+    dict or None
+        Label -> view ``sim._z[:, j]`` (live: the loop writes it in place), or None.
+    """
+    if not labels or any(n not in sim.state_labels or n not in sim.output_labels
+                         for n in labels):
+        return None
+    z0 = np.array([sim.state(0)[n] for n in sim.state_labels])
+    probe = z0 + 0.01 * (np.arange(z0.size) + 1.0) * (1.0 + np.abs(z0))
+    if "heading" in sim.state_labels:
+        probe[sim.state_labels.index("heading")] += 4.0
+    try:
+        sim.set_state(0, probe)
+    except ParameterError:  # (outside the model's declared bounds: not probed)
+        sim.reset()
+        return None
+    seen = sim.observe()
+    same = all(seen[n][0] == probe[sim.state_labels.index(n)] for n in labels)
+    sim.reset()
+    if not same:
+        return None
+    z = sim._z
+    return {n: z[:, sim.state_labels.index(n)] for n in labels}
 
 
 def autopilot_params_for(autopilot: Any, *, length: float, speed: float, max_rudder: float,

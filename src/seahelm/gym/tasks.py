@@ -193,6 +193,10 @@ class Task(Weighted):
     default_weights: ClassVar[dict[str, float]] = {}
     #: Default episode length [s].
     default_episode_seconds: ClassVar[float] = 120.0
+    #: The simulator's outputs :meth:`evaluate` reads (None: not declared); when they are
+    #: states the loop outputs unchanged the environment reads the states instead
+    #: (:func:`seahelm.gym.plant.state_views`).
+    reads: ClassVar[tuple[str, ...] | None] = None
 
     def __init__(self, num_envs: int, *, length: float, speed: float, max_rudder: float,
                  reward: Mapping[str, float] | None = None,
@@ -292,6 +296,7 @@ class HeadingKeeping(Task):
     default_weights = {"heading": 1.0, "yaw_rate": 0.1, "rudder": 0.05, "rudder_rate": 0.05,
                        "failure": 50.0}
     default_episode_seconds = 120.0
+    reads = ("heading", "yaw_rate", "surge_speed", "sway_speed")
 
     def __init__(self, num_envs: int, *, initial_heading_error: float = math.radians(20.0),
                  max_heading_error: float = math.radians(90.0), **kw: Any) -> None:
@@ -363,6 +368,7 @@ class PathFollowing(Task):
     default_weights = {"cross_track": 1.0, "heading": 0.2, "yaw_rate": 0.1, "rudder": 0.05,
                        "rudder_rate": 0.05, "failure": 50.0}
     default_episode_seconds = 400.0
+    reads = ("north", "east", "heading", "yaw_rate", "surge_speed", "sway_speed")
 
     def __init__(self, num_envs: int, *, route: Any = None, cross_track_scale: float | None = None,
                  max_cross_track: float | None = None, initial_cross_track: float | None = None,

@@ -31,9 +31,10 @@ import numpy as np
 
 from .._optional import optional_import
 from ..errors import ParameterError
-from ..simulation.stepping_reference import (held_commands, restart_clock, restart_runs,
-                                              set_controller_param, set_reference)
-from .plant import WEATHER_KEYS, Plant, build_plant
+from ..simulation.stepping_reference import (advance_unobserved, held_commands, restart_clock,
+                                              restart_runs, set_controller_param,
+                                              set_reference)
+from .plant import WEATHER_KEYS, Plant, build_plant, state_views
 from .tasks import TASKS, Task
 
 gym = optional_import("gymnasium", extra="rl", purpose="seahelm.gym")
@@ -177,6 +178,10 @@ class ShipVectorEnv(BatchEnv):
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         sim = p.simulator
         self._sim = sim
+        #: The states the task reads, live views by label, when the loop outputs them
+        #: unchanged: then a step observes nothing (the loop skips the outputs at its end)
+        #: and the task reads the states; else None, the loop's observation.
+        self._states = state_views(sim, self.task.reads)
         self._cmd = np.repeat(p.command_start[None], self.num_envs, axis=0)
         self._rudder_col = sim.command_labels.index("rudder_command")
         self._previous = self._cmd[:, self._rudder_col].copy()
@@ -329,21 +334,26 @@ class ShipVectorEnv(BatchEnv):
             restart_clock(sim)  # (the simulator's horizon reached: its clock back to 0)
         # every run stepped (one call of the loop; the runs stay at the same step): those
         # restarting now are started again after it, from their new episode's start
+        states = self._states
         if setpoint:
             set_reference(sim, a[:, None])
             if self._rps_setpoint:
                 set_controller_param(sim, "propeller_rps", rps)
-            out = sim.step(None, n=every)
+            if states is None or not advance_unobserved(sim, None, every):
+                out = sim.step(None, n=every)
             self._cmd[:] = held_commands(sim)  # (the autopilot's rudder: observed, rewarded)
         else:
             self._cmd[:, self._act_cols] = a
-            out = sim.step(self._cmd)
+            if states is None or not advance_unobserved(sim, self._cmd, 1):
+                out = sim.step(self._cmd)
         self.elapsed += self.plant.action_period
         if restart.any():  # (observed: the restarted runs; the others as the step left them)
             out = self._begin(np.flatnonzero(restart))
+        if states is not None:
+            out = states
         obs, terms, failed, success = self.task.evaluate(out, self._cmd[:, self._rudder_col],
                                                          self._previous)
-        diverged = out.status != 0
+        diverged = sim._status != 0
         if diverged.any():
             failed = failed | diverged
             terms["failure"] = -failed.astype(float)
@@ -362,7 +372,8 @@ class ShipVectorEnv(BatchEnv):
         """Start the episodes of ``sel``: the runs reset, the task's draws set, every run's
         clock at the same step again (:func:`~seahelm.simulation.stepping_reference.
         restart_runs`: the batch goes on as one call of the loop a step); returns the
-        simulator's observation (the runs of ``sel`` at their new start)."""
+        simulator's observation (the runs of ``sel`` at their new start), or the state views
+        when the task reads the states."""
         p = self.plant
         self._cmd[sel] = p.command_start
         self._previous[sel] = p.command_start[self._rudder_col]
@@ -371,11 +382,14 @@ class ShipVectorEnv(BatchEnv):
         if self._rps_setpoint:  # (the autopilot's own rps until the first action)
             set_controller_param(self._sim, "propeller_rps", self._rps0, sel)
         # (sel from the start, the others kept: all at t = 0)
-        return restart_runs(self._sim, sel, self.task.begin(sel, self._rng))
+        out = restart_runs(self._sim, sel, self.task.begin(sel, self._rng),
+                           observe=self._states is None)
+        return self._states if out is None else out
 
     def _observe_now(self, out: Any = None) -> tuple[np.ndarray, dict[str, Any]]:
         """The observations now, without stepping (after a reset: its observation)."""
-        out = self._sim.observe() if out is None else out
+        if out is None:
+            out = self._sim.observe() if self._states is None else self._states
         obs, _, _, _ = self.task.evaluate(out, self._cmd[:, self._rudder_col], self._previous)
         return self._cast(obs), {}
 

@@ -142,6 +142,15 @@ def _spans(sel: np.ndarray) -> list[tuple[int, int]]:
     """Sorted unique indices as contiguous spans [i0, i1)."""
     if sel.size == 0:
         return []
+    if sel.size <= 16:  # (a few runs: a loop over them costs less than the array calls)
+        idx = sel.tolist()
+        spans, start = [], idx[0]
+        for prev, i in zip(idx, idx[1:]):
+            if i != prev + 1:
+                spans.append((start, prev + 1))
+                start = i
+        spans.append((start, idx[-1] + 1))
+        return spans
     cut = np.flatnonzero(np.diff(sel) != 1) + 1
     starts = np.concatenate([[0], cut])
     stops = np.concatenate([cut, [sel.size]])
@@ -196,6 +205,12 @@ def run_indices(runs: Any, n_runs: int, *, as_given: bool = False) -> np.ndarray
     """
     if runs is None:
         return np.arange(n_runs)
+    if type(runs) is np.ndarray and runs.dtype == np.int64 and runs.ndim == 1 \
+            and runs.size and 0 <= runs[0] and runs[-1] < n_runs \
+            and (runs.size == 1 or bool((runs[1:] > runs[:-1]).all())):
+        # (sorted unique indices in range, as np.flatnonzero gives them: np.unique costs
+        # some 10 µs, most of a restart of a few sub-environments)
+        return runs.copy()
     arr = np.atleast_1d(np.asarray(runs))
     if arr.dtype == bool:
         if arr.shape != (n_runs,):
