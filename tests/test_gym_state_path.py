@@ -19,11 +19,13 @@ N = 256
 
 
 class _Observed(ShipVectorEnv):
-    """The environment as it was: every step observed by the loop."""
+    """The environment as it was: every step observed by the loop, the task's numpy
+    evaluation (not the compiled end of a heading-keeping step)."""
 
     def __init__(self, *args, **kw):
         super().__init__(*args, **kw)
         self._states = None
+        self._fused = False
 
 
 def _episode(cls, task, n=N, **kw):
@@ -38,7 +40,7 @@ def _episode(cls, task, n=N, **kw):
         rows += [o, r, te, tr]
     rows.append(envs.reset(options={"reset_mask": np.arange(n) % 3 == 0})[0])
     rows.append(envs.step(np.zeros((n, lo.size)))[0])
-    states = envs._states
+    states = envs._states, envs._fused
     envs.close()
     return rows, states
 
@@ -47,9 +49,11 @@ def _episode(cls, task, n=N, **kw):
                                       ("HeadingKeeping", {"integrator": "euler"}),
                                       ("PathFollowing", {"autopilot": "pid-heading-rps"})])
 def test_a_seeded_episode_read_from_the_states_is_bit_for_bit_the_observed_one(task, kw):
-    new, states = _episode(ShipVectorEnv, task, **kw)
-    old, none = _episode(_Observed, task, **kw)
-    assert states is not None and none is None  # (the new path taken; the reference's not)
+    new, (states, fused) = _episode(ShipVectorEnv, task, **kw)
+    old, (none, unfused) = _episode(_Observed, task, **kw)
+    # (the new paths taken; the reference's not)
+    assert states is not None and none is None and not unfused
+    assert fused == (task == "HeadingKeeping")
     terminated = np.array(new[3:-2:4])
     assert task == "PathFollowing" or terminated.sum() > 5  # (restarts of a few runs)
     assert len(new) == len(old)
@@ -62,6 +66,7 @@ def test_the_single_env_reads_the_states_and_is_unchanged():
         env = ShipEnv(task="HeadingKeeping", ship="kvlcc2-l7", episode_seconds=20.0)
         if observed:
             env._vec._states = None
+            env._vec._fused = False
         rows = [env.reset(seed=5)[0]]
         for k in range(25):
             o, r, te, tr, _ = env.step(np.array([0.3 * np.sin(0.4 * k)]))
@@ -137,3 +142,26 @@ def test_restart_runs_of_scattered_runs_keeps_the_others_controller_states(every
         assert np.array_equal(a, b)
     e1.close()
     e2.close()
+
+
+def test_a_diverged_run_is_the_same_on_both_paths():
+    # a non-finite state: the run diverges in the step (status 1, observed from its state),
+    # fails the episode, and restarts at the next
+    def run(cls):
+        envs = cls(16, task="HeadingKeeping", ship="kvlcc2-l7", episode_seconds=30.0)
+        rows = [envs.reset(seed=2)[0]]
+        for k in range(6):
+            if k == 2:
+                envs._sim._z[5, envs._sim.state_labels.index("yaw_rate")] = np.nan
+                envs._sim._z[9, envs._sim.state_labels.index("sway_speed")] = np.inf
+            o, r, te, tr, _ = envs.step(np.full((16, 1), 0.1))
+            rows += [o, r, te, tr]
+        assert envs._sim._status.sum() == 0  # (restarted)
+        envs.close()
+        return rows
+
+    new, old = run(ShipVectorEnv), run(_Observed)
+    assert new[11][5] and new[11][9] and not new[11][4]  # (terminated: the diverged ones)
+    assert np.isnan(new[10][5])  # (their reward: of a NaN state)
+    for a, b in zip(new, old):
+        assert a.dtype == b.dtype and np.array_equal(a, b, equal_nan=a.dtype.kind == "f")

@@ -35,7 +35,7 @@ from ..simulation.stepping_reference import (advance_unobserved, held_commands, 
                                               restart_runs, set_controller_param,
                                               set_reference)
 from .plant import WEATHER_KEYS, Plant, build_plant, state_views
-from .tasks import TASKS, Task
+from .tasks import TASKS, HeadingKeeping, Task
 
 gym = optional_import("gymnasium", extra="rl", purpose="seahelm.gym")
 from gymnasium import spaces  # noqa: E402
@@ -182,6 +182,17 @@ class ShipVectorEnv(BatchEnv):
         #: unchanged: then a step observes nothing (the loop skips the outputs at its end)
         #: and the task reads the states; else None, the loop's observation.
         self._states = state_views(sim, self.task.reads)
+        self._fused = self._states is not None and type(self.task) is HeadingKeeping \
+            and tuple(self.task.weights) == tuple(HeadingKeeping.default_weights)
+        if self._fused:  # (the compiled end of a step: seahelm.gym._fused)
+            lab = sim.state_labels
+            self._z = sim._z
+            self._j_heading = lab.index("heading")
+            self._cols = np.array([lab.index(n) for n in ("yaw_rate", "surge_speed",
+                                                          "sway_speed")], dtype=np.int64)
+            self._box = (self.single_observation_space.low.astype(np.float64),
+                         self.single_observation_space.high.astype(np.float64))
+            self._error, self._bell = np.zeros(self.num_envs), np.zeros(self.num_envs)
         self._cmd = np.repeat(p.command_start[None], self.num_envs, axis=0)
         self._rudder_col = sim.command_labels.index("rudder_command")
         self._previous = self._cmd[:, self._rudder_col].copy()
@@ -349,6 +360,8 @@ class ShipVectorEnv(BatchEnv):
         self.elapsed += self.plant.action_period
         if restart.any():  # (observed: the restarted runs; the others as the step left them)
             out = self._begin(np.flatnonzero(restart))
+        if self._fused:
+            return self._fused_end(restart)
         if states is not None:
             out = states
         obs, terms, failed, success = self.task.evaluate(out, self._cmd[:, self._rudder_col],
@@ -361,6 +374,32 @@ class ShipVectorEnv(BatchEnv):
         terminated = failed | success
         truncated = ~terminated & (self.elapsed >= self.episode_seconds - 1e-9)
         return self._step_end(obs, reward, terminated, truncated, restart)
+
+    def _fused_end(self, restart: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray,
+                                                        np.ndarray, dict[str, Any]]:
+        """The end of a heading-keeping step in two compiled passes and numpy's exp
+        (:mod:`seahelm.gym._fused`): the numbers of ``task.evaluate``, ``task.reward``,
+        ``_step_end`` and ``_cast``, bit for bit."""
+        from ._fused import heading_error_pass, heading_keeping_end
+
+        task, n = self.task, self.num_envs
+        error, bell = self._error, self._bell
+        heading_error_pass(self._z, self._j_heading, task.target, task.heading_scale, error,
+                           bell)
+        np.exp(bell, out=bell)
+        w = task.weights
+        weights = np.array([w["heading"], w["yaw_rate"], w["rudder"], w["rudder_rate"],
+                            w["failure"]])
+        consts = np.array([task.length / task.speed, task.max_rudder, task.max_heading_error,
+                           self.episode_seconds - 1e-9, 1.0])
+        obs = np.empty((n, 5), dtype=np.float32)
+        reward = np.empty(n)
+        terminated = np.empty(n, dtype=bool)
+        truncated = np.empty(n, dtype=bool)
+        heading_keeping_end(self._z, self._cols, self._cmd, self._rudder_col, self._previous,
+                            error, bell, self._sim._status, self.elapsed, restart, consts,
+                            weights, *self._box, obs, reward, terminated, truncated, self._done)
+        return obs, reward, terminated, truncated, {}
 
     def close(self, **kwargs: Any) -> None:
         """End the simulator's thread pool."""
