@@ -165,3 +165,23 @@ def test_a_diverged_run_is_the_same_on_both_paths():
     assert np.isnan(new[10][5])  # (their reward: of a NaN state)
     for a, b in zip(new, old):
         assert a.dtype == b.dtype and np.array_equal(a, b, equal_nan=a.dtype.kind == "f")
+
+
+def test_restart_runs_keeping_the_clock_restarts_at_the_batch_time():
+    from seahelm.simulation.stepping_reference import restart_runs
+
+    e = ShipVectorEnv(8, task="HeadingKeeping", ship="kvlcc2-l7")
+    sim = e._sim
+    cmd = np.tile(e.plant.command_start, (8, 1)) + [0.2, 0.0]
+    for _ in range(3):
+        assert advance_unobserved(sim, cmd, 1)
+    t = sim.time.copy()
+    other = sim._z[3].copy()
+    restart_runs(sim, [2, 5], {"heading": [0.1, 0.2]}, observe=False, clock=False)
+    assert np.array_equal(sim.time, t) and t[0] == 3.0
+    fresh = sim._fresh[0][2].copy()
+    fresh[sim.state_labels.index("heading")] = 0.1
+    assert np.array_equal(sim._z[2], fresh) and np.array_equal(sim._z[3], other)
+    restart_runs(sim, [2], observe=False)  # (the default: every clock back to 0)
+    assert np.array_equal(sim.time, np.zeros(8))
+    e.close()

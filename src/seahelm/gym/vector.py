@@ -124,8 +124,9 @@ class ShipVectorEnv(BatchEnv):
     elapsed : ndarray (num_envs,)
         Each sub-environment's time in its episode [s]. (The simulator's runs are kept at
         one step, the batch stepped by one call of the loop: a sub-environment started again
-        is reset in the simulator and every run's clock set back to 0, the model being
-        time-invariant; so the simulator's ``time`` is not the episodes'.)
+        is reset in the simulator at the batch's time -- or, on the observed path, every
+        run's clock set back to 0 -- the model being time-invariant; so the simulator's
+        ``time`` is not the episodes'.)
     """
 
     metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
@@ -421,8 +422,11 @@ class ShipVectorEnv(BatchEnv):
         if self._rps_setpoint:  # (the autopilot's own rps until the first action)
             set_controller_param(self._sim, "propeller_rps", self._rps0, sel)
         # (sel from the start, the others kept: all at t = 0)
+        # (reading the states: nothing observed, the clocks kept -- the model being
+        # time-invariant, restart_runs checks it)
+        observed = self._states is None
         out = restart_runs(self._sim, sel, self.task.begin(sel, self._rng),
-                           observe=self._states is None)
+                           observe=observed, clock=observed)
         return self._states if out is None else out
 
     def _observe_now(self, out: Any = None) -> tuple[np.ndarray, dict[str, Any]]:

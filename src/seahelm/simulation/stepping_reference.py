@@ -228,7 +228,7 @@ def restart_clock(sim: "Simulator", runs: Any = None) -> None:
 
 
 def restart_runs(sim: "Simulator", runs: Any, states: Mapping[str, Any] | None = None, *,
-                 observe: bool = True) -> Observation | None:
+                 observe: bool = True, clock: bool = True) -> Observation | None:
     """:func:`restart_clock` of ``runs`` then :func:`set_states` of them, observing only them:
     the restart of a few sub-environments between two steps of a batch.
 
@@ -252,11 +252,17 @@ def restart_runs(sim: "Simulator", runs: Any, states: Mapping[str, Any] | None =
     observe : bool
         Observe the restarted runs and return the observation (default); False: observe
         nothing, return None (a caller that reads the states, :func:`advance_unobserved`).
+    clock : bool
+        Set every run's clock back to t = 0 (default). False, with every run at one step:
+        keep the clocks, the restarted runs start at the batch's time (the same numbers, the
+        problem being time-invariant; the next step does not begin on the recording grid's
+        t = 0, whose record costs a model evaluation per run).
 
     Returns
     -------
     Observation or None
-        Every run's outputs, all at t = 0 (None unless ``observe``).
+        Every run's outputs, all at t = 0 (at the batch's time with ``clock=False``; None
+        unless ``observe``).
 
     Raises
     ------
@@ -268,9 +274,10 @@ def restart_runs(sim: "Simulator", runs: Any, states: Mapping[str, Any] | None =
     z = _checked_states(sim, sel, states or {}, start=True)
     b = sim._batch
     a = b.slices.arrays
-    sim._k[:] = 0
-    sim._k0 = 0
-    sim._aligned = True
+    if clock or not sim._aligned:
+        sim._k[:] = 0
+        sim._k0 = 0
+        sim._aligned = True
     if sel.size:
         for live, fresh in zip((*a.state, *a.outcome, *a.record), sim._fresh):
             live[sel] = fresh[sel]
@@ -283,7 +290,7 @@ def restart_runs(sim: "Simulator", runs: Any, states: Mapping[str, Any] | None =
             if sel.size > _SPANS_SHARE * sim.n_runs:
                 sim._observe_into()
             else:
-                b.slices.observe_spans(spans, 0, b.n_steps, b.dt, b.ctrl_every,
+                b.slices.observe_spans(spans, sim._k0, b.n_steps, b.dt, b.ctrl_every,
                                        b.record_every, sim._out)
     return sim._observation() if observe else None
 
