@@ -42,6 +42,7 @@ from gymnasium import spaces  # noqa: E402
 from gymnasium.vector import AutoresetMode  # noqa: E402
 from gymnasium.vector.utils import batch_space  # noqa: E402
 
+from ._fused import heading_error_pass, heading_keeping_end  # noqa: E402
 from .base import BatchEnv  # noqa: E402
 from .base import autoreset_mode as autoreset_mode_of  # noqa: E402
 
@@ -381,8 +382,6 @@ class ShipVectorEnv(BatchEnv):
         """The end of a heading-keeping step in two compiled passes and numpy's exp
         (:mod:`seahelm.gym._fused`): the numbers of ``task.evaluate``, ``task.reward``,
         ``_step_end`` and ``_cast``, bit for bit."""
-        from ._fused import heading_error_pass, heading_keeping_end
-
         task, n = self.task, self.num_envs
         error, bell = self._error, self._bell
         heading_error_pass(self._z, self._j_heading, task.target, task.heading_scale, error,
