@@ -327,14 +327,14 @@ def main() -> None:
           f"(median [quartiles] of {repeats} repeats, interleaved; per second of wall time, "
           f"and of the process's CPU time: every thread's, the fair measure on a loaded "
           f"machine)")
-    print(f"{'environment':52s} {'env-steps/s (wall)':>28s} {'per CPU-s':>28s}")
-    names = {"baseline": "Python MMG, TUD_RL's Euler/trapezoid (baseline)",
+    print(f"{'environment':44s} {'env-steps/s (wall)':>27s} {'per CPU-s':>27s}")
+    names = {"baseline": "Python MMG, TUD_RL's Euler (baseline)",
              "single": "seahelm ShipEnv (one ship)",
-             "vector": f"seahelm ShipVectorEnv ({n_envs} sub-envs, RK4)",
-             "euler": f"seahelm ShipVectorEnv ({n_envs}, Euler: the baseline's)"}
+             "vector": f"seahelm ShipVectorEnv ({n_envs}, RK4)",
+             "euler": f"seahelm ShipVectorEnv ({n_envs}, Euler)"}
     for key, name in names.items():
-        print(f"{name:52s} {_spread([w for w, _ in rows[key]], ',.0f'):>28s} "
-              f"{_spread([c for _, c in rows[key]], ',.0f'):>28s}")
+        print(f"{name:44s} {_spread([w for w, _ in rows[key]], ',.0f'):>27s} "
+              f"{_spread([c for _, c in rows[key]], ',.0f'):>27s}")
     if j0 is not None and j1 is not None and j1[1] > j0[1]:
         cores = os.cpu_count() or 1
         busy = cores * (j1[0] - j0[0]) / (j1[1] - j0[1])  # cores busy, machine-wide
