@@ -185,3 +185,16 @@ def test_restart_runs_keeping_the_clock_restarts_at_the_batch_time():
     restart_runs(sim, [2], observe=False)  # (the default: every clock back to 0)
     assert np.array_equal(sim.time, np.zeros(8))
     e.close()
+
+
+def test_a_step_returns_arrays_of_its_own():
+    # (a replay buffer keeps them: the next step must not write into them)
+    envs = ShipVectorEnv(8, task="HeadingKeeping", ship="kvlcc2-l7", episode_seconds=3.0)
+    envs.reset(seed=0)
+    first = envs.step(np.full((8, 1), 0.2))[:4]
+    kept = [a.copy() for a in first]
+    for _ in range(4):  # (through an autoreset)
+        envs.step(np.full((8, 1), -0.2))
+    for a, b in zip(first, kept):
+        assert np.array_equal(a, b)
+    envs.close()
