@@ -45,8 +45,13 @@ def _episode(cls, task, n=N, **kw):
     return rows, states
 
 
+WEATHER = dict(wind_speed=3.0, wind_direction=0.8, wave_height=0.066, wave_length=2.6,
+               wave_direction=0.8)  # (the loads are stages of the loop)
+
+
 @pytest.mark.parametrize("task, kw", [("HeadingKeeping", {}),
                                       ("HeadingKeeping", {"integrator": "euler"}),
+                                      ("HeadingKeeping", WEATHER),
                                       ("PathFollowing", {"autopilot": "pid-heading-rps"})])
 def test_a_seeded_episode_read_from_the_states_is_bit_for_bit_the_observed_one(task, kw):
     new, (states, fused) = _episode(ShipVectorEnv, task, **kw)
