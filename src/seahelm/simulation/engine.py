@@ -78,6 +78,7 @@ from .memory import (  # noqa: F401
     check_record_memory,
     physical_memory,
 )
+from .frame import _frame
 from .problem import Problem, jit_enabled
 from .stages import stages_of
 from .slicing import FIRST_SLICE, FIRST_SLICE_PYTHON, SLICE_SECONDS, _Slices, drive, quiet  # noqa: F401
@@ -362,39 +363,35 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
     ctrl_dt, record_every = problem._derived["controller_dt"], problem.record_every
     tableau, wiring = problem.tableau, problem.wiring
     # the loop's stages (seahelm.simulation.stages): their inputs checked, their signals after
-    # the model's disturbance channels, their outputs after the model's
+    # the model's disturbance channels, their outputs after the model's (the labels, bounds and
+    # sizes of the combination: :func:`_frame`, made once per combination)
     stages = stages_of(problem)
-    stage_inputs = [stage.inputs(problem, model) for stage in stages]
-    dist_labels, dist_units = model.disturbance_labels, model.disturbance_units
-    out_labels, out_units = model.output_labels, model.output_units
-    for stage in stages:
-        (sig, sig_units), (outs, outs_units) = stage.signals(), stage.outputs(model)
-        dist_labels, dist_units = dist_labels + sig, dist_units + sig_units
-        out_labels, out_units = out_labels + outs, out_units + outs_units
+    frame = _frame(wiring, stages)
+    stage_inputs = [stage.inputs(problem, model) for stage in stages] if stages else []
+    dist_labels, out_labels = frame.dist_labels, frame.out_labels
     stage_runs = [c for stage, inp in zip(stages, stage_inputs) for c in stage.run_counts(inp)]
 
     mp, m_cls = _param_rows("params", params, model.params_type)
     ap, a_cls = _param_rows("actuator_params", actuator_params, actuator.params_type)
     cp, c_cls = _param_rows("controller_params", controller_params, controller.params_type)
     x0 = _rows_2d(as_float_array("x0", x0))
-    if x0.shape[-1] != model.n_states or x0.ndim != 2:
+    if x0.shape[-1] != frame.n_states or x0.ndim != 2:
         raise ParameterError(
             f"must have {model.n_states} states ({', '.join(model.state_labels)}), "
             f"got shape {x0.shape}", field="x0")
-    xa0 = np.zeros((1, actuator.n_states)) if actuator_x0 is None else _rows_2d(
+    xa0 = np.zeros((1, frame.n_actuator_states)) if actuator_x0 is None else _rows_2d(
         as_float_array("actuator_x0", actuator_x0)
     )
-    if xa0.shape[-1] != actuator.n_states:
+    if xa0.shape[-1] != frame.n_actuator_states:
         raise ParameterError(
-            f"must have {actuator.n_states} states, got shape {xa0.shape}", field="actuator_x0")
+            f"must have {frame.n_actuator_states} states, got shape {xa0.shape}",
+            field="actuator_x0")
     # the recordings must fit before anything of the batch's size is built (the time grid too:
     # a long run with a coarse record needs no array of all its steps)
     n_rec_early = n_steps // record_every + 1 + (n_steps % record_every != 0)
     n_runs_early = max(mp.shape[0], ap.shape[0], cp.shape[0], x0.shape[0],
                        *(n for _, n in stage_runs))
-    channels_early = (model.n_states + actuator.n_states + len(out_labels)
-                      + len(wiring.commands) + len(controller.output_labels)
-                      + len(wiring.references) + len(dist_labels))
+    channels_early = frame.channels
     # the work too, before a reference or disturbance of the run's length is built
     check_record_memory(n_runs_early, n_rec_early, channels_early)
     check_work(n_runs_early, n_steps,
@@ -419,9 +416,8 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
 
     mp, ap, cp = rows(mp), rows(ap), rows(cp)
     z = np.concatenate([rows(x0), rows(xa0)], axis=1)
-    labels = model.state_labels + actuator.state_labels
-    lower = np.array(list(model.state_lower) + [-np.inf] * actuator.n_states, dtype=float)
-    upper = np.array(list(model.state_upper) + [np.inf] * actuator.n_states, dtype=float)
+    labels = frame.labels
+    lower, upper = frame.lower.copy(), frame.upper.copy()  # (the kernel's own, as before)
     for label, (lo, hi) in (bounds or {}).items():  # (labels checked by the Problem)
         j = labels.index(label)
         lower[j], upper[j] = max(lower[j], float(lo)), min(upper[j], float(hi))
@@ -441,16 +437,16 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
     ar = as_records(ap, a_cls)
     cr = as_records(cp, c_cls)
     nz = z.shape[1]
-    ncmd = len(wiring.commands) + len(controller.output_labels)  # outputs after commands
+    ncmd = frame.n_commands  # (the controller's outputs after the commands)
     # every record_every-th step and the final one (the last interval may be shorter); the
     # channels are the early check's, so only more runs (a reference's or disturbance's) than
     # it counted need another look
     n_rec = n_rec_early
     if n_runs != n_runs_early:
         check_record_memory(n_runs, n_rec, channels_early)
-    cs = np.zeros((n_runs, max(controller.n_states, 1)))
+    cs = np.zeros((n_runs, frame.controller_width))
     cmd = np.zeros((n_runs, ncmd))
-    ca = np.zeros((n_runs, max(len(wiring.actuator_commands), 1)))
+    ca = np.zeros((n_runs, frame.actuator_command_width))
     status = np.zeros(n_runs, dtype=np.int64)
     t_fail = _nans((n_runs,))
     z_fail = _nans((n_runs, nz))
@@ -461,7 +457,7 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
     arrays = KernelArrays(
         state=(z, cs, cmd, ca), params=(mr, ar, cr, lower, upper), signals=(dist, ref),
         outcome=(status, t_fail, z_fail), record=(rec_z, rec_y, rec_cmd), stages=stage_arrays,
-        stage_names=tuple(stage.name for stage in stages))
+        stage_names=frame.stage_names)
     n_out = len(out_labels)
 
     def stage_scratch() -> tuple[tuple[np.ndarray, ...], ...]:
@@ -477,8 +473,8 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
         result_params.update(stage.result_params(inp, n_runs))
     return Batch(problem=problem, kernel=kernel, slices=slices, n_steps=n_steps, dt=float(dt),
                  ctrl_every=ctrl_every, record_every=record_every, jit=use_jit, labels=labels,
-                 out_labels=out_labels, out_units=out_units, dist_labels=dist_labels,
-                 dist_units=dist_units, z0=slices.arrays.state[0].copy(),
+                 out_labels=out_labels, out_units=frame.out_units, dist_labels=dist_labels,
+                 dist_units=frame.dist_units, z0=slices.arrays.state[0].copy(),
                  info={"mp": mp, "ap": ap, "cp": cp, "m_cls": m_cls, "a_cls": a_cls,
                        "c_cls": c_cls, "n_rec": n_rec, "exact_actuator": exact_actuator,
                        "ctrl_dt": ctrl_dt, "stages": stages, "stage_params": result_params})
