@@ -51,7 +51,7 @@ from ...simulation.memory import RecordingTooLarge
 from ...simulation.problem import Problem
 from ...vessels.base import VesselModel
 from ..equilibria.equilibrium import EquilibriumError
-from .datasets import _indexless_dataset, _variable, _xarray
+from .datasets import _indexless_dataset, _single_run_dataset, _variable, _xarray
 from .ships import (  # re-exported: the manoeuvres and tests import them from here
     SPEED_VALIDITY,
     STEP_VALIDITY,
@@ -379,8 +379,13 @@ class Plan:
         fixed-width unicode, booleans as bool. Built in one Dataset construction (xarray's
         per-object overhead is most of the cost of a short manoeuvre).
         """
-        data = {}
         grid_dims: tuple[str, ...] = self.dims
+        if not grid_dims and not self.failed and not extra_dims and not coords:
+            # a single run (the grid has no dimension): its 0-d variables put in place at once
+            single = _single_run_dataset(variables, self._coords(), dict(attrs or {}))
+            if single is not None:
+                return single
+        data = {}
         grid_shape = self.dim_shape
         failed = np.flatnonzero(~self.run_ok) if self.failed else None
         for name, (values, units, long_name) in variables.items():
