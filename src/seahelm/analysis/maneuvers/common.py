@@ -53,17 +53,8 @@ from ...vessels.base import VesselModel
 from ..equilibria.equilibrium import EquilibriumError
 from .datasets import _indexless_dataset, _single_run_dataset, _variable, _xarray
 from .ships import (  # re-exported: the manoeuvres and tests import them from here
-    SPEED_VALIDITY,
-    STEP_VALIDITY,
-    maneuver_ship,
-    _ships,
-    default_time_step,
-    usual_time_step,
-    Approach,
-    steady_approach,
-    steady_approaches,
-    _identified_near,
-    _straight_run_speed,
+    SPEED_VALIDITY, STEP_VALIDITY, maneuver_ship, _ships, default_time_step, usual_time_step,
+    Approach, steady_approach, steady_approaches, _identified_near, _straight_run_speed,
 )
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -156,6 +147,8 @@ class Plan:
             speed_axis = Axis(name="approach_speed", values=np.array([math.nan]), units="m/s",
                               is_dim=False)
             speeds = np.array([[s.approach_speed] for s in self.ships])
+        #: whether a ValidityRangeWarning was issued for this grid (its speed or time step)
+        self.warned = False
         self.approaches: dict[tuple[int, int], Approach] = {}
         #: (ship, speed) -> why its approach was not found; its runs are left out of the batch
         self.failed: dict[tuple[int, int], str] = {}
@@ -167,6 +160,12 @@ class Plan:
         if len(set(names)) != len(names):  # pragma: no cover - internal
             raise ValueError(f"duplicate axis names {names}")
         self.shape = tuple(a.size for a in self.axes)
+
+    def _layout(self) -> BatchLayout | None:
+        """The batch's layout: the grid's dimensions (None for a single run)."""
+        dims = [BatchAxis(name=a.name, values=a.values, units=a.units) for a in self.axes
+                if a.is_dim]
+        return BatchLayout(axes=tuple(dims)) if dims else None
 
     @functools.cached_property
     def index(self) -> list[dict[str, int]]:
@@ -193,6 +192,7 @@ class Plan:
                         f"'{s.name}''s parameter set ({design:.4g} m/s): its hydrodynamic "
                         "coefficients were identified near that speed", ValidityRangeWarning,
                         stacklevel=4)
+                    self.warned = True
                 keys.append((i, j))
         solved = steady_approaches(self.model, [self.ships[i].params for i, _ in keys],
                                    [float(speeds[i][j]) for i, j in keys])
@@ -294,7 +294,8 @@ class Plan:
                  record_every: int, reference: Any = None, controller: Any = OPEN_LOOP,
                  controller_params: Any = None, metadata: Mapping[str, Any] | None = None,
                  controller_every: int = 1, conditions: Any = None) -> "SimResult":
-        """Run the grid as one batch (the engine validates the rest).
+        """Run the grid as one batch (the engine validates the rest): :meth:`run` of
+        :meth:`problem`.
 
         ``controller_every`` steps per controller sample: an open-loop schedule that changes
         only at recorded samples can be sampled there (the engine evaluates the model's
@@ -302,17 +303,27 @@ class Plan:
         (:class:`~seahelm.environment.loads.Conditions`): wind, waves and current acting from
         t = 0 on (the approach is the calm-water one).
         """
+        return self.run(self.problem(
+            x0=x0, actuator_x0=actuator_x0, t_final=t_final, dt=dt, record_every=record_every,
+            reference=reference, controller=controller, controller_params=controller_params,
+            metadata=metadata, controller_every=controller_every, conditions=conditions,
+            stacklevel=4))
+
+    def problem(self, *, x0: np.ndarray, actuator_x0: np.ndarray, t_final: float, dt: float,
+                record_every: int, reference: Any = None, controller: Any = OPEN_LOOP,
+                controller_params: Any = None, metadata: Mapping[str, Any] | None = None,
+                controller_every: int = 1, conditions: Any = None,
+                stacklevel: int = 3) -> Problem:
+        """The grid's batch as a validated :class:`~seahelm.simulation.problem.Problem` (the
+        arguments of :meth:`simulate`); warns (``stacklevel``: at the manoeuvre's caller) and
+        sets :attr:`warned` for a ``dt`` beyond :data:`STEP_VALIDITY` × the usual step."""
         usual = usual_time_step(self.ships, [a.speed for a in self.approaches.values()])
         if dt > STEP_VALIDITY * usual:
             warnings.warn(f"`dt` = {dt:g} s is {dt / usual:.3g} x the usual step of this ship "
                           f"({usual:g} s = min(L/(100 U0), servo lag)): the manoeuvre's events "
-                          "may be missed or wrong", ValidityRangeWarning, stacklevel=3)
-
-        dims = [a for a in self.axes if a.is_dim]
-        layout = None
-        if dims:
-            layout = BatchLayout(axes=tuple(
-                BatchAxis(name=a.name, values=a.values, units=a.units) for a in dims))
+                          "may be missed or wrong", ValidityRangeWarning, stacklevel=stacklevel)
+            self.warned = True
+        layout = self._layout()
         runs = np.arange(self.n_runs)
         extra = _conditions_kwargs(conditions, self.model)
         if self.failed:  # only the runs with an approach (scattered back below)
@@ -320,7 +331,6 @@ class Plan:
             x0, actuator_x0, reference, controller_params, extra = (
                 _select_runs(v, runs, self.n_runs)
                 for v in (x0, actuator_x0, reference, controller_params, extra))
-        # (the engine uses no more threads than runs, so a small batch wakes no idle thread)
         batch = Problem(
             model=self.model,
             params=(self.ships[0].params if len(self.ships) == 1
@@ -333,9 +343,17 @@ class Plan:
             controller_dt=controller_every * dt,
             record_every=record_every, metadata=dict(metadata or {}),
             layout=None if self.failed else layout, **extra)
-        try:
+        return batch  # (the engine uses no more threads than runs: a small batch wakes none)
+
+    def run(self, batch: Problem) -> "SimResult":
+        """Run the grid's batch (:meth:`problem`; the same one again gives the same result),
+        the runs without an approach scattered back as not run; a batch too large for memory
+        or the work guard in the manoeuvre's words."""
+        t_final, dt = batch.t_final, batch.dt
+        try:  # (a plan that failed some approaches: their runs scattered back as not run)
             result = simulate_batch(batch)
-            return _scatter_runs(result, runs, self.n_runs, layout) if self.failed else result
+            return result if not self.failed else _scatter_runs(
+                result, np.flatnonzero(self.run_ok), self.n_runs, self._layout())
         except (WorkTooLarge, RecordingTooLarge) as exc:  # in the manoeuvre's words
             too_much = (exc.over if isinstance(exc, WorkTooLarge)
                         else f"it would record {exc.size_text()}")
@@ -350,6 +368,7 @@ class Plan:
                     f"that the manoeuvre would last {t_final:.3g} s: {too_much}; give deeper "
                     "water", field="water_depth", unit="m", value=depth) from None
             if isinstance(exc, WorkTooLarge):
+                usual = usual_time_step(self.ships, [a.speed for a in self.approaches.values()])
                 raise ParameterError(
                     f"= {dt:g} s: {exc.over}; a larger `dt` (the usual step of this ship is "
                     f"{usual:.3g} s), a shorter `t_final` or fewer runs {exc.anyway}",

@@ -55,6 +55,7 @@ from .common import (
     side_axis,
     value_axis,
 )
+from .prepared import keep, ready, request_key
 from .ships import steady_yaw_rates, yaw_lag
 from .result import ManeuverResult
 from .track import distance_until, track_distance
@@ -146,44 +147,56 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
         If a rudder angle is not within the steering gear's limit, a speed or rps is not
         > 0, ``speed`` and ``rps`` are both given, or the timing is invalid.
     """
-    rudder_axis = value_axis("rudder", rudder, "rad")
-    side = side_axis(sides)
-    plan = Plan(ship, speed, rps, [rudder_axis, side])
-    check_rudder(plan.ships, "rudder", rudder_axis.values, positive=True)
-    check_positive_change(heading_change)
-    if dt is None:
-        dt = usual_time_step(plan.ships, [a.speed for a in plan.approaches.values()])
-    if t_final is None:
-        signed: dict[tuple[int, int], list[float]] = {}
-        for key in plan.approaches:
-            if key in plan.failed:  # (not run)
-                continue
-            signed[key] = [float(s_) * float(np.min(rudder_axis.values))
-                           for s_ in side.values]
-        t_final = _estimate_t_final(plan, signed, heading_change)
-    t_final = final_time(float(t_final), float(dt))
-    approaches = plan.run_approaches()
-    record_every = (record_every_for(float(dt), record_dt, float(t_final))
-                    if record_dt is not None
-                    or "roll_angle" in plan.model.output_labels
-                    or "roll_angle" in plan.model.state_labels
-                    else min(default_record_every(  # (of the runs that run)
-                        float(dt), *_of_runs_that_run(plan, plan.run_lengths(),
-                                                      [a.speed for a in approaches])),
-                        # (a t_final shorter than one default sample: every step; it was
-                        # "`controller_dt` = 0.25 s exceeds t_final", an option never given)
-                        max(1, int(round(float(t_final) / float(dt))))))
+    # a request seen before: its grid and validated batch as they were made (prepared.py)
+    request = None if conditions is not None else request_key(
+        "turning-circle", ship, rudder, sides, speed, rps, t_final, dt, record_dt,
+        heading_change)
+    prepared = ready(request)
+    if prepared is None:
+        rudder_axis = value_axis("rudder", rudder, "rad")
+        side = side_axis(sides)
+        plan = Plan(ship, speed, rps, [rudder_axis, side])
+        check_rudder(plan.ships, "rudder", rudder_axis.values, positive=True)
+        check_positive_change(heading_change)
+        if dt is None:
+            dt = usual_time_step(plan.ships, [a.speed for a in plan.approaches.values()])
+        if t_final is None:
+            signed: dict[tuple[int, int], list[float]] = {}
+            for key in plan.approaches:
+                if key in plan.failed:  # (not run)
+                    continue
+                signed[key] = [float(s_) * float(np.min(rudder_axis.values))
+                               for s_ in side.values]
+            t_final = _estimate_t_final(plan, signed, heading_change)
+        t_final = final_time(float(t_final), float(dt))
+        approaches = plan.run_approaches()
+        record_every = (record_every_for(float(dt), record_dt, float(t_final))
+                        if record_dt is not None
+                        or "roll_angle" in plan.model.output_labels
+                        or "roll_angle" in plan.model.state_labels
+                        else min(default_record_every(  # (of the runs that run)
+                            float(dt), *_of_runs_that_run(plan, plan.run_lengths(),
+                                                          [a.speed for a in approaches])),
+                            # (a t_final shorter than one default sample: every step; it was
+                            # "`controller_dt` = 0.25 s exceeds t_final", an option never given)
+                            max(1, int(round(float(t_final) / float(dt))))))
 
-    x0 = np.array([a.state for a in approaches], dtype=float)  # (as np.stack: (runs, states))
-    rudder0 = np.array([[a.rudder] for a in approaches])
-    orders = plan.run_values("side") * plan.run_values("rudder")
-    reference: dict[str, Any] = {"rudder_command": orders.reshape(-1, 1, 1)}
-    if plan.ships[0].has_propeller:
-        reference["propeller_rps"] = np.array([a.rps for a in approaches]).reshape(-1, 1, 1)
-    result = plan.simulate(x0=x0, actuator_x0=rudder0, reference=reference, t_final=t_final,
-                           dt=dt, record_every=record_every,
-                           metadata={"maneuver": "turning-circle"},
-                           controller_every=record_every, conditions=conditions)
+        x0 = np.array([a.state for a in approaches], dtype=float)  # (np.stack: runs, states)
+        rudder0 = np.array([[a.rudder] for a in approaches])
+        orders = plan.run_values("side") * plan.run_values("rudder")
+        reference: dict[str, Any] = {"rudder_command": orders.reshape(-1, 1, 1)}
+        if plan.ships[0].has_propeller:
+            reference["propeller_rps"] = np.array([a.rps for a in approaches]).reshape(
+                -1, 1, 1)
+        problem = plan.problem(x0=x0, actuator_x0=rudder0, reference=reference, t_final=t_final,
+                               dt=dt, record_every=record_every,
+                               metadata={"maneuver": "turning-circle"},
+                               controller_every=record_every, conditions=conditions)
+        if not plan.warned:
+            keep(request, (plan, problem))
+    else:
+        plan, problem = prepared
+    result = plan.run(problem)
     metrics = _metrics(plan, result)
     return ManeuverResult("turning-circle", metrics, tuple(plan.ships), result,
                           lambda: plan.runs_dataset(result))
