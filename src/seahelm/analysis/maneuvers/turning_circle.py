@@ -44,6 +44,7 @@ import numpy as np
 from numba import njit
 
 from ...errors import ParameterError
+from ...simulation.frame import keep_inputs
 from ..equilibria.constant_speed import is_constant_speed
 from ..equilibria.heel import heel_metrics
 from .common import (
@@ -193,7 +194,7 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
                                metadata={"maneuver": "turning-circle"},
                                controller_every=record_every, conditions=conditions)
         if not plan.warned:
-            keep(request, (plan, problem))
+            keep(request, (plan, keep_inputs(problem)))  # (its checked inputs kept too)
     else:
         plan, problem = prepared
     result = plan.run(problem)
