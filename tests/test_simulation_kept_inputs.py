@@ -98,3 +98,18 @@ def test_a_problem_that_fails_its_checks_fails_again():
         with pytest.raises(engine.ParameterError, match="initial state of run 0"):
             simulate(p)
     assert p.__dict__["_kept_inputs"] is None
+
+
+def test_a_kept_batch_starts_without_the_zero_step_call(monkeypatch):
+    slicing = importlib.import_module("seahelm.simulation.slicing")
+    calls = []
+    real = slicing._Slices.warm_up
+    monkeypatch.setattr(slicing._Slices, "warm_up",
+                        lambda self, *a: (calls.append(1), real(self, *a))[1])
+    fresh = simulate(_problem())
+    p = keep_inputs(_problem())
+    first, again = simulate(p), simulate(p)
+    assert len(calls) == 2  # (the fresh problem's and the kept one's first batch)
+    assert again.metadata["execution"] == "compiled"
+    _equal(fresh, first)
+    _equal(fresh, again)

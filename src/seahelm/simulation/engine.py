@@ -330,9 +330,12 @@ class Batch:
         return self.slices.arrays.n_runs
 
     def start(self) -> None:
-        """Compile or load the kernel (a zero-step call), then the controllers' init."""
+        """Compile or load the kernel (a zero-step call), then the controllers' init. A batch
+        of kept inputs (:func:`~seahelm.simulation.frame.keep_inputs`) has the types of its
+        problem's first batch, whose start compiled or loaded the kernel for them: no call."""
         with quiet(self.jit):
-            self.slices.warm_up(self.n_steps, self.dt, self.ctrl_every, self.record_every)
+            if not self.info["kept"]:
+                self.slices.warm_up(self.n_steps, self.dt, self.ctrl_every, self.record_every)
             self.slices.init_runs()
 
     def result(self, *, wall: float, compile_time: float, throw: bool,
@@ -430,7 +433,8 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
                  dist_units=frame.dist_units, z0=slices.arrays.state[0].copy(),
                  info={"mp": mp, "ap": ap, "cp": cp, "m_cls": m_cls, "a_cls": a_cls,
                        "c_cls": c_cls, "n_rec": n_rec, "exact_actuator": exact_actuator,
-                       "ctrl_dt": ctrl_dt, "stages": stages, "stage_params": result_params})
+                       "ctrl_dt": ctrl_dt, "stages": stages, "stage_params": result_params,
+                       "kept": inputs is kept})
 
 
 def _result(batch: Batch, *, wall: float, compile_time: float, throw: bool,
