@@ -113,3 +113,25 @@ def test_a_kept_batch_starts_without_the_zero_step_call(monkeypatch):
     assert again.metadata["execution"] == "compiled"
     _equal(fresh, first)
     _equal(fresh, again)
+
+
+def test_kept_records_are_what_as_records_makes():
+    from seahelm.parameters import as_records
+
+    p = keep_inputs(_problem())
+    prepare(p)
+    kept = p.__dict__["_kept_inputs"]
+    for which, (rows, cls) in enumerate(((kept.mp, kept.m_cls), (kept.ap, kept.a_cls),
+                                         (kept.cp, kept.c_cls))):
+        mine = rows.copy()
+        got, want = kept.as_records(mine, which, cls), as_records(rows.copy(), cls)
+        assert got.dtype == want.dtype and got.shape == want.shape
+        assert got.tobytes() == want.tobytes() and np.shares_memory(got, mine)
+        assert got.flags.writeable and got.flags.c_contiguous
+        if rows.shape[1] == 0:
+            assert kept.records[which] is None
+    batch = prepare(p)
+    assert batch.info["kept"]
+    for rec, rows in zip(batch.slices.arrays.params[:3], (batch.info["mp"], batch.info["ap"],
+                                                          batch.info["cp"])):
+        assert np.shares_memory(rec, rows) or rows.shape[1] == 0

@@ -394,9 +394,11 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
         exact_actuator = actuator.advance is not None
     kernel = compile_closed_loop(model, actuator, controller, tableau, stages,
                                  exact_actuator=bool(exact_actuator), jit=use_jit)
-    mr = as_records(mp, m_cls)
-    ar = as_records(ap, a_cls)
-    cr = as_records(cp, c_cls)
+    if inputs is kept:  # (copies of rows checked before: the records without the checks)
+        mr, ar, cr = (kept.as_records(mp, 0, m_cls), kept.as_records(ap, 1, a_cls),
+                      kept.as_records(cp, 2, c_cls))
+    else:
+        mr, ar, cr = as_records(mp, m_cls), as_records(ap, a_cls), as_records(cp, c_cls)
     nz = z.shape[1]
     ncmd = frame.n_commands  # (the controller's outputs after the commands)
     cs = np.zeros((n_runs, frame.controller_width))

@@ -17,6 +17,7 @@ import numpy as np
 
 from .._validate import as_float_array
 from ..errors import ParameterError
+from ..parameters import as_records
 from ..resources import check_work
 from .inputs import _check_angles, _param_rows, _runs, _signal, _TimeGrid
 from .memory import check_record_memory
@@ -112,15 +113,31 @@ class _Inputs:
     n_runs_early: int
     n_rec: int
     frame: _Frame
+    #: the record dtypes of the parameter rows (:func:`~seahelm.parameters.as_records`), kept
+    #: with the inputs (None: rows without a field, whose records are made the general way)
+    records: tuple[np.dtype | None, ...] = (None, None, None)
 
     def own(self) -> "_Inputs":
         """The same with a read-only copy of every array (what is kept on the problem; each
         batch prepared from it copies them again, writable, its own)."""
-        out = dataclasses.replace(self, **{name: getattr(self, name).copy()
-                                           for name in _ARRAYS})
+        out = dataclasses.replace(self, records=tuple(
+            cls._record_view_dtype() if rows.shape[1] else None
+            for rows, cls in ((self.mp, self.m_cls), (self.ap, self.a_cls),
+                              (self.cp, self.c_cls))), **{name: getattr(self, name).copy()
+                                                          for name in _ARRAYS})
         for name in _ARRAYS:
             getattr(out, name).flags.writeable = False
         return out
+
+    def as_records(self, rows: np.ndarray, which: int, cls: type) -> np.ndarray:
+        """``as_records(rows, cls)`` of a batch's copy ``rows`` of this problem's parameter rows
+        ``which`` (0 vessel, 1 actuator, 2 controller): the records on its buffer, as
+        :func:`~seahelm.parameters.as_records` makes them of such rows (C-contiguous, writable,
+        float64, of the class's width), without its checks."""
+        dtype = self.records[which]
+        if dtype is None:
+            return as_records(rows, cls)
+        return np.ndarray(shape=(rows.shape[0],), dtype=dtype, buffer=rows)
 
 
 _ARRAYS = ("mp", "ap", "cp", "z", "lower", "upper", "dist", "ref")

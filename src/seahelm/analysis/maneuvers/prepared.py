@@ -34,30 +34,34 @@ _NUMBERS = (int, float, type(None))
 _READY: dict[tuple[Any, ...], tuple[Any, Any]] = {}
 
 
-def _plain(value: Any) -> bool:
-    """An ``int``, ``float`` or ``None`` (not a bool, not a numpy scalar), or a tuple of them."""
-    kind = type(value)
-    if kind is tuple:
-        return all(type(v) in _NUMBERS for v in value)
-    return kind in _NUMBERS
-
-
 def request_key(kind: str, ship: Any, *values: Any) -> tuple[tuple[Any, ...], Any] | None:
     """The key of a request of manoeuvre ``kind`` and the ship object it names, or None when
     the request is not one to keep (module docstring)."""
     if type(ship) is Ship:
         source = ship
-    elif type(ship) is str and ship in CATALOG:
-        source = CATALOG[ship]
+    elif type(ship) is str:
+        try:  # (the catalog's object now: a ship registered again is another one)
+            source = CATALOG[ship]
+        except KeyError:  # (a ship file's path, or no ship: prepared afresh)
+            return None
     else:
         return None
+    # (each value's type with it: 1 and 1.0, equal keys, are prepared alike today, but need
+    # not be; a tuple's members' types too)
+    key: list[Any] = [kind, id(source), jit_enabled()]
     for value in values:
-        if not _plain(value):
+        kind_ = type(value)
+        if kind_ is tuple:
+            types = tuple([type(v) for v in value])
+            for t in types:
+                if t not in _NUMBERS:
+                    return None
+            key.append((kind_, types, value))
+        elif kind_ in _NUMBERS:
+            key.append((kind_, value))
+        else:
             return None
-    # (a value's type with it: 1 and 1.0, equal keys, are prepared alike today, but need not be)
-    return (kind, id(source), jit_enabled(),
-            *((type(v), tuple(map(type, v)) if type(v) is tuple else (), v) for v in values)
-            ), source
+    return tuple(key), source
 
 
 def ready(key: tuple[tuple[Any, ...], Any] | None) -> Any:
