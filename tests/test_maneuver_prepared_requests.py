@@ -180,3 +180,13 @@ def test_the_kept_problem_is_a_validated_problem():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         _circle()  # (no warning from a kept request)
+
+
+def test_circles_in_threads_give_the_same_numbers():
+    from concurrent.futures import ThreadPoolExecutor
+
+    want = _circle()
+    with ThreadPoolExecutor(4) as pool:
+        got = list(pool.map(lambda _: _circle(), range(16)))
+    for r in got:
+        _same(want, r)

@@ -68,20 +68,26 @@ def ready(key: tuple[tuple[Any, ...], Any] | None) -> Any:
     """What was prepared for ``key`` (:func:`request_key`), or None."""
     if key is None:
         return None
-    found = _READY.get(key[0])
+    # (taken out and put back: now the most recently used; another thread asking for it at
+    # the same moment finds nothing and prepares it afresh)
+    found = _READY.pop(key[0], None)
     if found is None or found[0] is not key[1]:
         return None
-    _READY[key[0]] = _READY.pop(key[0])  # (now the most recently used)
+    _READY[key[0]] = found
     return found[1]
 
 
 def keep(key: tuple[tuple[Any, ...], Any] | None, prepared: Any) -> None:
-    """Keep what was prepared for ``key`` (nothing without a key)."""
+    """Keep what was prepared for ``key`` (nothing without a key), dropping the least
+    recently used beyond :data:`KEPT`."""
     if key is None:
         return
     _READY.pop(key[0], None)
     while len(_READY) >= KEPT:
-        _READY.pop(next(iter(_READY)))
+        try:
+            _READY.pop(next(iter(_READY)), None)
+        except (StopIteration, RuntimeError):  # (emptied or changed by another thread)
+            break
     _READY[key[0]] = (key[1], prepared)
 
 
