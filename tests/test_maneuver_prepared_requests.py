@@ -190,3 +190,12 @@ def test_circles_in_threads_give_the_same_numbers():
         got = list(pool.map(lambda _: _circle(), range(16)))
     for r in got:
         _same(want, r)
+
+
+def test_a_results_coordinates_cannot_change_the_next_ones():
+    first = _circle(rudder=(0.3, 0.5), sides=(1, -1))
+    with pytest.raises(ValueError):
+        first.metrics["rudder"].values[0] = 9.0  # (read-only: shared with the kept plan)
+    again = _circle(rudder=(0.3, 0.5), sides=(1, -1))
+    assert again.metrics["rudder"].values.tolist() == [0.3, 0.5]
+    _same(first, again)

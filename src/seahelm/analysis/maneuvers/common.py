@@ -147,8 +147,7 @@ class Plan:
             speed_axis = Axis(name="approach_speed", values=np.array([math.nan]), units="m/s",
                               is_dim=False)
             speeds = np.array([[s.approach_speed] for s in self.ships])
-        #: whether a ValidityRangeWarning was issued for this grid (its speed or time step)
-        self.warned = False
+        self.warned = False  #: whether a ValidityRangeWarning was issued (speed, time step)
         self.approaches: dict[tuple[int, int], Approach] = {}
         #: (ship, speed) -> why its approach was not found; its runs are left out of the batch
         self.failed: dict[tuple[int, int], str] = {}
@@ -156,10 +155,17 @@ class Plan:
         if not speed_axis.is_dim and n_ships == 1:
             speed_axis.values = speeds[0].copy()
         self.axes = [ship_axis, speed_axis, *axes]
-        names = [a.name for a in self.axes]
-        if len(set(names)) != len(names):  # pragma: no cover - internal
-            raise ValueError(f"duplicate axis names {names}")
+        if len({a.name for a in self.axes}) != len(self.axes):  # pragma: no cover - internal
+            raise ValueError(f"duplicate axis names {[a.name for a in self.axes]}")
         self.shape = tuple(a.size for a in self.axes)
+
+    def freeze(self) -> "Plan":
+        """The plan with its axes' values read-only (kept for later requests, :mod:`.prepared`, it
+        gives them to every result's coordinates: none may change the next one's)."""
+        for values in [a.values for a in self.axes] + [c[0] for a in self.axes
+                                                        for c in a.coords.values()]:
+            values.flags.writeable = False
+        return self
 
     def _layout(self) -> BatchLayout | None:
         """The batch's layout: the grid's dimensions (None for a single run)."""
@@ -346,10 +352,8 @@ class Plan:
         return batch  # (the engine uses no more threads than runs: a small batch wakes none)
 
     def run(self, batch: Problem) -> "SimResult":
-        """Run the grid's batch (:meth:`problem`; the same one again gives the same result),
-        the runs without an approach scattered back as not run; a batch too large for memory
-        or the work guard in the manoeuvre's words."""
-        t_final, dt = batch.t_final, batch.dt
+        """Run the grid's batch (:meth:`problem`; the same one again gives the same result); a
+        batch too large for memory or the work guard in the manoeuvre's words."""
         try:  # (a plan that failed some approaches: their runs scattered back as not run)
             result = simulate_batch(batch)
             return result if not self.failed else _scatter_runs(
@@ -365,17 +369,17 @@ class Plan:
                 raise ParameterError(
                     f"= {depth:g} m is {depth / draft:.4g} x the draft ({draft:.4g} m): there "
                     f"the ship's predicted motion (its steady yaw rate, its stopping) is so slow "
-                    f"that the manoeuvre would last {t_final:.3g} s: {too_much}; give deeper "
+                    f"that the manoeuvre would last {batch.t_final:.3g} s: {too_much}; give deeper "
                     "water", field="water_depth", unit="m", value=depth) from None
             if isinstance(exc, WorkTooLarge):
                 usual = usual_time_step(self.ships, [a.speed for a in self.approaches.values()])
                 raise ParameterError(
-                    f"= {dt:g} s: {exc.over}; a larger `dt` (the usual step of this ship is "
+                    f"= {batch.dt:g} s: {exc.over}; a larger `dt` (the usual step of this ship is "
                     f"{usual:.3g} s), a shorter `t_final` or fewer runs {exc.anyway}",
-                    field="dt", unit="s", value=dt) from None
+                    field="dt", unit="s", value=batch.dt) from None
             slowest = min(a.speed for a in self.approaches.values())
             raise ParameterError(
-                f": {self.n_runs} run(s) of {t_final:.6g} s (at the slowest approach "
+                f": {self.n_runs} run(s) of {batch.t_final:.6g} s (at the slowest approach "
                 f"speed, {slowest:.4g} m/s) would record {exc.size_text()}; give a faster "
                 "approach (`speed` or `rps`) or a shorter `t_final`", field="t_final") from None
 

@@ -193,8 +193,8 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
                                dt=dt, record_every=record_every,
                                metadata={"maneuver": "turning-circle"},
                                controller_every=record_every, conditions=conditions)
-        if not plan.warned:
-            keep(request, (plan, keep_inputs(problem)))  # (its checked inputs kept too)
+        if not plan.warned:  # (its checked inputs kept too; its grid's values read-only)
+            keep(request, (plan.freeze(), keep_inputs(problem)))
     else:
         plan, problem = prepared
     result = plan.run(problem)
