@@ -301,14 +301,24 @@ def _cubic_crossings(times: np.ndarray, change: np.ndarray, levels: np.ndarray,
     order h⁴ in the recording interval h (linear interpolation: h²), so a turning circle
     recorded every L/(20 U) measures its events to far below the integration error.
     """
-    steps = change.shape[1]
-    j0 = np.empty(k.shape, dtype=np.int64)
-    s_nodes = np.empty(k.shape + (4,))
-    c_nodes = np.empty(k.shape + (4,))
-    good = np.empty(k.shape, dtype=np.bool_)
-    s = np.empty(k.shape)
+    j0, s_nodes, c_nodes, good, s = _bracket_arrays(k.shape)
     _bracket(times, np.ascontiguousarray(change, dtype=float), k, w, j0, s_nodes, c_nodes,
              good, s)
+    return _cubic_weights(levels, j0, s_nodes, c_nodes, good, s)
+
+
+def _bracket_arrays(shape: tuple[int, ...]) -> tuple[np.ndarray, ...]:
+    """The outputs of :func:`_bracket` for (levels, runs) ``shape``: j0, s_nodes, c_nodes,
+    good, s."""
+    return (np.empty(shape, dtype=np.int64), np.empty(shape + (4,)), np.empty(shape + (4,)),
+            np.empty(shape, dtype=np.bool_), np.empty(shape))
+
+
+def _cubic_weights(levels: np.ndarray, j0: np.ndarray, s_nodes: np.ndarray,
+                   c_nodes: np.ndarray, good: np.ndarray, s: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_cubic_crossings` from the brackets :func:`_bracket` found: the cubic's power
+    coefficients, Newton's method on it, the weights of the four nodes at the crossing."""
     vander = s_nodes[..., None] ** _POWERS  # (levels, runs, 4 nodes, 4 powers)
     if not good.all():  # (every event inside the record: no placeholder to set)
         vander[~good] = np.eye(4)  # (placeholders: never used)
@@ -405,6 +415,19 @@ def _newton(coef: np.ndarray, levels: np.ndarray, s: np.ndarray) -> None:  # pra
             s[a, b] = x
 
 
+@njit(cache=True, nogil=True)
+def _first_pass(change: np.ndarray, levels: np.ndarray, times: np.ndarray, r: np.ndarray,
+                speed: np.ndarray, k: np.ndarray, w: np.ndarray, j0: np.ndarray,
+                s_nodes: np.ndarray, c_nodes: np.ndarray, good: np.ndarray, s: np.ndarray,
+                radius: np.ndarray, steady: np.ndarray) -> None:  # pragma: no cover - compiled
+    """:func:`_first_crossings`, :func:`_bracket` and :func:`_steady_ends` in one call (the
+    same functions, so the same numbers: each compiled call from Python costs its dispatch,
+    a good part of a single circle's metrics)."""
+    _first_crossings(change, levels, k, w)
+    _bracket(times, change, k, w, j0, s_nodes, c_nodes, good, s)
+    _steady_ends(change, r, speed, radius, steady)
+
+
 def _at_cubic(values: np.ndarray, k: np.ndarray, w: np.ndarray, j0: np.ndarray,
               weights: np.ndarray) -> np.ndarray:
     """Signals (signals, runs, steps) at the crossings, by the cubic weights of
@@ -476,12 +499,22 @@ _NOT_STEADY = ("ok; the turn was not yet steady at the end (yaw rate still chang
 def _metrics(plan: Plan, result: Any) -> Any:
     t = result.time
     north, east, psi = result["north"], result["east"], result["heading"]
+    speed = result["speed"]
+    r = result["yaw_rate"]
     change = np.abs(psi - psi[:, :1])
     # (one run: the time row itself, contiguous; a batch: broadcast, then a contiguous copy)
-    times = t.reshape(1, -1) if psi.shape[0] == 1 else np.broadcast_to(t, psi.shape)
-    k, w = _crossings(change, _LEVELS)
-    times = np.ascontiguousarray(times)
-    j0, weights = _cubic_crossings(times, change, _LEVELS, k, w)
+    times = np.ascontiguousarray(t.reshape(1, -1) if psi.shape[0] == 1
+                                 else np.broadcast_to(t, psi.shape))
+    # the crossings (_crossings), their brackets (_cubic_crossings) and the steady end of
+    # each turn in one compiled call (three before)
+    n = plan.n_runs
+    k = np.empty((_LEVELS.size, change.shape[0]), dtype=np.int64)
+    w = np.empty(k.shape)
+    j0, s_nodes, c_nodes, good, s = _bracket_arrays(k.shape)
+    radius, steady = np.empty(n), np.empty(n, dtype=np.bool_)
+    _first_pass(np.ascontiguousarray(change, dtype=float), _LEVELS, times, r, speed, k, w, j0,
+                s_nodes, c_nodes, good, s, radius, steady)
+    j0, weights = _cubic_weights(_LEVELS, j0, s_nodes, c_nodes, good, s)
     # the distance along the track is read at the 10 deg event only (its four samples j0..)
     dist = distance_until(north, east, t, until=j0[2] + 3)
     # every signal at every event (a few are not needed: all cost one gather)
@@ -490,23 +523,18 @@ def _metrics(plan: Plan, result: Any) -> Any:
     advance, transfer, time_90 = along_at[0], across_at[0], time_at[0]
     tactical_diameter, time_180 = across_at[1], time_at[1]
     time_10, distance_10 = time_at[2], dist_at[2]
-    speed = result["speed"]
-    r = result["yaw_rate"]
     constant = is_constant_speed(plan.model)
     # a constant-speed model has no drift angle unless it declares one (Voitkunsky's β)
     beta = (result["drift_angle"] if "drift_angle" in result.channel_names()
             else np.full_like(r, np.nan))
-    n = plan.n_runs
     approaches = plan.run_approaches()
     U0 = np.array([a.speed for a in approaches])
     rps = np.array([np.nan if (x := a.rps) is None else x for a in approaches])
     length = plan.run_lengths()
     steady_r = r[:, -1]
     steady_U = speed[:, -1]
-    # the radius U/|r| (inf where r = 0), and steady: |r| changed by <= 1 % since the last
-    # sample 90 deg of heading before the end
-    radius, steady = np.empty(n), np.empty(n, dtype=np.bool_)
-    _steady_ends(change, r, speed, radius, steady)
+    # (radius: U/|r| at the end, inf where r = 0; steady: |r| changed by <= 1 % since the
+    # last sample 90 deg of heading before the end: _steady_ends, in _first_pass)
     status = result.messages()
     reached = ~np.isnan(time_10) & ~np.isnan(time_90) & ~np.isnan(time_180)
     # complete: every event reached and the run went well (most runs: nothing more to say,
