@@ -45,7 +45,6 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import as_float_array
 from ..actuators.base import Actuator
 from ..control.base import Controller
 from ..errors import ParameterError, SimulationDiverged
@@ -78,6 +77,7 @@ from .memory import (  # noqa: F401
     check_record_memory,
     physical_memory,
 )
+from .frame import _NOT_KEPT, _frame, _Inputs, _rows_2d, problem_inputs  # noqa: F401
 from .problem import Problem, jit_enabled
 from .stages import stages_of
 from .slicing import FIRST_SLICE, FIRST_SLICE_PYTHON, SLICE_SECONDS, _Slices, drive, quiet  # noqa: F401
@@ -330,9 +330,12 @@ class Batch:
         return self.slices.arrays.n_runs
 
     def start(self) -> None:
-        """Compile or load the kernel (a zero-step call), then the controllers' init."""
+        """Compile or load the kernel (a zero-step call), then the controllers' init. A batch
+        of kept inputs (:func:`~seahelm.simulation.frame.keep_inputs`) has the types of its
+        problem's first batch, whose start compiled or loaded the kernel for them: no call."""
         with quiet(self.jit):
-            self.slices.warm_up(self.n_steps, self.dt, self.ctrl_every, self.record_every)
+            if not self.info["kept"]:
+                self.slices.warm_up(self.n_steps, self.dt, self.ctrl_every, self.record_every)
             self.slices.init_runs()
 
     def result(self, *, wall: float, compile_time: float, throw: bool,
@@ -352,116 +355,67 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
         model's loads need, recordings that would not fit in memory.
     """
     model, actuator, controller = problem.model, problem.actuator, problem.controller
-    params, x0, actuator_x0 = problem.params, problem.x0, problem.actuator_x0
-    actuator_params, controller_params = problem.actuator_params, problem.controller_params
-    reference, disturbance = problem.reference, problem.disturbance
-    bounds, seed, metadata = problem.bounds, problem.seed, problem.metadata
-    exact_actuator, dt, t_final = problem.exact_actuator, problem.dt, problem.t_final
+    exact_actuator, dt = problem.exact_actuator, problem.dt
     use_jit = problem._derived["jit"]  # (resolved when the problem was made)
     n_steps, ctrl_every = problem.n_steps, problem.controller_every
     ctrl_dt, record_every = problem._derived["controller_dt"], problem.record_every
     tableau, wiring = problem.tableau, problem.wiring
+    kept = problem.__dict__.get("_kept_inputs", _NOT_KEPT)
     # the loop's stages (seahelm.simulation.stages): their inputs checked, their signals after
-    # the model's disturbance channels, their outputs after the model's
-    stages = stages_of(problem)
-    stage_inputs = [stage.inputs(problem, model) for stage in stages]
-    dist_labels, dist_units = model.disturbance_labels, model.disturbance_units
-    out_labels, out_units = model.output_labels, model.output_units
-    for stage in stages:
-        (sig, sig_units), (outs, outs_units) = stage.signals(), stage.outputs(model)
-        dist_labels, dist_units = dist_labels + sig, dist_units + sig_units
-        out_labels, out_units = out_labels + outs, out_units + outs_units
-    stage_runs = [c for stage, inp in zip(stages, stage_inputs) for c in stage.run_counts(inp)]
-
-    mp, m_cls = _param_rows("params", params, model.params_type)
-    ap, a_cls = _param_rows("actuator_params", actuator_params, actuator.params_type)
-    cp, c_cls = _param_rows("controller_params", controller_params, controller.params_type)
-    x0 = _rows_2d(as_float_array("x0", x0))
-    if x0.shape[-1] != model.n_states or x0.ndim != 2:
-        raise ParameterError(
-            f"must have {model.n_states} states ({', '.join(model.state_labels)}), "
-            f"got shape {x0.shape}", field="x0")
-    xa0 = np.zeros((1, actuator.n_states)) if actuator_x0 is None else _rows_2d(
-        as_float_array("actuator_x0", actuator_x0)
-    )
-    if xa0.shape[-1] != actuator.n_states:
-        raise ParameterError(
-            f"must have {actuator.n_states} states, got shape {xa0.shape}", field="actuator_x0")
-    # the recordings must fit before anything of the batch's size is built (the time grid too:
-    # a long run with a coarse record needs no array of all its steps)
-    n_rec_early = n_steps // record_every + 1 + (n_steps % record_every != 0)
-    n_runs_early = max(mp.shape[0], ap.shape[0], cp.shape[0], x0.shape[0],
-                       *(n for _, n in stage_runs))
-    channels_early = (model.n_states + actuator.n_states + len(out_labels)
-                      + len(wiring.commands) + len(controller.output_labels)
-                      + len(wiring.references) + len(dist_labels))
-    # the work too, before a reference or disturbance of the run's length is built
-    check_record_memory(n_runs_early, n_rec_early, channels_early)
-    check_work(n_runs_early, n_steps,
-               record_bytes=8.0 * n_runs_early * n_rec_early * channels_early)
-    t_grid = _TimeGrid(n_steps, float(dt))
-    ref = _signal("reference", reference, len(wiring.references), t_grid, "",
-                  wiring.references)
-    _check_angles("reference", ref, wiring.references, wiring.reference_units)
-    dist = _signal("disturbance", disturbance, len(dist_labels), t_grid, "", dist_labels)
-    n_runs = _runs(
-        ("params", mp.shape[0]), ("actuator_params", ap.shape[0]),
-        ("controller_params", cp.shape[0]), ("x0", x0.shape[0]),
-        ("actuator_x0", xa0.shape[0]), ("reference", ref.shape[0]),
-        ("disturbance", dist.shape[0]), *stage_runs,
-    )
-    stage_arrays = tuple(stage.arrays(inp, n_runs) for stage, inp in zip(stages, stage_inputs))
-
-    def rows(a: np.ndarray) -> np.ndarray:
-        if a.shape[0] == n_runs and a.dtype == np.float64 and a.flags.c_contiguous:
-            return a  # (as it is: a broadcast and a copy cost µs, a tenth of a short run)
-        return np.ascontiguousarray(np.broadcast_to(a, (n_runs,) + a.shape[1:]), dtype=float)
-
-    mp, ap, cp = rows(mp), rows(ap), rows(cp)
-    z = np.concatenate([rows(x0), rows(xa0)], axis=1)
-    labels = model.state_labels + actuator.state_labels
-    lower = np.array(list(model.state_lower) + [-np.inf] * actuator.n_states, dtype=float)
-    upper = np.array(list(model.state_upper) + [np.inf] * actuator.n_states, dtype=float)
-    for label, (lo, hi) in (bounds or {}).items():  # (labels checked by the Problem)
-        j = labels.index(label)
-        lower[j], upper[j] = max(lower[j], float(lo)), min(upper[j], float(hi))
-    within = np.isfinite(z)  # (in place, one reduction: some µs of a short run)
-    within &= z >= lower
-    within &= z <= upper
-    if not within.all():
-        i = int(np.argmax(~within.all(axis=1)))
-        raise ParameterError(f": the initial state of run {i} is not finite or outside the "
-                             f"bounds: {z[i]}", field="x0", run=i)
+    # the model's disturbance channels, their outputs after the model's (the labels, bounds and
+    # sizes of the combination: :func:`_frame`, made once per combination); a problem's inputs
+    # checked once if it let them be kept (frame.keep_inputs: only for a loop without stages)
+    if type(kept) is _Inputs:  # (the guards read the machine at every call: memory, threads)
+        stages, stage_inputs, stage_arrays, frame = (), [], (), kept.frame
+        check_record_memory(kept.n_runs_early, kept.n_rec, frame.channels)
+        check_work(kept.n_runs_early, n_steps,
+                   record_bytes=8.0 * kept.n_runs_early * kept.n_rec * frame.channels)
+        if kept.n_runs != kept.n_runs_early:
+            check_record_memory(kept.n_runs, kept.n_rec, frame.channels)
+        inputs = kept  # (its arrays copied below: the batch's own)
+        mp, ap, cp, z = kept.mp.copy(), kept.ap.copy(), kept.cp.copy(), kept.z.copy()
+        lower, upper = kept.lower.copy(), kept.upper.copy()
+        dist, ref = kept.dist.copy(), kept.ref.copy()
+    else:
+        stages = stages_of(problem)
+        frame = _frame(wiring, stages)
+        stage_inputs = [stage.inputs(problem, model) for stage in stages] if stages else []
+        stage_runs = [c for stage, inp in zip(stages, stage_inputs)
+                      for c in stage.run_counts(inp)]
+        inputs, stage_arrays = problem_inputs(problem, frame, stages, stage_inputs, stage_runs)
+        if kept is None and not stages:
+            object.__setattr__(problem, "_kept_inputs", inputs.own())
+        mp, ap, cp, z = inputs.mp, inputs.ap, inputs.cp, inputs.z
+        lower, upper, dist, ref = inputs.lower, inputs.upper, inputs.dist, inputs.ref
+    m_cls, a_cls, c_cls = inputs.m_cls, inputs.a_cls, inputs.c_cls
+    n_runs, n_rec, labels, out_labels = inputs.n_runs, inputs.n_rec, frame.labels, frame.out_labels
 
     if exact_actuator is None:
         exact_actuator = actuator.advance is not None
     kernel = compile_closed_loop(model, actuator, controller, tableau, stages,
                                  exact_actuator=bool(exact_actuator), jit=use_jit)
-    mr = as_records(mp, m_cls)
-    ar = as_records(ap, a_cls)
-    cr = as_records(cp, c_cls)
+    if inputs is kept:  # (copies of rows checked before: the records without the checks)
+        mr, ar, cr = (kept.as_records(mp, 0, m_cls), kept.as_records(ap, 1, a_cls),
+                      kept.as_records(cp, 2, c_cls))
+    else:
+        mr, ar, cr = as_records(mp, m_cls), as_records(ap, a_cls), as_records(cp, c_cls)
     nz = z.shape[1]
-    ncmd = len(wiring.commands) + len(controller.output_labels)  # outputs after commands
-    # every record_every-th step and the final one (the last interval may be shorter); the
-    # channels are the early check's, so only more runs (a reference's or disturbance's) than
-    # it counted need another look
-    n_rec = n_rec_early
-    if n_runs != n_runs_early:
-        check_record_memory(n_runs, n_rec, channels_early)
-    cs = np.zeros((n_runs, max(controller.n_states, 1)))
+    ncmd = frame.n_commands  # (the controller's outputs after the commands)
+    cs = np.zeros((n_runs, frame.controller_width))
     cmd = np.zeros((n_runs, ncmd))
-    ca = np.zeros((n_runs, max(len(wiring.actuator_commands), 1)))
+    ca = np.zeros((n_runs, frame.actuator_command_width))
     status = np.zeros(n_runs, dtype=np.int64)
-    t_fail = _nans((n_runs,))
-    z_fail = _nans((n_runs, nz))
-    rec_z = _nans((n_runs, n_rec, nz))
-    rec_y = _nans((n_runs, n_rec, len(out_labels)))
-    rec_cmd = _nans((n_runs, n_rec, ncmd))
+    # (NaN until written: np.empty and fill, some µs a call below np.full's)
+    t_fail, z_fail = np.empty(n_runs), np.empty((n_runs, nz))
+    rec_z, rec_cmd = np.empty((n_runs, n_rec, nz)), np.empty((n_runs, n_rec, ncmd))
+    rec_y = np.empty((n_runs, n_rec, len(out_labels)))
+    for a in (t_fail, z_fail, rec_z, rec_y, rec_cmd):
+        a.fill(np.nan)
 
     arrays = KernelArrays(
         state=(z, cs, cmd, ca), params=(mr, ar, cr, lower, upper), signals=(dist, ref),
         outcome=(status, t_fail, z_fail), record=(rec_z, rec_y, rec_cmd), stages=stage_arrays,
-        stage_names=tuple(stage.name for stage in stages))
+        stage_names=frame.stage_names)
     n_out = len(out_labels)
 
     def stage_scratch() -> tuple[tuple[np.ndarray, ...], ...]:
@@ -477,26 +431,12 @@ def prepare(problem: Problem, *, keep_pool: bool = False) -> Batch:
         result_params.update(stage.result_params(inp, n_runs))
     return Batch(problem=problem, kernel=kernel, slices=slices, n_steps=n_steps, dt=float(dt),
                  ctrl_every=ctrl_every, record_every=record_every, jit=use_jit, labels=labels,
-                 out_labels=out_labels, out_units=out_units, dist_labels=dist_labels,
-                 dist_units=dist_units, z0=slices.arrays.state[0].copy(),
+                 out_labels=out_labels, out_units=frame.out_units, dist_labels=frame.dist_labels,
+                 dist_units=frame.dist_units, z0=slices.arrays.state[0].copy(),
                  info={"mp": mp, "ap": ap, "cp": cp, "m_cls": m_cls, "a_cls": a_cls,
                        "c_cls": c_cls, "n_rec": n_rec, "exact_actuator": exact_actuator,
-                       "ctrl_dt": ctrl_dt, "stages": stages, "stage_params": result_params})
-
-
-def _rows_2d(a: np.ndarray) -> np.ndarray:
-    """``np.atleast_2d(a)``: a 2-D array as it is, a 1-D one as its view ``a[None, :]`` (what
-    numpy's function returns, without its µs a call)."""
-    if a.ndim == 2:
-        return a
-    return a[None, :] if a.ndim == 1 else np.atleast_2d(a)
-
-
-def _nans(shape: tuple[int, ...]) -> np.ndarray:
-    """An array of NaN, as ``np.full(shape, np.nan)`` (which costs some µs more a call)."""
-    out = np.empty(shape)
-    out.fill(np.nan)
-    return out
+                       "ctrl_dt": ctrl_dt, "stages": stages, "stage_params": result_params,
+                       "kept": inputs is kept})
 
 
 def _result(batch: Batch, *, wall: float, compile_time: float, throw: bool,

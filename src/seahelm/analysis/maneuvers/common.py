@@ -51,19 +51,10 @@ from ...simulation.memory import RecordingTooLarge
 from ...simulation.problem import Problem
 from ...vessels.base import VesselModel
 from ..equilibria.equilibrium import EquilibriumError
-from .datasets import _indexless_dataset, _variable, _xarray
+from .datasets import _indexless_dataset, _single_run_dataset, _variable, _xarray
 from .ships import (  # re-exported: the manoeuvres and tests import them from here
-    SPEED_VALIDITY,
-    STEP_VALIDITY,
-    maneuver_ship,
-    _ships,
-    default_time_step,
-    usual_time_step,
-    Approach,
-    steady_approach,
-    steady_approaches,
-    _identified_near,
-    _straight_run_speed,
+    SPEED_VALIDITY, STEP_VALIDITY, maneuver_ship, _ships, default_time_step, usual_time_step,
+    Approach, steady_approach, steady_approaches, _identified_near, _straight_run_speed,
 )
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -156,6 +147,7 @@ class Plan:
             speed_axis = Axis(name="approach_speed", values=np.array([math.nan]), units="m/s",
                               is_dim=False)
             speeds = np.array([[s.approach_speed] for s in self.ships])
+        self.warned = False  #: whether a ValidityRangeWarning was issued (speed, time step)
         self.approaches: dict[tuple[int, int], Approach] = {}
         #: (ship, speed) -> why its approach was not found; its runs are left out of the batch
         self.failed: dict[tuple[int, int], str] = {}
@@ -163,10 +155,23 @@ class Plan:
         if not speed_axis.is_dim and n_ships == 1:
             speed_axis.values = speeds[0].copy()
         self.axes = [ship_axis, speed_axis, *axes]
-        names = [a.name for a in self.axes]
-        if len(set(names)) != len(names):  # pragma: no cover - internal
-            raise ValueError(f"duplicate axis names {names}")
+        if len({a.name for a in self.axes}) != len(self.axes):  # pragma: no cover - internal
+            raise ValueError(f"duplicate axis names {[a.name for a in self.axes]}")
         self.shape = tuple(a.size for a in self.axes)
+
+    def freeze(self) -> "Plan":
+        """The plan with its axes' values read-only (kept for later requests, :mod:`.prepared`, it
+        gives them to every result's coordinates: none may change the next one's)."""
+        for values in [a.values for a in self.axes] + [c[0] for a in self.axes
+                                                        for c in a.coords.values()]:
+            values.flags.writeable = False
+        return self
+
+    def _layout(self) -> BatchLayout | None:
+        """The batch's layout: the grid's dimensions (None for a single run)."""
+        dims = [BatchAxis(name=a.name, values=a.values, units=a.units) for a in self.axes
+                if a.is_dim]
+        return BatchLayout(axes=tuple(dims)) if dims else None
 
     @functools.cached_property
     def index(self) -> list[dict[str, int]]:
@@ -193,6 +198,7 @@ class Plan:
                         f"'{s.name}''s parameter set ({design:.4g} m/s): its hydrodynamic "
                         "coefficients were identified near that speed", ValidityRangeWarning,
                         stacklevel=4)
+                    self.warned = True
                 keys.append((i, j))
         solved = steady_approaches(self.model, [self.ships[i].params for i, _ in keys],
                                    [float(speeds[i][j]) for i, j in keys])
@@ -294,7 +300,8 @@ class Plan:
                  record_every: int, reference: Any = None, controller: Any = OPEN_LOOP,
                  controller_params: Any = None, metadata: Mapping[str, Any] | None = None,
                  controller_every: int = 1, conditions: Any = None) -> "SimResult":
-        """Run the grid as one batch (the engine validates the rest).
+        """Run the grid as one batch (the engine validates the rest): :meth:`run` of
+        :meth:`problem`.
 
         ``controller_every`` steps per controller sample: an open-loop schedule that changes
         only at recorded samples can be sampled there (the engine evaluates the model's
@@ -302,17 +309,27 @@ class Plan:
         (:class:`~seahelm.environment.loads.Conditions`): wind, waves and current acting from
         t = 0 on (the approach is the calm-water one).
         """
+        return self.run(self.problem(
+            x0=x0, actuator_x0=actuator_x0, t_final=t_final, dt=dt, record_every=record_every,
+            reference=reference, controller=controller, controller_params=controller_params,
+            metadata=metadata, controller_every=controller_every, conditions=conditions,
+            stacklevel=4))
+
+    def problem(self, *, x0: np.ndarray, actuator_x0: np.ndarray, t_final: float, dt: float,
+                record_every: int, reference: Any = None, controller: Any = OPEN_LOOP,
+                controller_params: Any = None, metadata: Mapping[str, Any] | None = None,
+                controller_every: int = 1, conditions: Any = None,
+                stacklevel: int = 3) -> Problem:
+        """The grid's batch as a validated :class:`~seahelm.simulation.problem.Problem` (the
+        arguments of :meth:`simulate`); warns (``stacklevel``: at the manoeuvre's caller) and
+        sets :attr:`warned` for a ``dt`` beyond :data:`STEP_VALIDITY` × the usual step."""
         usual = usual_time_step(self.ships, [a.speed for a in self.approaches.values()])
         if dt > STEP_VALIDITY * usual:
             warnings.warn(f"`dt` = {dt:g} s is {dt / usual:.3g} x the usual step of this ship "
                           f"({usual:g} s = min(L/(100 U0), servo lag)): the manoeuvre's events "
-                          "may be missed or wrong", ValidityRangeWarning, stacklevel=3)
-
-        dims = [a for a in self.axes if a.is_dim]
-        layout = None
-        if dims:
-            layout = BatchLayout(axes=tuple(
-                BatchAxis(name=a.name, values=a.values, units=a.units) for a in dims))
+                          "may be missed or wrong", ValidityRangeWarning, stacklevel=stacklevel)
+            self.warned = True
+        layout = self._layout()
         runs = np.arange(self.n_runs)
         extra = _conditions_kwargs(conditions, self.model)
         if self.failed:  # only the runs with an approach (scattered back below)
@@ -320,7 +337,6 @@ class Plan:
             x0, actuator_x0, reference, controller_params, extra = (
                 _select_runs(v, runs, self.n_runs)
                 for v in (x0, actuator_x0, reference, controller_params, extra))
-        # (the engine uses no more threads than runs, so a small batch wakes no idle thread)
         batch = Problem(
             model=self.model,
             params=(self.ships[0].params if len(self.ships) == 1
@@ -333,9 +349,15 @@ class Plan:
             controller_dt=controller_every * dt,
             record_every=record_every, metadata=dict(metadata or {}),
             layout=None if self.failed else layout, **extra)
-        try:
+        return batch  # (the engine uses no more threads than runs: a small batch wakes none)
+
+    def run(self, batch: Problem) -> "SimResult":
+        """Run the grid's batch (:meth:`problem`; the same one again gives the same result); a
+        batch too large for memory or the work guard in the manoeuvre's words."""
+        try:  # (a plan that failed some approaches: their runs scattered back as not run)
             result = simulate_batch(batch)
-            return _scatter_runs(result, runs, self.n_runs, layout) if self.failed else result
+            return result if not self.failed else _scatter_runs(
+                result, np.flatnonzero(self.run_ok), self.n_runs, self._layout())
         except (WorkTooLarge, RecordingTooLarge) as exc:  # in the manoeuvre's words
             too_much = (exc.over if isinstance(exc, WorkTooLarge)
                         else f"it would record {exc.size_text()}")
@@ -347,16 +369,17 @@ class Plan:
                 raise ParameterError(
                     f"= {depth:g} m is {depth / draft:.4g} x the draft ({draft:.4g} m): there "
                     f"the ship's predicted motion (its steady yaw rate, its stopping) is so slow "
-                    f"that the manoeuvre would last {t_final:.3g} s: {too_much}; give deeper "
+                    f"that the manoeuvre would last {batch.t_final:.3g} s: {too_much}; give deeper "
                     "water", field="water_depth", unit="m", value=depth) from None
             if isinstance(exc, WorkTooLarge):
+                usual = usual_time_step(self.ships, [a.speed for a in self.approaches.values()])
                 raise ParameterError(
-                    f"= {dt:g} s: {exc.over}; a larger `dt` (the usual step of this ship is "
+                    f"= {batch.dt:g} s: {exc.over}; a larger `dt` (the usual step of this ship is "
                     f"{usual:.3g} s), a shorter `t_final` or fewer runs {exc.anyway}",
-                    field="dt", unit="s", value=dt) from None
+                    field="dt", unit="s", value=batch.dt) from None
             slowest = min(a.speed for a in self.approaches.values())
             raise ParameterError(
-                f": {self.n_runs} run(s) of {t_final:.6g} s (at the slowest approach "
+                f": {self.n_runs} run(s) of {batch.t_final:.6g} s (at the slowest approach "
                 f"speed, {slowest:.4g} m/s) would record {exc.size_text()}; give a faster "
                 "approach (`speed` or `rps`) or a shorter `t_final`", field="t_final") from None
 
@@ -379,8 +402,13 @@ class Plan:
         fixed-width unicode, booleans as bool. Built in one Dataset construction (xarray's
         per-object overhead is most of the cost of a short manoeuvre).
         """
-        data = {}
         grid_dims: tuple[str, ...] = self.dims
+        if not grid_dims and not self.failed and not extra_dims and not coords:
+            # a single run (the grid has no dimension): its 0-d variables put in place at once
+            single = _single_run_dataset(variables, self._coords(), dict(attrs or {}))
+            if single is not None:
+                return single
+        data = {}
         grid_shape = self.dim_shape
         failed = np.flatnonzero(~self.run_ok) if self.failed else None
         for name, (values, units, long_name) in variables.items():

@@ -119,3 +119,52 @@ def _indexless_dataset(data: Mapping[str, Any], coords: Mapping[str, Any],
         return construct(variables, set(coords), dims, attrs, {}, None)
     except TypeError:  # pragma: no cover - a changed signature
         return None
+
+
+def _single_run_dataset(variables: Mapping[str, tuple[Any, str, str]],
+                        coords: Mapping[str, tuple[tuple[str, ...], Any, Mapping[str, Any]]],
+                        attrs: dict[str, Any]) -> "xr.Dataset | None":
+    """A single run's metrics Dataset (a grid without dimensions): what
+    :meth:`~seahelm.analysis.maneuvers.common.Plan.dataset` builds through :func:`_variable`
+    and :func:`_indexless_dataset`, in one pass.
+
+    ``variables[name] = (values, units, long_name)`` with ``values`` of shape (1,) (strings
+    as objects or unicode), ``coords[name] = (dims, value, attrs)`` of scalars. Every variable
+    is 0-d, so there are no dimension sizes to reconcile: each one's slots are filled
+    directly (the same data, a 0-d view of the value, and the same attrs as
+    :func:`_variable`'s). None where an assumption does not hold (a value of another shape or
+    kind, a coordinate that is not a scalar, a name shared, another xarray): the caller then
+    builds it the general way (``tests/test_maneuver_single_run_dataset.py`` compares the two).
+    """
+    xr = _xarray()
+    construct = getattr(xr.Dataset, "_construct_direct", None)
+    if construct is None or not _raw_variables():  # pragma: no cover - other xarray
+        return None
+    cls, new = xr.Variable, _NEW_VARIABLE
+    variables_out: dict[str, Any] = {}
+    for name, (values, units, long_name) in variables.items():
+        arr = values if type(values) is np.ndarray else np.asarray(values)
+        if arr.shape != (1,):
+            return None
+        if arr.dtype.kind == "O":
+            arr = arr.astype(str)
+        if arr.dtype.kind not in "biufU":
+            return None
+        var = new(cls)
+        var._data, var._dims, var._encoding = arr.reshape(()), (), None
+        var._attrs = {"long_name": long_name, "units": units} if units else {
+            "long_name": long_name}
+        variables_out[name] = var
+    for name, (cdims, cvalue, cattrs) in coords.items():
+        carr = np.asarray(cvalue)
+        if cdims or carr.ndim or carr.dtype.kind not in "biufU" or name in variables_out:
+            return None
+        var = new(cls)
+        var._data, var._dims, var._encoding = carr, (), None
+        var._attrs = dict(cattrs) if cattrs else None
+        variables_out[name] = var
+    try:
+        return construct(variables_out, set(coords), {}, attrs, {}, None)
+    except TypeError:  # pragma: no cover - a changed signature
+        return None
+

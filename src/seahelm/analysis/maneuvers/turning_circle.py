@@ -44,6 +44,7 @@ import numpy as np
 from numba import njit
 
 from ...errors import ParameterError
+from ...simulation.frame import keep_inputs
 from ..equilibria.constant_speed import is_constant_speed
 from ..equilibria.heel import heel_metrics
 from .common import (
@@ -55,6 +56,7 @@ from .common import (
     side_axis,
     value_axis,
 )
+from .prepared import keep, ready, request_key
 from .ships import steady_yaw_rates, yaw_lag
 from .result import ManeuverResult
 from .track import distance_until, track_distance
@@ -146,44 +148,56 @@ def turning_circle(ship: Any, rudder: Any = math.radians(35.0), *, sides: Any = 
         If a rudder angle is not within the steering gear's limit, a speed or rps is not
         > 0, ``speed`` and ``rps`` are both given, or the timing is invalid.
     """
-    rudder_axis = value_axis("rudder", rudder, "rad")
-    side = side_axis(sides)
-    plan = Plan(ship, speed, rps, [rudder_axis, side])
-    check_rudder(plan.ships, "rudder", rudder_axis.values, positive=True)
-    check_positive_change(heading_change)
-    if dt is None:
-        dt = usual_time_step(plan.ships, [a.speed for a in plan.approaches.values()])
-    if t_final is None:
-        signed: dict[tuple[int, int], list[float]] = {}
-        for key in plan.approaches:
-            if key in plan.failed:  # (not run)
-                continue
-            signed[key] = [float(s_) * float(np.min(rudder_axis.values))
-                           for s_ in side.values]
-        t_final = _estimate_t_final(plan, signed, heading_change)
-    t_final = final_time(float(t_final), float(dt))
-    approaches = plan.run_approaches()
-    record_every = (record_every_for(float(dt), record_dt, float(t_final))
-                    if record_dt is not None
-                    or "roll_angle" in plan.model.output_labels
-                    or "roll_angle" in plan.model.state_labels
-                    else min(default_record_every(  # (of the runs that run)
-                        float(dt), *_of_runs_that_run(plan, plan.run_lengths(),
-                                                      [a.speed for a in approaches])),
-                        # (a t_final shorter than one default sample: every step; it was
-                        # "`controller_dt` = 0.25 s exceeds t_final", an option never given)
-                        max(1, int(round(float(t_final) / float(dt))))))
+    # a request seen before: its grid and validated batch as they were made (prepared.py)
+    request = None if conditions is not None else request_key(
+        "turning-circle", ship, rudder, sides, speed, rps, t_final, dt, record_dt,
+        heading_change)
+    prepared = ready(request)
+    if prepared is None:
+        rudder_axis = value_axis("rudder", rudder, "rad")
+        side = side_axis(sides)
+        plan = Plan(ship, speed, rps, [rudder_axis, side])
+        check_rudder(plan.ships, "rudder", rudder_axis.values, positive=True)
+        check_positive_change(heading_change)
+        if dt is None:
+            dt = usual_time_step(plan.ships, [a.speed for a in plan.approaches.values()])
+        if t_final is None:
+            signed: dict[tuple[int, int], list[float]] = {}
+            for key in plan.approaches:
+                if key in plan.failed:  # (not run)
+                    continue
+                signed[key] = [float(s_) * float(np.min(rudder_axis.values))
+                               for s_ in side.values]
+            t_final = _estimate_t_final(plan, signed, heading_change)
+        t_final = final_time(float(t_final), float(dt))
+        approaches = plan.run_approaches()
+        record_every = (record_every_for(float(dt), record_dt, float(t_final))
+                        if record_dt is not None
+                        or "roll_angle" in plan.model.output_labels
+                        or "roll_angle" in plan.model.state_labels
+                        else min(default_record_every(  # (of the runs that run)
+                            float(dt), *_of_runs_that_run(plan, plan.run_lengths(),
+                                                          [a.speed for a in approaches])),
+                            # (a t_final shorter than one default sample: every step; it was
+                            # "`controller_dt` = 0.25 s exceeds t_final", an option never given)
+                            max(1, int(round(float(t_final) / float(dt))))))
 
-    x0 = np.array([a.state for a in approaches], dtype=float)  # (as np.stack: (runs, states))
-    rudder0 = np.array([[a.rudder] for a in approaches])
-    orders = plan.run_values("side") * plan.run_values("rudder")
-    reference: dict[str, Any] = {"rudder_command": orders.reshape(-1, 1, 1)}
-    if plan.ships[0].has_propeller:
-        reference["propeller_rps"] = np.array([a.rps for a in approaches]).reshape(-1, 1, 1)
-    result = plan.simulate(x0=x0, actuator_x0=rudder0, reference=reference, t_final=t_final,
-                           dt=dt, record_every=record_every,
-                           metadata={"maneuver": "turning-circle"},
-                           controller_every=record_every, conditions=conditions)
+        x0 = np.array([a.state for a in approaches], dtype=float)  # (np.stack: runs, states)
+        rudder0 = np.array([[a.rudder] for a in approaches])
+        orders = plan.run_values("side") * plan.run_values("rudder")
+        reference: dict[str, Any] = {"rudder_command": orders.reshape(-1, 1, 1)}
+        if plan.ships[0].has_propeller:
+            reference["propeller_rps"] = np.array([a.rps for a in approaches]).reshape(
+                -1, 1, 1)
+        problem = plan.problem(x0=x0, actuator_x0=rudder0, reference=reference, t_final=t_final,
+                               dt=dt, record_every=record_every,
+                               metadata={"maneuver": "turning-circle"},
+                               controller_every=record_every, conditions=conditions)
+        if not plan.warned:  # (its checked inputs kept too; its grid's values read-only)
+            keep(request, (plan.freeze(), keep_inputs(problem)))
+    else:
+        plan, problem = prepared
+    result = plan.run(problem)
     metrics = _metrics(plan, result)
     return ManeuverResult("turning-circle", metrics, tuple(plan.ships), result,
                           lambda: plan.runs_dataset(result))
@@ -287,14 +301,24 @@ def _cubic_crossings(times: np.ndarray, change: np.ndarray, levels: np.ndarray,
     order h⁴ in the recording interval h (linear interpolation: h²), so a turning circle
     recorded every L/(20 U) measures its events to far below the integration error.
     """
-    steps = change.shape[1]
-    j0 = np.empty(k.shape, dtype=np.int64)
-    s_nodes = np.empty(k.shape + (4,))
-    c_nodes = np.empty(k.shape + (4,))
-    good = np.empty(k.shape, dtype=np.bool_)
-    s = np.empty(k.shape)
+    j0, s_nodes, c_nodes, good, s = _bracket_arrays(k.shape)
     _bracket(times, np.ascontiguousarray(change, dtype=float), k, w, j0, s_nodes, c_nodes,
              good, s)
+    return _cubic_weights(levels, j0, s_nodes, c_nodes, good, s)
+
+
+def _bracket_arrays(shape: tuple[int, ...]) -> tuple[np.ndarray, ...]:
+    """The outputs of :func:`_bracket` for (levels, runs) ``shape``: j0, s_nodes, c_nodes,
+    good, s."""
+    return (np.empty(shape, dtype=np.int64), np.empty(shape + (4,)), np.empty(shape + (4,)),
+            np.empty(shape, dtype=np.bool_), np.empty(shape))
+
+
+def _cubic_weights(levels: np.ndarray, j0: np.ndarray, s_nodes: np.ndarray,
+                   c_nodes: np.ndarray, good: np.ndarray, s: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_cubic_crossings` from the brackets :func:`_bracket` found: the cubic's power
+    coefficients, Newton's method on it, the weights of the four nodes at the crossing."""
     vander = s_nodes[..., None] ** _POWERS  # (levels, runs, 4 nodes, 4 powers)
     if not good.all():  # (every event inside the record: no placeholder to set)
         vander[~good] = np.eye(4)  # (placeholders: never used)
@@ -391,6 +415,19 @@ def _newton(coef: np.ndarray, levels: np.ndarray, s: np.ndarray) -> None:  # pra
             s[a, b] = x
 
 
+@njit(cache=True, nogil=True)
+def _first_pass(change: np.ndarray, levels: np.ndarray, times: np.ndarray, r: np.ndarray,
+                speed: np.ndarray, k: np.ndarray, w: np.ndarray, j0: np.ndarray,
+                s_nodes: np.ndarray, c_nodes: np.ndarray, good: np.ndarray, s: np.ndarray,
+                radius: np.ndarray, steady: np.ndarray) -> None:  # pragma: no cover - compiled
+    """:func:`_first_crossings`, :func:`_bracket` and :func:`_steady_ends` in one call (the
+    same functions, so the same numbers: each compiled call from Python costs its dispatch,
+    a good part of a single circle's metrics)."""
+    _first_crossings(change, levels, k, w)
+    _bracket(times, change, k, w, j0, s_nodes, c_nodes, good, s)
+    _steady_ends(change, r, speed, radius, steady)
+
+
 def _at_cubic(values: np.ndarray, k: np.ndarray, w: np.ndarray, j0: np.ndarray,
               weights: np.ndarray) -> np.ndarray:
     """Signals (signals, runs, steps) at the crossings, by the cubic weights of
@@ -462,12 +499,22 @@ _NOT_STEADY = ("ok; the turn was not yet steady at the end (yaw rate still chang
 def _metrics(plan: Plan, result: Any) -> Any:
     t = result.time
     north, east, psi = result["north"], result["east"], result["heading"]
+    speed = result["speed"]
+    r = result["yaw_rate"]
     change = np.abs(psi - psi[:, :1])
     # (one run: the time row itself, contiguous; a batch: broadcast, then a contiguous copy)
-    times = t.reshape(1, -1) if psi.shape[0] == 1 else np.broadcast_to(t, psi.shape)
-    k, w = _crossings(change, _LEVELS)
-    times = np.ascontiguousarray(times)
-    j0, weights = _cubic_crossings(times, change, _LEVELS, k, w)
+    times = np.ascontiguousarray(t.reshape(1, -1) if psi.shape[0] == 1
+                                 else np.broadcast_to(t, psi.shape))
+    # the crossings (_crossings), their brackets (_cubic_crossings) and the steady end of
+    # each turn in one compiled call (three before)
+    n = plan.n_runs
+    k = np.empty((_LEVELS.size, change.shape[0]), dtype=np.int64)
+    w = np.empty(k.shape)
+    j0, s_nodes, c_nodes, good, s = _bracket_arrays(k.shape)
+    radius, steady = np.empty(n), np.empty(n, dtype=np.bool_)
+    _first_pass(np.ascontiguousarray(change, dtype=float), _LEVELS, times, r, speed, k, w, j0,
+                s_nodes, c_nodes, good, s, radius, steady)
+    j0, weights = _cubic_weights(_LEVELS, j0, s_nodes, c_nodes, good, s)
     # the distance along the track is read at the 10 deg event only (its four samples j0..)
     dist = distance_until(north, east, t, until=j0[2] + 3)
     # every signal at every event (a few are not needed: all cost one gather)
@@ -476,23 +523,18 @@ def _metrics(plan: Plan, result: Any) -> Any:
     advance, transfer, time_90 = along_at[0], across_at[0], time_at[0]
     tactical_diameter, time_180 = across_at[1], time_at[1]
     time_10, distance_10 = time_at[2], dist_at[2]
-    speed = result["speed"]
-    r = result["yaw_rate"]
     constant = is_constant_speed(plan.model)
     # a constant-speed model has no drift angle unless it declares one (Voitkunsky's β)
     beta = (result["drift_angle"] if "drift_angle" in result.channel_names()
             else np.full_like(r, np.nan))
-    n = plan.n_runs
     approaches = plan.run_approaches()
     U0 = np.array([a.speed for a in approaches])
     rps = np.array([np.nan if (x := a.rps) is None else x for a in approaches])
     length = plan.run_lengths()
     steady_r = r[:, -1]
     steady_U = speed[:, -1]
-    # the radius U/|r| (inf where r = 0), and steady: |r| changed by <= 1 % since the last
-    # sample 90 deg of heading before the end
-    radius, steady = np.empty(n), np.empty(n, dtype=np.bool_)
-    _steady_ends(change, r, speed, radius, steady)
+    # (radius: U/|r| at the end, inf where r = 0; steady: |r| changed by <= 1 % since the
+    # last sample 90 deg of heading before the end: _steady_ends, in _first_pass)
     status = result.messages()
     reached = ~np.isnan(time_10) & ~np.isnan(time_90) & ~np.isnan(time_180)
     # complete: every event reached and the run went well (most runs: nothing more to say,
