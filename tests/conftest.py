@@ -328,9 +328,9 @@ FOLLOWERS: dict[str, tuple[str, ...]] = {
     "tests/test_reversals.py": ("tests/test_mmg_multi_record.py",),
     # the supply vessel's DP loops in waves: examples/supply_dp_observer_waves.toml's kernel
     # (dp-pid-observer, the sea's mean loads and first-order motions, the sensors) is the one of
-    # test_dp_observer's observer runs and test_sensor_stage's stepping test; dp-pid with the
-    # first-order motions and sensors is test_sensor_stage's, test_sensor_defaults' and
-    # test_restart_clock_time_varying's (each ~40-60 s CPU to compile in a fresh clone)
+    # test_dp_observer's observer runs and test_sensor_stage's stepping test; dp-pid in the same
+    # sea (test_dp_observer's raw runs) is test_sensor_stage's, test_sensor_defaults' and
+    # test_restart_clock_time_varying's (each ~20-30 s CPU to compile in a fresh clone)
     "tests/test_scenario.py": ("tests/test_dp_observer.py", "tests/test_sensor_stage.py",
                                "tests/test_sensor_defaults.py",
                                "tests/test_restart_clock_time_varying.py"),

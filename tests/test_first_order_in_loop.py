@@ -22,6 +22,7 @@ from seahelm.errors import ParameterError
 from seahelm.ships import get_ship
 from seahelm.simulation.engine import simulate
 from seahelm.simulation.problem import Problem
+from seahelm.simulation.signals import Ramp
 
 H3 = 4.0
 WAVES_FROM = math.radians(135.0)
@@ -56,17 +57,22 @@ def _check_against_post_pass(fo, res):
                                    rtol=0, atol=1e-9)
 
 
-def test_open_loop_equals_the_post_pass_in_a_turn(mariner, barge, sea):
-    """A 15° rudder turn (the relative wave heading goes round the table) in a short-crested
-    sea (cos-2s, one direction per component: the general path), the box barge's panel-method
-    RAOs with yaw."""
+def test_a_full_turn_equals_the_post_pass(mariner, barge, sea):
+    """A turn through more than a full circle (the relative wave heading goes round the table)
+    in a short-crested sea (cos-2s, one direction per component: the general path), the box
+    barge's panel-method RAOs with yaw: the PID of :func:`test_off_changes_nothing_bit_for_bit`
+    (which sees ψ) following a heading ramp of 8 rad in 660 s, its rudder at the stop most of
+    the way. (The kernel of that test: the turn was an open-loop 15° rudder, a combination
+    only this test compiled; the open loop with the motions in it is the container's below.)"""
     ship, kw = mariner
     fo = first_order_in_loop(sea, barge, wave_direction=WAVES_FROM, runs=2, seed=4,
                              spreading="cos-2s", spreading_parameter=4.0)
-    res = simulate(**kw, t_final=660.0, reference={"rudder_command": math.radians(15.0)},
+    gains = PIDHeadingParams(kp=2.0, ki=0.0, kd=20.0, max_command=ship.max_rudder)
+    res = simulate(**kw, t_final=660.0, controller=PID_HEADING, controller_params=gains,
+                   controller_dt=0.5, reference={"heading": Ramp(0.0, 660.0, 0.0, 8.0)},
                    first_order=fo)
     assert np.all(res.status == 0)
-    assert np.ptp(res["heading"]) > 2 * math.pi  # a full turn and more
+    assert np.all(np.ptp(res["heading"], axis=1) > 2 * math.pi)  # a full turn and more
     assert res.metadata["controller_heading"] == "heading"
     _check_against_post_pass(fo, res)
 

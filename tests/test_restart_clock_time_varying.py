@@ -16,14 +16,15 @@ from seahelm.simulation.sensor_stage import PositionSensors
 from seahelm.simulation.stepping import Simulator
 from seahelm.simulation.stepping_reference import restart_clock
 
-from test_dp_observer import SHIP, dp_problem
+from test_dp_observer import SHIP, dp_problem, sea_problem
 
 T = 20.0
 
 
 def test_in_loop_wave_motions_refuse_the_clock_set_back():
-    problem = dp_problem(DP_PID, dp_pid_params(SHIP), t_final=T,
-                         sensors=PositionSensors(wave_motion=True, seed=1))  # (no noise: the sea alone)
+    # (no noise: the sea alone; test_dp_observer's raw dp-pid loop, its mean wave loads too)
+    problem = sea_problem(DP_PID, dp_pid_params(SHIP), t_final=T,
+                          sensors=PositionSensors(wave_motion=True, seed=1))
     with Simulator(problem) as sim:
         sim.reset()
         half = sim.n_intervals // 2

@@ -16,7 +16,7 @@ from seahelm.scenario.schema import SensorsSection
 from seahelm.simulation.engine import simulate
 from seahelm.simulation.sensor_stage import PositionSensors
 
-from test_dp_observer import SHIP, dp_problem
+from test_dp_observer import SHIP, sea_problem
 
 EXAMPLE = Path(__file__).parents[1] / "examples" / "supply_dp_setpoint.toml"
 
@@ -37,17 +37,17 @@ def test_an_empty_sensors_section_is_the_default_sensors():
 
 
 def test_the_default_sensors_give_the_run_without_the_stage_bit_for_bit():
-    """The first-order surge, sway and yaw in the loop, the default sensors: the controller
-    sees the true position (the sea is not added unless asked), as without the stage. The run
-    without is without the first-order motions too (they only add outputs when nobody sees
-    them; tests/test_sensor_stage.py compares the same pair): the supply vessel's set-point
-    loop of examples/supply_dp_setpoint.toml, a kernel other tests compile, where the first-order
-    motions without the sensors would be one only this test needs."""
-    with_stage = simulate(dp_problem(DP_PID, dp_pid_params(SHIP), t_final=20.0,
-                                     sensors=PositionSensors()))
-    without = simulate(dp_problem(DP_PID, dp_pid_params(SHIP), t_final=20.0,
-                                  sensors=PositionSensors()).replace(sensors=None,
-                                                                     first_order=None))
+    """The first-order motions in the loop, the default sensors: the controller sees the true
+    position (the sea is not added unless asked), as without the stage. The run without is
+    without the first-order motions too (they only add outputs when nobody sees them;
+    tests/test_sensor_stage.py compares the same pair), both in the sea of
+    examples/supply_dp_observer_waves.toml with its mean wave loads: the loop with the stage is
+    test_dp_observer's raw dp-pid, the one without that of tests/test_sensor_stage.py's pair."""
+    with_stage = simulate(sea_problem(DP_PID, dp_pid_params(SHIP), t_final=20.0,
+                                      sensors=PositionSensors()))
+    without = simulate(sea_problem(DP_PID, dp_pid_params(SHIP), t_final=20.0,
+                                   sensors=PositionSensors()).replace(sensors=None,
+                                                                      first_order=None))
     assert np.array_equal(with_stage.state, without.state)
     assert np.array_equal(with_stage.command, without.command)
     for meas, true in (("measured_north", "north"), ("measured_east", "east"),

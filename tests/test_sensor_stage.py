@@ -36,9 +36,10 @@ def test_the_stage_is_registered_after_the_first_order_motions():
 def test_zero_noise_and_no_wave_motion_is_todays_run_bit_for_bit():
     """The stage in the loop (the first-order motions too) but off: the states, commands and
     the model's outputs equal those of the run without either, and the measured values are
-    the true ones."""
-    off = dp_problem(DP_PID, dp_pid_params(SHIP), t_final=60.0,
-                     sensors=PositionSensors(wave_motion=False))
+    the true ones. In the sea of examples/supply_dp_observer_waves.toml, its mean wave loads
+    in both runs (the loop with the stage is then the raw dp-pid's of test_dp_observer)."""
+    off = sea_problem(DP_PID, dp_pid_params(SHIP), t_final=60.0,
+                      sensors=PositionSensors(wave_motion=False))
     with_stage = simulate(off)
     today = simulate(off.replace(first_order=None, sensors=None))
     n = len(today.output_labels)
@@ -58,8 +59,9 @@ def test_zero_noise_and_no_wave_motion_is_todays_run_bit_for_bit():
 
 def test_a_batch_equals_its_runs_one_by_one():
     """Three runs (their own seas and noise) as one batch, and each alone as a sweep's chunk
-    of one (the first-order motions and the noise keys of run i, by their select_runs)."""
-    problem = dp_problem(DP_PID, dp_pid_params(SHIP), runs=3, seed=[4, 5, 6], t_final=60.0)
+    of one (the first-order motions and the noise keys of run i, by their select_runs); in
+    the sea of examples/supply_dp_observer_waves.toml (test_dp_observer's raw dp-pid loop)."""
+    problem = sea_problem(DP_PID, dp_pid_params(SHIP), runs=3, seed=[4, 5, 6], t_final=60.0)
     batch = simulate(problem)
     for i in range(3):
         alone = simulate(problem.replace(  # (as seahelm.sweep.select_runs makes a chunk)
