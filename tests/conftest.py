@@ -18,6 +18,14 @@ import pytest
 
 matplotlib.use("Agg")
 os.environ.setdefault("MPLBACKEND", "Agg")
+#: One OpenBLAS thread in the xdist workers and in every subprocess (benchmarks, ``seahelm``
+#: commands), which inherit this environment: two workers on 2 cores, each with OpenBLAS's
+#: default of a thread per core, oversubscribe the machine and its threads spin-wait, so that a
+#: small SVD (1800 x 16) took 0.024 s of CPU instead of 0.0006 s and
+#: tests/test_analysis_nomoto_fit.py 57 s of CPU instead of 10 s (no compile in either; its
+#: 58 s in the fresh-clone census). (This process's OpenBLAS is loaded already, by plugins:
+#: a run with -n 0 keeps the default unless the variable is set outside.)
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 
 @pytest.fixture
