@@ -588,6 +588,7 @@ UNIT_MODULES: frozenset[str] = frozenset({
     "tests/test_studies_shushlyapin2017.py",
     "tests/test_studies_sushchenko2010.py",
     "tests/test_suite_order.py",
+    "tests/test_suite_threads.py",
     "tests/test_top_level_api.py",
     "tests/test_vessels_engine_shaft.py",
 })
