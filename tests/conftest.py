@@ -18,6 +18,14 @@ import pytest
 
 matplotlib.use("Agg")
 os.environ.setdefault("MPLBACKEND", "Agg")
+#: One OpenBLAS thread in the xdist workers and in every subprocess (benchmarks, ``seahelm``
+#: commands), which inherit this environment: two workers on 2 cores, each with OpenBLAS's
+#: default of a thread per core, oversubscribe the machine and its threads spin-wait, so that a
+#: small SVD (1800 x 16) took 0.024 s of CPU instead of 0.0006 s and
+#: tests/test_analysis_nomoto_fit.py 57 s of CPU instead of 10 s (no compile in either; its
+#: 58 s in the fresh-clone census). (This process's OpenBLAS is loaded already, by plugins:
+#: a run with -n 0 keeps the default unless the variable is set outside.)
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 
 @pytest.fixture
@@ -261,16 +269,15 @@ def _docs(group: str) -> str:
 #: Seconds the slowest modules (or test functions, or single tests: see :func:`ordering_key`)
 #: take in a fresh clone's `make test` (empty kernel cache, 2 cores; most of it is compiling
 #: kernels): CPU seconds per module (the process's and its finished children's, summed over the
-#: module's tests) of the fresh-clone run of 2026-12-02 06:00 with
-#: ``SEAHELM_TEST_COMPILE_TIMES`` (:class:`CompileTimes`), where that run had reached the
-#: module; else the 30 slowest durations of the run before, summed per entry.
-#: tests/test_dp_observer.py is its module measured in empty caches on 2026-12-02 14:30 (129 s
-#: CPU) less the kernel it now shares with examples/supply_dp_observer_waves.toml (87 s, compiled
-#: by test_scenario.py, which it follows); tests/test_environment_first_order.py less the 7 s
-#: its variance test no longer takes. The docs-command groups (one test per file then: getting-started.rst
-#: 142 s, README.md 65 s) are CPU seconds of their commands in an empty cache: ``seahelm imo``'s
-#: IMO kernels 63 s, then each command that reuses them 2 to 7 s. Only the order of the run
-#: depends on them: a wrong or missing figure costs time, not a test.
+#: module's tests) of the fresh-clone run of 2026-12-02 16:31 (/tmp/fresh11, a loaded machine)
+#: with ``SEAHELM_TEST_COMPILE_TIMES`` (:class:`CompileTimes`), every module of 12 s or more
+#: but those whose cost went since: tests/test_analysis_nomoto_fit.py (58 s then, ~10 s with one
+#: OpenBLAS thread, below) and tests/test_environment_first_order.py (20 s then, ~5 s now). In
+#: that run the two workers were busy to the end (the tests' seconds summed to 2 × the wall
+#: time less the two collections). The docs-command groups (one test per file then:
+#: getting-started.rst 142 s, README.md 65 s) are CPU seconds of their commands in an empty
+#: cache: ``seahelm imo``'s IMO kernels 63 s, then each command that reuses them 2 to 7 s.
+#: Only the order of the run depends on them: a wrong or missing figure costs time, not a test.
 LONG_MODULES: dict[str, float] = {
     _docs("README.md:imo-cargo.toml-out-imo"): 70.0,
     _docs("getting-started.rst:maneuver-turning-ship-my.toml-rudder-35"): 30.0,
@@ -280,29 +287,37 @@ LONG_MODULES: dict[str, float] = {
     _docs("getting-started.rst:sweep-examples-mariner-monte-carlo.toml"): 10.0,
     _docs("getting-started.rst:run-examples-mariner-route-ilos.toml-out"): 10.0,
     _docs("getting-started.rst:autopilot-tune-mariner-nonlinear"): 10.0,
-    "tests/test_simulation_pure_python.py": 212.0,
-    "tests/test_benchmarks_quick.py": 187.1,
-    "tests/test_simulation_integrators.py": 118.9,
-    "tests/test_scenario.py": 106.1,
-    "tests/test_dp_observer.py": 45.0,
-    "tests/test_first_order_in_loop.py": 63.8,
-    "tests/test_cli_stop_signals.py": 59.7,
-    "tests/test_analysis_maneuvers_constant_speed.py": 38.8,
-    "tests/test_scenario_first_order_in_loop.py": 36.0,
-    "tests/test_control_lq_cross_track.py": 29.2,
-    "tests/test_control_autopilot_design.py": 28.4,
-    "tests/test_docs_coming_from.py": 28.1,
-    "tests/test_reversals.py": 25.9,
-    "tests/test_control_final_state.py": 21.5,
-    "tests/test_sweep_dask.py": 20.7,
-    "tests/test_simulation_batch.py": 20.5,
-    "tests/test_environment_first_order.py": 13.0,
-    "tests/test_control_state_space.py": 18.4,
-    "tests/test_control_path_following.py": 17.4,
-    "tests/test_studies_lvov2014.py": 16.5,
-    "tests/test_cli_reliability_messages.py": 16.3,
-    "tests/test_vessels_cpp_ship.py": 15.1,
-    "tests/test_cli_main.py": 14.5,
+    "tests/test_benchmarks_quick.py": 208.3,
+    "tests/test_simulation_pure_python.py": 200.9,
+    "tests/test_scenario.py": 137.6,
+    "tests/test_simulation_integrators.py": 117.9,
+    "tests/test_cli_stop_signals.py": 63.3,
+    "tests/test_first_order_in_loop.py": 47.4,
+    "tests/test_encounters_store.py": 28.3,
+    "tests/test_output_policy.py": 27.4,
+    "tests/test_examples_scripts.py": 26.2,
+    "tests/test_control_baselines.py": 25.9,
+    "tests/test_control_lq_cross_track.py": 22.1,
+    "tests/test_sweep_dask.py": 20.9,
+    "tests/test_dp_observer.py": 20.8,
+    "tests/test_simulation_wiring.py": 20.8,
+    "tests/test_scenario_first_order_in_loop.py": 20.7,
+    "tests/test_reversals.py": 20.0,
+    "tests/test_kernel_cache.py": 19.3,
+    "tests/test_report.py": 19.2,
+    "tests/test_simulation_batch.py": 18.2,
+    "tests/test_cli_main.py": 16.9,
+    "tests/test_control_state_space.py": 16.5,
+    "tests/test_replay.py": 16.2,
+    "tests/test_analysis_maneuvers_constant_speed.py": 15.8,
+    "tests/test_control_autopilot_design.py": 15.8,
+    "tests/test_docs_coming_from.py": 15.6,
+    "tests/test_control_held_rps.py": 15.6,
+    "tests/test_reliability_fuzz.py": 15.3,
+    "tests/test_analysis_nomoto_fit_start.py": 15.2,
+    "tests/test_control_final_state.py": 15.0,
+    "tests/test_studies_lvov2014.py": 13.6,
+    "tests/test_control_path_following.py": 12.8,
 }
 
 #: Entries run right after a long entry, on its worker, because they need the kernels it
@@ -573,6 +588,7 @@ UNIT_MODULES: frozenset[str] = frozenset({
     "tests/test_studies_shushlyapin2017.py",
     "tests/test_studies_sushchenko2010.py",
     "tests/test_suite_order.py",
+    "tests/test_suite_threads.py",
     "tests/test_top_level_api.py",
     "tests/test_vessels_engine_shaft.py",
 })
