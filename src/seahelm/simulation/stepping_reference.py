@@ -272,10 +272,8 @@ def restart_runs(sim: "Simulator", runs: Any, states: Mapping[str, Any] | None =
         for live, fresh in zip((*a.state, *a.outcome, *a.record), sim._fresh):
             live[sel] = fresh[sel]
         spans = _spans(sel)
-        kernel, sc, ssc = b.kernel, b.slices.scratch[0], b.slices.stage_scratch[0]
         with quiet(b.jit):
-            for i0, i1 in spans:  # (the controller's init on the initial state, as reset)
-                kernel.init_runs(i0, i1, a.state, a.params, a.signals, a.stages, sc, ssc)
+            b.slices.init_runs(spans)  # (the controller's init on the initial state, as reset)
             sim._z[sel] = z
             if sel.size > _SPANS_SHARE * sim.n_runs:
                 sim._observe_into()
