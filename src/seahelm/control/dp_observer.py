@@ -37,8 +37,8 @@ from numba import njit
 
 from ..parameters import param, signal_indices
 from .base import Controller, wrap_pi
-from .dp_pid import (COMMANDS, DP_PID, OUTPUTS, REFERENCES, STATES, DpPidParams,
-                     dp_control)
+from .dp_pid import (_AZ0, COMMANDS, DP_PID, OUTPUTS, REFERENCES, STATES, DpPidParams,
+                     dp_control, state_indices)
 
 __all__ = ["DpObserverParams", "DP_PID_OBSERVER", "observer_update"]
 
@@ -48,7 +48,12 @@ OBSERVER_OUTPUTS: tuple[str, ...] = OUTPUTS + ("estimated_north", "estimated_eas
                                                "estimated_heading")
 _EST0 = len(COMMANDS) + len(OUTPUTS)
 _M = signal_indices(MEASUREMENTS)
-_S = signal_indices(STATES)
+#: The states the observer reads by name (:func:`~seahelm.control.dp_pid.state_indices`).
+_S = state_indices(("desired_north", "desired_east", "desired_heading", "estimated_north",
+                    "estimated_east", "estimated_heading", "wave_north", "wave_east",
+                    "wave_heading", "bias_x", "bias_y", "bias_n", "estimated_surge_speed",
+                    "estimated_sway_speed", "estimated_yaw_rate", "applied_surge",
+                    "applied_sway", "applied_yaw"))
 _C = signal_indices(COMMANDS)
 _XI = STATES.index("wave_state_north")
 
@@ -132,7 +137,7 @@ def dp_observer_init(z, y, ref, p, cs):  # pragma: no cover - compiled
     cs[_S.estimated_east] = y[_M.east]
     cs[_S.estimated_heading] = y[_M.heading]
     for i in range(8):
-        cs[_S.azimuth_1 + i] = p.thruster_direction[i]
+        cs[_AZ0 + i] = p.thruster_direction[i]
 
 
 @njit(cache=True)

@@ -42,19 +42,21 @@ Recorded outputs: the demand τ_c (``demand_surge`` …), what the allocation le
 
 from __future__ import annotations
 
+import collections
 import math
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numba import njit
+from numba import int64, njit
 
 from ..errors import ParameterError
 from ..numerics.qp_inplace import solve_qp_rows, workspace_size
 from ..parameters import Params, param, signal_indices
 from .base import Controller, wrap_pi
 
-__all__ = ["DpPidParams", "DP_PID", "MAX_DP_THRUSTERS", "dp_pid_params", "allocate_step"]
+__all__ = ["DpPidParams", "DP_PID", "MAX_DP_THRUSTERS", "dp_pid_params", "allocate_step",
+           "state_indices"]
 
 #: Thrusters a DP controller takes (the first ``thruster_count`` of its vectors).
 MAX_DP_THRUSTERS = 8
@@ -90,10 +92,37 @@ OUTPUTS: tuple[str, ...] = (("demand_surge", "demand_sway", "demand_yaw", "unmet
                              "unmet_sway", "unmet_yaw")
                             + tuple(f"thrust_{k + 1}" for k in range(_N)))
 
+
+
+def state_indices(names: tuple[str, ...]) -> Any:
+    """Named positions in :data:`STATES` of only the states ``names`` (``S.desired_north``).
+
+    Compiled code reads the states it names through these; the vectors (forces, shafts,
+    azimuths, scratch, the allocation's workspace) are read by offset. Not
+    ``signal_indices(STATES)``: numba builds a global named tuple whole, one LLVM
+    ``insertvalue`` per field, wherever a field of it is read, and the 5,153 fields of all the
+    states made most of the DP loop's IR (see :func:`seahelm.simulation.inlining.
+    _slim_index_tuples`, which the loop's copies then needed and these do not).
+
+    Parameters
+    ----------
+    names : tuple of str
+        States of :data:`STATES`.
+
+    Returns
+    -------
+    collections.namedtuple
+        ``S.<name> == STATES.index(name)`` for every name.
+    """
+    return collections.namedtuple("States", names)(*(STATES.index(n) for n in names))
+
+
 _M = signal_indices(MEASUREMENTS)
 _R = signal_indices(REFERENCES)
 _C = signal_indices(COMMANDS)
-_S = signal_indices(STATES)
+#: The states the control law reads by name.
+_S = state_indices(("integral_north", "integral_east", "integral_heading", "desired_north",
+                    "desired_east", "desired_heading"))
 _O = signal_indices(OUTPUTS)
 _FX0 = STATES.index("force_x_1")
 _FY0 = STATES.index("force_y_1")
@@ -268,7 +297,9 @@ def _arc_wedge(p, i, a0, step):  # pragma: no cover - compiled
     return lo, hi, centre
 
 
-@njit(cache=True)
+# (the counters typed int64 from the start: numba otherwise types the calls with them first
+# as the literal 0 they start at, and compiled solve_qp_rows and _row for those too)
+@njit(cache=True, locals={"nv": int64, "row": int64, "col": int64})
 def allocate_step(p, tau0, tau1, tau2, dt, prev_fx, prev_fy, prev_az, f_out, az_out,
                   unmet, ws):  # pragma: no cover - compiled
     """One constrained allocation (see the module): the thrusters' forces (f_out [N], signed

@@ -167,34 +167,26 @@ def load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi):  # pragma: no cover - c
         csi[j] = cs[i, j]
 
 
-@njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False)
-def init_runs(i_start, i_stop, state, params, signals, stages, scratch,
-              stage_scratch):  # pragma: no cover - compiled
+#: ``run_slice``'s ``external`` for the controllers' init (:func:`init_runs`).
+INIT_RUNS = 2
+
+
+def init_runs(i_start, i_stop, state, params, signals, outcome, record, stages, scratch,
+              stage_scratch, out):
     """Call the controller's init at t = 0 for runs ``i_start`` to ``i_stop`` − 1 (once per
-    simulation). The arguments are the kernel's groups (:mod:`seahelm.simulation.kernel_args`)."""
-    z, cs, cmd, ca = state
-    mp, ap, cp, lower, upper = params
-    dist, ref = signals
-    (xv, xa, zfull, cmdi, cai, csi, u, ya, ym, y, kv, ka, fv, fa, tv, ta, d0, d1, ds,
-     refk) = scratch
-    for i in range(i_start, i_stop):
-        ir = i if ref.shape[0] > 1 else 0
-        idist = i if dist.shape[0] > 1 else 0
-        load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi)
-        for j in range(NZ):
-            zfull[j] = z[i, j]
-        for j in range(ref.shape[2]):
-            refk[j] = ref[ir, 0, j]
-        for j in range(dist.shape[2]):
-            d0[j] = dist[idist, 0, j]
-        actuator_output(xa, cai, ap[i], ya)
-        route_inputs(ya, cmdi, u)
-        model_output(0.0, xv, u, mp[i], ym)
-        stages_outputs(0.0, 0, i, xv, u, mp[i], ym, dist, idist, d0, ds, stages, stage_scratch)
-        route_measurements(ym, y)
-        controller_init(zfull, y, refk, cp[i], csi)
-        for j in range(cs.shape[1]):
-            cs[i, j] = csi[j]
+    simulation, and for runs restarted). The arguments are the kernel's groups
+    (:mod:`seahelm.simulation.kernel_args`) and ``run_slice``'s (empty) ``out``.
+
+    :func:`run_slice` with ``external`` = :data:`INIT_RUNS`: the model's and the stages'
+    outputs at the runs' state from the loop's own code (the code its zero-step observation
+    runs), routed to the measurements, then the controller's init instead of its step, and
+    nothing else. Not a compiled entry point of its own: that was a second compilation of the
+    outputs' inlined code, with a CPython wrapper of its own, 10-15 % of a kernel's compile
+    (issue 47 item 7, 2026-12-02). ``outcome`` and ``record`` are passed for their types (the
+    compiled loop's signature) and left as they are.
+    """
+    run_slice(i_start, i_stop, 0, 0, 0, 1.0, 1, 1, INIT_RUNS, state, params, signals, outcome,
+              record, stages, scratch, stage_scratch, out)
 
 
 @njit(cache=True, nogil=True, fastmath=FASTMATH, _nrt=False)
@@ -239,6 +231,9 @@ def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_eve
     (:func:`scratch`) and ``stage_scratch`` (the stages'). With ``external``
     the controller is not stepped: the commands held in ``state``'s ``cmd`` are applied as
     they are (an external controller, :class:`seahelm.simulation.stepping.Simulator`).
+    With ``external`` = :data:`INIT_RUNS` the runs' outputs at ``k_start`` go to the
+    controller's init instead, for every run whatever its status (:func:`init_runs`: no step,
+    no record, the commands as they are; the reference and disturbance at index 0).
     With a non-empty ``out`` (runs, outputs) each run's outputs at step ``k_stop`` are written
     into ``out[i]``, by the loop's own code (the step is not taken: the next call starts
     there) — a stepped interval's observation without a second call
@@ -262,8 +257,9 @@ def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_eve
     dist_varies = dist.shape[1] > 1
     ref_varies = ref.shape[1] > 1
     observe = out.shape[0] > 0
+    init = external == INIT_RUNS
     for i in range(i_start, i_stop):
-        if status[i] != 0:
+        if not init and status[i] != 0:
             continue
         load_run(i, z, cmd, ca, cs, xv, xa, cmdi, cai, csi)
         # stack copies of the run's parameter records: see local_record
@@ -272,7 +268,7 @@ def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_eve
         cpi = local_record(cp[i])
         idist = i if dist.shape[0] > 1 else 0
         iref = i if ref.shape[0] > 1 else 0
-        if not dist_varies:
+        if init or not dist_varies:
             for j in range(nd):
                 d0[j] = dist[idist, 0, j]
                 d1[j] = d0[j]
@@ -283,11 +279,11 @@ def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_eve
         # the record after the last step is one more iteration, that records and stops (the
         # final state is recorded even when the step count is not a multiple of rec_every)
         # (observed: one more iteration that computes the outputs at k_stop and stops)
-        k_end = k_stop + 1 if k_stop == n_steps or observe else k_stop
+        k_end = k_stop + 1 if k_stop == n_steps or observe or init else k_stop
         for k in range(k_start, k_end):
             t = k * dt
-            last = k == n_steps
-            halt = k == k_stop  # (reached only at the last step, or observed)
+            last = k == n_steps and not init
+            halt = k == k_stop  # (reached only at the last step, observed, or the init)
             on_grid = to_rec == 0
             record = (on_grid and not halt) or last
             control = to_ctrl == 0 and not halt
@@ -328,6 +324,15 @@ def run_slice(i_start, i_stop, k_start, k_stop, n_steps, dt, ctrl_every, rec_eve
                 if observe:
                     for j in range(NYM):
                         out[i, j] = ym[j]
+                if init:
+                    for j in range(nr):
+                        refk[j] = ref[iref, 0, j]
+                    for j in range(NX):
+                        zfull[j] = xv[j]
+                    for j in range(NA):
+                        zfull[NX + j] = xa[j]
+                    route_measurements(ym, y)
+                    controller_init(zfull, y, refk, cpi, csi)
                 break
             if dist_varies:
                 for j in range(nd):

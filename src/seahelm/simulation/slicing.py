@@ -113,11 +113,17 @@ class _Slices:
         seen before, from the arrays' flags, cost five times that)."""
         self.run(0, 0, n_steps, dt, ctrl_every, rec_every)
 
-    def init_runs(self) -> None:
-        """The controllers' init at t = 0, for every run."""
+    def init_runs(self, spans: list[tuple[int, int]] | None = None) -> None:
+        """The controllers' init at t = 0, for every run, or for the runs of ``spans``
+        (contiguous [i0, i1) ranges, in the calling thread: runs restarted)."""
         a = self.arrays
-        for (i0, i1), sc, ssc in zip(self.bounds, self.scratch, self.stage_scratch):
-            self.kernel.init_runs(i0, i1, a.state, a.params, a.signals, a.stages, sc, ssc)
+        if spans is None:
+            todo = zip(self.bounds, self.scratch, self.stage_scratch)
+        else:
+            todo = ((span, self.scratch[0], self.stage_scratch[0]) for span in spans)
+        for (i0, i1), sc, ssc in todo:
+            self.kernel.init_runs(i0, i1, a.state, a.params, a.signals, a.outcome, a.record,
+                                  a.stages, sc, ssc, self._no_out)
 
     def observe(self, k: int, dt: float, out: np.ndarray) -> None:
         """Every run's outputs at its state of step ``k`` into ``out`` (runs, outputs): the

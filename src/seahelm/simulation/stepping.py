@@ -176,10 +176,8 @@ class Simulator:
         self._k[sel] = 0
         self._aligned = not (self._k != 0).any()
         self._k0 = 0
-        kernel, sc, ssc = b.kernel, b.slices.scratch[0], b.slices.stage_scratch[0]
         with quiet(b.jit):
-            for i0, i1 in _spans(sel):
-                kernel.init_runs(i0, i1, a.state, a.params, a.signals, a.stages, sc, ssc)
+            b.slices.init_runs(_spans(sel))
         return self._observe()
 
     def step(self, commands: Any = None, n: int = 1, runs: Any = None) -> Observation:

@@ -353,19 +353,16 @@ def _init_runs(sim: "Simulator", sel: np.ndarray, spans: list[tuple[int, int]]) 
     run's state) -- one call over the range they cover, the controller states of the other
     runs in it put back (the init writes nothing else of a run: the same numbers)."""
     b = sim._batch
-    a = b.slices.arrays
-    kernel, sc, ssc = b.kernel, b.slices.scratch[0], b.slices.stage_scratch[0]
     lo, hi = spans[0][0], spans[-1][1]
-    if len(spans) > 2 and not a.stages and len(spans) * _INIT_CALL_RUNS > hi - lo:
+    if len(spans) > 2 and not b.slices.arrays.stages and len(spans) * _INIT_CALL_RUNS > hi - lo:
         others = np.ones(hi - lo, dtype=bool)
         others[sel - lo] = False
         cs = sim._cs[lo:hi]
         kept = cs[others]
-        kernel.init_runs(lo, hi, a.state, a.params, a.signals, a.stages, sc, ssc)
+        b.slices.init_runs([(lo, hi)])
         cs[others] = kept
         return
-    for i0, i1 in spans:
-        kernel.init_runs(i0, i1, a.state, a.params, a.signals, a.stages, sc, ssc)
+    b.slices.init_runs(spans)
 
 
 def _check_time_invariant(sim: "Simulator") -> None:
