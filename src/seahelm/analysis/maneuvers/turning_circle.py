@@ -322,23 +322,30 @@ def _cubic_weights(levels: np.ndarray, j0: np.ndarray, s_nodes: np.ndarray,
     vander = s_nodes[..., None] ** _POWERS  # (levels, runs, 4 nodes, 4 powers)
     if not good.all():  # (every event inside the record: no placeholder to set)
         vander[~good] = np.eye(4)  # (placeholders: never used)
-    coef = _solve(vander, c_nodes[..., None])[..., 0]  # power coefficients
-    _newton(np.ascontiguousarray(coef), levels, s)
-    powers = s[..., None] ** _POWERS
-    weights = _solve(np.swapaxes(vander, -1, -2), powers[..., None])[..., 0]
+    # (one error state for both solves, _solve's: Newton's method is compiled, the powers of
+    # s in [0, 1] or NaN raise no flag; the transposed view is np.swapaxes(vander, -1, -2))
+    with np.errstate(all="ignore"):
+        coef = _solve(vander, c_nodes[..., None], quiet=True)[..., 0]  # power coefficients
+        _newton(np.ascontiguousarray(coef), levels, s)
+        powers = s[..., None] ** _POWERS
+        weights = _solve(vander.transpose(0, 1, 3, 2), powers[..., None], quiet=True)[..., 0]
     return j0, weights if good.all() else np.where(good[..., None], weights, np.nan)
 
 
-def _solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def _solve(a: np.ndarray, b: np.ndarray, quiet: bool = False) -> np.ndarray:
     """``np.linalg.solve(a, b)`` of stacked real 4 × 4 systems (float64, b of shape
     (..., 4, 1)): the LAPACK ``gesv`` gufunc that ``np.linalg.solve`` calls, called directly
     (its argument checks and error state cost ten times the solves of a turning circle's
     three events, issue 46 item 6); the same numbers. Where that gufunc is not found, or a
     system is singular (a NaN in the solution: the nodes are distinct times, so never in a
-    manoeuvre), ``np.linalg.solve`` itself, which raises ``LinAlgError`` as before."""
+    manoeuvre), ``np.linalg.solve`` itself, which raises ``LinAlgError`` as before.
+    ``quiet``: the caller holds ``np.errstate(all="ignore")`` already (not set again here)."""
     if _GESV is not None and a.dtype == np.float64 and b.dtype == np.float64:
-        with np.errstate(all="ignore"):  # (as np.linalg.solve, without its raising call)
+        if quiet:
             out = _GESV(a, b, signature="dd->d")
+        else:
+            with np.errstate(all="ignore"):  # (as np.linalg.solve, without its raising call)
+                out = _GESV(a, b, signature="dd->d")
         if np.isfinite(out).all():
             return out
     return np.linalg.solve(a, b)
