@@ -177,10 +177,9 @@ def solve_qp_batch(g, a, c, b, *, tol: float = 1e-9, max_iter: int = 0):
     status : numpy.ndarray of int, shape (batch,)
         :data:`STATUS_SOLVED` (0), :data:`STATUS_INFEASIBLE` (1) or :data:`STATUS_MAX_ITER` (2).
     """
-    g = np.ascontiguousarray(g, dtype=float)
-    a = np.ascontiguousarray(a, dtype=float)
-    c = np.ascontiguousarray(c, dtype=float)
-    b = np.ascontiguousarray(b, dtype=float)
+    # C-contiguous and writable: a read-only view (np.broadcast_to of one problem's Hessian,
+    # which np.ascontiguousarray passes through) would compile _solve_batch a second time
+    g, a, c, b = (np.require(v, dtype=float, requirements=("C", "W")) for v in (g, a, c, b))
     nb, nv = a.shape
     if c.ndim != 3 or c.shape[0] != nb or c.shape[2] != nv or b.shape != c.shape[:2] \
             or g.shape != (nb, nv, nv):
