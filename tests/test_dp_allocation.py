@@ -232,3 +232,16 @@ def test_read_only_problems_compile_no_second_qp_kernel():
     res = ConstrainedAllocation(_tunnel_layout()).allocate([[1e5, 0.0, 0.0]])   # nb = 1
     assert list(qp._solve_batch.signatures) == before
     assert res.status[0] == STATUS_SOLVED
+
+
+def test_the_qp_step_directions_compile_once():
+    """_solve_one's active-set size q starts at the literal 0: typed int64 from the start
+    (numba locals), _directions is compiled for int64 alone, not for Literal[int](0) as well
+    (issue 47 item 7)."""
+    from seahelm.numerics import qp
+
+    g = np.eye(2)[None]
+    x, _, status = solve_qp_batch(g, np.array([[-1.0, 0.0]]), np.array([[[-1.0, 0.0]]]),
+                                  np.array([[-0.5]]))
+    assert status[0] == STATUS_SOLVED and x[0, 0] == pytest.approx(0.5, abs=1e-12)
+    assert [str(s[4]) for s in qp._directions.signatures] == ["int64"]

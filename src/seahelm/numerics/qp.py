@@ -22,7 +22,7 @@ batch element. Checked against Clarabel through ``qpsolvers`` (tests/test_dp_all
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from numba import int64, njit
 
 __all__ = ["solve_qp_batch", "STATUS_SOLVED", "STATUS_INFEASIBLE", "STATUS_MAX_ITER"]
 
@@ -51,7 +51,9 @@ def _directions(linv, lt, c, active, q, n_plus):  # pragma: no cover - compiled
     return lt @ d2, r, (d2 @ d2) / dd
 
 
-@njit(cache=True, nogil=True)
+# (q typed int64 from the start: numba otherwise types the call with it first as the literal 0
+# it starts at, and compiled _directions for (..., Literal[int](0), ...) as well)
+@njit(cache=True, nogil=True, locals={"q": int64})
 def _solve_one(g, a, c, b, x, u, active_out, tol, max_iter):  # pragma: no cover - compiled
     """One QP by Goldfarb–Idnani (1983) §3; x, u (multipliers per row) and active_out filled."""
     nv = g.shape[0]
