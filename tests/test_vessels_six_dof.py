@@ -131,6 +131,31 @@ def test_energy_of_the_unforced_undamped_body_is_conserved():
     assert energy(p, x1[6:12]) == pytest.approx(e0, rel=1e-8)
 
 
+def test_the_model_helpers_compile_no_literal_index_signatures():
+    """_mass_blocks and _kinetics call _sym and _row with literal indices: inlined, they are
+    not compiled once per Literal[int] (27 + 6 compilations of the rows loop before; issue 47
+    item 7). No numba function of the model holds a signature with a literal argument."""
+    from numba.core import types
+    from numba.core.registry import CPUDispatcher
+
+    from seahelm.vessels.six_dof import model as six_dof_model
+
+    from numba import njit
+
+    p = otter_params()
+    OTTER.derivative(0.0, OTTER.initial_state(surge_speed=1.0), np.array([90.0, 50.0]), p)
+    # a fresh, uncached compilation of _mass_blocks types its calls again whatever is on disk
+    blocks = njit(six_dof_model._mass_blocks.py_func)(p.to_record())
+    assert blocks == six_dof_model._mass_blocks(p.to_record())
+    helpers = {name: d for name, d in vars(six_dof_model).items()
+               if isinstance(d, CPUDispatcher)}
+    assert {"_sym", "_row", "_mass_blocks"} <= set(helpers)
+    literal = {name: [str(s) for s in d.signatures]
+               for name, d in helpers.items()
+               if any(isinstance(t, types.Literal) for s in d.signatures for t in s)}
+    assert literal == {}
+
+
 def quaternion_state(model, x_euler):
     q = rb.quaternion_from_euler(*x_euler[3:6])
     return np.concatenate([x_euler[:3], q, x_euler[6:]])

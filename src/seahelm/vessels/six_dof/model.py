@@ -107,13 +107,15 @@ def _thrust(p, i, n, va):  # pragma: no cover - compiled
     return -p.thruster_k_neg[i] * n * n, -p.thruster_torque_pos[i] * n * n
 
 
-@njit(cache=True)
+# _sym and _row are called with literal indices only (_sym(ma, 0, 1), _row(dl, 3, ...)):
+# inlined at numba-IR level, not compiled for each Literal[int] pair (27 + 6 compilations)
+@njit(cache=True, inline="always")
 def _sym(a, i, j):  # pragma: no cover - compiled
     """Element (i, j) of ½ (A + Aᵀ) for a flat row-major 6 × 6 ``a``."""
     return 0.5 * (a[6 * i + j] + a[6 * j + i])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _row(a, i, u, v, w, p, q, r):  # pragma: no cover - compiled
     """Row i of a flat row-major 6 × 6 ``a`` times (u, v, w, p, q, r)."""
     k = 6 * i
