@@ -132,30 +132,35 @@ def test_energy_of_the_unforced_undamped_body_is_conserved():
 
 
 def test_the_model_helpers_compile_no_literal_index_signatures():
-    """_mass_blocks and _kinetics call _sym and _row with literal indices: inlined, they are
-    not compiled once per Literal[int] (27 + 6 compilations of the rows loop before; issue 47
-    item 7): none of them holds a signature with a literal argument."""
+    """The 6-DOF helpers are called with constant indices: _sym and _row (27 + 6 literal
+    pairs) inlined, the models' first actuator state and velocity indices (12 Euler, 13
+    quaternion) typed int64 by numba locals, so none is compiled once per Literal[int] and
+    _kinetics is compiled once for both model kinds (issue 47 item 7)."""
+    from numba import njit
     from numba.core import types
-    from numba.core.registry import CPUDispatcher
 
     from seahelm.vessels.six_dof import model as six_dof_model
 
-    from numba import njit
-
     p = otter_params()
-    OTTER.derivative(0.0, OTTER.initial_state(surge_speed=1.0), np.array([90.0, 50.0]), p)
-    # a fresh, uncached compilation of _mass_blocks types its calls again whatever is on disk
-    blocks = njit(six_dof_model._mass_blocks.py_func)(p.to_record())
-    assert blocks == six_dof_model._mass_blocks(p.to_record())
-    helpers = {name: d for name, d in vars(six_dof_model).items()
-               if isinstance(d, CPUDispatcher)}
-    assert {"_sym", "_row", "_mass_blocks"} <= set(helpers)
-    # (_kinetics and _actuator_rates take the first actuator state's index as each model's
-    # constant, 12 or 13: a Literal per model kind, compiled once per model all the same)
-    literal = {name: [str(s) for s in helpers[name].signatures]
-               for name in ("_sym", "_row", "_mass_blocks")
-               if any(isinstance(t, types.Literal) for s in helpers[name].signatures for t in s)}
+    rec = p.to_record()
+    u = np.array([90.0, 50.0])
+    # fresh, uncached compilations (with the decorators' locals) type their calls again,
+    # whatever is on disk
+    for rhs, model in ((six_dof_model.six_dof_euler_rhs, OTTER),
+                       (six_dof_model.six_dof_quaternion_rhs, OTTER_QUATERNION)):
+        x = model.initial_state(surge_speed=1.0, sway_speed=0.2, yaw_rate=0.1)
+        dx, ref = np.empty_like(x), np.empty_like(x)
+        njit(locals=rhs.locals)(rhs.py_func)(0.0, x, u, np.zeros(model.n_disturbances), rec, dx)
+        rhs(0.0, x, u, np.zeros(model.n_disturbances), rec, ref)
+        assert np.array_equal(dx, ref)
+    blocks = njit(six_dof_model._mass_blocks.py_func)(rec)
+    assert blocks == six_dof_model._mass_blocks(rec)
+    names = ("_sym", "_row", "_mass_blocks", "_kinetics", "_actuator_rates", "_common_outputs")
+    literal = {name: [str(s) for s in getattr(six_dof_model, name).signatures] for name in names
+               if any(isinstance(t, types.Literal)
+                      for s in getattr(six_dof_model, name).signatures for t in s)}
     assert literal == {}
+    assert len(six_dof_model._kinetics.signatures) == 1
 
 
 def quaternion_state(model, x_euler):
