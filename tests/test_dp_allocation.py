@@ -210,3 +210,38 @@ def test_bad_input():
         _tunnel_layout().without("aft")
     with pytest.raises(ParameterError, match="max_thrust"):
         ThrusterLayout(("a",), (0.0,), (0.0,), (0.0,), (True,), (0.0,))
+
+
+def test_read_only_problems_compile_no_second_qp_kernel():
+    """One allocation demand makes the Hessian a read-only np.broadcast_to view (issue 47 item
+    7): the QP kernel must not compile a read-only signature for it (it cost a second compile
+    of _solve_batch in the suite). Same answer, bit for bit, from read-only and writable input."""
+    from seahelm.numerics import qp
+
+    rng = np.random.default_rng(3)
+    f = rng.normal(size=(1, 4, 4))
+    g = f @ np.swapaxes(f, 1, 2) + 4 * np.eye(4)
+    a, c, b = rng.normal(size=(1, 4)), rng.normal(size=(1, 5, 4)), rng.normal(size=(1, 5))
+    x, mult, status = solve_qp_batch(g, a, c, b)
+    before = list(qp._solve_batch.signatures)
+    frozen = [np.broadcast_to(v, v.shape) for v in (g, a, c, b)]
+    assert not any(v.flags.writeable for v in frozen)
+    x2, mult2, status2 = solve_qp_batch(*frozen)
+    assert list(qp._solve_batch.signatures) == before
+    assert np.array_equal(x2, x) and np.array_equal(mult2, mult) and np.array_equal(status2, status)
+    res = ConstrainedAllocation(_tunnel_layout()).allocate([[1e5, 0.0, 0.0]])   # nb = 1
+    assert list(qp._solve_batch.signatures) == before
+    assert res.status[0] == STATUS_SOLVED
+
+
+def test_the_qp_step_directions_compile_once():
+    """_solve_one's active-set size q starts at the literal 0: typed int64 from the start
+    (numba locals), _directions is compiled for int64 alone, not for Literal[int](0) as well
+    (issue 47 item 7)."""
+    from seahelm.numerics import qp
+
+    g = np.eye(2)[None]
+    x, _, status = solve_qp_batch(g, np.array([[-1.0, 0.0]]), np.array([[[-1.0, 0.0]]]),
+                                  np.array([[-0.5]]))
+    assert status[0] == STATUS_SOLVED and x[0, 0] == pytest.approx(0.5, abs=1e-12)
+    assert [str(s[4]) for s in qp._directions.signatures] == ["int64"]

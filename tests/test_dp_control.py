@@ -112,6 +112,33 @@ def test_in_loop_allocation_equals_constrained_allocation(which):
         np.testing.assert_allclose(np.sin(az[:n][on]), np.sin(ref.azimuth[0][on]), atol=1e-6)
 
 
+def test_the_in_loop_qp_compiles_one_signature():
+    """allocate_step passes the constant row capacity _MR and solve_qp_rows its counters
+    starting at 0: typed int64 (numba locals), solve_qp_rows, _chol and _chol_solve hold no
+    Literal[int] signature beside the int64 one a direct call makes (issue 47 item 7:
+    solve_qp_rows was compiled for Literal[int](560) as well). Meaningful with an empty
+    numba cache, as in CI (a cached allocate_step is loaded without typing its calls)."""
+    from numba.core import types
+
+    from seahelm.numerics import qp_inplace
+
+    g, a = np.eye(2), np.array([-1.0, 0.0])
+    cap = 4
+    ws = np.zeros(workspace_size(2, cap))
+    ws[0], ws[cap], ws[2 * cap], ws[3 * cap] = 0, -1.0, 0.0, -0.5   # -x0 >= -0.5
+    x = np.zeros(2)
+    assert solve_qp_rows(2, 1, cap, g.ravel(), a, ws, x, 1e-9, 100) == 0
+    assert x[0] == pytest.approx(0.5, abs=1e-12)
+    z = np.zeros(8)
+    allocate_step(_record(dp_pid_params(get_ship("supply"))), 1e4, 0.0, 0.0, 0.5, z, z.copy(),
+                  z.copy(), np.zeros(8), np.zeros(8), np.zeros(3), np.zeros(WORKSPACE))
+    literal = {name: [str(s) for s in getattr(qp_inplace, name).signatures]
+               for name in ("solve_qp_rows", "_chol", "_chol_solve")
+               if any(isinstance(t, types.Literal)
+                      for s in getattr(qp_inplace, name).signatures for t in s)}
+    assert literal == {}
+
+
 def test_dp_pid_params_from_a_ship_and_refusals():
     ship = get_ship("supply")
     p = dp_pid_params(ship)

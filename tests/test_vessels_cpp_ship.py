@@ -157,6 +157,25 @@ def test_batched_equals_one_by_one_and_njit_signature():
             np.testing.assert_allclose(calm_water_derivative(x[i, j], u[i, j], p), dx)
 
 
+def test_broadcasting_or_not_compiles_one_batched_signature():
+    """Inputs that broadcast to the batch (read-only views) and inputs that already have its
+    shape reach the compiled _batched as the same types (issue 47 item 7: four signatures of
+    _batched, rhs_calm and rhs_waves were compiled before), with the same numbers bit for bit."""
+    from seahelm.vessels import cpp_ship
+
+    p = CPPShipParams()
+    x = np.array([[0.9, 1.1], [0.4, 0.6]])
+    u = np.array([0.3, -0.7])
+    full = calm_water_derivative(x, u, p)
+    before = list(cpp_ship._batched.signatures)
+    assert np.array_equal(calm_water_derivative(x, 0.3, p)[0], full[0])   # u broadcast
+    assert np.array_equal(calm_water_derivative(x[1], u[1], p), full[1])  # one state
+    assert np.array_equal(calm_water_derivative(np.array([0.9, 1.1]), u, p)[0], full[0])
+    waves_derivative(np.zeros(2), x, u, p)
+    waves_derivative(0.5, x[0], 0.3, [p])
+    assert list(cpp_ship._batched.signatures) == before
+
+
 def test_vessel_model_plugins_match():
     p = CPPShipParams()
     x = np.array([[0.9, 1.1], [0.5, 0.7]])

@@ -131,6 +131,38 @@ def test_energy_of_the_unforced_undamped_body_is_conserved():
     assert energy(p, x1[6:12]) == pytest.approx(e0, rel=1e-8)
 
 
+def test_the_model_helpers_compile_no_literal_index_signatures():
+    """The 6-DOF helpers are called with constant indices: _sym and _row (27 + 6 literal
+    pairs) inlined, the models' first actuator state and velocity indices (12 Euler, 13
+    quaternion) typed int64 by numba locals, so none is compiled once per Literal[int] and
+    _kinetics is compiled once for both model kinds (issue 47 item 7)."""
+    from numba import njit
+    from numba.core import types
+
+    from seahelm.vessels.six_dof import model as six_dof_model
+
+    p = otter_params()
+    rec = p.to_record()
+    u = np.array([90.0, 50.0])
+    # fresh, uncached compilations (with the decorators' locals) type their calls again,
+    # whatever is on disk
+    for rhs, model in ((six_dof_model.six_dof_euler_rhs, OTTER),
+                       (six_dof_model.six_dof_quaternion_rhs, OTTER_QUATERNION)):
+        x = model.initial_state(surge_speed=1.0, sway_speed=0.2, yaw_rate=0.1)
+        dx, ref = np.empty_like(x), np.empty_like(x)
+        njit(locals=rhs.locals)(rhs.py_func)(0.0, x, u, np.zeros(model.n_disturbances), rec, dx)
+        rhs(0.0, x, u, np.zeros(model.n_disturbances), rec, ref)
+        assert np.array_equal(dx, ref)
+    blocks = njit(six_dof_model._mass_blocks.py_func)(rec)
+    assert blocks == six_dof_model._mass_blocks(rec)
+    names = ("_sym", "_row", "_mass_blocks", "_kinetics", "_actuator_rates", "_common_outputs")
+    literal = {name: [str(s) for s in getattr(six_dof_model, name).signatures] for name in names
+               if any(isinstance(t, types.Literal)
+                      for s in getattr(six_dof_model, name).signatures for t in s)}
+    assert literal == {}
+    assert len(six_dof_model._kinetics.signatures) == 1
+
+
 def quaternion_state(model, x_euler):
     q = rb.quaternion_from_euler(*x_euler[3:6])
     return np.concatenate([x_euler[:3], q, x_euler[6:]])

@@ -298,8 +298,9 @@ def _arc_wedge(p, i, a0, step):  # pragma: no cover - compiled
 
 
 # (the counters typed int64 from the start: numba otherwise types the calls with them first
-# as the literal 0 they start at, and compiled solve_qp_rows and _row for those too)
-@njit(cache=True, locals={"nv": int64, "row": int64, "col": int64})
+# as the literal 0 they start at, and compiled solve_qp_rows and _row for those too; cap, the
+# constant _MR, likewise: solve_qp_rows was compiled for Literal[int](560) besides int64)
+@njit(cache=True, locals={"nv": int64, "row": int64, "col": int64, "cap": int64})
 def allocate_step(p, tau0, tau1, tau2, dt, prev_fx, prev_fy, prev_az, f_out, az_out,
                   unmet, ws):  # pragma: no cover - compiled
     """One constrained allocation (see the module): the thrusters' forces (f_out [N], signed

@@ -22,7 +22,7 @@ batch element. Checked against Clarabel through ``qpsolvers`` (tests/test_dp_all
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from numba import int64, njit
 
 __all__ = ["solve_qp_batch", "STATUS_SOLVED", "STATUS_INFEASIBLE", "STATUS_MAX_ITER"]
 
@@ -51,7 +51,9 @@ def _directions(linv, lt, c, active, q, n_plus):  # pragma: no cover - compiled
     return lt @ d2, r, (d2 @ d2) / dd
 
 
-@njit(cache=True, nogil=True)
+# (q typed int64 from the start: numba otherwise types the call with it first as the literal 0
+# it starts at, and compiled _directions for (..., Literal[int](0), ...) as well)
+@njit(cache=True, nogil=True, locals={"q": int64})
 def _solve_one(g, a, c, b, x, u, active_out, tol, max_iter):  # pragma: no cover - compiled
     """One QP by Goldfarb–Idnani (1983) §3; x, u (multipliers per row) and active_out filled."""
     nv = g.shape[0]
@@ -177,10 +179,9 @@ def solve_qp_batch(g, a, c, b, *, tol: float = 1e-9, max_iter: int = 0):
     status : numpy.ndarray of int, shape (batch,)
         :data:`STATUS_SOLVED` (0), :data:`STATUS_INFEASIBLE` (1) or :data:`STATUS_MAX_ITER` (2).
     """
-    g = np.ascontiguousarray(g, dtype=float)
-    a = np.ascontiguousarray(a, dtype=float)
-    c = np.ascontiguousarray(c, dtype=float)
-    b = np.ascontiguousarray(b, dtype=float)
+    # C-contiguous and writable: a read-only view (np.broadcast_to of one problem's Hessian,
+    # which np.ascontiguousarray passes through) would compile _solve_batch a second time
+    g, a, c, b = (np.require(v, dtype=float, requirements=("C", "W")) for v in (g, a, c, b))
     nb, nv = a.shape
     if c.ndim != 3 or c.shape[0] != nb or c.shape[2] != nv or b.shape != c.shape[:2] \
             or g.shape != (nb, nv, nv):

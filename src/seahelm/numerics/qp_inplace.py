@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from numba import int64, njit
 
 __all__ = ["workspace_size", "solve_qp_rows"]
 
@@ -76,7 +76,9 @@ def _chol_solve(l, n, off_l, rhs, off_r, out, off_o):  # pragma: no cover - comp
         out[off_o + i] = s / l[off_l + i * n + i]
 
 
-@njit(cache=True)
+# (q, the active-set size, and the Hessian's offset typed int64: numba otherwise types the
+# calls with them as the literal 0 they start at, compiling _chol and _chol_solve again)
+@njit(cache=True, locals={"q": int64, "off_g": int64})
 def solve_qp_rows(nv, m, cap, g, a, ws, x, tol, max_iter):  # pragma: no cover - compiled
     """min ½xᵀGx + aᵀx s.t. row k: c1 x[col] + c2 x[col+1] ≥ b, by Goldfarb–Idnani (see module).
 
@@ -98,7 +100,8 @@ def solve_qp_rows(nv, m, cap, g, a, ws, x, tol, max_iter):  # pragma: no cover -
     o_r = o_w + nv + 1
     o_z = o_r + nv + 1
     o_e = o_z + nv + 1                     # a unit vector
-    if not _chol(g, ws, nv, 0, o_l):
+    off_g = 0
+    if not _chol(g, ws, nv, off_g, o_l):
         return 3
     for j in range(nv):                    # G⁻¹, column by column
         for i in range(nv):

@@ -339,9 +339,13 @@ def _param_array(params: Any, cls: type[Params]) -> np.ndarray:
 
 
 def _rows(a: np.ndarray, batch: tuple[int, ...]) -> np.ndarray:
-    """Broadcast ``a`` to ``batch + a.shape[-1:]`` and flatten the batch axes (C order)."""
+    """Broadcast ``a`` to ``batch + a.shape[-1:]`` and flatten the batch axes (C order).
+
+    Always writable: a broadcast that broadcasts nothing is a contiguous read-only view, and
+    the compiled row loops were compiled a second time for read-only arrays."""
     n = int(np.prod(batch, dtype=np.int64))
-    return np.ascontiguousarray(np.broadcast_to(a, batch + a.shape[-1:]).reshape(n, a.shape[-1]))
+    return np.require(np.broadcast_to(a, batch + a.shape[-1:]).reshape(n, a.shape[-1]),
+                      requirements=("C", "W"))
 
 
 @njit

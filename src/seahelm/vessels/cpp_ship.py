@@ -420,10 +420,13 @@ def _derivative(kind: int, t: Any, x: Any, pitch_ratio: Any, params: Any) -> np.
     t = as_float_array("t", t)
     p = _params_array(params)
     batch = np.broadcast_shapes(x.shape[:-1], u.shape, t.shape, p.shape[:-1])
-    X = np.ascontiguousarray(np.broadcast_to(x, batch + (2,)).reshape(-1, 2))
-    U = np.ascontiguousarray(np.broadcast_to(u[..., None], batch + (1,)).reshape(-1, 1))
-    T = np.ascontiguousarray(np.broadcast_to(t, batch).reshape(-1))
-    P = np.ascontiguousarray(np.broadcast_to(p, batch + p.shape[-1:]).reshape(-1, p.shape[-1]))
+    # writable copies: a broadcast that broadcasts nothing is a contiguous read-only view, which
+    # np.ascontiguousarray passes through and _batched compiled again for (four signatures)
+    X, U, T, P = (np.require(np.broadcast_to(v, shape).reshape(flat), requirements=("C", "W"))
+                  for v, shape, flat in ((x, batch + (2,), (-1, 2)),
+                                         (u[..., None], batch + (1,), (-1, 1)),
+                                         (t, batch, (-1,)),
+                                         (p, batch + p.shape[-1:], (-1, p.shape[-1]))))
     out = np.empty_like(X)
     _batched(kind, T, X, U, as_records(P, CPPShipParams), out)
     return out.reshape(batch + (2,))

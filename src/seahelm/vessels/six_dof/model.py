@@ -41,7 +41,7 @@ import math
 from typing import Any
 
 import numpy as np
-from numba import njit
+from numba import int64, njit
 
 from ..._validate import lookup_name
 from ...errors import ParameterError
@@ -107,13 +107,15 @@ def _thrust(p, i, n, va):  # pragma: no cover - compiled
     return -p.thruster_k_neg[i] * n * n, -p.thruster_torque_pos[i] * n * n
 
 
-@njit(cache=True)
+# _sym and _row are called with literal indices only (_sym(ma, 0, 1), _row(dl, 3, ...)):
+# inlined at numba-IR level, not compiled for each Literal[int] pair (27 + 6 compilations)
+@njit(cache=True, inline="always")
 def _sym(a, i, j):  # pragma: no cover - compiled
     """Element (i, j) of ½ (A + Aᵀ) for a flat row-major 6 × 6 ``a``."""
     return 0.5 * (a[6 * i + j] + a[6 * j + i])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _row(a, i, u, v, w, p, q, r):  # pragma: no cover - compiled
     """Row i of a flat row-major 6 × 6 ``a`` times (u, v, w, p, q, r)."""
     k = 6 * i
@@ -270,40 +272,44 @@ def _actuator_rates(x, a0, u, p, dx):  # pragma: no cover - compiled
         dx[k + i] = _clip((cmd - x[k + i]) / p.fin_time_constant[i], -lim, lim)
 
 
-@njit(cache=True)
+# (a0, iv: the models' constant state indices, typed int64 by numba locals, so _kinetics,
+# _actuator_rates and _common_outputs compile once for both kinds, not once per Literal[int])
+@njit(cache=True, locals={"a0": int64})
 def six_dof_euler_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     """ẋ of a 6-DOF craft with Euler angles (module docstring)."""
+    a0 = _NE
     phi, theta, psi = x[_E.roll], x[_E.pitch], x[_E.heading]
     R = rotation_euler(phi, theta, psi)
     u1, v1, w1 = x[_E.surge_speed], x[_E.sway_speed], x[_E.heave_speed]
     p1, q1, r1 = x[_E.roll_rate], x[_E.pitch_rate], x[_E.yaw_rate]
     (dx[_E.surge_speed], dx[_E.sway_speed], dx[_E.heave_speed], dx[_E.roll_rate],
-     dx[_E.pitch_rate], dx[_E.yaw_rate]) = _kinetics(x, _NE, d, p, R, phi, theta,
+     dx[_E.pitch_rate], dx[_E.yaw_rate]) = _kinetics(x, a0, d, p, R, phi, theta,
                                                      u1, v1, w1, p1, q1, r1)
     dx[_E.north] = R[0] * u1 + R[1] * v1 + R[2] * w1 + d[_D.current_north]
     dx[_E.east] = R[3] * u1 + R[4] * v1 + R[5] * w1 + d[_D.current_east]
     dx[_E.depth] = R[6] * u1 + R[7] * v1 + R[8] * w1
     dx[_E.roll], dx[_E.pitch], dx[_E.heading] = euler_rates(phi, theta, p1, q1, r1)
-    _actuator_rates(x, _NE, u, p, dx)
+    _actuator_rates(x, a0, u, p, dx)
 
 
-@njit(cache=True)
+@njit(cache=True, locals={"a0": int64})
 def six_dof_quaternion_rhs(t, x, u, d, p, dx):  # pragma: no cover - compiled
     """ẋ of a 6-DOF craft with a unit quaternion (module docstring)."""
+    a0 = _NQ
     qw, qx, qy, qz = x[_Q.quaternion_w], x[_Q.quaternion_x], x[_Q.quaternion_y], x[_Q.quaternion_z]
     R = rotation_quaternion(qw, qx, qy, qz)
     phi, theta, _ = euler_from_quaternion(qw, qx, qy, qz)
     u1, v1, w1 = x[_Q.surge_speed], x[_Q.sway_speed], x[_Q.heave_speed]
     p1, q1, r1 = x[_Q.roll_rate], x[_Q.pitch_rate], x[_Q.yaw_rate]
     (dx[_Q.surge_speed], dx[_Q.sway_speed], dx[_Q.heave_speed], dx[_Q.roll_rate],
-     dx[_Q.pitch_rate], dx[_Q.yaw_rate]) = _kinetics(x, _NQ, d, p, R, phi, theta,
+     dx[_Q.pitch_rate], dx[_Q.yaw_rate]) = _kinetics(x, a0, d, p, R, phi, theta,
                                                      u1, v1, w1, p1, q1, r1)
     dx[_Q.north] = R[0] * u1 + R[1] * v1 + R[2] * w1 + d[_D.current_north]
     dx[_Q.east] = R[3] * u1 + R[4] * v1 + R[5] * w1 + d[_D.current_east]
     dx[_Q.depth] = R[6] * u1 + R[7] * v1 + R[8] * w1
     (dx[_Q.quaternion_w], dx[_Q.quaternion_x], dx[_Q.quaternion_y],
      dx[_Q.quaternion_z]) = quaternion_rates(qw, qx, qy, qz, p1, q1, r1, p.quaternion_gain)
-    _actuator_rates(x, _NQ, u, p, dx)
+    _actuator_rates(x, a0, u, p, dx)
 
 
 @njit(cache=True)
@@ -329,16 +335,18 @@ def _common_outputs(x, iv, a0, p, phi, theta, psi, y):  # pragma: no cover - com
         y[_NY + i] = _thrust(p, i, n, (1.0 - p.thruster_wake[i]) * speed)[0]
 
 
-@njit(cache=True)
+@njit(cache=True, locals={"iv": int64, "a0": int64})
 def six_dof_euler_output(t, x, u, p, y):  # pragma: no cover - compiled
-    _common_outputs(x, _E.surge_speed, _NE, p, x[_E.roll], x[_E.pitch], x[_E.heading], y)
+    iv, a0 = _E.surge_speed, _NE
+    _common_outputs(x, iv, a0, p, x[_E.roll], x[_E.pitch], x[_E.heading], y)
 
 
-@njit(cache=True)
+@njit(cache=True, locals={"iv": int64, "a0": int64})
 def six_dof_quaternion_output(t, x, u, p, y):  # pragma: no cover - compiled
+    iv, a0 = _Q.surge_speed, _NQ
     phi, theta, psi = euler_from_quaternion(x[_Q.quaternion_w], x[_Q.quaternion_x],
                                             x[_Q.quaternion_y], x[_Q.quaternion_z])
-    _common_outputs(x, _Q.surge_speed, _NQ, p, phi, theta, psi, y)
+    _common_outputs(x, iv, a0, p, phi, theta, psi, y)
 
 
 @njit(cache=True)
