@@ -287,6 +287,10 @@ _shown_warnings: set[str] = set()
 def _show_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
                   file: Any = None, line: str | None = None) -> None:
     text = as_option(_one_line(Exception(str(message))))
+    from ..sweep.store import is_markers_warning
+
+    if is_markers_warning(text):  # (the store's own markers: see sweep.store._quiet)
+        return
     if text in _shown_warnings:  # the same words again (another run, chunk or sample)
         return
     _shown_warnings.add(text)

@@ -72,10 +72,19 @@ def _zarr() -> Any:
 @contextlib.contextmanager
 def _quiet() -> Iterator[None]:
     """Zarr warns that the markers directory is not part of the hierarchy: it is not meant to
-    be."""
+    be. (``catch_warnings`` is not thread-safe: a chunk written in the sweep's writer thread
+    while the command's own ``catch_warnings`` ends in the main thread -- a Ctrl-C -- can
+    lose this filter; the CLI also drops the warning where it shows warnings,
+    :func:`is_markers_warning`.)"""
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", message=f".*{MARKERS}.*not recognized")
         yield
+
+
+def is_markers_warning(text: str) -> bool:
+    """Whether ``text`` is zarr's warning that the markers directory is not part of the
+    hierarchy (see :func:`_quiet`)."""
+    return MARKERS in text and "not recognized" in text
 
 
 def store_attrs(path: str | Path) -> dict[str, Any] | None:
