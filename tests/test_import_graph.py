@@ -151,7 +151,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("seahelm", "seahelm.constants", "seahelm.numerics", "seahelm.versions", "seahelm._optional",
      "seahelm._codegen", "seahelm.resources", "seahelm.units", "seahelm._repr",
      "seahelm.output_files"),
-    ("seahelm.parameters", "seahelm._validate"),
+    ("seahelm.parameters", "seahelm._validate", "seahelm._dask"),
     ("seahelm.hydrodynamics",),
     ("seahelm.actuators",),
     ("seahelm.vessels",),

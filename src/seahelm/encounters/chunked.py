@@ -14,12 +14,12 @@ seed gets one drawn once for all the chunks, so chunks see the noise of the whol
 from __future__ import annotations
 
 import dataclasses
-import logging
 import math
 from typing import Any
 
 import numpy as np
 
+from .._dask import local_cluster
 from .._optional import optional_import
 from ..errors import ParameterError
 from .encounter import Encounter, Vessel
@@ -205,10 +205,7 @@ def run_chunked(enc: Encounter, *, chunk_size: int | None = None, workers: int |
         with distributed.Client(scheduler, set_as_default=False) as client:
             results = client.gather(client.map(run_chunk, vessels, settings, pure=False))
     else:
-        with distributed.LocalCluster(n_workers=workers, threads_per_worker=1,
-                                      processes=True, host="127.0.0.1",
-                                      dashboard_address=None,
-                                      silence_logs=logging.ERROR) as cluster, \
+        with local_cluster(workers, purpose="encounters on a dask cluster") as cluster, \
                 distributed.Client(cluster, set_as_default=False) as client:
             results = client.gather(client.map(run_chunk, vessels, settings, pure=False))
     return concat_results(list(results))

@@ -36,6 +36,7 @@ from typing import Any
 
 import numpy as np
 
+from .._dask import local_cluster
 from ..encounters import chunked as _chunked
 from ..encounters.encounter import Encounter
 from ..encounters.result import EncounterResult
@@ -398,8 +399,6 @@ def run_study(enc: Encounter, path: str | Path, name: str, *, chunk_size: int | 
 
 def _on_dask(chunks: list[Any], todo: list[int], store: Callable[[int, Any], None],
              workers: int | None, scheduler: str | None) -> None:
-    import logging
-
     from .._optional import optional_import
 
     distributed = optional_import("distributed", extra="dask",
@@ -416,9 +415,7 @@ def _on_dask(chunks: list[Any], todo: list[int], store: Callable[[int, Any], Non
         with distributed.Client(scheduler, set_as_default=False) as client:
             submit(client)
         return
-    with distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                  host="127.0.0.1", dashboard_address=None,
-                                  silence_logs=logging.ERROR) as cluster, \
+    with local_cluster(workers, purpose="an encounter study on a dask cluster") as cluster, \
             distributed.Client(cluster, set_as_default=False) as client:
         submit(client)
 

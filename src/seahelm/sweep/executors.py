@@ -16,6 +16,7 @@ import threading
 from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING, Any
 
+from .._dask import local_cluster
 from .._optional import optional_import
 from .._validate import check_positive
 from ..errors import ParameterError
@@ -134,9 +135,8 @@ class DaskCluster:
             try:
                 # the workers' own logs at ERROR: a worker's warnings (a task cancelled by a
                 # Ctrl-C, its shutdown) reached the command's stderr beside its one line
-                self.cluster = distributed.LocalCluster(
-                    n_workers=self.n_workers, threads_per_worker=1, processes=True,
-                    host="127.0.0.1", dashboard_address=None, silence_logs=logging.ERROR)
+                self.cluster = local_cluster(self.n_workers, purpose="sweeps on a dask "
+                                             "cluster (--workers)")
             finally:
                 if main_thread:
                     signal.signal(signal.SIGINT, old)

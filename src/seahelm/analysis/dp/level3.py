@@ -220,6 +220,7 @@ def _run_chunk(source: Any, cp: np.ndarray, ld: np.ndarray, duration: float, dt:
 def _on_dask(workers: int, source: Any, cp: np.ndarray, ld: np.ndarray, duration: float,
              dt: float, limits: tuple) -> list:
     """The runs in chunks (4 per worker) on a local Dask cluster, in order."""
+    from ..._dask import local_cluster
     from ..._optional import optional_import
 
     distributed = optional_import("distributed", extra="dask",
@@ -227,10 +228,7 @@ def _on_dask(workers: int, source: Any, cp: np.ndarray, ld: np.ndarray, duration
     runs = ld.shape[0]
     n_chunks = min(runs, 4 * workers)
     edges = np.linspace(0, runs, n_chunks + 1).astype(int)
-    cluster = distributed.LocalCluster(n_workers=workers, threads_per_worker=1,
-                                       processes=True, host="127.0.0.1",
-                                       dashboard_address=None,
-                                       silence_logs=40)  # (logging.ERROR: see sweep)
+    cluster = local_cluster(workers, purpose="level-3 capability on a dask cluster (--workers)")
     try:
         with distributed.Client(cluster, set_as_default=False) as client:
             futures = [client.submit(_run_chunk, source, cp[a:b], ld[a:b], duration, dt,
