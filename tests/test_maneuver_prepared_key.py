@@ -14,11 +14,11 @@ import inspect
 import math
 
 import pytest
+from test_maneuver_prepared_requests import _count_plans
 
 from seahelm.analysis.maneuvers import turning_circle
 
 prepared = importlib.import_module("seahelm.analysis.maneuvers.prepared")
-common = importlib.import_module("seahelm.analysis.maneuvers.common")
 
 R = math.radians(35.0)
 BASE = {"ship": "kvlcc2-l7", "rudder": R, "sides": 1, "t_final": 40.0, "dt": 0.5}
@@ -50,14 +50,7 @@ def test_the_table_names_every_argument():
 
 @pytest.mark.parametrize("name", sorted(CHANGED))
 def test_a_request_differing_in_one_argument_is_prepared_anew(name, monkeypatch):
-    made = []
-    real = common.Plan.__init__
-
-    def counting(self, *args, **kwargs):
-        made.append(1)
-        real(self, *args, **kwargs)
-
-    monkeypatch.setattr(common.Plan, "__init__", counting)
+    made = _count_plans(monkeypatch)
 
     def circle(**kw):
         kw = BASE | kw
