@@ -11,7 +11,7 @@ import pytest
 
 pytest.importorskip("gymnasium")
 
-from seahelm.gym import ShipEnv, ShipVectorEnv  # noqa: E402
+from seahelm.gym import HeadingKeeping, ShipEnv, ShipVectorEnv  # noqa: E402
 from seahelm.gym.plant import state_views  # noqa: E402
 from seahelm.simulation.stepping_reference import advance_unobserved  # noqa: E402
 
@@ -203,3 +203,46 @@ def test_a_step_returns_arrays_of_its_own():
     for a, b in zip(first, kept):
         assert np.array_equal(a, b)
     envs.close()
+
+
+class _DriftPenalised(HeadingKeeping):
+    """A user's task: heading keeping that also penalises the drift angle, an output the parent
+    does not read; it overrides the evaluation but does not declare ``reads`` anew."""
+
+    name = "DriftPenalised"
+
+    def _evaluate(self, out, rudder, previous_rudder):
+        obs, terms, failed, done = super()._evaluate(out, rudder, previous_rudder)
+        terms = {**terms, "yaw_rate": terms["yaw_rate"] + np.abs(out["drift_angle"])}
+        return obs, terms, failed, done
+
+
+def test_a_subclass_reading_more_than_its_parent_declared_gets_the_whole_observation(
+        monkeypatch):
+    """A task that inherits ``reads`` but evaluates differently is handed the loop's outputs
+    (a KeyError 'drift_angle' when it was handed the parent's four states); one that declares
+    ``reads`` anew, or keeps the parent's evaluation, keeps the state path."""
+    from seahelm.gym import tasks
+
+    assert _DriftPenalised.declared_reads() is None
+    assert HeadingKeeping.declared_reads() == HeadingKeeping.reads
+
+    class _Declared(_DriftPenalised):
+        reads = HeadingKeeping.reads + ("drift_angle",)
+
+    class _Renamed(HeadingKeeping):
+        name = "Renamed"
+
+    assert _Declared.declared_reads() == _Declared.reads
+    assert _Renamed.declared_reads() == HeadingKeeping.reads
+    monkeypatch.setitem(tasks.TASKS, "DriftPenalised", _DriftPenalised)
+    envs = ShipVectorEnv(4, task="DriftPenalised", ship="kvlcc2-l7", episode_seconds=20.0)
+    envs.reset(seed=2)
+    _, reward, *_ = envs.step(np.full((4, 1), 0.1))
+    plain = ShipVectorEnv(4, task="HeadingKeeping", ship="kvlcc2-l7", episode_seconds=20.0)
+    plain.reset(seed=2)
+    _, plain_reward, *_ = plain.step(np.full((4, 1), 0.1))
+    assert envs._states is None and np.all(np.isfinite(reward))
+    assert np.all(reward != plain_reward)  # (the drift term is there: the ship is turning)
+    envs.close()
+    plain.close()

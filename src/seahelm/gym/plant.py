@@ -283,7 +283,7 @@ def state_views(sim: Simulator, labels: tuple[str, ...] | None
     sim : Simulator
         The plant's simulator, just reset.
     labels : tuple of str or None
-        What the task reads (:attr:`seahelm.gym.tasks.Task.reads`); None: not declared.
+        What the task reads (:meth:`seahelm.gym.tasks.Task.declared_reads`); None: not declared.
 
     Returns
     -------

@@ -198,6 +198,22 @@ class Task(Weighted):
     #: (:func:`seahelm.gym.plant.state_views`).
     reads: ClassVar[tuple[str, ...] | None] = None
 
+    @classmethod
+    def declared_reads(cls) -> tuple[str, ...] | None:
+        """:attr:`reads` where it holds for this class's own evaluation, else None.
+
+        A subclass that overrides :meth:`evaluate` or :meth:`_evaluate` without declaring
+        ``reads`` anew may read outputs its parent did not declare (the environment would hand
+        it only the parent's states): its reads are then undeclared, and the environment hands
+        it the loop's whole observation.
+        """
+        owner = next(c for c in cls.__mro__ if "reads" in c.__dict__)
+        evaluator = next((c for c in cls.__mro__
+                          if "_evaluate" in c.__dict__ or "evaluate" in c.__dict__), owner)
+        if evaluator is not owner and issubclass(evaluator, owner):
+            return None
+        return cls.reads
+
     def __init__(self, num_envs: int, *, length: float, speed: float, max_rudder: float,
                  reward: Mapping[str, float] | None = None,
                  heading_scale: float = math.radians(10.0)) -> None:
