@@ -649,3 +649,22 @@ def test_coarse_recording_measures_the_events_of_every_step_recording(ship):
                                                   abs=tol * length / speed), key
         for key in ("steady_speed", "steady_yaw_rate", "final_heading_change"):
             assert float(m[key]) == pytest.approx(float(every[key]), rel=1e-12), key
+
+
+def test_a_ship_without_a_steering_gear_is_told_a_way_that_works():
+    """The manoeuvres take a ship, not a ``servo=``: the error of a ship without a steering
+    gear names ``maneuver_ship(ship, servo=ServoParams(...))``, and that way works (it said
+    "pass `servo=ServoParams(...)`", an argument ``turning_circle`` does not have)."""
+    import inspect
+
+    from seahelm.actuators.servo import ServoParams
+    from seahelm.analysis.maneuvers import maneuver_ship as public_maneuver_ship
+
+    with pytest.raises(ParameterError, match=r"`ship = maneuver_ship\(ship, servo=ServoParams"
+                                             r"\(\.\.\.\)\)` \(from seahelm\.analysis\.maneuvers"
+                                             r" and seahelm\.actuators\.servo\)") as info:
+        turning_circle("mariner-nomoto1")
+    assert "servo" not in inspect.signature(turning_circle).parameters
+    assert "catalog ships with one: " in str(info.value)
+    geared = public_maneuver_ship("mariner-nomoto1", servo=ServoParams())
+    assert geared.steering_gear is not None and geared.model.name == "nomoto1"

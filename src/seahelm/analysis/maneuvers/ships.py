@@ -44,6 +44,12 @@ STEP_VALIDITY = 10.0
 __getattr__ = deprecated_names(__name__, {"ManeuverShip": ("seahelm.ships", "Ship", "seahelm.Ship")})
 
 
+#: How a ship without a steering gear gets one, for the manoeuvres' errors: each manoeuvre
+#: takes the ship (not a ``servo=``), so the way is through :func:`maneuver_ship`.
+_GIVE_A_GEAR = ("`ship = maneuver_ship(ship, servo=ServoParams(...))` (from "
+                "seahelm.analysis.maneuvers and seahelm.actuators.servo), then manoeuvre that ship")
+
+
 def maneuver_ship(ship: Any, *, servo: ServoParams | None = None,
                   model: VesselModel | None = None, name: str | None = None) -> Ship:
     """A :class:`~seahelm.ships.Ship` with a steering gear, ready for manoeuvres.
@@ -94,8 +100,8 @@ def maneuver_ship(ship: Any, *, servo: ServoParams | None = None,
                     f"{type(params).__name__}")
             if servo is None:
                 raise ParameterError(
-                    ": no steering gear is known for this parameter set; pass "
-                    "`servo=ServoParams(...)` (or a Ship with a steering gear)", field="servo")
+                    ": no steering gear is known for this parameter set; give it one: "
+                    f"{_GIVE_A_GEAR} (or a Ship with a steering gear)", field="servo")
             if not isinstance(servo, ServoParams):
                 raise ParameterError(f"must be ServoParams, got {type(servo).__name__}",
                 field="servo")
@@ -124,8 +130,9 @@ def maneuver_ship(ship: Any, *, servo: ServoParams | None = None,
         from ...ships import with_steering_gear
 
         raise ParameterError(
-            f": ship '{base.name}' has no steering gear; pass `servo=ServoParams(...)` "
-            f"(catalog ships with one: {', '.join(with_steering_gear())})", field="servo")
+            f": ship '{base.name}' has no steering gear; give it one: {_GIVE_A_GEAR}, or a "
+            "ship file's [steering_gear] (catalog ships with one: "
+            f"{', '.join(with_steering_gear())})", field="servo")
     if name is not None and name != base.name:
         changes["name"] = name
     ship = dataclasses.replace(base, **changes) if changes else base
