@@ -668,3 +668,18 @@ def test_a_ship_without_a_steering_gear_is_told_a_way_that_works():
     assert "catalog ships with one: " in str(info.value)
     geared = public_maneuver_ship("mariner-nomoto1", servo=ServoParams())
     assert geared.steering_gear is not None and geared.model.name == "nomoto1"
+
+
+def test_the_metrics_table_of_one_run_and_of_a_batch_as_a_dataframe():
+    """``ManeuverResult.to_dataframe()``: one row per run, a single run's 0-dimensional table
+    too (xarray's ``Dataset.to_dataframe`` refuses it), the values those of the Dataset."""
+    one = turning_circle("kvlcc2-l7", sides=1)
+    assert one.metrics.sizes == {}  # (what xarray cannot tabulate)
+    frame = one.to_dataframe()
+    assert frame.shape[0] == 1
+    assert frame["tactical_diameter"].iloc[0] == float(one.metrics["tactical_diameter"])
+    both = turning_circle("kvlcc2-l7")
+    table = both.to_dataframe()
+    assert list(table["side"]) == [int(s) for s in both.metrics["side"]]
+    np.testing.assert_array_equal(table["advance"], both.metrics["advance"].values)
+    assert table.loc[0, "tactical_diameter"] == frame.loc[0, "tactical_diameter"]

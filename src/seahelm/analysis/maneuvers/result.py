@@ -74,7 +74,7 @@ class ManeuverResult:
         rows.append(("runs", "none (computed from equilibria)" if sim is None else
                      f"{sim.n_runs} run(s), {len(sim.time)} samples each "
                      "(.runs: an xarray Dataset, .simulation: the SimResult)"))
-        rows.append(("use", ".metrics, .runs, to_netcdf(directory)"))
+        rows.append(("use", ".metrics, .runs, to_dataframe(), to_netcdf(directory)"))
         return title, rows
 
     def __repr__(self) -> str:
@@ -86,6 +86,18 @@ class ManeuverResult:
         from ..._repr import summary_html
 
         return summary_html(*self._summary())
+
+    def to_dataframe(self) -> Any:
+        """The metrics table as a :class:`pandas.DataFrame`, one row per run, one run too.
+
+        The columns of :func:`metrics_rows` (the coordinates first, then every metric; an
+        extra dimension spread over ``name_1``, ``name_2``, ...). ``metrics.to_dataframe()``
+        is xarray's, which refuses the 0-dimensional table of a single run ("no valid index
+        for a 0-dimensional object"); this gives it one row.
+        """
+        import pandas as pd
+
+        return pd.DataFrame(metrics_rows(self.metrics))
 
     def to_netcdf(self, directory: str | Path, *, prefix: str | None = None,
                   force: bool = False) -> dict[str, Path]:
