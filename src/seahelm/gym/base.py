@@ -15,6 +15,7 @@ import numpy as np
 
 from .._optional import optional_import
 from ..errors import ParameterError
+from ._fused import clip_actions
 from .plant import reset_selection
 
 gym = optional_import("gymnasium", extra="rl", purpose="seahelm.gym")
@@ -23,6 +24,9 @@ from gymnasium.vector import AutoresetMode, VectorEnv  # noqa: E402
 __all__ = ["BatchEnv", "OneEnv", "autoreset_mode"]
 
 _MODES = {m.value: m for m in AutoresetMode}
+
+#: The dtypes of actions clipped in one compiled pass (:func:`~seahelm.gym._fused.clip_actions`).
+_FLOATS = (np.dtype(np.float32), np.dtype(np.float64))
 
 
 def autoreset_mode(mode: Any, render_mode: Any) -> AutoresetMode:
@@ -69,6 +73,11 @@ class BatchEnv(VectorEnv):
         shape (or of as many numbers, flat; (actions, num_envs) of one action); NaN or
         infinite refused naming ``actions`` and the sub-environment."""
         n, k = self.num_envs, len(self.action_labels)
+        if type(actions) is np.ndarray and actions.shape == (n, k) \
+                and actions.dtype in _FLOATS:  # (a policy's batch: one compiled pass)
+            out = np.empty((n, k))
+            if clip_actions(actions, self._low, self._high, out) < 0:
+                return out
         if actions is None:  # (numpy makes None a NaN: "is nan" said nothing of the cause)
             raise ParameterError(f": missing (None); step() needs an array of shape ({n}, {k}) "
                                  f"(envs, {', '.join(self.action_labels)} "

@@ -202,6 +202,7 @@ class ShipVectorEnv(BatchEnv):
         #: Each sub-environment's time in its episode [s] (num_envs,).
         self.elapsed = np.zeros(self.num_envs)
         self._horizon = float(p.simulator.problem.t_final) + 1e-9
+        self._dt = sim._batch.dt  # (the simulator's time: its step count times this)
         self._started = False
         self._rng = np.random.default_rng()
 
@@ -343,7 +344,7 @@ class ShipVectorEnv(BatchEnv):
         if setpoint:  # (the autopilot's set-point: absolute, from the task's direction)
             rps = self._rps0 * (1.0 + a[:, 1]) if self._rps_setpoint else None
             a = self.task.reference_direction() + a[:, 0]
-        if sim.time[0] + self.plant.action_period > self._horizon:
+        if sim._k[0] * self._dt + self.plant.action_period > self._horizon:  # (sim.time[0])
             restart_clock(sim)  # (the simulator's horizon reached: its clock back to 0)
         # every run stepped (one call of the loop; the runs stay at the same step): those
         # restarting now are started again after it, from their new episode's start

@@ -21,10 +21,12 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numba import njit
 
 from ..errors import ParameterError
 from ..parameters import Params
 from .slicing import drive, quiet
+from .stepping import restore_rows
 from .stepping_io import Observation, _spans, check_commands, run_indices
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -279,8 +281,7 @@ def restart_runs(sim: "Simulator", runs: Any, states: Mapping[str, Any] | None =
         sim._k0 = 0
         sim._aligned = True
     if sel.size:
-        for live, fresh in zip((*a.state, *a.outcome, *a.record), sim._fresh):
-            live[sel] = fresh[sel]
+        restore_rows(sel, a.state, a.outcome, a.record, *sim._fresh_groups)
         spans = _spans(sel)
         with quiet(b.jit):
             _init_runs(sim, sel, spans)  # (the controller's init on the initial state)
@@ -429,10 +430,24 @@ def _checked_states(sim: "Simulator", sel: np.ndarray, values: Mapping[str, Any]
                                  value=col.shape)
         z[:, labels.index(name)] = col
     lower, upper = (sim._batch.slices.arrays.get("params", n) for n in ("lower", "upper"))
-    bad = ~np.isfinite(z) | (z < lower) | (z > upper)
-    if bad.any():
-        r, j = np.argwhere(bad)[0]
+    first = _first_outside(z, lower, upper)
+    if first >= 0:
+        r, j = divmod(first, z.shape[1])
         raise ParameterError(f": state {labels[j]!r} = {float(z[r, j])!r} of run {int(sel[r])} is not "
                              f"finite or outside its bounds [{lower[j]:g}, {upper[j]:g}]",
                              field="values", value=float(z[r, j]), run=int(sel[r]))
     return z
+
+
+@njit(cache=True)
+def _first_outside(z, lower, upper):  # pragma: no cover - compiled
+    """The flat index (row-major) of the first element of ``z`` (rows, states) that is not
+    finite or outside [lower[j], upper[j]] of its column, or -1: ``np.argwhere(~np.isfinite(z)
+    | (z < lower) | (z > upper))[0]`` in one compiled pass (the six array calls cost some
+    6 µs a restart)."""
+    for r in range(z.shape[0]):
+        for j in range(z.shape[1]):
+            x = z[r, j]
+            if not np.isfinite(x) or x < lower[j] or x > upper[j]:
+                return r * z.shape[1] + j
+    return -1
