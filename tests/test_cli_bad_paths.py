@@ -266,9 +266,13 @@ def test_ctrl_c_exits_130_with_a_message_and_leaves_no_empty_out_directory(tmp_p
     scenario = tmp_path / "long.toml"
     scenario.write_text(LONG_RUN)
     out = tmp_path / "made" / "by-run"
-    proc = subprocess.Popen([sys.executable, "-m", "seahelm", "run", str(scenario), "--out",
-                             str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True)
+    from interruptible import popen_interruptible
+
+    # (SIGINT at its default: from a suite started as a background job it was ignored, and the
+    # 6e8-step run went on past the 120 s below)
+    proc = popen_interruptible([sys.executable, "-m", "seahelm", "run", str(scenario), "--out",
+                                str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                               text=True)
     deadline = time.monotonic() + 120
     while not out.exists() and proc.poll() is None and time.monotonic() < deadline:
         time.sleep(0.05)

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from interruptible import popen_interruptible
 from seahelm.cli.main import app
 from seahelm.errors import ParameterError
 
@@ -190,7 +191,9 @@ def test_parse_scenario_of_a_non_string_is_a_type_error(text):
 def test_an_interrupted_sweep_on_workers_says_one_line(tmp_path):
     pytest.importorskip("distributed")
     store = tmp_path / "s.zarr"
-    proc = subprocess.Popen(
+    # (SIGINT at its default: a suite started as a background job ignores it, and so did the
+    # sweep, which ran to its end and exited 0)
+    proc = popen_interruptible(
         [sys.executable, "-m", "seahelm", "sweep", str(EXAMPLES / "mariner_monte_carlo.toml"),
          "--store", str(store), "--workers", "2", "--chunk-size", "1"],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
@@ -206,6 +209,25 @@ def test_an_interrupted_sweep_on_workers_says_one_line(tmp_path):
     assert proc.returncode == 130, (len(list(markers.iterdir())), out[-2000:], err[-4000:])
     lines = [ln for ln in err.splitlines() if ln.strip()]
     assert len(lines) == 1 and lines[0].startswith("interrupted: "), err  # (102 before)
+
+
+def test_a_command_started_for_a_ctrl_c_takes_it_even_when_the_suite_ignores_it():
+    """The interrupted sweep that exited 0 (a fresh-clone run): the suite had been started as a
+    background job of a shell without job control, with SIGINT ignored, and the sweep inherited
+    the ignore. ``popen_interruptible`` gives the command SIGINT at its default; plain
+    ``Popen``, the contrast, passes the ignore on."""
+    probe = "import signal; print(signal.getsignal(signal.SIGINT) is signal.default_int_handler)"
+    suite = (
+        "import signal, subprocess, sys\n"
+        "signal.signal(signal.SIGINT, signal.SIG_IGN)\n"  # (as `make test &` in a script)
+        f"sys.path.insert(0, {str(Path(__file__).parent)!r})\n"
+        "from interruptible import popen_interruptible\n"
+        f"probe = [sys.executable, '-c', {probe!r}]\n"
+        "for start in (popen_interruptible, subprocess.Popen):\n"
+        "    print(start(probe, stdout=subprocess.PIPE, text=True).communicate()[0].strip())\n")
+    res = subprocess.run([sys.executable, "-c", suite], capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+    assert res.stdout.split() == ["True", "False"]
 
 
 # -- item 6: a bound on the bootstrap ------------------------------------------------------

@@ -21,6 +21,7 @@ from pathlib import Path
 import pytest
 
 from conftest import nomoto_monte_carlo
+from interruptible import popen_interruptible
 
 #: Seconds from the signal to the end of the process (a slice is ~0.25 s; the rest is the exit
 #: on a loaded 2-core machine).
@@ -76,10 +77,9 @@ def _commands(tmp: Path) -> dict[str, tuple[list[str], list[str], Path | None]]:
 
 def _start(argv: list[str]) -> subprocess.Popen:
     # (a shell without job control starts background jobs with SIGINT ignored: reset it)
-    return subprocess.Popen([sys.executable, "-m", "seahelm", *argv], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True,
-                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
-                            env={**os.environ, "MPLBACKEND": "Agg"})
+    return popen_interruptible([sys.executable, "-m", "seahelm", *argv], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True,
+                               env={**os.environ, "MPLBACKEND": "Agg"})
 
 
 @pytest.fixture(scope="module")
