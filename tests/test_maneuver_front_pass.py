@@ -102,3 +102,23 @@ def test_the_front_pass_leaves_bad_times_and_short_records_to_the_general_form()
     north, east, psi, r, speed = (state[..., j] for j in range(5))
     times = np.ascontiguousarray(np.broadcast_to(t, psi.shape))
     assert _fused(t, north, east, psi, r, speed, times)[3] == -1
+
+
+def test_completion_equals_the_array_form():
+    """``_completion`` is ``~isnan`` of every event's time and the message "ok" (status 0),
+    for each status code and NaN at each event; it counts the runs not complete."""
+    from seahelm.results import STATUS_TEXT
+
+    kernels = importlib.import_module("seahelm.analysis.maneuvers.turning_kernels")
+    rng = np.random.default_rng(3)
+    runs = 64
+    time_at = rng.uniform(1.0, 90.0, (3, runs))
+    time_at[rng.random((3, runs)) < 0.2] = np.nan
+    status = rng.choice([0, 0, 0, 1, 2, 3], runs).astype(np.int64)
+    messages = [STATUS_TEXT[int(code)] for code in status]
+    want = (~np.isnan(time_at[2]) & ~np.isnan(time_at[0]) & ~np.isnan(time_at[1])
+            & np.array([m == "ok" for m in messages], dtype=bool))
+    complete = np.empty(runs, dtype=bool)
+    missing = kernels._completion(time_at, status, complete)
+    assert np.array_equal(complete, want) and missing == int((~want).sum())
+    assert 0 < missing < runs

@@ -60,7 +60,8 @@ from .ships import steady_yaw_rates, yaw_lag
 from .result import ManeuverResult
 from .track import _arc_distances, _gauss3, distance_until, track_distance
 from .turning_kernels import (  # noqa: F401 (the compiled passes, used and tested from here)
-    _bracket, _event_nodes, _first_crossings, _first_pass, _front, _newton, _steady_ends,
+    _bracket, _completion, _event_nodes, _first_crossings, _first_pass, _front, _newton,
+    _steady_ends,
 )
 
 __all__ = ["turning_circle", "track_distance", "default_record_every", "SAMPLES_PER_LENGTH"]
@@ -452,8 +453,10 @@ def _metrics(plan: Plan, result: Any) -> Any:
     time_10, distance_10 = time_at[2], dist_at[2]
     constant = is_constant_speed(plan.model)
     # a constant-speed model has no drift angle unless it declares one (Voitkunsky's β)
-    beta = (result["drift_angle"] if "drift_angle" in result.channel_names()
-            else np.full_like(r, np.nan))
+    try:  # (a channel of the result: what result.channel_names() lists)
+        beta = result["drift_angle"]
+    except KeyError:
+        beta = np.full_like(r, np.nan)
     approaches = plan.run_approaches()
     U0 = np.array([a.speed for a in approaches])
     rps = np.array([np.nan if (x := a.rps) is None else x for a in approaches])
@@ -462,13 +465,14 @@ def _metrics(plan: Plan, result: Any) -> Any:
     steady_U = speed[:, -1]
     # (radius: U/|r| at the end, inf where r = 0; steady: |r| changed by <= 1 % since the
     # last sample 90 deg of heading before the end: _steady_ends, in _first_pass)
-    status = result.messages()
-    reached = ~np.isnan(time_10) & ~np.isnan(time_90) & ~np.isnan(time_180)
-    # complete: every event reached and the run went well (most runs: nothing more to say,
-    # their message set for all at once; the loop below is over the others only)
-    complete = reached & np.array([m == "ok" for m in status], dtype=bool)
+    # complete: every event reached and the run went well, its status 0 (message "ok"), in
+    # one compiled pass (most runs: nothing more to say, their message set for all at once;
+    # the loop below is over the others only, with the runs' messages)
+    complete = np.empty(n, dtype=bool)
+    missing = _completion(time_at, result.status, complete)
+    status = result.messages() if missing else []
     messages = ["ok" if steady_i else _NOT_STEADY for steady_i in steady.tolist()]
-    for i in ([] if complete.all() else np.flatnonzero(~complete).tolist()):
+    for i in (np.flatnonzero(~complete).tolist() if missing else []):
         missing = [f"{name} heading change" for name, value in
                    (("10 deg", time_10[i]), ("90 deg", time_90[i]), ("180 deg", time_180[i]))
                    if np.isnan(value)]

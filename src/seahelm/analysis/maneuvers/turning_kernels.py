@@ -208,3 +208,21 @@ def _front(psi: np.ndarray, levels: np.ndarray, t: np.ndarray, times: np.ndarray
     if _gauss_speeds(t, north, east, nodes, until, rates[:width]):
         return -1, every_good  # (a zero pivot: never, h > 0; the general form raises)
     return width, every_good
+
+
+@njit(cache=True, nogil=True)
+def _completion(time_at: np.ndarray, status: np.ndarray,
+                complete: np.ndarray) -> int:  # pragma: no cover - compiled
+    """Whether each run is complete into ``complete``: every event's time (``time_at``,
+    (levels, runs)) reached (not NaN) and the run's status 0 (its message "ok"): the array
+    form's ``~isnan(t_10) & ~isnan(t_90) & ~isnan(t_180) & (messages == "ok")``. Returns how
+    many runs are not complete."""
+    missing = 0
+    for i in range(status.size):
+        ok = status[i] == 0
+        for a in range(time_at.shape[0]):
+            if time_at[a, i] != time_at[a, i]:
+                ok = False
+        complete[i] = ok
+        missing += not ok
+    return missing
