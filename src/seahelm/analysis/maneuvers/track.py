@@ -282,10 +282,21 @@ def _every_run_by_spline(n: np.ndarray, e: np.ndarray, time: Any,
     speed = np.empty((width, nodes.size, n.shape[0]))
     if _gauss_speeds(t, np.ascontiguousarray(n), np.ascontiguousarray(e), nodes, wanted, speed):
         return None  # pragma: no cover - h > 0 (the general form raises)
-    arc = 0.5 * h[:width] * (speed.transpose(2, 0, 1) @ weights)  # (as distance_until)
-    out = np.zeros((n.shape[0], t.size))
-    np.cumsum(arc, axis=1, out=out[:, 1:width + 1])  # (the pieces beyond ``width`` are 0:
-    out[:, width + 1:] = out[:, width:width + 1]     # their sums stay the last one)
+    return _arc_distances(h, speed, width, t.size)
+
+
+def _arc_distances(h: np.ndarray, speed: np.ndarray, width: int, samples: int) -> np.ndarray:
+    """The distances (runs, ``samples``) from the spline's speeds at the Gauss points of the
+    first ``width`` intervals, ``speed[:width]`` (intervals, nodes, runs) of
+    :func:`_gauss_speeds`, and the steps ``h``: the quadrature of each interval and their
+    cumulative sum, as :func:`distance_until` forms them (the later intervals' pieces are 0:
+    their sums stay the last one). A ``speed`` of more intervals is read in its first
+    ``width`` (C order: the same memory layout, so numpy's matmul sums as it did)."""
+    weights = _gauss3()[1]
+    arc = 0.5 * h[:width] * (speed[:width].transpose(2, 0, 1) @ weights)  # (as distance_until)
+    out = np.zeros((speed.shape[2], samples))
+    np.cumsum(arc, axis=1, out=out[:, 1:width + 1])
+    out[:, width + 1:] = out[:, width:width + 1]
     return out
 
 

@@ -41,7 +41,6 @@ import math
 from typing import Any
 
 import numpy as np
-from numba import njit
 
 from ...errors import ParameterError
 from ...simulation.frame import keep_inputs
@@ -59,8 +58,11 @@ from .common import (
 from .prepared import keep, ready, request_key
 from .ships import steady_yaw_rates, yaw_lag
 from .result import ManeuverResult
-from .track import distance_until, track_distance
-from .turning_kernels import _event_nodes, _steady_ends
+from .track import _arc_distances, _gauss3, distance_until, track_distance
+from .turning_kernels import (  # noqa: F401 (the compiled passes, used and tested from here)
+    _bracket, _completion, _event_nodes, _first_crossings, _first_pass, _front, _newton,
+    _steady_ends,
+)
 
 __all__ = ["turning_circle", "track_distance", "default_record_every", "SAMPLES_PER_LENGTH"]
 
@@ -260,25 +262,6 @@ def _crossings(change: np.ndarray, levels: np.ndarray) -> tuple[np.ndarray, np.n
     return k, w
 
 
-@njit(cache=True, nogil=True)
-def _first_crossings(change: np.ndarray, levels: np.ndarray, k: np.ndarray,
-                     w: np.ndarray) -> None:  # pragma: no cover - compiled
-    """:func:`_crossings` into ``k`` and ``w``: one pass along each run per level (a NaN
-    sample reaches no level), w = (level − c[k−1]) / (c[k] − c[k−1])."""
-    for a in range(levels.size):
-        level = levels[a]
-        for r in range(change.shape[0]):
-            k[a, r] = -1
-            w[a, r] = np.nan
-            for j in range(change.shape[1]):
-                if change[r, j] >= level:
-                    k[a, r] = j
-                    # j > 0: c[j] >= level > c[j-1], so the difference is > 0
-                    w[a, r] = ((level - change[r, j - 1]) / (change[r, j] - change[r, j - 1])
-                               if j > 0 else 1.0)
-                    break
-
-
 def _at_crossings(values: np.ndarray, k: np.ndarray, w: np.ndarray) -> np.ndarray:
     """Signals (signals, runs, steps) linearly interpolated at the crossings of
     :func:`_crossings`: (signals, levels, runs)."""
@@ -315,12 +298,15 @@ def _bracket_arrays(shape: tuple[int, ...]) -> tuple[np.ndarray, ...]:
 
 
 def _cubic_weights(levels: np.ndarray, j0: np.ndarray, s_nodes: np.ndarray,
-                   c_nodes: np.ndarray, good: np.ndarray, s: np.ndarray
-                   ) -> tuple[np.ndarray, np.ndarray]:
+                   c_nodes: np.ndarray, good: np.ndarray, s: np.ndarray,
+                   every_good: bool | None = None) -> tuple[np.ndarray, np.ndarray]:
     """:func:`_cubic_crossings` from the brackets :func:`_bracket` found: the cubic's power
-    coefficients, Newton's method on it, the weights of the four nodes at the crossing."""
+    coefficients, Newton's method on it, the weights of the four nodes at the crossing.
+    ``every_good``: ``good.all()`` if the caller knows it (:func:`_front` says)."""
+    if every_good is None:
+        every_good = bool(good.all())
     vander = s_nodes[..., None] ** _POWERS  # (levels, runs, 4 nodes, 4 powers)
-    if not good.all():  # (every event inside the record: no placeholder to set)
+    if not every_good:  # (every event inside the record: no placeholder to set)
         vander[~good] = np.eye(4)  # (placeholders: never used)
     # (one error state for both solves, _solve's: Newton's method is compiled, the powers of
     # s in [0, 1] or NaN raise no flag; the transposed view is np.swapaxes(vander, -1, -2))
@@ -329,7 +315,7 @@ def _cubic_weights(levels: np.ndarray, j0: np.ndarray, s_nodes: np.ndarray,
         _newton(np.ascontiguousarray(coef), levels, s)
         powers = s[..., None] ** _POWERS
         weights = _solve(vander.transpose(0, 1, 3, 2), powers[..., None], quiet=True)[..., 0]
-    return j0, weights if good.all() else np.where(good[..., None], weights, np.nan)
+    return j0, weights if every_good else np.where(good[..., None], weights, np.nan)
 
 
 def _solve(a: np.ndarray, b: np.ndarray, quiet: bool = False) -> np.ndarray:
@@ -362,77 +348,6 @@ def _gesv() -> Any:
 
 
 _GESV = _gesv()
-
-
-@njit(cache=True, nogil=True)
-def _bracket(times: np.ndarray, change: np.ndarray, k: np.ndarray, w: np.ndarray,
-             j0: np.ndarray, s_nodes: np.ndarray, c_nodes: np.ndarray, good: np.ndarray,
-             s: np.ndarray) -> None:  # pragma: no cover - compiled
-    """The four samples around each crossing (levels, runs) for :func:`_cubic_crossings`:
-    the first of them ``j0`` (k − 2 moved inside the record), their times scaled to the
-    bracketing interval [t_{k−1}, t_k] → [0, 1] (``s_nodes``) and heading changes
-    (``c_nodes``), whether the cubic applies (``good``: k > 0 and four samples) and Newton's
-    start ``s`` (the linear estimate, NaN as 0; 0 where not good)."""
-    steps = change.shape[1]
-    big = np.finfo(np.float64).max
-    for a in range(k.shape[0]):
-        for r in range(k.shape[1]):
-            kk = k[a, r]
-            first = min(max(kk - 2, 0), max(steps - 4, 0))
-            j0[a, r] = first
-            lo = times[r, max(kk - 1, 0)]
-            hi = times[r, max(kk, 0)]
-            scale = hi - lo if hi > lo else 1.0
-            for m in range(4):
-                j = min(first + m, steps - 1)
-                s_nodes[a, r, m] = (times[r, j] - lo) / scale
-                c_nodes[a, r, m] = change[r, j]
-            ok = kk > 0 and steps >= 4
-            good[a, r] = ok
-            x = w[a, r]
-            if x != x:  # (np.nan_to_num)
-                x = 0.0
-            elif x > big:
-                x = big
-            elif x < -big:
-                x = -big
-            s[a, r] = x if ok else 0.0
-
-
-@njit(cache=True, nogil=True)
-def _newton(coef: np.ndarray, levels: np.ndarray, s: np.ndarray) -> None:  # pragma: no cover
-    """Eight Newton steps on c0 + c1 s + c2 s² + c3 s³ = level for every (level, run), in
-    place from ``s`` and kept in [0, 1] (a step where the slope is not > 0 is none; NaN stays
-    NaN): the loop of :func:`_cubic_crossings` over all crossings at once, each operation
-    as the array form did it (the same numbers), without its array temporaries."""
-    for a in range(s.shape[0]):
-        target = levels[a]
-        for b in range(s.shape[1]):
-            c0, c1, c2, c3 = coef[a, b, 0], coef[a, b, 1], coef[a, b, 2], coef[a, b, 3]
-            x = s[a, b]
-            for _ in range(8):
-                value = c0 + x * (c1 + x * (c2 + x * c3))
-                slope = c1 + x * (2.0 * c2 + x * 3.0 * c3)
-                step = (value - target) / slope if slope > 0 else 0.0
-                x = x - step
-                if x < 0.0:  # (np.clip: NaN stays NaN)
-                    x = 0.0
-                elif x > 1.0:
-                    x = 1.0
-            s[a, b] = x
-
-
-@njit(cache=True, nogil=True)
-def _first_pass(change: np.ndarray, levels: np.ndarray, times: np.ndarray, r: np.ndarray,
-                speed: np.ndarray, k: np.ndarray, w: np.ndarray, j0: np.ndarray,
-                s_nodes: np.ndarray, c_nodes: np.ndarray, good: np.ndarray, s: np.ndarray,
-                radius: np.ndarray, steady: np.ndarray) -> None:  # pragma: no cover - compiled
-    """:func:`_first_crossings`, :func:`_bracket` and :func:`_steady_ends` in one call (the
-    same functions, so the same numbers: each compiled call from Python costs its dispatch,
-    a good part of a single circle's metrics)."""
-    _first_crossings(change, levels, k, w)
-    _bracket(times, change, k, w, j0, s_nodes, c_nodes, good, s)
-    _steady_ends(change, r, speed, radius, steady)
 
 
 def _at_cubic(values: np.ndarray, k: np.ndarray, w: np.ndarray, j0: np.ndarray,
@@ -499,6 +414,8 @@ def _event_values(north: np.ndarray, east: np.ndarray, psi: np.ndarray, times: n
 #: Heading changes of the events: 90 deg (advance, transfer), 180 deg (tactical diameter),
 #: 10 deg (initial turning).
 _LEVELS = np.array([0.5 * math.pi, math.pi, _DEG10])
+#: The three-point Gauss-Legendre nodes of the track distance (:mod:`.track`).
+_GAUSS_NODES = _gauss3()[0]
 _NOT_STEADY = ("ok; the turn was not yet steady at the end (yaw rate still changing by > 1 % "
                "over the last 90 deg): steady values are the last sample's")
 
@@ -508,22 +425,26 @@ def _metrics(plan: Plan, result: Any) -> Any:
     north, east, psi = result["north"], result["east"], result["heading"]
     speed = result["speed"]
     r = result["yaw_rate"]
-    change = np.abs(psi - psi[:, :1])
     # (one run: the time row itself, contiguous; a batch: broadcast, then a contiguous copy)
     times = np.ascontiguousarray(t.reshape(1, -1) if psi.shape[0] == 1
                                  else np.broadcast_to(t, psi.shape))
-    # the crossings (_crossings), their brackets (_cubic_crossings) and the steady end of
-    # each turn in one compiled call (three before)
-    n = plan.n_runs
-    k = np.empty((_LEVELS.size, change.shape[0]), dtype=np.int64)
+    # the heading change, the crossings (_crossings), their brackets (_cubic_crossings), the
+    # steady end of each turn and the speeds along the track up to the 10 deg event (the
+    # distance along the track is read there only: its four samples j0..) in one compiled
+    # call (_front; five before, and distance_until's checks)
+    n, (runs, samples) = plan.n_runs, psi.shape
+    k = np.empty((_LEVELS.size, runs), dtype=np.int64)
     w = np.empty(k.shape)
     j0, s_nodes, c_nodes, good, s = _bracket_arrays(k.shape)
     radius, steady = np.empty(n), np.empty(n, dtype=np.bool_)
-    _first_pass(np.ascontiguousarray(change, dtype=float), _LEVELS, times, r, speed, k, w, j0,
-                s_nodes, c_nodes, good, s, radius, steady)
-    j0, weights = _cubic_weights(_LEVELS, j0, s_nodes, c_nodes, good, s)
-    # the distance along the track is read at the 10 deg event only (its four samples j0..)
-    dist = distance_until(north, east, t, until=j0[2] + 3)
+    change, h, rates = np.empty((runs, samples)), np.empty(samples - 1), np.empty(
+        (samples - 1, 3, runs))
+    width, every_good = _front(psi, _LEVELS, t, times, r, speed, north, east, _GAUSS_NODES, 2,
+                               change, k, w, j0, s_nodes, c_nodes, good, s, radius, steady, h,
+                               rates)
+    j0, weights = _cubic_weights(_LEVELS, j0, s_nodes, c_nodes, good, s, every_good)
+    dist = (_arc_distances(h, rates, width, samples) if width >= 0
+            else distance_until(north, east, t, until=j0[2] + 3))  # (the general form's)
     # every signal at every event (a few are not needed: all cost one gather)
     (along_at, across_at, time_at, dist_at) = _event_values(north, east, psi, times, dist, k,
                                                             w, j0, weights)
@@ -532,8 +453,10 @@ def _metrics(plan: Plan, result: Any) -> Any:
     time_10, distance_10 = time_at[2], dist_at[2]
     constant = is_constant_speed(plan.model)
     # a constant-speed model has no drift angle unless it declares one (Voitkunsky's β)
-    beta = (result["drift_angle"] if "drift_angle" in result.channel_names()
-            else np.full_like(r, np.nan))
+    try:  # (a channel of the result: what result.channel_names() lists)
+        beta = result["drift_angle"]
+    except KeyError:
+        beta = np.full_like(r, np.nan)
     approaches = plan.run_approaches()
     U0 = np.array([a.speed for a in approaches])
     rps = np.array([np.nan if (x := a.rps) is None else x for a in approaches])
@@ -542,13 +465,14 @@ def _metrics(plan: Plan, result: Any) -> Any:
     steady_U = speed[:, -1]
     # (radius: U/|r| at the end, inf where r = 0; steady: |r| changed by <= 1 % since the
     # last sample 90 deg of heading before the end: _steady_ends, in _first_pass)
-    status = result.messages()
-    reached = ~np.isnan(time_10) & ~np.isnan(time_90) & ~np.isnan(time_180)
-    # complete: every event reached and the run went well (most runs: nothing more to say,
-    # their message set for all at once; the loop below is over the others only)
-    complete = reached & np.array([m == "ok" for m in status], dtype=bool)
+    # complete: every event reached and the run went well, its status 0 (message "ok"), in
+    # one compiled pass (most runs: nothing more to say, their message set for all at once;
+    # the loop below is over the others only, with the runs' messages)
+    complete = np.empty(n, dtype=bool)
+    missing = _completion(time_at, result.status, complete)
+    status = result.messages() if missing else []
     messages = ["ok" if steady_i else _NOT_STEADY for steady_i in steady.tolist()]
-    for i in ([] if complete.all() else np.flatnonzero(~complete).tolist()):
+    for i in (np.flatnonzero(~complete).tolist() if missing else []):
         missing = [f"{name} heading change" for name, value in
                    (("10 deg", time_10[i]), ("90 deg", time_90[i]), ("180 deg", time_180[i]))
                    if np.isnan(value)]

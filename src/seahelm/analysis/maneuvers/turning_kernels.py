@@ -14,6 +14,8 @@ import math
 import numpy as np
 from numba import njit
 
+from .track import _gauss_speeds, _times_and_tracks
+
 __all__: list[str] = []
 
 _QUARTER = 0.5 * math.pi
@@ -71,3 +73,156 @@ def _steady_ends(change: np.ndarray, r: np.ndarray, speed: np.ndarray, radius: n
                 break
         steady[i] = (back >= 0 and np.isfinite(sr)
                      and abs(sr - r[i, back]) <= 0.01 * abs(sr))
+
+
+@njit(cache=True, nogil=True)
+def _first_crossings(change: np.ndarray, levels: np.ndarray, k: np.ndarray,
+                     w: np.ndarray) -> None:  # pragma: no cover - compiled
+    """:func:`_crossings` into ``k`` and ``w``: one pass along each run per level (a NaN
+    sample reaches no level), w = (level − c[k−1]) / (c[k] − c[k−1])."""
+    for a in range(levels.size):
+        level = levels[a]
+        for r in range(change.shape[0]):
+            k[a, r] = -1
+            w[a, r] = np.nan
+            for j in range(change.shape[1]):
+                if change[r, j] >= level:
+                    k[a, r] = j
+                    # j > 0: c[j] >= level > c[j-1], so the difference is > 0
+                    w[a, r] = ((level - change[r, j - 1]) / (change[r, j] - change[r, j - 1])
+                               if j > 0 else 1.0)
+                    break
+
+
+@njit(cache=True, nogil=True)
+def _bracket(times: np.ndarray, change: np.ndarray, k: np.ndarray, w: np.ndarray,
+             j0: np.ndarray, s_nodes: np.ndarray, c_nodes: np.ndarray, good: np.ndarray,
+             s: np.ndarray) -> None:  # pragma: no cover - compiled
+    """The four samples around each crossing (levels, runs) for :func:`_cubic_crossings`:
+    the first of them ``j0`` (k − 2 moved inside the record), their times scaled to the
+    bracketing interval [t_{k−1}, t_k] → [0, 1] (``s_nodes``) and heading changes
+    (``c_nodes``), whether the cubic applies (``good``: k > 0 and four samples) and Newton's
+    start ``s`` (the linear estimate, NaN as 0; 0 where not good)."""
+    steps = change.shape[1]
+    big = np.finfo(np.float64).max
+    for a in range(k.shape[0]):
+        for r in range(k.shape[1]):
+            kk = k[a, r]
+            first = min(max(kk - 2, 0), max(steps - 4, 0))
+            j0[a, r] = first
+            lo = times[r, max(kk - 1, 0)]
+            hi = times[r, max(kk, 0)]
+            scale = hi - lo if hi > lo else 1.0
+            for m in range(4):
+                j = min(first + m, steps - 1)
+                s_nodes[a, r, m] = (times[r, j] - lo) / scale
+                c_nodes[a, r, m] = change[r, j]
+            ok = kk > 0 and steps >= 4
+            good[a, r] = ok
+            x = w[a, r]
+            if x != x:  # (np.nan_to_num)
+                x = 0.0
+            elif x > big:
+                x = big
+            elif x < -big:
+                x = -big
+            s[a, r] = x if ok else 0.0
+
+
+@njit(cache=True, nogil=True)
+def _newton(coef: np.ndarray, levels: np.ndarray, s: np.ndarray) -> None:  # pragma: no cover
+    """Eight Newton steps on c0 + c1 s + c2 s² + c3 s³ = level for every (level, run), in
+    place from ``s`` and kept in [0, 1] (a step where the slope is not > 0 is none; NaN stays
+    NaN): the loop of :func:`_cubic_crossings` over all crossings at once, each operation
+    as the array form did it (the same numbers), without its array temporaries."""
+    for a in range(s.shape[0]):
+        target = levels[a]
+        for b in range(s.shape[1]):
+            c0, c1, c2, c3 = coef[a, b, 0], coef[a, b, 1], coef[a, b, 2], coef[a, b, 3]
+            x = s[a, b]
+            for _ in range(8):
+                value = c0 + x * (c1 + x * (c2 + x * c3))
+                slope = c1 + x * (2.0 * c2 + x * 3.0 * c3)
+                step = (value - target) / slope if slope > 0 else 0.0
+                x = x - step
+                if x < 0.0:  # (np.clip: NaN stays NaN)
+                    x = 0.0
+                elif x > 1.0:
+                    x = 1.0
+            s[a, b] = x
+
+
+@njit(cache=True, nogil=True)
+def _first_pass(change: np.ndarray, levels: np.ndarray, times: np.ndarray, r: np.ndarray,
+                speed: np.ndarray, k: np.ndarray, w: np.ndarray, j0: np.ndarray,
+                s_nodes: np.ndarray, c_nodes: np.ndarray, good: np.ndarray, s: np.ndarray,
+                radius: np.ndarray, steady: np.ndarray) -> None:  # pragma: no cover - compiled
+    """:func:`_first_crossings`, :func:`_bracket` and :func:`_steady_ends` in one call (the
+    same functions, so the same numbers: each compiled call from Python costs its dispatch,
+    a good part of a single circle's metrics)."""
+    _first_crossings(change, levels, k, w)
+    _bracket(times, change, k, w, j0, s_nodes, c_nodes, good, s)
+    _steady_ends(change, r, speed, radius, steady)
+
+
+@njit(cache=True, nogil=True)
+def _front(psi: np.ndarray, levels: np.ndarray, t: np.ndarray, times: np.ndarray,
+           r: np.ndarray, speed: np.ndarray, north: np.ndarray, east: np.ndarray,
+           nodes: np.ndarray, event: int, change: np.ndarray, k: np.ndarray, w: np.ndarray,
+           j0: np.ndarray, s_nodes: np.ndarray, c_nodes: np.ndarray, good: np.ndarray,
+           s: np.ndarray, radius: np.ndarray, steady: np.ndarray, h: np.ndarray,
+           rates: np.ndarray) -> tuple[int, bool]:  # pragma: no cover - compiled
+    """A turning circle's metrics up to the cubic weights' solves, in one compiled call.
+
+    The heading change ``change`` = |ψ − ψ₀| of each run (the array form's
+    ``np.abs(psi - psi[:, :1])``, element by element), then :func:`_first_pass` (crossings,
+    brackets, steady ends), then the speeds along the track's spline of
+    :func:`~seahelm.analysis.maneuvers.track.distance_until`'s fast path up to the last node of
+    level ``event`` (j0 + 3 intervals: its ``_times_and_tracks`` check and ``_gauss_speeds``,
+    the same functions, into ``rates[:width]`` and the steps into ``h``).
+
+    Returns (width, every_good): the intervals whose speeds were evaluated (−1: the track or
+    times do not pass the fast path's check, or fewer than four samples; the general form is
+    then taken) and whether every crossing has its cubic (``good.all()``).
+    """
+    for i in range(psi.shape[0]):
+        first = psi[i, 0]
+        for j in range(psi.shape[1]):
+            change[i, j] = abs(psi[i, j] - first)
+    _first_pass(change, levels, times, r, speed, k, w, j0, s_nodes, c_nodes, good, s, radius,
+                steady)
+    every_good = True
+    for a in range(good.shape[0]):
+        for b in range(good.shape[1]):
+            if not good[a, b]:
+                every_good = False
+    runs, samples = north.shape[0], north.shape[1]
+    if samples < 4 or t.size != samples or _times_and_tracks(t, north, east, h):
+        return -1, every_good
+    until = np.empty(runs, dtype=np.int64)
+    most = 0
+    for i in range(runs):
+        until[i] = j0[event, i] + 3
+        most = max(most, until[i])
+    width = min(samples - 1, most)
+    if _gauss_speeds(t, north, east, nodes, until, rates[:width]):
+        return -1, every_good  # (a zero pivot: never, h > 0; the general form raises)
+    return width, every_good
+
+
+@njit(cache=True, nogil=True)
+def _completion(time_at: np.ndarray, status: np.ndarray,
+                complete: np.ndarray) -> int:  # pragma: no cover - compiled
+    """Whether each run is complete into ``complete``: every event's time (``time_at``,
+    (levels, runs)) reached (not NaN) and the run's status 0 (its message "ok"): the array
+    form's ``~isnan(t_10) & ~isnan(t_90) & ~isnan(t_180) & (messages == "ok")``. Returns how
+    many runs are not complete."""
+    missing = 0
+    for i in range(status.size):
+        ok = status[i] == 0
+        for a in range(time_at.shape[0]):
+            if time_at[a, i] != time_at[a, i]:
+                ok = False
+        complete[i] = ok
+        missing += not ok
+    return missing
