@@ -196,6 +196,7 @@ class ShipSlave(Fmi2Slave):
         self._sim.reset()
         self._set_outputs(self._initial_state(), rudder0)
         self._dt = dt
+        self._steps = 0  # (integration steps done: the simulator's clock is this times dt)
         self._commands = np.zeros((1, len(self._command_labels)))
 
     def do_step(self, current_time: float, step_size: float) -> bool:
@@ -217,7 +218,7 @@ class ShipSlave(Fmi2Slave):
         if n < 1 or abs(ratio - n) > 1e-9 * max(1.0, ratio):
             return self._fail(f"step_size {step_size!r} s is not a whole multiple of "
                               f"integration_step = {self._dt:g} s")
-        t_before = float(sim.time[0])
+        t_before = self._steps * self._dt  # (= sim.time[0]: the run's steps times dt)
         if t_before + n * self._dt > sim.problem.t_final + 1e-9:
             return self._fail(f"a step to t = {t_before + n * self._dt:g} s is past the "
                               f"horizon {sim.problem.t_final:g} s (the experiment's stop time)")
@@ -230,9 +231,10 @@ class ShipSlave(Fmi2Slave):
             return self._fail(str(exc))
         if obs.status[0] != 0:
             return self._fail(sim.failure(0) or "the run diverged")
-        values = obs.values[0]
+        self._steps += n
+        values = obs.values[0].tolist()  # (Python floats)
         for name, j in self._out_index(obs).items():
-            setattr(self, name, float(values[j]))
+            setattr(self, name, values[j])
         self.rudder_angle = sim.state(0)["rudder_angle"]
         return True
 

@@ -302,7 +302,7 @@ class Simulator:
         """
         self._require_reset()
         i = self._run_index(run)
-        return {name: float(v) for name, v in zip(self.state_labels, self._z[i])}
+        return dict(zip(self.state_labels, self._z[i].tolist()))  # (Python floats, as float(v))
 
     def set_state(self, run: int, values: Any) -> None:
         """Set a run's state (the controller's state is kept).
