@@ -54,3 +54,24 @@ def test_env_refuses_nan_in_a_batch_naming_the_sub_environment():
     envs.step(big)
     assert np.array_equal(envs._cmd[:, envs._rudder_col], np.full(4, envs._high[0]))
     envs.close()
+
+
+def test_clip_of_signed_zeros_is_numpys_bit_for_bit():
+    """On a tie with a bound the bound is taken, as numpy's maximum/minimum do: -0.0 against a
+    lower bound 0.0 (the default ``propeller_rps`` action's) is +0.0 (it stayed -0.0, equal to
+    numpy's by ``==`` but not by its bits; found by the review RV3)."""
+    zeros = np.array([-0.0, 0.0])
+    for lo in zeros:
+        for hi in zeros:
+            for x in (-0.0, 0.0, -1.0, 1.0):
+                a = np.array([[x]])
+                low, high = np.array([lo]), np.array([hi])
+                out = np.empty((1, 1))
+                assert clip_actions(a, low, high, out) == -1
+                expected = np.minimum(np.maximum(a, low), high)
+                assert out.view(np.uint64)[0, 0] == expected.view(np.uint64)[0, 0], (x, lo, hi)
+    a = np.array([[-0.0, 0.1]] * 4)
+    low, high, out = np.array([0.0, -0.61]), np.array([17.5, 0.61]), np.empty((4, 2))
+    clip_actions(a, low, high, out)
+    ref = np.minimum(np.maximum(a, low), high)
+    assert np.array_equal(out.view(np.uint64), ref.view(np.uint64))

@@ -51,9 +51,9 @@ def clip_actions(a, low, high, out):  # pragma: no cover - compiled
             x = np.float64(a[i, j])
             if not math.isfinite(x):
                 return i * k + j
-            if not x >= low[j]:  # (numpy's maximum: x if x >= low else low)
+            if x <= low[j]:  # (numpy's maximum: the bound on a tie, so -0.0 at 0.0 is +0.0)
                 x = low[j]
-            if not x <= high[j]:
+            if x >= high[j]:  # (numpy's minimum: the bound on a tie)
                 x = high[j]
             out[i, j] = x
     return -1
