@@ -206,8 +206,8 @@ def test_a_step_returns_arrays_of_its_own():
 
 
 class _DriftPenalised(HeadingKeeping):
-    """A user's task: heading keeping that also penalises the drift angle, an output the parent
-    does not read; it overrides the evaluation but does not declare ``reads`` anew."""
+    """A user's task: heading keeping whose yaw-rate term also counts the drift angle, an output
+    the parent does not read; it overrides the evaluation but does not declare ``reads`` anew."""
 
     name = "DriftPenalised"
 
@@ -233,8 +233,20 @@ def test_a_subclass_reading_more_than_its_parent_declared_gets_the_whole_observa
     class _Renamed(HeadingKeeping):
         name = "Renamed"
 
+    class _Shaping:  # (a mixin listed before the task)
+        def _evaluate(self, out, rudder, previous_rudder):
+            return super()._evaluate(out, rudder, previous_rudder)
+
+    class _Mixed(_Shaping, HeadingKeeping):
+        pass
+
+    class _Hook(HeadingKeeping):  # (a helper of the evaluation overridden)
+        def _common_terms(self, out, rudder, previous_rudder):
+            return super()._common_terms(out, rudder, previous_rudder)
+
     assert _Declared.declared_reads() == _Declared.reads
     assert _Renamed.declared_reads() == HeadingKeeping.reads
+    assert _Mixed.declared_reads() is None and _Hook.declared_reads() is None
     monkeypatch.setitem(tasks.TASKS, "DriftPenalised", _DriftPenalised)
     envs = ShipVectorEnv(4, task="DriftPenalised", ship="kvlcc2-l7", episode_seconds=20.0)
     envs.reset(seed=2)

@@ -229,9 +229,9 @@ class ShipSlave(Fmi2Slave):
             obs = sim.step(cmd, n=n)
         except ParameterError as exc:
             return self._fail(str(exc))
+        self._steps += n  # (a diverged run's clock moved on too)
         if obs.status[0] != 0:
             return self._fail(sim.failure(0) or "the run diverged")
-        self._steps += n
         values = obs.values[0].tolist()  # (Python floats)
         for name, j in self._out_index(obs).items():
             setattr(self, name, values[j])

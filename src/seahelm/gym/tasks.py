@@ -198,19 +198,25 @@ class Task(Weighted):
     #: (:func:`seahelm.gym.plant.state_views`).
     reads: ClassVar[tuple[str, ...] | None] = None
 
+    #: The methods that read the simulator's outputs: a class that defines one of them ahead of
+    #: the class declaring :attr:`reads` (a subclass or a mixin before it) may read others.
+    _READERS: ClassVar[tuple[str, ...]] = ("evaluate", "_evaluate", "_common_terms",
+                                           "_along_across")
+
     @classmethod
     def declared_reads(cls) -> tuple[str, ...] | None:
         """:attr:`reads` where it holds for this class's own evaluation, else None.
 
-        A subclass that overrides :meth:`evaluate` or :meth:`_evaluate` without declaring
-        ``reads`` anew may read outputs its parent did not declare (the environment would hand
-        it only the parent's states): its reads are then undeclared, and the environment hands
-        it the loop's whole observation.
+        A class that defines an evaluation method (:meth:`evaluate`, :meth:`_evaluate` or a
+        helper they call with the outputs) ahead of the class declaring ``reads`` in its MRO —
+        a subclass overriding it, a mixin listed first — without declaring ``reads`` anew may
+        read outputs the declaration does not name (the environment would hand it only those
+        states): its reads are then undeclared, and the environment hands it the loop's whole
+        observation. (A ``reads`` set on an instance is the environment's to honour.)
         """
-        owner = next(c for c in cls.__mro__ if "reads" in c.__dict__)
-        evaluator = next((c for c in cls.__mro__
-                          if "_evaluate" in c.__dict__ or "evaluate" in c.__dict__), owner)
-        if evaluator is not owner and issubclass(evaluator, owner):
+        mro = cls.__mro__
+        owner = next(k for k, c in enumerate(mro) if "reads" in c.__dict__)
+        if any(name in c.__dict__ for c in mro[:owner] for name in cls._READERS):
             return None
         return cls.reads
 

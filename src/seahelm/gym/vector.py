@@ -183,7 +183,8 @@ class ShipVectorEnv(BatchEnv):
         #: The states the task reads, live views by label, when the loop outputs them
         #: unchanged: then a step observes nothing (the loop skips the outputs at its end)
         #: and the task reads the states; else None, the loop's observation.
-        self._states = state_views(sim, self.task.declared_reads())
+        self._states = state_views(sim, self.task.reads if "reads" in vars(self.task)
+                                   else self.task.declared_reads())
         self._fused = self._states is not None and type(self.task) is HeadingKeeping \
             and tuple(self.task.weights) == tuple(HeadingKeeping.default_weights)
         if self._fused:  # (the compiled end of a step: seahelm.gym._fused)
