@@ -75,3 +75,19 @@ def test_clip_of_signed_zeros_is_numpys_bit_for_bit():
     clip_actions(a, low, high, out)
     ref = np.minimum(np.maximum(a, low), high)
     assert np.array_equal(out.view(np.uint64), ref.view(np.uint64))
+
+
+def test_huge_finite_actions_in_any_form_are_clipped_not_an_index_error():
+    """Finite actions whose sum overflows (1e308 + 1e308 = inf) are clipped on every path: the
+    general one (a list, a flat array) raised IndexError looking for the non-finite entry that
+    is not there (found by the review RV3); the compiled ndarray path clipped them."""
+    from seahelm.gym import ShipVectorEnv
+
+    envs = ShipVectorEnv(2, task="HeadingKeeping", episode_seconds=10.0, integrator="euler")
+    envs.reset(seed=0)
+    top = np.full(2, envs._high[0])
+    for actions in ([[1e308], [1e308]], np.full(2, 1e308), np.full((2, 1), 1e308)):
+        np.testing.assert_array_equal(envs._actions(actions)[:, 0], top)
+    with pytest.raises(ParameterError, match="sub-environment 1"):
+        envs._actions([[1e308], [np.inf]])
+    envs.close()

@@ -95,7 +95,7 @@ class BatchEnv(VectorEnv):
                 raise ParameterError(f"must have shape ({n}, {k}) (envs, "
                                      f"{', '.join(self.action_labels)}), got {a.shape}",
                                      field="actions", value=a.shape)
-        if not math.isfinite(a.sum()):
+        if not math.isfinite(a.sum()) and not np.isfinite(a).all():  # (a finite sum can overflow)
             bad = np.argwhere(~np.isfinite(a))[0]
             raise ParameterError(f": action {self.action_labels[bad[1]]!r} of sub-environment "
                                  f"{int(bad[0])} is {float(a[tuple(bad)])!r}; actions must be "
