@@ -39,13 +39,13 @@ from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numba import njit
 
 from ..errors import ParameterError, SimulationDiverged
 from .engine import Batch, failure_text, prepare
 from .problem import Problem
 from .slicing import drive, quiet
-from .stepping_io import Observation, _spans, check_commands, run_index, run_indices
+from .stepping_io import (Observation, _spans, check_commands, restore_rows, run_index,
+                          run_indices)
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..results import SimResult
@@ -113,7 +113,7 @@ class Simulator:
         self._status, self._t_fail, self._z_fail = a.outcome
         self._dist = a.signals[0]
         self._fresh = [x.copy() for x in (*a.state, *a.outcome, *a.record)]
-        #: The same copies as the kernel's groups (state, outcome, record): :func:`restore_rows`.
+        #: The same copies as the kernel's groups (state, outcome, record): :func:`~seahelm.simulation.stepping_io.restore_rows`.
         ns, no = len(a.state), len(a.outcome)
         self._fresh_groups = (tuple(self._fresh[:ns]), tuple(self._fresh[ns:ns + no]),
                               tuple(self._fresh[ns + no:]))
@@ -594,42 +594,3 @@ class Simulator:
                 raise SimulationDiverged(self.failure(i), time=self._t_fail[i],
                                          state=self._z_fail[i].copy(), run=i)
         return obs
-
-
-@njit(cache=True)
-def restore_rows(sel, state, outcome, record, fresh_state, fresh_outcome,
-                 fresh_record):  # pragma: no cover - compiled
-    """The rows ``sel`` of the kernel's ``state``, ``outcome`` and ``record`` groups
-    (:data:`~seahelm.simulation.kernel_args.GROUPS`) set back to those of their copies at the
-    start (``Simulator._fresh_groups``): the arrays of runs started again
-    (:meth:`Simulator.reset`, :func:`~seahelm.simulation.stepping_reference.restart_runs`).
-    One compiled call: the ten
-    fancy-indexed assignments it replaces cost some 30 µs, a third of the restart of a few
-    sub-environments of :mod:`seahelm.gym` (issue 52, speed). A copy: the same numbers.
-
-    Parameters
-    ----------
-    sel : ndarray of int64
-        The runs.
-    state, outcome, record : tuple of ndarray
-        The kernel's groups (runs first).
-    fresh_state, fresh_outcome, fresh_record : tuple of ndarray
-        Their copies at the start, alike in shapes and dtypes.
-    """
-    z, cs, cmd, ca = state
-    z0, cs0, cmd0, ca0 = fresh_state
-    status, t_fail, z_fail = outcome
-    status0, t_fail0, z_fail0 = fresh_outcome
-    rec_z, rec_y, rec_cmd = record
-    rec_z0, rec_y0, rec_cmd0 = fresh_record
-    for i in sel:
-        z[i] = z0[i]
-        cs[i] = cs0[i]
-        cmd[i] = cmd0[i]
-        ca[i] = ca0[i]
-        status[i] = status0[i]
-        t_fail[i] = t_fail0[i]
-        z_fail[i] = z_fail0[i]
-        rec_z[i] = rec_z0[i]
-        rec_y[i] = rec_y0[i]
-        rec_cmd[i] = rec_cmd0[i]

@@ -26,7 +26,7 @@ from numba import njit
 from ..errors import ParameterError
 from ..parameters import Params
 from .slicing import drive, quiet
-from .stepping import restore_rows
+from .stepping_io import restore_rows
 from .stepping_io import Observation, _spans, check_commands, run_indices
 
 if TYPE_CHECKING:  # pragma: no cover
