@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import numpy as np
 from numba import njit
 
+from seahelm._codegen import called_not_inlined
 from seahelm.simulation.inlining import inline_always, local_record
 
 
@@ -110,3 +112,100 @@ def test_local_record_reads_the_same_fields_and_is_a_copy():
         return local_record(a[1])[0]
 
     assert passes_arrays_through(np.arange(6.0).reshape(3, 2)) == 2.0
+
+
+# --- a function called from the loop, not copied into it (called_not_inlined) -----------------
+@njit
+def _dot(a, b):
+    s = 0.0  # (the loop's reassociation and contraction change the rounding of this sum)
+    for i in range(a.size):
+        s += a[i] * b[i]
+    return s
+
+
+@called_not_inlined
+@njit
+def _rare(a, b):
+    return _dot(a, b) + 1.0
+
+
+@njit
+def _rare_unmarked(a, b):  # (the same function, inlined as any other)
+    return _dot(a, b) + 1.0
+
+
+@njit
+def _component(a, b):
+    return 0.5 * _rare(a, b)
+
+
+@njit
+def _component_inlined(a, b):
+    return 0.5 * _rare_unmarked(a, b)
+
+
+def test_a_marked_function_is_called_compiled_as_the_loop_compiles_it():
+    from seahelm._codegen import is_called_not_inlined
+    from seahelm.simulation.inlining import LOOP_FASTMATH
+
+    assert is_called_not_inlined(_rare) and not is_called_not_inlined(_rare_unmarked)
+    comp = inline_always(_component)
+    called = comp.py_func.__globals__["_rare"]
+    assert called is not _rare and "inline" not in called.targetoptions  # (a call)
+    assert called.targetoptions["fastmath"] == set(LOOP_FASTMATH)
+    assert type(called._cache).__name__ == "FunctionCache"  # (cache=True: once per machine)
+    assert called.py_func.__qualname__.startswith("_rare__in_loop_")
+    assert called.py_func.__globals__["_dot"].targetoptions["inline"] == "always"
+    assert inline_always(_component).py_func.__globals__["_rare"] is called  # (one copy)
+    inlined = inline_always(_component_inlined)
+
+    def loop(component):
+        @njit(fastmath=set(LOOP_FASTMATH))
+        def run(a, b):
+            return component(a, b)
+        return run
+
+    rng = np.random.default_rng(3)
+    a, b = rng.normal(size=(2, 40, 1001))
+    run_called, run_inlined = loop(comp), loop(inlined)
+    as_called = np.array([run_called(x, y) for x, y in zip(a, b)])
+    as_inlined = np.array([run_inlined(x, y) for x, y in zip(a, b)])
+    assert np.array_equal(as_called, as_inlined)  # the same bits as when it was inlined
+    plain = np.array([0.5 * _rare(x, y) for x, y in zip(a, b)])  # (the original's own flags)
+    assert not np.array_equal(plain, as_inlined)  # (the flags matter: the test can fail)
+    ir = "".join(run_called.inspect_llvm().values())
+    assert "_rare__in_loop_" in ir and "_rare__in_loop_" not in "".join(  # a call of the copy
+        run_inlined.inspect_llvm().values())
+
+
+def test_the_copy_is_named_after_its_code_and_its_callees():
+    import types
+
+    from seahelm.simulation import inlining
+
+    @njit
+    def other_dot(a, b):
+        return _dot(a, b) - 0.0
+
+    py = _rare.py_func
+    twin = called_not_inlined(njit(types.FunctionType(
+        py.__code__, {**py.__globals__, "_dot": other_dot}, py.__name__)))
+    names = {inlining._called_copy(f).py_func.__qualname__ for f in (_rare, twin)}
+    assert len(names) == 2  # (a callee edited in another module: another cache entry)
+
+
+def test_the_dp_loop_calls_its_allocation_and_the_kernel_has_the_loops_flags():
+    from seahelm.actuators.servo import DIRECT
+    from seahelm.control.dp_pid import allocate_step, dp_pid_step
+    from seahelm.control.open_loop import OPEN_LOOP
+    from seahelm.simulation.engine import compile_closed_loop
+    from seahelm.simulation.inlining import LOOP_FASTMATH
+    from seahelm.vessels.nomoto import NOMOTO1
+
+    step = inline_always(dp_pid_step)
+    control = step.py_func.__globals__["dp_control"]
+    called = control.py_func.__globals__["allocate_step"]
+    assert called is not allocate_step and called.py_func.__code__ is allocate_step.py_func.__code__
+    assert "inline" not in called.targetoptions
+    kernel = compile_closed_loop(NOMOTO1, DIRECT, OPEN_LOOP, "euler")  # (imported, not compiled)
+    assert kernel.FASTMATH == set(LOOP_FASTMATH)

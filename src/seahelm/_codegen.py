@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 
 __all__ = ["kernel_cache_dir", "code_fingerprint", "code_identity", "import_generated",
-           "exec_generated", "watch_compiles"]
+           "exec_generated", "watch_compiles", "called_not_inlined", "is_called_not_inlined"]
 
 
 def kernel_cache_dir() -> Path:
@@ -265,3 +265,43 @@ def watch_compiles(on_first: Any = None,
             event.unregister("numba:compile", listener)
 
     return stop
+
+
+#: The numba functions :func:`seahelm.simulation.inlining.inline_always` leaves as calls (by
+#: ``id``; each entry holds its dispatcher, so that no other object takes the ``id``).
+_CALLED: dict[int, Any] = {}
+
+
+def called_not_inlined(func: Any) -> Any:
+    """Mark a numba function that :func:`seahelm.simulation.inlining.inline_always` keeps as
+    a call where a component calls it (its own ``cache=True`` dispatcher, compiled once per
+    machine and linked into each loop), instead of copying it into the loop.
+
+    For a large function that runs rarely: the DP controllers' constrained allocation (an
+    active-set QP, :func:`seahelm.control.dp_pid.allocate_step`) runs once per controller
+    interval, and inlined into the loop it was half of every DP kernel's compile for no
+    speed (a call per QP solve): the supply vessel's dp-pid loop with the sensor stage
+    compiled in 21.6 s with it inlined, 11.8 s with it called (its own compile, 4.9 s, once
+    per machine; measured 2026-12-03, 2 cores). The loop's copy is compiled with the loop's
+    flags, so the numbers are the same bit for bit
+    (:func:`seahelm.simulation.inlining._called_copy`). What the components call at every stage of the step stays
+    inlined (the reason for ``inline_always``).
+
+    Parameters
+    ----------
+    func : numba dispatcher
+
+    Returns
+    -------
+    numba dispatcher
+        ``func`` itself (usable as a decorator above ``@njit``).
+    """
+    if not hasattr(func, "py_func"):
+        return func  # (numba's JIT disabled: a plain function, nothing is inlined)
+    _CALLED[id(func)] = func
+    return func
+
+
+def is_called_not_inlined(func: Any) -> bool:
+    """Whether :func:`called_not_inlined` marked ``func``."""
+    return id(func) in _CALLED and _CALLED[id(func)] is func

@@ -50,6 +50,7 @@ from typing import Any
 import numpy as np
 from numba import int64, njit
 
+from .._codegen import called_not_inlined
 from ..errors import ParameterError
 from ..numerics.qp_inplace import solve_qp_rows, workspace_size
 from ..parameters import Params, param, signal_indices
@@ -300,6 +301,7 @@ def _arc_wedge(p, i, a0, step):  # pragma: no cover - compiled
 # (the counters typed int64 from the start: numba otherwise types the calls with them first
 # as the literal 0 they start at, and compiled solve_qp_rows and _row for those too; cap, the
 # constant _MR, likewise: solve_qp_rows was compiled for Literal[int](560) besides int64)
+@called_not_inlined  # (once per controller interval: a call, not copied into the loop)
 @njit(cache=True, locals={"nv": int64, "row": int64, "col": int64, "cap": int64})
 def allocate_step(p, tau0, tau1, tau2, dt, prev_fx, prev_fy, prev_az, f_out, az_out,
                   unmet, ws):  # pragma: no cover - compiled

@@ -35,7 +35,7 @@ from ..vessels.base import VesselModel
 from .compiled_step import compiled_advance_source, compiled_stage_loop_source
 from .composition import compose
 from .generated import exec_generated, import_generated
-from .inlining import inlined_size
+from .inlining import LOOP_FASTMATH, inlined_size
 from .integrators import ButcherTableau, get_integrator
 from .problem import _numba_jit_disabled
 from .stage import Stage, binding, hooks_source
@@ -195,7 +195,7 @@ def compile_closed_loop(
         f"NCA = {len(wiring.actuator_commands)}\nNM = {controller.n_measurements}\n"
         f"NDM = {model.n_disturbances}\n"
         f"EXACT_ACTUATOR = {bool(exact_actuator)}\n"
-        "FASTMATH = {\"arcp\", \"contract\", \"afn\", \"reassoc\"}\n"
+        "FASTMATH = {" + ", ".join(f'"{flag}"' for flag in LOOP_FASTMATH) + "}\n"
     )
     header += _route_source("route_actuator_commands", "cmd, ca", [
         f"ca[{j}] = cmd[{k}]" for j, k in enumerate(wiring.actuator_command_from)])

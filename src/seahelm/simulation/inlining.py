@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import collections
 import dis
+import hashlib
 import types
 from typing import Any
 
@@ -37,14 +38,16 @@ from numba.core.dispatcher import Dispatcher
 from numba.core.imputils import impl_ret_borrowed
 from numba.extending import intrinsic
 
+from .._codegen import called_not_inlined, code_fingerprint, is_called_not_inlined
 from .inline_copy import install as _install_inline_copy
 
 # numba's inliner copies an IR in (blocks x variables): without this, the crash stop's kernel
 # spent most of its compile copying (seahelm.simulation.inline_copy)
 _install_inline_copy()
 
-__all__ = ["inline_always", "inlined_size", "local_record", "python_function", "no_jit",
-           "record_in_place", "is_numba_function", "py_func_of"]
+__all__ = ["inline_always", "called_not_inlined", "inlined_size", "local_record",
+           "python_function", "no_jit", "record_in_place", "is_numba_function", "py_func_of"]
+
 
 
 def is_numba_function(obj: Any) -> bool:
@@ -135,7 +138,8 @@ def inlined_size(func: Dispatcher) -> int:
             total += sum(1 for _ in dis.get_instructions(c))
             codes.extend(k for k in c.co_consts if isinstance(k, types.CodeType))
         todo.extend(obj for name in _names(py.__code__)
-                    if is_numba_function(obj := py.__globals__.get(name)))
+                    if is_numba_function(obj := py.__globals__.get(name))
+                    and not is_called_not_inlined(obj))
     return total
 
 
@@ -152,7 +156,8 @@ def inline_always(func: Dispatcher) -> Dispatcher:
     numba dispatcher
         A new dispatcher (``inline="always"``); numba functions it names in its globals are
         replaced by their own ``inline_always`` copies. A function that calls itself, directly
-        or not, keeps its calls (a recursion cannot be inlined).
+        or not, keeps its calls (a recursion cannot be inlined), and so does a function
+        marked by :func:`called_not_inlined`.
     """
     return _inline(func, {})
 
@@ -168,10 +173,48 @@ def _inline(func: Dispatcher, memo: dict[int, Any]) -> Dispatcher:
     for name in _names(py.__code__):
         obj = glb.get(name)
         if isinstance(obj, Dispatcher) and obj is not func:
-            glb[name] = _inline(obj, memo)
+            glb[name] = _called_copy(obj) if is_called_not_inlined(obj) else _inline(obj, memo)
     glb.update(_slim_index_tuples(py.__code__, glb))
     out = njit(inline="always")(_copy(py, glb, py.__closure__))
     memo[key] = out
+    return out
+
+
+#: The fastmath flags of the compiled loop (the kernel's ``FASTMATH``, written into each
+#: generated kernel by :func:`seahelm.simulation.closed_loop.compile_closed_loop`): what an
+#: inlined component is compiled with, and so a called one too (:func:`_called_copy`).
+LOOP_FASTMATH: tuple[str, ...] = ("arcp", "contract", "afn", "reassoc")
+
+#: The loop's copies of the functions marked :func:`called_not_inlined`, per function.
+_CALLED_COPIES: dict[int, tuple[Any, Dispatcher]] = {}
+
+
+def _called_copy(func: Dispatcher) -> Dispatcher:
+    """The loop's own dispatcher of a function marked :func:`called_not_inlined`: a copy
+    compiled as the loop compiles what it inlines (the loop's :data:`LOOP_FASTMATH` flags,
+    every numba function it calls inlined into it), so that calling it computes what the
+    inlined function computed; ``cache=True`` under a name of its own, made of the
+    function's name and the fingerprint of its code and its callees'
+    (:func:`seahelm._codegen.code_fingerprint`: numba's cache would serve the original's
+    code, compiled without those flags, under the function's own name, and keeps a copy
+    compiled before a callee in another module was edited)."""
+    key = id(func)
+    if key in _CALLED_COPIES:
+        return _CALLED_COPIES[key][1]
+    py = func.py_func
+    glb = dict(py.__globals__)
+    memo: dict[int, Any] = {key: func}
+    for name in _names(py.__code__):
+        obj = glb.get(name)
+        if isinstance(obj, Dispatcher) and obj is not func:
+            glb[name] = _called_copy(obj) if is_called_not_inlined(obj) else _inline(obj, memo)
+    glb.update(_slim_index_tuples(py.__code__, glb))
+    clone = _copy(py, glb, py.__closure__)
+    digest = hashlib.sha256(code_fingerprint(py)).hexdigest()[:16]
+    clone.__qualname__ = f"{py.__qualname__}__in_loop_{digest}"
+    options = {k: v for k, v in func.targetoptions.items() if k == "locals"}
+    out = njit(cache=True, fastmath=set(LOOP_FASTMATH), **options)(clone)
+    _CALLED_COPIES[key] = (func, out)
     return out
 
 
