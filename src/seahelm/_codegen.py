@@ -303,5 +303,15 @@ def called_not_inlined(func: Any) -> Any:
 
 
 def is_called_not_inlined(func: Any) -> bool:
-    """Whether :func:`called_not_inlined` marked ``func``."""
+    """Whether :func:`called_not_inlined` marked ``func``.
+
+    Parameters
+    ----------
+    func : object
+        A numba dispatcher (anything else is not marked).
+
+    Returns
+    -------
+    bool
+    """
     return id(func) in _CALLED and _CALLED[id(func)] is func
