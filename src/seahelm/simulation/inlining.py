@@ -49,7 +49,6 @@ __all__ = ["inline_always", "called_not_inlined", "inlined_size", "local_record"
            "python_function", "no_jit", "record_in_place", "is_numba_function", "py_func_of"]
 
 
-
 def is_numba_function(obj: Any) -> bool:
     """Whether ``obj`` is a function of numba's: a dispatcher, or any plain function while
     numba's JIT is disabled (``NUMBA_DISABLE_JIT=1``: ``njit`` then returns the function
@@ -168,6 +167,15 @@ def _inline(func: Dispatcher, memo: dict[int, Any]) -> Dispatcher:
         # None marks a function whose copy is being built: a recursion, left as a call
         return func if memo[key] is None else memo[key]
     memo[key] = None
+    out = njit(inline="always")(_with_copied_callees(func, memo))
+    memo[key] = out
+    return out
+
+
+def _with_copied_callees(func: Dispatcher, memo: dict[int, Any]) -> types.FunctionType:
+    """A copy of ``func``'s Python function whose globals see the loop's copies of the numba
+    functions it names (inlined, or the called copy of one marked :func:`called_not_inlined`)
+    and the slim stand-ins of its big index tuples."""
     py = func.py_func
     glb = dict(py.__globals__)
     for name in _names(py.__code__):
@@ -175,9 +183,7 @@ def _inline(func: Dispatcher, memo: dict[int, Any]) -> Dispatcher:
         if isinstance(obj, Dispatcher) and obj is not func:
             glb[name] = _called_copy(obj) if is_called_not_inlined(obj) else _inline(obj, memo)
     glb.update(_slim_index_tuples(py.__code__, glb))
-    out = njit(inline="always")(_copy(py, glb, py.__closure__))
-    memo[key] = out
-    return out
+    return _copy(py, glb, py.__closure__)
 
 
 #: The fastmath flags of the compiled loop (the kernel's ``FASTMATH``, written into each
@@ -202,14 +208,7 @@ def _called_copy(func: Dispatcher) -> Dispatcher:
     if key in _CALLED_COPIES:
         return _CALLED_COPIES[key][1]
     py = func.py_func
-    glb = dict(py.__globals__)
-    memo: dict[int, Any] = {key: func}
-    for name in _names(py.__code__):
-        obj = glb.get(name)
-        if isinstance(obj, Dispatcher) and obj is not func:
-            glb[name] = _called_copy(obj) if is_called_not_inlined(obj) else _inline(obj, memo)
-    glb.update(_slim_index_tuples(py.__code__, glb))
-    clone = _copy(py, glb, py.__closure__)
+    clone = _with_copied_callees(func, {key: func})  # (a recursion back to it: a call)
     digest = hashlib.sha256(code_fingerprint(py)).hexdigest()[:16]
     clone.__qualname__ = f"{py.__qualname__}__in_loop_{digest}"
     options = {k: v for k, v in func.targetoptions.items() if k == "locals"}
