@@ -79,7 +79,19 @@ def _start(argv: list[str]) -> subprocess.Popen:
     # (a shell without job control starts background jobs with SIGINT ignored: reset it)
     return popen_interruptible([sys.executable, "-m", "seahelm", *argv], stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True,
-                               env={**os.environ, "MPLBACKEND": "Agg"})
+                               env={**os.environ, "MPLBACKEND": "Agg",
+                                    "PYTHONFAULTHANDLER": "1"})
+
+
+def _signal_masks(pid: int) -> str:
+    """The process's blocked, ignored and caught signal masks (Linux ``/proc``), for a
+    failure's message: a signal blocked or ignored there is never handled."""
+    try:
+        lines = Path(f"/proc/{pid}/status").read_text().splitlines()
+    except OSError:
+        return "unknown"
+    return ", ".join(line.replace("\t", " ") for line in lines
+                     if line.startswith(("SigBlk", "SigIgn", "SigCgt")))
 
 
 @pytest.fixture(scope="module")
@@ -120,10 +132,17 @@ def test_a_stop_signal_ends_a_long_compiled_run(name, sig, code, workdir, warm, 
     proc = _start(long_argv)
     time.sleep(lead + INTO_THE_LOOP)
     assert proc.poll() is None, proc.communicate()  # (still running: the long run is long)
+    masks = _signal_masks(proc.pid)
     t0 = time.monotonic()
     proc.send_signal(sig)
     try:
         _, err = proc.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        # (where it is: faulthandler, on in _start, prints every thread's stack on SIGABRT)
+        proc.send_signal(signal.SIGABRT)
+        _, err = proc.communicate(timeout=30)
+        pytest.fail(f"{name} still running 60 s after {sig.name} (signal masks then: "
+                    f"{masks}); its stderr:\n{err[:4000]}\n...\n{err[-16000:]}")
     finally:
         proc.kill()
     took = time.monotonic() - t0

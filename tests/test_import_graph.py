@@ -150,7 +150,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("seahelm.errors",),
     ("seahelm", "seahelm.constants", "seahelm.numerics", "seahelm.versions", "seahelm._optional",
      "seahelm._codegen", "seahelm.resources", "seahelm.units", "seahelm._repr",
-     "seahelm.output_files"),
+     "seahelm.output_files", "seahelm.stop_request"),
     ("seahelm.parameters", "seahelm._validate", "seahelm._dask"),
     ("seahelm.hydrodynamics",),
     ("seahelm.actuators",),

@@ -32,6 +32,7 @@ from rich.console import Console
 from rich.text import Text
 from typer.core import TyperGroup
 
+from .. import stop_request
 from ..errors import ParameterError, SeahelmError
 from ..output_files import approved_outputs
 from ._outputs import (  # noqa: F401 - the commands import the output checks from here
@@ -115,18 +116,15 @@ ForceFlag = Annotated[bool, typer.Option(
 
 
 def exit_on_sigterm() -> None:
-    """Turn SIGTERM (``kill``, a job scheduler's stop) into ``SystemExit(143)``.
+    """Turn SIGTERM (``kill``, a job scheduler's stop) into ``SystemExit(143)`` and Ctrl-C
+    into ``KeyboardInterrupt``, each also recorded so that a stop some C code swallowed is
+    raised again between two slices of the engine (:mod:`seahelm.stop_request`).
 
     Python's default for SIGTERM ends the process at once, so a file being written
     atomically (:func:`seahelm.results.atomic_write`) would leave its temporary file behind;
     as an exception, the writers' cleanup runs and nothing half-written is left.
     """
-    import signal
-
-    def _terminate(signum: int, frame: Any) -> None:
-        raise SystemExit(128 + signum)
-
-    signal.signal(signal.SIGTERM, _terminate)
+    stop_request.install()
 
 
 def fail_bad_input(message: str) -> NoReturn:
@@ -251,6 +249,7 @@ def handle_errors(func: F) -> F:
             done = exc.exit_code == 0
             raise
         except KeyboardInterrupt:
+            stop_request.clear()  # (handled here: not raised again by a later check)
             message = ("Ctrl-C before the end; what was written before it is complete and "
                        "nothing half-written is left (a sweep resumes from its store with the "
                        "same command)")

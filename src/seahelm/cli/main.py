@@ -9,7 +9,7 @@ from typing import Annotated, Any
 import numpy as np
 import typer
 
-from .. import __version__
+from .. import __version__, stop_request
 from ..errors import ParameterError
 from ._common import (
     ForceFlag,
@@ -407,6 +407,7 @@ def main() -> None:
         code: object = exc.exit_code
     except SystemExit as exc:
         code = exc.code
+        stop_request.clear()  # (a SIGTERM's, handled: not raised again in this process)
     else:  # pragma: no cover - click's standalone mode always ends with SystemExit
         code = 0
     if _is_the_program():

@@ -18,6 +18,7 @@ from typing import Any
 import numba
 import numpy as np
 
+from .. import stop_request
 from .kernel_args import KernelArrays
 
 __all__ = ["SLICE_SECONDS", "FIRST_SLICE", "FIRST_SLICE_PYTHON", "drive"]
@@ -237,8 +238,9 @@ def drive(slices: _Slices, n_steps: int, dt: float, ctrl_every: int, record_ever
     :data:`SLICE_SECONDS` each.
 
     Between slices Python runs, so a stop signal (Ctrl-C, SIGTERM: the CLI raises it as an
-    exception) ends even a long compiled run within about that time, and a progress bar
-    moves smoothly. The loop stops early once every run has stopped.
+    exception, and raises it again here if some C code swallowed it,
+    :func:`seahelm.stop_request.check`) ends even a long compiled run within about that
+    time, and a progress bar moves smoothly. The loop stops early once every run has stopped.
 
     Parameters
     ----------
@@ -280,6 +282,7 @@ def drive(slices: _Slices, n_steps: int, dt: float, ctrl_every: int, record_ever
         done, k = k_next - k, k_next
         if progress is not None:
             progress(k, n_steps)
+        stop_request.check()  # (a stop signal some C code swallowed: raised again here)
         chunk = int(min(max(done / max(elapsed, 1e-6) * SLICE_SECONDS, 1), n_steps))
         if status.all():
             break
