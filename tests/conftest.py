@@ -547,6 +547,7 @@ UNIT_MODULES: frozenset[str] = frozenset({
     "tests/test_cli_style.py",
     "tests/test_cli_waves.py",
     "tests/test_components_contract.py",
+    "tests/test_content_digest.py",
     "tests/test_control_autopilot_design_pvs.py",
     "tests/test_control_compensation.py",
     "tests/test_control_guidance.py",

@@ -26,8 +26,9 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["kernel_cache_dir", "code_fingerprint", "code_identity", "import_generated",
-           "exec_generated", "watch_compiles", "called_not_inlined", "is_called_not_inlined"]
+__all__ = ["kernel_cache_dir", "code_fingerprint", "code_identity", "content_digest",
+           "import_generated", "exec_generated", "watch_compiles", "called_not_inlined",
+           "is_called_not_inlined"]
 
 
 def kernel_cache_dir() -> Path:
@@ -133,6 +134,31 @@ def code_fingerprint(py: Any, seen: set[int] | None = None) -> bytes:
                 isinstance(v, (bool, int, float, str)) for v in obj):  # signal_indices
             parts.append(f"{name}={obj!r}{getattr(type(obj), '_fields', ())!r}".encode())
     return b"\0".join(parts)
+
+
+def content_digest(*parts: bytes | str) -> str:
+    """The 16 hex digits that name generated code (or key a cache of it) by what it is made
+    of: the SHA-1 of the parts joined by NUL bytes, a ``str`` part UTF-8 encoded.
+
+    The parts are what the code's behaviour depends on: its source text and the
+    :func:`code_fingerprint` of each function it imports, the package version, the numbers of
+    a design. A generated module named ``prefix_<digest>`` is therefore a new module, compiled
+    afresh, whenever any of them changes, and the same module (numba's on-disk cache serving
+    it) otherwise.
+
+    Parameters
+    ----------
+    *parts : bytes or str
+
+    Returns
+    -------
+    str
+        16 lower-case hexadecimal digits.
+    """
+    import hashlib
+
+    return hashlib.sha1(b"\0".join(p.encode() if isinstance(p, str) else p
+                                    for p in parts)).hexdigest()[:16]
 
 
 def import_generated(name: str, text: str) -> ModuleType:

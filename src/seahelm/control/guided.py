@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-import hashlib
 
 from ..errors import ParameterError
 from .base import Controller
@@ -60,7 +59,7 @@ def guided(law: "GuidanceLaw | str", controller: Controller) -> Controller:
     ParameterError
         If the controller has no ``heading`` reference, or the two share a parameter name.
     """
-    from .._codegen import code_fingerprint, import_generated
+    from .._codegen import code_fingerprint, content_digest, import_generated
 
     law = get_guidance_law(law)
     if controller.passthrough or "heading" not in controller.reference_labels:
@@ -116,9 +115,8 @@ def guided(law: "GuidanceLaw | str", controller: Controller) -> Controller:
         "    cs[NG + R_HEADING] = law_step(dt, p, cs[:NG], y[I_NORTH], y[I_EAST], cmd[NO:])\n"
         "    controller_step(t, dt, z, y, cs[NG:NG + NR], p, cs[NG + NR:], cmd)\n")
     # the name hashes the text and the code of the functions it imports (as the kernels do)
-    digest = hashlib.sha1(b"\0".join([source.encode()] + [
-        code_fingerprint(f.py_func) for f in (law.init, law.step, controller.init,
-                                               controller.step)])).hexdigest()[:16]
+    digest = content_digest(source, *(code_fingerprint(f.py_func) for f in (
+        law.init, law.step, controller.init, controller.step)))
     module = import_generated(f"seahelm_guided_{digest}", source)
     return Controller(
         name=f"{law.name}+{controller.name}",

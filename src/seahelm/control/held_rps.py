@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-import hashlib
 
 from ..parameters import param
 from .base import Controller
@@ -66,7 +65,7 @@ def with_held_rps(controller: Controller, *, params_name: str | None = None,
     ValueError
         If the controller commands or takes ``propeller_rps`` already, or is a pass-through.
     """
-    from .._codegen import code_fingerprint, exec_generated
+    from .._codegen import code_fingerprint, content_digest, exec_generated
 
     base = controller.params_type
     if (controller.passthrough or HELD_RPS_COMMAND in controller.command_labels
@@ -95,8 +94,8 @@ def with_held_rps(controller: Controller, *, params_name: str | None = None,
         "    for k in range(NO - 1, -1, -1):  # its outputs one slot up, after the rps\n"
         "        cmd[NC + 1 + k] = cmd[NC + k]\n"
         "    cmd[NC] = p.propeller_rps\n")
-    digest = hashlib.sha1(source.encode() + b"\0" + code_fingerprint(
-        getattr(controller.step, "py_func", controller.step))).hexdigest()[:16]
+    digest = content_digest(source, code_fingerprint(
+        getattr(controller.step, "py_func", controller.step)))
     # in memory, not in the kernel cache: importing the control modules (which build the
     # '-rps' controllers) writes nothing, so a read-only cache, ``jit=False`` and
     # NUMBA_DISABLE_JIT=1 work; the loop inlines a copy of the step (its own numba cache is

@@ -73,7 +73,6 @@ Franklin, G. F., Powell, J. D., Workman, M. L. (1998). Digital Control of Dynami
 from __future__ import annotations
 
 import dataclasses
-import hashlib
 import math
 import re
 from collections.abc import Sequence
@@ -427,7 +426,7 @@ def state_space_controller(sys: Any, dt: float | None = None, *, method: str = "
     MissingDependencyError
         Without python-control (``pip install 'seahelm[control]'``).
     """
-    from .._codegen import code_fingerprint, import_generated
+    from .._codegen import code_fingerprint, content_digest, import_generated
 
     spec = _system(sys, dt, method, allow_unstable)
     if model is not None:
@@ -471,9 +470,8 @@ def state_space_controller(sys: Any, dt: float | None = None, *, method: str = "
         "    state_space_inputs(y, ref, p, w, KIND, MEAS, REFS, WRAP)\n"
         + ("    state_space_step(p, cs, w, cmd, NX, NW, NU)\n" if n else
            "    state_space_static(p, w, cmd, NW, NU)\n"))
-    digest = hashlib.sha1(b"\0".join([source.encode()] + [code_fingerprint(f.py_func) for f in (
-        state_space_init, state_space_inputs, state_space_static, state_space_step)])
-                          ).hexdigest()[:16]
+    digest = content_digest(source, *(code_fingerprint(f.py_func) for f in (
+        state_space_init, state_space_inputs, state_space_static, state_space_step)))
     module = import_generated(f"seahelm_state_space_{digest}", source)
     states = [_identifier(s) for s in spec.states]
     states = [s if states.count(s) == 1 else f"{s}_{i}" for i, s in enumerate(states)]

@@ -41,12 +41,12 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-import hashlib
 import math
 from typing import Any
 
 import numpy as np
 
+from .._codegen import content_digest
 from .._validate import check_positive
 from ..errors import ParameterError
 from .base import Controller
@@ -267,9 +267,9 @@ class _Key:
 
     def __init__(self, design: WaveFilterDesign) -> None:
         self.design = design
-        self.digest = hashlib.sha1(b"".join(np.ascontiguousarray(a, float).tobytes() for a in (
+        self.digest = content_digest(*(np.ascontiguousarray(a, float).tobytes() for a in (
             design.phi, design.gamma, design.gain, design.c, design.c_wave,
-            np.array([design.dt])))).hexdigest()[:16]
+            np.array([design.dt]))))
 
     def __hash__(self) -> int:
         return hash(self.digest)
@@ -343,8 +343,7 @@ def _wave_filtered(controller: Controller, key: _Key) -> Controller:
         "        tmp[i] = acc\n"
         "    for i in range(NX):\n"
         "        cs[i] = tmp[i]\n")
-    digest = hashlib.sha1(b"\0".join([source.encode(), code_fingerprint(py_init),
-                                      code_fingerprint(py_step)])).hexdigest()[:16]
+    digest = content_digest(source, code_fingerprint(py_init), code_fingerprint(py_step))
     module = import_generated(f"seahelm_wave_filter_{digest}", source)
     return Controller(
         name=f"wave-filter+{controller.name}",

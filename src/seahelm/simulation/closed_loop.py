@@ -22,13 +22,13 @@ setting other than ``optnone``.
 from __future__ import annotations
 
 import functools
-import hashlib
 import re
 from pathlib import Path
 from types import ModuleType
 from typing import Any
 
 from .. import __version__
+from .._codegen import content_digest
 from ..actuators.base import Actuator
 from ..control.base import Controller
 from ..vessels.base import VesselModel
@@ -212,9 +212,7 @@ def compile_closed_loop(
         tableau, exact_actuator)
     blocks = iter([header, footer])
     text = _BLOCK.sub(lambda m: next(blocks), _TEMPLATE_TEXT)
-    digest = hashlib.sha1(
-        b"\0".join([text.encode(), __version__.encode(), *(p[1] for p in parts)])
-    ).hexdigest()[:16]
+    digest = content_digest(text, __version__, *(p[1] for p in parts))
     if not jit:
         return exec_generated(f"seahelm_python_loop_{digest}", text)
     return import_generated(f"seahelm_kernel_{digest}", text)

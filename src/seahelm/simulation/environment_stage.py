@@ -39,7 +39,6 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-import hashlib
 from typing import Any
 
 import numpy as np
@@ -158,7 +157,7 @@ def python_environment_stage(environment: Any, model: Any) -> Any:
 def _stage_source(environment: Any, model: Any, njit_import: str) -> tuple[str, str]:
     """The stage's module source (``njit_import`` binds ``njit``) and a digest of it and of
     the code it calls."""
-    from .._codegen import code_fingerprint
+    from .._codegen import code_fingerprint, content_digest
 
     check_environment(environment, model)
     out, dist = model.output_labels, model.disturbance_labels
@@ -273,8 +272,7 @@ def _stage_source(environment: Any, model: Any, njit_import: str) -> tuple[str, 
         "@njit(cache=True)\n"
         "def apply_loads(d, lm, dm):  # pragma: no cover - compiled\n"
         + "\n".join(apply) + "\n")
-    digest = hashlib.sha1(b"\0".join([source.encode()] + [
-        code_fingerprint(py_func_of(f)) for f in funcs])).hexdigest()[:16]
+    digest = content_digest(source, *(code_fingerprint(py_func_of(f)) for f in funcs))
     return source, digest
 
 

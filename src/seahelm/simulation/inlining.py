@@ -27,7 +27,6 @@ from __future__ import annotations
 
 import collections
 import dis
-import hashlib
 import types
 from typing import Any
 
@@ -38,7 +37,8 @@ from numba.core.dispatcher import Dispatcher
 from numba.core.imputils import impl_ret_borrowed
 from numba.extending import intrinsic
 
-from .._codegen import called_not_inlined, code_fingerprint, is_called_not_inlined
+from .._codegen import (called_not_inlined, code_fingerprint, content_digest,
+                       is_called_not_inlined)
 from .inline_copy import install as _install_inline_copy
 
 # numba's inliner copies an IR in (blocks x variables): without this, the crash stop's kernel
@@ -209,7 +209,7 @@ def _called_copy(func: Dispatcher) -> Dispatcher:
         return _CALLED_COPIES[key][1]
     py = func.py_func
     clone = _with_copied_callees(func, {key: func})  # (a recursion back to it: a call)
-    digest = hashlib.sha256(code_fingerprint(py)).hexdigest()[:16]
+    digest = content_digest(code_fingerprint(py))
     clone.__qualname__ = f"{py.__qualname__}__in_loop_{digest}"
     options = {k: v for k, v in func.targetoptions.items() if k == "locals"}
     out = njit(cache=True, fastmath=set(LOOP_FASTMATH), **options)(clone)

@@ -382,10 +382,9 @@ def _row_loop(fn: Any, kind: str) -> Any:
     for a function that cannot be imported by its module and name (a closure): the loops
     taking the function as an argument (:func:`_generic_rhs`) cannot be cached, and compiled
     them in every process (0.2-0.6 s each, in every steady approach)."""
-    import hashlib
     import sys
 
-    from .._codegen import code_fingerprint, import_generated
+    from .._codegen import code_fingerprint, content_digest, import_generated
 
     py = getattr(fn, "py_func", None)
     module, name = getattr(py, "__module__", None), getattr(py, "__name__", None)
@@ -398,7 +397,7 @@ def _row_loop(fn: Any, kind: str) -> Any:
               f"def loop({args}):  # pragma: no cover - compiled\n"
               "    for i in range(X.shape[0]):\n"
               f"        {call}\n")
-    digest = hashlib.sha1(source.encode() + b"\0" + code_fingerprint(py)).hexdigest()[:16]
+    digest = content_digest(source, code_fingerprint(py))
     return import_generated(f"seahelm_rows_{kind}_{digest}", source).loop
 
 
