@@ -218,10 +218,10 @@ def test_a_write_killed_by_sigterm_leaves_no_temporary_file(tmp_path):
 
     script = (
         "import sys, time\n"
-        "from seahelm.cli._common import exit_on_sigterm\n"
+        "from seahelm import stop_request\n"
         "from seahelm.results import atomic_write\n"
         "if sys.argv[2] == 'handled':\n"
-        "    exit_on_sigterm()\n"
+        "    stop_request.install()\n"
         "def writer(tmp):\n"
         "    open(tmp, 'w').write('half')\n"
         "    print('writing', flush=True)\n"

@@ -13,6 +13,7 @@ re-exports it for the engine.
 """
 from __future__ import annotations
 
+import hashlib
 import importlib.util
 import linecache
 import os
@@ -155,8 +156,6 @@ def content_digest(*parts: bytes | str) -> str:
     str
         16 lower-case hexadecimal digits.
     """
-    import hashlib
-
     return hashlib.sha1(b"\0".join(p.encode() if isinstance(p, str) else p
                                     for p in parts)).hexdigest()[:16]
 

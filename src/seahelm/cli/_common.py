@@ -115,18 +115,6 @@ ForceFlag = Annotated[bool, typer.Option(
     "of an earlier run (a file the command reads is never replaced).")]
 
 
-def exit_on_sigterm() -> None:
-    """Turn SIGTERM (``kill``, a job scheduler's stop) into ``SystemExit(143)`` and Ctrl-C
-    into ``KeyboardInterrupt``, each also recorded so that a stop some C code swallowed is
-    raised again between two slices of the engine (:mod:`seahelm.stop_request`).
-
-    Python's default for SIGTERM ends the process at once, so a file being written
-    atomically (:func:`seahelm.results.atomic_write`) would leave its temporary file behind;
-    as an exception, the writers' cleanup runs and nothing half-written is left.
-    """
-    stop_request.install()
-
-
 def fail_bad_input(message: str) -> NoReturn:
     """Print a one-line reason on stderr (and, with ``--json``, as a JSON object on stdout)
     and exit with code 2."""

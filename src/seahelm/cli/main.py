@@ -18,7 +18,6 @@ from ._common import (
     ProgressBar,
     check_figure_suffix,
     exit_if_diverged,
-    exit_on_sigterm,
     fail_bad_input,
     console,
     handle_errors,
@@ -398,7 +397,9 @@ def main() -> None:
     """
     import sys
 
-    exit_on_sigterm()  # a killed write cleans up its temporary file
+    # SIGTERM and Ctrl-C as exceptions, so a killed write cleans up its temporary file (Python's
+    # default for SIGTERM ends the process at once), recorded so a swallowed one is raised again
+    stop_request.install()
     _show_compiling()
     try:
         _refuse_empty_values(sys.argv[1:])
