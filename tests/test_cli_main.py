@@ -147,6 +147,7 @@ def test_progress_bar_appears_only_for_long_runs(monkeypatch):
 
     common = importlib.import_module("seahelm.cli._common")
 
+    monkeypatch.delenv("SEAHELM_PROGRESS_DELAY", raising=False)
     clock = {"t": 0.0}
     monkeypatch.setattr(common.time, "perf_counter", lambda: clock["t"])
     bar = common.ProgressBar("x")
@@ -161,6 +162,31 @@ def test_progress_bar_appears_only_for_long_runs(monkeypatch):
     clock["t"] = 10.0
     quick(100, 100)  # finished: never a bar
     assert quick.bar is None
+
+
+def test_progress_delay_from_the_environment(monkeypatch):
+    import importlib
+
+    from seahelm.errors import ParameterError
+
+    common = importlib.import_module("seahelm.cli._common")
+    clock = {"t": 0.0}
+    monkeypatch.setattr(common.time, "perf_counter", lambda: clock["t"])
+    monkeypatch.setenv("SEAHELM_PROGRESS_DELAY", "0")
+    bar = common.ProgressBar("x")
+    bar(1, 6)  # at once
+    assert bar.bar is not None and bar.bar.tasks[0].completed == 1
+    bar.close()
+    monkeypatch.setenv("SEAHELM_PROGRESS_DELAY", "2.5")
+    late = common.ProgressBar("y")
+    clock["t"] = 2.0
+    late(1, 6)
+    assert late.bar is None and late.delay == 2.5
+    for bad in ("-1", "soon", "nan", "inf"):
+        monkeypatch.setenv("SEAHELM_PROGRESS_DELAY", bad)
+        with pytest.raises(ParameterError, match=rf"SEAHELM_PROGRESS_DELAY='{bad}': must be a "
+                                                 r"number of seconds >= 0"):
+            common.ProgressBar("z")
 
 
 def test_cache_command_reports_and_clears_only_its_own_files(tmp_path, monkeypatch):

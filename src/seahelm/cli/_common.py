@@ -375,16 +375,42 @@ def print_json(obj: dict[str, Any]) -> None:
     _json_state["printed"] = True
 
 
+#: Environment variable: seconds a command works before its progress bar appears (default 1;
+#: ``0`` shows it at the first progress, e.g. to see it on a fast machine).
+PROGRESS_DELAY_ENV = "SEAHELM_PROGRESS_DELAY"
+
+
+def progress_delay() -> float:
+    """The seconds before a progress bar appears: :data:`PROGRESS_DELAY_ENV`, else 1.
+
+    Raises
+    ------
+    ParameterError
+        If the variable is set to something other than a finite number of seconds >= 0.
+    """
+    text = os.environ.get(PROGRESS_DELAY_ENV, "").strip()
+    if not text:
+        return 1.0
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not math.isfinite(value) or value < 0:
+        raise ParameterError(f"{PROGRESS_DELAY_ENV}={text!r}: must be a number of seconds >= 0")
+    return value
+
+
 class ProgressBar:
     """A progress callback ``(done, total)`` drawing a transient bar on stderr once the work has
     taken ``delay`` seconds (none if it finishes first); ``counted`` shows "done/total" instead
-    of a percentage."""
+    of a percentage. ``delay`` defaults to :data:`PROGRESS_DELAY_ENV` (seconds, ``0``: at the
+    first progress) or 1 s."""
 
-    def __init__(self, label: str, *, enabled: bool = True, delay: float = 1.0,
+    def __init__(self, label: str, *, enabled: bool = True, delay: float | None = None,
                  counted: bool = False) -> None:
         self.label = label
         self.enabled = enabled
-        self.delay = delay
+        self.delay = progress_delay() if delay is None else delay
         self.counted = counted
         self.start = time.perf_counter()
         self.bar: Any = None

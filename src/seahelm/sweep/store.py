@@ -24,6 +24,7 @@ import json
 import os
 import shutil
 import tempfile
+import time
 import warnings
 from collections.abc import Iterator
 from pathlib import Path
@@ -230,8 +231,38 @@ def create_store(path: str | Path, spec: SweepSpec, template: "xr.Dataset",
             shutil.rmtree(final)
         os.replace(path, final)
     except BaseException:
-        shutil.rmtree(path, ignore_errors=True)
+        _remove_partial(path)
         raise
+
+
+def _remove_partial(path: Path, timeout: float = 10.0) -> None:
+    """Remove the store being built at ``path`` after a failed write.
+
+    zarr writes a store's chunks concurrently (tasks on its IO event loop, each a thread):
+    when one fails (a full disk) the error comes back while the others still run, and each
+    recreates its directory as it writes, so a tree removed at once came back (a
+    ``.s.zarr.*.tmp`` left on a full disk, seen in a fresh-clone suite). So the writes still
+    in flight are waited for (``timeout`` seconds at most), then the tree is removed."""
+    import asyncio
+
+    from zarr.core import sync as zarr_sync
+
+    loop = (getattr(zarr_sync, "loop", None) or [None])[0]  # (zarr 3's IO loop, if started)
+    if loop is not None and loop.is_running():
+
+        async def others_done() -> None:
+            me = asyncio.current_task()
+            pending = [t for t in asyncio.all_tasks() if t is not me]
+            if pending:
+                await asyncio.wait(pending, timeout=timeout)
+
+        with contextlib.suppress(Exception):
+            asyncio.run_coroutine_threadsafe(others_done(), loop).result(timeout + 1.0)
+    for _ in range(3):  # (and again if a write no loop task awaited was still finishing)
+        shutil.rmtree(path, ignore_errors=True)
+        if not path.exists():
+            return
+        time.sleep(0.05)
 
 
 def _build(path: Path, spec: SweepSpec, template: "xr.Dataset", layout_vars: dict[str, Any],
